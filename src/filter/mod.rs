@@ -1,0 +1,10 @@
+//! The Unscented Kalman Filter that runs on the drone and at the station (SPEC §4; paper §III-C,
+//! van der Merwe 2004).
+
+mod noise;
+mod sigma_points;
+mod ukf;
+
+pub use noise::{measurement_noise, process_noise, PAPER_Q, PAPER_R_DIAGONAL};
+pub use sigma_points::{SigmaParams, SigmaPoints, SigmaWeights};
+pub use ukf::Ukf;

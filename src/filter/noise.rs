@@ -1,0 +1,23 @@
+//! The paper's noise settings (Table I; SPEC §4).
+
+use nalgebra::{SMatrix, SVector};
+
+/// Process-noise scale q of Q = q·I (paper Table I: 0.1), added once per prediction step.
+pub const PAPER_Q: f64 = 0.1;
+
+/// Measurement variances of the full 3D-CTRA state `x y z theta phi v a omega psi`
+/// (paper Table I): m², m², m², rad², rad², (m/s)², (m/s²)², (rad/s)², (rad/s)².
+pub const PAPER_R_DIAGONAL: [f64; 9] = [
+    0.8274, 0.8274, 3.7481, 0.0085, 0.0085, 0.25, 0.1521, 0.0003, 0.0003,
+];
+
+/// Q = q·I for an `N`-dimensional state.
+pub fn process_noise<const N: usize>(q: f64) -> SMatrix<f64, N, N> {
+    SMatrix::<f64, N, N>::identity() * q
+}
+
+/// The diagonal R for the first `N` components of the 3D-CTRA state, from the given 9 variances.
+/// The state orders of DR (6) and CTRA+ (8) are prefixes of 3D-CTRA's.
+pub fn measurement_noise<const N: usize>(diagonal: &[f64; 9]) -> SMatrix<f64, N, N> {
+    SMatrix::<f64, N, N>::from_diagonal(&SVector::<f64, N>::from_fn(|i, _| diagonal[i]))
+}

@@ -1,0 +1,224 @@
+//! Scaled sigma points (van der Merwe, "Sigma-Point Kalman Filters", 2004, §3.2).
+
+use crate::math::wrap_angle;
+use nalgebra::{SMatrix, SVector};
+use serde::{Deserialize, Serialize};
+
+/// Scaling parameters of the sigma points: lambda = alpha² (n + kappa) − n.
+///
+/// Defaults: alpha = 1, beta = 2, kappa = 3 − n, so that n + lambda = 3 and the points sit at
+/// ±√3 standard deviations, which matches the fourth moment of a Gaussian (Julier & Uhlmann 1997).
+/// A small alpha (1e-3, common in textbooks) puts the points very close to the mean and makes
+/// the centre weight huge and negative; this filter survives that too (see [`crate::Ukf`]), but
+/// for models with strongly nonlinear angles the wider spread estimates the mean better.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct SigmaParams {
+    /// Spread of the points around the mean (0 < alpha ≤ 1).
+    pub alpha: f64,
+    /// Prior knowledge of the distribution (2 is optimal for a Gaussian).
+    pub beta: f64,
+    /// Secondary scaling; `None` means 3 − n.
+    pub kappa: Option<f64>,
+}
+
+impl Default for SigmaParams {
+    fn default() -> Self {
+        SigmaParams {
+            alpha: 1.0,
+            beta: 2.0,
+            kappa: None,
+        }
+    }
+}
+
+/// The weights of the 2n + 1 sigma points. All points but the centre share one weight.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SigmaWeights {
+    /// Mean weight of the centre point.
+    pub mean0: f64,
+    /// Covariance weight of the centre point.
+    pub cov0: f64,
+    /// Weight (mean and covariance) of each of the other 2n points.
+    pub other: f64,
+    /// √(n + lambda), the spread in standard deviations.
+    pub gamma: f64,
+}
+
+impl SigmaWeights {
+    /// Weights for an `n`-dimensional state. Returns `None` when n + lambda ≤ 0 (no real sigma
+    /// points exist for such parameters).
+    pub fn new(n: usize, p: SigmaParams) -> Option<Self> {
+        let nf = n as f64;
+        let kappa = p.kappa.unwrap_or(3.0 - nf);
+        let lambda = p.alpha * p.alpha * (nf + kappa) - nf;
+        let spread = nf + lambda;
+        if !(spread > 0.0 && spread.is_finite() && p.beta.is_finite()) {
+            return None;
+        }
+        let mean0 = lambda / spread;
+        Some(SigmaWeights {
+            mean0,
+            cov0: mean0 + 1.0 - p.alpha * p.alpha + p.beta,
+            other: 0.5 / spread,
+            gamma: spread.sqrt(),
+        })
+    }
+}
+
+/// 2n + 1 sigma points kept on the stack: the centre and the two mirrored sets of n columns.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SigmaPoints<const N: usize> {
+    /// The centre point (the mean).
+    pub center: SVector<f64, N>,
+    /// center + gamma · column i of the Cholesky factor.
+    pub plus: SMatrix<f64, N, N>,
+    /// center − gamma · column i of the Cholesky factor.
+    pub minus: SMatrix<f64, N, N>,
+}
+
+impl<const N: usize> SigmaPoints<N> {
+    /// Points around `mean` from a lower-triangular square root `l` of the covariance.
+    pub fn new(mean: &SVector<f64, N>, l: &SMatrix<f64, N, N>, gamma: f64) -> Self {
+        let mut plus = SMatrix::<f64, N, N>::zeros();
+        let mut minus = SMatrix::<f64, N, N>::zeros();
+        for i in 0..N {
+            let offset = l.column(i) * gamma;
+            plus.set_column(i, &(mean + offset));
+            minus.set_column(i, &(mean - offset));
+        }
+        SigmaPoints {
+            center: *mean,
+            plus,
+            minus,
+        }
+    }
+
+    /// Applies `f` (a motion model, a measurement of the full state) to every point.
+    pub fn map(&self, mut f: impl FnMut(&SVector<f64, N>) -> SVector<f64, N>) -> Self {
+        let mut out = *self;
+        out.center = f(&self.center);
+        for i in 0..N {
+            out.plus
+                .set_column(i, &f(&self.plus.column(i).into_owned()));
+            out.minus
+                .set_column(i, &f(&self.minus.column(i).into_owned()));
+        }
+        out
+    }
+
+    /// Weighted mean of the points. Components listed in `angles` are averaged on the circle:
+    /// as the centre plus the weighted mean of wrapped residuals from it, which stays correct
+    /// with the negative centre weight of the scaled transform (a plain atan2 of weighted sines
+    /// and cosines does not).
+    pub fn mean(&self, w: &SigmaWeights, angles: &[usize]) -> SVector<f64, N> {
+        let mut sum = self.center * w.mean0;
+        for i in 0..N {
+            sum += (self.plus.column(i) + self.minus.column(i)) * w.other;
+        }
+        for &k in angles {
+            let c = self.center[k];
+            let mut r = 0.0;
+            for i in 0..N {
+                r += wrap_angle(self.plus[(k, i)] - c) + wrap_angle(self.minus[(k, i)] - c);
+            }
+            sum[k] = wrap_angle(c + r * w.other);
+        }
+        sum
+    }
+
+    /// Residual of one point from `mean`, with angles wrapped to (−pi, pi].
+    pub fn residual(
+        point: &SVector<f64, N>,
+        mean: &SVector<f64, N>,
+        angles: &[usize],
+    ) -> SVector<f64, N> {
+        let mut d = point - mean;
+        for &k in angles {
+            d[k] = wrap_angle(d[k]);
+        }
+        d
+    }
+
+    /// Weighted cross-covariance Σ w (χ − x̄)(ζ − z̄)ᵀ between these points and `other`.
+    pub fn cross_covariance(
+        &self,
+        mean: &SVector<f64, N>,
+        angles: &[usize],
+        other: &SigmaPoints<N>,
+        other_mean: &SVector<f64, N>,
+        other_angles: &[usize],
+        w: &SigmaWeights,
+    ) -> SMatrix<f64, N, N> {
+        let d0 = Self::residual(&self.center, mean, angles);
+        let e0 = Self::residual(&other.center, other_mean, other_angles);
+        let mut c = d0 * e0.transpose() * w.cov0;
+        for i in 0..N {
+            for (a, b) in [
+                (
+                    self.plus.column(i).into_owned(),
+                    other.plus.column(i).into_owned(),
+                ),
+                (
+                    self.minus.column(i).into_owned(),
+                    other.minus.column(i).into_owned(),
+                ),
+            ] {
+                let d = Self::residual(&a, mean, angles);
+                let e = Self::residual(&b, other_mean, other_angles);
+                c += d * e.transpose() * w.other;
+            }
+        }
+        c
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn weights_sum_to_one() {
+        for n in [2usize, 6, 8, 9] {
+            for alpha in [1e-3, 0.1, 0.5, 1.0] {
+                let w = SigmaWeights::new(
+                    n,
+                    SigmaParams {
+                        alpha,
+                        beta: 2.0,
+                        kappa: Some(0.0),
+                    },
+                )
+                .unwrap();
+                let sum = w.mean0 + 2.0 * n as f64 * w.other;
+                assert!((sum - 1.0).abs() < 1e-9, "n={n} alpha={alpha}: {sum}");
+            }
+        }
+    }
+
+    #[test]
+    fn rejects_parameters_without_real_points() {
+        assert!(SigmaWeights::new(
+            9,
+            SigmaParams {
+                alpha: 1.0,
+                beta: 2.0,
+                kappa: Some(-9.0)
+            }
+        )
+        .is_none());
+    }
+
+    #[test]
+    fn circular_mean_straddles_pi() {
+        let w = SigmaWeights::new(1, SigmaParams::default()).unwrap();
+        let pts = SigmaPoints::<1> {
+            center: SVector::from([3.1]),
+            plus: SMatrix::from([[-3.1]]),
+            minus: SMatrix::from([[3.0]]),
+        };
+        let m = pts.mean(&w, &[0]);
+        // Points at 3.1, -3.1 (= 3.183) and 3.0: the mean is near pi, not near 0.
+        assert!(m[0].abs() > 3.0, "{}", m[0]);
+    }
+}

@@ -1,0 +1,246 @@
+//! The Unscented Kalman Filter, generic over the state size, on the stack.
+
+use super::{SigmaParams, SigmaPoints, SigmaWeights};
+use crate::math::wrap_angle;
+use crate::models::MotionModel;
+use nalgebra::{Cholesky, SMatrix, SVector};
+
+/// An Unscented Kalman Filter over an `N`-dimensional state (van der Merwe 2004; SPEC §4).
+///
+/// * Scaled sigma points ([`SigmaParams`]), angle-aware means and wrapped residuals for the
+///   components listed as angles (theta, phi for the motion models).
+/// * Prediction through any [`MotionModel`]; the update takes a measurement of the full state
+///   (the drone's sensors measure every component, SPEC §4), so h is the identity.
+/// * The covariance is symmetrised after every step; when its Cholesky factorisation fails
+///   (rounding has made it indefinite) jitter is added on the diagonal until it succeeds, and the
+///   event is counted in [`Ukf::recoveries`]. The filter never yields NaN from a finite input.
+///
+/// ```
+/// use loratrack::{Ukf, Dr, SigmaParams, process_noise};
+/// use nalgebra::{SMatrix, SVector};
+/// let x = SVector::<f64, 6>::from([0.0, 0.0, 10.0, 0.0, 0.0, 5.0]);
+/// let mut ukf = Ukf::new(x, SMatrix::identity(), process_noise(0.1), SigmaParams::default(), &[3, 4]).unwrap();
+/// ukf.predict(&Dr, 1.0);
+/// assert!((ukf.x[0] - 5.0).abs() < 1e-9);
+/// ```
+#[derive(Clone, Debug)]
+pub struct Ukf<const N: usize> {
+    /// State estimate.
+    pub x: SVector<f64, N>,
+    /// State covariance (symmetric positive definite).
+    pub p: SMatrix<f64, N, N>,
+    /// Process noise added per prediction step.
+    pub q: SMatrix<f64, N, N>,
+    weights: SigmaWeights,
+    angles: &'static [usize],
+    recoveries: u64,
+}
+
+impl<const N: usize> Ukf<N> {
+    /// A filter at `x` with covariance `p`. Returns `None` when the sigma parameters admit no
+    /// real sigma points (n + lambda ≤ 0).
+    pub fn new(
+        x: SVector<f64, N>,
+        p: SMatrix<f64, N, N>,
+        q: SMatrix<f64, N, N>,
+        sigma: SigmaParams,
+        angles: &'static [usize],
+    ) -> Option<Self> {
+        let weights = SigmaWeights::new(N, sigma)?;
+        Some(Ukf {
+            x,
+            p,
+            q,
+            weights,
+            angles,
+            recoveries: 0,
+        })
+    }
+
+    /// How many times the covariance had to be repaired (jitter added) to stay positive definite.
+    pub fn recoveries(&self) -> u64 {
+        self.recoveries
+    }
+
+    /// Replaces the state and covariance (the station does this on every received packet).
+    pub fn reset(&mut self, x: SVector<f64, N>, p: SMatrix<f64, N, N>) {
+        self.x = x;
+        self.p = p;
+    }
+
+    /// Prediction step: propagates the sigma points through `model` over `dt` seconds,
+    /// recombines them and adds Q.
+    pub fn predict<M: MotionModel<N>>(&mut self, model: &M, dt: f64) {
+        let points = self.sigma_points().map(|s| model.propagate(s, dt));
+        let mean = points.mean(&self.weights, self.angles);
+        let cov = points.cross_covariance(
+            &mean,
+            self.angles,
+            &points,
+            &mean,
+            self.angles,
+            &self.weights,
+        );
+        self.x = mean;
+        self.p = cov + self.q;
+        self.stabilise();
+    }
+
+    /// Update step with a measurement `z` of the full state and its noise covariance `r`.
+    pub fn update(&mut self, z: &SVector<f64, N>, r: &SMatrix<f64, N, N>) {
+        let points = self.sigma_points();
+        let x_mean = points.mean(&self.weights, self.angles);
+        // h is the identity: the measurement sigma points are the state sigma points.
+        let pzz = points.cross_covariance(
+            &x_mean,
+            self.angles,
+            &points,
+            &x_mean,
+            self.angles,
+            &self.weights,
+        ) + r;
+        let pxz = pzz - r;
+        let Some(chol) = Cholesky::new(0.5 * (pzz + pzz.transpose())) else {
+            // The innovation covariance is at least R, which is PD for any valid R; a failure means
+            // R itself was not PD. Skip the update rather than corrupt the state.
+            self.recoveries += 1;
+            return;
+        };
+        let innovation = SigmaPoints::<N>::residual(z, &x_mean, self.angles);
+        // K = Pxz Pzz⁻¹, computed as (Pzz⁻¹ Pxzᵀ)ᵀ through the factorisation.
+        let k = chol.solve(&pxz.transpose()).transpose();
+        self.x = x_mean + k * innovation;
+        for &i in self.angles {
+            self.x[i] = wrap_angle(self.x[i]);
+        }
+        self.p -= k * pzz * k.transpose();
+        self.stabilise();
+    }
+
+    fn sigma_points(&mut self) -> SigmaPoints<N> {
+        let l = self.sqrt_covariance();
+        SigmaPoints::new(&self.x, &l, self.weights.gamma)
+    }
+
+    /// Lower Cholesky factor of P, repairing P first if needed.
+    fn sqrt_covariance(&mut self) -> SMatrix<f64, N, N> {
+        if let Some(c) = Cholesky::new(self.p) {
+            return c.l();
+        }
+        self.repair();
+        match Cholesky::new(self.p) {
+            Some(c) => c.l(),
+            None => SMatrix::from_diagonal(&self.p.diagonal().map(|d| d.abs().sqrt())),
+        }
+    }
+
+    /// Keeps P symmetric and positive definite after a step.
+    fn stabilise(&mut self) {
+        self.p = 0.5 * (self.p + self.p.transpose());
+        if !self.p.iter().all(|v| v.is_finite()) || Cholesky::new(self.p).is_none() {
+            self.repair();
+        }
+    }
+
+    /// Adds growing diagonal jitter until P factorises; falls back to Q if P is not finite.
+    fn repair(&mut self) {
+        self.recoveries += 1;
+        if !self.p.iter().all(|v| v.is_finite()) {
+            self.p = self.q;
+        }
+        self.p = 0.5 * (self.p + self.p.transpose());
+        let scale = (self.p.trace().abs() / N as f64).max(1e-12);
+        let mut jitter = scale * 1e-12;
+        for _ in 0..30 {
+            let candidate = self.p + SMatrix::<f64, N, N>::identity() * jitter;
+            if Cholesky::new(candidate).is_some() {
+                self.p = candidate;
+                return;
+            }
+            jitter *= 10.0;
+        }
+        self.p = SMatrix::from_diagonal(&self.p.diagonal().map(|d| d.abs().max(scale)));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::models::ModelKind;
+
+    /// Constant velocity in one dimension: [position, velocity]. Linear, so the UKF must equal
+    /// the Kalman filter.
+    struct ConstantVelocity;
+    impl MotionModel<2> for ConstantVelocity {
+        const KIND: ModelKind = ModelKind::Dr;
+        fn propagate(&self, s: &SVector<f64, 2>, dt: f64) -> SVector<f64, 2> {
+            SVector::from([s[0] + s[1] * dt, s[1]])
+        }
+    }
+
+    #[test]
+    fn matches_a_linear_kalman_filter_on_a_linear_model() {
+        let f = SMatrix::<f64, 2, 2>::new(1.0, 0.5, 0.0, 1.0);
+        let q = SMatrix::<f64, 2, 2>::new(0.01, 0.0, 0.0, 0.02);
+        let r = SMatrix::<f64, 2, 2>::new(0.5, 0.0, 0.0, 0.3);
+        let x0 = SVector::from([0.0, 1.0]);
+        let p0 = SMatrix::<f64, 2, 2>::new(2.0, 0.3, 0.3, 1.0);
+        for params in [
+            SigmaParams::default(),
+            SigmaParams {
+                alpha: 1e-3,
+                beta: 2.0,
+                kappa: Some(0.0),
+            },
+        ] {
+            let mut ukf = Ukf::new(x0, p0, q, params, &[]).unwrap();
+            let (mut x, mut p) = (x0, p0);
+            for k in 0..50 {
+                let z = SVector::from([
+                    0.5 * k as f64 + (k as f64 * 0.7).sin(),
+                    1.0 + 0.1 * (k as f64).cos(),
+                ]);
+                ukf.predict(&ConstantVelocity, 0.5);
+                x = f * x;
+                p = f * p * f.transpose() + q;
+                ukf.update(&z, &r);
+                let s = p + r;
+                let k_gain = p * s.try_inverse().unwrap();
+                x += k_gain * (z - x);
+                p = (SMatrix::identity() - k_gain) * p;
+                assert!((ukf.x - x).norm() < 1e-6, "step {k}: {} vs {}", ukf.x, x);
+                assert!((ukf.p - p).norm() < 1e-6, "step {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn unscented_transform_recovers_mean_and_covariance_of_a_linear_map() {
+        let x = SVector::<f64, 2>::from([1.0, -2.0]);
+        let p = SMatrix::<f64, 2, 2>::new(2.0, 0.5, 0.5, 1.0);
+        let a = SMatrix::<f64, 2, 2>::new(1.5, -0.3, 0.2, 0.8);
+        let w = SigmaWeights::new(2, SigmaParams::default()).unwrap();
+        let l = Cholesky::new(p).unwrap().l();
+        let pts = SigmaPoints::new(&x, &l, w.gamma).map(|s| a * s);
+        let m = pts.mean(&w, &[]);
+        let c = pts.cross_covariance(&m, &[], &pts, &m, &[], &w);
+        assert!((m - a * x).norm() < 1e-12);
+        assert!((c - a * p * a.transpose()).norm() < 1e-12);
+    }
+
+    #[test]
+    fn recovers_from_an_indefinite_covariance_without_nan() {
+        let mut ukf = Ukf::<2>::new(
+            SVector::from([0.0, 1.0]),
+            SMatrix::<f64, 2, 2>::new(1.0, 2.0, 2.0, 1.0), // indefinite
+            SMatrix::identity() * 1e-3,
+            SigmaParams::default(),
+            &[],
+        )
+        .unwrap();
+        ukf.predict(&ConstantVelocity, 0.1);
+        assert!(ukf.recoveries() > 0);
+        assert!(ukf.x.iter().all(|v| v.is_finite()));
+        assert!(Cholesky::new(ukf.p).is_some());
+    }
+}

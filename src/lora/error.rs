@@ -1,0 +1,49 @@
+use core::fmt;
+
+/// What LoRa cannot do: each variant names the offending value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LoraError {
+    /// Spreading factor outside 7..=12.
+    SpreadingFactor(i64),
+    /// Bandwidth other than 125, 250 or 500 kHz.
+    Bandwidth(f64),
+    /// Coding rate index outside 1..=4 (4/5 .. 4/8).
+    CodingRate(i64),
+    /// PHY payload (application payload + overhead) over 255 bytes.
+    PayloadTooLarge(usize),
+    /// Preamble length outside 6..=65535 symbols.
+    Preamble(i64),
+    /// Duty cycle not in (0, 1].
+    DutyCycle(f64),
+    /// A channel parameter that is not a finite number in its range.
+    Parameter(&'static str, f64),
+}
+
+impl fmt::Display for LoraError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LoraError::SpreadingFactor(sf) => {
+                write!(f, "spreading factor must be 7..12, got {sf}")
+            }
+            LoraError::Bandwidth(bw) => {
+                write!(f, "bandwidth must be 125, 250 or 500 kHz, got {bw}")
+            }
+            LoraError::CodingRate(cr) => {
+                write!(f, "coding rate must be 1..4 (4/5..4/8), got {cr}")
+            }
+            LoraError::PayloadTooLarge(n) => write!(
+                f,
+                "PHY payload of {n} bytes (payload + overhead) exceeds LoRa's 255-byte maximum"
+            ),
+            LoraError::Preamble(n) => {
+                write!(f, "preamble must be 6..65535 symbols, got {n}")
+            }
+            LoraError::DutyCycle(d) => {
+                write!(f, "duty cycle must be a fraction in (0, 1], got {d}")
+            }
+            LoraError::Parameter(name, v) => write!(f, "{name} is out of range: {v}"),
+        }
+    }
+}
+
+impl std::error::Error for LoraError {}

@@ -1,0 +1,19 @@
+//! The LoRa link: time on air, duty cycle, channel (path loss, sensitivity, shadowing).
+//!
+//! Sources: Semtech SX1276 datasheet §4.1.1.7 (time on air), ETSI EN 300 220 / LoRaWAN Regional
+//! Parameters RP002 (EU868 duty cycle), and the ns-3 `lorawan` module used in the paper's
+//! evaluation (channel defaults; SPEC §6).
+
+mod airtime;
+mod channel;
+mod duty_cycle;
+mod error;
+mod shadowing;
+
+pub use airtime::{
+    time_on_air, Airtime, Bandwidth, CodingRate, LdroMode, LoraParams, SpreadingFactor,
+};
+pub use channel::{Channel, ChannelParams};
+pub use duty_cycle::{min_interval, SubBand, TTN_FAIR_USE_SECONDS_PER_DAY};
+pub use error::LoraError;
+pub use shadowing::Shadowing;

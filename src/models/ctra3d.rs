@@ -1,0 +1,82 @@
+//! 3D-CTRA: constant turn rate, constant tilt rate and constant acceleration (paper §III-B).
+
+use super::{arc_integral, ModelKind, MotionModel, A, OMEGA, PHI, PSI, THETA, V, X, Y, Z};
+use crate::math::wrap_angle;
+use nalgebra::SVector;
+
+/// 3D-CTRA: the drone turns at a constant rate omega in the horizontal plane and tilts its
+/// velocity at a constant rate psi, while accelerating at a constant a: a curved helix.
+///
+/// State (9): `[x, y, z, theta, phi, v, a, omega, psi]` — m, rad, m/s, m/s², rad/s, rad/s
+/// (paper eq. `3d_state`).
+///
+/// With the Werner formula cos θ cos φ = ½[cos(θ+φ) + cos(θ−φ)] (paper §III-B):
+///
+/// ```text
+/// theta(t) = theta0 + omega t,  phi(t) = phi0 + psi t,  v(t) = v0 + a t   (eqs. theta, phi_3d)
+/// [x, y](t) = [x0, y0] + ½ I(theta0+phi0, omega+psi) + ½ I(theta0−phi0, omega−psi)   (eqs. x_int, y_int)
+/// z(t)     = z0 + Im I(phi0, psi)                                                    (eq. z_int)
+/// I(α, k)  = ∫₀ᵗ (v0 + aτ) e^{i(α + kτ)} dτ  = [`arc_integral`]
+/// ```
+///
+/// The paper's printed forms divide by (omega ± psi) and psi and need separate special cases for
+/// psi = 0 and omega = ±psi; [`arc_integral`] is exact at and near all of them, so this one
+/// expression covers every case continuously (SPEC §3). `phi` is kept in (−pi, pi]: a pitch past
+/// ±pi/2 is a loop, which the ODE describes without any special handling.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Ctra3d;
+
+impl MotionModel<9> for Ctra3d {
+    const KIND: ModelKind = ModelKind::Ctra3d;
+
+    fn propagate(&self, s: &SVector<f64, 9>, dt: f64) -> SVector<f64, 9> {
+        let (theta, phi, v, a) = (s[THETA], s[PHI], s[V], s[A]);
+        let (omega, psi) = (s[OMEGA], s[PSI]);
+        let plus = arc_integral(theta + phi, omega + psi, v, a, dt);
+        let minus = arc_integral(theta - phi, omega - psi, v, a, dt);
+        let vertical = arc_integral(phi, psi, v, a, dt);
+        let mut out = *s;
+        out[X] += 0.5 * (plus.0 + minus.0);
+        out[Y] += 0.5 * (plus.1 + minus.1);
+        out[Z] += vertical.1;
+        out[THETA] = wrap_angle(theta + omega * dt);
+        out[PHI] = wrap_angle(phi + psi * dt);
+        out[V] = v + a * dt;
+        out
+    }
+
+    fn decay_tilt_rate(&self, state: &mut SVector<f64, 9>, eta: f64) {
+        state[PSI] *= eta;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::models::CtraPlus;
+
+    #[test]
+    fn equals_ctra_plus_when_psi_is_zero() {
+        let s8 = SVector::<f64, 8>::from([1.0, -2.0, 30.0, 0.7, 0.25, 8.0, -0.5, 0.4]);
+        let mut s9 = SVector::<f64, 9>::zeros();
+        s9.fixed_rows_mut::<8>(0).copy_from(&s8);
+        let a = CtraPlus.propagate(&s8, 4.0);
+        let b = Ctra3d.propagate(&s9, 4.0);
+        for i in 0..8 {
+            assert!(
+                (a[i] - b[i]).abs() < 1e-12,
+                "component {i}: {} vs {}",
+                a[i],
+                b[i]
+            );
+        }
+    }
+
+    #[test]
+    fn decay_multiplies_psi_by_eta() {
+        let mut s = SVector::<f64, 9>::zeros();
+        s[PSI] = 0.5;
+        Ctra3d.decay_tilt_rate(&mut s, 0.9);
+        assert!((s[PSI] - 0.45).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,65 @@
+//! CTRA+: 2D CTRA on a plane tilted by a constant pitch (paper §III-A).
+
+use super::{arc_integral, ModelKind, MotionModel, A, OMEGA, PHI, THETA, V, X, Y, Z};
+use crate::math::{sin_cos, wrap_angle};
+use nalgebra::SVector;
+
+/// CTRA+: constant turn rate omega, constant tangential acceleration a, constant pitch phi.
+///
+/// State (8): `[x, y, z, theta, phi, v, a, omega]` — m, rad, m/s, m/s², rad/s (paper eq.
+/// `plus_state`).
+///
+/// ```text
+/// theta(t) = theta0 + omega t                                  (paper eq. theta)
+/// v(t)     = v0 + a t,   phi(t) = phi0                         (eq. phi_plus)
+/// [x, y](t) = [x0, y0] + cos(phi) · CTRA2D(theta0, omega, v0, a, t)
+/// z(t)     = z0 + sin(phi) (v0 t + a t²/2)
+/// ```
+///
+/// Erratum (SPEC §3): the paper says the horizontal part equals 2D CTRA multiplied by sin(phi);
+/// it is cos(phi). The 2D CTRA integral is [`arc_integral`], exact at omega = 0.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CtraPlus;
+
+impl MotionModel<8> for CtraPlus {
+    const KIND: ModelKind = ModelKind::CtraPlus;
+
+    fn propagate(&self, s: &SVector<f64, 8>, dt: f64) -> SVector<f64, 8> {
+        let (sp, cp) = sin_cos(s[PHI]);
+        let (dx, dy) = arc_integral(s[THETA], s[OMEGA], s[V], s[A], dt);
+        let along = s[V] * dt + 0.5 * s[A] * dt * dt;
+        let mut out = *s;
+        out[X] += cp * dx;
+        out[Y] += cp * dy;
+        out[Z] += sp * along;
+        out[THETA] = wrap_angle(s[THETA] + s[OMEGA] * dt);
+        out[V] = s[V] + s[A] * dt;
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reproduces_the_2d_ctra_reference_values() {
+        let s = SVector::<f64, 8>::from([0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0]);
+        let out = CtraPlus.propagate(&s, 0.5);
+        assert!((out[X] - 0.5967208697966773).abs() < 1e-12);
+        assert!((out[Y] - 0.16305169576864387).abs() < 1e-12);
+        assert_eq!(out[V], 1.5);
+        assert_eq!(out[THETA], 0.5);
+        let mut straight = s;
+        straight[OMEGA] = 0.0;
+        assert!((CtraPlus.propagate(&straight, 0.5)[X] - 0.625).abs() < 1e-15);
+    }
+
+    #[test]
+    fn climbs_along_its_pitch() {
+        let s = SVector::<f64, 8>::from([0.0, 0.0, 0.0, 0.0, 0.3, 2.0, 0.0, 0.0]);
+        let out = CtraPlus.propagate(&s, 3.0);
+        assert!((out[Z] - 6.0 * 0.3f64.sin()).abs() < 1e-12);
+        assert!((out[X] - 6.0 * 0.3f64.cos()).abs() < 1e-12);
+    }
+}

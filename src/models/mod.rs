@@ -1,0 +1,56 @@
+//! The three motion models of the paper (SPEC §2–3): DR, CTRA+ and 3D-CTRA.
+//!
+//! All three share the convention of SPEC §2: local ENU metres, seconds, radians, and states that
+//! begin `x y z theta phi v`. `theta` and `phi` describe the *velocity vector* (course and
+//! flight-path angle), not the airframe.
+
+mod arc_integral;
+mod ctra3d;
+mod ctra_plus;
+mod dr;
+mod kind;
+
+pub use arc_integral::arc_integral;
+pub use ctra3d::Ctra3d;
+pub use ctra_plus::CtraPlus;
+pub use dr::Dr;
+pub use kind::{ModelError, ModelKind};
+
+use nalgebra::SVector;
+
+/// Index of x (east, m) in every state.
+pub const X: usize = 0;
+/// Index of y (north, m).
+pub const Y: usize = 1;
+/// Index of z (up, m).
+pub const Z: usize = 2;
+/// Index of theta (course, rad, counter-clockwise from +x).
+pub const THETA: usize = 3;
+/// Index of phi (flight-path angle, rad, above the horizontal).
+pub const PHI: usize = 4;
+/// Index of v (speed, m/s).
+pub const V: usize = 5;
+/// Index of a (tangential acceleration, m/s²), CTRA+ and 3D-CTRA.
+pub const A: usize = 6;
+/// Index of omega (turn rate dtheta/dt, rad/s), CTRA+ and 3D-CTRA.
+pub const OMEGA: usize = 7;
+/// Index of psi (tilt rate dphi/dt, rad/s), 3D-CTRA only.
+pub const PSI: usize = 8;
+
+/// The state components that are angles (theta, phi): the filter averages and differences them
+/// on the circle.
+pub const ANGLES: &[usize] = &[THETA, PHI];
+
+/// A motion model with an `N`-dimensional state that can be propagated over any time step in
+/// closed form (noise-free).
+pub trait MotionModel<const N: usize> {
+    /// Which of the paper's models this is.
+    const KIND: ModelKind;
+
+    /// The state after `dt` seconds (`dt` may be any finite value; the station uses dt ≥ 0).
+    fn propagate(&self, state: &SVector<f64, N>, dt: f64) -> SVector<f64, N>;
+
+    /// Applies the station's tilt-rate decay after one prediction step: psi ← eta·psi
+    /// (paper §III-B, last paragraph). Models without psi leave the state unchanged.
+    fn decay_tilt_rate(&self, _state: &mut SVector<f64, N>, _eta: f64) {}
+}
