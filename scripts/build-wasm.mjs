@@ -1,0 +1,24 @@
+// Compiles the crate to WebAssembly (release) and generates the JS bindings into www/pkg
+// (`--target web`, git-ignored). The page and the Node tests import it only through www/loratrack.ts.
+import { spawnSync } from 'node:child_process';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = join(dirname(fileURLToPath(import.meta.url)), '..');
+
+function run(cmd, args) {
+  console.log(`[build-wasm] ${cmd} ${args.join(' ')}`);
+  const r = spawnSync(cmd, args, { cwd: root, stdio: 'inherit' });
+  if (r.status !== 0) {
+    console.error(`[build-wasm] error: ${cmd} failed`);
+    process.exit(1);
+  }
+}
+
+run('cargo', ['build', '--lib', '--release', '--target', 'wasm32-unknown-unknown']);
+run('wasm-bindgen', [
+  '--target', 'web',
+  '--out-dir', 'www/pkg',
+  '--out-name', 'loratrack',
+  join('target', 'wasm32-unknown-unknown', 'release', 'loratrack.wasm'),
+]);

@@ -1,0 +1,109 @@
+//! `airtime` / `timeOnAir`: time on air and duty-cycle interval of one packet (SPEC §6, §8).
+
+use super::ApiError;
+use crate::lora::{self, Bandwidth, CodingRate, LdroMode, LoraParams, SpreadingFactor};
+use serde::{Deserialize, Serialize};
+
+/// LoRaWAN MAC overhead in bytes: MHDR 1 + FHDR 7 + FPort 1 + MIC 4 (LoRaWAN 1.0.x §4).
+pub const LORAWAN_OVERHEAD_BYTES: usize = 13;
+
+/// Input of `airtime`. Field names are the CLI's long options in camelCase.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(rename_all = "camelCase", deny_unknown_fields)]
+pub struct AirtimeParams {
+    /// Spreading factor, 7..12.
+    pub sf: i64,
+    /// Bandwidth, kHz: 125, 250 or 500.
+    pub bw: f64,
+    /// Application payload, bytes.
+    pub payload: usize,
+    /// MAC overhead added to the payload, bytes (LoRaWAN: 13; raw LoRa as in the paper: 0).
+    #[serde(default = "default_overhead")]
+    pub overhead: usize,
+    /// Coding rate index 1..4 (4/5..4/8).
+    #[serde(default = "default_cr")]
+    pub cr: i64,
+    /// Preamble symbols.
+    #[serde(default = "default_preamble")]
+    pub preamble: i64,
+    /// Implicit header mode.
+    #[serde(default)]
+    pub implicit_header: bool,
+    /// Payload CRC off.
+    #[serde(default)]
+    pub no_crc: bool,
+    /// Low data rate optimisation.
+    #[serde(default)]
+    pub ldro: LdroMode,
+    /// Duty-cycle limit as a fraction (EU868 g1 sub-band: 0.01).
+    #[serde(default = "default_duty_cycle")]
+    pub duty_cycle: f64,
+}
+
+fn default_overhead() -> usize {
+    LORAWAN_OVERHEAD_BYTES
+}
+fn default_cr() -> i64 {
+    1
+}
+fn default_preamble() -> i64 {
+    8
+}
+fn default_duty_cycle() -> f64 {
+    0.01
+}
+
+impl AirtimeParams {
+    /// Validated radio settings.
+    pub fn lora_params(&self) -> Result<LoraParams, ApiError> {
+        let mut p = LoraParams::new(
+            SpreadingFactor::new(self.sf)?,
+            Bandwidth::from_khz(self.bw)?,
+        );
+        p.cr = CodingRate::new(self.cr)?;
+        p.preamble = u16::try_from(self.preamble)
+            .ok()
+            .filter(|n| *n >= 6)
+            .ok_or(lora::LoraError::Preamble(self.preamble))?;
+        p.implicit_header = self.implicit_header;
+        p.crc = !self.no_crc;
+        p.ldro = self.ldro;
+        Ok(p)
+    }
+}
+
+/// Output of `airtime` (SPEC §8).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct AirtimeReport {
+    /// Time on air, s.
+    pub time_on_air: f64,
+    /// Symbol duration, s.
+    pub symbol_time: f64,
+    /// Payload symbols.
+    pub payload_symbols: u32,
+    /// PHY payload bytes (payload + overhead).
+    pub phy_payload_bytes: usize,
+    /// Whether low data rate optimisation is on.
+    pub low_data_rate_optimize: bool,
+    /// Minimum interval between packets under the duty cycle, s.
+    pub min_interval: f64,
+}
+
+/// Time on air and minimum duty-cycle interval of one packet.
+pub fn airtime(p: &AirtimeParams) -> Result<AirtimeReport, ApiError> {
+    let radio = p.lora_params()?;
+    let phy = p
+        .payload
+        .checked_add(p.overhead)
+        .ok_or(lora::LoraError::PayloadTooLarge(usize::MAX))?;
+    let t = lora::time_on_air(&radio, phy)?;
+    Ok(AirtimeReport {
+        time_on_air: t.time_on_air,
+        symbol_time: t.symbol_time,
+        payload_symbols: t.payload_symbols,
+        phy_payload_bytes: t.phy_payload_bytes,
+        low_data_rate_optimize: t.low_data_rate_optimize,
+        min_interval: lora::min_interval(t.time_on_air, p.duty_cycle)?,
+    })
+}

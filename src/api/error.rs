@@ -1,0 +1,28 @@
+use crate::lora::LoraError;
+use core::fmt;
+
+/// Any error an API operation can return: one variant per domain, plus malformed input.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ApiError {
+    /// The LoRa link (airtime, duty cycle, channel).
+    Lora(LoraError),
+    /// Input that does not have the expected shape or range.
+    Invalid(String),
+}
+
+impl fmt::Display for ApiError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ApiError::Lora(e) => e.fmt(f),
+            ApiError::Invalid(msg) => f.write_str(msg),
+        }
+    }
+}
+
+impl std::error::Error for ApiError {}
+
+impl From<LoraError> for ApiError {
+    fn from(e: LoraError) -> Self {
+        ApiError::Lora(e)
+    }
+}

@@ -1,0 +1,12 @@
+//! The operations loratrack offers, with their input and output shapes (SPEC §8–9).
+//!
+//! The CLI and the WebAssembly bindings are thin skins over these functions: both deserialize
+//! the same parameter structs (JS objects use the CLI's long option names in camelCase) and
+//! serialize the same reports, so `loratrack airtime --json` and `timeOnAir({...})` cannot drift
+//! apart.
+
+mod airtime;
+mod error;
+
+pub use airtime::{airtime, AirtimeParams, AirtimeReport};
+pub use error::ApiError;

@@ -1,0 +1,32 @@
+//! WebAssembly bindings: the only module that knows about JavaScript.
+//!
+//! Each export takes one plain JS object, deserializes it into the matching [`crate::api`]
+//! parameter struct, runs the operation and serializes the report back. Every error becomes a
+//! thrown JS `Error` with the core's message; nothing here panics, so a bad call never poisons
+//! the module.
+
+use crate::api::{self, ApiError};
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+use wasm_bindgen::prelude::*;
+
+fn call<P: DeserializeOwned, R: Serialize>(
+    params: JsValue,
+    op: impl FnOnce(P) -> Result<R, ApiError>,
+) -> Result<JsValue, JsError> {
+    let value: serde_json::Value = serde_wasm_bindgen::from_value(params)
+        .map_err(|e| JsError::new(&format!("invalid parameters: {e}")))?;
+    let p: P = serde_json::from_value(value)
+        .map_err(|e| JsError::new(&format!("invalid parameters: {e}")))?;
+    let report = op(p).map_err(|e| JsError::new(&e.to_string()))?;
+    report
+        .serialize(&serde_wasm_bindgen::Serializer::json_compatible())
+        .map_err(|e| JsError::new(&e.to_string()))
+}
+
+/// `timeOnAir({sf, bw, payload, overhead?, cr?, preamble?, implicitHeader?, noCrc?, ldro?, dutyCycle?})`
+/// → `{timeOnAir, symbolTime, payloadSymbols, phyPayloadBytes, lowDataRateOptimize, minInterval}`.
+#[wasm_bindgen(js_name = timeOnAir)]
+pub fn time_on_air(params: JsValue) -> Result<JsValue, JsError> {
+    call(params, |p: api::AirtimeParams| api::airtime(&p))
+}
