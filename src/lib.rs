@@ -24,6 +24,7 @@ pub mod trajectory;
 #[cfg(target_arch = "wasm32")]
 pub mod wasm;
 
+pub use codec::*;
 pub use filter::*;
 pub use lora::*;
 pub use math::wrap_angle;

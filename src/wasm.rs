@@ -30,3 +30,21 @@ fn call<P: DeserializeOwned, R: Serialize>(
 pub fn time_on_air(params: JsValue) -> Result<JsValue, JsError> {
     call(params, |p: api::AirtimeParams| api::airtime(&p))
 }
+
+/// `predict({model, state, dt, step?, eta?})` → `{model, state}` (noise-free model propagation).
+#[wasm_bindgen]
+pub fn predict(params: JsValue) -> Result<JsValue, JsError> {
+    call(params, |p: api::PredictParams| api::predict(&p))
+}
+
+/// `encode({model, state, origin?})` → `{hex, saturated}`.
+#[wasm_bindgen]
+pub fn encode(params: JsValue) -> Result<JsValue, JsError> {
+    call(params, |p: api::EncodeParams| api::encode(&p))
+}
+
+/// `decode({model, hex, origin?})` → `{model, state}`.
+#[wasm_bindgen]
+pub fn decode(params: JsValue) -> Result<JsValue, JsError> {
+    call(params, |p: api::DecodeParams| api::decode(&p))
+}

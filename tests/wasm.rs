@@ -76,3 +76,73 @@ fn bad_input_throws_a_readable_error_and_the_module_keeps_working() {
     .unwrap();
     assert!((num(&ok, "timeOnAir") - 0.072192).abs() < 1e-9);
 }
+
+fn array(values: &[f64]) -> JsValue {
+    values
+        .iter()
+        .map(|v| JsValue::from_f64(*v))
+        .collect::<js_sys::Array>()
+        .into()
+}
+
+fn numbers(v: &JsValue, key: &str) -> Vec<f64> {
+    js_sys::Array::from(&get(v, key))
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+#[wasm_bindgen_test]
+fn predict_reproduces_the_2d_ctra_reference_and_rejects_bad_states() {
+    let r = wasm::predict(obj(&[
+        ("model", "ctra-plus".into()),
+        ("state", array(&[0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0])),
+        ("dt", 0.5.into()),
+    ]))
+    .unwrap();
+    let s = numbers(&r, "state");
+    assert!(
+        (s[0] - 0.5967208697966773).abs() < 1e-12 && (s[1] - 0.16305169576864387).abs() < 1e-12
+    );
+    assert_eq!(get(&r, "model").as_string().as_deref(), Some("ctra-plus"));
+    let e = wasm::predict(obj(&[
+        ("model", "3d-ctra".into()),
+        ("state", array(&[0.0; 8])),
+        ("dt", 1.into()),
+    ]))
+    .unwrap_err();
+    assert!(error_message(e).contains("9 numbers"));
+    let e = wasm::predict(obj(&[
+        ("model", "dr".into()),
+        ("state", array(&[0.0; 6])),
+        ("dt", (-1).into()),
+    ]))
+    .unwrap_err();
+    assert!(error_message(e).contains("time step"));
+    let e = wasm::predict(obj(&[
+        ("model", "3d-ctra".into()),
+        ("state", array(&[0.0; 9])),
+        ("dt", 1.into()),
+        ("step", 0.1.into()),
+        ("eta", 1.5.into()),
+    ]))
+    .unwrap_err();
+    assert!(error_message(e).contains("eta"));
+}
+
+#[wasm_bindgen_test]
+fn encode_then_decode_round_trips_and_wrong_lengths_throw() {
+    let state = [12.3, -40.0, 55.5, 0.5, 0.1, 7.2, 0.3, 0.2, -0.1];
+    let e = wasm::encode(obj(&[
+        ("model", "3d-ctra".into()),
+        ("state", array(&state)),
+    ]))
+    .unwrap();
+    let hex = get(&e, "hex").as_string().unwrap();
+    assert_eq!(hex.len(), 24);
+    let d = wasm::decode(obj(&[("model", "3d-ctra".into()), ("hex", hex.into())])).unwrap();
+    let back = numbers(&d, "state");
+    assert!((back[0] - 12.3).abs() <= 0.1 + 1e-9);
+    let err = wasm::decode(obj(&[("model", "dr".into()), ("hex", "00ff".into())])).unwrap_err();
+    assert!(error_message(err).contains("9 bytes"));
+}

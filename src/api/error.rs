@@ -1,4 +1,6 @@
+use crate::codec::CodecError;
 use crate::lora::LoraError;
+use crate::models::ModelError;
 use core::fmt;
 
 /// Any error an API operation can return: one variant per domain, plus malformed input.
@@ -6,6 +8,10 @@ use core::fmt;
 pub enum ApiError {
     /// The LoRa link (airtime, duty cycle, channel).
     Lora(LoraError),
+    /// Motion models (state shape, time step, eta).
+    Model(ModelError),
+    /// The payload codec.
+    Codec(CodecError),
     /// Input that does not have the expected shape or range.
     Invalid(String),
 }
@@ -14,6 +20,8 @@ impl fmt::Display for ApiError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             ApiError::Lora(e) => e.fmt(f),
+            ApiError::Model(e) => e.fmt(f),
+            ApiError::Codec(e) => e.fmt(f),
             ApiError::Invalid(msg) => f.write_str(msg),
         }
     }
@@ -24,5 +32,17 @@ impl std::error::Error for ApiError {}
 impl From<LoraError> for ApiError {
     fn from(e: LoraError) -> Self {
         ApiError::Lora(e)
+    }
+}
+
+impl From<ModelError> for ApiError {
+    fn from(e: ModelError) -> Self {
+        ApiError::Model(e)
+    }
+}
+
+impl From<CodecError> for ApiError {
+    fn from(e: CodecError) -> Self {
+        ApiError::Codec(e)
     }
 }

@@ -7,6 +7,10 @@
 
 mod airtime;
 mod error;
+mod payload;
+mod predict;
 
-pub use airtime::{airtime, AirtimeParams, AirtimeReport};
+pub use airtime::{airtime, AirtimeParams, AirtimeReport, LORAWAN_OVERHEAD_BYTES};
 pub use error::ApiError;
+pub use payload::{decode, encode, DecodeParams, DecodeReport, EncodeParams, EncodeReport};
+pub use predict::{predict, validate_state, PredictParams, PredictReport, MAX_STEPS};

@@ -1,0 +1,115 @@
+//! `predict`: noise-free propagation of a state under one model (SPEC §8).
+
+use super::ApiError;
+use crate::models::{Ctra3d, CtraPlus, Dr, ModelError, ModelKind, MotionModel};
+use nalgebra::SVector;
+use serde::{Deserialize, Serialize};
+
+/// The most prediction steps one call may run (`dt / step`), so no input can hang the caller.
+pub const MAX_STEPS: f64 = 1e7;
+
+/// Input of `predict`.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(rename_all = "camelCase", deny_unknown_fields)]
+pub struct PredictParams {
+    /// `dr`, `ctra-plus` or `3d-ctra`.
+    pub model: ModelKind,
+    /// The state, SPEC §2 order and units.
+    pub state: Vec<f64>,
+    /// Time to propagate over, s (≥ 0).
+    pub dt: f64,
+    /// Run in steps of this length (s), multiplying psi by eta after each, as the station does.
+    #[serde(default)]
+    pub step: Option<f64>,
+    /// Tilt-rate decay per step, [0, 1]; only with `step` (default 0.9, paper Table I).
+    #[serde(default)]
+    pub eta: Option<f64>,
+}
+
+/// Output of `predict`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PredictReport {
+    /// The model.
+    pub model: ModelKind,
+    /// The propagated state.
+    pub state: Vec<f64>,
+}
+
+/// Checks a state's length and finiteness for `model`.
+pub fn validate_state(model: ModelKind, state: &[f64]) -> Result<(), ModelError> {
+    if state.len() != model.state_len() {
+        return Err(ModelError::StateLength {
+            model,
+            got: state.len(),
+        });
+    }
+    match state.iter().position(|v| !v.is_finite()) {
+        Some(index) => Err(ModelError::NonFinite { index }),
+        None => Ok(()),
+    }
+}
+
+fn run<const N: usize, M: MotionModel<N>>(
+    model: M,
+    state: &[f64],
+    dt: f64,
+    steps: Option<(f64, f64)>,
+) -> Vec<f64> {
+    let mut s = SVector::<f64, N>::from_column_slice(state);
+    match steps {
+        None => s = model.propagate(&s, dt),
+        Some((step, eta)) => {
+            // Whole steps, then a partial one; the 1e-9 keeps rounding in dt/step from adding a
+            // spurious near-zero step.
+            let n = (dt / step - 1e-9).ceil().max(0.0) as u64;
+            for i in 0..n {
+                let h = step.min(dt - i as f64 * step);
+                s = model.propagate(&s, h);
+                model.decay_tilt_rate(&mut s, eta);
+            }
+        }
+    }
+    s.iter().copied().collect()
+}
+
+/// Propagates `state` over `dt` with the chosen model.
+pub fn predict(p: &PredictParams) -> Result<PredictReport, ApiError> {
+    validate_state(p.model, &p.state)?;
+    if !(p.dt.is_finite() && p.dt >= 0.0) {
+        return Err(ModelError::TimeStep(p.dt).into());
+    }
+    let steps = match (p.step, p.eta) {
+        (None, None) => None,
+        (None, Some(_)) => {
+            return Err(ApiError::Invalid(
+                "eta needs step (the decay is applied after each step)".into(),
+            ))
+        }
+        (Some(step), eta) => {
+            if !(step.is_finite() && step > 0.0) {
+                return Err(ApiError::Invalid(format!(
+                    "step must be a number of seconds > 0, got {step}"
+                )));
+            }
+            if p.dt / step > MAX_STEPS {
+                return Err(ApiError::Invalid(format!(
+                    "dt / step exceeds {MAX_STEPS} steps"
+                )));
+            }
+            let eta = eta.unwrap_or(0.9);
+            if !(0.0..=1.0).contains(&eta) {
+                return Err(ModelError::Eta(eta).into());
+            }
+            Some((step, eta))
+        }
+    };
+    let state = match p.model {
+        ModelKind::Dr => run(Dr, &p.state, p.dt, steps),
+        ModelKind::CtraPlus => run(CtraPlus, &p.state, p.dt, steps),
+        ModelKind::Ctra3d => run(Ctra3d, &p.state, p.dt, steps),
+    };
+    Ok(PredictReport {
+        model: p.model,
+        state,
+    })
+}
