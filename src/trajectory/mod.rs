@@ -1,1 +1,18 @@
-//! TODO
+//! Ground-truth flights: the synthetic Mid-Air-like set, CSV import and the bundled real flight
+//! (SPEC §7).
+
+mod csv;
+mod error;
+mod kinematics;
+mod sample;
+mod synthetic;
+mod track;
+
+pub use csv::{parse_csv, MAX_ROWS, MIN_ROWS};
+pub use error::TrajectoryError;
+pub use kinematics::{kinematic_states, HOVER_SPEED};
+pub use sample::{canberra_flight, CANBERRA_CREDIT};
+pub use synthetic::{
+    synthetic_flight, synthetic_set, SYNTHETIC_FLIGHTS, SYNTHETIC_SEED, SYNTHETIC_TOTAL_SECONDS,
+};
+pub use track::Trajectory;

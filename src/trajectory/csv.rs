@@ -1,0 +1,272 @@
+//! CSV import of a flight (SPEC §7).
+
+use super::{Trajectory, TrajectoryError};
+
+/// Fewest data rows accepted: a filter needs a few samples to start and a derivative needs
+/// neighbours.
+pub const MIN_ROWS: usize = 10;
+/// Most data rows accepted (a day at 10 Hz is 864 000).
+pub const MAX_ROWS: usize = 1_000_000;
+/// Largest coordinate magnitude accepted, m (beyond, a frame is clearly not local ENU).
+const MAX_COORDINATE: f64 = 1e6;
+/// Longest flight accepted, s.
+const MAX_DURATION: f64 = 86_400.0;
+/// Largest speed accepted, m/s.
+const MAX_SPEED: f64 = 300.0;
+
+/// Accepted names per column, matched case-insensitively.
+const ALIASES: [(&str, &[&str]); 9] = [
+    (
+        "t",
+        &[
+            "t",
+            "time",
+            "t_s",
+            "t_seconds",
+            "time_s",
+            "timestamp",
+            "seconds",
+        ],
+    ),
+    ("x", &["x", "x_m", "east", "e", "east_m"]),
+    ("y", &["y", "y_m", "north", "n", "north_m"]),
+    (
+        "z",
+        &["z", "z_m", "up", "u", "up_m", "alt", "altitude", "alt_m"],
+    ),
+    ("vx", &["vx", "vx_mps", "vx_m_s", "v_x", "ve", "vel_x"]),
+    ("vy", &["vy", "vy_mps", "vy_m_s", "v_y", "vn", "vel_y"]),
+    ("vz", &["vz", "vz_mps", "vz_m_s", "v_z", "vu", "vel_z"]),
+    ("ax", &["ax", "ax_mps2", "ax_m_s2", "a_x", "acc_x"]),
+    ("ay", &["ay", "ay_mps2", "ay_m_s2", "a_y", "acc_y"]),
+];
+const AZ_ALIASES: &[&str] = &["az", "az_mps2", "az_m_s2", "a_z", "acc_z"];
+
+fn find(header: &[String], names: &[&str]) -> Option<usize> {
+    header.iter().position(|h| names.contains(&h.as_str()))
+}
+
+/// Parses a CSV flight: a header row with at least `t,x,y,z` (seconds, metres, local ENU) and
+/// optionally `vx,vy,vz` (m/s) and `ax,ay,az` (m/s²). Missing velocities or accelerations are
+/// derived by smoothed differentiation (local linear regression over ±0.15 s for velocity,
+/// ±0.3 s for acceleration). Blank lines and lines starting with `#` are skipped.
+///
+/// ```
+/// let csv = "t,x,y,z\n".to_string() + &(0..20).map(|i| format!("{},{},0,10\n", i as f64 * 0.1, i)).collect::<String>();
+/// let tr = loratrack::parse_csv(&csv, "demo").unwrap();
+/// assert!((tr.vel[10][0] - 10.0).abs() < 1e-9);
+/// ```
+pub fn parse_csv(text: &str, name: &str) -> Result<Trajectory, TrajectoryError> {
+    let mut lines = text
+        .trim_start_matches('\u{feff}')
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim()))
+        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let (_, header_line) = lines.next().ok_or(TrajectoryError::Empty)?;
+    let header: Vec<String> = header_line
+        .split(',')
+        .map(|h| h.trim().trim_matches('"').to_ascii_lowercase())
+        .collect();
+    let mut columns = [None; 10];
+    for (k, (_, names)) in ALIASES.iter().enumerate() {
+        columns[k] = find(&header, names);
+    }
+    columns[9] = find(&header, AZ_ALIASES);
+    for (k, (canonical, _)) in ALIASES.iter().take(4).enumerate() {
+        if columns[k].is_none() {
+            return Err(TrajectoryError::MissingColumn {
+                column: canonical,
+                header: header_line.to_string(),
+            });
+        }
+    }
+    let has_vel = columns[4..7].iter().all(Option::is_some);
+    let has_acc = has_vel && columns[7..10].iter().all(Option::is_some);
+
+    let mut rows: Vec<[f64; 10]> = Vec::new();
+    let mut line_numbers = Vec::new();
+    for (line, l) in lines {
+        if rows.len() >= MAX_ROWS {
+            return Err(TrajectoryError::TooManyRows { max: MAX_ROWS });
+        }
+        let fields: Vec<&str> = l.split(',').map(str::trim).collect();
+        if fields.len() != header.len() {
+            return Err(TrajectoryError::FieldCount {
+                line,
+                got: fields.len(),
+                expected: header.len(),
+            });
+        }
+        let mut row = [0.0; 10];
+        for (k, c) in columns.iter().enumerate() {
+            let Some(c) = *c else { continue };
+            let text = fields[c].trim_matches('"');
+            let v: f64 = text.parse().map_err(|_| TrajectoryError::NotANumber {
+                line,
+                column: header[c].clone(),
+                text: text.chars().take(40).collect(),
+            })?;
+            if !v.is_finite() {
+                return Err(TrajectoryError::NonFinite {
+                    line,
+                    column: header[c].clone(),
+                });
+            }
+            row[k] = v;
+        }
+        if let Some(prev) = rows.last() {
+            if row[0] <= prev[0] {
+                return Err(TrajectoryError::TimeNotIncreasing { line });
+            }
+        }
+        if row[1..4].iter().any(|v| v.abs() > MAX_COORDINATE) {
+            return Err(TrajectoryError::Absurd {
+                line,
+                what: format!("a coordinate beyond {MAX_COORDINATE} m from the origin"),
+            });
+        }
+        if has_vel && (row[4] * row[4] + row[5] * row[5] + row[6] * row[6]).sqrt() > MAX_SPEED {
+            return Err(TrajectoryError::Absurd {
+                line,
+                what: format!("a speed over {MAX_SPEED} m/s"),
+            });
+        }
+        if let Some(first) = rows.first() {
+            if row[0] - first[0] > MAX_DURATION {
+                return Err(TrajectoryError::Absurd {
+                    line,
+                    what: format!("a flight longer than {MAX_DURATION} s"),
+                });
+            }
+        }
+        rows.push(row);
+        line_numbers.push(line);
+    }
+    if rows.is_empty() {
+        return Err(TrajectoryError::HeaderOnly);
+    }
+    if rows.len() < MIN_ROWS {
+        return Err(TrajectoryError::TooFewRows {
+            rows: rows.len(),
+            min: MIN_ROWS,
+        });
+    }
+
+    let t: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+    let pos: Vec<[f64; 3]> = rows.iter().map(|r| [r[1], r[2], r[3]]).collect();
+    let vel = if has_vel {
+        rows.iter().map(|r| [r[4], r[5], r[6]]).collect()
+    } else {
+        smoothed_derivative(&t, &pos, 0.15)
+    };
+    if !has_vel {
+        if let Some(i) = vel
+            .iter()
+            .position(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() > MAX_SPEED)
+        {
+            return Err(TrajectoryError::Absurd {
+                line: line_numbers[i],
+                what: format!("positions imply a speed over {MAX_SPEED} m/s"),
+            });
+        }
+    }
+    let acc = if has_acc {
+        rows.iter().map(|r| [r[7], r[8], r[9]]).collect()
+    } else {
+        smoothed_derivative(&t, &vel, 0.3)
+    };
+    Ok(Trajectory::new(name.to_string(), t, pos, vel, acc))
+}
+
+/// Derivative of `values` over time by local linear regression on the samples within
+/// ±`half_window` seconds (at least one neighbour on each side where there is one): a
+/// Savitzky–Golay filter of order 1 for uneven sampling, which smooths noise that a plain finite
+/// difference would amplify.
+fn smoothed_derivative(t: &[f64], values: &[[f64; 3]], half_window: f64) -> Vec<[f64; 3]> {
+    let n = t.len();
+    let (mut lo, mut hi) = (0usize, 0usize);
+    (0..n)
+        .map(|i| {
+            while t[i] - t[lo] > half_window && lo + 1 < i {
+                lo += 1;
+            }
+            while hi + 1 < n && (t[hi + 1] - t[i] <= half_window || hi <= i) {
+                hi += 1;
+            }
+            let (a, b) = (lo.min(i.saturating_sub(1)), hi.max((i + 1).min(n - 1)));
+            let m = (b - a + 1) as f64;
+            let t_mean = t[a..=b].iter().sum::<f64>() / m;
+            let stt: f64 = t[a..=b].iter().map(|x| (x - t_mean).powi(2)).sum();
+            core::array::from_fn(|k| {
+                let y_mean = values[a..=b].iter().map(|v| v[k]).sum::<f64>() / m;
+                let sty: f64 = (a..=b)
+                    .map(|j| (t[j] - t_mean) * (values[j][k] - y_mean))
+                    .sum();
+                sty / stt
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn csv(rows: usize) -> String {
+        let mut s = String::from("t_seconds,x_m,y_m,z_m\n");
+        for i in 0..rows {
+            let t = i as f64 * 0.1;
+            s += &format!("{t},{},{},{}\n", 3.0 * t, 0.5 * t * t, 20.0);
+        }
+        s
+    }
+
+    #[test]
+    fn derives_velocity_and_acceleration_of_a_parabola() {
+        let tr = parse_csv(&csv(100), "p").unwrap();
+        let i = 50;
+        assert!((tr.vel[i][0] - 3.0).abs() < 1e-9);
+        assert!((tr.vel[i][1] - tr.t[i]).abs() < 1e-9);
+        assert!((tr.acc[i][1] - 1.0).abs() < 1e-6);
+        assert!(tr.states.iter().all(|s| s.iter().all(|v| v.is_finite())));
+    }
+
+    #[test]
+    fn refuses_bad_files_with_a_message_naming_the_line() {
+        let cases: [(String, &str); 9] = [
+            (String::new(), "empty"),
+            ("t,x,y,z\n".into(), "no data rows"),
+            (csv(5), "at least 10"),
+            ("t,x,y\n1,2,3\n".into(), "'z' column"),
+            (csv(20).replace("\n1,", "\n1,abc"), "not a number"),
+            (
+                csv(20).replacen(",20\n", ",NaN\n", 1),
+                "line 2: column 'z_m' is not a finite number",
+            ),
+            (
+                csv(20) + "0.5,1,1,1\n",
+                "line 22: time is not strictly increasing",
+            ),
+            (csv(20) + "9,1,1\n", "line 22: 3 fields"),
+            (csv(20) + "9,1e9,1,1\n", "line 22: a coordinate"),
+        ];
+        for (text, expected) in cases {
+            let err = parse_csv(&text, "bad").unwrap_err().to_string();
+            assert!(
+                err.contains(expected),
+                "{err:?} should contain {expected:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn accepts_aliases_case_insensitively_and_uses_given_velocities() {
+        let mut s = String::from("Time,X,Y,Z,VX,VY,VZ\n");
+        for i in 0..20 {
+            s += &format!("{},0,0,0,1,2,3\n", i);
+        }
+        let tr = parse_csv(&s, "v").unwrap();
+        assert_eq!(tr.vel[3], [1.0, 2.0, 3.0]);
+    }
+}

@@ -1,0 +1,85 @@
+//! The model state `theta phi v a omega psi` from velocity and acceleration (SPEC §2, §7).
+
+use crate::math::{atan2, hypot};
+
+/// Below this speed (m/s) the direction of motion is undefined (hover): theta and phi hold their
+/// last defined value, and the rates are regularised towards zero by this scale.
+pub const HOVER_SPEED: f64 = 0.2;
+
+/// Derives `[x y z theta phi v a omega psi]` at every sample.
+///
+/// * theta = atan2(vy, vx), phi = atan2(vz, |v_h|), v = |v| (SPEC §3 erratum: with the root).
+/// * a = v·acc / |v| (tangential acceleration), omega = dtheta/dt = (vx ay − vy ax) / |v_h|²,
+///   psi = dphi/dt = (|v_h|² az − vz (vx ax + vy ay)) / (|v_h| |v|²).
+///
+/// The denominators are regularised with [`HOVER_SPEED`]² (e.g. |v_h|² + s²) so hovering gives
+/// finite rates that fade to zero instead of NaN; above a few m/s the effect is negligible.
+pub fn kinematic_states(pos: &[[f64; 3]], vel: &[[f64; 3]], acc: &[[f64; 3]]) -> Vec<[f64; 9]> {
+    let eps2 = HOVER_SPEED * HOVER_SPEED;
+    // The first defined direction also serves the samples before it.
+    let first_moving = vel
+        .iter()
+        .find(|v| hypot(hypot(v[0], v[1]), v[2]) >= HOVER_SPEED);
+    let (mut theta, mut phi) = first_moving
+        .map(|v| (atan2(v[1], v[0]), atan2(v[2], hypot(v[0], v[1]))))
+        .unwrap_or((0.0, 0.0));
+    pos.iter()
+        .zip(vel)
+        .zip(acc)
+        .map(|((p, v), a)| {
+            let vh2 = v[0] * v[0] + v[1] * v[1];
+            let vh = vh2.sqrt();
+            let speed = hypot(vh, v[2]);
+            if speed >= HOVER_SPEED {
+                phi = atan2(v[2], vh);
+                if vh >= HOVER_SPEED {
+                    theta = atan2(v[1], v[0]);
+                }
+            }
+            let along = v[0] * a[0] + v[1] * a[1] + v[2] * a[2];
+            let tangential = along / (speed * speed + eps2).sqrt();
+            let omega = (v[0] * a[1] - v[1] * a[0]) / (vh2 + eps2);
+            let psi = (vh2 * a[2] - v[2] * (v[0] * a[0] + v[1] * a[1]))
+                / ((vh2 + eps2).sqrt() * (speed * speed + eps2));
+            [p[0], p[1], p[2], theta, phi, speed, tangential, omega, psi]
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_level_turn_has_the_right_turn_rate_and_no_tilt() {
+        // Circle of radius 20 m at 5 m/s: omega = v / r = 0.25 rad/s, centripetal a = v²/r.
+        let (r, v) = (20.0, 5.0);
+        let th: f64 = 0.3;
+        let vel = [[-v * th.sin(), v * th.cos(), 0.0]];
+        let acc = [[-v * v / r * th.cos(), -v * v / r * th.sin(), 0.0]];
+        let s = kinematic_states(&[[0.0; 3]], &vel, &acc)[0];
+        assert!((s[5] - v).abs() < 1e-12);
+        assert!(s[6].abs() < 1e-12);
+        assert!((s[7] - v / r).abs() < 0.01 * v / r);
+        assert!(s[8].abs() < 1e-12);
+    }
+
+    #[test]
+    fn hover_gives_finite_values_and_holds_the_last_direction() {
+        let vel = [[3.0, 3.0, 0.0], [0.0, 0.0, 0.0], [1e-9, -1e-9, 1e-9]];
+        let acc = [[0.0; 3], [0.5, -0.2, 0.1], [0.0; 3]];
+        let s = kinematic_states(&[[0.0; 3]; 3], &vel, &acc);
+        for row in &s {
+            assert!(row.iter().all(|v| v.is_finite()));
+        }
+        assert!((s[1][3] - core::f64::consts::FRAC_PI_4).abs() < 1e-12);
+        assert!((s[2][3] - core::f64::consts::FRAC_PI_4).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_steady_climb_has_constant_pitch() {
+        let s = kinematic_states(&[[0.0; 3]], &[[4.0, 0.0, 3.0]], &[[0.0; 3]])[0];
+        assert!((s[4] - (0.75f64).atan()).abs() < 1e-12);
+        assert!((s[5] - 5.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,121 @@
+//! A ground-truth flight sampled in time.
+
+use super::kinematics::kinematic_states;
+use crate::math::wrap_angle;
+
+/// A flight: times (s) and, at each, position (m), velocity (m/s) and acceleration (m/s²) in
+/// local ENU, plus the derived 3D-CTRA state `x y z theta phi v a omega psi` (SPEC §2).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trajectory {
+    /// A short name ("synthetic 3", "canberra", a file name).
+    pub name: String,
+    /// Sample times, strictly increasing, s.
+    pub t: Vec<f64>,
+    /// Positions, m.
+    pub pos: Vec<[f64; 3]>,
+    /// Velocities, m/s.
+    pub vel: Vec<[f64; 3]>,
+    /// Accelerations, m/s².
+    pub acc: Vec<[f64; 3]>,
+    /// The full model state at each sample (derived from velocity and acceleration).
+    pub states: Vec<[f64; 9]>,
+}
+
+impl Trajectory {
+    /// Builds a trajectory and derives its model states. The caller guarantees equal lengths,
+    /// at least two samples and strictly increasing times.
+    pub fn new(
+        name: String,
+        t: Vec<f64>,
+        pos: Vec<[f64; 3]>,
+        vel: Vec<[f64; 3]>,
+        acc: Vec<[f64; 3]>,
+    ) -> Self {
+        let states = kinematic_states(&pos, &vel, &acc);
+        Trajectory {
+            name,
+            t,
+            pos,
+            vel,
+            acc,
+            states,
+        }
+    }
+
+    /// Seconds from the first to the last sample.
+    pub fn duration(&self) -> f64 {
+        self.t[self.t.len() - 1] - self.t[0]
+    }
+
+    /// Index `i` with t[i] ≤ time < t[i+1] (clamped), searching forward from `hint` — the
+    /// simulation asks for increasing times, so the search is amortised O(1).
+    fn segment(&self, time: f64, hint: &mut usize) -> (usize, f64) {
+        let last = self.t.len() - 1;
+        if *hint > last || self.t[*hint] > time {
+            *hint = self.t.partition_point(|&x| x <= time).saturating_sub(1);
+        }
+        while *hint + 1 < last && self.t[*hint + 1] <= time {
+            *hint += 1;
+        }
+        let i = (*hint).min(last - 1);
+        let w = ((time - self.t[i]) / (self.t[i + 1] - self.t[i])).clamp(0.0, 1.0);
+        (i, w)
+    }
+
+    /// Position at `time` by linear interpolation (clamped to the ends).
+    pub fn position_at(&self, time: f64, hint: &mut usize) -> [f64; 3] {
+        let (i, w) = self.segment(time, hint);
+        core::array::from_fn(|k| self.pos[i][k] + w * (self.pos[i + 1][k] - self.pos[i][k]))
+    }
+
+    /// The full model state at `time`, interpolating angles along the shorter arc.
+    pub fn state_at(&self, time: f64, hint: &mut usize) -> [f64; 9] {
+        let (i, w) = self.segment(time, hint);
+        let (a, b) = (&self.states[i], &self.states[i + 1]);
+        core::array::from_fn(|k| {
+            if k == 3 || k == 4 {
+                wrap_angle(a[k] + w * wrap_angle(b[k] - a[k]))
+            } else {
+                a[k] + w * (b[k] - a[k])
+            }
+        })
+    }
+
+    /// Path length, m.
+    pub fn path_length(&self) -> f64 {
+        self.pos
+            .windows(2)
+            .map(|p| {
+                ((p[1][0] - p[0][0]).powi(2)
+                    + (p[1][1] - p[0][1]).powi(2)
+                    + (p[1][2] - p[0][2]).powi(2))
+                .sqrt()
+            })
+            .sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line() -> Trajectory {
+        let t: Vec<f64> = (0..5).map(f64::from).collect();
+        let pos = t.iter().map(|&s| [2.0 * s, 0.0, 10.0]).collect();
+        let vel = vec![[2.0, 0.0, 0.0]; 5];
+        let acc = vec![[0.0; 3]; 5];
+        Trajectory::new("line".into(), t, pos, vel, acc)
+    }
+
+    #[test]
+    fn interpolates_position_and_clamps_at_the_ends() {
+        let tr = line();
+        let mut h = 0;
+        assert_eq!(tr.position_at(1.5, &mut h), [3.0, 0.0, 10.0]);
+        assert_eq!(tr.position_at(-1.0, &mut h), [0.0, 0.0, 10.0]);
+        assert_eq!(tr.position_at(9.0, &mut h), [8.0, 0.0, 10.0]);
+        assert_eq!(tr.position_at(0.5, &mut h), [1.0, 0.0, 10.0]);
+        assert_eq!(tr.duration(), 4.0);
+        assert!((tr.path_length() - 8.0).abs() < 1e-12);
+    }
+}
