@@ -28,5 +28,8 @@ pub use codec::*;
 pub use filter::*;
 pub use lora::*;
 pub use math::wrap_angle;
+pub use metrics::*;
 pub use models::*;
 pub use rng::Rng;
+pub use sim::*;
+pub use trajectory::*;

@@ -6,9 +6,16 @@
 //! the module.
 
 use crate::api::{self, ApiError};
+use crate::sim::Simulator;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
+use std::cell::RefCell;
 use wasm_bindgen::prelude::*;
+
+thread_local! {
+    /// One simulator per module instance, so repeated calls reuse parsed flights and drone runs.
+    static SIMULATOR: RefCell<Simulator> = RefCell::new(Simulator::new());
+}
 
 fn call<P: DeserializeOwned, R: Serialize>(
     params: JsValue,
@@ -47,4 +54,13 @@ pub fn encode(params: JsValue) -> Result<JsValue, JsError> {
 #[wasm_bindgen]
 pub fn decode(params: JsValue) -> Result<JsValue, JsError> {
     call(params, |p: api::DecodeParams| api::decode(&p))
+}
+
+/// `simulate({synthetic | sample | trajectory (CSV text), model?, sf?, bw?, distance?, seed?, …, series?})`
+/// → `{config, results, series?}` (SPEC §8). Drone-side filter runs are cached between calls.
+#[wasm_bindgen]
+pub fn simulate(params: JsValue) -> Result<JsValue, JsError> {
+    call(params, |p: crate::sim::SimParams| {
+        SIMULATOR.with(|s| api::simulate(&mut s.borrow_mut(), &p))
+    })
 }

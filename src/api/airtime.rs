@@ -1,11 +1,10 @@
 //! `airtime` / `timeOnAir`: time on air and duty-cycle interval of one packet (SPEC §6, §8).
 
 use super::ApiError;
-use crate::lora::{self, Bandwidth, CodingRate, LdroMode, LoraParams, SpreadingFactor};
+use crate::lora::{
+    self, Bandwidth, CodingRate, LdroMode, LoraParams, SpreadingFactor, LORAWAN_OVERHEAD_BYTES,
+};
 use serde::{Deserialize, Serialize};
-
-/// LoRaWAN MAC overhead in bytes: MHDR 1 + FHDR 7 + FPort 1 + MIC 4 (LoRaWAN 1.0.x §4).
-pub const LORAWAN_OVERHEAD_BYTES: usize = 13;
 
 /// Input of `airtime`. Field names are the CLI's long options in camelCase.
 #[derive(Clone, Debug, PartialEq, Deserialize)]

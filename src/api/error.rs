@@ -1,6 +1,7 @@
 use crate::codec::CodecError;
 use crate::lora::LoraError;
 use crate::models::ModelError;
+use crate::sim::SimError;
 use core::fmt;
 
 /// Any error an API operation can return: one variant per domain, plus malformed input.
@@ -12,6 +13,8 @@ pub enum ApiError {
     Model(ModelError),
     /// The payload codec.
     Codec(CodecError),
+    /// The simulation (flight, parameters).
+    Sim(SimError),
     /// Input that does not have the expected shape or range.
     Invalid(String),
 }
@@ -22,6 +25,7 @@ impl fmt::Display for ApiError {
             ApiError::Lora(e) => e.fmt(f),
             ApiError::Model(e) => e.fmt(f),
             ApiError::Codec(e) => e.fmt(f),
+            ApiError::Sim(e) => e.fmt(f),
             ApiError::Invalid(msg) => f.write_str(msg),
         }
     }
@@ -44,5 +48,11 @@ impl From<ModelError> for ApiError {
 impl From<CodecError> for ApiError {
     fn from(e: CodecError) -> Self {
         ApiError::Codec(e)
+    }
+}
+
+impl From<SimError> for ApiError {
+    fn from(e: SimError) -> Self {
+        ApiError::Sim(e)
     }
 }

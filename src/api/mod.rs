@@ -9,8 +9,10 @@ mod airtime;
 mod error;
 mod payload;
 mod predict;
+mod simulate;
 
-pub use airtime::{airtime, AirtimeParams, AirtimeReport, LORAWAN_OVERHEAD_BYTES};
+pub use airtime::{airtime, AirtimeParams, AirtimeReport};
 pub use error::ApiError;
 pub use payload::{decode, encode, DecodeParams, DecodeReport, EncodeParams, EncodeReport};
 pub use predict::{predict, validate_state, PredictParams, PredictReport, MAX_STEPS};
+pub use simulate::{p75, simulate, sweep_paper, SweepReport, SweepRun, PAPER_DISTANCES, PAPER_SFS};

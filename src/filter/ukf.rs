@@ -31,7 +31,9 @@ pub struct Ukf<const N: usize> {
     pub x: SVector<f64, N>,
     /// State covariance (symmetric positive definite).
     pub p: SMatrix<f64, N, N>,
-    /// Process noise added per prediction step.
+    /// Process-noise intensity per second: a prediction over `dt` adds `q · dt` (the first-order
+    /// discretisation of continuous white noise), so the filter behaves the same whatever its
+    /// step length. See `filter::noise` for why this reading of the paper's Q = qI.
     pub q: SMatrix<f64, N, N>,
     weights: SigmaWeights,
     angles: &'static [usize],
@@ -71,7 +73,7 @@ impl<const N: usize> Ukf<N> {
     }
 
     /// Prediction step: propagates the sigma points through `model` over `dt` seconds,
-    /// recombines them and adds Q.
+    /// recombines them and adds Q·dt.
     pub fn predict<M: MotionModel<N>>(&mut self, model: &M, dt: f64) {
         let points = self.sigma_points().map(|s| model.propagate(s, dt));
         let mean = points.mean(&self.weights, self.angles);
@@ -84,7 +86,7 @@ impl<const N: usize> Ukf<N> {
             &self.weights,
         );
         self.x = mean;
-        self.p = cov + self.q;
+        self.p = cov + self.q * dt.abs();
         self.stabilise();
     }
 
@@ -204,7 +206,7 @@ mod tests {
                 ]);
                 ukf.predict(&ConstantVelocity, 0.5);
                 x = f * x;
-                p = f * p * f.transpose() + q;
+                p = f * p * f.transpose() + q * 0.5;
                 ukf.update(&z, &r);
                 let s = p + r;
                 let k_gain = p * s.try_inverse().unwrap();

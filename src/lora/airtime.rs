@@ -3,6 +3,9 @@
 use super::LoraError;
 use serde::{Deserialize, Serialize};
 
+/// LoRaWAN MAC overhead in bytes: MHDR 1 + FHDR 7 + FPort 1 + MIC 4 (LoRaWAN 1.0.x §4).
+pub const LORAWAN_OVERHEAD_BYTES: usize = 13;
+
 /// Spreading factor 7..=12 (chips per symbol = 2^SF).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 pub struct SpreadingFactor(u8);

@@ -12,6 +12,7 @@ mod shadowing;
 
 pub use airtime::{
     time_on_air, Airtime, Bandwidth, CodingRate, LdroMode, LoraParams, SpreadingFactor,
+    LORAWAN_OVERHEAD_BYTES,
 };
 pub use channel::{Channel, ChannelParams};
 pub use duty_cycle::{min_interval, SubBand, TTN_FAIR_USE_SECONDS_PER_DAY};

@@ -1,1 +1,23 @@
-//! TODO
+//! The end-to-end tracking simulation (paper §IV; SPEC §1, §4, §6):
+//! ground truth → noisy sensors → drone UKF → duty-cycled transmissions → codec → channel →
+//! station predictor → error against ground truth every T.
+//!
+//! The drone side ([`drone::DroneTrack`]) depends only on the flight, the model, the sensors and
+//! the seed; the link and station sides are cheap. [`Simulator`] caches drone tracks, so changing
+//! only link parameters (SF, bandwidth, distance, overhead, channel) never re-runs a drone filter.
+
+mod config;
+mod drone;
+mod error;
+mod link;
+mod report;
+mod simulator;
+mod station;
+
+pub use config::{ModelChoice, SimConfig, SimParams, SyntheticChoice, TrajectorySource};
+pub use drone::{run_drone, DroneTrack};
+pub use error::SimError;
+pub use link::{schedule_transmissions, LinkSetup, Transmission};
+pub use report::{ModelResult, ModelSeries, RunConfig, Series, SimReport};
+pub use simulator::Simulator;
+pub use station::{track_station, StationTrack};

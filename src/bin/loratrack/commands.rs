@@ -2,7 +2,7 @@
 
 use clap::{Args, Subcommand};
 use loratrack::api::{self, ApiError};
-use loratrack::{LdroMode, ModelKind};
+use loratrack::{LdroMode, ModelKind, ModelResult, SimParams, Simulator};
 use serde::Serialize;
 
 #[derive(Subcommand)]
@@ -15,6 +15,91 @@ pub enum Command {
     Encode(EncodeArgs),
     /// Decode a payload back into a state (SPEC §5).
     Decode(DecodeArgs),
+    /// Simulate tracking over LoRa: drone UKF, duty-cycled packets, channel, station predictor.
+    Simulate(Box<SimulateArgs>),
+    /// The paper's grid: SF 7/8, 250 kHz, d = 1/2/3 km, all models, whole synthetic set.
+    Sweep(SweepArgs),
+}
+
+#[derive(Args)]
+pub struct SimulateArgs {
+    /// A flight as CSV: header with t,x,y,z (s, m, ENU) and optional vx,vy,vz / ax,ay,az.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["synthetic", "sample"])]
+    trajectory: Option<std::path::PathBuf>,
+    /// The canonical synthetic set: `all` (30 flights, 44 min) or one flight 1..30.
+    #[arg(long, value_name = "all|1..30", conflicts_with = "sample")]
+    synthetic: Option<String>,
+    /// A bundled real flight: canberra (ArduCopter log171, CC BY-SA 3.0).
+    #[arg(long, value_name = "NAME")]
+    sample: Option<String>,
+    /// Motion model: dr, ctra-plus, 3d-ctra or all.
+    #[arg(long, default_value = "all")]
+    model: String,
+    /// Spreading factor, 7..12.
+    #[arg(long, default_value_t = 7, allow_negative_numbers = true)]
+    sf: i64,
+    /// Bandwidth in kHz: 125, 250 or 500.
+    #[arg(long, default_value_t = 250.0)]
+    bw: f64,
+    /// Horizontal distance from the flight's first point to the gateway, metres.
+    #[arg(long, default_value_t = 1000.0, allow_negative_numbers = true)]
+    distance: f64,
+    /// Seed of all random draws (sensor noise, transmission offset, shadowing).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// MAC overhead in bytes added to each payload: 13 for LoRaWAN, 0 as in the paper's Table II.
+    #[arg(long, default_value_t = 13)]
+    overhead: usize,
+    /// The paper's preset: no LoRaWAN overhead (same as --overhead 0).
+    #[arg(long, conflicts_with = "overhead")]
+    paper: bool,
+    /// Coding rate n of 4/(4+n): 1..4.
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
+    cr: i64,
+    /// Duty-cycle limit as a fraction.
+    #[arg(long, default_value_t = 0.01)]
+    duty_cycle: f64,
+    /// Transmit power, dBm.
+    #[arg(long, default_value_t = 14.0, allow_negative_numbers = true)]
+    tx_power: f64,
+    /// Path-loss exponent of the log-distance model.
+    #[arg(long, default_value_t = 3.76)]
+    path_loss_exponent: f64,
+    /// Log-normal shadowing standard deviation in dB (0 turns it off).
+    #[arg(long, default_value_t = 4.0, allow_negative_numbers = true)]
+    shadowing: f64,
+    /// Gateway antenna height, metres.
+    #[arg(long, default_value_t = 15.0)]
+    gateway_height: f64,
+    /// Drone sensor and filter rate, Hz.
+    #[arg(long, default_value_t = 10.0)]
+    sensor_rate: f64,
+    /// Station prediction step T, seconds.
+    #[arg(long, default_value_t = 0.1)]
+    step: f64,
+    /// Tilt-rate decay per station step (paper: 0.9).
+    #[arg(long, default_value_t = 0.9, allow_negative_numbers = true)]
+    eta: f64,
+    /// Process noise q of Q = q I (paper: 0.1).
+    #[arg(long, default_value_t = 0.1)]
+    q: f64,
+    /// Include time series of the first flight (error over time, trajectories) in the JSON.
+    #[arg(long)]
+    series: bool,
+    #[command(flatten)]
+    out: Output,
+}
+
+#[derive(Args)]
+pub struct SweepArgs {
+    /// Run the paper's grid (the only grid so far; required so the command says what it does).
+    #[arg(long, required = true)]
+    paper: bool,
+    /// Seed of all random draws.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    #[command(flatten)]
+    out: Output,
 }
 
 /// Motion model names accepted by --model.
@@ -163,6 +248,8 @@ pub fn run(cmd: Command) -> Result<String, String> {
         Command::Predict(a) => predict(a),
         Command::Encode(a) => encode(a),
         Command::Decode(a) => decode(a),
+        Command::Simulate(a) => simulate(*a),
+        Command::Sweep(a) => sweep(a),
     }
     .map_err(|e| e.to_string())
 }
@@ -243,4 +330,112 @@ fn decode(a: DecodeArgs) -> Result<String, ApiError> {
     } else {
         format!("{} {}", r.model, numbers(&r.state))
     })
+}
+
+fn parse_json_value<T: serde::de::DeserializeOwned>(
+    name: &str,
+    value: &str,
+) -> Result<T, ApiError> {
+    let v = match value.parse::<f64>() {
+        Ok(n) => serde_json::json!(n),
+        Err(_) => serde_json::json!(value),
+    };
+    serde_json::from_value(v).map_err(|e| ApiError::Invalid(format!("--{name}: {e}")))
+}
+
+fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
+    let trajectory = a
+        .trajectory
+        .as_ref()
+        .map(|path| {
+            std::fs::read_to_string(path)
+                .map_err(|e| ApiError::Invalid(format!("cannot read {}: {e}", path.display())))
+        })
+        .transpose()?;
+    let params = SimParams {
+        trajectory,
+        trajectory_name: a.trajectory.as_ref().map(|p| p.display().to_string()),
+        synthetic: a
+            .synthetic
+            .as_deref()
+            .map(|s| parse_json_value("synthetic", s))
+            .transpose()?,
+        sample: a.sample,
+        model: parse_json_value("model", &a.model)?,
+        sf: a.sf,
+        bw: a.bw,
+        distance: a.distance,
+        seed: a.seed,
+        overhead: if a.paper { 0 } else { a.overhead },
+        cr: a.cr,
+        duty_cycle: a.duty_cycle,
+        tx_power: a.tx_power,
+        path_loss_exponent: a.path_loss_exponent,
+        shadowing: a.shadowing,
+        gateway_height: a.gateway_height,
+        sensor_rate: a.sensor_rate,
+        step: a.step,
+        eta: a.eta,
+        q: a.q,
+        series: a.series,
+    };
+    let r = api::simulate(&mut Simulator::new(), &params)?;
+    if a.out.json {
+        return Ok(json(&r));
+    }
+    let c = &r.config;
+    Ok(format!(
+        "{} ({} flight{}, {:.0} s), SF{} / {} kHz, gateway at {} m, overhead {} B, seed {}\n{}",
+        c.trajectory,
+        c.flights,
+        if c.flights == 1 { "" } else { "s" },
+        c.flight_time,
+        c.sf,
+        c.bandwidth_khz,
+        c.distance,
+        c.overhead,
+        c.seed,
+        results_table(&r.results)
+    ))
+}
+
+fn results_table(results: &[ModelResult]) -> String {
+    let mut out = String::from(
+        "model     interval  received   mean    p50    p75    p95    max  (3D error, m)\n",
+    );
+    for m in results {
+        out += &format!(
+            "{:<9} {:>7.2}s {:>5}/{:<5} {:>6.2} {:>6.2} {:>6.2} {:>6.2} {:>6.1}\n",
+            m.model.label(),
+            m.interval,
+            m.packets_received,
+            m.packets_sent,
+            m.error3d.mean,
+            m.error3d.p50,
+            m.error3d.p75,
+            m.error3d.p95,
+            m.error3d.max
+        );
+    }
+    out.trim_end().to_string()
+}
+
+fn sweep(a: SweepArgs) -> Result<String, ApiError> {
+    let r = api::sweep_paper(&mut Simulator::new(), a.seed)?;
+    if a.out.json {
+        return Ok(json(&r));
+    }
+    let mut out = format!(
+        "paper sweep: synthetic set ({:.0} s), 250 kHz, no LoRaWAN overhead, seed {}\n",
+        r.flight_time, r.seed
+    );
+    for run in &r.runs {
+        out += &format!(
+            "\nSF{} d = {} m\n{}\n",
+            run.sf,
+            run.distance,
+            results_table(&run.results)
+        );
+    }
+    Ok(out.trim_end().to_string())
 }

@@ -1,0 +1,309 @@
+//! Simulation options: the `simulate` parameters of SPEC §8–9 and their validation.
+
+use super::SimError;
+use crate::filter::{PAPER_Q, PAPER_R_DIAGONAL};
+use crate::lora::{
+    Bandwidth, Channel, ChannelParams, CodingRate, LoraParams, SpreadingFactor,
+    LORAWAN_OVERHEAD_BYTES,
+};
+use crate::models::ModelKind;
+use serde::{Deserialize, Serialize};
+
+/// `--synthetic all` or `--synthetic N` (1..=30).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(untagged)]
+pub enum SyntheticChoice {
+    /// The whole set of 30 flights.
+    All,
+    /// One flight, 1..=30.
+    One(usize),
+}
+
+impl<'de> Deserialize<'de> for SyntheticChoice {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Raw {
+            Number(f64),
+            Text(String),
+        }
+        let number = |n: f64| -> Result<SyntheticChoice, String> {
+            if n.fract() == 0.0 && (1.0..=30.0).contains(&n) {
+                Ok(SyntheticChoice::One(n as usize))
+            } else {
+                Err(format!("synthetic must be 'all' or 1..30, got {n}"))
+            }
+        };
+        let parse = |s: &str| -> Result<SyntheticChoice, String> {
+            if s.eq_ignore_ascii_case("all") {
+                return Ok(SyntheticChoice::All);
+            }
+            s.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("synthetic must be 'all' or 1..30, got '{s}'"))
+                .and_then(number)
+        };
+        match Raw::deserialize(d)? {
+            Raw::Number(n) => number(n),
+            Raw::Text(s) => parse(&s),
+        }
+        .map_err(serde::de::Error::custom)
+    }
+}
+
+/// `--model dr|ctra-plus|3d-ctra|all`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize, Default)]
+pub enum ModelChoice {
+    /// One model.
+    #[serde(rename = "dr")]
+    Dr,
+    /// One model.
+    #[serde(rename = "ctra-plus")]
+    CtraPlus,
+    /// One model.
+    #[serde(rename = "3d-ctra")]
+    Ctra3d,
+    /// All three, side by side.
+    #[default]
+    #[serde(rename = "all")]
+    All,
+}
+
+impl ModelChoice {
+    /// The models to run.
+    pub fn models(self) -> Vec<ModelKind> {
+        match self {
+            ModelChoice::Dr => vec![ModelKind::Dr],
+            ModelChoice::CtraPlus => vec![ModelKind::CtraPlus],
+            ModelChoice::Ctra3d => vec![ModelKind::Ctra3d],
+            ModelChoice::All => ModelKind::ALL.to_vec(),
+        }
+    }
+}
+
+/// The input of `simulate` (SPEC §8–9): the CLI's long options in camelCase. Exactly one of
+/// `trajectory` (CSV text), `synthetic` or `sample` chooses the flight. Defaults are the paper's
+/// (SF7, 250 kHz, 1000 m, all models, Table I noise, eta 0.9) with the LoRaWAN overhead of 13
+/// bytes; set `overhead: 0` for the paper's raw-LoRa airtimes.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(rename_all = "camelCase", deny_unknown_fields, default)]
+pub struct SimParams {
+    /// CSV text of a flight (the CLI reads `--trajectory FILE` into this).
+    pub trajectory: Option<String>,
+    /// A name for the CSV flight, shown in reports.
+    pub trajectory_name: Option<String>,
+    /// Synthetic flight(s).
+    pub synthetic: Option<SyntheticChoice>,
+    /// A bundled real flight: `canberra`.
+    pub sample: Option<String>,
+    /// Which model(s).
+    pub model: ModelChoice,
+    /// Spreading factor 7..12.
+    pub sf: i64,
+    /// Bandwidth, kHz.
+    pub bw: f64,
+    /// Horizontal distance from the flight's first point to the gateway, m.
+    pub distance: f64,
+    /// Seed of every random draw (sensor noise, transmission offset, shadowing).
+    pub seed: u64,
+    /// MAC overhead, bytes (LoRaWAN 13; the paper's Table II: 0).
+    pub overhead: usize,
+    /// Coding rate index 1..4.
+    pub cr: i64,
+    /// Duty-cycle limit, fraction.
+    pub duty_cycle: f64,
+    /// Transmit power, dBm.
+    pub tx_power: f64,
+    /// Path-loss exponent.
+    pub path_loss_exponent: f64,
+    /// Shadowing standard deviation, dB (0: off).
+    pub shadowing: f64,
+    /// Gateway antenna height, m.
+    pub gateway_height: f64,
+    /// Drone sensor and filter rate, Hz.
+    pub sensor_rate: f64,
+    /// Station prediction step T, s.
+    pub step: f64,
+    /// Tilt-rate decay per station step.
+    pub eta: f64,
+    /// Process noise q of Q = q·I.
+    pub q: f64,
+    /// Include time series (error over time, trajectories) of the first flight.
+    pub series: bool,
+}
+
+impl Default for SimParams {
+    fn default() -> Self {
+        let ch = ChannelParams::default();
+        SimParams {
+            trajectory: None,
+            trajectory_name: None,
+            synthetic: None,
+            sample: None,
+            model: ModelChoice::All,
+            sf: 7,
+            bw: 250.0,
+            distance: 1000.0,
+            seed: 1,
+            overhead: LORAWAN_OVERHEAD_BYTES,
+            cr: 1,
+            duty_cycle: 0.01,
+            tx_power: ch.tx_power_dbm,
+            path_loss_exponent: ch.path_loss_exponent,
+            shadowing: ch.shadowing_sigma_db,
+            gateway_height: ch.gateway_height,
+            sensor_rate: 10.0,
+            step: 0.1,
+            eta: 0.9,
+            q: PAPER_Q,
+            series: false,
+        }
+    }
+}
+
+/// Where the flight comes from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TrajectorySource {
+    /// CSV text and a name.
+    Csv(String, String),
+    /// Synthetic set or one flight of it.
+    Synthetic(SyntheticChoice),
+    /// A bundled sample by name.
+    Sample(String),
+}
+
+/// Validated simulation settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SimConfig {
+    /// The flight(s).
+    pub source: TrajectorySource,
+    /// Models to run.
+    pub models: Vec<ModelKind>,
+    /// Radio settings.
+    pub radio: LoraParams,
+    /// Link budget.
+    pub channel: Channel,
+    /// MAC overhead, bytes.
+    pub overhead: usize,
+    /// Duty cycle, fraction.
+    pub duty_cycle: f64,
+    /// Gateway distance, m.
+    pub distance: f64,
+    /// Seed.
+    pub seed: u64,
+    /// Sensor rate, Hz.
+    pub sensor_rate: f64,
+    /// Station step, s.
+    pub step: f64,
+    /// Tilt decay per step.
+    pub eta: f64,
+    /// Process noise scale.
+    pub q: f64,
+    /// Measurement variances (paper Table I).
+    pub r_diagonal: [f64; 9],
+    /// Whether to return time series.
+    pub series: bool,
+}
+
+fn check(name: &'static str, v: f64, ok: bool, allowed: &'static str) -> Result<(), SimError> {
+    if ok && v.is_finite() {
+        Ok(())
+    } else {
+        Err(SimError::Parameter(name, v, allowed))
+    }
+}
+
+impl SimParams {
+    /// Validates every option.
+    pub fn validate(&self) -> Result<SimConfig, SimError> {
+        let chosen = [
+            self.trajectory.is_some(),
+            self.synthetic.is_some(),
+            self.sample.is_some(),
+        ];
+        let source = match (self.trajectory.clone(), self.synthetic, self.sample.clone()) {
+            (Some(text), None, None) => TrajectorySource::Csv(
+                text,
+                self.trajectory_name
+                    .clone()
+                    .unwrap_or_else(|| "uploaded CSV".into()),
+            ),
+            (None, Some(s), None) => TrajectorySource::Synthetic(s),
+            (None, None, Some(name)) => TrajectorySource::Sample(name),
+            _ => {
+                let n = chosen.iter().filter(|c| **c).count();
+                return Err(SimError::Source(if n == 0 {
+                    "choose a flight: trajectory (CSV), synthetic (all or 1..30) or sample (canberra)".into()
+                } else {
+                    "choose only one of trajectory, synthetic and sample".into()
+                }));
+            }
+        };
+        let mut radio = LoraParams::new(
+            SpreadingFactor::new(self.sf)?,
+            Bandwidth::from_khz(self.bw)?,
+        );
+        radio.cr = CodingRate::new(self.cr)?;
+        let channel = Channel::new(ChannelParams {
+            tx_power_dbm: self.tx_power,
+            path_loss_exponent: self.path_loss_exponent,
+            shadowing_sigma_db: self.shadowing,
+            gateway_height: self.gateway_height,
+            ..ChannelParams::default()
+        })?;
+        check(
+            "distance",
+            self.distance,
+            (0.0..=100_000.0).contains(&self.distance),
+            "0..100000 m",
+        )?;
+        check(
+            "dutyCycle",
+            self.duty_cycle,
+            self.duty_cycle > 0.0 && self.duty_cycle <= 1.0,
+            "in (0, 1]",
+        )?;
+        check(
+            "sensorRate",
+            self.sensor_rate,
+            (0.1..=1000.0).contains(&self.sensor_rate),
+            "0.1..1000 Hz",
+        )?;
+        check(
+            "step",
+            self.step,
+            (0.001..=10.0).contains(&self.step),
+            "0.001..10 s",
+        )?;
+        check(
+            "eta",
+            self.eta,
+            (0.0..=1.0).contains(&self.eta),
+            "in [0, 1]",
+        )?;
+        check("q", self.q, self.q > 0.0 && self.q <= 1e3, "in (0, 1000]")?;
+        if self.overhead > 255 {
+            return Err(SimError::Parameter(
+                "overhead",
+                self.overhead as f64,
+                "0..255 bytes",
+            ));
+        }
+        Ok(SimConfig {
+            source,
+            models: self.model.models(),
+            radio,
+            channel,
+            overhead: self.overhead,
+            duty_cycle: self.duty_cycle,
+            distance: self.distance,
+            seed: self.seed,
+            sensor_rate: self.sensor_rate,
+            step: self.step,
+            eta: self.eta,
+            q: self.q,
+            r_diagonal: PAPER_R_DIAGONAL,
+            series: self.series,
+        })
+    }
+}

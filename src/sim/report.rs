@@ -1,0 +1,169 @@
+//! The JSON shapes of `simulate` and `sweep` (SPEC §8): a contract, changed only additively.
+
+use crate::metrics::{Boxplot, Summary};
+use crate::models::ModelKind;
+use serde::Serialize;
+
+/// Echo of the settings, plus what the run covered.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct RunConfig {
+    /// Flight(s) simulated.
+    pub trajectory: String,
+    /// Number of flights.
+    pub flights: usize,
+    /// Seconds of flight simulated (all flights).
+    pub flight_time: f64,
+    /// Models run.
+    pub models: Vec<ModelKind>,
+    /// Spreading factor.
+    pub sf: u8,
+    /// Bandwidth, kHz.
+    pub bandwidth_khz: f64,
+    /// Gateway distance, m.
+    pub distance: f64,
+    /// Seed.
+    pub seed: u64,
+    /// MAC overhead, bytes.
+    pub overhead: usize,
+    /// Coding rate index.
+    pub cr: u8,
+    /// Duty cycle.
+    pub duty_cycle: f64,
+    /// Transmit power, dBm.
+    pub tx_power: f64,
+    /// Path-loss exponent.
+    pub path_loss_exponent: f64,
+    /// Shadowing sigma, dB.
+    pub shadowing: f64,
+    /// Gateway height, m.
+    pub gateway_height: f64,
+    /// Sensor rate, Hz.
+    pub sensor_rate: f64,
+    /// Station step T, s.
+    pub step: f64,
+    /// Tilt decay per step.
+    pub eta: f64,
+    /// Tilt decay per second, eta^(1/T).
+    pub eta_per_second: f64,
+    /// Process noise scale.
+    pub q: f64,
+    /// Gateway sensitivity for this SF and bandwidth, dBm.
+    pub sensitivity_dbm: f64,
+    /// Range where the mean received power meets the sensitivity, m.
+    pub range_m: f64,
+}
+
+/// Per-axis and 3D boxplots.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Boxplots {
+    /// 3D error.
+    pub error3d: Boxplot,
+    /// |x error|.
+    pub error_x: Boxplot,
+    /// |y error|.
+    pub error_y: Boxplot,
+    /// |z error|.
+    pub error_z: Boxplot,
+}
+
+impl Boxplots {
+    /// Boxplots of the four error samples (sorted in place).
+    pub fn of(e3: &mut [f64], ex: &mut [f64], ey: &mut [f64], ez: &mut [f64]) -> Self {
+        let b = |d: &mut [f64]| {
+            d.sort_by(f64::total_cmp);
+            Boxplot::of_sorted(d)
+        };
+        Boxplots {
+            error3d: b(e3),
+            error_x: b(ex),
+            error_y: b(ey),
+            error_z: b(ez),
+        }
+    }
+}
+
+/// One model's outcome.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct ModelResult {
+    /// The model.
+    pub model: ModelKind,
+    /// Payload, bytes.
+    pub payload_bytes: usize,
+    /// Time on air of one packet (payload + overhead), s.
+    pub time_on_air: f64,
+    /// Interval between transmissions under the duty cycle, s.
+    pub interval: f64,
+    /// Packets sent.
+    pub packets_sent: usize,
+    /// Packets received.
+    pub packets_received: usize,
+    /// 3D error, m.
+    pub error3d: Summary,
+    /// |x error|, m.
+    pub error_x: Summary,
+    /// |y error|, m.
+    pub error_y: Summary,
+    /// |z error|, m.
+    pub error_z: Summary,
+    /// Boxplot statistics of the same samples.
+    pub boxplot: Boxplots,
+    /// Covariance repairs in the drone filter (0 in a healthy run).
+    pub filter_recoveries: u64,
+}
+
+/// One model's time series over the first flight (for plots).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct ModelSeries {
+    /// The model.
+    pub model: ModelKind,
+    /// Evaluation times, s.
+    pub t: Vec<f64>,
+    /// 3D error at each time, m.
+    pub error3d: Vec<f64>,
+    /// Estimated x, y, z at each time, m.
+    pub x: Vec<f64>,
+    /// See `x`.
+    pub y: Vec<f64>,
+    /// See `x`.
+    pub z: Vec<f64>,
+    /// Arrival times of received packets, s.
+    pub arrivals: Vec<f64>,
+    /// Send times of lost packets, s.
+    pub lost: Vec<f64>,
+}
+
+/// Ground truth and every model's estimates over the first flight.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Series {
+    /// The flight.
+    pub flight: String,
+    /// Truth sample times, s (decimated to at most a few thousand points).
+    pub t: Vec<f64>,
+    /// True x, m.
+    pub x: Vec<f64>,
+    /// True y, m.
+    pub y: Vec<f64>,
+    /// True z, m.
+    pub z: Vec<f64>,
+    /// Gateway position x, y, z, m.
+    pub gateway: [f64; 3],
+    /// Per model.
+    pub models: Vec<ModelSeries>,
+}
+
+/// The output of `simulate`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SimReport {
+    /// Settings and coverage.
+    pub config: RunConfig,
+    /// One entry per model.
+    pub results: Vec<ModelResult>,
+    /// Time series of the first flight, when asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub series: Option<Series>,
+}

@@ -1,0 +1,290 @@
+//! Runs simulations and caches what does not depend on the link.
+
+use super::config::{SimConfig, SyntheticChoice, TrajectorySource};
+use super::drone::{run_drone, DroneTrack};
+use super::link::{schedule_transmissions, LinkSetup};
+use super::report::{Boxplots, ModelResult, ModelSeries, RunConfig, Series, SimReport};
+use super::station::track_station;
+use super::SimError;
+use crate::lora::{min_interval, time_on_air, Channel};
+use crate::math::pow;
+use crate::metrics::Summary;
+use crate::models::ModelKind;
+use crate::rng::Rng;
+use crate::trajectory::{
+    canberra_flight, parse_csv, synthetic_flight, synthetic_set, Trajectory, TrajectoryError,
+};
+use std::collections::HashMap;
+use std::rc::Rc;
+
+/// Separates the link's random stream from the sensors' for the same seed.
+const LINK_STREAM: u64 = 0x4C49_4E4B; // "LINK"
+/// At most this many points per time series returned for plotting.
+const MAX_SERIES_POINTS: usize = 3000;
+/// Cache sizes; past them the cache starts afresh (a page rarely alternates between more).
+const MAX_CACHED_FLIGHTS: usize = 4;
+const MAX_CACHED_DRONE_RUNS: usize = 24;
+
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+enum FlightKey {
+    Synthetic(SyntheticChoice),
+    Sample(String),
+    Csv(u64, usize),
+}
+
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+struct DroneKey {
+    flights: FlightKey,
+    model: ModelKind,
+    sensor_rate: u64,
+    q: u64,
+    seed: u64,
+}
+
+/// FNV-1a: a stable 64-bit hash of CSV text for the cache key.
+fn fnv1a(text: &str) -> u64 {
+    text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// Runs simulations, keeping parsed flights and drone-side filter runs for reuse: a second
+/// call that differs only in link or station settings costs only the link and the station.
+#[derive(Default)]
+pub struct Simulator {
+    flights: HashMap<FlightKey, Rc<Vec<Trajectory>>>,
+    drones: HashMap<DroneKey, Rc<Vec<DroneTrack>>>,
+    drone_runs: u64,
+}
+
+impl Simulator {
+    /// An empty simulator.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// How many drone-side filter runs (one per flight and model) this simulator has computed;
+    /// lets tests and benchmarks check that the cache works.
+    pub fn drone_runs(&self) -> u64 {
+        self.drone_runs
+    }
+
+    fn flights(
+        &mut self,
+        source: &TrajectorySource,
+    ) -> Result<(FlightKey, Rc<Vec<Trajectory>>), SimError> {
+        let key = match source {
+            TrajectorySource::Synthetic(c) => FlightKey::Synthetic(*c),
+            TrajectorySource::Sample(name) => FlightKey::Sample(name.to_ascii_lowercase()),
+            TrajectorySource::Csv(text, _) => FlightKey::Csv(fnv1a(text), text.len()),
+        };
+        if let Some(f) = self.flights.get(&key) {
+            return Ok((key, Rc::clone(f)));
+        }
+        let flights = match source {
+            TrajectorySource::Synthetic(SyntheticChoice::All) => synthetic_set(),
+            TrajectorySource::Synthetic(SyntheticChoice::One(i)) => {
+                vec![synthetic_flight(*i).ok_or(TrajectoryError::SyntheticIndex(*i as i64))?]
+            }
+            TrajectorySource::Sample(name) if name.eq_ignore_ascii_case("canberra") => {
+                vec![canberra_flight()]
+            }
+            TrajectorySource::Sample(name) => {
+                return Err(TrajectoryError::UnknownSample(name.clone()).into())
+            }
+            TrajectorySource::Csv(text, name) => vec![parse_csv(text, name)?],
+        };
+        if self.flights.len() >= MAX_CACHED_FLIGHTS {
+            self.flights.clear();
+        }
+        let flights = Rc::new(flights);
+        self.flights.insert(key.clone(), Rc::clone(&flights));
+        Ok((key, flights))
+    }
+
+    fn drone_tracks(
+        &mut self,
+        key: DroneKey,
+        flights: &[Trajectory],
+        cfg: &SimConfig,
+    ) -> Rc<Vec<DroneTrack>> {
+        if let Some(d) = self.drones.get(&key) {
+            return Rc::clone(d);
+        }
+        let tracks: Vec<DroneTrack> = flights
+            .iter()
+            .enumerate()
+            .map(|(i, f)| {
+                run_drone(
+                    f,
+                    key.model,
+                    cfg.sensor_rate,
+                    cfg.q,
+                    &cfg.r_diagonal,
+                    cfg.seed,
+                    i as u64,
+                )
+            })
+            .collect();
+        self.drone_runs += tracks.len() as u64;
+        if self.drones.len() >= MAX_CACHED_DRONE_RUNS {
+            self.drones.clear();
+        }
+        let tracks = Rc::new(tracks);
+        self.drones.insert(key, Rc::clone(&tracks));
+        tracks
+    }
+
+    /// Runs one simulation.
+    pub fn run(&mut self, cfg: &SimConfig) -> Result<SimReport, SimError> {
+        let (flight_key, flights) = self.flights(&cfg.source)?;
+        let (sf, bw) = (cfg.radio.sf, cfg.radio.bw);
+        let mut results = Vec::new();
+        let mut series_models = Vec::new();
+        for &model in &cfg.models {
+            let toa = time_on_air(&cfg.radio, model.payload_bytes() + cfg.overhead)?.time_on_air;
+            let interval = min_interval(toa, cfg.duty_cycle)?;
+            let link = LinkSetup {
+                sf,
+                bw,
+                channel: cfg.channel,
+                time_on_air: toa,
+                interval,
+                distance: cfg.distance,
+            };
+            let key = DroneKey {
+                flights: flight_key.clone(),
+                model,
+                sensor_rate: cfg.sensor_rate.to_bits(),
+                q: cfg.q.to_bits(),
+                seed: cfg.seed,
+            };
+            let drones = self.drone_tracks(key, &flights, cfg);
+            let (mut e3, mut ex, mut ey, mut ez) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+            let (mut sent, mut received) = (0, 0);
+            for (i, (flight, drone)) in flights.iter().zip(drones.iter()).enumerate() {
+                let mut rng = Rng::derive(cfg.seed ^ LINK_STREAM, i as u64);
+                let tx = schedule_transmissions(flight, drone, &link, &mut rng);
+                sent += tx.len();
+                received += tx.iter().filter(|t| t.received).count();
+                let st = track_station(
+                    flight,
+                    model,
+                    &tx,
+                    cfg.step,
+                    cfg.eta,
+                    cfg.q,
+                    &cfg.r_diagonal,
+                );
+                e3.extend_from_slice(&st.error3d);
+                for e in &st.error_axes {
+                    ex.push(e[0]);
+                    ey.push(e[1]);
+                    ez.push(e[2]);
+                }
+                if cfg.series && i == 0 {
+                    let every = st.times.len().div_ceil(MAX_SERIES_POINTS).max(1);
+                    let pick = |v: &[f64]| v.iter().step_by(every).copied().collect::<Vec<f64>>();
+                    let axis = |k: usize| {
+                        st.estimate
+                            .iter()
+                            .step_by(every)
+                            .map(|p| p[k])
+                            .collect::<Vec<f64>>()
+                    };
+                    series_models.push(ModelSeries {
+                        model,
+                        t: pick(&st.times),
+                        error3d: pick(&st.error3d),
+                        x: axis(0),
+                        y: axis(1),
+                        z: axis(2),
+                        arrivals: tx
+                            .iter()
+                            .filter(|t| t.received)
+                            .map(|t| t.arrival)
+                            .collect(),
+                        lost: tx.iter().filter(|t| !t.received).map(|t| t.sent).collect(),
+                    });
+                }
+            }
+            let (s3, sx, sy, sz) = (
+                Summary::of(&mut e3),
+                Summary::of(&mut ex),
+                Summary::of(&mut ey),
+                Summary::of(&mut ez),
+            );
+            results.push(ModelResult {
+                model,
+                payload_bytes: model.payload_bytes(),
+                time_on_air: toa,
+                interval,
+                packets_sent: sent,
+                packets_received: received,
+                error3d: s3,
+                error_x: sx,
+                error_y: sy,
+                error_z: sz,
+                // Summary::of sorted the samples already; Boxplots::of re-sorts cheaply.
+                boxplot: Boxplots::of(&mut e3, &mut ex, &mut ey, &mut ez),
+                filter_recoveries: drones.iter().map(|d| d.recoveries).sum(),
+            });
+        }
+        let series = cfg.series.then(|| {
+            let f = &flights[0];
+            let every = f.t.len().div_ceil(MAX_SERIES_POINTS).max(1);
+            let axis = |k: usize| {
+                f.pos
+                    .iter()
+                    .step_by(every)
+                    .map(|p| p[k])
+                    .collect::<Vec<f64>>()
+            };
+            Series {
+                flight: f.name.clone(),
+                t: f.t.iter().step_by(every).copied().collect(),
+                x: axis(0),
+                y: axis(1),
+                z: axis(2),
+                gateway: [
+                    f.pos[0][0] + cfg.distance,
+                    f.pos[0][1],
+                    cfg.channel.params().gateway_height,
+                ],
+                models: series_models,
+            }
+        });
+        let ch = cfg.channel.params();
+        Ok(SimReport {
+            config: RunConfig {
+                trajectory: match &cfg.source {
+                    TrajectorySource::Synthetic(SyntheticChoice::All) => "synthetic all".into(),
+                    _ => flights[0].name.clone(),
+                },
+                flights: flights.len(),
+                flight_time: flights.iter().map(Trajectory::duration).sum(),
+                models: cfg.models.clone(),
+                sf: sf.get(),
+                bandwidth_khz: bw.khz(),
+                distance: cfg.distance,
+                seed: cfg.seed,
+                overhead: cfg.overhead,
+                cr: cfg.radio.cr.get(),
+                duty_cycle: cfg.duty_cycle,
+                tx_power: ch.tx_power_dbm,
+                path_loss_exponent: ch.path_loss_exponent,
+                shadowing: ch.shadowing_sigma_db,
+                gateway_height: ch.gateway_height,
+                sensor_rate: cfg.sensor_rate,
+                step: cfg.step,
+                eta: cfg.eta,
+                eta_per_second: pow(cfg.eta, 1.0 / cfg.step),
+                q: cfg.q,
+                sensitivity_dbm: Channel::sensitivity_dbm(sf, bw),
+                range_m: cfg.channel.range_m(sf, bw),
+            },
+            results,
+            series,
+        })
+    }
+}
