@@ -146,3 +146,25 @@ fn encode_then_decode_round_trips_and_wrong_lengths_throw() {
     let err = wasm::decode(obj(&[("model", "dr".into()), ("hex", "00ff".into())])).unwrap_err();
     assert!(error_message(err).contains("9 bytes"));
 }
+
+#[wasm_bindgen_test]
+fn simulate_returns_the_cli_shape_and_refuses_a_bad_csv() {
+    let r = wasm::simulate(obj(&[
+        ("synthetic", 1.into()),
+        ("model", "all".into()),
+        ("sf", 7.into()),
+        ("bw", 250.into()),
+        ("distance", 1000.into()),
+    ]))
+    .unwrap();
+    let results = js_sys::Array::from(&get(&r, "results"));
+    assert_eq!(results.length(), 3);
+    let first = results.get(0);
+    assert_eq!(get(&first, "model").as_string().as_deref(), Some("dr"));
+    assert!(num(&get(&first, "error3d"), "p75") > 0.0);
+    assert!(num(&get(&r, "config"), "flightTime") > 50.0);
+    let e = wasm::simulate(obj(&[("trajectory", "t,x,y,z\n1,2,3\n".into())])).unwrap_err();
+    assert!(error_message(e).contains("line 2"));
+    let e = wasm::simulate(obj(&[("synthetic", 31.into())])).unwrap_err();
+    assert!(error_message(e).contains("1..30"));
+}

@@ -98,6 +98,9 @@ pub struct SweepArgs {
     /// Seed of all random draws.
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// Print the paper-reproduction document (Markdown) instead of a table.
+    #[arg(long, conflicts_with = "json")]
+    markdown: bool,
     #[command(flatten)]
     out: Output,
 }
@@ -424,6 +427,9 @@ fn sweep(a: SweepArgs) -> Result<String, ApiError> {
     let r = api::sweep_paper(&mut Simulator::new(), a.seed)?;
     if a.out.json {
         return Ok(json(&r));
+    }
+    if a.markdown {
+        return Ok(crate::reproduction::markdown(&r));
     }
     let mut out = format!(
         "paper sweep: synthetic set ({:.0} s), 250 kHz, no LoRaWAN overhead, seed {}\n",

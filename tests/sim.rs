@@ -1,0 +1,245 @@
+//! The end-to-end simulation: reproducibility, the drone-run cache, link effects and the JSON
+//! contract of SPEC §8.
+#![cfg(not(target_arch = "wasm32"))]
+
+use loratrack::api::{simulate, sweep_paper};
+use loratrack::{ModelChoice, ModelKind, SimParams, Simulator, SyntheticChoice};
+
+fn one_flight(n: usize) -> SimParams {
+    SimParams {
+        synthetic: Some(SyntheticChoice::One(n)),
+        ..SimParams::default()
+    }
+}
+
+#[test]
+fn the_same_seed_gives_the_same_numbers_and_another_seed_does_not() {
+    let a = simulate(&mut Simulator::new(), &one_flight(2)).unwrap();
+    let b = simulate(&mut Simulator::new(), &one_flight(2)).unwrap();
+    assert_eq!(a, b);
+    let c = simulate(
+        &mut Simulator::new(),
+        &SimParams {
+            seed: 2,
+            ..one_flight(2)
+        },
+    )
+    .unwrap();
+    assert_ne!(a.results[0].error3d, c.results[0].error3d);
+}
+
+#[test]
+fn changing_only_the_link_does_not_rerun_the_drone_filters() {
+    let mut sim = Simulator::new();
+    let base = simulate(&mut sim, &one_flight(4)).unwrap();
+    let runs = sim.drone_runs();
+    assert_eq!(runs, 3, "one drone run per model");
+    let far = simulate(
+        &mut sim,
+        &SimParams {
+            sf: 9,
+            bw: 125.0,
+            distance: 4000.0,
+            overhead: 0,
+            ..one_flight(4)
+        },
+    )
+    .unwrap();
+    assert_eq!(
+        sim.drone_runs(),
+        runs,
+        "link changes must reuse the drone runs"
+    );
+    assert!(far.results[0].interval > base.results[0].interval);
+    // A sensor change does rerun them.
+    simulate(
+        &mut sim,
+        &SimParams {
+            sensor_rate: 5.0,
+            ..one_flight(4)
+        },
+    )
+    .unwrap();
+    assert_eq!(sim.drone_runs(), 2 * runs);
+}
+
+#[test]
+fn five_km_at_sf7_loses_packets_and_tracks_worse_than_one_km() {
+    let mut sim = Simulator::new();
+    let near = simulate(&mut sim, &one_flight(5)).unwrap();
+    let far = simulate(
+        &mut sim,
+        &SimParams {
+            distance: 5000.0,
+            ..one_flight(5)
+        },
+    )
+    .unwrap();
+    for (n, f) in near.results.iter().zip(&far.results) {
+        assert_eq!(n.packets_received, n.packets_sent, "{:?} at 1 km", n.model);
+        assert!(
+            f.packets_received < f.packets_sent / 2,
+            "{:?} at 5 km: {}/{}",
+            f.model,
+            f.packets_received,
+            f.packets_sent
+        );
+        assert!(f.error3d.count < n.error3d.count || f.error3d.p75 > n.error3d.p75);
+    }
+}
+
+#[test]
+fn without_shadowing_delivery_is_all_or_nothing_around_the_range() {
+    let mut sim = Simulator::new();
+    let p = |d| SimParams {
+        shadowing: 0.0,
+        distance: d,
+        model: ModelChoice::Dr,
+        ..one_flight(6)
+    };
+    let inside = simulate(&mut sim, &p(2000.0)).unwrap();
+    let range = inside.config.range_m;
+    assert_eq!(
+        inside.results[0].packets_received,
+        inside.results[0].packets_sent
+    );
+    let outside = simulate(&mut sim, &p(range + 500.0)).unwrap();
+    assert_eq!(outside.results[0].packets_received, 0);
+    assert_eq!(
+        outside.results[0].error3d.count, 0,
+        "no packet, no error counted"
+    );
+}
+
+#[test]
+fn intervals_follow_the_payload_sizes_and_the_overhead() {
+    let r = simulate(
+        &mut Simulator::new(),
+        &SimParams {
+            sf: 8,
+            bw: 125.0,
+            overhead: 0,
+            ..one_flight(1)
+        },
+    )
+    .unwrap();
+    let interval = |m| r.results.iter().find(|x| x.model == m).unwrap().interval;
+    assert!((interval(ModelKind::Dr) - 7.2192).abs() < 1e-9);
+    assert!((interval(ModelKind::Ctra3d) - 8.2432).abs() < 1e-9);
+    // Packets are never closer than the interval.
+    let s = simulate(
+        &mut Simulator::new(),
+        &SimParams {
+            series: true,
+            ..one_flight(1)
+        },
+    )
+    .unwrap();
+    for m in &s.series.unwrap().models {
+        let i = s
+            .results
+            .iter()
+            .find(|x| x.model == m.model)
+            .unwrap()
+            .interval;
+        for w in m.arrivals.windows(2) {
+            assert!(w[1] - w[0] >= i - 1e-9);
+        }
+    }
+}
+
+#[test]
+fn the_json_shape_is_the_spec_contract() {
+    let r = simulate(
+        &mut Simulator::new(),
+        &SimParams {
+            sample: Some("canberra".into()),
+            ..SimParams::default()
+        },
+    )
+    .unwrap();
+    let v = serde_json::to_value(&r).unwrap();
+    assert!(v["config"]["flightTime"].as_f64().unwrap() > 160.0);
+    for res in v["results"].as_array().unwrap() {
+        for key in ["model", "interval", "packetsSent", "packetsReceived"] {
+            assert!(!res[key].is_null(), "missing {key}");
+        }
+        for e in ["error3d", "errorX", "errorY", "errorZ"] {
+            for s in ["mean", "p50", "p75", "p95", "max", "count"] {
+                assert!(res[e][s].is_number(), "missing {e}.{s}");
+            }
+        }
+    }
+    assert_eq!(v["results"][2]["model"], "3d-ctra");
+}
+
+#[test]
+fn bad_inputs_are_refused_with_messages() {
+    let mut sim = Simulator::new();
+    let cases = [
+        (SimParams::default(), "choose a flight"),
+        (
+            SimParams {
+                sample: Some("x".into()),
+                ..one_flight(1)
+            },
+            "only one",
+        ),
+        (
+            SimParams {
+                sample: Some("mars".into()),
+                ..SimParams::default()
+            },
+            "unknown sample",
+        ),
+        (
+            SimParams {
+                sf: 13,
+                ..one_flight(1)
+            },
+            "spreading factor",
+        ),
+        (
+            SimParams {
+                distance: -5.0,
+                ..one_flight(1)
+            },
+            "distance",
+        ),
+        (
+            SimParams {
+                eta: 2.0,
+                ..one_flight(1)
+            },
+            "eta",
+        ),
+        (
+            SimParams {
+                trajectory: Some("t,x,y,z\n".into()),
+                ..SimParams::default()
+            },
+            "no data rows",
+        ),
+    ];
+    for (p, expected) in cases {
+        let e = simulate(&mut sim, &p).unwrap_err().to_string();
+        assert!(e.contains(expected), "{e:?} should contain {expected:?}");
+    }
+}
+
+#[test]
+fn the_paper_sweep_covers_its_grid_and_richer_models_win_at_one_km() {
+    let r = sweep_paper(&mut Simulator::new(), 1).unwrap();
+    assert_eq!(r.runs.len(), 6);
+    assert!((r.flight_time - 2640.0).abs() < 1.0);
+    let run = &r.runs[0];
+    assert_eq!((run.sf, run.distance), (7, 1000.0));
+    let p75 = |m| loratrack::api::p75(run, m);
+    assert!(
+        p75(ModelKind::Ctra3d) < p75(ModelKind::Dr),
+        "3D-CTRA should beat DR at SF7 / 1 km"
+    );
+    // Errors rise at 3 km with SF7 (packet loss).
+    let far = &r.runs[2];
+    assert!(far.results[0].packets_received < far.results[0].packets_sent);
+}
