@@ -1,6 +1,12 @@
-//! `cargo bench`: criterion benchmarks of the core.
+//! `cargo bench`: criterion benchmarks of the core (targets in the README).
 use criterion::{criterion_group, criterion_main, Criterion};
-use loratrack::{time_on_air, Bandwidth, LoraParams, SpreadingFactor};
+use loratrack::api::simulate;
+use loratrack::{
+    measurement_noise, process_noise, time_on_air, Bandwidth, Ctra3d, CtraPlus, Dr, LoraParams,
+    MotionModel, SigmaParams, SimParams, Simulator, SpreadingFactor, SyntheticChoice, Ukf, ANGLES,
+    PAPER_Q, PAPER_R_DIAGONAL,
+};
+use nalgebra::SVector;
 use std::hint::black_box;
 
 fn airtime(c: &mut Criterion) {
@@ -10,5 +16,69 @@ fn airtime(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, airtime);
+fn ukf_steps<const N: usize, M: MotionModel<N> + Copy>(c: &mut Criterion, name: &str, model: M) {
+    let state: [f64; 9] = [10.0, -5.0, 40.0, 0.4, 0.1, 8.0, 0.3, 0.2, 0.05];
+    let x = SVector::<f64, N>::from_fn(|i, _| state[i]);
+    let r = measurement_noise::<N>(&PAPER_R_DIAGONAL);
+    let fresh = Ukf::new(x, r, process_noise(PAPER_Q), SigmaParams::default(), ANGLES).unwrap();
+    // Both steps restore P = R afterwards, as `npm run bench` does, so every iteration does the
+    // same work.
+    let mut ukf = fresh.clone();
+    c.bench_function(&format!("ukf_predict/{name}"), |b| {
+        b.iter(|| {
+            ukf.predict(black_box(&model), black_box(0.1));
+            ukf.p = r;
+        })
+    });
+    let mut ukf = fresh.clone();
+    let z = x.map(|v| v + 0.05);
+    c.bench_function(&format!("ukf_update/{name}"), |b| {
+        b.iter(|| {
+            ukf.update(black_box(&z), black_box(&r));
+            ukf.p = r;
+        })
+    });
+}
+
+fn filters(c: &mut Criterion) {
+    ukf_steps::<6, _>(c, "dr", Dr);
+    ukf_steps::<8, _>(c, "ctra-plus", CtraPlus);
+    ukf_steps::<9, _>(c, "3d-ctra", Ctra3d);
+}
+
+fn simulation(c: &mut Criterion) {
+    let mut g = c.benchmark_group("simulate");
+    g.sample_size(10);
+    let all = SimParams {
+        synthetic: Some(SyntheticChoice::All),
+        ..SimParams::default()
+    };
+    g.bench_function("whole_set_all_models_cold", |b| {
+        b.iter(|| simulate(&mut Simulator::new(), black_box(&all)).unwrap())
+    });
+    let mut warm = Simulator::new();
+    simulate(&mut warm, &all).unwrap();
+    g.bench_function("whole_set_all_models_link_change_only", |b| {
+        b.iter(|| {
+            simulate(
+                &mut warm,
+                black_box(&SimParams {
+                    distance: 2000.0,
+                    ..all.clone()
+                }),
+            )
+            .unwrap()
+        })
+    });
+    let one = SimParams {
+        synthetic: Some(SyntheticChoice::One(1)),
+        ..SimParams::default()
+    };
+    g.bench_function("one_flight_all_models_cold", |b| {
+        b.iter(|| simulate(&mut Simulator::new(), black_box(&one)).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, airtime, filters, simulation);
 criterion_main!(benches);

@@ -64,3 +64,64 @@ pub fn simulate(params: JsValue) -> Result<JsValue, JsError> {
         SIMULATOR.with(|s| api::simulate(&mut s.borrow_mut(), &p))
     })
 }
+
+/// Benchmark support for `npm run bench` (not part of the SPEC §9 API): times `steps` UKF
+/// predictions and updates inside WebAssembly, so the boundary crossing is not measured.
+/// `{model, steps}` → `{predictMicros, updateMicros}` per step.
+#[wasm_bindgen(js_name = benchUkf)]
+pub fn bench_ukf(params: JsValue) -> Result<JsValue, JsError> {
+    use crate::filter::{
+        measurement_noise, process_noise, SigmaParams, Ukf, PAPER_Q, PAPER_R_DIAGONAL,
+    };
+    use crate::models::{Ctra3d, CtraPlus, Dr, ModelKind, MotionModel, ANGLES};
+    use nalgebra::SVector;
+
+    #[derive(serde::Deserialize)]
+    struct Params {
+        model: ModelKind,
+        steps: u32,
+    }
+    #[derive(serde::Serialize)]
+    #[serde(rename_all = "camelCase")]
+    struct Timing {
+        predict_micros: f64,
+        update_micros: f64,
+    }
+    fn time<const N: usize, M: MotionModel<N>>(model: M, steps: u32) -> Result<Timing, ApiError> {
+        let state = [10.0, -5.0, 40.0, 0.4, 0.1, 8.0, 0.3, 0.2, 0.05];
+        let x = SVector::<f64, N>::from_fn(|i, _| state[i]);
+        let r = measurement_noise::<N>(&PAPER_R_DIAGONAL);
+        let mut ukf = Ukf::new(x, r, process_noise(PAPER_Q), SigmaParams::default(), ANGLES)
+            .ok_or_else(|| ApiError::Invalid("sigma parameters".into()))?;
+        let z = x.map(|v| v + 0.05);
+        let t0 = js_sys::Date::now();
+        for _ in 0..steps {
+            ukf.predict(&model, 0.1);
+            ukf.p = r;
+        }
+        let t1 = js_sys::Date::now();
+        for _ in 0..steps {
+            ukf.update(&z, &r);
+            ukf.p = r;
+        }
+        let t2 = js_sys::Date::now();
+        let per = 1000.0 / f64::from(steps.max(1));
+        Ok(Timing {
+            predict_micros: (t1 - t0) * per,
+            update_micros: (t2 - t1) * per,
+        })
+    }
+    call(params, |p: Params| match p.model {
+        ModelKind::Dr => time::<6, _>(Dr, p.steps),
+        ModelKind::CtraPlus => time::<8, _>(CtraPlus, p.steps),
+        ModelKind::Ctra3d => time::<9, _>(Ctra3d, p.steps),
+    })
+}
+
+/// Benchmark support: `simulate` with a fresh simulator (no cached drone runs).
+#[wasm_bindgen(js_name = benchSimulateCold)]
+pub fn bench_simulate_cold(params: JsValue) -> Result<JsValue, JsError> {
+    call(params, |p: crate::sim::SimParams| {
+        api::simulate(&mut Simulator::new(), &p)
+    })
+}
