@@ -1,5 +1,7 @@
-// The one module that imports the generated WebAssembly package. Everything else (UI, worker)
-// imports these typed functions from here.
+// The one module that imports the generated WebAssembly package (www/pkg, built by
+// scripts/build-wasm.mjs). Everything else — the page and its worker — imports these typed
+// functions. Shapes follow SPEC §8–9: each function takes the CLI's long options in camelCase and
+// returns what `loratrack <command> --json` prints; bad input throws an Error.
 import init, * as wasm from './pkg/loratrack.js';
 import wasmUrl from './pkg/loratrack_bg.wasm?url';
 
@@ -12,8 +14,12 @@ export function load(): Promise<void> {
 }
 
 export type Ldro = 'auto' | 'on' | 'off';
+export type ModelName = 'dr' | 'ctra-plus' | '3d-ctra';
+export type ModelChoice = ModelName | 'all';
 
-/** Input of timeOnAir: the CLI's `airtime` options in camelCase (SPEC §9). */
+export const MODEL_LABELS: Record<ModelName, string> = { dr: 'DR', 'ctra-plus': 'CTRA+', '3d-ctra': '3D-CTRA' };
+
+/** Input of timeOnAir (`loratrack airtime`). */
 export interface AirtimeParams {
   sf: number;
   bw: number;
@@ -27,7 +33,7 @@ export interface AirtimeParams {
   dutyCycle?: number;
 }
 
-/** Output of timeOnAir (seconds, symbols, bytes). */
+/** Output of timeOnAir: seconds, symbols, bytes. */
 export interface AirtimeReport {
   timeOnAir: number;
   symbolTime: number;
@@ -37,7 +43,149 @@ export interface AirtimeReport {
   minInterval: number;
 }
 
-/** Time on air and 1 % duty-cycle interval of one packet. Throws an Error on bad input. */
+/** Input of predict (`loratrack predict`): state in SPEC §2 order. */
+export interface PredictParams {
+  model: ModelName;
+  state: number[];
+  dt: number;
+  step?: number;
+  eta?: number;
+}
+
+export interface StateReport {
+  model: ModelName;
+  state: number[];
+}
+
+export interface EncodeParams {
+  model: ModelName;
+  state: number[];
+  origin?: [number, number, number];
+}
+
+export interface EncodeReport {
+  hex: string;
+  saturated: string[];
+}
+
+export interface DecodeParams {
+  model: ModelName;
+  hex: string;
+  origin?: [number, number, number];
+}
+
+/** Input of simulate (`loratrack simulate`); exactly one of trajectory (CSV text), synthetic, sample. */
+export interface SimulateParams {
+  trajectory?: string;
+  trajectoryName?: string;
+  synthetic?: number | 'all';
+  sample?: 'canberra';
+  model?: ModelChoice;
+  sf?: number;
+  bw?: number;
+  distance?: number;
+  seed?: number;
+  overhead?: number;
+  cr?: number;
+  dutyCycle?: number;
+  txPower?: number;
+  pathLossExponent?: number;
+  shadowing?: number;
+  gatewayHeight?: number;
+  sensorRate?: number;
+  step?: number;
+  eta?: number;
+  q?: number;
+  series?: boolean;
+}
+
+/** Error statistics in metres; null when count is 0. */
+export interface Summary {
+  mean: number | null;
+  p50: number | null;
+  p75: number | null;
+  p95: number | null;
+  max: number | null;
+  count: number;
+}
+
+export interface Boxplot {
+  whiskerLow: number | null;
+  q1: number | null;
+  median: number | null;
+  q3: number | null;
+  whiskerHigh: number | null;
+  outliers: number;
+  count: number;
+}
+
+export interface ModelResult {
+  model: ModelName;
+  payloadBytes: number;
+  timeOnAir: number;
+  interval: number;
+  packetsSent: number;
+  packetsReceived: number;
+  error3d: Summary;
+  errorX: Summary;
+  errorY: Summary;
+  errorZ: Summary;
+  boxplot: { error3d: Boxplot; errorX: Boxplot; errorY: Boxplot; errorZ: Boxplot };
+  filterRecoveries: number;
+}
+
+export interface ModelSeries {
+  model: ModelName;
+  t: number[];
+  error3d: number[];
+  x: number[];
+  y: number[];
+  z: number[];
+  arrivals: number[];
+  lost: number[];
+}
+
+export interface SimReport {
+  config: {
+    trajectory: string;
+    flights: number;
+    flightTime: number;
+    models: ModelName[];
+    sf: number;
+    bandwidthKhz: number;
+    distance: number;
+    seed: number;
+    overhead: number;
+    etaPerSecond: number;
+    sensitivityDbm: number;
+    rangeM: number;
+    [key: string]: unknown;
+  };
+  results: ModelResult[];
+  series?: { flight: string; t: number[]; x: number[]; y: number[]; z: number[]; gateway: number[]; models: ModelSeries[] };
+}
+
+/** Time on air and 1 % duty-cycle interval of one packet. */
 export function timeOnAir(params: AirtimeParams): AirtimeReport {
   return wasm.timeOnAir(params) as AirtimeReport;
+}
+
+/** Noise-free propagation of a state with one motion model. */
+export function predict(params: PredictParams): StateReport {
+  return wasm.predict(params) as StateReport;
+}
+
+/** Quantises a state into its 9/11/12-byte payload. */
+export function encode(params: EncodeParams): EncodeReport {
+  return wasm.encode(params) as EncodeReport;
+}
+
+/** Decodes a payload into a state. */
+export function decode(params: DecodeParams): StateReport {
+  return wasm.decode(params) as StateReport;
+}
+
+/** Runs the tracking simulation (drone filter runs are cached between calls). */
+export function simulate(params: SimulateParams): SimReport {
+  return wasm.simulate(params) as SimReport;
 }

@@ -1,23 +1,253 @@
-import { load, timeOnAir } from './loratrack';
+// The playground: reads the controls, asks the worker to simulate, renders numbers and charts.
+import { load, MODEL_LABELS, type ModelResult, type SimReport } from './loratrack';
+import { DEFAULTS, fromQuery, overheadBytes, toParams, toQuery, type Settings } from './state';
+import type { Request, Response } from './worker';
+import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
+import { boxplotChart, type BoxRow } from './charts/boxplot';
+import { errorOverTimeChart } from './charts/errorOverTime';
+import { createTrajectory3d, type Trajectory3d } from './charts/trajectory3d';
+import { downloadDataUrl, downloadErrorCsv, downloadJson, downloadPng, downloadSvg } from './export';
 
-const form = document.querySelector<HTMLFormElement>('#airtime-form')!;
-const toa = document.querySelector<HTMLElement>('#toa')!;
-const interval = document.querySelector<HTMLElement>('#interval')!;
-const error = document.querySelector<HTMLElement>('#airtime-error')!;
+const DISTANCES = [500, 1000, 2000, 3000, 4000, 5000];
+const $ = <T extends HTMLElement>(sel: string) => document.querySelector<T>(sel)!;
+const form = $<HTMLFormElement>('#controls');
+const status = $('#status');
+const progress = $<HTMLProgressElement>('#progress');
+const csvError = $('#csv-error');
+const query = new URLSearchParams(location.search);
+const embed = query.get('embed') === '1';
 
-function update(): void {
-  const data = new FormData(form);
-  try {
-    const r = timeOnAir({ sf: Number(data.get('sf')), bw: Number(data.get('bw')), payload: Number(data.get('payload')), overhead: 13 });
-    toa.textContent = `${(r.timeOnAir * 1e3).toFixed(3)} ms`;
-    interval.textContent = `${r.minInterval.toFixed(2)} s`;
-    error.hidden = true;
-  } catch (e) {
-    error.textContent = (e as Error).message;
-    error.hidden = false;
+let settings: Settings = fromQuery(location.search);
+let csv: { text: string; name: string } | undefined;
+let report: SimReport | undefined;
+let trajectory3d: Trajectory3d | undefined;
+const charts: Record<string, Element> = {};
+
+// ---- embedding: ?embed=1&panels=results,error shows only those panels --------------------------
+if (embed) {
+  document.body.classList.add('embed');
+  const wanted = (query.get('panels') ?? 'results,error').split(',');
+  for (const el of document.querySelectorAll<HTMLElement>('[data-panel]')) el.hidden = !wanted.includes(el.dataset.panel!);
+  for (const el of document.querySelectorAll<HTMLElement>('[data-chrome]')) el.hidden = true;
+}
+
+// ---- controls <-> settings ---------------------------------------------------------------------
+function field(name: string): HTMLInputElement | HTMLSelectElement {
+  return form.elements.namedItem(name) as HTMLInputElement | HTMLSelectElement;
+}
+
+function writeControls(s: Settings): void {
+  for (const [key, value] of Object.entries(s)) {
+    const el = field(key);
+    if (!el) continue;
+    if (el instanceof HTMLInputElement && el.type === 'checkbox') el.checked = Boolean(value);
+    else el.value = String(value);
+  }
+  showConditional();
+}
+
+function readControls(): Settings {
+  const s: Settings = { ...settings };
+  for (const key of Object.keys(DEFAULTS) as (keyof Settings)[]) {
+    const el = field(key);
+    if (!el) continue;
+    if (el instanceof HTMLInputElement && el.type === 'checkbox') (s as unknown as Record<string, unknown>)[key] = el.checked;
+    else if (typeof DEFAULTS[key] === 'number') {
+      const v = Number(el.value);
+      if (el.value !== '' && Number.isFinite(v)) (s as unknown as Record<string, unknown>)[key] = v;
+    } else (s as unknown as Record<string, unknown>)[key] = el.value;
+  }
+  return s;
+}
+
+function showConditional(): void {
+  for (const el of document.querySelectorAll<HTMLElement>('[data-when]')) el.hidden = el.dataset.when !== field('flight').value;
+  $('#distance-value').textContent = `${(Number(field('distance').value) / 1000).toFixed(1)} km`;
+}
+
+// ---- the worker: latest request wins; a long whole-set run is interrupted by the next change ---
+let worker: Worker;
+let nextId = 0;
+let running: { id: number; long: boolean; started: number } | undefined;
+let queued: Request | undefined;
+
+function startWorker(): void {
+  worker = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
+  worker.onmessage = (e: MessageEvent<Response>) => onResponse(e.data);
+}
+
+function submit(): void {
+  const request: Request = { id: ++nextId, params: toParams(settings, csv), distances: DISTANCES };
+  if (settings.flight === 'csv' && !csv) {
+    status.textContent = 'Choose a CSV file to simulate it.';
+    return;
+  }
+  if (running?.long) {
+    // A whole-set run takes about a second: stop it rather than make the user wait for stale numbers.
+    worker.terminate();
+    startWorker();
+    running = undefined;
+  }
+  if (running) {
+    queued = request;
+    return;
+  }
+  send(request);
+}
+
+function send(request: Request): void {
+  const long = settings.flight === 'all';
+  running = { id: request.id, long, started: performance.now() };
+  progress.hidden = !long;
+  if (long) status.textContent = 'Simulating 30 flights (44 min of flight)…';
+  worker.postMessage(request);
+}
+
+function onResponse(r: Response): void {
+  if (r.id !== running?.id) return;
+  if ('sweep' in r) {
+    renderDistance(r.sweep);
+    running = undefined;
+    progress.hidden = true;
+    if (queued) {
+      const q = queued;
+      queued = undefined;
+      send(q);
+    }
+    return;
+  }
+  if ('error' in r) {
+    running = undefined;
+    progress.hidden = true;
+    const target = settings.flight === 'csv' ? csvError : status;
+    target.textContent = r.error;
+    target.hidden = false;
+    if (settings.flight === 'csv') status.textContent = 'The CSV could not be simulated; the last results stay on show.';
+    if (queued) {
+      const q = queued;
+      queued = undefined;
+      send(q);
+    }
+    return;
+  }
+  csvError.hidden = true;
+  report = r.report;
+  const c = report.config;
+  status.textContent = `${c.trajectory}: ${c.flights} flight${c.flights > 1 ? 's' : ''}, ${c.flightTime.toFixed(0)} s simulated in ${r.millis.toFixed(0)} ms. Gateway range (mean power = sensitivity ${c.sensitivityDbm.toFixed(1)} dBm): ${(c.rangeM / 1000).toFixed(2)} km.`;
+  renderResults(report);
+}
+
+// ---- rendering ---------------------------------------------------------------------------------
+const fmt = (v: number | null, digits = 2) => (v === null || v === undefined ? '—' : v.toFixed(digits));
+
+function renderResults(r: SimReport): void {
+  const best = r.results.filter((m) => m.error3d.count > 0).reduce<ModelResult | undefined>((a, m) => (!a || (m.error3d.p75 ?? Infinity) < (a.error3d.p75 ?? Infinity) ? m : a), undefined);
+  const rows = r.results
+    .map((m) => {
+      const ratio = m.packetsSent ? m.packetsReceived / m.packetsSent : 0;
+      const isBest = r.results.length > 1 && m === best;
+      return `<tr class="${isBest ? 'best' : ''}" data-model="${m.model}">
+        <th scope="row">${MODEL_LABELS[m.model]}${isBest ? ' <span class="badge">lowest p75</span>' : ''}</th>
+        <td>${m.payloadBytes} B</td><td data-field="toa">${(m.timeOnAir * 1e3).toFixed(1)} ms</td><td data-field="interval">${m.interval.toFixed(2)} s</td>
+        <td data-field="packets">${m.packetsReceived} / ${m.packetsSent}</td><td data-field="delivery">${(ratio * 100).toFixed(0)} %</td>
+        <td data-field="mean">${fmt(m.error3d.mean)}</td><td data-field="p50">${fmt(m.error3d.p50)}</td><td data-field="p75">${fmt(m.error3d.p75)}</td>
+        <td data-field="p95">${fmt(m.error3d.p95)}</td><td data-field="max">${fmt(m.error3d.max, 1)}</td></tr>`;
+    })
+    .join('');
+  $('#results-table').innerHTML = `<div class="table-wrap"><table class="results">
+    <caption>3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet; overhead ${r.config.overhead} B</caption>
+    <thead><tr><th scope="col">model</th><th scope="col">payload</th><th scope="col">time on air</th><th scope="col">interval</th>
+    <th scope="col">received / sent</th><th scope="col">delivery</th><th scope="col">mean</th><th scope="col">median</th><th scope="col">p75</th><th scope="col">p95</th><th scope="col">max</th></tr></thead>
+    <tbody>${rows}</tbody></table></div>`;
+
+  const width = (id: string) => Math.max(300, $(id).clientWidth || 600);
+  place('error', errorOverTimeChart(r, width('#chart-error')));
+  const axisRows: BoxRow[] = r.results.flatMap((m) => [
+    { group: 'x', model: m.model, box: m.boxplot.errorX },
+    { group: 'y', model: m.model, box: m.boxplot.errorY },
+    { group: 'z', model: m.model, box: m.boxplot.errorZ },
+  ]);
+  place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: width('#chart-axes') }));
+  if (!embed || !$('[data-panel="trajectory"]').hidden) {
+    trajectory3d ??= createTrajectory3d($('#chart-trajectory'));
+    trajectory3d.update(r);
   }
 }
 
+function renderDistance(sweep: { distance: number; report: SimReport }[]): void {
+  const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d })));
+  place('distance', boxplotChart(rows, { log: true, groupLabel: `gateway distance (SF${settings.sf}, ${settings.bw} kHz)`, width: Math.max(300, $('#chart-distance').clientWidth || 600) }));
+}
+
+function renderAirtime(): void {
+  const opts = { overhead: overheadBytes(settings), cr: settings.cr, sf: settings.sf, bw: settings.bw };
+  $('#airtime-table').replaceChildren(airtimeTable(opts));
+  place('airtime', airtimeVsPayloadChart({ ...opts, width: Math.max(300, $('#chart-airtime').clientWidth || 600) }));
+}
+
+function place(name: string, chart: Element): void {
+  charts[name] = chart;
+  $(`#chart-${name}`).replaceChildren(chart);
+}
+
+// ---- events ------------------------------------------------------------------------------------
+function onChange(): void {
+  settings = readControls();
+  showConditional();
+  history.replaceState(null, '', `?${toQuery(settings, embed ? { embed: '1', panels: query.get('panels') ?? 'results,error' } : {})}`);
+  renderAirtime();
+  submit();
+}
+
+form.addEventListener('input', (e) => {
+  if ((e.target as HTMLElement).id !== 'csv') onChange();
+});
+form.addEventListener('submit', (e) => e.preventDefault());
+
+$<HTMLInputElement>('#csv').addEventListener('change', async (e) => {
+  const file = (e.target as HTMLInputElement).files?.[0];
+  if (!file) return;
+  csv = { text: await file.text(), name: file.name };
+  csvError.hidden = true;
+  onChange();
+});
+
+$('#copy-link').addEventListener('click', async () => {
+  const url = location.href;
+  try {
+    await navigator.clipboard.writeText(url);
+    $('#copy-status').textContent = 'Link copied.';
+  } catch {
+    $('#copy-status').textContent = `Copy this link: ${url}`;
+  }
+});
+
+$('#reset').addEventListener('click', () => {
+  settings = { ...DEFAULTS };
+  writeControls(settings);
+  onChange();
+});
+
+$('#download-csv').addEventListener('click', () => report && downloadErrorCsv(report));
+$('#download-json').addEventListener('click', () => report && downloadJson(report, settings));
+for (const button of document.querySelectorAll<HTMLButtonElement>('[data-download]')) {
+  button.addEventListener('click', () => {
+    const name = button.dataset.download!;
+    if (name === 'trajectory') {
+      const png = trajectory3d?.toPng();
+      if (png) downloadDataUrl(png, 'loratrack-trajectory.png');
+      return;
+    }
+    const chart = charts[name];
+    if (!chart) return;
+    if (button.dataset.format === 'svg') downloadSvg(chart, `loratrack-${name}`);
+    else downloadPng(chart, `loratrack-${name}`);
+  });
+}
+
+// ---- start -------------------------------------------------------------------------------------
+writeControls(settings);
+startWorker();
 await load();
-form.addEventListener('input', update);
-update();
+renderAirtime();
+submit();

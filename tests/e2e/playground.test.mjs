@@ -1,0 +1,189 @@
+// The playground as a user drives it, in headless Chromium against the production build served
+// under a sub-path. Every test fails on a console error, an uncaught exception, an HTTP error or a
+// request to any other host.
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync, writeFileSync, mkdtempSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { launch, openPage, screenshot, serveDist } from './harness.mjs';
+
+let server;
+let browser;
+
+before(async () => {
+  server = await serveDist();
+  browser = await launch();
+});
+
+after(async () => {
+  await browser?.close();
+  server?.close();
+});
+
+/** Opens the page (with an optional query) and waits for the first results. */
+async function open(query = '', viewport) {
+  const { page, problems } = await openPage(browser, server.origin, viewport);
+  await page.goto(server.url + query);
+  await waitForResults(page);
+  return { page, problems };
+}
+
+async function waitForResults(page, previous) {
+  await page.waitForFunction(
+    (old) => {
+      const t = document.querySelector('#results-table tbody');
+      return t && t.rows.length > 0 && t.innerHTML !== old;
+    },
+    previous,
+    { timeout: 30_000 },
+  );
+}
+
+const tableHtml = (page) => page.locator('#results-table tbody').innerHTML();
+const cell = (page, model, fieldName) => page.locator(`#results-table tr[data-model="${model}"] td[data-field="${fieldName}"]`).textContent();
+const number = (text) => Number.parseFloat(text);
+
+test('opens with the paper defaults, three models and the lowest p75 highlighted', async () => {
+  const { page, problems } = await open();
+  assert.equal(await page.getByLabel('Spreading factor').inputValue(), '7');
+  assert.equal(await page.getByLabel('Bandwidth').inputValue(), '250');
+  assert.equal(await page.locator('#results-table tbody tr').count(), 3);
+  assert.equal(await page.locator('#results-table tr.best').count(), 1);
+  const p75s = await Promise.all(['dr', 'ctra-plus', '3d-ctra'].map(async (m) => number(await cell(page, m, 'p75'))));
+  const best = await page.locator('#results-table tr.best').getAttribute('data-model');
+  assert.equal(p75s[['dr', 'ctra-plus', '3d-ctra'].indexOf(best)], Math.min(...p75s));
+  await page.waitForSelector('#chart-error svg');
+  await page.waitForSelector('#chart-axes svg');
+  await page.waitForSelector('#chart-distance svg', { timeout: 30_000 });
+  await page.waitForSelector('#chart-airtime svg');
+  await screenshot(page, 'playground');
+  assert.deepEqual(problems, []);
+});
+
+test('SF12 shows the SF12 interval, the same number as the time-on-air table', async () => {
+  const { page, problems } = await open();
+  const before = await tableHtml(page);
+  await page.getByLabel('Spreading factor').selectOption('12');
+  await waitForResults(page, before);
+  const interval = number(await cell(page, '3d-ctra', 'interval'));
+  // The highlighted row of the airtime table is SF12 / 250 kHz; its last column is 12 B.
+  const tableCell = await page.locator('.airtime-table tr.current td').last().textContent();
+  assert.ok(Math.abs(number(tableCell.split('·')[1]) - interval) < 0.006, `${interval} vs ${tableCell}`);
+  assert.ok(interval > 50, `SF12 interval ${interval} s`);
+  assert.deepEqual(problems, []);
+});
+
+test('5 km at SF7 loses packets and the bandwidth changes the time on air', async () => {
+  const { page, problems } = await open();
+  assert.equal(await cell(page, 'dr', 'delivery'), '100 %');
+  let before = await tableHtml(page);
+  await page.getByRole('slider', { name: /Distance/ }).fill('5000');
+  await waitForResults(page, before);
+  const delivery = number(await cell(page, 'dr', 'delivery'));
+  assert.ok(delivery < 100, `delivery at 5 km: ${delivery} %`);
+  const toa250 = number(await cell(page, 'dr', 'toa'));
+  before = await tableHtml(page);
+  await page.getByLabel('Bandwidth').selectOption('125');
+  await waitForResults(page, before);
+  assert.ok(Math.abs(number(await cell(page, 'dr', 'toa')) - 2 * toa250) < 0.2);
+  await screenshot(page, 'five-km');
+  assert.deepEqual(problems, []);
+});
+
+test('one model at a time, and the whole synthetic set', async () => {
+  const { page, problems } = await open();
+  let before = await tableHtml(page);
+  await page.getByLabel('Model').selectOption('ctra-plus');
+  await waitForResults(page, before);
+  assert.equal(await page.locator('#results-table tbody tr').count(), 1);
+  before = await tableHtml(page);
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('all');
+  await waitForResults(page, before);
+  assert.match(await page.locator('#status').textContent(), /30 flights, 2640 s/);
+  assert.deepEqual(problems, []);
+});
+
+test('a good CSV is simulated and a bad one is refused next to the control', async () => {
+  const { page, problems } = await open();
+  const dir = mkdtempSync(join(tmpdir(), 'loratrack-'));
+  const good = join(dir, 'circle.csv');
+  const rows = ['t,x,y,z'];
+  for (let i = 0; i <= 600; i++) {
+    const t = i * 0.1;
+    rows.push(`${t.toFixed(1)},${(30 * Math.cos(t / 6)).toFixed(3)},${(30 * Math.sin(t / 6)).toFixed(3)},${(20 + t / 10).toFixed(3)}`);
+  }
+  writeFileSync(good, rows.join('\n'));
+  const bad = join(dir, 'bad.csv');
+  writeFileSync(bad, 't,x,y,z\n0,1,2,3\n1,1,2,oops\n');
+
+  let before = await tableHtml(page);
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
+  await page.getByLabel('CSV file').setInputFiles(good);
+  await waitForResults(page, before);
+  assert.match(await page.locator('#status').textContent(), /circle\.csv/);
+
+  await page.getByLabel('CSV file').setInputFiles(bad);
+  await page.waitForSelector('#csv-error:not([hidden])');
+  assert.match(await page.locator('#csv-error').textContent(), /line 3: column 'z' is not a number/);
+  // The page stays usable: the previous results remain and the controls still work.
+  assert.equal(await page.locator('#results-table tbody tr').count(), 3);
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('synthetic');
+  before = await tableHtml(page);
+  await page.getByLabel('Spreading factor').selectOption('8');
+  await waitForResults(page, before);
+  assert.deepEqual(problems, []);
+});
+
+test('the URL carries the state: a shared link reopens the same view; embed shows only chosen panels', async () => {
+  const { page, problems } = await open();
+  const before = await tableHtml(page);
+  await page.getByLabel('Spreading factor').selectOption('9');
+  await page.getByLabel('Model').selectOption('3d-ctra');
+  await waitForResults(page, before);
+  const url = page.url();
+  assert.match(url, /sf=9/);
+  const again = await open(url.slice(server.url.length));
+  assert.equal(await again.page.getByLabel('Spreading factor').inputValue(), '9');
+  assert.equal(await again.page.locator('#results-table tbody tr').count(), 1);
+  assert.equal(await cell(again.page, '3d-ctra', 'p75'), await cell(page, '3d-ctra', 'p75'));
+
+  const embedded = await open('?embed=1&panels=results,error&sf=8');
+  assert.equal(await embedded.page.locator('#controls').isVisible(), false);
+  assert.equal(await embedded.page.locator('[data-panel="results"]').isVisible(), true);
+  assert.equal(await embedded.page.locator('[data-panel="axes"]').isVisible(), false);
+  await screenshot(embedded.page, 'embed');
+  assert.deepEqual([...problems, ...again.problems, ...embedded.problems], []);
+});
+
+test('works on a phone-sized screen and by keyboard', async () => {
+  const { page, problems } = await open('', { width: 390, height: 844 });
+  const before = await tableHtml(page);
+  await page.getByLabel('Spreading factor').focus();
+  await page.keyboard.press('ArrowDown');
+  await waitForResults(page, before);
+  assert.equal(await page.getByLabel('Spreading factor').inputValue(), '8');
+  await screenshot(page, 'phone');
+  assert.deepEqual(problems, []);
+});
+
+test('the JSON download equals the native CLI for the same settings (same seed, same numbers)', async () => {
+  const { page, problems } = await open('?flight=canberra&seed=7');
+  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
+  const browserJson = JSON.parse(readFileSync(await download.path(), 'utf8'));
+  const cli = JSON.parse(
+    execFileSync('cargo', ['run', '--quiet', '--', 'simulate', '--sample', 'canberra', '--seed', '7', '--json'], { encoding: 'utf8' }),
+  );
+  assert.equal(browserJson.results.length, cli.results.length);
+  for (const [b, n] of browserJson.results.map((r, i) => [r, cli.results[i]])) {
+    assert.equal(b.packetsReceived, n.packetsReceived);
+    for (const key of ['error3d', 'errorX', 'errorY', 'errorZ']) {
+      for (const stat of ['mean', 'p50', 'p75', 'p95', 'max']) {
+        const rel = Math.abs(b[key][stat] - n[key][stat]) / Math.max(1e-12, Math.abs(n[key][stat]));
+        assert.ok(rel <= 1e-9, `${b.model} ${key}.${stat}: browser ${b[key][stat]} vs native ${n[key][stat]}`);
+      }
+    }
+  }
+  assert.deepEqual(problems, []);
+});

@@ -1,0 +1,35 @@
+// Boxplot marks drawn from statistics the Rust core computed (quartiles, whiskers at 1.5 IQR),
+// so the chart shows exactly the numbers in the tables and the JSON.
+import * as Plot from '@observablehq/plot';
+import type { Boxplot, ModelName } from '../loratrack';
+import { MODEL_LABELS } from '../loratrack';
+import { MODEL_COLORS } from './colors';
+
+export interface BoxRow {
+  group: string;
+  model: ModelName;
+  box: Boxplot;
+}
+
+export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: number; yLabel?: string; log?: boolean }): SVGSVGElement | HTMLElement {
+  const data = rows
+    .filter((r) => r.box.count > 0 && (!opts.log || (r.box.whiskerLow ?? 0) > 0))
+    .map((r) => ({ group: r.group, label: MODEL_LABELS[r.model], model: r.model, ...r.box }));
+  const models = [...new Set(data.map((d) => d.label))];
+  return Plot.plot({
+    width: opts.width,
+    height: 300,
+    marginLeft: 50,
+    fx: { label: opts.groupLabel, domain: [...new Set(rows.map((r) => r.group))] },
+    x: { axis: null, domain: models, paddingInner: 0.25 },
+    // A log scale keeps the boxes near the gateway readable beside the metres-to-kilometres ones beyond its range.
+    y: opts.log ? { label: opts.yLabel ?? 'error (m, log scale)', grid: true, type: 'log' } : { label: opts.yLabel ?? 'error (m)', grid: true, zero: true },
+    color: { domain: models, range: models.map((m) => MODEL_COLORS[data.find((d) => d.label === m)!.model]), legend: true },
+    marks: [
+      Plot.ruleX(data, { fx: 'group', x: 'label', y1: 'whiskerLow', y2: 'whiskerHigh', stroke: 'label' }),
+      Plot.barY(data, { fx: 'group', x: 'label', y1: 'q1', y2: 'q3', fill: 'label', fillOpacity: 0.35, stroke: 'label' }),
+      Plot.tickY(data, { fx: 'group', x: 'label', y: 'median', stroke: 'label', strokeWidth: 2.5 }),
+      Plot.tip(data, Plot.pointerX({ fx: 'group', x: 'label', y: 'median', title: (d) => `${d.label}\nmedian ${d.median.toFixed(2)} m\nQ1–Q3 ${d.q1.toFixed(2)}–${d.q3.toFixed(2)} m\nwhiskers ${d.whiskerLow.toFixed(2)}–${d.whiskerHigh.toFixed(2)} m\n${d.outliers} outliers of ${d.count}` })),
+    ],
+  });
+}

@@ -1,0 +1,28 @@
+// Paper Fig. "error over time": the station's 3D error on the first flight, with packet arrivals
+// (dots on the axis) and lost packets (crosses).
+import * as Plot from '@observablehq/plot';
+import { MODEL_LABELS, type SimReport } from '../loratrack';
+import { MODEL_COLORS } from './colors';
+
+export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElement | HTMLElement {
+  const models = report.series?.models ?? [];
+  const lines = models.flatMap((m) => m.t.map((t, i) => ({ t, e: m.error3d[i], model: MODEL_LABELS[m.model] })));
+  const arrivals = models.flatMap((m) => m.arrivals.map((t) => ({ t, model: MODEL_LABELS[m.model] })));
+  const lost = models.flatMap((m) => m.lost.map((t) => ({ t, model: MODEL_LABELS[m.model] })));
+  const labels = models.map((m) => MODEL_LABELS[m.model]);
+  return Plot.plot({
+    width,
+    height: 300,
+    marginLeft: 50,
+    x: { label: 'time (s)' },
+    y: { label: '3D error (m)', grid: true, zero: true },
+    color: { domain: labels, range: models.map((m) => MODEL_COLORS[m.model]), legend: true },
+    marks: [
+      Plot.lineY(lines, { x: 't', y: 'e', stroke: 'model', strokeWidth: 1.4 }),
+      Plot.dot(arrivals, { x: 't', y: 0, fill: 'model', r: 2.5, title: (d) => `${d.model}: packet arrived at ${d.t.toFixed(1)} s` }),
+      Plot.dot(lost, { x: 't', y: 0, stroke: 'model', symbol: 'times', r: 4, title: (d) => `${d.model}: packet lost at ${d.t.toFixed(1)} s` }),
+      Plot.ruleY([0]),
+      Plot.tip(lines, Plot.pointerX({ x: 't', y: 'e', stroke: 'model' })),
+    ],
+  });
+}

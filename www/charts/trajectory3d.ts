@@ -1,0 +1,86 @@
+// Paper Fig. "3D trajectory of the UAV": the true flight and each model's station estimate,
+// rotatable with the mouse or touch (three.js + OrbitControls). The scene is recentred on the
+// flight; z is up, as in ENU.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import type { SimReport } from '../loratrack';
+import { MODEL_COLORS, TRUTH_COLOR } from './colors';
+
+export interface Trajectory3d {
+  element: HTMLElement;
+  update(report: SimReport): void;
+  /** PNG of the current view. */
+  toPng(): string;
+}
+
+export function createTrajectory3d(container: HTMLElement): Trajectory3d {
+  let renderer: THREE.WebGLRenderer;
+  try {
+    renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  } catch {
+    const note = document.createElement('p');
+    note.className = 'note';
+    note.textContent = 'The 3D view needs WebGL, which this browser does not offer. The other charts work without it.';
+    container.replaceChildren(note);
+    return { element: note, update: () => undefined, toPng: () => '' };
+  }
+  const width = () => Math.max(280, container.clientWidth);
+  const height = () => Math.min(480, Math.round(width() * 0.6));
+  renderer.setPixelRatio(Math.min(2, window.devicePixelRatio));
+  renderer.setSize(width(), height());
+  renderer.setClearColor(0xffffff);
+  container.replaceChildren(renderer.domElement);
+  renderer.domElement.setAttribute('role', 'img');
+  renderer.domElement.setAttribute('aria-label', '3D trajectory: true flight and station estimates; drag to rotate, scroll to zoom');
+
+  const scene = new THREE.Scene();
+  const camera = new THREE.PerspectiveCamera(45, width() / height(), 0.1, 1e6);
+  camera.up.set(0, 0, 1);
+  const controls = new OrbitControls(camera, renderer.domElement);
+  controls.enableDamping = false;
+  const group = new THREE.Group();
+  scene.add(group);
+  const render = () => renderer.render(scene, camera);
+  controls.addEventListener('change', render);
+  new ResizeObserver(() => {
+    renderer.setSize(width(), height());
+    camera.aspect = width() / height();
+    camera.updateProjectionMatrix();
+    render();
+  }).observe(container);
+
+  const line = (xs: number[], ys: number[], zs: number[], color: string, centre: THREE.Vector3) => {
+    const points = xs.map((x, i) => new THREE.Vector3(x - centre.x, ys[i] - centre.y, zs[i] - centre.z));
+    const geometry = new THREE.BufferGeometry().setFromPoints(points);
+    return new THREE.Line(geometry, new THREE.LineBasicMaterial({ color }));
+  };
+
+  return {
+    element: renderer.domElement,
+    update(report: SimReport) {
+      const s = report.series;
+      if (!s) return;
+      for (const child of [...group.children]) {
+        group.remove(child);
+        if (child instanceof THREE.Line) child.geometry.dispose();
+      }
+      const box = new THREE.Box3().setFromPoints(s.x.map((x, i) => new THREE.Vector3(x, s.y[i], s.z[i])));
+      const centre = box.getCenter(new THREE.Vector3());
+      const size = box.getSize(new THREE.Vector3()).length() || 10;
+      group.add(line(s.x, s.y, s.z, TRUTH_COLOR, centre));
+      for (const m of s.models) group.add(line(m.x, m.y, m.z, MODEL_COLORS[m.model], centre));
+      const grid = new THREE.GridHelper(size * 1.2, 12, 0xcccccc, 0xeeeeee);
+      grid.rotation.x = Math.PI / 2;
+      grid.position.z = box.min.z - centre.z;
+      group.add(grid);
+      camera.position.set(size * 0.9, -size * 0.9, size * 0.7);
+      controls.target.set(0, 0, 0);
+      controls.update();
+      render();
+    },
+    toPng: () => {
+      render();
+      return renderer.domElement.toDataURL('image/png');
+    },
+  };
+}
