@@ -140,36 +140,36 @@ impl<const N: usize> SigmaPoints<N> {
         d
     }
 
-    /// Weighted cross-covariance Σ w (χ − x̄)(ζ − z̄)ᵀ between these points and `other`.
-    pub fn cross_covariance(
+    /// Residuals of the centre and of the two mirrored sets from `mean`, angles wrapped.
+    fn deviations(
         &self,
         mean: &SVector<f64, N>,
         angles: &[usize],
-        other: &SigmaPoints<N>,
-        other_mean: &SVector<f64, N>,
-        other_angles: &[usize],
-        w: &SigmaWeights,
-    ) -> SMatrix<f64, N, N> {
-        let d0 = Self::residual(&self.center, mean, angles);
-        let e0 = Self::residual(&other.center, other_mean, other_angles);
-        let mut c = d0 * e0.transpose() * w.cov0;
+    ) -> (SVector<f64, N>, SMatrix<f64, N, N>, SMatrix<f64, N, N>) {
+        let mut plus = self.plus;
+        let mut minus = self.minus;
         for i in 0..N {
-            for (a, b) in [
-                (
-                    self.plus.column(i).into_owned(),
-                    other.plus.column(i).into_owned(),
-                ),
-                (
-                    self.minus.column(i).into_owned(),
-                    other.minus.column(i).into_owned(),
-                ),
-            ] {
-                let d = Self::residual(&a, mean, angles);
-                let e = Self::residual(&b, other_mean, other_angles);
-                c += d * e.transpose() * w.other;
+            plus.column_mut(i).axpy(-1.0, mean, 1.0);
+            minus.column_mut(i).axpy(-1.0, mean, 1.0);
+        }
+        for &k in angles {
+            for i in 0..N {
+                plus[(k, i)] = wrap_angle(plus[(k, i)]);
+                minus[(k, i)] = wrap_angle(minus[(k, i)]);
             }
         }
-        c
+        (Self::residual(&self.center, mean, angles), plus, minus)
+    }
+
+    /// Weighted covariance Σ w (χ − x̄)(χ − x̄)ᵀ of these points.
+    pub fn covariance(
+        &self,
+        mean: &SVector<f64, N>,
+        angles: &[usize],
+        w: &SigmaWeights,
+    ) -> SMatrix<f64, N, N> {
+        let (d0, dp, dm) = self.deviations(mean, angles);
+        d0 * d0.transpose() * w.cov0 + (dp * dp.transpose() + dm * dm.transpose()) * w.other
     }
 }
 

@@ -38,6 +38,9 @@ pub struct Ukf<const N: usize> {
     weights: SigmaWeights,
     angles: &'static [usize],
     recoveries: u64,
+    /// The Cholesky factor found when the last step checked P, with the P it belongs to: the next
+    /// step needs exactly that factor, and P is public, so the copy guards against edits.
+    factor: Option<(SMatrix<f64, N, N>, SMatrix<f64, N, N>)>,
 }
 
 impl<const N: usize> Ukf<N> {
@@ -58,6 +61,7 @@ impl<const N: usize> Ukf<N> {
             weights,
             angles,
             recoveries: 0,
+            factor: None,
         })
     }
 
@@ -77,14 +81,7 @@ impl<const N: usize> Ukf<N> {
     pub fn predict<M: MotionModel<N>>(&mut self, model: &M, dt: f64) {
         let points = self.sigma_points().map(|s| model.propagate(s, dt));
         let mean = points.mean(&self.weights, self.angles);
-        let cov = points.cross_covariance(
-            &mean,
-            self.angles,
-            &points,
-            &mean,
-            self.angles,
-            &self.weights,
-        );
+        let cov = points.covariance(&mean, self.angles, &self.weights);
         self.x = mean;
         self.p = cov + self.q * dt.abs();
         self.stabilise();
@@ -95,14 +92,7 @@ impl<const N: usize> Ukf<N> {
         let points = self.sigma_points();
         let x_mean = points.mean(&self.weights, self.angles);
         // h is the identity: the measurement sigma points are the state sigma points.
-        let pzz = points.cross_covariance(
-            &x_mean,
-            self.angles,
-            &points,
-            &x_mean,
-            self.angles,
-            &self.weights,
-        ) + r;
+        let pzz = points.covariance(&x_mean, self.angles, &self.weights) + r;
         let pxz = pzz - r;
         let Some(chol) = Cholesky::new(0.5 * (pzz + pzz.transpose())) else {
             // The innovation covariance is at least R, which is PD for any valid R; a failure means
@@ -128,6 +118,11 @@ impl<const N: usize> Ukf<N> {
 
     /// Lower Cholesky factor of P, repairing P first if needed.
     fn sqrt_covariance(&mut self) -> SMatrix<f64, N, N> {
+        if let Some((p, l)) = &self.factor {
+            if *p == self.p {
+                return *l;
+            }
+        }
         if let Some(c) = Cholesky::new(self.p) {
             return c.l();
         }
@@ -141,8 +136,10 @@ impl<const N: usize> Ukf<N> {
     /// Keeps P symmetric and positive definite after a step.
     fn stabilise(&mut self) {
         self.p = 0.5 * (self.p + self.p.transpose());
-        if !self.p.iter().all(|v| v.is_finite()) || Cholesky::new(self.p).is_none() {
-            self.repair();
+        self.factor = None;
+        match Cholesky::new(self.p) {
+            Some(c) if self.p.iter().all(|v| v.is_finite()) => self.factor = Some((self.p, c.l())),
+            _ => self.repair(),
         }
     }
 
@@ -227,7 +224,7 @@ mod tests {
         let l = Cholesky::new(p).unwrap().l();
         let pts = SigmaPoints::new(&x, &l, w.gamma).map(|s| a * s);
         let m = pts.mean(&w, &[]);
-        let c = pts.cross_covariance(&m, &[], &pts, &m, &[], &w);
+        let c = pts.covariance(&m, &[], &w);
         assert!((m - a * x).norm() < 1e-12);
         assert!((c - a * p * a.transpose()).norm() < 1e-12);
     }

@@ -1,7 +1,7 @@
 //! The one integral behind CTRA+ and 3D-CTRA, in a form that is exact at and near every
 //! special case.
 
-use crate::math::{sin_cos, sinc};
+use crate::math::sin_cos;
 
 /// ∫₀ᵗ (v0 + a τ) · (cos(α + kτ), sin(α + kτ)) dτ, returned as (cosine part, sine part), metres.
 ///
@@ -28,11 +28,22 @@ use crate::math::{sin_cos, sinc};
 /// assert!((y - 0.16305169576864387).abs() < 1e-15);
 /// ```
 pub fn arc_integral(alpha: f64, k: f64, v0: f64, a: f64, t: f64) -> (f64, f64) {
+    let (sa, ca) = sin_cos(alpha);
+    arc_integral_from(sa, ca, k, v0, a, t)
+}
+
+/// [`arc_integral`] with sin α and cos α given: the models build them for θ ± φ from the sines
+/// and cosines of θ and φ, which saves the trigonometric calls that dominate a UKF prediction.
+pub(crate) fn arc_integral_from(sa: f64, ca: f64, k: f64, v0: f64, a: f64, t: f64) -> (f64, f64) {
     let u = k * t;
+    // One sincos serves everything: sin u = 2 sin(u/2) cos(u/2), cos u = cos²(u/2) − sin²(u/2).
     let (s_half, c_half) = sin_cos(0.5 * u);
     let sin_u = 2.0 * s_half * c_half;
-    let sinc_u = if u == 0.0 { 1.0 } else { sin_u / u };
-    let sinc_half = sinc(0.5 * u);
+    let (sinc_u, sinc_half) = if u == 0.0 {
+        (1.0, 1.0)
+    } else {
+        (sin_u / u, s_half / (0.5 * u))
+    };
     let f = (sinc_u, s_half * sinc_half);
     let g = (
         sinc_u - 0.5 * sinc_half * sinc_half,
@@ -40,7 +51,6 @@ pub fn arc_integral(alpha: f64, k: f64, v0: f64, a: f64, t: f64) -> (f64, f64) {
     );
     let re = v0 * t * f.0 + a * t * t * g.0;
     let im = v0 * t * f.1 + a * t * t * g.1;
-    let (sa, ca) = sin_cos(alpha);
     (ca * re - sa * im, sa * re + ca * im)
 }
 

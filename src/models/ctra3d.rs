@@ -1,7 +1,7 @@
 //! 3D-CTRA: constant turn rate, constant tilt rate and constant acceleration (paper §III-B).
 
-use super::{arc_integral, ModelKind, MotionModel, A, OMEGA, PHI, PSI, THETA, V, X, Y, Z};
-use crate::math::wrap_angle;
+use super::{arc_integral_from, ModelKind, MotionModel, A, OMEGA, PHI, PSI, THETA, V, X, Y, Z};
+use crate::math::{sin_cos, wrap_angle};
 use nalgebra::SVector;
 
 /// 3D-CTRA: the drone turns at a constant rate omega in the horizontal plane and tilts its
@@ -16,11 +16,11 @@ use nalgebra::SVector;
 /// theta(t) = theta0 + omega t,  phi(t) = phi0 + psi t,  v(t) = v0 + a t   (eqs. theta, phi_3d)
 /// [x, y](t) = [x0, y0] + ½ I(theta0+phi0, omega+psi) + ½ I(theta0−phi0, omega−psi)   (eqs. x_int, y_int)
 /// z(t)     = z0 + Im I(phi0, psi)                                                    (eq. z_int)
-/// I(α, k)  = ∫₀ᵗ (v0 + aτ) e^{i(α + kτ)} dτ  = [`arc_integral`]
+/// I(α, k)  = ∫₀ᵗ (v0 + aτ) e^{i(α + kτ)} dτ  = [`arc_integral`](crate::arc_integral)
 /// ```
 ///
 /// The paper's printed forms divide by (omega ± psi) and psi and need separate special cases for
-/// psi = 0 and omega = ±psi; [`arc_integral`] is exact at and near all of them, so this one
+/// psi = 0 and omega = ±psi; [`arc_integral`](crate::arc_integral) is exact at and near all of them, so this one
 /// expression covers every case continuously (SPEC §3). `phi` is kept in (−pi, pi]: a pitch past
 /// ±pi/2 is a loop, which the ODE describes without any special handling.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -32,9 +32,12 @@ impl MotionModel<9> for Ctra3d {
     fn propagate(&self, s: &SVector<f64, 9>, dt: f64) -> SVector<f64, 9> {
         let (theta, phi, v, a) = (s[THETA], s[PHI], s[V], s[A]);
         let (omega, psi) = (s[OMEGA], s[PSI]);
-        let plus = arc_integral(theta + phi, omega + psi, v, a, dt);
-        let minus = arc_integral(theta - phi, omega - psi, v, a, dt);
-        let vertical = arc_integral(phi, psi, v, a, dt);
+        let (st, ct) = sin_cos(theta);
+        let (sp, cp) = sin_cos(phi);
+        // sin and cos of theta ± phi by the addition formulas.
+        let plus = arc_integral_from(st * cp + ct * sp, ct * cp - st * sp, omega + psi, v, a, dt);
+        let minus = arc_integral_from(st * cp - ct * sp, ct * cp + st * sp, omega - psi, v, a, dt);
+        let vertical = arc_integral_from(sp, cp, psi, v, a, dt);
         let mut out = *s;
         out[X] += 0.5 * (plus.0 + minus.0);
         out[Y] += 0.5 * (plus.1 + minus.1);

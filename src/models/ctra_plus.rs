@@ -1,6 +1,6 @@
 //! CTRA+: 2D CTRA on a plane tilted by a constant pitch (paper §III-A).
 
-use super::{arc_integral, ModelKind, MotionModel, A, OMEGA, PHI, THETA, V, X, Y, Z};
+use super::{arc_integral_from, ModelKind, MotionModel, A, OMEGA, PHI, THETA, V, X, Y, Z};
 use crate::math::{sin_cos, wrap_angle};
 use nalgebra::SVector;
 
@@ -17,7 +17,7 @@ use nalgebra::SVector;
 /// ```
 ///
 /// Erratum (SPEC §3): the paper says the horizontal part equals 2D CTRA multiplied by sin(phi);
-/// it is cos(phi). The 2D CTRA integral is [`arc_integral`], exact at omega = 0.
+/// it is cos(phi). The 2D CTRA integral is [`arc_integral`](crate::arc_integral), exact at omega = 0.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CtraPlus;
 
@@ -26,7 +26,8 @@ impl MotionModel<8> for CtraPlus {
 
     fn propagate(&self, s: &SVector<f64, 8>, dt: f64) -> SVector<f64, 8> {
         let (sp, cp) = sin_cos(s[PHI]);
-        let (dx, dy) = arc_integral(s[THETA], s[OMEGA], s[V], s[A], dt);
+        let (st, ct) = sin_cos(s[THETA]);
+        let (dx, dy) = arc_integral_from(st, ct, s[OMEGA], s[V], s[A], dt);
         let along = s[V] * dt + 0.5 * s[A] * dt * dt;
         let mut out = *s;
         out[X] += cp * dx;

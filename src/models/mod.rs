@@ -11,6 +11,7 @@ mod dr;
 mod kind;
 
 pub use arc_integral::arc_integral;
+use arc_integral::arc_integral_from;
 pub use ctra3d::Ctra3d;
 pub use ctra_plus::CtraPlus;
 pub use dr::Dr;
