@@ -56,12 +56,26 @@ pub fn decode(params: JsValue) -> Result<JsValue, JsError> {
     call(params, |p: api::DecodeParams| api::decode(&p))
 }
 
-/// `simulate({synthetic | sample | trajectory (CSV text), model?, sf?, bw?, distance?, seed?, …, series?})`
+/// `simulate({synthetic | sample | trajectory (CSV text), model?, sf?, bw?, distance?, seed?, …, series?}, progress?)`
 /// → `{config, results, series?}` (SPEC §8). Drone-side filter runs are cached between calls.
+/// `progress(done, total)`, if given, is called as flights complete (it must not call back into
+/// this module).
 #[wasm_bindgen]
-pub fn simulate(params: JsValue) -> Result<JsValue, JsError> {
+pub fn simulate(params: JsValue, progress: Option<js_sys::Function>) -> Result<JsValue, JsError> {
     call(params, |p: crate::sim::SimParams| {
-        SIMULATOR.with(|s| api::simulate(&mut s.borrow_mut(), &p))
+        SIMULATOR.with(|s| {
+            let mut report = |done: usize, total: usize| {
+                if let Some(f) = &progress {
+                    // A throwing callback must not abort the simulation; its error is dropped.
+                    let _ = f.call2(
+                        &JsValue::NULL,
+                        &JsValue::from(done as u32),
+                        &JsValue::from(total as u32),
+                    );
+                }
+            };
+            api::simulate_with_progress(&mut s.borrow_mut(), &p, &mut report)
+        })
     })
 }
 

@@ -149,13 +149,16 @@ fn encode_then_decode_round_trips_and_wrong_lengths_throw() {
 
 #[wasm_bindgen_test]
 fn simulate_returns_the_cli_shape_and_refuses_a_bad_csv() {
-    let r = wasm::simulate(obj(&[
-        ("synthetic", 1.into()),
-        ("model", "all".into()),
-        ("sf", 7.into()),
-        ("bw", 250.into()),
-        ("distance", 1000.into()),
-    ]))
+    let r = wasm::simulate(
+        obj(&[
+            ("synthetic", 1.into()),
+            ("model", "all".into()),
+            ("sf", 7.into()),
+            ("bw", 250.into()),
+            ("distance", 1000.into()),
+        ]),
+        None,
+    )
     .unwrap();
     let results = js_sys::Array::from(&get(&r, "results"));
     assert_eq!(results.length(), 3);
@@ -163,8 +166,29 @@ fn simulate_returns_the_cli_shape_and_refuses_a_bad_csv() {
     assert_eq!(get(&first, "model").as_string().as_deref(), Some("dr"));
     assert!(num(&get(&first, "error3d"), "p75") > 0.0);
     assert!(num(&get(&r, "config"), "flightTime") > 50.0);
-    let e = wasm::simulate(obj(&[("trajectory", "t,x,y,z\n1,2,3\n".into())])).unwrap_err();
+    let e = wasm::simulate(obj(&[("trajectory", "t,x,y,z\n1,2,3\n".into())]), None).unwrap_err();
     assert!(error_message(e).contains("line 2"));
-    let e = wasm::simulate(obj(&[("synthetic", 31.into())])).unwrap_err();
+    let e = wasm::simulate(obj(&[("synthetic", 31.into())]), None).unwrap_err();
     assert!(error_message(e).contains("1..30"));
+}
+
+#[wasm_bindgen_test]
+fn simulate_reports_progress_up_to_the_total() {
+    use std::cell::RefCell;
+    use std::rc::Rc;
+    use wasm_bindgen::closure::Closure;
+    let calls: Rc<RefCell<Vec<(f64, f64)>>> = Rc::default();
+    let sink = Rc::clone(&calls);
+    let cb = Closure::<dyn FnMut(f64, f64)>::new(move |d, t| sink.borrow_mut().push((d, t)));
+    let f: &js_sys::Function = cb.as_ref().unchecked_ref();
+    wasm::simulate(
+        obj(&[("synthetic", 2.into()), ("seed", 99.into())]),
+        Some(f.clone()),
+    )
+    .unwrap();
+    let calls = calls.borrow();
+    // One flight, three models: a drone run and a station run each.
+    assert_eq!(calls.len(), 6);
+    assert_eq!(calls.last(), Some(&(6.0, 6.0)));
+    assert!(calls.windows(2).all(|w| w[1].0 > w[0].0));
 }

@@ -41,6 +41,8 @@ export interface AirtimeReport {
   phyPayloadBytes: number;
   lowDataRateOptimize: boolean;
   minInterval: number;
+  /** Packets a day within TTN's 30 s/day fair use (information only). */
+  ttnPacketsPerDay: number;
 }
 
 /** Input of predict (`loratrack predict`): state in SPEC §2 order. */
@@ -185,7 +187,10 @@ export function decode(params: DecodeParams): StateReport {
   return wasm.decode(params) as StateReport;
 }
 
-/** Runs the tracking simulation (drone filter runs are cached between calls). */
-export function simulate(params: SimulateParams): SimReport {
-  return wasm.simulate(params) as SimReport;
+/**
+ * Runs the tracking simulation (drone filter runs are cached between calls). `onProgress(done,
+ * total)` is called as flights complete; it must not call back into this module.
+ */
+export function simulate(params: SimulateParams, onProgress?: (done: number, total: number) => void): SimReport {
+  return wasm.simulate(params, onProgress) as SimReport;
 }

@@ -1,5 +1,5 @@
 // The playground: reads the controls, asks the worker to simulate, renders numbers and charts.
-import { load, MODEL_LABELS, type ModelResult, type SimReport } from './loratrack';
+import { load, MODEL_LABELS, timeOnAir, type ModelResult, type SimReport } from './loratrack';
 import { DEFAULTS, fromQuery, overheadBytes, toParams, toQuery, type Settings } from './state';
 import type { Request, Response } from './worker';
 import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
@@ -99,12 +99,17 @@ function send(request: Request): void {
   const long = settings.flight === 'all';
   running = { id: request.id, long, started: performance.now() };
   progress.hidden = !long;
-  if (long) status.textContent = 'Simulating 30 flights (44 min of flight)…';
+  progress.value = 0;
+  if (long) status.textContent = 'Simulating 30 flights (44 min of flight)… change any setting to interrupt.';
   worker.postMessage(request);
 }
 
 function onResponse(r: Response): void {
   if (r.id !== running?.id) return;
+  if ('progress' in r) {
+    progress.value = r.progress;
+    return;
+  }
   if ('sweep' in r) {
     renderDistance(r.sweep);
     running = undefined;
@@ -158,7 +163,7 @@ function renderResults(r: SimReport): void {
     <caption>3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet; overhead ${r.config.overhead} B</caption>
     <thead><tr><th scope="col">model</th><th scope="col">payload</th><th scope="col">time on air</th><th scope="col">interval</th>
     <th scope="col">received / sent</th><th scope="col">delivery</th><th scope="col">mean</th><th scope="col">median</th><th scope="col">p75</th><th scope="col">p95</th><th scope="col">max</th></tr></thead>
-    <tbody>${rows}</tbody></table></div>`;
+    <tbody>${rows}</tbody></table></div>${ttnNote(r)}`;
 
   const width = (id: string) => Math.max(300, $(id).clientWidth || 600);
   place('error', errorOverTimeChart(r, width('#chart-error')));
@@ -172,6 +177,15 @@ function renderResults(r: SimReport): void {
     trajectory3d ??= createTrajectory3d($('#chart-trajectory'));
     trajectory3d.update(r);
   }
+}
+
+/** The Things Network's fair-use limit, shown for information (the simulation uses the duty cycle). */
+function ttnNote(r: SimReport): string {
+  const m = r.results[r.results.length - 1];
+  const a = timeOnAir({ sf: settings.sf, bw: settings.bw, payload: m.payloadBytes, overhead: overheadBytes(settings), cr: settings.cr });
+  const perDay = 86400 / a.minInterval;
+  return `<p class="note" id="ttn-note">On The Things Network, fair use allows 30 s of airtime a day: ${a.ttnPacketsPerDay} packets of ${m.payloadBytes} B
+    (${MODEL_LABELS[m.model]}) at this setting, one every ${(86400 / Math.max(1, a.ttnPacketsPerDay)).toFixed(0)} s — ${(perDay / Math.max(1, a.ttnPacketsPerDay)).toFixed(0)}× fewer than the duty cycle allows. Not applied here.</p>`;
 }
 
 function renderDistance(sweep: { distance: number; report: SimReport }[]): void {

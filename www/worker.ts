@@ -1,5 +1,5 @@
 // Runs simulations off the main thread so the page never freezes. One message in, one out:
-//   { id, params, distances? }  →  { id, report } | { id, error }
+//   { id, params, distances? }  →  { id, progress }* then { id, report } | { id, error }
 //                                   then, with distances, { id, sweep: [{ distance, report }] }
 import { load, simulate, type SimReport, type SimulateParams } from './loratrack';
 
@@ -10,6 +10,7 @@ export interface Request {
 }
 
 export type Response =
+  | { id: number; progress: number }
   | { id: number; report: SimReport; millis: number }
   | { id: number; error: string }
   | { id: number; sweep: { distance: number; report: SimReport }[] };
@@ -22,7 +23,14 @@ self.onmessage = async (event: MessageEvent<Request>) => {
   const post = (r: Response) => (self as unknown as Worker).postMessage(r);
   try {
     const t0 = performance.now();
-    const report = simulate({ ...params, series: true });
+    let last = 0;
+    const report = simulate({ ...params, series: true }, (done, total) => {
+      // A few dozen messages at most: one per 2 % of the work.
+      if (done / total - last >= 0.02 || done === total) {
+        last = done / total;
+        post({ id, progress: last });
+      }
+    });
     post({ id, report, millis: performance.now() - t0 });
     if (distances?.length) {
       // Only the link changes between these runs: the drone filters come from the cache.

@@ -87,6 +87,9 @@ pub struct AirtimeReport {
     pub low_data_rate_optimize: bool,
     /// Minimum interval between packets under the duty cycle, s.
     pub min_interval: f64,
+    /// Packets per day within The Things Network's fair-use policy (30 s of airtime a day), for
+    /// information: loratrack does not enforce it.
+    pub ttn_packets_per_day: u32,
 }
 
 /// Time on air and minimum duty-cycle interval of one packet.
@@ -104,5 +107,6 @@ pub fn airtime(p: &AirtimeParams) -> Result<AirtimeReport, ApiError> {
         phy_payload_bytes: t.phy_payload_bytes,
         low_data_rate_optimize: t.low_data_rate_optimize,
         min_interval: lora::min_interval(t.time_on_air, p.duty_cycle)?,
+        ttn_packets_per_day: (lora::TTN_FAIR_USE_SECONDS_PER_DAY / t.time_on_air).floor() as u32,
     })
 }

@@ -15,4 +15,7 @@ pub use airtime::{airtime, AirtimeParams, AirtimeReport};
 pub use error::ApiError;
 pub use payload::{decode, encode, DecodeParams, DecodeReport, EncodeParams, EncodeReport};
 pub use predict::{predict, validate_state, PredictParams, PredictReport, MAX_STEPS};
-pub use simulate::{p75, simulate, sweep_paper, SweepReport, SweepRun, PAPER_DISTANCES, PAPER_SFS};
+pub use simulate::{
+    p75, simulate, simulate_with_progress, sweep_paper, SweepReport, SweepRun, PAPER_DISTANCES,
+    PAPER_SFS,
+};

@@ -7,8 +7,17 @@ use serde::Serialize;
 
 /// Runs one simulation. Pass the same [`Simulator`] to later calls to reuse its caches.
 pub fn simulate(sim: &mut Simulator, p: &SimParams) -> Result<SimReport, ApiError> {
+    simulate_with_progress(sim, p, &mut |_, _| {})
+}
+
+/// [`simulate`], reporting `progress(done, total)` as flights complete.
+pub fn simulate_with_progress(
+    sim: &mut Simulator,
+    p: &SimParams,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<SimReport, ApiError> {
     let cfg = p.validate()?;
-    Ok(sim.run(&cfg)?)
+    Ok(sim.run_with_progress(&cfg, progress)?)
 }
 
 /// One point of the sweep grid.

@@ -102,20 +102,24 @@ impl Simulator {
         Ok((key, flights))
     }
 
+    /// The drone runs of every flight for one model, from the cache or computed; `tick` is
+    /// called once per flight.
     fn drone_tracks(
         &mut self,
         key: DroneKey,
         flights: &[Trajectory],
         cfg: &SimConfig,
+        tick: &mut dyn FnMut(),
     ) -> Rc<Vec<DroneTrack>> {
         if let Some(d) = self.drones.get(&key) {
+            flights.iter().for_each(|_| tick());
             return Rc::clone(d);
         }
         let tracks: Vec<DroneTrack> = flights
             .iter()
             .enumerate()
             .map(|(i, f)| {
-                run_drone(
+                let track = run_drone(
                     f,
                     key.model,
                     cfg.sensor_rate,
@@ -123,7 +127,9 @@ impl Simulator {
                     &cfg.r_diagonal,
                     cfg.seed,
                     i as u64,
-                )
+                );
+                tick();
+                track
             })
             .collect();
         self.drone_runs += tracks.len() as u64;
@@ -137,7 +143,23 @@ impl Simulator {
 
     /// Runs one simulation.
     pub fn run(&mut self, cfg: &SimConfig) -> Result<SimReport, SimError> {
+        self.run_with_progress(cfg, &mut |_, _| {})
+    }
+
+    /// Runs one simulation, calling `progress(done, total)` after each flight's drone filter and
+    /// each flight's station (total = 2 × flights × models), so a long run can show how far it is.
+    pub fn run_with_progress(
+        &mut self,
+        cfg: &SimConfig,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Result<SimReport, SimError> {
         let (flight_key, flights) = self.flights(&cfg.source)?;
+        let total = 2 * flights.len() * cfg.models.len();
+        let mut done = 0;
+        let mut tick = || {
+            done += 1;
+            progress(done, total);
+        };
         let (sf, bw) = (cfg.radio.sf, cfg.radio.bw);
         let mut results = Vec::new();
         let mut series_models = Vec::new();
@@ -159,7 +181,7 @@ impl Simulator {
                 q: cfg.q.to_bits(),
                 seed: cfg.seed,
             };
-            let drones = self.drone_tracks(key, &flights, cfg);
+            let drones = self.drone_tracks(key, &flights, cfg, &mut tick);
             let (mut e3, mut ex, mut ey, mut ez) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
             let (mut sent, mut received) = (0, 0);
             for (i, (flight, drone)) in flights.iter().zip(drones.iter()).enumerate() {
@@ -176,6 +198,7 @@ impl Simulator {
                     cfg.q,
                     &cfg.r_diagonal,
                 );
+                tick();
                 e3.extend_from_slice(&st.error3d);
                 for e in &st.error_axes {
                     ex.push(e[0]);

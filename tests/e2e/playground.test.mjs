@@ -100,8 +100,18 @@ test('one model at a time, and the whole synthetic set', async () => {
   assert.equal(await page.locator('#results-table tbody tr').count(), 1);
   before = await tableHtml(page);
   await page.getByLabel('Trajectory', { exact: true }).selectOption('all');
+  // The whole set shows its progress while it runs...
+  await page.waitForFunction(() => {
+    const p = document.querySelector('#progress');
+    return p && !p.hidden && p.value > 0;
+  });
+  // ...and the next change interrupts it: the results that arrive are for SF8.
+  await page.getByLabel('Spreading factor').selectOption('8');
   await waitForResults(page, before);
   assert.match(await page.locator('#status').textContent(), /30 flights, 2640 s/);
+  const interval = number(await cell(page, 'ctra-plus', 'interval'));
+  assert.ok(interval > 5, `SF8 interval expected, got ${interval} s`);
+  assert.match(await page.locator('#ttn-note').textContent(), /30 s of airtime a day/);
   assert.deepEqual(problems, []);
 });
 

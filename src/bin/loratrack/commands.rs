@@ -105,13 +105,11 @@ pub struct SweepArgs {
     out: Output,
 }
 
-/// Motion model names accepted by --model.
-const MODEL_HELP: &str =
-    "Motion model: dr (x y z theta phi v), ctra-plus (+ a omega) or 3d-ctra (+ a omega psi)";
-
+/// A model and one of its states (predict, encode).
 #[derive(Args)]
-pub struct PredictArgs {
-    #[arg(long, help = MODEL_HELP)]
+pub struct ModelState {
+    /// Motion model: dr (x y z theta phi v), ctra-plus (+ a omega) or 3d-ctra (+ a omega psi).
+    #[arg(long)]
     model: ModelKind,
     /// State, comma-separated, SPEC §2 order and units (m, rad, m/s, m/s^2, rad/s), e.g. 0,0,0,0,0,1,1,1.
     #[arg(
@@ -121,6 +119,33 @@ pub struct PredictArgs {
         required = true
     )]
     state: Vec<f64>,
+}
+
+/// The codec's shared origin (encode, decode).
+#[derive(Args)]
+pub struct Origin {
+    /// Origin x,y,z in metres (ENU) that both ends agree on; positions travel relative to it [0,0,0].
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    origin: Option<Vec<f64>>,
+}
+
+impl Origin {
+    fn get(&self) -> Result<Option<[f64; 3]>, ApiError> {
+        self.origin
+            .as_ref()
+            .map(|v| {
+                <[f64; 3]>::try_from(v.as_slice()).map_err(|_| {
+                    ApiError::Invalid(format!("--origin needs 3 numbers x,y,z, got {}", v.len()))
+                })
+            })
+            .transpose()
+    }
+}
+
+#[derive(Args)]
+pub struct PredictArgs {
+    #[command(flatten)]
+    input: ModelState,
     /// Time to propagate over, seconds (>= 0).
     #[arg(long, allow_hyphen_values = true)]
     dt: f64,
@@ -136,44 +161,26 @@ pub struct PredictArgs {
 
 #[derive(Args)]
 pub struct EncodeArgs {
-    #[arg(long, help = MODEL_HELP)]
-    model: ModelKind,
-    /// State, comma-separated, SPEC §2 order and units.
-    #[arg(
-        long,
-        value_delimiter = ',',
-        allow_hyphen_values = true,
-        required = true
-    )]
-    state: Vec<f64>,
-    /// Origin x,y,z in metres (ENU) that both ends agree on; positions are sent relative to it.
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
-    origin: Option<Vec<f64>>,
+    #[command(flatten)]
+    input: ModelState,
+    #[command(flatten)]
+    origin: Origin,
     #[command(flatten)]
     out: Output,
 }
 
 #[derive(Args)]
 pub struct DecodeArgs {
-    #[arg(long, help = MODEL_HELP)]
+    /// Motion model: dr, ctra-plus or 3d-ctra (fixes the payload size: 9, 11 or 12 bytes).
+    #[arg(long)]
     model: ModelKind,
     /// Payload as hex digits (9, 11 or 12 bytes for dr, ctra-plus, 3d-ctra).
     #[arg(long)]
     hex: String,
-    /// Origin x,y,z in metres (ENU) that both ends agree on.
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
-    origin: Option<Vec<f64>>,
+    #[command(flatten)]
+    origin: Origin,
     #[command(flatten)]
     out: Output,
-}
-
-fn origin(o: Option<Vec<f64>>) -> Result<Option<[f64; 3]>, ApiError> {
-    o.map(|v| {
-        <[f64; 3]>::try_from(v.as_slice()).map_err(|_| {
-            ApiError::Invalid(format!("--origin needs 3 numbers x,y,z, got {}", v.len()))
-        })
-    })
-    .transpose()
 }
 
 fn numbers(v: &[f64]) -> String {
@@ -279,21 +286,22 @@ fn airtime(a: AirtimeArgs) -> Result<String, ApiError> {
         return Ok(json(&r));
     }
     Ok(format!(
-        "time on air      {:.3} ms\nsymbol time      {:.3} ms\npayload symbols  {}\nPHY payload      {} B\nLDRO             {}\nmin interval     {:.3} s (duty cycle {})",
+        "time on air      {:.3} ms\nsymbol time      {:.3} ms\npayload symbols  {}\nPHY payload      {} B\nLDRO             {}\nmin interval     {:.3} s (duty cycle {})\nTTN fair use     {} packets/day (30 s of airtime; not enforced)",
         r.time_on_air * 1e3,
         r.symbol_time * 1e3,
         r.payload_symbols,
         r.phy_payload_bytes,
         if r.low_data_rate_optimize { "on" } else { "off" },
         r.min_interval,
-        a.duty_cycle
+        a.duty_cycle,
+        r.ttn_packets_per_day
     ))
 }
 
 fn predict(a: PredictArgs) -> Result<String, ApiError> {
     let r = api::predict(&api::PredictParams {
-        model: a.model,
-        state: a.state,
+        model: a.input.model,
+        state: a.input.state,
         dt: a.dt,
         step: a.step,
         eta: a.eta,
@@ -307,9 +315,9 @@ fn predict(a: PredictArgs) -> Result<String, ApiError> {
 
 fn encode(a: EncodeArgs) -> Result<String, ApiError> {
     let r = api::encode(&api::EncodeParams {
-        model: a.model,
-        state: a.state,
-        origin: origin(a.origin)?,
+        model: a.input.model,
+        state: a.input.state,
+        origin: a.origin.get()?,
     })?;
     if a.out.json {
         return Ok(json(&r));
@@ -326,7 +334,7 @@ fn decode(a: DecodeArgs) -> Result<String, ApiError> {
     let r = api::decode(&api::DecodeParams {
         model: a.model,
         hex: a.hex,
-        origin: origin(a.origin)?,
+        origin: a.origin.get()?,
     })?;
     Ok(if a.out.json {
         json(&r)
