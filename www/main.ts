@@ -5,7 +5,7 @@ import type { Request, Response } from './worker';
 import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
 import { boxplotChart, type BoxRow } from './charts/boxplot';
 import { errorOverTimeChart } from './charts/errorOverTime';
-import { createTrajectory3d, type Trajectory3d } from './charts/trajectory3d';
+import type { Trajectory3d } from './charts/trajectory3d';
 import { downloadDataUrl, downloadErrorCsv, downloadJson, downloadPng, downloadSvg } from './export';
 
 const DISTANCES = [500, 1000, 2000, 3000, 4000, 5000];
@@ -173,10 +173,7 @@ function renderResults(r: SimReport): void {
     { group: 'z', model: m.model, box: m.boxplot.errorZ },
   ]);
   place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: width('#chart-axes') }));
-  if (!embed || !$('[data-panel="trajectory"]').hidden) {
-    trajectory3d ??= createTrajectory3d($('#chart-trajectory'));
-    trajectory3d.update(r);
-  }
+  if (!$('[data-panel="trajectory"]').hidden) void render3d(r);
 }
 
 /** The Things Network's fair-use limit, shown for information (the simulation uses the duty cycle). */
@@ -186,6 +183,15 @@ function ttnNote(r: SimReport): string {
   const perDay = 86400 / a.minInterval;
   return `<p class="note" id="ttn-note">On The Things Network, fair use allows 30 s of airtime a day: ${a.ttnPacketsPerDay} packets of ${m.payloadBytes} B
     (${MODEL_LABELS[m.model]}) at this setting, one every ${(86400 / Math.max(1, a.ttnPacketsPerDay)).toFixed(0)} s — ${(perDay / Math.max(1, a.ttnPacketsPerDay)).toFixed(0)}× fewer than the duty cycle allows. Not applied here.</p>`;
+}
+
+/** three.js is most of the page's JavaScript: load it only once there is a trajectory to draw. */
+async function render3d(r: SimReport): Promise<void> {
+  if (!trajectory3d) {
+    const { createTrajectory3d } = await import('./charts/trajectory3d');
+    trajectory3d ??= createTrajectory3d($('#chart-trajectory'));
+  }
+  if (r === report) trajectory3d.update(r);
 }
 
 function renderDistance(sweep: { distance: number; report: SimReport }[]): void {

@@ -176,7 +176,7 @@ pub fn parse_csv(text: &str, name: &str) -> Result<Trajectory, TrajectoryError> 
     } else {
         smoothed_derivative(&t, &vel, 0.3)
     };
-    Ok(Trajectory::new(name.to_string(), t, pos, vel, acc))
+    Trajectory::new(name.to_string(), t, pos, vel, acc)
 }
 
 /// Derivative of `values` over time by local linear regression on the samples within

@@ -64,6 +64,8 @@ pub enum TrajectoryError {
         /// What is absurd.
         what: String,
     },
+    /// Columns that do not fit together (built in code rather than read from CSV).
+    Inconsistent(String),
     /// A synthetic flight number outside 1..=30.
     SyntheticIndex(i64),
     /// A built-in sample name that does not exist.
@@ -96,6 +98,7 @@ impl fmt::Display for TrajectoryError {
                 write!(f, "line {line}: time is not strictly increasing")
             }
             TrajectoryError::Absurd { line, what } => write!(f, "line {line}: {what}"),
+            TrajectoryError::Inconsistent(what) => write!(f, "inconsistent trajectory: {what}"),
             TrajectoryError::SyntheticIndex(i) => {
                 write!(f, "synthetic flight must be 1..30 or all, got {i}")
             }

@@ -1,6 +1,7 @@
 //! A ground-truth flight sampled in time.
 
 use super::kinematics::kinematic_states;
+use super::TrajectoryError;
 use crate::math::wrap_angle;
 
 /// A flight: times (s) and, at each, position (m), velocity (m/s) and acceleration (m/s²) in
@@ -22,24 +23,44 @@ pub struct Trajectory {
 }
 
 impl Trajectory {
-    /// Builds a trajectory and derives its model states. The caller guarantees equal lengths,
-    /// at least two samples and strictly increasing times.
+    /// Builds a trajectory and derives its model states. Refuses fewer than two samples,
+    /// columns of different lengths, non-finite values and times that do not strictly increase.
     pub fn new(
         name: String,
         t: Vec<f64>,
         pos: Vec<[f64; 3]>,
         vel: Vec<[f64; 3]>,
         acc: Vec<[f64; 3]>,
-    ) -> Self {
+    ) -> Result<Self, TrajectoryError> {
+        if t.len() < 2 {
+            return Err(TrajectoryError::TooFewRows {
+                rows: t.len(),
+                min: 2,
+            });
+        }
+        if pos.len() != t.len() || vel.len() != t.len() || acc.len() != t.len() {
+            return Err(TrajectoryError::Inconsistent(
+                "time, position, velocity and acceleration differ in length".into(),
+            ));
+        }
+        let finite = |rows: &[[f64; 3]]| rows.iter().flatten().all(|v| v.is_finite());
+        if !(t.iter().all(|v| v.is_finite()) && finite(&pos) && finite(&vel) && finite(&acc)) {
+            return Err(TrajectoryError::Inconsistent(
+                "a value is not a finite number".into(),
+            ));
+        }
+        if let Some(i) = t.windows(2).position(|w| w[1] <= w[0]) {
+            return Err(TrajectoryError::TimeNotIncreasing { line: i + 2 });
+        }
         let states = kinematic_states(&pos, &vel, &acc);
-        Trajectory {
+        Ok(Trajectory {
             name,
             t,
             pos,
             vel,
             acc,
             states,
-        }
+        })
     }
 
     /// Seconds from the first to the last sample.
@@ -104,7 +125,38 @@ mod tests {
         let pos = t.iter().map(|&s| [2.0 * s, 0.0, 10.0]).collect();
         let vel = vec![[2.0, 0.0, 0.0]; 5];
         let acc = vec![[0.0; 3]; 5];
-        Trajectory::new("line".into(), t, pos, vel, acc)
+        Trajectory::new("line".into(), t, pos, vel, acc).unwrap()
+    }
+
+    #[test]
+    fn refuses_inconsistent_columns() {
+        let t = vec![0.0, 1.0];
+        let ok = vec![[0.0; 3]; 2];
+        assert!(Trajectory::new(
+            "x".into(),
+            vec![0.0],
+            vec![[0.0; 3]],
+            vec![[0.0; 3]],
+            vec![[0.0; 3]]
+        )
+        .is_err());
+        assert!(Trajectory::new(
+            "x".into(),
+            t.clone(),
+            ok.clone(),
+            vec![[0.0; 3]],
+            ok.clone()
+        )
+        .is_err());
+        assert!(Trajectory::new(
+            "x".into(),
+            vec![1.0, 1.0],
+            ok.clone(),
+            ok.clone(),
+            ok.clone()
+        )
+        .is_err());
+        assert!(Trajectory::new("x".into(), t, vec![[f64::NAN; 3]; 2], ok.clone(), ok).is_err());
     }
 
     #[test]
