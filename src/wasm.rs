@@ -87,7 +87,7 @@ pub fn bench_ukf(params: JsValue) -> Result<JsValue, JsError> {
     use crate::filter::{
         measurement_noise, process_noise, SigmaParams, Ukf, PAPER_Q, PAPER_R_DIAGONAL,
     };
-    use crate::models::{Ctra3d, CtraPlus, Dr, ModelKind, MotionModel, ANGLES};
+    use crate::models::{with_model, ModelKind, MotionModel, ANGLES};
     use nalgebra::SVector;
 
     #[derive(serde::Deserialize)]
@@ -129,11 +129,7 @@ pub fn bench_ukf(params: JsValue) -> Result<JsValue, JsError> {
             update_micros: (t2 - t1) * per,
         })
     }
-    call(params, |p: Params| match p.model {
-        ModelKind::Dr => time::<6, _>(Dr, p.steps),
-        ModelKind::CtraPlus => time::<8, _>(CtraPlus, p.steps),
-        ModelKind::Ctra3d => time::<9, _>(Ctra3d, p.steps),
-    })
+    call(params, |p: Params| with_model!(p.model, time(p.steps)))
 }
 
 /// Benchmark support: `simulate` with a fresh simulator (no cached drone runs).

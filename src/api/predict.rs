@@ -1,7 +1,7 @@
 //! `predict`: noise-free propagation of a state under one model (SPEC §8).
 
 use super::ApiError;
-use crate::models::{Ctra3d, CtraPlus, Dr, ModelError, ModelKind, MotionModel};
+use crate::models::{with_model, ModelError, ModelKind, MotionModel};
 use nalgebra::SVector;
 use serde::{Deserialize, Serialize};
 
@@ -103,11 +103,7 @@ pub fn predict(p: &PredictParams) -> Result<PredictReport, ApiError> {
             Some((step, eta))
         }
     };
-    let state = match p.model {
-        ModelKind::Dr => run(Dr, &p.state, p.dt, steps),
-        ModelKind::CtraPlus => run(CtraPlus, &p.state, p.dt, steps),
-        ModelKind::Ctra3d => run(Ctra3d, &p.state, p.dt, steps),
-    };
+    let state = with_model!(p.model, run(&p.state, p.dt, steps));
     Ok(PredictReport {
         model: p.model,
         state,

@@ -19,6 +19,20 @@ pub use kind::{ModelError, ModelKind};
 
 use nalgebra::SVector;
 
+/// Runs a function generic over `MotionModel<N>` with the model chosen at run time:
+/// `with_model!(kind, run(args…))` becomes `run::<N, _>(Model, args…)` for the matching model,
+/// so the one `match` from a runtime choice to a fixed-size filter lives here.
+macro_rules! with_model {
+    ($kind:expr, $run:ident($($arg:expr),* $(,)?)) => {
+        match $kind {
+            $crate::models::ModelKind::Dr => $run::<6, _>($crate::models::Dr, $($arg),*),
+            $crate::models::ModelKind::CtraPlus => $run::<8, _>($crate::models::CtraPlus, $($arg),*),
+            $crate::models::ModelKind::Ctra3d => $run::<9, _>($crate::models::Ctra3d, $($arg),*),
+        }
+    };
+}
+pub(crate) use with_model;
+
 /// Index of x (east, m) in every state.
 pub const X: usize = 0;
 /// Index of y (north, m).

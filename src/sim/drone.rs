@@ -2,7 +2,7 @@
 
 use crate::filter::{measurement_noise, process_noise, SigmaParams, Ukf};
 use crate::math::wrap_angle;
-use crate::models::{Ctra3d, CtraPlus, Dr, ModelKind, MotionModel, ANGLES};
+use crate::models::{with_model, ModelKind, MotionModel, ANGLES};
 use crate::rng::Rng;
 use crate::trajectory::Trajectory;
 use nalgebra::SVector;
@@ -47,13 +47,7 @@ pub fn run_drone(
     seed: u64,
     stream: u64,
 ) -> DroneTrack {
-    match model {
-        ModelKind::Dr => run::<6, _>(Dr, flight, sensor_rate, q, r_diagonal, seed, stream),
-        ModelKind::CtraPlus => {
-            run::<8, _>(CtraPlus, flight, sensor_rate, q, r_diagonal, seed, stream)
-        }
-        ModelKind::Ctra3d => run::<9, _>(Ctra3d, flight, sensor_rate, q, r_diagonal, seed, stream),
-    }
+    with_model!(model, run(flight, sensor_rate, q, r_diagonal, seed, stream))
 }
 
 fn run<const N: usize, M: MotionModel<N>>(

@@ -3,7 +3,7 @@
 use super::Transmission;
 use crate::codec::quantization_variance;
 use crate::filter::{measurement_noise, process_noise, SigmaParams, Ukf};
-use crate::models::{Ctra3d, CtraPlus, Dr, ModelKind, MotionModel, ANGLES};
+use crate::models::{with_model, ModelKind, MotionModel, ANGLES};
 use crate::trajectory::Trajectory;
 use nalgebra::{SMatrix, SVector};
 
@@ -36,13 +36,7 @@ pub fn track_station(
     q: f64,
     r_diagonal: &[f64; 9],
 ) -> StationTrack {
-    match model {
-        ModelKind::Dr => run::<6, _>(Dr, flight, transmissions, step, eta, q, r_diagonal),
-        ModelKind::CtraPlus => {
-            run::<8, _>(CtraPlus, flight, transmissions, step, eta, q, r_diagonal)
-        }
-        ModelKind::Ctra3d => run::<9, _>(Ctra3d, flight, transmissions, step, eta, q, r_diagonal),
-    }
+    with_model!(model, run(flight, transmissions, step, eta, q, r_diagonal))
 }
 
 fn run<const N: usize, M: MotionModel<N>>(
