@@ -94,7 +94,7 @@ fn without_shadowing_delivery_is_all_or_nothing_around_the_range() {
     let p = |d| SimParams {
         shadowing: 0.0,
         distance: d,
-        model: ModelChoice::Dr,
+        model: ModelChoice::One(ModelKind::Dr),
         ..one_flight(6)
     };
     let inside = simulate(&mut sim, &p(2000.0)).unwrap();

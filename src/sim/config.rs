@@ -51,33 +51,39 @@ impl<'de> Deserialize<'de> for SyntheticChoice {
     }
 }
 
-/// `--model dr|ctra-plus|3d-ctra|all`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize, Default)]
+/// `--model dr|ctra-plus|3d-ctra|all`: one model, or all three side by side.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum ModelChoice {
     /// One model.
-    #[serde(rename = "dr")]
-    Dr,
-    /// One model.
-    #[serde(rename = "ctra-plus")]
-    CtraPlus,
-    /// One model.
-    #[serde(rename = "3d-ctra")]
-    Ctra3d,
-    /// All three, side by side.
+    One(ModelKind),
+    /// All three.
     #[default]
-    #[serde(rename = "all")]
     All,
 }
 
 impl ModelChoice {
-    /// The models to run.
+    /// The models to run, in the paper's order.
     pub fn models(self) -> Vec<ModelKind> {
         match self {
-            ModelChoice::Dr => vec![ModelKind::Dr],
-            ModelChoice::CtraPlus => vec![ModelKind::CtraPlus],
-            ModelChoice::Ctra3d => vec![ModelKind::Ctra3d],
+            ModelChoice::One(m) => vec![m],
             ModelChoice::All => ModelKind::ALL.to_vec(),
         }
+    }
+}
+
+impl<'de> Deserialize<'de> for ModelChoice {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        if name.eq_ignore_ascii_case("all") {
+            return Ok(ModelChoice::All);
+        }
+        name.parse::<ModelKind>()
+            .map(ModelChoice::One)
+            .map_err(|_| {
+                serde::de::Error::custom(format!(
+                    "unknown model '{name}' (expected dr, ctra-plus, 3d-ctra or all)"
+                ))
+            })
     }
 }
 

@@ -78,13 +78,16 @@ pub fn schedule_transmissions(
         }
         let sent = drone.start + k as f64 * drone.period;
         let estimate = &drone.states[k][..n];
+        // The estimate has the model's length and the filter keeps it finite, so this succeeds;
+        // were it ever not encodable, the drone would have nothing to send at this slot.
+        let decoded = encode(drone.model, estimate, origin)
+            .and_then(|e| decode(drone.model, &e.bytes, origin));
+        let Ok(decoded) = decoded else {
+            scheduled = sent + link.interval;
+            continue;
+        };
         let mut state = [0.0; 9];
-        // Encoding cannot fail here: the estimate has the model's length and is finite.
-        if let Ok(bytes) = encode(drone.model, estimate, origin).map(|e| e.bytes) {
-            if let Ok(decoded) = decode(drone.model, &bytes, origin) {
-                state[..n].copy_from_slice(&decoded);
-            }
-        }
+        state[..n].copy_from_slice(&decoded);
         let p = flight.position_at(sent, &mut hint);
         let d = ((p[0] - gateway[0]).powi(2)
             + (p[1] - gateway[1]).powi(2)
