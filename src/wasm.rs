@@ -74,7 +74,12 @@ pub fn simulate(params: JsValue, progress: Option<js_sys::Function>) -> Result<J
                     );
                 }
             };
-            api::simulate_with_progress(&mut s.borrow_mut(), &p, &mut report)
+            // A progress callback that calls simulate again would find the simulator busy: refuse
+            // that call with an error rather than trap.
+            let mut sim = s.try_borrow_mut().map_err(|_| {
+                ApiError::Invalid("simulate was called from its own progress callback".into())
+            })?;
+            api::simulate_with_progress(&mut sim, &p, &mut report)
         })
     })
 }

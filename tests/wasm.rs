@@ -192,3 +192,26 @@ fn simulate_reports_progress_up_to_the_total() {
     assert_eq!(calls.last(), Some(&(6.0, 6.0)));
     assert!(calls.windows(2).all(|w| w[1].0 > w[0].0));
 }
+
+#[wasm_bindgen_test]
+fn a_progress_callback_that_calls_simulate_gets_an_error_not_a_trap() {
+    use std::cell::RefCell;
+    use std::rc::Rc;
+    use wasm_bindgen::closure::Closure;
+    let inner: Rc<RefCell<Option<String>>> = Rc::default();
+    let sink = Rc::clone(&inner);
+    let cb = Closure::<dyn FnMut(f64, f64)>::new(move |_, _| {
+        if sink.borrow().is_none() {
+            let e = wasm::simulate(obj(&[("synthetic", 3.into())]), None).unwrap_err();
+            *sink.borrow_mut() = Some(error_message(e));
+        }
+    });
+    let f: &js_sys::Function = cb.as_ref().unchecked_ref();
+    wasm::simulate(obj(&[("synthetic", 3.into())]), Some(f.clone())).unwrap();
+    assert!(inner
+        .borrow()
+        .as_deref()
+        .unwrap_or("")
+        .contains("progress callback"));
+    assert!(wasm::simulate(obj(&[("synthetic", 3.into())]), None).is_ok());
+}
