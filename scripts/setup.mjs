@@ -93,7 +93,7 @@ function chromium() {
   }
   const sudo = process.getuid && process.getuid() !== 0 ? ['sudo'] : [];
   const apt = (args) => (sudo.length ? run('sudo', ['apt-get', ...args], 'installing chromium') : run('apt-get', args, 'installing chromium'));
-  if (!apt(['update']) || !apt(['install', '-y', '--no-install-recommends', 'chromium'])) {
+  if (!apt(['update']) || !apt(['install', '-y', 'chromium'])) {
     fail("could not install Debian's chromium with apt-get (needed for the end-to-end tests)");
   }
 }
