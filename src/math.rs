@@ -62,6 +62,12 @@ pub fn hypot(x: f64, y: f64) -> f64 {
     libm::hypot(x, y)
 }
 
+/// Euclidean distance between two points (m).
+#[inline]
+pub fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
 /// Wraps an angle to (-pi, pi] (radians).
 ///
 /// ```

@@ -1,9 +1,7 @@
 //! `airtime` / `timeOnAir`: time on air and duty-cycle interval of one packet (SPEC §6, §8).
 
 use super::ApiError;
-use crate::lora::{
-    self, Bandwidth, CodingRate, LdroMode, LoraParams, SpreadingFactor, LORAWAN_OVERHEAD_BYTES,
-};
+use crate::lora::{self, LdroMode, LoraParams, LORAWAN_OVERHEAD_BYTES};
 use serde::{Deserialize, Serialize};
 
 /// Input of `airtime`. Field names are the CLI's long options in camelCase.
@@ -55,11 +53,7 @@ fn default_duty_cycle() -> f64 {
 impl AirtimeParams {
     /// Validated radio settings.
     pub fn lora_params(&self) -> Result<LoraParams, ApiError> {
-        let mut p = LoraParams::new(
-            SpreadingFactor::new(self.sf)?,
-            Bandwidth::from_khz(self.bw)?,
-        );
-        p.cr = CodingRate::new(self.cr)?;
+        let mut p = LoraParams::from_settings(self.sf, self.bw, self.cr)?;
         p.preamble = u16::try_from(self.preamble)
             .ok()
             .filter(|n| *n >= 6)

@@ -125,6 +125,14 @@ impl LoraParams {
         }
     }
 
+    /// LoRaWAN defaults (see [`LoraParams::new`]) from raw settings, validated: SF 7..12,
+    /// bandwidth 125/250/500 kHz, coding rate index 1..4.
+    pub fn from_settings(sf: i64, bw_khz: f64, cr: i64) -> Result<Self, LoraError> {
+        let mut p = LoraParams::new(SpreadingFactor::new(sf)?, Bandwidth::from_khz(bw_khz)?);
+        p.cr = CodingRate::new(cr)?;
+        Ok(p)
+    }
+
     /// Symbol duration T_sym = 2^SF / BW, seconds.
     pub fn symbol_time(&self) -> f64 {
         f64::from(1u32 << self.sf.0) / self.bw.hz()

@@ -2,10 +2,7 @@
 
 use super::SimError;
 use crate::filter::{PAPER_Q, PAPER_R_DIAGONAL};
-use crate::lora::{
-    Bandwidth, Channel, ChannelParams, CodingRate, LoraParams, SpreadingFactor,
-    LORAWAN_OVERHEAD_BYTES,
-};
+use crate::lora::{Channel, ChannelParams, LoraParams, LORAWAN_OVERHEAD_BYTES};
 use crate::models::ModelKind;
 use serde::{Deserialize, Serialize};
 
@@ -245,11 +242,7 @@ impl SimParams {
                 }));
             }
         };
-        let mut radio = LoraParams::new(
-            SpreadingFactor::new(self.sf)?,
-            Bandwidth::from_khz(self.bw)?,
-        );
-        radio.cr = CodingRate::new(self.cr)?;
+        let radio = LoraParams::from_settings(self.sf, self.bw, self.cr)?;
         let channel = Channel::new(ChannelParams {
             tx_power_dbm: self.tx_power,
             path_loss_exponent: self.path_loss_exponent,

@@ -3,6 +3,7 @@
 use super::DroneTrack;
 use crate::codec::{decode, encode};
 use crate::lora::{Bandwidth, Channel, Shadowing, SpreadingFactor};
+use crate::math::distance;
 use crate::rng::Rng;
 use crate::trajectory::Trajectory;
 
@@ -89,13 +90,8 @@ pub fn schedule_transmissions(
         let mut state = [0.0; 9];
         state[..n].copy_from_slice(&decoded);
         let p = flight.position_at(sent, &mut hint);
-        let d = ((p[0] - gateway[0]).powi(2)
-            + (p[1] - gateway[1]).powi(2)
-            + (p[2] - gateway[2]).powi(2))
-        .sqrt();
-        let moved = last_pos.map_or(0.0, |q| {
-            ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
-        });
+        let d = distance(&p, &gateway);
+        let moved = last_pos.map_or(0.0, |q| distance(&p, &q));
         last_pos = Some(p);
         let s = shadowing.next(moved, rng);
         let rx = link.channel.mean_rx_power_dbm(d) + s;

@@ -69,17 +69,13 @@ pub struct Boxplots {
 }
 
 impl Boxplots {
-    /// Boxplots of the four error samples (sorted in place).
-    pub fn of(e3: &mut [f64], ex: &mut [f64], ey: &mut [f64], ez: &mut [f64]) -> Self {
-        let b = |d: &mut [f64]| {
-            d.sort_by(f64::total_cmp);
-            Boxplot::of_sorted(d)
-        };
+    /// Boxplots of the four error samples, each already in ascending order.
+    pub fn of_sorted(e3: &[f64], ex: &[f64], ey: &[f64], ez: &[f64]) -> Self {
         Boxplots {
-            error3d: b(e3),
-            error_x: b(ex),
-            error_y: b(ey),
-            error_z: b(ez),
+            error3d: Boxplot::of_sorted(e3),
+            error_x: Boxplot::of_sorted(ex),
+            error_y: Boxplot::of_sorted(ey),
+            error_z: Boxplot::of_sorted(ez),
         }
     }
 }

@@ -248,8 +248,8 @@ impl Simulator {
                 error_x: sx,
                 error_y: sy,
                 error_z: sz,
-                // Summary::of sorted the samples already; Boxplots::of re-sorts cheaply.
-                boxplot: Boxplots::of(&mut e3, &mut ex, &mut ey, &mut ez),
+                // Summary::of left each sample sorted.
+                boxplot: Boxplots::of_sorted(&e3, &ex, &ey, &ez),
                 filter_recoveries: drones.iter().map(|d| d.recoveries).sum(),
             });
         }

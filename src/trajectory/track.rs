@@ -2,7 +2,7 @@
 
 use super::kinematics::kinematic_states;
 use super::TrajectoryError;
-use crate::math::wrap_angle;
+use crate::math::{distance, wrap_angle};
 
 /// A flight: times (s) and, at each, position (m), velocity (m/s) and acceleration (m/s²) in
 /// local ENU, plus the derived 3D-CTRA state `x y z theta phi v a omega psi` (SPEC §2).
@@ -104,15 +104,7 @@ impl Trajectory {
 
     /// Path length, m.
     pub fn path_length(&self) -> f64 {
-        self.pos
-            .windows(2)
-            .map(|p| {
-                ((p[1][0] - p[0][0]).powi(2)
-                    + (p[1][1] - p[0][1]).powi(2)
-                    + (p[1][2] - p[0][2]).powi(2))
-                .sqrt()
-            })
-            .sum()
+        self.pos.windows(2).map(|p| distance(&p[1], &p[0])).sum()
     }
 }
 
