@@ -3,7 +3,7 @@
 #![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::api::{simulate, sweep_paper};
-use loratrack::{ModelChoice, ModelKind, SimParams, Simulator, SyntheticChoice};
+use loratrack::{ModelChoice, ModelKind, Prediction, SimParams, Simulator, SyntheticChoice};
 
 fn one_flight(n: usize) -> SimParams {
     SimParams {
@@ -94,7 +94,7 @@ fn without_shadowing_delivery_is_all_or_nothing_around_the_range() {
     let p = |d| SimParams {
         shadowing: 0.0,
         distance: d,
-        model: ModelChoice::One(ModelKind::Dr),
+        model: ModelChoice::one(ModelKind::Dr),
         ..one_flight(6)
     };
     let inside = simulate(&mut sim, &p(2000.0)).unwrap();
@@ -123,7 +123,13 @@ fn intervals_follow_the_payload_sizes_and_the_overhead() {
         },
     )
     .unwrap();
-    let interval = |m| r.results.iter().find(|x| x.model == m).unwrap().interval;
+    let interval = |m: ModelKind| {
+        r.results
+            .iter()
+            .find(|x| x.model == m.into())
+            .unwrap()
+            .interval
+    };
     assert!((interval(ModelKind::Dr) - 7.2192).abs() < 1e-9);
     assert!((interval(ModelKind::Ctra3d) - 8.2432).abs() < 1e-9);
     // Packets are never closer than the interval.
@@ -229,12 +235,18 @@ fn bad_inputs_are_refused_with_messages() {
 
 #[test]
 fn the_paper_sweep_covers_its_grid_and_richer_models_win_at_one_km() {
-    let r = sweep_paper(&mut Simulator::new(), 1).unwrap();
+    let r = sweep_paper(
+        &mut Simulator::new(),
+        1,
+        &[Prediction::Paper],
+        &ModelChoice::all(),
+    )
+    .unwrap();
     assert_eq!(r.runs.len(), 6);
     assert!((r.flight_time - 2640.0).abs() < 1.0);
     let run = &r.runs[0];
     assert_eq!((run.sf, run.distance), (7, 1000.0));
-    let p75 = |m| loratrack::api::p75(run, m);
+    let p75 = |m: ModelKind| loratrack::api::p75(run, m.into());
     assert!(
         p75(ModelKind::Ctra3d) < p75(ModelKind::Dr),
         "3D-CTRA should beat DR at SF7 / 1 km"

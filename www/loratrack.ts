@@ -14,10 +14,16 @@ export function load(): Promise<void> {
 }
 
 export type Ldro = 'auto' | 'on' | 'off';
-export type ModelName = 'dr' | 'ctra-plus' | '3d-ctra';
-export type ModelChoice = ModelName | 'all';
+/** A motion model: what predict, encode and decode take. */
+export type MotionModelName = 'dr' | 'ctra-plus' | '3d-ctra';
+/** A station: one motion model, or the IMM mixture of the three. */
+export type ModelName = MotionModelName | 'imm';
+/** `all` (the paper's three), one station, or a comma list such as `dr,3d-ctra,imm`. */
+export type ModelChoice = ModelName | 'all' | (string & {});
+/** The station's prediction between packets: as published, or bounded by physical limits. */
+export type Prediction = 'paper' | 'bounded';
 
-export const MODEL_LABELS: Record<ModelName, string> = { dr: 'DR', 'ctra-plus': 'CTRA+', '3d-ctra': '3D-CTRA' };
+export const MODEL_LABELS: Record<ModelName, string> = { dr: 'DR', 'ctra-plus': 'CTRA+', '3d-ctra': '3D-CTRA', imm: 'IMM' };
 
 /** Input of timeOnAir (`loratrack airtime`). */
 export interface AirtimeParams {
@@ -47,7 +53,7 @@ export interface AirtimeReport {
 
 /** Input of predict (`loratrack predict`): state in SPEC §2 order. */
 export interface PredictParams {
-  model: ModelName;
+  model: MotionModelName;
   state: number[];
   dt: number;
   step?: number;
@@ -55,12 +61,12 @@ export interface PredictParams {
 }
 
 export interface StateReport {
-  model: ModelName;
+  model: MotionModelName;
   state: number[];
 }
 
 export interface EncodeParams {
-  model: ModelName;
+  model: MotionModelName;
   state: number[];
   origin?: [number, number, number];
 }
@@ -71,7 +77,7 @@ export interface EncodeReport {
 }
 
 export interface DecodeParams {
-  model: ModelName;
+  model: MotionModelName;
   hex: string;
   origin?: [number, number, number];
 }
@@ -82,7 +88,8 @@ export interface SimulateParams {
   trajectoryName?: string;
   synthetic?: number | 'all';
   sample?: 'canberra';
-  model?: ModelChoice;
+  model?: ModelChoice | ModelName[];
+  prediction?: Prediction;
   sf?: number;
   bw?: number;
   distance?: number;
@@ -134,12 +141,18 @@ export interface ModelResult {
   errorZ: Summary;
   boxplot: { error3d: Boxplot; errorX: Boxplot; errorY: Boxplot; errorZ: Boxplot };
   filterRecoveries: number;
+  /** Share of steps whose true position lay inside the station's 95 % ellipsoid; null if none. */
+  coverage95: number | null;
+  /** IMM only: mean probability of each member over the run. */
+  modelProbability?: Partial<Record<MotionModelName, number>>;
 }
 
 export interface ModelSeries {
   model: ModelName;
   t: number[];
   error3d: number[];
+  /** The station's own 95 % bound on the error (longest semi-axis of its 95 % ellipsoid), m. */
+  bound95: number[];
   x: number[];
   y: number[];
   z: number[];
@@ -153,6 +166,7 @@ export interface SimReport {
     flights: number;
     flightTime: number;
     models: ModelName[];
+    prediction: Prediction;
     sf: number;
     bandwidthKhz: number;
     distance: number;

@@ -156,13 +156,15 @@ function renderResults(r: SimReport): void {
         <td>${m.payloadBytes} B</td><td data-field="toa">${(m.timeOnAir * 1e3).toFixed(1)} ms</td><td data-field="interval">${m.interval.toFixed(2)} s</td>
         <td data-field="packets">${m.packetsReceived} / ${m.packetsSent}</td><td data-field="delivery">${(ratio * 100).toFixed(0)} %</td>
         <td data-field="mean">${fmt(m.error3d.mean)}</td><td data-field="p50">${fmt(m.error3d.p50)}</td><td data-field="p75">${fmt(m.error3d.p75)}</td>
-        <td data-field="p95">${fmt(m.error3d.p95)}</td><td data-field="max">${fmt(m.error3d.max, 1)}</td></tr>`;
+        <td data-field="p95">${fmt(m.error3d.p95)}</td><td data-field="max">${fmt(m.error3d.max, 1)}</td>
+        <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td></tr>`;
     })
     .join('');
   $('#results-table').innerHTML = `<div class="table-wrap"><table class="results">
-    <caption>3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet; overhead ${r.config.overhead} B</caption>
+    <caption>3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet; overhead ${r.config.overhead} B; ${r.config.prediction} prediction</caption>
     <thead><tr><th scope="col">model</th><th scope="col">payload</th><th scope="col">time on air</th><th scope="col">interval</th>
-    <th scope="col">received / sent</th><th scope="col">delivery</th><th scope="col">mean</th><th scope="col">median</th><th scope="col">p75</th><th scope="col">p95</th><th scope="col">max</th></tr></thead>
+    <th scope="col">received / sent</th><th scope="col">delivery</th><th scope="col">mean</th><th scope="col">median</th><th scope="col">p75</th><th scope="col">p95</th><th scope="col">max</th>
+    <th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th></tr></thead>
     <tbody>${rows}</tbody></table></div>${ttnNote(r)}`;
 
   const width = (id: string) => Math.max(300, $(id).clientWidth || 600);
@@ -174,6 +176,13 @@ function renderResults(r: SimReport): void {
   ]);
   place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: width('#chart-axes') }));
   if (!$('[data-panel="trajectory"]').hidden) void render3d(r);
+}
+
+/** The IMM's mean member probabilities, as a tooltip. */
+function probabilities(m: ModelResult): string {
+  const p = m.modelProbability;
+  if (!p) return "Share of the time the truth lay inside the station's 95 % ellipsoid";
+  return `Mean IMM probability: DR ${fmt(p.dr ?? null)}, CTRA+ ${fmt(p['ctra-plus'] ?? null)}, 3D-CTRA ${fmt(p['3d-ctra'] ?? null)}`;
 }
 
 /** The Things Network's fair-use limit, shown for information (the simulation uses the duty cycle). */

@@ -1,6 +1,6 @@
 // The page's settings: defaults (the paper's), conversion to simulate() parameters, and the URL
 // round trip that makes every view shareable.
-import type { ModelChoice, SimulateParams } from './loratrack';
+import type { ModelChoice, Prediction, SimulateParams } from './loratrack';
 
 export type FlightChoice = 'synthetic' | 'all' | 'canberra' | 'csv';
 
@@ -9,6 +9,7 @@ export interface Settings {
   bw: number;
   distance: number;
   model: ModelChoice;
+  prediction: Prediction;
   flight: FlightChoice;
   flightNumber: number;
   lorawan: boolean;
@@ -28,6 +29,7 @@ export const DEFAULTS: Settings = {
   bw: 250,
   distance: 1000,
   model: 'all',
+  prediction: 'paper',
   flight: 'synthetic',
   flightNumber: 1,
   lorawan: true,
@@ -40,6 +42,9 @@ export const DEFAULTS: Settings = {
   eta: 0.9,
   seed: 1,
 };
+
+/** The model choices the page offers (the options of its Model control). */
+export const MODEL_CHOICES: string[] = ['all', 'dr', 'ctra-plus', '3d-ctra', 'imm', 'dr,ctra-plus,3d-ctra,imm'];
 
 const NUMERIC: (keyof Settings)[] = ['sf', 'bw', 'distance', 'flightNumber', 'cr', 'txPower', 'pathLossExponent', 'shadowing', 'sensorRate', 'step', 'eta', 'seed'];
 
@@ -60,6 +65,7 @@ export function toParams(s: Settings, csv?: { text: string; name: string }): Sim
   return {
     ...flight,
     model: s.model,
+    prediction: s.prediction,
     sf: s.sf,
     bw: s.bw,
     distance: s.distance,
@@ -95,7 +101,9 @@ export function fromQuery(search: string): Settings {
     if (Number.isFinite(v)) (s as unknown as Record<string, number>)[key] = v;
   }
   const model = q.get('model');
-  if (model === 'dr' || model === 'ctra-plus' || model === '3d-ctra' || model === 'all') s.model = model;
+  if (model !== null && MODEL_CHOICES.includes(model)) s.model = model;
+  const prediction = q.get('prediction');
+  if (prediction === 'paper' || prediction === 'bounded') s.prediction = prediction;
   const flight = q.get('flight');
   // An uploaded CSV cannot travel in a URL; such links open the default flight.
   if (flight === 'synthetic' || flight === 'all' || flight === 'canberra') s.flight = flight;

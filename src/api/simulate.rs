@@ -1,8 +1,10 @@
 //! `simulate` and `sweep --paper` (SPEC §8).
 
 use super::ApiError;
-use crate::models::ModelKind;
-use crate::sim::{ModelChoice, ModelResult, SimParams, SimReport, Simulator, SyntheticChoice};
+use crate::sim::{
+    ModelChoice, ModelResult, Prediction, SimParams, SimReport, Simulator, StationModel,
+    SyntheticChoice,
+};
 use serde::Serialize;
 
 /// Runs one simulation. Pass the same [`Simulator`] to later calls to reuse its caches.
@@ -30,6 +32,8 @@ pub struct SweepRun {
     pub bandwidth_khz: f64,
     /// Gateway distance, m.
     pub distance: f64,
+    /// The station's prediction.
+    pub prediction: Prediction,
     /// Per model.
     pub results: Vec<ModelResult>,
 }
@@ -48,37 +52,60 @@ pub struct SweepReport {
     pub runs: Vec<SweepRun>,
 }
 
+impl SweepReport {
+    /// The predictions the sweep ran, in order.
+    pub fn predictions(&self) -> Vec<Prediction> {
+        let mut out: Vec<Prediction> = Vec::new();
+        for run in &self.runs {
+            if !out.contains(&run.prediction) {
+                out.push(run.prediction);
+            }
+        }
+        out
+    }
+}
+
 /// Spreading factors of the paper's Figs. "error for different values of d".
 pub const PAPER_SFS: [i64; 2] = [7, 8];
 /// Distances of the same figures, m.
 pub const PAPER_DISTANCES: [f64; 3] = [1000.0, 2000.0, 3000.0];
 
-/// The paper's grid: SF 7 and 8 at 250 kHz, d = 1, 2, 3 km, all three models, over the whole
-/// synthetic set, with no LoRaWAN overhead (as in its Table II) and every other setting at the
-/// paper's defaults. The drone filters run once per model; the six link settings reuse them.
-pub fn sweep_paper(sim: &mut Simulator, seed: u64) -> Result<SweepReport, ApiError> {
+/// The paper's grid: SF 7 and 8 at 250 kHz, d = 1, 2, 3 km, over the whole synthetic set, with
+/// no LoRaWAN overhead (as in its Table II) and every other setting at the paper's defaults, for
+/// each of `predictions` and each station in `models` (the paper: its three models, the paper's
+/// prediction). The drone filters run once per model; every other run reuses them.
+pub fn sweep_paper(
+    sim: &mut Simulator,
+    seed: u64,
+    predictions: &[Prediction],
+    models: &ModelChoice,
+) -> Result<SweepReport, ApiError> {
     let mut runs = Vec::new();
     let mut flight_time = 0.0;
-    for sf in PAPER_SFS {
-        for distance in PAPER_DISTANCES {
-            let p = SimParams {
-                synthetic: Some(SyntheticChoice::All),
-                model: ModelChoice::All,
-                sf,
-                bw: 250.0,
-                distance,
-                seed,
-                overhead: 0,
-                ..SimParams::default()
-            };
-            let r = simulate(sim, &p)?;
-            flight_time = r.config.flight_time;
-            runs.push(SweepRun {
-                sf,
-                bandwidth_khz: 250.0,
-                distance,
-                results: r.results,
-            });
+    for &prediction in predictions {
+        for sf in PAPER_SFS {
+            for distance in PAPER_DISTANCES {
+                let p = SimParams {
+                    synthetic: Some(SyntheticChoice::All),
+                    model: models.clone(),
+                    prediction,
+                    sf,
+                    bw: 250.0,
+                    distance,
+                    seed,
+                    overhead: 0,
+                    ..SimParams::default()
+                };
+                let r = simulate(sim, &p)?;
+                flight_time = r.config.flight_time;
+                runs.push(SweepRun {
+                    sf,
+                    bandwidth_khz: 250.0,
+                    distance,
+                    prediction,
+                    results: r.results,
+                });
+            }
         }
     }
     Ok(SweepReport {
@@ -90,7 +117,7 @@ pub fn sweep_paper(sim: &mut Simulator, seed: u64) -> Result<SweepReport, ApiErr
 }
 
 /// p75 of `model` in a sweep run (for the reproduction document).
-pub fn p75(run: &SweepRun, model: ModelKind) -> f64 {
+pub fn p75(run: &SweepRun, model: StationModel) -> f64 {
     run.results
         .iter()
         .find(|r| r.model == model)

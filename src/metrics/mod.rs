@@ -1,9 +1,12 @@
-//! Error statistics: summaries (mean and percentiles) and boxplots (SPEC §8; paper Figs. 3–6).
+//! Error statistics: summaries (mean and percentiles), boxplots (SPEC §8; paper Figs. 3–6) and the
+//! consistency of the station's uncertainty (95 % coverage).
 
 mod boxplot;
+mod coverage;
 mod percentile;
 mod summary;
 
 pub use boxplot::Boxplot;
+pub use coverage::{bound_95, coverage, inside_95, CHI2_3DOF_95};
 pub use percentile::percentile;
 pub use summary::Summary;

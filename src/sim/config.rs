@@ -1,9 +1,9 @@
 //! Simulation options: the `simulate` parameters of SPEC §8–9 and their validation.
 
+use super::station::{Prediction, StationModel};
 use super::SimError;
 use crate::filter::{PAPER_Q, PAPER_R_DIAGONAL};
 use crate::lora::{Channel, ChannelParams, LoraParams, LORAWAN_OVERHEAD_BYTES};
-use crate::models::ModelKind;
 use serde::{Deserialize, Serialize};
 
 /// `--synthetic all` or `--synthetic N` (1..=30).
@@ -48,39 +48,76 @@ impl<'de> Deserialize<'de> for SyntheticChoice {
     }
 }
 
-/// `--model dr|ctra-plus|3d-ctra|all`: one model, or all three side by side.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum ModelChoice {
-    /// One model.
-    One(ModelKind),
-    /// All three.
-    #[default]
-    All,
-}
+/// `--model`: the stations to compare, as `all` (the paper's three models) or a comma list of
+/// `dr`, `ctra-plus`, `3d-ctra` and `imm` (also a JSON array of those names).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ModelChoice(Vec<StationModel>);
 
 impl ModelChoice {
-    /// The models to run, in the paper's order.
-    pub fn models(self) -> Vec<ModelKind> {
-        match self {
-            ModelChoice::One(m) => vec![m],
-            ModelChoice::All => ModelKind::ALL.to_vec(),
+    /// The paper's three models.
+    pub fn all() -> Self {
+        ModelChoice(StationModel::PAPER.to_vec())
+    }
+
+    /// One station.
+    pub fn one(model: impl Into<StationModel>) -> Self {
+        ModelChoice(vec![model.into()])
+    }
+
+    /// The stations to run, in the order given, each once.
+    pub fn models(&self) -> &[StationModel] {
+        &self.0
+    }
+
+    /// Parses `all` or a comma list.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        if text.trim().eq_ignore_ascii_case("all") {
+            return Ok(Self::all());
         }
+        Self::from_names(text.split(','))
+    }
+
+    fn from_names<'a>(names: impl IntoIterator<Item = &'a str>) -> Result<Self, String> {
+        let mut models = Vec::new();
+        for name in names {
+            let m = name.trim().parse::<StationModel>().map_err(|_| {
+                format!("unknown model '{}' (expected dr, ctra-plus, 3d-ctra, imm, a comma list of them, or all)", name.trim())
+            })?;
+            if !models.contains(&m) {
+                models.push(m);
+            }
+        }
+        if models.is_empty() {
+            return Err("model: name at least one of dr, ctra-plus, 3d-ctra, imm, or all".into());
+        }
+        Ok(ModelChoice(models))
+    }
+}
+
+impl Default for ModelChoice {
+    fn default() -> Self {
+        Self::all()
     }
 }
 
 impl<'de> Deserialize<'de> for ModelChoice {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        let name = String::deserialize(d)?;
-        if name.eq_ignore_ascii_case("all") {
-            return Ok(ModelChoice::All);
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Raw {
+            Text(String),
+            List(Vec<String>),
         }
-        name.parse::<ModelKind>()
-            .map(ModelChoice::One)
-            .map_err(|_| {
-                serde::de::Error::custom(format!(
-                    "unknown model '{name}' (expected dr, ctra-plus, 3d-ctra or all)"
-                ))
-            })
+        let raw = Raw::deserialize(d).map_err(|_| {
+            serde::de::Error::custom(
+                "model must be a name, a comma list of names, or an array of names",
+            )
+        })?;
+        match raw {
+            Raw::Text(t) => ModelChoice::parse(&t),
+            Raw::List(v) => ModelChoice::from_names(v.iter().map(String::as_str)),
+        }
+        .map_err(serde::de::Error::custom)
     }
 }
 
@@ -99,8 +136,10 @@ pub struct SimParams {
     pub synthetic: Option<SyntheticChoice>,
     /// A bundled real flight: `canberra`.
     pub sample: Option<String>,
-    /// Which model(s).
+    /// Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`.
     pub model: ModelChoice,
+    /// The station's prediction between packets: `paper` (default) or `bounded`.
+    pub prediction: Prediction,
     /// Spreading factor 7..12.
     pub sf: i64,
     /// Bandwidth, kHz.
@@ -143,7 +182,8 @@ impl Default for SimParams {
             trajectory_name: None,
             synthetic: None,
             sample: None,
-            model: ModelChoice::All,
+            model: ModelChoice::all(),
+            prediction: Prediction::Paper,
             sf: 7,
             bw: 250.0,
             distance: 1000.0,
@@ -180,8 +220,10 @@ pub enum TrajectorySource {
 pub struct SimConfig {
     /// The flight(s).
     pub source: TrajectorySource,
-    /// Models to run.
-    pub models: Vec<ModelKind>,
+    /// Stations to run.
+    pub models: Vec<StationModel>,
+    /// Paper or bounded prediction.
+    pub prediction: Prediction,
     /// Radio settings.
     pub radio: LoraParams,
     /// Link budget.
@@ -290,7 +332,8 @@ impl SimParams {
         }
         Ok(SimConfig {
             source,
-            models: self.model.models(),
+            models: self.model.models().to_vec(),
+            prediction: self.prediction,
             radio,
             channel,
             overhead: self.overhead,

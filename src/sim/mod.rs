@@ -10,9 +10,10 @@ mod config;
 mod drone;
 mod error;
 mod link;
+mod pooled;
 mod report;
 mod simulator;
-mod station;
+pub mod station;
 
 pub use config::{ModelChoice, SimConfig, SimParams, SyntheticChoice, TrajectorySource};
 pub use drone::{run_drone, DroneTrack};
@@ -20,4 +21,7 @@ pub use error::SimError;
 pub use link::{schedule_transmissions, LinkSetup, Transmission};
 pub use report::{ModelResult, ModelSeries, RunConfig, Series, SimReport};
 pub use simulator::Simulator;
-pub use station::{track_station, StationTrack};
+pub use station::{
+    new_tracker, track_station, Bounds, Imm, Prediction, StationModel, StationPredictor,
+    StationSetup, StationTrack, Tracker,
+};

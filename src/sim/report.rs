@@ -1,8 +1,9 @@
 //! The JSON shapes of `simulate` and `sweep` (SPEC §8): a contract, changed only additively.
 
+use super::station::{Prediction, StationModel};
 use crate::metrics::{Boxplot, Summary};
-use crate::models::ModelKind;
 use serde::Serialize;
+use std::collections::BTreeMap;
 
 /// Echo of the settings, plus what the run covered.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -14,8 +15,10 @@ pub struct RunConfig {
     pub flights: usize,
     /// Seconds of flight simulated (all flights).
     pub flight_time: f64,
-    /// Models run.
-    pub models: Vec<ModelKind>,
+    /// Stations run.
+    pub models: Vec<StationModel>,
+    /// The station's prediction between packets: `paper` or `bounded`.
+    pub prediction: Prediction,
     /// Spreading factor.
     pub sf: u8,
     /// Bandwidth, kHz.
@@ -84,8 +87,8 @@ impl Boxplots {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct ModelResult {
-    /// The model.
-    pub model: ModelKind,
+    /// The station: `dr`, `ctra-plus`, `3d-ctra` or `imm`.
+    pub model: StationModel,
     /// Payload, bytes.
     pub payload_bytes: usize,
     /// Time on air of one packet (payload + overhead), s.
@@ -108,18 +111,28 @@ pub struct ModelResult {
     pub boxplot: Boxplots,
     /// Covariance repairs in the drone filter (0 in a healthy run).
     pub filter_recoveries: u64,
+    /// Fraction of evaluated steps whose true position lay inside the station's 95 % position
+    /// ellipsoid (chi-square, 3 degrees of freedom); a consistent station scores near 0.95,
+    /// an overconfident one lower. `null` when nothing was evaluated.
+    pub coverage95: f64,
+    /// IMM only: the mean probability of each member over the evaluated steps.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model_probability: Option<BTreeMap<&'static str, f64>>,
 }
 
 /// One model's time series over the first flight (for plots).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct ModelSeries {
-    /// The model.
-    pub model: ModelKind,
+    /// The station.
+    pub model: StationModel,
     /// Evaluation times, s.
     pub t: Vec<f64>,
     /// 3D error at each time, m.
     pub error3d: Vec<f64>,
+    /// The station's own 95 % bound on that error at each time (the longest semi-axis of its
+    /// 95 % position ellipsoid), m.
+    pub bound95: Vec<f64>,
     /// Estimated x, y, z at each time, m.
     pub x: Vec<f64>,
     /// See `x`.

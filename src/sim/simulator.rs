@@ -3,12 +3,12 @@
 use super::config::{SimConfig, SyntheticChoice, TrajectorySource};
 use super::drone::{run_drone, DroneTrack};
 use super::link::{schedule_transmissions, LinkSetup};
-use super::report::{Boxplots, ModelResult, ModelSeries, RunConfig, Series, SimReport};
-use super::station::track_station;
+use super::pooled::{model_series, Pooled, MAX_SERIES_POINTS};
+use super::report::{RunConfig, Series, SimReport};
+use super::station::{new_tracker, track_station, Bounds, StationSetup};
 use super::SimError;
 use crate::lora::{min_interval, time_on_air, Channel};
 use crate::math::pow;
-use crate::metrics::Summary;
 use crate::models::ModelKind;
 use crate::rng::Rng;
 use crate::trajectory::{
@@ -19,8 +19,6 @@ use std::rc::Rc;
 
 /// Separates the link's random stream from the sensors' for the same seed.
 const LINK_STREAM: u64 = 0x4C49_4E4B; // "LINK"
-/// At most this many points per time series returned for plotting.
-const MAX_SERIES_POINTS: usize = 3000;
 /// Cache sizes; past them the cache starts afresh (a page rarely alternates between more).
 const MAX_CACHED_FLIGHTS: usize = 4;
 const MAX_CACHED_DRONE_RUNS: usize = 24;
@@ -164,6 +162,7 @@ impl Simulator {
         let mut results = Vec::new();
         let mut series_models = Vec::new();
         for &model in &cfg.models {
+            let sent_model = model.sent_model();
             let toa = time_on_air(&cfg.radio, model.payload_bytes() + cfg.overhead)?.time_on_air;
             let interval = min_interval(toa, cfg.duty_cycle)?;
             let link = LinkSetup {
@@ -174,84 +173,40 @@ impl Simulator {
                 interval,
                 distance: cfg.distance,
             };
+            let setup = StationSetup {
+                prediction: cfg.prediction,
+                bounds: Bounds::default(),
+                step: cfg.step,
+                eta: cfg.eta,
+                q: cfg.q,
+                r_diagonal: cfg.r_diagonal,
+                interval,
+            };
             let key = DroneKey {
                 flights: flight_key.clone(),
-                model,
+                model: sent_model,
                 sensor_rate: cfg.sensor_rate.to_bits(),
                 q: cfg.q.to_bits(),
                 seed: cfg.seed,
             };
             let drones = self.drone_tracks(key, &flights, cfg, &mut tick);
-            let (mut e3, mut ex, mut ey, mut ez) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-            let (mut sent, mut received) = (0, 0);
+            let mut pooled = Pooled::default();
             for (i, (flight, drone)) in flights.iter().zip(drones.iter()).enumerate() {
+                // The same stream for every station: stations that send the same payload see
+                // the same packets, so their comparison is paired.
                 let mut rng = Rng::derive(cfg.seed ^ LINK_STREAM, i as u64);
                 let tx = schedule_transmissions(flight, drone, &link, &mut rng);
-                sent += tx.len();
-                received += tx.iter().filter(|t| t.received).count();
-                let st = track_station(
-                    flight,
-                    model,
-                    &tx,
-                    cfg.step,
-                    cfg.eta,
-                    cfg.q,
-                    &cfg.r_diagonal,
-                );
+                let mut tracker = new_tracker(model, setup);
+                let with_series = cfg.series && i == 0;
+                let st = track_station(flight, tracker.as_mut(), &tx, cfg.step, with_series);
                 tick();
-                e3.extend_from_slice(&st.error3d);
-                for e in &st.error_axes {
-                    ex.push(e[0]);
-                    ey.push(e[1]);
-                    ez.push(e[2]);
+                if with_series {
+                    series_models.push(model_series(model, &st, &tx));
                 }
-                if cfg.series && i == 0 {
-                    let every = st.times.len().div_ceil(MAX_SERIES_POINTS).max(1);
-                    let pick = |v: &[f64]| v.iter().step_by(every).copied().collect::<Vec<f64>>();
-                    let axis = |k: usize| {
-                        st.estimate
-                            .iter()
-                            .step_by(every)
-                            .map(|p| p[k])
-                            .collect::<Vec<f64>>()
-                    };
-                    series_models.push(ModelSeries {
-                        model,
-                        t: pick(&st.times),
-                        error3d: pick(&st.error3d),
-                        x: axis(0),
-                        y: axis(1),
-                        z: axis(2),
-                        arrivals: tx
-                            .iter()
-                            .filter(|t| t.received)
-                            .map(|t| t.arrival)
-                            .collect(),
-                        lost: tx.iter().filter(|t| !t.received).map(|t| t.sent).collect(),
-                    });
-                }
+                pooled.add(&tx, st);
             }
-            let (s3, sx, sy, sz) = (
-                Summary::of(&mut e3),
-                Summary::of(&mut ex),
-                Summary::of(&mut ey),
-                Summary::of(&mut ez),
-            );
-            results.push(ModelResult {
-                model,
-                payload_bytes: model.payload_bytes(),
-                time_on_air: toa,
-                interval,
-                packets_sent: sent,
-                packets_received: received,
-                error3d: s3,
-                error_x: sx,
-                error_y: sy,
-                error_z: sz,
-                // Summary::of left each sample sorted.
-                boxplot: Boxplots::of_sorted(&e3, &ex, &ey, &ez),
-                filter_recoveries: drones.iter().map(|d| d.recoveries).sum(),
-            });
+            let recoveries = drones.iter().map(|d| d.recoveries).sum();
+            results.push(pooled.finish(model, toa, interval, recoveries));
         }
         let series = cfg.series.then(|| {
             let f = &flights[0];
@@ -287,6 +242,7 @@ impl Simulator {
                 flights: flights.len(),
                 flight_time: flights.iter().map(Trajectory::duration).sum(),
                 models: cfg.models.clone(),
+                prediction: cfg.prediction,
                 sf: sf.get(),
                 bandwidth_khz: bw.khz(),
                 distance: cfg.distance,

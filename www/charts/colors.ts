@@ -1,5 +1,5 @@
 import type { ModelName } from '../loratrack';
 
 /** One colour per model everywhere on the page (colour-blind-safe Tableau hues). */
-export const MODEL_COLORS: Record<ModelName, string> = { dr: '#e15759', 'ctra-plus': '#4e79a7', '3d-ctra': '#59a14f' };
+export const MODEL_COLORS: Record<ModelName, string> = { dr: '#e15759', 'ctra-plus': '#4e79a7', '3d-ctra': '#59a14f', imm: '#b07aa1' };
 export const TRUTH_COLOR = '#222222';

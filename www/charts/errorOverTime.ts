@@ -1,5 +1,5 @@
 // Paper Fig. "error over time": the station's 3D error on the first flight, with packet arrivals
-// (dots on the axis) and lost packets (crosses).
+// (dots on the axis) and lost packets (crosses), over the station's own 95 % bound (dashed band).
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type SimReport } from '../loratrack';
 import { MODEL_COLORS } from './colors';
@@ -10,6 +10,8 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
   const arrivals = models.flatMap((m) => m.arrivals.map((t) => ({ t, model: MODEL_LABELS[m.model] })));
   const lost = models.flatMap((m) => m.lost.map((t) => ({ t, model: MODEL_LABELS[m.model] })));
   const labels = models.map((m) => MODEL_LABELS[m.model]);
+  // The station's own 95 % bound on its error, as a faint band under each model's line.
+  const bounds = models.flatMap((m) => m.t.map((t, i) => ({ t, b: m.bound95[i], model: MODEL_LABELS[m.model] })));
   return Plot.plot({
     width,
     height: 300,
@@ -18,6 +20,8 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
     y: { label: '3D error (m)', grid: true, zero: true },
     color: { domain: labels, range: models.map((m) => MODEL_COLORS[m.model]), legend: true },
     marks: [
+      Plot.areaY(bounds, { x: 't', y1: 0, y2: 'b', fill: 'model', fillOpacity: 0.08, curve: 'step-after' }),
+      Plot.lineY(bounds, { x: 't', y: 'b', stroke: 'model', strokeOpacity: 0.45, strokeDasharray: '3,3', strokeWidth: 1, curve: 'step-after' }),
       Plot.lineY(lines, { x: 't', y: 'e', stroke: 'model', strokeWidth: 1.4 }),
       Plot.dot(arrivals, { x: 't', y: 0, fill: 'model', r: 2.5, title: (d) => `${d.model}: packet arrived at ${d.t.toFixed(1)} s` }),
       Plot.dot(lost, { x: 't', y: 0, stroke: 'model', symbol: 'times', r: 4, title: (d) => `${d.model}: packet lost at ${d.t.toFixed(1)} s` }),

@@ -2,7 +2,7 @@
 
 use clap::{Args, Subcommand};
 use loratrack::api::{self, ApiError};
-use loratrack::{LdroMode, ModelKind, ModelResult, SimParams, Simulator};
+use loratrack::{LdroMode, ModelChoice, ModelKind, ModelResult, Prediction, SimParams, Simulator};
 use serde::Serialize;
 
 #[derive(Subcommand)]
@@ -32,9 +32,12 @@ pub struct SimulateArgs {
     /// A bundled real flight: canberra (ArduCopter log171, CC BY-SA 3.0).
     #[arg(long, value_name = "NAME")]
     sample: Option<String>,
-    /// Motion model: dr, ctra-plus, 3d-ctra or all.
+    /// Station model(s): dr, ctra-plus, 3d-ctra, imm (IMM over the three), a comma list, or all (the paper's three).
     #[arg(long, default_value = "all")]
     model: String,
+    /// Station prediction between packets: paper (constant a and omega, as published) or bounded (speed and pitch limits, overdue manoeuvres decay).
+    #[arg(long, value_enum, default_value = "paper")]
+    prediction: PredictionArg,
     /// Spreading factor, 7..12.
     #[arg(long, default_value_t = 7, allow_negative_numbers = true)]
     sf: i64,
@@ -98,6 +101,12 @@ pub struct SweepArgs {
     /// Seed of all random draws.
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// Station model(s): dr, ctra-plus, 3d-ctra, imm, a comma list, or all (the paper's three).
+    #[arg(long, default_value = "all")]
+    model: String,
+    /// Station prediction(s), comma-separated: paper, bounded.
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "paper")]
+    prediction: Vec<PredictionArg>,
     /// Print the paper-reproduction document (Markdown) instead of a table.
     #[arg(long, conflicts_with = "json")]
     markdown: bool,
@@ -232,6 +241,21 @@ pub struct AirtimeArgs {
     duty_cycle: f64,
     #[command(flatten)]
     out: Output,
+}
+
+#[derive(Clone, Copy, PartialEq, clap::ValueEnum)]
+enum PredictionArg {
+    Paper,
+    Bounded,
+}
+
+impl From<PredictionArg> for Prediction {
+    fn from(p: PredictionArg) -> Self {
+        match p {
+            PredictionArg::Paper => Prediction::Paper,
+            PredictionArg::Bounded => Prediction::Bounded,
+        }
+    }
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -372,7 +396,8 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
             .map(|s| parse_json_value("synthetic", s))
             .transpose()?,
         sample: a.sample,
-        model: parse_json_value("model", &a.model)?,
+        model: ModelChoice::parse(&a.model).map_err(ApiError::Invalid)?,
+        prediction: a.prediction.into(),
         sf: a.sf,
         bw: a.bw,
         distance: a.distance,
@@ -412,11 +437,11 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
 
 fn results_table(results: &[ModelResult]) -> String {
     let mut out = String::from(
-        "model     interval  received   mean    p50    p75    p95    max  (3D error, m)\n",
+        "model     interval  received   mean    p50    p75    p95    max  cover95  (3D error, m)\n",
     );
     for m in results {
         out += &format!(
-            "{:<9} {:>7.2}s {:>5}/{:<5} {:>6.2} {:>6.2} {:>6.2} {:>6.2} {:>6.1}\n",
+            "{:<9} {:>7.2}s {:>5}/{:<5} {:>6.2} {:>6.2} {:>6.2} {:>6.2} {:>6.1} {:>7.3}\n",
             m.model.label(),
             m.interval,
             m.packets_received,
@@ -425,14 +450,21 @@ fn results_table(results: &[ModelResult]) -> String {
             m.error3d.p50,
             m.error3d.p75,
             m.error3d.p95,
-            m.error3d.max
+            m.error3d.max,
+            m.coverage95
         );
+        if let Some(p) = &m.model_probability {
+            let parts: Vec<String> = p.iter().map(|(k, v)| format!("{k} {v:.2}")).collect();
+            out += &format!("          mean model probability: {}\n", parts.join(", "));
+        }
     }
     out.trim_end().to_string()
 }
 
 fn sweep(a: SweepArgs) -> Result<String, ApiError> {
-    let r = api::sweep_paper(&mut Simulator::new(), a.seed)?;
+    let model = ModelChoice::parse(&a.model).map_err(ApiError::Invalid)?;
+    let predictions: Vec<Prediction> = a.prediction.iter().map(|&p| p.into()).collect();
+    let r = api::sweep_paper(&mut Simulator::new(), a.seed, &predictions, &model)?;
     if a.out.json {
         return Ok(json(&r));
     }
@@ -445,9 +477,10 @@ fn sweep(a: SweepArgs) -> Result<String, ApiError> {
     );
     for run in &r.runs {
         out += &format!(
-            "\nSF{} d = {} m\n{}\n",
+            "\nSF{} d = {} m, {} prediction\n{}\n",
             run.sf,
             run.distance,
+            run.prediction.name(),
             results_table(&run.results)
         );
     }

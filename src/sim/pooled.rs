@@ -1,0 +1,119 @@
+//! One station's outcome pooled over every flight of a run.
+
+use super::report::{Boxplots, ModelResult, ModelSeries};
+use super::station::{StationModel, StationTrack};
+use super::Transmission;
+use crate::metrics::{coverage, Summary};
+use crate::models::ModelKind;
+use std::collections::BTreeMap;
+
+/// At most this many points per time series returned for plotting.
+pub(crate) const MAX_SERIES_POINTS: usize = 3000;
+
+/// Errors, coverage and packet counts of one station, gathered flight by flight.
+#[derive(Default)]
+pub(crate) struct Pooled {
+    e3: Vec<f64>,
+    ex: Vec<f64>,
+    ey: Vec<f64>,
+    ez: Vec<f64>,
+    inside: Vec<bool>,
+    probability_sum: Option<[f64; 3]>,
+    sent: usize,
+    received: usize,
+}
+
+impl Pooled {
+    /// Adds one flight's transmissions and station track.
+    pub fn add(&mut self, tx: &[Transmission], st: StationTrack) {
+        self.sent += tx.len();
+        self.received += tx.iter().filter(|t| t.received).count();
+        self.e3.extend_from_slice(&st.error3d);
+        for e in &st.error_axes {
+            self.ex.push(e[0]);
+            self.ey.push(e[1]);
+            self.ez.push(e[2]);
+        }
+        self.inside.extend_from_slice(&st.inside95);
+        if let Some(p) = st.probability_sum {
+            let sum = self.probability_sum.get_or_insert([0.0; 3]);
+            for k in 0..3 {
+                sum[k] += p[k];
+            }
+        }
+    }
+
+    /// The result row; `time_on_air`, `interval` in s.
+    pub fn finish(
+        mut self,
+        model: StationModel,
+        time_on_air: f64,
+        interval: f64,
+        filter_recoveries: u64,
+    ) -> ModelResult {
+        let n = self.e3.len().max(1) as f64;
+        let model_probability = self.probability_sum.map(|sum| {
+            ModelKind::ALL
+                .iter()
+                .zip(sum)
+                .map(|(m, s)| (m.name(), s / n))
+                .collect::<BTreeMap<_, _>>()
+        });
+        let (s3, sx, sy, sz) = (
+            Summary::of(&mut self.e3),
+            Summary::of(&mut self.ex),
+            Summary::of(&mut self.ey),
+            Summary::of(&mut self.ez),
+        );
+        ModelResult {
+            model,
+            payload_bytes: model.payload_bytes(),
+            time_on_air,
+            interval,
+            packets_sent: self.sent,
+            packets_received: self.received,
+            error3d: s3,
+            error_x: sx,
+            error_y: sy,
+            error_z: sz,
+            // Summary::of left each sample sorted.
+            boxplot: Boxplots::of_sorted(&self.e3, &self.ex, &self.ey, &self.ez),
+            filter_recoveries,
+            coverage95: coverage(&self.inside),
+            model_probability,
+        }
+    }
+}
+
+/// The plotted series of one station on one flight, decimated to at most
+/// [`MAX_SERIES_POINTS`] points.
+pub(crate) fn model_series(
+    model: StationModel,
+    st: &StationTrack,
+    tx: &[Transmission],
+) -> ModelSeries {
+    let every = st.times.len().div_ceil(MAX_SERIES_POINTS).max(1);
+    let pick = |v: &[f64]| v.iter().step_by(every).copied().collect::<Vec<f64>>();
+    let axis = |k: usize| {
+        st.estimate
+            .iter()
+            .step_by(every)
+            .map(|p| p[k])
+            .collect::<Vec<f64>>()
+    };
+    ModelSeries {
+        model,
+        t: pick(&st.times),
+        error3d: pick(&st.error3d),
+        bound95: pick(&st.bound95),
+        x: axis(0),
+        y: axis(1),
+        z: axis(2),
+        arrivals: tx
+            .iter()
+            .filter(|t| t.received)
+            .map(|t| t.arrival)
+            .collect(),
+        lost: tx.iter().filter(|t| !t.received).map(|t| t.sent).collect(),
+    }
+}

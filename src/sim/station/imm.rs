@@ -1,0 +1,222 @@
+//! An Interacting Multiple Model station over DR, CTRA+ and 3D-CTRA (Blom & Bar-Shalom 1988;
+//! Bar-Shalom, Li & Kirubarajan 2001, §11.6).
+
+use super::{StationPredictor, StationSetup, Tracker};
+use crate::math::exp;
+use crate::models::{with_model, ModelKind, MotionModel};
+use nalgebra::{Matrix3, Vector3};
+
+/// Probability that the drone keeps flying the manoeuvre one model describes from one packet to
+/// the next; the rest is shared evenly among the other models. 0.9: manoeuvres of the synthetic
+/// flights last 4–14 s, about two to five packet intervals at SF7, so a switch at one packet in
+/// ten is the right order; lower values make the probabilities jumpy, higher ones slow to follow.
+pub const IMM_STAY: f64 = 0.9;
+
+/// An IMM member: a station predictor whose prediction can be scored against a packet.
+pub trait ImmMember: Tracker {
+    /// See [`StationPredictor::log_likelihood`].
+    fn log_likelihood(&self, z: &[f64; 9], sent: f64) -> f64;
+}
+
+impl<const N: usize, M: MotionModel<N> + Copy> ImmMember for StationPredictor<N, M> {
+    fn log_likelihood(&self, z: &[f64; 9], sent: f64) -> f64 {
+        StationPredictor::log_likelihood(self, z, sent)
+    }
+}
+
+fn member<const N: usize, M: MotionModel<N> + Copy + 'static>(
+    model: M,
+    setup: StationSetup,
+) -> Box<dyn ImmMember> {
+    Box::new(StationPredictor::new(model, setup))
+}
+
+/// The IMM station. The drone sends the full 3D-CTRA state; every member is reset to (its part
+/// of) each packet and predicts alone between packets, and the station reports the mixture.
+///
+/// Because every member restarts from the same received state, the IMM's interaction (mixing)
+/// step is exact and trivial here; what remains is the model-probability cycle, once per packet:
+///
+/// ```text
+/// c_j  = Σ_i π_ij μ_i                      (Markov prediction, π_ii = IMM_STAY)
+/// μ_j ∝ c_j · Λ_j                          (Λ_j: likelihood of the new packet under model j)
+/// x̂   = Σ_j μ_j x̂_j,  P = Σ_j μ_j (P_j + (x̂_j − x̂)(x̂_j − x̂)ᵀ)   (between packets, positions)
+/// ```
+pub struct Imm {
+    members: Vec<Box<dyn ImmMember>>,
+    kinds: Vec<ModelKind>,
+    probability: Vec<f64>,
+    started: bool,
+}
+
+impl Imm {
+    /// An IMM over `models` (each at most once; the paper's three for `--model imm`), starting
+    /// from equal probabilities.
+    pub fn new(models: &[ModelKind], setup: StationSetup) -> Self {
+        let members = models
+            .iter()
+            .map(|&m| with_model!(m, member(setup)))
+            .collect::<Vec<_>>();
+        let n = members.len().max(1) as f64;
+        Imm {
+            members,
+            kinds: models.to_vec(),
+            probability: vec![1.0 / n; models.len()],
+            started: false,
+        }
+    }
+
+    /// The current model probabilities, in the order of `new`'s models.
+    pub fn probabilities(&self) -> &[f64] {
+        &self.probability
+    }
+
+    fn update_probabilities(&mut self, z: &[f64; 9], sent: f64) {
+        let n = self.members.len();
+        // π: IMM_STAY on the diagonal, the rest shared evenly; one member always stays.
+        let (stay, off) = if n > 1 {
+            (IMM_STAY, (1.0 - IMM_STAY) / (n - 1) as f64)
+        } else {
+            (1.0, 0.0)
+        };
+        let total: f64 = self.probability.iter().sum();
+        let predicted: Vec<f64> = (0..n)
+            .map(|j| stay * self.probability[j] + off * (total - self.probability[j]))
+            .collect();
+        let log_l: Vec<f64> = self
+            .members
+            .iter()
+            .map(|m| m.log_likelihood(z, sent))
+            .collect();
+        let best = log_l.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        if !best.is_finite() {
+            // No member could score the packet: keep the Markov prediction alone.
+            self.probability = predicted;
+            return;
+        }
+        let weights: Vec<f64> = (0..n)
+            .map(|j| predicted[j] * exp(log_l[j] - best))
+            .collect();
+        let sum: f64 = weights.iter().sum();
+        self.probability = weights.iter().map(|w| w / sum).collect();
+    }
+}
+
+impl Tracker for Imm {
+    fn reset(&mut self, state: &[f64; 9], sent: f64) {
+        if self.started {
+            self.update_probabilities(state, sent);
+        }
+        self.started = true;
+        for m in &mut self.members {
+            m.reset(state, sent);
+        }
+    }
+
+    fn predict_to(&mut self, t: f64) {
+        for m in &mut self.members {
+            m.predict_to(t);
+        }
+    }
+
+    fn position(&self) -> [f64; 3] {
+        let mut p = [0.0; 3];
+        for (m, mu) in self.members.iter().zip(&self.probability) {
+            let q = m.position();
+            for k in 0..3 {
+                p[k] += mu * q[k];
+            }
+        }
+        p
+    }
+
+    fn position_covariance(&self) -> Matrix3<f64> {
+        let mean = Vector3::from(self.position());
+        self.members
+            .iter()
+            .zip(&self.probability)
+            .map(|(m, mu)| {
+                let d = Vector3::from(m.position()) - mean;
+                (m.position_covariance() + d * d.transpose()) * *mu
+            })
+            .sum()
+    }
+
+    fn model_probabilities(&self) -> Option<[f64; 3]> {
+        let mut out = [0.0; 3];
+        for (k, mu) in self.kinds.iter().zip(&self.probability) {
+            let i = ModelKind::ALL.iter().position(|m| m == k).unwrap_or(0);
+            out[i] = *mu;
+        }
+        Some(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::filter::{PAPER_Q, PAPER_R_DIAGONAL};
+    use crate::sim::station::{Bounds, Prediction};
+
+    fn setup() -> StationSetup {
+        StationSetup {
+            prediction: Prediction::Paper,
+            bounds: Bounds::default(),
+            step: 0.1,
+            eta: 0.9,
+            q: PAPER_Q,
+            r_diagonal: PAPER_R_DIAGONAL,
+            interval: 2.0,
+        }
+    }
+
+    /// Packets of a drone on a steady turn, 2 s apart.
+    fn turn(k: usize) -> [f64; 9] {
+        let t = 2.0 * k as f64;
+        let (r, w) = (20.0, 0.3);
+        let th = w * t;
+        [
+            r * crate::math::sin(th),
+            r - r * crate::math::cos(th),
+            50.0,
+            crate::math::wrap_angle(th),
+            0.0,
+            r * w,
+            0.0,
+            w,
+            0.0,
+        ]
+    }
+
+    #[test]
+    fn one_member_reduces_to_that_member() {
+        let mut imm = Imm::new(&[ModelKind::CtraPlus], setup());
+        let mut alone = StationPredictor::new(crate::models::CtraPlus, setup());
+        for k in 0..5 {
+            imm.reset(&turn(k), 2.0 * k as f64);
+            alone.reset(&turn(k), 2.0 * k as f64);
+            for j in 1..=20 {
+                let t = 2.0 * k as f64 + 0.1 * j as f64;
+                imm.predict_to(t);
+                alone.predict_to(t);
+                assert_eq!(imm.position(), alone.position());
+                assert_eq!(imm.position_covariance(), alone.position_covariance());
+            }
+        }
+        assert_eq!(imm.probabilities(), &[1.0]);
+    }
+
+    #[test]
+    fn probabilities_stay_a_distribution_and_favour_the_turning_models_in_a_turn() {
+        let mut imm = Imm::new(&ModelKind::ALL, setup());
+        for k in 0..10 {
+            imm.reset(&turn(k), 2.0 * k as f64);
+            imm.predict_to(2.0 * k as f64 + 2.0);
+            let p = imm.probabilities();
+            assert!(p.iter().all(|x| (0.0..=1.0).contains(x)), "{p:?}");
+            assert!((p.iter().sum::<f64>() - 1.0).abs() < 1e-12, "{p:?}");
+        }
+        let p = imm.probabilities();
+        assert!(p[0] < 0.1, "DR should lose a steady turn: {p:?}");
+    }
+}

@@ -1,0 +1,164 @@
+//! One motion model's station predictor: replace on receipt, then predict (SPEC §4).
+
+use super::{Bounded, Bounds, Prediction, Tracker};
+use crate::codec::quantization_variance;
+use crate::filter::{measurement_noise, process_noise, SigmaParams, Ukf};
+use crate::math::ln;
+use crate::models::{MotionModel, ANGLES, PHI, THETA};
+use nalgebra::{Cholesky, Matrix3, SMatrix, SVector};
+
+/// Everything a station predictor needs besides its model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StationSetup {
+    /// Paper or bounded prediction.
+    pub prediction: Prediction,
+    /// The limits of bounded prediction.
+    pub bounds: Bounds,
+    /// Prediction step T, s.
+    pub step: f64,
+    /// Tilt-rate decay per step (paper: 0.9).
+    pub eta: f64,
+    /// Process-noise intensity q per second.
+    pub q: f64,
+    /// Measurement variances of the 9-component state (paper Table I).
+    pub r_diagonal: [f64; 9],
+    /// The nominal interval between packets under the duty cycle, s (bounded: the grace time).
+    pub interval: f64,
+}
+
+/// The station's UKF for one model: on each packet its state is replaced by the decoded state
+/// with covariance R + quantisation variance (step²/12 per field), dated at the packet's send
+/// time; between packets it only predicts, multiplying psi by eta after every step.
+///
+/// With [`Prediction::Bounded`] it keeps speed and pitch within limits and lets an overdue
+/// manoeuvre decay ([`Bounds`]); and once a packet is overdue its estimate follows the model
+/// from its own last value, while the unscented transform carries only the covariance. Over a
+/// long gap the covariance grows until the sigma points span every heading, and their weighted
+/// mean (whose centre weight λ/(n+λ) is negative for κ = 3 − n) then drifts *backwards*, away
+/// from where the drone flew: the paper's station flies its estimate back over its own track.
+#[derive(Clone, Debug)]
+pub struct StationPredictor<const N: usize, M> {
+    model: M,
+    setup: StationSetup,
+    ukf: Ukf<N>,
+    p0: SMatrix<f64, N, N>,
+    /// The time the filter state refers to, s.
+    clock: f64,
+    /// The send time of the packet the filter was last reset to, s.
+    reset_at: f64,
+    /// That packet's state.
+    received: SVector<f64, N>,
+}
+
+impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
+    /// A predictor that has received nothing yet.
+    pub fn new(model: M, setup: StationSetup) -> Self {
+        let quant = quantization_variance(M::KIND);
+        let p0 = measurement_noise::<N>(&setup.r_diagonal)
+            + SMatrix::from_diagonal(&SVector::<f64, N>::from_fn(|i, _| quant[i]));
+        let x = SVector::zeros();
+        let ukf = match Ukf::new(
+            x,
+            p0,
+            process_noise(setup.q),
+            SigmaParams::default(),
+            ANGLES,
+        ) {
+            Some(u) => u,
+            None => unreachable!("the default sigma parameters are valid for every state size"),
+        };
+        StationPredictor {
+            model,
+            setup,
+            ukf,
+            p0,
+            clock: 0.0,
+            reset_at: 0.0,
+            received: x,
+        }
+    }
+
+    /// The state estimate.
+    pub fn state(&self) -> &SVector<f64, N> {
+        &self.ukf.x
+    }
+
+    /// One prediction step to `t`, with the decays that follow every step.
+    fn step_to(&mut self, t: f64) {
+        let dt = t - self.clock;
+        match self.setup.prediction {
+            Prediction::Paper => self.ukf.predict(&self.model, dt),
+            Prediction::Bounded => {
+                let bounded = Bounded {
+                    model: self.model,
+                    bounds: self.setup.bounds,
+                };
+                let grace = self.setup.bounds.grace_intervals * self.setup.interval;
+                let (before, after) = (self.clock - self.reset_at, t - self.reset_at);
+                let own = bounded.propagate(&self.ukf.x, dt);
+                self.ukf.predict(&bounded, dt);
+                if after > grace {
+                    self.ukf.x = own;
+                }
+                let b = self.setup.bounds;
+                b.decay_manoeuvre(&mut self.ukf.x, &mut self.ukf.p, before, after, grace);
+            }
+        }
+        self.model.decay_tilt_rate(&mut self.ukf.x, self.setup.eta);
+        self.clock = t;
+    }
+
+    /// The log-likelihood (up to a constant) of a received state `z` sent at `sent`, under the
+    /// prediction this model made from the previous packet, over the components every model
+    /// shares (x y z theta phi v). The prediction is rerun from the previous packet in steps of
+    /// T, so it does not depend on where the station's evaluation grid fell.
+    ///
+    /// The residual is scored against the uncertainty of the two packets it connects, 2·P0, not
+    /// against the textbook predicted covariance + P0: the predicted covariances are dominated by
+    /// the same process noise (q·I per second on every component, heading included) and barely
+    /// differ between models, so with them a straight-line prediction of a steady turn scores
+    /// as well as an exact one, and the probabilities cannot tell the models apart.
+    pub fn log_likelihood(&self, z: &[f64; 9], sent: f64) -> f64 {
+        let mut forecast = self.clone();
+        forecast.ukf.reset(self.received, self.p0);
+        forecast.clock = self.reset_at;
+        while forecast.clock < sent {
+            let t = (forecast.clock + self.setup.step).min(sent);
+            forecast.step_to(t);
+        }
+        let x = forecast.ukf.x;
+        let s: SMatrix<f64, 6, 6> = self.p0.fixed_view::<6, 6>(0, 0) * 2.0;
+        let mut r = SVector::<f64, 6>::from_fn(|i, _| z[i] - x[i]);
+        for i in [THETA, PHI] {
+            r[i] = crate::math::wrap_angle(r[i]);
+        }
+        let Some(c) = Cholesky::new(0.5 * (s + s.transpose())) else {
+            return f64::NEG_INFINITY;
+        };
+        let log_det: f64 = c.l().diagonal().iter().map(|d| 2.0 * ln(*d)).sum();
+        -0.5 * (r.dot(&c.solve(&r)) + log_det)
+    }
+}
+
+impl<const N: usize, M: MotionModel<N> + Copy> Tracker for StationPredictor<N, M> {
+    fn reset(&mut self, state: &[f64; 9], sent: f64) {
+        self.received = SVector::from_fn(|i, _| state[i]);
+        self.ukf.reset(self.received, self.p0);
+        self.clock = sent;
+        self.reset_at = sent;
+    }
+
+    fn predict_to(&mut self, t: f64) {
+        if t > self.clock {
+            self.step_to(t);
+        }
+    }
+
+    fn position(&self) -> [f64; 3] {
+        [self.ukf.x[0], self.ukf.x[1], self.ukf.x[2]]
+    }
+
+    fn position_covariance(&self) -> Matrix3<f64> {
+        self.ukf.p.fixed_view::<3, 3>(0, 0).into_owned()
+    }
+}
