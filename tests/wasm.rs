@@ -215,3 +215,50 @@ fn a_progress_callback_that_calls_simulate_gets_an_error_not_a_trap() {
         .contains("progress callback"));
     assert!(wasm::simulate(obj(&[("synthetic", 3.into())]), None).is_ok());
 }
+
+#[wasm_bindgen_test]
+fn simulate_takes_station_and_sending_options_across_the_boundary() {
+    let models = js_sys::Array::of2(&"dr".into(), &"imm".into());
+    let r = wasm::simulate(
+        obj(&[
+            ("synthetic", 2.into()),
+            ("model", models.into()),
+            ("prediction", "bounded".into()),
+            ("sender", "error".into()),
+            ("threshold", 1.5.into()),
+            ("dutyCycleMode", "budget".into()),
+            ("burst", 5.into()),
+        ]),
+        None,
+    )
+    .unwrap();
+    let config = get(&r, "config");
+    assert_eq!(
+        get(&config, "prediction").as_string().as_deref(),
+        Some("bounded")
+    );
+    assert_eq!(
+        get(&config, "dutyCycleMode").as_string().as_deref(),
+        Some("budget")
+    );
+    let results = js_sys::Array::from(&get(&r, "results"));
+    let imm = results.get(1);
+    assert_eq!(get(&imm, "model").as_string().as_deref(), Some("imm"));
+    let p = get(&imm, "modelProbability");
+    let sum = num(&p, "dr") + num(&p, "ctra-plus") + num(&p, "3d-ctra");
+    assert!((sum - 1.0).abs() < 1e-9, "{sum}");
+    assert!((0.0..=1.0).contains(&num(&imm, "coverage95")));
+    assert!(num(&imm, "airtime") > 0.0);
+    let e = wasm::simulate(
+        obj(&[("synthetic", 2.into()), ("prediction", "psychic".into())]),
+        None,
+    )
+    .unwrap_err();
+    assert!(error_message(e).contains("psychic"));
+    let e = wasm::simulate(
+        obj(&[("synthetic", 2.into()), ("model", "dr,kalman".into())]),
+        None,
+    )
+    .unwrap_err();
+    assert!(error_message(e).contains("unknown model 'kalman'"));
+}

@@ -90,6 +90,13 @@ export interface SimulateParams {
   sample?: 'canberra';
   model?: ModelChoice | ModelName[];
   prediction?: Prediction;
+  /** When the drone sends: as often as allowed, or when the station's belief drifts past `threshold` m. */
+  sender?: 'periodic' | 'error';
+  threshold?: number;
+  maxInterval?: number;
+  /** Off-time after every packet, or an airtime budget holding up to `burst` packets. */
+  dutyCycleMode?: 'per-packet' | 'budget';
+  burst?: number;
   sf?: number;
   bw?: number;
   distance?: number;
@@ -134,6 +141,8 @@ export interface ModelResult {
   timeOnAir: number;
   interval: number;
   packetsSent: number;
+  /** Seconds on air over all flights. */
+  airtime: number;
   packetsReceived: number;
   error3d: Summary;
   errorX: Summary;
@@ -167,6 +176,11 @@ export interface SimReport {
     flightTime: number;
     models: ModelName[];
     prediction: Prediction;
+    sender: 'periodic' | 'error';
+    threshold: number;
+    maxInterval: number;
+    dutyCycleMode: 'per-packet' | 'budget';
+    burst: number;
     sf: number;
     bandwidthKhz: number;
     distance: number;

@@ -62,6 +62,7 @@ function readControls(): Settings {
 
 function showConditional(): void {
   for (const el of document.querySelectorAll<HTMLElement>('[data-when]')) el.hidden = el.dataset.when !== field('flight').value;
+  for (const el of document.querySelectorAll<HTMLElement>('[data-when-sender]')) el.hidden = el.dataset.whenSender !== field('sender').value;
   $('#distance-value').textContent = `${(Number(field('distance').value) / 1000).toFixed(1)} km`;
 }
 
@@ -154,7 +155,7 @@ function renderResults(r: SimReport): void {
       return `<tr class="${isBest ? 'best' : ''}" data-model="${m.model}">
         <th scope="row">${MODEL_LABELS[m.model]}${isBest ? ' <span class="badge">lowest p75</span>' : ''}</th>
         <td>${m.payloadBytes} B</td><td data-field="toa">${(m.timeOnAir * 1e3).toFixed(1)} ms</td><td data-field="interval">${m.interval.toFixed(2)} s</td>
-        <td data-field="packets">${m.packetsReceived} / ${m.packetsSent}</td><td data-field="delivery">${(ratio * 100).toFixed(0)} %</td>
+        <td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}</td><td data-field="delivery">${(ratio * 100).toFixed(0)} %</td>
         <td data-field="mean">${fmt(m.error3d.mean)}</td><td data-field="p50">${fmt(m.error3d.p50)}</td><td data-field="p75">${fmt(m.error3d.p75)}</td>
         <td data-field="p95">${fmt(m.error3d.p95)}</td><td data-field="max">${fmt(m.error3d.max, 1)}</td>
         <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td></tr>`;

@@ -10,6 +10,9 @@ export interface Settings {
   distance: number;
   model: ModelChoice;
   prediction: Prediction;
+  sender: 'periodic' | 'error';
+  threshold: number;
+  dutyCycleMode: 'per-packet' | 'budget';
   flight: FlightChoice;
   flightNumber: number;
   lorawan: boolean;
@@ -30,6 +33,9 @@ export const DEFAULTS: Settings = {
   distance: 1000,
   model: 'all',
   prediction: 'paper',
+  sender: 'periodic',
+  threshold: 2,
+  dutyCycleMode: 'per-packet',
   flight: 'synthetic',
   flightNumber: 1,
   lorawan: true,
@@ -46,7 +52,7 @@ export const DEFAULTS: Settings = {
 /** The model choices the page offers (the options of its Model control). */
 export const MODEL_CHOICES: string[] = ['all', 'dr', 'ctra-plus', '3d-ctra', 'imm', 'dr,ctra-plus,3d-ctra,imm'];
 
-const NUMERIC: (keyof Settings)[] = ['sf', 'bw', 'distance', 'flightNumber', 'cr', 'txPower', 'pathLossExponent', 'shadowing', 'sensorRate', 'step', 'eta', 'seed'];
+const NUMERIC: (keyof Settings)[] = ['sf', 'bw', 'distance', 'threshold', 'flightNumber', 'cr', 'txPower', 'pathLossExponent', 'shadowing', 'sensorRate', 'step', 'eta', 'seed'];
 
 export function overheadBytes(s: Settings): number {
   return s.lorawan ? 13 : 0;
@@ -66,6 +72,9 @@ export function toParams(s: Settings, csv?: { text: string; name: string }): Sim
     ...flight,
     model: s.model,
     prediction: s.prediction,
+    sender: s.sender,
+    threshold: s.threshold,
+    dutyCycleMode: s.dutyCycleMode,
     sf: s.sf,
     bw: s.bw,
     distance: s.distance,
@@ -104,6 +113,10 @@ export function fromQuery(search: string): Settings {
   if (model !== null && MODEL_CHOICES.includes(model)) s.model = model;
   const prediction = q.get('prediction');
   if (prediction === 'paper' || prediction === 'bounded') s.prediction = prediction;
+  const sender = q.get('sender');
+  if (sender === 'periodic' || sender === 'error') s.sender = sender;
+  const mode = q.get('dutyCycleMode');
+  if (mode === 'per-packet' || mode === 'budget') s.dutyCycleMode = mode;
   const flight = q.get('flight');
   // An uploaded CSV cannot travel in a URL; such links open the default flight.
   if (flight === 'synthetic' || flight === 'all' || flight === 'canberra') s.flight = flight;

@@ -9,12 +9,14 @@ mod airtime;
 mod error;
 mod payload;
 mod predict;
+mod senders;
 mod simulate;
 
 pub use airtime::{airtime, AirtimeParams, AirtimeReport};
 pub use error::ApiError;
 pub use payload::{decode, encode, DecodeParams, DecodeReport, EncodeParams, EncodeReport};
 pub use predict::{predict, validate_state, PredictParams, PredictReport, MAX_STEPS};
+pub use senders::{sweep_senders, SenderPoint, SenderSweepReport, SENDER_THRESHOLDS};
 pub use simulate::{
     p75, simulate, simulate_with_progress, sweep_paper, SweepReport, SweepRun, PAPER_DISTANCES,
     PAPER_SFS,

@@ -1,7 +1,7 @@
 //! EU868 duty-cycle limits (ETSI EN 300 220-2 §7.2.3; LoRaWAN RP002 §2.4; SPEC §6).
 
 use super::LoraError;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// EU868 sub-bands with their duty-cycle limit. The limit is per sub-band: hopping among
 /// 868.1/868.3/868.5 MHz (all in [`SubBand::G1`]) does not raise it.
@@ -53,9 +53,155 @@ pub fn min_interval(time_on_air: f64, duty_cycle: f64) -> Result<f64, LoraError>
     Ok(time_on_air / duty_cycle)
 }
 
+/// How a device keeps within its duty cycle (`--duty-cycle-mode`).
+///
+/// ETSI EN 300 220-2 counts the duty cycle over an observation period of one hour; LoRaWAN
+/// stacks enforce it either as an off-time after every packet (LoRaMac-node before 4.5, and the
+/// paper's reading) or as a budget of airtime credits (LoRaMac-node 4.5 and later).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DutyCycleMode {
+    /// After a packet of time on air T the next may start T / duty cycle later.
+    #[default]
+    PerPacket,
+    /// A token bucket: airtime credit accrues at duty cycle × elapsed time, holds at most
+    /// `burst` packets' airtime and starts with one; a packet needs its time on air in credit.
+    Budget,
+}
+
+impl DutyCycleMode {
+    /// The CLI/JS name: `per-packet` or `budget`.
+    pub fn name(self) -> &'static str {
+        match self {
+            DutyCycleMode::PerPacket => "per-packet",
+            DutyCycleMode::Budget => "budget",
+        }
+    }
+}
+
+/// The largest `burst` accepted: a budget of 3600 packets is an hour of airtime at 100 %.
+pub const MAX_BURST: u32 = 3600;
+
+/// The duty-cycle rule of one device: when may it send, and what does a packet cost? The one
+/// place both senders ask.
+///
+/// ```
+/// use loratrack::{DutyCycle, DutyCycleMode};
+/// // 20 ms packets at 1 %: one every 2 s, or a burst of up to 5 after 10 s of silence.
+/// let mut per_packet = DutyCycle::new(DutyCycleMode::PerPacket, 0.01, 0.02, 1, 0.0).unwrap();
+/// per_packet.spend(0.0);
+/// assert!((per_packet.earliest(0.0) - 2.0).abs() < 1e-12);
+/// let mut budget = DutyCycle::new(DutyCycleMode::Budget, 0.01, 0.02, 5, 0.0).unwrap();
+/// budget.spend(10.0); // credit 5 packets' worth (capped) before, 4 after
+/// assert_eq!(budget.earliest(10.0), 10.0);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct DutyCycle {
+    duty_cycle: f64,
+    time_on_air: f64,
+    capacity: f64,
+    /// Credit (s of airtime) at `at`.
+    credit: f64,
+    at: f64,
+}
+
+impl DutyCycle {
+    /// The rule for packets of `time_on_air` s at `duty_cycle`, starting at time `start` (s)
+    /// with one packet's credit. `PerPacket` is a budget of exactly one packet.
+    pub fn new(
+        mode: DutyCycleMode,
+        duty_cycle: f64,
+        time_on_air: f64,
+        burst: u32,
+        start: f64,
+    ) -> Result<Self, LoraError> {
+        if !(duty_cycle > 0.0 && duty_cycle <= 1.0) {
+            return Err(LoraError::DutyCycle(duty_cycle));
+        }
+        if !(1..=MAX_BURST).contains(&burst) {
+            return Err(LoraError::Parameter(
+                "burst (packets, 1..3600)",
+                f64::from(burst),
+            ));
+        }
+        if !(time_on_air > 0.0 && time_on_air.is_finite()) {
+            return Err(LoraError::Parameter("time on air (s)", time_on_air));
+        }
+        let packets = match mode {
+            DutyCycleMode::PerPacket => 1.0,
+            DutyCycleMode::Budget => f64::from(burst),
+        };
+        Ok(DutyCycle {
+            duty_cycle,
+            time_on_air,
+            capacity: packets * time_on_air,
+            credit: time_on_air,
+            at: start,
+        })
+    }
+
+    fn credit_at(&self, t: f64) -> f64 {
+        (self.credit + self.duty_cycle * (t - self.at)).min(self.capacity)
+    }
+
+    /// The earliest time at or after `t` (s) when a packet may start.
+    pub fn earliest(&self, t: f64) -> f64 {
+        let missing = self.time_on_air - self.credit_at(t);
+        if missing <= 0.0 {
+            t
+        } else {
+            t + missing / self.duty_cycle
+        }
+    }
+
+    /// Records a packet that starts at `t` (s): its time on air is taken from the credit. The
+    /// caller sends only at or after [`earliest`](Self::earliest).
+    pub fn spend(&mut self, t: f64) {
+        self.credit = self.credit_at(t) - self.time_on_air;
+        self.at = t;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn one_packet_budget_is_the_per_packet_off_time() {
+        let toa = 0.041216;
+        let mut a = DutyCycle::new(DutyCycleMode::PerPacket, 0.01, toa, 10, 0.0).unwrap();
+        let mut b = DutyCycle::new(DutyCycleMode::Budget, 0.01, toa, 1, 0.0).unwrap();
+        let mut t = 0.3;
+        for _ in 0..50 {
+            assert_eq!(a.earliest(t), b.earliest(t));
+            t = a.earliest(t);
+            a.spend(t);
+            b.spend(t);
+            t += 0.05;
+        }
+        let interval = min_interval(toa, 0.01).unwrap();
+        let later = t + 100.0;
+        a.spend(later);
+        assert!((a.earliest(later) - (later + interval)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_budget_saves_for_a_burst_and_never_exceeds_the_duty_cycle() {
+        let toa = 0.02;
+        let mut b = DutyCycle::new(DutyCycleMode::Budget, 0.01, toa, 10, 0.0).unwrap();
+        // Quiet for a minute: the credit is full (10 packets), so 10 go at once.
+        for _ in 0..10 {
+            assert_eq!(b.earliest(60.0), 60.0);
+            b.spend(60.0);
+        }
+        assert!(b.earliest(60.0) > 60.0 + 1.99);
+    }
+
+    #[test]
+    fn refuses_a_burst_of_zero() {
+        assert!(DutyCycle::new(DutyCycleMode::Budget, 0.01, 0.02, 0, 0.0).is_err());
+        assert!(DutyCycle::new(DutyCycleMode::Budget, 0.0, 0.02, 1, 0.0).is_err());
+    }
 
     #[test]
     fn interval_is_airtime_over_duty_cycle() {

@@ -15,6 +15,8 @@ pub use airtime::{
     LORAWAN_OVERHEAD_BYTES,
 };
 pub use channel::{Channel, ChannelParams};
-pub use duty_cycle::{min_interval, SubBand, TTN_FAIR_USE_SECONDS_PER_DAY};
+pub use duty_cycle::{
+    min_interval, DutyCycle, DutyCycleMode, SubBand, MAX_BURST, TTN_FAIR_USE_SECONDS_PER_DAY,
+};
 pub use error::LoraError;
 pub use shadowing::Shadowing;

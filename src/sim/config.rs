@@ -1,10 +1,22 @@
 //! Simulation options: the `simulate` parameters of SPEC §8–9 and their validation.
 
+use super::sender::SenderKind;
 use super::station::{Prediction, StationModel};
 use super::SimError;
 use crate::filter::{PAPER_Q, PAPER_R_DIAGONAL};
-use crate::lora::{Channel, ChannelParams, LoraParams, LORAWAN_OVERHEAD_BYTES};
+use crate::lora::{
+    Channel, ChannelParams, DutyCycleMode, LoraParams, LORAWAN_OVERHEAD_BYTES, MAX_BURST,
+};
 use serde::{Deserialize, Serialize};
+
+/// Default error-triggered threshold, m: about twice the on-time p75 of the paper's station at
+/// SF7 / 1 km, so packets go when the station is clearly off, not on every wobble.
+pub const DEFAULT_THRESHOLD_M: f64 = 2.0;
+/// Default heartbeat, s: a lost packet is repaired within 10 s, at 1/5 of the periodic airtime
+/// at SF7 / 250 kHz.
+pub const DEFAULT_MAX_INTERVAL_S: f64 = 10.0;
+/// Default budget capacity, packets (issue: "holds at most K packets' airtime (default 10)").
+pub const DEFAULT_BURST: u32 = 10;
 
 /// `--synthetic all` or `--synthetic N` (1..=30).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
@@ -140,6 +152,17 @@ pub struct SimParams {
     pub model: ModelChoice,
     /// The station's prediction between packets: `paper` (default) or `bounded`.
     pub prediction: Prediction,
+    /// When the drone sends: `periodic` (default) or `error`.
+    pub sender: SenderKind,
+    /// Error-triggered sending: the drift between the mirrored station and the drone's own
+    /// estimate that triggers a packet, m.
+    pub threshold: f64,
+    /// Error-triggered sending: the longest silence, s (a heartbeat repairs lost packets).
+    pub max_interval: f64,
+    /// The duty-cycle rule: `per-packet` (default) or `budget`.
+    pub duty_cycle_mode: DutyCycleMode,
+    /// Budget rule: the most packets' airtime the credit can hold.
+    pub burst: u32,
     /// Spreading factor 7..12.
     pub sf: i64,
     /// Bandwidth, kHz.
@@ -184,6 +207,11 @@ impl Default for SimParams {
             sample: None,
             model: ModelChoice::all(),
             prediction: Prediction::Paper,
+            sender: SenderKind::Periodic,
+            threshold: DEFAULT_THRESHOLD_M,
+            max_interval: DEFAULT_MAX_INTERVAL_S,
+            duty_cycle_mode: DutyCycleMode::PerPacket,
+            burst: DEFAULT_BURST,
             sf: 7,
             bw: 250.0,
             distance: 1000.0,
@@ -224,6 +252,16 @@ pub struct SimConfig {
     pub models: Vec<StationModel>,
     /// Paper or bounded prediction.
     pub prediction: Prediction,
+    /// The sending policy.
+    pub sender: SenderKind,
+    /// Error-triggered threshold, m.
+    pub threshold: f64,
+    /// Error-triggered heartbeat, s.
+    pub max_interval: f64,
+    /// The duty-cycle rule.
+    pub duty_cycle_mode: DutyCycleMode,
+    /// Budget capacity, packets.
+    pub burst: u32,
     /// Radio settings.
     pub radio: LoraParams,
     /// Link budget.
@@ -323,6 +361,25 @@ impl SimParams {
             "in [0, 1]",
         )?;
         check("q", self.q, self.q > 0.0 && self.q <= 1e3, "in (0, 1000]")?;
+        check(
+            "threshold",
+            self.threshold,
+            (0.0..=10_000.0).contains(&self.threshold),
+            "0..10000 m",
+        )?;
+        check(
+            "maxInterval",
+            self.max_interval,
+            self.max_interval > 0.0 && self.max_interval <= 3600.0,
+            "in (0, 3600] s",
+        )?;
+        if !(1..=MAX_BURST).contains(&self.burst) {
+            return Err(SimError::Parameter(
+                "burst",
+                f64::from(self.burst),
+                "1..3600 packets",
+            ));
+        }
         if self.overhead > 255 {
             return Err(SimError::Parameter(
                 "overhead",
@@ -334,6 +391,11 @@ impl SimParams {
             source,
             models: self.model.models().to_vec(),
             prediction: self.prediction,
+            sender: self.sender,
+            threshold: self.threshold,
+            max_interval: self.max_interval,
+            duty_cycle_mode: self.duty_cycle_mode,
+            burst: self.burst,
             radio,
             channel,
             overhead: self.overhead,

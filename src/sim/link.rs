@@ -1,8 +1,9 @@
-//! The link: duty-cycled transmissions, the codec and the channel (SPEC §5–6).
+//! The link: the sender under the duty-cycle rule, the codec and the channel (SPEC §5–6).
 
+use super::sender::Sender;
 use super::DroneTrack;
 use crate::codec::{decode, encode};
-use crate::lora::{Bandwidth, Channel, Shadowing, SpreadingFactor};
+use crate::lora::{Bandwidth, Channel, DutyCycle, Shadowing, SpreadingFactor};
 use crate::math::distance;
 use crate::rng::Rng;
 use crate::trajectory::Trajectory;
@@ -35,25 +36,28 @@ pub struct LinkSetup {
     pub channel: Channel,
     /// Time on air of one packet, s.
     pub time_on_air: f64,
-    /// Minimum interval between packets under the duty cycle, s.
+    /// Interval between packets under the per-packet duty-cycle rule, s (the window of the
+    /// first packet's random offset).
     pub interval: f64,
     /// Horizontal distance from the flight's first point to the gateway (along +x), m.
     pub distance: f64,
 }
 
-/// Sends the drone's estimate as often as the duty cycle allows.
+/// Runs the drone's transmissions over the flight: at each sensor step the duty-cycle `rule`
+/// allows, the `sender` decides whether to send that step's estimate.
 ///
-/// The first transmission is at a uniformly random offset within one interval (drawn from
-/// `rng`'s first number, so every model starts at the same fraction of its own interval). A
-/// transmission leaves at the first sensor step at or after its scheduled time, carrying that
-/// step's estimate, and the next one is scheduled one full interval later — so the spacing is
-/// never below the duty-cycle minimum. Positions are encoded relative to the flight's first
-/// point, which both ends agree on before take-off. Shadowing evolves over the distance flown
-/// between transmissions.
+/// The first transmission may leave at a uniformly random offset within one interval (drawn from
+/// `rng`'s first number, so every model starts at the same fraction of its own interval). A packet
+/// leaves at a sensor step, carrying that step's estimate; after it, the next candidate is the
+/// first sensor step the rule allows, so no schedule ever breaks the rule. Positions are encoded
+/// relative to the flight's first point, which both ends agree on before take-off. Shadowing
+/// evolves over the distance flown between transmissions.
 pub fn schedule_transmissions(
     flight: &Trajectory,
     drone: &DroneTrack,
     link: &LinkSetup,
+    sender: &mut dyn Sender,
+    rule: &mut DutyCycle,
     rng: &mut Rng,
 ) -> Vec<Transmission> {
     let origin = flight.pos[0];
@@ -64,31 +68,32 @@ pub fn schedule_transmissions(
     ];
     let params = link.channel.params();
     let mut shadowing = Shadowing::new(params.shadowing_sigma_db, params.decorrelation_distance);
-    let end = flight.t[flight.t.len() - 1];
-    let mut scheduled = flight.t[0] + rng.uniform() * link.interval;
+    let step_at_or_after =
+        |t: f64| ((t - drone.start) / drone.period - 1e-9).ceil().max(0.0) as usize;
+    let mut k = step_at_or_after(flight.t[0] + rng.uniform() * link.interval);
     let mut out = Vec::new();
     let mut hint = 0;
     let mut last_pos: Option<[f64; 3]> = None;
     let n = drone.model.state_len();
-    while scheduled <= end {
-        let k = ((scheduled - drone.start) / drone.period - 1e-9)
-            .ceil()
-            .max(0.0) as usize;
-        if k >= drone.states.len() {
-            break;
-        }
+    while k < drone.states.len() {
         let sent = drone.start + k as f64 * drone.period;
         let estimate = &drone.states[k][..n];
+        if !sender.wants_to_send(sent, &[estimate[0], estimate[1], estimate[2]]) {
+            k += 1;
+            continue;
+        }
         // The estimate has the model's length and the filter keeps it finite, so this succeeds;
-        // were it ever not encodable, the drone would have nothing to send at this slot.
+        // were it ever not encodable, the drone would have nothing to send at this step.
         let decoded = encode(drone.model, estimate, origin)
             .and_then(|e| decode(drone.model, &e.bytes, origin));
         let Ok(decoded) = decoded else {
-            scheduled = sent + link.interval;
+            k += 1;
             continue;
         };
         let mut state = [0.0; 9];
         state[..n].copy_from_slice(&decoded);
+        rule.spend(sent);
+        sender.sent(&state, sent);
         let p = flight.position_at(sent, &mut hint);
         let d = distance(&p, &gateway);
         let moved = last_pos.map_or(0.0, |q| distance(&p, &q));
@@ -103,7 +108,8 @@ pub fn schedule_transmissions(
             distance: d,
             rx_power_dbm: rx,
         });
-        scheduled = sent + link.interval;
+        // The rule only relaxes until the next packet, so every later step is allowed too.
+        k = step_at_or_after(rule.earliest(sent)).max(k + 1);
     }
     out
 }

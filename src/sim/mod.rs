@@ -12,14 +12,19 @@ mod error;
 mod link;
 mod pooled;
 mod report;
+pub mod sender;
 mod simulator;
 pub mod station;
 
-pub use config::{ModelChoice, SimConfig, SimParams, SyntheticChoice, TrajectorySource};
+pub use config::{
+    ModelChoice, SimConfig, SimParams, SyntheticChoice, TrajectorySource, DEFAULT_BURST,
+    DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M,
+};
 pub use drone::{run_drone, DroneTrack};
 pub use error::SimError;
 pub use link::{schedule_transmissions, LinkSetup, Transmission};
 pub use report::{ModelResult, ModelSeries, RunConfig, Series, SimReport};
+pub use sender::{ErrorTriggered, Periodic, Sender, SenderKind};
 pub use simulator::Simulator;
 pub use station::{
     new_tracker, track_station, Bounds, Imm, Prediction, StationModel, StationPredictor,

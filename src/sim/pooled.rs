@@ -71,6 +71,7 @@ impl Pooled {
             time_on_air,
             interval,
             packets_sent: self.sent,
+            airtime: self.sent as f64 * time_on_air,
             packets_received: self.received,
             error3d: s3,
             error_x: sx,

@@ -1,6 +1,8 @@
 //! The JSON shapes of `simulate` and `sweep` (SPEC §8): a contract, changed only additively.
 
+use super::sender::SenderKind;
 use super::station::{Prediction, StationModel};
+use crate::lora::DutyCycleMode;
 use crate::metrics::{Boxplot, Summary};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -19,6 +21,16 @@ pub struct RunConfig {
     pub models: Vec<StationModel>,
     /// The station's prediction between packets: `paper` or `bounded`.
     pub prediction: Prediction,
+    /// The sending policy: `periodic` or `error`.
+    pub sender: SenderKind,
+    /// Error-triggered threshold, m.
+    pub threshold: f64,
+    /// Error-triggered heartbeat, s.
+    pub max_interval: f64,
+    /// The duty-cycle rule: `per-packet` or `budget`.
+    pub duty_cycle_mode: DutyCycleMode,
+    /// Budget capacity, packets.
+    pub burst: u32,
     /// Spreading factor.
     pub sf: u8,
     /// Bandwidth, kHz.
@@ -97,6 +109,8 @@ pub struct ModelResult {
     pub interval: f64,
     /// Packets sent.
     pub packets_sent: usize,
+    /// Total time on air of the packets sent over all flights, s.
+    pub airtime: f64,
     /// Packets received.
     pub packets_received: usize,
     /// 3D error, m.

@@ -5,9 +5,11 @@ use super::drone::{run_drone, DroneTrack};
 use super::link::{schedule_transmissions, LinkSetup};
 use super::pooled::{model_series, Pooled, MAX_SERIES_POINTS};
 use super::report::{RunConfig, Series, SimReport};
+use super::sender::{ErrorTriggered, Periodic, Sender, SenderKind};
+use super::station::StationModel;
 use super::station::{new_tracker, track_station, Bounds, StationSetup};
 use super::SimError;
-use crate::lora::{min_interval, time_on_air, Channel};
+use crate::lora::{min_interval, time_on_air, Channel, DutyCycle};
 use crate::math::pow;
 use crate::models::ModelKind;
 use crate::rng::Rng;
@@ -44,6 +46,19 @@ fn fnv1a(text: &str) -> u64 {
     text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
         (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
     })
+}
+
+/// The drone's sender for one flight; an error-triggered one mirrors a fresh station of the kind
+/// the ground runs.
+fn new_sender(cfg: &SimConfig, model: StationModel, setup: StationSetup) -> Box<dyn Sender> {
+    match cfg.sender {
+        SenderKind::Periodic => Box::new(Periodic),
+        SenderKind::Error => Box::new(ErrorTriggered::new(
+            new_tracker(model, setup),
+            cfg.threshold,
+            cfg.max_interval,
+        )),
+    }
 }
 
 /// Runs simulations, keeping parsed flights and drone-side filter runs for reuse: a second
@@ -173,6 +188,13 @@ impl Simulator {
                 interval,
                 distance: cfg.distance,
             };
+            if cfg.sender == SenderKind::Error && cfg.max_interval < interval {
+                return Err(SimError::Parameter(
+                    "maxInterval",
+                    cfg.max_interval,
+                    "at least the duty-cycle interval of every chosen model",
+                ));
+            }
             let setup = StationSetup {
                 prediction: cfg.prediction,
                 bounds: Bounds::default(),
@@ -195,7 +217,22 @@ impl Simulator {
                 // The same stream for every station: stations that send the same payload see
                 // the same packets, so their comparison is paired.
                 let mut rng = Rng::derive(cfg.seed ^ LINK_STREAM, i as u64);
-                let tx = schedule_transmissions(flight, drone, &link, &mut rng);
+                let mut rule = DutyCycle::new(
+                    cfg.duty_cycle_mode,
+                    cfg.duty_cycle,
+                    toa,
+                    cfg.burst,
+                    flight.t[0],
+                )?;
+                let mut sender = new_sender(cfg, model, setup);
+                let tx = schedule_transmissions(
+                    flight,
+                    drone,
+                    &link,
+                    sender.as_mut(),
+                    &mut rule,
+                    &mut rng,
+                );
                 let mut tracker = new_tracker(model, setup);
                 let with_series = cfg.series && i == 0;
                 let st = track_station(flight, tracker.as_mut(), &tx, cfg.step, with_series);
@@ -243,6 +280,11 @@ impl Simulator {
                 flight_time: flights.iter().map(Trajectory::duration).sum(),
                 models: cfg.models.clone(),
                 prediction: cfg.prediction,
+                sender: cfg.sender,
+                threshold: cfg.threshold,
+                max_interval: cfg.max_interval,
+                duty_cycle_mode: cfg.duty_cycle_mode,
+                burst: cfg.burst,
                 sf: sf.get(),
                 bandwidth_khz: bw.khz(),
                 distance: cfg.distance,

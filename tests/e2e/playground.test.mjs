@@ -197,3 +197,35 @@ test('the JSON download equals the native CLI for the same settings (same seed, 
   }
   assert.deepEqual(problems, []);
 });
+
+test('the bounded and IMM stations and error-triggered sending are one control away, and the URL keeps them', async () => {
+  const { page, problems } = await open('?distance=3000');
+  let before = await tableHtml(page);
+  await page.getByLabel('Model').selectOption('dr,ctra-plus,3d-ctra,imm');
+  await waitForResults(page, before);
+  assert.equal(await page.locator('#results-table tbody tr').count(), 4);
+  assert.match(await cell(page, 'imm', 'coverage'), /^\d+ %$/);
+  const paperMean = number(await cell(page, '3d-ctra', 'mean'));
+  before = await tableHtml(page);
+  await page.getByLabel('Station prediction').selectOption('bounded');
+  await waitForResults(page, before);
+  assert.match(page.url(), /prediction=bounded/);
+  assert.match(await page.locator('#results-table caption').textContent(), /bounded prediction/);
+  const boundedMean = number(await cell(page, '3d-ctra', 'mean'));
+  assert.ok(boundedMean <= paperMean, `bounded ${boundedMean} vs paper ${paperMean}`);
+
+  assert.equal(await page.getByLabel('Threshold (m)').isVisible(), false);
+  const periodicSent = number((await cell(page, '3d-ctra', 'packets')).split('/')[1]);
+  before = await tableHtml(page);
+  await page.getByLabel('Sending').selectOption('error');
+  await waitForResults(page, before);
+  assert.equal(await page.getByLabel('Threshold (m)').isVisible(), true);
+  before = await tableHtml(page);
+  await page.getByLabel('Threshold (m)').fill('5');
+  await waitForResults(page, before);
+  const errorSent = number((await cell(page, '3d-ctra', 'packets')).split('/')[1]);
+  assert.ok(errorSent < periodicSent, `error-triggered sent ${errorSent}, periodic ${periodicSent}`);
+  assert.match(page.url(), /sender=error/);
+  assert.match(page.url(), /threshold=5/);
+  assert.deepEqual(problems, []);
+});

@@ -2,7 +2,10 @@
 
 use clap::{Args, Subcommand};
 use loratrack::api::{self, ApiError};
-use loratrack::{LdroMode, ModelChoice, ModelKind, ModelResult, Prediction, SimParams, Simulator};
+use loratrack::{
+    DutyCycleMode, LdroMode, ModelChoice, ModelKind, ModelResult, Prediction, SenderKind,
+    SimParams, Simulator, SyntheticChoice,
+};
 use serde::Serialize;
 
 #[derive(Subcommand)]
@@ -38,6 +41,8 @@ pub struct SimulateArgs {
     /// Station prediction between packets: paper (constant a and omega, as published) or bounded (speed and pitch limits, overdue manoeuvres decay).
     #[arg(long, value_enum, default_value = "paper")]
     prediction: PredictionArg,
+    #[command(flatten)]
+    sending: SendingArgs,
     /// Spreading factor, 7..12.
     #[arg(long, default_value_t = 7, allow_negative_numbers = true)]
     sf: i64,
@@ -93,11 +98,65 @@ pub struct SimulateArgs {
     out: Output,
 }
 
+/// When the drone sends and the duty-cycle rule (simulate).
+#[derive(Args)]
+pub struct SendingArgs {
+    /// When the drone sends: periodic (as often as the duty cycle allows, the paper) or error (when the mirrored station drifts past --threshold).
+    #[arg(long, value_enum, default_value = "periodic")]
+    sender: SenderArg,
+    /// Error-triggered sending: the drift in metres between the station's belief and the drone's own estimate that triggers a packet (0..10000).
+    #[arg(long, default_value_t = loratrack::DEFAULT_THRESHOLD_M, allow_negative_numbers = true)]
+    threshold: f64,
+    /// Error-triggered sending: the longest silence in seconds, a heartbeat that repairs lost packets (at least the duty-cycle interval, at most 3600).
+    #[arg(long, default_value_t = loratrack::DEFAULT_MAX_INTERVAL_S, allow_negative_numbers = true)]
+    max_interval: f64,
+    /// Duty-cycle rule: per-packet (off-time of time-on-air / duty-cycle after each packet) or budget (airtime credit over time, up to --burst packets; ETSI EN 300 220 counts over an hour).
+    #[arg(long, value_enum, default_value = "per-packet")]
+    duty_cycle_mode: DutyCycleModeArg,
+    /// Budget rule: the most packets' airtime the credit holds (1..3600; 1 is per-packet).
+    #[arg(long, default_value_t = loratrack::DEFAULT_BURST)]
+    burst: u32,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum SenderArg {
+    Periodic,
+    Error,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum DutyCycleModeArg {
+    PerPacket,
+    Budget,
+}
+
+#[derive(Args)]
+#[group(required = true, multiple = false)]
+pub struct SweepKind {
+    /// The paper's grid: SF 7/8, 250 kHz, d = 1/2/3 km, whole synthetic set, no LoRaWAN overhead.
+    #[arg(long)]
+    paper: bool,
+    /// The airtime / error trade-off of error-triggered sending (thresholds 0.5..10 m, per-packet and budget rules) against periodic sending, on the whole synthetic set at --sf/--bw/--distance, no LoRaWAN overhead, first model of --model.
+    #[arg(long)]
+    senders: bool,
+}
+
 #[derive(Args)]
 pub struct SweepArgs {
-    /// Run the paper's grid (the only grid so far; required so the command says what it does).
-    #[arg(long, required = true)]
-    paper: bool,
+    #[command(flatten)]
+    kind: SweepKind,
+    /// --senders: spreading factor.
+    #[arg(long, default_value_t = 7, allow_negative_numbers = true)]
+    sf: i64,
+    /// --senders: bandwidth, kHz.
+    #[arg(long, default_value_t = 250.0)]
+    bw: f64,
+    /// --senders: gateway distance, m.
+    #[arg(long, default_value_t = 1000.0, allow_negative_numbers = true)]
+    distance: f64,
+    /// --senders: the budget rule's capacity in packets.
+    #[arg(long, default_value_t = loratrack::DEFAULT_BURST)]
+    burst: u32,
     /// Seed of all random draws.
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -398,6 +457,17 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
         sample: a.sample,
         model: ModelChoice::parse(&a.model).map_err(ApiError::Invalid)?,
         prediction: a.prediction.into(),
+        sender: match a.sending.sender {
+            SenderArg::Periodic => SenderKind::Periodic,
+            SenderArg::Error => SenderKind::Error,
+        },
+        threshold: a.sending.threshold,
+        max_interval: a.sending.max_interval,
+        duty_cycle_mode: match a.sending.duty_cycle_mode {
+            DutyCycleModeArg::PerPacket => DutyCycleMode::PerPacket,
+            DutyCycleModeArg::Budget => DutyCycleMode::Budget,
+        },
+        burst: a.sending.burst,
         sf: a.sf,
         bw: a.bw,
         distance: a.distance,
@@ -464,6 +534,9 @@ fn results_table(results: &[ModelResult]) -> String {
 fn sweep(a: SweepArgs) -> Result<String, ApiError> {
     let model = ModelChoice::parse(&a.model).map_err(ApiError::Invalid)?;
     let predictions: Vec<Prediction> = a.prediction.iter().map(|&p| p.into()).collect();
+    if a.kind.senders {
+        return sweep_senders(&a, model, predictions[0]);
+    }
     let r = api::sweep_paper(&mut Simulator::new(), a.seed, &predictions, &model)?;
     if a.out.json {
         return Ok(json(&r));
@@ -485,4 +558,30 @@ fn sweep(a: SweepArgs) -> Result<String, ApiError> {
         );
     }
     Ok(out.trim_end().to_string())
+}
+
+fn sweep_senders(
+    a: &SweepArgs,
+    model: ModelChoice,
+    prediction: Prediction,
+) -> Result<String, ApiError> {
+    let base = SimParams {
+        synthetic: Some(SyntheticChoice::All),
+        model: ModelChoice::one(model.models()[0]),
+        prediction,
+        sf: a.sf,
+        bw: a.bw,
+        distance: a.distance,
+        seed: a.seed,
+        overhead: 0,
+        ..SimParams::default()
+    };
+    let r = api::sweep_senders(&mut Simulator::new(), &base, a.burst)?;
+    if a.out.json {
+        return Ok(json(&r));
+    }
+    if a.markdown {
+        return Ok(crate::reproduction::senders_markdown(&r, &base));
+    }
+    Ok(crate::reproduction::senders_table(&r))
 }

@@ -1,0 +1,42 @@
+//! When the drone sends: the paper's periodic sender, or one that sends only when the station's
+//! belief has drifted from the drone's own estimate. The duty-cycle rule that bounds both lives in
+//! [`DutyCycle`](crate::lora::DutyCycle); a sender only says whether it *wants* to send.
+
+mod error_triggered;
+mod periodic;
+
+pub use error_triggered::ErrorTriggered;
+pub use periodic::Periodic;
+
+use serde::{Deserialize, Serialize};
+
+/// The sending policy (`--sender`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SenderKind {
+    /// As often as the duty cycle allows (the paper).
+    #[default]
+    Periodic,
+    /// When the mirrored station's position is more than a threshold from the drone's own
+    /// estimate, or when a heartbeat is due ([`ErrorTriggered`]).
+    Error,
+}
+
+impl SenderKind {
+    /// The CLI/JS name.
+    pub fn name(self) -> &'static str {
+        match self {
+            SenderKind::Periodic => "periodic",
+            SenderKind::Error => "error",
+        }
+    }
+}
+
+/// A sending policy, asked at every sensor step at which the duty-cycle rule allows a packet.
+pub trait Sender {
+    /// Whether the drone wants to send at time `t` (s), with its own position estimate `own` (m).
+    fn wants_to_send(&mut self, t: f64, own: &[f64; 3]) -> bool;
+    /// Tells the sender that the packet carrying `state` (decoded, as the station will see it;
+    /// 9 components, the unused ones 0) left at `t` (s).
+    fn sent(&mut self, state: &[f64; 9], t: f64);
+}

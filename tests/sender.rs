@@ -1,0 +1,209 @@
+//! When to send (issue: error-triggered transmissions within the duty-cycle budget): no schedule
+//! breaks its rule, the error sender degenerates to the periodic one at threshold 0, invalid
+//! settings are refused, and the trade-off goes the right way.
+#![cfg(not(target_arch = "wasm32"))]
+
+use loratrack::api::simulate;
+use loratrack::{
+    min_interval, new_tracker, run_drone, schedule_transmissions, synthetic_flight, time_on_air,
+    Bounds, Channel, ChannelParams, DutyCycle, DutyCycleMode, ErrorTriggered, LinkSetup,
+    LoraParams, ModelChoice, ModelKind, Periodic, Prediction, Rng, Sender, SenderKind, SimParams,
+    Simulator, StationModel, StationSetup, SyntheticChoice, PAPER_Q, PAPER_R_DIAGONAL,
+};
+
+/// Replays send times against the rule, written out independently of `DutyCycle`.
+fn obeys_rule(
+    sends: &[f64],
+    start: f64,
+    toa: f64,
+    dc: f64,
+    mode: DutyCycleMode,
+    burst: u32,
+) -> bool {
+    match mode {
+        DutyCycleMode::PerPacket => sends.windows(2).all(|w| w[1] - w[0] >= toa / dc - 1e-9),
+        DutyCycleMode::Budget => {
+            let cap = f64::from(burst) * toa;
+            let (mut credit, mut at) = (toa, start);
+            sends.iter().all(|&t| {
+                credit = (credit + dc * (t - at)).min(cap);
+                at = t;
+                let ok = credit >= toa - 1e-12;
+                credit -= toa;
+                ok
+            })
+        }
+    }
+}
+
+#[test]
+fn no_schedule_ever_breaks_its_duty_cycle_rule() {
+    let radio = LoraParams::from_settings(7, 250.0, 1).unwrap();
+    let toa = time_on_air(&radio, 12).unwrap().time_on_air;
+    let dc = 0.01;
+    let setup = StationSetup {
+        prediction: Prediction::Bounded,
+        bounds: Bounds::default(),
+        step: 0.1,
+        eta: 0.9,
+        q: PAPER_Q,
+        r_diagonal: PAPER_R_DIAGONAL,
+        interval: min_interval(toa, dc).unwrap(),
+    };
+    let link = LinkSetup {
+        sf: radio.sf,
+        bw: radio.bw,
+        channel: Channel::new(ChannelParams::default()).unwrap(),
+        time_on_air: toa,
+        interval: setup.interval,
+        distance: 1000.0,
+    };
+    let mut checked = 0;
+    for flight_no in [2, 9, 17, 25] {
+        let flight = synthetic_flight(flight_no).unwrap();
+        for seed in 1..=3 {
+            let drone = run_drone(
+                &flight,
+                ModelKind::Ctra3d,
+                10.0,
+                PAPER_Q,
+                &PAPER_R_DIAGONAL,
+                seed,
+                0,
+            );
+            for (mode, burst) in [
+                (DutyCycleMode::PerPacket, 1),
+                (DutyCycleMode::Budget, 10),
+                (DutyCycleMode::Budget, 3),
+            ] {
+                for threshold in [None, Some(0.5), Some(3.0)] {
+                    let mut sender: Box<dyn Sender> = match threshold {
+                        None => Box::new(Periodic),
+                        Some(m) => Box::new(ErrorTriggered::new(
+                            new_tracker(StationModel::Single(ModelKind::Ctra3d), setup),
+                            m,
+                            10.0,
+                        )),
+                    };
+                    let mut rule = DutyCycle::new(mode, dc, toa, burst, flight.t[0]).unwrap();
+                    let mut rng = Rng::derive(seed, 99);
+                    let tx = schedule_transmissions(
+                        &flight,
+                        &drone,
+                        &link,
+                        sender.as_mut(),
+                        &mut rule,
+                        &mut rng,
+                    );
+                    let sends: Vec<f64> = tx.iter().map(|t| t.sent).collect();
+                    assert!(sends.len() > 5);
+                    assert!(
+                        obeys_rule(&sends, flight.t[0], toa, dc, mode, burst),
+                        "flight {flight_no} seed {seed} {mode:?} {burst} {threshold:?}"
+                    );
+                    if threshold.is_some() {
+                        // The heartbeat bounds every silence (plus one sensor step).
+                        assert!(sends.windows(2).all(|w| w[1] - w[0] <= 10.0 + 0.1 + 1e-9));
+                    }
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(checked, 4 * 3 * 3 * 3);
+}
+
+fn one_flight(sender: SenderKind, threshold: f64) -> SimParams {
+    SimParams {
+        synthetic: Some(SyntheticChoice::One(5)),
+        model: ModelChoice::one(ModelKind::Ctra3d),
+        sender,
+        threshold,
+        ..SimParams::default()
+    }
+}
+
+#[test]
+fn with_a_threshold_of_zero_the_error_sender_is_the_periodic_one() {
+    let mut sim = Simulator::new();
+    let periodic = simulate(&mut sim, &one_flight(SenderKind::Periodic, 2.0)).unwrap();
+    let error = simulate(&mut sim, &one_flight(SenderKind::Error, 0.0)).unwrap();
+    assert_eq!(periodic.results, error.results);
+    let saving = simulate(&mut sim, &one_flight(SenderKind::Error, 3.0)).unwrap();
+    assert!(saving.results[0].airtime < 0.8 * periodic.results[0].airtime);
+    assert!(
+        (saving.results[0].airtime
+            - saving.results[0].packets_sent as f64 * saving.results[0].time_on_air)
+            .abs()
+            < 1e-12
+    );
+}
+
+#[test]
+fn invalid_sending_settings_are_refused_with_a_message() {
+    let mut sim = Simulator::new();
+    let cases = [
+        (
+            SimParams {
+                threshold: -1.0,
+                ..one_flight(SenderKind::Error, 0.0)
+            },
+            "threshold must be 0..10000 m",
+        ),
+        (
+            SimParams {
+                burst: 0,
+                ..one_flight(SenderKind::Error, 1.0)
+            },
+            "burst must be 1..3600 packets",
+        ),
+        (
+            SimParams {
+                max_interval: 1.0,
+                ..one_flight(SenderKind::Error, 1.0)
+            },
+            "maxInterval must be at least the duty-cycle interval",
+        ),
+    ];
+    for (p, expected) in cases {
+        let e = simulate(&mut sim, &p).unwrap_err().to_string();
+        assert!(e.contains(expected), "{e:?} should contain {expected:?}");
+    }
+}
+
+#[test]
+fn a_budget_buys_accuracy_where_the_drone_manoeuvres() {
+    let base = SimParams {
+        synthetic: Some(SyntheticChoice::All),
+        model: ModelChoice::one(ModelKind::Ctra3d),
+        overhead: 0,
+        ..SimParams::default()
+    };
+    let mut sim = Simulator::new();
+    let periodic = simulate(&mut sim, &base).unwrap().results.remove(0);
+    let budget = simulate(
+        &mut sim,
+        &SimParams {
+            sender: SenderKind::Error,
+            threshold: 1.5,
+            duty_cycle_mode: DutyCycleMode::Budget,
+            burst: 10,
+            ..base.clone()
+        },
+    )
+    .unwrap()
+    .results
+    .remove(0);
+    assert!(
+        budget.airtime <= periodic.airtime,
+        "{} vs {}",
+        budget.airtime,
+        periodic.airtime
+    );
+    assert!(
+        budget.error3d.p95 < 0.8 * periodic.error3d.p95,
+        "{:?} vs {:?}",
+        budget.error3d,
+        periodic.error3d
+    );
+}
