@@ -11,6 +11,7 @@ const suites = [
   ['clippy', 'cargo', ['clippy', '--all-targets', '--', '-D', 'warnings']],
   ['clippy (wasm32)', 'cargo', ['clippy', '--lib', '--tests', '--target', 'wasm32-unknown-unknown', '--', '-D', 'warnings']],
   ['cargo test (native)', 'cargo', ['test']],
+  ['fuzz (nightly, 20 s per target)', 'node', ['scripts/fuzz.mjs', '20']],
   ['wasm-bindgen-test (Node)', 'cargo', ['test', '--target', 'wasm32-unknown-unknown', '--test', 'wasm']],
   ['build (wasm + page)', 'npm', ['run', 'build']],
   ['type check', 'npm', ['run', 'typecheck']],

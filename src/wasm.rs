@@ -17,18 +17,29 @@ thread_local! {
     static SIMULATOR: RefCell<Simulator> = RefCell::new(Simulator::new());
 }
 
+/// Parameters and reports cross the boundary as JSON text, as they do in the CLI:
+///
+/// * in, `JSON.stringify` then `serde_json`, whose parser refuses nesting deeper than 128 levels
+///   with an error: walking a JS object recursively from Rust would instead overflow the
+///   WebAssembly stack on a deeply nested argument and leave the module trapping on every later
+///   call;
+/// * out, `serde_json` then `JSON.parse`, so a statistic of an empty sample is `null` exactly as
+///   in `--json` (a direct conversion would give `NaN`).
 fn call<P: DeserializeOwned, R: Serialize>(
     params: JsValue,
     op: impl FnOnce(P) -> Result<R, ApiError>,
 ) -> Result<JsValue, JsError> {
-    let value: serde_json::Value = serde_wasm_bindgen::from_value(params)
-        .map_err(|e| JsError::new(&format!("invalid parameters: {e}")))?;
-    let p: P = serde_json::from_value(value)
-        .map_err(|e| JsError::new(&format!("invalid parameters: {e}")))?;
+    let invalid = |e: &dyn core::fmt::Display| JsError::new(&format!("invalid parameters: {e}"));
+    let text = js_sys::JSON::stringify(&params)
+        .ok()
+        .and_then(|s| s.as_string())
+        .ok_or_else(|| {
+            invalid(&"not a plain object of numbers, strings, booleans and arrays (too deep, circular, or holding a BigInt?)")
+        })?;
+    let p: P = serde_json::from_str(&text).map_err(|e| invalid(&e))?;
     let report = op(p).map_err(|e| JsError::new(&e.to_string()))?;
-    report
-        .serialize(&serde_wasm_bindgen::Serializer::json_compatible())
-        .map_err(|e| JsError::new(&e.to_string()))
+    let json = serde_json::to_string(&report).map_err(|e| JsError::new(&e.to_string()))?;
+    js_sys::JSON::parse(&json).map_err(|_| JsError::new("could not build the result"))
 }
 
 /// `timeOnAir({sf, bw, payload, overhead?, cr?, preamble?, implicitHeader?, noCrc?, ldro?, dutyCycle?})`
@@ -61,7 +72,15 @@ pub fn decode(params: JsValue) -> Result<JsValue, JsError> {
 /// `progress(done, total)`, if given, is called as flights complete (it must not call back into
 /// this module).
 #[wasm_bindgen]
-pub fn simulate(params: JsValue, progress: Option<js_sys::Function>) -> Result<JsValue, JsError> {
+pub fn simulate(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> {
+    use wasm_bindgen::JsCast;
+    let progress: Option<js_sys::Function> = if progress.is_undefined() || progress.is_null() {
+        None
+    } else {
+        Some(progress.dyn_into().map_err(|_| {
+            JsError::new("progress must be a function (done, total) => void, or left out")
+        })?)
+    };
     call(params, |p: crate::sim::SimParams| {
         SIMULATOR.with(|s| {
             let mut report = |done: usize, total: usize| {

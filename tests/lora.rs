@@ -81,7 +81,7 @@ fn lorawan_overhead_is_13_bytes_by_default_and_limits_are_refused() {
     assert!(airtime(&params(7, 300.0, 12, 13)).is_err());
     let mut p = params(7, 125.0, 12, 13);
     p.duty_cycle = 0.0;
-    assert!(airtime(&p).unwrap_err().to_string().contains("duty cycle"));
+    assert!(airtime(&p).unwrap_err().to_string().contains("dutyCycle"));
 }
 
 #[test]

@@ -118,7 +118,7 @@ fn predict_reproduces_the_2d_ctra_reference_and_rejects_bad_states() {
         ("dt", (-1).into()),
     ]))
     .unwrap_err();
-    assert!(error_message(e).contains("time step"));
+    assert!(error_message(e).contains("dt must be 0..86400 s"));
     let e = wasm::predict(obj(&[
         ("model", "3d-ctra".into()),
         ("state", array(&[0.0; 9])),
@@ -157,7 +157,7 @@ fn simulate_returns_the_cli_shape_and_refuses_a_bad_csv() {
             ("bw", 250.into()),
             ("distance", 1000.into()),
         ]),
-        None,
+        JsValue::UNDEFINED,
     )
     .unwrap();
     let results = js_sys::Array::from(&get(&r, "results"));
@@ -166,9 +166,13 @@ fn simulate_returns_the_cli_shape_and_refuses_a_bad_csv() {
     assert_eq!(get(&first, "model").as_string().as_deref(), Some("dr"));
     assert!(num(&get(&first, "error3d"), "p75") > 0.0);
     assert!(num(&get(&r, "config"), "flightTime") > 50.0);
-    let e = wasm::simulate(obj(&[("trajectory", "t,x,y,z\n1,2,3\n".into())]), None).unwrap_err();
+    let e = wasm::simulate(
+        obj(&[("trajectory", "t,x,y,z\n1,2,3\n".into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
     assert!(error_message(e).contains("line 2"));
-    let e = wasm::simulate(obj(&[("synthetic", 31.into())]), None).unwrap_err();
+    let e = wasm::simulate(obj(&[("synthetic", 31.into())]), JsValue::UNDEFINED).unwrap_err();
     assert!(error_message(e).contains("1..30"));
 }
 
@@ -183,7 +187,7 @@ fn simulate_reports_progress_up_to_the_total() {
     let f: &js_sys::Function = cb.as_ref().unchecked_ref();
     wasm::simulate(
         obj(&[("synthetic", 2.into()), ("seed", 99.into())]),
-        Some(f.clone()),
+        f.clone().into(),
     )
     .unwrap();
     let calls = calls.borrow();
@@ -202,18 +206,19 @@ fn a_progress_callback_that_calls_simulate_gets_an_error_not_a_trap() {
     let sink = Rc::clone(&inner);
     let cb = Closure::<dyn FnMut(f64, f64)>::new(move |_, _| {
         if sink.borrow().is_none() {
-            let e = wasm::simulate(obj(&[("synthetic", 3.into())]), None).unwrap_err();
+            let e =
+                wasm::simulate(obj(&[("synthetic", 3.into())]), JsValue::UNDEFINED).unwrap_err();
             *sink.borrow_mut() = Some(error_message(e));
         }
     });
     let f: &js_sys::Function = cb.as_ref().unchecked_ref();
-    wasm::simulate(obj(&[("synthetic", 3.into())]), Some(f.clone())).unwrap();
+    wasm::simulate(obj(&[("synthetic", 3.into())]), f.clone().into()).unwrap();
     assert!(inner
         .borrow()
         .as_deref()
         .unwrap_or("")
         .contains("progress callback"));
-    assert!(wasm::simulate(obj(&[("synthetic", 3.into())]), None).is_ok());
+    assert!(wasm::simulate(obj(&[("synthetic", 3.into())]), JsValue::UNDEFINED).is_ok());
 }
 
 #[wasm_bindgen_test]
@@ -229,7 +234,7 @@ fn simulate_takes_station_and_sending_options_across_the_boundary() {
             ("dutyCycleMode", "budget".into()),
             ("burst", 5.into()),
         ]),
-        None,
+        JsValue::UNDEFINED,
     )
     .unwrap();
     let config = get(&r, "config");
@@ -251,14 +256,79 @@ fn simulate_takes_station_and_sending_options_across_the_boundary() {
     assert!(num(&imm, "airtime") > 0.0);
     let e = wasm::simulate(
         obj(&[("synthetic", 2.into()), ("prediction", "psychic".into())]),
-        None,
+        JsValue::UNDEFINED,
     )
     .unwrap_err();
     assert!(error_message(e).contains("psychic"));
     let e = wasm::simulate(
         obj(&[("synthetic", 2.into()), ("model", "dr,kalman".into())]),
-        None,
+        JsValue::UNDEFINED,
     )
     .unwrap_err();
     assert!(error_message(e).contains("unknown model 'kalman'"));
+}
+
+/// Nests `{zz: {zz: ...}}` `depth` levels deep.
+fn deep(depth: usize) -> JsValue {
+    let mut v: JsValue = js_sys::Object::new().into();
+    for _ in 0..depth {
+        v = obj(&[("zz", v)]);
+    }
+    v
+}
+
+#[wasm_bindgen_test]
+fn a_deeply_nested_argument_throws_and_the_module_keeps_working() {
+    let p = obj(&[
+        ("sf", 7.into()),
+        ("bw", 125.into()),
+        ("payload", 9.into()),
+        ("zz", deep(4000)),
+    ]);
+    let e = wasm::time_on_air(p).unwrap_err();
+    assert!(error_message(e).contains("invalid parameters"));
+    let ok = wasm::time_on_air(obj(&[
+        ("sf", 7.into()),
+        ("bw", 125.into()),
+        ("payload", 12.into()),
+        ("overhead", 0.into()),
+    ]))
+    .unwrap();
+    assert!((num(&ok, "timeOnAir") - 0.041216).abs() < 1e-9);
+}
+
+#[wasm_bindgen_test]
+fn a_progress_that_is_not_a_function_is_refused() {
+    let e = wasm::simulate(obj(&[("synthetic", 3.into())]), 42.into()).unwrap_err();
+    assert!(error_message(e).contains("progress must be a function"));
+    assert!(wasm::simulate(obj(&[("synthetic", 3.into())]), JsValue::NULL).is_ok());
+}
+
+#[wasm_bindgen_test]
+fn statistics_of_an_empty_sample_are_null_as_in_the_cli() {
+    // 100 km: nothing arrives, so nothing is counted.
+    let r = wasm::simulate(
+        obj(&[
+            ("synthetic", 3.into()),
+            ("model", "dr".into()),
+            ("distance", 100_000.into()),
+        ]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap();
+    let first = js_sys::Array::from(&get(&r, "results")).get(0);
+    let e3 = get(&first, "error3d");
+    assert_eq!(num(&e3, "count"), 0.0);
+    assert!(get(&e3, "mean").is_null());
+    assert!(get(&first, "coverage95").is_null());
+}
+
+#[wasm_bindgen_test]
+fn a_seed_javascript_cannot_hold_is_refused_up_front() {
+    let e = wasm::simulate(
+        obj(&[("synthetic", 3.into()), ("seed", 2f64.powi(60).into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    assert!(error_message(e).contains("seed must be"));
 }

@@ -9,6 +9,8 @@ import type { Trajectory3d } from './charts/trajectory3d';
 import { downloadDataUrl, downloadErrorCsv, downloadJson, downloadPng, downloadSvg } from './export';
 
 const DISTANCES = [500, 1000, 2000, 3000, 4000, 5000];
+/** The largest CSV the core reads (MAX_CSV_BYTES in src/trajectory/csv.rs). */
+const MAX_CSV_BYTES = 64 * 2 ** 20;
 const $ = <T extends HTMLElement>(sel: string) => document.querySelector<T>(sel)!;
 const form = $<HTMLFormElement>('#controls');
 const status = $('#status');
@@ -237,6 +239,12 @@ form.addEventListener('submit', (e) => e.preventDefault());
 $<HTMLInputElement>('#csv').addEventListener('change', async (e) => {
   const file = (e.target as HTMLInputElement).files?.[0];
   if (!file) return;
+  if (file.size > MAX_CSV_BYTES) {
+    // The core refuses more than 64 MiB too; say so before reading the file into memory.
+    csvError.textContent = `${file.name} is ${(file.size / 2 ** 20).toFixed(1)} MiB; at most 64 MiB is read.`;
+    csvError.hidden = false;
+    return;
+  }
   csv = { text: await file.text(), name: file.name };
   csvError.hidden = true;
   onChange();

@@ -53,22 +53,30 @@ fn to_hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
+/// Parses hex digits (0-9, a-f, A-F) two per byte; anything else — a sign, a space, a
+/// non-ASCII character — is refused with its position counted in characters.
 fn from_hex(text: &str) -> Result<Vec<u8>, CodecError> {
-    let t = text.trim();
-    if t.len() % 2 != 0 {
+    let digits: Vec<char> = text.trim().chars().collect();
+    if let Some(i) = digits.iter().position(|c| !c.is_ascii_hexdigit()) {
         return Err(CodecError::Hex(format!(
-            "odd number of digits ({})",
-            t.len()
+            "'{}' at position {i} is not a hex digit (0-9, a-f)",
+            digits[i]
         )));
     }
-    (0..t.len())
-        .step_by(2)
-        .map(|i| {
-            t.get(i..i + 2)
-                .and_then(|pair| u8::from_str_radix(pair, 16).ok())
-                .ok_or_else(|| CodecError::Hex(format!("not a hex digit pair at position {i}")))
+    if digits.len() % 2 != 0 {
+        return Err(CodecError::Hex(format!(
+            "odd number of digits ({})",
+            digits.len()
+        )));
+    }
+    Ok(digits
+        .chunks(2)
+        .map(|pair| {
+            // Both are ASCII hex digits, so each converts.
+            let d = |c: char| c.to_digit(16).unwrap_or(0) as u8;
+            (d(pair[0]) << 4) | d(pair[1])
         })
-        .collect()
+        .collect())
 }
 
 /// Encodes a state into the model's payload.

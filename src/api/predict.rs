@@ -1,7 +1,7 @@
 //! `predict`: noise-free propagation of a state under one model (SPEC §8).
 
 use super::ApiError;
-use crate::models::{with_model, ModelError, ModelKind, MotionModel};
+use crate::models::{with_model, ModelError, ModelKind, MotionModel, MAX_DT, STATE_RANGES};
 use nalgebra::SVector;
 use serde::{Deserialize, Serialize};
 
@@ -35,7 +35,7 @@ pub struct PredictReport {
     pub state: Vec<f64>,
 }
 
-/// Checks a state's length and finiteness for `model`.
+/// Checks a state's length for `model` and each component against [`STATE_RANGES`].
 pub fn validate_state(model: ModelKind, state: &[f64]) -> Result<(), ModelError> {
     if state.len() != model.state_len() {
         return Err(ModelError::StateLength {
@@ -43,8 +43,18 @@ pub fn validate_state(model: ModelKind, state: &[f64]) -> Result<(), ModelError>
             got: state.len(),
         });
     }
-    match state.iter().position(|v| !v.is_finite()) {
-        Some(index) => Err(ModelError::NonFinite { index }),
+    let outside = state
+        .iter()
+        .zip(STATE_RANGES)
+        .position(|(v, (_, lo, hi, _))| {
+            // NaN fails the range test too.
+            !(lo..=hi).contains(v)
+        });
+    match outside {
+        Some(index) => Err(ModelError::OutOfRange {
+            index,
+            value: state[index],
+        }),
         None => Ok(()),
     }
 }
@@ -75,7 +85,7 @@ fn run<const N: usize, M: MotionModel<N>>(
 /// Propagates `state` over `dt` with the chosen model.
 pub fn predict(p: &PredictParams) -> Result<PredictReport, ApiError> {
     validate_state(p.model, &p.state)?;
-    if !(p.dt.is_finite() && p.dt >= 0.0) {
+    if !(0.0..=MAX_DT).contains(&p.dt) {
         return Err(ModelError::TimeStep(p.dt).into());
     }
     let steps = match (p.step, p.eta) {

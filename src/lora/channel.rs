@@ -47,43 +47,50 @@ pub struct Channel {
 }
 
 impl Channel {
-    /// Validates every parameter (finite; exponent > 0; sigma ≥ 0; decorrelation distance > 0).
+    /// Validates every parameter against its physical range (each named in the error), so that
+    /// every derived number (range, received power) is finite.
     pub fn new(params: ChannelParams) -> Result<Self, LoraError> {
         let checks = [
             (
-                "txPowerDbm",
+                "txPower",
                 params.tx_power_dbm,
-                params.tx_power_dbm.abs() <= 60.0,
+                (-30.0..=30.0).contains(&params.tx_power_dbm),
+                "-30..30 dBm",
             ),
             (
-                "referenceLossDb",
+                "referenceLoss",
                 params.reference_loss_db,
-                params.reference_loss_db.abs() <= 200.0,
+                (0.0..=100.0).contains(&params.reference_loss_db),
+                "0..100 dB",
             ),
             (
                 "pathLossExponent",
                 params.path_loss_exponent,
-                params.path_loss_exponent > 0.0 && params.path_loss_exponent <= 10.0,
+                (1.5..=6.0).contains(&params.path_loss_exponent),
+                "1.5..6 (free space 2, obstructed up to 6)",
             ),
             (
-                "shadowingSigmaDb",
+                "shadowing",
                 params.shadowing_sigma_db,
-                (0.0..=30.0).contains(&params.shadowing_sigma_db),
+                (0.0..=20.0).contains(&params.shadowing_sigma_db),
+                "0..20 dB",
             ),
             (
                 "decorrelationDistance",
                 params.decorrelation_distance,
-                params.decorrelation_distance > 0.0 && params.decorrelation_distance.is_finite(),
+                (1.0..=100_000.0).contains(&params.decorrelation_distance),
+                "1..100000 m",
             ),
             (
                 "gatewayHeight",
                 params.gateway_height,
-                (0.0..=10_000.0).contains(&params.gateway_height),
+                (0.0..=1000.0).contains(&params.gateway_height),
+                "0..1000 m",
             ),
         ];
-        for (name, value, ok) in checks {
+        for (name, value, ok, allowed) in checks {
             if !ok {
-                return Err(LoraError::Parameter(name, value));
+                return Err(LoraError::Parameter(name, value, allowed));
             }
         }
         Ok(Channel { params })

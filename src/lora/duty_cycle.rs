@@ -38,6 +38,10 @@ impl SubBand {
 /// Shown as information; loratrack does not enforce it.
 pub const TTN_FAIR_USE_SECONDS_PER_DAY: f64 = 30.0;
 
+/// The smallest duty cycle accepted, 0.01 %: ten times below the strictest EU868 sub-band
+/// (0.1 %), and large enough that every interval stays finite.
+pub const MIN_DUTY_CYCLE: f64 = 1e-4;
+
 /// Minimum interval between transmissions (s) that keeps a device within `duty_cycle`:
 /// the radio may be on air for at most that fraction of the time, so
 /// `interval = time_on_air / duty_cycle`.
@@ -47,7 +51,7 @@ pub const TTN_FAIR_USE_SECONDS_PER_DAY: f64 = 30.0;
 /// assert!((min_interval(0.0412, 0.01).unwrap() - 4.12).abs() < 1e-12);
 /// ```
 pub fn min_interval(time_on_air: f64, duty_cycle: f64) -> Result<f64, LoraError> {
-    if !(duty_cycle > 0.0 && duty_cycle <= 1.0) {
+    if !(MIN_DUTY_CYCLE..=1.0).contains(&duty_cycle) {
         return Err(LoraError::DutyCycle(duty_cycle));
     }
     Ok(time_on_air / duty_cycle)
@@ -115,17 +119,22 @@ impl DutyCycle {
         burst: u32,
         start: f64,
     ) -> Result<Self, LoraError> {
-        if !(duty_cycle > 0.0 && duty_cycle <= 1.0) {
+        if !(MIN_DUTY_CYCLE..=1.0).contains(&duty_cycle) {
             return Err(LoraError::DutyCycle(duty_cycle));
         }
         if !(1..=MAX_BURST).contains(&burst) {
             return Err(LoraError::Parameter(
-                "burst (packets, 1..3600)",
+                "burst",
                 f64::from(burst),
+                "1..3600 packets",
             ));
         }
         if !(time_on_air > 0.0 && time_on_air.is_finite()) {
-            return Err(LoraError::Parameter("time on air (s)", time_on_air));
+            return Err(LoraError::Parameter(
+                "timeOnAir",
+                time_on_air,
+                "a positive number of seconds",
+            ));
         }
         let packets = match mode {
             DutyCycleMode::PerPacket => 1.0,
@@ -214,5 +223,6 @@ mod tests {
         assert!(min_interval(0.1, 0.0).is_err());
         assert!(min_interval(0.1, 1.5).is_err());
         assert!(min_interval(0.1, f64::NAN).is_err());
+        assert!(min_interval(0.1, 5e-324).is_err(), "an infinite interval");
     }
 }

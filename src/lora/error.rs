@@ -13,10 +13,10 @@ pub enum LoraError {
     PayloadTooLarge(usize),
     /// Preamble length outside 6..=65535 symbols.
     Preamble(i64),
-    /// Duty cycle not in (0, 1].
+    /// Duty cycle outside [`MIN_DUTY_CYCLE`](super::MIN_DUTY_CYCLE), 1].
     DutyCycle(f64),
-    /// A channel parameter that is not a finite number in its range.
-    Parameter(&'static str, f64),
+    /// A parameter that is not a finite number in its range: name, value, the range.
+    Parameter(&'static str, f64, &'static str),
 }
 
 impl fmt::Display for LoraError {
@@ -39,9 +39,14 @@ impl fmt::Display for LoraError {
                 write!(f, "preamble must be 6..65535 symbols, got {n}")
             }
             LoraError::DutyCycle(d) => {
-                write!(f, "duty cycle must be a fraction in (0, 1], got {d}")
+                write!(
+                    f,
+                    "dutyCycle must be a fraction in 0.0001..1 (0.01 %..100 %), got {d:?}"
+                )
             }
-            LoraError::Parameter(name, v) => write!(f, "{name} is out of range: {v}"),
+            LoraError::Parameter(name, v, allowed) => {
+                write!(f, "{name} must be {allowed}, got {v:?}")
+            }
         }
     }
 }

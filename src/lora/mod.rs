@@ -16,7 +16,8 @@ pub use airtime::{
 };
 pub use channel::{Channel, ChannelParams};
 pub use duty_cycle::{
-    min_interval, DutyCycle, DutyCycleMode, SubBand, MAX_BURST, TTN_FAIR_USE_SECONDS_PER_DAY,
+    min_interval, DutyCycle, DutyCycleMode, SubBand, MAX_BURST, MIN_DUTY_CYCLE,
+    TTN_FAIR_USE_SECONDS_PER_DAY,
 };
 pub use error::LoraError;
 pub use shadowing::Shadowing;

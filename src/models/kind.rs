@@ -63,6 +63,25 @@ impl fmt::Display for ModelKind {
     }
 }
 
+/// The accepted range of each state component (`x y z theta phi v a omega psi`): name, lowest,
+/// highest, unit. Far beyond any drone (positions within 10 000 km, speeds and accelerations up to
+/// 1000, rates up to 100 rad/s), yet small enough that every propagation over [`MAX_DT`] stays
+/// finite.
+pub const STATE_RANGES: [(&str, f64, f64, &str); 9] = [
+    ("x", -1e7, 1e7, "m"),
+    ("y", -1e7, 1e7, "m"),
+    ("z", -1e7, 1e7, "m"),
+    ("theta", -1000.0, 1000.0, "rad"),
+    ("phi", -1000.0, 1000.0, "rad"),
+    ("v", -1000.0, 1000.0, "m/s"),
+    ("a", -1000.0, 1000.0, "m/s²"),
+    ("omega", -100.0, 100.0, "rad/s"),
+    ("psi", -100.0, 100.0, "rad/s"),
+];
+
+/// The longest time a model propagates over in one call, s (a day).
+pub const MAX_DT: f64 = 86_400.0;
+
 /// Bad input to a model operation.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ModelError {
@@ -75,10 +94,12 @@ pub enum ModelError {
         /// Components given.
         got: usize,
     },
-    /// A state component that is NaN or infinite.
-    NonFinite {
+    /// A state component that is NaN, infinite or outside its physical range.
+    OutOfRange {
         /// Index of the component.
         index: usize,
+        /// The value given.
+        value: f64,
     },
     /// A time step that is negative or not finite.
     TimeStep(f64),
@@ -97,14 +118,15 @@ impl fmt::Display for ModelError {
                 "model {model} needs a state of {} numbers, got {got}",
                 model.state_len()
             ),
-            ModelError::NonFinite { index } => {
-                write!(f, "state component {index} is not a finite number")
-            }
-            ModelError::TimeStep(dt) => {
+            ModelError::OutOfRange { index, value } => {
+                let (name, lo, hi, unit) = STATE_RANGES[*index];
                 write!(
                     f,
-                    "time step must be a finite number of seconds >= 0, got {dt}"
+                    "state component {index} ({name}) must be {lo}..{hi} {unit}, got {value:?}"
                 )
+            }
+            ModelError::TimeStep(dt) => {
+                write!(f, "dt must be 0..{MAX_DT} s (a day), got {dt:?}")
             }
             ModelError::Eta(e) => write!(f, "eta must be in [0, 1], got {e}"),
         }

@@ -15,7 +15,7 @@ use arc_integral::arc_integral_from;
 pub use ctra3d::Ctra3d;
 pub use ctra_plus::CtraPlus;
 pub use dr::Dr;
-pub use kind::{ModelError, ModelKind};
+pub use kind::{ModelError, ModelKind, MAX_DT, STATE_RANGES};
 
 use nalgebra::SVector;
 

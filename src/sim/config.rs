@@ -6,8 +6,13 @@ use super::SimError;
 use crate::filter::{PAPER_Q, PAPER_R_DIAGONAL};
 use crate::lora::{
     Channel, ChannelParams, DutyCycleMode, LoraParams, LORAWAN_OVERHEAD_BYTES, MAX_BURST,
+    MIN_DUTY_CYCLE,
 };
 use serde::{Deserialize, Serialize};
+
+/// The largest seed: 2^53 − 1, so that a seed round-trips through a JavaScript number (and the
+/// page's URL) unchanged.
+pub const MAX_SEED: u64 = (1 << 53) - 1;
 
 /// Default error-triggered threshold, m: about twice the on-time p75 of the paper's station at
 /// SF7 / 1 km, so packets go when the station is clearly off, not on every wobble.
@@ -28,35 +33,55 @@ pub enum SyntheticChoice {
     One(usize),
 }
 
+impl SyntheticChoice {
+    fn from_number(n: f64) -> Result<Self, String> {
+        if n.fract() == 0.0 && (1.0..=30.0).contains(&n) {
+            Ok(SyntheticChoice::One(n as usize))
+        } else {
+            Err(format!(
+                "synthetic must be 'all' or a flight number 1..30, got {n:?}"
+            ))
+        }
+    }
+
+    /// Parses `all` or a flight number 1..30.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        let t = text.trim();
+        if t.eq_ignore_ascii_case("all") {
+            return Ok(SyntheticChoice::All);
+        }
+        match t.parse::<f64>() {
+            Ok(n) => Self::from_number(n),
+            Err(_) => Err(format!(
+                "synthetic must be 'all' or a flight number 1..30, got '{}'",
+                t.chars().take(40).collect::<String>()
+            )),
+        }
+    }
+}
+
 impl<'de> Deserialize<'de> for SyntheticChoice {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        #[derive(Deserialize)]
-        #[serde(untagged)]
-        enum Raw {
-            Number(f64),
-            Text(String),
-        }
-        let number = |n: f64| -> Result<SyntheticChoice, String> {
-            if n.fract() == 0.0 && (1.0..=30.0).contains(&n) {
-                Ok(SyntheticChoice::One(n as usize))
-            } else {
-                Err(format!("synthetic must be 'all' or 1..30, got {n}"))
+        struct Choice;
+        impl serde::de::Visitor<'_> for Choice {
+            type Value = SyntheticChoice;
+            fn expecting(&self, f: &mut core::fmt::Formatter) -> core::fmt::Result {
+                f.write_str("'all' or a flight number 1..30")
             }
-        };
-        let parse = |s: &str| -> Result<SyntheticChoice, String> {
-            if s.eq_ignore_ascii_case("all") {
-                return Ok(SyntheticChoice::All);
+            fn visit_str<E: serde::de::Error>(self, s: &str) -> Result<Self::Value, E> {
+                SyntheticChoice::parse(s).map_err(E::custom)
             }
-            s.trim()
-                .parse::<f64>()
-                .map_err(|_| format!("synthetic must be 'all' or 1..30, got '{s}'"))
-                .and_then(number)
-        };
-        match Raw::deserialize(d)? {
-            Raw::Number(n) => number(n),
-            Raw::Text(s) => parse(&s),
+            fn visit_f64<E: serde::de::Error>(self, n: f64) -> Result<Self::Value, E> {
+                SyntheticChoice::from_number(n).map_err(E::custom)
+            }
+            fn visit_i64<E: serde::de::Error>(self, n: i64) -> Result<Self::Value, E> {
+                self.visit_f64(n as f64)
+            }
+            fn visit_u64<E: serde::de::Error>(self, n: u64) -> Result<Self::Value, E> {
+                self.visit_f64(n as f64)
+            }
         }
-        .map_err(serde::de::Error::custom)
+        d.deserialize_any(Choice)
     }
 }
 
@@ -339,8 +364,8 @@ impl SimParams {
         check(
             "dutyCycle",
             self.duty_cycle,
-            self.duty_cycle > 0.0 && self.duty_cycle <= 1.0,
-            "in (0, 1]",
+            (MIN_DUTY_CYCLE..=1.0).contains(&self.duty_cycle),
+            "0.0001..1 (0.01 %..100 %)",
         )?;
         check(
             "sensorRate",
@@ -361,6 +386,9 @@ impl SimParams {
             "in [0, 1]",
         )?;
         check("q", self.q, self.q > 0.0 && self.q <= 1e3, "in (0, 1000]")?;
+        if self.seed > MAX_SEED {
+            return Err(SimError::Seed(self.seed));
+        }
         check(
             "threshold",
             self.threshold,

@@ -13,6 +13,15 @@ pub enum SimError {
     Parameter(&'static str, f64, &'static str),
     /// No flight was chosen, or more than one.
     Source(String),
+    /// A seed above [`MAX_SEED`](super::MAX_SEED).
+    Seed(u64),
+    /// More filter steps than one run may take (flight time × (sensor rate + 1 / T)).
+    TooLong {
+        /// Seconds of flight.
+        flight_time: f64,
+        /// Filter steps per model it would take.
+        steps: f64,
+    },
 }
 
 impl fmt::Display for SimError {
@@ -20,8 +29,19 @@ impl fmt::Display for SimError {
         match self {
             SimError::Trajectory(e) => e.fmt(f),
             SimError::Lora(e) => e.fmt(f),
-            SimError::Parameter(name, v, allowed) => write!(f, "{name} must be {allowed}, got {v}"),
+            SimError::Parameter(name, v, allowed) => write!(f, "{name} must be {allowed}, got {v:?}"),
             SimError::Source(msg) => f.write_str(msg),
+            SimError::Seed(seed) => write!(
+                f,
+                "seed must be 0..{} (2^53 - 1, the largest integer JavaScript holds exactly), got {seed}",
+                super::MAX_SEED
+            ),
+            SimError::TooLong { flight_time, steps } => write!(
+                f,
+                "the run is too long: {flight_time:.0} s of flight at these rates is {steps:.0} filter steps per model; \
+                 the limit is {} (shorten the flight, lower the sensor rate or lengthen the step T)",
+                super::MAX_FILTER_STEPS
+            ),
         }
     }
 }

@@ -18,14 +18,14 @@ pub mod station;
 
 pub use config::{
     ModelChoice, SimConfig, SimParams, SyntheticChoice, TrajectorySource, DEFAULT_BURST,
-    DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M,
+    DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M, MAX_SEED,
 };
 pub use drone::{run_drone, DroneTrack};
 pub use error::SimError;
 pub use link::{schedule_transmissions, LinkSetup, Transmission};
 pub use report::{ModelResult, ModelSeries, RunConfig, Series, SimReport};
 pub use sender::{ErrorTriggered, Periodic, Sender, SenderKind};
-pub use simulator::Simulator;
+pub use simulator::{Simulator, MAX_FILTER_STEPS};
 pub use station::{
     new_tracker, track_station, Bounds, Imm, Prediction, StationModel, StationPredictor,
     StationSetup, StationTrack, Tracker,

@@ -21,6 +21,10 @@ use std::rc::Rc;
 
 /// Separates the link's random stream from the sensors' for the same seed.
 const LINK_STREAM: u64 = 0x4C49_4E4B; // "LINK"
+/// The most drone and station filter steps one run may take per model, summed over its flights:
+/// twice what the page's largest setting needs (the whole 44-minute set with 100 Hz sensors and
+/// T = 0.01 s is 528 000), and about a second of work per model natively.
+pub const MAX_FILTER_STEPS: u64 = 1_000_000;
 /// Cache sizes; past them the cache starts afresh (a page rarely alternates between more).
 const MAX_CACHED_FLIGHTS: usize = 4;
 const MAX_CACHED_DRONE_RUNS: usize = 24;
@@ -167,6 +171,11 @@ impl Simulator {
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<SimReport, SimError> {
         let (flight_key, flights) = self.flights(&cfg.source)?;
+        let flight_time: f64 = flights.iter().map(Trajectory::duration).sum();
+        let steps = flight_time * (cfg.sensor_rate + 1.0 / cfg.step);
+        if steps > MAX_FILTER_STEPS as f64 {
+            return Err(SimError::TooLong { flight_time, steps });
+        }
         let total = 2 * flights.len() * cfg.models.len();
         let mut done = 0;
         let mut tick = || {
@@ -277,7 +286,7 @@ impl Simulator {
                     _ => flights[0].name.clone(),
                 },
                 flights: flights.len(),
-                flight_time: flights.iter().map(Trajectory::duration).sum(),
+                flight_time,
                 models: cfg.models.clone(),
                 prediction: cfg.prediction,
                 sender: cfg.sender,

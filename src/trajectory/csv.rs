@@ -13,6 +13,14 @@ const MAX_COORDINATE: f64 = 1e6;
 const MAX_DURATION: f64 = 86_400.0;
 /// Largest speed accepted, m/s.
 const MAX_SPEED: f64 = 300.0;
+/// Largest acceleration accepted, m/s² (30 g: far beyond a multirotor, and small enough that
+/// the filters stay finite).
+const MAX_ACCELERATION: f64 = 300.0;
+/// Shortest time step accepted, s (1 µs; a derivative over a shorter step is noise).
+pub const MIN_TIME_STEP: f64 = 1e-6;
+/// Largest CSV text accepted, bytes (64 MiB: a million rows of ten columns fit; the page applies
+/// the same limit to uploads).
+pub const MAX_CSV_BYTES: usize = 64 << 20;
 
 /// Accepted names per column, matched case-insensitively.
 const ALIASES: [(&str, &[&str]); 9] = [
@@ -57,9 +65,17 @@ fn find(header: &[String], names: &[&str]) -> Option<usize> {
 /// assert!((tr.vel[10][0] - 10.0).abs() < 1e-9);
 /// ```
 pub fn parse_csv(text: &str, name: &str) -> Result<Trajectory, TrajectoryError> {
-    let mut lines = text
-        .trim_start_matches('\u{feff}')
-        .lines()
+    if text.len() > MAX_CSV_BYTES {
+        return Err(TrajectoryError::TooLarge { bytes: text.len() });
+    }
+    let text = text.trim_start_matches('\u{feff}');
+    // Classic Mac files end lines with a lone CR.
+    let split: Box<dyn Iterator<Item = &str>> = if !text.contains('\n') && text.contains('\r') {
+        Box::new(text.split('\r'))
+    } else {
+        Box::new(text.lines())
+    };
+    let mut lines = split
         .enumerate()
         .map(|(i, l)| (i + 1, l.trim()))
         .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
@@ -119,6 +135,12 @@ pub fn parse_csv(text: &str, name: &str) -> Result<Trajectory, TrajectoryError> 
             if row[0] <= prev[0] {
                 return Err(TrajectoryError::TimeNotIncreasing { line });
             }
+            if row[0] - prev[0] < MIN_TIME_STEP {
+                return Err(TrajectoryError::TimeStep {
+                    line,
+                    step: row[0] - prev[0],
+                });
+            }
         }
         if row[1..4].iter().any(|v| v.abs() > MAX_COORDINATE) {
             return Err(TrajectoryError::Absurd {
@@ -130,6 +152,14 @@ pub fn parse_csv(text: &str, name: &str) -> Result<Trajectory, TrajectoryError> 
             return Err(TrajectoryError::Absurd {
                 line,
                 what: format!("a speed over {MAX_SPEED} m/s"),
+            });
+        }
+        if has_acc
+            && (row[7] * row[7] + row[8] * row[8] + row[9] * row[9]).sqrt() > MAX_ACCELERATION
+        {
+            return Err(TrajectoryError::Absurd {
+                line,
+                what: format!("an acceleration over {MAX_ACCELERATION} m/s²"),
             });
         }
         if let Some(first) = rows.first() {
@@ -161,10 +191,7 @@ pub fn parse_csv(text: &str, name: &str) -> Result<Trajectory, TrajectoryError> 
         smoothed_derivative(&t, &pos, 0.15)
     };
     if !has_vel {
-        if let Some(i) = vel
-            .iter()
-            .position(|v| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() > MAX_SPEED)
-        {
+        if let Some(i) = vel.iter().position(|v| !within(v, MAX_SPEED)) {
             return Err(TrajectoryError::Absurd {
                 line: line_numbers[i],
                 what: format!("positions imply a speed over {MAX_SPEED} m/s"),
@@ -174,9 +201,22 @@ pub fn parse_csv(text: &str, name: &str) -> Result<Trajectory, TrajectoryError> 
     let acc = if has_acc {
         rows.iter().map(|r| [r[7], r[8], r[9]]).collect()
     } else {
-        smoothed_derivative(&t, &vel, 0.3)
+        let acc = smoothed_derivative(&t, &vel, 0.3);
+        if let Some(i) = acc.iter().position(|a| !within(a, MAX_ACCELERATION)) {
+            return Err(TrajectoryError::Absurd {
+                line: line_numbers[i],
+                what: format!("the motion implies an acceleration over {MAX_ACCELERATION} m/s²"),
+            });
+        }
+        acc
     };
     Trajectory::new(name.to_string(), t, pos, vel, acc)
+}
+
+/// Whether a vector's length is at most `limit` (false for NaN, which a derivative over a
+/// vanishing time step can give).
+fn within(v: &[f64; 3], limit: f64) -> bool {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() <= limit
 }
 
 /// Derivative of `values` over time by local linear regression on the samples within

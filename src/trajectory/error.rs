@@ -56,6 +56,18 @@ pub enum TrajectoryError {
         /// Line number.
         line: usize,
     },
+    /// A time step shorter than [`MIN_TIME_STEP`](super::MIN_TIME_STEP).
+    TimeStep {
+        /// Line number.
+        line: usize,
+        /// The step, s.
+        step: f64,
+    },
+    /// A CSV text larger than [`MAX_CSV_BYTES`](super::MAX_CSV_BYTES).
+    TooLarge {
+        /// Its size, bytes.
+        bytes: usize,
+    },
     /// A value beyond what a drone flight can have (|coordinate| over 1000 km, a flight over a day,
     /// a speed over 300 m/s).
     Absurd {
@@ -72,6 +84,17 @@ pub enum TrajectoryError {
     UnknownSample(String),
 }
 
+/// At most 60 characters of `text`, so an error never echoes a whole file.
+fn excerpt(text: &str) -> String {
+    let mut chars = text.chars();
+    let head: String = chars.by_ref().take(60).collect();
+    if chars.next().is_some() {
+        format!("{head}…")
+    } else {
+        head
+    }
+}
+
 impl fmt::Display for TrajectoryError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -83,7 +106,8 @@ impl fmt::Display for TrajectoryError {
             TrajectoryError::TooManyRows { max } => write!(f, "the CSV has more than {max} data rows"),
             TrajectoryError::MissingColumn { column, header } => write!(
                 f,
-                "line 1: no '{column}' column in the header '{header}' (need t, x, y, z; aliases like t_seconds, x_m are accepted)"
+                "line 1: no '{column}' column in the header '{}' (need t, x, y, z; aliases like t_seconds, x_m are accepted)",
+                excerpt(header)
             ),
             TrajectoryError::FieldCount { line, got, expected } => {
                 write!(f, "line {line}: {got} fields, but the header has {expected}")
@@ -97,6 +121,17 @@ impl fmt::Display for TrajectoryError {
             TrajectoryError::TimeNotIncreasing { line } => {
                 write!(f, "line {line}: time is not strictly increasing")
             }
+            TrajectoryError::TimeStep { line, step } => write!(
+                f,
+                "line {line}: time step of {step:e} s; steps must be at least {} s",
+                super::MIN_TIME_STEP
+            ),
+            TrajectoryError::TooLarge { bytes } => write!(
+                f,
+                "the CSV is {:.1} MiB; at most {} MiB is read",
+                *bytes as f64 / (1024.0 * 1024.0),
+                super::MAX_CSV_BYTES >> 20
+            ),
             TrajectoryError::Absurd { line, what } => write!(f, "line {line}: {what}"),
             TrajectoryError::Inconsistent(what) => write!(f, "inconsistent trajectory: {what}"),
             TrajectoryError::SyntheticIndex(i) => {

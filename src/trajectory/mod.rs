@@ -8,7 +8,7 @@ mod sample;
 mod synthetic;
 mod track;
 
-pub use csv::{parse_csv, MAX_ROWS, MIN_ROWS};
+pub use csv::{parse_csv, MAX_CSV_BYTES, MAX_ROWS, MIN_ROWS, MIN_TIME_STEP};
 pub use error::TrajectoryError;
 pub use kinematics::{kinematic_states, HOVER_SPEED};
 pub use sample::{canberra_flight, CANBERRA_CREDIT};

@@ -4,7 +4,7 @@ use clap::{Args, Subcommand};
 use loratrack::api::{self, ApiError};
 use loratrack::{
     DutyCycleMode, LdroMode, ModelChoice, ModelKind, ModelResult, Prediction, SenderKind,
-    SimParams, Simulator, SyntheticChoice,
+    SimParams, Simulator, SyntheticChoice, MAX_CSV_BYTES,
 };
 use serde::Serialize;
 
@@ -26,7 +26,7 @@ pub enum Command {
 
 #[derive(Args)]
 pub struct SimulateArgs {
-    /// A flight as CSV: header with t,x,y,z (s, m, ENU) and optional vx,vy,vz / ax,ay,az.
+    /// A flight as CSV: header with t,x,y,z (s, m, ENU) and optional vx,vy,vz / ax,ay,az; a regular file of at most 64 MiB.
     #[arg(long, value_name = "FILE", conflicts_with_all = ["synthetic", "sample"])]
     trajectory: Option<std::path::PathBuf>,
     /// The canonical synthetic set: `all` (30 flights, 44 min) or one flight 1..30.
@@ -49,10 +49,10 @@ pub struct SimulateArgs {
     /// Bandwidth in kHz: 125, 250 or 500.
     #[arg(long, default_value_t = 250.0)]
     bw: f64,
-    /// Horizontal distance from the flight's first point to the gateway, metres.
+    /// Horizontal distance from the flight's first point to the gateway, metres (0..100000).
     #[arg(long, default_value_t = 1000.0, allow_negative_numbers = true)]
     distance: f64,
-    /// Seed of all random draws (sensor noise, transmission offset, shadowing).
+    /// Seed of all random draws (sensor noise, transmission offset, shadowing), 0..2^53-1.
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// MAC overhead in bytes added to each payload: 13 for LoRaWAN, 0 as in the paper's Table II.
@@ -64,31 +64,31 @@ pub struct SimulateArgs {
     /// Coding rate n of 4/(4+n): 1..4.
     #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
     cr: i64,
-    /// Duty-cycle limit as a fraction.
+    /// Duty-cycle limit as a fraction (0.0001..1).
     #[arg(long, default_value_t = 0.01)]
     duty_cycle: f64,
-    /// Transmit power, dBm.
+    /// Transmit power, dBm (-30..30).
     #[arg(long, default_value_t = 14.0, allow_negative_numbers = true)]
     tx_power: f64,
-    /// Path-loss exponent of the log-distance model.
+    /// Path-loss exponent of the log-distance model (1.5..6).
     #[arg(long, default_value_t = 3.76)]
     path_loss_exponent: f64,
-    /// Log-normal shadowing standard deviation in dB (0 turns it off).
+    /// Log-normal shadowing standard deviation in dB (0..20; 0 turns it off).
     #[arg(long, default_value_t = 4.0, allow_negative_numbers = true)]
     shadowing: f64,
-    /// Gateway antenna height, metres.
+    /// Gateway antenna height, metres (0..1000).
     #[arg(long, default_value_t = 15.0)]
     gateway_height: f64,
-    /// Drone sensor and filter rate, Hz.
+    /// Drone sensor and filter rate, Hz (0.1..1000; flight time x (rate + 1/step) is limited to 1,000,000 filter steps).
     #[arg(long, default_value_t = 10.0)]
     sensor_rate: f64,
-    /// Station prediction step T, seconds.
+    /// Station prediction step T, seconds (0.001..10).
     #[arg(long, default_value_t = 0.1)]
     step: f64,
-    /// Tilt-rate decay per station step (paper: 0.9).
+    /// Tilt-rate decay per station step, 0..1 (paper: 0.9).
     #[arg(long, default_value_t = 0.9, allow_negative_numbers = true)]
     eta: f64,
-    /// Process noise q of Q = q I (paper: 0.1).
+    /// Process noise q of Q = q I per second, (0, 1000] (paper: 0.1).
     #[arg(long, default_value_t = 0.1)]
     q: f64,
     /// Include time series of the first flight (error over time, trajectories) in the JSON.
@@ -179,7 +179,7 @@ pub struct ModelState {
     /// Motion model: dr (x y z theta phi v), ctra-plus (+ a omega) or 3d-ctra (+ a omega psi).
     #[arg(long)]
     model: ModelKind,
-    /// State, comma-separated, SPEC §2 order and units (m, rad, m/s, m/s^2, rad/s), e.g. 0,0,0,0,0,1,1,1.
+    /// State, comma-separated, SPEC §2 order and units (m, rad, m/s, m/s^2, rad/s), e.g. 0,0,0,0,0,1,1,1. Ranges: x y z ±1e7 m, theta phi ±1000 rad, v a ±1000, omega psi ±100 rad/s.
     #[arg(
         long,
         value_delimiter = ',',
@@ -214,7 +214,7 @@ impl Origin {
 pub struct PredictArgs {
     #[command(flatten)]
     input: ModelState,
-    /// Time to propagate over, seconds (>= 0).
+    /// Time to propagate over, seconds (0..86400).
     #[arg(long, allow_hyphen_values = true)]
     dt: f64,
     /// Propagate in steps of this many seconds, multiplying psi by eta after each (the station's predictor).
@@ -295,7 +295,7 @@ pub struct AirtimeArgs {
     /// Low data rate optimisation: auto (on when a symbol lasts over 16 ms), on or off.
     #[arg(long, value_enum, default_value = "auto")]
     ldro: Ldro,
-    /// Duty-cycle limit as a fraction (EU868 868.0–868.6 MHz: 0.01).
+    /// Duty-cycle limit as a fraction, 0.0001..1 (EU868 868.0–868.6 MHz: 0.01).
     #[arg(long, default_value_t = 0.01)]
     duty_cycle: f64,
     #[command(flatten)]
@@ -426,33 +426,51 @@ fn decode(a: DecodeArgs) -> Result<String, ApiError> {
     })
 }
 
-fn parse_json_value<T: serde::de::DeserializeOwned>(
-    name: &str,
-    value: &str,
-) -> Result<T, ApiError> {
-    let v = match value.parse::<f64>() {
-        Ok(n) => serde_json::json!(n),
-        Err(_) => serde_json::json!(value),
+/// Reads a CSV flight: a regular file of at most [`MAX_CSV_BYTES`], so that a device, a FIFO or
+/// a huge file is refused at once instead of filling memory or blocking.
+fn read_flight(path: &std::path::Path) -> Result<String, ApiError> {
+    use std::io::Read;
+    let cannot =
+        |e: std::io::Error| ApiError::Invalid(format!("cannot read {}: {e}", path.display()));
+    let meta = std::fs::metadata(path).map_err(cannot)?;
+    if !meta.is_file() {
+        return Err(ApiError::Invalid(format!(
+            "{} is not a regular file (give a CSV file)",
+            path.display()
+        )));
+    }
+    let too_large = |bytes: u64| {
+        ApiError::Invalid(format!(
+            "{} is {:.1} MiB; at most {} MiB is read",
+            path.display(),
+            bytes as f64 / 1048576.0,
+            MAX_CSV_BYTES >> 20
+        ))
     };
-    serde_json::from_value(v).map_err(|e| ApiError::Invalid(format!("--{name}: {e}")))
+    if meta.len() > MAX_CSV_BYTES as u64 {
+        return Err(too_large(meta.len()));
+    }
+    let mut text = String::new();
+    std::fs::File::open(path)
+        .map_err(cannot)?
+        .take(MAX_CSV_BYTES as u64 + 1)
+        .read_to_string(&mut text)
+        .map_err(cannot)?;
+    if text.len() > MAX_CSV_BYTES {
+        return Err(too_large(text.len() as u64));
+    }
+    Ok(text)
 }
 
 fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
-    let trajectory = a
-        .trajectory
-        .as_ref()
-        .map(|path| {
-            std::fs::read_to_string(path)
-                .map_err(|e| ApiError::Invalid(format!("cannot read {}: {e}", path.display())))
-        })
-        .transpose()?;
+    let trajectory = a.trajectory.as_deref().map(read_flight).transpose()?;
     let params = SimParams {
         trajectory,
         trajectory_name: a.trajectory.as_ref().map(|p| p.display().to_string()),
         synthetic: a
             .synthetic
             .as_deref()
-            .map(|s| parse_json_value("synthetic", s))
+            .map(|s| SyntheticChoice::parse(s).map_err(ApiError::Invalid))
             .transpose()?,
         sample: a.sample,
         model: ModelChoice::parse(&a.model).map_err(ApiError::Invalid)?,

@@ -9,6 +9,9 @@ mod commands;
 mod reproduction;
 
 #[cfg(not(target_arch = "wasm32"))]
+use std::io::Write;
+
+#[cfg(not(target_arch = "wasm32"))]
 fn main() -> std::process::ExitCode {
     use clap::Parser;
     use std::process::ExitCode;
@@ -24,23 +27,41 @@ fn main() -> std::process::ExitCode {
 
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
-        Err(e) => {
-            // --help and --version are not errors; clap prints them and exits 0.
-            let code = if e.use_stderr() { 2 } else { 0 };
+        // --help and --version are not errors; clap prints them and exits 0.
+        Err(e) if !e.use_stderr() => {
             let _ = e.print();
-            return ExitCode::from(code);
+            return ExitCode::SUCCESS;
         }
+        Err(e) => return fail(&one_line(&e.render().to_string())),
     };
     match commands::run(cli.command) {
         Ok(text) => {
-            println!("{text}");
-            ExitCode::SUCCESS
+            let mut out = std::io::stdout().lock();
+            match writeln!(out, "{text}").and_then(|()| out.flush()) {
+                Ok(()) => ExitCode::SUCCESS,
+                // A reader that stopped early (`| head`) is not an error.
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+                Err(e) => fail(&format!("cannot write the output: {e}")),
+            }
         }
-        Err(msg) => {
-            eprintln!("error: {msg}");
-            ExitCode::from(2)
-        }
+        Err(msg) => fail(&msg),
     }
+}
+
+/// clap's message in one line: its first line, without its own `error: ` prefix, and a pointer
+/// to --help instead of the usage block.
+#[cfg(not(target_arch = "wasm32"))]
+fn one_line(rendered: &str) -> String {
+    let first = rendered.lines().next().unwrap_or("invalid arguments");
+    let first = first.strip_prefix("error: ").unwrap_or(first);
+    format!("{first} (see --help)")
+}
+
+/// Prints `error: <msg>` on stderr and returns exit status 2.
+#[cfg(not(target_arch = "wasm32"))]
+fn fail(msg: &str) -> std::process::ExitCode {
+    let _ = writeln!(std::io::stderr(), "error: {msg}");
+    std::process::ExitCode::from(2)
 }
 
 /// The CLI is native only; `cargo test --target wasm32-unknown-unknown` builds every binary

@@ -1,0 +1,43 @@
+// Runs every fuzz target (fuzz/fuzz_targets) for a short time with cargo-fuzz on a nightly
+// toolchain, installing both when missing. A crash fails the run (its input is saved under
+// fuzz/artifacts/). Where no nightly toolchain can be installed the run says so and passes: the
+// property tests cover the same ground on stable.
+//   node scripts/fuzz.mjs [seconds per target, default 20]
+import { spawnSync } from 'node:child_process';
+import { readdirSync } from 'node:fs';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = join(dirname(fileURLToPath(import.meta.url)), '..');
+const seconds = Number(process.argv[2] ?? 20);
+const say = (msg) => console.log(`[fuzz] ${msg}`);
+const run = (cmd, args, opts = {}) => spawnSync(cmd, args, { cwd: root, stdio: 'inherit', ...opts }).status === 0;
+const quiet = (cmd, args) => spawnSync(cmd, args, { cwd: root, stdio: 'ignore' }).status === 0;
+
+if (!quiet('cargo', ['+nightly', '--version'])) {
+  say('installing a minimal nightly toolchain (cargo-fuzz needs it)');
+  if (!run('rustup', ['toolchain', 'install', 'nightly', '--profile', 'minimal'])) {
+    say('skipped: no nightly toolchain can be installed here');
+    process.exit(0);
+  }
+}
+if (!quiet('cargo', ['fuzz', '--version'])) {
+  say('installing cargo-fuzz');
+  // The tool's own lock file may pin versions a registry mirror lacks; fall back to resolving anew.
+  if (!run('cargo', ['install', 'cargo-fuzz', '--locked']) && !run('cargo', ['install', 'cargo-fuzz'])) {
+    console.error('[fuzz] error: could not install cargo-fuzz');
+    process.exit(1);
+  }
+}
+const targets = readdirSync(join(root, 'fuzz', 'fuzz_targets'))
+  .filter((f) => f.endsWith('.rs'))
+  .map((f) => f.slice(0, -3))
+  .sort();
+for (const target of targets) {
+  say(`${target}: ${seconds} s`);
+  if (!run('cargo', ['+nightly', 'fuzz', 'run', target, '--', `-max_total_time=${seconds}`, '-rss_limit_mb=4096'])) {
+    console.error(`[fuzz] error: ${target} found a failing input (see fuzz/artifacts/${target}/)`);
+    process.exit(1);
+  }
+}
+say(`${targets.length} targets ran ${seconds} s each without a failure`);

@@ -1,0 +1,400 @@
+//! The robustness contract in one place (issue "Hardening"): every case that once printed NaN,
+//! a silently wrong number, `null` for infinity, panicked, hung or ate memory now gives a finite
+//! answer or a one-line refusal with exit status 2 (the WebAssembly cases are in `tests/wasm.rs`:
+//! a deeply nested argument, a progress that is not a function, null statistics).
+#![cfg(not(target_arch = "wasm32"))]
+
+use std::io::Write;
+use std::process::{Command, Output, Stdio};
+
+fn cli(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_loratrack"))
+        .args(args)
+        .stdin(Stdio::null())
+        .output()
+        .expect("the CLI runs")
+}
+
+/// Exit status 2 and exactly one stderr line `error: ...` containing `expected`.
+fn refused(args: &[&str], expected: &str) {
+    let out = cli(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert_eq!(err.lines().count(), 1, "{args:?}: one line, got {err:?}");
+    assert!(err.starts_with("error: "), "{args:?}: {err}");
+    assert!(
+        err.contains(expected),
+        "{args:?}: {err:?} should contain {expected:?}"
+    );
+    assert!(
+        err.len() < 400,
+        "{args:?}: a short message, got {} bytes",
+        err.len()
+    );
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = cli(args);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("JSON output")
+}
+
+fn temp_file(name: &str, content: &[u8]) -> std::path::PathBuf {
+    let path = std::env::temp_dir().join(format!(
+        "loratrack-robustness-{}-{name}",
+        std::process::id()
+    ));
+    std::fs::File::create(&path)
+        .unwrap()
+        .write_all(content)
+        .unwrap();
+    path
+}
+
+// 1. NaN from valid settings: psi decayed by eta to subnormal values divided 0 by 0.
+#[test]
+fn valid_settings_never_give_nan() {
+    for args in [
+        &[
+            "simulate",
+            "--synthetic",
+            "1",
+            "--model",
+            "3d-ctra",
+            "--sf",
+            "8",
+            "--step",
+            "0.001",
+            "--json",
+        ][..],
+        &[
+            "simulate",
+            "--synthetic",
+            "2",
+            "--model",
+            "all",
+            "--eta",
+            "0.01",
+            "--step",
+            "0.01",
+            "--json",
+        ][..],
+    ] {
+        let r = json(args);
+        for m in r["results"].as_array().unwrap() {
+            for stat in ["mean", "p50", "p75", "p95", "max"] {
+                assert!(
+                    m["error3d"][stat].as_f64().is_some_and(f64::is_finite),
+                    "{args:?} {stat}: {}",
+                    m["error3d"]
+                );
+            }
+        }
+    }
+}
+
+// 2. Exact maths at tiny rates: a straight flight at 10 m/s covers 10 m in 1 s.
+#[test]
+fn subnormal_rates_give_the_straight_line() {
+    for (model, state) in [
+        ("3d-ctra", "0,0,0,0,0,10,0,0,1.5e-323"),
+        ("3d-ctra", "0,0,0,0,0,10,0,0,5e-324"),
+        ("ctra-plus", "0,0,0,0,0,10,0,1.5e-323"),
+    ] {
+        let r = json(&[
+            "predict", "--model", model, "--state", state, "--dt", "1", "--json",
+        ]);
+        assert_eq!(
+            r["state"][0].as_f64(),
+            Some(10.0),
+            "{model} {state}: {}",
+            r["state"]
+        );
+    }
+}
+
+// 4. Unbounded input: only regular files of at most 64 MiB are read.
+#[test]
+fn devices_fifos_and_huge_files_are_refused_at_once() {
+    refused(
+        &["simulate", "--trajectory", "/dev/zero"],
+        "not a regular file",
+    );
+    refused(
+        &["simulate", "--trajectory", "/dev/urandom"],
+        "not a regular file",
+    );
+    let fifo = std::env::temp_dir().join(format!("loratrack-fifo-{}", std::process::id()));
+    if Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success())
+    {
+        refused(
+            &["simulate", "--trajectory", fifo.to_str().unwrap()],
+            "not a regular file",
+        );
+        let _ = std::fs::remove_file(&fifo);
+    }
+    let big = temp_file("big.csv", b"t,x,y,z\n");
+    std::fs::OpenOptions::new()
+        .write(true)
+        .open(&big)
+        .unwrap()
+        .set_len(65 << 20)
+        .unwrap();
+    refused(
+        &["simulate", "--trajectory", big.to_str().unwrap()],
+        "at most 64 MiB",
+    );
+    let _ = std::fs::remove_file(&big);
+}
+
+// 5. Infinities: every output is finite or the input is refused naming the field and its range.
+#[test]
+fn inputs_that_would_give_infinities_are_refused_with_their_range() {
+    refused(
+        &[
+            "airtime",
+            "--sf",
+            "7",
+            "--bw",
+            "125",
+            "--payload",
+            "9",
+            "--duty-cycle",
+            "5e-324",
+        ],
+        "dutyCycle must be a fraction in 0.0001..1",
+    );
+    refused(
+        &[
+            "simulate",
+            "--synthetic",
+            "1",
+            "--path-loss-exponent",
+            "0.01",
+        ],
+        "pathLossExponent must be 1.5..6",
+    );
+    refused(
+        &[
+            "predict",
+            "--model",
+            "dr",
+            "--state",
+            "0,0,0,0,0,1e308",
+            "--dt",
+            "1e308",
+        ],
+        "state component 5 (v) must be -1000..1000 m/s",
+    );
+    refused(
+        &[
+            "predict",
+            "--model",
+            "dr",
+            "--state",
+            "0,0,0,0,0,1",
+            "--dt",
+            "1e308",
+        ],
+        "dt must be 0..86400 s",
+    );
+    let r = json(&[
+        "predict",
+        "--model",
+        "3d-ctra",
+        "--state",
+        "1e7,0,0,0,0,1000,1000,100,100",
+        "--dt",
+        "86400",
+        "--json",
+    ]);
+    assert!(r["state"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|v| v.as_f64().is_some_and(f64::is_finite)));
+}
+
+// 6. The smaller ones.
+#[test]
+fn hex_payloads_take_hex_digits_only_counted_in_characters() {
+    refused(
+        &["decode", "--model", "dr", "--hex", "+03ef00000000000000"],
+        "'+' at position 0",
+    );
+    refused(
+        &["decode", "--model", "dr", "--hex", "00ééé"],
+        "'é' at position 2",
+    );
+}
+
+#[test]
+fn csv_kinematics_are_bounded_and_every_refusal_names_a_line() {
+    let rows: String = (0..20)
+        .map(|i| {
+            format!(
+                "{},{},0,10,1,0,0,1e300,0,0\n",
+                i as f64 * 0.1,
+                i as f64 * 0.1
+            )
+        })
+        .collect();
+    let acc = temp_file(
+        "acc.csv",
+        format!("t,x,y,z,vx,vy,vz,ax,ay,az\n{rows}").as_bytes(),
+    );
+    refused(
+        &["simulate", "--trajectory", acc.to_str().unwrap()],
+        "line 2: an acceleration over 300",
+    );
+    let rows: String = (0..20)
+        .map(|i| format!("{:e},{i},0,10\n", i as f64 * 1e-310))
+        .collect();
+    let tiny = temp_file("tiny.csv", format!("t,x,y,z\n{rows}").as_bytes());
+    refused(
+        &["simulate", "--trajectory", tiny.to_str().unwrap()],
+        "line 3: time step",
+    );
+    // A CR-only file with a bad header is quoted in a short excerpt, not echoed whole...
+    let bad = temp_file(
+        "cr-bad.csv",
+        format!("{}\r", "time;east;north;up".repeat(500))
+            .repeat(50)
+            .as_bytes(),
+    );
+    refused(
+        &["simulate", "--trajectory", bad.to_str().unwrap()],
+        "line 1: no 't' column in the header 'time;east",
+    );
+    // ...and a good one is read line by line.
+    let rows: String = (0..20)
+        .map(|i| format!("{},{i},0,10\r", i as f64 * 0.1))
+        .collect();
+    let cr = temp_file("cr.csv", format!("t,x,y,z\r{rows}").as_bytes());
+    let r = json(&[
+        "simulate",
+        "--trajectory",
+        cr.to_str().unwrap(),
+        "--model",
+        "dr",
+        "--json",
+    ]);
+    assert_eq!(r["config"]["flightTime"].as_f64(), Some(1.9));
+    for f in [acc, tiny, bad, cr] {
+        let _ = std::fs::remove_file(f);
+    }
+}
+
+#[test]
+fn a_closed_stdout_is_a_normal_exit_and_a_full_disk_an_error() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_loratrack"))
+        .args(["sweep", "--paper"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take()); // the reader goes away, as `| head -c 0` would
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    if let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") {
+        let out = Command::new(env!("CARGO_BIN_EXE_loratrack"))
+            .args(["airtime", "--sf", "7", "--bw", "125", "--payload", "9"])
+            .stdout(full)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2));
+        assert!(String::from_utf8_lossy(&out.stderr).starts_with("error: cannot write the output"));
+    }
+}
+
+#[test]
+fn argument_errors_are_one_line() {
+    refused(&["simulate", "--foo"], "unexpected argument '--foo'");
+    refused(&["simulate", "--sf"], "--sf");
+    refused(
+        &["simulate", "--synthetic", "nan"],
+        "synthetic must be 'all' or a flight number 1..30",
+    );
+    refused(
+        &["simulate", "--synthetic", "1", "--seed", "9007199254740992"],
+        "seed must be 0..9007199254740991",
+    );
+}
+
+#[test]
+fn empty_statistics_are_null() {
+    let r = json(&[
+        "simulate",
+        "--synthetic",
+        "3",
+        "--model",
+        "dr",
+        "--distance",
+        "100000",
+        "--json",
+    ]);
+    let e = &r["results"][0]["error3d"];
+    assert_eq!(e["count"], 0);
+    assert!(e["mean"].is_null() && e["p75"].is_null());
+}
+
+// 7. Run length: the work (flight time × filter rates) is bounded with a clear refusal.
+#[test]
+fn runs_beyond_the_work_limit_are_refused_quickly() {
+    let rows: String = (0..10)
+        .map(|i| format!("{},{},0,10\n", i as f64 * 9600.0, i))
+        .collect();
+    let long = temp_file("long.csv", format!("t,x,y,z\n{rows}").as_bytes());
+    let started = std::time::Instant::now();
+    refused(
+        &["simulate", "--trajectory", long.to_str().unwrap()],
+        "the run is too long",
+    );
+    refused(
+        &[
+            "simulate",
+            "--trajectory",
+            long.to_str().unwrap(),
+            "--sensor-rate",
+            "1000",
+            "--step",
+            "0.001",
+        ],
+        "the limit is 1000000",
+    );
+    assert!(
+        started.elapsed().as_secs_f64() < 5.0,
+        "refused in {:?}",
+        started.elapsed()
+    );
+    let _ = std::fs::remove_file(long);
+    // The page's most demanding setting stays allowed.
+    let r = json(&[
+        "simulate",
+        "--synthetic",
+        "all",
+        "--model",
+        "dr",
+        "--sensor-rate",
+        "100",
+        "--step",
+        "0.01",
+        "--sf",
+        "12",
+        "--json",
+    ]);
+    assert!(r["results"][0]["error3d"]["count"].as_u64().unwrap() > 0);
+}
