@@ -90,5 +90,21 @@ fn simulation(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, airtime, propagation, filters, simulation);
+fn swarms(c: &mut Criterion) {
+    let mut g = c.benchmark_group("swarm");
+    g.sample_size(10);
+    for drones in [72, 300] {
+        let p = loratrack::SwarmParams {
+            drones,
+            duration: 600.0,
+            ..loratrack::SwarmParams::default()
+        };
+        g.bench_function(format!("{drones}_drones_600_s_every_core"), |b| {
+            b.iter(|| loratrack::api::swarm(black_box(&p)).unwrap())
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, airtime, propagation, filters, simulation, swarms);
 criterion_main!(benches);

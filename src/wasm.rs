@@ -73,26 +73,10 @@ pub fn decode(params: JsValue) -> Result<JsValue, JsError> {
 /// this module).
 #[wasm_bindgen]
 pub fn simulate(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> {
-    use wasm_bindgen::JsCast;
-    let progress: Option<js_sys::Function> = if progress.is_undefined() || progress.is_null() {
-        None
-    } else {
-        Some(progress.dyn_into().map_err(|_| {
-            JsError::new("progress must be a function (done, total) => void, or left out")
-        })?)
-    };
+    let progress = progress_function(progress)?;
     call(params, |p: crate::sim::SimParams| {
         SIMULATOR.with(|s| {
-            let mut report = |done: usize, total: usize| {
-                if let Some(f) = &progress {
-                    // A throwing callback must not abort the simulation; its error is dropped.
-                    let _ = f.call2(
-                        &JsValue::NULL,
-                        &JsValue::from(done as u32),
-                        &JsValue::from(total as u32),
-                    );
-                }
-            };
+            let mut report = reporter(&progress);
             // A progress callback that calls simulate again would find the simulator busy: refuse
             // that call with an error rather than trap.
             let mut sim = s.try_borrow_mut().map_err(|_| {
@@ -101,6 +85,43 @@ pub fn simulate(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> 
             api::simulate_with_progress(&mut sim, &p, &mut report)
         })
     })
+}
+
+/// `swarm({drones?, duration?, distance?, channels?, sfPlan?, sf?, bw?, model?, …}, progress?)`
+/// → `{config, collisionRate, collisionRateTheory, deliveryRatio, …, drones}` (the CLI's
+/// `swarm --json`). `progress(done, total)` is called as drones complete.
+#[wasm_bindgen]
+pub fn swarm(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> {
+    let progress = progress_function(progress)?;
+    call(params, |p: crate::sim::SwarmParams| {
+        api::swarm_with_progress(&p, &mut reporter(&progress))
+    })
+}
+
+/// A progress argument: a function, or undefined/null for none; anything else is refused.
+fn progress_function(progress: JsValue) -> Result<Option<js_sys::Function>, JsError> {
+    use wasm_bindgen::JsCast;
+    if progress.is_undefined() || progress.is_null() {
+        return Ok(None);
+    }
+    progress
+        .dyn_into()
+        .map(Some)
+        .map_err(|_| JsError::new("progress must be a function (done, total) => void, or left out"))
+}
+
+/// Calls `progress(done, total)`; a throwing callback must not abort the run, so its error is
+/// dropped.
+fn reporter(progress: &Option<js_sys::Function>) -> impl FnMut(usize, usize) + '_ {
+    move |done, total| {
+        if let Some(f) = progress {
+            let _ = f.call2(
+                &JsValue::NULL,
+                &JsValue::from(done as u32),
+                &JsValue::from(total as u32),
+            );
+        }
+    }
 }
 
 /// Benchmark support for `npm run bench` (not part of the SPEC §9 API): times `steps` UKF

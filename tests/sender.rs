@@ -57,6 +57,7 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
         time_on_air: toa,
         interval: setup.interval,
         distance: 1000.0,
+        bearing: 0.0,
     };
     let mut checked = 0;
     for flight_no in [2, 9, 17, 25] {

@@ -332,3 +332,34 @@ fn a_seed_javascript_cannot_hold_is_refused_up_front() {
     .unwrap_err();
     assert!(error_message(e).contains("seed must be"));
 }
+
+#[wasm_bindgen_test]
+fn swarm_runs_across_the_boundary_with_progress() {
+    let calls = std::rc::Rc::new(std::cell::Cell::new(0u32));
+    let seen = calls.clone();
+    let f = wasm_bindgen::closure::Closure::<dyn FnMut(u32, u32)>::new(
+        move |_done: u32, _total: u32| {
+            seen.set(seen.get() + 1);
+        },
+    );
+    let r = wasm::swarm(
+        obj(&[
+            ("drones", 4.into()),
+            ("duration", 30.into()),
+            ("channels", 1.into()),
+            ("sfPlan", "fixed".into()),
+        ]),
+        f.as_ref().clone(),
+    )
+    .unwrap();
+    assert!(
+        calls.get() >= 2,
+        "progress was called {} times",
+        calls.get()
+    );
+    assert_eq!(js_sys::Array::from(&get(&r, "drones")).length(), 4);
+    assert!((0.0..=1.0).contains(&num(&r, "collisionRate")));
+    assert!(num(&r, "packetsSent") > 0.0);
+    let e = wasm::swarm(obj(&[("drones", 501.into())]), JsValue::UNDEFINED).unwrap_err();
+    assert!(error_message(e).contains("drones must be 1..500"));
+}

@@ -222,3 +222,59 @@ export function decode(params: DecodeParams): StateReport {
 export function simulate(params: SimulateParams, onProgress?: (done: number, total: number) => void): SimReport {
   return wasm.simulate(params, onProgress) as SimReport;
 }
+
+/** Input of swarm (`loratrack swarm`): N drones around one gateway. */
+export interface SwarmParams {
+  drones?: number;
+  duration?: number;
+  distance?: number;
+  channels?: 1 | 3;
+  sfPlan?: 'spread' | 'fixed';
+  sf?: number;
+  bw?: number;
+  model?: ModelName;
+  prediction?: Prediction;
+  sender?: 'periodic' | 'error';
+  threshold?: number;
+  maxInterval?: number;
+  dutyCycleMode?: 'per-packet' | 'budget';
+  burst?: number;
+  capture?: boolean;
+  interSf?: boolean;
+  shadowing?: number;
+  overhead?: number;
+  seed?: number;
+}
+
+export interface SwarmDrone {
+  id: number;
+  sf: number;
+  bearingDeg: number;
+  channelUse: number[];
+  packetsSent: number;
+  packetsReceived: number;
+  packetsCollided: number;
+  error3d: Summary;
+}
+
+/** Output of swarm: collisions at the gateway beside the ALOHA formula, and every drone's error. */
+export interface SwarmReport {
+  config: Required<Omit<SwarmParams, 'bw'>> & { bandwidthKhz: number; dutyCycle: number };
+  collisionRate: number;
+  collisionRateTheory: number;
+  deliveryRatio: number;
+  packetsSent: number;
+  packetsReceived: number;
+  packetsCollided: number;
+  packetsBelowSensitivity: number;
+  packetsNoDemodulator: number;
+  airtime: number;
+  error3d: Summary;
+  medianDroneP75: number | null;
+  drones: SwarmDrone[];
+}
+
+/** Simulates a swarm sharing one gateway. `onProgress(done, total)` as drones complete. */
+export function swarm(params: SwarmParams, onProgress?: (done: number, total: number) => void): SwarmReport {
+  return wasm.swarm(params, onProgress) as SwarmReport;
+}

@@ -11,6 +11,7 @@ mod payload;
 mod predict;
 mod senders;
 mod simulate;
+mod swarm;
 
 pub use airtime::{airtime, AirtimeParams, AirtimeReport};
 pub use error::ApiError;
@@ -21,3 +22,4 @@ pub use simulate::{
     p75, simulate, simulate_with_progress, sweep_paper, SweepReport, SweepRun, PAPER_DISTANCES,
     PAPER_SFS,
 };
+pub use swarm::{swarm, swarm_with_progress};

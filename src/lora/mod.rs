@@ -8,6 +8,8 @@ mod airtime;
 mod channel;
 mod duty_cycle;
 mod error;
+mod gateway;
+mod interference;
 mod shadowing;
 
 pub use airtime::{
@@ -20,4 +22,8 @@ pub use duty_cycle::{
     TTN_FAIR_USE_SECONDS_PER_DAY,
 };
 pub use error::LoraError;
+pub use gateway::{Gateway, Outcome, Uplink, SX1301_DEMODULATORS};
+pub use interference::{
+    sum_dbm, survives, InterferenceModel, CAPTURE_THRESHOLD_DB, INTER_SF_SIR_DB,
+};
 pub use shadowing::Shadowing;

@@ -39,8 +39,11 @@ pub struct LinkSetup {
     /// Interval between packets under the per-packet duty-cycle rule, s (the window of the
     /// first packet's random offset).
     pub interval: f64,
-    /// Horizontal distance from the flight's first point to the gateway (along +x), m.
+    /// Horizontal distance from the flight's first point to the gateway, m.
     pub distance: f64,
+    /// Direction from the flight's first point to the gateway, rad counter-clockwise from +x
+    /// (`simulate`: 0; a swarm spreads its drones around the gateway).
+    pub bearing: f64,
 }
 
 /// Runs the drone's transmissions over the flight: at each sensor step the duty-cycle `rule`
@@ -61,9 +64,10 @@ pub fn schedule_transmissions(
     rng: &mut Rng,
 ) -> Vec<Transmission> {
     let origin = flight.pos[0];
+    let (sb, cb) = crate::math::sin_cos(link.bearing);
     let gateway = [
-        origin[0] + link.distance,
-        origin[1],
+        origin[0] + link.distance * cb,
+        origin[1] + link.distance * sb,
         link.channel.params().gateway_height,
     ];
     let params = link.channel.params();

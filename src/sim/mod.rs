@@ -15,6 +15,7 @@ mod report;
 pub mod sender;
 mod simulator;
 pub mod station;
+pub mod swarm;
 
 pub use config::{
     ModelChoice, SimConfig, SimParams, SyntheticChoice, TrajectorySource, DEFAULT_BURST,
@@ -24,9 +25,12 @@ pub use drone::{run_drone, DroneTrack};
 pub use error::SimError;
 pub use link::{schedule_transmissions, LinkSetup, Transmission};
 pub use report::{ModelResult, ModelSeries, RunConfig, Series, SimReport};
-pub use sender::{ErrorTriggered, Periodic, Sender, SenderKind};
+pub use sender::{new_sender, ErrorTriggered, Periodic, Sender, SenderKind};
 pub use simulator::{Simulator, MAX_FILTER_STEPS};
 pub use station::{
     new_tracker, track_station, Bounds, Imm, Prediction, StationModel, StationPredictor,
     StationSetup, StationTrack, Tracker,
+};
+pub use swarm::{
+    aloha_collision_rate, run_swarm, DroneReport, SfPlan, SwarmConfig, SwarmParams, SwarmReport,
 };

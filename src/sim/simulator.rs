@@ -5,8 +5,7 @@ use super::drone::{run_drone, DroneTrack};
 use super::link::{schedule_transmissions, LinkSetup};
 use super::pooled::{model_series, Pooled, MAX_SERIES_POINTS};
 use super::report::{RunConfig, Series, SimReport};
-use super::sender::{ErrorTriggered, Periodic, Sender, SenderKind};
-use super::station::StationModel;
+use super::sender::{new_sender, SenderKind};
 use super::station::{new_tracker, track_station, Bounds, StationSetup};
 use super::SimError;
 use crate::lora::{min_interval, time_on_air, Channel, DutyCycle};
@@ -50,19 +49,6 @@ fn fnv1a(text: &str) -> u64 {
     text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
         (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
     })
-}
-
-/// The drone's sender for one flight; an error-triggered one mirrors a fresh station of the kind
-/// the ground runs.
-fn new_sender(cfg: &SimConfig, model: StationModel, setup: StationSetup) -> Box<dyn Sender> {
-    match cfg.sender {
-        SenderKind::Periodic => Box::new(Periodic),
-        SenderKind::Error => Box::new(ErrorTriggered::new(
-            new_tracker(model, setup),
-            cfg.threshold,
-            cfg.max_interval,
-        )),
-    }
 }
 
 /// Runs simulations, keeping parsed flights and drone-side filter runs for reuse: a second
@@ -196,6 +182,7 @@ impl Simulator {
                 time_on_air: toa,
                 interval,
                 distance: cfg.distance,
+                bearing: 0.0,
             };
             if cfg.sender == SenderKind::Error && cfg.max_interval < interval {
                 return Err(SimError::Parameter(
@@ -233,7 +220,8 @@ impl Simulator {
                     cfg.burst,
                     flight.t[0],
                 )?;
-                let mut sender = new_sender(cfg, model, setup);
+                let mut sender =
+                    new_sender(cfg.sender, cfg.threshold, cfg.max_interval, model, setup);
                 let tx = schedule_transmissions(
                     flight,
                     drone,

@@ -1,6 +1,7 @@
 //! Ground-truth flights: the synthetic Mid-Air-like set, CSV import and the bundled real flight
 //! (SPEC §7).
 
+mod chain;
 mod csv;
 mod error;
 mod kinematics;
@@ -8,6 +9,7 @@ mod sample;
 mod synthetic;
 mod track;
 
+pub use chain::chain_flights;
 pub use csv::{parse_csv, MAX_CSV_BYTES, MAX_ROWS, MIN_ROWS, MIN_TIME_STEP};
 pub use error::TrajectoryError;
 pub use kinematics::{kinematic_states, HOVER_SPEED};

@@ -3,8 +3,8 @@
 use clap::{Args, Subcommand};
 use loratrack::api::{self, ApiError};
 use loratrack::{
-    DutyCycleMode, LdroMode, ModelChoice, ModelKind, ModelResult, Prediction, SenderKind,
-    SimParams, Simulator, SyntheticChoice, MAX_CSV_BYTES,
+    DutyCycleMode, LdroMode, ModelChoice, ModelKind, ModelResult, Prediction, SenderKind, SfPlan,
+    SimParams, Simulator, SwarmParams, SyntheticChoice, MAX_CSV_BYTES,
 };
 use serde::Serialize;
 
@@ -22,6 +22,70 @@ pub enum Command {
     Simulate(Box<SimulateArgs>),
     /// The paper's grid: SF 7/8, 250 kHz, d = 1/2/3 km, all models, whole synthetic set.
     Sweep(SweepArgs),
+    /// Many drones, one gateway: collisions (capture, inter-SF, 8 demodulators) and every drone's tracking error.
+    Swarm(Box<SwarmArgs>),
+}
+
+#[derive(Args)]
+pub struct SwarmArgs {
+    /// Number of drones, 1..500, each flying synthetic flights back to back from a random start at --distance from the gateway, in a random direction.
+    #[arg(long, default_value_t = 12)]
+    drones: usize,
+    /// Seconds of flight per drone, 10..3600.
+    #[arg(long, default_value_t = 600.0)]
+    duration: f64,
+    /// Horizontal distance of every drone's starting point from the gateway, metres (0..100000).
+    #[arg(long, default_value_t = 1000.0, allow_negative_numbers = true)]
+    distance: f64,
+    /// 1 (one channel) or 3 (EU868 868.1/868.3/868.5 MHz, a random one per packet; the 1 % duty cycle covers all three).
+    #[arg(long, default_value_t = 3)]
+    channels: u8,
+    /// Spreading factors: spread (SF7..SF12 in turn, a sixth of the swarm each) or fixed (everyone at --sf).
+    #[arg(long, value_enum, default_value = "spread")]
+    sf_plan: SfPlanArg,
+    /// Spreading factor of the fixed plan, 7..12.
+    #[arg(long, default_value_t = 7, allow_negative_numbers = true)]
+    sf: i64,
+    /// Bandwidth in kHz: 125, 250 or 500.
+    #[arg(long, default_value_t = 125.0)]
+    bw: f64,
+    /// Station model: dr, ctra-plus, 3d-ctra or imm.
+    #[arg(long, default_value = "3d-ctra")]
+    model: String,
+    /// Station prediction between packets: paper or bounded.
+    #[arg(long, value_enum, default_value = "paper")]
+    prediction: PredictionArg,
+    #[command(flatten)]
+    sending: SendingArgs,
+    /// Same-SF capture: the stronger packet survives 6 dB above the others (off: every overlap is fatal).
+    #[arg(long, value_enum, default_value = "on")]
+    capture: OnOff,
+    /// Inter-SF interference by the rejection matrix of ns-3's lorawan module (off: SFs are orthogonal).
+    #[arg(long, value_enum, default_value = "on")]
+    inter_sf: OnOff,
+    /// Log-normal shadowing standard deviation in dB (0..20; 0 turns it off).
+    #[arg(long, default_value_t = 4.0, allow_negative_numbers = true)]
+    shadowing: f64,
+    /// MAC overhead in bytes: 13 for LoRaWAN, 0 as in the paper's Table II.
+    #[arg(long, default_value_t = 13)]
+    overhead: usize,
+    /// Seed of all random draws (layout, sensor noise, channels, shadowing), 0..2^53-1.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    #[command(flatten)]
+    out: Output,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum SfPlanArg {
+    Spread,
+    Fixed,
+}
+
+#[derive(Clone, Copy, PartialEq, clap::ValueEnum)]
+enum OnOff {
+    On,
+    Off,
 }
 
 #[derive(Args)]
@@ -118,6 +182,22 @@ pub struct SendingArgs {
     burst: u32,
 }
 
+impl SendingArgs {
+    fn sender(&self) -> SenderKind {
+        match self.sender {
+            SenderArg::Periodic => SenderKind::Periodic,
+            SenderArg::Error => SenderKind::Error,
+        }
+    }
+
+    fn duty_cycle_mode(&self) -> DutyCycleMode {
+        match self.duty_cycle_mode {
+            DutyCycleModeArg::PerPacket => DutyCycleMode::PerPacket,
+            DutyCycleModeArg::Budget => DutyCycleMode::Budget,
+        }
+    }
+}
+
 #[derive(Clone, Copy, clap::ValueEnum)]
 enum SenderArg {
     Periodic,
@@ -136,6 +216,9 @@ pub struct SweepKind {
     /// The paper's grid: SF 7/8, 250 kHz, d = 1/2/3 km, whole synthetic set, no LoRaWAN overhead.
     #[arg(long)]
     paper: bool,
+    /// Swarms of 1..500 drones: collision rate (beside the ALOHA formula) and median per-drone p75 for 1 and 3 channels, SF7 for all and spread SFs, periodic and error-triggered sending (300 s per drone, 3D-CTRA, --prediction).
+    #[arg(long)]
+    swarm: bool,
     /// The airtime / error trade-off of error-triggered sending (thresholds 0.5..10 m, per-packet and budget rules) against periodic sending, on the whole synthetic set at --sf/--bw/--distance, no LoRaWAN overhead, first model of --model.
     #[arg(long)]
     senders: bool,
@@ -343,6 +426,7 @@ pub fn run(cmd: Command) -> Result<String, String> {
         Command::Decode(a) => decode(a),
         Command::Simulate(a) => simulate(*a),
         Command::Sweep(a) => sweep(a),
+        Command::Swarm(a) => swarm(*a),
     }
     .map_err(|e| e.to_string())
 }
@@ -475,16 +559,10 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
         sample: a.sample,
         model: ModelChoice::parse(&a.model).map_err(ApiError::Invalid)?,
         prediction: a.prediction.into(),
-        sender: match a.sending.sender {
-            SenderArg::Periodic => SenderKind::Periodic,
-            SenderArg::Error => SenderKind::Error,
-        },
+        sender: a.sending.sender(),
         threshold: a.sending.threshold,
         max_interval: a.sending.max_interval,
-        duty_cycle_mode: match a.sending.duty_cycle_mode {
-            DutyCycleModeArg::PerPacket => DutyCycleMode::PerPacket,
-            DutyCycleModeArg::Budget => DutyCycleMode::Budget,
-        },
+        duty_cycle_mode: a.sending.duty_cycle_mode(),
         burst: a.sending.burst,
         sf: a.sf,
         bw: a.bw,
@@ -555,6 +633,9 @@ fn sweep(a: SweepArgs) -> Result<String, ApiError> {
     if a.kind.senders {
         return sweep_senders(&a, model, predictions[0]);
     }
+    if a.kind.swarm {
+        return sweep_swarm(&a, predictions[0]);
+    }
     let r = api::sweep_paper(&mut Simulator::new(), a.seed, &predictions, &model)?;
     if a.out.json {
         return Ok(json(&r));
@@ -602,4 +683,98 @@ fn sweep_senders(
         return Ok(crate::reproduction::senders_markdown(&r, &base));
     }
     Ok(crate::reproduction::senders_table(&r))
+}
+
+fn swarm(a: SwarmArgs) -> Result<String, ApiError> {
+    let params = SwarmParams {
+        drones: a.drones,
+        duration: a.duration,
+        distance: a.distance,
+        channels: a.channels,
+        sf_plan: match a.sf_plan {
+            SfPlanArg::Spread => SfPlan::Spread,
+            SfPlanArg::Fixed => SfPlan::Fixed,
+        },
+        sf: a.sf,
+        bw: a.bw,
+        model: a.model.clone(),
+        prediction: a.prediction.into(),
+        sender: a.sending.sender(),
+        threshold: a.sending.threshold,
+        max_interval: a.sending.max_interval,
+        duty_cycle_mode: a.sending.duty_cycle_mode(),
+        burst: a.sending.burst,
+        capture: a.capture == OnOff::On,
+        inter_sf: a.inter_sf == OnOff::On,
+        shadowing: a.shadowing,
+        overhead: a.overhead,
+        seed: a.seed,
+    };
+    let r = api::swarm(&params)?;
+    if a.out.json {
+        return Ok(json(&r));
+    }
+    let silent = r.drones.iter().filter(|d| d.error3d.count == 0).count();
+    Ok(format!(
+        "{} drones x {:.0} s at {} m, {} channel{}, {:?} SFs, capture {}, inter-SF {}, seed {}\n\
+         packets sent        {}\n\
+         collision rate      {:.4}  (ALOHA theory for periodic senders: {:.4})\n\
+         delivery ratio      {:.4}\n\
+         below sensitivity   {}\n\
+         no demodulator      {}\n\
+         3D error (pooled)   mean {:.2}  p75 {:.2}  p95 {:.2} m; median drone p75 {:.2} m\n\
+         drones that received nothing: {}",
+        r.config.drones,
+        r.config.duration,
+        r.config.distance,
+        r.config.channels,
+        if r.config.channels == 1 { "" } else { "s" },
+        r.config.sf_plan,
+        if r.config.capture { "on" } else { "off" },
+        if r.config.inter_sf { "on" } else { "off" },
+        r.config.seed,
+        r.packets_sent,
+        r.collision_rate,
+        r.collision_rate_theory,
+        r.delivery_ratio,
+        r.packets_below_sensitivity,
+        r.packets_no_demodulator,
+        r.error3d.mean,
+        r.error3d.p75,
+        r.error3d.p95,
+        r.median_drone_p75,
+        silent
+    ))
+}
+
+/// Drone counts of `sweep --swarm`.
+const SWARM_SIZES: [usize; 7] = [1, 12, 36, 72, 150, 300, 500];
+
+fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError> {
+    let mut rows = Vec::new();
+    for channels in [1u8, 3] {
+        for plan in [SfPlan::Fixed, SfPlan::Spread] {
+            for sender in [SenderKind::Periodic, SenderKind::Error] {
+                for drones in SWARM_SIZES {
+                    let p = SwarmParams {
+                        drones,
+                        channels,
+                        sf_plan: plan,
+                        sf: 7,
+                        sender,
+                        prediction,
+                        duration: 300.0,
+                        distance: a.distance,
+                        seed: a.seed,
+                        ..SwarmParams::default()
+                    };
+                    rows.push(api::swarm(&p)?);
+                }
+            }
+        }
+    }
+    if a.out.json {
+        return Ok(json(&rows));
+    }
+    Ok(crate::reproduction::swarm_markdown(&rows, a.markdown))
 }

@@ -8,6 +8,7 @@ mod periodic;
 pub use error_triggered::ErrorTriggered;
 pub use periodic::Periodic;
 
+use super::station::{new_tracker, StationModel, StationSetup};
 use serde::{Deserialize, Serialize};
 
 /// The sending policy (`--sender`).
@@ -39,4 +40,23 @@ pub trait Sender {
     /// Tells the sender that the packet carrying `state` (decoded, as the station will see it;
     /// 9 components, the unused ones 0) left at `t` (s).
     fn sent(&mut self, state: &[f64; 9], t: f64);
+}
+
+/// A drone's sender for one flight; an error-triggered one mirrors a fresh station of the kind
+/// the ground runs (`model`, `setup`), with `threshold` m and `max_interval` s.
+pub fn new_sender(
+    kind: SenderKind,
+    threshold: f64,
+    max_interval: f64,
+    model: StationModel,
+    setup: StationSetup,
+) -> Box<dyn Sender> {
+    match kind {
+        SenderKind::Periodic => Box::new(Periodic),
+        SenderKind::Error => Box::new(ErrorTriggered::new(
+            new_tracker(model, setup),
+            threshold,
+            max_interval,
+        )),
+    }
 }
