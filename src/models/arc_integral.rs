@@ -32,9 +32,12 @@ pub fn arc_integral(alpha: f64, k: f64, v0: f64, a: f64, t: f64) -> (f64, f64) {
     arc_integral_from(sa, ca, k, v0, a, t)
 }
 
-/// Below this |u| the sincs are summed as 1 − u²/6 (and 1 − u²/24): the next term, u⁴/120, is
-/// under 1e-18 there, so the series is exact to double precision.
-const SINC_SERIES_BELOW: f64 = 1e-4;
+/// Below this |u| the sincs are taken as their series 1 − u²/6 (and 1 − u²/24), which is exactly
+/// 1 there. Above it, down to the smallest normal numbers, sin(u)/u by division is exact too
+/// (sin u rounds to u), and keeping the division there leaves every result above it unchanged
+/// bit for bit; below it, u/2 is subnormal and loses bits, and the division gave 0.67 for a
+/// 1.5e-323 rad/s turn, or 0/0 once it underflowed.
+const SINC_SERIES_BELOW: f64 = 1e-200;
 
 /// [`arc_integral`] with sin α and cos α given: the models build them for θ ± φ from the sines
 /// and cosines of θ and φ, which saves the trigonometric calls that dominate a UKF prediction.
@@ -44,8 +47,6 @@ pub(crate) fn arc_integral_from(sa: f64, ca: f64, k: f64, v0: f64, a: f64, t: f6
     let (s_half, c_half) = sin_cos(0.5 * u);
     let sin_u = 2.0 * s_half * c_half;
     let (sinc_u, sinc_half) = if u.abs() < SINC_SERIES_BELOW {
-        // Dividing here would lose every digit for subnormal u (0.5 u rounds, or underflows to
-        // 0 and gives 0/0); two Taylor terms are exact to double precision below the switch.
         let u2 = u * u;
         (1.0 - u2 / 6.0, 1.0 - u2 / 24.0)
     } else {
@@ -110,10 +111,9 @@ mod tests {
 
     #[test]
     fn continuous_across_the_sinc_series_switch() {
-        let below = arc_integral(0.3, 0.999_999_999_9e-4, 7.0, 2.0, 1.0);
-        let above = arc_integral(0.3, 1.000_000_000_1e-4, 7.0, 2.0, 1.0);
-        assert!((below.0 - above.0).abs() < 1e-12);
-        assert!((below.1 - above.1).abs() < 1e-12);
+        let below = arc_integral(0.3, 0.999_999_999_9e-200, 7.0, 2.0, 1.0);
+        let above = arc_integral(0.3, 1.000_000_000_1e-200, 7.0, 2.0, 1.0);
+        assert_eq!(below, above);
     }
 
     #[test]

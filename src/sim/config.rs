@@ -1,27 +1,19 @@
 //! Simulation options: the `simulate` parameters of SPEC §8–9 and their validation.
 
-use super::sender::SenderKind;
+use super::sender::{
+    SenderKind, Sending, DEFAULT_BURST, DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M,
+};
 use super::station::{Prediction, StationModel};
 use super::SimError;
 use crate::filter::{PAPER_Q, PAPER_R_DIAGONAL};
 use crate::lora::{
-    Channel, ChannelParams, DutyCycleMode, LoraParams, LORAWAN_OVERHEAD_BYTES, MAX_BURST,
-    MIN_DUTY_CYCLE,
+    Channel, ChannelParams, DutyCycleMode, LoraParams, LORAWAN_OVERHEAD_BYTES, MIN_DUTY_CYCLE,
 };
 use serde::{Deserialize, Serialize};
 
 /// The largest seed: 2^53 − 1, so that a seed round-trips through a JavaScript number (and the
 /// page's URL) unchanged.
 pub const MAX_SEED: u64 = (1 << 53) - 1;
-
-/// Default error-triggered threshold, m: about twice the on-time p75 of the paper's station at
-/// SF7 / 1 km, so packets go when the station is clearly off, not on every wobble.
-pub const DEFAULT_THRESHOLD_M: f64 = 2.0;
-/// Default heartbeat, s: a lost packet is repaired within 10 s, at 1/5 of the periodic airtime
-/// at SF7 / 250 kHz.
-pub const DEFAULT_MAX_INTERVAL_S: f64 = 10.0;
-/// Default budget capacity, packets (issue: "holds at most K packets' airtime (default 10)").
-pub const DEFAULT_BURST: u32 = 10;
 
 /// `--synthetic all` or `--synthetic N` (1..=30).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
@@ -277,16 +269,8 @@ pub struct SimConfig {
     pub models: Vec<StationModel>,
     /// Paper or bounded prediction.
     pub prediction: Prediction,
-    /// The sending policy.
-    pub sender: SenderKind,
-    /// Error-triggered threshold, m.
-    pub threshold: f64,
-    /// Error-triggered heartbeat, s.
-    pub max_interval: f64,
-    /// The duty-cycle rule.
-    pub duty_cycle_mode: DutyCycleMode,
-    /// Budget capacity, packets.
-    pub burst: u32,
+    /// When the drone sends, under which duty-cycle rule.
+    pub sending: Sending,
     /// Radio settings.
     pub radio: LoraParams,
     /// Link budget.
@@ -322,6 +306,17 @@ fn check(name: &'static str, v: f64, ok: bool, allowed: &'static str) -> Result<
 }
 
 impl SimParams {
+    /// The sending settings.
+    pub fn sending(&self) -> Sending {
+        Sending {
+            sender: self.sender,
+            threshold: self.threshold,
+            max_interval: self.max_interval,
+            duty_cycle_mode: self.duty_cycle_mode,
+            burst: self.burst,
+        }
+    }
+
     /// Validates every option.
     pub fn validate(&self) -> Result<SimConfig, SimError> {
         let chosen = [
@@ -386,27 +381,10 @@ impl SimParams {
             "in [0, 1]",
         )?;
         check("q", self.q, self.q > 0.0 && self.q <= 1e3, "in (0, 1000]")?;
+        let sending = self.sending();
+        sending.validate()?;
         if self.seed > MAX_SEED {
             return Err(SimError::Seed(self.seed));
-        }
-        check(
-            "threshold",
-            self.threshold,
-            (0.0..=10_000.0).contains(&self.threshold),
-            "0..10000 m",
-        )?;
-        check(
-            "maxInterval",
-            self.max_interval,
-            self.max_interval > 0.0 && self.max_interval <= 3600.0,
-            "in (0, 3600] s",
-        )?;
-        if !(1..=MAX_BURST).contains(&self.burst) {
-            return Err(SimError::Parameter(
-                "burst",
-                f64::from(self.burst),
-                "1..3600 packets",
-            ));
         }
         if self.overhead > 255 {
             return Err(SimError::Parameter(
@@ -419,11 +397,7 @@ impl SimParams {
             source,
             models: self.model.models().to_vec(),
             prediction: self.prediction,
-            sender: self.sender,
-            threshold: self.threshold,
-            max_interval: self.max_interval,
-            duty_cycle_mode: self.duty_cycle_mode,
-            burst: self.burst,
+            sending,
             radio,
             channel,
             overhead: self.overhead,

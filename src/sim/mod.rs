@@ -17,15 +17,15 @@ mod simulator;
 pub mod station;
 pub mod swarm;
 
-pub use config::{
-    ModelChoice, SimConfig, SimParams, SyntheticChoice, TrajectorySource, DEFAULT_BURST,
-    DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M, MAX_SEED,
-};
+pub use config::{ModelChoice, SimConfig, SimParams, SyntheticChoice, TrajectorySource, MAX_SEED};
 pub use drone::{run_drone, DroneTrack};
 pub use error::SimError;
 pub use link::{schedule_transmissions, LinkSetup, Transmission};
 pub use report::{ModelResult, ModelSeries, RunConfig, Series, SimReport};
-pub use sender::{new_sender, ErrorTriggered, Periodic, Sender, SenderKind};
+pub use sender::{
+    new_sender, ErrorTriggered, Periodic, Sender, SenderKind, Sending, DEFAULT_BURST,
+    DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M,
+};
 pub use simulator::{Simulator, MAX_FILTER_STEPS};
 pub use station::{
     new_tracker, track_station, Bounds, Imm, Prediction, StationModel, StationPredictor,

@@ -1,8 +1,7 @@
 //! The JSON shapes of `simulate` and `sweep` (SPEC §8): a contract, changed only additively.
 
-use super::sender::SenderKind;
+use super::sender::Sending;
 use super::station::{Prediction, StationModel};
-use crate::lora::DutyCycleMode;
 use crate::metrics::{Boxplot, Summary};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -21,16 +20,10 @@ pub struct RunConfig {
     pub models: Vec<StationModel>,
     /// The station's prediction between packets: `paper` or `bounded`.
     pub prediction: Prediction,
-    /// The sending policy: `periodic` or `error`.
-    pub sender: SenderKind,
-    /// Error-triggered threshold, m.
-    pub threshold: f64,
-    /// Error-triggered heartbeat, s.
-    pub max_interval: f64,
-    /// The duty-cycle rule: `per-packet` or `budget`.
-    pub duty_cycle_mode: DutyCycleMode,
-    /// Budget capacity, packets.
-    pub burst: u32,
+    /// When the drone sends: `sender` (`periodic` or `error`), `threshold`, `maxInterval`,
+    /// `dutyCycleMode` (`per-packet` or `budget`), `burst`.
+    #[serde(flatten)]
+    pub sending: Sending,
     /// Spreading factor.
     pub sf: u8,
     /// Bandwidth, kHz.

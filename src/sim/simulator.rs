@@ -5,10 +5,10 @@ use super::drone::{run_drone, DroneTrack};
 use super::link::{schedule_transmissions, LinkSetup};
 use super::pooled::{model_series, Pooled, MAX_SERIES_POINTS};
 use super::report::{RunConfig, Series, SimReport};
-use super::sender::{new_sender, SenderKind};
+use super::sender::SenderKind;
 use super::station::{new_tracker, track_station, Bounds, StationSetup};
 use super::SimError;
-use crate::lora::{min_interval, time_on_air, Channel, DutyCycle};
+use crate::lora::{min_interval, time_on_air, Channel};
 use crate::math::pow;
 use crate::models::ModelKind;
 use crate::rng::Rng;
@@ -184,10 +184,11 @@ impl Simulator {
                 distance: cfg.distance,
                 bearing: 0.0,
             };
-            if cfg.sender == SenderKind::Error && cfg.max_interval < interval {
+            let sending = &cfg.sending;
+            if sending.sender == SenderKind::Error && sending.max_interval < interval {
                 return Err(SimError::Parameter(
                     "maxInterval",
-                    cfg.max_interval,
+                    sending.max_interval,
                     "at least the duty-cycle interval of every chosen model",
                 ));
             }
@@ -213,15 +214,8 @@ impl Simulator {
                 // The same stream for every station: stations that send the same payload see
                 // the same packets, so their comparison is paired.
                 let mut rng = Rng::derive(cfg.seed ^ LINK_STREAM, i as u64);
-                let mut rule = DutyCycle::new(
-                    cfg.duty_cycle_mode,
-                    cfg.duty_cycle,
-                    toa,
-                    cfg.burst,
-                    flight.t[0],
-                )?;
-                let mut sender =
-                    new_sender(cfg.sender, cfg.threshold, cfg.max_interval, model, setup);
+                let mut rule = sending.rule(cfg.duty_cycle, toa, flight.t[0])?;
+                let mut sender = sending.sender(model, setup, sending.max_interval);
                 let tx = schedule_transmissions(
                     flight,
                     drone,
@@ -277,11 +271,7 @@ impl Simulator {
                 flight_time,
                 models: cfg.models.clone(),
                 prediction: cfg.prediction,
-                sender: cfg.sender,
-                threshold: cfg.threshold,
-                max_interval: cfg.max_interval,
-                duty_cycle_mode: cfg.duty_cycle_mode,
-                burst: cfg.burst,
+                sending: cfg.sending,
                 sf: sf.get(),
                 bandwidth_khz: bw.khz(),
                 distance: cfg.distance,

@@ -187,6 +187,23 @@ const WHERE_THEY_DIFFER: &str = "
   +x from each flight's start.
 ";
 
+/// One line of a plain-text table: each cell padded to its width, left-aligned where the width
+/// is negative.
+fn text_row(cells: &[String], widths: &[isize]) -> String {
+    let padded: Vec<String> = cells
+        .iter()
+        .zip(widths)
+        .map(|(c, &w)| {
+            if w < 0 {
+                format!("{c:<width$}", width = w.unsigned_abs())
+            } else {
+                format!("{c:>width$}", width = w.unsigned_abs())
+            }
+        })
+        .collect();
+    padded.join(" ") + "\n"
+}
+
 /// The rows of the sender trade-off, one line each (text and Markdown share them).
 fn sender_rows(r: &SenderSweepReport, markdown: bool) -> String {
     let p = &r.periodic;
@@ -194,18 +211,7 @@ fn sender_rows(r: &SenderSweepReport, markdown: bool) -> String {
         if markdown {
             format!("| {} |\n", cells.join(" | "))
         } else {
-            format!(
-                "{:<10} {:<11} {:>9} {:>8} {:>7} {:>7} {:>7} {:>8} {:>8}\n",
-                cells[0],
-                cells[1],
-                cells[2],
-                cells[3],
-                cells[4],
-                cells[5],
-                cells[6],
-                cells[7],
-                cells[8]
-            )
+            text_row(&cells, &[-10, -11, 9, 8, 7, 7, 7, 8, 8])
         }
     };
     let mut s = row([
@@ -372,7 +378,7 @@ pub fn swarm_markdown(rows: &[SwarmReport], markdown: bool) -> String {
         let cells = [
             c.channels.to_string(),
             plan,
-            c.sender.name().to_string(),
+            c.sending.sender.name().to_string(),
             c.drones.to_string(),
             r.packets_sent.to_string(),
             format!("{:.3}", r.collision_rate),
@@ -384,19 +390,7 @@ pub fn swarm_markdown(rows: &[SwarmReport], markdown: bool) -> String {
         if markdown {
             s += &format!("| {} |\n", cells.join(" | "));
         } else {
-            s += &format!(
-                "{:<8} {:<7} {:<9} {:>4} {:>8} {:>11} {:>7} {:>9} {:>9} {:>10}\n",
-                cells[0],
-                cells[1],
-                cells[2],
-                cells[3],
-                cells[4],
-                cells[5],
-                cells[6],
-                cells[7],
-                cells[8],
-                cells[9]
-            );
+            s += &text_row(&cells, &[-8, -7, -9, 4, 8, 11, 7, 9, 9, 10]);
         }
     }
     if markdown {
@@ -404,7 +398,7 @@ pub fn swarm_markdown(rows: &[SwarmReport], markdown: bool) -> String {
             r.config.drones == 72
                 && r.config.channels == 3
                 && r.config.sf_plan == loratrack::SfPlan::Spread
-                && r.config.sender == loratrack::SenderKind::Periodic
+                && r.config.sending.sender == loratrack::SenderKind::Periodic
         });
         if let Some(r) = claim {
             s += &format!(

@@ -4,9 +4,11 @@
 
 mod error_triggered;
 mod periodic;
+mod sending;
 
 pub use error_triggered::ErrorTriggered;
 pub use periodic::Periodic;
+pub use sending::{Sending, DEFAULT_BURST, DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M};
 
 use super::station::{new_tracker, StationModel, StationSetup};
 use serde::{Deserialize, Serialize};

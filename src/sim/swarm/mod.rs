@@ -14,11 +14,10 @@ pub use params::{SfPlan, SwarmConfig, SwarmParams, MAX_DRONES, MAX_SWARM_DURATIO
 pub use report::{aloha_collision_rate, DroneReport, SwarmEcho, SwarmReport};
 
 use super::link::{schedule_transmissions, LinkSetup, Transmission};
-use super::sender::new_sender;
 use super::station::{new_tracker, track_station, Bounds, StationSetup};
 use super::{run_drone, SimError};
 use crate::lora::{
-    min_interval, time_on_air, DutyCycle, Gateway, LoraParams, Outcome, Uplink, SX1301_DEMODULATORS,
+    min_interval, time_on_air, Gateway, LoraParams, Outcome, Uplink, SX1301_DEMODULATORS,
 };
 use crate::metrics::{percentile, Summary};
 use crate::rng::Rng;
@@ -179,10 +178,11 @@ fn send(cfg: &SwarmConfig, set: &[Trajectory], at: &Placement, i: usize) -> Resu
         p.seed,
         i as u64,
     );
-    let mut rule = DutyCycle::new(p.duty_cycle_mode, DUTY_CYCLE, toa, p.burst, flight.t[0])?;
+    let sending = p.sending();
+    let mut rule = sending.rule(DUTY_CYCLE, toa, flight.t[0])?;
     // Drones on slow SFs cannot send as often as the heartbeat asks: theirs is their interval.
     let heartbeat = p.max_interval.max(interval);
-    let mut sender = new_sender(p.sender, p.threshold, heartbeat, cfg.model, setup);
+    let mut sender = sending.sender(cfg.model, setup, heartbeat);
     let mut rng = Rng::derive(p.seed ^ LINK_STREAM, i as u64);
     let tx = schedule_transmissions(&flight, &drone, &link, sender.as_mut(), &mut rule, &mut rng);
     let mut hop = Rng::derive(p.seed ^ CHANNEL_STREAM, i as u64);

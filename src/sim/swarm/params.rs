@@ -3,9 +3,8 @@
 use crate::filter::{PAPER_Q, PAPER_R_DIAGONAL};
 use crate::lora::{
     Channel, ChannelParams, DutyCycleMode, InterferenceModel, LoraParams, LORAWAN_OVERHEAD_BYTES,
-    MAX_BURST,
 };
-use crate::sim::sender::SenderKind;
+use crate::sim::sender::{SenderKind, Sending};
 use crate::sim::station::{Prediction, StationModel};
 use crate::sim::{SimError, DEFAULT_BURST, DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M, MAX_SEED};
 use serde::{Deserialize, Serialize};
@@ -111,6 +110,17 @@ pub struct SwarmConfig {
 }
 
 impl SwarmParams {
+    /// The sending settings.
+    pub fn sending(&self) -> Sending {
+        Sending {
+            sender: self.sender,
+            threshold: self.threshold,
+            max_interval: self.max_interval,
+            duty_cycle_mode: self.duty_cycle_mode,
+            burst: self.burst,
+        }
+    }
+
     /// Validates every option.
     pub fn validate(&self) -> Result<SwarmConfig, SimError> {
         let range = |name: &'static str, v: f64, ok: bool, allowed: &'static str| {
@@ -144,24 +154,7 @@ impl SwarmParams {
             matches!(self.channels, 1 | 3),
             "1 or 3",
         )?;
-        range(
-            "threshold",
-            self.threshold,
-            (0.0..=10_000.0).contains(&self.threshold),
-            "0..10000 m",
-        )?;
-        range(
-            "maxInterval",
-            self.max_interval,
-            self.max_interval > 0.0 && self.max_interval <= 3600.0,
-            "in (0, 3600] s",
-        )?;
-        range(
-            "burst",
-            f64::from(self.burst),
-            (1..=MAX_BURST).contains(&self.burst),
-            "1..3600 packets",
-        )?;
+        self.sending().validate()?;
         range(
             "overhead",
             self.overhead as f64,

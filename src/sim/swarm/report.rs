@@ -98,16 +98,9 @@ pub struct SwarmEcho {
     pub model: String,
     /// Prediction.
     pub prediction: crate::sim::Prediction,
-    /// Sender.
-    pub sender: crate::sim::SenderKind,
-    /// Error threshold, m.
-    pub threshold: f64,
-    /// Heartbeat, s.
-    pub max_interval: f64,
-    /// Duty-cycle rule.
-    pub duty_cycle_mode: crate::lora::DutyCycleMode,
-    /// Budget capacity.
-    pub burst: u32,
+    /// When the drones send (`sender`, `threshold`, `maxInterval`, `dutyCycleMode`, `burst`).
+    #[serde(flatten)]
+    pub sending: crate::sim::Sending,
     /// Duty cycle.
     pub duty_cycle: f64,
     /// Same-SF capture.
@@ -135,11 +128,7 @@ impl SwarmEcho {
             bandwidth_khz: p.bw,
             model: p.model.to_ascii_lowercase(),
             prediction: p.prediction,
-            sender: p.sender,
-            threshold: p.threshold,
-            max_interval: p.max_interval,
-            duty_cycle_mode: p.duty_cycle_mode,
-            burst: p.burst,
+            sending: p.sending(),
             duty_cycle,
             capture: p.capture,
             inter_sf: p.inter_sf,
