@@ -219,7 +219,7 @@ pub struct SweepKind {
     /// Swarms of 1..500 drones: collision rate (beside the ALOHA formula) and median per-drone p75 for 1 and 3 channels, SF7 for all and spread SFs, periodic and error-triggered sending (300 s per drone, 3D-CTRA, --prediction).
     #[arg(long)]
     swarm: bool,
-    /// The airtime / error trade-off of error-triggered sending (thresholds 0.5..10 m, per-packet and budget rules) against periodic sending, on the whole synthetic set at --sf/--bw/--distance, no LoRaWAN overhead, first model of --model.
+    /// The airtime / error trade-off of error-triggered sending (thresholds 0.5..10 m, per-packet and budget rules) against periodic sending, on the whole synthetic set at --sf/--bw/--distance, no LoRaWAN overhead, for the first model of --model (3d-ctra when --model is all).
     #[arg(long)]
     senders: bool,
 }
@@ -666,7 +666,12 @@ fn sweep_senders(
 ) -> Result<String, ApiError> {
     let base = SimParams {
         synthetic: Some(SyntheticChoice::All),
-        model: ModelChoice::one(model.models()[0]),
+        // The trade-off is one station's; `all` (the default) means the paper's best, 3D-CTRA.
+        model: if model == ModelChoice::all() {
+            ModelChoice::one(ModelKind::Ctra3d)
+        } else {
+            ModelChoice::one(model.models()[0])
+        },
         prediction,
         sf: a.sf,
         bw: a.bw,
