@@ -208,3 +208,26 @@ fn a_budget_buys_accuracy_where_the_drone_manoeuvres() {
         periodic.error3d
     );
 }
+
+#[test]
+fn the_sender_sweep_compares_3d_ctra_by_default_and_keeps_periodic_as_its_baseline() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_loratrack"))
+        .args(["sweep", "--senders", "--json"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(r["periodic"]["model"], "3d-ctra");
+    let points = r["points"].as_array().unwrap();
+    assert_eq!(points.len(), 16);
+    // A larger threshold never costs more airtime under the same rule.
+    for rule in points.chunks(8) {
+        for w in rule.windows(2) {
+            assert!(
+                w[1]["airtimeShare"].as_f64() <= w[0]["airtimeShare"].as_f64(),
+                "{}",
+                w[1]
+            );
+        }
+    }
+}
