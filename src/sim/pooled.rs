@@ -86,6 +86,16 @@ impl Pooled {
     }
 }
 
+/// Keep every this many samples of `len` so that at most [`MAX_SERIES_POINTS`] remain.
+pub(crate) fn series_stride(len: usize) -> usize {
+    len.div_ceil(MAX_SERIES_POINTS).max(1)
+}
+
+/// Component `k` (0 x, 1 y, 2 z) of every `every`-th point.
+pub(crate) fn axis_every(points: &[[f64; 3]], k: usize, every: usize) -> Vec<f64> {
+    points.iter().step_by(every).map(|p| p[k]).collect()
+}
+
 /// The plotted series of one station on one flight, decimated to at most
 /// [`MAX_SERIES_POINTS`] points.
 pub(crate) fn model_series(
@@ -93,15 +103,9 @@ pub(crate) fn model_series(
     st: &StationTrack,
     tx: &[Transmission],
 ) -> ModelSeries {
-    let every = st.times.len().div_ceil(MAX_SERIES_POINTS).max(1);
+    let every = series_stride(st.times.len());
     let pick = |v: &[f64]| v.iter().step_by(every).copied().collect::<Vec<f64>>();
-    let axis = |k: usize| {
-        st.estimate
-            .iter()
-            .step_by(every)
-            .map(|p| p[k])
-            .collect::<Vec<f64>>()
-    };
+    let axis = |k: usize| axis_every(&st.estimate, k, every);
     ModelSeries {
         model,
         t: pick(&st.times),

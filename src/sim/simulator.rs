@@ -3,7 +3,7 @@
 use super::config::{SimConfig, SyntheticChoice, TrajectorySource};
 use super::drone::{run_drone, DroneTrack};
 use super::link::{schedule_transmissions, LinkSetup};
-use super::pooled::{model_series, Pooled, MAX_SERIES_POINTS};
+use super::pooled::{axis_every, model_series, series_stride, Pooled};
 use super::report::{RunConfig, Series, SimReport};
 use super::sender::SenderKind;
 use super::station::{new_tracker, track_station, Bounds, StationSetup};
@@ -238,14 +238,8 @@ impl Simulator {
         }
         let series = cfg.series.then(|| {
             let f = &flights[0];
-            let every = f.t.len().div_ceil(MAX_SERIES_POINTS).max(1);
-            let axis = |k: usize| {
-                f.pos
-                    .iter()
-                    .step_by(every)
-                    .map(|p| p[k])
-                    .collect::<Vec<f64>>()
-            };
+            let every = series_stride(f.t.len());
+            let axis = |k: usize| axis_every(&f.pos, k, every);
             Series {
                 flight: f.name.clone(),
                 t: f.t.iter().step_by(every).copied().collect(),
