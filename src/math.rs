@@ -56,6 +56,11 @@ pub fn pow(x: f64, y: f64) -> f64 {
     libm::pow(x, y)
 }
 
+/// x^n by repeated multiplication (exact in the same way on every target).
+pub fn powi(x: f64, n: i32) -> f64 {
+    (0..n).fold(1.0, |acc, _| acc * x)
+}
+
 /// sqrt(x*x + y*y) without intermediate overflow.
 #[inline]
 pub fn hypot(x: f64, y: f64) -> f64 {

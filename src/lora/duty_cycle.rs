@@ -103,6 +103,8 @@ pub const MAX_BURST: u32 = 3600;
 pub struct DutyCycle {
     duty_cycle: f64,
     time_on_air: f64,
+    /// Packets the credit may hold.
+    packets: f64,
     capacity: f64,
     /// Credit (s of airtime) at `at`.
     credit: f64,
@@ -143,6 +145,7 @@ impl DutyCycle {
         Ok(DutyCycle {
             duty_cycle,
             time_on_air,
+            packets,
             capacity: packets * time_on_air,
             credit: time_on_air,
             at: start,
@@ -161,6 +164,19 @@ impl DutyCycle {
         } else {
             t + missing / self.duty_cycle
         }
+    }
+
+    /// Later packets take `time_on_air` s (an ADR data-rate change). The credit shifts by the
+    /// difference, so the wait the last packet imposed stays what it was (ETSI's off-time follows
+    /// the packet sent), while later packets cost their own airtime.
+    pub fn set_time_on_air(&mut self, time_on_air: f64) {
+        if time_on_air == self.time_on_air || !(time_on_air > 0.0 && time_on_air.is_finite()) {
+            return;
+        }
+        self.credit += time_on_air - self.time_on_air;
+        self.time_on_air = time_on_air;
+        self.capacity = self.packets * time_on_air;
+        self.credit = self.credit.min(self.capacity);
     }
 
     /// Records a packet that starts at `t` (s): its time on air is taken from the credit. The
@@ -204,6 +220,16 @@ mod tests {
             b.spend(60.0);
         }
         assert!(b.earliest(60.0) > 60.0 + 1.99);
+    }
+
+    #[test]
+    fn a_longer_airtime_keeps_the_last_packets_off_time_and_costs_more_after() {
+        let mut r = DutyCycle::new(DutyCycleMode::PerPacket, 0.01, 0.05, 1, 0.0).unwrap();
+        r.spend(0.0);
+        r.set_time_on_air(0.2);
+        assert!((r.earliest(0.0) - 5.0).abs() < 1e-9, "{}", r.earliest(0.0));
+        r.spend(5.0);
+        assert!((r.earliest(5.0) - 25.0).abs() < 1e-9, "{}", r.earliest(5.0));
     }
 
     #[test]

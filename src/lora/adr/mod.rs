@@ -1,0 +1,151 @@
+//! Adaptive data rate: the network chooses the drone's data rate and transmit power from the
+//! uplinks it hears, and tells the drone in a downlink (LoRaWAN 1.0.3 §5.3 `LinkADRReq`).
+//!
+//! * [`AdrDevice`]: the drone's side: applies commands, and backs off on its own when it hears
+//!   nothing (`ADR_ACK_LIMIT`, `ADR_ACK_DELAY`).
+//! * [`LorawanAdr`]: Semtech's recommended network-server algorithm, as The Things Stack and the
+//!   ns-3 `lorawan` module implement it: margin of the best recent SNR, 3 dB steps.
+//! * [`TrackingAdr`]: ours: the data rate with the smallest expected squared age of the station's
+//!   newest packet, from the delivery ratio it estimates for each rate.
+
+mod device;
+mod lorawan;
+mod tracking;
+
+pub use device::{AdrDevice, UplinkFrame, ADR_ACK_DELAY, ADR_ACK_LIMIT};
+pub use lorawan::LorawanAdr;
+pub use tracking::{
+    expected_age_cost, TrackingAdr, ERROR_GROWTH, TRACKING_HYSTERESIS, TRACKING_WINDOW,
+};
+
+use super::{DataRate, LoraError};
+use serde::{Deserialize, Serialize};
+
+/// Which network-side ADR runs (`--adr`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AdrMode {
+    /// The data rate stays where `--sf`/`--bw` put it (the paper).
+    #[default]
+    Off,
+    /// [`LorawanAdr`].
+    Lorawan,
+    /// [`TrackingAdr`].
+    Tracking,
+}
+
+impl AdrMode {
+    /// The CLI/JS name.
+    pub fn name(self) -> &'static str {
+        match self {
+            AdrMode::Off => "off",
+            AdrMode::Lorawan => "lorawan",
+            AdrMode::Tracking => "tracking",
+        }
+    }
+}
+
+impl core::str::FromStr for AdrMode {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "off" => Ok(AdrMode::Off),
+            "lorawan" => Ok(AdrMode::Lorawan),
+            "tracking" => Ok(AdrMode::Tracking),
+            other => Err(format!(
+                "unknown adr '{other}' (expected off, lorawan or tracking)"
+            )),
+        }
+    }
+}
+
+/// Transmit-power steps of `LinkADRReq`, dB (Semtech's recommended algorithm; EU868 TXPower
+/// indices are 2 dB apart, the algorithm moves 3 dB per margin step).
+pub const TX_POWER_STEP_DB: f64 = 3.0;
+/// The largest power reduction ADR may ask for, dB: EU868 allows down to MaxEIRP − 14 dB; four
+/// 3 dB steps stay inside it.
+pub const MAX_POWER_REDUCTION_DB: f64 = 12.0;
+/// Default device margin of [`LorawanAdr`], dB (Semtech's recommended algorithm; The Things Stack
+/// uses 15).
+pub const DEFAULT_ADR_MARGIN_DB: f64 = 10.0;
+/// Default number of uplinks whose best SNR [`LorawanAdr`] uses (Semtech, The Things Stack).
+pub const DEFAULT_ADR_HISTORY: usize = 20;
+/// The gateway's downlink power, dBm (EU868 RX1 in the 1 % sub-band: 14 dBm ERP).
+pub const GATEWAY_TX_POWER_DBM: f64 = 14.0;
+/// The device opens its first receive window this long after an uplink ends, s (LoRaWAN
+/// `RECEIVE_DELAY1`).
+pub const RECEIVE_DELAY1_S: f64 = 1.0;
+
+/// ADR settings.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct AdrParams {
+    /// Which algorithm.
+    pub mode: AdrMode,
+    /// [`LorawanAdr`]'s device margin, dB.
+    pub margin_db: f64,
+    /// [`LorawanAdr`]'s history length, uplinks.
+    pub history: usize,
+}
+
+impl Default for AdrParams {
+    fn default() -> Self {
+        AdrParams {
+            mode: AdrMode::Off,
+            margin_db: DEFAULT_ADR_MARGIN_DB,
+            history: DEFAULT_ADR_HISTORY,
+        }
+    }
+}
+
+impl AdrParams {
+    /// Checks the margin (0..30 dB) and the history (1..100 uplinks).
+    pub fn validate(&self) -> Result<(), LoraError> {
+        if !(0.0..=30.0).contains(&self.margin_db) {
+            return Err(LoraError::Parameter(
+                "adrMargin",
+                self.margin_db,
+                "0..30 dB",
+            ));
+        }
+        if !(1..=100).contains(&self.history) {
+            return Err(LoraError::Parameter(
+                "adrHistory",
+                self.history as f64,
+                "1..100 uplinks",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// What the network knows of one received uplink.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UplinkReport {
+    /// The frame counter (counts every uplink, so gaps are lost frames).
+    pub fcnt: u32,
+    /// Its data rate.
+    pub dr: DataRate,
+    /// The device's power reduction below its maximum, dB.
+    pub power_reduction_db: f64,
+    /// Received power, dBm.
+    pub rssi_dbm: f64,
+    /// SNR, dB ([`snr_db`](super::snr_db)).
+    pub snr_db: f64,
+}
+
+/// A `LinkADRReq`: the data rate and power the device should use from its next uplink.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LinkAdrReq {
+    /// Data rate.
+    pub dr: DataRate,
+    /// Power reduction below the maximum, dB (0, 3, …, 12).
+    pub power_reduction_db: f64,
+}
+
+/// A network server's ADR: sees every received uplink, may answer with a command.
+pub trait AdrNetwork {
+    /// Called for each uplink the gateway received; returns the command to send in the downlink
+    /// after it, if the device should change.
+    fn on_uplink(&mut self, up: &UplinkReport) -> Option<LinkAdrReq>;
+}

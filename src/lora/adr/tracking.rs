@@ -1,0 +1,335 @@
+//! A tracking-aware ADR: choose the data rate that keeps the station's newest packet youngest.
+
+use super::{AdrNetwork, LinkAdrReq, UplinkReport};
+use crate::lora::{Channel, DataRate};
+use std::collections::VecDeque;
+
+/// Uplinks (by frame counter, received or lost) the delivery estimate looks back over.
+pub const TRACKING_WINDOW: usize = 96;
+/// A better rate must promise a cost this fraction below the current rate's before the network
+/// switches: the margin that keeps estimation noise (shadowing is correlated over ~100 m, so a
+/// window holds few independent samples) from flipping the rate back and forth. Chosen with
+/// the window on `sweep --distances` (docs/adr.md).
+pub const TRACKING_HYSTERESIS: f64 = 0.5;
+/// Uplinks at the current settings the network waits for before judging them.
+const MIN_FRAMES_AT_SETTINGS: u32 = 4;
+/// The least shadowing spread assumed, dB, so that a channel without shadowing still gives a
+/// smooth delivery curve.
+const MIN_SIGMA_DB: f64 = 1.0;
+
+/// How the station's error grows with the age of its newest packet: error ∝ age^g. Between
+/// packets the paper's stations extrapolate a constant acceleration and turn rate, so the
+/// unmodelled manoeuvre's error grows about quadratically (g = 2).
+pub const ERROR_GROWTH: i32 = 2;
+
+/// The time average of age^(2g) ([`ERROR_GROWTH`] g), s^(2g), of the station's newest packet,
+/// for packets sent every `interval` s, each arriving with probability `delivery`
+/// independently, `time_on_air` s old when they arrive: a station's mean squared error up to a
+/// constant.
+///
+/// With K ~ Geometric(`delivery`) intervals between arrivals the age runs from a =
+/// `time_on_air` to a + K·`interval`, so the average is
+/// E[((a + K T)^(m+1) − a^(m+1)) / (m+1)] / E[K T] with m = 2g, summed over K.
+///
+/// ```
+/// use loratrack::expected_age_cost;
+/// // Every packet arrives, error ∝ age²: the mean of u⁴ over [0, T] is T⁴/5.
+/// assert!((expected_age_cost(2.0, 1.0, 0.0) - 16.0 / 5.0).abs() < 1e-9);
+/// assert!(expected_age_cost(2.0, 0.5, 0.0) > 16.0 / 5.0);
+/// ```
+pub fn expected_age_cost(interval: f64, delivery: f64, time_on_air: f64) -> f64 {
+    if delivery < 1e-6 {
+        return f64::INFINITY;
+    }
+    let (p, t, a) = (delivery.min(1.0), interval, time_on_air);
+    let m = (2 * ERROR_GROWTH + 1) as usize;
+    // E[(a + K T)^m] by the binomial theorem.
+    let mut binomial = 1.0;
+    let mut e = 0.0;
+    for j in 0..=m {
+        e += binomial
+            * crate::math::powi(a, (m - j) as i32)
+            * crate::math::powi(t, j as i32)
+            * geometric_moment(j, p);
+        binomial = binomial * (m - j) as f64 / (j + 1) as f64;
+    }
+    (e - crate::math::powi(a, m as i32)) / m as f64 / (t / p)
+}
+
+/// E[K^n] for K ~ Geometric(p) on 1, 2, …: A_n(1 − p) / p^n with A_n the Eulerian polynomial.
+fn geometric_moment(n: usize, p: f64) -> f64 {
+    if n == 0 {
+        return 1.0;
+    }
+    // Row n of the Eulerian numbers A(n, k), k = 0..n−1.
+    let mut row = vec![1.0];
+    for len in 2..=n {
+        let prev = row.clone();
+        row = (0..len)
+            .map(|k| {
+                let a = if k < prev.len() {
+                    (k + 1) as f64 * prev[k]
+                } else {
+                    0.0
+                };
+                let b = if k > 0 {
+                    (len - k) as f64 * prev[k - 1]
+                } else {
+                    0.0
+                };
+                a + b
+            })
+            .collect();
+    }
+    let q = 1.0 - p;
+    let poly = row.iter().rev().fold(0.0, |acc, c| acc * q + c);
+    poly / crate::math::powi(p, n as i32)
+}
+
+/// Standard normal density.
+fn phi(z: f64) -> f64 {
+    crate::math::exp(-0.5 * z * z) / (2.0 * core::f64::consts::PI).sqrt()
+}
+
+/// Standard normal distribution function.
+pub(crate) fn normal_cdf(z: f64) -> f64 {
+    0.5 * libm::erfc(-z / core::f64::consts::SQRT_2)
+}
+
+/// φ(z)/Φ(z), the inverse Mills ratio, stable in the far left tail where it tends to −z.
+fn mills(z: f64) -> f64 {
+    if z < -30.0 {
+        -z
+    } else {
+        phi(z) / normal_cdf(z)
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Frame {
+    dr: DataRate,
+    power_reduction_db: f64,
+    rssi_dbm: Option<f64>,
+}
+
+/// The tracking-aware network ADR.
+///
+/// From the last [`TRACKING_WINDOW`] frames, received ones with their RSSI and lost ones known
+/// from gaps in the frame counter (assumed sent at the settings of the frame before), it
+/// estimates the mean full-power received power μ by maximum likelihood of a censored normal
+/// (a lost frame's power lay below its rate's sensitivity; the spread σ is the configured
+/// shadowing, at least 1 dB). Each rate's delivery is then Φ((μ − sensitivity)/σ) and its cost
+/// [`expected_age_cost`] of its own interval; the network asks for the cheapest rate at full
+/// power when it beats the current one by [`TRACKING_HYSTERESIS`]. It may slow the rate as well
+/// as speed it up, through the same downlink as LoRaWAN's ADR.
+#[derive(Clone, Debug)]
+pub struct TrackingAdr {
+    time_on_air: [f64; 7],
+    interval: [f64; 7],
+    sigma_db: f64,
+    frames: VecDeque<Frame>,
+    next_fcnt: u32,
+    settings: Option<(DataRate, f64)>,
+    settings_since: u32,
+    /// The settings last asked for, until a frame shows whether they were applied.
+    commanded: Option<(DataRate, f64)>,
+}
+
+impl TrackingAdr {
+    /// For packets of `time_on_air[dr]` s sent every `interval[dr]` s at each data rate, over a
+    /// channel with `sigma_db` of shadowing.
+    pub fn new(time_on_air: [f64; 7], interval: [f64; 7], sigma_db: f64) -> Self {
+        TrackingAdr {
+            time_on_air,
+            interval,
+            sigma_db: sigma_db.max(MIN_SIGMA_DB),
+            frames: VecDeque::new(),
+            next_fcnt: 0,
+            settings: None,
+            settings_since: 0,
+            commanded: None,
+        }
+    }
+
+    fn record(&mut self, up: &UplinkReport) {
+        let now = (up.dr, up.power_reduction_db);
+        let before = self.settings.unwrap_or(now);
+        // Frames lost in a gap went at the old settings if the device still uses them; if it
+        // has moved, mostly at what the network last asked for (a back-off only comes after
+        // 64 + 32 silent frames).
+        let (dr, reduction) = if now == before {
+            before
+        } else {
+            self.commanded.unwrap_or(before)
+        };
+        self.commanded = None;
+        for _ in self.next_fcnt..up.fcnt {
+            self.frames.push_back(Frame {
+                dr,
+                power_reduction_db: reduction,
+                rssi_dbm: None,
+            });
+        }
+        self.frames.push_back(Frame {
+            dr: up.dr,
+            power_reduction_db: up.power_reduction_db,
+            rssi_dbm: Some(up.rssi_dbm),
+        });
+        while self.frames.len() > TRACKING_WINDOW {
+            self.frames.pop_front();
+        }
+        if self.settings.is_some_and(|s| s != now) {
+            // The change took effect somewhere in the gap; count from its start.
+            self.settings_since = self.next_fcnt;
+        }
+        self.settings = Some(now);
+        self.next_fcnt = up.fcnt.wrapping_add(1);
+    }
+
+    /// The maximum-likelihood mean full-power RSSI, dBm, of the frames in the window.
+    fn mean_rssi(&self) -> f64 {
+        let s = self.sigma_db;
+        let score = |mu: f64| -> f64 {
+            self.frames
+                .iter()
+                .map(|f| match f.rssi_dbm {
+                    Some(r) => (r + f.power_reduction_db - mu) / (s * s),
+                    None => {
+                        let c =
+                            Channel::sensitivity_dbm(f.dr.sf(), f.dr.bw()) + f.power_reduction_db;
+                        -mills((c - mu) / s) / s
+                    }
+                })
+                .sum()
+        };
+        // The score falls with μ (a censored normal is log-concave): bisect its root.
+        let (mut lo, mut hi) = (-300.0, 100.0);
+        for _ in 0..80 {
+            let mid = 0.5 * (lo + hi);
+            if score(mid) > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
+    /// The estimated delivery ratio of each data rate at full power.
+    pub fn delivery(&self) -> [f64; 7] {
+        let mu = self.mean_rssi();
+        DataRate::ALL
+            .map(|dr| normal_cdf((mu - Channel::sensitivity_dbm(dr.sf(), dr.bw())) / self.sigma_db))
+    }
+
+    fn cost(&self, dr: DataRate, delivery: &[f64; 7]) -> f64 {
+        let k = usize::from(dr.index());
+        expected_age_cost(self.interval[k], delivery[k], self.time_on_air[k])
+    }
+}
+
+impl AdrNetwork for TrackingAdr {
+    fn on_uplink(&mut self, up: &UplinkReport) -> Option<LinkAdrReq> {
+        self.record(up);
+        if up.fcnt.wrapping_sub(self.settings_since) + 1 < MIN_FRAMES_AT_SETTINGS {
+            return None;
+        }
+        let delivery = self.delivery();
+        let best = DataRate::ALL.into_iter().min_by(|a, b| {
+            self.cost(*a, &delivery)
+                .total_cmp(&self.cost(*b, &delivery))
+        })?;
+        let current = self.cost(up.dr, &delivery);
+        let better = self.cost(best, &delivery) < (1.0 - TRACKING_HYSTERESIS) * current;
+        let full_power = up.power_reduction_db == 0.0;
+        let command = match (better, full_power) {
+            (true, _) => Some(best),
+            (false, false) => Some(up.dr),
+            (false, true) => None,
+        }
+        .map(|dr| LinkAdrReq {
+            dr,
+            power_reduction_db: 0.0,
+        });
+        self.commanded = command.map(|c| (c.dr, c.power_reduction_db));
+        command
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table() -> ([f64; 7], [f64; 7]) {
+        // 25-byte packets at 1 %: DR0 1.48 s … DR6 0.031 s.
+        let toa = [1.4828, 0.8233, 0.3707, 0.2058, 0.1132, 0.0617, 0.0308];
+        (toa, toa.map(|t| t / 0.01))
+    }
+
+    fn up(fcnt: u32, dr: u8, rssi: f64) -> UplinkReport {
+        UplinkReport {
+            fcnt,
+            dr: DataRate::new(dr).unwrap(),
+            power_reduction_db: 0.0,
+            rssi_dbm: rssi,
+            snr_db: rssi + 114.0,
+        }
+    }
+
+    #[test]
+    fn the_cost_grows_as_delivery_falls_and_as_the_interval_grows() {
+        let a = expected_age_cost(4.0, 0.9, 0.05);
+        assert!(expected_age_cost(4.0, 0.5, 0.05) > a);
+        assert!(expected_age_cost(8.0, 0.9, 0.05) > a);
+        assert_eq!(expected_age_cost(4.0, 0.0, 0.05), f64::INFINITY);
+    }
+
+    #[test]
+    fn geometric_moments_match_their_series() {
+        for p in [0.1, 0.5, 0.9] {
+            for n in 1..=5 {
+                let series: f64 = (1..4000)
+                    .map(|k: i32| p * (1.0_f64 - p).powi(k - 1) * f64::from(k).powi(n as i32))
+                    .sum();
+                let closed = geometric_moment(n, p);
+                assert!((closed - series).abs() < 1e-9 * series, "n {n} p {p}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_strong_link_keeps_the_fastest_rate() {
+        let (toa, iv) = table();
+        let mut adr = TrackingAdr::new(toa, iv, 4.0);
+        for k in 0..10 {
+            assert_eq!(adr.on_uplink(&up(k, 6, -100.0)), None);
+        }
+    }
+
+    #[test]
+    fn losses_seen_in_the_frame_counter_slow_the_rate() {
+        let (toa, iv) = table();
+        let mut adr = TrackingAdr::new(toa, iv, 4.0);
+        // One frame in ten arrives at DR6, just above the sensitivity (−127 dBm).
+        let cmd = (0..4)
+            .filter_map(|k| adr.on_uplink(&up(10 * k + 9, 6, -126.0)))
+            .next()
+            .expect("a command");
+        assert!(cmd.dr < DataRate::DR6, "{cmd:?}");
+        let delivery = adr.delivery();
+        assert!(delivery[6] < 0.3 && delivery[2] > 0.8, "{delivery:?}");
+    }
+
+    #[test]
+    fn the_censored_estimate_finds_the_mean_behind_the_losses() {
+        let (toa, iv) = table();
+        let mut adr = TrackingAdr::new(toa, iv, 4.0);
+        // Half the frames lost at DR6 (sensitivity −127): the mean sits near −127, below the
+        // received frames' average.
+        for k in 0..8 {
+            adr.on_uplink(&up(2 * k + 1, 6, -124.0));
+        }
+        let mu = adr.mean_rssi();
+        assert!(mu < -124.0 && mu > -129.0, "{mu}");
+    }
+}
