@@ -95,6 +95,7 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
                         sender.as_mut(),
                         &mut rule,
                         &mut rng,
+                        None,
                     );
                     let sends: Vec<f64> = tx.iter().map(|t| t.sent).collect();
                     assert!(sends.len() > 5);

@@ -6,6 +6,7 @@
 //! apart.
 
 mod airtime;
+mod distances;
 mod error;
 mod payload;
 mod predict;
@@ -14,6 +15,7 @@ mod simulate;
 mod swarm;
 
 pub use airtime::{airtime, AirtimeParams, AirtimeReport};
+pub use distances::{sweep_distances, DistanceRun, DistanceSweepReport, ADR_DISTANCES};
 pub use error::ApiError;
 pub use payload::{decode, encode, DecodeParams, DecodeReport, EncodeParams, EncodeReport};
 pub use predict::{predict, validate_state, PredictParams, PredictReport, MAX_STEPS};

@@ -7,7 +7,8 @@ use super::station::{Prediction, StationModel};
 use super::SimError;
 use crate::filter::{PAPER_Q, PAPER_R_DIAGONAL};
 use crate::lora::{
-    Channel, ChannelParams, DutyCycleMode, LoraParams, LORAWAN_OVERHEAD_BYTES, MIN_DUTY_CYCLE,
+    AdrMode, AdrParams, Channel, ChannelParams, DutyCycleMode, LoraParams, DEFAULT_ADR_HISTORY,
+    DEFAULT_ADR_MARGIN_DB, LORAWAN_OVERHEAD_BYTES, MIN_DUTY_CYCLE,
 };
 use serde::{Deserialize, Serialize};
 
@@ -180,7 +181,13 @@ pub struct SimParams {
     pub duty_cycle_mode: DutyCycleMode,
     /// Budget rule: the most packets' airtime the credit can hold.
     pub burst: u32,
-    /// Spreading factor 7..12.
+    /// Adaptive data rate: `off` (default), `lorawan` or `tracking`.
+    pub adr: AdrMode,
+    /// LoRaWAN ADR's device margin, dB.
+    pub adr_margin: f64,
+    /// LoRaWAN ADR's history, uplinks.
+    pub adr_history: usize,
+    /// Spreading factor 7..12 (with ADR: the start).
     pub sf: i64,
     /// Bandwidth, kHz.
     pub bw: f64,
@@ -229,6 +236,9 @@ impl Default for SimParams {
             max_interval: DEFAULT_MAX_INTERVAL_S,
             duty_cycle_mode: DutyCycleMode::PerPacket,
             burst: DEFAULT_BURST,
+            adr: AdrMode::Off,
+            adr_margin: DEFAULT_ADR_MARGIN_DB,
+            adr_history: DEFAULT_ADR_HISTORY,
             sf: 7,
             bw: 250.0,
             distance: 1000.0,
@@ -271,8 +281,10 @@ pub struct SimConfig {
     pub prediction: Prediction,
     /// When the drone sends, under which duty-cycle rule.
     pub sending: Sending,
-    /// Radio settings.
+    /// Radio settings (with ADR: the start).
     pub radio: LoraParams,
+    /// Adaptive data rate.
+    pub adr: AdrParams,
     /// Link budget.
     pub channel: Channel,
     /// MAC overhead, bytes.
@@ -343,6 +355,15 @@ impl SimParams {
             }
         };
         let radio = LoraParams::from_settings(self.sf, self.bw, self.cr)?;
+        let adr = AdrParams {
+            mode: self.adr,
+            margin_db: self.adr_margin,
+            history: self.adr_history,
+        };
+        adr.validate()?;
+        if adr.mode != AdrMode::Off && crate::lora::DataRate::of(radio.sf, radio.bw).is_none() {
+            return Err(SimError::AdrStart(radio.sf.get(), radio.bw.khz()));
+        }
         let channel = Channel::new(ChannelParams {
             tx_power_dbm: self.tx_power,
             path_loss_exponent: self.path_loss_exponent,
@@ -399,6 +420,7 @@ impl SimParams {
             prediction: self.prediction,
             sending,
             radio,
+            adr,
             channel,
             overhead: self.overhead,
             duty_cycle: self.duty_cycle,

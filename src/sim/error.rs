@@ -15,6 +15,8 @@ pub enum SimError {
     Source(String),
     /// A seed above [`MAX_SEED`](super::MAX_SEED).
     Seed(u64),
+    /// ADR asked for with a start (SF, bandwidth in kHz) that is no EU868 data rate.
+    AdrStart(u8, f64),
     /// More filter steps than one run may take (flight time × (sensor rate + 1 / T)).
     TooLong {
         /// Seconds of flight.
@@ -35,6 +37,10 @@ impl fmt::Display for SimError {
                 f,
                 "seed must be 0..{} (2^53 - 1, the largest integer JavaScript holds exactly), got {seed}",
                 super::MAX_SEED
+            ),
+            SimError::AdrStart(sf, bw) => write!(
+                f,
+                "adr starts at an EU868 data rate (SF7..12 at 125 kHz or SF7 at 250 kHz), got SF{sf} at {bw} kHz"
             ),
             SimError::TooLong { flight_time, steps } => write!(
                 f,

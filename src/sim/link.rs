@@ -1,9 +1,11 @@
 //! The link: the sender under the duty-cycle rule, the codec and the channel (SPEC §5–6).
 
 use super::sender::Sender;
-use super::DroneTrack;
+use super::{AdrSession, DroneTrack};
 use crate::codec::{decode, encode};
-use crate::lora::{Bandwidth, Channel, DutyCycle, Shadowing, SpreadingFactor};
+use crate::lora::{
+    Bandwidth, Channel, DataRate, DutyCycle, Shadowing, SpreadingFactor, RECEIVE_DELAY1_S,
+};
 use crate::math::distance;
 use crate::rng::Rng;
 use crate::trajectory::Trajectory;
@@ -23,6 +25,21 @@ pub struct Transmission {
     pub distance: f64,
     /// Received power including shadowing, dBm.
     pub rx_power_dbm: f64,
+    /// Spreading factor it was sent with.
+    pub sf: SpreadingFactor,
+    /// Bandwidth it was sent with.
+    pub bw: Bandwidth,
+    /// Its time on air, s.
+    pub time_on_air: f64,
+    /// The duty-cycle interval at that data rate, s (what the station expects until the next).
+    pub interval: f64,
+}
+
+impl Transmission {
+    /// Its EU868 data rate, if the SF and bandwidth form one.
+    pub fn data_rate(&self) -> Option<DataRate> {
+        DataRate::of(self.sf, self.bw)
+    }
 }
 
 /// Everything the link needs besides the flight and the drone's estimates.
@@ -55,6 +72,11 @@ pub struct LinkSetup {
 /// first sensor step the rule allows, so no schedule ever breaks the rule. Positions are encoded
 /// relative to the flight's first point, which both ends agree on before take-off. Shadowing
 /// evolves over the distance flown between transmissions.
+///
+/// With `adr`, each packet goes at the device's current data rate and power; a received one is
+/// shown to the network, whose downlink (when it sends one) reaches the drone
+/// [`RECEIVE_DELAY1_S`] after the uplink ends if the reciprocal channel carries it, and a new
+/// data rate applies from the next packet.
 pub fn schedule_transmissions(
     flight: &Trajectory,
     drone: &DroneTrack,
@@ -62,6 +84,7 @@ pub fn schedule_transmissions(
     sender: &mut dyn Sender,
     rule: &mut DutyCycle,
     rng: &mut Rng,
+    mut adr: Option<&mut AdrSession>,
 ) -> Vec<Transmission> {
     let origin = flight.pos[0];
     let (sb, cb) = crate::math::sin_cos(link.bearing);
@@ -96,22 +119,56 @@ pub fn schedule_transmissions(
         };
         let mut state = [0.0; 9];
         state[..n].copy_from_slice(&decoded);
+        let frame = adr.as_deref_mut().map(AdrSession::uplink);
+        let (sf, bw, toa, interval, reduction) = match (&frame, adr.as_deref()) {
+            (Some(f), Some(a)) => (
+                f.dr.sf(),
+                f.dr.bw(),
+                a.time_on_air(f.dr),
+                a.interval(f.dr),
+                f.power_reduction_db,
+            ),
+            _ => (link.sf, link.bw, link.time_on_air, link.interval, 0.0),
+        };
         rule.spend(sent);
+        if frame.is_some() {
+            sender.data_rate_changed(interval);
+        }
         sender.sent(&state, sent);
         let p = flight.position_at(sent, &mut hint);
         let d = distance(&p, &gateway);
         let moved = last_pos.map_or(0.0, |q| distance(&p, &q));
         last_pos = Some(p);
         let s = shadowing.next(moved, rng);
-        let rx = link.channel.mean_rx_power_dbm(d) + s;
+        let rx = link.channel.mean_rx_power_dbm(d) + s - reduction;
+        let received = rx >= Channel::sensitivity_dbm(sf, bw);
         out.push(Transmission {
             sent,
-            arrival: sent + link.time_on_air,
-            received: link.channel.received(link.sf, link.bw, d, s),
+            arrival: sent + toa,
+            received,
             state,
             distance: d,
             rx_power_dbm: rx,
+            sf,
+            bw,
+            time_on_air: toa,
+            interval,
         });
+        if let (Some(f), Some(a)) = (frame, adr.as_deref_mut()) {
+            let (answers, command) = if received {
+                a.network_hears(&f, rx)
+            } else {
+                (false, None)
+            };
+            let heard = answers.then(|| {
+                let q = flight.position_at(sent + toa + RECEIVE_DELAY1_S, &mut hint);
+                let s_down = shadowing.next(distance(&q, &p), rng);
+                last_pos = Some(q);
+                AdrSession::downlink_heard(&link.channel, &f, distance(&q, &gateway), s_down)
+            });
+            a.finish(heard.unwrap_or(false).then_some(command));
+            rule.set_time_on_air(a.time_on_air(a.dr()));
+        }
         // The rule only relaxes until the next packet, so every later step is allowed too.
         k = step_at_or_after(rule.earliest(sent)).max(k + 1);
     }

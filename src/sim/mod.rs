@@ -6,6 +6,7 @@
 //! the seed; the link and station sides are cheap. [`Simulator`] caches drone tracks, so changing
 //! only link parameters (SF, bandwidth, distance, overhead, channel) never re-runs a drone filter.
 
+mod adr_session;
 mod config;
 mod drone;
 mod error;
@@ -17,6 +18,7 @@ mod simulator;
 pub mod station;
 pub mod swarm;
 
+pub use adr_session::AdrSession;
 pub use config::{ModelChoice, SimConfig, SimParams, SyntheticChoice, TrajectorySource, MAX_SEED};
 pub use drone::{run_drone, DroneTrack};
 pub use error::SimError;

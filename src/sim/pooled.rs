@@ -1,8 +1,9 @@
 //! One station's outcome pooled over every flight of a run.
 
-use super::report::{Boxplots, ModelResult, ModelSeries};
+use super::report::{Boxplots, DataRateUse, ModelResult, ModelSeries};
 use super::station::{StationModel, StationTrack};
 use super::Transmission;
+use crate::lora::DataRate;
 use crate::metrics::{coverage, Summary};
 use crate::models::ModelKind;
 use std::collections::BTreeMap;
@@ -21,6 +22,8 @@ pub(crate) struct Pooled {
     probability_sum: Option<[f64; 3]>,
     sent: usize,
     received: usize,
+    /// Packets and receptions per data rate, slowest first (higher SF, then narrower band).
+    rates: BTreeMap<(u8, u64), DataRateUse>,
 }
 
 impl Pooled {
@@ -28,6 +31,19 @@ impl Pooled {
     pub fn add(&mut self, tx: &[Transmission], st: StationTrack) {
         self.sent += tx.len();
         self.received += tx.iter().filter(|t| t.received).count();
+        for t in tx {
+            let key = (12 - t.sf.get(), t.bw.khz() as u64);
+            let e = self.rates.entry(key).or_insert_with(|| DataRateUse {
+                dr: t.data_rate().map(DataRate::index),
+                sf: t.sf.get(),
+                bw: t.bw.khz(),
+                packets: 0,
+                received: 0,
+                time_on_air: t.time_on_air,
+            });
+            e.packets += 1;
+            e.received += usize::from(t.received);
+        }
         self.e3.extend_from_slice(&st.error3d);
         for e in &st.error_axes {
             self.ex.push(e[0]);
@@ -43,7 +59,7 @@ impl Pooled {
         }
     }
 
-    /// The result row; `time_on_air`, `interval` in s.
+    /// The result row; `time_on_air`, `interval` in s (of the starting data rate).
     pub fn finish(
         mut self,
         model: StationModel,
@@ -51,6 +67,11 @@ impl Pooled {
         interval: f64,
         filter_recoveries: u64,
     ) -> ModelResult {
+        let data_rate_use: Vec<DataRateUse> = self.rates.into_values().collect();
+        let airtime = data_rate_use
+            .iter()
+            .map(|u| u.packets as f64 * u.time_on_air)
+            .sum();
         let n = self.e3.len().max(1) as f64;
         let model_probability = self.probability_sum.map(|sum| {
             ModelKind::ALL
@@ -71,7 +92,7 @@ impl Pooled {
             time_on_air,
             interval,
             packets_sent: self.sent,
-            airtime: self.sent as f64 * time_on_air,
+            airtime,
             packets_received: self.received,
             error3d: s3,
             error_x: sx,
@@ -81,6 +102,7 @@ impl Pooled {
             boxplot: Boxplots::of_sorted(&self.e3, &self.ex, &self.ey, &self.ez),
             filter_recoveries,
             coverage95: coverage(&self.inside),
+            data_rate_use,
             model_probability,
         }
     }
@@ -120,5 +142,11 @@ pub(crate) fn model_series(
             .map(|t| t.arrival)
             .collect(),
         lost: tx.iter().filter(|t| !t.received).map(|t| t.sent).collect(),
+        arrival_dr: dr_of(tx.iter().filter(|t| t.received)),
+        lost_dr: dr_of(tx.iter().filter(|t| !t.received)),
     }
+}
+
+fn dr_of<'a>(tx: impl Iterator<Item = &'a Transmission>) -> Vec<Option<u8>> {
+    tx.map(|t| t.data_rate().map(DataRate::index)).collect()
 }

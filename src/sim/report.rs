@@ -2,6 +2,7 @@
 
 use super::sender::Sending;
 use super::station::{Prediction, StationModel};
+use crate::lora::AdrMode;
 use crate::metrics::{Boxplot, Summary};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -24,7 +25,13 @@ pub struct RunConfig {
     /// `dutyCycleMode` (`per-packet` or `budget`), `burst`.
     #[serde(flatten)]
     pub sending: Sending,
-    /// Spreading factor.
+    /// Adaptive data rate: `off`, `lorawan` or `tracking`.
+    pub adr: AdrMode,
+    /// LoRaWAN ADR's device margin, dB.
+    pub adr_margin: f64,
+    /// LoRaWAN ADR's history, uplinks.
+    pub adr_history: usize,
+    /// Spreading factor (with ADR: the one the drone starts at).
     pub sf: u8,
     /// Bandwidth, kHz.
     pub bandwidth_khz: f64,
@@ -96,9 +103,10 @@ pub struct ModelResult {
     pub model: StationModel,
     /// Payload, bytes.
     pub payload_bytes: usize,
-    /// Time on air of one packet (payload + overhead), s.
+    /// Time on air of one packet (payload + overhead), s (with ADR: at the starting data rate).
     pub time_on_air: f64,
-    /// Interval between transmissions under the duty cycle, s.
+    /// Interval between transmissions under the duty cycle, s (with ADR: at the starting data
+    /// rate).
     pub interval: f64,
     /// Packets sent.
     pub packets_sent: usize,
@@ -122,6 +130,8 @@ pub struct ModelResult {
     /// ellipsoid (chi-square, 3 degrees of freedom); a consistent station scores near 0.95,
     /// an overconfident one lower. `null` when nothing was evaluated.
     pub coverage95: f64,
+    /// The packets sent at each data rate (one entry without ADR), slowest rate first.
+    pub data_rate_use: Vec<DataRateUse>,
     /// IMM only: the mean probability of each member over the evaluated steps.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub model_probability: Option<BTreeMap<&'static str, f64>>,
@@ -150,6 +160,28 @@ pub struct ModelSeries {
     pub arrivals: Vec<f64>,
     /// Send times of lost packets, s.
     pub lost: Vec<f64>,
+    /// The EU868 data rate of each received packet (`null` for an SF/bandwidth that is none).
+    pub arrival_dr: Vec<Option<u8>>,
+    /// The data rate of each lost packet.
+    pub lost_dr: Vec<Option<u8>>,
+}
+
+/// How many packets went at one data rate.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct DataRateUse {
+    /// EU868 data rate index (`null` when the SF and bandwidth form none, e.g. SF8 at 500 kHz).
+    pub dr: Option<u8>,
+    /// Spreading factor.
+    pub sf: u8,
+    /// Bandwidth, kHz.
+    pub bw: f64,
+    /// Packets sent at it.
+    pub packets: usize,
+    /// Of those, received.
+    pub received: usize,
+    /// Time on air of one packet at it, s.
+    pub time_on_air: f64,
 }
 
 /// Ground truth and every model's estimates over the first flight.

@@ -7,7 +7,7 @@ use super::pooled::{axis_every, model_series, series_stride, Pooled};
 use super::report::{RunConfig, Series, SimReport};
 use super::sender::SenderKind;
 use super::station::{new_tracker, track_station, Bounds, StationSetup};
-use super::SimError;
+use super::{AdrSession, SimError};
 use crate::lora::{min_interval, time_on_air, Channel};
 use crate::math::pow;
 use crate::models::ModelKind;
@@ -209,12 +209,17 @@ impl Simulator {
                 seed: cfg.seed,
             };
             let drones = self.drone_tracks(key, &flights, cfg, &mut tick);
+            let bytes = model.payload_bytes() + cfg.overhead;
+            let shadowing = cfg.channel.params().shadowing_sigma_db;
+            let mut adr = AdrSession::new(&cfg.adr, &cfg.radio, bytes, cfg.duty_cycle, shadowing)?;
             let mut pooled = Pooled::default();
             for (i, (flight, drone)) in flights.iter().zip(drones.iter()).enumerate() {
                 // The same stream for every station: stations that send the same payload see
                 // the same packets, so their comparison is paired.
                 let mut rng = Rng::derive(cfg.seed ^ LINK_STREAM, i as u64);
-                let mut rule = sending.rule(cfg.duty_cycle, toa, flight.t[0])?;
+                // With ADR a flight starts at the rate the last one ended with.
+                let link = adr.as_ref().map_or(link.clone(), |a| a.link_now(&link));
+                let mut rule = sending.rule(cfg.duty_cycle, link.time_on_air, flight.t[0])?;
                 let mut sender = sending.sender(model, setup, sending.max_interval);
                 let tx = schedule_transmissions(
                     flight,
@@ -223,6 +228,7 @@ impl Simulator {
                     sender.as_mut(),
                     &mut rule,
                     &mut rng,
+                    adr.as_mut(),
                 );
                 let mut tracker = new_tracker(model, setup);
                 let with_series = cfg.series && i == 0;
@@ -266,6 +272,9 @@ impl Simulator {
                 models: cfg.models.clone(),
                 prediction: cfg.prediction,
                 sending: cfg.sending,
+                adr: cfg.adr.mode,
+                adr_margin: cfg.adr.margin_db,
+                adr_history: cfg.adr.history,
                 sf: sf.get(),
                 bandwidth_khz: bw.khz(),
                 distance: cfg.distance,

@@ -3,8 +3,8 @@
 use clap::{Args, Subcommand};
 use loratrack::api::{self, ApiError};
 use loratrack::{
-    DutyCycleMode, LdroMode, ModelChoice, ModelKind, ModelResult, Prediction, SenderKind, SfPlan,
-    SimParams, Simulator, SwarmParams, SyntheticChoice, MAX_CSV_BYTES,
+    AdrMode, DutyCycleMode, LdroMode, ModelChoice, ModelKind, ModelResult, Prediction, SenderKind,
+    SfPlan, SimParams, Simulator, SwarmParams, SyntheticChoice, MAX_CSV_BYTES,
 };
 use serde::Serialize;
 
@@ -107,6 +107,15 @@ pub struct SimulateArgs {
     prediction: PredictionArg,
     #[command(flatten)]
     sending: SendingArgs,
+    /// Adaptive data rate: off (fixed --sf/--bw, the paper), lorawan (the network server's ADR: best SNR of --adr-history uplinks, --adr-margin, 3 dB steps; the device backs off after 64+32 silent uplinks) or tracking (the rate with the least expected squared packet age). ADR starts at --sf/--bw, which must be an EU868 data rate.
+    #[arg(long, value_enum, default_value = "off")]
+    adr: AdrArg,
+    /// LoRaWAN ADR: device margin, dB (0..30; Semtech 10, The Things Stack 15).
+    #[arg(long, default_value_t = loratrack::DEFAULT_ADR_MARGIN_DB)]
+    adr_margin: f64,
+    /// LoRaWAN ADR: uplinks whose best SNR decides (1..100; Semtech and The Things Stack 20).
+    #[arg(long, default_value_t = loratrack::DEFAULT_ADR_HISTORY)]
+    adr_history: usize,
     /// Spreading factor, 7..12.
     #[arg(long, default_value_t = 7, allow_negative_numbers = true)]
     sf: i64,
@@ -199,6 +208,23 @@ impl SendingArgs {
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
+enum AdrArg {
+    Off,
+    Lorawan,
+    Tracking,
+}
+
+impl From<AdrArg> for AdrMode {
+    fn from(a: AdrArg) -> Self {
+        match a {
+            AdrArg::Off => AdrMode::Off,
+            AdrArg::Lorawan => AdrMode::Lorawan,
+            AdrArg::Tracking => AdrMode::Tracking,
+        }
+    }
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
 enum SenderArg {
     Periodic,
     Error,
@@ -222,16 +248,19 @@ pub struct SweepKind {
     /// The airtime / error trade-off of error-triggered sending (thresholds 0.5..10 m, per-packet and budget rules) against periodic sending, on the whole synthetic set at --sf/--bw/--distance, no LoRaWAN overhead, for the first model of --model (3d-ctra when --model is all).
     #[arg(long)]
     senders: bool,
+    /// Fixed data rates DR0..DR6 and both ADR modes (starting at --sf/--bw) at each distance, m, comma-separated (e.g. 1000,3000,5000,7000), on the whole synthetic set, no LoRaWAN overhead, for the first model of --model (3d-ctra when --model is all).
+    #[arg(long, value_delimiter = ',', value_name = "M,M,...")]
+    distances: Option<Vec<f64>>,
 }
 
 #[derive(Args)]
 pub struct SweepArgs {
     #[command(flatten)]
     kind: SweepKind,
-    /// --senders: spreading factor.
+    /// --senders: spreading factor; --distances: the one ADR starts at.
     #[arg(long, default_value_t = 7, allow_negative_numbers = true)]
     sf: i64,
-    /// --senders: bandwidth, kHz.
+    /// --senders: bandwidth, kHz; --distances: the one ADR starts at.
     #[arg(long, default_value_t = 250.0)]
     bw: f64,
     /// --senders: gateway distance, m.
@@ -564,6 +593,9 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
         max_interval: a.sending.max_interval,
         duty_cycle_mode: a.sending.duty_cycle_mode(),
         burst: a.sending.burst,
+        adr: a.adr.into(),
+        adr_margin: a.adr_margin,
+        adr_history: a.adr_history,
         sf: a.sf,
         bw: a.bw,
         distance: a.distance,
@@ -636,6 +668,9 @@ fn sweep(a: SweepArgs) -> Result<String, ApiError> {
     if a.kind.swarm {
         return sweep_swarm(&a, predictions[0]);
     }
+    if let Some(distances) = &a.kind.distances {
+        return sweep_distances(&a, model, predictions[0], distances);
+    }
     let r = api::sweep_paper(&mut Simulator::new(), a.seed, &predictions, &model)?;
     if a.out.json {
         return Ok(json(&r));
@@ -659,6 +694,41 @@ fn sweep(a: SweepArgs) -> Result<String, ApiError> {
     Ok(out.trim_end().to_string())
 }
 
+/// The one station a trade-off sweep runs: `all` (the default) means the paper's best, 3D-CTRA.
+fn one_station(model: ModelChoice) -> ModelChoice {
+    if model == ModelChoice::all() {
+        ModelChoice::one(ModelKind::Ctra3d)
+    } else {
+        ModelChoice::one(model.models()[0])
+    }
+}
+
+fn sweep_distances(
+    a: &SweepArgs,
+    model: ModelChoice,
+    prediction: Prediction,
+    distances: &[f64],
+) -> Result<String, ApiError> {
+    let base = SimParams {
+        synthetic: Some(SyntheticChoice::All),
+        model: one_station(model),
+        prediction,
+        sf: a.sf,
+        bw: a.bw,
+        seed: a.seed,
+        overhead: 0,
+        ..SimParams::default()
+    };
+    let r = api::sweep_distances(&mut Simulator::new(), &base, distances)?;
+    if a.out.json {
+        return Ok(json(&r));
+    }
+    if a.markdown {
+        return Ok(crate::reproduction::distances_markdown(&r, &base));
+    }
+    Ok(crate::reproduction::distances_table(&r))
+}
+
 fn sweep_senders(
     a: &SweepArgs,
     model: ModelChoice,
@@ -666,12 +736,7 @@ fn sweep_senders(
 ) -> Result<String, ApiError> {
     let base = SimParams {
         synthetic: Some(SyntheticChoice::All),
-        // The trade-off is one station's; `all` (the default) means the paper's best, 3D-CTRA.
-        model: if model == ModelChoice::all() {
-            ModelChoice::one(ModelKind::Ctra3d)
-        } else {
-            ModelChoice::one(model.models()[0])
-        },
+        model: one_station(model),
         prediction,
         sf: a.sf,
         bw: a.bw,

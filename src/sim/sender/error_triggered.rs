@@ -43,6 +43,10 @@ impl Sender for ErrorTriggered {
         distance(&self.mirror.position(), own) > self.threshold
     }
 
+    fn data_rate_changed(&mut self, interval: f64) {
+        self.mirror.set_interval(interval);
+    }
+
     fn sent(&mut self, state: &[f64; 9], t: f64) {
         self.mirror.reset(state, t);
         self.last = Some(t);

@@ -42,6 +42,8 @@ pub trait Sender {
     /// Tells the sender that the packet carrying `state` (decoded, as the station will see it;
     /// 9 components, the unused ones 0) left at `t` (s).
     fn sent(&mut self, state: &[f64; 9], t: f64);
+    /// ADR moved the drone to a data rate whose duty-cycle interval is `interval` s.
+    fn data_rate_changed(&mut self, _interval: f64) {}
 }
 
 /// A drone's sender for one flight; an error-triggered one mirrors a fresh station of the kind

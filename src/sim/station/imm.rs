@@ -119,6 +119,12 @@ impl Tracker for Imm {
         }
     }
 
+    fn set_interval(&mut self, interval: f64) {
+        for m in &mut self.members {
+            m.set_interval(interval);
+        }
+    }
+
     fn position(&self) -> [f64; 3] {
         let mut p = [0.0; 3];
         for (m, mu) in self.members.iter().zip(&self.probability) {

@@ -35,6 +35,9 @@ pub trait Tracker {
     fn position(&self) -> [f64; 3];
     /// The covariance of that position (m²).
     fn position_covariance(&self) -> Matrix3<f64>;
+    /// The packets now come every `interval` s (ADR changed the data rate): what a bounded
+    /// prediction counts as overdue follows.
+    fn set_interval(&mut self, _interval: f64) {}
     /// For a multiple-model tracker, the probability of DR, CTRA+ and 3D-CTRA.
     fn model_probabilities(&self) -> Option<[f64; 3]> {
         None
@@ -119,6 +122,7 @@ pub fn track_station(
         // j starts at the first arrival, so at least one packet has arrived.
         if next - 1 != applied {
             applied = next - 1;
+            tracker.set_interval(received[applied].interval);
             tracker.reset(&received[applied].state, received[applied].sent);
         }
         tracker.predict_to(t);

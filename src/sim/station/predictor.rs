@@ -154,6 +154,10 @@ impl<const N: usize, M: MotionModel<N> + Copy> Tracker for StationPredictor<N, M
         }
     }
 
+    fn set_interval(&mut self, interval: f64) {
+        self.setup.interval = interval;
+    }
+
     fn position(&self) -> [f64; 3] {
         [self.ukf.x[0], self.ukf.x[1], self.ukf.x[2]]
     }

@@ -184,7 +184,15 @@ fn send(cfg: &SwarmConfig, set: &[Trajectory], at: &Placement, i: usize) -> Resu
     let heartbeat = p.max_interval.max(interval);
     let mut sender = sending.sender(cfg.model, setup, heartbeat);
     let mut rng = Rng::derive(p.seed ^ LINK_STREAM, i as u64);
-    let tx = schedule_transmissions(&flight, &drone, &link, sender.as_mut(), &mut rule, &mut rng);
+    let tx = schedule_transmissions(
+        &flight,
+        &drone,
+        &link,
+        sender.as_mut(),
+        &mut rule,
+        &mut rng,
+        None,
+    );
     let mut hop = Rng::derive(p.seed ^ CHANNEL_STREAM, i as u64);
     let c = f64::from(p.channels);
     let channels = tx

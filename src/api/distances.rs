@@ -1,0 +1,84 @@
+//! `sweep --distances`: every fixed EU868 data rate and both ADR modes, side by side, at each
+//! gateway distance.
+
+use super::ApiError;
+use crate::lora::{AdrMode, DataRate};
+use crate::sim::{ModelResult, SimParams, Simulator};
+use serde::Serialize;
+
+/// The distances of the targets, m.
+pub const ADR_DISTANCES: [f64; 4] = [1000.0, 3000.0, 5000.0, 7000.0];
+
+/// One row: a fixed data rate or an ADR mode at one distance.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct DistanceRun {
+    /// Gateway distance, m.
+    pub distance: f64,
+    /// The fixed data rate (`null` for an ADR row).
+    pub dr: Option<u8>,
+    /// `off` for a fixed rate, else the ADR mode.
+    pub adr: AdrMode,
+    /// The data rate an ADR row started at (`null` for a fixed rate).
+    pub start: Option<u8>,
+    /// Share of packets received.
+    pub delivery: f64,
+    /// The result.
+    pub result: ModelResult,
+}
+
+/// The output of `sweep --distances`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct DistanceSweepReport {
+    /// Every run, distance by distance: DR0..DR6, then `lorawan` and `tracking` from `base`'s
+    /// data rate, then both from DR0.
+    pub runs: Vec<DistanceRun>,
+}
+
+/// Runs `base` (its first model) at each distance with each fixed data rate DR0–DR6 and with
+/// both ADR modes, starting from `base`'s SF and bandwidth (an EU868 data rate) and from DR0
+/// (SF12, the safe start of a device that knows nothing of its link). Drone filters run once.
+pub fn sweep_distances(
+    sim: &mut Simulator,
+    base: &SimParams,
+    distances: &[f64],
+) -> Result<DistanceSweepReport, ApiError> {
+    let radio = base.validate()?.radio;
+    let given = DataRate::of(radio.sf, radio.bw).ok_or(crate::sim::SimError::AdrStart(
+        radio.sf.get(),
+        radio.bw.khz(),
+    ))?;
+    let mut starts = vec![given];
+    if given != DataRate::DR0 {
+        starts.push(DataRate::DR0);
+    }
+    let mut runs = Vec::new();
+    for &distance in distances {
+        let fixed = DataRate::ALL.map(|dr| (dr, AdrMode::Off));
+        let adaptive = starts
+            .iter()
+            .flat_map(|&s| [(s, AdrMode::Lorawan), (s, AdrMode::Tracking)]);
+        for (dr, adr) in fixed.into_iter().chain(adaptive) {
+            let p = SimParams {
+                distance,
+                adr,
+                sf: i64::from(dr.sf().get()),
+                bw: dr.bw().khz(),
+                ..base.clone()
+            };
+            let mut r = super::simulate(sim, &p)?;
+            let result = r.results.swap_remove(0);
+            let fixed = adr == AdrMode::Off;
+            runs.push(DistanceRun {
+                distance,
+                dr: fixed.then_some(dr.index()),
+                adr,
+                start: (!fixed).then_some(dr.index()),
+                delivery: result.packets_received as f64 / result.packets_sent.max(1) as f64,
+                result,
+            });
+        }
+    }
+    Ok(DistanceSweepReport { runs })
+}

@@ -1,0 +1,316 @@
+//! Adaptive data rate (issue: LoRaWAN ADR and a tracking-aware choice of spreading factor): the
+//! LoRaWAN network settles where its margin says and never slows the rate itself, a lost downlink
+//! delays a change by exactly one uplink, a constant channel never makes ADR oscillate, and where
+//! a naive rule flips with the shadowing the tracking-aware one holds still.
+#![cfg(not(target_arch = "wasm32"))]
+
+use loratrack::api::simulate;
+use loratrack::{
+    chain_flights, demodulation_floor_db, noise_floor_dbm, run_drone, schedule_transmissions,
+    snr_db, synthetic_set, AdrDevice, AdrMode, AdrNetwork, AdrParams, AdrSession, Channel,
+    ChannelParams, DataRate, DutyCycle, DutyCycleMode, LinkAdrReq, LinkSetup, LoraParams,
+    LorawanAdr, ModelChoice, ModelKind, Periodic, Rng, SimParams, Simulator, SyntheticChoice,
+    TrackingAdr, Transmission, UplinkReport, PAPER_Q, PAPER_R_DIAGONAL,
+};
+
+/// One drone flying `seconds` of the synthetic set at `distance` m, with ADR `mode` from
+/// `start` (or the network `custom`), over a channel with `shadowing` dB.
+fn fly(
+    mode: AdrMode,
+    custom: Option<Box<dyn AdrNetwork>>,
+    start: DataRate,
+    distance: f64,
+    shadowing: f64,
+    seconds: f64,
+) -> Vec<Transmission> {
+    let flight = chain_flights(&synthetic_set(), 0, seconds, 1).unwrap();
+    let drone = run_drone(
+        &flight,
+        ModelKind::Ctra3d,
+        10.0,
+        PAPER_Q,
+        &PAPER_R_DIAGONAL,
+        1,
+        0,
+    );
+    let radio = LoraParams::new(start.sf(), start.bw());
+    let params = AdrParams {
+        mode,
+        ..AdrParams::default()
+    };
+    let session = AdrSession::new(&params, &radio, 12, 0.01, shadowing)
+        .unwrap()
+        .unwrap();
+    let mut session = match custom {
+        Some(n) => session.with_network(n),
+        None => session,
+    };
+    let channel = Channel::new(ChannelParams {
+        shadowing_sigma_db: shadowing,
+        ..ChannelParams::default()
+    })
+    .unwrap();
+    let base = LinkSetup {
+        sf: start.sf(),
+        bw: start.bw(),
+        channel,
+        time_on_air: 1.0,
+        interval: 1.0,
+        distance,
+        bearing: 0.0,
+    };
+    let link = session.link_now(&base);
+    let mut rule = DutyCycle::new(
+        DutyCycleMode::PerPacket,
+        0.01,
+        link.time_on_air,
+        1,
+        flight.t[0],
+    )
+    .unwrap();
+    schedule_transmissions(
+        &flight,
+        &drone,
+        &link,
+        &mut Periodic,
+        &mut rule,
+        &mut Rng::derive(7, 0),
+        Some(&mut session),
+    )
+}
+
+fn rates(tx: &[Transmission]) -> Vec<u8> {
+    tx.iter().map(|t| t.data_rate().unwrap().index()).collect()
+}
+
+fn changes(tx: &[Transmission]) -> usize {
+    rates(tx).windows(2).filter(|w| w[0] != w[1]).count()
+}
+
+#[test]
+fn without_shadowing_lorawan_never_raises_the_sf_and_loses_nothing_once_settled() {
+    let tx = fly(AdrMode::Lorawan, None, DataRate::DR0, 2500.0, 0.0, 2400.0);
+    let r = rates(&tx);
+    assert!(r.windows(2).all(|w| w[1] >= w[0]), "the SF went up: {r:?}");
+    assert!(r.last() > r.first(), "never left DR0");
+    assert!(
+        tx.iter().all(|t| t.received),
+        "a rate with margin loses nothing"
+    );
+}
+
+/// The margin LoRaWAN's ADR counts at `dr` for a packet received at `rssi` dBm, dB.
+fn margin(rssi: f64, dr: DataRate) -> f64 {
+    snr_db(rssi, dr.bw()) - demodulation_floor_db(dr.sf()) - 10.0
+}
+
+#[test]
+fn on_a_constant_channel_lorawan_settles_on_the_fastest_rate_its_margin_allows() {
+    for rssi in [-95.0, -105.0, -110.0, -113.0, -116.0, -120.0] {
+        let seq = constant_channel(Box::new(LorawanAdr::new(10.0, 20)), rssi);
+        let settled = *seq.last().unwrap();
+        let fastest = DataRate::ALL
+            .into_iter()
+            .rev()
+            .find(|&d| margin(rssi, d) >= 0.0)
+            .unwrap_or(DataRate::DR0);
+        assert!(
+            margin(rssi, settled) >= 0.0 || settled == DataRate::DR0,
+            "rssi {rssi}"
+        );
+        // 3 dB steps over rates 2.5 dB apart may stop one rate short, never more.
+        assert!(
+            settled == fastest || settled.faster() == Some(fastest),
+            "rssi {rssi}: settled {settled}, margin allows {fastest}"
+        );
+    }
+}
+
+#[test]
+fn a_lost_downlink_delays_the_change_by_exactly_one_uplink() {
+    let report = |d: &mut AdrDevice| {
+        let f = d.uplink();
+        UplinkReport {
+            fcnt: f.fcnt,
+            dr: f.dr,
+            power_reduction_db: f.power_reduction_db,
+            rssi_dbm: -100.0,
+            snr_db: snr_db(-100.0, f.dr.bw()),
+        }
+    };
+    let first_change = |lost: &[usize]| {
+        let mut device = AdrDevice::new(DataRate::DR0);
+        let mut network = LorawanAdr::new(10.0, 1);
+        for k in 0..10 {
+            if device.dr() != DataRate::DR0 {
+                return k;
+            }
+            let command = network.on_uplink(&report(&mut device));
+            if command.is_some() && !lost.contains(&k) {
+                device.downlink(command);
+            } else {
+                device.no_downlink();
+            }
+        }
+        usize::MAX
+    };
+    assert_eq!(first_change(&[]), 1);
+    assert_eq!(first_change(&[0]), 2);
+    assert_eq!(first_change(&[0, 1]), 3);
+}
+
+/// Drives a device and a network over a channel that never changes, every frame received and
+/// every downlink heard; returns the data rate before each uplink.
+fn constant_channel(mut network: Box<dyn AdrNetwork>, rssi: f64) -> Vec<DataRate> {
+    let mut device = AdrDevice::new(DataRate::DR0);
+    (0..400)
+        .map(|_| {
+            let dr = device.dr();
+            let f = device.uplink();
+            let rx = rssi - f.power_reduction_db;
+            let sensitivity = Channel::sensitivity_dbm(f.dr.sf(), f.dr.bw());
+            if rx < sensitivity {
+                device.no_downlink();
+                return dr;
+            }
+            let command = network.on_uplink(&UplinkReport {
+                fcnt: f.fcnt,
+                dr: f.dr,
+                power_reduction_db: f.power_reduction_db,
+                rssi_dbm: rx,
+                snr_db: snr_db(rx, f.dr.bw()),
+            });
+            if command.is_some() || f.adr_ack_req {
+                device.downlink(command);
+            } else {
+                device.no_downlink();
+            }
+            dr
+        })
+        .collect()
+}
+
+#[test]
+fn a_constant_channel_never_makes_either_adr_oscillate() {
+    let toa = [1.15, 0.66, 0.29, 0.16, 0.09, 0.05, 0.025];
+    for rssi in [-95.0, -115.0, -125.0, -131.0, -138.0] {
+        let networks: [Box<dyn AdrNetwork>; 2] = [
+            Box::new(LorawanAdr::new(10.0, 20)),
+            Box::new(TrackingAdr::new(toa, toa.map(|t| t / 0.01), 0.0)),
+        ];
+        for network in networks {
+            let seq = constant_channel(network, rssi);
+            let mut runs = seq.clone();
+            runs.dedup();
+            let reversals = runs
+                .windows(3)
+                .filter(|w| (w[1] > w[0] && w[2] < w[1]) || (w[1] < w[0] && w[2] > w[1]))
+                .count();
+            assert_eq!(reversals, 0, "rssi {rssi}: {runs:?}");
+            let moves = seq.windows(2).filter(|w| w[0] != w[1]).count();
+            assert!(moves <= 6, "rssi {rssi}: {moves} moves");
+        }
+    }
+}
+
+/// A naive network: after every uplink, the fastest rate whose demodulation floor lies below the
+/// last SNR, at once, both ways.
+struct Naive;
+
+impl AdrNetwork for Naive {
+    fn on_uplink(&mut self, up: &UplinkReport) -> Option<LinkAdrReq> {
+        let rx = up.snr_db + noise_floor_dbm(up.dr.bw());
+        let dr = DataRate::ALL
+            .into_iter()
+            .rev()
+            .find(|d| snr_db(rx, d.bw()) >= demodulation_floor_db(d.sf()))
+            .unwrap_or(DataRate::DR0);
+        (dr != up.dr).then_some(LinkAdrReq {
+            dr,
+            power_reduction_db: 0.0,
+        })
+    }
+}
+
+#[test]
+fn where_a_naive_rule_flips_with_the_shadowing_tracking_holds_still() {
+    let naive = fly(
+        AdrMode::Lorawan,
+        Some(Box::new(Naive)),
+        DataRate::DR6,
+        3000.0,
+        4.0,
+        1800.0,
+    );
+    let tracking = fly(AdrMode::Tracking, None, DataRate::DR6, 3000.0, 4.0, 1800.0);
+    let (n, t) = (changes(&naive), changes(&tracking));
+    assert!(n >= 20, "naive changed only {n} times");
+    assert!(t * 10 <= n, "tracking changed {t} times, naive {n}");
+}
+
+#[test]
+fn adr_is_reported_per_data_rate_and_off_by_default() {
+    let mut sim = Simulator::new();
+    let base = SimParams {
+        synthetic: Some(SyntheticChoice::One(3)),
+        model: ModelChoice::one(ModelKind::Ctra3d),
+        distance: 5000.0,
+        series: true,
+        ..SimParams::default()
+    };
+    let off = simulate(&mut sim, &base).unwrap();
+    assert_eq!(off.config.adr, AdrMode::Off);
+    assert_eq!(off.results[0].data_rate_use.len(), 1);
+    let on = simulate(
+        &mut sim,
+        &SimParams {
+            adr: AdrMode::Tracking,
+            ..base.clone()
+        },
+    )
+    .unwrap();
+    let use_ = &on.results[0].data_rate_use;
+    let total: usize = use_.iter().map(|u| u.packets).sum();
+    assert_eq!(total, on.results[0].packets_sent);
+    let s = &on.series.as_ref().unwrap().models[0];
+    assert_eq!(s.arrival_dr.len(), s.arrivals.len());
+    assert_eq!(s.lost_dr.len(), s.lost.len());
+    let bad = SimParams {
+        adr: AdrMode::Lorawan,
+        sf: 8,
+        bw: 500.0,
+        ..base
+    };
+    let err = simulate(&mut sim, &bad).unwrap_err().to_string();
+    assert!(err.contains("EU868"), "{err}");
+}
+
+#[test]
+fn tracking_adr_matches_the_best_fixed_rate_where_one_rate_serves_the_whole_set() {
+    let base = SimParams {
+        synthetic: Some(SyntheticChoice::All),
+        model: ModelChoice::one(ModelKind::Ctra3d),
+        overhead: 0,
+        ..SimParams::default()
+    };
+    let r = loratrack::api::sweep_distances(&mut Simulator::new(), &base, &[1000.0]).unwrap();
+    assert_eq!(r.runs.len(), 7 + 4);
+    let p75 = |pick: &dyn Fn(&loratrack::api::DistanceRun) -> bool| {
+        r.runs.iter().find(|x| pick(x)).unwrap().result.error3d.p75
+    };
+    let best = r
+        .runs
+        .iter()
+        .filter(|x| x.dr.is_some())
+        .map(|x| x.result.error3d.p75)
+        .fold(f64::INFINITY, f64::min);
+    let tracking = p75(&|x| x.adr == AdrMode::Tracking && x.start == Some(6));
+    let lorawan = p75(&|x| x.adr == AdrMode::Lorawan && x.start == Some(6));
+    assert!(tracking <= 1.05 * best, "tracking {tracking} best {best}");
+    assert!(lorawan <= 1.25 * best, "lorawan {lorawan} best {best}");
+    // From DR0 the tracking-aware network reaches the fast rate; LoRaWAN's waits for 20 uplinks
+    // of two minutes each.
+    let tracking0 = p75(&|x| x.adr == AdrMode::Tracking && x.start == Some(0));
+    let lorawan0 = p75(&|x| x.adr == AdrMode::Lorawan && x.start == Some(0));
+    assert!(tracking0 < 0.1 * lorawan0, "{tracking0} vs {lorawan0}");
+}
