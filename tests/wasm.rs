@@ -268,6 +268,36 @@ fn simulate_takes_station_and_sending_options_across_the_boundary() {
     assert!(error_message(e).contains("unknown model 'kalman'"));
 }
 
+#[wasm_bindgen_test]
+fn adr_crosses_the_boundary_and_reports_the_packets_per_data_rate() {
+    let r = wasm::simulate(
+        obj(&[
+            ("synthetic", 4.into()),
+            ("model", "3d-ctra".into()),
+            ("adr", "lorawan".into()),
+            ("adrHistory", 2.into()),
+            ("sf", 12.into()),
+            ("bw", 125.into()),
+            ("series", true.into()),
+        ]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap();
+    let config = get(&r, "config");
+    assert_eq!(get(&config, "adr").as_string().as_deref(), Some("lorawan"));
+    assert_eq!(num(&config, "adrHistory"), 2.0);
+    let result = js_sys::Array::from(&get(&r, "results")).get(0);
+    let uses = js_sys::Array::from(&get(&result, "dataRateUse"));
+    let packets: f64 = uses.iter().map(|u| num(&u, "packets")).sum();
+    assert_eq!(packets, num(&result, "packetsSent"));
+    let e = wasm::simulate(
+        obj(&[("synthetic", 4.into()), ("adr", "sometimes".into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    assert!(error_message(e).contains("sometimes"));
+}
+
 /// Nests `{zz: {zz: ...}}` `depth` levels deep.
 fn deep(depth: usize) -> JsValue {
     let mut v: JsValue = js_sys::Object::new().into();

@@ -97,6 +97,12 @@ export interface SimulateParams {
   /** Off-time after every packet, or an airtime budget holding up to `burst` packets. */
   dutyCycleMode?: 'per-packet' | 'budget';
   burst?: number;
+  /** Adaptive data rate, starting at `sf`/`bw` (an EU868 data rate): off, LoRaWAN's network ADR, or the tracking-aware one. */
+  adr?: AdrMode;
+  /** LoRaWAN ADR's device margin, dB (default 10). */
+  adrMargin?: number;
+  /** LoRaWAN ADR's history, uplinks (default 20). */
+  adrHistory?: number;
   sf?: number;
   bw?: number;
   distance?: number;
@@ -113,6 +119,18 @@ export interface SimulateParams {
   eta?: number;
   q?: number;
   series?: boolean;
+}
+
+export type AdrMode = 'off' | 'lorawan' | 'tracking';
+
+/** Packets sent at one data rate; `dr` is the EU868 index, null for an SF/bandwidth that is none. */
+export interface DataRateUse {
+  dr: number | null;
+  sf: number;
+  bw: number;
+  packets: number;
+  received: number;
+  timeOnAir: number;
 }
 
 /** Error statistics in metres; null when count is 0. */
@@ -152,6 +170,8 @@ export interface ModelResult {
   filterRecoveries: number;
   /** Share of steps whose true position lay inside the station's 95 % ellipsoid; null if none. */
   coverage95: number | null;
+  /** Packets per data rate, slowest first (one entry without ADR). */
+  dataRateUse: DataRateUse[];
   /** IMM only: mean probability of each member over the run. */
   modelProbability?: Partial<Record<MotionModelName, number>>;
 }
@@ -167,6 +187,9 @@ export interface ModelSeries {
   z: number[];
   arrivals: number[];
   lost: number[];
+  /** EU868 data rate of each arrival / lost packet (null when the SF and bandwidth form none). */
+  arrivalDr: (number | null)[];
+  lostDr: (number | null)[];
 }
 
 export interface SimReport {
@@ -181,6 +204,9 @@ export interface SimReport {
     maxInterval: number;
     dutyCycleMode: 'per-packet' | 'budget';
     burst: number;
+    adr: AdrMode;
+    adrMargin: number;
+    adrHistory: number;
     sf: number;
     bandwidthKhz: number;
     distance: number;

@@ -170,6 +170,7 @@ function renderResults(r: SimReport): void {
     <th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th></tr></thead>
     <tbody>${rows}</tbody></table></div>${ttnNote(r)}`;
 
+  renderRateUse(r);
   const width = (id: string) => Math.max(300, $(id).clientWidth || 600);
   place('error', errorOverTimeChart(r, width('#chart-error')));
   const axisRows: BoxRow[] = r.results.flatMap((m) => [
@@ -179,6 +180,16 @@ function renderResults(r: SimReport): void {
   ]);
   place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: width('#chart-axes') }));
   if (!$('[data-panel="trajectory"]').hidden) void render3d(r);
+}
+
+/** With ADR: how many packets each model sent at each data rate. */
+function renderRateUse(r: SimReport): void {
+  const note = $('#rate-use');
+  note.hidden = r.config.adr === 'off';
+  if (note.hidden) return;
+  const rate = (u: ModelResult['dataRateUse'][number]) => `${u.dr === null ? `SF${u.sf}/${u.bw}` : `DR${u.dr} (SF${u.sf}/${u.bw})`} ${u.received}/${u.packets}`;
+  const lines = r.results.map((m) => `${MODEL_LABELS[m.model]}: ${[...m.dataRateUse].reverse().map(rate).join(', ')}`);
+  note.textContent = `Packets received / sent per data rate (${r.config.adr === 'lorawan' ? 'LoRaWAN' : 'tracking-aware'} ADR, interval and time on air above are the starting rate's) — ${lines.join('; ')}.`;
 }
 
 /** The IMM's mean member probabilities, as a tooltip. */

@@ -1,6 +1,6 @@
 // The page's settings: defaults (the paper's), conversion to simulate() parameters, and the URL
 // round trip that makes every view shareable.
-import type { ModelChoice, Prediction, SimulateParams } from './loratrack';
+import type { AdrMode, ModelChoice, Prediction, SimulateParams } from './loratrack';
 
 export type FlightChoice = 'synthetic' | 'all' | 'canberra' | 'csv';
 
@@ -13,6 +13,7 @@ export interface Settings {
   sender: 'periodic' | 'error';
   threshold: number;
   dutyCycleMode: 'per-packet' | 'budget';
+  adr: AdrMode;
   flight: FlightChoice;
   flightNumber: number;
   lorawan: boolean;
@@ -36,6 +37,7 @@ export const DEFAULTS: Settings = {
   sender: 'periodic',
   threshold: 2,
   dutyCycleMode: 'per-packet',
+  adr: 'off',
   flight: 'synthetic',
   flightNumber: 1,
   lorawan: true,
@@ -75,6 +77,7 @@ export function toParams(s: Settings, csv?: { text: string; name: string }): Sim
     sender: s.sender,
     threshold: s.threshold,
     dutyCycleMode: s.dutyCycleMode,
+    adr: s.adr,
     sf: s.sf,
     bw: s.bw,
     distance: s.distance,
@@ -117,6 +120,8 @@ export function fromQuery(search: string): Settings {
   if (sender === 'periodic' || sender === 'error') s.sender = sender;
   const mode = q.get('dutyCycleMode');
   if (mode === 'per-packet' || mode === 'budget') s.dutyCycleMode = mode;
+  const adr = q.get('adr');
+  if (adr === 'off' || adr === 'lorawan' || adr === 'tracking') s.adr = adr;
   const flight = q.get('flight');
   // An uploaded CSV cannot travel in a URL; such links open the default flight.
   if (flight === 'synthetic' || flight === 'all' || flight === 'canberra') s.flight = flight;

@@ -229,3 +229,18 @@ test('the bounded and IMM stations and error-triggered sending are one control a
   assert.match(page.url(), /threshold=5/);
   assert.deepEqual(problems, []);
 });
+
+test('adaptive data rate is one control away: from SF12 it speeds up and says where the packets went', async () => {
+  const { page, problems } = await open('?flight=all&model=3d-ctra&sf=12&bw=125');
+  assert.equal(await page.locator('#rate-use').isVisible(), false);
+  const fixedReceived = number(await cell(page, '3d-ctra', 'packets'));
+  const before = await tableHtml(page);
+  await page.getByLabel('Adaptive data rate').selectOption('tracking');
+  await waitForResults(page, before);
+  assert.match(page.url(), /adr=tracking/);
+  const note = await page.locator('#rate-use').textContent();
+  assert.match(note, /DR6 \(SF7\/250\) \d+/, note);
+  const adaptiveReceived = number(await cell(page, '3d-ctra', 'packets'));
+  assert.ok(adaptiveReceived >= fixedReceived, `ADR received ${adaptiveReceived}, SF7 ${fixedReceived}`);
+  assert.deepEqual(problems, []);
+});

@@ -7,8 +7,16 @@ import { MODEL_COLORS } from './colors';
 export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElement | HTMLElement {
   const models = report.series?.models ?? [];
   const lines = models.flatMap((m) => m.t.map((t, i) => ({ t, e: m.error3d[i], model: MODEL_LABELS[m.model] })));
-  const arrivals = models.flatMap((m) => m.arrivals.map((t) => ({ t, model: MODEL_LABELS[m.model] })));
-  const lost = models.flatMap((m) => m.lost.map((t) => ({ t, model: MODEL_LABELS[m.model] })));
+  const rate = (dr: number | null | undefined) => (dr === null || dr === undefined ? '' : ` at DR${dr}`);
+  const arrivals = models.flatMap((m) => m.arrivals.map((t, i) => ({ t, model: MODEL_LABELS[m.model], dr: rate(m.arrivalDr?.[i]) })));
+  const lost = models.flatMap((m) => m.lost.map((t, i) => ({ t, model: MODEL_LABELS[m.model], dr: rate(m.lostDr?.[i]) })));
+  // With ADR, label each change of data rate above the axis.
+  const changes = models.flatMap((m) =>
+    m.arrivals
+      .map((t, i) => ({ t, dr: m.arrivalDr?.[i], before: i > 0 ? m.arrivalDr?.[i - 1] : undefined, model: MODEL_LABELS[m.model] }))
+      .filter((d) => report.config.adr !== 'off' && d.dr !== d.before && d.dr !== null && d.dr !== undefined)
+      .map((d) => ({ ...d, label: `DR${d.dr}` })),
+  );
   const labels = models.map((m) => MODEL_LABELS[m.model]);
   // The station's own 95 % bound on its error, as a faint band under each model's line.
   const bounds = models.flatMap((m) => m.t.map((t, i) => ({ t, b: m.bound95[i], model: MODEL_LABELS[m.model] })));
@@ -23,8 +31,9 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
       Plot.areaY(bounds, { x: 't', y1: 0, y2: 'b', fill: 'model', fillOpacity: 0.08, curve: 'step-after' }),
       Plot.lineY(bounds, { x: 't', y: 'b', stroke: 'model', strokeOpacity: 0.45, strokeDasharray: '3,3', strokeWidth: 1, curve: 'step-after' }),
       Plot.lineY(lines, { x: 't', y: 'e', stroke: 'model', strokeWidth: 1.4 }),
-      Plot.dot(arrivals, { x: 't', y: 0, fill: 'model', r: 2.5, title: (d) => `${d.model}: packet arrived at ${d.t.toFixed(1)} s` }),
-      Plot.dot(lost, { x: 't', y: 0, stroke: 'model', symbol: 'times', r: 4, title: (d) => `${d.model}: packet lost at ${d.t.toFixed(1)} s` }),
+      Plot.dot(arrivals, { x: 't', y: 0, fill: 'model', r: 2.5, title: (d) => `${d.model}: packet arrived at ${d.t.toFixed(1)} s${d.dr}` }),
+      Plot.dot(lost, { x: 't', y: 0, stroke: 'model', symbol: 'times', r: 4, title: (d) => `${d.model}: packet lost at ${d.t.toFixed(1)} s${d.dr}` }),
+      Plot.text(changes, { x: 't', y: 0, text: 'label', fill: 'model', dy: -10, fontSize: 9 }),
       Plot.ruleY([0]),
       Plot.tip(lines, Plot.pointerX({ x: 't', y: 'e', stroke: 'model' })),
     ],
