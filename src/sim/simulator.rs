@@ -2,11 +2,12 @@
 
 use super::config::{SimConfig, SyntheticChoice, TrajectorySource};
 use super::drone::{run_drone, DroneTrack};
-use super::link::{schedule_transmissions, LinkSetup};
+use super::link::{schedule_transmissions, LinkSetup, Transmission};
+use super::parallel::par_map_ticking;
 use super::pooled::{axis_every, model_series, series_stride, Pooled};
-use super::report::{RunConfig, Series, SimReport};
+use super::report::{ModelSeries, RunConfig, Series, SimReport};
 use super::sender::SenderKind;
-use super::station::{new_tracker, track_station, Bounds, StationSetup};
+use super::station::{new_tracker, track_station, Bounds, StationSetup, StationTrack};
 use super::{AdrSession, SimError};
 use crate::lora::{min_interval, time_on_air, Channel};
 use crate::math::pow;
@@ -17,6 +18,9 @@ use crate::trajectory::{
 };
 use std::collections::HashMap;
 use std::rc::Rc;
+
+/// One flight's transmissions, station track and (first flight, when asked) plotted series.
+type FlightRun = (Vec<Transmission>, StationTrack, Option<ModelSeries>);
 
 /// Separates the link's random stream from the sensors' for the same seed.
 const LINK_STREAM: u64 = 0x4C49_4E4B; // "LINK"
@@ -118,23 +122,21 @@ impl Simulator {
             flights.iter().for_each(|_| tick());
             return Rc::clone(d);
         }
-        let tracks: Vec<DroneTrack> = flights
-            .iter()
-            .enumerate()
-            .map(|(i, f)| {
-                let track = run_drone(
-                    f,
+        let tracks: Vec<DroneTrack> = par_map_ticking(
+            0..flights.len(),
+            |i| {
+                run_drone(
+                    &flights[i],
                     key.model,
                     cfg.sensor_rate,
                     cfg.q,
                     &cfg.r_diagonal,
                     cfg.seed,
                     i as u64,
-                );
-                tick();
-                track
-            })
-            .collect();
+                )
+            },
+            tick,
+        );
         self.drone_runs += tracks.len() as u64;
         if self.drones.len() >= MAX_CACHED_DRONE_RUNS {
             self.drones.clear();
@@ -212,8 +214,9 @@ impl Simulator {
             let bytes = model.payload_bytes() + cfg.overhead;
             let shadowing = cfg.channel.params().shadowing_sigma_db;
             let mut adr = AdrSession::new(&cfg.adr, &cfg.radio, bytes, cfg.duty_cycle, shadowing)?;
-            let mut pooled = Pooled::default();
-            for (i, (flight, drone)) in flights.iter().zip(drones.iter()).enumerate() {
+            let (flight_set, drone_set): (&[Trajectory], &[DroneTrack]) = (&flights, &drones);
+            let one = |i: usize, adr: Option<&mut AdrSession>| -> Result<FlightRun, SimError> {
+                let (flight, drone) = (&flight_set[i], &drone_set[i]);
                 // The same stream for every station: stations that send the same payload see
                 // the same packets, so their comparison is paired.
                 let mut rng = Rng::derive(cfg.seed ^ LINK_STREAM, i as u64);
@@ -228,15 +231,29 @@ impl Simulator {
                     sender.as_mut(),
                     &mut rule,
                     &mut rng,
-                    adr.as_mut(),
+                    adr,
                 );
                 let mut tracker = new_tracker(model, setup);
                 let with_series = cfg.series && i == 0;
                 let st = track_station(flight, tracker.as_mut(), &tx, cfg.step, with_series);
-                tick();
-                if with_series {
-                    series_models.push(model_series(model, &st, &tx));
-                }
+                let series = with_series.then(|| model_series(model, &st, &tx));
+                Ok((tx, st, series))
+            };
+            let runs: Vec<Result<FlightRun, SimError>> = match adr.as_mut() {
+                // ADR state passes from one flight to the next: fly them in order.
+                Some(session) => (0..flights.len())
+                    .map(|i| {
+                        let r = one(i, Some(&mut *session));
+                        tick();
+                        r
+                    })
+                    .collect(),
+                None => par_map_ticking(0..flights.len(), |i| one(i, None), &mut tick),
+            };
+            let mut pooled = Pooled::default();
+            for run in runs {
+                let (tx, st, series) = run?;
+                series_models.extend(series);
                 pooled.add(&tx, st);
             }
             let recoveries = drones.iter().map(|d| d.recoveries).sum();

@@ -6,7 +6,8 @@ use super::{parse_csv, Trajectory};
 pub const CANBERRA_CREDIT: &str =
     "ArduCopter log171 (Canberra), from dronekit/dronekit-la-testdata, CC BY-SA 3.0";
 
-const CANBERRA_CSV: &str = include_str!("../../data/ardupilot-log171-quad-canberra.csv");
+/// The file without its roll, pitch and yaw columns, which loratrack does not read (`build.rs`).
+const CANBERRA_CSV: &str = include_str!(concat!(env!("OUT_DIR"), "/canberra.csv"));
 
 /// A real outdoor quadcopter flight: 162 s at 10 Hz from an ArduCopter EKF, local ENU, with
 /// velocities (see `data/README.md`). Credit: [`CANBERRA_CREDIT`].

@@ -14,6 +14,7 @@ pub use params::{SfPlan, SwarmConfig, SwarmParams, MAX_DRONES, MAX_SWARM_DURATIO
 pub use report::{aloha_collision_rate, DroneReport, SwarmEcho, SwarmReport};
 
 use super::link::{schedule_transmissions, LinkSetup, Transmission};
+use super::parallel::par_map;
 use super::station::{new_tracker, track_station, Bounds, StationSetup};
 use super::{run_drone, SimError};
 use crate::lora::{
@@ -111,23 +112,6 @@ pub fn run_swarm(
 
 fn chunked(n: usize) -> impl Iterator<Item = core::ops::Range<usize>> {
     (0..n.div_ceil(CHUNK)).map(move |c| c * CHUNK..((c + 1) * CHUNK).min(n))
-}
-
-/// Maps over drones on every core natively (each drone has its own random streams, so the
-/// result does not depend on the order), one after another in WebAssembly.
-fn par_map<T: Send>(
-    range: core::ops::Range<usize>,
-    f: impl Fn(usize) -> T + Sync + Send,
-) -> Vec<T> {
-    #[cfg(not(target_arch = "wasm32"))]
-    {
-        use rayon::prelude::*;
-        range.into_par_iter().map(f).collect()
-    }
-    #[cfg(target_arch = "wasm32")]
-    {
-        range.map(f).collect()
-    }
 }
 
 fn flight(set: &[Trajectory], cfg: &SwarmConfig, at: &Placement) -> Result<Trajectory, SimError> {
