@@ -64,6 +64,28 @@ fn changing_only_the_link_does_not_rerun_the_drone_filters() {
 }
 
 #[test]
+fn reused_station_predictions_give_the_numbers_of_a_fresh_simulator() {
+    let mut warm = Simulator::new();
+    for prediction in [Prediction::Paper, Prediction::Bounded] {
+        let at = |distance: f64| SimParams {
+            synthetic: Some(SyntheticChoice::All),
+            prediction,
+            distance,
+            series: true,
+            ..SimParams::default()
+        };
+        // Warm the cache at 1 km, then move the gateway: the packets that still arrive are
+        // served from remembered chains, longer gaps extend them.
+        simulate(&mut warm, &at(1000.0)).unwrap();
+        for distance in [3500.0, 2000.0, 4500.0] {
+            let reused = simulate(&mut warm, &at(distance)).unwrap();
+            let fresh = simulate(&mut Simulator::new(), &at(distance)).unwrap();
+            assert_eq!(reused, fresh, "{prediction:?} at {distance} m");
+        }
+    }
+}
+
+#[test]
 fn five_km_at_sf7_loses_packets_and_tracks_worse_than_one_km() {
     let mut sim = Simulator::new();
     let near = simulate(&mut sim, &one_flight(5)).unwrap();

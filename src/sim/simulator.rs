@@ -7,7 +7,10 @@ use super::parallel::par_map_ticking;
 use super::pooled::{axis_every, model_series, series_stride, Pooled};
 use super::report::{ModelSeries, RunConfig, Series, SimReport};
 use super::sender::SenderKind;
-use super::station::{new_tracker, track_station, Bounds, StationSetup, StationTrack};
+use super::station::{
+    new_tracker, track_station, Bounds, FlightChains, Prediction, StationModel, StationSetup,
+    StationTrack,
+};
 use super::{AdrSession, SimError};
 use crate::lora::{min_interval, time_on_air, Channel};
 use crate::math::pow;
@@ -18,6 +21,7 @@ use crate::trajectory::{
 };
 use std::collections::HashMap;
 use std::rc::Rc;
+use std::sync::Mutex;
 
 /// One flight's transmissions, station track and (first flight, when asked) plotted series.
 type FlightRun = (Vec<Transmission>, StationTrack, Option<ModelSeries>);
@@ -31,6 +35,19 @@ pub const MAX_FILTER_STEPS: u64 = 1_000_000;
 /// Cache sizes; past them the cache starts afresh (a page rarely alternates between more).
 const MAX_CACHED_FLIGHTS: usize = 4;
 const MAX_CACHED_DRONE_RUNS: usize = 24;
+const MAX_CACHED_STATIONS: usize = 8;
+
+/// A single-model station setting whose per-packet predictions can be reused
+/// ([`FlightChains`]): the drone run it receives from and everything its prediction uses.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+struct StationKey {
+    drone: DroneKey,
+    model: ModelKind,
+    prediction: Prediction,
+    step: u64,
+    eta: u64,
+    q: u64,
+}
 
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 enum FlightKey {
@@ -61,6 +78,7 @@ fn fnv1a(text: &str) -> u64 {
 pub struct Simulator {
     flights: HashMap<FlightKey, Rc<Vec<Trajectory>>>,
     drones: HashMap<DroneKey, Rc<Vec<DroneTrack>>>,
+    stations: HashMap<StationKey, Rc<Vec<Mutex<FlightChains>>>>,
     drone_runs: u64,
 }
 
@@ -146,6 +164,19 @@ impl Simulator {
         tracks
     }
 
+    /// The remembered station predictions for `key`, one entry per flight.
+    fn station_chains(&mut self, key: StationKey, flights: usize) -> Rc<Vec<Mutex<FlightChains>>> {
+        if let Some(c) = self.stations.get(&key) {
+            return Rc::clone(c);
+        }
+        if self.stations.len() >= MAX_CACHED_STATIONS {
+            self.stations.clear();
+        }
+        let chains = Rc::new((0..flights).map(|_| Mutex::default()).collect::<Vec<_>>());
+        self.stations.insert(key, Rc::clone(&chains));
+        chains
+    }
+
     /// Runs one simulation.
     pub fn run(&mut self, cfg: &SimConfig) -> Result<SimReport, SimError> {
         self.run_with_progress(cfg, &mut |_, _| {})
@@ -210,11 +241,27 @@ impl Simulator {
                 q: cfg.q.to_bits(),
                 seed: cfg.seed,
             };
+            let chains = match model {
+                StationModel::Single(m) => Some(self.station_chains(
+                    StationKey {
+                        drone: key.clone(),
+                        model: m,
+                        prediction: cfg.prediction,
+                        step: cfg.step.to_bits(),
+                        eta: cfg.eta.to_bits(),
+                        q: cfg.q.to_bits(),
+                    },
+                    flights.len(),
+                )),
+                // An IMM's probabilities carry over from packet to packet: nothing to reuse.
+                StationModel::Imm => None,
+            };
             let drones = self.drone_tracks(key, &flights, cfg, &mut tick);
             let bytes = model.payload_bytes() + cfg.overhead;
             let shadowing = cfg.channel.params().shadowing_sigma_db;
             let mut adr = AdrSession::new(&cfg.adr, &cfg.radio, bytes, cfg.duty_cycle, shadowing)?;
             let (flight_set, drone_set): (&[Trajectory], &[DroneTrack]) = (&flights, &drones);
+            let chains: Option<&[Mutex<FlightChains>]> = chains.as_deref().map(|c| c.as_slice());
             let one = |i: usize, adr: Option<&mut AdrSession>| -> Result<FlightRun, SimError> {
                 let (flight, drone) = (&flight_set[i], &drone_set[i]);
                 // The same stream for every station: stations that send the same payload see
@@ -233,9 +280,20 @@ impl Simulator {
                     &mut rng,
                     adr,
                 );
-                let mut tracker = new_tracker(model, setup);
                 let with_series = cfg.series && i == 0;
-                let st = track_station(flight, tracker.as_mut(), &tx, cfg.step, with_series);
+                let st = match chains {
+                    Some(c) => c[i].lock().unwrap_or_else(|e| e.into_inner()).track(
+                        flight,
+                        &|| new_tracker(model, setup),
+                        &tx,
+                        cfg.step,
+                        with_series,
+                    ),
+                    None => {
+                        let mut tracker = new_tracker(model, setup);
+                        track_station(flight, tracker.as_mut(), &tx, cfg.step, with_series)
+                    }
+                };
                 let series = with_series.then(|| model_series(model, &st, &tx));
                 Ok((tx, st, series))
             };

@@ -7,11 +7,13 @@
 //!
 //! Both implement [`Tracker`], which is also what an error-triggered drone mirrors.
 
+mod chains;
 mod imm;
 mod prediction;
 mod predictor;
 mod station_model;
 
+pub(crate) use chains::FlightChains;
 pub use imm::{Imm, ImmMember, IMM_STAY};
 pub use prediction::{Bounded, Bounds, Prediction};
 pub use predictor::{StationPredictor, StationSetup};
@@ -79,6 +81,28 @@ pub struct StationTrack {
     pub probability_sum: Option<[f64; 3]>,
 }
 
+/// What a station believes at one evaluation time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Estimate {
+    /// Position, m.
+    pub position: [f64; 3],
+    /// Its covariance, m².
+    pub covariance: Matrix3<f64>,
+    /// For a multiple-model tracker, the probability of DR, CTRA+ and 3D-CTRA.
+    pub probabilities: Option<[f64; 3]>,
+}
+
+impl Estimate {
+    /// The tracker's estimate now.
+    pub fn of(tracker: &dyn Tracker) -> Self {
+        Estimate {
+            position: tracker.position(),
+            covariance: tracker.position_covariance(),
+            probabilities: tracker.model_probabilities(),
+        }
+    }
+}
+
 /// Runs a station over the flight.
 ///
 /// At every grid time t0 + jT from the first arrival on, the newest packet that has fully arrived
@@ -91,6 +115,31 @@ pub fn track_station(
     transmissions: &[Transmission],
     step: f64,
     with_bounds: bool,
+) -> StationTrack {
+    score_station(
+        flight,
+        transmissions,
+        step,
+        with_bounds,
+        &mut |t, packet, fresh| {
+            if fresh {
+                tracker.set_interval(packet.interval);
+                tracker.reset(&packet.state, packet.sent);
+            }
+            tracker.predict_to(t);
+            Estimate::of(tracker)
+        },
+    )
+}
+
+/// The evaluation loop of [`track_station`], with the station's estimate at each grid time `t`
+/// from `estimate(t, newest packet, whether it is newly applied)`.
+pub(crate) fn score_station(
+    flight: &Trajectory,
+    transmissions: &[Transmission],
+    step: f64,
+    with_bounds: bool,
+    estimate: &mut dyn FnMut(f64, &Transmission, bool) -> Estimate,
 ) -> StationTrack {
     let received: Vec<&Transmission> = transmissions.iter().filter(|t| t.received).collect();
     let Some(first) = received.first() else {
@@ -120,26 +169,22 @@ pub fn track_station(
             next += 1;
         }
         // j starts at the first arrival, so at least one packet has arrived.
-        if next - 1 != applied {
-            applied = next - 1;
-            tracker.set_interval(received[applied].interval);
-            tracker.reset(&received[applied].state, received[applied].sent);
-        }
-        tracker.predict_to(t);
+        let fresh = next - 1 != applied;
+        applied = next - 1;
+        let e = estimate(t, received[applied], fresh);
         let truth = flight.position_at(t, &mut hint);
-        let est = tracker.position();
+        let est = e.position;
         let d: [f64; 3] = core::array::from_fn(|k| est[k] - truth[k]);
-        let cov = tracker.position_covariance();
         out.times.push(t);
         out.estimate.push(est);
         out.error_axes.push(d.map(f64::abs));
         out.error3d
             .push((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
-        out.inside95.push(inside_95(&d, &cov));
+        out.inside95.push(inside_95(&d, &e.covariance));
         if with_bounds {
-            out.bound95.push(bound_95(&cov));
+            out.bound95.push(bound_95(&e.covariance));
         }
-        if let Some(p) = tracker.model_probabilities() {
+        if let Some(p) = e.probabilities {
             let sum = out.probability_sum.get_or_insert([0.0; 3]);
             for k in 0..3 {
                 sum[k] += p[k];

@@ -1,0 +1,95 @@
+//! What a single-model station predicts after each packet, remembered across runs.
+//!
+//! A single-model station forgets everything on a packet: from then until the next packet it
+//! only predicts, so its estimates depend on that packet alone (its state, send and arrival
+//! times, the interval it came at) and on the evaluation grid. Moving the gateway changes which
+//! packets arrive, never when the drone sends them or what they carry, so a link change reuses
+//! every chain and only pays for the evaluation. The numbers are the same as without the cache
+//! (tests/station.rs checks).
+
+use super::{score_station, Estimate, StationTrack, Tracker};
+use crate::sim::Transmission;
+use crate::trajectory::Trajectory;
+use std::collections::HashMap;
+
+/// A packet as the station sees it: send time, arrival time and interval, bit for bit.
+type PacketKey = (u64, u64, u64);
+
+/// The estimates of one packet's predictions, from the first grid time it is applied at.
+#[derive(Default)]
+struct Chain {
+    estimates: Vec<Estimate>,
+}
+
+/// The chains of one flight, for one station setting.
+#[derive(Default)]
+pub(crate) struct FlightChains {
+    chains: HashMap<PacketKey, Chain>,
+}
+
+/// The most chains one flight keeps; past it the flight starts afresh.
+const MAX_CHAINS: usize = 20_000;
+
+impl FlightChains {
+    /// [`track_station`](super::track_station) for a fresh single-model station made by
+    /// `new_tracker`, reusing and extending the remembered chains.
+    pub(crate) fn track(
+        &mut self,
+        flight: &Trajectory,
+        new_tracker: &dyn Fn() -> Box<dyn Tracker>,
+        transmissions: &[Transmission],
+        step: f64,
+        with_bounds: bool,
+    ) -> StationTrack {
+        if self.chains.len() > MAX_CHAINS {
+            self.chains.clear();
+        }
+        // The packet being served, how far into its chain, and a live tracker once the chain
+        // runs out (replayed from the packet over the grid times already served).
+        let mut key: PacketKey = (0, 0, 0);
+        let mut k = 0;
+        let mut served: Vec<f64> = Vec::new();
+        let mut live: Option<Box<dyn Tracker>> = None;
+        let chains = &mut self.chains;
+        score_station(
+            flight,
+            transmissions,
+            step,
+            with_bounds,
+            &mut |t, packet, fresh| {
+                if fresh {
+                    key = (
+                        packet.sent.to_bits(),
+                        packet.arrival.to_bits(),
+                        packet.interval.to_bits(),
+                    );
+                    k = 0;
+                    served.clear();
+                    live = None;
+                }
+                let chain = chains.entry(key).or_default();
+                let e = match chain.estimates.get(k) {
+                    Some(e) => *e,
+                    None => {
+                        let tracker = live.get_or_insert_with(|| {
+                            let mut tr = new_tracker();
+                            tr.set_interval(packet.interval);
+                            tr.reset(&packet.state, packet.sent);
+                            for &s in &served {
+                                tr.predict_to(s);
+                            }
+                            tr
+                        });
+                        tracker.predict_to(t);
+                        let e = Estimate::of(tracker.as_ref());
+                        chain.estimates.push(e);
+                        e
+                    }
+                };
+                served.push(t);
+                k += 1;
+                e
+            },
+        )
+    }
+}
