@@ -16,7 +16,16 @@ function save(blob: Blob, name: string): void {
 export function downloadErrorCsv(report: SimReport): void {
   const models = report.series?.models ?? [];
   const header = ['t_s', ...models.map((m) => `${m.model}_error3d_m`)];
-  const rows = (models[0]?.t ?? []).map((t, i) => [t.toFixed(2), ...models.map((m) => (m.t[i] === t ? m.error3d[i].toFixed(4) : ''))]);
+  // Each station starts at its own first packet: join the series on time, empty before it.
+  const byTime = new Map<number, string[]>();
+  models.forEach((m, k) =>
+    m.t.forEach((t, i) => {
+      const row = byTime.get(t) ?? models.map(() => '');
+      row[k] = m.error3d[i].toFixed(4);
+      byTime.set(t, row);
+    }),
+  );
+  const rows = [...byTime.entries()].sort((a, b) => a[0] - b[0]).map(([t, cells]) => [t.toFixed(2), ...cells]);
   save(new Blob([[header, ...rows].map((r) => r.join(',')).join('\n') + '\n'], { type: 'text/csv' }), 'loratrack-error-series.csv');
 }
 
@@ -26,8 +35,11 @@ export function downloadJson(report: SimReport, settings: unknown): void {
   save(new Blob([JSON.stringify({ settings, ...rest }, null, 2)], { type: 'application/json' }), 'loratrack-results.json');
 }
 
+/** The chart itself: the largest SVG (a figure also holds the legend's small swatches). */
 function svgOf(chart: Element): SVGSVGElement | null {
-  return chart instanceof SVGSVGElement ? chart : chart.querySelector('svg:not([aria-hidden])') ?? chart.querySelector('svg');
+  if (chart instanceof SVGSVGElement) return chart;
+  const area = (s: SVGSVGElement) => Number(s.getAttribute('width') ?? 0) * Number(s.getAttribute('height') ?? 0);
+  return [...chart.querySelectorAll('svg')].reduce<SVGSVGElement | null>((best, s) => (!best || area(s) > area(best) ? s : best), null);
 }
 
 function svgText(svg: SVGSVGElement): string {

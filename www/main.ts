@@ -1,6 +1,6 @@
 // The playground: reads the controls, asks the worker to simulate, renders numbers and charts.
 import { load, MODEL_LABELS, timeOnAir, type ModelResult, type SimReport } from './loratrack';
-import { DEFAULTS, fromQuery, overheadBytes, toParams, toQuery, type Settings } from './state';
+import { DEFAULTS, fromQuery, invalid, isNumericKey, LIMITS, overheadBytes, toParams, toQuery, type Settings } from './state';
 import type { Request, Response } from './worker';
 import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
 import { boxplotChart, type BoxRow } from './charts/boxplot';
@@ -18,24 +18,49 @@ const progress = $<HTMLProgressElement>('#progress');
 const csvError = $('#csv-error');
 const query = new URLSearchParams(location.search);
 const embed = query.get('embed') === '1';
+const PANELS = ['controls', 'results', 'trajectory', 'error', 'axes', 'distance', 'airtime'];
 
-let settings: Settings = fromQuery(location.search);
+const parsed = fromQuery(location.search);
+let settings: Settings = parsed.settings;
+const notices: string[] = [...parsed.problems];
 let csv: { text: string; name: string } | undefined;
 let report: SimReport | undefined;
 let trajectory3d: Trajectory3d | undefined;
 const charts: Record<string, Element> = {};
 
 // ---- embedding: ?embed=1&panels=results,error shows only those panels --------------------------
+let panels = 'results,error';
 if (embed) {
   document.body.classList.add('embed');
-  const wanted = (query.get('panels') ?? 'results,error').split(',');
-  for (const el of document.querySelectorAll<HTMLElement>('[data-panel]')) el.hidden = !wanted.includes(el.dataset.panel!);
-  for (const el of document.querySelectorAll<HTMLElement>('[data-chrome]')) el.hidden = true;
+  const asked = (query.get('panels') ?? panels).split(',').map((p) => p.trim()).filter(Boolean);
+  const known = asked.filter((p) => PANELS.includes(p));
+  if (known.length < asked.length || known.length === 0) {
+    notices.push(`Unknown panel${asked.length - known.length === 1 ? '' : 's'} in the link (${asked.filter((p) => !PANELS.includes(p)).join(', ') || 'none named'}); the panels are ${PANELS.join(', ')}.`);
+  }
+  panels = (known.length ? known : panels.split(',')).join(',');
+  for (const el of document.querySelectorAll<HTMLElement>('[data-panel]')) el.hidden = !panels.split(',').includes(el.dataset.panel!);
+  // The heading stays for screen readers, the credit and a way to the full page stay visible.
+  for (const el of document.querySelectorAll<HTMLElement>('[data-chrome]')) el.classList.add('visually-hidden');
+  const full = $<HTMLAnchorElement>('#open-full');
+  const url = new URL(location.href);
+  url.searchParams.delete('embed');
+  url.searchParams.delete('panels');
+  full.href = url.toString();
+  full.hidden = false;
 }
 
 // ---- controls <-> settings ---------------------------------------------------------------------
 function field(name: string): HTMLInputElement | HTMLSelectElement {
   return form.elements.namedItem(name) as HTMLInputElement | HTMLSelectElement;
+}
+
+/** The form's min and max come from the same table as the URL's checks. */
+for (const [key, l] of Object.entries(LIMITS)) {
+  const el = field(key);
+  if (el instanceof HTMLInputElement && el.type !== 'checkbox' && !l.values) {
+    el.min = String(l.min);
+    el.max = String(l.max);
+  }
 }
 
 function writeControls(s: Settings): void {
@@ -48,18 +73,45 @@ function writeControls(s: Settings): void {
   showConditional();
 }
 
-function readControls(): Settings {
+/** The form's settings, and the fields whose values are not acceptable (marked next to them). */
+function readControls(): { next: Settings; errors: string[] } {
   const s: Settings = { ...settings };
+  const errors: string[] = [];
   for (const key of Object.keys(DEFAULTS) as (keyof Settings)[]) {
     const el = field(key);
     if (!el) continue;
     if (el instanceof HTMLInputElement && el.type === 'checkbox') (s as unknown as Record<string, unknown>)[key] = el.checked;
-    else if (typeof DEFAULTS[key] === 'number') {
-      const v = Number(el.value);
-      if (el.value !== '' && Number.isFinite(v)) (s as unknown as Record<string, unknown>)[key] = v;
+    else if (isNumericKey(key)) {
+      const v = el.value.trim() === '' ? NaN : Number(el.value);
+      const why = invalid(key, v);
+      markField(el, why);
+      if (why) errors.push(why);
+      else (s as unknown as Record<string, unknown>)[key] = v;
     } else (s as unknown as Record<string, unknown>)[key] = el.value;
   }
-  return s;
+  return { next: s, errors };
+}
+
+/** Shows (or clears) a field's problem beside it, for eyes and for screen readers. */
+function markField(el: HTMLInputElement | HTMLSelectElement, why: string | null): void {
+  const id = `${el.id}-error`;
+  let message = document.getElementById(id);
+  if (!why) {
+    el.removeAttribute('aria-invalid');
+    message?.remove();
+    el.setAttribute('aria-describedby', (el.getAttribute('aria-describedby') ?? '').replace(id, '').trim());
+    if (!el.getAttribute('aria-describedby')) el.removeAttribute('aria-describedby');
+    return;
+  }
+  el.setAttribute('aria-invalid', 'true');
+  if (!message) {
+    message = document.createElement('p');
+    message.id = id;
+    message.className = 'error field-error';
+    el.insertAdjacentElement('afterend', message);
+    el.setAttribute('aria-describedby', `${el.getAttribute('aria-describedby') ?? ''} ${id}`.trim());
+  }
+  message.textContent = why;
 }
 
 function showConditional(): void {
@@ -99,12 +151,19 @@ function submit(): void {
 }
 
 function send(request: Request): void {
-  const long = settings.flight === 'all';
+  const long = settings.flight === 'all' || settings.flight === 'csv';
   running = { id: request.id, long, started: performance.now() };
+  document.body.dataset.busy = '';
   progress.hidden = !long;
   progress.value = 0;
-  if (long) status.textContent = 'Simulating 30 flights (44 min of flight)… change any setting to interrupt.';
+  if (settings.flight === 'all') status.textContent = 'Simulating 30 flights (44 min of flight)… change any setting to interrupt.';
+  else if (settings.flight === 'csv' && csv) status.textContent = `Simulating ${csv.name} (${(csv.text.length / 1024).toFixed(0)} KB)… change any setting to interrupt.`;
   worker.postMessage(request);
+}
+
+/** The results on show belong to other settings (or to none yet). */
+function markStale(stale: boolean): void {
+  $('[data-panel="results"]').classList.toggle('stale', stale);
 }
 
 function onResponse(r: Response): void {
@@ -117,6 +176,7 @@ function onResponse(r: Response): void {
     renderDistance(r.sweep);
     running = undefined;
     progress.hidden = true;
+    delete document.body.dataset.busy;
     if (queued) {
       const q = queued;
       queued = undefined;
@@ -127,6 +187,8 @@ function onResponse(r: Response): void {
   if ('error' in r) {
     running = undefined;
     progress.hidden = true;
+    delete document.body.dataset.busy;
+    markStale(true);
     const target = settings.flight === 'csv' ? csvError : status;
     target.textContent = r.error;
     target.hidden = false;
@@ -139,6 +201,8 @@ function onResponse(r: Response): void {
     return;
   }
   csvError.hidden = true;
+  progress.hidden = true;
+  markStale(false);
   report = r.report;
   const c = report.config;
   status.textContent = `${c.trajectory}: ${c.flights} flight${c.flights > 1 ? 's' : ''}, ${c.flightTime.toFixed(0)} s simulated in ${r.millis.toFixed(0)} ms. Gateway range (mean power = sensitivity ${c.sensitivityDbm.toFixed(1)} dBm): ${(c.rangeM / 1000).toFixed(2)} km.`;
@@ -163,7 +227,7 @@ function renderResults(r: SimReport): void {
         <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td></tr>`;
     })
     .join('');
-  $('#results-table').innerHTML = `<div class="table-wrap"><table class="results">
+  $('#results-table').innerHTML = `<div class="table-wrap" tabindex="0" role="region" aria-label="Results table"><table class="results">
     <caption>3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet; overhead ${r.config.overhead} B; ${r.config.prediction} prediction</caption>
     <thead><tr><th scope="col">model</th><th scope="col">payload</th><th scope="col">time on air</th><th scope="col">interval</th>
     <th scope="col">received / sent</th><th scope="col">delivery</th><th scope="col">mean</th><th scope="col">median</th><th scope="col">p75</th><th scope="col">p95</th><th scope="col">max</th>
@@ -230,14 +294,28 @@ function renderAirtime(): void {
 
 function place(name: string, chart: Element): void {
   charts[name] = chart;
+  // Plot labels its mark groups; an unlabelled role-less <g> may not carry aria-label, so the
+  // chart is one image named by its panel's title instead.
+  for (const g of chart.querySelectorAll('g[aria-label]')) g.removeAttribute('aria-label');
+  const svgs = [...(chart instanceof SVGSVGElement ? [chart] : chart.querySelectorAll('svg'))];
+  const main = svgs.reduce<SVGSVGElement | undefined>((a, b) => (!a || Number(b.getAttribute('width')) > Number(a.getAttribute('width')) ? (b as SVGSVGElement) : a), undefined);
+  main?.setAttribute('role', 'img');
+  main?.setAttribute('aria-label', document.getElementById(`${name}-title`)?.textContent ?? name);
   $(`#chart-${name}`).replaceChildren(chart);
 }
 
 // ---- events ------------------------------------------------------------------------------------
 function onChange(): void {
-  settings = readControls();
+  const { next, errors } = readControls();
   showConditional();
-  history.replaceState(null, '', `?${toQuery(settings, embed ? { embed: '1', panels: query.get('panels') ?? 'results,error' } : {})}`);
+  if (errors.length) {
+    // Nothing runs on a value the core would refuse; the numbers on show are marked as old.
+    markStale(true);
+    status.textContent = `Not simulated: ${errors.join(' ')} The results below are for the previous settings.`;
+    return;
+  }
+  settings = next;
+  history.replaceState(null, '', `?${toQuery(settings, embed ? { embed: '1', panels } : {})}`);
   renderAirtime();
   submit();
 }
@@ -263,11 +341,13 @@ $<HTMLInputElement>('#csv').addEventListener('change', async (e) => {
 
 $('#copy-link').addEventListener('click', async () => {
   const url = location.href;
+  // An uploaded file stays on this computer: say what the link will open instead.
+  const caveat = settings.flight === 'csv' ? ' It opens one synthetic flight: an uploaded CSV never leaves this computer, so a link cannot carry it.' : '';
   try {
     await navigator.clipboard.writeText(url);
-    $('#copy-status').textContent = 'Link copied.';
+    $('#copy-status').textContent = `Link copied.${caveat}`;
   } catch {
-    $('#copy-status').textContent = `Copy this link: ${url}`;
+    $('#copy-status').textContent = `Copy this link: ${url}${caveat}`;
   }
 });
 
@@ -276,6 +356,8 @@ $('#reset').addEventListener('click', () => {
   writeControls(settings);
   onChange();
 });
+
+$('#reset-view').addEventListener('click', () => trajectory3d?.resetView());
 
 $('#download-csv').addEventListener('click', () => report && downloadErrorCsv(report));
 $('#download-json').addEventListener('click', () => report && downloadJson(report, settings));
@@ -296,6 +378,17 @@ for (const button of document.querySelectorAll<HTMLButtonElement>('[data-downloa
 
 // ---- start -------------------------------------------------------------------------------------
 writeControls(settings);
+// The form is the truth: a value the slider cannot show (a distance between its steps) is what it shows.
+const shown = readControls().next;
+if (shown.distance !== settings.distance) {
+  notices.push(`The link's distance ${settings.distance} m is shown and simulated as ${shown.distance} m, the slider's nearest step.`);
+  settings = shown;
+}
+if (notices.length) {
+  const box = $('#notice');
+  box.textContent = notices.join(' ');
+  box.hidden = false;
+}
 startWorker();
 await load();
 renderAirtime();

@@ -244,3 +244,173 @@ test('adaptive data rate is one control away: from SF12 it speeds up and says wh
   assert.ok(adaptiveReceived >= fixedReceived, `ADR received ${adaptiveReceived}, SF7 ${fixedReceived}`);
   assert.deepEqual(problems, []);
 });
+
+// ---- Playground v2 defects: each test failed on the page before its fix ------------------------
+
+/** Runs axe-core on the page; returns serious and critical violations as "rule: target" lines. */
+async function axe(page) {
+  // Evaluated through the DevTools protocol: the page's CSP rightly refuses inline scripts.
+  await page.evaluate(readFileSync(join(process.cwd(), 'node_modules', 'axe-core', 'axe.min.js'), 'utf8'));
+  const result = await page.evaluate(async () => await window.axe.run(document, { resultTypes: ['violations'] }));
+  return result.violations
+    .filter((v) => v.impact === 'serious' || v.impact === 'critical')
+    .flatMap((v) => v.nodes.map((n) => `${v.id}: ${n.target.join(' ')}`));
+}
+
+/** Waits until no simulation or drawing is under way (`<body data-busy>` gone). */
+const idle = (page) => page.waitForFunction(() => !('busy' in document.body.dataset), null, { timeout: 30_000 });
+
+test('axe finds no serious or critical problem, on the full page and embedded', async () => {
+  const { page, problems } = await open();
+  await idle(page);
+  await page.waitForSelector('#chart-distance svg');
+  assert.deepEqual(await axe(page), []);
+  await page.goto(`${server.url}?embed=1&panels=results,error,distance`);
+  await waitForResults(page);
+  await idle(page);
+  assert.deepEqual(await axe(page), []);
+  assert.deepEqual(problems, []);
+});
+
+test('a chart download is the chart, not a legend swatch', async () => {
+  const { page, problems } = await open();
+  await idle(page);
+  for (const [panel, format] of [['error', 'svg'], ['distance', 'svg'], ['axes', 'png']]) {
+    const [download] = await Promise.all([page.waitForEvent('download'), page.locator(`[data-download="${panel}"][data-format="${format}"]`).click()]);
+    const file = await download.path();
+    if (format === 'svg') {
+      const width = Number(/<svg[^>]*\swidth="(\d+)/.exec(readFileSync(file, 'utf8'))[1]);
+      assert.ok(width > 250, `${panel}: an SVG ${width} px wide`);
+    } else {
+      const png = readFileSync(file);
+      assert.ok(png.readUInt32BE(16) > 250, `${panel}: a PNG ${png.readUInt32BE(16)} px wide`);
+    }
+  }
+  assert.deepEqual(problems, []);
+});
+
+test('the error-series CSV has every model in its column', async () => {
+  const { page, problems } = await open('?distance=3000');
+  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /Error series/ }).click()]);
+  const rows = readFileSync(await download.path(), 'utf8').trim().split('\n').map((r) => r.split(','));
+  assert.deepEqual(rows[0], ['t_s', 'dr_error3d_m', 'ctra-plus_error3d_m', '3d-ctra_error3d_m']);
+  for (let k = 1; k <= 3; k++) assert.ok(rows.slice(1).filter((r) => r[k] !== '').length > 100, `column ${rows[0][k]} is empty`);
+  assert.deepEqual(problems, []);
+});
+
+test('where no packet arrives, every panel says so instead of NaN or blanks, and log axes read in metres', async () => {
+  const { page, problems } = await open('?distance=5000');
+  await idle(page);
+  assert.doesNotMatch(await page.locator('#results-table').innerText(), /NaN/);
+  assert.match(await page.locator('#chart-error').innerText(), /No packet arrives/);
+  const distance = await page.locator('#chart-distance').innerText();
+  assert.match(distance, /no packet/);
+  const ticks = await page.locator('#chart-distance svg text').allTextContents();
+  assert.ok(!ticks.some((t) => /\d[mk]$/.test(t)), `SI-prefixed ticks: ${ticks.filter((t) => /\d[mk]$/.test(t))}`);
+  assert.deepEqual(problems, []);
+});
+
+test('bad values in a shared link are explained and replaced by defaults', async () => {
+  for (const [query, key] of [['?sf=13', 'sf'], ['?bw=300', 'bw'], ['?cr=9', 'cr'], ['?distance=50000', 'distance']]) {
+    const { page, problems } = await open(query);
+    const notice = await page.locator('#notice').textContent();
+    assert.match(notice, new RegExp(`${key}=`), `${query}: ${notice}`);
+    assert.match(await page.locator('#status').textContent(), /simulated in/);
+    if (key === 'distance') assert.equal(await page.locator('#distance-value').textContent(), '1.0 km');
+    assert.deepEqual(problems, []);
+    await page.close();
+  }
+});
+
+test('an invalid field is marked beside itself, nothing runs, and the old results say they are old', async () => {
+  const { page, problems } = await open();
+  await page.locator('#advanced summary').click();
+  const before = await tableHtml(page);
+  await page.getByLabel('Path-loss exponent').fill('0.5');
+  await page.waitForSelector('#pathLossExponent[aria-invalid="true"]');
+  assert.match(await page.locator('#pathLossExponent-error').textContent(), /Path-loss exponent must be between 1.5 and 6/);
+  assert.match(await page.locator('#status').textContent(), /Not simulated/);
+  assert.equal(await page.locator('[data-panel="results"].stale').count(), 1);
+  assert.equal(await tableHtml(page), before);
+  await page.getByLabel('Path-loss exponent').fill('3');
+  await page.waitForFunction(() => !document.querySelector('[data-panel="results"].stale'));
+  assert.equal(await page.locator('#pathLossExponent[aria-invalid]').count(), 0);
+  assert.equal(await page.locator('[data-panel="results"].stale').count(), 0);
+  assert.deepEqual(problems, []);
+});
+
+test('with Advanced open the settings still fit the screen, and the results table fits its box', async () => {
+  const { page, problems } = await open('', { width: 1280, height: 800 });
+  await page.locator('#advanced summary').click();
+  const box = await page.locator('#controls').boundingBox();
+  assert.ok(box.height <= 800, `settings ${box.height} px tall`);
+  await page.getByLabel('Seed').focus();
+  const seed = await page.getByLabel('Seed').boundingBox();
+  assert.ok(seed.y >= 0 && seed.y + seed.height <= 800, `Seed at ${seed.y}`);
+  const fits = await page.locator('#results-table .table-wrap').evaluate((el) => el.scrollWidth <= el.clientWidth + 1);
+  assert.ok(fits, 'the results table scrolls sideways at 1280 px');
+  assert.deepEqual(problems, []);
+});
+
+test('the progress bar goes when the results come, and busy is cleared when all is drawn', async () => {
+  const { page, problems } = await open();
+  const before = await tableHtml(page);
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('all');
+  await waitForResults(page, before);
+  assert.equal(await page.locator('#progress').isVisible(), false);
+  await idle(page);
+  assert.deepEqual(problems, []);
+});
+
+test('embedding: unknown panels are explained, spaces are forgiven, the credit and the full page stay reachable', async () => {
+  const { page, problems } = await open('?embed=1&panels=foo');
+  assert.match(await page.locator('#notice').textContent(), /foo/);
+  assert.equal(await page.locator('[data-panel="results"]').isVisible(), true);
+  await page.goto(`${server.url}?embed=1&panels=results,%20error`);
+  await waitForResults(page);
+  assert.equal(await page.locator('[data-panel="error"]').isVisible(), true);
+  assert.match(await page.locator('footer').innerText(), /CC BY-SA/);
+  const full = await page.locator('#open-full').getAttribute('href');
+  assert.doesNotMatch(full, /embed/);
+  assert.equal(await page.locator('h1').count(), 1);
+  assert.deepEqual(problems, []);
+});
+
+test('copying a link after a CSV upload says the link cannot carry the file', async () => {
+  const dir = mkdtempSync(join(tmpdir(), 'loratrack-'));
+  const path = join(dir, 'square.csv');
+  writeFileSync(path, 't,x,y,z\n' + Array.from({ length: 400 }, (_, i) => `${(i * 0.1).toFixed(1)},${Math.sin(i / 40) * 50},${Math.cos(i / 40) * 50},20`).join('\n') + '\n');
+  const { page, problems } = await open();
+  await page.context().grantPermissions(['clipboard-read', 'clipboard-write']);
+  const before = await tableHtml(page);
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
+  await page.locator('#csv').setInputFiles(path);
+  await waitForResults(page, before);
+  await page.getByRole('button', { name: 'Copy link' }).click();
+  assert.match(await page.locator('#copy-status').textContent(), /cannot carry it/);
+  assert.deepEqual(problems, []);
+});
+
+test('the 3D view keeps its camera across changes and has a legend, a gateway and a reset', async () => {
+  const { page, problems } = await open('?distance=300');
+  await page.waitForSelector('#chart-trajectory canvas');
+  const canvas = page.locator('#chart-trajectory canvas');
+  await canvas.focus();
+  const snap = () => canvas.evaluate((c) => c.toDataURL());
+  await idle(page);
+  const initial = await snap();
+  await page.keyboard.press('ArrowLeft');
+  await page.keyboard.press('ArrowLeft');
+  const turned = await snap();
+  assert.notEqual(turned, initial, 'arrow keys rotate the view');
+  const before = await tableHtml(page);
+  await page.getByLabel('Spreading factor').selectOption('8');
+  await waitForResults(page, before);
+  await idle(page);
+  await page.waitForTimeout(300);
+  const after = await snap();
+  assert.notEqual(after, initial, 'a settings change reset the camera');
+  assert.match(await page.locator('[data-panel="trajectory"] .legend').textContent(), /gateway/);
+  await page.getByRole('button', { name: 'Reset view' }).click();
+  assert.deepEqual(problems, []);
+});

@@ -16,20 +16,31 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
     .filter((r) => r.box.count > 0 && (!opts.log || (r.box.whiskerLow ?? 0) > 0))
     .map((r) => ({ group: r.group, label: MODEL_LABELS[r.model], model: r.model, ...r.box }));
   const models = [...new Set(data.map((d) => d.label))];
+  const groups = [...new Set(rows.map((r) => r.group))];
+  const empty = groups.filter((g) => !data.some((d) => d.group === g)).map((group) => ({ group }));
   return Plot.plot({
     width: opts.width,
     height: 300,
     marginLeft: 50,
-    fx: { label: opts.groupLabel, domain: [...new Set(rows.map((r) => r.group))] },
+    fx: { label: opts.groupLabel, domain: groups },
     x: { axis: null, domain: models, paddingInner: 0.25 },
     // A log scale keeps the boxes near the gateway readable beside the metres-to-kilometres ones beyond its range.
-    y: opts.log ? { label: opts.yLabel ?? 'error (m, log scale)', grid: true, type: 'log' } : { label: opts.yLabel ?? 'error (m)', grid: true, zero: true },
+    // Plain numbers at the powers of ten ("0.1", not "100m", which reads as 100 metres).
+    y: opts.log ? { label: opts.yLabel ?? 'error (m, log scale)', grid: true, type: 'log', tickFormat: decade } : { label: opts.yLabel ?? 'error (m)', grid: true, zero: true },
     color: { domain: models, range: models.map((m) => MODEL_COLORS[data.find((d) => d.label === m)!.model]), legend: true },
     marks: [
+      // A group where nothing arrived says so instead of staying blank.
+      Plot.text(empty, { fx: 'group', text: () => 'no packet\narrives', frameAnchor: 'middle', fill: '#5a6068', fontSize: 11 }),
       Plot.ruleX(data, { fx: 'group', x: 'label', y1: 'whiskerLow', y2: 'whiskerHigh', stroke: 'label' }),
       Plot.barY(data, { fx: 'group', x: 'label', y1: 'q1', y2: 'q3', fill: 'label', fillOpacity: 0.35, stroke: 'label' }),
       Plot.tickY(data, { fx: 'group', x: 'label', y: 'median', stroke: 'label', strokeWidth: 2.5 }),
       Plot.tip(data, Plot.pointerX({ fx: 'group', x: 'label', y: 'median', title: (d) => `${d.label}\nmedian ${d.median.toFixed(2)} m\nQ1–Q3 ${d.q1.toFixed(2)}–${d.q3.toFixed(2)} m\nwhiskers ${d.whiskerLow.toFixed(2)}–${d.whiskerHigh.toFixed(2)} m\n${d.outliers} outliers of ${d.count}` })),
     ],
   });
+}
+
+/** Labels only the powers of ten of a log axis, as plain numbers. */
+function decade(d: number): string {
+  const e = Math.log10(d);
+  return Math.abs(e - Math.round(e)) < 1e-9 ? d.toLocaleString('en', { maximumFractionDigits: 6 }) : '';
 }

@@ -6,6 +6,13 @@ import { MODEL_COLORS } from './colors';
 
 export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElement | HTMLElement {
   const models = report.series?.models ?? [];
+  if (!models.some((m) => m.t.length > 0)) {
+    // Nothing arrived on this flight: the station never had an estimate, so there is no error to draw.
+    const note = document.createElement('p');
+    note.className = 'empty-chart';
+    note.textContent = `No packet arrives at this distance on ${report.series?.flight ?? 'this flight'}: the station never has an estimate, so there is no error to plot. Move the gateway closer or raise the spreading factor.`;
+    return note;
+  }
   const lines = models.flatMap((m) => m.t.map((t, i) => ({ t, e: m.error3d[i], model: MODEL_LABELS[m.model] })));
   const rate = (dr: number | null | undefined) => (dr === null || dr === undefined ? '' : ` at DR${dr}`);
   const arrivals = models.flatMap((m) => m.arrivals.map((t, i) => ({ t, model: MODEL_LABELS[m.model], dr: rate(m.arrivalDr?.[i]) })));

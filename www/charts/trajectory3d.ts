@@ -9,6 +9,8 @@ import { MODEL_COLORS, TRUTH_COLOR } from './colors';
 export interface Trajectory3d {
   element: HTMLElement;
   update(report: SimReport): void;
+  /** Back to the initial camera. */
+  resetView(): void;
   /** PNG of the current view. */
   toPng(): string;
 }
@@ -22,7 +24,7 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
     note.className = 'note';
     note.textContent = 'The 3D view needs WebGL, which this browser does not offer. The other charts work without it.';
     container.replaceChildren(note);
-    return { element: note, update: () => undefined, toPng: () => '' };
+    return { element: note, update: () => undefined, resetView: () => undefined, toPng: () => '' };
   }
   const width = () => Math.max(280, container.clientWidth);
   const height = () => Math.min(480, Math.round(width() * 0.6));
@@ -55,8 +57,38 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
     return new THREE.Line(geometry, new THREE.LineBasicMaterial({ color }));
   };
 
+  // The camera is placed for the first flight shown and for each new one; changing a setting
+  // keeps the user's rotation and zoom.
+  let placedFor = '';
+  let lastSize = 10;
+  const place = () => {
+    camera.position.set(lastSize * 0.9, -lastSize * 0.9, lastSize * 0.7);
+    controls.target.set(0, 0, 0);
+    controls.update();
+    render();
+  };
+  renderer.domElement.tabIndex = 0;
+  // Keyboard: arrows rotate, + and − zoom (OrbitControls' own keys pan).
+  renderer.domElement.addEventListener('keydown', (e) => {
+    const offset = camera.position.clone().sub(controls.target);
+    const spherical = new THREE.Spherical().setFromVector3(new THREE.Vector3(offset.x, offset.z, -offset.y));
+    const turn = { ArrowLeft: [-0.1, 0], ArrowRight: [0.1, 0], ArrowUp: [0, -0.1], ArrowDown: [0, 0.1] }[e.key];
+    if (turn) {
+      spherical.theta += turn[0];
+      spherical.phi = Math.min(Math.PI - 0.01, Math.max(0.01, spherical.phi + turn[1]));
+    } else if (e.key === '+' || e.key === '=') spherical.radius *= 0.85;
+    else if (e.key === '-') spherical.radius /= 0.85;
+    else return;
+    e.preventDefault();
+    const v = new THREE.Vector3().setFromSpherical(spherical);
+    camera.position.copy(controls.target).add(new THREE.Vector3(v.x, -v.z, v.y));
+    controls.update();
+    render();
+  });
+
   return {
     element: renderer.domElement,
+    resetView: place,
     update(report: SimReport) {
       const s = report.series;
       if (!s) return;
@@ -73,10 +105,17 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
       grid.rotation.x = Math.PI / 2;
       grid.position.z = box.min.z - centre.z;
       group.add(grid);
-      camera.position.set(size * 0.9, -size * 0.9, size * 0.7);
-      controls.target.set(0, 0, 0);
-      controls.update();
-      render();
+      // The gateway, on the ground at its height, when it lies within the view.
+      const [gx, gy, gz] = s.gateway;
+      const gateway = new THREE.Mesh(new THREE.ConeGeometry(size * 0.015, size * 0.05, 12), new THREE.MeshBasicMaterial({ color: 0x444444 }));
+      gateway.rotation.x = Math.PI / 2;
+      gateway.position.set(gx - centre.x, gy - centre.y, gz - centre.z);
+      if (gateway.position.length() < size * 3) group.add(gateway);
+      lastSize = size;
+      if (placedFor !== s.flight) {
+        placedFor = s.flight;
+        place();
+      } else render();
     },
     toPng: () => {
       render();
