@@ -3,7 +3,9 @@
 #![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::api::{simulate, sweep_paper};
-use loratrack::{ModelChoice, ModelKind, Prediction, SimParams, Simulator, SyntheticChoice};
+use loratrack::{
+    ModelChoice, ModelKind, Prediction, SimParams, Simulator, SyntheticChoice, MAX_SEED,
+};
 
 fn one_flight(n: usize) -> SimParams {
     SimParams {
@@ -26,6 +28,25 @@ fn the_same_seed_gives_the_same_numbers_and_another_seed_does_not() {
     )
     .unwrap();
     assert_ne!(a.results[0].error3d, c.results[0].error3d);
+}
+
+#[test]
+fn a_random_seed_is_drawn_reported_and_repeats_the_run() {
+    let draw = || -> SimParams {
+        serde_json::from_str(r#"{"synthetic": 2, "model": "dr", "seed": "random"}"#).unwrap()
+    };
+    let (a, b) = (draw(), draw());
+    assert_ne!(a.seed, b.seed, "two draws gave the same seed");
+    assert!(a.seed <= MAX_SEED);
+    let first = simulate(&mut Simulator::new(), &a).unwrap();
+    assert_eq!(first.config.seed, a.seed);
+    let again = SimParams {
+        seed: first.config.seed,
+        ..a.clone()
+    };
+    assert_eq!(simulate(&mut Simulator::new(), &again).unwrap(), first);
+    let bad = serde_json::from_str::<SimParams>(r#"{"synthetic": 2, "seed": "often"}"#);
+    assert!(bad.unwrap_err().to_string().contains("random"));
 }
 
 #[test]

@@ -298,6 +298,25 @@ fn adr_crosses_the_boundary_and_reports_the_packets_per_data_rate() {
     assert!(error_message(e).contains("sometimes"));
 }
 
+#[wasm_bindgen_test]
+fn a_random_seed_comes_from_web_crypto_and_is_reported() {
+    let run = || {
+        let r = wasm::simulate(
+            obj(&[
+                ("synthetic", 2.into()),
+                ("model", "dr".into()),
+                ("seed", "random".into()),
+            ]),
+            JsValue::UNDEFINED,
+        )
+        .unwrap();
+        num(&get(&r, "config"), "seed")
+    };
+    let (a, b) = (run(), run());
+    assert_ne!(a, b);
+    assert!(a >= 0.0 && a <= 9_007_199_254_740_991.0 && a.fract() == 0.0);
+}
+
 /// Nests `{zz: {zz: ...}}` `depth` levels deep.
 fn deep(depth: usize) -> JsValue {
     let mut v: JsValue = js_sys::Object::new().into();

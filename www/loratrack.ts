@@ -106,7 +106,8 @@ export interface SimulateParams {
   sf?: number;
   bw?: number;
   distance?: number;
-  seed?: number;
+  /** A whole number, or 'random' for a fresh one from Web Crypto (reported in config.seed). */
+  seed?: number | 'random';
   overhead?: number;
   cr?: number;
   dutyCycle?: number;

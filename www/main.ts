@@ -131,8 +131,11 @@ function startWorker(): void {
   worker.onmessage = (e: MessageEvent<Response>) => onResponse(e.data);
 }
 
+let freshSeed = false;
+
 function submit(): void {
   const request: Request = { id: ++nextId, params: toParams(settings, csv), distances: DISTANCES };
+  if (freshSeed) request.params.seed = 'random';
   if (settings.flight === 'csv' && !csv) {
     status.textContent = 'Choose a CSV file to simulate it.';
     return;
@@ -204,6 +207,13 @@ function onResponse(r: Response): void {
   progress.hidden = true;
   markStale(false);
   report = r.report;
+  if (freshSeed) {
+    // The drawn seed becomes the setting: the link and the form repeat this run.
+    freshSeed = false;
+    settings.seed = report.config.seed;
+    field('seed').value = String(settings.seed);
+    history.replaceState(null, '', `?${toQuery(settings, embed ? { embed: '1', panels } : {})}`);
+  }
   const c = report.config;
   status.textContent = `${c.trajectory}: ${c.flights} flight${c.flights > 1 ? 's' : ''}, ${c.flightTime.toFixed(0)} s simulated in ${r.millis.toFixed(0)} ms. Gateway range (mean power = sensitivity ${c.sensitivityDbm.toFixed(1)} dBm): ${(c.rangeM / 1000).toFixed(2)} km.`;
   renderResults(report);
@@ -358,6 +368,11 @@ $('#reset').addEventListener('click', () => {
 });
 
 $('#reset-view').addEventListener('click', () => trajectory3d?.resetView());
+
+$('#new-seed').addEventListener('click', () => {
+  freshSeed = true;
+  submit();
+});
 
 $('#download-csv').addEventListener('click', () => report && downloadErrorCsv(report));
 $('#download-json').addEventListener('click', () => report && downloadJson(report, settings));

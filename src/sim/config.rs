@@ -16,6 +16,37 @@ use serde::{Deserialize, Serialize};
 /// page's URL) unchanged.
 pub const MAX_SEED: u64 = (1 << 53) - 1;
 
+/// A fresh seed in 0..=[`MAX_SEED`] from the operating system's generator (getrandom; Web
+/// Crypto in WebAssembly), for runs that should differ, yet can be repeated from the seed they
+/// report.
+pub fn random_seed() -> Result<u64, String> {
+    getrandom::u64()
+        .map(|v| v & MAX_SEED)
+        .map_err(|e| format!("no random seed available: {e}"))
+}
+
+/// A seed as a number, or `"random"` for [`random_seed`].
+fn seed_or_random<'de, D: serde::Deserializer<'de>>(d: D) -> Result<u64, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Raw {
+        Number(u64),
+        Text(String),
+    }
+    match Raw::deserialize(d).map_err(|_| {
+        serde::de::Error::custom("seed must be a whole number 0..2^53-1 or \"random\"")
+    })? {
+        Raw::Number(n) => Ok(n),
+        Raw::Text(t) if t.trim().eq_ignore_ascii_case("random") => {
+            random_seed().map_err(serde::de::Error::custom)
+        }
+        Raw::Text(t) => Err(serde::de::Error::custom(format!(
+            "seed must be a whole number 0..2^53-1 or \"random\", got '{}'",
+            t.chars().take(20).collect::<String>()
+        ))),
+    }
+}
+
 /// `--synthetic all` or `--synthetic N` (1..=30).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(untagged)]
@@ -193,7 +224,9 @@ pub struct SimParams {
     pub bw: f64,
     /// Horizontal distance from the flight's first point to the gateway, m.
     pub distance: f64,
-    /// Seed of every random draw (sensor noise, transmission offset, shadowing).
+    /// Seed of every random draw (sensor noise, transmission offset, shadowing); `"random"` draws
+    /// one from the operating system ([`random_seed`]), which the report's `config.seed` gives.
+    #[serde(deserialize_with = "seed_or_random")]
     pub seed: u64,
     /// MAC overhead, bytes (LoRaWAN 13; the paper's Table II: 0).
     pub overhead: usize,

@@ -20,7 +20,9 @@ pub mod station;
 pub mod swarm;
 
 pub use adr_session::AdrSession;
-pub use config::{ModelChoice, SimConfig, SimParams, SyntheticChoice, TrajectorySource, MAX_SEED};
+pub use config::{
+    random_seed, ModelChoice, SimConfig, SimParams, SyntheticChoice, TrajectorySource, MAX_SEED,
+};
 pub use drone::{run_drone, DroneTrack};
 pub use error::SimError;
 pub use link::{schedule_transmissions, LinkSetup, Transmission};

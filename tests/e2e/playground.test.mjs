@@ -414,3 +414,14 @@ test('the 3D view keeps its camera across changes and has a legend, a gateway an
   await page.getByRole('button', { name: 'Reset view' }).click();
   assert.deepEqual(problems, []);
 });
+
+test('New seed draws a fresh seed, shows it and puts it in the link', async () => {
+  const { page, problems } = await open();
+  const before = await tableHtml(page);
+  await page.getByRole('button', { name: 'New seed' }).click();
+  await waitForResults(page, before);
+  const seed = await page.locator('#seed').inputValue();
+  assert.notEqual(seed, '1');
+  assert.match(page.url(), new RegExp(`seed=${seed}`));
+  assert.deepEqual(problems, []);
+});

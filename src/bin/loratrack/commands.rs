@@ -125,9 +125,9 @@ pub struct SimulateArgs {
     /// Horizontal distance from the flight's first point to the gateway, metres (0..100000).
     #[arg(long, default_value_t = 1000.0, allow_negative_numbers = true)]
     distance: f64,
-    /// Seed of all random draws (sensor noise, transmission offset, shadowing), 0..2^53-1.
-    #[arg(long, default_value_t = 1)]
-    seed: u64,
+    /// Seed of all random draws (sensor noise, transmission offset, shadowing), 0..2^53-1, or `random` for a fresh one (reported in the output, so the run can be repeated).
+    #[arg(long, default_value = "1", value_name = "N|random")]
+    seed: String,
     /// MAC overhead in bytes added to each payload: 13 for LoRaWAN, 0 as in the paper's Table II.
     #[arg(long, default_value_t = 13)]
     overhead: usize,
@@ -575,6 +575,19 @@ fn read_flight(path: &std::path::Path) -> Result<String, ApiError> {
     Ok(text)
 }
 
+/// `--seed N` or `--seed random`.
+fn parse_seed(text: &str) -> Result<u64, ApiError> {
+    if text.trim().eq_ignore_ascii_case("random") {
+        return loratrack::random_seed().map_err(ApiError::Invalid);
+    }
+    text.trim().parse().map_err(|_| {
+        ApiError::Invalid(format!(
+            "seed must be a whole number 0..2^53-1 or 'random', got '{}'",
+            text.chars().take(20).collect::<String>()
+        ))
+    })
+}
+
 fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
     let trajectory = a.trajectory.as_deref().map(read_flight).transpose()?;
     let params = SimParams {
@@ -599,7 +612,7 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
         sf: a.sf,
         bw: a.bw,
         distance: a.distance,
-        seed: a.seed,
+        seed: parse_seed(&a.seed)?,
         overhead: if a.paper { 0 } else { a.overhead },
         cr: a.cr,
         duty_cycle: a.duty_cycle,
