@@ -314,7 +314,7 @@ fn a_random_seed_comes_from_web_crypto_and_is_reported() {
     };
     let (a, b) = (run(), run());
     assert_ne!(a, b);
-    assert!(a >= 0.0 && a <= 9_007_199_254_740_991.0 && a.fract() == 0.0);
+    assert!((0.0..=9_007_199_254_740_991.0).contains(&a) && a.fract() == 0.0);
 }
 
 /// Nests `{zz: {zz: ...}}` `depth` levels deep.
