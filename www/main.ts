@@ -242,7 +242,8 @@ function renderResults(r: SimReport): void {
     <thead><tr><th scope="col">model</th><th scope="col">payload</th><th scope="col">time on air</th><th scope="col">interval</th>
     <th scope="col">received / sent</th><th scope="col">delivery</th><th scope="col">mean</th><th scope="col">median</th><th scope="col">p75</th><th scope="col">p95</th><th scope="col">max</th>
     <th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th></tr></thead>
-    <tbody>${rows}</tbody></table></div>${ttnNote(r)}`;
+    <tbody>${rows}</tbody></table></div>`;
+  $('#ttn').innerHTML = ttnNote(r);
 
   renderRateUse(r);
   const width = (id: string) => Math.max(300, $(id).clientWidth || 600);

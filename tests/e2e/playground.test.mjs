@@ -425,3 +425,17 @@ test('New seed draws a fresh seed, shows it and puts it in the link', async () =
   assert.match(page.url(), new RegExp(`seed=${seed}`));
   assert.deepEqual(problems, []);
 });
+
+test('a laptop screen shows the results and two charts at once; a phone shows the numbers first', async () => {
+  const { page, problems } = await open('', { width: 1280, height: 800 });
+  await idle(page);
+  for (const panel of ['results', 'error', 'distance']) {
+    const b = await page.locator(`[data-panel="${panel}"]`).boundingBox();
+    assert.ok(b.y >= 0 && b.y + b.height <= 800, `${panel} spans ${b.y}..${b.y + b.height}`);
+  }
+  const phone = await open('', { width: 390, height: 844 });
+  const results = await phone.page.locator('[data-panel="results"]').boundingBox();
+  const controls = await phone.page.locator('#controls').boundingBox();
+  assert.ok(results.y < controls.y && results.y < 844, `results at ${results.y}, settings at ${controls.y}`);
+  assert.deepEqual([...problems, ...phone.problems], []);
+});

@@ -20,7 +20,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
   const empty = groups.filter((g) => !data.some((d) => d.group === g)).map((group) => ({ group }));
   return Plot.plot({
     width: opts.width,
-    height: 300,
+    height: 240,
     marginLeft: 50,
     fx: { label: opts.groupLabel, domain: groups },
     x: { axis: null, domain: models, paddingInner: 0.25 },

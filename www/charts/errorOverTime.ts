@@ -29,7 +29,7 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
   const bounds = models.flatMap((m) => m.t.map((t, i) => ({ t, b: m.bound95[i], model: MODEL_LABELS[m.model] })));
   return Plot.plot({
     width,
-    height: 300,
+    height: 240,
     marginLeft: 50,
     x: { label: 'time (s)' },
     y: { label: '3D error (m)', grid: true, zero: true },
