@@ -56,6 +56,11 @@ pub fn pow(x: f64, y: f64) -> f64 {
     libm::pow(x, y)
 }
 
+/// The standard normal distribution function Φ(z).
+pub fn normal_cdf(z: f64) -> f64 {
+    0.5 * libm::erfc(-z / core::f64::consts::SQRT_2)
+}
+
 /// x^n by repeated multiplication (exact in the same way on every target).
 pub fn powi(x: f64, n: i32) -> f64 {
     (0..n).fold(1.0, |acc, _| acc * x)

@@ -42,6 +42,13 @@ fn call<P: DeserializeOwned, R: Serialize>(
     js_sys::JSON::parse(&json).map_err(|_| JsError::new("could not build the result"))
 }
 
+/// `linkBudget({bw?, txPower?, pathLossExponent?, shadowing?, gatewayHeight?, distances?})`
+/// → `{distances, meanRxDbm, shadowing, sfs: [{sf, sensitivityDbm, rangeM, delivery}]}`.
+#[wasm_bindgen(js_name = linkBudget)]
+pub fn link_budget(params: JsValue) -> Result<JsValue, JsError> {
+    call(params, |p: api::LinkBudgetParams| api::link_budget(&p))
+}
+
 /// `timeOnAir({sf, bw, payload, overhead?, cr?, preamble?, implicitHeader?, noCrc?, ldro?, dutyCycle?})`
 /// → `{timeOnAir, symbolTime, payloadSymbols, phyPayloadBytes, lowDataRateOptimize, minInterval}`.
 #[wasm_bindgen(js_name = timeOnAir)]

@@ -119,3 +119,36 @@ fn erf(x: f64) -> f64 {
             * (-x * x).exp();
     y.copysign(x)
 }
+
+#[test]
+fn the_link_budget_puts_half_delivery_at_each_range_and_falls_with_distance() {
+    use loratrack::api::{link_budget, LinkBudgetParams};
+    let base = LinkBudgetParams::default();
+    let r = link_budget(&base).unwrap();
+    for s in &r.sfs {
+        assert!(s.delivery.windows(2).all(|w| w[1] <= w[0]), "SF{}", s.sf);
+        let at = link_budget(&LinkBudgetParams {
+            distances: vec![s.range_m],
+            ..base.clone()
+        })
+        .unwrap();
+        let d = at.sfs.iter().find(|x| x.sf == s.sf).unwrap().delivery[0];
+        assert!((d - 0.5).abs() < 1e-9, "SF{}: {d} at its range", s.sf);
+    }
+    assert!(r.sfs.windows(2).all(|w| w[1].range_m > w[0].range_m));
+    // Without shadowing delivery is a step at the range.
+    let sharp = link_budget(&LinkBudgetParams {
+        shadowing: 0.0,
+        ..base.clone()
+    })
+    .unwrap();
+    let sf7 = &sharp.sfs[0];
+    for (d, p) in sharp.distances.iter().zip(&sf7.delivery) {
+        assert_eq!(*p, if *d <= sf7.range_m { 1.0 } else { 0.0 }, "{d} m");
+    }
+    assert!(link_budget(&LinkBudgetParams {
+        distances: vec![0.0],
+        ..base
+    })
+    .is_err());
+}

@@ -227,6 +227,29 @@ export function timeOnAir(params: AirtimeParams): AirtimeReport {
   return wasm.timeOnAir(params) as AirtimeReport;
 }
 
+/** Input of linkBudget: simulate's channel options and the horizontal distances (m). */
+export interface LinkBudgetParams {
+  bw?: number;
+  txPower?: number;
+  pathLossExponent?: number;
+  shadowing?: number;
+  gatewayHeight?: number;
+  distances?: number[];
+}
+
+export interface LinkBudgetReport {
+  distances: number[];
+  /** Mean received power at each distance, dBm (before shadowing). */
+  meanRxDbm: number[];
+  shadowing: number;
+  sfs: { sf: number; sensitivityDbm: number; rangeM: number; delivery: number[] }[];
+}
+
+/** Received power, sensitivity, range and delivery ratio per SF against distance. */
+export function linkBudget(params: LinkBudgetParams): LinkBudgetReport {
+  return wasm.linkBudget(params) as LinkBudgetReport;
+}
+
 /** Noise-free propagation of a state with one motion model. */
 export function predict(params: PredictParams): StateReport {
   return wasm.predict(params) as StateReport;

@@ -1,5 +1,6 @@
 // The playground: reads the controls, asks the worker to simulate, renders numbers and charts.
-import { load, MODEL_LABELS, timeOnAir, type ModelResult, type SimReport } from './loratrack';
+import { linkBudget, load, MODEL_LABELS, timeOnAir, type ModelResult, type SimReport } from './loratrack';
+import { linkBudgetCharts } from './charts/linkBudget';
 import { DEFAULTS, fromQuery, invalid, isNumericKey, LIMITS, overheadBytes, toParams, toQuery, type Settings } from './state';
 import type { Request, Response } from './worker';
 import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
@@ -18,7 +19,7 @@ const progress = $<HTMLProgressElement>('#progress');
 const csvError = $('#csv-error');
 const query = new URLSearchParams(location.search);
 const embed = query.get('embed') === '1';
-const PANELS = ['controls', 'results', 'trajectory', 'error', 'axes', 'distance', 'airtime'];
+const PANELS = ['controls', 'results', 'trajectory', 'error', 'axes', 'distance', 'link', 'airtime'];
 
 const parsed = fromQuery(location.search);
 let settings: Settings = parsed.settings;
@@ -297,6 +298,11 @@ function renderDistance(sweep: { distance: number; report: SimReport }[]): void 
   place('distance', boxplotChart(rows, { log: true, groupLabel: `gateway distance (SF${settings.sf}, ${settings.bw} kHz)`, width: Math.max(300, $('#chart-distance').clientWidth || 600) }));
 }
 
+function renderLink(): void {
+  const r = linkBudget({ bw: settings.bw, txPower: settings.txPower, pathLossExponent: settings.pathLossExponent, shadowing: settings.shadowing });
+  place('link', linkBudgetCharts(r, { width: Math.max(300, $('#chart-link').clientWidth || 600), distance: settings.distance, sf: settings.sf }));
+}
+
 function renderAirtime(): void {
   const opts = { overhead: overheadBytes(settings), cr: settings.cr, sf: settings.sf, bw: settings.bw };
   $('#airtime-table').replaceChildren(airtimeTable(opts));
@@ -328,6 +334,7 @@ function onChange(): void {
   settings = next;
   history.replaceState(null, '', `?${toQuery(settings, embed ? { embed: '1', panels } : {})}`);
   renderAirtime();
+  renderLink();
   submit();
 }
 
@@ -408,4 +415,5 @@ if (notices.length) {
 startWorker();
 await load();
 renderAirtime();
+renderLink();
 submit();

@@ -8,6 +8,7 @@
 mod airtime;
 mod distances;
 mod error;
+mod link_budget;
 mod payload;
 mod predict;
 mod senders;
@@ -17,6 +18,7 @@ mod swarm;
 pub use airtime::{airtime, AirtimeParams, AirtimeReport};
 pub use distances::{sweep_distances, DistanceRun, DistanceSweepReport, ADR_DISTANCES};
 pub use error::ApiError;
+pub use link_budget::{link_budget, LinkBudgetParams, LinkBudgetReport, SfBudget};
 pub use payload::{decode, encode, DecodeParams, DecodeReport, EncodeParams, EncodeReport};
 pub use predict::{predict, validate_state, PredictParams, PredictReport, MAX_STEPS};
 pub use senders::{sweep_senders, SenderPoint, SenderSweepReport, SENDER_THRESHOLDS};

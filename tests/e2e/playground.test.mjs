@@ -439,3 +439,16 @@ test('a laptop screen shows the results and two charts at once; a phone shows th
   assert.ok(results.y < controls.y && results.y < 844, `results at ${results.y}, settings at ${controls.y}`);
   assert.deepEqual([...problems, ...phone.problems], []);
 });
+
+test('the link-budget panel shows power, sensitivities and delivery, and follows the bandwidth', async () => {
+  const { page, problems } = await open();
+  await page.waitForSelector('#chart-link svg');
+  assert.ok((await page.locator('#chart-link svg').count()) >= 2);
+  const before = await page.locator('#chart-link .note').textContent();
+  assert.match(before, /SF7 [\d.]+ km.*SF12 [\d.]+ km/);
+  await page.getByLabel('Bandwidth').selectOption('125');
+  await page.waitForFunction((old) => document.querySelector('#chart-link .note')?.textContent !== old, before);
+  const sf7 = (t) => Number(/SF7 ([\d.]+) km/.exec(t)[1]);
+  assert.ok(sf7(await page.locator('#chart-link .note').textContent()) > sf7(before), 'a narrower band reaches further');
+  assert.deepEqual(problems, []);
+});

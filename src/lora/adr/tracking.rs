@@ -2,6 +2,7 @@
 
 use super::{AdrNetwork, LinkAdrReq, UplinkReport};
 use crate::lora::{Channel, DataRate};
+use crate::math::normal_cdf;
 use std::collections::VecDeque;
 
 /// Uplinks (by frame counter, received or lost) the delivery estimate looks back over.
@@ -89,11 +90,6 @@ fn geometric_moment(n: usize, p: f64) -> f64 {
 /// Standard normal density.
 fn phi(z: f64) -> f64 {
     crate::math::exp(-0.5 * z * z) / (2.0 * core::f64::consts::PI).sqrt()
-}
-
-/// Standard normal distribution function.
-pub(crate) fn normal_cdf(z: f64) -> f64 {
-    0.5 * libm::erfc(-z / core::f64::consts::SQRT_2)
 }
 
 /// φ(z)/Φ(z), the inverse Mills ratio, stable in the far left tail where it tends to −z.
