@@ -233,15 +233,15 @@ function renderResults(r: SimReport): void {
         <th scope="row">${MODEL_LABELS[m.model]}${isBest ? ' <span class="badge">lowest p75</span>' : ''}</th>
         <td>${m.payloadBytes} B</td><td data-field="toa">${(m.timeOnAir * 1e3).toFixed(1)} ms</td><td data-field="interval">${m.interval.toFixed(2)} s</td>
         <td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}</td><td data-field="delivery">${(ratio * 100).toFixed(0)} %</td>
-        <td data-field="mean">${fmt(m.error3d.mean)}</td><td data-field="p50">${fmt(m.error3d.p50)}</td><td data-field="p75">${fmt(m.error3d.p75)}</td>
-        <td data-field="p95">${fmt(m.error3d.p95)}</td><td data-field="max">${fmt(m.error3d.max, 1)}</td>
+        <td data-field="mean">${fmt(m.error3d.mean)}${delta(m, 'mean')}</td><td data-field="p50">${fmt(m.error3d.p50)}${delta(m, 'p50')}</td><td data-field="p75">${fmt(m.error3d.p75)}${delta(m, 'p75')}</td>
+        <td data-field="p95">${fmt(m.error3d.p95)}${delta(m, 'p95')}</td><td data-field="max">${fmt(m.error3d.max, 1)}</td>
         <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td></tr>`;
     })
     .join('');
   $('#results-table').innerHTML = `<div class="table-wrap" tabindex="0" role="region" aria-label="Results table"><table class="results">
     <caption>3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet; overhead ${r.config.overhead} B; ${r.config.prediction} prediction</caption>
-    <thead><tr><th scope="col">model</th><th scope="col">payload</th><th scope="col">time on air</th><th scope="col">interval</th>
-    <th scope="col">received / sent</th><th scope="col">delivery</th><th scope="col">mean</th><th scope="col">median</th><th scope="col">p75</th><th scope="col">p95</th><th scope="col">max</th>
+    <thead><tr><th scope="col">model</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Time between packets: time on air divided by the 1 % duty cycle">interval</th>
+    <th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th><th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Mean 3D distance between the station's estimate and the truth">mean</th><th scope="col" title="Half the time the error is below this">median</th><th scope="col" title="75th percentile: 3 times in 4 the error is below this (the paper's headline statistic)">p75</th><th scope="col" title="95th percentile: the bad moments, typically long gaps">p95</th><th scope="col">max</th>
     <th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th></tr></thead>
     <tbody>${rows}</tbody></table></div>`;
   $('#ttn').innerHTML = ttnNote(r);
@@ -256,6 +256,30 @@ function renderResults(r: SimReport): void {
   ]);
   place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: width('#chart-axes') }));
   if (!$('[data-panel="trajectory"]').hidden) void render3d(r);
+}
+
+/** The pinned baseline, if any, and what it was. */
+let baseline: { report: SimReport; label: string } | undefined;
+
+/** The change of statistic `key` against the baseline's same station, as a small signed number. */
+function delta(m: ModelResult, key: 'mean' | 'p50' | 'p75' | 'p95'): string {
+  const b = baseline?.report.results.find((x) => x.model === m.model)?.error3d[key];
+  const v = m.error3d[key];
+  if (b === undefined || b === null || v === null) return '';
+  const d = v - b;
+  const cls = Math.abs(d) < 0.005 ? 'same' : d < 0 ? 'better' : 'worse';
+  return ` <span class="delta ${cls}" title="against the baseline (${b.toFixed(2)} m)">${d >= 0 ? '+' : '−'}${Math.abs(d).toFixed(2)}</span>`;
+}
+
+function describe(s: Settings): string {
+  return `SF${s.sf}, ${s.bw} kHz, ${(s.distance / 1000).toFixed(1)} km, ${s.prediction} prediction, ${s.sender} sending${s.adr === 'off' ? '' : `, ${s.adr} ADR`}`;
+}
+
+function renderBaseline(): void {
+  const note = $('#baseline-note');
+  note.hidden = !baseline;
+  $('#pin').textContent = baseline ? 'Clear baseline' : 'Pin as baseline';
+  if (baseline) note.textContent = `Differences (m) are against the pinned baseline: ${baseline.label}. Green: lower error.`;
 }
 
 /** With ADR: how many packets each model sent at each data rate. */
@@ -376,6 +400,12 @@ $('#reset').addEventListener('click', () => {
 });
 
 $('#reset-view').addEventListener('click', () => trajectory3d?.resetView());
+
+$('#pin').addEventListener('click', () => {
+  baseline = baseline || !report ? undefined : { report, label: describe(settings) };
+  renderBaseline();
+  if (report) renderResults(report);
+});
 
 $('#new-seed').addEventListener('click', () => {
   freshSeed = true;

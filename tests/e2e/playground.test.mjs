@@ -452,3 +452,17 @@ test('the link-budget panel shows power, sensitivities and delivery, and follows
   assert.ok(sf7(await page.locator('#chart-link .note').textContent()) > sf7(before), 'a narrower band reaches further');
   assert.deepEqual(problems, []);
 });
+
+test('pinning a baseline shows the next settings as differences against it', async () => {
+  const { page, problems } = await open('?model=3d-ctra');
+  await page.getByRole('button', { name: 'Pin as baseline' }).click();
+  assert.match(await page.locator('#baseline-note').textContent(), /SF7, 250 kHz, 1.0 km/);
+  const before = await tableHtml(page);
+  await page.locator('#distance').fill('3500');
+  await waitForResults(page, before);
+  const p75 = await page.locator('#results-table tr[data-model="3d-ctra"] td[data-field="p75"] .delta').textContent();
+  assert.match(p75, /^[+−]\d+\.\d\d$/);
+  await page.getByRole('button', { name: 'Clear baseline' }).click();
+  assert.equal(await page.locator('#results-table .delta').count(), 0);
+  assert.deepEqual(problems, []);
+});
