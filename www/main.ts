@@ -1,6 +1,7 @@
 // The playground: reads the controls, asks the worker to simulate, renders numbers and charts.
 import { linkBudget, load, MODEL_LABELS, timeOnAir, type ModelResult, type SimReport } from './loratrack';
 import { linkBudgetCharts } from './charts/linkBudget';
+import { swarmCharts } from './charts/swarm';
 import { DEFAULTS, fromQuery, invalid, isNumericKey, LIMITS, overheadBytes, toParams, toQuery, type Settings } from './state';
 import type { Request, Response } from './worker';
 import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
@@ -19,7 +20,7 @@ const progress = $<HTMLProgressElement>('#progress');
 const csvError = $('#csv-error');
 const query = new URLSearchParams(location.search);
 const embed = query.get('embed') === '1';
-const PANELS = ['controls', 'results', 'trajectory', 'error', 'axes', 'distance', 'link', 'airtime'];
+const PANELS = ['controls', 'results', 'trajectory', 'error', 'axes', 'distance', 'link', 'swarm', 'airtime'];
 
 const parsed = fromQuery(location.search);
 let settings: Settings = parsed.settings;
@@ -204,6 +205,7 @@ function onResponse(r: Response): void {
     }
     return;
   }
+  if (!('report' in r)) return;
   csvError.hidden = true;
   progress.hidden = true;
   markStale(false);
@@ -400,6 +402,55 @@ $('#reset').addEventListener('click', () => {
 });
 
 $('#reset-view').addEventListener('click', () => trajectory3d?.resetView());
+
+// ---- the swarm panel: its own worker, so a swarm never holds up the single-drone results ----
+let swarmWorker: Worker | undefined;
+$('#run-swarm').addEventListener('click', () => {
+  swarmWorker?.terminate();
+  swarmWorker = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
+  const n = Number($<HTMLSelectElement>('#swarmDrones').value);
+  const sizes = [...new Set([2, Math.round(n / 8), Math.round(n / 4), Math.round(n / 2), n])].filter((k) => k >= 1);
+  const model = settings.model === 'dr' || settings.model === 'ctra-plus' ? settings.model : '3d-ctra';
+  const params = {
+    duration: 120,
+    distance: settings.distance,
+    channels: Number($<HTMLSelectElement>('#swarmChannels').value) as 1 | 3,
+    sfPlan: $<HTMLSelectElement>('#swarmPlan').value as 'fixed' | 'spread',
+    sf: settings.sf,
+    bw: settings.bw,
+    model: model as 'dr' | 'ctra-plus' | '3d-ctra',
+    prediction: settings.prediction,
+    sender: settings.sender,
+    threshold: settings.threshold,
+    dutyCycleMode: settings.dutyCycleMode,
+    shadowing: settings.shadowing,
+    overhead: overheadBytes(settings),
+    seed: settings.seed,
+  };
+  const bar = $<HTMLProgressElement>('#swarm-progress');
+  bar.hidden = false;
+  bar.value = 0;
+  $('#swarm-status').textContent = `Simulating swarms of ${sizes.join(', ')} drones…`;
+  document.body.dataset.busy = '';
+  swarmWorker.onmessage = (e: MessageEvent<Response>) => {
+    const r = e.data;
+    if ('progress' in r) {
+      bar.value = r.progress;
+      return;
+    }
+    bar.hidden = true;
+    if (!running) delete document.body.dataset.busy;
+    if ('error' in r) {
+      $('#swarm-status').textContent = r.error;
+      return;
+    }
+    if ('swarms' in r) {
+      $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(r.millis / 1000).toFixed(1)} s.`;
+      place('swarm', swarmCharts(r.swarms, Math.max(300, $('#chart-swarm').clientWidth || 600)));
+    }
+  };
+  swarmWorker.postMessage({ id: 1, swarm: { sizes, params } } satisfies Request);
+});
 
 $('#pin').addEventListener('click', () => {
   baseline = baseline || !report ? undefined : { report, label: describe(settings) };

@@ -1,26 +1,36 @@
 // Runs simulations off the main thread so the page never freezes. One message in, one out:
 //   { id, params, distances? }  →  { id, progress }* then { id, report } | { id, error }
 //                                   then, with distances, { id, sweep: [{ distance, report }] }
-import { load, simulate, type SimReport, type SimulateParams } from './loratrack';
+import { load, simulate, swarm, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
 
-export interface Request {
+export interface SimulateRequest {
   id: number;
   params: SimulateParams;
   distances?: number[];
 }
 
+/** Swarms of each size in `sizes`, otherwise `params`. */
+export interface SwarmRequest {
+  id: number;
+  swarm: { sizes: number[]; params: SwarmParams };
+}
+
+export type Request = SimulateRequest | SwarmRequest;
+
 export type Response =
   | { id: number; progress: number }
   | { id: number; report: SimReport; millis: number }
   | { id: number; error: string }
-  | { id: number; sweep: { distance: number; report: SimReport }[] };
+  | { id: number; sweep: { distance: number; report: SimReport }[] }
+  | { id: number; swarms: SwarmReport[]; millis: number };
 
 const ready = load();
 
 self.onmessage = async (event: MessageEvent<Request>) => {
   await ready;
-  const { id, params, distances } = event.data;
   const post = (r: Response) => (self as unknown as Worker).postMessage(r);
+  if ('swarm' in event.data) return runSwarms(event.data, post);
+  const { id, params, distances } = event.data;
   try {
     const t0 = performance.now();
     let last = 0;
@@ -41,3 +51,19 @@ self.onmessage = async (event: MessageEvent<Request>) => {
     post({ id, error: e instanceof Error ? e.message : String(e) });
   }
 };
+
+function runSwarms({ id, swarm: { sizes, params } }: SwarmRequest, post: (r: Response) => void): void {
+  try {
+    const t0 = performance.now();
+    const total = sizes.reduce((a, b) => a + b, 0);
+    let before = 0;
+    const swarms = sizes.map((drones) => {
+      const r = swarm({ ...params, drones }, (done, all) => post({ id, progress: (before + (done / all) * drones) / total }));
+      before += drones;
+      return r;
+    });
+    post({ id, swarms, millis: performance.now() - t0 });
+  } catch (e) {
+    post({ id, error: e instanceof Error ? e.message : String(e) });
+  }
+}

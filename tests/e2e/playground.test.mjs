@@ -466,3 +466,14 @@ test('pinning a baseline shows the next settings as differences against it', asy
   assert.equal(await page.locator('#results-table .delta').count(), 0);
   assert.deepEqual(problems, []);
 });
+
+test('the swarm panel runs growing swarms and sets the collision rate against ALOHA', async () => {
+  const { page, problems } = await open();
+  await page.getByLabel('Drones', { exact: true }).selectOption('20');
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  const note = await page.locator('#chart-swarm .note').textContent();
+  assert.match(note, /20 drones, 3 channels.*collided \(ALOHA predicts [\d.]+ %\)/);
+  assert.ok((await page.locator('#chart-swarm svg').count()) >= 2);
+  assert.deepEqual(problems, []);
+});

@@ -1,0 +1,37 @@
+// Swarms sharing one gateway: the measured collision rate as the swarm grows, beside the pure
+// ALOHA formula; and each drone's tracking error (p75) in the largest swarm.
+import * as Plot from '@observablehq/plot';
+import type { SwarmReport } from '../loratrack';
+
+export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
+  const rates = swarms.map((r) => ({ n: r.config.drones, measured: 100 * r.collisionRate, theory: 100 * r.collisionRateTheory }));
+  const collisions = Plot.plot({
+    width,
+    height: 220,
+    marginLeft: 50,
+    x: { label: 'drones sharing the gateway', type: 'log' },
+    y: { label: 'packets collided (%)', grid: true, zero: true },
+    marks: [
+      Plot.lineY(rates, { x: 'n', y: 'theory', stroke: '#888', strokeDasharray: '4,3' }),
+      Plot.dot(rates, { x: 'n', y: 'measured', fill: '#4e79a7', r: 4, title: (d) => `${d.n} drones: ${d.measured.toFixed(1)} % collided (ALOHA ${d.theory.toFixed(1)} %)` }),
+      Plot.text(rates.slice(-1), { x: 'n', y: 'theory', text: () => 'ALOHA', dx: -20, dy: -8, fill: '#666', fontSize: 10 }),
+    ],
+  });
+  const largest = swarms[swarms.length - 1];
+  const drones = largest.drones.filter((d) => d.error3d.p75 !== null).map((d) => ({ p75: d.error3d.p75 as number, sf: `SF${d.sf}` }));
+  const errors = Plot.plot({
+    width,
+    height: 140,
+    marginLeft: 50,
+    x: { label: `p75 error of each of ${largest.config.drones} drones (m, log scale)`, type: 'log', tickFormat: (d: number) => (Math.abs(Math.log10(d) - Math.round(Math.log10(d))) < 1e-9 ? String(d) : '') },
+    y: { axis: null },
+    color: { legend: true },
+    marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: 'sf', r: 3, title: (d: { p75: number; sf: string }) => `${d.sf}: p75 ${d.p75.toFixed(2)} m` }))],
+  });
+  const note = document.createElement('p');
+  note.className = 'note';
+  note.textContent = `${largest.config.drones} drones, ${largest.config.channels} channel${largest.config.channels > 1 ? 's' : ''}, ${largest.config.sfPlan === 'spread' ? 'SFs spread by distance' : `all on SF${largest.config.sf}`}: ${(100 * largest.collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %), median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m.`;
+  const box = document.createElement('div');
+  box.append(collisions, errors, note);
+  return box;
+}
