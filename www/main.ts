@@ -3,7 +3,8 @@ import { linkBudget, load, MODEL_LABELS, timeOnAir, type ModelResult, type SimRe
 import { linkBudgetCharts } from './charts/linkBudget';
 import { swarmCharts } from './charts/swarm';
 import { DEFAULTS, fromQuery, invalid, isNumericKey, LIMITS, overheadBytes, toParams, toQuery, type Settings } from './state';
-import type { Request, Response } from './worker';
+import type { Request, Response, SimulateRequest } from './worker';
+import { SimulationPool } from './pool';
 import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
 import { boxplotChart, type BoxRow } from './charts/boxplot';
 import { errorOverTimeChart } from './charts/errorOverTime';
@@ -122,21 +123,18 @@ function showConditional(): void {
   $('#distance-value').textContent = `${(Number(field('distance').value) / 1000).toFixed(1)} km`;
 }
 
-// ---- the worker: latest request wins; a long whole-set run is interrupted by the next change ---
-let worker: Worker;
+// ---- the workers: latest request wins; a long whole-set run is interrupted by the next change --
+let pool: SimulationPool;
 let nextId = 0;
 let running: { id: number; long: boolean; started: number } | undefined;
-let queued: Request | undefined;
+let queued: SimulateRequest | undefined;
 
-function startWorker(): void {
-  worker = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
-  worker.onmessage = (e: MessageEvent<Response>) => onResponse(e.data);
-}
+
 
 let freshSeed = false;
 
 function submit(): void {
-  const request: Request = { id: ++nextId, params: toParams(settings, csv), distances: DISTANCES };
+  const request: SimulateRequest = { id: ++nextId, params: toParams(settings, csv), distances: DISTANCES };
   if (freshSeed) request.params.seed = 'random';
   if (settings.flight === 'csv' && !csv) {
     status.textContent = 'Choose a CSV file to simulate it.';
@@ -144,8 +142,7 @@ function submit(): void {
   }
   if (running?.long) {
     // A whole-set run takes about a second: stop it rather than make the user wait for stale numbers.
-    worker.terminate();
-    startWorker();
+    pool.restart();
     running = undefined;
   }
   if (running) {
@@ -155,7 +152,7 @@ function submit(): void {
   send(request);
 }
 
-function send(request: Request): void {
+function send(request: SimulateRequest): void {
   const long = settings.flight === 'all' || settings.flight === 'csv';
   running = { id: request.id, long, started: performance.now() };
   document.body.dataset.busy = '';
@@ -163,7 +160,7 @@ function send(request: Request): void {
   progress.value = 0;
   if (settings.flight === 'all') status.textContent = 'Simulating 30 flights (44 min of flight)… change any setting to interrupt.';
   else if (settings.flight === 'csv' && csv) status.textContent = `Simulating ${csv.name} (${(csv.text.length / 1024).toFixed(0)} KB)… change any setting to interrupt.`;
-  worker.postMessage(request);
+  pool.run(request, onResponse);
 }
 
 /** The results on show belong to other settings (or to none yet). */
@@ -493,7 +490,7 @@ if (notices.length) {
   box.textContent = notices.join(' ');
   box.hidden = false;
 }
-startWorker();
+pool = new SimulationPool();
 await load();
 renderAirtime();
 renderLink();

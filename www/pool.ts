@@ -1,0 +1,88 @@
+// A small pool of simulation workers, one per core (at most 8), each with its own module
+// instance: no SharedArrayBuffer, so the page still works statically hosted and in an iframe.
+//
+// A request is split by station: each worker simulates some of the models and the pool merges
+// their reports in the request's model order. Every station's numbers depend only on the
+// flight, the seed and its own settings (the link's random streams are derived per flight), so
+// the merged report equals what one worker (or the CLI) computes for all models at once.
+import type { SimReport } from './loratrack';
+import type { Response, SimulateRequest } from './worker';
+
+const MODELS_ALL = ['dr', 'ctra-plus', '3d-ctra'];
+
+/** The stations a `model` setting names, in order. */
+export function expandModels(model: unknown): string[] {
+  if (Array.isArray(model)) return model.map(String);
+  const text = String(model ?? 'all');
+  return text.trim().toLowerCase() === 'all' ? MODELS_ALL : text.split(',').map((m) => m.trim());
+}
+
+type Part = { progress: number; report?: SimReport; millis?: number; sweep?: { distance: number; report: SimReport }[] };
+
+export class SimulationPool {
+  private workers: Worker[] = [];
+  private handlers = new Map<number, (r: Response) => void>();
+
+  constructor(readonly size = Math.max(1, Math.min(8, navigator.hardwareConcurrency || 2))) {
+    this.restart();
+  }
+
+  /** Stops every worker (a run in progress is abandoned) and starts fresh ones. */
+  restart(): void {
+    for (const w of this.workers) w.terminate();
+    this.handlers.clear();
+    this.workers = Array.from({ length: this.size }, () => {
+      const w = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
+      w.onmessage = (e: MessageEvent<Response>) => this.handlers.get(e.data.id)?.(e.data);
+      return w;
+    });
+  }
+
+  /** Runs `request`, calling `on` with progress, then the merged report, then the merged sweep
+   * (or one error), as a single worker would. */
+  run(request: SimulateRequest, on: (r: Response) => void): void {
+    const models = expandModels(request.params.model);
+    // Station k always goes to worker k, so each worker's drone-run cache keeps serving it.
+    const groups = this.workers.map((_, w) => models.filter((_, k) => k % this.workers.length === w)).filter((g) => g.length > 0);
+    const parts: Part[] = groups.map(() => ({ progress: 0 }));
+    let failed = false;
+    groups.forEach((group, g) => {
+      const id = request.id * 16 + g;
+      this.handlers.set(id, (r) => {
+        if (failed) return;
+        const part = parts[g];
+        if ('error' in r) {
+          failed = true;
+          on({ id: request.id, error: r.error });
+          return;
+        }
+        if ('progress' in r) part.progress = r.progress;
+        if ('report' in r) [part.report, part.millis] = [r.report, r.millis];
+        if ('sweep' in r) part.sweep = r.sweep;
+        if ('progress' in r) on({ id: request.id, progress: parts.reduce((a, p) => a + p.progress, 0) / parts.length });
+        if ('report' in r && parts.every((p) => p.report)) {
+          on({ id: request.id, report: merge(parts.map((p) => p.report!), models), millis: Math.max(...parts.map((p) => p.millis ?? 0)) });
+        }
+        if ('sweep' in r && parts.every((p) => p.sweep)) {
+          const sweep = parts[0].sweep!.map(({ distance }, i) => ({ distance, report: merge(parts.map((p) => p.sweep![i].report), models) }));
+          for (let k = 0; k < groups.length; k++) this.handlers.delete(request.id * 16 + k);
+          on({ id: request.id, sweep });
+        }
+      });
+      // Groups are non-empty for workers 0..min(size, stations) − 1, in order: group g is worker g's.
+      this.workers[g].postMessage({
+        ...request,
+        id,
+        params: { ...request.params, model: group.join(',') },
+      } satisfies SimulateRequest);
+    });
+  }
+}
+
+/** The reports of disjoint groups of stations as one report, stations in `models` order. */
+function merge(reports: SimReport[], models: string[]): SimReport {
+  const results = models.map((m) => reports.flatMap((r) => r.results).find((x) => x.model === m)!);
+  const base = reports[0];
+  const series = base.series && { ...base.series, models: models.map((m) => reports.flatMap((r) => r.series?.models ?? []).find((s) => s.model === m)!) };
+  return { ...base, config: { ...base.config, models: results.map((r) => r.model) }, results, ...(series ? { series } : {}) };
+}
