@@ -155,7 +155,7 @@ function submit(): void {
 function send(request: SimulateRequest): void {
   const long = settings.flight === 'all' || settings.flight === 'csv';
   running = { id: request.id, long, started: performance.now() };
-  document.body.dataset.busy = '';
+  updateBusy();
   progress.hidden = !long;
   progress.value = 0;
   if (settings.flight === 'all') status.textContent = 'Simulating 30 flights (44 min of flight)… change any setting to interrupt.';
@@ -178,7 +178,7 @@ function onResponse(r: Response): void {
     renderDistance(r.sweep);
     running = undefined;
     progress.hidden = true;
-    delete document.body.dataset.busy;
+    updateBusy();
     if (queued) {
       const q = queued;
       queued = undefined;
@@ -189,7 +189,7 @@ function onResponse(r: Response): void {
   if ('error' in r) {
     running = undefined;
     progress.hidden = true;
-    delete document.body.dataset.busy;
+    updateBusy();
     markStale(true);
     const target = settings.flight === 'csv' ? csvError : status;
     target.textContent = r.error;
@@ -308,7 +308,27 @@ function ttnNote(r: SimReport): string {
 }
 
 /** three.js is most of the page's JavaScript: load it only once there is a trajectory to draw. */
+/** Drawings still under way (the 3D view loads three.js on first use) and swarm runs. */
+let drawing = 0;
+let swarming = false;
+
+/** `<body data-busy>` while anything visible is still being computed or drawn (tests wait on it). */
+function updateBusy(): void {
+  if (running || drawing > 0 || swarming) document.body.dataset.busy = '';
+  else delete document.body.dataset.busy;
+}
+
 async function render3d(r: SimReport): Promise<void> {
+  drawing++;
+  try {
+    await draw3d(r);
+  } finally {
+    drawing--;
+    updateBusy();
+  }
+}
+
+async function draw3d(r: SimReport): Promise<void> {
   if (!trajectory3d) {
     const { createTrajectory3d } = await import('./charts/trajectory3d');
     trajectory3d ??= createTrajectory3d($('#chart-trajectory'));
@@ -428,7 +448,8 @@ $('#run-swarm').addEventListener('click', () => {
   bar.hidden = false;
   bar.value = 0;
   $('#swarm-status').textContent = `Simulating swarms of ${sizes.join(', ')} drones…`;
-  document.body.dataset.busy = '';
+  swarming = true;
+  updateBusy();
   swarmWorker.onmessage = (e: MessageEvent<Response>) => {
     const r = e.data;
     if ('progress' in r) {
@@ -436,7 +457,8 @@ $('#run-swarm').addEventListener('click', () => {
       return;
     }
     bar.hidden = true;
-    if (!running) delete document.body.dataset.busy;
+    swarming = false;
+    updateBusy();
     if ('error' in r) {
       $('#swarm-status').textContent = r.error;
       return;

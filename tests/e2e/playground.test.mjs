@@ -402,7 +402,6 @@ test('the 3D view keeps its camera across changes and has a legend, a gateway an
   await page.getByLabel('Spreading factor').selectOption('8');
   await waitForResults(page, before);
   await idle(page);
-  await page.waitForTimeout(300);
   const after = await snap();
   assert.notEqual(after, initial, 'a settings change reset the camera');
   assert.match(await page.locator('[data-panel="trajectory"] .legend').textContent(), /gateway/);
@@ -422,7 +421,10 @@ test('New seed draws a fresh seed, shows it and puts it in the link', async () =
 });
 
 test('a laptop screen shows the results and two charts at once; a phone shows the numbers first', async () => {
+  const started = Date.now();
   const { page, problems } = await open('', { width: 1280, height: 800 });
+  const firstResults = Date.now() - started;
+  assert.ok(firstResults < 1500, `first results after ${firstResults} ms (page, module and three workers loaded)`);
   await idle(page);
   for (const panel of ['results', 'error', 'distance']) {
     const b = await page.locator(`[data-panel="${panel}"]`).boundingBox();
