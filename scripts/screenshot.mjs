@@ -15,6 +15,7 @@ try {
   await page.waitForSelector('#results-table tbody tr', { timeout: 30_000 });
   await page.waitForSelector('#chart-error svg', { timeout: 30_000 });
   await page.waitForSelector('#chart-distance svg', { timeout: 30_000 });
+  await page.waitForFunction(() => !('busy' in document.body.dataset), null, { timeout: 30_000 });
   const path = join(root, 'docs', 'playground.png');
   await page.screenshot({ path });
   if (problems.length) throw new Error(problems.join('\n'));

@@ -128,9 +128,7 @@ let pool: SimulationPool;
 let nextId = 0;
 let running: { id: number; long: boolean; started: number } | undefined;
 let queued: SimulateRequest | undefined;
-
-
-
+/** The next run draws a fresh seed (New seed), which then becomes the setting. */
 let freshSeed = false;
 
 function submit(): void {

@@ -716,22 +716,28 @@ fn one_station(model: ModelChoice) -> ModelChoice {
     }
 }
 
+/// The base of a trade-off sweep: the whole synthetic set, one station, no LoRaWAN overhead.
+fn trade_off_base(a: &SweepArgs, model: ModelChoice, prediction: Prediction) -> SimParams {
+    SimParams {
+        synthetic: Some(SyntheticChoice::All),
+        model: one_station(model),
+        prediction,
+        sf: a.sf,
+        bw: a.bw,
+        distance: a.distance,
+        seed: a.seed,
+        overhead: 0,
+        ..SimParams::default()
+    }
+}
+
 fn sweep_distances(
     a: &SweepArgs,
     model: ModelChoice,
     prediction: Prediction,
     distances: &[f64],
 ) -> Result<String, ApiError> {
-    let base = SimParams {
-        synthetic: Some(SyntheticChoice::All),
-        model: one_station(model),
-        prediction,
-        sf: a.sf,
-        bw: a.bw,
-        seed: a.seed,
-        overhead: 0,
-        ..SimParams::default()
-    };
+    let base = trade_off_base(a, model, prediction);
     let r = api::sweep_distances(&mut Simulator::new(), &base, distances)?;
     if a.out.json {
         return Ok(json(&r));
@@ -747,17 +753,7 @@ fn sweep_senders(
     model: ModelChoice,
     prediction: Prediction,
 ) -> Result<String, ApiError> {
-    let base = SimParams {
-        synthetic: Some(SyntheticChoice::All),
-        model: one_station(model),
-        prediction,
-        sf: a.sf,
-        bw: a.bw,
-        distance: a.distance,
-        seed: a.seed,
-        overhead: 0,
-        ..SimParams::default()
-    };
+    let base = trade_off_base(a, model, prediction);
     let r = api::sweep_senders(&mut Simulator::new(), &base, a.burst)?;
     if a.out.json {
         return Ok(json(&r));

@@ -7,7 +7,7 @@
 //! every chain and only pays for the evaluation. The numbers are the same as without the cache
 //! (tests/station.rs checks).
 
-use super::{score_station, Estimate, StationTrack, Tracker};
+use super::{score_station, start_from, Estimate, StationTrack, Tracker};
 use crate::sim::Transmission;
 use crate::trajectory::Trajectory;
 use std::collections::HashMap;
@@ -73,8 +73,7 @@ impl FlightChains {
                     None => {
                         let tracker = live.get_or_insert_with(|| {
                             let mut tr = new_tracker();
-                            tr.set_interval(packet.interval);
-                            tr.reset(&packet.state, packet.sent);
+                            start_from(tr.as_mut(), packet);
                             for &s in &served {
                                 tr.predict_to(s);
                             }

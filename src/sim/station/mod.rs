@@ -123,13 +123,18 @@ pub fn track_station(
         with_bounds,
         &mut |t, packet, fresh| {
             if fresh {
-                tracker.set_interval(packet.interval);
-                tracker.reset(&packet.state, packet.sent);
+                start_from(tracker, packet);
             }
             tracker.predict_to(t);
             Estimate::of(tracker)
         },
     )
+}
+
+/// Resets `tracker` to a received packet, at the interval the packet came with.
+pub(crate) fn start_from(tracker: &mut dyn Tracker, packet: &Transmission) {
+    tracker.set_interval(packet.interval);
+    tracker.reset(&packet.state, packet.sent);
 }
 
 /// The evaluation loop of [`track_station`], with the station's estimate at each grid time `t`
