@@ -169,7 +169,31 @@ impl<const N: usize> SigmaPoints<N> {
         w: &SigmaWeights,
     ) -> SMatrix<f64, N, N> {
         let (d0, dp, dm) = self.deviations(mean, angles);
-        d0 * d0.transpose() * w.cov0 + (dp * dp.transpose() + dm * dm.transpose()) * w.other
+        // The result is symmetric: each product commutes, so the upper triangle repeats the
+        // lower bit for bit. Sum the lower one in the same order as the matrix form
+        // d0 d0ᵀ c0 + (Dp Dpᵀ + Dm Dmᵀ) w (over k, point by point) and mirror it: half the
+        // multiplications.
+        let mut p = SMatrix::<f64, N, N>::zeros();
+        let mut m = SMatrix::<f64, N, N>::zeros();
+        for k in 0..N {
+            let (a, b) = (dp.column(k), dm.column(k));
+            for j in 0..N {
+                let (aj, bj) = (a[j], b[j]);
+                for i in j..N {
+                    p[(i, j)] += a[i] * aj;
+                    m[(i, j)] += b[i] * bj;
+                }
+            }
+        }
+        let mut cov = SMatrix::<f64, N, N>::zeros();
+        for j in 0..N {
+            for i in j..N {
+                let v = d0[i] * d0[j] * w.cov0 + (p[(i, j)] + m[(i, j)]) * w.other;
+                cov[(i, j)] = v;
+                cov[(j, i)] = v;
+            }
+        }
+        cov
     }
 }
 
