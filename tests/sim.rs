@@ -88,20 +88,28 @@ fn changing_only_the_link_does_not_rerun_the_drone_filters() {
 fn reused_station_predictions_give_the_numbers_of_a_fresh_simulator() {
     let mut warm = Simulator::new();
     for prediction in [Prediction::Paper, Prediction::Bounded] {
-        let at = |distance: f64| SimParams {
+        let at = |distance: f64, sf: i64| SimParams {
             synthetic: Some(SyntheticChoice::All),
             prediction,
             distance,
+            sf,
             series: true,
             ..SimParams::default()
         };
         // Warm the cache at 1 km, then move the gateway: the packets that still arrive are
         // served from remembered chains, longer gaps extend them.
-        simulate(&mut warm, &at(1000.0)).unwrap();
-        for distance in [3500.0, 2000.0, 4500.0] {
-            let reused = simulate(&mut warm, &at(distance)).unwrap();
-            let fresh = simulate(&mut Simulator::new(), &at(distance)).unwrap();
-            assert_eq!(reused, fresh, "{prediction:?} at {distance} m");
+        simulate(&mut warm, &at(1000.0, 7)).unwrap();
+        // Other spreading factors add new schedules until the memory budget starts afresh.
+        for (distance, sf) in [
+            (3500.0, 7),
+            (2000.0, 8),
+            (4500.0, 9),
+            (3000.0, 10),
+            (2500.0, 7),
+        ] {
+            let reused = simulate(&mut warm, &at(distance, sf)).unwrap();
+            let fresh = simulate(&mut Simulator::new(), &at(distance, sf)).unwrap();
+            assert_eq!(reused, fresh, "{prediction:?} at {distance} m, SF{sf}");
         }
     }
 }

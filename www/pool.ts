@@ -53,6 +53,7 @@ export class SimulationPool {
         const part = parts[g];
         if ('error' in r) {
           failed = true;
+          for (let k = 0; k < groups.length; k++) this.handlers.delete(request.id * 16 + k);
           on({ id: request.id, error: r.error });
           return;
         }

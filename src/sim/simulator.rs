@@ -35,7 +35,7 @@ pub const MAX_FILTER_STEPS: u64 = 1_000_000;
 /// Cache sizes; past them the cache starts afresh (a page rarely alternates between more).
 const MAX_CACHED_FLIGHTS: usize = 4;
 const MAX_CACHED_DRONE_RUNS: usize = 24;
-const MAX_CACHED_STATIONS: usize = 8;
+const MAX_CACHED_STATIONS: usize = 6;
 
 /// A single-model station setting whose per-packet predictions can be reused
 /// ([`FlightChains`]): the drone run it receives from and everything its prediction uses.

@@ -25,10 +25,13 @@ struct Chain {
 #[derive(Default)]
 pub(crate) struct FlightChains {
     chains: HashMap<PacketKey, Chain>,
+    /// Estimates held over all chains.
+    stored: usize,
 }
 
-/// The most chains one flight keeps; past it the flight starts afresh.
-const MAX_CHAINS: usize = 20_000;
+/// A flight keeps at most this many times its evaluation grid in estimates (about four send
+/// schedules' worth, ~0.5 KB per second of flight); past it, it starts afresh.
+const MAX_GRIDS: f64 = 4.0;
 
 impl FlightChains {
     /// [`track_station`](super::track_station) for a fresh single-model station made by
@@ -41,8 +44,10 @@ impl FlightChains {
         step: f64,
         with_bounds: bool,
     ) -> StationTrack {
-        if self.chains.len() > MAX_CHAINS {
+        let grid = (flight.duration() / step).max(1.0);
+        if self.stored as f64 > MAX_GRIDS * grid {
             self.chains.clear();
+            self.stored = 0;
         }
         // The packet being served, how far into its chain, and a live tracker once the chain
         // runs out (replayed from the packet over the grid times already served).
@@ -50,7 +55,7 @@ impl FlightChains {
         let mut k = 0;
         let mut served: Vec<f64> = Vec::new();
         let mut live: Option<Box<dyn Tracker>> = None;
-        let chains = &mut self.chains;
+        let (chains, stored) = (&mut self.chains, &mut self.stored);
         score_station(
             flight,
             transmissions,
@@ -82,6 +87,7 @@ impl FlightChains {
                         tracker.predict_to(t);
                         let e = Estimate::of(tracker.as_ref());
                         chain.estimates.push(e);
+                        *stored += 1;
                         e
                     }
                 };
