@@ -42,10 +42,11 @@ export class SimulationPool {
    * (or one error), as a single worker would. */
   run(request: SimulateRequest, on: (r: Response) => void): void {
     const models = expandModels(request.params.model);
-    // Station k always goes to worker k, so each worker's drone-run cache keeps serving it.
+    // Station k always goes to worker k mod size, so each worker's caches keep serving it.
     const groups = this.workers.map((_, w) => models.filter((_, k) => k % this.workers.length === w)).filter((g) => g.length > 0);
     const parts: Part[] = groups.map(() => ({ progress: 0 }));
     let failed = false;
+    const forget = () => groups.forEach((_, k) => this.handlers.delete(request.id * 16 + k));
     groups.forEach((group, g) => {
       const id = request.id * 16 + g;
       this.handlers.set(id, (r) => {
@@ -53,7 +54,7 @@ export class SimulationPool {
         const part = parts[g];
         if ('error' in r) {
           failed = true;
-          for (let k = 0; k < groups.length; k++) this.handlers.delete(request.id * 16 + k);
+          forget();
           on({ id: request.id, error: r.error });
           return;
         }
@@ -66,7 +67,7 @@ export class SimulationPool {
         }
         if ('sweep' in r && parts.every((p) => p.sweep)) {
           const sweep = parts[0].sweep!.map(({ distance }, i) => ({ distance, report: merge(parts.map((p) => p.sweep![i].report), models) }));
-          for (let k = 0; k < groups.length; k++) this.handlers.delete(request.id * 16 + k);
+          forget();
           on({ id: request.id, sweep });
         }
       });
