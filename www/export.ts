@@ -36,7 +36,7 @@ export function downloadJson(report: SimReport, settings: unknown): void {
 }
 
 /** The chart itself: the largest SVG (a figure also holds the legend's small swatches). */
-function svgOf(chart: Element): SVGSVGElement | null {
+export function chartSvg(chart: Element): SVGSVGElement | null {
   if (chart instanceof SVGSVGElement) return chart;
   const area = (s: SVGSVGElement) => Number(s.getAttribute('width') ?? 0) * Number(s.getAttribute('height') ?? 0);
   return [...chart.querySelectorAll('svg')].reduce<SVGSVGElement | null>((best, s) => (!best || area(s) > area(best) ? s : best), null);
@@ -50,12 +50,12 @@ function svgText(svg: SVGSVGElement): string {
 }
 
 export function downloadSvg(chart: Element, name: string): void {
-  const svg = svgOf(chart);
+  const svg = chartSvg(chart);
   if (svg) save(new Blob([svgText(svg)], { type: 'image/svg+xml' }), `${name}.svg`);
 }
 
 export function downloadPng(chart: Element, name: string): void {
-  const svg = svgOf(chart);
+  const svg = chartSvg(chart);
   if (!svg) return;
   const { width, height } = svg.getBoundingClientRect();
   const img = new Image();

@@ -9,7 +9,7 @@ import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
 import { boxplotChart, type BoxRow } from './charts/boxplot';
 import { errorOverTimeChart } from './charts/errorOverTime';
 import type { Trajectory3d } from './charts/trajectory3d';
-import { downloadDataUrl, downloadErrorCsv, downloadJson, downloadPng, downloadSvg } from './export';
+import { chartSvg, downloadDataUrl, downloadErrorCsv, downloadJson, downloadPng, downloadSvg } from './export';
 
 const DISTANCES = [500, 1000, 2000, 3000, 4000, 5000];
 /** The largest CSV the core reads (MAX_CSV_BYTES in src/trajectory/csv.rs). */
@@ -355,8 +355,7 @@ function place(name: string, chart: Element): void {
   // Plot labels its mark groups; an unlabelled role-less <g> may not carry aria-label, so the
   // chart is one image named by its panel's title instead.
   for (const g of chart.querySelectorAll('g[aria-label]')) g.removeAttribute('aria-label');
-  const svgs = [...(chart instanceof SVGSVGElement ? [chart] : chart.querySelectorAll('svg'))];
-  const main = svgs.reduce<SVGSVGElement | undefined>((a, b) => (!a || Number(b.getAttribute('width')) > Number(a.getAttribute('width')) ? (b as SVGSVGElement) : a), undefined);
+  const main = chartSvg(chart);
   main?.setAttribute('role', 'img');
   main?.setAttribute('aria-label', document.getElementById(`${name}-title`)?.textContent ?? name);
   $(`#chart-${name}`).replaceChildren(chart);
