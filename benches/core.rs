@@ -3,11 +3,17 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use loratrack::api::simulate;
 use loratrack::{
     measurement_noise, process_noise, time_on_air, Bandwidth, Ctra3d, CtraPlus, Dr, LoraParams,
-    MotionModel, SigmaParams, SimParams, Simulator, SpreadingFactor, SyntheticChoice, Ukf, ANGLES,
-    PAPER_Q, PAPER_R_DIAGONAL,
+    MotionModel, Scenario, SigmaParams, Simulator, SpreadingFactor, Ukf, ANGLES, PAPER_Q,
+    PAPER_R_DIAGONAL,
 };
 use nalgebra::SVector;
+use serde_json::{json, Value};
 use std::hint::black_box;
+
+/// `base` with the flat JSON settings of `changes` applied.
+fn set(base: &Scenario, changes: Value) -> Scenario {
+    base.with(&changes).unwrap()
+}
 
 fn airtime(c: &mut Criterion) {
     let p = LoraParams::new(SpreadingFactor::new(9).unwrap(), Bandwidth::Khz125);
@@ -59,10 +65,7 @@ fn filters(c: &mut Criterion) {
 fn simulation(c: &mut Criterion) {
     let mut g = c.benchmark_group("simulate");
     g.sample_size(10);
-    let all = SimParams {
-        synthetic: Some(SyntheticChoice::All),
-        ..SimParams::default()
-    };
+    let all = set(&Scenario::default(), json!({"synthetic": "all"}));
     g.bench_function("whole_set_all_models_cold", |b| {
         b.iter(|| simulate(&mut Simulator::new(), black_box(&all)).unwrap())
     });
@@ -72,18 +75,12 @@ fn simulation(c: &mut Criterion) {
         b.iter(|| {
             simulate(
                 &mut warm,
-                black_box(&SimParams {
-                    distance: 2000.0,
-                    ..all.clone()
-                }),
+                black_box(&set(&all.clone(), json!({"distance": 2000.0}))),
             )
             .unwrap()
         })
     });
-    let one = SimParams {
-        synthetic: Some(SyntheticChoice::One(1)),
-        ..SimParams::default()
-    };
+    let one = set(&Scenario::default(), json!({"synthetic": 1}));
     g.bench_function("one_flight_all_models_cold", |b| {
         b.iter(|| simulate(&mut Simulator::new(), black_box(&one)).unwrap())
     });
@@ -94,11 +91,10 @@ fn swarms(c: &mut Criterion) {
     let mut g = c.benchmark_group("swarm");
     g.sample_size(10);
     for drones in [72, 300] {
-        let p = loratrack::SwarmParams {
-            drones,
-            duration: 600.0,
-            ..loratrack::SwarmParams::default()
-        };
+        let p = set(
+            &loratrack::Scenario::default(),
+            json!({"drones": drones, "duration": 600.0}),
+        );
         g.bench_function(format!("{drones}_drones_600_s_every_core"), |b| {
             b.iter(|| loratrack::api::swarm(black_box(&p)).unwrap())
         });

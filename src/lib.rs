@@ -17,6 +17,7 @@ pub mod lora;
 pub mod math;
 pub mod metrics;
 pub mod models;
+pub mod options;
 pub mod rng;
 pub mod sim;
 pub mod trajectory;

@@ -81,7 +81,7 @@ pub fn decode(params: JsValue) -> Result<JsValue, JsError> {
 #[wasm_bindgen]
 pub fn simulate(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> {
     let progress = progress_function(progress)?;
-    call(params, |p: crate::sim::SimParams| {
+    call(params, |p: crate::sim::Scenario| {
         SIMULATOR.with(|s| {
             let mut report = reporter(&progress);
             // A progress callback that calls simulate again would find the simulator busy: refuse
@@ -94,14 +94,25 @@ pub fn simulate(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> 
     })
 }
 
-/// `swarm({drones?, duration?, distance?, channels?, sfPlan?, sf?, bw?, model?, …}, progress?)`
-/// → `{config, collisionRate, collisionRateTheory, deliveryRatio, …, drones}` (the CLI's
-/// `swarm --json`). `progress(done, total)` is called as drones complete.
+/// `swarm({drones?, duration?, sfPlan?, …every simulate setting}, progress?)`
+/// → `{config, collisionRate, collisionRateTheory, packetsSent, packetsReceived, deliveryRatio,
+/// duplicates, gateways, …, drones}` (the CLI's `swarm --json`). `progress(done, total)` is called
+/// as episodes and drones complete.
 #[wasm_bindgen]
 pub fn swarm(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> {
     let progress = progress_function(progress)?;
-    call(params, |p: crate::sim::SwarmParams| {
+    call(params, |p: crate::sim::Scenario| {
         api::swarm_with_progress(&p, &mut reporter(&progress))
+    })
+}
+
+/// `limits()` → `[{key, label, unit, default, min, max, aboveMin, integer, values, help}]`: every
+/// numeric setting's default and accepted range, as the core validates them
+/// ([`crate::options`]).
+#[wasm_bindgen]
+pub fn limits() -> Result<JsValue, JsError> {
+    call(JsValue::NULL, |_: serde_json::Value| {
+        Ok(crate::options::OPTIONS.to_vec())
     })
 }
 
@@ -187,7 +198,7 @@ pub fn bench_ukf(params: JsValue) -> Result<JsValue, JsError> {
 /// Benchmark support: `simulate` with a fresh simulator (no cached drone runs).
 #[wasm_bindgen(js_name = benchSimulateCold)]
 pub fn bench_simulate_cold(params: JsValue) -> Result<JsValue, JsError> {
-    call(params, |p: crate::sim::SimParams| {
+    call(params, |p: crate::sim::Scenario| {
         api::simulate(&mut Simulator::new(), &p)
     })
 }

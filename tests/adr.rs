@@ -6,12 +6,18 @@
 
 use loratrack::api::simulate;
 use loratrack::{
-    chain_flights, demodulation_floor_db, noise_floor_dbm, run_drone, schedule_transmissions,
-    snr_db, synthetic_set, AdrDevice, AdrMode, AdrNetwork, AdrParams, AdrSession, Channel,
-    ChannelParams, DataRate, DutyCycle, DutyCycleMode, LinkAdrReq, LinkSetup, LoraParams,
-    LorawanAdr, ModelChoice, ModelKind, Periodic, Rng, SimParams, Simulator, SyntheticChoice,
-    TrackingAdr, Transmission, UplinkReport, PAPER_Q, PAPER_R_DIAGONAL,
+    chain_flights, demodulation_floor_db, fly_alone, noise_floor_dbm, run_drone, snr_db,
+    synthetic_set, AdrDevice, AdrMode, AdrNetwork, AdrParams, Channel, ChannelParams, DataRate,
+    DroneRadio, DutyCycle, DutyCycleMode, Estimates, GatewaySite, InterferenceModel, LinkAdrReq,
+    LoraParams, LorawanAdr, ModelKind, Network, Periodic, Scenario, Simulator, TrackingAdr,
+    Transmission, UplinkReport, PAPER_Q, PAPER_R_DIAGONAL,
 };
+use serde_json::{json, Value};
+
+/// `base` with the flat JSON settings of `changes` applied.
+fn set(base: &Scenario, changes: Value) -> Scenario {
+    base.with(&changes).unwrap()
+}
 
 /// One drone flying `seconds` of the synthetic set at `distance` m, with ADR `mode` from
 /// `start` (or the network `custom`), over a channel with `shadowing` dB.
@@ -38,44 +44,41 @@ fn fly(
         mode,
         ..AdrParams::default()
     };
-    let session = AdrSession::new(&params, &radio, 12, 0.01, shadowing)
-        .unwrap()
-        .unwrap();
-    let mut session = match custom {
-        Some(n) => session.with_network(n),
-        None => session,
-    };
     let channel = Channel::new(ChannelParams {
         shadowing_sigma_db: shadowing,
         ..ChannelParams::default()
     })
     .unwrap();
-    let base = LinkSetup {
-        sf: start.sf(),
-        bw: start.bw(),
+    let drone_radio = DroneRadio::new(&radio, 12, 0.01, mode).unwrap();
+    let toa = drone_radio.current().time_on_air;
+    let mut net = Network::new(
+        vec![GatewaySite {
+            east: distance,
+            north: 0.0,
+            height: None,
+        }],
+        15.0,
+        vec![drone_radio],
+        &params,
         channel,
-        time_on_air: 1.0,
-        interval: 1.0,
-        distance,
-        bearing: 0.0,
-    };
-    let link = session.link_now(&base);
-    let mut rule = DutyCycle::new(
-        DutyCycleMode::PerPacket,
-        0.01,
-        link.time_on_air,
-        1,
-        flight.t[0],
-    )
-    .unwrap();
-    schedule_transmissions(
+        InterferenceModel {
+            capture: true,
+            inter_sf: true,
+        },
+        false,
+    );
+    if let Some(n) = custom {
+        net.set_adr_network(0, n);
+    }
+    let rule = DutyCycle::new(DutyCycleMode::PerPacket, 0.01, toa, 1, flight.t[0]).unwrap();
+    fly_alone(
+        &mut net,
         &flight,
-        &drone,
-        &link,
-        &mut Periodic,
-        &mut rule,
-        &mut Rng::derive(7, 0),
-        Some(&mut session),
+        Estimates::Stored(&drone),
+        Box::new(Periodic),
+        rule,
+        7,
+        0,
     )
 }
 
@@ -89,7 +92,7 @@ fn changes(tx: &[Transmission]) -> usize {
 
 #[test]
 fn without_shadowing_lorawan_never_raises_the_sf_and_loses_nothing_once_settled() {
-    let tx = fly(AdrMode::Lorawan, None, DataRate::DR0, 2500.0, 0.0, 2400.0);
+    let tx = fly(AdrMode::Lorawan, None, DataRate::DR0, 2500.0, 0.0, 3000.0);
     let r = rates(&tx);
     assert!(r.windows(2).all(|w| w[1] >= w[0]), "the SF went up: {r:?}");
     assert!(r.last() > r.first(), "never left DR0");
@@ -251,48 +254,31 @@ fn where_a_naive_rule_flips_with_the_shadowing_tracking_holds_still() {
 #[test]
 fn adr_is_reported_per_data_rate_and_off_by_default() {
     let mut sim = Simulator::new();
-    let base = SimParams {
-        synthetic: Some(SyntheticChoice::One(3)),
-        model: ModelChoice::one(ModelKind::Ctra3d),
-        distance: 5000.0,
-        series: true,
-        ..SimParams::default()
-    };
+    let base = set(
+        &Scenario::default(),
+        json!({"synthetic": 3, "model": "3d-ctra", "distance": 5000.0, "series": true}),
+    );
     let off = simulate(&mut sim, &base).unwrap();
-    assert_eq!(off.config.adr, AdrMode::Off);
+    assert_eq!(off.config.settings.network.adr, AdrMode::Off);
     assert_eq!(off.results[0].data_rate_use.len(), 1);
-    let on = simulate(
-        &mut sim,
-        &SimParams {
-            adr: AdrMode::Tracking,
-            ..base.clone()
-        },
-    )
-    .unwrap();
+    let on = simulate(&mut sim, &set(&base.clone(), json!({"adr": "tracking"}))).unwrap();
     let use_ = &on.results[0].data_rate_use;
     let total: usize = use_.iter().map(|u| u.packets).sum();
-    assert_eq!(total, on.results[0].packets_sent);
+    assert_eq!(total, on.results[0].delivery.packets_sent);
     let s = &on.series.as_ref().unwrap().models[0];
     assert_eq!(s.arrival_dr.len(), s.arrivals.len());
     assert_eq!(s.lost_dr.len(), s.lost.len());
-    let bad = SimParams {
-        adr: AdrMode::Lorawan,
-        sf: 8,
-        bw: 500.0,
-        ..base
-    };
+    let bad = set(&base, json!({"adr": "lorawan", "sf": 8, "bw": 500.0}));
     let err = simulate(&mut sim, &bad).unwrap_err().to_string();
     assert!(err.contains("EU868"), "{err}");
 }
 
 #[test]
 fn tracking_adr_matches_the_best_fixed_rate_where_one_rate_serves_the_whole_set() {
-    let base = SimParams {
-        synthetic: Some(SyntheticChoice::All),
-        model: ModelChoice::one(ModelKind::Ctra3d),
-        overhead: 0,
-        ..SimParams::default()
-    };
+    let base = set(
+        &Scenario::default(),
+        json!({"synthetic": "all", "model": "3d-ctra", "overhead": 0}),
+    );
     let r = loratrack::api::sweep_distances(&mut Simulator::new(), &base, &[1000.0]).unwrap();
     assert_eq!(r.runs.len(), 7 + 4);
     let p75 = |pick: &dyn Fn(&loratrack::api::DistanceRun) -> bool| {

@@ -5,11 +5,18 @@
 
 use loratrack::api::simulate;
 use loratrack::{
-    min_interval, new_tracker, run_drone, schedule_transmissions, synthetic_flight, time_on_air,
-    Bounds, Channel, ChannelParams, DutyCycle, DutyCycleMode, ErrorTriggered, LinkSetup,
-    LoraParams, ModelChoice, ModelKind, Periodic, Prediction, Rng, Sender, SenderKind, SimParams,
-    Simulator, StationModel, StationSetup, SyntheticChoice, PAPER_Q, PAPER_R_DIAGONAL,
+    fly_alone, min_interval, new_tracker, run_drone, synthetic_flight, time_on_air, AdrMode,
+    AdrParams, Bounds, Channel, ChannelParams, DroneRadio, DutyCycle, DutyCycleMode,
+    ErrorTriggered, Estimates, GatewaySite, InterferenceModel, LoraParams, ModelKind, Network,
+    Periodic, Prediction, Scenario, Sender, SenderKind, Simulator, StationModel, StationSetup,
+    PAPER_Q, PAPER_R_DIAGONAL,
 };
+use serde_json::{json, Value};
+
+/// `base` with the flat JSON settings of `changes` applied.
+fn set(base: &Scenario, changes: Value) -> Scenario {
+    base.with(&changes).unwrap()
+}
 
 /// Replays send times against the rule, written out independently of `DutyCycle`.
 fn obeys_rule(
@@ -50,14 +57,24 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
         r_diagonal: PAPER_R_DIAGONAL,
         interval: min_interval(toa, dc).unwrap(),
     };
-    let link = LinkSetup {
-        sf: radio.sf,
-        bw: radio.bw,
-        channel: Channel::new(ChannelParams::default()).unwrap(),
-        time_on_air: toa,
-        interval: setup.interval,
-        distance: 1000.0,
-        bearing: 0.0,
+    let network = || {
+        let r = DroneRadio::new(&radio, 12, dc, AdrMode::Off).unwrap();
+        Network::new(
+            vec![GatewaySite {
+                east: 1000.0,
+                north: 0.0,
+                height: None,
+            }],
+            15.0,
+            vec![r],
+            &AdrParams::default(),
+            Channel::new(ChannelParams::default()).unwrap(),
+            InterferenceModel {
+                capture: true,
+                inter_sf: true,
+            },
+            false,
+        )
     };
     let mut checked = 0;
     for flight_no in [2, 9, 17, 25] {
@@ -78,7 +95,7 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
                 (DutyCycleMode::Budget, 3),
             ] {
                 for threshold in [None, Some(0.5), Some(3.0)] {
-                    let mut sender: Box<dyn Sender> = match threshold {
+                    let sender: Box<dyn Sender> = match threshold {
                         None => Box::new(Periodic),
                         Some(m) => Box::new(ErrorTriggered::new(
                             new_tracker(StationModel::Single(ModelKind::Ctra3d), setup),
@@ -86,16 +103,15 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
                             10.0,
                         )),
                     };
-                    let mut rule = DutyCycle::new(mode, dc, toa, burst, flight.t[0]).unwrap();
-                    let mut rng = Rng::derive(seed, 99);
-                    let tx = schedule_transmissions(
+                    let rule = DutyCycle::new(mode, dc, toa, burst, flight.t[0]).unwrap();
+                    let tx = fly_alone(
+                        &mut network(),
                         &flight,
-                        &drone,
-                        &link,
-                        sender.as_mut(),
-                        &mut rule,
-                        &mut rng,
-                        None,
+                        Estimates::Stored(&drone),
+                        sender,
+                        rule,
+                        seed,
+                        99,
                     );
                     let sends: Vec<f64> = tx.iter().map(|t| t.sent).collect();
                     assert!(sends.len() > 5);
@@ -115,14 +131,11 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
     assert_eq!(checked, 4 * 3 * 3 * 3);
 }
 
-fn one_flight(sender: SenderKind, threshold: f64) -> SimParams {
-    SimParams {
-        synthetic: Some(SyntheticChoice::One(5)),
-        model: ModelChoice::one(ModelKind::Ctra3d),
-        sender,
-        threshold,
-        ..SimParams::default()
-    }
+fn one_flight(sender: SenderKind, threshold: f64) -> Scenario {
+    set(
+        &Scenario::default(),
+        json!({"synthetic": 5, "model": "3d-ctra", "sender": sender, "threshold": threshold}),
+    )
 }
 
 #[test]
@@ -135,7 +148,7 @@ fn with_a_threshold_of_zero_the_error_sender_is_the_periodic_one() {
     assert!(saving.results[0].airtime < 0.8 * periodic.results[0].airtime);
     assert!(
         (saving.results[0].airtime
-            - saving.results[0].packets_sent as f64 * saving.results[0].time_on_air)
+            - saving.results[0].delivery.packets_sent as f64 * saving.results[0].time_on_air)
             .abs()
             < 1e-12
     );
@@ -146,24 +159,21 @@ fn invalid_sending_settings_are_refused_with_a_message() {
     let mut sim = Simulator::new();
     let cases = [
         (
-            SimParams {
-                threshold: -1.0,
-                ..one_flight(SenderKind::Error, 0.0)
-            },
+            set(
+                &one_flight(SenderKind::Error, 0.0),
+                json!({"threshold": -1.0}),
+            ),
             "threshold must be 0..10000 m",
         ),
         (
-            SimParams {
-                burst: 0,
-                ..one_flight(SenderKind::Error, 1.0)
-            },
+            set(&one_flight(SenderKind::Error, 1.0), json!({"burst": 0})),
             "burst must be 1..3600 packets",
         ),
         (
-            SimParams {
-                max_interval: 1.0,
-                ..one_flight(SenderKind::Error, 1.0)
-            },
+            set(
+                &one_flight(SenderKind::Error, 1.0),
+                json!({"maxInterval": 1.0}),
+            ),
             "maxInterval must be at least the duty-cycle interval",
         ),
     ];
@@ -175,23 +185,18 @@ fn invalid_sending_settings_are_refused_with_a_message() {
 
 #[test]
 fn a_budget_buys_accuracy_where_the_drone_manoeuvres() {
-    let base = SimParams {
-        synthetic: Some(SyntheticChoice::All),
-        model: ModelChoice::one(ModelKind::Ctra3d),
-        overhead: 0,
-        ..SimParams::default()
-    };
+    let base = set(
+        &Scenario::default(),
+        json!({"synthetic": "all", "model": "3d-ctra", "overhead": 0}),
+    );
     let mut sim = Simulator::new();
     let periodic = simulate(&mut sim, &base).unwrap().results.remove(0);
     let budget = simulate(
         &mut sim,
-        &SimParams {
-            sender: SenderKind::Error,
-            threshold: 1.5,
-            duty_cycle_mode: DutyCycleMode::Budget,
-            burst: 10,
-            ..base.clone()
-        },
+        &set(
+            &base.clone(),
+            json!({"sender": "error", "threshold": 1.5, "dutyCycleMode": "budget", "burst": 10}),
+        ),
     )
     .unwrap()
     .results

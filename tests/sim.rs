@@ -3,15 +3,16 @@
 #![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::api::{simulate, sweep_paper};
-use loratrack::{
-    ModelChoice, ModelKind, Prediction, SimParams, Simulator, SyntheticChoice, MAX_SEED,
-};
+use loratrack::{ModelChoice, ModelKind, Prediction, Scenario, Simulator, MAX_SEED};
+use serde_json::{json, Value};
 
-fn one_flight(n: usize) -> SimParams {
-    SimParams {
-        synthetic: Some(SyntheticChoice::One(n)),
-        ..SimParams::default()
-    }
+/// `base` with the flat JSON settings of `changes` applied.
+fn set(base: &Scenario, changes: Value) -> Scenario {
+    base.with(&changes).unwrap()
+}
+
+fn one_flight(n: usize) -> Scenario {
+    set(&Scenario::default(), json!({"synthetic": n}))
 }
 
 #[test]
@@ -21,10 +22,7 @@ fn the_same_seed_gives_the_same_numbers_and_another_seed_does_not() {
     assert_eq!(a, b);
     let c = simulate(
         &mut Simulator::new(),
-        &SimParams {
-            seed: 2,
-            ..one_flight(2)
-        },
+        &set(&one_flight(2), json!({"seed": 2})),
     )
     .unwrap();
     assert_ne!(a.results[0].error3d, c.results[0].error3d);
@@ -32,20 +30,17 @@ fn the_same_seed_gives_the_same_numbers_and_another_seed_does_not() {
 
 #[test]
 fn a_random_seed_is_drawn_reported_and_repeats_the_run() {
-    let draw = || -> SimParams {
+    let draw = || -> Scenario {
         serde_json::from_str(r#"{"synthetic": 2, "model": "dr", "seed": "random"}"#).unwrap()
     };
     let (a, b) = (draw(), draw());
-    assert_ne!(a.seed, b.seed, "two draws gave the same seed");
-    assert!(a.seed <= MAX_SEED);
+    assert_ne!(a.run.seed, b.run.seed, "two draws gave the same seed");
+    assert!(a.run.seed <= MAX_SEED);
     let first = simulate(&mut Simulator::new(), &a).unwrap();
-    assert_eq!(first.config.seed, a.seed);
-    let again = SimParams {
-        seed: first.config.seed,
-        ..a.clone()
-    };
+    assert_eq!(first.config.settings.run.seed, a.run.seed);
+    let again = set(&a.clone(), json!({"seed": first.config.settings.run.seed}));
     assert_eq!(simulate(&mut Simulator::new(), &again).unwrap(), first);
-    let bad = serde_json::from_str::<SimParams>(r#"{"synthetic": 2, "seed": "often"}"#);
+    let bad = serde_json::from_str::<Scenario>(r#"{"synthetic": 2, "seed": "often"}"#);
     assert!(bad.unwrap_err().to_string().contains("random"));
 }
 
@@ -57,13 +52,10 @@ fn changing_only_the_link_does_not_rerun_the_drone_filters() {
     assert_eq!(runs, 3, "one drone run per model");
     let far = simulate(
         &mut sim,
-        &SimParams {
-            sf: 9,
-            bw: 125.0,
-            distance: 4000.0,
-            overhead: 0,
-            ..one_flight(4)
-        },
+        &set(
+            &one_flight(4),
+            json!({"sf": 9, "bw": 125.0, "distance": 4000.0, "overhead": 0}),
+        ),
     )
     .unwrap();
     assert_eq!(
@@ -73,14 +65,7 @@ fn changing_only_the_link_does_not_rerun_the_drone_filters() {
     );
     assert!(far.results[0].interval > base.results[0].interval);
     // A sensor change does rerun them.
-    simulate(
-        &mut sim,
-        &SimParams {
-            sensor_rate: 5.0,
-            ..one_flight(4)
-        },
-    )
-    .unwrap();
+    simulate(&mut sim, &set(&one_flight(4), json!({"sensorRate": 5.0}))).unwrap();
     assert_eq!(sim.drone_runs(), 2 * runs);
 }
 
@@ -88,13 +73,11 @@ fn changing_only_the_link_does_not_rerun_the_drone_filters() {
 fn reused_station_predictions_give_the_numbers_of_a_fresh_simulator() {
     let mut warm = Simulator::new();
     for prediction in [Prediction::Paper, Prediction::Bounded] {
-        let at = |distance: f64, sf: i64| SimParams {
-            synthetic: Some(SyntheticChoice::All),
-            prediction,
-            distance,
-            sf,
-            series: true,
-            ..SimParams::default()
+        let at = |distance: f64, sf: i64| {
+            set(
+                &Scenario::default(),
+                json!({"synthetic": "all", "prediction": prediction, "distance": distance, "sf": sf, "series": true}),
+            )
         };
         // Warm the cache at 1 km, then move the gateway: the packets that still arrive are
         // served from remembered chains, longer gaps extend them.
@@ -118,22 +101,19 @@ fn reused_station_predictions_give_the_numbers_of_a_fresh_simulator() {
 fn five_km_at_sf7_loses_packets_and_tracks_worse_than_one_km() {
     let mut sim = Simulator::new();
     let near = simulate(&mut sim, &one_flight(5)).unwrap();
-    let far = simulate(
-        &mut sim,
-        &SimParams {
-            distance: 5000.0,
-            ..one_flight(5)
-        },
-    )
-    .unwrap();
+    let far = simulate(&mut sim, &set(&one_flight(5), json!({"distance": 5000.0}))).unwrap();
     for (n, f) in near.results.iter().zip(&far.results) {
-        assert_eq!(n.packets_received, n.packets_sent, "{:?} at 1 km", n.model);
+        assert_eq!(
+            n.delivery.packets_received, n.delivery.packets_sent,
+            "{:?} at 1 km",
+            n.model
+        );
         assert!(
-            f.packets_received < f.packets_sent / 2,
+            f.delivery.packets_received < f.delivery.packets_sent / 2,
             "{:?} at 5 km: {}/{}",
             f.model,
-            f.packets_received,
-            f.packets_sent
+            f.delivery.packets_received,
+            f.delivery.packets_sent
         );
         assert!(f.error3d.count < n.error3d.count || f.error3d.p75 > n.error3d.p75);
     }
@@ -142,20 +122,20 @@ fn five_km_at_sf7_loses_packets_and_tracks_worse_than_one_km() {
 #[test]
 fn without_shadowing_delivery_is_all_or_nothing_around_the_range() {
     let mut sim = Simulator::new();
-    let p = |d| SimParams {
-        shadowing: 0.0,
-        distance: d,
-        model: ModelChoice::one(ModelKind::Dr),
-        ..one_flight(6)
+    let p = |d| {
+        set(
+            &one_flight(6),
+            json!({"shadowing": 0.0, "distance": d, "model": "dr"}),
+        )
     };
     let inside = simulate(&mut sim, &p(2000.0)).unwrap();
     let range = inside.config.range_m;
     assert_eq!(
-        inside.results[0].packets_received,
-        inside.results[0].packets_sent
+        inside.results[0].delivery.packets_received,
+        inside.results[0].delivery.packets_sent
     );
     let outside = simulate(&mut sim, &p(range + 500.0)).unwrap();
-    assert_eq!(outside.results[0].packets_received, 0);
+    assert_eq!(outside.results[0].delivery.packets_received, 0);
     assert_eq!(
         outside.results[0].error3d.count, 0,
         "no packet, no error counted"
@@ -166,12 +146,7 @@ fn without_shadowing_delivery_is_all_or_nothing_around_the_range() {
 fn intervals_follow_the_payload_sizes_and_the_overhead() {
     let r = simulate(
         &mut Simulator::new(),
-        &SimParams {
-            sf: 8,
-            bw: 125.0,
-            overhead: 0,
-            ..one_flight(1)
-        },
+        &set(&one_flight(1), json!({"sf": 8, "bw": 125.0, "overhead": 0})),
     )
     .unwrap();
     let interval = |m: ModelKind| {
@@ -186,10 +161,7 @@ fn intervals_follow_the_payload_sizes_and_the_overhead() {
     // Packets are never closer than the interval.
     let s = simulate(
         &mut Simulator::new(),
-        &SimParams {
-            series: true,
-            ..one_flight(1)
-        },
+        &set(&one_flight(1), json!({"series": true})),
     )
     .unwrap();
     for m in &s.series.unwrap().models {
@@ -209,10 +181,7 @@ fn intervals_follow_the_payload_sizes_and_the_overhead() {
 fn the_json_shape_is_the_spec_contract() {
     let r = simulate(
         &mut Simulator::new(),
-        &SimParams {
-            sample: Some("canberra".into()),
-            ..SimParams::default()
-        },
+        &set(&Scenario::default(), json!({"sample": "canberra"})),
     )
     .unwrap();
     let v = serde_json::to_value(&r).unwrap();
@@ -234,47 +203,17 @@ fn the_json_shape_is_the_spec_contract() {
 fn bad_inputs_are_refused_with_messages() {
     let mut sim = Simulator::new();
     let cases = [
-        (SimParams::default(), "choose a flight"),
+        (Scenario::default(), "choose a flight"),
+        (set(&one_flight(1), json!({"sample": "x"})), "only one"),
         (
-            SimParams {
-                sample: Some("x".into()),
-                ..one_flight(1)
-            },
-            "only one",
-        ),
-        (
-            SimParams {
-                sample: Some("mars".into()),
-                ..SimParams::default()
-            },
+            set(&Scenario::default(), json!({"sample": "mars"})),
             "unknown sample",
         ),
+        (set(&one_flight(1), json!({"sf": 13})), "sf must be 7..12"),
+        (set(&one_flight(1), json!({"distance": -5.0})), "distance"),
+        (set(&one_flight(1), json!({"eta": 2.0})), "eta"),
         (
-            SimParams {
-                sf: 13,
-                ..one_flight(1)
-            },
-            "spreading factor",
-        ),
-        (
-            SimParams {
-                distance: -5.0,
-                ..one_flight(1)
-            },
-            "distance",
-        ),
-        (
-            SimParams {
-                eta: 2.0,
-                ..one_flight(1)
-            },
-            "eta",
-        ),
-        (
-            SimParams {
-                trajectory: Some("t,x,y,z\n".into()),
-                ..SimParams::default()
-            },
+            set(&Scenario::default(), json!({"trajectory": "t,x,y,z\n"})),
             "no data rows",
         ),
     ];
@@ -304,5 +243,5 @@ fn the_paper_sweep_covers_its_grid_and_richer_models_win_at_one_km() {
     );
     // Errors rise at 3 km with SF7 (packet loss).
     let far = &r.runs[2];
-    assert!(far.results[0].packets_received < far.results[0].packets_sent);
+    assert!(far.results[0].delivery.packets_received < far.results[0].delivery.packets_sent);
 }

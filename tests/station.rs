@@ -6,10 +6,16 @@
 use loratrack::api::simulate;
 use loratrack::{
     inside_95, Bounds, Ctra3d, CtraPlus, Dr, ModelChoice, ModelKind, MotionModel, Prediction, Rng,
-    SimParams, Simulator, StationModel, StationPredictor, StationSetup, SyntheticChoice, Tracker,
-    Ukf, PAPER_Q, PAPER_R_DIAGONAL,
+    Scenario, Simulator, StationModel, StationPredictor, StationSetup, Tracker, Ukf, PAPER_Q,
+    PAPER_R_DIAGONAL,
 };
 use nalgebra::{Matrix3, SMatrix, SVector};
+use serde_json::{json, Value};
+
+/// `base` with the flat JSON settings of `changes` applied.
+fn set(base: &Scenario, changes: Value) -> Scenario {
+    base.with(&changes).unwrap()
+}
 
 fn setup(prediction: Prediction) -> StationSetup {
     StationSetup {
@@ -126,17 +132,11 @@ fn coverage_of_a_correctly_specified_linear_station_is_95_percent() {
     assert!((c - 0.95).abs() <= 0.01, "coverage {c}");
 }
 
-fn whole_set(prediction: Prediction, distance: f64) -> SimParams {
-    SimParams {
-        synthetic: Some(SyntheticChoice::All),
-        model: ModelChoice::parse("dr,3d-ctra,imm").unwrap(),
-        prediction,
-        sf: 7,
-        bw: 250.0,
-        distance,
-        overhead: 0,
-        ..SimParams::default()
-    }
+fn whole_set(prediction: Prediction, distance: f64) -> Scenario {
+    set(
+        &Scenario::default(),
+        json!({"synthetic": "all", "model": "dr,3d-ctra,imm", "prediction": prediction, "sf": 7, "bw": 250.0, "distance": distance, "overhead": 0}),
+    )
 }
 
 #[test]
@@ -177,11 +177,10 @@ fn the_bounded_station_stays_sane_where_packets_are_lost() {
 
 #[test]
 fn every_result_reports_coverage_and_the_imm_its_model_probabilities() {
-    let p = SimParams {
-        synthetic: Some(SyntheticChoice::One(3)),
-        model: ModelChoice::parse("dr, imm").unwrap(),
-        ..SimParams::default()
-    };
+    let p = set(
+        &Scenario::default(),
+        json!({"synthetic": 3, "model": ModelChoice::parse("dr, imm").unwrap()}),
+    );
     let r = simulate(&mut Simulator::new(), &p).unwrap();
     assert_eq!(r.results.len(), 2);
     for m in &r.results {

@@ -4,21 +4,19 @@
 #![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::api::swarm;
-use loratrack::{SfPlan, SwarmParams, SwarmReport};
+use loratrack::{Scenario, SwarmReport};
+use serde_json::{json, Value};
 
-fn aloha(drones: usize, channels: u8, seed: u64) -> SwarmParams {
-    SwarmParams {
-        drones,
-        channels,
-        duration: 300.0,
-        model: "dr".into(),
-        sf_plan: SfPlan::Spread,
-        capture: false,
-        inter_sf: false,
-        shadowing: 0.0,
-        seed,
-        ..SwarmParams::default()
-    }
+/// `base` with the flat JSON settings of `changes` applied.
+fn set(base: &Scenario, changes: Value) -> Scenario {
+    base.with(&changes).unwrap()
+}
+
+fn aloha(drones: usize, channels: u8, seed: u64) -> Scenario {
+    set(
+        &Scenario::default(),
+        json!({"drones": drones, "channels": channels, "duration": 300.0, "bw": 125, "model": "dr", "sfPlan": "spread", "capture": false, "interSf": false, "shadowing": 0.0, "seed": seed}),
+    )
 }
 
 #[test]
@@ -47,12 +45,10 @@ fn without_capture_or_inter_sf_the_collision_rate_is_the_aloha_formula() {
 
 #[test]
 fn seventy_two_drones_on_three_channels_with_spread_sfs_collide_below_ten_percent() {
-    let r = swarm(&SwarmParams {
-        drones: 72,
-        channels: 3,
-        sf_plan: SfPlan::Spread,
-        ..SwarmParams::default()
-    })
+    let r = swarm(&set(
+        &Scenario::default(),
+        json!({"drones": 72, "channels": 3, "sfPlan": "spread", "bw": 125}),
+    ))
     .unwrap();
     assert!(
         r.collision_rate < 0.10,
@@ -60,13 +56,10 @@ fn seventy_two_drones_on_three_channels_with_spread_sfs_collide_below_ten_percen
         r.collision_rate
     );
     // Everyone on SF7 and one channel collides far more: the SF plan is what makes 72 possible.
-    let crowded = swarm(&SwarmParams {
-        drones: 72,
-        channels: 1,
-        sf_plan: SfPlan::Fixed,
-        duration: 300.0,
-        ..SwarmParams::default()
-    })
+    let crowded = swarm(&set(
+        &Scenario::default(),
+        json!({"drones": 72, "channels": 1, "sfPlan": "fixed", "duration": 300.0}),
+    ))
     .unwrap();
     assert!(
         crowded.collision_rate > 2.0 * r.collision_rate,
@@ -78,20 +71,19 @@ fn seventy_two_drones_on_three_channels_with_spread_sfs_collide_below_ten_percen
 
 #[test]
 fn every_drone_is_reported_and_the_counts_add_up() {
-    let r = swarm(&SwarmParams {
-        drones: 20,
-        duration: 120.0,
-        ..SwarmParams::default()
-    })
+    let r = swarm(&set(
+        &Scenario::default(),
+        json!({"drones": 20, "duration": 120.0}),
+    ))
     .unwrap();
     assert_eq!(r.drones.len(), 20);
     assert_eq!(
         r.drones.iter().map(|d| d.packets_sent).sum::<usize>(),
-        r.packets_sent
+        r.delivery.packets_sent
     );
     assert_eq!(
         r.drones.iter().map(|d| d.packets_received).sum::<usize>(),
-        r.packets_received
+        r.delivery.packets_received
     );
     assert_eq!(
         r.drones.iter().map(|d| d.packets_collided).sum::<usize>(),
@@ -103,34 +95,30 @@ fn every_drone_is_reported_and_the_counts_add_up() {
         assert_eq!(usize::from(d.sf - 7), d.id % 6, "spread plan");
     }
     let lost = r.packets_collided + r.packets_below_sensitivity + r.packets_no_demodulator;
-    assert_eq!(r.packets_received + lost, r.packets_sent);
+    assert_eq!(r.delivery.packets_received + lost, r.delivery.packets_sent);
 }
 
 #[test]
 fn a_drone_that_receives_nothing_says_so() {
-    let r = swarm(&SwarmParams {
-        drones: 3,
-        duration: 60.0,
-        distance: 20_000.0,
-        sf_plan: SfPlan::Fixed,
-        ..SwarmParams::default()
-    })
+    let r = swarm(&set(
+        &Scenario::default(),
+        json!({"drones": 3, "duration": 60.0, "distance": 20_000.0, "sfPlan": "fixed"}),
+    ))
     .unwrap();
     for d in &r.drones {
         assert_eq!((d.packets_received, d.error3d.count), (0, 0));
     }
     let json = serde_json::to_value(&r).unwrap();
     assert!(json["drones"][0]["error3d"]["p75"].is_null());
-    assert_eq!(r.packets_below_sensitivity, r.packets_sent);
+    assert_eq!(r.packets_below_sensitivity, r.delivery.packets_sent);
 }
 
 #[test]
 fn the_numbers_do_not_depend_on_the_number_of_threads() {
-    let p = SwarmParams {
-        drones: 40,
-        duration: 60.0,
-        ..SwarmParams::default()
-    };
+    let p = set(
+        &Scenario::default(),
+        json!({"drones": 40, "duration": 60.0}),
+    );
     let parallel = swarm(&p).unwrap();
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
@@ -145,35 +133,32 @@ fn the_numbers_do_not_depend_on_the_number_of_threads() {
 }
 
 #[test]
+fn an_unknown_model_is_refused_when_read() {
+    let e = Scenario::default()
+        .with(&json!({"model": "kalman"}))
+        .unwrap_err();
+    assert!(e.contains("unknown model 'kalman'"), "{e}");
+    let two = set(&Scenario::default(), json!({"model": "dr,imm"}));
+    assert!(swarm(&two)
+        .unwrap_err()
+        .to_string()
+        .contains("a swarm runs one station"));
+}
+
+#[test]
 fn invalid_swarms_are_refused() {
     for (p, expected) in [
         (
-            SwarmParams {
-                drones: 0,
-                ..SwarmParams::default()
-            },
+            set(&Scenario::default(), json!({"drones": 0})),
             "drones must be 1..500",
         ),
         (
-            SwarmParams {
-                drones: 501,
-                ..SwarmParams::default()
-            },
+            set(&Scenario::default(), json!({"drones": 501})),
             "drones must be 1..500",
         ),
         (
-            SwarmParams {
-                channels: 2,
-                ..SwarmParams::default()
-            },
+            set(&Scenario::default(), json!({"channels": 2})),
             "channels must be 1 or 3",
-        ),
-        (
-            SwarmParams {
-                model: "kalman".into(),
-                ..SwarmParams::default()
-            },
-            "unknown model 'kalman'",
         ),
     ] {
         let e = swarm(&p).unwrap_err().to_string();

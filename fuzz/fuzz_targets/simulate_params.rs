@@ -2,10 +2,10 @@
 //! with a message or run, never panic, and a run that counts errors reports finite statistics.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use loratrack::{SimParams, Simulator};
+use loratrack::{Scenario, Simulator};
 
 fuzz_target!(|data: &[u8]| {
-    let Ok(params) = serde_json::from_slice::<SimParams>(data) else { return };
+    let Ok(params) = serde_json::from_slice::<Scenario>(data) else { return };
     let Ok(cfg) = params.validate() else { return };
     let Ok(report) = Simulator::new().run(&cfg) else { return };
     for r in &report.results {

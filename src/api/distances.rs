@@ -3,7 +3,7 @@
 
 use super::ApiError;
 use crate::lora::{AdrMode, DataRate};
-use crate::sim::{ModelResult, SimParams, Simulator};
+use crate::sim::{ModelResult, Scenario, Simulator};
 use serde::Serialize;
 
 /// The distances of the targets, m.
@@ -41,7 +41,7 @@ pub struct DistanceSweepReport {
 /// (SF12, the safe start of a device that knows nothing of its link). Drone filters run once.
 pub fn sweep_distances(
     sim: &mut Simulator,
-    base: &SimParams,
+    base: &Scenario,
     distances: &[f64],
 ) -> Result<DistanceSweepReport, ApiError> {
     let radio = base.validate()?.radio;
@@ -60,13 +60,11 @@ pub fn sweep_distances(
             .iter()
             .flat_map(|&s| [(s, AdrMode::Lorawan), (s, AdrMode::Tracking)]);
         for (dr, adr) in fixed.into_iter().chain(adaptive) {
-            let p = SimParams {
-                distance,
-                adr,
-                sf: i64::from(dr.sf().get()),
-                bw: dr.bw().khz(),
-                ..base.clone()
-            };
+            let mut p = base.clone();
+            p.channel.distance = distance;
+            p.network.adr = adr;
+            p.radio.sf = i64::from(dr.sf().get());
+            p.radio.bw = dr.bw().khz();
             let mut r = super::simulate(sim, &p)?;
             let result = r.results.swap_remove(0);
             let fixed = adr == AdrMode::Off;
@@ -75,7 +73,7 @@ pub fn sweep_distances(
                 dr: fixed.then_some(dr.index()),
                 adr,
                 start: (!fixed).then_some(dr.index()),
-                delivery: result.packets_received as f64 / result.packets_sent.max(1) as f64,
+                delivery: result.delivery.delivery_ratio,
                 result,
             });
         }

@@ -3,7 +3,7 @@
 
 use super::ApiError;
 use crate::lora::DutyCycleMode;
-use crate::sim::{ModelResult, SenderKind, SimParams, Simulator};
+use crate::sim::{ModelResult, Scenario, SenderKind, Sending, Simulator};
 use serde::Serialize;
 
 /// Thresholds of the trade-off curve, m.
@@ -44,17 +44,19 @@ pub struct SenderSweepReport {
 /// packets. Drone filters run once; every other run reuses them.
 pub fn sweep_senders(
     sim: &mut Simulator,
-    base: &SimParams,
+    base: &Scenario,
     burst: u32,
 ) -> Result<SenderSweepReport, ApiError> {
-    let mut run = |p: SimParams| -> Result<ModelResult, ApiError> {
+    let mut run = |sending: Sending| -> Result<ModelResult, ApiError> {
+        let mut p = base.clone();
+        p.sending = sending;
         let mut r = super::simulate(sim, &p)?;
         Ok(r.results.swap_remove(0))
     };
-    let periodic = run(SimParams {
+    let periodic = run(Sending {
         sender: SenderKind::Periodic,
         duty_cycle_mode: DutyCycleMode::PerPacket,
-        ..base.clone()
+        ..base.sending
     })?;
     let mut points = Vec::new();
     for (mode, k) in [
@@ -62,12 +64,12 @@ pub fn sweep_senders(
         (DutyCycleMode::Budget, burst),
     ] {
         for threshold in SENDER_THRESHOLDS {
-            let result = run(SimParams {
+            let result = run(Sending {
                 sender: SenderKind::Error,
                 threshold,
                 duty_cycle_mode: mode,
                 burst: k,
-                ..base.clone()
+                ..base.sending
             })?;
             points.push(SenderPoint {
                 threshold,

@@ -2,20 +2,20 @@
 
 use super::ApiError;
 use crate::sim::{
-    ModelChoice, ModelResult, Prediction, SimParams, SimReport, Simulator, StationModel,
+    ModelChoice, ModelResult, Prediction, Scenario, SimReport, Simulator, StationModel,
     SyntheticChoice,
 };
 use serde::Serialize;
 
 /// Runs one simulation. Pass the same [`Simulator`] to later calls to reuse its caches.
-pub fn simulate(sim: &mut Simulator, p: &SimParams) -> Result<SimReport, ApiError> {
+pub fn simulate(sim: &mut Simulator, p: &Scenario) -> Result<SimReport, ApiError> {
     simulate_with_progress(sim, p, &mut |_, _| {})
 }
 
 /// [`simulate`], reporting `progress(done, total)` as flights complete.
 pub fn simulate_with_progress(
     sim: &mut Simulator,
-    p: &SimParams,
+    p: &Scenario,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<SimReport, ApiError> {
     let cfg = p.validate()?;
@@ -85,17 +85,15 @@ pub fn sweep_paper(
     for &prediction in predictions {
         for sf in PAPER_SFS {
             for distance in PAPER_DISTANCES {
-                let p = SimParams {
-                    synthetic: Some(SyntheticChoice::All),
-                    model: models.clone(),
-                    prediction,
-                    sf,
-                    bw: 250.0,
-                    distance,
-                    seed,
-                    overhead: 0,
-                    ..SimParams::default()
-                };
+                let mut p = Scenario::default();
+                p.flight.synthetic = Some(SyntheticChoice::All);
+                p.station.model = models.clone();
+                p.station.prediction = prediction;
+                p.radio.sf = sf;
+                p.radio.bw = 250.0;
+                p.radio.overhead = 0;
+                p.channel.distance = distance;
+                p.run.seed = seed;
                 let r = simulate(sim, &p)?;
                 flight_time = r.config.flight_time;
                 runs.push(SweepRun {

@@ -1,16 +1,16 @@
-//! `swarm`: many drones, one gateway, collisions.
+//! `swarm`: many drones sharing the gateways: collisions, the network server, every drone's error.
 
 use super::ApiError;
-use crate::sim::{run_swarm, SwarmParams, SwarmReport};
+use crate::sim::{run_swarm, Scenario, SwarmReport};
 
 /// Runs a swarm.
-pub fn swarm(p: &SwarmParams) -> Result<SwarmReport, ApiError> {
+pub fn swarm(p: &Scenario) -> Result<SwarmReport, ApiError> {
     swarm_with_progress(p, &mut |_, _| {})
 }
 
 /// [`swarm`], reporting `progress(done, total)` as drones complete.
 pub fn swarm_with_progress(
-    p: &SwarmParams,
+    p: &Scenario,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<SwarmReport, ApiError> {
     let cfg = p.validate()?;

@@ -136,7 +136,7 @@ impl Channel {
         distance_m: f64,
         shadowing_db: f64,
     ) -> bool {
-        self.mean_rx_power_dbm(distance_m) + shadowing_db >= Self::sensitivity_dbm(sf, bw)
+        super::audible(self.mean_rx_power_dbm(distance_m) + shadowing_db, sf, bw)
     }
 }
 

@@ -63,6 +63,7 @@ pub fn min_interval(time_on_air: f64, duty_cycle: f64) -> Result<f64, LoraError>
 /// stacks enforce it either as an off-time after every packet (LoRaMac-node before 4.5, and the
 /// paper's reading) or as a budget of airtime credits (LoRaMac-node 4.5 and later).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum DutyCycleMode {
     /// After a packet of time on air T the next may start T / duty cycle later.

@@ -8,10 +8,12 @@ mod adr;
 mod airtime;
 mod channel;
 mod data_rate;
+mod downlink;
 mod duty_cycle;
+mod energy;
 mod error;
-mod gateway;
 mod interference;
+mod reception;
 mod shadowing;
 mod snr;
 
@@ -27,14 +29,23 @@ pub use airtime::{
 };
 pub use channel::{Channel, ChannelParams};
 pub use data_rate::DataRate;
+pub use downlink::{
+    downlink_time_on_air, window_bandwidth, Window, ACK_DOWNLINK_BYTES, ADR_DOWNLINK_BYTES,
+    RECEIVE_DELAY2_S,
+};
 pub use duty_cycle::{
     min_interval, DutyCycle, DutyCycleMode, SubBand, MAX_BURST, MIN_DUTY_CYCLE,
     TTN_FAIR_USE_SECONDS_PER_DAY,
 };
+pub use energy::{
+    empty_window_s, rx_current_ma, tx_current_ma, UplinkActivity, RX_WINDOW_SYMBOLS,
+    SX1276_RX_CURRENT_125_MA, SX1276_RX_CURRENT_500_MA, SX1276_SLEEP_CURRENT_MA,
+    SX1276_TX_CURRENT_MA,
+};
 pub use error::LoraError;
-pub use gateway::{Gateway, Outcome, Uplink, SX1301_DEMODULATORS};
 pub use interference::{
     sum_dbm, survives, InterferenceModel, CAPTURE_THRESHOLD_DB, INTER_SF_SIR_DB,
 };
+pub use reception::{audible, decide, resolve, Outcome, Receiver, Uplink, SX1301_DEMODULATORS};
 pub use shadowing::Shadowing;
 pub use snr::{demodulation_floor_db, noise_floor_dbm, snr_db, NOISE_FIGURE_DB};

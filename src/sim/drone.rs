@@ -5,7 +5,7 @@ use crate::math::wrap_angle;
 use crate::models::{with_model, ModelKind, MotionModel, ANGLES};
 use crate::rng::Rng;
 use crate::trajectory::Trajectory;
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 
 /// The drone's own estimates at every sensor step, padded to 9 components (unused ones 0).
 #[derive(Clone, Debug, PartialEq)]
@@ -47,56 +47,260 @@ pub fn run_drone(
     seed: u64,
     stream: u64,
 ) -> DroneTrack {
-    with_model!(model, run(flight, sensor_rate, q, r_diagonal, seed, stream))
+    let mut f = DroneFilter::new(flight, model, sensor_rate, q, r_diagonal, seed, stream);
+    let mut states = Vec::with_capacity(f.steps);
+    while let Some(x) = f.next_estimate() {
+        states.push(x);
+    }
+    DroneTrack {
+        model,
+        start: f.start,
+        period: f.period,
+        states,
+        recoveries: f.recoveries(),
+    }
 }
 
-fn run<const N: usize, M: MotionModel<N>>(
+/// The drone's filter stepped one sensor step at a time (what [`run_drone`] collects), so that
+/// a swarm of hundreds of drones holds one filter per drone rather than every estimate.
+pub struct DroneFilter<'a> {
+    /// The model the filter runs.
+    pub model: ModelKind,
+    /// Time of the first sensor step, s.
+    pub start: f64,
+    /// Sensor period, s.
+    pub period: f64,
+    /// Sensor steps over the flight.
+    pub steps: usize,
+    k: usize,
+    inner: Box<dyn Step + 'a>,
+}
+
+trait Step {
+    fn estimate(&mut self, k: usize) -> [f64; 9];
+    fn recoveries(&self) -> u64;
+}
+
+struct Live<'a, const N: usize, M> {
     model: M,
-    flight: &Trajectory,
-    sensor_rate: f64,
+    flight: &'a Trajectory,
+    ukf: Option<Ukf<N>>,
+    r: SMatrix<f64, N, N>,
     q: f64,
-    r_diagonal: &[f64; 9],
-    seed: u64,
-    stream: u64,
-) -> DroneTrack {
-    let period = 1.0 / sensor_rate;
-    let start = flight.t[0];
-    let steps = (flight.duration() / period + 1e-9).floor() as usize + 1;
-    let r = measurement_noise::<N>(r_diagonal);
-    let sd: [f64; 9] = core::array::from_fn(|i| r_diagonal[i].sqrt());
-    let mut rng = Rng::derive(seed, stream);
-    let mut hint = 0;
-    let mut measure = |k: usize| -> SVector<f64, N> {
-        let truth = flight.state_at(start + k as f64 * period, &mut hint);
+    sd: [f64; 9],
+    rng: Rng,
+    hint: usize,
+    start: f64,
+    period: f64,
+}
+
+impl<const N: usize, M: MotionModel<N>> Live<'_, N, M> {
+    fn measure(&mut self, k: usize) -> SVector<f64, N> {
+        let truth = self
+            .flight
+            .state_at(self.start + k as f64 * self.period, &mut self.hint);
         // Nine draws every step whatever N is, so the noise on shared components is identical.
-        let noise: [f64; 9] = core::array::from_fn(|i| sd[i] * rng.normal());
+        let noise: [f64; 9] = core::array::from_fn(|i| self.sd[i] * self.rng.normal());
         let mut z = SVector::<f64, N>::from_fn(|i, _| truth[i] + noise[i]);
         for &i in ANGLES {
             z[i] = wrap_angle(z[i]);
         }
         z
-    };
-    let z0 = measure(0);
-    let mut ukf = match Ukf::new(z0, r, process_noise(q), SigmaParams::default(), ANGLES) {
-        Some(u) => u,
-        None => unreachable!("the default sigma parameters are valid for every state size"),
-    };
-    let pad = |x: &SVector<f64, N>| -> [f64; 9] {
-        core::array::from_fn(|i| if i < N { x[i] } else { 0.0 })
-    };
-    let mut states = Vec::with_capacity(steps);
-    states.push(pad(&ukf.x));
-    for k in 1..steps {
-        let z = measure(k);
-        ukf.predict(&model, period);
-        ukf.update(&z, &r);
-        states.push(pad(&ukf.x));
     }
-    DroneTrack {
-        model: M::KIND,
-        start,
-        period,
-        states,
-        recoveries: ukf.recoveries(),
+}
+
+impl<const N: usize, M: MotionModel<N>> Step for Live<'_, N, M> {
+    fn estimate(&mut self, k: usize) -> [f64; 9] {
+        let z = self.measure(k);
+        let ukf = match &mut self.ukf {
+            Some(u) => {
+                u.predict(&self.model, self.period);
+                u.update(&z, &self.r);
+                u
+            }
+            None => self.ukf.insert(
+                match Ukf::new(
+                    z,
+                    self.r,
+                    process_noise(self.q),
+                    SigmaParams::default(),
+                    ANGLES,
+                ) {
+                    Some(u) => u,
+                    None => {
+                        unreachable!("the default sigma parameters are valid for every state size")
+                    }
+                },
+            ),
+        };
+        core::array::from_fn(|i| if i < N { ukf.x[i] } else { 0.0 })
+    }
+
+    fn recoveries(&self) -> u64 {
+        self.ukf.as_ref().map_or(0, Ukf::recoveries)
+    }
+}
+
+fn live<'a, const N: usize, M: MotionModel<N> + 'a>(
+    model: M,
+    flight: &'a Trajectory,
+    sensor_rate: f64,
+    q: f64,
+    r_diagonal: &[f64; 9],
+    seed: u64,
+    stream: u64,
+) -> Box<dyn Step + 'a> {
+    Box::new(Live {
+        model,
+        flight,
+        ukf: None,
+        r: measurement_noise::<N>(r_diagonal),
+        q,
+        sd: core::array::from_fn(|i| r_diagonal[i].sqrt()),
+        rng: Rng::derive(seed, stream),
+        hint: 0,
+        start: flight.t[0],
+        period: 1.0 / sensor_rate,
+    })
+}
+
+impl<'a> DroneFilter<'a> {
+    /// A filter about to take its first measurement (see [`run_drone`]).
+    pub fn new(
+        flight: &'a Trajectory,
+        model: ModelKind,
+        sensor_rate: f64,
+        q: f64,
+        r_diagonal: &[f64; 9],
+        seed: u64,
+        stream: u64,
+    ) -> Self {
+        let period = 1.0 / sensor_rate;
+        DroneFilter {
+            model,
+            start: flight.t[0],
+            period,
+            steps: (flight.duration() / period + 1e-9).floor() as usize + 1,
+            k: 0,
+            inner: with_model!(
+                model,
+                live(flight, sensor_rate, q, r_diagonal, seed, stream)
+            ),
+        }
+    }
+
+    /// The estimate after the next sensor step's update (the first: the first measurement);
+    /// `None` after the last step.
+    pub fn next_estimate(&mut self) -> Option<[f64; 9]> {
+        if self.k >= self.steps {
+            return None;
+        }
+        let x = self.inner.estimate(self.k);
+        self.k += 1;
+        Some(x)
+    }
+
+    /// How often the filter repaired its covariance so far.
+    pub fn recoveries(&self) -> u64 {
+        self.inner.recoveries()
+    }
+}
+
+/// A drone's estimates as the event loop reads them: stored (a cached [`DroneTrack`]) or
+/// computed as the loop asks (a [`DroneFilter`], keeping only what may still be read). The loop
+/// reads steps in increasing order only.
+pub enum Estimates<'a> {
+    /// Every estimate, computed before.
+    Stored(&'a DroneTrack),
+    /// A live filter and the estimates from step `first` on.
+    Live {
+        /// The filter.
+        filter: DroneFilter<'a>,
+        /// Estimates of steps `first..`.
+        window: std::collections::VecDeque<[f64; 9]>,
+        /// The step of `window[0]`.
+        first: usize,
+    },
+}
+
+impl<'a> Estimates<'a> {
+    /// Estimates computed as they are read.
+    pub fn live(filter: DroneFilter<'a>) -> Self {
+        Estimates::Live {
+            filter,
+            window: std::collections::VecDeque::new(),
+            first: 0,
+        }
+    }
+
+    /// The model the filter runs.
+    pub fn model(&self) -> ModelKind {
+        match self {
+            Estimates::Stored(t) => t.model,
+            Estimates::Live { filter, .. } => filter.model,
+        }
+    }
+
+    /// Time of the first sensor step, s.
+    pub fn start(&self) -> f64 {
+        match self {
+            Estimates::Stored(t) => t.start,
+            Estimates::Live { filter, .. } => filter.start,
+        }
+    }
+
+    /// Sensor period, s.
+    pub fn period(&self) -> f64 {
+        match self {
+            Estimates::Stored(t) => t.period,
+            Estimates::Live { filter, .. } => filter.period,
+        }
+    }
+
+    /// Number of sensor steps.
+    pub fn len(&self) -> usize {
+        match self {
+            Estimates::Stored(t) => t.states.len(),
+            Estimates::Live { filter, .. } => filter.steps,
+        }
+    }
+
+    /// Whether there is no step at all.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The estimate at step `k`; steps before the last one read are forgotten by a live filter.
+    pub fn get(&mut self, k: usize) -> Option<[f64; 9]> {
+        match self {
+            Estimates::Stored(t) => t.states.get(k).copied(),
+            Estimates::Live {
+                filter,
+                window,
+                first,
+            } => {
+                while *first < k && !window.is_empty() {
+                    window.pop_front();
+                    *first += 1;
+                }
+                while *first + window.len() <= k {
+                    let x = filter.next_estimate()?;
+                    if *first + window.len() < k {
+                        *first += 1;
+                    } else {
+                        window.push_back(x);
+                    }
+                }
+                window.get(k - *first).copied()
+            }
+        }
+    }
+
+    /// How often the filter repaired its covariance.
+    pub fn recoveries(&self) -> u64 {
+        match self {
+            Estimates::Stored(t) => t.recoveries,
+            Estimates::Live { filter, .. } => filter.recoveries(),
+        }
     }
 }

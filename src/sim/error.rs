@@ -1,4 +1,5 @@
 use crate::lora::LoraError;
+use crate::options::{OutOfRange, MAX_FILTER_STEPS, SEED};
 use crate::trajectory::TrajectoryError;
 use core::fmt;
 
@@ -9,11 +10,13 @@ pub enum SimError {
     Trajectory(TrajectoryError),
     /// A LoRa setting is invalid.
     Lora(LoraError),
+    /// A setting outside its declared limits ([`crate::options`]).
+    OutOfRange(OutOfRange),
     /// A simulation parameter is out of range (name, value, what is allowed).
     Parameter(&'static str, f64, &'static str),
     /// No flight was chosen, or more than one.
     Source(String),
-    /// A seed above [`MAX_SEED`](super::MAX_SEED).
+    /// A seed above 2^53 − 1.
     Seed(u64),
     /// ADR asked for with a start (SF, bandwidth in kHz) that is no EU868 data rate.
     AdrStart(u8, f64),
@@ -31,12 +34,13 @@ impl fmt::Display for SimError {
         match self {
             SimError::Trajectory(e) => e.fmt(f),
             SimError::Lora(e) => e.fmt(f),
+            SimError::OutOfRange(e) => e.fmt(f),
             SimError::Parameter(name, v, allowed) => write!(f, "{name} must be {allowed}, got {v:?}"),
             SimError::Source(msg) => f.write_str(msg),
             SimError::Seed(seed) => write!(
                 f,
                 "seed must be 0..{} (2^53 - 1, the largest integer JavaScript holds exactly), got {seed}",
-                super::MAX_SEED
+                SEED.max
             ),
             SimError::AdrStart(sf, bw) => write!(
                 f,
@@ -46,7 +50,7 @@ impl fmt::Display for SimError {
                 f,
                 "the run is too long: {flight_time:.0} s of flight at these rates is {steps:.0} filter steps per model; \
                  the limit is {} (shorten the flight, lower the sensor rate or lengthen the step T)",
-                super::MAX_FILTER_STEPS
+                MAX_FILTER_STEPS
             ),
         }
     }
@@ -57,6 +61,12 @@ impl std::error::Error for SimError {}
 impl From<TrajectoryError> for SimError {
     fn from(e: TrajectoryError) -> Self {
         SimError::Trajectory(e)
+    }
+}
+
+impl From<OutOfRange> for SimError {
+    fn from(e: OutOfRange) -> Self {
+        SimError::OutOfRange(e)
     }
 }
 

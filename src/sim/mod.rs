@@ -1,41 +1,51 @@
-//! The end-to-end tracking simulation (paper §IV; SPEC §1, §4, §6):
-//! ground truth → noisy sensors → drone UKF → duty-cycled transmissions → codec → channel →
-//! station predictor → error against ground truth every T.
+//! The end-to-end tracking simulation (paper §IV; `docs/reference.md`), read as its pipeline:
+//! drone (sensors, UKF: [`drone`]) → sender (when to send: [`sender`]) → duty-cycle rule
+//! ([`DutyCycle`](crate::lora::DutyCycle)) → link (path loss and shadowing per drone–gateway
+//! link: `link`) → gateways and network server (reception, first copy, ADR: [`network`]) →
+//! station (predictor: [`station`]) → metrics.
 //!
-//! The drone side ([`drone::DroneTrack`]) depends only on the flight, the model, the sensors and
-//! the seed; the link and station sides are cheap. [`Simulator`] caches drone tracks, so changing
-//! only link parameters (SF, bandwidth, distance, overhead, channel) never re-runs a drone filter.
+//! One settings type ([`Scenario`]) and one event loop ([`run_episode`]) serve both entry
+//! points: [`Simulator`] (`simulate`: one drone, each flight an episode, drone runs cached so
+//! that a link change never re-runs a drone filter) and [`run_swarm`] (`swarm`: many drones).
 
-mod adr_session;
-mod config;
 mod drone;
 mod error;
+mod flier;
 mod link;
+pub mod network;
+mod packet;
 mod parallel;
 mod pooled;
+mod radio;
 mod report;
+pub mod scenario;
 pub mod sender;
 mod simulator;
 pub mod station;
+mod streams;
 pub mod swarm;
 
-pub use adr_session::AdrSession;
-pub use config::{
-    random_seed, ModelChoice, SimConfig, SimParams, SyntheticChoice, TrajectorySource, MAX_SEED,
-};
-pub use drone::{run_drone, DroneTrack};
+pub use drone::{run_drone, DroneFilter, DroneTrack, Estimates};
 pub use error::SimError;
-pub use link::{schedule_transmissions, LinkSetup, Transmission};
-pub use report::{ModelResult, ModelSeries, RunConfig, Series, SimReport};
+pub use flier::Flier;
+pub use link::{Link, Reception};
+pub use network::{fly_alone, run_episode, GatewayReport, Network};
+pub use packet::Transmission;
+pub use radio::{DroneRadio, Frame, RateTable};
+pub use report::{Delivery, Energy, ModelResult, ModelSeries, RunConfig, Series, SimReport};
+pub use scenario::{
+    parse_seed, random_seed, ChannelSettings, DroneSettings, FlightSettings, GatewaySite,
+    ModelChoice, NetworkSettings, RadioSettings, RunSettings, Scenario, SfPlan, StationSettings,
+    SwarmSettings, SyntheticChoice, TrajectorySource, Validated, MAX_SEED,
+};
 pub use sender::{
     new_sender, ErrorTriggered, Periodic, Sender, SenderKind, Sending, DEFAULT_BURST,
     DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M,
 };
-pub use simulator::{Simulator, MAX_FILTER_STEPS};
+pub use simulator::Simulator;
 pub use station::{
     new_tracker, track_station, Bounds, Imm, Prediction, StationModel, StationPredictor,
     StationSetup, StationTrack, Tracker,
 };
-pub use swarm::{
-    aloha_collision_rate, run_swarm, DroneReport, SfPlan, SwarmConfig, SwarmParams, SwarmReport,
-};
+pub use streams::{channel as channel_stream, gateway as gateway_stream, link as link_stream};
+pub use swarm::{aloha_collision_rate, run_swarm, DroneReport, SwarmEcho, SwarmReport};

@@ -1,8 +1,8 @@
 //! One station's outcome pooled over every flight of a run.
 
-use super::report::{Boxplots, DataRateUse, ModelResult, ModelSeries};
+use super::packet::Transmission;
+use super::report::{Boxplots, DataRateUse, Delivery, Energy, ModelResult, ModelSeries};
 use super::station::{StationModel, StationTrack};
-use super::Transmission;
 use crate::lora::DataRate;
 use crate::metrics::{coverage, Summary};
 use crate::models::ModelKind;
@@ -22,16 +22,23 @@ pub(crate) struct Pooled {
     probability_sum: Option<[f64; 3]>,
     sent: usize,
     received: usize,
+    /// Charge and awake time summed over every uplink, and seconds flown.
+    charge_mc: f64,
+    active_s: f64,
+    flight_time: f64,
     /// Packets and receptions per data rate, slowest first (higher SF, then narrower band).
     rates: BTreeMap<(u8, u64), DataRateUse>,
 }
 
 impl Pooled {
-    /// Adds one flight's transmissions and station track.
-    pub fn add(&mut self, tx: &[Transmission], st: StationTrack) {
+    /// Adds one drone's transmissions and station track over `flight_time` s.
+    pub fn add(&mut self, tx: &[Transmission], st: StationTrack, flight_time: f64) {
         self.sent += tx.len();
         self.received += tx.iter().filter(|t| t.received).count();
+        self.flight_time += flight_time;
         for t in tx {
+            self.charge_mc += t.charge_mc;
+            self.active_s += t.active_s;
             let key = (12 - t.sf.get(), t.bw.khz() as u64);
             let e = self.rates.entry(key).or_insert_with(|| DataRateUse {
                 dr: t.data_rate().map(DataRate::index),
@@ -59,14 +66,29 @@ impl Pooled {
         }
     }
 
-    /// The result row; `time_on_air`, `interval` in s (of the starting data rate).
+    /// The energy of what was added.
+    pub fn energy(&self) -> Energy {
+        Energy::from_sums(self.sent, self.charge_mc, self.active_s, self.flight_time)
+    }
+
+    /// The result row; `time_on_air`, `interval` in s (of the starting data rate); `network`
+    /// the gateways' counts and the duplicates of this station's run.
     pub fn finish(
         mut self,
         model: StationModel,
         time_on_air: f64,
         interval: f64,
         filter_recoveries: u64,
+        network: &Delivery,
     ) -> ModelResult {
+        let energy = self.energy();
+        let delivery = Delivery {
+            packets_sent: self.sent,
+            packets_received: self.received,
+            delivery_ratio: super::report::ratio(self.received, self.sent),
+            duplicates: network.duplicates,
+            gateways: network.gateways.clone(),
+        };
         let data_rate_use: Vec<DataRateUse> = self.rates.into_values().collect();
         let airtime = data_rate_use
             .iter()
@@ -91,9 +113,7 @@ impl Pooled {
             payload_bytes: model.payload_bytes(),
             time_on_air,
             interval,
-            packets_sent: self.sent,
             airtime,
-            packets_received: self.received,
             error3d: s3,
             error_x: sx,
             error_y: sy,
@@ -103,9 +123,24 @@ impl Pooled {
             filter_recoveries,
             coverage95: coverage(&self.inside),
             data_rate_use,
+            delivery,
+            energy,
             model_probability,
         }
     }
+}
+
+/// Seconds on air of `tx`, summed per data rate (packets × time on air, slowest rate first), as
+/// a station's result counts it.
+pub(crate) fn airtime<'a>(tx: impl Iterator<Item = &'a Transmission>) -> f64 {
+    let mut rates: BTreeMap<(u8, u64), (usize, f64)> = BTreeMap::new();
+    for t in tx {
+        let e = rates
+            .entry((12 - t.sf.get(), t.bw.khz() as u64))
+            .or_insert((0, t.time_on_air));
+        e.0 += 1;
+    }
+    rates.values().map(|&(n, toa)| n as f64 * toa).sum()
 }
 
 /// Keep every this many samples of `len` so that at most [`MAX_SERIES_POINTS`] remain.

@@ -1,17 +1,23 @@
 //! The JSON shapes of `simulate` and `sweep` (SPEC §8): a contract, changed only additively.
 
-use super::sender::Sending;
-use super::station::{Prediction, StationModel};
-use crate::lora::AdrMode;
+use super::network::{GatewayReport, Network};
+use super::packet::Transmission;
+use super::scenario::Scenario;
+use super::station::StationModel;
+use crate::lora::SX1276_SLEEP_CURRENT_MA;
 use crate::metrics::{Boxplot, Summary};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
-/// Echo of the settings, plus what the run covered.
+/// Echo of the settings (every key of [`Scenario`], flat, as given), plus what the run covered.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct RunConfig {
-    /// Flight(s) simulated.
+    /// The settings. In `simulate` the swarm keys say what was flown: one drone (`drones` 1,
+    /// `sfPlan` `fixed`, `duration` the flight time).
+    #[serde(flatten)]
+    pub settings: Scenario,
+    /// Flight(s) simulated, by name.
     pub trajectory: String,
     /// Number of flights.
     pub flights: usize,
@@ -19,54 +25,104 @@ pub struct RunConfig {
     pub flight_time: f64,
     /// Stations run.
     pub models: Vec<StationModel>,
-    /// The station's prediction between packets: `paper` or `bounded`.
-    pub prediction: Prediction,
-    /// When the drone sends: `sender` (`periodic` or `error`), `threshold`, `maxInterval`,
-    /// `dutyCycleMode` (`per-packet` or `budget`), `burst`.
-    #[serde(flatten)]
-    pub sending: Sending,
-    /// Adaptive data rate: `off`, `lorawan` or `tracking`.
-    pub adr: AdrMode,
-    /// LoRaWAN ADR's device margin, dB.
-    pub adr_margin: f64,
-    /// LoRaWAN ADR's history, uplinks.
-    pub adr_history: usize,
-    /// Spreading factor (with ADR: the one the drone starts at).
-    pub sf: u8,
-    /// Bandwidth, kHz.
+    /// Bandwidth, kHz (as `bw`).
     pub bandwidth_khz: f64,
-    /// Gateway distance, m.
-    pub distance: f64,
-    /// Seed.
-    pub seed: u64,
-    /// MAC overhead, bytes.
-    pub overhead: usize,
-    /// Coding rate index.
-    pub cr: u8,
-    /// Duty cycle.
-    pub duty_cycle: f64,
-    /// Transmit power, dBm.
-    pub tx_power: f64,
-    /// Path-loss exponent.
-    pub path_loss_exponent: f64,
-    /// Shadowing sigma, dB.
-    pub shadowing: f64,
-    /// Gateway height, m.
-    pub gateway_height: f64,
-    /// Sensor rate, Hz.
-    pub sensor_rate: f64,
-    /// Station step T, s.
-    pub step: f64,
-    /// Tilt decay per step.
-    pub eta: f64,
     /// Tilt decay per second, eta^(1/T).
     pub eta_per_second: f64,
-    /// Process noise scale.
-    pub q: f64,
     /// Gateway sensitivity for this SF and bandwidth, dBm.
     pub sensitivity_dbm: f64,
     /// Range where the mean received power meets the sensitivity, m.
     pub range_m: f64,
+}
+
+/// The drone radio's charge (SX1276 currents; `docs/reference.md` §7).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Energy {
+    /// Mean charge of one uplink with its receive windows, mC.
+    pub charge_per_uplink: f64,
+    /// Charge per hour of tracking (uplinks, windows and sleep between), mAh.
+    pub charge_per_hour: f64,
+}
+
+impl Energy {
+    /// The charge of `tx` over `flight_time` s of flight (sleeping when not sending or
+    /// listening); zeros for no uplink or no flight time.
+    pub fn of<'a>(tx: impl Iterator<Item = &'a Transmission>, flight_time: f64) -> Self {
+        let (mut n, mut charge, mut active) = (0usize, 0.0, 0.0);
+        for t in tx {
+            n += 1;
+            charge += t.charge_mc;
+            active += t.active_s;
+        }
+        Self::from_sums(n, charge, active, flight_time)
+    }
+
+    /// The same from `n` uplinks' summed charge (mC) and awake time (s).
+    pub fn from_sums(n: usize, charge: f64, active: f64, flight_time: f64) -> Self {
+        if n == 0 || flight_time <= 0.0 {
+            return Energy::default();
+        }
+        let sleep = SX1276_SLEEP_CURRENT_MA * (flight_time - active).max(0.0);
+        Energy {
+            charge_per_uplink: charge / n as f64,
+            // mA·s over the flight, per second of flight, is the mean current in mA, which is
+            // the charge per hour in mAh.
+            charge_per_hour: (charge + sleep) / flight_time,
+        }
+    }
+}
+
+/// Packets and copies over the whole network (JSON, at the top of `simulate` and `swarm`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Delivery {
+    /// Uplinks sent by every drone.
+    pub packets_sent: usize,
+    /// Distinct uplinks the network server passed on (each once, however many gateways heard it).
+    pub packets_received: usize,
+    /// `packetsReceived / packetsSent` (0 when nothing was sent).
+    pub delivery_ratio: f64,
+    /// Copies the server removed: receptions beyond the first of each packet.
+    pub duplicates: usize,
+    /// Per gateway.
+    pub gateways: Vec<GatewayReport>,
+}
+
+impl Delivery {
+    /// What `net` counted: copies removed and per-gateway counts (the packet counts are the
+    /// stations' to add).
+    pub fn counted(net: &Network) -> Self {
+        Delivery {
+            duplicates: net.duplicates,
+            gateways: net.gateways.clone(),
+            ..Delivery::default()
+        }
+    }
+
+    /// Adds another run's counts (same gateways).
+    pub fn add(&mut self, other: &Delivery) {
+        self.packets_sent += other.packets_sent;
+        self.packets_received += other.packets_received;
+        self.duplicates += other.duplicates;
+        if self.gateways.is_empty() {
+            self.gateways = other.gateways.clone();
+        } else {
+            for (a, b) in self.gateways.iter_mut().zip(&other.gateways) {
+                a.add(b);
+            }
+        }
+        self.delivery_ratio = ratio(self.packets_received, self.packets_sent);
+    }
+}
+
+/// `n / of`, 0 when `of` is 0.
+pub fn ratio(n: usize, of: usize) -> f64 {
+    if of == 0 {
+        0.0
+    } else {
+        n as f64 / of as f64
+    }
 }
 
 /// Per-axis and 3D boxplots.
@@ -108,12 +164,8 @@ pub struct ModelResult {
     /// Interval between transmissions under the duty cycle, s (with ADR: at the starting data
     /// rate).
     pub interval: f64,
-    /// Packets sent.
-    pub packets_sent: usize,
     /// Total time on air of the packets sent over all flights, s.
     pub airtime: f64,
-    /// Packets received.
-    pub packets_received: usize,
     /// 3D error, m.
     pub error3d: Summary,
     /// |x error|, m.
@@ -132,6 +184,11 @@ pub struct ModelResult {
     pub coverage95: f64,
     /// The packets sent at each data rate (one entry without ADR), slowest rate first.
     pub data_rate_use: Vec<DataRateUse>,
+    /// Packets, copies and gateways of this station's run.
+    #[serde(flatten)]
+    pub delivery: Delivery,
+    /// The drone radio's charge.
+    pub energy: Energy,
     /// IMM only: the mean probability of each member over the evaluated steps.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub model_probability: Option<BTreeMap<&'static str, f64>>,
@@ -198,8 +255,10 @@ pub struct Series {
     pub y: Vec<f64>,
     /// True z, m.
     pub z: Vec<f64>,
-    /// Gateway position x, y, z, m.
+    /// The first gateway's position x, y, z, m (the flight's frame).
     pub gateway: [f64; 3],
+    /// Every gateway's position x, y, z, m.
+    pub gateways: Vec<[f64; 3]>,
     /// Per model.
     pub models: Vec<ModelSeries>,
 }
@@ -209,6 +268,10 @@ pub struct Series {
 pub struct SimReport {
     /// Settings and coverage.
     pub config: RunConfig,
+    /// Packets and gateways over every station's run (each station's run is its own: the drone
+    /// sends that station's payload).
+    #[serde(flatten)]
+    pub delivery: Delivery,
     /// One entry per model.
     pub results: Vec<ModelResult>,
     /// Time series of the first flight, when asked for.

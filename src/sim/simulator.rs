@@ -1,21 +1,26 @@
 //! Runs simulations and caches what does not depend on the link.
 
-use super::config::{SimConfig, SyntheticChoice, TrajectorySource};
-use super::drone::{run_drone, DroneTrack};
-use super::link::{schedule_transmissions, LinkSetup, Transmission};
+use super::drone::{run_drone, DroneTrack, Estimates};
+use super::flier::Flier;
+use super::network::{run_episode, Network};
+use super::packet::Transmission;
 use super::parallel::par_map_ticking;
 use super::pooled::{axis_every, model_series, series_stride, Pooled};
-use super::report::{ModelSeries, RunConfig, Series, SimReport};
-use super::sender::SenderKind;
+use super::radio::DroneRadio;
+use super::report::{Delivery, ModelSeries, RunConfig, Series, SimReport};
+use super::scenario::{
+    GatewaySite, SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated,
+};
 use super::station::{
     new_tracker, track_station, Bounds, FlightChains, Prediction, StationModel, StationSetup,
     StationTrack,
 };
-use super::{AdrSession, SimError};
-use crate::lora::{min_interval, time_on_air, Channel};
+use super::streams;
+use super::SimError;
+use crate::lora::Channel;
 use crate::math::pow;
 use crate::models::ModelKind;
-use crate::rng::Rng;
+use crate::options::MAX_FILTER_STEPS;
 use crate::trajectory::{
     canberra_flight, parse_csv, synthetic_flight, synthetic_set, Trajectory, TrajectoryError,
 };
@@ -23,15 +28,14 @@ use std::collections::HashMap;
 use std::rc::Rc;
 use std::sync::Mutex;
 
-/// One flight's transmissions, station track and (first flight, when asked) plotted series.
-type FlightRun = (Vec<Transmission>, StationTrack, Option<ModelSeries>);
-
-/// Separates the link's random stream from the sensors' for the same seed.
-const LINK_STREAM: u64 = 0x4C49_4E4B; // "LINK"
-/// The most drone and station filter steps one run may take per model, summed over its flights:
-/// twice what the page's largest setting needs (the whole 44-minute set with 100 Hz sensors and
-/// T = 0.01 s is 528 000), and about a second of work per model natively.
-pub const MAX_FILTER_STEPS: u64 = 1_000_000;
+/// One flight's transmissions, station track, (first flight, when asked) plotted series, and
+/// what the network counted.
+type FlightRun = (
+    Vec<Transmission>,
+    StationTrack,
+    Option<ModelSeries>,
+    Option<Delivery>,
+);
 /// Cache sizes; past them the cache starts afresh (a page rarely alternates between more).
 const MAX_CACHED_FLIGHTS: usize = 4;
 const MAX_CACHED_DRONE_RUNS: usize = 24;
@@ -106,19 +110,7 @@ impl Simulator {
         if let Some(f) = self.flights.get(&key) {
             return Ok((key, Rc::clone(f)));
         }
-        let flights = match source {
-            TrajectorySource::Synthetic(SyntheticChoice::All) => synthetic_set(),
-            TrajectorySource::Synthetic(SyntheticChoice::One(i)) => {
-                vec![synthetic_flight(*i).ok_or(TrajectoryError::SyntheticIndex(*i as i64))?]
-            }
-            TrajectorySource::Sample(name) if name.eq_ignore_ascii_case("canberra") => {
-                vec![canberra_flight()]
-            }
-            TrajectorySource::Sample(name) => {
-                return Err(TrajectoryError::UnknownSample(name.clone()).into())
-            }
-            TrajectorySource::Csv(text, name) => vec![parse_csv(text, name)?],
-        };
+        let flights = load_flights(source)?;
         if self.flights.len() >= MAX_CACHED_FLIGHTS {
             self.flights.clear();
         }
@@ -133,7 +125,7 @@ impl Simulator {
         &mut self,
         key: DroneKey,
         flights: &[Trajectory],
-        cfg: &SimConfig,
+        cfg: &Validated,
         tick: &mut dyn FnMut(),
     ) -> Rc<Vec<DroneTrack>> {
         if let Some(d) = self.drones.get(&key) {
@@ -146,10 +138,10 @@ impl Simulator {
                 run_drone(
                     &flights[i],
                     key.model,
-                    cfg.sensor_rate,
-                    cfg.q,
+                    cfg.s().drone.sensor_rate,
+                    cfg.s().drone.q,
                     &cfg.r_diagonal,
-                    cfg.seed,
+                    cfg.s().run.seed,
                     i as u64,
                 )
             },
@@ -178,20 +170,34 @@ impl Simulator {
     }
 
     /// Runs one simulation.
-    pub fn run(&mut self, cfg: &SimConfig) -> Result<SimReport, SimError> {
+    pub fn run(&mut self, cfg: &Validated) -> Result<SimReport, SimError> {
         self.run_with_progress(cfg, &mut |_, _| {})
     }
 
-    /// Runs one simulation, calling `progress(done, total)` after each flight's drone filter and
-    /// each flight's station (total = 2 × flights × models), so a long run can show how far it is.
+    /// Runs one simulation: the event loop with one drone over each flight, for each station.
+    /// Calls `progress(done, total)` after each flight's drone filter and each flight's station
+    /// (total = 2 × flights × models), so a long run can show how far it is.
     pub fn run_with_progress(
         &mut self,
-        cfg: &SimConfig,
+        cfg: &Validated,
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<SimReport, SimError> {
-        let (flight_key, flights) = self.flights(&cfg.source)?;
+        let s = cfg.s();
+        if s.swarm != SwarmSettings::default() {
+            return Err(SimError::Source(
+                "drones, duration and sfPlan are swarm settings: simulate flies one drone over its flight"
+                    .into(),
+            ));
+        }
+        let source = cfg.source.clone().ok_or_else(|| {
+            SimError::Source(
+                "choose a flight: trajectory (CSV), synthetic (all or 1..30) or sample (canberra)"
+                    .into(),
+            )
+        })?;
+        let (flight_key, flights) = self.flights(&source)?;
         let flight_time: f64 = flights.iter().map(Trajectory::duration).sum();
-        let steps = flight_time * (cfg.sensor_rate + 1.0 / cfg.step);
+        let steps = flight_time * (s.drone.sensor_rate + 1.0 / s.station.step);
         if steps > MAX_FILTER_STEPS as f64 {
             return Err(SimError::TooLong { flight_time, steps });
         }
@@ -201,55 +207,39 @@ impl Simulator {
             done += 1;
             progress(done, total);
         };
-        let (sf, bw) = (cfg.radio.sf, cfg.radio.bw);
         let mut results = Vec::new();
         let mut series_models = Vec::new();
+        let mut delivery = Delivery::default();
         for &model in &cfg.models {
-            let sent_model = model.sent_model();
-            let toa = time_on_air(&cfg.radio, model.payload_bytes() + cfg.overhead)?.time_on_air;
-            let interval = min_interval(toa, cfg.duty_cycle)?;
-            let link = LinkSetup {
-                sf,
-                bw,
-                channel: cfg.channel,
-                time_on_air: toa,
-                interval,
-                distance: cfg.distance,
-                bearing: 0.0,
-            };
-            let sending = &cfg.sending;
-            if sending.sender == SenderKind::Error && sending.max_interval < interval {
-                return Err(SimError::Parameter(
-                    "maxInterval",
-                    sending.max_interval,
-                    "at least the duty-cycle interval of every chosen model",
-                ));
-            }
+            let bytes = model.payload_bytes() + s.radio.overhead;
+            let start = DroneRadio::new(&cfg.radio, bytes, s.radio.duty_cycle, cfg.adr.mode)?;
+            let (toa, interval) = (start.current().time_on_air, start.current().interval);
+            cfg.check_heartbeat(interval)?;
             let setup = StationSetup {
-                prediction: cfg.prediction,
+                prediction: s.station.prediction,
                 bounds: Bounds::default(),
-                step: cfg.step,
-                eta: cfg.eta,
-                q: cfg.q,
+                step: s.station.step,
+                eta: s.station.eta,
+                q: s.drone.q,
                 r_diagonal: cfg.r_diagonal,
                 interval,
             };
             let key = DroneKey {
                 flights: flight_key.clone(),
-                model: sent_model,
-                sensor_rate: cfg.sensor_rate.to_bits(),
-                q: cfg.q.to_bits(),
-                seed: cfg.seed,
+                model: model.sent_model(),
+                sensor_rate: s.drone.sensor_rate.to_bits(),
+                q: s.drone.q.to_bits(),
+                seed: s.run.seed,
             };
             let chains = match model {
                 StationModel::Single(m) => Some(self.station_chains(
                     StationKey {
                         drone: key.clone(),
                         model: m,
-                        prediction: cfg.prediction,
-                        step: cfg.step.to_bits(),
-                        eta: cfg.eta.to_bits(),
-                        q: cfg.q.to_bits(),
+                        prediction: s.station.prediction,
+                        step: s.station.step.to_bits(),
+                        eta: s.station.eta.to_bits(),
+                        q: s.drone.q.to_bits(),
                     },
                     flights.len(),
                 )),
@@ -257,120 +247,187 @@ impl Simulator {
                 StationModel::Imm => None,
             };
             let drones = self.drone_tracks(key, &flights, cfg, &mut tick);
-            let bytes = model.payload_bytes() + cfg.overhead;
-            let shadowing = cfg.channel.params().shadowing_sigma_db;
-            let mut adr = AdrSession::new(&cfg.adr, &cfg.radio, bytes, cfg.duty_cycle, shadowing)?;
             let (flight_set, drone_set): (&[Trajectory], &[DroneTrack]) = (&flights, &drones);
             let chains: Option<&[Mutex<FlightChains>]> = chains.as_deref().map(|c| c.as_slice());
-            let one = |i: usize, adr: Option<&mut AdrSession>| -> Result<FlightRun, SimError> {
+            let network = || network_of(cfg, start.clone());
+            let one = |i: usize, net: &mut Network| -> Result<FlightRun, SimError> {
                 let (flight, drone) = (&flight_set[i], &drone_set[i]);
-                // The same stream for every station: stations that send the same payload see
+                let now = net.radios[0].current();
+                let rule = s
+                    .sending
+                    .rule(s.radio.duty_cycle, now.time_on_air, flight.t[0])?;
+                let gateways = net.gateways_at([flight.pos[0][0], flight.pos[0][1]]);
+                let seed = s.run.seed;
+                // The same streams for every station: stations that send the same payload see
                 // the same packets, so their comparison is paired.
-                let mut rng = Rng::derive(cfg.seed ^ LINK_STREAM, i as u64);
-                // With ADR a flight starts at the rate the last one ended with.
-                let link = adr.as_ref().map_or(link.clone(), |a| a.link_now(&link));
-                let mut rule = sending.rule(cfg.duty_cycle, link.time_on_air, flight.t[0])?;
-                let mut sender = sending.sender(model, setup, sending.max_interval);
-                let tx = schedule_transmissions(
+                let mut flier = Flier::new(
+                    0,
                     flight,
-                    drone,
-                    &link,
-                    sender.as_mut(),
-                    &mut rule,
-                    &mut rng,
-                    adr,
+                    Estimates::Stored(drone),
+                    s.sending.sender(model, setup),
+                    rule,
+                    &gateways,
+                    &net.channel,
+                    streams::link(seed, i as u64),
+                    |g| streams::gateway(seed, g, i as u64),
+                    streams::channel(seed, i as u64),
+                    s.network.channels,
+                    now.interval,
                 );
-                let with_series = cfg.series && i == 0;
+                run_episode(net, core::slice::from_mut(&mut flier));
+                let tx = flier.tx;
+                let with_series = s.run.series && i == 0;
                 let st = match chains {
                     Some(c) => c[i].lock().unwrap_or_else(|e| e.into_inner()).track(
                         flight,
                         &|| new_tracker(model, setup),
                         &tx,
-                        cfg.step,
+                        s.station.step,
                         with_series,
                     ),
                     None => {
                         let mut tracker = new_tracker(model, setup);
-                        track_station(flight, tracker.as_mut(), &tx, cfg.step, with_series)
+                        track_station(flight, tracker.as_mut(), &tx, s.station.step, with_series)
                     }
                 };
                 let series = with_series.then(|| model_series(model, &st, &tx));
-                Ok((tx, st, series))
+                Ok((tx, st, series, None))
             };
-            let runs: Vec<Result<FlightRun, SimError>> = match adr.as_mut() {
-                // ADR state passes from one flight to the next: fly them in order.
-                Some(session) => (0..flights.len())
+            let runs: Vec<Result<FlightRun, SimError>> = if start.adaptive() {
+                // ADR state passes from one flight to the next: fly them in order, one network.
+                let mut net = network()?;
+                let mut runs: Vec<_> = (0..flights.len())
                     .map(|i| {
-                        let r = one(i, Some(&mut *session));
+                        let r = one(i, &mut net);
                         tick();
                         r
                     })
-                    .collect(),
-                None => par_map_ticking(0..flights.len(), |i| one(i, None), &mut tick),
+                    .collect();
+                if let Some(Ok(last)) = runs.last_mut() {
+                    last.3 = Some(Delivery::counted(&net));
+                }
+                runs
+            } else {
+                par_map_ticking(
+                    0..flights.len(),
+                    |i| {
+                        let mut net = network()?;
+                        let mut r = one(i, &mut net)?;
+                        r.3 = Some(Delivery::counted(&net));
+                        Ok(r)
+                    },
+                    &mut tick,
+                )
             };
             let mut pooled = Pooled::default();
-            for run in runs {
-                let (tx, st, series) = run?;
+            let mut counted = Delivery::default();
+            for (i, run) in runs.into_iter().enumerate() {
+                let (tx, st, series, net) = run?;
                 series_models.extend(series);
-                pooled.add(&tx, st);
+                pooled.add(&tx, st, flights[i].duration());
+                if let Some(n) = net {
+                    counted.add(&n);
+                }
             }
             let recoveries = drones.iter().map(|d| d.recoveries).sum();
-            results.push(pooled.finish(model, toa, interval, recoveries));
+            let result = pooled.finish(model, toa, interval, recoveries, &counted);
+            delivery.add(&result.delivery);
+            results.push(result);
         }
-        let series = cfg.series.then(|| {
+        let series = s.run.series.then(|| {
             let f = &flights[0];
             let every = series_stride(f.t.len());
             let axis = |k: usize| axis_every(&f.pos, k, every);
+            let gateways: Vec<[f64; 3]> = sites(cfg)
+                .iter()
+                .map(|g| {
+                    let [e, n, h] = g.position(s.channel.gateway_height);
+                    [f.pos[0][0] + e, f.pos[0][1] + n, h]
+                })
+                .collect();
             Series {
                 flight: f.name.clone(),
                 t: f.t.iter().step_by(every).copied().collect(),
                 x: axis(0),
                 y: axis(1),
                 z: axis(2),
-                gateway: [
-                    f.pos[0][0] + cfg.distance,
-                    f.pos[0][1],
-                    cfg.channel.params().gateway_height,
-                ],
+                gateway: gateways[0],
+                gateways,
                 models: series_models,
             }
         });
-        let ch = cfg.channel.params();
+        let (sf, bw) = (cfg.radio.sf, cfg.radio.bw);
+        let mut settings = s.clone();
+        // What was flown: one drone, on its SF, for the flight time.
+        settings.swarm = SwarmSettings {
+            drones: 1,
+            duration: flight_time,
+            sf_plan: SfPlan::Fixed,
+        };
         Ok(SimReport {
             config: RunConfig {
-                trajectory: match &cfg.source {
+                settings,
+                trajectory: match &source {
                     TrajectorySource::Synthetic(SyntheticChoice::All) => "synthetic all".into(),
                     _ => flights[0].name.clone(),
                 },
                 flights: flights.len(),
                 flight_time,
                 models: cfg.models.clone(),
-                prediction: cfg.prediction,
-                sending: cfg.sending,
-                adr: cfg.adr.mode,
-                adr_margin: cfg.adr.margin_db,
-                adr_history: cfg.adr.history,
-                sf: sf.get(),
                 bandwidth_khz: bw.khz(),
-                distance: cfg.distance,
-                seed: cfg.seed,
-                overhead: cfg.overhead,
-                cr: cfg.radio.cr.get(),
-                duty_cycle: cfg.duty_cycle,
-                tx_power: ch.tx_power_dbm,
-                path_loss_exponent: ch.path_loss_exponent,
-                shadowing: ch.shadowing_sigma_db,
-                gateway_height: ch.gateway_height,
-                sensor_rate: cfg.sensor_rate,
-                step: cfg.step,
-                eta: cfg.eta,
-                eta_per_second: pow(cfg.eta, 1.0 / cfg.step),
-                q: cfg.q,
+                eta_per_second: pow(s.station.eta, 1.0 / s.station.step),
                 sensitivity_dbm: Channel::sensitivity_dbm(sf, bw),
                 range_m: cfg.channel.range_m(sf, bw),
             },
+            delivery,
             results,
             series,
         })
     }
+}
+
+/// The gateways of a run: as given, or the one default gateway — for `simulate` `distance` m
+/// east of the flight's first point.
+pub(crate) fn sites(cfg: &Validated) -> Vec<GatewaySite> {
+    let s = cfg.s();
+    if s.network.gateways.is_empty() {
+        vec![GatewaySite {
+            east: s.channel.distance,
+            north: 0.0,
+            height: None,
+        }]
+    } else {
+        s.network.gateways.clone()
+    }
+}
+
+/// Reads or builds the flights `source` names.
+pub(crate) fn load_flights(source: &TrajectorySource) -> Result<Vec<Trajectory>, SimError> {
+    Ok(match source {
+        TrajectorySource::Synthetic(SyntheticChoice::All) => synthetic_set(),
+        TrajectorySource::Synthetic(SyntheticChoice::One(i)) => {
+            vec![synthetic_flight(*i).ok_or(TrajectoryError::SyntheticIndex(*i as i64))?]
+        }
+        TrajectorySource::Sample(name) if name.eq_ignore_ascii_case("canberra") => {
+            vec![canberra_flight()]
+        }
+        TrajectorySource::Sample(name) => {
+            return Err(TrajectoryError::UnknownSample(name.clone()).into())
+        }
+        TrajectorySource::Csv(text, name) => vec![parse_csv(text, name)?],
+    })
+}
+
+/// A network of the run's gateways for one drone with radio `radio`.
+fn network_of(cfg: &Validated, radio: DroneRadio) -> Result<Network, SimError> {
+    let s = cfg.s();
+    Ok(Network::new(
+        sites(cfg),
+        s.channel.gateway_height,
+        vec![radio],
+        &cfg.adr,
+        cfg.channel,
+        cfg.interference,
+        s.radio.overhead > 0,
+    ))
 }

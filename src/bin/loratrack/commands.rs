@@ -2,9 +2,12 @@
 
 use clap::{Args, Subcommand};
 use loratrack::api::{self, ApiError};
+use loratrack::options as opt;
 use loratrack::{
-    AdrMode, DutyCycleMode, LdroMode, ModelChoice, ModelKind, ModelResult, Prediction, SenderKind,
-    SfPlan, SimParams, Simulator, SwarmParams, SyntheticChoice, MAX_CSV_BYTES,
+    ChannelSettings, DroneSettings, FlightSettings, LdroMode, ModelChoice, ModelKind, ModelResult,
+    NetworkSettings, Prediction, RadioSettings, RunSettings, Scenario, SenderKind, Sending, SfPlan,
+    SimReport, Simulator, StationSettings, SwarmReport, SwarmSettings, SyntheticChoice,
+    MAX_CSV_BYTES,
 };
 use serde::Serialize;
 
@@ -26,70 +29,10 @@ pub enum Command {
     Swarm(Box<SwarmArgs>),
 }
 
+/// Which flight(s): a CSV file, synthetic flights or a bundled sample (simulate needs one;
+/// a swarm without one chains synthetic flights for --duration).
 #[derive(Args)]
-pub struct SwarmArgs {
-    /// Number of drones, 1..500, each flying synthetic flights back to back from a random start at --distance from the gateway, in a random direction.
-    #[arg(long, default_value_t = 12)]
-    drones: usize,
-    /// Seconds of flight per drone, 10..3600.
-    #[arg(long, default_value_t = 600.0)]
-    duration: f64,
-    /// Horizontal distance of every drone's starting point from the gateway, metres (0..100000).
-    #[arg(long, default_value_t = 1000.0, allow_negative_numbers = true)]
-    distance: f64,
-    /// 1 (one channel) or 3 (EU868 868.1/868.3/868.5 MHz, a random one per packet; the 1 % duty cycle covers all three).
-    #[arg(long, default_value_t = 3)]
-    channels: u8,
-    /// Spreading factors: spread (SF7..SF12 in turn, a sixth of the swarm each) or fixed (everyone at --sf).
-    #[arg(long, value_enum, default_value = "spread")]
-    sf_plan: SfPlanArg,
-    /// Spreading factor of the fixed plan, 7..12.
-    #[arg(long, default_value_t = 7, allow_negative_numbers = true)]
-    sf: i64,
-    /// Bandwidth in kHz: 125, 250 or 500.
-    #[arg(long, default_value_t = 125.0)]
-    bw: f64,
-    /// Station model: dr, ctra-plus, 3d-ctra or imm.
-    #[arg(long, default_value = "3d-ctra")]
-    model: String,
-    /// Station prediction between packets: paper or bounded.
-    #[arg(long, value_enum, default_value = "paper")]
-    prediction: PredictionArg,
-    #[command(flatten)]
-    sending: SendingArgs,
-    /// Same-SF capture: the stronger packet survives 6 dB above the others (off: every overlap is fatal).
-    #[arg(long, value_enum, default_value = "on")]
-    capture: OnOff,
-    /// Inter-SF interference by the rejection matrix of ns-3's lorawan module (off: SFs are orthogonal).
-    #[arg(long, value_enum, default_value = "on")]
-    inter_sf: OnOff,
-    /// Log-normal shadowing standard deviation in dB (0..20; 0 turns it off).
-    #[arg(long, default_value_t = 4.0, allow_negative_numbers = true)]
-    shadowing: f64,
-    /// MAC overhead in bytes: 13 for LoRaWAN, 0 as in the paper's Table II.
-    #[arg(long, default_value_t = 13)]
-    overhead: usize,
-    /// Seed of all random draws (layout, sensor noise, channels, shadowing), 0..2^53-1.
-    #[arg(long, default_value_t = 1)]
-    seed: u64,
-    #[command(flatten)]
-    out: Output,
-}
-
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum SfPlanArg {
-    Spread,
-    Fixed,
-}
-
-#[derive(Clone, Copy, PartialEq, clap::ValueEnum)]
-enum OnOff {
-    On,
-    Off,
-}
-
-#[derive(Args)]
-pub struct SimulateArgs {
+pub struct FlightArgs {
     /// A flight as CSV: header with t,x,y,z (s, m, ENU) and optional vx,vy,vz / ax,ay,az; a regular file of at most 64 MiB.
     #[arg(long, value_name = "FILE", conflicts_with_all = ["synthetic", "sample"])]
     trajectory: Option<std::path::PathBuf>,
@@ -99,141 +42,83 @@ pub struct SimulateArgs {
     /// A bundled real flight: canberra (ArduCopter log171, CC BY-SA 3.0).
     #[arg(long, value_name = "NAME")]
     sample: Option<String>,
-    /// Station model(s): dr, ctra-plus, 3d-ctra, imm (IMM over the three), a comma list, or all (the paper's three).
-    #[arg(long, default_value = "all")]
-    model: String,
-    /// Station prediction between packets: paper (constant a and omega, as published) or bounded (speed and pitch limits, overdue manoeuvres decay).
-    #[arg(long, value_enum, default_value = "paper")]
-    prediction: PredictionArg,
+}
+
+impl FlightArgs {
+    fn settings(&self) -> Result<FlightSettings, ApiError> {
+        Ok(FlightSettings {
+            trajectory: self.trajectory.as_deref().map(read_flight).transpose()?,
+            trajectory_name: self.trajectory.as_ref().map(|p| p.display().to_string()),
+            synthetic: self
+                .synthetic
+                .as_deref()
+                .map(|s| SyntheticChoice::parse(s).map_err(ApiError::Invalid))
+                .transpose()?,
+            sample: self.sample.clone(),
+        })
+    }
+}
+
+/// Every setting a run takes besides the flight and the swarm's layout: the sub-structs of
+/// [`Scenario`], flattened into options (defaults and limits from `loratrack::options`).
+#[derive(Args)]
+pub struct ScenarioArgs {
     #[command(flatten)]
-    sending: SendingArgs,
-    /// Adaptive data rate: off (fixed --sf/--bw, the paper), lorawan (the network server's ADR: best SNR of --adr-history uplinks, --adr-margin, 3 dB steps; the device backs off after 64+32 silent uplinks) or tracking (the rate with the least expected squared packet age). ADR starts at --sf/--bw, which must be an EU868 data rate.
-    #[arg(long, value_enum, default_value = "off")]
-    adr: AdrArg,
-    /// LoRaWAN ADR: device margin, dB (0..30; Semtech 10, The Things Stack 15).
-    #[arg(long, default_value_t = loratrack::DEFAULT_ADR_MARGIN_DB)]
-    adr_margin: f64,
-    /// LoRaWAN ADR: uplinks whose best SNR decides (1..100; Semtech and The Things Stack 20).
-    #[arg(long, default_value_t = loratrack::DEFAULT_ADR_HISTORY)]
-    adr_history: usize,
-    /// Spreading factor, 7..12.
-    #[arg(long, default_value_t = 7, allow_negative_numbers = true)]
-    sf: i64,
-    /// Bandwidth in kHz: 125, 250 or 500.
-    #[arg(long, default_value_t = 250.0)]
-    bw: f64,
-    /// Horizontal distance from the flight's first point to the gateway, metres (0..100000).
-    #[arg(long, default_value_t = 1000.0, allow_negative_numbers = true)]
-    distance: f64,
-    /// Seed of all random draws (sensor noise, transmission offset, shadowing), 0..2^53-1, or `random` for a fresh one (reported in the output, so the run can be repeated).
-    #[arg(long, default_value = "1", value_name = "N|random")]
-    seed: String,
-    /// MAC overhead in bytes added to each payload: 13 for LoRaWAN, 0 as in the paper's Table II.
-    #[arg(long, default_value_t = 13)]
-    overhead: usize,
-    /// The paper's preset: no LoRaWAN overhead (same as --overhead 0).
-    #[arg(long, conflicts_with = "overhead")]
-    paper: bool,
-    /// Coding rate n of 4/(4+n): 1..4.
-    #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
-    cr: i64,
-    /// Duty-cycle limit as a fraction (0.0001..1).
-    #[arg(long, default_value_t = 0.01)]
-    duty_cycle: f64,
-    /// Transmit power, dBm (-30..30).
-    #[arg(long, default_value_t = 14.0, allow_negative_numbers = true)]
-    tx_power: f64,
-    /// Path-loss exponent of the log-distance model (1.5..6).
-    #[arg(long, default_value_t = 3.76)]
-    path_loss_exponent: f64,
-    /// Log-normal shadowing standard deviation in dB (0..20; 0 turns it off).
-    #[arg(long, default_value_t = 4.0, allow_negative_numbers = true)]
-    shadowing: f64,
-    /// Gateway antenna height, metres (0..1000).
-    #[arg(long, default_value_t = 15.0)]
-    gateway_height: f64,
-    /// Drone sensor and filter rate, Hz (0.1..1000; flight time x (rate + 1/step) is limited to 1,000,000 filter steps).
-    #[arg(long, default_value_t = 10.0)]
-    sensor_rate: f64,
-    /// Station prediction step T, seconds (0.001..10).
-    #[arg(long, default_value_t = 0.1)]
-    step: f64,
-    /// Tilt-rate decay per station step, 0..1 (paper: 0.9).
-    #[arg(long, default_value_t = 0.9, allow_negative_numbers = true)]
-    eta: f64,
-    /// Process noise q of Q = q I per second, (0, 1000] (paper: 0.1).
-    #[arg(long, default_value_t = 0.1)]
-    q: f64,
-    /// Include time series of the first flight (error over time, trajectories) in the JSON.
-    #[arg(long)]
-    series: bool,
+    station: StationSettings,
+    #[command(flatten)]
+    sending: Sending,
+    #[command(flatten)]
+    radio: RadioSettings,
+    #[command(flatten)]
+    channel: ChannelSettings,
+    #[command(flatten)]
+    network: NetworkSettings,
+    #[command(flatten)]
+    drone: DroneSettings,
+    #[command(flatten)]
+    run: RunSettings,
+}
+
+impl ScenarioArgs {
+    fn scenario(self, flight: FlightSettings, swarm: SwarmSettings) -> Scenario {
+        Scenario {
+            flight,
+            station: self.station,
+            sending: self.sending,
+            radio: self.radio,
+            channel: self.channel,
+            network: self.network,
+            drone: self.drone,
+            swarm,
+            run: self.run,
+            unknown: Default::default(),
+        }
+    }
+}
+
+#[derive(Args)]
+pub struct SwarmArgs {
+    #[command(flatten)]
+    flight: FlightArgs,
+    #[command(flatten)]
+    swarm: SwarmSettings,
+    #[command(flatten)]
+    scenario: ScenarioArgs,
     #[command(flatten)]
     out: Output,
 }
 
-/// When the drone sends and the duty-cycle rule (simulate).
 #[derive(Args)]
-pub struct SendingArgs {
-    /// When the drone sends: periodic (as often as the duty cycle allows, the paper) or error (when the mirrored station drifts past --threshold).
-    #[arg(long, value_enum, default_value = "periodic")]
-    sender: SenderArg,
-    /// Error-triggered sending: the drift in metres between the station's belief and the drone's own estimate that triggers a packet (0..10000).
-    #[arg(long, default_value_t = loratrack::DEFAULT_THRESHOLD_M, allow_negative_numbers = true)]
-    threshold: f64,
-    /// Error-triggered sending: the longest silence in seconds, a heartbeat that repairs lost packets (at least the duty-cycle interval, at most 3600).
-    #[arg(long, default_value_t = loratrack::DEFAULT_MAX_INTERVAL_S, allow_negative_numbers = true)]
-    max_interval: f64,
-    /// Duty-cycle rule: per-packet (off-time of time-on-air / duty-cycle after each packet) or budget (airtime credit over time, up to --burst packets; ETSI EN 300 220 counts over an hour).
-    #[arg(long, value_enum, default_value = "per-packet")]
-    duty_cycle_mode: DutyCycleModeArg,
-    /// Budget rule: the most packets' airtime the credit holds (1..3600; 1 is per-packet).
-    #[arg(long, default_value_t = loratrack::DEFAULT_BURST)]
-    burst: u32,
-}
-
-impl SendingArgs {
-    fn sender(&self) -> SenderKind {
-        match self.sender {
-            SenderArg::Periodic => SenderKind::Periodic,
-            SenderArg::Error => SenderKind::Error,
-        }
-    }
-
-    fn duty_cycle_mode(&self) -> DutyCycleMode {
-        match self.duty_cycle_mode {
-            DutyCycleModeArg::PerPacket => DutyCycleMode::PerPacket,
-            DutyCycleModeArg::Budget => DutyCycleMode::Budget,
-        }
-    }
-}
-
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum AdrArg {
-    Off,
-    Lorawan,
-    Tracking,
-}
-
-impl From<AdrArg> for AdrMode {
-    fn from(a: AdrArg) -> Self {
-        match a {
-            AdrArg::Off => AdrMode::Off,
-            AdrArg::Lorawan => AdrMode::Lorawan,
-            AdrArg::Tracking => AdrMode::Tracking,
-        }
-    }
-}
-
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum SenderArg {
-    Periodic,
-    Error,
-}
-
-#[derive(Clone, Copy, clap::ValueEnum)]
-enum DutyCycleModeArg {
-    PerPacket,
-    Budget,
+pub struct SimulateArgs {
+    #[command(flatten)]
+    flight: FlightArgs,
+    #[command(flatten)]
+    scenario: ScenarioArgs,
+    /// The paper's preset: no LoRaWAN overhead (same as --overhead 0).
+    #[arg(long, conflicts_with = "overhead")]
+    paper: bool,
+    #[command(flatten)]
+    out: Output,
 }
 
 #[derive(Args)]
@@ -258,26 +143,29 @@ pub struct SweepArgs {
     #[command(flatten)]
     kind: SweepKind,
     /// --senders: spreading factor; --distances: the one ADR starts at.
-    #[arg(long, default_value_t = 7, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = opt::SF.default as i64, allow_negative_numbers = true)]
     sf: i64,
     /// --senders: bandwidth, kHz; --distances: the one ADR starts at.
-    #[arg(long, default_value_t = 250.0)]
+    #[arg(long, default_value_t = opt::BW.default)]
     bw: f64,
-    /// --senders: gateway distance, m.
-    #[arg(long, default_value_t = 1000.0, allow_negative_numbers = true)]
+    /// --senders: gateway distance, m; --swarm: the drones' distance from the gateway.
+    #[arg(long, default_value_t = opt::DISTANCE.default, allow_negative_numbers = true)]
     distance: f64,
     /// --senders: the budget rule's capacity in packets.
     #[arg(long, default_value_t = loratrack::DEFAULT_BURST)]
     burst: u32,
+    /// --senders: error-triggered sending's heartbeat, s (at least the duty-cycle interval at --sf/--bw).
+    #[arg(long, default_value_t = opt::MAX_INTERVAL.default, allow_negative_numbers = true)]
+    max_interval: f64,
     /// Seed of all random draws.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = opt::SEED.default as u64)]
     seed: u64,
     /// Station model(s): dr, ctra-plus, 3d-ctra, imm, a comma list, or all (the paper's three).
     #[arg(long, default_value = "all")]
     model: String,
     /// Station prediction(s), comma-separated: paper, bounded.
     #[arg(long, value_enum, value_delimiter = ',', default_value = "paper")]
-    prediction: Vec<PredictionArg>,
+    prediction: Vec<Prediction>,
     /// Print the paper-reproduction document (Markdown) instead of a table.
     #[arg(long, conflicts_with = "json")]
     markdown: bool,
@@ -412,21 +300,6 @@ pub struct AirtimeArgs {
     duty_cycle: f64,
     #[command(flatten)]
     out: Output,
-}
-
-#[derive(Clone, Copy, PartialEq, clap::ValueEnum)]
-enum PredictionArg {
-    Paper,
-    Bounded,
-}
-
-impl From<PredictionArg> for Prediction {
-    fn from(p: PredictionArg) -> Self {
-        match p {
-            PredictionArg::Paper => Prediction::Paper,
-            PredictionArg::Bounded => Prediction::Bounded,
-        }
-    }
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -575,94 +448,60 @@ fn read_flight(path: &std::path::Path) -> Result<String, ApiError> {
     Ok(text)
 }
 
-/// `--seed N` or `--seed random`.
-fn parse_seed(text: &str) -> Result<u64, ApiError> {
-    if text.trim().eq_ignore_ascii_case("random") {
-        return loratrack::random_seed().map_err(ApiError::Invalid);
-    }
-    text.trim().parse().map_err(|_| {
-        ApiError::Invalid(format!(
-            "seed must be a whole number 0..2^53-1 or 'random', got '{}'",
-            text.chars().take(20).collect::<String>()
-        ))
-    })
-}
-
 fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
-    let trajectory = a.trajectory.as_deref().map(read_flight).transpose()?;
-    let params = SimParams {
-        trajectory,
-        trajectory_name: a.trajectory.as_ref().map(|p| p.display().to_string()),
-        synthetic: a
-            .synthetic
-            .as_deref()
-            .map(|s| SyntheticChoice::parse(s).map_err(ApiError::Invalid))
-            .transpose()?,
-        sample: a.sample,
-        model: ModelChoice::parse(&a.model).map_err(ApiError::Invalid)?,
-        prediction: a.prediction.into(),
-        sender: a.sending.sender(),
-        threshold: a.sending.threshold,
-        max_interval: a.sending.max_interval,
-        duty_cycle_mode: a.sending.duty_cycle_mode(),
-        burst: a.sending.burst,
-        adr: a.adr.into(),
-        adr_margin: a.adr_margin,
-        adr_history: a.adr_history,
-        sf: a.sf,
-        bw: a.bw,
-        distance: a.distance,
-        seed: parse_seed(&a.seed)?,
-        overhead: if a.paper { 0 } else { a.overhead },
-        cr: a.cr,
-        duty_cycle: a.duty_cycle,
-        tx_power: a.tx_power,
-        path_loss_exponent: a.path_loss_exponent,
-        shadowing: a.shadowing,
-        gateway_height: a.gateway_height,
-        sensor_rate: a.sensor_rate,
-        step: a.step,
-        eta: a.eta,
-        q: a.q,
-        series: a.series,
-    };
+    let mut params = a
+        .scenario
+        .scenario(a.flight.settings()?, SwarmSettings::default());
+    if a.paper {
+        params.radio.overhead = 0;
+    }
     let r = api::simulate(&mut Simulator::new(), &params)?;
     if a.out.json {
         return Ok(json(&r));
     }
     let c = &r.config;
     Ok(format!(
-        "{} ({} flight{}, {:.0} s), SF{} / {} kHz, gateway at {} m, overhead {} B, seed {}\n{}",
+        "{} ({} flight{}, {:.0} s), SF{} / {} kHz, overhead {} B, seed {}\n{}\n{}",
         c.trajectory,
         c.flights,
         if c.flights == 1 { "" } else { "s" },
         c.flight_time,
-        c.sf,
+        c.settings.radio.sf,
         c.bandwidth_khz,
-        c.distance,
-        c.overhead,
-        c.seed,
-        results_table(&r.results)
+        c.settings.radio.overhead,
+        c.settings.run.seed,
+        results_table(&r.results),
+        network_lines(&r)
     ))
+}
+
+/// A number with `decimals`, or a dash where there is none (an empty sample's statistic).
+fn num(v: f64, width: usize, decimals: usize) -> String {
+    if v.is_finite() {
+        format!("{v:>width$.decimals$}")
+    } else {
+        format!("{:>width$}", "-")
+    }
 }
 
 fn results_table(results: &[ModelResult]) -> String {
     let mut out = String::from(
-        "model     interval  received   mean    p50    p75    p95    max  cover95  (3D error, m)\n",
+        "model     interval  received   mean    p50    p75    p95    max  cover95  mC/uplink  (3D error, m)\n",
     );
     for m in results {
         out += &format!(
-            "{:<9} {:>7.2}s {:>5}/{:<5} {:>6.2} {:>6.2} {:>6.2} {:>6.2} {:>6.1} {:>7.3}\n",
+            "{:<9} {:>7.2}s {:>5}/{:<5} {} {} {} {} {} {} {:>10.2}\n",
             m.model.label(),
             m.interval,
-            m.packets_received,
-            m.packets_sent,
-            m.error3d.mean,
-            m.error3d.p50,
-            m.error3d.p75,
-            m.error3d.p95,
-            m.error3d.max,
-            m.coverage95
+            m.delivery.packets_received,
+            m.delivery.packets_sent,
+            num(m.error3d.mean, 6, 2),
+            num(m.error3d.p50, 6, 2),
+            num(m.error3d.p75, 6, 2),
+            num(m.error3d.p95, 6, 2),
+            num(m.error3d.max, 6, 1),
+            num(m.coverage95, 7, 3),
+            m.energy.charge_per_uplink,
         );
         if let Some(p) = &m.model_probability {
             let parts: Vec<String> = p.iter().map(|(k, v)| format!("{k} {v:.2}")).collect();
@@ -672,9 +511,52 @@ fn results_table(results: &[ModelResult]) -> String {
     out.trim_end().to_string()
 }
 
+/// The network summary under a simulate table: each gateway, the copies removed, the energy.
+fn network_lines(r: &SimReport) -> String {
+    let d = &r.delivery;
+    let mut out = format!(
+        "network: {} of {} packets delivered ({:.1} %), {} duplicate{} removed",
+        d.packets_received,
+        d.packets_sent,
+        100.0 * d.delivery_ratio,
+        d.duplicates,
+        if d.duplicates == 1 { "" } else { "s" }
+    );
+    out += &gateway_lines(&d.gateways);
+    for m in &r.results {
+        out += &format!(
+            "\nenergy {:<9} {:.2} mC per uplink, {:.3} mAh per hour (SX1276 radio only)",
+            m.model.label(),
+            m.energy.charge_per_uplink,
+            m.energy.charge_per_hour
+        );
+    }
+    out
+}
+
+fn gateway_lines(gateways: &[loratrack::GatewayReport]) -> String {
+    gateways
+        .iter()
+        .enumerate()
+        .map(|(i, g)| {
+            format!(
+                "\n  gateway {} at ({:.0}, {:.0}) m, {:.0} m high: heard {}, only it {}, downlinks {} sent / {} dropped",
+                i + 1,
+                g.east,
+                g.north,
+                g.height,
+                g.heard,
+                g.only_heard,
+                g.downlinks_sent,
+                g.downlinks_dropped
+            )
+        })
+        .collect()
+}
+
 fn sweep(a: SweepArgs) -> Result<String, ApiError> {
     let model = ModelChoice::parse(&a.model).map_err(ApiError::Invalid)?;
-    let predictions: Vec<Prediction> = a.prediction.iter().map(|&p| p.into()).collect();
+    let predictions: Vec<Prediction> = a.prediction.clone();
     if a.kind.senders {
         return sweep_senders(&a, model, predictions[0]);
     }
@@ -717,18 +599,18 @@ fn one_station(model: ModelChoice) -> ModelChoice {
 }
 
 /// The base of a trade-off sweep: the whole synthetic set, one station, no LoRaWAN overhead.
-fn trade_off_base(a: &SweepArgs, model: ModelChoice, prediction: Prediction) -> SimParams {
-    SimParams {
-        synthetic: Some(SyntheticChoice::All),
-        model: one_station(model),
-        prediction,
-        sf: a.sf,
-        bw: a.bw,
-        distance: a.distance,
-        seed: a.seed,
-        overhead: 0,
-        ..SimParams::default()
-    }
+fn trade_off_base(a: &SweepArgs, model: ModelChoice, prediction: Prediction) -> Scenario {
+    let mut p = Scenario::default();
+    p.flight.synthetic = Some(SyntheticChoice::All);
+    p.station.model = one_station(model);
+    p.station.prediction = prediction;
+    p.radio.sf = a.sf;
+    p.radio.bw = a.bw;
+    p.radio.overhead = 0;
+    p.channel.distance = a.distance;
+    p.sending.max_interval = a.max_interval;
+    p.run.seed = a.seed;
+    p
 }
 
 fn sweep_distances(
@@ -765,65 +647,57 @@ fn sweep_senders(
 }
 
 fn swarm(a: SwarmArgs) -> Result<String, ApiError> {
-    let params = SwarmParams {
-        drones: a.drones,
-        duration: a.duration,
-        distance: a.distance,
-        channels: a.channels,
-        sf_plan: match a.sf_plan {
-            SfPlanArg::Spread => SfPlan::Spread,
-            SfPlanArg::Fixed => SfPlan::Fixed,
-        },
-        sf: a.sf,
-        bw: a.bw,
-        model: a.model.clone(),
-        prediction: a.prediction.into(),
-        sender: a.sending.sender(),
-        threshold: a.sending.threshold,
-        max_interval: a.sending.max_interval,
-        duty_cycle_mode: a.sending.duty_cycle_mode(),
-        burst: a.sending.burst,
-        capture: a.capture == OnOff::On,
-        inter_sf: a.inter_sf == OnOff::On,
-        shadowing: a.shadowing,
-        overhead: a.overhead,
-        seed: a.seed,
-    };
+    let params = a.scenario.scenario(a.flight.settings()?, a.swarm);
     let r = api::swarm(&params)?;
     if a.out.json {
         return Ok(json(&r));
     }
+    Ok(swarm_text(&r))
+}
+
+fn swarm_text(r: &SwarmReport) -> String {
+    let c = &r.config.settings;
     let silent = r.drones.iter().filter(|d| d.error3d.count == 0).count();
-    Ok(format!(
-        "{} drones x {:.0} s at {} m, {} channel{}, {:?} SFs, capture {}, inter-SF {}, seed {}\n\
+    let d = &r.delivery;
+    format!(
+        "{} drones x {:.0} s at {} m, {} channel{}, {:?} SFs, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
          packets sent        {}\n\
          collision rate      {:.4}  (ALOHA theory for periodic senders: {:.4})\n\
-         delivery ratio      {:.4}\n\
+         delivery ratio      {:.4}  ({} distinct packets, {} duplicate{} removed)\n\
          below sensitivity   {}\n\
          no demodulator      {}\n\
-         3D error (pooled)   mean {:.2}  p75 {:.2}  p95 {:.2} m; median drone p75 {:.2} m\n\
-         drones that received nothing: {}",
-        r.config.drones,
-        r.config.duration,
-        r.config.distance,
-        r.config.channels,
-        if r.config.channels == 1 { "" } else { "s" },
-        r.config.sf_plan,
-        if r.config.capture { "on" } else { "off" },
-        if r.config.inter_sf { "on" } else { "off" },
-        r.config.seed,
-        r.packets_sent,
+         3D error (pooled)   mean {}  p75 {}  p95 {} m; median drone p75 {} m\n\
+         energy              {:.2} mC per uplink, {:.3} mAh per hour (mean drone, SX1276 radio only)\n\
+         drones that received nothing: {}{}",
+        c.swarm.drones,
+        c.swarm.duration,
+        c.channel.distance,
+        c.network.channels,
+        if c.network.channels == 1 { "" } else { "s" },
+        c.swarm.sf_plan,
+        r.config.station.label(),
+        if c.network.capture { "on" } else { "off" },
+        if c.network.inter_sf { "on" } else { "off" },
+        c.network.adr.name(),
+        c.run.seed,
+        d.packets_sent,
         r.collision_rate,
         r.collision_rate_theory,
-        r.delivery_ratio,
+        d.delivery_ratio,
+        d.packets_received,
+        d.duplicates,
+        if d.duplicates == 1 { "" } else { "s" },
         r.packets_below_sensitivity,
         r.packets_no_demodulator,
-        r.error3d.mean,
-        r.error3d.p75,
-        r.error3d.p95,
-        r.median_drone_p75,
-        silent
-    ))
+        num(r.error3d.mean, 0, 2),
+        num(r.error3d.p75, 0, 2),
+        num(r.error3d.p95, 0, 2),
+        num(r.median_drone_p75, 0, 2),
+        r.energy.charge_per_uplink,
+        r.energy.charge_per_hour,
+        silent,
+        gateway_lines(&d.gateways)
+    )
 }
 
 /// Drone counts of `sweep --swarm`.
@@ -835,17 +709,46 @@ fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError
         for plan in [SfPlan::Fixed, SfPlan::Spread] {
             for sender in [SenderKind::Periodic, SenderKind::Error] {
                 for drones in SWARM_SIZES {
-                    let p = SwarmParams {
-                        drones,
-                        channels,
-                        sf_plan: plan,
-                        sf: 7,
-                        sender,
-                        prediction,
-                        duration: 300.0,
-                        distance: a.distance,
-                        seed: a.seed,
-                        ..SwarmParams::default()
+                    let p = Scenario {
+                        swarm: SwarmSettings {
+                            drones,
+                            duration: 300.0,
+                            sf_plan: plan,
+                        },
+                        network: NetworkSettings {
+                            channels,
+                            ..NetworkSettings::default()
+                        },
+                        radio: RadioSettings {
+                            sf: 7,
+                            bw: 125.0,
+                            ..RadioSettings::default()
+                        },
+                        station: StationSettings {
+                            model: ModelChoice::one(ModelKind::Ctra3d),
+                            prediction,
+                            ..StationSettings::default()
+                        },
+                        sending: Sending {
+                            sender,
+                            // The heartbeat must cover the slowest drone's interval: SF12's
+                            // with spread SFs.
+                            max_interval: if plan == SfPlan::Spread {
+                                150.0
+                            } else {
+                                opt::MAX_INTERVAL.default
+                            },
+                            ..Sending::default()
+                        },
+                        channel: ChannelSettings {
+                            distance: a.distance,
+                            ..ChannelSettings::default()
+                        },
+                        run: RunSettings {
+                            seed: a.seed,
+                            series: false,
+                        },
+                        ..Scenario::default()
                     };
                     rows.push(api::swarm(&p)?);
                 }

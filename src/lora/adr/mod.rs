@@ -23,6 +23,7 @@ use serde::{Deserialize, Serialize};
 
 /// Which network-side ADR runs (`--adr`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum AdrMode {
     /// The data rate stays where `--sf`/`--bw` put it (the paper).

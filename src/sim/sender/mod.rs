@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 
 /// The sending policy (`--sender`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum SenderKind {
     /// As often as the duty cycle allows (the paper).

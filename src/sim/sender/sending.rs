@@ -1,34 +1,57 @@
-//! The sending settings `simulate` and `swarm` share, validated in one place.
+//! The sending settings, validated in one place for every run.
 
 use super::{new_sender, Sender, SenderKind};
-use crate::lora::{DutyCycle, DutyCycleMode, LoraError, MAX_BURST};
+use crate::lora::{DutyCycle, DutyCycleMode, LoraError};
+use crate::options::{BURST, MAX_INTERVAL, THRESHOLD};
 use crate::sim::station::{StationModel, StationSetup};
 use crate::sim::SimError;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Default error-triggered threshold, m: about twice the on-time p75 of the paper's station at
 /// SF7 / 1 km, so packets go when the station is clearly off, not on every wobble.
-pub const DEFAULT_THRESHOLD_M: f64 = 2.0;
+pub const DEFAULT_THRESHOLD_M: f64 = THRESHOLD.default;
 /// Default heartbeat, s: a lost packet is repaired within 10 s, at 1/5 of the periodic airtime
 /// at SF7 / 250 kHz.
-pub const DEFAULT_MAX_INTERVAL_S: f64 = 10.0;
-/// Default budget capacity, packets (issue: "holds at most K packets' airtime (default 10)").
-pub const DEFAULT_BURST: u32 = 10;
+pub const DEFAULT_MAX_INTERVAL_S: f64 = MAX_INTERVAL.default;
+/// Default budget capacity, packets ("holds at most K packets' airtime (default 10)").
+pub const DEFAULT_BURST: u32 = BURST.default as u32;
 
-/// When a drone sends and which duty-cycle rule bounds it (echoed in reports as `sender`,
-/// `threshold`, `maxInterval`, `dutyCycleMode`, `burst`).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-#[serde(rename_all = "camelCase")]
+/// When a drone sends and which duty-cycle rule bounds it (flat keys `sender`, `threshold`,
+/// `maxInterval`, `dutyCycleMode`, `burst`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
 pub struct Sending {
     /// The sending policy.
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(
+            long,
+            value_enum,
+            default_value = "periodic",
+            help = "When the drone sends: periodic (as often as the duty cycle allows, the paper) or error (when the mirrored station drifts past --threshold)."
+        )
+    )]
     pub sender: SenderKind,
     /// Error-triggered threshold, m.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = THRESHOLD.default, help = THRESHOLD.cli_help(), allow_negative_numbers = true))]
     pub threshold: f64,
     /// Error-triggered heartbeat, s.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = MAX_INTERVAL.default, help = MAX_INTERVAL.cli_help(), allow_negative_numbers = true))]
     pub max_interval: f64,
     /// The duty-cycle rule.
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(
+            long,
+            value_enum,
+            default_value = "per-packet",
+            help = "Duty-cycle rule: per-packet (off-time of time-on-air / duty-cycle after each packet) or budget (airtime credit over time, up to --burst packets; ETSI EN 300 220 counts over an hour)."
+        )
+    )]
     pub duty_cycle_mode: DutyCycleMode,
     /// Budget capacity, packets.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = DEFAULT_BURST, help = BURST.cli_help()))]
     pub burst: u32,
 }
 
@@ -45,29 +68,11 @@ impl Default for Sending {
 }
 
 impl Sending {
-    /// Checks each setting against its range.
+    /// Checks each setting against its limits.
     pub fn validate(&self) -> Result<(), SimError> {
-        if !(0.0..=10_000.0).contains(&self.threshold) {
-            return Err(SimError::Parameter(
-                "threshold",
-                self.threshold,
-                "0..10000 m",
-            ));
-        }
-        if !(self.max_interval > 0.0 && self.max_interval <= 3600.0) {
-            return Err(SimError::Parameter(
-                "maxInterval",
-                self.max_interval,
-                "in (0, 3600] s",
-            ));
-        }
-        if !(1..=MAX_BURST).contains(&self.burst) {
-            return Err(SimError::Parameter(
-                "burst",
-                f64::from(self.burst),
-                "1..3600 packets",
-            ));
-        }
+        THRESHOLD.check(self.threshold)?;
+        MAX_INTERVAL.check(self.max_interval)?;
+        BURST.check(f64::from(self.burst))?;
         Ok(())
     }
 
@@ -87,14 +92,8 @@ impl Sending {
         )
     }
 
-    /// The drone's sender, mirroring a station of `model` with `setup`; its heartbeat is
-    /// `heartbeat` s.
-    pub fn sender(
-        &self,
-        model: StationModel,
-        setup: StationSetup,
-        heartbeat: f64,
-    ) -> Box<dyn Sender> {
-        new_sender(self.sender, self.threshold, heartbeat, model, setup)
+    /// The drone's sender, mirroring a station of `model` with `setup`.
+    pub fn sender(&self, model: StationModel, setup: StationSetup) -> Box<dyn Sender> {
+        new_sender(self.sender, self.threshold, self.max_interval, model, setup)
     }
 }

@@ -8,7 +8,7 @@
 //! (tests/station.rs checks).
 
 use super::{score_station, start_from, Estimate, StationTrack, Tracker};
-use crate::sim::Transmission;
+use crate::sim::packet::Transmission;
 use crate::trajectory::Trajectory;
 use std::collections::HashMap;
 

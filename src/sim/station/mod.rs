@@ -19,7 +19,7 @@ pub use prediction::{Bounded, Bounds, Prediction};
 pub use predictor::{StationPredictor, StationSetup};
 pub use station_model::StationModel;
 
-use super::Transmission;
+use super::packet::Transmission;
 use crate::metrics::{bound_95, inside_95};
 use crate::models::{with_model, ModelKind, MotionModel};
 use crate::trajectory::Trajectory;

@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 /// The station's prediction rule (`--prediction`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Prediction {
     /// The paper (§III-B; SPEC §4): constant acceleration and turn rate for as long as no packet

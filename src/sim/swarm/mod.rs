@@ -1,263 +1,325 @@
-//! Many drones, one gateway (the paper's future work; Mason et al.'s 2022 follow-up): every drone
-//! flies its own chain of synthetic flights, runs its own UKF and sender, and all share one
-//! gateway, where overlapping packets collide.
+//! Many drones sharing the air (the paper's future work; Mason et al.'s 2022 follow-up): the
+//! one event loop ([`run_episode`]) with N drones around the gateways, then each drone's station
+//! over what the network passed on.
 //!
-//! The drones' senders do not hear the gateway (unconfirmed uplinks, no ADR), so each drone's
-//! transmissions can be scheduled on its own; the gateway then resolves every packet of every
-//! drone on one time axis ([`Gateway::resolve`]), and each station sees only what survived. That
-//! is exactly the time-ordered event loop, without its bookkeeping.
+//! Without a flight chosen, each drone starts at `distance` from the centre in a random
+//! direction and flies synthetic flights back to back for `duration` seconds from a random
+//! first one, as before. With a flight chosen (`synthetic`, `sample`, `trajectory`), every drone
+//! flies each of its flights in turn (one episode per flight), drone i starting at `distance`
+//! from the centre at bearing 360°·i/N — so one drone flies exactly as `simulate` places it.
 
-mod params;
 mod report;
 
-pub use params::{SfPlan, SwarmConfig, SwarmParams, MAX_DRONES, MAX_SWARM_DURATION};
 pub use report::{aloha_collision_rate, DroneReport, SwarmEcho, SwarmReport};
 
-use super::link::{schedule_transmissions, LinkSetup, Transmission};
+use super::drone::{DroneFilter, Estimates};
+use super::flier::Flier;
+use super::network::{run_episode, Network};
 use super::parallel::par_map;
-use super::station::{new_tracker, track_station, Bounds, StationSetup};
-use super::{run_drone, SimError};
-use crate::lora::{
-    min_interval, time_on_air, Gateway, LoraParams, Outcome, Uplink, SX1301_DEMODULATORS,
-};
+use super::pooled::airtime;
+use super::radio::DroneRadio;
+use super::report::{ratio, Delivery, Energy};
+use super::scenario::{GatewaySite, SfPlan, Validated};
+use super::simulator::load_flights;
+use super::station::{new_tracker, track_station, Bounds, StationModel, StationSetup};
+use super::streams::{self, LAYOUT_STREAM};
+use super::{SimError, Transmission};
+use crate::lora::{LoraParams, Outcome};
+use crate::math::sin_cos;
 use crate::metrics::{percentile, Summary};
+use crate::options::MAX_SWARM_FILTER_STEPS;
 use crate::rng::Rng;
 use crate::trajectory::{chain_flights, synthetic_set, Trajectory};
 use core::f64::consts::TAU;
+use std::sync::Arc;
 
-/// EU868's 1 % in 868.0–868.6 MHz, where the three default channels lie.
-const DUTY_CYCLE: f64 = 0.01;
-/// Drone sensor rate, Hz; the chained flights are kept at this rate.
-const SENSOR_RATE: f64 = 10.0;
-/// Station step T, s, and tilt decay (paper defaults).
-const STEP: f64 = 0.1;
-const ETA: f64 = 0.9;
-/// Random streams, separate from the drones' sensor noise for the same seed.
-const LAYOUT_STREAM: u64 = 0x4C41_594F; // "LAYO"
-const LINK_STREAM: u64 = 0x4C49_4E4B; // "LINK", as in `simulate`
-const CHANNEL_STREAM: u64 = 0x4348_414E; // "CHAN"
-/// Drones computed between two progress reports.
+/// Drones whose stations are computed between two progress reports.
 const CHUNK: usize = 16;
 
-/// Where drone `i` starts and what it flies.
-struct Placement {
-    first_flight: usize,
+/// One drone in one episode: which flight it flies, where that flight's first point lies from
+/// the centre, and its random streams.
+struct Seat {
+    flight: usize,
     bearing: f64,
+    stream: u64,
 }
 
-/// What pass 1 leaves for the gateway and the stations.
-struct Sent {
-    sf: u8,
-    time_on_air: f64,
-    setup: StationSetup,
-    tx: Vec<Transmission>,
-    channels: Vec<u8>,
+/// What every drone flies, episode by episode.
+struct Plan {
+    flights: Vec<Arc<Trajectory>>,
+    episodes: Vec<Vec<Seat>>,
 }
 
-/// Runs the swarm, calling `progress(done, total)` as drones complete each of the two passes
-/// (total = 2 × drones).
-pub fn run_swarm(
-    cfg: &SwarmConfig,
-    progress: &mut dyn FnMut(usize, usize),
-) -> Result<SwarmReport, SimError> {
-    let p = &cfg.params;
-    let set = synthetic_set();
-    let mut layout = Rng::derive(p.seed, LAYOUT_STREAM);
-    let placements: Vec<Placement> = (0..p.drones)
-        .map(|_| Placement {
-            first_flight: ((layout.uniform() * set.len() as f64) as usize).min(set.len() - 1),
-            bearing: layout.uniform() * TAU,
+/// The episodes of a swarm (see the module documentation).
+fn plan(cfg: &Validated) -> Result<Plan, SimError> {
+    let s = cfg.s();
+    let n = s.swarm.drones;
+    let Some(source) = &cfg.source else {
+        let set = synthetic_set();
+        let mut layout = Rng::derive(s.run.seed, LAYOUT_STREAM);
+        let firsts: Vec<(usize, f64)> = (0..n)
+            .map(|_| {
+                let first = ((layout.uniform() * set.len() as f64) as usize).min(set.len() - 1);
+                (first, layout.uniform() * TAU)
+            })
+            .collect();
+        // Drones chained from the same first flight fly the same chain: build each once.
+        let stride = ((set[0].t[1] - set[0].t[0]).recip() / s.drone.sensor_rate)
+            .round()
+            .max(1.0) as usize;
+        let mut chains: Vec<Option<usize>> = vec![None; set.len()];
+        let mut flights = Vec::new();
+        let mut seats = Vec::with_capacity(n);
+        for (i, &(first, bearing)) in firsts.iter().enumerate() {
+            let f = match chains[first] {
+                Some(f) => f,
+                None => {
+                    flights.push(Arc::new(chain_flights(
+                        &set,
+                        first,
+                        s.swarm.duration,
+                        stride,
+                    )?));
+                    chains[first] = Some(flights.len() - 1);
+                    flights.len() - 1
+                }
+            };
+            seats.push(Seat {
+                flight: f,
+                bearing,
+                stream: i as u64,
+            });
+        }
+        return Ok(Plan {
+            flights,
+            episodes: vec![seats],
+        });
+    };
+    let flights: Vec<Arc<Trajectory>> = load_flights(source)?.into_iter().map(Arc::new).collect();
+    let count = flights.len();
+    let episodes = (0..count)
+        .map(|f| {
+            (0..n)
+                .map(|i| Seat {
+                    flight: f,
+                    bearing: TAU * i as f64 / n as f64,
+                    stream: (i * count + f) as u64,
+                })
+                .collect()
         })
         .collect();
-    let total = 2 * p.drones;
-    let mut sent: Vec<Sent> = Vec::with_capacity(p.drones);
-    for chunk in chunked(p.drones) {
-        for s in par_map(chunk, |i| send(cfg, &set, &placements[i], i)) {
-            sent.push(s?);
-        }
-        progress(sent.len(), total);
+    Ok(Plan { flights, episodes })
+}
+
+/// The spreading factor of drone `i`.
+fn sf_of(cfg: &Validated, i: usize) -> i64 {
+    match cfg.s().swarm.sf_plan {
+        SfPlan::Spread => 7 + (i % 6) as i64,
+        SfPlan::Fixed => cfg.s().radio.sf,
     }
-    let outcomes = resolve(cfg, &mut sent);
-    let mut drones = Vec::with_capacity(p.drones);
+}
+
+/// Runs the swarm, calling `progress(done, total)` as episodes run and stations complete
+/// (total = episodes + drones).
+pub fn run_swarm(
+    cfg: &Validated,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<SwarmReport, SimError> {
+    let s = cfg.s();
+    let model = cfg.swarm_station()?;
+    let n = s.swarm.drones;
+    let plan = plan(cfg)?;
+    let flown: f64 = plan
+        .episodes
+        .iter()
+        .map(|e| {
+            e.iter()
+                .map(|seat| plan.flights[seat.flight].duration())
+                .sum::<f64>()
+        })
+        .sum();
+    let steps = flown * (s.drone.sensor_rate + 1.0 / s.station.step);
+    if steps > MAX_SWARM_FILTER_STEPS as f64 {
+        return Err(SimError::TooLong {
+            flight_time: flown,
+            steps,
+        });
+    }
+    let bytes = model.payload_bytes() + s.radio.overhead;
+    let mut radios = Vec::with_capacity(n);
+    for i in 0..n {
+        let radio = LoraParams::from_settings(sf_of(cfg, i), s.radio.bw, s.radio.cr)?;
+        let r = DroneRadio::new(&radio, bytes, s.radio.duty_cycle, cfg.adr.mode)?;
+        cfg.check_heartbeat(r.current().interval)?;
+        radios.push(r);
+    }
+    let setups: Vec<StationSetup> = radios
+        .iter()
+        .map(|r| StationSetup {
+            prediction: s.station.prediction,
+            bounds: Bounds::default(),
+            step: s.station.step,
+            eta: s.station.eta,
+            q: s.drone.q,
+            r_diagonal: cfg.r_diagonal,
+            interval: r.current().interval,
+        })
+        .collect();
+    let sites = if s.network.gateways.is_empty() {
+        vec![GatewaySite {
+            east: 0.0,
+            north: 0.0,
+            height: None,
+        }]
+    } else {
+        s.network.gateways.clone()
+    };
+    let mut net = Network::new(
+        sites,
+        s.channel.gateway_height,
+        radios,
+        &cfg.adr,
+        cfg.channel,
+        cfg.interference,
+        s.radio.overhead > 0,
+    );
+    let total = plan.episodes.len() + n;
+    let mut done = 0;
+    // Per episode, per drone: its transmissions and filter repairs.
+    let mut sent: Vec<Vec<(Vec<Transmission>, u64)>> = Vec::new();
+    for seats in &plan.episodes {
+        sent.push(fly(cfg, &mut net, &plan, seats, model, &setups)?);
+        done += 1;
+        progress(done, total);
+    }
+    let mut drones = Vec::with_capacity(n);
     let mut errors = Vec::new();
-    for chunk in chunked(p.drones) {
-        for (i, e3) in chunk.clone().zip(par_map(chunk, |i| {
-            track(cfg, &set, &placements[i], &sent[i])
-        })) {
-            let mut e3 = e3?;
-            let s = &sent[i];
-            let mut channel_use = vec![0; usize::from(p.channels)];
-            for &c in &s.channels {
-                channel_use[usize::from(c)] += 1;
+    let mut tx_all: Vec<&Transmission> = Vec::new();
+    for chunk in (0..n.div_ceil(CHUNK)).map(|c| c * CHUNK..((c + 1) * CHUNK).min(n)) {
+        let tracked = par_map(chunk.clone(), |i| {
+            let mut e3 = Vec::new();
+            for (seats, out) in plan.episodes.iter().zip(&sent) {
+                let flight = &plan.flights[seats[i].flight];
+                let mut tracker = new_tracker(model, setups[i]);
+                e3.extend(
+                    track_station(flight, tracker.as_mut(), &out[i].0, s.station.step, false)
+                        .error3d,
+                );
             }
+            e3
+        });
+        for (i, mut e3) in chunk.zip(tracked) {
+            let mine: Vec<&Transmission> = sent.iter().flat_map(|ep| ep[i].0.iter()).collect();
+            let mut channel_use = vec![0; usize::from(s.network.channels)];
+            for t in &mine {
+                channel_use[usize::from(t.channel)] += 1;
+            }
+            let time: f64 = plan
+                .episodes
+                .iter()
+                .map(|ep| plan.flights[ep[i].flight].duration())
+                .sum();
             errors.extend_from_slice(&e3);
             drones.push(DroneReport {
                 id: i,
-                sf: s.sf,
-                bearing_deg: placements[i].bearing.to_degrees(),
+                sf: sf_of(cfg, i) as u8,
+                bearing_deg: plan.episodes[0][i].bearing.to_degrees(),
                 channel_use,
-                packets_sent: s.tx.len(),
-                packets_received: s.tx.iter().filter(|t| t.received).count(),
-                packets_collided: outcomes[i]
+                packets_sent: mine.len(),
+                packets_received: mine.iter().filter(|t| t.received).count(),
+                packets_collided: mine
                     .iter()
-                    .filter(|o| **o == Outcome::Collided)
+                    .filter(|t| t.outcome == Outcome::Collided)
                     .count(),
+                energy: Energy::of(mine.iter().copied(), time),
                 error3d: Summary::of(&mut e3),
             });
+            tx_all.extend(mine);
         }
-        progress(p.drones + drones.len(), total);
+        done = plan.episodes.len() + drones.len();
+        progress(done, total);
     }
-    Ok(report(cfg, &sent, &outcomes, drones, errors))
+    Ok(report(cfg, model, &net, &tx_all, drones, errors))
 }
 
-fn chunked(n: usize) -> impl Iterator<Item = core::ops::Range<usize>> {
-    (0..n.div_ceil(CHUNK)).map(move |c| c * CHUNK..((c + 1) * CHUNK).min(n))
-}
-
-fn flight(set: &[Trajectory], cfg: &SwarmConfig, at: &Placement) -> Result<Trajectory, SimError> {
-    let stride = ((set[0].t[1] - set[0].t[0]).recip() / SENSOR_RATE)
-        .round()
-        .max(1.0) as usize;
-    Ok(chain_flights(
-        set,
-        at.first_flight,
-        cfg.params.duration,
-        stride,
-    )?)
-}
-
-/// Pass 1 for drone `i`: its flight, UKF, sender under the duty-cycle rule, channel and power.
-fn send(cfg: &SwarmConfig, set: &[Trajectory], at: &Placement, i: usize) -> Result<Sent, SimError> {
-    let p = &cfg.params;
-    let flight = flight(set, cfg, at)?;
-    let sf = cfg.sf_of(i);
-    let radio = LoraParams::from_settings(sf, p.bw, 1)?;
-    let toa = time_on_air(&radio, cfg.model.payload_bytes() + p.overhead)?.time_on_air;
-    let interval = min_interval(toa, DUTY_CYCLE)?;
-    let (q, r) = cfg.noise();
-    let setup = StationSetup {
-        prediction: p.prediction,
-        bounds: Bounds::default(),
-        step: STEP,
-        eta: ETA,
-        q,
-        r_diagonal: r,
-        interval,
-    };
-    let link = LinkSetup {
-        sf: radio.sf,
-        bw: radio.bw,
-        channel: cfg.channel,
-        time_on_air: toa,
-        interval,
-        distance: p.distance,
-        bearing: at.bearing,
-    };
-    let drone = run_drone(
-        &flight,
-        cfg.model.sent_model(),
-        SENSOR_RATE,
-        q,
-        &r,
-        p.seed,
-        i as u64,
-    );
-    let sending = p.sending();
-    let mut rule = sending.rule(DUTY_CYCLE, toa, flight.t[0])?;
-    // Drones on slow SFs cannot send as often as the heartbeat asks: theirs is their interval.
-    let heartbeat = p.max_interval.max(interval);
-    let mut sender = sending.sender(cfg.model, setup, heartbeat);
-    let mut rng = Rng::derive(p.seed ^ LINK_STREAM, i as u64);
-    let tx = schedule_transmissions(
-        &flight,
-        &drone,
-        &link,
-        sender.as_mut(),
-        &mut rule,
-        &mut rng,
-        None,
-    );
-    let mut hop = Rng::derive(p.seed ^ CHANNEL_STREAM, i as u64);
-    let c = f64::from(p.channels);
-    let channels = tx
-        .iter()
-        .map(|_| ((hop.uniform() * c) as u8).min(p.channels - 1))
-        .collect();
-    Ok(Sent {
-        sf: radio.sf.get(),
-        time_on_air: toa,
-        setup,
-        tx,
-        channels,
-    })
-}
-
-/// The gateway's verdict on every packet of every drone; marks the survivors received.
-fn resolve(cfg: &SwarmConfig, sent: &mut [Sent]) -> Vec<Vec<Outcome>> {
-    let uplinks: Vec<Uplink> = sent
-        .iter()
-        .flat_map(|s| {
-            s.tx.iter().zip(&s.channels).map(|(t, &channel)| Uplink {
-                start: t.sent,
-                end: t.arrival,
-                channel,
-                sf: s.sf,
-                rx_dbm: t.rx_power_dbm,
-                audible: t.received,
-            })
+/// One episode: every drone's filter, sender and links through the event loop.
+fn fly(
+    cfg: &Validated,
+    net: &mut Network,
+    plan: &Plan,
+    seats: &[Seat],
+    model: StationModel,
+    setups: &[StationSetup],
+) -> Result<Vec<(Vec<Transmission>, u64)>, SimError> {
+    let s = cfg.s();
+    let seed = s.run.seed;
+    let mut fliers = Vec::with_capacity(seats.len());
+    for (i, seat) in seats.iter().enumerate() {
+        let flight: &Trajectory = &plan.flights[seat.flight];
+        let (sb, cb) = sin_cos(seat.bearing);
+        let p0 = flight.pos[0];
+        // The centre, in this drone's flight frame: `distance` from its first point along the
+        // bearing.
+        let centre = [
+            p0[0] + s.channel.distance * cb,
+            p0[1] + s.channel.distance * sb,
+        ];
+        let now = net.radios[i].current();
+        let filter = DroneFilter::new(
+            flight,
+            model.sent_model(),
+            s.drone.sensor_rate,
+            s.drone.q,
+            &cfg.r_diagonal,
+            seed,
+            seat.stream,
+        );
+        let stream = seat.stream;
+        fliers.push(Flier::new(
+            i,
+            flight,
+            Estimates::live(filter),
+            s.sending.sender(model, setups[i]),
+            s.sending
+                .rule(s.radio.duty_cycle, now.time_on_air, flight.t[0])?,
+            &net.gateways_at(centre),
+            &net.channel,
+            streams::link(seed, stream),
+            |g| streams::gateway(seed, g, stream),
+            streams::channel(seed, stream),
+            s.network.channels,
+            now.interval,
+        ));
+    }
+    run_episode(net, &mut fliers);
+    Ok(fliers
+        .into_iter()
+        .map(|f| {
+            let r = f.estimates.recoveries();
+            (f.tx, r)
         })
-        .collect();
-    let gateway = Gateway {
-        interference: cfg.interference,
-        demodulators: SX1301_DEMODULATORS,
-    };
-    let mut all = gateway.resolve(&uplinks).into_iter();
-    sent.iter_mut()
-        .map(|s| {
-            let mine: Vec<Outcome> = all.by_ref().take(s.tx.len()).collect();
-            for (t, o) in s.tx.iter_mut().zip(&mine) {
-                t.received = *o == Outcome::Received;
-            }
-            mine
-        })
-        .collect()
-}
-
-/// Pass 2 for one drone: its station over what the gateway received; the 3D errors.
-fn track(
-    cfg: &SwarmConfig,
-    set: &[Trajectory],
-    at: &Placement,
-    s: &Sent,
-) -> Result<Vec<f64>, SimError> {
-    let flight = flight(set, cfg, at)?;
-    let mut tracker = new_tracker(cfg.model, s.setup);
-    Ok(track_station(&flight, tracker.as_mut(), &s.tx, STEP, false).error3d)
+        .collect())
 }
 
 fn report(
-    cfg: &SwarmConfig,
-    sent: &[Sent],
-    outcomes: &[Vec<Outcome>],
+    cfg: &Validated,
+    model: StationModel,
+    net: &Network,
+    tx: &[&Transmission],
     drones: Vec<DroneReport>,
     mut errors: Vec<f64>,
 ) -> SwarmReport {
-    let p = &cfg.params;
-    let count = |o: Outcome| outcomes.iter().flatten().filter(|x| **x == o).count();
-    let packets_sent: usize = sent.iter().map(|s| s.tx.len()).sum();
-    let ratio = |n: usize| {
-        if packets_sent == 0 {
-            0.0
-        } else {
-            n as f64 / packets_sent as f64
-        }
-    };
+    let s = cfg.s();
+    let count = |o: Outcome| tx.iter().filter(|t| t.outcome == o).count();
+    let packets_sent = tx.len();
+    let received = count(Outcome::Received);
     // Theory per SF group, weighted by the packets each group sent.
     let mut theory = 0.0;
     for sf in 7..=12u8 {
-        let group: Vec<&Sent> = sent.iter().filter(|s| s.sf == sf).collect();
-        let packets: usize = group.iter().map(|s| s.tx.len()).sum();
-        theory += packets as f64 * aloha_collision_rate(DUTY_CYCLE, p.channels, group.len());
+        let group: Vec<&DroneReport> = drones.iter().filter(|d| d.sf == sf).collect();
+        let packets: usize = group.iter().map(|d| d.packets_sent).sum();
+        theory += packets as f64
+            * aloha_collision_rate(s.radio.duty_cycle, s.network.channels, group.len());
     }
     let mut p75s: Vec<f64> = drones
         .iter()
@@ -265,23 +327,40 @@ fn report(
         .map(|d| d.error3d.p75)
         .collect();
     p75s.sort_by(f64::total_cmp);
+    let nd = drones.len().max(1) as f64;
     SwarmReport {
-        config: SwarmEcho::of(p, DUTY_CYCLE),
-        collision_rate: ratio(count(Outcome::Collided)),
+        config: SwarmEcho {
+            settings: s.clone(),
+            station: model,
+            bandwidth_khz: s.radio.bw,
+        },
+        collision_rate: ratio(count(Outcome::Collided), packets_sent),
         collision_rate_theory: if packets_sent == 0 {
             0.0
         } else {
             theory / packets_sent as f64
         },
-        delivery_ratio: ratio(count(Outcome::Received)),
-        packets_sent,
-        packets_received: count(Outcome::Received),
+        delivery: Delivery {
+            packets_sent,
+            packets_received: received,
+            delivery_ratio: ratio(received, packets_sent),
+            duplicates: net.duplicates,
+            gateways: net.gateways.clone(),
+        },
         packets_collided: count(Outcome::Collided),
         packets_below_sensitivity: count(Outcome::BelowSensitivity),
         packets_no_demodulator: count(Outcome::NoDemodulator),
-        airtime: sent.iter().map(|s| s.tx.len() as f64 * s.time_on_air).sum(),
+        airtime: airtime(tx.iter().copied()),
         error3d: Summary::of(&mut errors),
         median_drone_p75: percentile(&p75s, 50.0),
+        energy: Energy {
+            charge_per_uplink: drones
+                .iter()
+                .map(|d| d.energy.charge_per_uplink)
+                .sum::<f64>()
+                / nd,
+            charge_per_hour: drones.iter().map(|d| d.energy.charge_per_hour).sum::<f64>() / nd,
+        },
         drones,
     }
 }

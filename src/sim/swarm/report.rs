@@ -1,8 +1,10 @@
 //! The output of `swarm`, and the ALOHA collision rate it is checked against.
 
-use super::params::SwarmParams;
 use crate::math::pow;
 use crate::metrics::Summary;
+use crate::sim::report::{Delivery, Energy};
+use crate::sim::scenario::Scenario;
+use crate::sim::station::StationModel;
 use serde::Serialize;
 
 /// The collision probability of one packet among `n` periodic senders that share an SF and hop
@@ -29,7 +31,7 @@ pub struct DroneReport {
     pub id: usize,
     /// Its spreading factor.
     pub sf: u8,
-    /// Direction from its starting point to the gateway, degrees counter-clockwise from east.
+    /// Direction from its starting point to the centre, degrees counter-clockwise from east.
     pub bearing_deg: f64,
     /// Packets it sent on each channel.
     pub channel_use: Vec<usize>,
@@ -39,6 +41,8 @@ pub struct DroneReport {
     pub packets_received: usize,
     /// Packets lost to interference.
     pub packets_collided: usize,
+    /// Its radio's charge.
+    pub energy: Energy,
     /// Its station's 3D error, m (`count` 0: nothing arrived, nothing counted).
     pub error3d: Summary,
 }
@@ -47,94 +51,44 @@ pub struct DroneReport {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct SwarmReport {
-    /// The settings (the duty cycle is EU868's 1 %).
+    /// The settings.
     pub config: SwarmEcho,
-    /// Packets lost to interference / packets sent.
+    /// Packets lost to interference at every gateway that could hear them / packets sent.
     pub collision_rate: f64,
     /// [`aloha_collision_rate`] per SF group, weighted by the packets each group sent: what the
-    /// formula predicts for periodic senders without capture or inter-SF effects.
+    /// formula predicts for periodic senders without capture or inter-SF effects (one gateway).
     pub collision_rate_theory: f64,
-    /// Packets received / packets sent.
-    pub delivery_ratio: f64,
-    /// Packets sent by all drones.
-    pub packets_sent: usize,
-    /// Packets received.
-    pub packets_received: usize,
-    /// Packets lost to interference.
+    /// Packets, copies and gateways (`packetsSent`, `packetsReceived` — distinct packets the
+    /// network server passed on —, `deliveryRatio`, `duplicates`, `gateways`).
+    #[serde(flatten)]
+    pub delivery: Delivery,
+    /// Packets no gateway received though one locked on (lost to interference).
     pub packets_collided: usize,
-    /// Packets below the gateway's sensitivity.
+    /// Packets below every gateway's sensitivity.
     pub packets_below_sensitivity: usize,
-    /// Packets lost because all eight demodulation paths were busy.
+    /// Packets audible somewhere but finding no free demodulation path where they were.
     pub packets_no_demodulator: usize,
-    /// Time on air of all packets, s.
+    /// Seconds on air, all drones.
     pub airtime: f64,
-    /// 3D error of every drone's station, pooled, m.
+    /// Every drone's errors pooled, m.
     pub error3d: Summary,
-    /// Median over the drones of their p75 error, m (drones that received nothing excluded).
+    /// The median over drones of each drone's p75, m (`null` when no drone received anything).
     pub median_drone_p75: f64,
+    /// The drone radio's charge, averaged over the drones.
+    pub energy: Energy,
     /// Per drone.
     pub drones: Vec<DroneReport>,
 }
 
-/// The settings echoed in a report.
+/// The echo of a swarm's settings: every key of [`Scenario`], flat, plus the station it ran.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct SwarmEcho {
-    /// Drones.
-    pub drones: usize,
-    /// Seconds per drone.
-    pub duration: f64,
-    /// Distance of each drone's start from the gateway, m.
-    pub distance: f64,
-    /// Channels.
-    pub channels: u8,
-    /// SF plan.
-    pub sf_plan: super::SfPlan,
-    /// SF of the fixed plan.
-    pub sf: i64,
-    /// Bandwidth, kHz.
-    pub bandwidth_khz: f64,
-    /// Station model.
-    pub model: String,
-    /// Prediction.
-    pub prediction: crate::sim::Prediction,
-    /// When the drones send (`sender`, `threshold`, `maxInterval`, `dutyCycleMode`, `burst`).
+    /// The settings as given.
     #[serde(flatten)]
-    pub sending: crate::sim::Sending,
-    /// Duty cycle.
-    pub duty_cycle: f64,
-    /// Same-SF capture.
-    pub capture: bool,
-    /// Inter-SF interference.
-    pub inter_sf: bool,
-    /// Shadowing, dB.
-    pub shadowing: f64,
-    /// MAC overhead, bytes.
-    pub overhead: usize,
-    /// Seed.
-    pub seed: u64,
-}
-
-impl SwarmEcho {
-    /// The echo of validated parameters.
-    pub fn of(p: &SwarmParams, duty_cycle: f64) -> Self {
-        SwarmEcho {
-            drones: p.drones,
-            duration: p.duration,
-            distance: p.distance,
-            channels: p.channels,
-            sf_plan: p.sf_plan,
-            sf: p.sf,
-            bandwidth_khz: p.bw,
-            model: p.model.to_ascii_lowercase(),
-            prediction: p.prediction,
-            sending: p.sending(),
-            duty_cycle,
-            capture: p.capture,
-            inter_sf: p.inter_sf,
-            shadowing: p.shadowing,
-            overhead: p.overhead,
-            seed: p.seed,
-        }
-    }
+    pub settings: Scenario,
+    /// The one station every drone's ground station ran.
+    pub station: StationModel,
+    /// Bandwidth, kHz (as `bw`).
+    pub bandwidth_khz: f64,
 }

@@ -1,0 +1,514 @@
+//! Every numeric setting's default and limits, declared once.
+//!
+//! The validation of [`Scenario`](crate::sim::Scenario) and of the link budget, the CLI's defaults
+//! and help (`loratrack simulate --help`), the WebAssembly `limits()` export and the page's form
+//! (min, max, step and help of each field, `www/generated/options.ts`) all read this table, so a
+//! limit cannot differ between them. Sources of the defaults: `docs/reference.md` §"Defaults".
+
+use core::fmt::Write;
+use serde::Serialize;
+
+/// One numeric setting: its JSON key, what users call it, its unit, default and accepted range.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct NumberOption {
+    /// The key in JSON and JS (camelCase); the CLI's long option is its kebab-case form.
+    pub key: &'static str,
+    /// The name the page's form shows.
+    pub label: &'static str,
+    /// Unit, as shown after a value (`""` for none).
+    pub unit: &'static str,
+    /// Default value.
+    pub default: f64,
+    /// Smallest accepted value.
+    pub min: f64,
+    /// Largest accepted value.
+    pub max: f64,
+    /// Whether `min` itself is refused (a value must be above it).
+    pub above_min: bool,
+    /// Whole numbers only.
+    pub integer: bool,
+    /// The only values accepted, when not empty.
+    pub values: &'static [f64],
+    /// One sentence: what it is and why these limits.
+    pub help: &'static str,
+}
+
+impl NumberOption {
+    const fn new(
+        key: &'static str,
+        label: &'static str,
+        unit: &'static str,
+        default: f64,
+        min: f64,
+        max: f64,
+        help: &'static str,
+    ) -> Self {
+        NumberOption {
+            key,
+            label,
+            unit,
+            default,
+            min,
+            max,
+            above_min: false,
+            integer: false,
+            values: &[],
+            help,
+        }
+    }
+
+    const fn whole(self) -> Self {
+        NumberOption {
+            integer: true,
+            ..self
+        }
+    }
+
+    const fn above(self) -> Self {
+        NumberOption {
+            above_min: true,
+            ..self
+        }
+    }
+
+    const fn only(self, values: &'static [f64]) -> Self {
+        NumberOption { values, ..self }
+    }
+
+    /// Whether `v` is accepted.
+    pub fn accepts(&self, v: f64) -> bool {
+        let in_range = if self.above_min {
+            v > self.min && v <= self.max
+        } else {
+            (self.min..=self.max).contains(&v)
+        };
+        v.is_finite()
+            && in_range
+            && (!self.integer || v.fract() == 0.0)
+            && (self.values.is_empty() || self.values.contains(&v))
+    }
+
+    /// What is accepted, in words: `"7..12"`, `"0..100000 m"`, `"125, 250 or 500 kHz"`,
+    /// `"in (0, 1000]"`.
+    pub fn range_text(&self) -> String {
+        let unit = if self.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", self.unit)
+        };
+        if !self.values.is_empty() {
+            let v: Vec<String> = self.values.iter().map(|x| format!("{x}")).collect();
+            let (last, rest) = v
+                .split_last()
+                .map_or(("", &[][..]), |(l, r)| (l.as_str(), r));
+            return format!("{} or {last}{unit}", rest.join(", "));
+        }
+        if self.above_min {
+            return format!("in ({}, {}]{unit}", self.min, self.max);
+        }
+        let whole = if self.integer { ", a whole number" } else { "" };
+        format!("{}..{}{unit}{whole}", self.min, self.max)
+    }
+
+    /// The CLI help line: the sentence, the range and the default.
+    pub fn cli_help(&self) -> String {
+        let mut s = format!("{} Accepted: {}.", self.help, self.range_text());
+        let _ = write!(s, " [default: {}]", self.default);
+        s
+    }
+
+    /// `Ok(v)` when accepted, otherwise the error naming the key, the value and the range.
+    pub fn check(&'static self, v: f64) -> Result<f64, OutOfRange> {
+        if self.accepts(v) {
+            Ok(v)
+        } else {
+            Err(OutOfRange {
+                option: self,
+                value: v,
+            })
+        }
+    }
+}
+
+/// A value outside its [`NumberOption`]'s range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OutOfRange {
+    /// The setting.
+    pub option: &'static NumberOption,
+    /// The value given.
+    pub value: f64,
+}
+
+impl core::fmt::Display for OutOfRange {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "{} must be {}, got {:?}",
+            self.option.key,
+            self.option.range_text(),
+            self.value
+        )
+    }
+}
+
+impl std::error::Error for OutOfRange {}
+
+// --- radio -------------------------------------------------------------------------------------
+
+/// Spreading factor (paper §IV-A: SF7 by default).
+pub const SF: NumberOption = NumberOption::new(
+    "sf",
+    "Spreading factor",
+    "",
+    7.0,
+    7.0,
+    12.0,
+    "Spreading factor; with ADR, the one the drone starts at.",
+)
+.whole();
+/// Bandwidth, kHz (paper: 250 kHz).
+pub const BW: NumberOption = NumberOption::new(
+    "bw",
+    "Bandwidth",
+    "kHz",
+    250.0,
+    125.0,
+    500.0,
+    "LoRa bandwidth.",
+)
+.only(&[125.0, 250.0, 500.0]);
+/// Coding rate index n of 4/(4+n) (LoRaWAN uplinks: 4/5).
+pub const CR: NumberOption = NumberOption::new(
+    "cr",
+    "Coding rate",
+    "",
+    1.0,
+    1.0,
+    4.0,
+    "Coding rate n of 4/(4+n).",
+)
+.whole();
+/// MAC overhead per packet, bytes (LoRaWAN: 13; the paper's Table II: 0).
+pub const OVERHEAD: NumberOption = NumberOption::new(
+    "overhead",
+    "LoRaWAN overhead",
+    "bytes",
+    13.0,
+    0.0,
+    255.0,
+    "MAC overhead added to each payload: 13 for LoRaWAN, 0 as in the paper's Table II.",
+)
+.whole();
+/// Duty-cycle limit as a fraction (EU868 868.0–868.6 MHz: 1 %).
+pub const DUTY_CYCLE: NumberOption = NumberOption::new(
+    "dutyCycle",
+    "Duty cycle",
+    "",
+    0.01,
+    1e-4,
+    1.0,
+    "Duty-cycle limit as a fraction; 0.0001 is ten times below EU868's strictest sub-band.",
+);
+/// Transmit power, dBm (EU868's 14 dBm ERP).
+pub const TX_POWER: NumberOption = NumberOption::new(
+    "txPower",
+    "Tx power",
+    "dBm",
+    14.0,
+    -30.0,
+    30.0,
+    "Drone transmit power.",
+);
+
+// --- channel -----------------------------------------------------------------------------------
+
+/// Horizontal distance to the default gateway, m (paper: 1 km).
+pub const DISTANCE: NumberOption = NumberOption::new(
+    "distance",
+    "Distance",
+    "m",
+    1000.0,
+    0.0,
+    100_000.0,
+    "simulate: horizontal distance from the flight's first point to the gateway (placed east of it) when no gateway is given; swarm: every drone's starting distance from the centre.",
+);
+/// Path-loss exponent (ns-3 `lorawan` examples: 3.76).
+pub const PATH_LOSS_EXPONENT: NumberOption = NumberOption::new(
+    "pathLossExponent",
+    "Path-loss exponent",
+    "",
+    3.76,
+    1.5,
+    6.0,
+    "Exponent of the log-distance path loss: free space 2, obstructed paths up to 6.",
+);
+/// Log-normal shadowing standard deviation, dB.
+pub const SHADOWING: NumberOption = NumberOption::new(
+    "shadowing",
+    "Shadowing sigma",
+    "dB",
+    4.0,
+    0.0,
+    20.0,
+    "Standard deviation of log-normal shadowing (0 turns it off).",
+);
+/// Gateway antenna height, m (default of every gateway not given a height).
+pub const GATEWAY_HEIGHT: NumberOption = NumberOption::new(
+    "gatewayHeight",
+    "Gateway height",
+    "m",
+    15.0,
+    0.0,
+    1000.0,
+    "Antenna height of every gateway not given its own.",
+);
+/// A gateway's east or north coordinate, m.
+pub const GATEWAY_COORDINATE: NumberOption = NumberOption::new(
+    "gateway",
+    "Gateway coordinate",
+    "m",
+    0.0,
+    -100_000.0,
+    100_000.0,
+    "A gateway's east or north coordinate in the scenario's frame.",
+);
+/// How many gateways a scenario may have.
+pub const GATEWAYS: NumberOption = NumberOption::new(
+    "gateways",
+    "Gateways",
+    "",
+    1.0,
+    1.0,
+    16.0,
+    "Number of gateways.",
+)
+.whole();
+
+// --- drone and station -------------------------------------------------------------------------
+
+/// Drone sensor and filter rate, Hz (paper: 10 Hz).
+pub const SENSOR_RATE: NumberOption = NumberOption::new(
+    "sensorRate",
+    "Sensor rate",
+    "Hz",
+    10.0,
+    0.1,
+    1000.0,
+    "Drone sensor and filter rate.",
+);
+/// Station prediction step T, s (paper: 0.1 s).
+pub const STEP: NumberOption = NumberOption::new(
+    "step",
+    "Prediction step T",
+    "s",
+    0.1,
+    0.001,
+    10.0,
+    "Station prediction step T.",
+);
+/// Tilt-rate decay per station step (paper: 0.9).
+pub const ETA: NumberOption = NumberOption::new(
+    "eta",
+    "Tilt decay eta",
+    "",
+    0.9,
+    0.0,
+    1.0,
+    "3D-CTRA's tilt-rate decay per station step.",
+);
+/// Process noise scale q of Q = q·I (paper: 0.1).
+pub const Q: NumberOption = NumberOption::new(
+    "q",
+    "Process noise q",
+    "",
+    0.1,
+    0.0,
+    1000.0,
+    "Process noise q of Q = q I per second.",
+)
+.above();
+
+// --- sending -----------------------------------------------------------------------------------
+
+/// Error-triggered threshold, m.
+pub const THRESHOLD: NumberOption = NumberOption::new(
+    "threshold",
+    "Threshold",
+    "m",
+    2.0,
+    0.0,
+    10_000.0,
+    "Error-triggered sending: the drift between the mirrored station and the drone's own estimate that triggers a packet.",
+);
+/// Error-triggered heartbeat, s.
+pub const MAX_INTERVAL: NumberOption = NumberOption::new(
+    "maxInterval",
+    "Heartbeat",
+    "s",
+    10.0,
+    0.0,
+    3600.0,
+    "Error-triggered sending: the longest silence (at least every drone's duty-cycle interval).",
+)
+.above();
+/// Budget rule capacity, packets.
+pub const BURST: NumberOption = NumberOption::new(
+    "burst",
+    "Burst",
+    "packets",
+    10.0,
+    1.0,
+    3600.0,
+    "Budget duty-cycle rule: the most packets' airtime the credit holds (1 is per-packet).",
+)
+.whole();
+
+// --- network -----------------------------------------------------------------------------------
+
+/// LoRaWAN ADR's device margin, dB (Semtech 10; The Things Stack 15).
+pub const ADR_MARGIN: NumberOption = NumberOption::new(
+    "adrMargin",
+    "ADR margin",
+    "dB",
+    10.0,
+    0.0,
+    30.0,
+    "LoRaWAN ADR: the device margin.",
+);
+/// LoRaWAN ADR's history, uplinks (Semtech and The Things Stack: 20).
+pub const ADR_HISTORY: NumberOption = NumberOption::new(
+    "adrHistory",
+    "ADR history",
+    "uplinks",
+    20.0,
+    1.0,
+    100.0,
+    "LoRaWAN ADR: the uplinks whose best SNR decides.",
+)
+.whole();
+/// Uplink channels (EU868's three default channels).
+pub const CHANNELS: NumberOption = NumberOption::new(
+    "channels",
+    "Channels",
+    "",
+    3.0,
+    1.0,
+    3.0,
+    "Uplink channels: 1, or EU868's 868.1/868.3/868.5 MHz with a random one per packet (the 1 % duty cycle covers all three).",
+)
+.only(&[1.0, 3.0]);
+
+// --- swarm and run -----------------------------------------------------------------------------
+
+/// Drones in a swarm.
+pub const DRONES: NumberOption = NumberOption::new(
+    "drones",
+    "Drones",
+    "",
+    12.0,
+    1.0,
+    500.0,
+    "Number of drones sharing the gateways.",
+)
+.whole();
+/// Seconds of flight per swarm drone.
+pub const DURATION: NumberOption = NumberOption::new(
+    "duration",
+    "Duration",
+    "s",
+    600.0,
+    10.0,
+    3600.0,
+    "Seconds of flight per drone when the drones fly chained synthetic flights.",
+);
+/// Seed of every random draw.
+pub const SEED: NumberOption = NumberOption::new(
+    "seed",
+    "Seed",
+    "",
+    1.0,
+    0.0,
+    9_007_199_254_740_991.0,
+    "Seed of every random draw; the largest is 2^53 - 1, the largest integer a JavaScript number holds exactly.",
+)
+.whole();
+
+/// The most drone and station filter steps one run may take per model, summed over its flights
+/// and drones: twice what the page's largest setting needs (the whole 44-minute set with 100 Hz
+/// sensors and T = 0.01 s is 528 000), about a second of work per model natively.
+pub const MAX_FILTER_STEPS: u64 = 1_000_000;
+
+/// The most filter steps a swarm may take, summed over its drones and flights: its largest
+/// chained setting (500 drones × 3600 s × (10 Hz sensors + 1 / 0.1 s station steps)).
+pub const MAX_SWARM_FILTER_STEPS: u64 = 36_000_000;
+
+/// Every option, in the order the CLI help and the page list them.
+pub const OPTIONS: &[&NumberOption] = &[
+    &SF,
+    &BW,
+    &CR,
+    &OVERHEAD,
+    &DUTY_CYCLE,
+    &TX_POWER,
+    &DISTANCE,
+    &PATH_LOSS_EXPONENT,
+    &SHADOWING,
+    &GATEWAY_HEIGHT,
+    &GATEWAY_COORDINATE,
+    &GATEWAYS,
+    &SENSOR_RATE,
+    &STEP,
+    &ETA,
+    &Q,
+    &THRESHOLD,
+    &MAX_INTERVAL,
+    &BURST,
+    &ADR_MARGIN,
+    &ADR_HISTORY,
+    &CHANNELS,
+    &DRONES,
+    &DURATION,
+    &SEED,
+];
+
+/// The option with JSON key `key`.
+pub fn option(key: &str) -> Option<&'static NumberOption> {
+    OPTIONS.iter().copied().find(|o| o.key == key)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_default_is_accepted_and_keys_are_unique() {
+        for o in OPTIONS {
+            assert!(o.accepts(o.default), "{} default {}", o.key, o.default);
+            assert_eq!(
+                OPTIONS.iter().filter(|p| p.key == o.key).count(),
+                1,
+                "{}",
+                o.key
+            );
+        }
+    }
+
+    #[test]
+    fn limits_refuse_what_is_outside_and_say_why() {
+        assert!(SF.check(13.0).is_err());
+        assert!(SF.check(7.5).is_err());
+        assert!(BW.check(300.0).is_err());
+        assert!(Q.check(0.0).is_err());
+        assert!(Q.check(1e-9).is_ok());
+        assert!(DISTANCE.check(f64::NAN).is_err());
+        assert_eq!(
+            BW.check(300.0).unwrap_err().to_string(),
+            "bw must be 125, 250 or 500 kHz, got 300.0"
+        );
+        assert_eq!(
+            SF.check(13.0).unwrap_err().to_string(),
+            "sf must be 7..12, a whole number, got 13.0"
+        );
+    }
+}

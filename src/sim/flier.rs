@@ -1,0 +1,185 @@
+//! One drone during one episode of the event loop: its flight, its filter's estimates, its
+//! sender under the duty-cycle rule, and its links to every gateway.
+
+use super::drone::Estimates;
+use super::link::{Link, Reception};
+use super::packet::Transmission;
+use super::radio::Frame;
+use super::sender::Sender;
+use crate::codec::{decode, encode};
+use crate::lora::{Channel, DutyCycle, Outcome};
+use crate::rng::Rng;
+use crate::trajectory::Trajectory;
+
+/// One drone in an episode.
+pub struct Flier<'a> {
+    /// Which drone (index into the network's radios).
+    pub drone: usize,
+    /// Its flight, in its own frame.
+    pub flight: &'a Trajectory,
+    /// Its filter's estimate at every sensor step.
+    pub estimates: Estimates<'a>,
+    sender: Box<dyn Sender>,
+    rule: DutyCycle,
+    /// One link per gateway, in the network's gateway order.
+    pub links: Vec<Link>,
+    hop: Rng,
+    channels: u8,
+    /// The next sensor step that may carry a packet.
+    k: usize,
+    hint: usize,
+    /// Its transmissions so far.
+    pub tx: Vec<Transmission>,
+}
+
+impl<'a> Flier<'a> {
+    /// A drone flying `flight` with `estimates`, about to start. `link_rng` first draws
+    /// the first packet's offset (uniform within one `interval`, so every model starts at the
+    /// same fraction of its own interval) and then carries the first gateway's shadowing;
+    /// `gateway_rng(g)` gives the others'. `hop` draws each packet's channel among `channels`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        drone: usize,
+        flight: &'a Trajectory,
+        estimates: Estimates<'a>,
+        sender: Box<dyn Sender>,
+        rule: DutyCycle,
+        gateways: &[[f64; 3]],
+        channel: &Channel,
+        mut link_rng: Rng,
+        gateway_rng: impl Fn(usize) -> Rng,
+        hop: Rng,
+        channels: u8,
+        interval: f64,
+    ) -> Self {
+        let offset = link_rng.uniform() * interval;
+        let mut first = Some(link_rng);
+        let links = gateways
+            .iter()
+            .enumerate()
+            .map(|(g, &at)| {
+                let rng = first.take().unwrap_or_else(|| gateway_rng(g));
+                Link::new(channel, at, rng)
+            })
+            .collect();
+        let mut f = Flier {
+            drone,
+            flight,
+            estimates,
+            sender,
+            rule,
+            links,
+            hop,
+            channels,
+            k: 0,
+            hint: 0,
+            tx: Vec::new(),
+        };
+        f.k = f.step_at_or_after(flight.t[0] + offset);
+        f
+    }
+
+    fn step_at_or_after(&self, t: f64) -> usize {
+        ((t - self.estimates.start()) / self.estimates.period() - 1e-9)
+            .ceil()
+            .max(0.0) as usize
+    }
+
+    fn time_of(&self, k: usize) -> f64 {
+        self.estimates.start() + k as f64 * self.estimates.period()
+    }
+
+    /// The next sensor step at or after the current candidate and `not_before` s at which the
+    /// sender wants to send; `None` when the flight ends first. Every step considered is one
+    /// the duty-cycle rule allows.
+    pub fn next_uplink(&mut self, not_before: f64) -> Option<(usize, f64)> {
+        self.k = self.k.max(self.step_at_or_after(not_before));
+        while self.k < self.estimates.len() {
+            let t = self.time_of(self.k);
+            let Some(e) = self.estimates.get(self.k) else {
+                break;
+            };
+            if self.sender.wants_to_send(t, &[e[0], e[1], e[2]]) {
+                return Some((self.k, t));
+            }
+            self.k += 1;
+        }
+        None
+    }
+
+    /// Puts the estimate of step `k` on air with `frame`: spends the duty cycle, tells the
+    /// sender, draws the channel and each gateway's received power. `None` when the estimate
+    /// cannot be encoded (the filter keeps it finite, so this does not happen; the drone would
+    /// then have nothing to send at this step).
+    pub fn transmit(
+        &mut self,
+        k: usize,
+        frame: &Frame,
+        channel: &Channel,
+    ) -> Option<Vec<Reception>> {
+        let model = self.estimates.model();
+        let n = model.state_len();
+        let origin = self.flight.pos[0];
+        let sent = self.time_of(k);
+        let estimate = self.estimates.get(k)?;
+        let decoded =
+            encode(model, &estimate[..n], origin).and_then(|e| decode(model, &e.bytes, origin));
+        let Ok(decoded) = decoded else {
+            self.k = k + 1;
+            return None;
+        };
+        let mut state = [0.0; 9];
+        state[..n].copy_from_slice(&decoded);
+        self.rule.spend(sent);
+        if frame.adr.is_some() {
+            self.sender.data_rate_changed(frame.interval);
+        }
+        self.sender.sent(&state, sent);
+        let pos = self.flight.position_at(sent, &mut self.hint);
+        let receptions: Vec<Reception> = self
+            .links
+            .iter_mut()
+            .map(|l| l.uplink(channel, pos, frame.power_reduction_db))
+            .collect();
+        let c = f64::from(self.channels);
+        let ch = ((self.hop.uniform() * c) as u8).min(self.channels - 1);
+        self.tx.push(Transmission {
+            sent,
+            arrival: sent + frame.time_on_air,
+            received: false,
+            outcome: Outcome::BelowSensitivity,
+            heard_by: 0,
+            state,
+            distance: receptions
+                .iter()
+                .map(|r| r.distance)
+                .fold(f64::INFINITY, f64::min),
+            rx_power_dbm: receptions
+                .iter()
+                .map(|r| r.rx_dbm)
+                .fold(f64::NEG_INFINITY, f64::max),
+            sf: frame.sf,
+            bw: frame.bw,
+            channel: ch,
+            time_on_air: frame.time_on_air,
+            interval: frame.interval,
+            charge_mc: 0.0,
+            active_s: 0.0,
+        });
+        Some(receptions)
+    }
+
+    /// The drone's position at `t` s.
+    pub fn position_at(&mut self, t: f64) -> [f64; 3] {
+        self.flight.position_at(t, &mut self.hint)
+    }
+
+    /// After the packet sent at step `k`: later packets take `time_on_air` s (ADR may have moved
+    /// the rate), and the next candidate is the first step the rule allows after it. The rule
+    /// only relaxes until the next packet, so every later step is allowed too.
+    pub fn after_packet(&mut self, k: usize, time_on_air: f64) {
+        self.rule.set_time_on_air(time_on_air);
+        let sent = self.time_of(k);
+        self.k = self.step_at_or_after(self.rule.earliest(sent)).max(k + 1);
+    }
+}

@@ -1,0 +1,253 @@
+//! The one event loop: every drone's uplinks on one time axis, every gateway deciding each of
+//! them, the network server answering. Two events per uplink: it starts (the drone spends its
+//! duty cycle, each gateway sees it arrive and may lock a demodulation path), and it ends (each
+//! gateway decides it; the server keeps the first copy, runs ADR and answers in a receive window;
+//! the drone plans its next uplink once any downlink it heard has arrived).
+
+use super::gateway::Gateway;
+use super::server::Network;
+use crate::lora::{
+    audible, downlink_time_on_air, empty_window_s, tx_current_ma, Outcome, Uplink, UplinkActivity,
+    Window, ACK_DOWNLINK_BYTES, ADR_DOWNLINK_BYTES,
+};
+use crate::sim::flier::Flier;
+use crate::sim::link::Reception;
+use crate::sim::radio::Frame;
+use core::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// An event: at `time`, drone `drone`'s uplink starts (`start`) or ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Event {
+    time: f64,
+    start: bool,
+    drone: usize,
+}
+
+impl Eq for Event {}
+
+impl Ord for Event {
+    /// The heap is a max-heap: the earliest event is the greatest. At one instant, ends come
+    /// before starts (a demodulation path frees as its packet ends, and a packet starting as
+    /// another ends does not overlap it), and lower drone numbers first.
+    fn cmp(&self, other: &Self) -> Ordering {
+        other
+            .time
+            .total_cmp(&self.time)
+            .then(self.start.cmp(&other.start).reverse())
+            .then(other.drone.cmp(&self.drone))
+    }
+}
+
+impl PartialOrd for Event {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+/// The packet a drone has on air: its sensor step, frame and the power each gateway receives.
+struct OnAir {
+    k: usize,
+    frame: Frame,
+    receptions: Vec<Reception>,
+}
+
+fn packet_id(drone: usize, index: usize) -> u64 {
+    ((drone as u64) << 32) | index as u64
+}
+
+/// Runs one episode: every flier's uplinks until its flight ends, through every gateway of
+/// `net`, filling each flier's `tx`. The network's radios, ADR state and gateway counts carry
+/// over to the next episode; the gateways' receivers and duty cycles start afresh (each flight
+/// has its own time axis).
+pub fn run_episode(net: &mut Network, fliers: &mut [Flier<'_>]) {
+    let mut gateways: Vec<Gateway> = net
+        .sites
+        .iter()
+        .map(|_| Gateway::new(net.interference))
+        .collect();
+    let mut queue = BinaryHeap::new();
+    let mut next: Vec<Option<usize>> = vec![None; fliers.len()];
+    let mut on_air: Vec<Option<OnAir>> = (0..fliers.len()).map(|_| None).collect();
+    for (d, f) in fliers.iter_mut().enumerate() {
+        plan(f, d, f64::NEG_INFINITY, &mut next, &mut queue);
+    }
+    while let Some(e) = queue.pop() {
+        let f = &mut fliers[e.drone];
+        if e.start {
+            let Some(k) = next[e.drone].take() else {
+                continue;
+            };
+            let frame = net.radios[f.drone].uplink();
+            let Some(receptions) = f.transmit(k, &frame, &net.channel) else {
+                plan(f, e.drone, e.time, &mut next, &mut queue);
+                continue;
+            };
+            let Some(t) = f.tx.last() else { continue };
+            let (sent, arrival, channel, sf, bw) = (t.sent, t.arrival, t.channel, t.sf, t.bw);
+            let id = packet_id(e.drone, f.tx.len() - 1);
+            for (g, r) in gateways.iter_mut().zip(&receptions) {
+                g.start(
+                    id,
+                    Uplink {
+                        start: sent,
+                        end: arrival,
+                        channel,
+                        sf: sf.get(),
+                        rx_dbm: r.rx_dbm,
+                        audible: audible(r.rx_dbm, sf, bw),
+                    },
+                );
+            }
+            queue.push(Event {
+                time: arrival,
+                start: false,
+                drone: e.drone,
+            });
+            if !net.radios[f.drone].adaptive() {
+                // No downlink can change anything: the next uplink is planned at once.
+                f.after_packet(k, frame.time_on_air);
+                plan(f, e.drone, arrival, &mut next, &mut queue);
+            }
+            on_air[e.drone] = Some(OnAir {
+                k,
+                frame,
+                receptions,
+            });
+        } else {
+            let Some(air) = on_air[e.drone].take() else {
+                continue;
+            };
+            let index = f.tx.len() - 1;
+            let id = packet_id(e.drone, index);
+            let mut heard_by = 0u32;
+            let mut outcome = Outcome::BelowSensitivity;
+            for (g, gw) in gateways.iter_mut().enumerate() {
+                let o = gw.finish(id);
+                if o == Outcome::Received {
+                    heard_by |= 1 << g;
+                }
+                outcome = outcome.max(o);
+            }
+            net.count_copies(heard_by);
+            let next_from = finish_exchange(net, &mut gateways, f, &air, heard_by, e.time);
+            let t = &mut f.tx[index];
+            t.received = heard_by != 0;
+            t.heard_by = heard_by;
+            t.outcome = outcome;
+            if net.radios[f.drone].adaptive() {
+                let toa = net.radios[f.drone].current().time_on_air;
+                f.after_packet(air.k, toa);
+                plan(f, e.drone, next_from, &mut next, &mut queue);
+            }
+        }
+    }
+}
+
+fn plan(
+    f: &mut Flier<'_>,
+    d: usize,
+    not_before: f64,
+    next: &mut [Option<usize>],
+    queue: &mut BinaryHeap<Event>,
+) {
+    if let Some((k, time)) = f.next_uplink(not_before) {
+        next[d] = Some(k);
+        queue.push(Event {
+            time,
+            start: true,
+            drone: d,
+        });
+    }
+}
+
+/// After an uplink ends at `end`: ADR's answer through the gateway that heard it best (RX1, or
+/// RX2 when the gateway's RX1 duty cycle forbids it; dropped when both do), the drone's radio
+/// told what came, and the uplink's charge recorded. Returns the earliest time the drone's next
+/// uplink may start, s: once a downlink it heard has fully arrived (a command cannot apply before
+/// it is heard), otherwise at the uplink's end (nothing was learnt; the drone's empty receive
+/// windows cost energy but do not hold back the next uplink, as before ADR existed).
+fn finish_exchange(
+    net: &mut Network,
+    gateways: &mut [Gateway],
+    f: &mut Flier<'_>,
+    air: &OnAir,
+    heard_by: u32,
+    end: f64,
+) -> f64 {
+    let best = (0..gateways.len())
+        .filter(|g| heard_by & (1 << g) != 0)
+        .max_by(|&a, &b| {
+            air.receptions[a]
+                .rx_dbm
+                .total_cmp(&air.receptions[b].rx_dbm)
+        });
+    // (window, its downlink's time on air, whether the drone heard it)
+    let mut downlink: Option<(Window, f64, bool)> = None;
+    let mut command = None;
+    if let (Some(g), Some(frame)) = (best, air.frame.adr) {
+        let (answers, cmd) = net.adr_hears(f.drone, &frame, air.receptions[g].rx_dbm);
+        command = cmd;
+        if answers {
+            let bytes = if cmd.is_some() {
+                ADR_DOWNLINK_BYTES
+            } else {
+                ACK_DOWNLINK_BYTES
+            };
+            for w in [Window::Rx1, Window::Rx2] {
+                let dr = w.data_rate(frame.dr);
+                let Ok(toa) = downlink_time_on_air(dr, bytes) else {
+                    break;
+                };
+                let at = end + w.delay_s();
+                if gateways[g].try_downlink(w, at, toa) {
+                    net.gateways[g].downlinks_sent += 1;
+                    let pos = f.position_at(at);
+                    let r = f.links[g].downlink(&net.channel, pos);
+                    downlink = Some((w, toa, audible(r.rx_dbm, dr.sf(), dr.bw())));
+                    break;
+                }
+            }
+            if downlink.is_none() {
+                net.gateways[g].downlinks_dropped += 1;
+            }
+        }
+    }
+    let heard = matches!(downlink, Some((_, _, true)));
+    net.radios[f.drone].exchange_done(heard.then_some(command));
+    // Class A receive windows: RX1 at the uplink's rate, RX2 at SF12/125 kHz unless RX1 brought
+    // the downlink.
+    let opens = net.lorawan || air.frame.adr.is_some();
+    let uplink_rate = (air.frame.sf, air.frame.bw);
+    let dr0 = crate::lora::DataRate::DR0;
+    let (rx1, rx2) = match downlink {
+        Some((Window::Rx1, toa, true)) => ((toa, uplink_rate), None),
+        Some((Window::Rx2, toa, true)) => (
+            (empty_window_s(uplink_rate.0, uplink_rate.1), uplink_rate),
+            Some(toa),
+        ),
+        _ => (
+            (empty_window_s(uplink_rate.0, uplink_rate.1), uplink_rate),
+            Some(empty_window_s(dr0.sf(), dr0.bw())),
+        ),
+    };
+    let next_from = match downlink {
+        Some((w, toa, true)) => end + w.delay_s() + toa,
+        _ => end,
+    };
+    let activity = UplinkActivity {
+        tx_power_dbm: net.channel.params().tx_power_dbm - air.frame.power_reduction_db,
+        time_on_air: air.frame.time_on_air,
+        windows: if opens {
+            [(rx1.0, rx1.1 .1), (rx2.unwrap_or(0.0), dr0.bw())]
+        } else {
+            [(0.0, uplink_rate.1), (0.0, dr0.bw())]
+        },
+    };
+    debug_assert!(tx_current_ma(activity.tx_power_dbm) > 0.0);
+    if let Some(t) = f.tx.last_mut() {
+        t.charge_mc = activity.charge_mc();
+        t.active_s = activity.active_s();
+    }
+    next_from
+}

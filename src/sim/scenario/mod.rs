@@ -1,0 +1,565 @@
+//! One settings type for every run: [`Scenario`], made of small sub-structs (flight, station,
+//! sending, radio, channel, network, drone, swarm, run). `simulate` and `swarm` take it, the CLI
+//! flattens its sub-structs into its options (clap), the WebAssembly boundary reads it from a flat
+//! camelCase JSON object (serde), and reports echo it. Numeric defaults and limits come from
+//! [`crate::options`]; [`Scenario::validate`] checks every field before any work starts.
+//!
+//! The keys are flat on the wire (`{"sf": 9, "adr": "lorawan", "gateways": [...]}`), as they
+//! always were; the sub-structs only group them in Rust. Reference: `docs/reference.md` §6.
+
+mod choices;
+mod gateways;
+
+pub use choices::{
+    parse_seed, random_seed, ModelChoice, SyntheticChoice, TrajectorySource, MAX_SEED,
+};
+pub use gateways::{validate_sites, GatewaySite};
+
+use super::sender::{SenderKind, Sending};
+use super::station::{Prediction, StationModel};
+use super::SimError;
+use crate::filter::PAPER_R_DIAGONAL;
+use crate::lora::{
+    AdrMode, AdrParams, Channel, ChannelParams, DataRate, InterferenceModel, LoraParams,
+};
+use crate::models::ModelKind;
+use crate::options as opt;
+use choices::seed_or_random;
+use serde::de::IgnoredAny;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+#[cfg(not(target_arch = "wasm32"))]
+fn on_off(text: &str) -> Result<bool, String> {
+    match text.trim().to_ascii_lowercase().as_str() {
+        "on" | "true" => Ok(true),
+        "off" | "false" => Ok(false),
+        _ => Err(format!(
+            "expected on or off, got '{}'",
+            text.chars().take(20).collect::<String>()
+        )),
+    }
+}
+
+/// Which flight(s) the drones fly: exactly one of CSV text, synthetic flights or a bundled
+/// sample, or none in a swarm (each drone then chains synthetic flights for `duration`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct FlightSettings {
+    /// CSV text of a flight (the CLI reads `--trajectory FILE` into this); not echoed.
+    #[serde(default, skip_serializing)]
+    pub trajectory: Option<String>,
+    /// A name for the CSV flight, shown in reports.
+    #[serde(default, skip_serializing)]
+    pub trajectory_name: Option<String>,
+    /// Synthetic flight(s): `all` or 1..30.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub synthetic: Option<SyntheticChoice>,
+    /// A bundled real flight: `canberra`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sample: Option<String>,
+}
+
+/// The ground station.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+pub struct StationSettings {
+    /// Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`.
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(long, default_value = "all", value_parser = ModelChoice::parse,
+            help = "Station model(s): dr, ctra-plus, 3d-ctra, imm (IMM over the three), a comma list, or all (the paper's three). A swarm runs one station: all means 3d-ctra.")
+    )]
+    pub model: ModelChoice,
+    /// The station's prediction between packets: `paper` (default) or `bounded`.
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(
+            long,
+            value_enum,
+            default_value = "paper",
+            help = "Station prediction between packets: paper (constant a and omega, as published) or bounded (speed and pitch limits, overdue manoeuvres decay)."
+        )
+    )]
+    pub prediction: Prediction,
+    /// Station prediction step T, s.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::STEP.default, help = opt::STEP.cli_help()))]
+    pub step: f64,
+    /// Tilt-rate decay per station step.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::ETA.default, help = opt::ETA.cli_help(), allow_negative_numbers = true))]
+    pub eta: f64,
+}
+
+impl Default for StationSettings {
+    fn default() -> Self {
+        StationSettings {
+            model: ModelChoice::all(),
+            prediction: Prediction::Paper,
+            step: opt::STEP.default,
+            eta: opt::ETA.default,
+        }
+    }
+}
+
+/// The drone's radio.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+pub struct RadioSettings {
+    /// Spreading factor 7..12 (with ADR: the start).
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::SF.default as i64, help = opt::SF.cli_help(), allow_negative_numbers = true))]
+    pub sf: i64,
+    /// Bandwidth, kHz.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::BW.default, help = opt::BW.cli_help(), allow_negative_numbers = true))]
+    pub bw: f64,
+    /// Coding rate index 1..4.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::CR.default as i64, help = opt::CR.cli_help(), allow_negative_numbers = true))]
+    pub cr: i64,
+    /// MAC overhead, bytes (LoRaWAN 13; the paper's Table II: 0).
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::OVERHEAD.default as usize, help = opt::OVERHEAD.cli_help()))]
+    pub overhead: usize,
+    /// Duty-cycle limit, fraction.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::DUTY_CYCLE.default, help = opt::DUTY_CYCLE.cli_help(), allow_negative_numbers = true))]
+    pub duty_cycle: f64,
+    /// Transmit power, dBm.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::TX_POWER.default, help = opt::TX_POWER.cli_help(), allow_negative_numbers = true))]
+    pub tx_power: f64,
+}
+
+impl Default for RadioSettings {
+    fn default() -> Self {
+        RadioSettings {
+            sf: opt::SF.default as i64,
+            bw: opt::BW.default,
+            cr: opt::CR.default as i64,
+            overhead: opt::OVERHEAD.default as usize,
+            duty_cycle: opt::DUTY_CYCLE.default,
+            tx_power: opt::TX_POWER.default,
+        }
+    }
+}
+
+/// The channel between drones and gateways.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+pub struct ChannelSettings {
+    /// simulate: distance from the flight's first point to the default gateway; swarm: every
+    /// drone's starting distance from the centre, m.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::DISTANCE.default, help = opt::DISTANCE.cli_help(), allow_negative_numbers = true))]
+    pub distance: f64,
+    /// Path-loss exponent.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::PATH_LOSS_EXPONENT.default, help = opt::PATH_LOSS_EXPONENT.cli_help(), allow_negative_numbers = true))]
+    pub path_loss_exponent: f64,
+    /// Shadowing standard deviation, dB (0: off).
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::SHADOWING.default, help = opt::SHADOWING.cli_help(), allow_negative_numbers = true))]
+    pub shadowing: f64,
+    /// Antenna height of every gateway not given its own, m.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::GATEWAY_HEIGHT.default, help = opt::GATEWAY_HEIGHT.cli_help(), allow_negative_numbers = true))]
+    pub gateway_height: f64,
+}
+
+impl Default for ChannelSettings {
+    fn default() -> Self {
+        ChannelSettings {
+            distance: opt::DISTANCE.default,
+            path_loss_exponent: opt::PATH_LOSS_EXPONENT.default,
+            shadowing: opt::SHADOWING.default,
+            gateway_height: opt::GATEWAY_HEIGHT.default,
+        }
+    }
+}
+
+/// Gateways, channels, reception rules and the network server's ADR.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+pub struct NetworkSettings {
+    /// The gateways; empty for the one default gateway (simulate: `distance` m east of the
+    /// flight's first point; swarm: at the centre).
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(long = "gateway", value_name = "E,N[,H]", value_parser = GatewaySite::parse, allow_negative_numbers = true,
+            help = "A gateway at E metres east and N north of the origin (simulate: the flight's first point; swarm: the centre), antenna H metres high [default: --gateway-height]; repeat for more (1..16, each coordinate within 100 km). Without it: one gateway, simulate at (--distance, 0), swarm at the centre.")
+    )]
+    pub gateways: Vec<GatewaySite>,
+    /// Uplink channels: 1 or 3.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::CHANNELS.default as u8, help = opt::CHANNELS.cli_help()))]
+    pub channels: u8,
+    /// Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(long, default_value = "on", value_parser = on_off, value_name = "on|off", action = clap::ArgAction::Set,
+            help = "Same-SF capture: the stronger packet survives 6 dB above the others (off: every overlap is fatal).")
+    )]
+    pub capture: bool,
+    /// Inter-SF interference by the rejection matrix (off: SFs are orthogonal).
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(long, default_value = "on", value_parser = on_off, value_name = "on|off", action = clap::ArgAction::Set,
+            help = "Inter-SF interference by the rejection matrix of ns-3's lorawan module (off: SFs are orthogonal).")
+    )]
+    pub inter_sf: bool,
+    /// Adaptive data rate: `off`, `lorawan` or `tracking`.
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(
+            long,
+            value_enum,
+            default_value = "off",
+            help = "Adaptive data rate: off (fixed --sf/--bw, the paper), lorawan (the network server's ADR from the best SNR across gateways) or tracking (the rate with the least expected squared packet age). ADR starts at --sf/--bw, an EU868 data rate."
+        )
+    )]
+    pub adr: AdrMode,
+    /// LoRaWAN ADR's device margin, dB.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::ADR_MARGIN.default, help = opt::ADR_MARGIN.cli_help(), allow_negative_numbers = true))]
+    pub adr_margin: f64,
+    /// LoRaWAN ADR's history, uplinks.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::ADR_HISTORY.default as usize, help = opt::ADR_HISTORY.cli_help()))]
+    pub adr_history: usize,
+}
+
+impl Default for NetworkSettings {
+    fn default() -> Self {
+        NetworkSettings {
+            gateways: Vec::new(),
+            channels: opt::CHANNELS.default as u8,
+            capture: true,
+            inter_sf: true,
+            adr: AdrMode::Off,
+            adr_margin: opt::ADR_MARGIN.default,
+            adr_history: opt::ADR_HISTORY.default as usize,
+        }
+    }
+}
+
+/// The drone's sensors and filter.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+pub struct DroneSettings {
+    /// Sensor and filter rate, Hz.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::SENSOR_RATE.default, help = opt::SENSOR_RATE.cli_help()))]
+    pub sensor_rate: f64,
+    /// Process noise q of Q = q·I (drone and station).
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::Q.default, help = opt::Q.cli_help(), allow_negative_numbers = true))]
+    pub q: f64,
+}
+
+impl Default for DroneSettings {
+    fn default() -> Self {
+        DroneSettings {
+            sensor_rate: opt::SENSOR_RATE.default,
+            q: opt::Q.default,
+        }
+    }
+}
+
+/// How a swarm is laid out (`swarm` only).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::ValueEnum))]
+pub enum SfPlan {
+    /// SF7..SF12 in turn (drone i gets SF 7 + i mod 6), the paper's suggestion for up to 72
+    /// drones.
+    #[default]
+    Spread,
+    /// Every drone at `sf`.
+    Fixed,
+}
+
+/// The swarm's size and layout (`swarm` only; `simulate` flies one drone).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+pub struct SwarmSettings {
+    /// Number of drones.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::DRONES.default as usize, help = opt::DRONES.cli_help()))]
+    pub drones: usize,
+    /// Seconds of chained synthetic flight per drone (when no flight is chosen).
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::DURATION.default, help = opt::DURATION.cli_help(), allow_negative_numbers = true))]
+    pub duration: f64,
+    /// How SFs are shared out.
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(
+            long,
+            value_enum,
+            default_value = "spread",
+            help = "Spreading factors: spread (SF7..SF12 in turn, a sixth of the swarm each) or fixed (everyone at --sf)."
+        )
+    )]
+    pub sf_plan: SfPlan,
+}
+
+impl Default for SwarmSettings {
+    fn default() -> Self {
+        SwarmSettings {
+            drones: opt::DRONES.default as usize,
+            duration: opt::DURATION.default,
+            sf_plan: SfPlan::Spread,
+        }
+    }
+}
+
+/// The seed and what to return.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+pub struct RunSettings {
+    /// Seed of every random draw; `"random"` draws one ([`random_seed`]), which the echo gives.
+    #[serde(deserialize_with = "seed_or_random")]
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(long, default_value = "1", value_name = "N|random", value_parser = parse_seed,
+            help = "Seed of all random draws (sensor noise, layout, channels, shadowing), 0..2^53-1, or random for a fresh one (reported, so the run can be repeated).")
+    )]
+    pub seed: u64,
+    /// Include time series of the first flight (simulate).
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(
+            long,
+            help = "Include time series of the first flight (error over time, trajectories) in the JSON."
+        )
+    )]
+    pub series: bool,
+}
+
+impl Default for RunSettings {
+    fn default() -> Self {
+        RunSettings {
+            seed: opt::SEED.default as u64,
+            series: false,
+        }
+    }
+}
+
+/// Everything a run needs, for `simulate` (one drone) and `swarm` (many).
+///
+/// ```
+/// use loratrack::Scenario;
+/// let s = Scenario::from_json(r#"{"synthetic": 1, "sf": 9, "gateways": [{"east": 1000, "north": 0}]}"#).unwrap();
+/// assert_eq!(s.radio.sf, 9);
+/// assert!(Scenario::from_json(r#"{"spreadingFactor": 9}"#).unwrap().validate().is_err());
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default)]
+pub struct Scenario {
+    /// Which flight(s).
+    #[serde(flatten)]
+    pub flight: FlightSettings,
+    /// The station.
+    #[serde(flatten)]
+    pub station: StationSettings,
+    /// When the drones send, under which duty-cycle rule.
+    #[serde(flatten)]
+    pub sending: Sending,
+    /// The radio.
+    #[serde(flatten)]
+    pub radio: RadioSettings,
+    /// The channel.
+    #[serde(flatten)]
+    pub channel: ChannelSettings,
+    /// Gateways, channels, reception rules, ADR.
+    #[serde(flatten)]
+    pub network: NetworkSettings,
+    /// Sensors and filter.
+    #[serde(flatten)]
+    pub drone: DroneSettings,
+    /// Swarm size and layout.
+    #[serde(flatten)]
+    pub swarm: SwarmSettings,
+    /// Seed, series.
+    #[serde(flatten)]
+    pub run: RunSettings,
+    /// Keys no sub-struct knows (a misspelt setting); refused by [`Scenario::validate`].
+    #[serde(flatten, skip_serializing)]
+    pub unknown: BTreeMap<String, IgnoredAny>,
+}
+
+/// A validated [`Scenario`] and what it implies.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Validated {
+    /// The settings, as given (with a drawn seed in place of `random`).
+    pub settings: Scenario,
+    /// The flight(s), if chosen.
+    pub source: Option<TrajectorySource>,
+    /// Stations to run, in order.
+    pub models: Vec<StationModel>,
+    /// Radio settings (with ADR: the start).
+    pub radio: LoraParams,
+    /// Link budget.
+    pub channel: Channel,
+    /// Adaptive data rate.
+    pub adr: AdrParams,
+    /// Reception rules.
+    pub interference: InterferenceModel,
+    /// Measurement variances (paper Table I).
+    pub r_diagonal: [f64; 9],
+}
+
+impl Scenario {
+    /// Reads a flat camelCase JSON object (the JS API's and the `--json` echo's shape).
+    pub fn from_json(text: &str) -> Result<Self, String> {
+        serde_json::from_str(text).map_err(|e| e.to_string())
+    }
+
+    /// A copy with the settings of `changes` (a flat JSON object, as from JS) applied on top;
+    /// CSV text is kept unless `changes` gives another.
+    ///
+    /// ```
+    /// use loratrack::Scenario;
+    /// let s = Scenario::default().with(&serde_json::json!({"sf": 9, "adr": "lorawan"})).unwrap();
+    /// assert_eq!((s.radio.sf, s.network.adr.name()), (9, "lorawan"));
+    /// ```
+    pub fn with(&self, changes: &serde_json::Value) -> Result<Self, String> {
+        let mut v = serde_json::to_value(self).map_err(|e| e.to_string())?;
+        if let (Some(map), Some(add)) = (v.as_object_mut(), changes.as_object()) {
+            for (k, x) in add {
+                map.insert(k.clone(), x.clone());
+            }
+        } else {
+            return Err("settings must be a JSON object".into());
+        }
+        let mut out: Scenario = serde_json::from_value(v).map_err(|e| e.to_string())?;
+        if changes.get("trajectory").is_none() {
+            out.flight.trajectory = self.flight.trajectory.clone();
+            out.flight.trajectory_name = self.flight.trajectory_name.clone();
+        }
+        Ok(out)
+    }
+
+    /// Checks every setting before any work: the first problem, naming the field, the value
+    /// and what is accepted.
+    pub fn validate(&self) -> Result<Validated, SimError> {
+        if let Some(key) = self.unknown.keys().next() {
+            return Err(SimError::Source(format!(
+                "unknown setting '{}' (see `loratrack simulate --help` or limits())",
+                key.chars().take(40).collect::<String>()
+            )));
+        }
+        let source = self.flight.source()?;
+        let r = &self.radio;
+        opt::SF.check(r.sf as f64)?;
+        opt::BW.check(r.bw)?;
+        opt::CR.check(r.cr as f64)?;
+        opt::OVERHEAD.check(r.overhead as f64)?;
+        opt::DUTY_CYCLE.check(r.duty_cycle)?;
+        opt::TX_POWER.check(r.tx_power)?;
+        let c = &self.channel;
+        opt::DISTANCE.check(c.distance)?;
+        opt::PATH_LOSS_EXPONENT.check(c.path_loss_exponent)?;
+        opt::SHADOWING.check(c.shadowing)?;
+        opt::GATEWAY_HEIGHT.check(c.gateway_height)?;
+        let n = &self.network;
+        validate_sites(&n.gateways)?;
+        opt::CHANNELS.check(f64::from(n.channels))?;
+        opt::ADR_MARGIN.check(n.adr_margin)?;
+        opt::ADR_HISTORY.check(n.adr_history as f64)?;
+        opt::SENSOR_RATE.check(self.drone.sensor_rate)?;
+        opt::Q.check(self.drone.q)?;
+        opt::STEP.check(self.station.step)?;
+        opt::ETA.check(self.station.eta)?;
+        self.sending.validate()?;
+        opt::DRONES.check(self.swarm.drones as f64)?;
+        opt::DURATION.check(self.swarm.duration)?;
+        opt::SEED
+            .check(self.run.seed as f64)
+            .map_err(|_| SimError::Seed(self.run.seed))?;
+        let radio = LoraParams::from_settings(r.sf, r.bw, r.cr)?;
+        let adr = AdrParams {
+            mode: n.adr,
+            margin_db: n.adr_margin,
+            history: n.adr_history,
+        };
+        if adr.mode != AdrMode::Off && DataRate::of(radio.sf, radio.bw).is_none() {
+            return Err(SimError::AdrStart(radio.sf.get(), radio.bw.khz()));
+        }
+        let channel = Channel::new(ChannelParams {
+            tx_power_dbm: r.tx_power,
+            path_loss_exponent: c.path_loss_exponent,
+            shadowing_sigma_db: c.shadowing,
+            gateway_height: c.gateway_height,
+            ..ChannelParams::default()
+        })?;
+        Ok(Validated {
+            settings: self.clone(),
+            source,
+            models: self.station.model.models().to_vec(),
+            radio,
+            channel,
+            adr,
+            interference: InterferenceModel {
+                capture: n.capture,
+                inter_sf: n.inter_sf,
+            },
+            r_diagonal: PAPER_R_DIAGONAL,
+        })
+    }
+}
+
+impl FlightSettings {
+    /// The chosen flight(s): `None` when nothing is chosen, an error when more than one is.
+    pub fn source(&self) -> Result<Option<TrajectorySource>, SimError> {
+        Ok(
+            match (self.trajectory.clone(), self.synthetic, self.sample.clone()) {
+                (None, None, None) => None,
+                (Some(text), None, None) => Some(TrajectorySource::Csv(
+                    text,
+                    self.trajectory_name
+                        .clone()
+                        .unwrap_or_else(|| "uploaded CSV".into()),
+                )),
+                (None, Some(s), None) => Some(TrajectorySource::Synthetic(s)),
+                (None, None, Some(name)) => Some(TrajectorySource::Sample(name)),
+                _ => {
+                    return Err(SimError::Source(
+                        "choose only one of trajectory, synthetic and sample".into(),
+                    ))
+                }
+            },
+        )
+    }
+}
+
+impl Validated {
+    /// The settings.
+    pub fn s(&self) -> &Scenario {
+        &self.settings
+    }
+
+    /// The sending settings.
+    pub fn sending(&self) -> &Sending {
+        &self.settings.sending
+    }
+
+    /// The one station a swarm runs: the only one named, or 3D-CTRA (the paper's best) for
+    /// `all`, as the trade-off sweeps read it.
+    pub fn swarm_station(&self) -> Result<StationModel, SimError> {
+        match self.models.as_slice() {
+            [one] => Ok(*one),
+            _ if self.settings.station.model == ModelChoice::all() => {
+                Ok(StationModel::Single(ModelKind::Ctra3d))
+            }
+            _ => Err(SimError::Source(
+                "a swarm runs one station: name one model (dr, ctra-plus, 3d-ctra or imm)".into(),
+            )),
+        }
+    }
+
+    /// Whether error-triggered sending's heartbeat fits a data rate whose duty-cycle interval
+    /// is `interval` s: a heartbeat shorter than the interval could never be kept.
+    pub fn check_heartbeat(&self, interval: f64) -> Result<(), SimError> {
+        let s = self.sending();
+        if s.sender == SenderKind::Error && s.max_interval < interval {
+            return Err(SimError::Parameter(
+                "maxInterval",
+                s.max_interval,
+                "at least the duty-cycle interval of every drone's data rate",
+            ));
+        }
+        Ok(())
+    }
+}
