@@ -180,7 +180,7 @@ pub struct NetworkSettings {
     /// flight's first point; swarm: at the centre).
     #[cfg_attr(
         not(target_arch = "wasm32"),
-        arg(long = "gateway", value_name = "E,N[,H]", value_parser = GatewaySite::parse, allow_negative_numbers = true,
+        arg(long = "gateway", value_name = "E,N[,H]", value_parser = GatewaySite::parse, allow_hyphen_values = true,
             help = "A gateway at E metres east and N north of the origin (simulate: the flight's first point; swarm: the centre), antenna H metres high [default: --gateway-height]; repeat for more (1..16, each coordinate within 100 km). Without it: one gateway, simulate at (--distance, 0), swarm at the centre.")
     )]
     pub gateways: Vec<GatewaySite>,
