@@ -22,6 +22,9 @@ pub mod rng;
 pub mod sim;
 pub mod trajectory;
 
+#[cfg(all(test, not(target_arch = "wasm32")))]
+mod typescript;
+
 #[cfg(target_arch = "wasm32")]
 pub mod wasm;
 

@@ -11,6 +11,7 @@ use serde::Serialize;
 /// One numeric setting: its JSON key, what users call it, its unit, default and accepted range.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct NumberOption {
     /// The key in JSON and JS (camelCase); the CLI's long option is its kebab-case form.
     pub key: &'static str,

@@ -116,6 +116,24 @@ pub fn limits() -> Result<JsValue, JsError> {
     })
 }
 
+/// `stationsOf({model})` → the stations `model` names, in order (`all`: the paper's three), as
+/// `simulate` reads it.
+#[wasm_bindgen(js_name = stationsOf)]
+pub fn stations_of(params: JsValue) -> Result<JsValue, JsError> {
+    #[derive(serde::Deserialize)]
+    struct Params {
+        #[serde(default)]
+        model: crate::sim::ModelChoice,
+    }
+    call(params, |p: Params| {
+        Ok(p.model
+            .models()
+            .iter()
+            .map(|m| m.name())
+            .collect::<Vec<_>>())
+    })
+}
+
 /// A progress argument: a function, or undefined/null for none; anything else is refused.
 fn progress_function(progress: JsValue) -> Result<Option<js_sys::Function>, JsError> {
     use wasm_bindgen::JsCast;

@@ -126,7 +126,9 @@ impl Graph {
         // A re-export in this module's file?
         let text = self.text.get(module)?;
         for stmt in code(text).split(';') {
-            let Some(i) = stmt.find("pub use ") else { continue };
+            let Some(i) = stmt.find("pub use ") else {
+                continue;
+            };
             for p in expand(stmt[i + 8..].trim()) {
                 let segs: Vec<String> = p.split("::").map(String::from).collect();
                 if segs.last() == Some(first) {
@@ -141,7 +143,10 @@ impl Graph {
 
     /// A path written in module `module` as one relative to `crate::sim`, if it is one.
     fn absolute(&self, module: &[String], segs: &[String]) -> Option<Vec<String>> {
-        let is_dir = self.files.get(module).is_some_and(|p| p.ends_with("mod.rs"))
+        let is_dir = self
+            .files
+            .get(module)
+            .is_some_and(|p| p.ends_with("mod.rs"))
             || module.is_empty();
         match segs.first().map(String::as_str) {
             Some("crate") if segs.get(1).map(String::as_str) == Some("sim") => {
@@ -167,7 +172,12 @@ impl Graph {
                 out.extend_from_slice(&segs[1..]);
                 Some(out)
             }
-            Some(first) if is_dir && self.files.contains_key(&[module, &[first.to_string()]].concat()) => {
+            Some(first)
+                if is_dir
+                    && self
+                        .files
+                        .contains_key(&[module, &[first.to_string()]].concat()) =>
+            {
                 Some([module, segs].concat())
             }
             _ => None,
@@ -190,7 +200,9 @@ fn no_file_in_sim_imports_a_file_that_imports_it_back() {
         let body = text.split("#[cfg(test)]").next().unwrap_or(text);
         for p in paths(body) {
             let segs: Vec<String> = p.split("::").map(String::from).collect();
-            let Some(abs) = g.absolute(module, &segs) else { continue };
+            let Some(abs) = g.absolute(module, &segs) else {
+                continue;
+            };
             if let Some(target) = g.resolve(&[], &abs, 0) {
                 // The parent module (mod.rs) declares and re-exports its children: that is
                 // the parent's own edge, not the child's.
@@ -208,7 +220,12 @@ fn no_file_in_sim_imports_a_file_that_imports_it_back() {
             let mut stack = vec![t.clone()];
             while let Some(m) = stack.pop() {
                 if &m == from {
-                    cycles.push(format!("{} -> {} -> ... -> {}", from.join("/"), t.join("/"), from.join("/")));
+                    cycles.push(format!(
+                        "{} -> {} -> ... -> {}",
+                        from.join("/"),
+                        t.join("/"),
+                        from.join("/")
+                    ));
                     break;
                 }
                 if seen.insert(m.clone()) {
@@ -217,8 +234,16 @@ fn no_file_in_sim_imports_a_file_that_imports_it_back() {
             }
         }
     }
-    assert!(cycles.is_empty(), "import cycles in src/sim:\n{}", cycles.join("\n"));
-    assert!(edges.len() > 10, "the scan found the files' imports ({} files with edges)", edges.len());
+    assert!(
+        cycles.is_empty(),
+        "import cycles in src/sim:\n{}",
+        cycles.join("\n")
+    );
+    assert!(
+        edges.len() > 10,
+        "the scan found the files' imports ({} files with edges)",
+        edges.len()
+    );
 }
 
 #[test]

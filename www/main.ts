@@ -1,8 +1,8 @@
 // The playground: reads the controls, asks the worker to simulate, renders numbers and charts.
-import { linkBudget, load, MODEL_LABELS, timeOnAir, type ModelResult, type SimReport } from './loratrack';
+import { linkBudget, load, MODEL_LABELS, stationsOf, timeOnAir, type GatewayReport, type GatewaySite, type ModelResult, type SimReport, type SwarmParams } from './loratrack';
 import { linkBudgetCharts } from './charts/linkBudget';
 import { swarmCharts } from './charts/swarm';
-import { DEFAULTS, fromQuery, invalid, isNumericKey, LIMITS, overheadBytes, toParams, toQuery, type Settings } from './state';
+import { DEFAULTS, fromQuery, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, overheadBytes, toParams, toQuery, type Settings } from './state';
 import type { Request, Response, SimulateRequest } from './worker';
 import { SimulationPool } from './pool';
 import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
@@ -57,17 +57,82 @@ function field(name: string): HTMLInputElement | HTMLSelectElement {
   return form.elements.namedItem(name) as HTMLInputElement | HTMLSelectElement;
 }
 
-/** The form's min and max come from the same table as the URL's checks. */
+/** The form's min and max come from the core's table, as the URL's checks do; the distance
+ * slider keeps its teaching range (0.1–10 km), and a link beyond it is said to be moved. */
 for (const [key, l] of Object.entries(LIMITS)) {
   const el = field(key);
-  if (el instanceof HTMLInputElement && el.type !== 'checkbox' && !l.values) {
+  if (el instanceof HTMLInputElement && el.type !== 'checkbox' && el.type !== 'range' && !l.values) {
     el.min = String(l.min);
     el.max = String(l.max);
   }
+  if (el && l.help) el.title = `${l.help} Accepted: ${l.min}–${l.max}${l.unit ? ` ${l.unit}` : ''}.`;
 }
 
+// ---- gateways: rows of east, north and height, none for the one default gateway --------------
+const gatewayRows = $('#gateway-rows');
+function writeGateways(list: GatewaySite[]): void {
+  gatewayRows.replaceChildren(
+    ...list.map((g, i) => {
+      const row = document.createElement('div');
+      row.className = 'gateway-row';
+      const input = (name: string, label: string, value: number | undefined, min: number, max: number) => {
+        const el = document.createElement('input');
+        el.type = 'number';
+        el.name = `gateway-${name}`;
+        el.dataset.gateway = name;
+        el.min = String(min);
+        el.max = String(max);
+        el.step = '10';
+        el.value = value === undefined ? '' : String(value);
+        el.setAttribute('aria-label', `Gateway ${i + 1} ${label}`);
+        if (name === 'height') el.placeholder = 'default';
+        return el;
+      };
+      const c = GATEWAY_LIMITS.coordinate;
+      const h = GATEWAY_LIMITS.height;
+      const remove = document.createElement('button');
+      remove.type = 'button';
+      remove.textContent = 'Remove';
+      remove.setAttribute('aria-label', `Remove gateway ${i + 1}`);
+      remove.addEventListener('click', () => {
+        settings.gateways = settings.gateways.filter((_, k) => k !== i);
+        writeGateways(settings.gateways);
+        onChange();
+      });
+      const label = document.createElement('span');
+      label.textContent = `${i + 1}`;
+      label.className = 'gateway-number';
+      row.append(label, input('east', 'east (m)', g.east, c.min, c.max), input('north', 'north (m)', g.north, c.min, c.max), input('height', 'height (m)', g.height, h.min, h.max), remove);
+      return row;
+    }),
+  );
+  $<HTMLButtonElement>('#add-gateway').disabled = list.length >= GATEWAY_LIMITS.count.max;
+}
+
+/** The gateways in the form, and why they cannot be simulated (null when they can). */
+function readGateways(): { list: GatewaySite[]; why: string | null } {
+  const list = [...gatewayRows.querySelectorAll<HTMLElement>('.gateway-row')].map((row) => {
+    const v = (name: string) => row.querySelector<HTMLInputElement>(`[data-gateway="${name}"]`)!.value.trim();
+    const g: GatewaySite = { east: v('east') === '' ? NaN : Number(v('east')), north: v('north') === '' ? NaN : Number(v('north')) };
+    if (v('height') !== '') g.height = Number(v('height'));
+    return g;
+  });
+  return { list, why: invalidGateways(list) };
+}
+
+$('#add-gateway').addEventListener('click', () => {
+  // The first added gateway keeps the default one where it was, so adding never moves it.
+  const list = settings.gateways.length ? [...settings.gateways] : [{ east: settings.distance, north: 0 }];
+  list.push({ east: 0, north: 0 });
+  settings.gateways = list;
+  writeGateways(list);
+  onChange();
+});
+
 function writeControls(s: Settings): void {
+  writeGateways(s.gateways);
   for (const [key, value] of Object.entries(s)) {
+    if (key === 'gateways') continue;
     const el = field(key);
     if (!el) continue;
     if (el instanceof HTMLInputElement && el.type === 'checkbox') el.checked = Boolean(value);
@@ -80,7 +145,11 @@ function writeControls(s: Settings): void {
 function readControls(): { next: Settings; errors: string[] } {
   const s: Settings = { ...settings };
   const errors: string[] = [];
+  const gateways = readGateways();
+  if (gateways.why) errors.push(gateways.why);
+  else s.gateways = gateways.list;
   for (const key of Object.keys(DEFAULTS) as (keyof Settings)[]) {
+    if (key === 'gateways') continue;
     const el = field(key);
     if (!el) continue;
     if (el instanceof HTMLInputElement && el.type === 'checkbox') (s as unknown as Record<string, unknown>)[key] = el.checked;
@@ -232,16 +301,19 @@ function renderResults(r: SimReport): void {
         <td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}</td><td data-field="delivery">${(ratio * 100).toFixed(0)} %</td>
         <td data-field="mean">${fmt(m.error3d.mean)}${delta(m, 'mean')}</td><td data-field="p50">${fmt(m.error3d.p50)}${delta(m, 'p50')}</td><td data-field="p75">${fmt(m.error3d.p75)}${delta(m, 'p75')}</td>
         <td data-field="p95">${fmt(m.error3d.p95)}${delta(m, 'p95')}</td><td data-field="max">${fmt(m.error3d.max, 1)}</td>
-        <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td></tr>`;
+        <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td>
+        <td data-field="energy" title="${m.energy.chargePerHour.toFixed(3)} mAh per hour of tracking">${m.energy.chargePerUplink.toFixed(2)}</td></tr>`;
     })
     .join('');
   $('#results-table').innerHTML = `<div class="table-wrap" tabindex="0" role="region" aria-label="Results table"><table class="results">
     <caption>3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet; overhead ${r.config.overhead} B; ${r.config.prediction} prediction</caption>
     <thead><tr><th scope="col">model</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Time between packets: time on air divided by the 1 % duty cycle">interval</th>
     <th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th><th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Mean 3D distance between the station's estimate and the truth">mean</th><th scope="col" title="Half the time the error is below this">median</th><th scope="col" title="75th percentile: 3 times in 4 the error is below this (the paper's headline statistic)">p75</th><th scope="col" title="95th percentile: the bad moments, typically long gaps">p95</th><th scope="col">max</th>
-    <th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th></tr></thead>
+    <th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th>
+    <th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th></tr></thead>
     <tbody>${rows}</tbody></table></div>`;
   $('#ttn').innerHTML = ttnNote(r);
+  $('#network-note').textContent = networkNote(r.packetsSent, r.packetsReceived, r.duplicates, r.gateways);
 
   renderRateUse(r);
   const width = (id: string) => Math.max(300, $(id).clientWidth || 600);
@@ -287,6 +359,14 @@ function renderRateUse(r: SimReport): void {
   const rate = (u: ModelResult['dataRateUse'][number]) => `${u.dr === null ? `SF${u.sf}/${u.bw}` : `DR${u.dr} (SF${u.sf}/${u.bw})`} ${u.received}/${u.packets}`;
   const lines = r.results.map((m) => `${MODEL_LABELS[m.model]}: ${[...m.dataRateUse].reverse().map(rate).join(', ')}`);
   note.textContent = `Packets received / sent per data rate (${r.config.adr === 'lorawan' ? 'LoRaWAN' : 'tracking-aware'} ADR, interval and time on air above are the starting rate's) — ${lines.join('; ')}.`;
+}
+
+/** What each gateway heard, and the copies the network server removed. */
+function networkNote(sent: number, received: number, duplicates: number, gateways: GatewayReport[]): string {
+  const each = gateways
+    .map((g, i) => `gateway ${i + 1} at (${(g.east / 1000).toFixed(1)}, ${(g.north / 1000).toFixed(1)}) km heard ${g.heard}${gateways.length > 1 ? ` (${g.onlyHeard} only it)` : ''}${g.downlinksSent + g.downlinksDropped ? `, ${g.downlinksSent} downlinks sent, ${g.downlinksDropped} dropped by its duty cycle` : ''}`)
+    .join('; ');
+  return `Network: ${received} of ${sent} packets delivered (${sent ? ((100 * received) / sent).toFixed(0) : 0} %)${gateways.length > 1 ? `, ${duplicates} duplicate copies removed` : ''} — ${each}.`;
 }
 
 /** The IMM's mean member probabilities, as a tooltip. */
@@ -341,7 +421,9 @@ function renderDistance(sweep: { distance: number; report: SimReport }[]): void 
 
 function renderLink(): void {
   const r = linkBudget({ bw: settings.bw, txPower: settings.txPower, pathLossExponent: settings.pathLossExponent, shadowing: settings.shadowing });
-  place('link', linkBudgetCharts(r, { width: Math.max(300, $('#chart-link').clientWidth || 600), distance: settings.distance, sf: settings.sf }));
+  // Each gateway's distance from the flight's start (the default one: the distance setting).
+  const distances = settings.gateways.length ? settings.gateways.map((g) => Math.hypot(g.east, g.north)) : [settings.distance];
+  place('link', linkBudgetCharts(r, { width: Math.max(300, $('#chart-link').clientWidth || 600), distances, sf: settings.sf }));
 }
 
 function renderAirtime(): void {
@@ -424,22 +506,15 @@ $('#run-swarm').addEventListener('click', () => {
   swarmWorker = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
   const n = Number($<HTMLSelectElement>('#swarmDrones').value);
   const sizes = [...new Set([2, Math.round(n / 8), Math.round(n / 4), Math.round(n / 2), n])].filter((k) => k >= 1);
-  const model = settings.model === 'dr' || settings.model === 'ctra-plus' ? settings.model : '3d-ctra';
-  const params = {
+  // The swarm takes every setting of the single drone; its drones chain synthetic flights around
+  // the centre, and run one station (a list of models runs 3D-CTRA, as `all` does).
+  const { synthetic: _s, sample: _m, trajectory: _t, trajectoryName: _n, ...shared } = toParams(settings, csv);
+  const params: SwarmParams = {
+    ...shared,
+    model: stationsOf(settings.model).length === 1 ? settings.model : 'all',
     duration: 120,
-    distance: settings.distance,
-    channels: Number($<HTMLSelectElement>('#swarmChannels').value) as 1 | 3,
+    channels: Number($<HTMLSelectElement>('#swarmChannels').value),
     sfPlan: $<HTMLSelectElement>('#swarmPlan').value as 'fixed' | 'spread',
-    sf: settings.sf,
-    bw: settings.bw,
-    model: model as 'dr' | 'ctra-plus' | '3d-ctra',
-    prediction: settings.prediction,
-    sender: settings.sender,
-    threshold: settings.threshold,
-    dutyCycleMode: settings.dutyCycleMode,
-    shadowing: settings.shadowing,
-    overhead: overheadBytes(settings),
-    seed: settings.seed,
   };
   const bar = $<HTMLProgressElement>('#swarm-progress');
   bar.hidden = false;

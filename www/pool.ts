@@ -5,17 +5,8 @@
 // their reports in the request's model order. Every station's numbers depend only on the
 // flight, the seed and its own settings (the link's random streams are derived per flight), so
 // the merged report equals what one worker (or the CLI) computes for all models at once.
-import type { SimReport } from './loratrack';
+import { stationsOf, type SimReport } from './loratrack';
 import type { Response, SimulateRequest } from './worker';
-
-const MODELS_ALL = ['dr', 'ctra-plus', '3d-ctra'];
-
-/** The stations a `model` setting names, in order. */
-export function expandModels(model: unknown): string[] {
-  if (Array.isArray(model)) return model.map(String);
-  const text = String(model ?? 'all');
-  return text.trim().toLowerCase() === 'all' ? MODELS_ALL : text.split(',').map((m) => m.trim());
-}
 
 type Part = { progress: number; report?: SimReport; millis?: number; sweep?: { distance: number; report: SimReport }[] };
 
@@ -41,7 +32,8 @@ export class SimulationPool {
   /** Runs `request`, calling `on` with progress, then the merged report, then the merged sweep
    * (or one error), as a single worker would. */
   run(request: SimulateRequest, on: (r: Response) => void): void {
-    const models = expandModels(request.params.model);
+    // The core reads the model setting (the page has loaded the module before any run).
+    const models: string[] = stationsOf(request.params.model);
     // Station k always goes to worker k mod size, so each worker's caches keep serving it.
     const groups = this.workers.map((_, w) => models.filter((_, k) => k % this.workers.length === w)).filter((g) => g.length > 0);
     const parts: Part[] = groups.map(() => ({ progress: 0 }));

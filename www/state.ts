@@ -1,6 +1,8 @@
 // The page's settings: defaults (the paper's), conversion to simulate() parameters, and the URL
-// round trip that makes every view shareable.
-import type { AdrMode, ModelChoice, Prediction, SimulateParams } from './loratrack';
+// round trip that makes every view shareable. Every numeric default and limit comes from the
+// core's one table (src/options.rs, generated into www/generated/types.ts), so the form, the URL
+// checks, the CLI help and the core's validation cannot disagree.
+import { OPTIONS, type AdrMode, type GatewaySite, type ModelChoice, type NumberOption, type Prediction, type SimulateParams } from './loratrack';
 
 export type FlightChoice = 'synthetic' | 'all' | 'canberra' | 'csv';
 
@@ -25,63 +27,85 @@ export interface Settings {
   step: number;
   eta: number;
   seed: number;
+  /** The gateways; empty for the one default gateway `distance` m east of the flight's start. */
+  gateways: GatewaySite[];
 }
+
+const option = (key: string): NumberOption => {
+  const o = OPTIONS.find((x) => x.key === key);
+  if (!o) throw new Error(`no option ${key} in the core's table`);
+  return o;
+};
+const def = (key: string) => option(key).default;
 
 /** The paper's setting (SF7, 250 kHz, 1 km, all models) on one synthetic flight, with LoRaWAN's 13-byte overhead. */
 export const DEFAULTS: Settings = {
-  sf: 7,
-  bw: 250,
-  distance: 1000,
+  sf: def('sf'),
+  bw: def('bw'),
+  distance: def('distance'),
   model: 'all',
   prediction: 'paper',
   sender: 'periodic',
-  threshold: 2,
+  threshold: def('threshold'),
   dutyCycleMode: 'per-packet',
   adr: 'off',
   flight: 'synthetic',
   flightNumber: 1,
-  lorawan: true,
-  cr: 1,
-  txPower: 14,
-  pathLossExponent: 3.76,
-  shadowing: 4,
-  sensorRate: 10,
-  step: 0.1,
-  eta: 0.9,
-  seed: 1,
+  lorawan: def('overhead') > 0,
+  cr: def('cr'),
+  txPower: def('txPower'),
+  pathLossExponent: def('pathLossExponent'),
+  shadowing: def('shadowing'),
+  sensorRate: def('sensorRate'),
+  step: def('step'),
+  eta: def('eta'),
+  seed: def('seed'),
+  gateways: [],
 };
 
 /** The model choices the page offers (the options of its Model control). */
 export const MODEL_CHOICES: string[] = ['all', 'dr', 'ctra-plus', '3d-ctra', 'imm', 'dr,ctra-plus,3d-ctra,imm'];
 
-/** What each numeric setting accepts, as the form and the URL enforce it (within the core's own limits). */
+/** What each numeric setting accepts, as the form and the URL enforce it: the core's own limits. */
 export interface Limit {
   /** The name users see (the control's label). */
   label: string;
   min: number;
   max: number;
+  /** `min` itself is refused. */
+  aboveMin?: boolean;
   /** Whole numbers only. */
   integer?: boolean;
   /** The only values allowed, when a list. */
   values?: number[];
   unit?: string;
+  /** One sentence from the core's table. */
+  help?: string;
+}
+
+function limit(key: string, label?: string): Limit {
+  const o = option(key);
+  return { label: label ?? o.label, min: o.min, max: o.max, aboveMin: o.aboveMin, integer: o.integer, values: o.values.length ? o.values : undefined, unit: o.unit || undefined, help: o.help };
 }
 
 export const LIMITS: Record<NumericKey, Limit> = {
-  sf: { label: 'Spreading factor', min: 7, max: 12, integer: true },
-  bw: { label: 'Bandwidth', min: 125, max: 500, values: [125, 250, 500], unit: 'kHz' },
-  distance: { label: 'Distance', min: 100, max: 10000, unit: 'm' },
-  threshold: { label: 'Threshold', min: 0, max: 100, unit: 'm' },
+  sf: limit('sf'),
+  bw: limit('bw'),
+  distance: limit('distance'),
+  threshold: limit('threshold'),
   flightNumber: { label: 'Synthetic flight number', min: 1, max: 30, integer: true },
-  cr: { label: 'Coding rate', min: 1, max: 4, integer: true },
-  txPower: { label: 'Tx power', min: -30, max: 30, unit: 'dBm' },
-  pathLossExponent: { label: 'Path-loss exponent', min: 1.5, max: 6 },
-  shadowing: { label: 'Shadowing sigma', min: 0, max: 20, unit: 'dB' },
-  sensorRate: { label: 'Sensor rate', min: 1, max: 100, unit: 'Hz' },
-  step: { label: 'Prediction step T', min: 0.01, max: 2, unit: 's' },
-  eta: { label: 'Tilt decay eta', min: 0, max: 1 },
-  seed: { label: 'Seed', min: 0, max: 2 ** 53 - 1, integer: true },
+  cr: limit('cr'),
+  txPower: limit('txPower'),
+  pathLossExponent: limit('pathLossExponent'),
+  shadowing: limit('shadowing'),
+  sensorRate: limit('sensorRate'),
+  step: limit('step'),
+  eta: limit('eta'),
+  seed: limit('seed'),
 };
+
+/** What a gateway's coordinates and height accept (the core's limits). */
+export const GATEWAY_LIMITS = { coordinate: limit('gateway', 'Gateway coordinate'), height: limit('gatewayHeight', 'Gateway height'), count: limit('gateways', 'Gateways') };
 
 type NumericKey = 'sf' | 'bw' | 'distance' | 'threshold' | 'flightNumber' | 'cr' | 'txPower' | 'pathLossExponent' | 'shadowing' | 'sensorRate' | 'step' | 'eta' | 'seed';
 const NUMERIC = Object.keys(LIMITS) as NumericKey[];
@@ -92,7 +116,7 @@ export function invalid(key: NumericKey, value: number): string | null {
   const unit = l.unit ? ` ${l.unit}` : '';
   if (!Number.isFinite(value)) return `${l.label}: enter a number.`;
   if (l.values && !l.values.includes(value)) return `${l.label} must be one of ${l.values.join(', ')}${unit}.`;
-  if (value < l.min || value > l.max) return `${l.label} must be between ${l.min} and ${l.max}${unit}.`;
+  if (value < l.min || value > l.max || (l.aboveMin && value === l.min)) return `${l.label} must be ${l.aboveMin ? 'above' : 'between'} ${l.min}${l.aboveMin ? ' and at most' : ' and'} ${l.max}${unit}.`;
   if (l.integer && !Number.isInteger(value)) return `${l.label} must be a whole number.`;
   return null;
 }
@@ -135,14 +159,46 @@ export function toParams(s: Settings, csv?: { text: string; name: string }): Sim
     sensorRate: s.sensorRate,
     step: s.step,
     eta: s.eta,
+    gateways: s.gateways,
   };
+}
+
+/** `gateways=E,N[,H];E,N[,H]` in the URL. */
+export function gatewaysToText(g: GatewaySite[]): string {
+  return g.map((x) => [x.east, x.north, ...(x.height === undefined ? [] : [x.height])].join(',')).join(';');
+}
+
+/** Why a gateway list is not acceptable, in the words of the form; null when it is. */
+export function invalidGateways(g: GatewaySite[]): string | null {
+  const { coordinate: c, height: h, count } = GATEWAY_LIMITS;
+  if (g.length > count.max) return `At most ${count.max} gateways.`;
+  for (const [i, x] of g.entries()) {
+    for (const v of [x.east, x.north]) {
+      if (!Number.isFinite(v) || v < c.min || v > c.max) return `Gateway ${i + 1}: each coordinate must be between ${c.min} and ${c.max} m.`;
+    }
+    if (x.height !== undefined && (!Number.isFinite(x.height) || x.height < h.min || x.height > h.max)) return `Gateway ${i + 1}: the height must be between ${h.min} and ${h.max} m.`;
+  }
+  return null;
+}
+
+export function gatewaysFromText(text: string): GatewaySite[] | null {
+  if (text.trim() === '') return [];
+  const out: GatewaySite[] = [];
+  for (const part of text.split(';')) {
+    const n = part.split(',').map((v) => (v.trim() === '' ? NaN : Number(v)));
+    if (n.length < 2 || n.length > 3 || n.some((v) => !Number.isFinite(v))) return null;
+    out.push(n.length === 3 ? { east: n[0], north: n[1], height: n[2] } : { east: n[0], north: n[1] });
+  }
+  return out;
 }
 
 /** Only the settings that differ from the defaults go into the URL. */
 export function toQuery(s: Settings, extra: Record<string, string> = {}): string {
   const q = new URLSearchParams();
   for (const key of Object.keys(DEFAULTS) as (keyof Settings)[]) {
-    if (s[key] !== DEFAULTS[key]) q.set(key, String(s[key]));
+    if (key === 'gateways') {
+      if (s.gateways.length) q.set('gateways', gatewaysToText(s.gateways));
+    } else if (s[key] !== DEFAULTS[key]) q.set(key, String(s[key]));
   }
   for (const [k, v] of Object.entries(extra)) q.set(k, v);
   return q.toString();
@@ -176,5 +232,12 @@ export function fromQuery(search: string): { settings: Settings; problems: strin
   // An uploaded CSV cannot travel in a URL; such links open the default flight.
   choice('flight', ['synthetic', 'all', 'canberra']);
   if (q.get('lorawan') === 'false') s.lorawan = false;
+  const g = q.get('gateways');
+  if (g !== null) {
+    const parsed = gatewaysFromText(g);
+    const why = parsed ? invalidGateways(parsed) : 'expected E,N or E,N,H in metres, separated by ;.';
+    if (parsed && !why) s.gateways = parsed;
+    else problems.push(`The link's gateways=${g.slice(0, 40)} were replaced by the one default gateway: ${why}`);
+  }
   return { settings: s, problems };
 }

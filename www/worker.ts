@@ -43,8 +43,9 @@ self.onmessage = async (event: MessageEvent<Request>) => {
     });
     post({ id, report, millis: performance.now() - t0 });
     if (distances?.length) {
-      // Only the link changes between these runs: the drone filters come from the cache.
-      const sweep = distances.map((distance) => ({ distance, report: simulate({ ...params, distance, series: false }) }));
+      // Only the link changes between these runs: the drone filters come from the cache. The
+      // sweep moves the one default gateway, so listed gateways are left out of it.
+      const sweep = distances.map((distance) => ({ distance, report: simulate({ ...params, gateways: [], distance, series: false }) }));
       post({ id, sweep });
     }
   } catch (e) {

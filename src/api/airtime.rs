@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 /// Input of `airtime`. Field names are the CLI's long options in camelCase.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(rename_all = "camelCase", deny_unknown_fields)]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct AirtimeParams {
     /// Spreading factor, 7..12.
     pub sf: i64,
@@ -68,6 +69,7 @@ impl AirtimeParams {
 /// Output of `airtime` (SPEC §8).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct AirtimeReport {
     /// Time on air, s.
     pub time_on_air: f64,

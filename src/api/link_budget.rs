@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 /// Input of `linkBudget`: the channel options of `simulate`, and the distances to evaluate.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(rename_all = "camelCase", deny_unknown_fields, default)]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct LinkBudgetParams {
     /// Bandwidth, kHz.
     pub bw: f64,
@@ -26,13 +27,13 @@ pub struct LinkBudgetParams {
 
 impl Default for LinkBudgetParams {
     fn default() -> Self {
-        let ch = ChannelParams::default();
+        use crate::options as opt;
         LinkBudgetParams {
-            bw: 250.0,
-            tx_power: ch.tx_power_dbm,
-            path_loss_exponent: ch.path_loss_exponent,
-            shadowing: ch.shadowing_sigma_db,
-            gateway_height: ch.gateway_height,
+            bw: opt::BW.default,
+            tx_power: opt::TX_POWER.default,
+            path_loss_exponent: opt::PATH_LOSS_EXPONENT.default,
+            shadowing: opt::SHADOWING.default,
+            gateway_height: opt::GATEWAY_HEIGHT.default,
             distances: (1..=100).map(|k| 100.0 * f64::from(k)).collect(),
         }
     }
@@ -41,6 +42,7 @@ impl Default for LinkBudgetParams {
 /// One spreading factor's side of the budget.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct SfBudget {
     /// Spreading factor.
     pub sf: u8,
@@ -55,6 +57,7 @@ pub struct SfBudget {
 /// The output of `linkBudget`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct LinkBudgetReport {
     /// The distances, m.
     pub distances: Vec<f64>,

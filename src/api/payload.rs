@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 /// Input of `encode`.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(rename_all = "camelCase", deny_unknown_fields)]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct EncodeParams {
     /// The model (fixes the payload size).
     pub model: ModelKind,
@@ -20,6 +21,7 @@ pub struct EncodeParams {
 
 /// Output of `encode`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct EncodeReport {
     /// The payload as lowercase hex.
     pub hex: String,
@@ -30,6 +32,7 @@ pub struct EncodeReport {
 /// Input of `decode`.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(rename_all = "camelCase", deny_unknown_fields)]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct DecodeParams {
     /// The model (fixes the payload size).
     pub model: ModelKind,
@@ -42,6 +45,7 @@ pub struct DecodeParams {
 
 /// Output of `decode`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct DecodeReport {
     /// The model.
     pub model: ModelKind,

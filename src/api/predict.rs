@@ -11,6 +11,7 @@ pub const MAX_STEPS: f64 = 1e7;
 /// Input of `predict`.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(rename_all = "camelCase", deny_unknown_fields)]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct PredictParams {
     /// `dr`, `ctra-plus` or `3d-ctra`.
     pub model: ModelKind,
@@ -28,6 +29,7 @@ pub struct PredictParams {
 
 /// Output of `predict`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct PredictReport {
     /// The model.
     pub model: ModelKind,

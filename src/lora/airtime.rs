@@ -81,6 +81,7 @@ impl CodingRate {
 /// LoRaWAN mandates for SF11/SF12 at 125 kHz).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum LdroMode {
     /// On when T_sym > 16 ms.
     #[default]

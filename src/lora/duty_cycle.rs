@@ -65,6 +65,7 @@ pub fn min_interval(time_on_air: f64, duty_cycle: f64) -> Result<f64, LoraError>
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(not(target_arch = "wasm32"), derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum DutyCycleMode {
     /// After a packet of time on air T the next may start T / duty cycle later.
     #[default]

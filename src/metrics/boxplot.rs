@@ -5,16 +5,22 @@ use serde::Serialize;
 /// 1.5 IQR of the box — the convention of matplotlib's `boxplot`, which the paper's figures use.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct Boxplot {
     /// Lower whisker.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub whisker_low: f64,
     /// First quartile.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub q1: f64,
     /// Median.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub median: f64,
     /// Third quartile.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub q3: f64,
     /// Upper whisker.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub whisker_high: f64,
     /// Samples beyond the whiskers.
     pub outliers: usize,

@@ -4,16 +4,22 @@ use serde::Serialize;
 /// Summary of absolute errors (m): the shape of `error3d`, `errorX`, … in SPEC §8. With no
 /// samples every statistic is NaN (JSON `null`) and `count` is 0.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct Summary {
     /// Arithmetic mean.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub mean: f64,
     /// Median.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub p50: f64,
     /// 75th percentile (the paper's headline statistic).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub p75: f64,
     /// 95th percentile.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub p95: f64,
     /// Largest error.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub max: f64,
     /// Number of samples.
     pub count: usize,

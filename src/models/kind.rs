@@ -4,6 +4,7 @@ use serde::{Deserialize, Serialize};
 
 /// One of the paper's three motion models, chosen at run time.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum ModelKind {
     /// Dead reckoning: uniform rectilinear motion, 6 states, 9-byte payload.
     #[serde(rename = "dr")]

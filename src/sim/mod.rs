@@ -32,7 +32,9 @@ pub use link::{Link, Reception};
 pub use network::{fly_alone, run_episode, GatewayReport, Network};
 pub use packet::Transmission;
 pub use radio::{DroneRadio, Frame, RateTable};
-pub use report::{Delivery, Energy, ModelResult, ModelSeries, RunConfig, Series, SimReport};
+pub use report::{
+    Boxplots, DataRateUse, Delivery, Energy, ModelResult, ModelSeries, RunConfig, Series, SimReport,
+};
 pub use scenario::{
     parse_seed, random_seed, ChannelSettings, DroneSettings, FlightSettings, GatewaySite,
     ModelChoice, NetworkSettings, RadioSettings, RunSettings, Scenario, SfPlan, StationSettings,

@@ -12,6 +12,7 @@ use std::collections::BTreeMap;
 /// Echo of the settings (every key of [`Scenario`], flat, as given), plus what the run covered.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct RunConfig {
     /// The settings. In `simulate` the swarm keys say what was flown: one drone (`drones` 1,
     /// `sfPlan` `fixed`, `duration` the flight time).
@@ -24,6 +25,7 @@ pub struct RunConfig {
     /// Seconds of flight simulated (all flights).
     pub flight_time: f64,
     /// Stations run.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "ModelName[]"))]
     pub models: Vec<StationModel>,
     /// Bandwidth, kHz (as `bw`).
     pub bandwidth_khz: f64,
@@ -38,6 +40,7 @@ pub struct RunConfig {
 /// The drone radio's charge (SX1276 currents; `docs/reference.md` §7).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct Energy {
     /// Mean charge of one uplink with its receive windows, mC.
     pub charge_per_uplink: f64,
@@ -76,6 +79,7 @@ impl Energy {
 /// Packets and copies over the whole network (JSON, at the top of `simulate` and `swarm`).
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct Delivery {
     /// Uplinks sent by every drone.
     pub packets_sent: usize,
@@ -128,6 +132,7 @@ pub fn ratio(n: usize, of: usize) -> f64 {
 /// Per-axis and 3D boxplots.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct Boxplots {
     /// 3D error.
     pub error3d: Boxplot,
@@ -154,8 +159,10 @@ impl Boxplots {
 /// One model's outcome.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct ModelResult {
     /// The station: `dr`, `ctra-plus`, `3d-ctra` or `imm`.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "ModelName"))]
     pub model: StationModel,
     /// Payload, bytes.
     pub payload_bytes: usize,
@@ -177,10 +184,12 @@ pub struct ModelResult {
     /// Boxplot statistics of the same samples.
     pub boxplot: Boxplots,
     /// Covariance repairs in the drone filter (0 in a healthy run).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number"))]
     pub filter_recoveries: u64,
     /// Fraction of evaluated steps whose true position lay inside the station's 95 % position
     /// ellipsoid (chi-square, 3 degrees of freedom); a consistent station scores near 0.95,
     /// an overconfident one lower. `null` when nothing was evaluated.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub coverage95: f64,
     /// The packets sent at each data rate (one entry without ADR), slowest rate first.
     pub data_rate_use: Vec<DataRateUse>,
@@ -191,14 +200,20 @@ pub struct ModelResult {
     pub energy: Energy,
     /// IMM only: the mean probability of each member over the evaluated steps.
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(
+        all(test, not(target_arch = "wasm32")),
+        ts(type = "Partial<Record<MotionModelName, number>>", optional)
+    )]
     pub model_probability: Option<BTreeMap<&'static str, f64>>,
 }
 
 /// One model's time series over the first flight (for plots).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct ModelSeries {
     /// The station.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "ModelName"))]
     pub model: StationModel,
     /// Evaluation times, s.
     pub t: Vec<f64>,
@@ -226,6 +241,7 @@ pub struct ModelSeries {
 /// How many packets went at one data rate.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct DataRateUse {
     /// EU868 data rate index (`null` when the SF and bandwidth form none, e.g. SF8 at 500 kHz).
     pub dr: Option<u8>,
@@ -244,6 +260,7 @@ pub struct DataRateUse {
 /// Ground truth and every model's estimates over the first flight.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct Series {
     /// The flight.
     pub flight: String,
@@ -265,6 +282,7 @@ pub struct Series {
 
 /// The output of `simulate`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct SimReport {
     /// Settings and coverage.
     pub config: RunConfig,

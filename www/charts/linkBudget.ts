@@ -1,12 +1,13 @@
 // The link budget: why packets stop arriving. Mean received power against distance with the
-// shadowing band, each SF's sensitivity as a line, the chosen distance marked; and each SF's
+// shadowing band, each SF's sensitivity as a line, each gateway's distance from the flight's start
+// marked; and each SF's
 // delivery ratio against distance. The numbers come from the core's linkBudget().
 import * as Plot from '@observablehq/plot';
 import type { LinkBudgetReport } from '../loratrack';
 
 const SF_COLORS = ['#4e79a7', '#59a14f', '#9c755f', '#f28e2b', '#e15759', '#76b7b2'];
 
-export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; distance: number; sf: number }): HTMLElement {
+export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; distances: number[]; sf: number }): HTMLElement {
   const km = (d: number) => d / 1000;
   const band = r.distances.map((d, i) => ({ d: km(d), lo: r.meanRxDbm[i] - 1.645 * r.shadowing, hi: r.meanRxDbm[i] + 1.645 * r.shadowing, mean: r.meanRxDbm[i] }));
   const sens = r.sfs.map((s) => ({ sf: `SF${s.sf}`, dbm: s.sensitivityDbm, range: km(s.rangeM) }));
@@ -22,8 +23,8 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
       Plot.areaY(band, { x: 'd', y1: 'lo', y2: 'hi', fill: '#888', fillOpacity: 0.15 }),
       Plot.lineY(band, { x: 'd', y: 'mean', stroke: '#222', strokeWidth: 1.6 }),
       Plot.ruleY(sens, { y: 'dbm', stroke: 'sf', strokeDasharray: '4,3', strokeWidth: (s) => (s.sf === `SF${opts.sf}` ? 2.2 : 1) }),
-      Plot.ruleX([km(opts.distance)], { stroke: '#b00020', strokeWidth: 1.5 }),
-      Plot.text([km(opts.distance)], { x: (d) => d, frameAnchor: 'top', dy: 6, text: () => 'gateway distance', fill: '#b00020', fontSize: 10 }),
+      Plot.ruleX(opts.distances.map(km), { stroke: '#b00020', strokeWidth: 1.5 }),
+      Plot.text(opts.distances.map(km), { x: (d) => d, frameAnchor: 'top', dy: 6, text: (_d, i) => (opts.distances.length > 1 ? `gateway ${i + 1}` : 'gateway distance'), fill: '#b00020', fontSize: 10 }),
     ],
   });
   const curves = r.sfs.flatMap((s) => s.delivery.map((p, i) => ({ d: km(r.distances[i]), p: 100 * p, sf: `SF${s.sf}` })));
@@ -36,7 +37,7 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
     color,
     marks: [
       Plot.lineY(curves, { x: 'd', y: 'p', stroke: 'sf', strokeWidth: (c) => (c.sf === `SF${opts.sf}` ? 2.4 : 1.2) }),
-      Plot.ruleX([km(opts.distance)], { stroke: '#b00020', strokeWidth: 1.5 }),
+      Plot.ruleX(opts.distances.map(km), { stroke: '#b00020', strokeWidth: 1.5 }),
       Plot.tip(curves, Plot.pointerX({ x: 'd', y: 'p', stroke: 'sf', title: (c) => `${c.sf} at ${c.d.toFixed(1)} km: ${c.p.toFixed(0)} % delivered` })),
     ],
   });

@@ -105,12 +105,13 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
       grid.rotation.x = Math.PI / 2;
       grid.position.z = box.min.z - centre.z;
       group.add(grid);
-      // The gateway, on the ground at its height, when it lies within the view.
-      const [gx, gy, gz] = s.gateway;
-      const gateway = new THREE.Mesh(new THREE.ConeGeometry(size * 0.015, size * 0.05, 12), new THREE.MeshBasicMaterial({ color: 0x444444 }));
-      gateway.rotation.x = Math.PI / 2;
-      gateway.position.set(gx - centre.x, gy - centre.y, gz - centre.z);
-      if (gateway.position.length() < size * 3) group.add(gateway);
+      // Every gateway, on the ground at its height, when it lies within the view.
+      for (const [gx, gy, gz] of s.gateways ?? [s.gateway]) {
+        const gateway = new THREE.Mesh(new THREE.ConeGeometry(size * 0.015, size * 0.05, 12), new THREE.MeshBasicMaterial({ color: 0x444444 }));
+        gateway.rotation.x = Math.PI / 2;
+        gateway.position.set(gx - centre.x, gy - centre.y, gz - centre.z);
+        if (gateway.position.length() < size * 3) group.add(gateway);
+      }
       lastSize = size;
       if (placedFor !== s.flight) {
         placedFor = s.flight;

@@ -10,6 +10,7 @@ use serde::Serialize;
 /// What one gateway did over a run (JSON `gateways[]`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct GatewayReport {
     /// Metres east of the scenario's origin.
     pub east: f64,

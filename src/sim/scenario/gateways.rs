@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 /// height above ground, m (`None`: the `gatewayHeight` setting).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", deny_unknown_fields)]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct GatewaySite {
     /// Metres east of the origin.
     pub east: f64,
@@ -16,6 +17,7 @@ pub struct GatewaySite {
     pub north: f64,
     /// Antenna height, m; `None` for the `gatewayHeight` setting.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
     pub height: Option<f64>,
 }
 

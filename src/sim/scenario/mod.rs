@@ -45,18 +45,27 @@ fn on_off(text: &str) -> Result<bool, String> {
 /// sample, or none in a swarm (each drone then chains synthetic flights for `duration`).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct FlightSettings {
-    /// CSV text of a flight (the CLI reads `--trajectory FILE` into this); not echoed.
+    /// CSV text of a flight (the CLI reads `--trajectory FILE` into this); input only, not
+    /// echoed (the JS API's `SimulateParams` adds it to the generated type).
     #[serde(default, skip_serializing)]
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(skip))]
     pub trajectory: Option<String>,
-    /// A name for the CSV flight, shown in reports.
+    /// A name for the CSV flight, shown in reports; input only.
     #[serde(default, skip_serializing)]
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(skip))]
     pub trajectory_name: Option<String>,
     /// Synthetic flight(s): `all` or 1..30.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(
+        all(test, not(target_arch = "wasm32")),
+        ts(type = "number | 'all'", optional)
+    )]
     pub synthetic: Option<SyntheticChoice>,
     /// A bundled real flight: `canberra`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
     pub sample: Option<String>,
 }
 
@@ -64,6 +73,7 @@ pub struct FlightSettings {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 #[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct StationSettings {
     /// Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`.
     #[cfg_attr(
@@ -71,6 +81,7 @@ pub struct StationSettings {
         arg(long, default_value = "all", value_parser = ModelChoice::parse,
             help = "Station model(s): dr, ctra-plus, 3d-ctra, imm (IMM over the three), a comma list, or all (the paper's three). A swarm runs one station: all means 3d-ctra.")
     )]
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "ModelChoice"))]
     pub model: ModelChoice,
     /// The station's prediction between packets: `paper` (default) or `bounded`.
     #[cfg_attr(
@@ -106,6 +117,7 @@ impl Default for StationSettings {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 #[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct RadioSettings {
     /// Spreading factor 7..12 (with ADR: the start).
     #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::SF.default as i64, help = opt::SF.cli_help(), allow_negative_numbers = true))]
@@ -144,6 +156,7 @@ impl Default for RadioSettings {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 #[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct ChannelSettings {
     /// simulate: distance from the flight's first point to the default gateway; swarm: every
     /// drone's starting distance from the centre, m.
@@ -175,6 +188,7 @@ impl Default for ChannelSettings {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 #[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct NetworkSettings {
     /// The gateways; empty for the one default gateway (simulate: `distance` m east of the
     /// flight's first point; swarm: at the centre).
@@ -238,6 +252,7 @@ impl Default for NetworkSettings {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 #[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct DroneSettings {
     /// Sensor and filter rate, Hz.
     #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::SENSOR_RATE.default, help = opt::SENSOR_RATE.cli_help()))]
@@ -260,6 +275,7 @@ impl Default for DroneSettings {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 #[cfg_attr(not(target_arch = "wasm32"), derive(clap::ValueEnum))]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum SfPlan {
     /// SF7..SF12 in turn (drone i gets SF 7 + i mod 6), the paper's suggestion for up to 72
     /// drones.
@@ -273,6 +289,7 @@ pub enum SfPlan {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 #[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct SwarmSettings {
     /// Number of drones.
     #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::DRONES.default as usize, help = opt::DRONES.cli_help()))]
@@ -307,6 +324,7 @@ impl Default for SwarmSettings {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 #[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct RunSettings {
     /// Seed of every random draw; `"random"` draws one ([`random_seed`]), which the echo gives.
     #[serde(deserialize_with = "seed_or_random")]
@@ -315,6 +333,7 @@ pub struct RunSettings {
         arg(long, default_value = "1", value_name = "N|random", value_parser = parse_seed,
             help = "Seed of all random draws (sensor noise, layout, channels, shadowing), 0..2^53-1, or random for a fresh one (reported, so the run can be repeated).")
     )]
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number"))]
     pub seed: u64,
     /// Include time series of the first flight (simulate).
     #[cfg_attr(
@@ -346,6 +365,7 @@ impl Default for RunSettings {
 /// ```
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct Scenario {
     /// Which flight(s).
     #[serde(flatten)]
@@ -376,6 +396,7 @@ pub struct Scenario {
     pub run: RunSettings,
     /// Keys no sub-struct knows (a misspelt setting); refused by [`Scenario::validate`].
     #[serde(flatten, skip_serializing)]
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(skip))]
     pub unknown: BTreeMap<String, IgnoredAny>,
 }
 
@@ -414,6 +435,7 @@ impl Scenario {
     /// let s = Scenario::default().with(&serde_json::json!({"sf": 9, "adr": "lorawan"})).unwrap();
     /// assert_eq!((s.radio.sf, s.network.adr.name()), (9, "lorawan"));
     /// ```
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn with(&self, changes: &serde_json::Value) -> Result<Self, String> {
         let mut v = serde_json::to_value(self).map_err(|e| e.to_string())?;
         if let (Some(map), Some(add)) = (v.as_object_mut(), changes.as_object()) {

@@ -21,6 +21,7 @@ pub const DEFAULT_BURST: u32 = BURST.default as u32;
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 #[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct Sending {
     /// The sending policy.
     #[cfg_attr(

@@ -26,6 +26,7 @@ pub fn aloha_collision_rate(duty_cycle: f64, channels: u8, n: usize) -> f64 {
 /// One drone of the swarm.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct DroneReport {
     /// 0-based index.
     pub id: usize,
@@ -50,6 +51,7 @@ pub struct DroneReport {
 /// The output of `swarm`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct SwarmReport {
     /// The settings.
     pub config: SwarmEcho,
@@ -73,6 +75,7 @@ pub struct SwarmReport {
     /// Every drone's errors pooled, m.
     pub error3d: Summary,
     /// The median over drones of each drone's p75, m (`null` when no drone received anything).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub median_drone_p75: f64,
     /// The drone radio's charge, averaged over the drones.
     pub energy: Energy,
@@ -83,11 +86,13 @@ pub struct SwarmReport {
 /// The echo of a swarm's settings: every key of [`Scenario`], flat, plus the station it ran.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct SwarmEcho {
     /// The settings as given.
     #[serde(flatten)]
     pub settings: Scenario,
     /// The one station every drone's ground station ran.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "ModelName"))]
     pub station: StationModel,
     /// Bandwidth, kHz (as `bw`).
     pub bandwidth_khz: f64,

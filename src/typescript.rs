@@ -1,0 +1,107 @@
+//! The TypeScript types of the JS API, generated from the Rust types (ts-rs reads their serde
+//! attributes), with the table of numeric options. `www/generated/types.ts` is checked in; this
+//! test fails when it drifts from the Rust source. Regenerate with
+//! `UPDATE_TYPES=1 cargo test --lib typescript`.
+
+use crate::api::*;
+use crate::lora::{AdrMode, DutyCycleMode, LdroMode};
+use crate::metrics::{Boxplot, Summary};
+use crate::models::ModelKind;
+use crate::options::{NumberOption, OPTIONS};
+use crate::sim::scenario::*;
+use crate::sim::*;
+
+use ts_rs::TS;
+
+const HEADER: &str = "// Generated from the Rust types by `UPDATE_TYPES=1 cargo test --lib typescript` (src/typescript.rs).
+// Do not edit: a test fails when this file differs from what the Rust source generates.
+
+/** A motion model: what predict, encode and decode take. */
+export type MotionModelName = 'dr' | 'ctra-plus' | '3d-ctra';
+/** A station: one motion model, or the IMM mixture of the three. */
+export type ModelName = MotionModelName | 'imm';
+/** `all` (the paper's three), one station, a comma list such as `dr,3d-ctra,imm`, or an array. */
+export type ModelChoice = ModelName | 'all' | (string & {}) | ModelName[];
+";
+
+fn decls() -> Vec<String> {
+    // u64 counts and seeds stay below 2^53: plain numbers in JavaScript.
+    let c = ts_rs::Config::new().with_large_int("number");
+    vec![
+        ModelKind::decl(&c),
+        LdroMode::decl(&c),
+        Prediction::decl(&c),
+        SenderKind::decl(&c),
+        DutyCycleMode::decl(&c),
+        AdrMode::decl(&c),
+        SfPlan::decl(&c),
+        GatewaySite::decl(&c),
+        FlightSettings::decl(&c),
+        StationSettings::decl(&c),
+        Sending::decl(&c),
+        RadioSettings::decl(&c),
+        ChannelSettings::decl(&c),
+        NetworkSettings::decl(&c),
+        DroneSettings::decl(&c),
+        SwarmSettings::decl(&c),
+        RunSettings::decl(&c),
+        Scenario::decl(&c),
+        Summary::decl(&c),
+        Boxplot::decl(&c),
+        Boxplots::decl(&c),
+        DataRateUse::decl(&c),
+        GatewayReport::decl(&c),
+        Delivery::decl(&c),
+        Energy::decl(&c),
+        ModelResult::decl(&c),
+        ModelSeries::decl(&c),
+        Series::decl(&c),
+        RunConfig::decl(&c),
+        SimReport::decl(&c),
+        DroneReport::decl(&c),
+        SwarmEcho::decl(&c),
+        SwarmReport::decl(&c),
+        NumberOption::decl(&c),
+        AirtimeParams::decl(&c),
+        AirtimeReport::decl(&c),
+        LinkBudgetParams::decl(&c),
+        SfBudget::decl(&c),
+        LinkBudgetReport::decl(&c),
+        PredictParams::decl(&c),
+        PredictReport::decl(&c),
+        EncodeParams::decl(&c),
+        EncodeReport::decl(&c),
+        DecodeParams::decl(&c),
+        DecodeReport::decl(&c),
+    ]
+}
+
+/// The whole generated file.
+fn generated() -> String {
+    let mut out = String::from(HEADER);
+    for d in decls() {
+        out.push('\n');
+        out.push_str("export ");
+        out.push_str(&d);
+        out.push('\n');
+    }
+    let options = serde_json::to_string_pretty(&OPTIONS.to_vec()).unwrap_or_default();
+    out.push_str(&format!(
+        "\n/** Every numeric setting's default and accepted range, as the core validates them (src/options.rs). */\nexport const OPTIONS: NumberOption[] = {options};\n"
+    ));
+    out
+}
+
+#[test]
+fn the_checked_in_typescript_types_match_the_rust_source() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/www/generated/types.ts");
+    let want = generated();
+    if std::env::var_os("UPDATE_TYPES").is_some() {
+        std::fs::write(path, &want).unwrap();
+    }
+    let have = std::fs::read_to_string(path).unwrap_or_default();
+    assert!(
+        have == want,
+        "www/generated/types.ts is out of date: run `UPDATE_TYPES=1 cargo test --lib typescript`"
+    );
+}

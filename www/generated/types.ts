@@ -1,0 +1,1706 @@
+// Generated from the Rust types by `UPDATE_TYPES=1 cargo test --lib typescript` (src/typescript.rs).
+// Do not edit: a test fails when this file differs from what the Rust source generates.
+
+/** A motion model: what predict, encode and decode take. */
+export type MotionModelName = 'dr' | 'ctra-plus' | '3d-ctra';
+/** A station: one motion model, or the IMM mixture of the three. */
+export type ModelName = MotionModelName | 'imm';
+/** `all` (the paper's three), one station, a comma list such as `dr,3d-ctra,imm`, or an array. */
+export type ModelChoice = ModelName | 'all' | (string & {}) | ModelName[];
+
+export type ModelKind = "dr" | "ctra-plus" | "3d-ctra";
+
+export type LdroMode = "auto" | "on" | "off";
+
+export type Prediction = "paper" | "bounded";
+
+export type SenderKind = "periodic" | "error";
+
+export type DutyCycleMode = "per-packet" | "budget";
+
+export type AdrMode = "off" | "lorawan" | "tracking";
+
+export type SfPlan = "spread" | "fixed";
+
+export type GatewaySite = { 
+/**
+ * Metres east of the origin.
+ */
+east: number, 
+/**
+ * Metres north of the origin.
+ */
+north: number, 
+/**
+ * Antenna height, m; `None` for the `gatewayHeight` setting.
+ */
+height?: number, };
+
+export type FlightSettings = { 
+/**
+ * Synthetic flight(s): `all` or 1..30.
+ */
+synthetic?: number | 'all', 
+/**
+ * A bundled real flight: `canberra`.
+ */
+sample?: string, };
+
+export type StationSettings = { 
+/**
+ * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`.
+ */
+model: ModelChoice, 
+/**
+ * The station's prediction between packets: `paper` (default) or `bounded`.
+ */
+prediction: Prediction, 
+/**
+ * Station prediction step T, s.
+ */
+step: number, 
+/**
+ * Tilt-rate decay per station step.
+ */
+eta: number, };
+
+export type Sending = { 
+/**
+ * The sending policy.
+ */
+sender: SenderKind, 
+/**
+ * Error-triggered threshold, m.
+ */
+threshold: number, 
+/**
+ * Error-triggered heartbeat, s.
+ */
+maxInterval: number, 
+/**
+ * The duty-cycle rule.
+ */
+dutyCycleMode: DutyCycleMode, 
+/**
+ * Budget capacity, packets.
+ */
+burst: number, };
+
+export type RadioSettings = { 
+/**
+ * Spreading factor 7..12 (with ADR: the start).
+ */
+sf: number, 
+/**
+ * Bandwidth, kHz.
+ */
+bw: number, 
+/**
+ * Coding rate index 1..4.
+ */
+cr: number, 
+/**
+ * MAC overhead, bytes (LoRaWAN 13; the paper's Table II: 0).
+ */
+overhead: number, 
+/**
+ * Duty-cycle limit, fraction.
+ */
+dutyCycle: number, 
+/**
+ * Transmit power, dBm.
+ */
+txPower: number, };
+
+export type ChannelSettings = { 
+/**
+ * simulate: distance from the flight's first point to the default gateway; swarm: every
+ * drone's starting distance from the centre, m.
+ */
+distance: number, 
+/**
+ * Path-loss exponent.
+ */
+pathLossExponent: number, 
+/**
+ * Shadowing standard deviation, dB (0: off).
+ */
+shadowing: number, 
+/**
+ * Antenna height of every gateway not given its own, m.
+ */
+gatewayHeight: number, };
+
+export type NetworkSettings = { 
+/**
+ * The gateways; empty for the one default gateway (simulate: `distance` m east of the
+ * flight's first point; swarm: at the centre).
+ */
+gateways: Array<GatewaySite>, 
+/**
+ * Uplink channels: 1 or 3.
+ */
+channels: number, 
+/**
+ * Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
+ */
+capture: boolean, 
+/**
+ * Inter-SF interference by the rejection matrix (off: SFs are orthogonal).
+ */
+interSf: boolean, 
+/**
+ * Adaptive data rate: `off`, `lorawan` or `tracking`.
+ */
+adr: AdrMode, 
+/**
+ * LoRaWAN ADR's device margin, dB.
+ */
+adrMargin: number, 
+/**
+ * LoRaWAN ADR's history, uplinks.
+ */
+adrHistory: number, };
+
+export type DroneSettings = { 
+/**
+ * Sensor and filter rate, Hz.
+ */
+sensorRate: number, 
+/**
+ * Process noise q of Q = q·I (drone and station).
+ */
+q: number, };
+
+export type SwarmSettings = { 
+/**
+ * Number of drones.
+ */
+drones: number, 
+/**
+ * Seconds of chained synthetic flight per drone (when no flight is chosen).
+ */
+duration: number, 
+/**
+ * How SFs are shared out.
+ */
+sfPlan: SfPlan, };
+
+export type RunSettings = { 
+/**
+ * Seed of every random draw; `"random"` draws one ([`random_seed`]), which the echo gives.
+ */
+seed: number, 
+/**
+ * Include time series of the first flight (simulate).
+ */
+series: boolean, };
+
+export type Scenario = { 
+/**
+ * Synthetic flight(s): `all` or 1..30.
+ */
+synthetic?: number | 'all', 
+/**
+ * A bundled real flight: `canberra`.
+ */
+sample?: string, 
+/**
+ * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`.
+ */
+model: ModelChoice, 
+/**
+ * The station's prediction between packets: `paper` (default) or `bounded`.
+ */
+prediction: Prediction, 
+/**
+ * Station prediction step T, s.
+ */
+step: number, 
+/**
+ * Tilt-rate decay per station step.
+ */
+eta: number, 
+/**
+ * The sending policy.
+ */
+sender: SenderKind, 
+/**
+ * Error-triggered threshold, m.
+ */
+threshold: number, 
+/**
+ * Error-triggered heartbeat, s.
+ */
+maxInterval: number, 
+/**
+ * The duty-cycle rule.
+ */
+dutyCycleMode: DutyCycleMode, 
+/**
+ * Budget capacity, packets.
+ */
+burst: number, 
+/**
+ * Spreading factor 7..12 (with ADR: the start).
+ */
+sf: number, 
+/**
+ * Bandwidth, kHz.
+ */
+bw: number, 
+/**
+ * Coding rate index 1..4.
+ */
+cr: number, 
+/**
+ * MAC overhead, bytes (LoRaWAN 13; the paper's Table II: 0).
+ */
+overhead: number, 
+/**
+ * Duty-cycle limit, fraction.
+ */
+dutyCycle: number, 
+/**
+ * Transmit power, dBm.
+ */
+txPower: number, 
+/**
+ * simulate: distance from the flight's first point to the default gateway; swarm: every
+ * drone's starting distance from the centre, m.
+ */
+distance: number, 
+/**
+ * Path-loss exponent.
+ */
+pathLossExponent: number, 
+/**
+ * Shadowing standard deviation, dB (0: off).
+ */
+shadowing: number, 
+/**
+ * Antenna height of every gateway not given its own, m.
+ */
+gatewayHeight: number, 
+/**
+ * The gateways; empty for the one default gateway (simulate: `distance` m east of the
+ * flight's first point; swarm: at the centre).
+ */
+gateways: Array<GatewaySite>, 
+/**
+ * Uplink channels: 1 or 3.
+ */
+channels: number, 
+/**
+ * Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
+ */
+capture: boolean, 
+/**
+ * Inter-SF interference by the rejection matrix (off: SFs are orthogonal).
+ */
+interSf: boolean, 
+/**
+ * Adaptive data rate: `off`, `lorawan` or `tracking`.
+ */
+adr: AdrMode, 
+/**
+ * LoRaWAN ADR's device margin, dB.
+ */
+adrMargin: number, 
+/**
+ * LoRaWAN ADR's history, uplinks.
+ */
+adrHistory: number, 
+/**
+ * Sensor and filter rate, Hz.
+ */
+sensorRate: number, 
+/**
+ * Process noise q of Q = q·I (drone and station).
+ */
+q: number, 
+/**
+ * Number of drones.
+ */
+drones: number, 
+/**
+ * Seconds of chained synthetic flight per drone (when no flight is chosen).
+ */
+duration: number, 
+/**
+ * How SFs are shared out.
+ */
+sfPlan: SfPlan, 
+/**
+ * Seed of every random draw; `"random"` draws one ([`random_seed`]), which the echo gives.
+ */
+seed: number, 
+/**
+ * Include time series of the first flight (simulate).
+ */
+series: boolean, };
+
+export type Summary = { 
+/**
+ * Arithmetic mean.
+ */
+mean: number | null, 
+/**
+ * Median.
+ */
+p50: number | null, 
+/**
+ * 75th percentile (the paper's headline statistic).
+ */
+p75: number | null, 
+/**
+ * 95th percentile.
+ */
+p95: number | null, 
+/**
+ * Largest error.
+ */
+max: number | null, 
+/**
+ * Number of samples.
+ */
+count: number, };
+
+export type Boxplot = { 
+/**
+ * Lower whisker.
+ */
+whiskerLow: number | null, 
+/**
+ * First quartile.
+ */
+q1: number | null, 
+/**
+ * Median.
+ */
+median: number | null, 
+/**
+ * Third quartile.
+ */
+q3: number | null, 
+/**
+ * Upper whisker.
+ */
+whiskerHigh: number | null, 
+/**
+ * Samples beyond the whiskers.
+ */
+outliers: number, 
+/**
+ * Number of samples.
+ */
+count: number, };
+
+export type Boxplots = { 
+/**
+ * 3D error.
+ */
+error3d: Boxplot, 
+/**
+ * |x error|.
+ */
+errorX: Boxplot, 
+/**
+ * |y error|.
+ */
+errorY: Boxplot, 
+/**
+ * |z error|.
+ */
+errorZ: Boxplot, };
+
+export type DataRateUse = { 
+/**
+ * EU868 data rate index (`null` when the SF and bandwidth form none, e.g. SF8 at 500 kHz).
+ */
+dr: number | null, 
+/**
+ * Spreading factor.
+ */
+sf: number, 
+/**
+ * Bandwidth, kHz.
+ */
+bw: number, 
+/**
+ * Packets sent at it.
+ */
+packets: number, 
+/**
+ * Of those, received.
+ */
+received: number, 
+/**
+ * Time on air of one packet at it, s.
+ */
+timeOnAir: number, };
+
+export type GatewayReport = { 
+/**
+ * Metres east of the scenario's origin.
+ */
+east: number, 
+/**
+ * Metres north of the scenario's origin.
+ */
+north: number, 
+/**
+ * Antenna height, m.
+ */
+height: number, 
+/**
+ * Uplinks it received.
+ */
+heard: number, 
+/**
+ * Uplinks only it received (what the network would lose without it).
+ */
+onlyHeard: number, 
+/**
+ * ADR downlinks it sent.
+ */
+downlinksSent: number, 
+/**
+ * Downlinks the network server wanted to send through it but its duty cycle forbade in
+ * both receive windows.
+ */
+downlinksDropped: number, };
+
+export type Delivery = { 
+/**
+ * Uplinks sent by every drone.
+ */
+packetsSent: number, 
+/**
+ * Distinct uplinks the network server passed on (each once, however many gateways heard it).
+ */
+packetsReceived: number, 
+/**
+ * `packetsReceived / packetsSent` (0 when nothing was sent).
+ */
+deliveryRatio: number, 
+/**
+ * Copies the server removed: receptions beyond the first of each packet.
+ */
+duplicates: number, 
+/**
+ * Per gateway.
+ */
+gateways: Array<GatewayReport>, };
+
+export type Energy = { 
+/**
+ * Mean charge of one uplink with its receive windows, mC.
+ */
+chargePerUplink: number, 
+/**
+ * Charge per hour of tracking (uplinks, windows and sleep between), mAh.
+ */
+chargePerHour: number, };
+
+export type ModelResult = { 
+/**
+ * The station: `dr`, `ctra-plus`, `3d-ctra` or `imm`.
+ */
+model: ModelName, 
+/**
+ * Payload, bytes.
+ */
+payloadBytes: number, 
+/**
+ * Time on air of one packet (payload + overhead), s (with ADR: at the starting data rate).
+ */
+timeOnAir: number, 
+/**
+ * Interval between transmissions under the duty cycle, s (with ADR: at the starting data
+ * rate).
+ */
+interval: number, 
+/**
+ * Total time on air of the packets sent over all flights, s.
+ */
+airtime: number, 
+/**
+ * 3D error, m.
+ */
+error3d: Summary, 
+/**
+ * |x error|, m.
+ */
+errorX: Summary, 
+/**
+ * |y error|, m.
+ */
+errorY: Summary, 
+/**
+ * |z error|, m.
+ */
+errorZ: Summary, 
+/**
+ * Boxplot statistics of the same samples.
+ */
+boxplot: Boxplots, 
+/**
+ * Covariance repairs in the drone filter (0 in a healthy run).
+ */
+filterRecoveries: number, 
+/**
+ * Fraction of evaluated steps whose true position lay inside the station's 95 % position
+ * ellipsoid (chi-square, 3 degrees of freedom); a consistent station scores near 0.95,
+ * an overconfident one lower. `null` when nothing was evaluated.
+ */
+coverage95: number | null, 
+/**
+ * The packets sent at each data rate (one entry without ADR), slowest rate first.
+ */
+dataRateUse: Array<DataRateUse>, 
+/**
+ * The drone radio's charge.
+ */
+energy: Energy, 
+/**
+ * IMM only: the mean probability of each member over the evaluated steps.
+ */
+modelProbability?: Partial<Record<MotionModelName, number>>, 
+/**
+ * Uplinks sent by every drone.
+ */
+packetsSent: number, 
+/**
+ * Distinct uplinks the network server passed on (each once, however many gateways heard it).
+ */
+packetsReceived: number, 
+/**
+ * `packetsReceived / packetsSent` (0 when nothing was sent).
+ */
+deliveryRatio: number, 
+/**
+ * Copies the server removed: receptions beyond the first of each packet.
+ */
+duplicates: number, 
+/**
+ * Per gateway.
+ */
+gateways: Array<GatewayReport>, };
+
+export type ModelSeries = { 
+/**
+ * The station.
+ */
+model: ModelName, 
+/**
+ * Evaluation times, s.
+ */
+t: Array<number>, 
+/**
+ * 3D error at each time, m.
+ */
+error3d: Array<number>, 
+/**
+ * The station's own 95 % bound on that error at each time (the longest semi-axis of its
+ * 95 % position ellipsoid), m.
+ */
+bound95: Array<number>, 
+/**
+ * Estimated x, y, z at each time, m.
+ */
+x: Array<number>, 
+/**
+ * See `x`.
+ */
+y: Array<number>, 
+/**
+ * See `x`.
+ */
+z: Array<number>, 
+/**
+ * Arrival times of received packets, s.
+ */
+arrivals: Array<number>, 
+/**
+ * Send times of lost packets, s.
+ */
+lost: Array<number>, 
+/**
+ * The EU868 data rate of each received packet (`null` for an SF/bandwidth that is none).
+ */
+arrivalDr: Array<number | null>, 
+/**
+ * The data rate of each lost packet.
+ */
+lostDr: Array<number | null>, };
+
+export type Series = { 
+/**
+ * The flight.
+ */
+flight: string, 
+/**
+ * Truth sample times, s (decimated to at most a few thousand points).
+ */
+t: Array<number>, 
+/**
+ * True x, m.
+ */
+x: Array<number>, 
+/**
+ * True y, m.
+ */
+y: Array<number>, 
+/**
+ * True z, m.
+ */
+z: Array<number>, 
+/**
+ * The first gateway's position x, y, z, m (the flight's frame).
+ */
+gateway: [number, number, number], 
+/**
+ * Every gateway's position x, y, z, m.
+ */
+gateways: Array<[number, number, number]>, 
+/**
+ * Per model.
+ */
+models: Array<ModelSeries>, };
+
+export type RunConfig = { 
+/**
+ * Flight(s) simulated, by name.
+ */
+trajectory: string, 
+/**
+ * Number of flights.
+ */
+flights: number, 
+/**
+ * Seconds of flight simulated (all flights).
+ */
+flightTime: number, 
+/**
+ * Stations run.
+ */
+models: ModelName[], 
+/**
+ * Bandwidth, kHz (as `bw`).
+ */
+bandwidthKhz: number, 
+/**
+ * Tilt decay per second, eta^(1/T).
+ */
+etaPerSecond: number, 
+/**
+ * Gateway sensitivity for this SF and bandwidth, dBm.
+ */
+sensitivityDbm: number, 
+/**
+ * Range where the mean received power meets the sensitivity, m.
+ */
+rangeM: number, 
+/**
+ * Synthetic flight(s): `all` or 1..30.
+ */
+synthetic?: number | 'all', 
+/**
+ * A bundled real flight: `canberra`.
+ */
+sample?: string, 
+/**
+ * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`.
+ */
+model: ModelChoice, 
+/**
+ * The station's prediction between packets: `paper` (default) or `bounded`.
+ */
+prediction: Prediction, 
+/**
+ * Station prediction step T, s.
+ */
+step: number, 
+/**
+ * Tilt-rate decay per station step.
+ */
+eta: number, 
+/**
+ * The sending policy.
+ */
+sender: SenderKind, 
+/**
+ * Error-triggered threshold, m.
+ */
+threshold: number, 
+/**
+ * Error-triggered heartbeat, s.
+ */
+maxInterval: number, 
+/**
+ * The duty-cycle rule.
+ */
+dutyCycleMode: DutyCycleMode, 
+/**
+ * Budget capacity, packets.
+ */
+burst: number, 
+/**
+ * Spreading factor 7..12 (with ADR: the start).
+ */
+sf: number, 
+/**
+ * Bandwidth, kHz.
+ */
+bw: number, 
+/**
+ * Coding rate index 1..4.
+ */
+cr: number, 
+/**
+ * MAC overhead, bytes (LoRaWAN 13; the paper's Table II: 0).
+ */
+overhead: number, 
+/**
+ * Duty-cycle limit, fraction.
+ */
+dutyCycle: number, 
+/**
+ * Transmit power, dBm.
+ */
+txPower: number, 
+/**
+ * simulate: distance from the flight's first point to the default gateway; swarm: every
+ * drone's starting distance from the centre, m.
+ */
+distance: number, 
+/**
+ * Path-loss exponent.
+ */
+pathLossExponent: number, 
+/**
+ * Shadowing standard deviation, dB (0: off).
+ */
+shadowing: number, 
+/**
+ * Antenna height of every gateway not given its own, m.
+ */
+gatewayHeight: number, 
+/**
+ * The gateways; empty for the one default gateway (simulate: `distance` m east of the
+ * flight's first point; swarm: at the centre).
+ */
+gateways: Array<GatewaySite>, 
+/**
+ * Uplink channels: 1 or 3.
+ */
+channels: number, 
+/**
+ * Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
+ */
+capture: boolean, 
+/**
+ * Inter-SF interference by the rejection matrix (off: SFs are orthogonal).
+ */
+interSf: boolean, 
+/**
+ * Adaptive data rate: `off`, `lorawan` or `tracking`.
+ */
+adr: AdrMode, 
+/**
+ * LoRaWAN ADR's device margin, dB.
+ */
+adrMargin: number, 
+/**
+ * LoRaWAN ADR's history, uplinks.
+ */
+adrHistory: number, 
+/**
+ * Sensor and filter rate, Hz.
+ */
+sensorRate: number, 
+/**
+ * Process noise q of Q = q·I (drone and station).
+ */
+q: number, 
+/**
+ * Number of drones.
+ */
+drones: number, 
+/**
+ * Seconds of chained synthetic flight per drone (when no flight is chosen).
+ */
+duration: number, 
+/**
+ * How SFs are shared out.
+ */
+sfPlan: SfPlan, 
+/**
+ * Seed of every random draw; `"random"` draws one ([`random_seed`]), which the echo gives.
+ */
+seed: number, 
+/**
+ * Include time series of the first flight (simulate).
+ */
+series: boolean, };
+
+export type SimReport = { 
+/**
+ * Settings and coverage.
+ */
+config: RunConfig, 
+/**
+ * One entry per model.
+ */
+results: Array<ModelResult>, 
+/**
+ * Time series of the first flight, when asked for.
+ */
+series: Series | null, 
+/**
+ * Uplinks sent by every drone.
+ */
+packetsSent: number, 
+/**
+ * Distinct uplinks the network server passed on (each once, however many gateways heard it).
+ */
+packetsReceived: number, 
+/**
+ * `packetsReceived / packetsSent` (0 when nothing was sent).
+ */
+deliveryRatio: number, 
+/**
+ * Copies the server removed: receptions beyond the first of each packet.
+ */
+duplicates: number, 
+/**
+ * Per gateway.
+ */
+gateways: Array<GatewayReport>, };
+
+export type DroneReport = { 
+/**
+ * 0-based index.
+ */
+id: number, 
+/**
+ * Its spreading factor.
+ */
+sf: number, 
+/**
+ * Direction from its starting point to the centre, degrees counter-clockwise from east.
+ */
+bearingDeg: number, 
+/**
+ * Packets it sent on each channel.
+ */
+channelUse: Array<number>, 
+/**
+ * Packets sent.
+ */
+packetsSent: number, 
+/**
+ * Packets the gateway received.
+ */
+packetsReceived: number, 
+/**
+ * Packets lost to interference.
+ */
+packetsCollided: number, 
+/**
+ * Its radio's charge.
+ */
+energy: Energy, 
+/**
+ * Its station's 3D error, m (`count` 0: nothing arrived, nothing counted).
+ */
+error3d: Summary, };
+
+export type SwarmEcho = { 
+/**
+ * The one station every drone's ground station ran.
+ */
+station: ModelName, 
+/**
+ * Bandwidth, kHz (as `bw`).
+ */
+bandwidthKhz: number, 
+/**
+ * Synthetic flight(s): `all` or 1..30.
+ */
+synthetic?: number | 'all', 
+/**
+ * A bundled real flight: `canberra`.
+ */
+sample?: string, 
+/**
+ * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`.
+ */
+model: ModelChoice, 
+/**
+ * The station's prediction between packets: `paper` (default) or `bounded`.
+ */
+prediction: Prediction, 
+/**
+ * Station prediction step T, s.
+ */
+step: number, 
+/**
+ * Tilt-rate decay per station step.
+ */
+eta: number, 
+/**
+ * The sending policy.
+ */
+sender: SenderKind, 
+/**
+ * Error-triggered threshold, m.
+ */
+threshold: number, 
+/**
+ * Error-triggered heartbeat, s.
+ */
+maxInterval: number, 
+/**
+ * The duty-cycle rule.
+ */
+dutyCycleMode: DutyCycleMode, 
+/**
+ * Budget capacity, packets.
+ */
+burst: number, 
+/**
+ * Spreading factor 7..12 (with ADR: the start).
+ */
+sf: number, 
+/**
+ * Bandwidth, kHz.
+ */
+bw: number, 
+/**
+ * Coding rate index 1..4.
+ */
+cr: number, 
+/**
+ * MAC overhead, bytes (LoRaWAN 13; the paper's Table II: 0).
+ */
+overhead: number, 
+/**
+ * Duty-cycle limit, fraction.
+ */
+dutyCycle: number, 
+/**
+ * Transmit power, dBm.
+ */
+txPower: number, 
+/**
+ * simulate: distance from the flight's first point to the default gateway; swarm: every
+ * drone's starting distance from the centre, m.
+ */
+distance: number, 
+/**
+ * Path-loss exponent.
+ */
+pathLossExponent: number, 
+/**
+ * Shadowing standard deviation, dB (0: off).
+ */
+shadowing: number, 
+/**
+ * Antenna height of every gateway not given its own, m.
+ */
+gatewayHeight: number, 
+/**
+ * The gateways; empty for the one default gateway (simulate: `distance` m east of the
+ * flight's first point; swarm: at the centre).
+ */
+gateways: Array<GatewaySite>, 
+/**
+ * Uplink channels: 1 or 3.
+ */
+channels: number, 
+/**
+ * Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
+ */
+capture: boolean, 
+/**
+ * Inter-SF interference by the rejection matrix (off: SFs are orthogonal).
+ */
+interSf: boolean, 
+/**
+ * Adaptive data rate: `off`, `lorawan` or `tracking`.
+ */
+adr: AdrMode, 
+/**
+ * LoRaWAN ADR's device margin, dB.
+ */
+adrMargin: number, 
+/**
+ * LoRaWAN ADR's history, uplinks.
+ */
+adrHistory: number, 
+/**
+ * Sensor and filter rate, Hz.
+ */
+sensorRate: number, 
+/**
+ * Process noise q of Q = q·I (drone and station).
+ */
+q: number, 
+/**
+ * Number of drones.
+ */
+drones: number, 
+/**
+ * Seconds of chained synthetic flight per drone (when no flight is chosen).
+ */
+duration: number, 
+/**
+ * How SFs are shared out.
+ */
+sfPlan: SfPlan, 
+/**
+ * Seed of every random draw; `"random"` draws one ([`random_seed`]), which the echo gives.
+ */
+seed: number, 
+/**
+ * Include time series of the first flight (simulate).
+ */
+series: boolean, };
+
+export type SwarmReport = { 
+/**
+ * The settings.
+ */
+config: SwarmEcho, 
+/**
+ * Packets lost to interference at every gateway that could hear them / packets sent.
+ */
+collisionRate: number, 
+/**
+ * [`aloha_collision_rate`] per SF group, weighted by the packets each group sent: what the
+ * formula predicts for periodic senders without capture or inter-SF effects (one gateway).
+ */
+collisionRateTheory: number, 
+/**
+ * Packets no gateway received though one locked on (lost to interference).
+ */
+packetsCollided: number, 
+/**
+ * Packets below every gateway's sensitivity.
+ */
+packetsBelowSensitivity: number, 
+/**
+ * Packets audible somewhere but finding no free demodulation path where they were.
+ */
+packetsNoDemodulator: number, 
+/**
+ * Seconds on air, all drones.
+ */
+airtime: number, 
+/**
+ * Every drone's errors pooled, m.
+ */
+error3d: Summary, 
+/**
+ * The median over drones of each drone's p75, m (`null` when no drone received anything).
+ */
+medianDroneP75: number | null, 
+/**
+ * The drone radio's charge, averaged over the drones.
+ */
+energy: Energy, 
+/**
+ * Per drone.
+ */
+drones: Array<DroneReport>, 
+/**
+ * Uplinks sent by every drone.
+ */
+packetsSent: number, 
+/**
+ * Distinct uplinks the network server passed on (each once, however many gateways heard it).
+ */
+packetsReceived: number, 
+/**
+ * `packetsReceived / packetsSent` (0 when nothing was sent).
+ */
+deliveryRatio: number, 
+/**
+ * Copies the server removed: receptions beyond the first of each packet.
+ */
+duplicates: number, 
+/**
+ * Per gateway.
+ */
+gateways: Array<GatewayReport>, };
+
+export type NumberOption = { 
+/**
+ * The key in JSON and JS (camelCase); the CLI's long option is its kebab-case form.
+ */
+key: string, 
+/**
+ * The name the page's form shows.
+ */
+label: string, 
+/**
+ * Unit, as shown after a value (`""` for none).
+ */
+unit: string, 
+/**
+ * Default value.
+ */
+default: number, 
+/**
+ * Smallest accepted value.
+ */
+min: number, 
+/**
+ * Largest accepted value.
+ */
+max: number, 
+/**
+ * Whether `min` itself is refused (a value must be above it).
+ */
+aboveMin: boolean, 
+/**
+ * Whole numbers only.
+ */
+integer: boolean, 
+/**
+ * The only values accepted, when not empty.
+ */
+values: Array<number>, 
+/**
+ * One sentence: what it is and why these limits.
+ */
+help: string, };
+
+export type AirtimeParams = { 
+/**
+ * Spreading factor, 7..12.
+ */
+sf: number, 
+/**
+ * Bandwidth, kHz: 125, 250 or 500.
+ */
+bw: number, 
+/**
+ * Application payload, bytes.
+ */
+payload: number, 
+/**
+ * MAC overhead added to the payload, bytes (LoRaWAN: 13; raw LoRa as in the paper: 0).
+ */
+overhead: number, 
+/**
+ * Coding rate index 1..4 (4/5..4/8).
+ */
+cr: number, 
+/**
+ * Preamble symbols.
+ */
+preamble: number, 
+/**
+ * Implicit header mode.
+ */
+implicitHeader: boolean, 
+/**
+ * Payload CRC off.
+ */
+noCrc: boolean, 
+/**
+ * Low data rate optimisation.
+ */
+ldro: LdroMode, 
+/**
+ * Duty-cycle limit as a fraction (EU868 g1 sub-band: 0.01).
+ */
+dutyCycle: number, };
+
+export type AirtimeReport = { 
+/**
+ * Time on air, s.
+ */
+timeOnAir: number, 
+/**
+ * Symbol duration, s.
+ */
+symbolTime: number, 
+/**
+ * Payload symbols.
+ */
+payloadSymbols: number, 
+/**
+ * PHY payload bytes (payload + overhead).
+ */
+phyPayloadBytes: number, 
+/**
+ * Whether low data rate optimisation is on.
+ */
+lowDataRateOptimize: boolean, 
+/**
+ * Minimum interval between packets under the duty cycle, s.
+ */
+minInterval: number, 
+/**
+ * Packets per day within The Things Network's fair-use policy (30 s of airtime a day), for
+ * information: loratrack does not enforce it.
+ */
+ttnPacketsPerDay: number, };
+
+export type LinkBudgetParams = { 
+/**
+ * Bandwidth, kHz.
+ */
+bw: number, 
+/**
+ * Transmit power, dBm.
+ */
+txPower: number, 
+/**
+ * Path-loss exponent.
+ */
+pathLossExponent: number, 
+/**
+ * Shadowing standard deviation, dB.
+ */
+shadowing: number, 
+/**
+ * Gateway antenna height, m.
+ */
+gatewayHeight: number, 
+/**
+ * Horizontal distances, m (at most 1000 of them, each 1..100000).
+ */
+distances: Array<number>, };
+
+export type SfBudget = { 
+/**
+ * Spreading factor.
+ */
+sf: number, 
+/**
+ * Gateway sensitivity at the bandwidth, dBm.
+ */
+sensitivityDbm: number, 
+/**
+ * Horizontal distance at which the mean power meets the sensitivity, m.
+ */
+rangeM: number, 
+/**
+ * Share of packets received at each distance: Φ((mean power − sensitivity) / σ).
+ */
+delivery: Array<number>, };
+
+export type LinkBudgetReport = { 
+/**
+ * The distances, m.
+ */
+distances: Array<number>, 
+/**
+ * Mean received power at each, dBm (before shadowing), for a drone on the ground
+ * (3D distance from the gateway's antenna).
+ */
+meanRxDbm: Array<number>, 
+/**
+ * The shadowing σ, dB: 90 % of packets arrive within ±1.645 σ of the mean.
+ */
+shadowing: number, 
+/**
+ * SF7..SF12.
+ */
+sfs: Array<SfBudget>, };
+
+export type PredictParams = { 
+/**
+ * `dr`, `ctra-plus` or `3d-ctra`.
+ */
+model: ModelKind, 
+/**
+ * The state, SPEC §2 order and units.
+ */
+state: Array<number>, 
+/**
+ * Time to propagate over, s (≥ 0).
+ */
+dt: number, 
+/**
+ * Run in steps of this length (s), multiplying psi by eta after each, as the station does.
+ */
+step: number | null, 
+/**
+ * Tilt-rate decay per step, [0, 1]; only with `step` (default 0.9, paper Table I).
+ */
+eta: number | null, };
+
+export type PredictReport = { 
+/**
+ * The model.
+ */
+model: ModelKind, 
+/**
+ * The propagated state.
+ */
+state: Array<number>, };
+
+export type EncodeParams = { 
+/**
+ * The model (fixes the payload size).
+ */
+model: ModelKind, 
+/**
+ * The state, SPEC §2 order.
+ */
+state: Array<number>, 
+/**
+ * Origin both ends agree on, ENU m (default 0,0,0).
+ */
+origin: [number, number, number] | null, };
+
+export type EncodeReport = { 
+/**
+ * The payload as lowercase hex.
+ */
+hex: string, 
+/**
+ * Fields that were out of range and saturated.
+ */
+saturated: Array<string>, };
+
+export type DecodeParams = { 
+/**
+ * The model (fixes the payload size).
+ */
+model: ModelKind, 
+/**
+ * The payload as hex (upper or lower case).
+ */
+hex: string, 
+/**
+ * Origin both ends agree on, ENU m (default 0,0,0).
+ */
+origin: [number, number, number] | null, };
+
+export type DecodeReport = { 
+/**
+ * The model.
+ */
+model: ModelKind, 
+/**
+ * The decoded state.
+ */
+state: Array<number>, };
+
+/** Every numeric setting's default and accepted range, as the core validates them (src/options.rs). */
+export const OPTIONS: NumberOption[] = [
+  {
+    "key": "sf",
+    "label": "Spreading factor",
+    "unit": "",
+    "default": 7.0,
+    "min": 7.0,
+    "max": 12.0,
+    "aboveMin": false,
+    "integer": true,
+    "values": [],
+    "help": "Spreading factor; with ADR, the one the drone starts at."
+  },
+  {
+    "key": "bw",
+    "label": "Bandwidth",
+    "unit": "kHz",
+    "default": 250.0,
+    "min": 125.0,
+    "max": 500.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [
+      125.0,
+      250.0,
+      500.0
+    ],
+    "help": "LoRa bandwidth."
+  },
+  {
+    "key": "cr",
+    "label": "Coding rate",
+    "unit": "",
+    "default": 1.0,
+    "min": 1.0,
+    "max": 4.0,
+    "aboveMin": false,
+    "integer": true,
+    "values": [],
+    "help": "Coding rate n of 4/(4+n)."
+  },
+  {
+    "key": "overhead",
+    "label": "LoRaWAN overhead",
+    "unit": "bytes",
+    "default": 13.0,
+    "min": 0.0,
+    "max": 255.0,
+    "aboveMin": false,
+    "integer": true,
+    "values": [],
+    "help": "MAC overhead added to each payload: 13 for LoRaWAN, 0 as in the paper's Table II."
+  },
+  {
+    "key": "dutyCycle",
+    "label": "Duty cycle",
+    "unit": "",
+    "default": 0.01,
+    "min": 0.0001,
+    "max": 1.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "Duty-cycle limit as a fraction; 0.0001 is ten times below EU868's strictest sub-band."
+  },
+  {
+    "key": "txPower",
+    "label": "Tx power",
+    "unit": "dBm",
+    "default": 14.0,
+    "min": -30.0,
+    "max": 30.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "Drone transmit power."
+  },
+  {
+    "key": "distance",
+    "label": "Distance",
+    "unit": "m",
+    "default": 1000.0,
+    "min": 0.0,
+    "max": 100000.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "simulate: horizontal distance from the flight's first point to the gateway (placed east of it) when no gateway is given; swarm: every drone's starting distance from the centre."
+  },
+  {
+    "key": "pathLossExponent",
+    "label": "Path-loss exponent",
+    "unit": "",
+    "default": 3.76,
+    "min": 1.5,
+    "max": 6.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "Exponent of the log-distance path loss: free space 2, obstructed paths up to 6."
+  },
+  {
+    "key": "shadowing",
+    "label": "Shadowing sigma",
+    "unit": "dB",
+    "default": 4.0,
+    "min": 0.0,
+    "max": 20.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "Standard deviation of log-normal shadowing (0 turns it off)."
+  },
+  {
+    "key": "gatewayHeight",
+    "label": "Gateway height",
+    "unit": "m",
+    "default": 15.0,
+    "min": 0.0,
+    "max": 1000.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "Antenna height of every gateway not given its own."
+  },
+  {
+    "key": "gateway",
+    "label": "Gateway coordinate",
+    "unit": "m",
+    "default": 0.0,
+    "min": -100000.0,
+    "max": 100000.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "A gateway's east or north coordinate in the scenario's frame."
+  },
+  {
+    "key": "gateways",
+    "label": "Gateways",
+    "unit": "",
+    "default": 1.0,
+    "min": 1.0,
+    "max": 16.0,
+    "aboveMin": false,
+    "integer": true,
+    "values": [],
+    "help": "Number of gateways."
+  },
+  {
+    "key": "sensorRate",
+    "label": "Sensor rate",
+    "unit": "Hz",
+    "default": 10.0,
+    "min": 0.1,
+    "max": 1000.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "Drone sensor and filter rate."
+  },
+  {
+    "key": "step",
+    "label": "Prediction step T",
+    "unit": "s",
+    "default": 0.1,
+    "min": 0.001,
+    "max": 10.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "Station prediction step T."
+  },
+  {
+    "key": "eta",
+    "label": "Tilt decay eta",
+    "unit": "",
+    "default": 0.9,
+    "min": 0.0,
+    "max": 1.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "3D-CTRA's tilt-rate decay per station step."
+  },
+  {
+    "key": "q",
+    "label": "Process noise q",
+    "unit": "",
+    "default": 0.1,
+    "min": 0.0,
+    "max": 1000.0,
+    "aboveMin": true,
+    "integer": false,
+    "values": [],
+    "help": "Process noise q of Q = q I per second."
+  },
+  {
+    "key": "threshold",
+    "label": "Threshold",
+    "unit": "m",
+    "default": 2.0,
+    "min": 0.0,
+    "max": 10000.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "Error-triggered sending: the drift between the mirrored station and the drone's own estimate that triggers a packet."
+  },
+  {
+    "key": "maxInterval",
+    "label": "Heartbeat",
+    "unit": "s",
+    "default": 10.0,
+    "min": 0.0,
+    "max": 3600.0,
+    "aboveMin": true,
+    "integer": false,
+    "values": [],
+    "help": "Error-triggered sending: the longest silence (at least every drone's duty-cycle interval)."
+  },
+  {
+    "key": "burst",
+    "label": "Burst",
+    "unit": "packets",
+    "default": 10.0,
+    "min": 1.0,
+    "max": 3600.0,
+    "aboveMin": false,
+    "integer": true,
+    "values": [],
+    "help": "Budget duty-cycle rule: the most packets' airtime the credit holds (1 is per-packet)."
+  },
+  {
+    "key": "adrMargin",
+    "label": "ADR margin",
+    "unit": "dB",
+    "default": 10.0,
+    "min": 0.0,
+    "max": 30.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "LoRaWAN ADR: the device margin."
+  },
+  {
+    "key": "adrHistory",
+    "label": "ADR history",
+    "unit": "uplinks",
+    "default": 20.0,
+    "min": 1.0,
+    "max": 100.0,
+    "aboveMin": false,
+    "integer": true,
+    "values": [],
+    "help": "LoRaWAN ADR: the uplinks whose best SNR decides."
+  },
+  {
+    "key": "channels",
+    "label": "Channels",
+    "unit": "",
+    "default": 3.0,
+    "min": 1.0,
+    "max": 3.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [
+      1.0,
+      3.0
+    ],
+    "help": "Uplink channels: 1, or EU868's 868.1/868.3/868.5 MHz with a random one per packet (the 1 % duty cycle covers all three)."
+  },
+  {
+    "key": "drones",
+    "label": "Drones",
+    "unit": "",
+    "default": 12.0,
+    "min": 1.0,
+    "max": 500.0,
+    "aboveMin": false,
+    "integer": true,
+    "values": [],
+    "help": "Number of drones sharing the gateways."
+  },
+  {
+    "key": "duration",
+    "label": "Duration",
+    "unit": "s",
+    "default": 600.0,
+    "min": 10.0,
+    "max": 3600.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "Seconds of flight per drone when the drones fly chained synthetic flights."
+  },
+  {
+    "key": "seed",
+    "label": "Seed",
+    "unit": "",
+    "default": 1.0,
+    "min": 0.0,
+    "max": 9007199254740991.0,
+    "aboveMin": false,
+    "integer": true,
+    "values": [],
+    "help": "Seed of every random draw; the largest is 2^53 - 1, the largest integer a JavaScript number holds exactly."
+  }
+];
