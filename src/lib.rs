@@ -8,7 +8,7 @@
 //!
 //! The core (every module but `wasm`) is pure Rust with no JavaScript dependency; the WebAssembly
 //! bindings (`src/wasm.rs`) and the CLI (`src/bin/loratrack`) are thin skins over [`api`].
-//! Conventions (SPEC §2): local ENU metres, seconds, radians.
+//! Conventions (reference §2): local ENU metres, seconds, radians.
 
 pub mod api;
 pub mod codec;

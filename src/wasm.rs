@@ -75,7 +75,7 @@ pub fn decode(params: JsValue) -> Result<JsValue, JsError> {
 }
 
 /// `simulate({synthetic | sample | trajectory (CSV text), model?, sf?, bw?, distance?, seed?, …, series?}, progress?)`
-/// → `{config, results, series?}` (SPEC §8). Drone-side filter runs are cached between calls.
+/// → `{config, results, series?}` (reference §9). Drone-side filter runs are cached between calls.
 /// `progress(done, total)`, if given, is called as flights complete (it must not call back into
 /// this module).
 #[wasm_bindgen]
@@ -160,7 +160,7 @@ fn reporter(progress: &Option<js_sys::Function>) -> impl FnMut(usize, usize) + '
     }
 }
 
-/// Benchmark support for `npm run bench` (not part of the SPEC §9 API): times `steps` UKF
+/// Benchmark support for `npm run bench` (not part of the reference §9 API): times `steps` UKF
 /// predictions and updates inside WebAssembly, so the boundary crossing is not measured.
 /// `{model, steps}` → `{predictMicros, updateMicros}` per step.
 #[wasm_bindgen(js_name = benchUkf)]

@@ -1,4 +1,4 @@
-//! Time on air against the paper's Table II (with SPEC §3's two corrections) and independent
+//! Time on air against the paper's Table II (with reference §3's two corrections) and independent
 //! reference values; the channel's delivery statistics against the Gaussian tail.
 #![cfg(not(target_arch = "wasm32"))]
 

@@ -1,5 +1,5 @@
 //! The closed forms of DR, CTRA+ and 3D-CTRA against an accurate numerical integration of the
-//! ODE of SPEC §3, everywhere in the required envelope and especially at and near the special
+//! ODE of reference §3, everywhere in the required envelope and especially at and near the special
 //! cases omega = 0, psi = 0, omega = ±psi.
 #![cfg(not(target_arch = "wasm32"))]
 

@@ -412,3 +412,64 @@ fn swarm_runs_across_the_boundary_with_progress() {
     let e = wasm::swarm(obj(&[("drones", 501.into())]), JsValue::UNDEFINED).unwrap_err();
     assert!(error_message(e).contains("drones must be 1..500"));
 }
+
+#[wasm_bindgen_test]
+fn gateways_cross_the_boundary_and_each_is_reported() {
+    let gateways = js_sys::JSON::parse(
+        r#"[{"east": 5000, "north": 0}, {"east": 0, "north": 0, "height": 30}]"#,
+    )
+    .unwrap();
+    let r = wasm::simulate(
+        obj(&[
+            ("synthetic", 1.into()),
+            ("model", "dr".into()),
+            ("distance", 5000.into()),
+            ("gateways", gateways),
+        ]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap();
+    let g: js_sys::Array = get(&r, "gateways").dyn_into().unwrap();
+    assert_eq!(g.length(), 2);
+    assert_eq!(num(&g.get(1), "height"), 30.0);
+    let heard = num(&g.get(0), "heard") + num(&g.get(1), "heard");
+    assert_eq!(heard - num(&r, "duplicates"), num(&r, "packetsReceived"));
+    assert!(num(&r, "packetsReceived") > 0.0);
+    let e = wasm::simulate(
+        obj(&[
+            ("synthetic", 1.into()),
+            (
+                "gateways",
+                js_sys::JSON::parse(r#"[{"east": 1e9, "north": 0}]"#).unwrap(),
+            ),
+        ]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    assert!(error_message(e).contains("gateway must be -100000..100000 m"));
+}
+
+#[wasm_bindgen_test]
+fn limits_and_stations_come_from_the_core() {
+    let limits: js_sys::Array = wasm::limits().unwrap().dyn_into().unwrap();
+    let sf = limits
+        .iter()
+        .find(|o| get(o, "key").as_string().as_deref() == Some("sf"))
+        .expect("sf is in the table");
+    assert_eq!(
+        (num(&sf, "min"), num(&sf, "max"), num(&sf, "default")),
+        (7.0, 12.0, 7.0)
+    );
+    let all: js_sys::Array = wasm::stations_of(obj(&[("model", "all,imm".into())]))
+        .unwrap()
+        .dyn_into()
+        .unwrap();
+    let names: Vec<String> = all.iter().filter_map(|v| v.as_string()).collect();
+    assert_eq!(names, ["dr", "ctra-plus", "3d-ctra", "imm"]);
+    let e = wasm::simulate(
+        obj(&[("synthetic", 1.into()), ("spreadingFactor", 9.into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    assert!(error_message(e).contains("unknown setting 'spreadingFactor'"));
+}

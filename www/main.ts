@@ -313,7 +313,10 @@ function renderResults(r: SimReport): void {
     <th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th></tr></thead>
     <tbody>${rows}</tbody></table></div>`;
   $('#ttn').innerHTML = ttnNote(r);
-  $('#network-note').textContent = networkNote(r.packetsSent, r.packetsReceived, r.duplicates, r.gateways);
+  // One gateway and no downlink: the table's delivery column already says it all.
+  const networkShown = r.gateways.length > 1 || r.gateways.some((g) => g.downlinksSent + g.downlinksDropped > 0);
+  $('#network-note').hidden = !networkShown;
+  $('#network-note').textContent = networkShown ? networkNote(r.packetsSent, r.packetsReceived, r.duplicates, r.gateways) : '';
 
   renderRateUse(r);
   const width = (id: string) => Math.max(300, $(id).clientWidth || 600);

@@ -1,4 +1,4 @@
-//! `airtime` / `timeOnAir`: time on air and duty-cycle interval of one packet (SPEC §6, §8).
+//! `airtime` / `timeOnAir`: time on air and duty-cycle interval of one packet (reference §6, §8).
 
 use super::ApiError;
 use crate::lora::{self, LdroMode, LoraParams, LORAWAN_OVERHEAD_BYTES};
@@ -66,7 +66,7 @@ impl AirtimeParams {
     }
 }
 
-/// Output of `airtime` (SPEC §8).
+/// Output of `airtime` (reference §9).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]

@@ -1,5 +1,5 @@
 //! `linkBudget`: why packets stop arriving. Received power against distance, the sensitivity
-//! and range of each spreading factor, and the delivery ratio the shadowing leaves (SPEC §6).
+//! and range of each spreading factor, and the delivery ratio the shadowing leaves (reference §6).
 
 use super::ApiError;
 use crate::lora::{Bandwidth, Channel, ChannelParams, SpreadingFactor};

@@ -1,4 +1,4 @@
-//! The operations loratrack offers, with their input and output shapes (SPEC §8–9).
+//! The operations loratrack offers, with their input and output shapes (reference §9).
 //!
 //! The CLI and the WebAssembly bindings are thin skins over these functions: both deserialize
 //! the same parameter structs (JS objects use the CLI's long option names in camelCase) and

@@ -1,4 +1,4 @@
-//! `encode` / `decode`: the state payload as hex (SPEC §5, §8).
+//! `encode` / `decode`: the state payload as hex (reference §5, §8).
 
 use super::ApiError;
 use crate::codec::{self, CodecError};
@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 pub struct EncodeParams {
     /// The model (fixes the payload size).
     pub model: ModelKind,
-    /// The state, SPEC §2 order.
+    /// The state, reference §2 order.
     pub state: Vec<f64>,
     /// Origin both ends agree on, ENU m (default 0,0,0).
     #[serde(default)]

@@ -1,4 +1,4 @@
-//! `predict`: noise-free propagation of a state under one model (SPEC §8).
+//! `predict`: noise-free propagation of a state under one model (reference §9).
 
 use super::ApiError;
 use crate::models::{with_model, ModelError, ModelKind, MotionModel, MAX_DT, STATE_RANGES};
@@ -15,7 +15,7 @@ pub const MAX_STEPS: f64 = 1e7;
 pub struct PredictParams {
     /// `dr`, `ctra-plus` or `3d-ctra`.
     pub model: ModelKind,
-    /// The state, SPEC §2 order and units.
+    /// The state, reference §2 order and units.
     pub state: Vec<f64>,
     /// Time to propagate over, s (≥ 0).
     pub dt: f64,

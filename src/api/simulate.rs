@@ -1,4 +1,4 @@
-//! `simulate` and `sweep --paper` (SPEC §8).
+//! `simulate` and `sweep --paper` (reference §9).
 
 use super::ApiError;
 use crate::sim::{

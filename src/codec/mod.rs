@@ -1,4 +1,4 @@
-//! The 9/11/12-byte state payload (SPEC §5; paper Fig. "payload", §III-C).
+//! The 9/11/12-byte state payload (reference §5; paper Fig. "payload", §III-C).
 //!
 //! | bytes | field | encoding | range | step (max error = step/2) |
 //! | --- | --- | --- | --- | --- |
@@ -15,7 +15,7 @@
 //! Ranges are a quadcopter's physical limits (speeds up to ~20 m/s, about 0.6 g of tangential
 //! acceleration, turn and tilt rates up to 2 rad/s) with margin. Values outside a range saturate
 //! and the encoder names the fields that did. A pitch beyond ±π/2 (a loop) is first rewritten as
-//! the identical motion (theta + π, π − phi, −psi), which the ODE of SPEC §3 cannot tell apart.
+//! the identical motion (theta + π, π − phi, −psi), which the ODE of reference §3 cannot tell apart.
 
 mod error;
 mod fields;

@@ -29,7 +29,7 @@ fn canonical_pitch(state: &mut [f64]) {
     }
 }
 
-/// Quantises `state` (the model's components in SPEC §2 order) relative to `origin` (m).
+/// Quantises `state` (the model's components in reference §2 order) relative to `origin` (m).
 ///
 /// ```
 /// use loratrack::{encode, decode, ModelKind};
@@ -80,7 +80,7 @@ pub fn encode(model: ModelKind, state: &[f64], origin: [f64; 3]) -> Result<Encod
     Ok(Encoded { bytes, saturated })
 }
 
-/// Decodes a payload into the model's state (SPEC §2 order), positions relative to `origin`.
+/// Decodes a payload into the model's state (reference §2 order), positions relative to `origin`.
 pub fn decode(model: ModelKind, bytes: &[u8], origin: [f64; 3]) -> Result<Vec<f64>, CodecError> {
     if bytes.len() != model.payload_bytes() {
         return Err(CodecError::Length {

@@ -1,4 +1,4 @@
-//! The Unscented Kalman Filter that runs on the drone and at the station (SPEC §4; paper §III-C,
+//! The Unscented Kalman Filter that runs on the drone and at the station (reference §4; paper §III-C,
 //! van der Merwe 2004).
 
 mod noise;

@@ -1,4 +1,4 @@
-//! The paper's noise settings (Table I; SPEC §4).
+//! The paper's noise settings (Table I; reference §4).
 
 use nalgebra::{SMatrix, SVector};
 

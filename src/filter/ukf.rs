@@ -5,12 +5,12 @@ use crate::math::wrap_angle;
 use crate::models::MotionModel;
 use nalgebra::{Cholesky, SMatrix, SVector};
 
-/// An Unscented Kalman Filter over an `N`-dimensional state (van der Merwe 2004; SPEC §4).
+/// An Unscented Kalman Filter over an `N`-dimensional state (van der Merwe 2004; reference §4).
 ///
 /// * Scaled sigma points ([`SigmaParams`]), angle-aware means and wrapped residuals for the
 ///   components listed as angles (theta, phi for the motion models).
 /// * Prediction through any [`MotionModel`]; the update takes a measurement of the full state
-///   (the drone's sensors measure every component, SPEC §4), so h is the identity.
+///   (the drone's sensors measure every component, reference §4), so h is the identity.
 /// * The covariance is symmetrised after every step; when its Cholesky factorisation fails
 ///   (rounding has made it indefinite) jitter is added on the diagonal until it succeeds, and the
 ///   event is counted in [`Ukf::recoveries`]. The filter never yields NaN from a finite input.

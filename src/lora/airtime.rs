@@ -1,4 +1,4 @@
-//! LoRa time on air (Semtech SX1276 datasheet §4.1.1.7; SPEC §6).
+//! LoRa time on air (Semtech SX1276 datasheet §4.1.1.7; reference §6).
 
 use super::LoraError;
 use serde::{Deserialize, Serialize};
@@ -165,7 +165,7 @@ pub struct Airtime {
     pub low_data_rate_optimize: bool,
 }
 
-/// Time on air of a packet with `phy_payload_bytes` bytes of PHY payload (SPEC §6):
+/// Time on air of a packet with `phy_payload_bytes` bytes of PHY payload (reference §6):
 ///
 /// ```text
 /// T_sym      = 2^SF / BW

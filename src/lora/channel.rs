@@ -1,4 +1,4 @@
-//! Link budget: log-distance path loss and gateway sensitivity (SPEC §6, ns-3 `lorawan` defaults).
+//! Link budget: log-distance path loss and gateway sensitivity (reference §6, ns-3 `lorawan` defaults).
 
 use super::{Bandwidth, LoraError, SpreadingFactor};
 use crate::math;

@@ -1,4 +1,4 @@
-//! EU868 duty-cycle limits (ETSI EN 300 220-2 §7.2.3; LoRaWAN RP002 §2.4; SPEC §6).
+//! EU868 duty-cycle limits (ETSI EN 300 220-2 §7.2.3; LoRaWAN RP002 §2.4; reference §6).
 
 use super::LoraError;
 use serde::{Deserialize, Serialize};

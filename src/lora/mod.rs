@@ -2,7 +2,7 @@
 //!
 //! Sources: Semtech SX1276 datasheet §4.1.1.7 (time on air), ETSI EN 300 220 / LoRaWAN Regional
 //! Parameters RP002 (EU868 duty cycle), and the ns-3 `lorawan` module used in the paper's
-//! evaluation (channel defaults; SPEC §6).
+//! evaluation (channel defaults; reference §6).
 
 mod adr;
 mod airtime;

@@ -1,4 +1,4 @@
-//! Error statistics: summaries (mean and percentiles), boxplots (SPEC §8; paper Figs. 3–6) and the
+//! Error statistics: summaries (mean and percentiles), boxplots (reference §9; paper Figs. 3–6) and the
 //! consistency of the station's uncertainty (95 % coverage).
 
 mod boxplot;

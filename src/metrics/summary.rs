@@ -1,7 +1,7 @@
 use super::percentile;
 use serde::Serialize;
 
-/// Summary of absolute errors (m): the shape of `error3d`, `errorX`, … in SPEC §8. With no
+/// Summary of absolute errors (m): the shape of `error3d`, `errorX`, … in reference §9. With no
 /// samples every statistic is NaN (JSON `null`) and `count` is 0.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]

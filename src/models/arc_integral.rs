@@ -22,7 +22,7 @@ use crate::math::sin_cos;
 ///
 /// ```
 /// use loratrack::arc_integral;
-/// // 2D CTRA reference (SPEC §3): theta = 0, v = 1, a = 1, omega = 1, dt = 0.5.
+/// // 2D CTRA reference (reference §3): theta = 0, v = 1, a = 1, omega = 1, dt = 0.5.
 /// let (x, y) = arc_integral(0.0, 1.0, 1.0, 1.0, 0.5);
 /// assert!((x - 0.5967208697966773).abs() < 1e-15);
 /// assert!((y - 0.16305169576864387).abs() < 1e-15);

@@ -21,7 +21,7 @@ use nalgebra::SVector;
 ///
 /// The paper's printed forms divide by (omega ± psi) and psi and need separate special cases for
 /// psi = 0 and omega = ±psi; [`arc_integral`](crate::arc_integral) is exact at and near all of them, so this one
-/// expression covers every case continuously (SPEC §3). `phi` is kept in (−pi, pi]: a pitch past
+/// expression covers every case continuously (reference §3). `phi` is kept in (−pi, pi]: a pitch past
 /// ±pi/2 is a loop, which the ODE describes without any special handling.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Ctra3d;

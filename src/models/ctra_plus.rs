@@ -16,7 +16,7 @@ use nalgebra::SVector;
 /// z(t)     = z0 + sin(phi) (v0 t + a t²/2)
 /// ```
 ///
-/// Erratum (SPEC §3): the paper says the horizontal part equals 2D CTRA multiplied by sin(phi);
+/// Erratum (reference §3): the paper says the horizontal part equals 2D CTRA multiplied by sin(phi);
 /// it is cos(phi). The 2D CTRA integral is [`arc_integral`](crate::arc_integral), exact at omega = 0.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CtraPlus;

@@ -6,7 +6,7 @@ use nalgebra::SVector;
 
 /// Dead reckoning: the drone keeps its velocity vector.
 ///
-/// State (6): `[x, y, z, theta, phi, v]` — metres, radians, m/s (SPEC §2).
+/// State (6): `[x, y, z, theta, phi, v]` — metres, radians, m/s (reference §2).
 ///
 /// ```text
 /// x(t) = x0 + v t cos(theta) cos(phi)
@@ -14,7 +14,7 @@ use nalgebra::SVector;
 /// z(t) = z0 + v t sin(phi)
 /// ```
 ///
-/// This is the ODE of SPEC §3 with a = omega = psi = 0, i.e. constant velocity in 3D.
+/// This is the ODE of reference §3 with a = omega = psi = 0, i.e. constant velocity in 3D.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Dr;
 

@@ -30,7 +30,7 @@ impl ModelKind {
         }
     }
 
-    /// Payload size in bytes (paper Fig. "payload", SPEC §5).
+    /// Payload size in bytes (paper Fig. "payload", reference §5).
     pub fn payload_bytes(self) -> usize {
         match self {
             ModelKind::Dr => 9,

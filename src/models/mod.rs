@@ -1,6 +1,6 @@
-//! The three motion models of the paper (SPEC §2–3): DR, CTRA+ and 3D-CTRA.
+//! The three motion models of the paper (reference §2–3): DR, CTRA+ and 3D-CTRA.
 //!
-//! All three share the convention of SPEC §2: local ENU metres, seconds, radians, and states that
+//! All three share the convention of reference §2: local ENU metres, seconds, radians, and states that
 //! begin `x y z theta phi v`. `theta` and `phi` describe the *velocity vector* (course and
 //! flight-path angle), not the airframe.
 

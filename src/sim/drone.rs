@@ -1,4 +1,4 @@
-//! The drone side: noisy sensors and the on-board UKF (SPEC §4, "Drone side").
+//! The drone side: noisy sensors and the on-board UKF (reference §4, "Drone side").
 
 use crate::filter::{measurement_noise, process_noise, SigmaParams, Ukf};
 use crate::math::wrap_angle;

@@ -1,4 +1,4 @@
-//! The JSON shapes of `simulate` and `sweep` (SPEC §8): a contract, changed only additively.
+//! The JSON shapes of `simulate` and `sweep` (reference §9): a contract, changed only additively.
 
 use super::network::{GatewayReport, Network};
 use super::packet::Transmission;

@@ -1,4 +1,4 @@
-//! CSV import of a flight (SPEC §7).
+//! CSV import of a flight (reference §11).
 
 use super::{Trajectory, TrajectoryError};
 

@@ -1,4 +1,4 @@
-//! The model state `theta phi v a omega psi` from velocity and acceleration (SPEC §2, §7).
+//! The model state `theta phi v a omega psi` from velocity and acceleration (reference §2, §7).
 
 use crate::math::{atan2, hypot};
 
@@ -8,7 +8,7 @@ pub const HOVER_SPEED: f64 = 0.2;
 
 /// Derives `[x y z theta phi v a omega psi]` at every sample.
 ///
-/// * theta = atan2(vy, vx), phi = atan2(vz, |v_h|), v = |v| (SPEC §3 erratum: with the root).
+/// * theta = atan2(vy, vx), phi = atan2(vz, |v_h|), v = |v| (reference §3 erratum: with the root).
 /// * a = v·acc / |v| (tangential acceleration), omega = dtheta/dt = (vx ay − vy ax) / |v_h|²,
 ///   psi = dphi/dt = (|v_h|² az − vz (vx ax + vy ay)) / (|v_h| |v|²).
 ///

@@ -1,5 +1,5 @@
 //! Ground-truth flights: the synthetic Mid-Air-like set, CSV import and the bundled real flight
-//! (SPEC §7).
+//! (reference §11).
 
 mod chain;
 mod csv;

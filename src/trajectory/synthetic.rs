@@ -1,4 +1,4 @@
-//! The canonical synthetic flight set, imitating the paper's Mid-Air flights (SPEC §7).
+//! The canonical synthetic flight set, imitating the paper's Mid-Air flights (reference §11).
 
 use super::Trajectory;
 use crate::math::{cos, sin};

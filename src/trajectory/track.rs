@@ -5,7 +5,7 @@ use super::TrajectoryError;
 use crate::math::{distance, wrap_angle};
 
 /// A flight: times (s) and, at each, position (m), velocity (m/s) and acceleration (m/s²) in
-/// local ENU, plus the derived 3D-CTRA state `x y z theta phi v a omega psi` (SPEC §2).
+/// local ENU, plus the derived 3D-CTRA state `x y z theta phi v a omega psi` (reference §2).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Trajectory {
     /// A short name ("synthetic 3", "canberra", a file name).

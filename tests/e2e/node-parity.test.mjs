@@ -1,5 +1,5 @@
 // The WebAssembly build under Node gives the same numbers as the native CLI for the same seed
-// (SPEC §9: loadable in Node with initSync). Needs `npm run build` (www/pkg) first.
+// (reference §9: loadable in Node with initSync). Needs `npm run build` (www/pkg) first.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';

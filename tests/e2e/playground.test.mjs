@@ -306,7 +306,7 @@ test('where no packet arrives, every panel says so instead of NaN or blanks, and
 });
 
 test('bad values in a shared link are explained and replaced by defaults', async () => {
-  for (const [query, key] of [['?sf=13', 'sf'], ['?bw=300', 'bw'], ['?cr=9', 'cr'], ['?distance=50000', 'distance']]) {
+  for (const [query, key] of [['?sf=13', 'sf'], ['?bw=300', 'bw'], ['?cr=9', 'cr'], ['?distance=200000', 'distance'], ['?gateways=1,2,3,4', 'gateways']]) {
     const { page, problems } = await open(query);
     const notice = await page.locator('#notice').textContent();
     assert.match(notice, new RegExp(`${key}=`), `${query}: ${notice}`);
@@ -315,6 +315,14 @@ test('bad values in a shared link are explained and replaced by defaults', async
     assert.deepEqual(problems, []);
     await page.close();
   }
+});
+
+test('a distance the core accepts but the slider cannot show is said to be moved', async () => {
+  const { page, problems } = await open('?distance=50000');
+  assert.match(await page.locator('#notice').textContent(), /50000 m is shown and simulated as 10000 m/);
+  assert.equal(await page.locator('#distance-value').textContent(), '10.0 km');
+  assert.deepEqual(problems, []);
+  await page.close();
 });
 
 test('an invalid field is marked beside itself, nothing runs, and the old results say they are old', async () => {
@@ -382,6 +390,8 @@ test('copying a link after a CSV upload says the link cannot carry the file', as
   await page.locator('#csv').setInputFiles(path);
   await waitForResults(page, before);
   await page.getByRole('button', { name: 'Copy link' }).click();
+  // The clipboard answers asynchronously: wait for the message, never read right after the click.
+  await page.waitForFunction(() => document.querySelector('#copy-status')?.textContent !== '');
   assert.match(await page.locator('#copy-status').textContent(), /cannot carry it/);
   assert.deepEqual(problems, []);
 });
@@ -472,5 +482,56 @@ test('the swarm panel runs growing swarms and sets the collision rate against AL
   const note = await page.locator('#chart-swarm .note').textContent();
   assert.match(note, /20 drones, 3 channels.*collided \(ALOHA predicts [\d.]+ %\)/);
   assert.ok((await page.locator('#chart-swarm svg').count()) >= 2);
+  assert.deepEqual(problems, []);
+});
+
+test('gateways are added, moved and removed in the form; each is reported, kept in the link, and the numbers equal the CLI', async () => {
+  const { page, problems } = await open('?distance=5000&model=3d-ctra');
+  const alone = number(await cell(page, '3d-ctra', 'delivery'));
+  // The first added gateway keeps the default one where it was; the second stands at the start.
+  let before = await tableHtml(page);
+  await page.getByRole('button', { name: 'Add gateway' }).click();
+  await waitForResults(page, before);
+  assert.equal(await page.getByLabel('Gateway 1 east (m)').inputValue(), '5000');
+  assert.equal(await page.getByLabel('Gateway 2 east (m)').inputValue(), '0');
+  assert.ok(number(await cell(page, '3d-ctra', 'delivery')) >= alone, 'a second gateway never delivers less');
+  const note = await page.locator('#network-note').textContent();
+  assert.match(note, /gateway 1 at \(5\.0, 0\.0\) km heard \d+ \(\d+ only it\); gateway 2 at \(0\.0, 0\.0\) km heard \d+/);
+  assert.match(page.url(), /gateways=5000%2C0%3B0%2C0/);
+  // Move the second gateway north: the URL and the numbers follow (the input event starts the
+  // run, and with it data-busy, before fill() returns).
+  await page.getByLabel('Gateway 2 north (m)').fill('2500');
+  await page.waitForFunction(() => !document.body.hasAttribute('data-busy'));
+  assert.match(page.url(), /gateways=5000%2C0%3B0%2C2500/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
+  const browserJson = JSON.parse(readFileSync(await download.path(), 'utf8'));
+  const cli = JSON.parse(
+    execFileSync('cargo', ['run', '--quiet', '--', 'simulate', '--synthetic', '1', '--model', '3d-ctra', '--distance', '5000', '--gateway', '5000,0', '--gateway', '0,2500', '--json'], { encoding: 'utf8' }),
+  );
+  assert.deepStrictEqual(browserJson.results, cli.results);
+  // An impossible coordinate is refused beside the form, and nothing runs.
+  await page.getByLabel('Gateway 2 east (m)').fill('200000');
+  await page.waitForFunction(() => /Gateway 2: each coordinate/.test(document.querySelector('#status')?.textContent ?? ''));
+  // Removing both brings back the one default gateway.
+  await page.getByLabel('Gateway 2 east (m)').fill('0');
+  before = await tableHtml(page);
+  await page.getByRole('button', { name: 'Remove gateway 2' }).click();
+  await page.getByRole('button', { name: 'Remove gateway 1' }).click();
+  await waitForResults(page, before);
+  await page.waitForFunction(() => !document.body.hasAttribute('data-busy'));
+  assert.doesNotMatch(page.url(), /gateways=/);
+  assert.equal(await page.locator('#network-note').isHidden(), true);
+  assert.deepEqual(problems, []);
+});
+
+test('the swarm panel takes the single drone settings, ADR included, and reports downlinks and energy', async () => {
+  const { page, problems } = await open('?sf=9&bw=125&adr=lorawan');
+  await page.getByLabel('Drones', { exact: true }).selectOption('20');
+  await page.getByLabel('SF plan').selectOption('fixed');
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  const note = await page.locator('#chart-swarm .note').textContent();
+  assert.match(note, /all on SF9/);
+  assert.match(note, /\d+ ADR downlinks sent, \d+ dropped; radio [\d.]+ mC per uplink/);
   assert.deepEqual(problems, []);
 });

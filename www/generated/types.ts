@@ -1320,7 +1320,7 @@ export type PredictParams = {
  */
 model: ModelKind, 
 /**
- * The state, SPEC §2 order and units.
+ * The state, reference §2 order and units.
  */
 state: Array<number>, 
 /**
@@ -1352,7 +1352,7 @@ export type EncodeParams = {
  */
 model: ModelKind, 
 /**
- * The state, SPEC §2 order.
+ * The state, reference §2 order.
  */
 state: Array<number>, 
 /**

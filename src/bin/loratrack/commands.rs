@@ -15,11 +15,11 @@ use serde::Serialize;
 pub enum Command {
     /// Time on air and 1 % duty-cycle interval of one LoRa packet (Semtech SX1276 formula).
     Airtime(AirtimeArgs),
-    /// Noise-free propagation of a state with one motion model (closed form, SPEC §3).
+    /// Noise-free propagation of a state with one motion model (closed form, reference §3).
     Predict(PredictArgs),
-    /// Quantise a state into the model's 9/11/12-byte payload (SPEC §5).
+    /// Quantise a state into the model's 9/11/12-byte payload (reference §5).
     Encode(EncodeArgs),
-    /// Decode a payload back into a state (SPEC §5).
+    /// Decode a payload back into a state (reference §5).
     Decode(DecodeArgs),
     /// Simulate tracking over LoRa: drone UKF, duty-cycled packets, channel, station predictor.
     Simulate(Box<SimulateArgs>),
@@ -179,7 +179,7 @@ pub struct ModelState {
     /// Motion model: dr (x y z theta phi v), ctra-plus (+ a omega) or 3d-ctra (+ a omega psi).
     #[arg(long)]
     model: ModelKind,
-    /// State, comma-separated, SPEC §2 order and units (m, rad, m/s, m/s^2, rad/s), e.g. 0,0,0,0,0,1,1,1. Ranges: x y z ±1e7 m, theta phi ±1000 rad, v a ±1000, omega psi ±100 rad/s.
+    /// State, comma-separated, reference §2 order and units (m, rad, m/s, m/s^2, rad/s), e.g. 0,0,0,0,0,1,1,1. Ranges: x y z ±1e7 m, theta phi ±1000 rad, v a ±1000, omega psi ±100 rad/s.
     #[arg(
         long,
         value_delimiter = ',',

@@ -1,4 +1,4 @@
-//! `loratrack`: the command-line skin over [`loratrack::api`] (SPEC §8).
+//! `loratrack`: the command-line skin over [`loratrack::api`] (reference §9).
 //!
 //! Every command prints a human summary, or with `--json` exactly one JSON object on stdout.
 //! Bad input exits with status 2 and one line `error: ...` on stderr.

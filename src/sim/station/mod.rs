@@ -1,5 +1,5 @@
 //! The station side: predictors that consume received packets and estimate the drone's position
-//! every T (SPEC §4, "Station side"), and the loop that scores them against the truth.
+//! every T (reference §4, "Station side"), and the loop that scores them against the truth.
 //!
 //! * [`StationPredictor`]: one motion model, reset on each packet (the paper's station), with the
 //!   paper's or a bounded prediction ([`Prediction`]).

@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 #[serde(rename_all = "lowercase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum Prediction {
-    /// The paper (§III-B; SPEC §4): constant acceleration and turn rate for as long as no packet
+    /// The paper (§III-B; reference §4): constant acceleration and turn rate for as long as no packet
     /// comes, only psi decaying by eta per step. Reproduces the paper's numbers; the default.
     #[default]
     Paper,

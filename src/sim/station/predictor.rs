@@ -1,4 +1,4 @@
-//! One motion model's station predictor: replace on receipt, then predict (SPEC §4).
+//! One motion model's station predictor: replace on receipt, then predict (reference §4).
 
 use super::{Bounded, Bounds, Prediction, Tracker};
 use crate::codec::quantization_variance;

@@ -10,7 +10,7 @@ use serde::Serialize;
 /// The collision probability of one packet among `n` periodic senders that share an SF and hop
 /// at random over `channels` channels, each on air a fraction `duty_cycle` of the time: another
 /// sender's packet overlaps it with probability 2·DC (a window of two packet lengths) and lands
-/// on its channel with probability 1/C, so P = 1 − (1 − 2·DC/C)^(n−1) (pure ALOHA; SPEC §10).
+/// on its channel with probability 1/C, so P = 1 − (1 − 2·DC/C)^(n−1) (pure ALOHA; reference §10).
 ///
 /// ```
 /// let p = loratrack::aloha_collision_rate(0.01, 3, 12);
