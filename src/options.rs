@@ -5,7 +5,6 @@
 //! (min, max, step and help of each field, `www/generated/options.ts`) all read this table, so a
 //! limit cannot differ between them. Sources of the defaults: `docs/reference.md` §"Defaults".
 
-use core::fmt::Write;
 use serde::Serialize;
 
 /// One numeric setting: its JSON key, what users call it, its unit, default and accepted range.
@@ -112,11 +111,10 @@ impl NumberOption {
         format!("{}..{}{unit}{whole}", self.min, self.max)
     }
 
-    /// The CLI help line: the sentence, the range and the default.
+    /// The CLI help line: the sentence and the range (clap adds the default, from the same
+    /// table).
     pub fn cli_help(&self) -> String {
-        let mut s = format!("{} Accepted: {}.", self.help, self.range_text());
-        let _ = write!(s, " [default: {}]", self.default);
-        s
+        format!("{} Accepted: {}.", self.help, self.range_text())
     }
 
     /// `Ok(v)` when accepted, otherwise the error naming the key, the value and the range.

@@ -356,7 +356,7 @@ pub fn swarm_markdown(rows: &[SwarmReport], markdown: bool) -> String {
                  8 demodulators, seed {}. `SF7` puts every drone on SF7; `spread` gives SF7..SF12 in turn. With 3 channels each \
                  packet picks one of 868.1/868.3/868.5 MHz at random. `theory` is the pure-ALOHA collision rate \
                  1 − (1 − 2·DC/C)^(n−1) per SF group (n drones on an SF), which capture lowers and inter-SF interference \
-                 raises (the formula assumes periodic senders). The error-triggered sender (2 m threshold, 10 s heartbeat) saves \
+                 raises (the formula assumes periodic senders). The error-triggered sender (2 m threshold; heartbeat 10 s on SF7, 150 s with spread SFs, which must cover SF12's interval) saves \
                  airtime only where the station's prediction holds for a whole interval, which at these intervals (6 s at \
                  SF7 / 125 kHz with LoRaWAN overhead, minutes at SF12) it rarely does. \
                  `p75 (median drone)` is the median over drones of each drone's 75th-percentile 3D error.\n\n",
