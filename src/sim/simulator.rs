@@ -8,12 +8,9 @@ use super::parallel::par_map_ticking;
 use super::pooled::{axis_every, model_series, series_stride, Pooled};
 use super::radio::DroneRadio;
 use super::report::{Delivery, ModelSeries, RunConfig, Series, SimReport};
-use super::scenario::{
-    GatewaySite, SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated,
-};
+use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
 use super::station::{
-    new_tracker, track_station, Bounds, FlightChains, Prediction, StationModel, StationSetup,
-    StationTrack,
+    new_tracker, track_station, FlightChains, Prediction, StationModel, StationTrack,
 };
 use super::streams;
 use super::SimError;
@@ -215,15 +212,7 @@ impl Simulator {
             let start = DroneRadio::new(&cfg.radio, bytes, s.radio.duty_cycle, cfg.adr.mode)?;
             let (toa, interval) = (start.current().time_on_air, start.current().interval);
             cfg.check_heartbeat(interval)?;
-            let setup = StationSetup {
-                prediction: s.station.prediction,
-                bounds: Bounds::default(),
-                step: s.station.step,
-                eta: s.station.eta,
-                q: s.drone.q,
-                r_diagonal: cfg.r_diagonal,
-                interval,
-            };
+            let setup = cfg.station_setup(interval);
             let key = DroneKey {
                 flights: flight_key.clone(),
                 model: model.sent_model(),
@@ -338,7 +327,8 @@ impl Simulator {
             let f = &flights[0];
             let every = series_stride(f.t.len());
             let axis = |k: usize| axis_every(&f.pos, k, every);
-            let gateways: Vec<[f64; 3]> = sites(cfg)
+            let gateways: Vec<[f64; 3]> = cfg
+                .sites(s.channel.distance)
                 .iter()
                 .map(|g| {
                     let [e, n, h] = g.position(s.channel.gateway_height);
@@ -386,21 +376,6 @@ impl Simulator {
     }
 }
 
-/// The gateways of a run: as given, or the one default gateway — for `simulate` `distance` m
-/// east of the flight's first point.
-pub(crate) fn sites(cfg: &Validated) -> Vec<GatewaySite> {
-    let s = cfg.s();
-    if s.network.gateways.is_empty() {
-        vec![GatewaySite {
-            east: s.channel.distance,
-            north: 0.0,
-            height: None,
-        }]
-    } else {
-        s.network.gateways.clone()
-    }
-}
-
 /// Reads or builds the flights `source` names.
 pub(crate) fn load_flights(source: &TrajectorySource) -> Result<Vec<Trajectory>, SimError> {
     Ok(match source {
@@ -422,7 +397,7 @@ pub(crate) fn load_flights(source: &TrajectorySource) -> Result<Vec<Trajectory>,
 fn network_of(cfg: &Validated, radio: DroneRadio) -> Result<Network, SimError> {
     let s = cfg.s();
     Ok(Network::new(
-        sites(cfg),
+        cfg.sites(s.channel.distance),
         s.channel.gateway_height,
         vec![radio],
         &cfg.adr,

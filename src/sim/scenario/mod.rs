@@ -16,7 +16,7 @@ pub use choices::{
 pub use gateways::{validate_sites, GatewaySite};
 
 use super::sender::{SenderKind, Sending};
-use super::station::{Prediction, StationModel};
+use super::station::{Bounds, Prediction, StationModel, StationSetup};
 use super::SimError;
 use crate::filter::PAPER_R_DIAGONAL;
 use crate::lora::{
@@ -568,6 +568,36 @@ impl Validated {
             _ => Err(SimError::Source(
                 "a swarm runs one station: name one model (dr, ctra-plus, 3d-ctra or imm)".into(),
             )),
+        }
+    }
+
+    /// The station of every drone whose packets come every `interval` s (its data rate's
+    /// duty-cycle interval).
+    pub fn station_setup(&self, interval: f64) -> StationSetup {
+        let s = &self.settings;
+        StationSetup {
+            prediction: s.station.prediction,
+            bounds: Bounds::default(),
+            step: s.station.step,
+            eta: s.station.eta,
+            q: s.drone.q,
+            r_diagonal: self.r_diagonal,
+            interval,
+        }
+    }
+
+    /// The gateways: as given, or the one default gateway `east` m east of the origin (simulate:
+    /// `distance`, east of the flight's first point; swarm: 0, at the centre).
+    pub fn sites(&self, east: f64) -> Vec<GatewaySite> {
+        let given = &self.settings.network.gateways;
+        if given.is_empty() {
+            vec![GatewaySite {
+                east,
+                north: 0.0,
+                height: None,
+            }]
+        } else {
+            given.clone()
         }
     }
 

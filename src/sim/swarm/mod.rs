@@ -19,9 +19,9 @@ use super::parallel::par_map;
 use super::pooled::airtime;
 use super::radio::DroneRadio;
 use super::report::{ratio, Delivery, Energy};
-use super::scenario::{GatewaySite, SfPlan, Validated};
+use super::scenario::{SfPlan, Validated};
 use super::simulator::load_flights;
-use super::station::{new_tracker, track_station, Bounds, StationModel, StationSetup};
+use super::station::{new_tracker, track_station, StationModel, StationSetup};
 use super::streams::{self, LAYOUT_STREAM};
 use super::{SimError, Transmission};
 use crate::lora::{LoraParams, Outcome};
@@ -155,27 +155,10 @@ pub fn run_swarm(
     }
     let setups: Vec<StationSetup> = radios
         .iter()
-        .map(|r| StationSetup {
-            prediction: s.station.prediction,
-            bounds: Bounds::default(),
-            step: s.station.step,
-            eta: s.station.eta,
-            q: s.drone.q,
-            r_diagonal: cfg.r_diagonal,
-            interval: r.current().interval,
-        })
+        .map(|r| cfg.station_setup(r.current().interval))
         .collect();
-    let sites = if s.network.gateways.is_empty() {
-        vec![GatewaySite {
-            east: 0.0,
-            north: 0.0,
-            height: None,
-        }]
-    } else {
-        s.network.gateways.clone()
-    };
     let mut net = Network::new(
-        sites,
+        cfg.sites(0.0),
         s.channel.gateway_height,
         radios,
         &cfg.adr,
