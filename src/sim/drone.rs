@@ -73,7 +73,7 @@ pub struct DroneFilter<'a> {
     /// Sensor steps over the flight.
     pub steps: usize,
     k: usize,
-    inner: Box<dyn Step + 'a>,
+    inner: Box<dyn Step + Send + 'a>,
 }
 
 trait Step {
@@ -141,7 +141,7 @@ impl<const N: usize, M: MotionModel<N>> Step for Live<'_, N, M> {
     }
 }
 
-fn live<'a, const N: usize, M: MotionModel<N> + 'a>(
+fn live<'a, const N: usize, M: MotionModel<N> + Send + 'a>(
     model: M,
     flight: &'a Trajectory,
     sensor_rate: f64,
@@ -149,7 +149,7 @@ fn live<'a, const N: usize, M: MotionModel<N> + 'a>(
     r_diagonal: &[f64; 9],
     seed: u64,
     stream: u64,
-) -> Box<dyn Step + 'a> {
+) -> Box<dyn Step + Send + 'a> {
     Box::new(Live {
         model,
         flight,
@@ -292,6 +292,24 @@ impl<'a> Estimates<'a> {
                     }
                 }
                 window.get(k - *first).copied()
+            }
+        }
+    }
+
+    /// Computes a live filter's estimates up to step `upto` (exclusive) ahead of the loop, so
+    /// that many drones' filters can run in parallel between the loop's events.
+    pub fn prefetch(&mut self, upto: usize) {
+        if let Estimates::Live {
+            filter,
+            window,
+            first,
+        } = self
+        {
+            while *first + window.len() < upto {
+                match filter.next_estimate() {
+                    Some(x) => window.push_back(x),
+                    None => break,
+                }
             }
         }
     }

@@ -169,6 +169,12 @@ impl<'a> Flier<'a> {
         Some(receptions)
     }
 
+    /// Its estimates and the step index just past time `t` s (to compute them ahead).
+    pub fn estimates_until(&mut self, t: f64) -> (&mut Estimates<'a>, usize) {
+        let upto = self.step_at_or_after(t);
+        (&mut self.estimates, upto)
+    }
+
     /// The drone's position at `t` s.
     pub fn position_at(&mut self, t: f64) -> [f64; 3] {
         self.flight.position_at(t, &mut self.hint)

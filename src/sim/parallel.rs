@@ -20,6 +20,19 @@ pub(crate) fn par_map<T: Send>(
     }
 }
 
+/// `f(item)` for every item of `items`, in parallel natively and in turn in WebAssembly.
+pub(crate) fn par_each<T: Send>(items: &mut [T], f: impl Fn(&mut T) + Sync + Send) {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        use rayon::prelude::*;
+        items.par_iter_mut().for_each(f);
+    }
+    #[cfg(target_arch = "wasm32")]
+    {
+        items.iter_mut().for_each(f);
+    }
+}
+
 /// [`par_map`] calling `tick` once per item: after each item in WebAssembly (so a long run can
 /// report progress between items), after all of them natively.
 pub(crate) fn par_map_ticking<T: Send>(

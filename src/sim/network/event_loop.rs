@@ -12,6 +12,7 @@ use crate::lora::{
 };
 use crate::sim::flier::Flier;
 use crate::sim::link::Reception;
+use crate::sim::parallel::par_each;
 use crate::sim::radio::Frame;
 use core::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -60,6 +61,10 @@ fn packet_id(drone: usize, index: usize) -> u64 {
 /// `net`, filling each flier's `tx`. The network's radios, ADR state and gateway counts carry
 /// over to the next episode; the gateways' receivers and duty cycles start afresh (each flight
 /// has its own time axis).
+/// Seconds of flight whose drone estimates are computed ahead, all drones in parallel, before
+/// the loop reaches them (a swarm's filters are most of its work).
+const LOOKAHEAD_S: f64 = 30.0;
+
 pub fn run_episode(net: &mut Network, fliers: &mut [Flier<'_>]) {
     let mut gateways: Vec<Gateway> = net
         .sites
@@ -72,7 +77,16 @@ pub fn run_episode(net: &mut Network, fliers: &mut [Flier<'_>]) {
     for (d, f) in fliers.iter_mut().enumerate() {
         plan(f, d, f64::NEG_INFINITY, &mut next, &mut queue);
     }
+    let mut computed_to = f64::NEG_INFINITY;
     while let Some(e) = queue.pop() {
+        if e.time >= computed_to && fliers.len() > 1 {
+            computed_to = e.time + LOOKAHEAD_S;
+            let mut ahead: Vec<_> = fliers
+                .iter_mut()
+                .map(|f| f.estimates_until(computed_to))
+                .collect();
+            par_each(&mut ahead, |(est, upto)| est.prefetch(*upto));
+        }
         let f = &mut fliers[e.drone];
         if e.start {
             let Some(k) = next[e.drone].take() else {
