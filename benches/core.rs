@@ -93,7 +93,7 @@ fn swarms(c: &mut Criterion) {
     for drones in [72, 300] {
         let p = set(
             &loratrack::Scenario::default(),
-            json!({"drones": drones, "duration": 600.0}),
+            json!({"drones": drones, "duration": 600.0, "bw": 125, "model": "3d-ctra"}),
         );
         g.bench_function(format!("{drones}_drones_600_s_every_core"), |b| {
             b.iter(|| loratrack::api::swarm(black_box(&p)).unwrap())
