@@ -17,6 +17,14 @@ pub enum LoraError {
     DutyCycle(f64),
     /// A parameter that is not a finite number in its range: name, value, the range.
     Parameter(&'static str, f64, &'static str),
+    /// A setting outside the limits declared in [`crate::options`].
+    OutOfRange(crate::options::OutOfRange),
+}
+
+impl From<crate::options::OutOfRange> for LoraError {
+    fn from(e: crate::options::OutOfRange) -> Self {
+        LoraError::OutOfRange(e)
+    }
 }
 
 impl fmt::Display for LoraError {
@@ -44,6 +52,7 @@ impl fmt::Display for LoraError {
                     "dutyCycle must be a fraction in 0.0001..1 (0.01 %..100 %), got {d:?}"
                 )
             }
+            LoraError::OutOfRange(e) => e.fmt(f),
             LoraError::Parameter(name, v, allowed) => {
                 write!(f, "{name} must be {allowed}, got {v:?}")
             }

@@ -69,9 +69,9 @@ pub const TX_POWER_STEP_DB: f64 = 3.0;
 pub const MAX_POWER_REDUCTION_DB: f64 = 12.0;
 /// Default device margin of [`LorawanAdr`], dB (Semtech's recommended algorithm; The Things Stack
 /// uses 15).
-pub const DEFAULT_ADR_MARGIN_DB: f64 = 10.0;
+pub const DEFAULT_ADR_MARGIN_DB: f64 = crate::options::ADR_MARGIN.default;
 /// Default number of uplinks whose best SNR [`LorawanAdr`] uses (Semtech, The Things Stack).
-pub const DEFAULT_ADR_HISTORY: usize = 20;
+pub const DEFAULT_ADR_HISTORY: usize = crate::options::ADR_HISTORY.default as usize;
 /// The gateway's downlink power, dBm (EU868 RX1 in the 1 % sub-band: 14 dBm ERP).
 pub const GATEWAY_TX_POWER_DBM: f64 = 14.0;
 /// The device opens its first receive window this long after an uplink ends, s (LoRaWAN
@@ -101,22 +101,10 @@ impl Default for AdrParams {
 }
 
 impl AdrParams {
-    /// Checks the margin (0..30 dB) and the history (1..100 uplinks).
+    /// Checks the margin and the history against their limits ([`crate::options`]).
     pub fn validate(&self) -> Result<(), LoraError> {
-        if !(0.0..=30.0).contains(&self.margin_db) {
-            return Err(LoraError::Parameter(
-                "adrMargin",
-                self.margin_db,
-                "0..30 dB",
-            ));
-        }
-        if !(1..=100).contains(&self.history) {
-            return Err(LoraError::Parameter(
-                "adrHistory",
-                self.history as f64,
-                "1..100 uplinks",
-            ));
-        }
+        crate::options::ADR_MARGIN.check(self.margin_db)?;
+        crate::options::ADR_HISTORY.check(self.history as f64)?;
         Ok(())
     }
 }
