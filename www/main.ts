@@ -1,5 +1,5 @@
 // The playground: reads the controls, asks the worker to simulate, renders numbers and charts.
-import { linkBudget, load, MODEL_LABELS, stationsOf, timeOnAir, type GatewayReport, type GatewaySite, type ModelResult, type SimReport, type SwarmParams } from './loratrack';
+import { linkBudget, load, MODEL_LABELS, stationsOf, timeOnAir, type GatewaySite, type ModelResult, type SimReport, type SwarmParams } from './loratrack';
 import { linkBudgetCharts } from './charts/linkBudget';
 import { swarmCharts } from './charts/swarm';
 import { DEFAULTS, fromQuery, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, overheadBytes, toParams, toQuery, type Settings } from './state';
@@ -71,7 +71,12 @@ for (const [key, l] of Object.entries(LIMITS)) {
 // ---- gateways: rows of east, north and height, none for the one default gateway --------------
 const gatewayRows = $('#gateway-rows');
 function writeGateways(list: GatewaySite[]): void {
+  const heading = document.createElement('div');
+  heading.className = 'gateway-heading';
+  heading.setAttribute('aria-hidden', 'true');
+  heading.innerHTML = '<span></span><span>east (m)</span><span>north (m)</span><span>height (m)</span>';
   gatewayRows.replaceChildren(
+    ...(list.length ? [heading] : []),
     ...list.map((g, i) => {
       const row = document.createElement('div');
       row.className = 'gateway-row';
@@ -85,7 +90,8 @@ function writeGateways(list: GatewaySite[]): void {
         el.step = '10';
         el.value = value === undefined ? '' : String(value);
         el.setAttribute('aria-label', `Gateway ${i + 1} ${label}`);
-        if (name === 'height') el.placeholder = 'default';
+        // A blank height is the default antenna height (the core's table).
+        if (name === 'height') el.placeholder = String(GATEWAY_LIMITS.height.default ?? '');
         return el;
       };
       const c = GATEWAY_LIMITS.coordinate;
@@ -313,10 +319,12 @@ function renderResults(r: SimReport): void {
     <th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th></tr></thead>
     <tbody>${rows}</tbody></table></div>`;
   $('#ttn').innerHTML = ttnNote(r);
-  // One gateway and no downlink: the table's delivery column already says it all.
-  const networkShown = r.gateways.length > 1 || r.gateways.some((g) => g.downlinksSent + g.downlinksDropped > 0);
+  // One gateway and no downlink: the table's delivery column already says it all. Each station's
+  // run is its own (the drone sends that station's payload): the note tells the first station's.
+  const first = r.results[0];
+  const networkShown = first.gateways.length > 1 || first.gateways.some((g) => g.downlinksSent + g.downlinksDropped > 0);
   $('#network-note').hidden = !networkShown;
-  $('#network-note').textContent = networkShown ? networkNote(r.packetsSent, r.packetsReceived, r.duplicates, r.gateways) : '';
+  $('#network-note').textContent = networkShown ? networkNote(first, r.results.length > 1) : '';
 
   renderRateUse(r);
   const width = (id: string) => Math.max(300, $(id).clientWidth || 600);
@@ -365,11 +373,12 @@ function renderRateUse(r: SimReport): void {
 }
 
 /** What each gateway heard, and the copies the network server removed. */
-function networkNote(sent: number, received: number, duplicates: number, gateways: GatewayReport[]): string {
+function networkNote(m: ModelResult, named: boolean): string {
+  const { packetsSent: sent, packetsReceived: received, duplicates, gateways } = m;
   const each = gateways
     .map((g, i) => `gateway ${i + 1} at (${(g.east / 1000).toFixed(1)}, ${(g.north / 1000).toFixed(1)}) km heard ${g.heard}${gateways.length > 1 ? ` (${g.onlyHeard} only it)` : ''}${g.downlinksSent + g.downlinksDropped ? `, ${g.downlinksSent} downlinks sent, ${g.downlinksDropped} dropped by its duty cycle` : ''}`)
     .join('; ');
-  return `Network: ${received} of ${sent} packets delivered (${sent ? ((100 * received) / sent).toFixed(0) : 0} %)${gateways.length > 1 ? `, ${duplicates} duplicate copies removed` : ''} — ${each}.`;
+  return `Network${named ? ` (${MODEL_LABELS[m.model]}'s packets)` : ''}: ${received} of ${sent} packets delivered (${sent ? ((100 * received) / sent).toFixed(0) : 0} %)${gateways.length > 1 ? `, ${duplicates} duplicate copies removed` : ''} — ${each}.`;
 }
 
 /** The IMM's mean member probabilities, as a tooltip. */

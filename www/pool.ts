@@ -55,10 +55,10 @@ export class SimulationPool {
         if ('sweep' in r) part.sweep = r.sweep;
         if ('progress' in r) on({ id: request.id, progress: parts.reduce((a, p) => a + p.progress, 0) / parts.length });
         if ('report' in r && parts.every((p) => p.report)) {
-          on({ id: request.id, report: merge(parts.map((p) => p.report!), models), millis: Math.max(...parts.map((p) => p.millis ?? 0)) });
+          on({ id: request.id, report: merge(parts.map((p) => p.report!), models, request.params.model ?? 'all'), millis: Math.max(...parts.map((p) => p.millis ?? 0)) });
         }
         if ('sweep' in r && parts.every((p) => p.sweep)) {
-          const sweep = parts[0].sweep!.map(({ distance }, i) => ({ distance, report: merge(parts.map((p) => p.sweep![i].report), models) }));
+          const sweep = parts[0].sweep!.map(({ distance }, i) => ({ distance, report: merge(parts.map((p) => p.sweep![i].report), models, request.params.model ?? 'all') }));
           forget();
           on({ id: request.id, sweep });
         }
@@ -73,10 +73,31 @@ export class SimulationPool {
   }
 }
 
-/** The reports of disjoint groups of stations as one report, stations in `models` order. */
-function merge(reports: SimReport[], models: string[]): SimReport {
+/** The reports of disjoint groups of stations as one report, stations in `models` order: the
+ * network totals add up every station's run, as the core's do (`Delivery::add`). */
+function merge(reports: SimReport[], models: string[], model: SimReport['config']['model']): SimReport {
   const results = models.map((m) => reports.flatMap((r) => r.results).find((x) => x.model === m)!);
   const base = reports[0];
   const series = base.series && { ...base.series, models: models.map((m) => reports.flatMap((r) => r.series?.models ?? []).find((s) => s.model === m)!) };
-  return { ...base, config: { ...base.config, models: results.map((r) => r.model) }, results, ...(series ? { series } : {}) };
+  const sum = (f: (r: SimReport['results'][number]) => number) => results.reduce((a, r) => a + f(r), 0);
+  const packetsSent = sum((r) => r.packetsSent);
+  const packetsReceived = sum((r) => r.packetsReceived);
+  const gateways = base.gateways.map((g, i) => ({
+    ...g,
+    heard: sum((r) => r.gateways[i].heard),
+    onlyHeard: sum((r) => r.gateways[i].onlyHeard),
+    downlinksSent: sum((r) => r.gateways[i].downlinksSent),
+    downlinksDropped: sum((r) => r.gateways[i].downlinksDropped),
+  }));
+  return {
+    ...base,
+    config: { ...base.config, model, models: results.map((r) => r.model) },
+    packetsSent,
+    packetsReceived,
+    deliveryRatio: packetsSent ? packetsReceived / packetsSent : 0,
+    duplicates: sum((r) => r.duplicates),
+    gateways,
+    results,
+    ...(series ? { series } : {}),
+  };
 }

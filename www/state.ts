@@ -81,11 +81,13 @@ export interface Limit {
   unit?: string;
   /** One sentence from the core's table. */
   help?: string;
+  /** The core's default. */
+  default?: number;
 }
 
 function limit(key: string, label?: string): Limit {
   const o = option(key);
-  return { label: label ?? o.label, min: o.min, max: o.max, aboveMin: o.aboveMin, integer: o.integer, values: o.values.length ? o.values : undefined, unit: o.unit || undefined, help: o.help };
+  return { label: label ?? o.label, min: o.min, max: o.max, aboveMin: o.aboveMin, integer: o.integer, values: o.values.length ? o.values : undefined, unit: o.unit || undefined, help: o.help, default: o.default };
 }
 
 export const LIMITS: Record<NumericKey, Limit> = {
