@@ -398,3 +398,65 @@ fn runs_beyond_the_work_limit_are_refused_quickly() {
     ]);
     assert!(r["results"][0]["error3d"]["count"].as_u64().unwrap() > 0);
 }
+
+#[test]
+fn help_to_a_full_disk_is_an_error() {
+    let out = Command::new(env!("CARGO_BIN_EXE_loratrack"))
+        .args(["simulate", "--help"])
+        .stdout(std::fs::File::create("/dev/full").expect("/dev/full exists on Linux"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).starts_with("error: cannot write the output"));
+}
+
+#[test]
+fn negative_numbers_are_numbers_and_refused_by_their_own_field() {
+    refused(
+        &["simulate", "--synthetic", "1", "--overhead", "-1"],
+        "invalid value '-1' for '--overhead",
+    );
+    refused(
+        &["simulate", "--synthetic", "1", "--drones", "-1"],
+        "unexpected argument '--drones'",
+    );
+    refused(
+        &["swarm", "--drones", "-1"],
+        "invalid value '-1' for '--drones",
+    );
+    refused(
+        &["simulate", "--synthetic", "1", "--q", "-1"],
+        "q must be in (0, 1000]",
+    );
+}
+
+#[test]
+fn swept_distances_are_checked_and_bounded_before_any_run() {
+    refused(
+        &["sweep", "--distances", "1000,-5"],
+        "distance must be 0..100000 m, got -5.0",
+    );
+    let many: Vec<String> = (1..=101).map(|k| (k * 10).to_string()).collect();
+    refused(
+        &["sweep", "--distances", &many.join(",")],
+        "give 1..100 distances, got 101",
+    );
+}
+
+#[test]
+fn a_predicted_step_far_longer_than_dt_moves_the_state() {
+    let moved = json(&[
+        "predict",
+        "--model",
+        "ctra-plus",
+        "--state",
+        "0,0,0,0,0,1,1,1",
+        "--dt",
+        "0.5",
+        "--step",
+        "1e9",
+        "--json",
+    ]);
+    let x = moved["state"][0].as_f64().unwrap();
+    assert!((x - 0.5967208697966773).abs() < 1e-12, "x = {x}");
+}

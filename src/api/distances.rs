@@ -6,6 +6,9 @@ use crate::lora::{AdrMode, DataRate};
 use crate::sim::{ModelResult, Scenario, Simulator};
 use serde::Serialize;
 
+/// The most distances one sweep takes (each runs nine whole-set simulations).
+pub const MAX_DISTANCES: usize = 100;
+
 /// The distances of the targets, m.
 pub const ADR_DISTANCES: [f64; 4] = [1000.0, 3000.0, 5000.0, 7000.0];
 
@@ -44,6 +47,18 @@ pub fn sweep_distances(
     base: &Scenario,
     distances: &[f64],
 ) -> Result<DistanceSweepReport, ApiError> {
+    // Every distance is checked, and their number bounded, before any run starts.
+    if distances.is_empty() || distances.len() > MAX_DISTANCES {
+        return Err(ApiError::Invalid(format!(
+            "distances: give 1..{MAX_DISTANCES} distances, got {}",
+            distances.len()
+        )));
+    }
+    for &d in distances {
+        crate::options::DISTANCE
+            .check(d)
+            .map_err(crate::sim::SimError::from)?;
+    }
     let radio = base.validate()?.radio;
     let given = DataRate::of(radio.sf, radio.bw).ok_or(crate::sim::SimError::AdrStart(
         radio.sf.get(),

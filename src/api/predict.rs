@@ -71,9 +71,10 @@ fn run<const N: usize, M: MotionModel<N>>(
     match steps {
         None => s = model.propagate(&s, dt),
         Some((step, eta)) => {
-            // Whole steps, then a partial one; the 1e-9 keeps rounding in dt/step from adding a
-            // spurious near-zero step.
-            let n = (dt / step - 1e-9).ceil().max(0.0) as u64;
+            // Whole steps, then a partial one. A ratio within 1e-9 (relative) of a whole number
+            // is that number, so rounding in dt/step never adds a spurious near-zero step; any
+            // other positive ratio, however small (a step 1e9 times dt), takes at least one step.
+            let n = step_count(dt / step);
             for i in 0..n {
                 let h = step.min(dt - i as f64 * step);
                 s = model.propagate(&s, h);
@@ -82,6 +83,19 @@ fn run<const N: usize, M: MotionModel<N>>(
         }
     }
     s.iter().copied().collect()
+}
+
+/// How many steps of length `step` cover `ratio = dt / step`.
+fn step_count(ratio: f64) -> u64 {
+    if ratio <= 0.0 {
+        return 0;
+    }
+    let whole = ratio.round();
+    if whole >= 1.0 && (ratio - whole).abs() <= 1e-9 * whole {
+        whole as u64
+    } else {
+        ratio.ceil() as u64
+    }
 }
 
 /// Propagates `state` over `dt` with the chosen model.
@@ -120,4 +134,37 @@ pub fn predict(p: &PredictParams) -> Result<PredictReport, ApiError> {
         model: p.model,
         state,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_step_far_longer_than_dt_still_moves_the_state() {
+        let p = |step: Option<f64>| {
+            predict(&PredictParams {
+                model: ModelKind::Ctra3d,
+                state: vec![0.0, 0.0, 0.0, 0.0, 0.1, 8.0, 0.5, 0.2, 0.1],
+                dt: 2.0,
+                step,
+                eta: Some(0.9),
+            })
+            .unwrap()
+            .state
+        };
+        // One step of 2 s either way: a step of 2e9 s is cut to dt, as a step of 2 s is.
+        assert_eq!(p(Some(2e9)), p(Some(2.0)));
+        assert!(p(Some(2e9))[0] > 10.0, "the drone moved about 17 m");
+    }
+
+    #[test]
+    fn whole_ratios_take_no_spurious_step_and_any_positive_ratio_takes_one() {
+        assert_eq!(step_count(3.0 + 1e-12), 3);
+        assert_eq!(step_count(3.0 - 1e-12), 3);
+        assert_eq!(step_count(1e-9), 1);
+        assert_eq!(step_count(1e-300), 1);
+        assert_eq!(step_count(0.0), 0);
+        assert_eq!(step_count(2.5), 3);
+    }
 }

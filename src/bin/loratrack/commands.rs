@@ -134,7 +134,12 @@ pub struct SweepKind {
     #[arg(long)]
     senders: bool,
     /// Fixed data rates DR0..DR6 and both ADR modes (starting at --sf/--bw) at each distance, m, comma-separated (e.g. 1000,3000,5000,7000), on the whole synthetic set, no LoRaWAN overhead, for the first model of --model (3d-ctra when --model is all).
-    #[arg(long, value_delimiter = ',', value_name = "M,M,...")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "M,M,...",
+        allow_negative_numbers = true
+    )]
     distances: Option<Vec<f64>>,
 }
 
@@ -146,19 +151,19 @@ pub struct SweepArgs {
     #[arg(long, default_value_t = opt::SF.default as i64, allow_negative_numbers = true)]
     sf: i64,
     /// --senders: bandwidth, kHz; --distances: the one ADR starts at.
-    #[arg(long, default_value_t = opt::BW.default)]
+    #[arg(long, default_value_t = opt::BW.default, allow_negative_numbers = true)]
     bw: f64,
     /// --senders: gateway distance, m; --swarm: the drones' distance from the gateway.
     #[arg(long, default_value_t = opt::DISTANCE.default, allow_negative_numbers = true)]
     distance: f64,
     /// --senders: the budget rule's capacity in packets.
-    #[arg(long, default_value_t = loratrack::DEFAULT_BURST)]
+    #[arg(long, default_value_t = loratrack::DEFAULT_BURST, allow_negative_numbers = true)]
     burst: u32,
     /// --senders: error-triggered sending's heartbeat, s (at least the duty-cycle interval at --sf/--bw).
     #[arg(long, default_value_t = opt::MAX_INTERVAL.default, allow_negative_numbers = true)]
     max_interval: f64,
-    /// Seed of all random draws.
-    #[arg(long, default_value_t = opt::SEED.default as u64)]
+    /// Seed of all random draws, 0..2^53-1, or random for a fresh one (reported in the output).
+    #[arg(long, default_value = "1", value_name = "N|random", value_parser = loratrack::parse_seed)]
     seed: u64,
     /// Station model(s): dr, ctra-plus, 3d-ctra, imm, a comma list, or all (the paper's three).
     #[arg(long, default_value = "all")]
@@ -275,10 +280,10 @@ pub struct AirtimeArgs {
     #[arg(long)]
     bw: f64,
     /// Application payload in bytes (loratrack's payloads: 9 DR, 11 CTRA+, 12 3D-CTRA).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     payload: usize,
     /// MAC overhead in bytes added to the payload: 13 for LoRaWAN, 0 for raw LoRa (the paper's Table II).
-    #[arg(long, default_value_t = 13)]
+    #[arg(long, default_value_t = opt::OVERHEAD.default as usize, allow_negative_numbers = true)]
     overhead: usize,
     /// Coding rate n of 4/(4+n): 1..4.
     #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
@@ -296,7 +301,7 @@ pub struct AirtimeArgs {
     #[arg(long, value_enum, default_value = "auto")]
     ldro: Ldro,
     /// Duty-cycle limit as a fraction, 0.0001..1 (EU868 868.0–868.6 MHz: 0.01).
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(long, default_value_t = opt::DUTY_CYCLE.default, allow_negative_numbers = true)]
     duty_cycle: f64,
     #[command(flatten)]
     out: Output,

@@ -27,10 +27,15 @@ fn main() -> std::process::ExitCode {
 
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
-        // --help and --version are not errors; clap prints them and exits 0.
+        // --help and --version are not errors: printed, they exit 0; a help that cannot be
+        // written (a full disk) is one.
         Err(e) if !e.use_stderr() => {
-            let _ = e.print();
-            return ExitCode::SUCCESS;
+            let mut out = std::io::stdout().lock();
+            return match write!(out, "{}", e.render()).and_then(|()| out.flush()) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(w) if w.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+                Err(w) => fail(&format!("cannot write the output: {w}")),
+            };
         }
         Err(e) => return fail(&one_line(&e.render().to_string())),
     };

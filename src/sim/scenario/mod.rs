@@ -95,7 +95,7 @@ pub struct StationSettings {
     )]
     pub prediction: Prediction,
     /// Station prediction step T, s.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::STEP.default, help = opt::STEP.cli_help()))]
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::STEP.default, help = opt::STEP.cli_help(), allow_negative_numbers = true))]
     pub step: f64,
     /// Tilt-rate decay per station step.
     #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::ETA.default, help = opt::ETA.cli_help(), allow_negative_numbers = true))]
@@ -129,7 +129,7 @@ pub struct RadioSettings {
     #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::CR.default as i64, help = opt::CR.cli_help(), allow_negative_numbers = true))]
     pub cr: i64,
     /// MAC overhead, bytes (LoRaWAN 13; the paper's Table II: 0).
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::OVERHEAD.default as usize, help = opt::OVERHEAD.cli_help()))]
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::OVERHEAD.default as usize, help = opt::OVERHEAD.cli_help(), allow_negative_numbers = true))]
     pub overhead: usize,
     /// Duty-cycle limit, fraction.
     #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::DUTY_CYCLE.default, help = opt::DUTY_CYCLE.cli_help(), allow_negative_numbers = true))]
@@ -199,7 +199,7 @@ pub struct NetworkSettings {
     )]
     pub gateways: Vec<GatewaySite>,
     /// Uplink channels: 1 or 3.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::CHANNELS.default as u8, help = opt::CHANNELS.cli_help()))]
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::CHANNELS.default as u8, help = opt::CHANNELS.cli_help(), allow_negative_numbers = true))]
     pub channels: u8,
     /// Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
     #[cfg_attr(
@@ -230,7 +230,7 @@ pub struct NetworkSettings {
     #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::ADR_MARGIN.default, help = opt::ADR_MARGIN.cli_help(), allow_negative_numbers = true))]
     pub adr_margin: f64,
     /// LoRaWAN ADR's history, uplinks.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::ADR_HISTORY.default as usize, help = opt::ADR_HISTORY.cli_help()))]
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::ADR_HISTORY.default as usize, help = opt::ADR_HISTORY.cli_help(), allow_negative_numbers = true))]
     pub adr_history: usize,
 }
 
@@ -255,7 +255,7 @@ impl Default for NetworkSettings {
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct DroneSettings {
     /// Sensor and filter rate, Hz.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::SENSOR_RATE.default, help = opt::SENSOR_RATE.cli_help()))]
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::SENSOR_RATE.default, help = opt::SENSOR_RATE.cli_help(), allow_negative_numbers = true))]
     pub sensor_rate: f64,
     /// Process noise q of Q = q·I (drone and station).
     #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::Q.default, help = opt::Q.cli_help(), allow_negative_numbers = true))]
@@ -292,7 +292,7 @@ pub enum SfPlan {
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct SwarmSettings {
     /// Number of drones.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::DRONES.default as usize, help = opt::DRONES.cli_help()))]
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::DRONES.default as usize, help = opt::DRONES.cli_help(), allow_negative_numbers = true))]
     pub drones: usize,
     /// Seconds of chained synthetic flight per drone (when no flight is chosen).
     #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::DURATION.default, help = opt::DURATION.cli_help(), allow_negative_numbers = true))]

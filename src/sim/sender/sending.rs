@@ -52,7 +52,7 @@ pub struct Sending {
     )]
     pub duty_cycle_mode: DutyCycleMode,
     /// Budget capacity, packets.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = DEFAULT_BURST, help = BURST.cli_help()))]
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = DEFAULT_BURST, help = BURST.cli_help(), allow_negative_numbers = true))]
     pub burst: u32,
 }
 
