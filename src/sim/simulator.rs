@@ -54,7 +54,8 @@ struct StationKey {
 enum FlightKey {
     Synthetic(SyntheticChoice),
     Sample(String),
-    Csv(u64, usize),
+    /// One id per distinct CSV text this simulator has seen ([`Simulator::csv_key`]).
+    Csv(u64),
 }
 
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -66,7 +67,8 @@ struct DroneKey {
     seed: u64,
 }
 
-/// FNV-1a: a stable 64-bit hash of CSV text for the cache key.
+/// FNV-1a: a 64-bit hash of CSV text, to find a remembered text quickly (equal texts are then
+/// compared byte for byte).
 fn fnv1a(text: &str) -> u64 {
     text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
         (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
@@ -78,6 +80,10 @@ fn fnv1a(text: &str) -> u64 {
 #[derive(Default)]
 pub struct Simulator {
     flights: HashMap<FlightKey, Rc<Vec<Trajectory>>>,
+    /// The CSV texts behind `FlightKey::Csv` ids, with their hash: a hit compares the bytes, so
+    /// two texts that share a hash never share results.
+    csv_texts: Vec<(u64, Rc<str>, u64)>,
+    next_csv_id: u64,
     drones: HashMap<DroneKey, Rc<Vec<DroneTrack>>>,
     stations: HashMap<StationKey, Rc<Vec<Mutex<FlightChains>>>>,
     drone_runs: u64,
@@ -95,6 +101,25 @@ impl Simulator {
         self.drone_runs
     }
 
+    /// The key of CSV `text` whose hash is `hash`: the id it was given before if the same text
+    /// is remembered, otherwise a fresh one (the oldest text is forgotten past the cache size).
+    fn csv_key(&mut self, text: &str, hash: u64) -> FlightKey {
+        if let Some((_, _, id)) = self
+            .csv_texts
+            .iter()
+            .find(|(h, t, _)| *h == hash && t.as_ref() == text)
+        {
+            return FlightKey::Csv(*id);
+        }
+        if self.csv_texts.len() >= MAX_CACHED_FLIGHTS {
+            self.csv_texts.remove(0);
+        }
+        let id = self.next_csv_id;
+        self.next_csv_id += 1;
+        self.csv_texts.push((hash, text.into(), id));
+        FlightKey::Csv(id)
+    }
+
     fn flights(
         &mut self,
         source: &TrajectorySource,
@@ -102,7 +127,7 @@ impl Simulator {
         let key = match source {
             TrajectorySource::Synthetic(c) => FlightKey::Synthetic(*c),
             TrajectorySource::Sample(name) => FlightKey::Sample(name.to_ascii_lowercase()),
-            TrajectorySource::Csv(text, _) => FlightKey::Csv(fnv1a(text), text.len()),
+            TrajectorySource::Csv(text, _) => self.csv_key(text, fnv1a(text)),
         };
         if let Some(f) = self.flights.get(&key) {
             return Ok((key, Rc::clone(f)));
@@ -405,4 +430,25 @@ fn network_of(cfg: &Validated, radio: DroneRadio) -> Result<Network, SimError> {
         cfg.interference,
         s.radio.overhead > 0,
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn csv_texts_that_share_a_hash_never_share_a_key() {
+        let mut sim = Simulator::new();
+        let a = sim.csv_key("t,x,y,z\n0,0,0,0\n", 42);
+        let b = sim.csv_key("t,x,y,z\n0,1,0,0\n", 42);
+        assert_ne!(
+            a, b,
+            "a hash collision must not give the first file's results"
+        );
+        assert_eq!(
+            sim.csv_key("t,x,y,z\n0,0,0,0\n", 42),
+            a,
+            "the same text keeps its key"
+        );
+    }
 }
