@@ -1,5 +1,5 @@
 // Compiles the crate to WebAssembly (release) and generates the JS bindings into www/pkg
-// (`--target web`, git-ignored). The page and the Node tests import it only through www/loratrack.ts.
+// (`--target web`, git-ignored). `node scripts/build-wasm.mjs [--features bench]`. The page and the Node tests import it only through www/loratrack.ts.
 import { spawnSync } from 'node:child_process';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -15,7 +15,10 @@ function run(cmd, args) {
   }
 }
 
-run('cargo', ['build', '--lib', '--release', '--target', 'wasm32-unknown-unknown']);
+// `--features bench` (npm run bench only) adds the benchmark hooks benchUkf and
+// benchSimulateCold; the production package leaves them out.
+const features = process.argv.includes('--features') ? ['--features', process.argv[process.argv.indexOf('--features') + 1]] : [];
+run('cargo', ['build', '--lib', '--release', '--target', 'wasm32-unknown-unknown', ...features]);
 run('wasm-bindgen', [
   '--target', 'web',
   '--out-dir', 'www/pkg',

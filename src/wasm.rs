@@ -160,9 +160,10 @@ fn reporter(progress: &Option<js_sys::Function>) -> impl FnMut(usize, usize) + '
     }
 }
 
-/// Benchmark support for `npm run bench` (not part of the reference §9 API): times `steps` UKF
+/// Benchmark support for `npm run bench` (feature `bench`; not in the production package): times `steps` UKF
 /// predictions and updates inside WebAssembly, so the boundary crossing is not measured.
 /// `{model, steps}` → `{predictMicros, updateMicros}` per step.
+#[cfg(feature = "bench")]
 #[wasm_bindgen(js_name = benchUkf)]
 pub fn bench_ukf(params: JsValue) -> Result<JsValue, JsError> {
     use crate::filter::{
@@ -213,7 +214,8 @@ pub fn bench_ukf(params: JsValue) -> Result<JsValue, JsError> {
     call(params, |p: Params| with_model!(p.model, time(p.steps)))
 }
 
-/// Benchmark support: `simulate` with a fresh simulator (no cached drone runs).
+/// Benchmark support (feature `bench`): `simulate` with a fresh simulator (no cached drone runs).
+#[cfg(feature = "bench")]
 #[wasm_bindgen(js_name = benchSimulateCold)]
 pub fn bench_simulate_cold(params: JsValue) -> Result<JsValue, JsError> {
     call(params, |p: crate::sim::Scenario| {

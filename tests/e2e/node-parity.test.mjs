@@ -35,3 +35,18 @@ test('a bad call throws an Error and the module keeps working', async () => {
   assert.throws(() => pkg.simulate({ trajectory: '' }), /empty/);
   assert.ok(pkg.timeOnAir({ sf: 7, bw: 125, payload: 14, overhead: 0 }).timeOnAir > 0.046);
 });
+
+test('a swarm with gateways and ADR in WASM under Node equals the native CLI, and the production package has no benchmark hooks', async () => {
+  const pkg = await import(join(root, 'www', 'pkg', 'loratrack.js'));
+  pkg.initSync({ module: readFileSync(join(root, 'www', 'pkg', 'loratrack_bg.wasm')) });
+  const args = ['--drones', '24', '--duration', '120', '--adr', 'lorawan', '--sf-plan', 'fixed', '--bw', '125', '--gateway', '0,0', '--gateway', '1500,-800,30'];
+  const params = { drones: 24, duration: 120, adr: 'lorawan', sfPlan: 'fixed', bw: 125, gateways: [{ east: 0, north: 0 }, { east: 1500, north: -800, height: 30 }] };
+  const wasm = pkg.swarm(params);
+  const native = JSON.parse(execFileSync('cargo', ['run', '--quiet', '--', 'swarm', ...args, '--json'], { cwd: root, encoding: 'utf8' }));
+  const { config: _w, ...w } = wasm;
+  const { config: _n, ...n } = native;
+  assert.deepStrictEqual(w, n);
+  assert.equal(typeof pkg.benchUkf, 'undefined');
+  assert.equal(typeof pkg.benchSimulateCold, 'undefined');
+  assert.equal(typeof pkg.limits, 'function');
+});
