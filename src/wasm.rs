@@ -29,17 +29,32 @@ fn call<P: DeserializeOwned, R: Serialize>(
     params: JsValue,
     op: impl FnOnce(P) -> Result<R, ApiError>,
 ) -> Result<JsValue, JsError> {
-    let invalid = |e: &dyn core::fmt::Display| JsError::new(&format!("invalid parameters: {e}"));
+    let invalid = |e: &dyn core::fmt::Display| {
+        JsError::new(&api::clean_message(&format!("invalid parameters: {e}")))
+    };
     let text = js_sys::JSON::stringify(&params)
         .ok()
         .and_then(|s| s.as_string())
         .ok_or_else(|| {
             invalid(&"not a plain object of numbers, strings, booleans and arrays (too deep, circular, or holding a BigInt?)")
         })?;
-    let p: P = serde_json::from_str(&text).map_err(|e| invalid(&e))?;
-    let report = op(p).map_err(|e| JsError::new(&e.to_string()))?;
+    // JSON.stringify turns NaN and Infinity into null, and serde's message cannot name the key
+    // of a flattened setting: name it.
+    let p: P = serde_json::from_str(&text).map_err(|e| match null_key(&text) {
+        Some(key) => invalid(&format!(
+            "{key} is not a number (NaN, Infinity and null are not accepted): give a finite number or leave it out"
+        )),
+        None => invalid(&e),
+    })?;
+    let report = op(p).map_err(|e| JsError::new(&api::clean_message(&e.to_string())))?;
     let json = serde_json::to_string(&report).map_err(|e| JsError::new(&e.to_string()))?;
     js_sys::JSON::parse(&json).map_err(|_| JsError::new("could not build the result"))
+}
+
+/// The first top-level key of a JSON object whose value is `null`, if any.
+fn null_key(text: &str) -> Option<String> {
+    let map: serde_json::Map<String, serde_json::Value> = serde_json::from_str(text).ok()?;
+    map.into_iter().find(|(_, v)| v.is_null()).map(|(k, _)| k)
 }
 
 /// `linkBudget({bw?, txPower?, pathLossExponent?, shadowing?, gatewayHeight?, distances?})`

@@ -460,3 +460,14 @@ fn a_predicted_step_far_longer_than_dt_moves_the_state() {
     let x = moved["state"][0].as_f64().unwrap();
     assert!((x - 0.5967208697966773).abs() < 1e-12, "x = {x}");
 }
+
+#[test]
+fn messages_escape_control_characters_and_quote_at_most_80_characters() {
+    let crafted = format!("\u{1b}]0;owned\u{7}{}", "y".repeat(500));
+    let out = cli(&["simulate", "--sample", &crafted]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(!err.trim_end().chars().any(char::is_control), "{err:?}");
+    assert!(err.contains("\\u{1b}"), "{err}");
+    assert!(err.len() < 200, "{} bytes: {err}", err.len());
+}

@@ -473,3 +473,25 @@ fn limits_and_stations_come_from_the_core() {
     .unwrap_err();
     assert!(error_message(e).contains("unknown setting 'spreadingFactor'"));
 }
+
+#[wasm_bindgen_test]
+fn a_nan_names_its_key_and_messages_carry_no_control_characters() {
+    let e = wasm::simulate(
+        obj(&[("synthetic", 1.into()), ("sf", f64::NAN.into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    let m = error_message(e);
+    assert!(m.contains("sf is not a number"), "{m}");
+    let e = wasm::simulate(
+        obj(&[(
+            "sample",
+            format!("\u{1b}]0;owned\u{7}{}", "x".repeat(300)).into(),
+        )]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    let m = error_message(e);
+    assert!(!m.chars().any(char::is_control), "{m:?}");
+    assert!(m.len() < 300, "{m}");
+}

@@ -56,3 +56,70 @@ impl From<SimError> for ApiError {
         ApiError::Sim(e)
     }
 }
+
+/// The most characters of one quoted piece of input a message repeats.
+pub const MAX_ECHO_CHARS: usize = 80;
+
+/// A message safe to print: control characters (an ESC or OSC sequence from a crafted file could
+/// rewrite a terminal) escaped as `\u{1b}`, and every quoted piece of input ('…' or `…`) cut to
+/// [`MAX_ECHO_CHARS`] characters. The CLI and the JS bindings pass every message through it.
+///
+/// ```
+/// use loratrack::api::clean_message;
+/// assert_eq!(clean_message("bad 'a\u{1b}]0;owned\u{7}'"), "bad 'a\\u{1b}]0;owned\\u{7}'");
+/// let long = format!("unknown sample '{}'", "x".repeat(500));
+/// assert!(clean_message(&long).len() < 120);
+/// ```
+pub fn clean_message(msg: &str) -> String {
+    let mut out = String::with_capacity(msg.len().min(1024));
+    let mut quote: Option<char> = None;
+    let mut quoted = 0usize;
+    for c in msg.chars() {
+        match quote {
+            Some(q) if c == q => {
+                quote = None;
+                out.push(c);
+                continue;
+            }
+            None if c == '\'' || c == '`' => {
+                quote = Some(c);
+                quoted = 0;
+                out.push(c);
+                continue;
+            }
+            _ => {}
+        }
+        if quote.is_some() {
+            quoted += 1;
+            if quoted > MAX_ECHO_CHARS {
+                if quoted == MAX_ECHO_CHARS + 1 {
+                    out.push('…');
+                }
+                continue;
+            }
+        }
+        if c.is_control() {
+            out.extend(c.escape_unicode());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn messages_escape_control_characters_and_cut_long_quotes() {
+        assert_eq!(clean_message("line\nbreak"), "line\\u{a}break");
+        let m = clean_message(&format!(
+            "got '{}' and `{}`",
+            "a".repeat(200),
+            "b".repeat(10)
+        ));
+        assert_eq!(m, format!("got '{}…' and `bbbbbbbbbb`", "a".repeat(80)));
+        assert_eq!(clean_message("it's fine"), "it's fine");
+    }
+}

@@ -17,7 +17,7 @@ mod swarm;
 
 pub use airtime::{airtime, AirtimeParams, AirtimeReport};
 pub use distances::{sweep_distances, DistanceRun, DistanceSweepReport, ADR_DISTANCES};
-pub use error::ApiError;
+pub use error::{clean_message, ApiError, MAX_ECHO_CHARS};
 pub use link_budget::{link_budget, LinkBudgetParams, LinkBudgetReport, SfBudget};
 pub use payload::{decode, encode, DecodeParams, DecodeReport, EncodeParams, EncodeReport};
 pub use predict::{predict, validate_state, PredictParams, PredictReport, MAX_STEPS};

@@ -65,7 +65,11 @@ fn one_line(rendered: &str) -> String {
 /// Prints `error: <msg>` on stderr and returns exit status 2.
 #[cfg(not(target_arch = "wasm32"))]
 fn fail(msg: &str) -> std::process::ExitCode {
-    let _ = writeln!(std::io::stderr(), "error: {msg}");
+    let _ = writeln!(
+        std::io::stderr(),
+        "error: {}",
+        loratrack::api::clean_message(msg)
+    );
     std::process::ExitCode::from(2)
 }
 
