@@ -223,9 +223,19 @@ fn within(v: &[f64; 3], limit: f64) -> bool {
 /// ±`half_window` seconds (at least one neighbour on each side where there is one): a
 /// Savitzky–Golay filter of order 1 for uneven sampling, which smooths noise that a plain finite
 /// difference would amplify.
+///
+/// Linear time: the regression's sums slide with the window (each sample enters and leaves once,
+/// with Welford's mean-centred updates, so times of hours keep their precision), where summing
+/// each window afresh took time proportional to the samples per window — minutes for a
+/// high-rate log.
 fn smoothed_derivative(t: &[f64], values: &[[f64; 3]], half_window: f64) -> Vec<[f64; 3]> {
     let n = t.len();
     let (mut lo, mut hi) = (0usize, 0usize);
+    let mut w = Regression::default();
+    // The samples a..b (exclusive) are in `w`; every sample in it was added after `fresh_from`
+    // was set, so once `a` passes it the sums are rebuilt afresh (each sample is added at most
+    // twice: still linear), and rounding from removals never accumulates past one window.
+    let (mut a, mut b, mut fresh_from) = (0usize, 0usize, 0usize);
     (0..n)
         .map(|i| {
             while t[i] - t[lo] > half_window && lo + 1 < i {
@@ -234,24 +244,136 @@ fn smoothed_derivative(t: &[f64], values: &[[f64; 3]], half_window: f64) -> Vec<
             while hi + 1 < n && (t[hi + 1] - t[i] <= half_window || hi <= i) {
                 hi += 1;
             }
-            let (a, b) = (lo.min(i.saturating_sub(1)), hi.max((i + 1).min(n - 1)));
-            let m = (b - a + 1) as f64;
-            let t_mean = t[a..=b].iter().sum::<f64>() / m;
-            let stt: f64 = t[a..=b].iter().map(|x| (x - t_mean).powi(2)).sum();
-            core::array::from_fn(|k| {
-                let y_mean = values[a..=b].iter().map(|v| v[k]).sum::<f64>() / m;
-                let sty: f64 = (a..=b)
-                    .map(|j| (t[j] - t_mean) * (values[j][k] - y_mean))
-                    .sum();
-                sty / stt
-            })
+            let (from, to) = (lo.min(i.saturating_sub(1)), hi.max((i + 1).min(n - 1)) + 1);
+            while b < to {
+                w.add(t[b], &values[b]);
+                b += 1;
+            }
+            while a < from {
+                w.remove(t[a], &values[a]);
+                a += 1;
+            }
+            if a >= fresh_from {
+                w = Regression::default();
+                (a..b).for_each(|j| w.add(t[j], &values[j]));
+                fresh_from = b;
+            }
+            w.slope()
         })
         .collect()
+}
+
+/// Running sums of a least-squares line y = α + β t over a sliding set of samples (Welford):
+/// count, means, and the centred sums Σ(t − t̄)² and Σ(t − t̄)(y − ȳ).
+#[derive(Default)]
+struct Regression {
+    m: f64,
+    t_mean: f64,
+    y_mean: [f64; 3],
+    stt: f64,
+    sty: [f64; 3],
+}
+
+impl Regression {
+    fn add(&mut self, t: f64, y: &[f64; 3]) {
+        self.m += 1.0;
+        let dt = t - self.t_mean;
+        self.t_mean += dt / self.m;
+        self.stt += dt * (t - self.t_mean);
+        for k in 0..3 {
+            self.y_mean[k] += (y[k] - self.y_mean[k]) / self.m;
+            self.sty[k] += dt * (y[k] - self.y_mean[k]);
+        }
+    }
+
+    fn remove(&mut self, t: f64, y: &[f64; 3]) {
+        if self.m <= 1.0 {
+            *self = Regression::default();
+            return;
+        }
+        let m = self.m - 1.0;
+        let t_mean = (self.m * self.t_mean - t) / m;
+        self.stt -= (t - t_mean) * (t - self.t_mean);
+        for k in 0..3 {
+            let y_mean = (self.m * self.y_mean[k] - y[k]) / m;
+            self.sty[k] -= (t - t_mean) * (y[k] - self.y_mean[k]);
+            self.y_mean[k] = y_mean;
+        }
+        self.t_mean = t_mean;
+        self.m = m;
+    }
+
+    fn slope(&self) -> [f64; 3] {
+        self.sty.map(|s| s / self.stt)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The regression summed afresh for every window (the former, quadratic implementation).
+    fn two_pass(t: &[f64], values: &[[f64; 3]], half_window: f64) -> Vec<[f64; 3]> {
+        let n = t.len();
+        let (mut lo, mut hi) = (0usize, 0usize);
+        (0..n)
+            .map(|i| {
+                while t[i] - t[lo] > half_window && lo + 1 < i {
+                    lo += 1;
+                }
+                while hi + 1 < n && (t[hi + 1] - t[i] <= half_window || hi <= i) {
+                    hi += 1;
+                }
+                let (a, b) = (lo.min(i.saturating_sub(1)), hi.max((i + 1).min(n - 1)));
+                let m = (b - a + 1) as f64;
+                let t_mean = t[a..=b].iter().sum::<f64>() / m;
+                let stt: f64 = t[a..=b].iter().map(|x| (x - t_mean).powi(2)).sum();
+                core::array::from_fn(|k| {
+                    let y_mean = values[a..=b].iter().map(|v| v[k]).sum::<f64>() / m;
+                    let sty: f64 = (a..=b)
+                        .map(|j| (t[j] - t_mean) * (values[j][k] - y_mean))
+                        .sum();
+                    sty / stt
+                })
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_sliding_regression_equals_summing_each_window_afresh() {
+        let mut rng = crate::rng::Rng::derive(5, 0);
+        for (rate, start) in [
+            (10.0, 0.0),
+            (1000.0, 0.0),
+            (25.0, 36_000.0),
+            (7.0, 80_000.0),
+        ] {
+            let mut t = vec![start];
+            for _ in 1..4000 {
+                // Uneven sampling: ±30 % jitter around the rate.
+                t.push(t[t.len() - 1] + (0.7 + 0.6 * rng.uniform()) / rate);
+            }
+            let v: Vec<[f64; 3]> = t
+                .iter()
+                .map(|&x| {
+                    let s = x - start;
+                    [3.0 * s + rng.normal(), (0.2 * s).sin() * 50.0, 0.01 * s * s]
+                })
+                .collect();
+            for half in [0.15, 0.3] {
+                let fast = smoothed_derivative(&t, &v, half);
+                let slow = two_pass(&t, &v, half);
+                for (f, s) in fast.iter().zip(&slow) {
+                    for k in 0..3 {
+                        assert!(
+                            (f[k] - s[k]).abs() <= 1e-8 * (1.0 + s[k].abs()),
+                            "rate {rate} start {start}: {f:?} vs {s:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
 
     fn csv(rows: usize) -> String {
         let mut s = String::from("t_seconds,x_m,y_m,z_m\n");
