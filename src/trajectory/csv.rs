@@ -280,9 +280,9 @@ impl Regression {
         let dt = t - self.t_mean;
         self.t_mean += dt / self.m;
         self.stt += dt * (t - self.t_mean);
-        for k in 0..3 {
-            self.y_mean[k] += (y[k] - self.y_mean[k]) / self.m;
-            self.sty[k] += dt * (y[k] - self.y_mean[k]);
+        for ((mean, sty), &v) in self.y_mean.iter_mut().zip(&mut self.sty).zip(y) {
+            *mean += (v - *mean) / self.m;
+            *sty += dt * (v - *mean);
         }
     }
 
@@ -294,10 +294,10 @@ impl Regression {
         let m = self.m - 1.0;
         let t_mean = (self.m * self.t_mean - t) / m;
         self.stt -= (t - t_mean) * (t - self.t_mean);
-        for k in 0..3 {
-            let y_mean = (self.m * self.y_mean[k] - y[k]) / m;
-            self.sty[k] -= (t - t_mean) * (y[k] - self.y_mean[k]);
-            self.y_mean[k] = y_mean;
+        for ((mean, sty), &v) in self.y_mean.iter_mut().zip(&mut self.sty).zip(y) {
+            let without = (self.m * *mean - v) / m;
+            *sty -= (t - t_mean) * (v - *mean);
+            *mean = without;
         }
         self.t_mean = t_mean;
         self.m = m;
