@@ -471,3 +471,12 @@ fn messages_escape_control_characters_and_quote_at_most_80_characters() {
     assert!(err.contains("\\u{1b}"), "{err}");
     assert!(err.len() < 200, "{} bytes: {err}", err.len());
 }
+
+#[test]
+fn a_csv_that_is_not_utf8_is_refused_at_its_line_and_byte() {
+    let path = temp_file("latin1.csv", b"t,x,y,z\n0,0,0,0\n0.1,1,0,\xe9\n");
+    refused(
+        &["simulate", "--trajectory", path.to_str().unwrap()],
+        "line 3, byte offset 24: not UTF-8 text",
+    );
+}

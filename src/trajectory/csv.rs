@@ -79,7 +79,7 @@ pub fn parse_csv(text: &str, name: &str) -> Result<Trajectory, TrajectoryError> 
         .enumerate()
         .map(|(i, l)| (i + 1, l.trim()))
         .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let (_, header_line) = lines.next().ok_or(TrajectoryError::Empty)?;
+    let (header_at, header_line) = lines.next().ok_or(TrajectoryError::Empty)?;
     let header: Vec<String> = header_line
         .split(',')
         .map(|h| h.trim().trim_matches('"').to_ascii_lowercase())
@@ -92,6 +92,7 @@ pub fn parse_csv(text: &str, name: &str) -> Result<Trajectory, TrajectoryError> 
     for (k, (canonical, _)) in ALIASES.iter().take(4).enumerate() {
         if columns[k].is_none() {
             return Err(TrajectoryError::MissingColumn {
+                line: header_at,
                 column: canonical,
                 header: header_line.to_string(),
             });
@@ -337,6 +338,12 @@ mod tests {
                 })
             })
             .collect()
+    }
+
+    #[test]
+    fn a_missing_column_names_the_header_line_after_comments() {
+        let e = parse_csv("# logged by hand\n\n# units: s, m\nt,x,y\n0,0,0\n", "f").unwrap_err();
+        assert!(e.to_string().starts_with("line 4: no 'z' column"), "{e}");
     }
 
     #[test]

@@ -21,6 +21,8 @@ pub enum TrajectoryError {
     },
     /// A required column is missing from the header.
     MissingColumn {
+        /// The header's line (after any comment and blank lines), 1-based.
+        line: usize,
         /// The column (`t`, `x`, …).
         column: &'static str,
         /// The header as read.
@@ -104,9 +106,13 @@ impl fmt::Display for TrajectoryError {
                 write!(f, "the CSV has {rows} data rows; at least {min} are needed")
             }
             TrajectoryError::TooManyRows { max } => write!(f, "the CSV has more than {max} data rows"),
-            TrajectoryError::MissingColumn { column, header } => write!(
+            TrajectoryError::MissingColumn {
+                line,
+                column,
+                header,
+            } => write!(
                 f,
-                "line 1: no '{column}' column in the header '{}' (need t, x, y, z; aliases like t_seconds, x_m are accepted)",
+                "line {line}: no '{column}' column in the header '{}' (need t, x, y, z; aliases like t_seconds, x_m are accepted)",
                 excerpt(header)
             ),
             TrajectoryError::FieldCount { line, got, expected } => {

@@ -441,16 +441,24 @@ fn read_flight(path: &std::path::Path) -> Result<String, ApiError> {
     if meta.len() > MAX_CSV_BYTES as u64 {
         return Err(too_large(meta.len()));
     }
-    let mut text = String::new();
+    let mut bytes = Vec::new();
     std::fs::File::open(path)
         .map_err(cannot)?
         .take(MAX_CSV_BYTES as u64 + 1)
-        .read_to_string(&mut text)
+        .read_to_end(&mut bytes)
         .map_err(cannot)?;
-    if text.len() > MAX_CSV_BYTES {
-        return Err(too_large(text.len() as u64));
+    if bytes.len() > MAX_CSV_BYTES {
+        return Err(too_large(bytes.len() as u64));
     }
-    Ok(text)
+    String::from_utf8(bytes).map_err(|e| {
+        // Say where: the line and the byte, so the file can be mended.
+        let at = e.utf8_error().valid_up_to();
+        let line = e.as_bytes()[..at].iter().filter(|&&b| b == b'\n').count() + 1;
+        ApiError::Invalid(format!(
+            "{}: line {line}, byte offset {at}: not UTF-8 text (save the CSV as UTF-8)",
+            path.display()
+        ))
+    })
 }
 
 fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
