@@ -245,3 +245,32 @@ fn the_paper_sweep_covers_its_grid_and_richer_models_win_at_one_km() {
     let far = &r.runs[2];
     assert!(far.results[0].delivery.packets_received < far.results[0].delivery.packets_sent);
 }
+
+#[test]
+fn the_caches_account_for_their_bytes_and_stay_within_the_budget() {
+    let mut sim = Simulator::new();
+    let whole = set(
+        &Scenario::default(),
+        json!({"synthetic": "all", "model": "dr"}),
+    );
+    simulate(&mut sim, &whole).unwrap();
+    let after_one = sim.cached_bytes();
+    // The whole set at 100 Hz (flights) and its drone runs at 10 Hz, at least.
+    assert!(after_one > 30 << 20, "{after_one} bytes");
+    for seed in 2..=6 {
+        simulate(
+            &mut sim,
+            &set(&whole, json!({"seed": seed, "sensorRate": 50})),
+        )
+        .unwrap();
+        assert!(
+            sim.cached_bytes() <= loratrack::MAX_CACHE_BYTES,
+            "{} bytes",
+            sim.cached_bytes()
+        );
+    }
+    // What was used last is still there: the same run computes no drone filter.
+    let runs = sim.drone_runs();
+    simulate(&mut sim, &set(&whole, json!({"seed": 6, "sensorRate": 50}))).unwrap();
+    assert_eq!(sim.drone_runs(), runs);
+}

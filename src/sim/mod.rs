@@ -8,6 +8,7 @@
 //! points: [`Simulator`] (`simulate`: one drone, each flight an episode, drone runs cached so
 //! that a link change never re-runs a drone filter) and [`run_swarm`] (`swarm`: many drones).
 
+mod cache_budget;
 mod drone;
 mod error;
 mod flier;
@@ -25,6 +26,7 @@ pub mod station;
 mod streams;
 pub mod swarm;
 
+pub use cache_budget::MAX_CACHE_BYTES;
 pub use drone::{run_drone, DroneFilter, DroneTrack, Estimates};
 pub use error::SimError;
 pub use flier::Flier;

@@ -1,5 +1,6 @@
 //! Runs simulations and caches what does not depend on the link.
 
+use super::cache_budget::{Ledger, MAX_CACHE_BYTES};
 use super::drone::{run_drone, DroneTrack, Estimates};
 use super::flier::Flier;
 use super::network::{run_episode, Network};
@@ -10,7 +11,8 @@ use super::radio::DroneRadio;
 use super::report::{Delivery, ModelSeries, RunConfig, Series, SimReport};
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
 use super::station::{
-    new_tracker, track_station, FlightChains, Prediction, StationModel, StationTrack,
+    new_tracker, track_station, Estimate, FlightChains, Prediction, StationModel, StationTrack,
+    MAX_GRIDS,
 };
 use super::streams;
 use super::SimError;
@@ -33,10 +35,20 @@ type FlightRun = (
     Option<ModelSeries>,
     Option<Delivery>,
 );
-/// Cache sizes; past them the cache starts afresh (a page rarely alternates between more).
+/// Cache sizes by count; past them the cache starts afresh (a page rarely alternates between
+/// more). Together the caches also stay within [`MAX_CACHE_BYTES`], least recently used out.
 const MAX_CACHED_FLIGHTS: usize = 4;
 const MAX_CACHED_DRONE_RUNS: usize = 24;
 const MAX_CACHED_STATIONS: usize = 6;
+
+/// A cached entry, for the byte budget.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+enum Entry {
+    Flights(FlightKey),
+    CsvText(u64),
+    Drones(DroneKey),
+    Stations(StationKey),
+}
 
 /// A single-model station setting whose per-packet predictions can be reused
 /// ([`FlightChains`]): the drone run it receives from and everything its prediction uses.
@@ -87,6 +99,7 @@ pub struct Simulator {
     drones: HashMap<DroneKey, Rc<Vec<DroneTrack>>>,
     stations: HashMap<StationKey, Rc<Vec<Mutex<FlightChains>>>>,
     drone_runs: u64,
+    ledger: Ledger<Entry>,
 }
 
 impl Simulator {
@@ -101,6 +114,27 @@ impl Simulator {
         self.drone_runs
     }
 
+    /// Bytes its caches hold (an estimate from their sizes), at most [`MAX_CACHE_BYTES`] once a
+    /// run is over.
+    pub fn cached_bytes(&self) -> usize {
+        self.ledger.total()
+    }
+
+    /// Records `entry` at `bytes`, then forgets the least recently used entries (never `entry`)
+    /// until the caches fit the budget.
+    fn remember(&mut self, entry: Entry, bytes: usize) {
+        self.ledger.insert(entry.clone(), bytes);
+        while let Some(old) = self.ledger.over_budget(MAX_CACHE_BYTES, &entry) {
+            self.ledger.remove(&old);
+            match old {
+                Entry::Flights(k) => drop(self.flights.remove(&k)),
+                Entry::CsvText(id) => self.csv_texts.retain(|(_, _, i)| *i != id),
+                Entry::Drones(k) => drop(self.drones.remove(&k)),
+                Entry::Stations(k) => drop(self.stations.remove(&k)),
+            }
+        }
+    }
+
     /// The key of CSV `text` whose hash is `hash`: the id it was given before if the same text
     /// is remembered, otherwise a fresh one (the oldest text is forgotten past the cache size).
     fn csv_key(&mut self, text: &str, hash: u64) -> FlightKey {
@@ -109,14 +143,18 @@ impl Simulator {
             .iter()
             .find(|(h, t, _)| *h == hash && t.as_ref() == text)
         {
-            return FlightKey::Csv(*id);
+            let id = *id;
+            self.ledger.touch(&Entry::CsvText(id));
+            return FlightKey::Csv(id);
         }
         if self.csv_texts.len() >= MAX_CACHED_FLIGHTS {
-            self.csv_texts.remove(0);
+            let (_, _, id) = self.csv_texts.remove(0);
+            self.ledger.remove(&Entry::CsvText(id));
         }
         let id = self.next_csv_id;
         self.next_csv_id += 1;
         self.csv_texts.push((hash, text.into(), id));
+        self.remember(Entry::CsvText(id), text.len());
         FlightKey::Csv(id)
     }
 
@@ -130,14 +168,22 @@ impl Simulator {
             TrajectorySource::Csv(text, _) => self.csv_key(text, fnv1a(text)),
         };
         if let Some(f) = self.flights.get(&key) {
-            return Ok((key, Rc::clone(f)));
+            let f = Rc::clone(f);
+            self.ledger.touch(&Entry::Flights(key.clone()));
+            return Ok((key, f));
         }
         let flights = load_flights(source)?;
         if self.flights.len() >= MAX_CACHED_FLIGHTS {
+            self.flights
+                .keys()
+                .for_each(|k| self.ledger.remove(&Entry::Flights(k.clone())));
             self.flights.clear();
         }
+        // Time, position, velocity, acceleration and the derived state per sample.
+        let bytes = flights.iter().map(|f| f.t.len() * 19 * 8).sum();
         let flights = Rc::new(flights);
         self.flights.insert(key.clone(), Rc::clone(&flights));
+        self.remember(Entry::Flights(key.clone()), bytes);
         Ok((key, flights))
     }
 
@@ -151,8 +197,10 @@ impl Simulator {
         tick: &mut dyn FnMut(),
     ) -> Rc<Vec<DroneTrack>> {
         if let Some(d) = self.drones.get(&key) {
+            let d = Rc::clone(d);
             flights.iter().for_each(|_| tick());
-            return Rc::clone(d);
+            self.ledger.touch(&Entry::Drones(key));
+            return d;
         }
         let tracks: Vec<DroneTrack> = par_map_ticking(
             0..flights.len(),
@@ -171,23 +219,42 @@ impl Simulator {
         );
         self.drone_runs += tracks.len() as u64;
         if self.drones.len() >= MAX_CACHED_DRONE_RUNS {
+            self.drones
+                .keys()
+                .for_each(|k| self.ledger.remove(&Entry::Drones(k.clone())));
             self.drones.clear();
         }
+        let bytes = tracks.iter().map(|t| t.states.len() * 9 * 8).sum();
         let tracks = Rc::new(tracks);
-        self.drones.insert(key, Rc::clone(&tracks));
+        self.drones.insert(key.clone(), Rc::clone(&tracks));
+        self.remember(Entry::Drones(key), bytes);
         tracks
     }
 
-    /// The remembered station predictions for `key`, one entry per flight.
-    fn station_chains(&mut self, key: StationKey, flights: usize) -> Rc<Vec<Mutex<FlightChains>>> {
+    /// The remembered station predictions for `key`, one entry per flight; `grid` is the
+    /// number of evaluation times over all the flights.
+    fn station_chains(
+        &mut self,
+        key: StationKey,
+        flights: usize,
+        grid: f64,
+    ) -> Rc<Vec<Mutex<FlightChains>>> {
         if let Some(c) = self.stations.get(&key) {
-            return Rc::clone(c);
+            let c = Rc::clone(c);
+            self.ledger.touch(&Entry::Stations(key));
+            return c;
         }
         if self.stations.len() >= MAX_CACHED_STATIONS {
+            self.stations
+                .keys()
+                .for_each(|k| self.ledger.remove(&Entry::Stations(k.clone())));
             self.stations.clear();
         }
         let chains = Rc::new((0..flights).map(|_| Mutex::default()).collect::<Vec<_>>());
-        self.stations.insert(key, Rc::clone(&chains));
+        self.stations.insert(key.clone(), Rc::clone(&chains));
+        // At most MAX_GRIDS grids' worth of estimates per flight (FlightChains).
+        let bytes = (grid * MAX_GRIDS * core::mem::size_of::<Estimate>() as f64) as usize;
+        self.remember(Entry::Stations(key), bytes);
         chains
     }
 
@@ -256,6 +323,7 @@ impl Simulator {
                         q: s.drone.q.to_bits(),
                     },
                     flights.len(),
+                    flight_time / s.station.step + flights.len() as f64,
                 )),
                 // An IMM's probabilities carry over from packet to packet: nothing to reuse.
                 StationModel::Imm => None,

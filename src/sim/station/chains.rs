@@ -31,7 +31,7 @@ pub(crate) struct FlightChains {
 
 /// A flight keeps at most this many times its evaluation grid in estimates (about four send
 /// schedules' worth, ~0.5 KB per second of flight); past it, it starts afresh.
-const MAX_GRIDS: f64 = 4.0;
+pub(crate) const MAX_GRIDS: f64 = 4.0;
 
 impl FlightChains {
     /// [`track_station`](super::track_station) for a fresh single-model station made by

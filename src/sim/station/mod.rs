@@ -13,7 +13,7 @@ mod prediction;
 mod predictor;
 mod station_model;
 
-pub(crate) use chains::FlightChains;
+pub(crate) use chains::{FlightChains, MAX_GRIDS};
 pub use imm::{Imm, ImmMember, IMM_STAY};
 pub use prediction::{Bounded, Bounds, Prediction};
 pub use predictor::{StationPredictor, StationSetup};
