@@ -4,7 +4,7 @@
 // property tests cover the same ground on stable.
 //   node scripts/fuzz.mjs [seconds per target, default 20]
 import { spawnSync } from 'node:child_process';
-import { readdirSync } from 'node:fs';
+import { existsSync, mkdirSync, readdirSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
@@ -35,7 +35,13 @@ const targets = readdirSync(join(root, 'fuzz', 'fuzz_targets'))
   .sort();
 for (const target of targets) {
   say(`${target}: ${seconds} s`);
-  if (!run('cargo', ['+nightly', 'fuzz', 'run', target, '--', `-max_total_time=${seconds}`, '-rss_limit_mb=4096'])) {
+  // The working corpus (git-ignored) first, then the committed seeds (fuzz/seeds/<target>: e.g.
+  // CSVs with and without velocity columns, so the derivative path is reached from the start).
+  const corpus = join('fuzz', 'corpus', target);
+  mkdirSync(join(root, corpus), { recursive: true });
+  const seeds = join('fuzz', 'seeds', target);
+  const dirs = existsSync(join(root, seeds)) ? [corpus, seeds] : [corpus];
+  if (!run('cargo', ['+nightly', 'fuzz', 'run', target, ...dirs, '--', `-max_total_time=${seconds}`, '-rss_limit_mb=4096'])) {
     console.error(`[fuzz] error: ${target} found a failing input (see fuzz/artifacts/${target}/)`);
     process.exit(1);
   }

@@ -294,7 +294,7 @@ fn csv_kinematics_are_bounded_and_every_refusal_names_a_line() {
 }
 
 #[test]
-fn a_closed_stdout_is_a_normal_exit_and_a_full_disk_an_error() {
+fn a_closed_stdout_and_a_full_disk_are_write_errors() {
     let mut child = Command::new(env!("CARGO_BIN_EXE_loratrack"))
         .args(["sweep", "--paper"])
         .stdout(Stdio::piped())
@@ -303,12 +303,14 @@ fn a_closed_stdout_is_a_normal_exit_and_a_full_disk_an_error() {
         .unwrap();
     drop(child.stdout.take()); // the reader goes away, as `| head -c 0` would
     let out = child.wait_with_output().unwrap();
+    // The output was not delivered: say so and exit non-zero, as for any failed write.
     assert_eq!(
         out.status.code(),
-        Some(0),
+        Some(2),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    assert!(String::from_utf8_lossy(&out.stderr).starts_with("error: cannot write the output"));
     if let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") {
         let out = Command::new(env!("CARGO_BIN_EXE_loratrack"))
             .args(["airtime", "--sf", "7", "--bw", "125", "--payload", "9"])
@@ -479,4 +481,20 @@ fn a_csv_that_is_not_utf8_is_refused_at_its_line_and_byte() {
         &["simulate", "--trajectory", path.to_str().unwrap()],
         "line 3, byte offset 24: not UTF-8 text",
     );
+}
+
+#[test]
+fn every_sweep_takes_a_random_seed_and_reports_it() {
+    let r = json(&["sweep", "--distances", "2000", "--seed", "random", "--json"]);
+    let seed = r["seed"].as_u64().expect("the drawn seed is reported");
+    assert!(seed <= 9_007_199_254_740_991);
+    let again = json(&[
+        "sweep",
+        "--distances",
+        "2000",
+        "--seed",
+        &seed.to_string(),
+        "--json",
+    ]);
+    assert_eq!(again, r, "the reported seed repeats the sweep");
 }

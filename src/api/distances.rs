@@ -34,6 +34,8 @@ pub struct DistanceRun {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct DistanceSweepReport {
+    /// The seed every run used (drawn when `random` was asked for).
+    pub seed: u64,
     /// Every run, distance by distance: DR0..DR6, then `lorawan` and `tracking` from `base`'s
     /// data rate, then both from DR0.
     pub runs: Vec<DistanceRun>,
@@ -93,5 +95,8 @@ pub fn sweep_distances(
             });
         }
     }
-    Ok(DistanceSweepReport { runs })
+    Ok(DistanceSweepReport {
+        seed: base.run.seed,
+        runs,
+    })
 }

@@ -33,6 +33,8 @@ pub struct SenderPoint {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct SenderSweepReport {
+    /// The seed every run used (drawn when `random` was asked for).
+    pub seed: u64,
     /// The periodic sender under the per-packet rule (the paper).
     pub periodic: ModelResult,
     /// Error-triggered sending at each threshold, per-packet rule then budget.
@@ -82,5 +84,9 @@ pub fn sweep_senders(
             });
         }
     }
-    Ok(SenderSweepReport { periodic, points })
+    Ok(SenderSweepReport {
+        seed: base.run.seed,
+        periodic,
+        points,
+    })
 }

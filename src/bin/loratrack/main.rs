@@ -28,12 +28,11 @@ fn main() -> std::process::ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         // --help and --version are not errors: printed, they exit 0; a help that cannot be
-        // written (a full disk) is one.
+        // written (a full disk, a closed pipe) is one.
         Err(e) if !e.use_stderr() => {
             let mut out = std::io::stdout().lock();
             return match write!(out, "{}", e.render()).and_then(|()| out.flush()) {
                 Ok(()) => ExitCode::SUCCESS,
-                Err(w) if w.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
                 Err(w) => fail(&format!("cannot write the output: {w}")),
             };
         }
@@ -44,8 +43,6 @@ fn main() -> std::process::ExitCode {
             let mut out = std::io::stdout().lock();
             match writeln!(out, "{text}").and_then(|()| out.flush()) {
                 Ok(()) => ExitCode::SUCCESS,
-                // A reader that stopped early (`| head`) is not an error.
-                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
                 Err(e) => fail(&format!("cannot write the output: {e}")),
             }
         }
