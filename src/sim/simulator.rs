@@ -377,7 +377,7 @@ impl Simulator {
             };
             let runs: Vec<Result<FlightRun, SimError>> = if start.adaptive() {
                 // ADR state passes from one flight to the next: fly them in order, one network.
-                let mut net = network()?;
+                let mut net = network();
                 let mut runs: Vec<_> = (0..flights.len())
                     .map(|i| {
                         let r = one(i, &mut net);
@@ -393,7 +393,7 @@ impl Simulator {
                 par_map_ticking(
                     0..flights.len(),
                     |i| {
-                        let mut net = network()?;
+                        let mut net = network();
                         let mut r = one(i, &mut net)?;
                         r.3 = Some(Delivery::counted(&net));
                         Ok(r)
@@ -487,9 +487,9 @@ pub(crate) fn load_flights(source: &TrajectorySource) -> Result<Vec<Trajectory>,
 }
 
 /// A network of the run's gateways for one drone with radio `radio`.
-fn network_of(cfg: &Validated, radio: DroneRadio) -> Result<Network, SimError> {
+fn network_of(cfg: &Validated, radio: DroneRadio) -> Network {
     let s = cfg.s();
-    Ok(Network::new(
+    Network::new(
         cfg.sites(s.channel.distance),
         s.channel.gateway_height,
         vec![radio],
@@ -497,7 +497,7 @@ fn network_of(cfg: &Validated, radio: DroneRadio) -> Result<Network, SimError> {
         cfg.channel,
         cfg.interference,
         s.radio.overhead > 0,
-    ))
+    )
 }
 
 #[cfg(test)]

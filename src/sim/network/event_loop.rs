@@ -7,8 +7,8 @@
 use super::gateway::Gateway;
 use super::server::Network;
 use crate::lora::{
-    audible, downlink_time_on_air, empty_window_s, tx_current_ma, Outcome, Uplink, UplinkActivity,
-    Window, ACK_DOWNLINK_BYTES, ADR_DOWNLINK_BYTES,
+    audible, downlink_time_on_air, empty_window_s, Outcome, Uplink, UplinkActivity, Window,
+    ACK_DOWNLINK_BYTES, ADR_DOWNLINK_BYTES,
 };
 use crate::sim::flier::Flier;
 use crate::sim::link::Reception;
@@ -57,14 +57,14 @@ fn packet_id(drone: usize, index: usize) -> u64 {
     ((drone as u64) << 32) | index as u64
 }
 
-/// Runs one episode: every flier's uplinks until its flight ends, through every gateway of
-/// `net`, filling each flier's `tx`. The network's radios, ADR state and gateway counts carry
-/// over to the next episode; the gateways' receivers and duty cycles start afresh (each flight
-/// has its own time axis).
 /// Seconds of flight whose drone estimates are computed ahead, all drones in parallel, before
 /// the loop reaches them (a swarm's filters are most of its work).
 const LOOKAHEAD_S: f64 = 30.0;
 
+/// Runs one episode: every flier's uplinks until its flight ends, through every gateway of
+/// `net` (at most 32: `heard_by` is a bit set; settings allow 16), filling each flier's `tx`.
+/// The network's radios, ADR state and gateway counts carry over to the next episode; the
+/// gateways' receivers and duty cycles start afresh (each flight has its own time axis).
 pub fn run_episode(net: &mut Network, fliers: &mut [Flier<'_>]) {
     let mut gateways: Vec<Gateway> = net
         .sites
@@ -258,7 +258,6 @@ fn finish_exchange(
             [(0.0, uplink_rate.1), (0.0, dr0.bw())]
         },
     };
-    debug_assert!(tx_current_ma(activity.tx_power_dbm) > 0.0);
     if let Some(t) = f.tx.last_mut() {
         t.charge_mc = activity.charge_mc();
         t.active_s = activity.active_s();

@@ -168,8 +168,8 @@ pub fn run_swarm(
     );
     let total = plan.episodes.len() + n;
     let mut done = 0;
-    // Per episode, per drone: its transmissions and filter repairs.
-    let mut sent: Vec<Vec<(Vec<Transmission>, u64)>> = Vec::new();
+    // Per episode, per drone: its transmissions.
+    let mut sent: Vec<Vec<Vec<Transmission>>> = Vec::new();
     for seats in &plan.episodes {
         sent.push(fly(cfg, &mut net, &plan, seats, model, &setups)?);
         done += 1;
@@ -185,14 +185,13 @@ pub fn run_swarm(
                 let flight = &plan.flights[seats[i].flight];
                 let mut tracker = new_tracker(model, setups[i]);
                 e3.extend(
-                    track_station(flight, tracker.as_mut(), &out[i].0, s.station.step, false)
-                        .error3d,
+                    track_station(flight, tracker.as_mut(), &out[i], s.station.step, false).error3d,
                 );
             }
             e3
         });
         for (i, mut e3) in chunk.zip(tracked) {
-            let mine: Vec<&Transmission> = sent.iter().flat_map(|ep| ep[i].0.iter()).collect();
+            let mine: Vec<&Transmission> = sent.iter().flat_map(|ep| ep[i].iter()).collect();
             let mut channel_use = vec![0; usize::from(s.network.channels)];
             for t in &mine {
                 channel_use[usize::from(t.channel)] += 1;
@@ -233,7 +232,7 @@ fn fly(
     seats: &[Seat],
     model: StationModel,
     setups: &[StationSetup],
-) -> Result<Vec<(Vec<Transmission>, u64)>, SimError> {
+) -> Result<Vec<Vec<Transmission>>, SimError> {
     let s = cfg.s();
     let seed = s.run.seed;
     let mut fliers = Vec::with_capacity(seats.len());
@@ -275,13 +274,7 @@ fn fly(
         ));
     }
     run_episode(net, &mut fliers);
-    Ok(fliers
-        .into_iter()
-        .map(|f| {
-            let r = f.estimates.recoveries();
-            (f.tx, r)
-        })
-        .collect())
+    Ok(fliers.into_iter().map(|f| f.tx).collect())
 }
 
 fn report(
