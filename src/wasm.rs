@@ -149,6 +149,36 @@ pub fn stations_of(params: JsValue) -> Result<JsValue, JsError> {
     })
 }
 
+/// `loadCsv({trajectory, trajectoryName?}, progress?)` → `{rows}`: reads a CSV flight into the
+/// module's cache, calling `progress(lines read, lines)` about a hundred times, so that the page
+/// can show how far a large file is; a following `simulate` of the same text starts at once.
+#[wasm_bindgen(js_name = loadCsv)]
+pub fn load_csv(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> {
+    #[derive(serde::Deserialize)]
+    #[serde(rename_all = "camelCase", deny_unknown_fields)]
+    struct Params {
+        trajectory: String,
+        #[serde(default)]
+        trajectory_name: Option<String>,
+    }
+    #[derive(serde::Serialize)]
+    struct Rows {
+        rows: usize,
+    }
+    let progress = progress_function(progress)?;
+    call(params, |p: Params| {
+        SIMULATOR.with(|s| {
+            let mut report = reporter(&progress);
+            let mut sim = s.try_borrow_mut().map_err(|_| {
+                ApiError::Invalid("loadCsv was called from a progress callback".into())
+            })?;
+            let name = p.trajectory_name.as_deref().unwrap_or("uploaded CSV");
+            let rows = sim.load_csv(&p.trajectory, name, &mut report)?;
+            Ok(Rows { rows })
+        })
+    })
+}
+
 /// A progress argument: a function, or undefined/null for none; anything else is refused.
 fn progress_function(progress: JsValue) -> Result<Option<js_sys::Function>, JsError> {
     use wasm_bindgen::JsCast;

@@ -495,3 +495,51 @@ fn a_nan_names_its_key_and_messages_carry_no_control_characters() {
     assert!(!m.chars().any(char::is_control), "{m:?}");
     assert!(m.len() < 300, "{m}");
 }
+
+#[wasm_bindgen_test]
+fn a_large_csv_is_read_with_progress_and_then_simulated_from_the_cache() {
+    let mut text = String::from("t,x,y,z\n");
+    for i in 0..3000 {
+        let t = f64::from(i) * 0.1;
+        text += &format!("{t},{},{},{}\n", 3.0 * t, (0.1 * t).sin() * 40.0, 20.0);
+    }
+    let calls = std::rc::Rc::new(std::cell::RefCell::new(Vec::<(f64, f64)>::new()));
+    let seen = calls.clone();
+    let progress = wasm_bindgen::closure::Closure::<dyn FnMut(f64, f64)>::new(move |d, t| {
+        seen.borrow_mut().push((d, t));
+    });
+    let r = wasm::load_csv(
+        obj(&[
+            ("trajectory", text.clone().into()),
+            ("trajectoryName", "big.csv".into()),
+        ]),
+        progress.as_ref().clone(),
+    )
+    .unwrap();
+    assert_eq!(num(&r, "rows"), 3000.0);
+    let calls = calls.borrow();
+    assert!(calls.len() >= 50, "{} progress calls", calls.len());
+    assert!(calls.windows(2).all(|w| w[1].0 > w[0].0));
+    let sim = wasm::simulate(
+        obj(&[
+            ("trajectory", text.into()),
+            ("trajectoryName", "big.csv".into()),
+            ("model", "dr".into()),
+        ]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap();
+    assert_eq!(
+        get(&get(&sim, "config"), "trajectory")
+            .as_string()
+            .as_deref(),
+        Some("big.csv")
+    );
+    assert!(num(&sim, "packetsReceived") > 10.0);
+    let e = wasm::load_csv(
+        obj(&[("trajectory", "t,x\n1,2\n".into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    assert!(error_message(e).contains("no 'y' column"));
+}

@@ -89,6 +89,12 @@ export function swarm(params: SwarmParams, onProgress?: (done: number, total: nu
   return wasm.swarm(params, onProgress) as SwarmReport;
 }
 
+/** Reads a CSV flight into the module's cache, calling `onProgress(lines read, lines)` as it
+ * goes; a following simulate of the same text starts at once. */
+export function loadCsv(params: { trajectory: string; trajectoryName?: string }, onProgress?: (done: number, total: number) => void): { rows: number } {
+  return wasm.loadCsv(params, onProgress) as { rows: number };
+}
+
 /** Every numeric setting's default and accepted range, as the core validates them. */
 export function limits(): NumberOption[] {
   return wasm.limits() as NumberOption[];

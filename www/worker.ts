@@ -1,7 +1,7 @@
 // Runs simulations off the main thread so the page never freezes. One message in, one out:
 //   { id, params, distances? }  →  { id, progress }* then { id, report } | { id, error }
 //                                   then, with distances, { id, sweep: [{ distance, report }] }
-import { load, simulate, swarm, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
+import { load, loadCsv, simulate, swarm, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
 
 export interface SimulateRequest {
   id: number;
@@ -24,6 +24,9 @@ export type Response =
   | { id: number; sweep: { distance: number; report: SimReport }[] }
   | { id: number; swarms: SwarmReport[]; millis: number };
 
+/** CSV texts above this size are read first with their own progress. */
+const LARGE_CSV_BYTES = 1 << 20;
+
 const ready = load();
 
 self.onmessage = async (event: MessageEvent<Request>) => {
@@ -34,13 +37,18 @@ self.onmessage = async (event: MessageEvent<Request>) => {
   try {
     const t0 = performance.now();
     let last = 0;
-    const report = simulate({ ...params, series: true }, (done, total) => {
-      // A few dozen messages at most: one per 2 % of the work.
-      if (done / total - last >= 0.02 || done === total) {
-        last = done / total;
-        post({ id, progress: last });
+    // A few dozen messages at most: one per 2 % of the work. A large CSV is read first, with its
+    // own progress (the first half of the bar), then simulated from the module's cache.
+    const report_ = (from: number, share: number) => (done: number, total: number) => {
+      const p = from + (share * done) / total;
+      if (p - last >= 0.02 || done === total) {
+        last = p;
+        post({ id, progress: p });
       }
-    });
+    };
+    const large = (params.trajectory?.length ?? 0) > LARGE_CSV_BYTES;
+    if (large && params.trajectory) loadCsv({ trajectory: params.trajectory, trajectoryName: params.trajectoryName }, report_(0, 0.5));
+    const report = simulate({ ...params, series: true }, large ? report_(0.5, 0.5) : report_(0, 1));
     post({ id, report, millis: performance.now() - t0 });
     if (distances?.length) {
       // Only the link changes between these runs: the drone filters come from the cache. The

@@ -21,7 +21,8 @@ use crate::math::pow;
 use crate::models::ModelKind;
 use crate::options::MAX_FILTER_STEPS;
 use crate::trajectory::{
-    canberra_flight, parse_csv, synthetic_flight, synthetic_set, Trajectory, TrajectoryError,
+    canberra_flight, parse_csv, parse_csv_with_progress, synthetic_flight, synthetic_set,
+    Trajectory, TrajectoryError,
 };
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -158,9 +159,25 @@ impl Simulator {
         FlightKey::Csv(id)
     }
 
+    /// Reads CSV `text` (named `name`) into the flight cache, calling `progress(lines read,
+    /// lines)` as it goes, so that a following `simulate` of the same text starts at once. A
+    /// page calls it first for a large file, to show how far the reading is. The flight's row
+    /// count.
+    pub fn load_csv(
+        &mut self,
+        text: &str,
+        name: &str,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Result<usize, SimError> {
+        let source = TrajectorySource::Csv(text.to_string(), name.to_string());
+        let (_, flights) = self.flights(&source, progress)?;
+        Ok(flights.iter().map(|f| f.t.len()).sum())
+    }
+
     fn flights(
         &mut self,
         source: &TrajectorySource,
+        progress: &mut dyn FnMut(usize, usize),
     ) -> Result<(FlightKey, Rc<Vec<Trajectory>>), SimError> {
         let key = match source {
             TrajectorySource::Synthetic(c) => FlightKey::Synthetic(*c),
@@ -172,7 +189,12 @@ impl Simulator {
             self.ledger.touch(&Entry::Flights(key.clone()));
             return Ok((key, f));
         }
-        let flights = load_flights(source)?;
+        let flights = match source {
+            TrajectorySource::Csv(text, name) => {
+                vec![parse_csv_with_progress(text, name, progress)?]
+            }
+            _ => load_flights(source)?,
+        };
         if self.flights.len() >= MAX_CACHED_FLIGHTS {
             self.flights
                 .keys()
@@ -284,7 +306,7 @@ impl Simulator {
                     .into(),
             )
         })?;
-        let (flight_key, flights) = self.flights(&source)?;
+        let (flight_key, flights) = self.flights(&source, &mut |_, _| {})?;
         let flight_time: f64 = flights.iter().map(Trajectory::duration).sum();
         let steps = flight_time * (s.drone.sensor_rate + 1.0 / s.station.step);
         if steps > MAX_FILTER_STEPS as f64 {

@@ -65,6 +65,16 @@ fn find(header: &[String], names: &[&str]) -> Option<usize> {
 /// assert!((tr.vel[10][0] - 10.0).abs() < 1e-9);
 /// ```
 pub fn parse_csv(text: &str, name: &str) -> Result<Trajectory, TrajectoryError> {
+    parse_csv_with_progress(text, name, &mut |_, _| {})
+}
+
+/// [`parse_csv`], calling `progress(lines read, lines)` about a hundred times as it reads, so a
+/// page can show how far a large file is.
+pub fn parse_csv_with_progress(
+    text: &str,
+    name: &str,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Trajectory, TrajectoryError> {
     if text.len() > MAX_CSV_BYTES {
         return Err(TrajectoryError::TooLarge { bytes: text.len() });
     }
@@ -103,7 +113,12 @@ pub fn parse_csv(text: &str, name: &str) -> Result<Trajectory, TrajectoryError> 
 
     let mut rows: Vec<[f64; 10]> = Vec::new();
     let mut line_numbers = Vec::new();
+    let total = text.bytes().filter(|&b| b == b'\n').count().max(1);
+    let every = (total / 100).max(1);
     for (line, l) in lines {
+        if line % every == 0 {
+            progress(line.min(total), total);
+        }
         if rows.len() >= MAX_ROWS {
             return Err(TrajectoryError::TooManyRows { max: MAX_ROWS });
         }
@@ -338,6 +353,18 @@ mod tests {
                 })
             })
             .collect()
+    }
+
+    #[test]
+    fn reading_reports_its_progress_about_a_hundred_times_in_order() {
+        let text = csv(2000);
+        let mut seen = Vec::new();
+        let tr = parse_csv_with_progress(&text, "p", &mut |done, total| seen.push((done, total)))
+            .unwrap();
+        assert_eq!(tr.t.len(), 2000);
+        assert!((90..=110).contains(&seen.len()), "{} reports", seen.len());
+        assert!(seen.windows(2).all(|w| w[1].0 > w[0].0 && w[1].1 == w[0].1));
+        assert!(seen.iter().all(|&(d, t)| d <= t));
     }
 
     #[test]

@@ -10,7 +10,9 @@ mod synthetic;
 mod track;
 
 pub use chain::chain_flights;
-pub use csv::{parse_csv, MAX_CSV_BYTES, MAX_ROWS, MIN_ROWS, MIN_TIME_STEP};
+pub use csv::{
+    parse_csv, parse_csv_with_progress, MAX_CSV_BYTES, MAX_ROWS, MIN_ROWS, MIN_TIME_STEP,
+};
 pub use error::TrajectoryError;
 pub use kinematics::{kinematic_states, HOVER_SPEED};
 pub use sample::{canberra_flight, CANBERRA_CREDIT};

@@ -542,3 +542,23 @@ test('the swarm panel takes the single drone settings, ADR included, and reports
   assert.match(note, /\d+ ADR downlinks sent, \d+ dropped; radio [\d.]+ mC per uplink/);
   assert.deepEqual(problems, []);
 });
+
+test('a large CSV is read with its own progress, then simulated', async () => {
+  const dir = mkdtempSync(join(tmpdir(), 'loratrack-'));
+  const path = join(dir, 'long.csv');
+  // 40 000 rows at 50 Hz (13 min of flight), about 1.4 MB: above the size read first.
+  const rows = Array.from({ length: 40_000 }, (_, i) => {
+    const t = i * 0.02;
+    return `${t.toFixed(2)},${(Math.sin(t / 30) * 200).toFixed(3)},${(Math.cos(t / 30) * 200).toFixed(3)},${(30 + Math.sin(t / 7) * 5).toFixed(3)}`;
+  });
+  writeFileSync(path, 't,x,y,z\n' + rows.join('\n') + '\n');
+  const { page, problems } = await open('?model=dr');
+  const before = await tableHtml(page);
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
+  await page.locator('#csv').setInputFiles(path);
+  await waitForResults(page, before);
+  await page.waitForFunction(() => !document.body.hasAttribute('data-busy'));
+  assert.match(await page.locator('#status').textContent(), /long\.csv: 1 flight, 800 s simulated/);
+  assert.ok(number(await cell(page, 'dr', 'delivery')) > 0);
+  assert.deepEqual(problems, []);
+});
