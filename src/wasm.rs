@@ -172,8 +172,10 @@ pub fn load_csv(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> 
             let mut sim = s.try_borrow_mut().map_err(|_| {
                 ApiError::Invalid("loadCsv was called from a progress callback".into())
             })?;
-            let name = p.trajectory_name.as_deref().unwrap_or("uploaded CSV");
-            let rows = sim.load_csv(&p.trajectory, name, &mut report)?;
+            let name = p
+                .trajectory_name
+                .unwrap_or_else(|| crate::sim::scenario::DEFAULT_CSV_NAME.into());
+            let rows = sim.load_csv(p.trajectory, name, &mut report)?;
             Ok(Rows { rows })
         })
     })

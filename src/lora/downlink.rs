@@ -2,7 +2,7 @@
 //! RX2 defaults from the LoRaWAN Regional Parameters RP002-1.0.3 §2.4.7) and the frame a network
 //! server sends in them.
 
-use super::{time_on_air, Bandwidth, DataRate, LoraError, LoraParams, SubBand};
+use super::{time_on_air, DataRate, LoraError, LoraParams, SubBand};
 
 /// The device opens its second receive window this long after an uplink ends, s (LoRaWAN
 /// `RECEIVE_DELAY2`).
@@ -64,11 +64,6 @@ pub fn downlink_time_on_air(dr: DataRate, bytes: usize) -> Result<f64, LoraError
     let mut p = LoraParams::new(dr.sf(), dr.bw());
     p.crc = false;
     Ok(time_on_air(&p, bytes)?.time_on_air)
-}
-
-/// The bandwidth a window listens at after an uplink at `uplink`.
-pub fn window_bandwidth(w: Window, uplink: DataRate) -> Bandwidth {
-    w.data_rate(uplink).bw()
 }
 
 #[cfg(test)]

@@ -30,8 +30,7 @@ pub use airtime::{
 pub use channel::{Channel, ChannelParams};
 pub use data_rate::DataRate;
 pub use downlink::{
-    downlink_time_on_air, window_bandwidth, Window, ACK_DOWNLINK_BYTES, ADR_DOWNLINK_BYTES,
-    RECEIVE_DELAY2_S,
+    downlink_time_on_air, Window, ACK_DOWNLINK_BYTES, ADR_DOWNLINK_BYTES, RECEIVE_DELAY2_S,
 };
 pub use duty_cycle::{
     min_interval, DutyCycle, DutyCycleMode, SubBand, MAX_BURST, MIN_DUTY_CYCLE,

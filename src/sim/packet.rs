@@ -44,9 +44,4 @@ impl Transmission {
     pub fn data_rate(&self) -> Option<DataRate> {
         DataRate::of(self.sf, self.bw)
     }
-
-    /// How many gateways received it.
-    pub fn copies(&self) -> u32 {
-        self.heard_by.count_ones()
-    }
 }

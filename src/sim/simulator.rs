@@ -165,11 +165,11 @@ impl Simulator {
     /// count.
     pub fn load_csv(
         &mut self,
-        text: &str,
-        name: &str,
+        text: String,
+        name: String,
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<usize, SimError> {
-        let source = TrajectorySource::Csv(text.to_string(), name.to_string());
+        let source = TrajectorySource::Csv(text, name);
         let (_, flights) = self.flights(&source, progress)?;
         Ok(flights.iter().map(|f| f.t.len()).sum())
     }

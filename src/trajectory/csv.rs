@@ -245,22 +245,13 @@ fn within(v: &[f64; 3], limit: f64) -> bool {
 /// each window afresh took time proportional to the samples per window — minutes for a
 /// high-rate log.
 fn smoothed_derivative(t: &[f64], values: &[[f64; 3]], half_window: f64) -> Vec<[f64; 3]> {
-    let n = t.len();
-    let (mut lo, mut hi) = (0usize, 0usize);
     let mut w = Regression::default();
     // The samples a..b (exclusive) are in `w`; every sample in it was added after `fresh_from`
     // was set, so once `a` passes it the sums are rebuilt afresh (each sample is added at most
     // twice: still linear), and rounding from removals never accumulates past one window.
     let (mut a, mut b, mut fresh_from) = (0usize, 0usize, 0usize);
-    (0..n)
-        .map(|i| {
-            while t[i] - t[lo] > half_window && lo + 1 < i {
-                lo += 1;
-            }
-            while hi + 1 < n && (t[hi + 1] - t[i] <= half_window || hi <= i) {
-                hi += 1;
-            }
-            let (from, to) = (lo.min(i.saturating_sub(1)), hi.max((i + 1).min(n - 1)) + 1);
+    windows(t, half_window)
+        .map(|(from, to)| {
             while b < to {
                 w.add(t[b], &values[b]);
                 b += 1;
@@ -277,6 +268,23 @@ fn smoothed_derivative(t: &[f64], values: &[[f64; 3]], half_window: f64) -> Vec<
             w.slope()
         })
         .collect()
+}
+
+/// For each sample i, the samples `from..to` its derivative regresses on: those within
+/// ±`half_window` s, with at least one neighbour on each side where there is one. Both ends only
+/// move forward.
+fn windows(t: &[f64], half_window: f64) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let n = t.len();
+    let (mut lo, mut hi) = (0usize, 0usize);
+    (0..n).map(move |i| {
+        while t[i] - t[lo] > half_window && lo + 1 < i {
+            lo += 1;
+        }
+        while hi + 1 < n && (t[hi + 1] - t[i] <= half_window || hi <= i) {
+            hi += 1;
+        }
+        (lo.min(i.saturating_sub(1)), hi.max((i + 1).min(n - 1)) + 1)
+    })
 }
 
 /// Running sums of a least-squares line y = α + β t over a sliding set of samples (Welford):
@@ -330,17 +338,9 @@ mod tests {
 
     /// The regression summed afresh for every window (the former, quadratic implementation).
     fn two_pass(t: &[f64], values: &[[f64; 3]], half_window: f64) -> Vec<[f64; 3]> {
-        let n = t.len();
-        let (mut lo, mut hi) = (0usize, 0usize);
-        (0..n)
-            .map(|i| {
-                while t[i] - t[lo] > half_window && lo + 1 < i {
-                    lo += 1;
-                }
-                while hi + 1 < n && (t[hi + 1] - t[i] <= half_window || hi <= i) {
-                    hi += 1;
-                }
-                let (a, b) = (lo.min(i.saturating_sub(1)), hi.max((i + 1).min(n - 1)));
+        windows(t, half_window)
+            .map(|(a, to)| {
+                let b = to - 1;
                 let m = (b - a + 1) as f64;
                 let t_mean = t[a..=b].iter().sum::<f64>() / m;
                 let stt: f64 = t[a..=b].iter().map(|x| (x - t_mean).powi(2)).sum();

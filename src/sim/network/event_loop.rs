@@ -7,8 +7,8 @@
 use super::gateway::Gateway;
 use super::server::Network;
 use crate::lora::{
-    audible, downlink_time_on_air, empty_window_s, Outcome, Uplink, UplinkActivity, Window,
-    ACK_DOWNLINK_BYTES, ADR_DOWNLINK_BYTES,
+    audible, downlink_time_on_air, empty_window_s, Bandwidth, DataRate, LinkAdrReq, Outcome,
+    Uplink, UplinkActivity, Window, ACK_DOWNLINK_BYTES, ADR_DOWNLINK_BYTES,
 };
 use crate::sim::flier::Flier;
 use crate::sim::link::Reception;
@@ -175,12 +175,14 @@ fn plan(
     }
 }
 
-/// After an uplink ends at `end`: ADR's answer through the gateway that heard it best (RX1, or
-/// RX2 when the gateway's RX1 duty cycle forbids it; dropped when both do), the drone's radio
-/// told what came, and the uplink's charge recorded. Returns the earliest time the drone's next
-/// uplink may start, s: once a downlink it heard has fully arrived (a command cannot apply before
-/// it is heard), otherwise at the uplink's end (nothing was learnt; the drone's empty receive
-/// windows cost energy but do not hold back the next uplink, as before ADR existed).
+/// A downlink the network sent: its window, its time on air (s), whether the drone heard it.
+type Downlink = (Window, f64, bool);
+
+/// After an uplink ends at `end`: ADR's answer (if any), the drone's radio told what came, and
+/// the uplink's charge recorded. Returns the earliest time the drone's next uplink may start,
+/// s: once a downlink it heard has fully arrived (a command cannot apply before it is heard),
+/// otherwise at the uplink's end (nothing was learnt; the drone's empty receive windows cost
+/// energy but do not hold back the next uplink, as before ADR existed).
 fn finish_exchange(
     net: &mut Network,
     gateways: &mut [Gateway],
@@ -189,6 +191,41 @@ fn finish_exchange(
     heard_by: u32,
     end: f64,
 ) -> f64 {
+    let (downlink, command) = answer(net, gateways, f, air, heard_by, end);
+    let heard = matches!(downlink, Some((_, _, true)));
+    net.radios[f.drone].exchange_done(heard.then_some(command));
+    // Class A receive windows, when the drone speaks LoRaWAN.
+    let opens = net.lorawan || air.frame.adr.is_some();
+    let activity = UplinkActivity {
+        tx_power_dbm: net.channel.params().tx_power_dbm - air.frame.power_reduction_db,
+        time_on_air: air.frame.time_on_air,
+        windows: if opens {
+            listening(&air.frame, downlink)
+        } else {
+            [(0.0, air.frame.bw), (0.0, DataRate::DR0.bw())]
+        },
+    };
+    if let Some(t) = f.tx.last_mut() {
+        t.charge_mc = activity.charge_mc();
+        t.active_s = activity.active_s();
+    }
+    match downlink {
+        Some((w, toa, true)) => end + w.delay_s() + toa,
+        _ => end,
+    }
+}
+
+/// The network server's answer to a received uplink with ADR: through the gateway that heard
+/// it best, in RX1, or in RX2 when that gateway's RX1 duty cycle forbids it, or dropped (and
+/// counted) when both do. The downlink sent, if any, and the ADR command.
+fn answer(
+    net: &mut Network,
+    gateways: &mut [Gateway],
+    f: &mut Flier<'_>,
+    air: &OnAir,
+    heard_by: u32,
+    end: f64,
+) -> (Option<Downlink>, Option<LinkAdrReq>) {
     let best = (0..gateways.len())
         .filter(|g| heard_by & (1 << g) != 0)
         .max_by(|&a, &b| {
@@ -196,71 +233,47 @@ fn finish_exchange(
                 .rx_dbm
                 .total_cmp(&air.receptions[b].rx_dbm)
         });
-    // (window, its downlink's time on air, whether the drone heard it)
-    let mut downlink: Option<(Window, f64, bool)> = None;
-    let mut command = None;
-    if let (Some(g), Some(frame)) = (best, air.frame.adr) {
-        let (answers, cmd) = net.adr_hears(f.drone, &frame, air.receptions[g].rx_dbm);
-        command = cmd;
-        if answers {
-            let bytes = if cmd.is_some() {
-                ADR_DOWNLINK_BYTES
-            } else {
-                ACK_DOWNLINK_BYTES
-            };
-            for w in [Window::Rx1, Window::Rx2] {
-                let dr = w.data_rate(frame.dr);
-                let Ok(toa) = downlink_time_on_air(dr, bytes) else {
-                    break;
-                };
-                let at = end + w.delay_s();
-                if gateways[g].try_downlink(w, at, toa) {
-                    net.gateways[g].downlinks_sent += 1;
-                    let pos = f.position_at(at);
-                    let r = f.links[g].downlink(&net.channel, pos);
-                    downlink = Some((w, toa, audible(r.rx_dbm, dr.sf(), dr.bw())));
-                    break;
-                }
-            }
-            if downlink.is_none() {
-                net.gateways[g].downlinks_dropped += 1;
-            }
+    let (Some(g), Some(frame)) = (best, air.frame.adr) else {
+        return (None, None);
+    };
+    let (answers, command) = net.adr_hears(f.drone, &frame, air.receptions[g].rx_dbm);
+    if !answers {
+        return (None, command);
+    }
+    let bytes = if command.is_some() {
+        ADR_DOWNLINK_BYTES
+    } else {
+        ACK_DOWNLINK_BYTES
+    };
+    for w in [Window::Rx1, Window::Rx2] {
+        let dr = w.data_rate(frame.dr);
+        let Ok(toa) = downlink_time_on_air(dr, bytes) else {
+            break;
+        };
+        let at = end + w.delay_s();
+        if gateways[g].try_downlink(w, at, toa) {
+            net.gateways[g].downlinks_sent += 1;
+            let pos = f.position_at(at);
+            let r = f.links[g].downlink(&net.channel, pos);
+            return (Some((w, toa, audible(r.rx_dbm, dr.sf(), dr.bw()))), command);
         }
     }
-    let heard = matches!(downlink, Some((_, _, true)));
-    net.radios[f.drone].exchange_done(heard.then_some(command));
-    // Class A receive windows: RX1 at the uplink's rate, RX2 at SF12/125 kHz unless RX1 brought
-    // the downlink.
-    let opens = net.lorawan || air.frame.adr.is_some();
-    let uplink_rate = (air.frame.sf, air.frame.bw);
-    let dr0 = crate::lora::DataRate::DR0;
-    let (rx1, rx2) = match downlink {
-        Some((Window::Rx1, toa, true)) => ((toa, uplink_rate), None),
-        Some((Window::Rx2, toa, true)) => (
-            (empty_window_s(uplink_rate.0, uplink_rate.1), uplink_rate),
-            Some(toa),
-        ),
-        _ => (
-            (empty_window_s(uplink_rate.0, uplink_rate.1), uplink_rate),
-            Some(empty_window_s(dr0.sf(), dr0.bw())),
-        ),
-    };
-    let next_from = match downlink {
-        Some((w, toa, true)) => end + w.delay_s() + toa,
-        _ => end,
-    };
-    let activity = UplinkActivity {
-        tx_power_dbm: net.channel.params().tx_power_dbm - air.frame.power_reduction_db,
-        time_on_air: air.frame.time_on_air,
-        windows: if opens {
-            [(rx1.0, rx1.1 .1), (rx2.unwrap_or(0.0), dr0.bw())]
-        } else {
-            [(0.0, uplink_rate.1), (0.0, dr0.bw())]
-        },
-    };
-    if let Some(t) = f.tx.last_mut() {
-        t.charge_mc = activity.charge_mc();
-        t.active_s = activity.active_s();
+    net.gateways[g].downlinks_dropped += 1;
+    (None, command)
+}
+
+/// Seconds each class A receive window listens, and at which bandwidth: RX1 at the uplink's
+/// rate, RX2 at SF12/125 kHz unless RX1 brought the downlink; an empty window lasts its
+/// preamble timeout, one with a downlink the downlink's time on air.
+fn listening(frame: &Frame, downlink: Option<Downlink>) -> [(f64, Bandwidth); 2] {
+    let dr0 = DataRate::DR0;
+    let empty_rx1 = empty_window_s(frame.sf, frame.bw);
+    match downlink {
+        Some((Window::Rx1, toa, true)) => [(toa, frame.bw), (0.0, dr0.bw())],
+        Some((Window::Rx2, toa, true)) => [(empty_rx1, frame.bw), (toa, dr0.bw())],
+        _ => [
+            (empty_rx1, frame.bw),
+            (empty_window_s(dr0.sf(), dr0.bw()), dr0.bw()),
+        ],
     }
-    next_from
 }

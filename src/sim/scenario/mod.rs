@@ -41,6 +41,9 @@ fn on_off(text: &str) -> Result<bool, String> {
     }
 }
 
+/// The name of a CSV flight given without one.
+pub const DEFAULT_CSV_NAME: &str = "uploaded CSV";
+
 /// Which flight(s) the drones fly: exactly one of CSV text, synthetic flights or a bundled
 /// sample, or none in a swarm (each drone then chains synthetic flights for `duration`).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -462,7 +465,10 @@ impl Scenario {
                 key.chars().take(40).collect::<String>()
             )));
         }
-        let source = self.flight.source()?;
+        // The settings kept with the run give their CSV text to the source: one copy, not one in
+        // each (the echo in every report clones these settings).
+        let mut settings = self.clone();
+        let source = settings.flight.take_source()?;
         let r = &self.radio;
         opt::SF.check(r.sf as f64)?;
         opt::BW.check(r.bw)?;
@@ -507,7 +513,7 @@ impl Scenario {
             ..ChannelParams::default()
         })?;
         Ok(Validated {
-            settings: self.clone(),
+            settings,
             source,
             models: self.station.model.models().to_vec(),
             radio,
@@ -523,16 +529,17 @@ impl Scenario {
 }
 
 impl FlightSettings {
-    /// The chosen flight(s): `None` when nothing is chosen, an error when more than one is.
-    pub fn source(&self) -> Result<Option<TrajectorySource>, SimError> {
+    /// The chosen flight(s), taking the CSV text out of the settings: `None` when nothing is
+    /// chosen, an error when more than one is.
+    pub fn take_source(&mut self) -> Result<Option<TrajectorySource>, SimError> {
         Ok(
-            match (self.trajectory.clone(), self.synthetic, self.sample.clone()) {
+            match (self.trajectory.take(), self.synthetic, self.sample.clone()) {
                 (None, None, None) => None,
                 (Some(text), None, None) => Some(TrajectorySource::Csv(
                     text,
                     self.trajectory_name
                         .clone()
-                        .unwrap_or_else(|| "uploaded CSV".into()),
+                        .unwrap_or_else(|| DEFAULT_CSV_NAME.into()),
                 )),
                 (None, Some(s), None) => Some(TrajectorySource::Synthetic(s)),
                 (None, None, Some(name)) => Some(TrajectorySource::Sample(name)),
