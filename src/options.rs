@@ -432,9 +432,21 @@ pub const SEED: NumberOption = NumberOption::new(
     "Seed of every random draw; the largest is 2^53 - 1, the largest integer a JavaScript number holds exactly.",
 )
 .whole();
+/// Seeds a simulation repeats with (`seed`, `seed + 1`, …): the runs behind each statistic's
+/// 95 % interval.
+pub const SEEDS: NumberOption = NumberOption::new(
+    "seeds",
+    "Seeds",
+    "",
+    1.0,
+    1.0,
+    100.0,
+    "Repeat the simulation with this many seeds (seed, seed + 1, ...): the statistics pool every run and each gets a 95 % interval.",
+)
+.whole();
 
-/// The most drone and station filter steps one run may take per model, summed over its flights
-/// and drones: twice what the page's largest setting needs (the whole 44-minute set with 100 Hz
+/// The most drone and station filter steps one run may take per model, summed over its flights,
+/// seeds and drones: twice what the page's largest setting needs (the whole 44-minute set with 100 Hz
 /// sensors and T = 0.01 s is 528 000), about a second of work per model natively.
 pub const MAX_FILTER_STEPS: u64 = 1_000_000;
 
@@ -469,6 +481,7 @@ pub const OPTIONS: &[&NumberOption] = &[
     &DRONES,
     &DURATION,
     &SEED,
+    &SEEDS,
 ];
 
 /// The option with JSON key `key`.

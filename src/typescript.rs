@@ -5,7 +5,7 @@
 
 use crate::api::*;
 use crate::lora::{AdrMode, DutyCycleMode, LdroMode};
-use crate::metrics::{Boxplot, Summary};
+use crate::metrics::{Boxplot, Intervals, Summary};
 use crate::models::ModelKind;
 use crate::options::{NumberOption, OPTIONS};
 use crate::sim::scenario::*;
@@ -47,6 +47,7 @@ fn decls() -> Vec<String> {
         RunSettings::decl(&c),
         Scenario::decl(&c),
         Summary::decl(&c),
+        Intervals::decl(&c),
         Boxplot::decl(&c),
         Boxplots::decl(&c),
         DataRateUse::decl(&c),

@@ -274,3 +274,71 @@ fn the_caches_account_for_their_bytes_and_stay_within_the_budget() {
     simulate(&mut sim, &set(&whole, json!({"seed": 6, "sensorRate": 50}))).unwrap();
     assert_eq!(sim.drone_runs(), runs);
 }
+
+#[test]
+fn seeds_pool_their_runs_and_give_each_statistic_an_interval() {
+    let flight = set(&one_flight(3), json!({"model": "dr,3d-ctra"}));
+    let mut sim = Simulator::new();
+    let alone = simulate(&mut sim, &flight).unwrap();
+    assert!(
+        alone.results.iter().all(|m| m.ci95.is_none()),
+        "one flight with one seed cannot show its own spread"
+    );
+    let second = simulate(&mut sim, &set(&flight, json!({"seed": 2}))).unwrap();
+    let both = simulate(&mut sim, &set(&flight, json!({"seeds": 2}))).unwrap();
+    for ((a, b), m) in alone.results.iter().zip(&second.results).zip(&both.results) {
+        assert_eq!(
+            m.delivery.packets_sent,
+            a.delivery.packets_sent + b.delivery.packets_sent
+        );
+        assert_eq!(m.error3d.count, a.error3d.count + b.error3d.count);
+        let ci = m.ci95.expect("two seeds: an interval");
+        assert_eq!(ci.runs, 2);
+        for [lo, hi] in [ci.mean, ci.p75, ci.p95] {
+            assert!(lo <= hi);
+        }
+        let (lo, hi) = (
+            a.error3d.p75.min(b.error3d.p75),
+            a.error3d.p75.max(b.error3d.p75),
+        );
+        assert!(
+            ci.p75[0] >= lo - 0.01 && ci.p75[1] <= hi + 0.01,
+            "resampling two runs stays between their own p75s (up to interpolation): {ci:?}, {lo}..{hi}"
+        );
+    }
+    assert_eq!(both.config.settings.run.seeds, 2);
+    // The series stay the first seed's.
+    let with_series = |s: Scenario| set(&s, json!({"series": true}));
+    let a = simulate(&mut sim, &with_series(flight.clone())).unwrap();
+    let b = simulate(&mut sim, &with_series(set(&flight, json!({"seeds": 3})))).unwrap();
+    assert_eq!(a.series, b.series);
+}
+
+#[test]
+fn the_whole_set_gives_intervals_over_its_flights_and_seeds_multiply_the_work_limit() {
+    let all = set(
+        &Scenario::default(),
+        json!({"synthetic": "all", "model": "dr"}),
+    );
+    let r = simulate(&mut Simulator::new(), &all).unwrap();
+    let ci = r.results[0].ci95.unwrap();
+    assert_eq!(ci.runs, 30);
+    let p75 = r.results[0].error3d.p75;
+    assert!(ci.p75[0] < p75 && p75 < ci.p75[1], "{ci:?} around {p75}");
+    let too_many = simulate(&mut Simulator::new(), &set(&all, json!({"seeds": 30})));
+    assert!(too_many.unwrap_err().to_string().contains("fewer seeds"));
+}
+
+#[test]
+fn seeds_are_checked_and_a_swarm_refuses_more_than_one() {
+    for bad in [0, 101] {
+        let e = simulate(
+            &mut Simulator::new(),
+            &set(&one_flight(1), json!({"seeds": bad})),
+        );
+        assert!(e.unwrap_err().to_string().contains("seeds must be 1..100"));
+    }
+    let swarm = set(&Scenario::default(), json!({"drones": 2, "seeds": 2}));
+    let e = loratrack::api::swarm(&swarm).unwrap_err().to_string();
+    assert!(e.contains("a swarm runs one seed"), "{e}");
+}

@@ -1,11 +1,14 @@
 //! Error statistics: summaries (mean and percentiles), boxplots (reference §9; paper Figs. 3–6) and the
-//! consistency of the station's uncertainty (95 % coverage).
+//! consistency of the station's uncertainty (95 % coverage), and how sure each statistic is
+//! (bootstrap intervals over runs).
 
+mod bootstrap;
 mod boxplot;
 mod coverage;
 mod percentile;
 mod summary;
 
+pub use bootstrap::{bootstrap, Intervals, RESAMPLES};
 pub use boxplot::Boxplot;
 pub use coverage::{bound_95, coverage, inside_95, CHI2_3DOF_95};
 pub use percentile::percentile;

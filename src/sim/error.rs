@@ -49,7 +49,7 @@ impl fmt::Display for SimError {
             SimError::TooLong { flight_time, steps } => write!(
                 f,
                 "the run is too long: {flight_time:.0} s of flight at these rates is {steps:.0} filter steps per model; \
-                 the limit is {} (shorten the flight, lower the sensor rate or lengthen the step T)",
+                 the limit is {} (shorten the flight, use fewer seeds, lower the sensor rate or lengthen the step T)",
                 MAX_FILTER_STEPS
             ),
         }

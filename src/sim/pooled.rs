@@ -4,17 +4,20 @@ use super::packet::Transmission;
 use super::report::{Boxplots, DataRateUse, Delivery, Energy, ModelResult, ModelSeries};
 use super::station::{StationModel, StationTrack};
 use crate::lora::DataRate;
-use crate::metrics::{coverage, Summary};
+use crate::metrics::{bootstrap, coverage, Summary};
 use crate::models::ModelKind;
 use std::collections::BTreeMap;
 
 /// At most this many points per time series returned for plotting.
 pub(crate) const MAX_SERIES_POINTS: usize = 3000;
 
-/// Errors, coverage and packet counts of one station, gathered flight by flight.
+/// Errors, coverage and packet counts of one station, gathered run by run (each flight of each
+/// seed).
 #[derive(Default)]
 pub(crate) struct Pooled {
     e3: Vec<f64>,
+    /// Where each run's 3D errors end in `e3`: the units the intervals resample.
+    run_ends: Vec<usize>,
     ex: Vec<f64>,
     ey: Vec<f64>,
     ez: Vec<f64>,
@@ -52,6 +55,7 @@ impl Pooled {
             e.received += usize::from(t.received);
         }
         self.e3.extend_from_slice(&st.error3d);
+        self.run_ends.push(self.e3.len());
         for e in &st.error_axes {
             self.ex.push(e[0]);
             self.ey.push(e[1]);
@@ -71,8 +75,24 @@ impl Pooled {
         Energy::from_sums(self.sent, self.charge_mc, self.active_s, self.flight_time)
     }
 
+    /// The 95 % intervals of the 3D error's statistics over the runs added (`None` for fewer
+    /// than two runs with errors), drawn from `seed`.
+    fn intervals(&self, seed: u64) -> Option<crate::metrics::Intervals> {
+        let mut runs: Vec<Vec<f64>> = Vec::with_capacity(self.run_ends.len());
+        let mut from = 0;
+        for &to in &self.run_ends {
+            let mut run = self.e3[from..to].to_vec();
+            run.sort_by(f64::total_cmp);
+            runs.push(run);
+            from = to;
+        }
+        let refs: Vec<&[f64]> = runs.iter().map(Vec::as_slice).collect();
+        bootstrap(&refs, seed)
+    }
+
     /// The result row; `time_on_air`, `interval` in s (of the starting data rate); `network`
-    /// the gateways' counts and the duplicates of this station's run.
+    /// the gateways' counts and the duplicates of this station's run; `seed` draws the
+    /// intervals' resamples.
     pub fn finish(
         mut self,
         model: StationModel,
@@ -80,8 +100,10 @@ impl Pooled {
         interval: f64,
         filter_recoveries: u64,
         network: &Delivery,
+        seed: u64,
     ) -> ModelResult {
         let energy = self.energy();
+        let ci95 = self.intervals(seed);
         let delivery = Delivery {
             packets_sent: self.sent,
             packets_received: self.received,
@@ -115,6 +137,7 @@ impl Pooled {
             interval,
             airtime,
             error3d: s3,
+            ci95,
             error_x: sx,
             error_y: sy,
             error_z: sz,

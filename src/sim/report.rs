@@ -5,7 +5,7 @@ use super::packet::Transmission;
 use super::scenario::Scenario;
 use super::station::StationModel;
 use crate::lora::SX1276_SLEEP_CURRENT_MA;
-use crate::metrics::{Boxplot, Summary};
+use crate::metrics::{Boxplot, Intervals, Summary};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -175,6 +175,11 @@ pub struct ModelResult {
     pub airtime: f64,
     /// 3D error, m.
     pub error3d: Summary,
+    /// 95 % intervals of `error3d`'s statistics, by bootstrap over the runs (flights × seeds)
+    /// pooled in it (`docs/reference.md` §12); `null` for a single run, which cannot show its
+    /// own spread.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Intervals | null"))]
+    pub ci95: Option<Intervals>,
     /// |x error|, m.
     pub error_x: Summary,
     /// |y error|, m.

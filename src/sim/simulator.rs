@@ -233,7 +233,7 @@ impl Simulator {
                     cfg.s().drone.sensor_rate,
                     cfg.s().drone.q,
                     &cfg.r_diagonal,
-                    cfg.s().run.seed,
+                    key.seed,
                     i as u64,
                 )
             },
@@ -285,9 +285,10 @@ impl Simulator {
         self.run_with_progress(cfg, &mut |_, _| {})
     }
 
-    /// Runs one simulation: the event loop with one drone over each flight, for each station.
-    /// Calls `progress(done, total)` after each flight's drone filter and each flight's station
-    /// (total = 2 × flights × models), so a long run can show how far it is.
+    /// Runs one simulation: the event loop with one drone over each flight, for each station
+    /// and each of the `seeds` seeds (their runs pooled). Calls `progress(done, total)` after
+    /// each flight's drone filter and each flight's station (total = 2 × flights × models ×
+    /// seeds), so a long run can show how far it is.
     pub fn run_with_progress(
         &mut self,
         cfg: &Validated,
@@ -308,11 +309,15 @@ impl Simulator {
         })?;
         let (flight_key, flights) = self.flights(&source, &mut |_, _| {})?;
         let flight_time: f64 = flights.iter().map(Trajectory::duration).sum();
-        let steps = flight_time * (s.drone.sensor_rate + 1.0 / s.station.step);
+        let seeds = u64::from(s.run.seeds.max(1));
+        let steps = flight_time * (s.drone.sensor_rate + 1.0 / s.station.step) * seeds as f64;
         if steps > MAX_FILTER_STEPS as f64 {
-            return Err(SimError::TooLong { flight_time, steps });
+            return Err(SimError::TooLong {
+                flight_time: flight_time * seeds as f64,
+                steps,
+            });
         }
-        let total = 2 * flights.len() * cfg.models.len();
+        let total = 2 * flights.len() * cfg.models.len() * seeds as usize;
         let mut done = 0;
         let mut tick = || {
             done += 1;
@@ -327,114 +332,126 @@ impl Simulator {
             let (toa, interval) = (start.current().time_on_air, start.current().interval);
             cfg.check_heartbeat(interval)?;
             let setup = cfg.station_setup(interval);
-            let key = DroneKey {
-                flights: flight_key.clone(),
-                model: model.sent_model(),
-                sensor_rate: s.drone.sensor_rate.to_bits(),
-                q: s.drone.q.to_bits(),
-                seed: s.run.seed,
-            };
-            let chains = match model {
-                StationModel::Single(m) => Some(self.station_chains(
-                    StationKey {
-                        drone: key.clone(),
-                        model: m,
-                        prediction: s.station.prediction,
-                        step: s.station.step.to_bits(),
-                        eta: s.station.eta.to_bits(),
-                        q: s.drone.q.to_bits(),
-                    },
-                    flights.len(),
-                    flight_time / s.station.step + flights.len() as f64,
-                )),
-                // An IMM's probabilities carry over from packet to packet: nothing to reuse.
-                StationModel::Imm => None,
-            };
-            let drones = self.drone_tracks(key, &flights, cfg, &mut tick);
-            let (flight_set, drone_set): (&[Trajectory], &[DroneTrack]) = (&flights, &drones);
-            let chains: Option<&[Mutex<FlightChains>]> = chains.as_deref().map(|c| c.as_slice());
-            let network = || network_of(cfg, start.clone());
-            let one = |i: usize, net: &mut Network| -> Result<FlightRun, SimError> {
-                let (flight, drone) = (&flight_set[i], &drone_set[i]);
-                let now = net.radios[0].current();
-                let rule = s
-                    .sending
-                    .rule(s.radio.duty_cycle, now.time_on_air, flight.t[0])?;
-                let gateways = net.gateways_at([flight.pos[0][0], flight.pos[0][1]]);
-                let seed = s.run.seed;
-                // The same streams for every station: stations that send the same payload see
-                // the same packets, so their comparison is paired.
-                let mut flier = Flier::new(
-                    0,
-                    flight,
-                    Estimates::Stored(drone),
-                    s.sending.sender(model, setup),
-                    rule,
-                    &gateways,
-                    &net.channel,
-                    streams::link(seed, i as u64),
-                    |g| streams::gateway(seed, g, i as u64),
-                    streams::channel(seed, i as u64),
-                    s.network.channels,
-                    now.interval,
-                );
-                run_episode(net, core::slice::from_mut(&mut flier));
-                let tx = flier.tx;
-                let with_series = s.run.series && i == 0;
-                let st = match chains {
-                    Some(c) => c[i].lock().unwrap_or_else(|e| e.into_inner()).track(
-                        flight,
-                        &|| new_tracker(model, setup),
-                        &tx,
-                        s.station.step,
-                        with_series,
-                    ),
-                    None => {
-                        let mut tracker = new_tracker(model, setup);
-                        track_station(flight, tracker.as_mut(), &tx, s.station.step, with_series)
-                    }
-                };
-                let series = with_series.then(|| model_series(model, &st, &tx));
-                Ok((tx, st, series, None))
-            };
-            let runs: Vec<Result<FlightRun, SimError>> = if start.adaptive() {
-                // ADR state passes from one flight to the next: fly them in order, one network.
-                let mut net = network();
-                let mut runs: Vec<_> = (0..flights.len())
-                    .map(|i| {
-                        let r = one(i, &mut net);
-                        tick();
-                        r
-                    })
-                    .collect();
-                if let Some(Ok(last)) = runs.last_mut() {
-                    last.3 = Some(Delivery::counted(&net));
-                }
-                runs
-            } else {
-                par_map_ticking(
-                    0..flights.len(),
-                    |i| {
-                        let mut net = network();
-                        let mut r = one(i, &mut net)?;
-                        r.3 = Some(Delivery::counted(&net));
-                        Ok(r)
-                    },
-                    &mut tick,
-                )
-            };
             let mut pooled = Pooled::default();
             let mut counted = Delivery::default();
-            for (i, run) in runs.into_iter().enumerate() {
-                let (tx, st, series, net) = run?;
-                series_models.extend(series);
-                pooled.add(&tx, st, flights[i].duration());
-                if let Some(n) = net {
-                    counted.add(&n);
+            let mut recoveries = 0;
+            // Each seed is the same run with other random draws (sensor noise, send offsets,
+            // shadowing): its flights join the pool as runs of their own.
+            for j in 0..seeds {
+                let seed = s.run.seed.wrapping_add(j);
+                let key = DroneKey {
+                    flights: flight_key.clone(),
+                    model: model.sent_model(),
+                    sensor_rate: s.drone.sensor_rate.to_bits(),
+                    q: s.drone.q.to_bits(),
+                    seed,
+                };
+                let chains = match model {
+                    StationModel::Single(m) => Some(self.station_chains(
+                        StationKey {
+                            drone: key.clone(),
+                            model: m,
+                            prediction: s.station.prediction,
+                            step: s.station.step.to_bits(),
+                            eta: s.station.eta.to_bits(),
+                            q: s.drone.q.to_bits(),
+                        },
+                        flights.len(),
+                        flight_time / s.station.step + flights.len() as f64,
+                    )),
+                    // An IMM's probabilities carry over from packet to packet: nothing to reuse.
+                    StationModel::Imm => None,
+                };
+                let drones = self.drone_tracks(key, &flights, cfg, &mut tick);
+                let (flight_set, drone_set): (&[Trajectory], &[DroneTrack]) = (&flights, &drones);
+                let chains: Option<&[Mutex<FlightChains>]> =
+                    chains.as_deref().map(|c| c.as_slice());
+                let network = || network_of(cfg, start.clone());
+                let one = |i: usize, net: &mut Network| -> Result<FlightRun, SimError> {
+                    let (flight, drone) = (&flight_set[i], &drone_set[i]);
+                    let now = net.radios[0].current();
+                    let rule = s
+                        .sending
+                        .rule(s.radio.duty_cycle, now.time_on_air, flight.t[0])?;
+                    let gateways = net.gateways_at([flight.pos[0][0], flight.pos[0][1]]);
+                    // The same streams for every station: stations that send the same payload see
+                    // the same packets, so their comparison is paired.
+                    let mut flier = Flier::new(
+                        0,
+                        flight,
+                        Estimates::Stored(drone),
+                        s.sending.sender(model, setup),
+                        rule,
+                        &gateways,
+                        &net.channel,
+                        streams::link(seed, i as u64),
+                        |g| streams::gateway(seed, g, i as u64),
+                        streams::channel(seed, i as u64),
+                        s.network.channels,
+                        now.interval,
+                    );
+                    run_episode(net, core::slice::from_mut(&mut flier));
+                    let tx = flier.tx;
+                    let with_series = s.run.series && i == 0 && j == 0;
+                    let st = match chains {
+                        Some(c) => c[i].lock().unwrap_or_else(|e| e.into_inner()).track(
+                            flight,
+                            &|| new_tracker(model, setup),
+                            &tx,
+                            s.station.step,
+                            with_series,
+                        ),
+                        None => {
+                            let mut tracker = new_tracker(model, setup);
+                            track_station(
+                                flight,
+                                tracker.as_mut(),
+                                &tx,
+                                s.station.step,
+                                with_series,
+                            )
+                        }
+                    };
+                    let series = with_series.then(|| model_series(model, &st, &tx));
+                    Ok((tx, st, series, None))
+                };
+                let runs: Vec<Result<FlightRun, SimError>> = if start.adaptive() {
+                    // ADR state passes from one flight to the next: fly them in order, one network.
+                    let mut net = network();
+                    let mut runs: Vec<_> = (0..flights.len())
+                        .map(|i| {
+                            let r = one(i, &mut net);
+                            tick();
+                            r
+                        })
+                        .collect();
+                    if let Some(Ok(last)) = runs.last_mut() {
+                        last.3 = Some(Delivery::counted(&net));
+                    }
+                    runs
+                } else {
+                    par_map_ticking(
+                        0..flights.len(),
+                        |i| {
+                            let mut net = network();
+                            let mut r = one(i, &mut net)?;
+                            r.3 = Some(Delivery::counted(&net));
+                            Ok(r)
+                        },
+                        &mut tick,
+                    )
+                };
+                for (i, run) in runs.into_iter().enumerate() {
+                    let (tx, st, series, net) = run?;
+                    series_models.extend(series);
+                    pooled.add(&tx, st, flights[i].duration());
+                    if let Some(n) = net {
+                        counted.add(&n);
+                    }
                 }
+                recoveries += drones.iter().map(|d| d.recoveries).sum::<u64>();
             }
-            let recoveries = drones.iter().map(|d| d.recoveries).sum();
-            let result = pooled.finish(model, toa, interval, recoveries, &counted);
+            let result = pooled.finish(model, toa, interval, recoveries, &counted, s.run.seed);
             delivery.add(&result.delivery);
             results.push(result);
         }

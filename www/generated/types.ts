@@ -192,6 +192,11 @@ export type RunSettings = {
  */
 seed: number, 
 /**
+ * How many seeds `simulate` runs (`seed`, `seed + 1`, …), pooled, with 95 % intervals
+ * (`docs/reference.md` §12); a swarm runs one.
+ */
+seeds: number, 
+/**
  * Include time series of the first flight (simulate).
  */
 series: boolean, };
@@ -336,6 +341,11 @@ sfPlan: SfPlan,
  */
 seed: number, 
 /**
+ * How many seeds `simulate` runs (`seed`, `seed + 1`, …), pooled, with 95 % intervals
+ * (`docs/reference.md` §12); a swarm runs one.
+ */
+seeds: number, 
+/**
  * Include time series of the first flight (simulate).
  */
 series: boolean, };
@@ -365,6 +375,32 @@ max: number | null,
  * Number of samples.
  */
 count: number, };
+
+export type Intervals = { 
+/**
+ * Independent runs resampled (flights × seeds).
+ */
+runs: number, 
+/**
+ * Of the mean.
+ */
+mean: [number, number], 
+/**
+ * Of the median.
+ */
+p50: [number, number], 
+/**
+ * Of the 75th percentile.
+ */
+p75: [number, number], 
+/**
+ * Of the 95th percentile.
+ */
+p95: [number, number], 
+/**
+ * Of the largest error.
+ */
+max: [number, number], };
 
 export type Boxplot = { 
 /**
@@ -529,6 +565,12 @@ airtime: number,
  * 3D error, m.
  */
 error3d: Summary, 
+/**
+ * 95 % intervals of `error3d`'s statistics, by bootstrap over the runs (flights × seeds)
+ * pooled in it (`docs/reference.md` §12); `null` for a single run, which cannot show its
+ * own spread.
+ */
+ci95: Intervals | null, 
 /**
  * |x error|, m.
  */
@@ -841,6 +883,11 @@ sfPlan: SfPlan,
  */
 seed: number, 
 /**
+ * How many seeds `simulate` runs (`seed`, `seed + 1`, …), pooled, with 95 % intervals
+ * (`docs/reference.md` §12); a swarm runs one.
+ */
+seeds: number, 
+/**
  * Include time series of the first flight (simulate).
  */
 series: boolean, };
@@ -1064,6 +1111,11 @@ sfPlan: SfPlan,
  * Seed of every random draw; `"random"` draws one ([`random_seed`]), which the echo gives.
  */
 seed: number, 
+/**
+ * How many seeds `simulate` runs (`seed`, `seed + 1`, …), pooled, with 95 % intervals
+ * (`docs/reference.md` §12); a swarm runs one.
+ */
+seeds: number, 
 /**
  * Include time series of the first flight (simulate).
  */
@@ -1702,5 +1754,17 @@ export const OPTIONS: NumberOption[] = [
     "integer": true,
     "values": [],
     "help": "Seed of every random draw; the largest is 2^53 - 1, the largest integer a JavaScript number holds exactly."
+  },
+  {
+    "key": "seeds",
+    "label": "Seeds",
+    "unit": "",
+    "default": 1.0,
+    "min": 1.0,
+    "max": 100.0,
+    "aboveMin": false,
+    "integer": true,
+    "values": [],
+    "help": "Repeat the simulation with this many seeds (seed, seed + 1, ...): the statistics pool every run and each gets a 95 % interval."
   }
 ];

@@ -521,6 +521,20 @@ fn results_table(results: &[ModelResult]) -> String {
             out += &format!("          mean model probability: {}\n", parts.join(", "));
         }
     }
+    let intervals: Vec<String> = results
+        .iter()
+        .filter_map(|m| {
+            m.ci95
+                .map(|c| format!("{} {:.2}-{:.2}", m.model.label(), c.p75[0], c.p75[1]))
+        })
+        .collect();
+    if let Some(c) = results.iter().find_map(|m| m.ci95) {
+        out += &format!(
+            "p75 95 % interval (bootstrap over {} runs): {}\n",
+            c.runs,
+            intervals.join(", ")
+        );
+    }
     out.trim_end().to_string()
 }
 
@@ -759,7 +773,7 @@ fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError
                         },
                         run: RunSettings {
                             seed: a.seed,
-                            series: false,
+                            ..RunSettings::default()
                         },
                         ..Scenario::default()
                     };

@@ -338,6 +338,10 @@ pub struct RunSettings {
     )]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number"))]
     pub seed: u64,
+    /// How many seeds `simulate` runs (`seed`, `seed + 1`, …), pooled, with 95 % intervals
+    /// (`docs/reference.md` §12); a swarm runs one.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::SEEDS.default as u32, help = opt::SEEDS.cli_help(), allow_negative_numbers = true))]
+    pub seeds: u32,
     /// Include time series of the first flight (simulate).
     #[cfg_attr(
         not(target_arch = "wasm32"),
@@ -353,6 +357,7 @@ impl Default for RunSettings {
     fn default() -> Self {
         RunSettings {
             seed: opt::SEED.default as u64,
+            seeds: opt::SEEDS.default as u32,
             series: false,
         }
     }
@@ -496,6 +501,7 @@ impl Scenario {
         opt::SEED
             .check(self.run.seed as f64)
             .map_err(|_| SimError::Seed(self.run.seed))?;
+        opt::SEEDS.check(f64::from(self.run.seeds))?;
         let radio = LoraParams::from_settings(r.sf, r.bw, r.cr)?;
         let adr = AdrParams {
             mode: n.adr,

@@ -126,6 +126,12 @@ pub fn run_swarm(
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<SwarmReport, SimError> {
     let s = cfg.s();
+    if s.run.seeds != 1 {
+        return Err(SimError::Source(format!(
+            "seeds repeats a simulate run; a swarm runs one seed (its drones already give its spread), got {}",
+            s.run.seeds
+        )));
+    }
     let model = cfg.swarm_station()?;
     let n = s.swarm.drones;
     let plan = plan(cfg)?;

@@ -1,0 +1,236 @@
+//! How sure a statistic is: 95 % intervals of the error statistics by resampling whole runs
+//! (each flight of each seed), the percentile bootstrap of Efron & Tibshirani (1993, ch. 13).
+//!
+//! The samples inside one run are strongly correlated (the error grows between packets and
+//! falls at each one), so they are not resampled one by one; the runs are, which keeps every
+//! run's own structure (`docs/reference.md` §12).
+
+use super::percentile;
+use crate::rng::Rng;
+use serde::Serialize;
+
+/// Resamples per interval: enough for the 2.5 and 97.5 percentiles to move by a small fraction
+/// of the interval's width between seeds, and cheap (a whole-set run adds a few milliseconds).
+pub const RESAMPLES: usize = 400;
+
+/// 95 % intervals `[lo, hi]` of each statistic of a pooled 3D error, m, and the runs they rest on.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
+pub struct Intervals {
+    /// Independent runs resampled (flights × seeds).
+    pub runs: usize,
+    /// Of the mean.
+    pub mean: [f64; 2],
+    /// Of the median.
+    pub p50: [f64; 2],
+    /// Of the 75th percentile.
+    pub p75: [f64; 2],
+    /// Of the 95th percentile.
+    pub p95: [f64; 2],
+    /// Of the largest error.
+    pub max: [f64; 2],
+}
+
+impl Intervals {
+    /// Whether `self`'s p75 interval lies wholly below `other`'s: a clear difference.
+    pub fn p75_clearly_below(&self, other: &Intervals) -> bool {
+        self.p75[1] < other.p75[0]
+    }
+}
+
+/// The 95 % intervals of the statistics of `runs` pooled, each run's samples in ascending order;
+/// `None` with fewer than two runs that have samples (one run cannot show its own spread).
+///
+/// ```
+/// use loratrack::metrics::bootstrap;
+/// let a = [1.0, 2.0, 3.0];
+/// let b = [2.0, 4.0, 6.0];
+/// let c = [1.5, 2.5, 9.0];
+/// let ci = bootstrap(&[&a[..], &b[..], &c[..]], 7).unwrap();
+/// assert!(ci.p75[0] <= ci.p75[1] && ci.max[1] == 9.0);
+/// ```
+pub fn bootstrap(runs: &[&[f64]], seed: u64) -> Option<Intervals> {
+    let runs: Vec<&[f64]> = runs.iter().copied().filter(|r| !r.is_empty()).collect();
+    if runs.len() < 2 {
+        return None;
+    }
+    let sums: Vec<f64> = runs.iter().map(|r| r.iter().sum()).collect();
+    let mut all: Vec<f64> = runs.iter().flat_map(|r| r.iter().copied()).collect();
+    all.sort_by(f64::total_cmp);
+    let mut rng = Rng::derive(seed, 0xb00_757a);
+    let mut stats: [Vec<f64>; 5] = Default::default();
+    let mut weights = vec![0u32; runs.len()];
+    for _ in 0..RESAMPLES {
+        weights.iter_mut().for_each(|w| *w = 0);
+        for _ in 0..runs.len() {
+            let pick = (rng.uniform() * runs.len() as f64) as usize;
+            weights[pick.min(runs.len() - 1)] += 1;
+        }
+        let draw = Draw {
+            runs: &runs,
+            weights: &weights,
+            all: &all,
+        };
+        let n = draw.count_at_most(f64::INFINITY);
+        let sum: f64 = weights.iter().zip(&sums).map(|(&w, s)| w as f64 * s).sum();
+        let max = runs
+            .iter()
+            .zip(&weights)
+            .filter(|(_, &w)| w > 0)
+            .map(|(r, _)| r[r.len() - 1])
+            .fold(f64::NEG_INFINITY, f64::max);
+        stats[0].push(sum / n as f64);
+        stats[1].push(draw.percentile(n, 50.0));
+        stats[2].push(draw.percentile(n, 75.0));
+        stats[3].push(draw.percentile(n, 95.0));
+        stats[4].push(max);
+    }
+    let [mean, p50, p75, p95, max] = stats.map(|mut s| {
+        s.sort_by(f64::total_cmp);
+        [percentile(&s, 2.5), percentile(&s, 97.5)]
+    });
+    Some(Intervals {
+        runs: runs.len(),
+        mean,
+        p50,
+        p75,
+        p95,
+        max,
+    })
+}
+
+/// One bootstrap draw: each run taken `weights[i]` times.
+struct Draw<'a> {
+    runs: &'a [&'a [f64]],
+    weights: &'a [u32],
+    /// Every sample of every run, ascending (the candidates for an order statistic).
+    all: &'a [f64],
+}
+
+impl Draw<'_> {
+    /// How many samples of the draw are at most `v`.
+    fn count_at_most(&self, v: f64) -> u64 {
+        self.runs
+            .iter()
+            .zip(self.weights)
+            .filter(|(_, &w)| w > 0)
+            .map(|(r, &w)| u64::from(w) * r.partition_point(|x| *x <= v) as u64)
+            .sum()
+    }
+
+    /// The `k`-th smallest sample of the draw (0-based), by bisection over the sorted candidates:
+    /// the smallest candidate with more than `k` samples at or below it.
+    fn order_statistic(&self, k: u64) -> f64 {
+        let (mut lo, mut hi) = (0usize, self.all.len() - 1);
+        while lo < hi {
+            let mid = (lo + hi) / 2;
+            if self.count_at_most(self.all[mid]) > k {
+                hi = mid;
+            } else {
+                lo = mid + 1;
+            }
+        }
+        self.all[lo]
+    }
+
+    /// The `p`-th percentile of the draw's `n` samples, interpolated as [`percentile`] does.
+    fn percentile(&self, n: u64, p: f64) -> f64 {
+        let rank = p / 100.0 * (n - 1) as f64;
+        let lo = rank.floor() as u64;
+        let a = self.order_statistic(lo);
+        let b = self.order_statistic((lo + 1).min(n - 1));
+        a + (rank - lo as f64) * (b - a)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sorted(mut v: Vec<f64>) -> Vec<f64> {
+        v.sort_by(f64::total_cmp);
+        v
+    }
+
+    #[test]
+    fn a_draw_of_every_run_once_gives_the_pooled_percentiles() {
+        let a = sorted(vec![3.0, 1.0, 7.0, 2.0]);
+        let b = sorted(vec![5.0, 0.5, 4.0]);
+        let runs = [&a[..], &b[..]];
+        let mut all: Vec<f64> = a.iter().chain(&b).copied().collect();
+        all.sort_by(f64::total_cmp);
+        let draw = Draw {
+            runs: &runs,
+            weights: &[1, 1],
+            all: &all,
+        };
+        for p in [0.0, 50.0, 75.0, 95.0, 100.0] {
+            assert_eq!(draw.percentile(7, p), percentile(&all, p), "p{p}");
+        }
+        // Taking the second run twice counts its samples twice.
+        let twice = Draw {
+            runs: &runs,
+            weights: &[0, 2],
+            all: &all,
+        };
+        assert_eq!(twice.count_at_most(4.0), 4);
+        assert_eq!(twice.order_statistic(5), 5.0);
+    }
+
+    #[test]
+    fn one_run_has_no_interval() {
+        let a = [1.0, 2.0];
+        assert!(bootstrap(&[&a[..]], 1).is_none());
+        assert!(bootstrap(&[&a[..], &[][..]], 1).is_none());
+    }
+
+    #[test]
+    fn runs_alike_give_a_narrow_interval_and_runs_apart_a_wide_one() {
+        let grid = |scale: f64| sorted((0..200).map(|i| scale * f64::from(i) / 200.0).collect());
+        let alike: Vec<Vec<f64>> = (0..10).map(|k| grid(1.0 + 0.01 * f64::from(k))).collect();
+        let apart: Vec<Vec<f64>> = (0..10).map(|k| grid(1.0 + f64::from(k))).collect();
+        fn refs(v: &[Vec<f64>]) -> Vec<&[f64]> {
+            v.iter().map(Vec::as_slice).collect()
+        }
+        let narrow = bootstrap(&refs(&alike), 1).unwrap();
+        let wide = bootstrap(&refs(&apart), 1).unwrap();
+        let width = |c: &Intervals| c.p75[1] - c.p75[0];
+        assert!(width(&narrow) < 0.05, "{narrow:?}");
+        assert!(width(&wide) > 1.0, "{wide:?}");
+        assert_eq!(narrow.runs, 10);
+        // The pooled p75 of the runs lies inside its interval.
+        let pooled = sorted(alike.concat());
+        let p75 = percentile(&pooled, 75.0);
+        assert!(narrow.p75[0] <= p75 && p75 <= narrow.p75[1]);
+    }
+
+    #[test]
+    fn the_same_seed_gives_the_same_interval() {
+        let runs: Vec<Vec<f64>> = (1..6).map(|k| sorted(vec![f64::from(k); 5])).collect();
+        let refs: Vec<&[f64]> = runs.iter().map(Vec::as_slice).collect();
+        assert_eq!(bootstrap(&refs, 3), bootstrap(&refs, 3));
+    }
+
+    #[test]
+    fn separated_intervals_are_a_clear_difference() {
+        let low = Intervals {
+            runs: 2,
+            mean: [0.0; 2],
+            p50: [0.0; 2],
+            p75: [1.0, 2.0],
+            p95: [0.0; 2],
+            max: [0.0; 2],
+        };
+        let high = Intervals {
+            p75: [2.5, 3.0],
+            ..low
+        };
+        let overlapping = Intervals {
+            p75: [1.5, 3.0],
+            ..low
+        };
+        assert!(low.p75_clearly_below(&high));
+        assert!(!low.p75_clearly_below(&overlapping));
+    }
+}
