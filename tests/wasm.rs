@@ -543,3 +543,40 @@ fn a_large_csv_is_read_with_progress_and_then_simulated_from_the_cache() {
     .unwrap_err();
     assert!(error_message(e).contains("no 'y' column"));
 }
+
+#[wasm_bindgen_test]
+fn seeds_give_each_result_an_interval_and_a_swarm_refuses_them() {
+    let one = wasm::simulate(
+        obj(&[("synthetic", 2.into()), ("model", "dr".into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap();
+    let first = js_sys::Array::from(&get(&one, "results")).get(0);
+    assert!(get(&first, "ci95").is_null(), "one run: no interval");
+    let r = wasm::simulate(
+        obj(&[
+            ("synthetic", 2.into()),
+            ("model", "dr".into()),
+            ("seeds", 3.into()),
+        ]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap();
+    let result = js_sys::Array::from(&get(&r, "results")).get(0);
+    let ci = get(&result, "ci95");
+    assert_eq!(num(&ci, "runs"), 3.0);
+    let p75 = numbers(&ci, "p75");
+    assert!(p75[0] <= p75[1]);
+    let e = wasm::swarm(
+        obj(&[("drones", 2.into()), ("seeds", 2.into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    assert!(error_message(e).contains("a swarm runs one seed"));
+    let e = wasm::simulate(
+        obj(&[("synthetic", 2.into()), ("seeds", 0.into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    assert!(error_message(e).contains("seeds must be 1..100"));
+}

@@ -2,7 +2,7 @@
 import { linkBudget, load, MODEL_LABELS, stationsOf, timeOnAir, type GatewaySite, type ModelResult, type SimReport, type SwarmParams } from './loratrack';
 import { linkBudgetCharts } from './charts/linkBudget';
 import { swarmCharts } from './charts/swarm';
-import { DEFAULTS, fromQuery, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, overheadBytes, toParams, toQuery, type Settings } from './state';
+import { ADR_START_REASON, adrCanStart, DEFAULTS, fromQuery, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, overheadBytes, toParams, toQuery, type Settings } from './state';
 import type { Request, Response, SimulateRequest } from './worker';
 import { SimulationPool } from './pool';
 import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
@@ -28,6 +28,8 @@ let settings: Settings = parsed.settings;
 const notices: string[] = [...parsed.problems];
 let csv: { text: string; name: string } | undefined;
 let report: SimReport | undefined;
+/** The settings that made `report` (the form may have moved on since). */
+let reportSettings: Settings = settings;
 let trajectory3d: Trajectory3d | undefined;
 const charts: Record<string, Element> = {};
 
@@ -195,14 +197,43 @@ function markField(el: HTMLInputElement | HTMLSelectElement, why: string | null)
 function showConditional(): void {
   for (const el of document.querySelectorAll<HTMLElement>('[data-when]')) el.hidden = el.dataset.when !== field('flight').value;
   for (const el of document.querySelectorAll<HTMLElement>('[data-when-sender]')) el.hidden = el.dataset.whenSender !== field('sender').value;
-  $('#distance-value').textContent = `${(Number(field('distance').value) / 1000).toFixed(1)} km`;
+  const km = `${(Number(field('distance').value) / 1000).toFixed(1)} km`;
+  $('#distance-value').textContent = km;
+  // Screen readers hear the distance with its unit, not a bare number of metres.
+  field('distance').setAttribute('aria-valuetext', `${km} to the gateway`);
+  showAdrChoices();
+}
+
+/** Settings the core would refuse are not offered: ADR starts only at an EU868 data rate, so
+ * with ADR on the other SF/bandwidth pairs are disabled, and with such a pair ADR is. */
+function showAdrChoices(): void {
+  const sf = Number(field('sf').value);
+  const bw = Number(field('bw').value);
+  const adrOn = field('adr').value !== 'off';
+  const offer = (select: HTMLSelectElement, ok: (o: HTMLOptionElement) => boolean) => {
+    let any = false;
+    for (const o of select.options) {
+      o.disabled = !ok(o);
+      o.title = o.disabled ? ADR_START_REASON : '';
+      any ||= o.disabled;
+    }
+    return any;
+  };
+  const adrBlocked = offer(field('adr') as HTMLSelectElement, (o) => o.value === 'off' || adrCanStart(sf, bw));
+  // Both lists are updated (no short-circuit).
+  const sfBlocked = offer(field('sf') as HTMLSelectElement, (o) => !adrOn || adrCanStart(Number(o.value), bw));
+  const bwBlocked = offer(field('bw') as HTMLSelectElement, (o) => !adrOn || adrCanStart(sf, Number(o.value)));
+  const rateBlocked = sfBlocked || bwBlocked;
+  const note = $('#adr-note');
+  note.hidden = !adrBlocked && !rateBlocked;
+  note.textContent = adrBlocked ? `ADR is not offered at SF${sf} / ${bw} kHz. ${ADR_START_REASON}` : rateBlocked ? `With ADR on, only EU868 data rates can be chosen. ${ADR_START_REASON}` : '';
 }
 
 // ---- the workers: latest request wins; a long whole-set run is interrupted by the next change --
 let pool: SimulationPool;
 let nextId = 0;
-let running: { id: number; long: boolean; started: number } | undefined;
-let queued: SimulateRequest | undefined;
+let running: { id: number; long: boolean; started: number; settings: Settings } | undefined;
+let queued: { request: SimulateRequest; settings: Settings } | undefined;
 /** The next run draws a fresh seed (New seed), which then becomes the setting. */
 let freshSeed = false;
 
@@ -219,19 +250,21 @@ function submit(): void {
     running = undefined;
   }
   if (running) {
-    queued = request;
+    queued = { request, settings: { ...settings } };
     return;
   }
-  send(request);
+  send(request, { ...settings });
 }
 
-function send(request: SimulateRequest): void {
-  const long = settings.flight === 'all' || settings.flight === 'csv';
-  running = { id: request.id, long, started: performance.now() };
+function send(request: SimulateRequest, made: Settings): void {
+  const long = made.flight === 'all' || made.flight === 'csv' || made.seeds > 1;
+  running = { id: request.id, long, started: performance.now(), settings: made };
   updateBusy();
   progress.hidden = !long;
   progress.value = 0;
-  if (settings.flight === 'all') status.textContent = 'Simulating 30 flights (44 min of flight)… change any setting to interrupt.';
+  const repeats = made.seeds > 1 ? `, ${made.seeds} seeds each` : '';
+  if (made.flight === 'all') status.textContent = `Simulating 30 flights (44 min of flight${repeats})… change any setting to interrupt.`;
+  else if (made.seeds > 1) status.textContent = `Simulating ${made.seeds} seeds… change any setting to interrupt.`;
   else if (settings.flight === 'csv' && csv) status.textContent = `Simulating ${csv.name} (${(csv.text.length / 1024).toFixed(0)} KB)… change any setting to interrupt.`;
   pool.run(request, onResponse);
 }
@@ -239,6 +272,13 @@ function send(request: SimulateRequest): void {
 /** The results on show belong to other settings (or to none yet). */
 function markStale(stale: boolean): void {
   $('[data-panel="results"]').classList.toggle('stale', stale);
+}
+
+function sendQueued(): void {
+  if (!queued) return;
+  const q = queued;
+  queued = undefined;
+  send(q.request, q.settings);
 }
 
 function onResponse(r: Response): void {
@@ -252,41 +292,40 @@ function onResponse(r: Response): void {
     running = undefined;
     progress.hidden = true;
     updateBusy();
-    if (queued) {
-      const q = queued;
-      queued = undefined;
-      send(q);
-    }
+    sendQueued();
     return;
   }
   if ('error' in r) {
+    const failed = running.settings;
     running = undefined;
     progress.hidden = true;
     updateBusy();
     markStale(true);
-    const target = settings.flight === 'csv' ? csvError : status;
-    target.textContent = r.error;
-    target.hidden = false;
-    if (settings.flight === 'csv') status.textContent = 'The CSV could not be simulated; the last results stay on show.';
-    if (queued) {
-      const q = queued;
-      queued = undefined;
-      send(q);
+    if (failed.flight === 'csv') {
+      csvError.textContent = r.error;
+      csvError.hidden = false;
+      status.textContent = 'The CSV could not be simulated; the results below are for the previous settings.';
+    } else {
+      status.textContent = `These settings cannot be simulated: ${r.error}. Change a setting; the results below are for the previous settings.`;
     }
+    sendQueued();
     return;
   }
   if (!('report' in r)) return;
   csvError.hidden = true;
   progress.hidden = true;
-  markStale(false);
   report = r.report;
+  reportSettings = { ...running.settings };
   if (freshSeed) {
     // The drawn seed becomes the setting: the link and the form repeat this run.
     freshSeed = false;
     settings.seed = report.config.seed;
+    reportSettings.seed = report.config.seed;
     field('seed').value = String(settings.seed);
     history.replaceState(null, '', `?${toQuery(settings, embed ? { embed: '1', panels } : {})}`);
   }
+  // Typing may have moved the form on while this ran: the numbers say so.
+  markStale(typing !== undefined || JSON.stringify(reportSettings) !== JSON.stringify(settings));
   const c = report.config;
   status.textContent = `${c.trajectory}: ${c.flights} flight${c.flights > 1 ? 's' : ''}, ${c.flightTime.toFixed(0)} s simulated in ${r.millis.toFixed(0)} ms. Gateway range (mean power = sensitivity ${c.sensitivityDbm.toFixed(1)} dBm): ${(c.rangeM / 1000).toFixed(2)} km.`;
   renderResults(report);
@@ -295,24 +334,55 @@ function onResponse(r: Response): void {
 // ---- rendering ---------------------------------------------------------------------------------
 const fmt = (v: number | null, digits = 2) => (v === null || v === undefined ? '—' : v.toFixed(digits));
 
+/** The station whose p75 is lowest, when its 95 % interval lies below every other station's
+ * (docs/reference.md §12); undefined when no difference is clear. */
+function clearlyLowest(r: SimReport): ModelResult | undefined {
+  const withData = r.results.filter((m) => m.error3d.count > 0);
+  const lowest = withData.reduce<ModelResult | undefined>((a, m) => (!a || (m.error3d.p75 ?? Infinity) < (a.error3d.p75 ?? Infinity) ? m : a), undefined);
+  if (r.results.length < 2 || withData.length < r.results.length || !lowest?.ci95) return undefined;
+  const below = lowest.ci95.p75[1];
+  return withData.every((m) => m === lowest || (m.ci95 !== null && below < m.ci95.p75[0])) ? lowest : undefined;
+}
+
+const names = (list: ModelResult[]) => list.map((m) => MODEL_LABELS[m.model]).join(list.length === 2 ? ' and ' : ', ');
+
+/** How many packets and runs the numbers rest on, and whether the models differ clearly. */
+function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
+  const few = r.results.filter((m) => m.packetsReceived < 10);
+  $('#rests-on').hidden = few.length === 0;
+  $('#use-whole-set').hidden = reportSettings.flight === 'all';
+  if (few.length) {
+    $('#rests-on-text').textContent = `Too few packets to compare: ${names(few)} ${few.length === 1 ? 'rests' : 'rest'} on ${few.map((m) => m.packetsReceived).join(few.length === 2 ? ' and ' : ', ')} received packet${few.every((m) => m.packetsReceived === 1) ? '' : 's'} (under 10).`;
+  }
+  const text = $('#verdict-text');
+  const repeat = $<HTMLButtonElement>('#repeat-seeds');
+  const runs = r.results.find((m) => m.ci95)?.ci95?.runs;
+  repeat.hidden = reportSettings.seeds >= 10 || r.results.length < 2;
+  if (r.results.length < 2) text.textContent = runs ? `p75's 95 % interval rests on ${runs} runs (flights × seeds).` : '';
+  else if (best) text.textContent = `${MODEL_LABELS[best.model]} has the lowest p75, clearly: its 95 % interval lies below every other model's (${runs} runs).`;
+  else if (!runs) text.textContent = 'One flight with one seed cannot tell whether these differences are larger than chance: no model is named best.';
+  else text.textContent = `No clear difference in p75: the 95 % intervals overlap (${runs} runs). More seeds or flights narrow them.`;
+}
+
 function renderResults(r: SimReport): void {
-  const best = r.results.filter((m) => m.error3d.count > 0).reduce<ModelResult | undefined>((a, m) => (!a || (m.error3d.p75 ?? Infinity) < (a.error3d.p75 ?? Infinity) ? m : a), undefined);
+  const best = clearlyLowest(r);
+  renderVerdict(r, best);
   const rows = r.results
     .map((m) => {
       const ratio = m.packetsSent ? m.packetsReceived / m.packetsSent : 0;
-      const isBest = r.results.length > 1 && m === best;
+      const isBest = m === best;
       return `<tr class="${isBest ? 'best' : ''}" data-model="${m.model}">
         <th scope="row">${MODEL_LABELS[m.model]}${isBest ? ' <span class="badge">lowest p75</span>' : ''}</th>
         <td>${m.payloadBytes} B</td><td data-field="toa">${(m.timeOnAir * 1e3).toFixed(1)} ms</td><td data-field="interval">${m.interval.toFixed(2)} s</td>
         <td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}</td><td data-field="delivery">${(ratio * 100).toFixed(0)} %</td>
-        <td data-field="mean">${fmt(m.error3d.mean)}${delta(m, 'mean')}</td><td data-field="p50">${fmt(m.error3d.p50)}${delta(m, 'p50')}</td><td data-field="p75">${fmt(m.error3d.p75)}${delta(m, 'p75')}</td>
+        <td data-field="mean">${fmt(m.error3d.mean)}${delta(m, 'mean')}</td><td data-field="p50">${fmt(m.error3d.p50)}${delta(m, 'p50')}</td><td data-field="p75">${fmt(m.error3d.p75)}${interval(m)}${delta(m, 'p75')}</td>
         <td data-field="p95">${fmt(m.error3d.p95)}${delta(m, 'p95')}</td><td data-field="max">${fmt(m.error3d.max, 1)}</td>
         <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td>
         <td data-field="energy" title="${m.energy.chargePerHour.toFixed(3)} mAh per hour of tracking">${m.energy.chargePerUplink.toFixed(2)}</td></tr>`;
     })
     .join('');
   $('#results-table').innerHTML = `<div class="table-wrap" tabindex="0" role="region" aria-label="Results table"><table class="results">
-    <caption>3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet; overhead ${r.config.overhead} B; ${r.config.prediction} prediction</caption>
+    <caption>3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet, over ${r.config.flights} flight${r.config.flights === 1 ? '' : 's'} × ${r.config.seeds} seed${r.config.seeds === 1 ? '' : 's'}; overhead ${r.config.overhead} B; ${r.config.prediction} prediction</caption>
     <thead><tr><th scope="col">model</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Time between packets: time on air divided by the 1 % duty cycle">interval</th>
     <th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th><th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Mean 3D distance between the station's estimate and the truth">mean</th><th scope="col" title="Half the time the error is below this">median</th><th scope="col" title="75th percentile: 3 times in 4 the error is below this (the paper's headline statistic)">p75</th><th scope="col" title="95th percentile: the bad moments, typically long gaps">p95</th><th scope="col">max</th>
     <th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th>
@@ -336,6 +406,12 @@ function renderResults(r: SimReport): void {
   ]);
   place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: width('#chart-axes') }));
   if (!$('[data-panel="trajectory"]').hidden) void render3d(r);
+}
+
+/** p75's 95 % interval, when the run has one. */
+function interval(m: ModelResult): string {
+  const c = m.ci95;
+  return c ? ` <span class="ci" data-field="p75-interval" title="95 % interval over ${c.runs} runs (flights × seeds)">(${fmt(c.p75[0])}–${fmt(c.p75[1])})</span>` : '';
 }
 
 /** The pinned baseline, if any, and what it was. */
@@ -472,8 +548,31 @@ function onChange(): void {
   submit();
 }
 
+/** A pending run of a number being typed (a half-typed −1 of −15 must not run). */
+let typing: number | undefined;
+const TYPING_PAUSE_MS = 800;
+const isTyped = (t: EventTarget | null) => t instanceof HTMLInputElement && t.type === 'number';
+
+function commitTyping(): void {
+  clearTimeout(typing);
+  typing = undefined;
+  onChange();
+}
+
 form.addEventListener('input', (e) => {
-  if ((e.target as HTMLElement).id !== 'csv') onChange();
+  if ((e.target as HTMLElement).id === 'csv') return;
+  if (isTyped(e.target)) {
+    // The numbers on show no longer match the form: say so at once, run after a pause or when
+    // the field is left.
+    clearTimeout(typing);
+    markStale(true);
+    typing = window.setTimeout(commitTyping, TYPING_PAUSE_MS);
+    return;
+  }
+  onChange();
+});
+form.addEventListener('change', (e) => {
+  if (isTyped(e.target) && typing !== undefined) commitTyping();
 });
 form.addEventListener('submit', (e) => e.preventDefault());
 
@@ -556,9 +655,19 @@ $('#run-swarm').addEventListener('click', () => {
 });
 
 $('#pin').addEventListener('click', () => {
-  baseline = baseline || !report ? undefined : { report, label: describe(settings) };
+  baseline = baseline || !report ? undefined : { report, label: describe(reportSettings) };
   renderBaseline();
   if (report) renderResults(report);
+});
+
+$('#repeat-seeds').addEventListener('click', () => {
+  field('seeds').value = '10';
+  onChange();
+});
+
+$('#use-whole-set').addEventListener('click', () => {
+  field('flight').value = 'all';
+  onChange();
 });
 
 $('#new-seed').addEventListener('click', () => {
@@ -567,7 +676,7 @@ $('#new-seed').addEventListener('click', () => {
 });
 
 $('#download-csv').addEventListener('click', () => report && downloadErrorCsv(report));
-$('#download-json').addEventListener('click', () => report && downloadJson(report, settings));
+$('#download-json').addEventListener('click', () => report && downloadJson(report, reportSettings));
 for (const button of document.querySelectorAll<HTMLButtonElement>('[data-download]')) {
   button.addEventListener('click', () => {
     const name = button.dataset.download!;

@@ -27,6 +27,8 @@ export interface Settings {
   step: number;
   eta: number;
   seed: number;
+  /** Seeds the run repeats with (seed, seed + 1, …): each statistic then gets a 95 % interval. */
+  seeds: number;
   /** The gateways; empty for the one default gateway `distance` m east of the flight's start. */
   gateways: GatewaySite[];
 }
@@ -60,6 +62,7 @@ export const DEFAULTS: Settings = {
   step: def('step'),
   eta: def('eta'),
   seed: def('seed'),
+  seeds: def('seeds'),
   gateways: [],
 };
 
@@ -104,12 +107,13 @@ export const LIMITS: Record<NumericKey, Limit> = {
   step: limit('step'),
   eta: limit('eta'),
   seed: limit('seed'),
+  seeds: limit('seeds'),
 };
 
 /** What a gateway's coordinates and height accept (the core's limits). */
 export const GATEWAY_LIMITS = { coordinate: limit('gateway', 'Gateway coordinate'), height: limit('gatewayHeight', 'Gateway height'), count: limit('gateways', 'Gateways') };
 
-type NumericKey = 'sf' | 'bw' | 'distance' | 'threshold' | 'flightNumber' | 'cr' | 'txPower' | 'pathLossExponent' | 'shadowing' | 'sensorRate' | 'step' | 'eta' | 'seed';
+type NumericKey = 'sf' | 'bw' | 'distance' | 'threshold' | 'flightNumber' | 'cr' | 'txPower' | 'pathLossExponent' | 'shadowing' | 'sensorRate' | 'step' | 'eta' | 'seed' | 'seeds';
 const NUMERIC = Object.keys(LIMITS) as NumericKey[];
 
 /** Why `value` is not acceptable for `key`, in the words of the form; null when it is. */
@@ -122,6 +126,15 @@ export function invalid(key: NumericKey, value: number): string | null {
   if (l.integer && !Number.isInteger(value)) return `${l.label} must be a whole number.`;
   return null;
 }
+
+/** Whether ADR can start at `sf` / `bw` kHz: only at an EU868 data rate (DR0–DR5 are SF12–SF7 at
+ * 125 kHz, DR6 SF7 at 250 kHz; src/lora/data_rate.rs), as the core checks. */
+export function adrCanStart(sf: number, bw: number): boolean {
+  return bw === 125 || (bw === 250 && sf === 7);
+}
+
+/** Why ADR cannot start here, in the form's words (shown beside the disabled choices). */
+export const ADR_START_REASON = 'ADR starts at an EU868 data rate: SF7–SF12 at 125 kHz or SF7 at 250 kHz.';
 
 export function isNumericKey(key: string): key is NumericKey {
   return key in LIMITS;
@@ -153,6 +166,7 @@ export function toParams(s: Settings, csv?: { text: string; name: string }): Sim
     bw: s.bw,
     distance: s.distance,
     seed: s.seed,
+    seeds: s.seeds,
     overhead: overheadBytes(s),
     cr: s.cr,
     txPower: s.txPower,
@@ -234,6 +248,10 @@ export function fromQuery(search: string): { settings: Settings; problems: strin
   // An uploaded CSV cannot travel in a URL; such links open the default flight.
   choice('flight', ['synthetic', 'all', 'canberra']);
   if (q.get('lorawan') === 'false') s.lorawan = false;
+  if (s.adr !== 'off' && !adrCanStart(s.sf, s.bw)) {
+    problems.push(`The link's adr=${s.adr} was replaced by off: ${ADR_START_REASON}`);
+    s.adr = 'off';
+  }
   const g = q.get('gateways');
   if (g !== null) {
     const parsed = gatewaysFromText(g);

@@ -45,15 +45,47 @@ const tableHtml = (page) => page.locator('#results-table tbody').innerHTML();
 const cell = (page, model, fieldName) => page.locator(`#results-table tr[data-model="${model}"] td[data-field="${fieldName}"]`).textContent();
 const number = (text) => Number.parseFloat(text);
 
-test('opens with the paper defaults, three models and the lowest p75 highlighted', async () => {
+const MODELS = ['dr', 'ctra-plus', '3d-ctra'];
+/** Each model's p75 and its shown 95 % interval, as the table shows them. */
+async function shownP75(page) {
+  return Promise.all(
+    MODELS.map(async (m) => {
+      const text = await cell(page, m, 'p75');
+      const ci = text.match(/\(([\d.]+)–([\d.]+)\)/);
+      return { model: m, p75: number(text), ci: ci ? [Number(ci[1]), Number(ci[2])] : null };
+    }),
+  );
+}
+
+test('opens with the paper defaults and names no best model from one flight and one seed; ten seeds give intervals equal to the CLI', async () => {
   const { page, problems } = await open();
   assert.equal(await page.getByLabel('Spreading factor').inputValue(), '7');
   assert.equal(await page.getByLabel('Bandwidth').inputValue(), '250');
   assert.equal(await page.locator('#results-table tbody tr').count(), 3);
-  assert.equal(await page.locator('#results-table tr.best').count(), 1);
-  const p75s = await Promise.all(['dr', 'ctra-plus', '3d-ctra'].map(async (m) => number(await cell(page, m, 'p75'))));
-  const best = await page.locator('#results-table tr.best').getAttribute('data-model');
-  assert.equal(p75s[['dr', 'ctra-plus', '3d-ctra'].indexOf(best)], Math.min(...p75s));
+  // One 81-s flight, one seed: no interval, so no verdict.
+  assert.equal(await page.locator('#results-table tr.best').count(), 0);
+  assert.match(await page.locator('#verdict-text').textContent(), /One flight with one seed cannot tell/);
+  assert.match(await page.locator('#results-table caption').textContent(), /over 1 flight × 1 seed/);
+  const before = await tableHtml(page);
+  await page.getByRole('button', { name: 'Repeat with 10 seeds' }).click();
+  await waitForResults(page, before);
+  await idle(page);
+  assert.equal(await page.getByLabel('Seeds (repeats)').inputValue(), '10');
+  assert.match(await page.locator('#results-table caption').textContent(), /over 1 flight × 10 seeds/);
+  const shown = await shownP75(page);
+  const cli = JSON.parse(execFileSync('cargo', ['run', '--quiet', '--', 'simulate', '--synthetic', '1', '--seeds', '10', '--json'], { encoding: 'utf8' }));
+  for (const s of shown) {
+    const r = cli.results.find((x) => x.model === s.model);
+    assert.equal(s.p75.toFixed(2), r.error3d.p75.toFixed(2), s.model);
+    assert.deepEqual(s.ci, r.ci95.p75.map((v) => Number(v.toFixed(2))), s.model);
+  }
+  // A best model is named exactly when its interval lies below every other's.
+  const lowest = shown.reduce((a, b) => (b.p75 < a.p75 ? b : a));
+  const clear = shown.every((s) => s === lowest || lowest.ci[1] < s.ci[0]);
+  assert.equal(await page.locator('#results-table tr.best').count(), clear ? 1 : 0);
+  if (clear) assert.equal(await page.locator('#results-table tr.best').getAttribute('data-model'), lowest.model);
+  else assert.match(await page.locator('#verdict-text').textContent(), /No clear difference/);
+  assert.match(page.url(), /seeds=10/);
   await page.waitForSelector('#chart-error svg');
   await page.waitForSelector('#chart-axes svg');
   await page.waitForSelector('#chart-distance svg', { timeout: 30_000 });
@@ -344,13 +376,13 @@ test('an invalid field is marked beside itself, nothing runs, and the old result
   assert.deepEqual(problems, []);
 });
 
-test('with Advanced open the settings still fit the screen, and the results table fits its box', async () => {
+test('with Advanced open the page scrolls, not the settings, and the results table fits its box', async () => {
   const { page, problems } = await open('', { width: 1280, height: 800 });
   await page.locator('#advanced summary').click();
-  const box = await page.locator('#controls').boundingBox();
-  assert.ok(box.height <= 800, `settings ${box.height} px tall`);
-  await page.getByLabel('Seed').focus();
-  const seed = await page.getByLabel('Seed').boundingBox();
+  const inner = await page.locator('#controls').evaluate((el) => el.scrollHeight - el.clientHeight);
+  assert.equal(inner, 0, 'the settings scroll inside themselves');
+  await page.getByLabel('Seed', { exact: true }).focus();
+  const seed = await page.getByLabel('Seed', { exact: true }).boundingBox();
   assert.ok(seed.y >= 0 && seed.y + seed.height <= 800, `Seed at ${seed.y}`);
   const fits = await page.locator('#results-table .table-wrap').evaluate((el) => el.scrollWidth <= el.clientWidth + 1);
   assert.ok(fits, 'the results table scrolls sideways at 1280 px');
@@ -503,11 +535,11 @@ test('gateways are added, moved and removed in the form; each is reported, kept 
   const note = await page.locator('#network-note').textContent();
   assert.match(note, /gateway 1 at \(5\.0, 0\.0\) km heard \d+ \(\d+ only it\); gateway 2 at \(0\.0, 0\.0\) km heard \d+/);
   assert.match(page.url(), /gateways=5000%2C0%3B0%2C0/);
-  // Move the second gateway north: the URL and the numbers follow (the input event starts the
-  // run, and with it data-busy, before fill() returns).
+  // Move the second gateway north: the URL and the numbers follow.
   await page.getByLabel('Gateway 2 north (m)').fill('2500');
-  await page.waitForFunction(() => !document.body.hasAttribute('data-busy'));
-  assert.match(page.url(), /gateways=5000%2C0%3B0%2C2500/);
+  // A typed number runs after a pause: wait for the link to follow, then for the run.
+  await page.waitForURL(/gateways=5000%2C0%3B0%2C2500/);
+  await page.waitForFunction(() => !document.body.hasAttribute('data-busy') && !document.querySelector('[data-panel="results"].stale'));
   const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
   const browserJson = JSON.parse(readFileSync(await download.path(), 'utf8'));
   const cli = JSON.parse(
@@ -560,5 +592,85 @@ test('a large CSV is read with its own progress, then simulated', async () => {
   await page.waitForFunction(() => !document.body.hasAttribute('data-busy'));
   assert.match(await page.locator('#status').textContent(), /long\.csv: 1 flight, 800 s simulated/);
   assert.ok(number(await cell(page, 'dr', 'delivery')) > 0);
+  assert.deepEqual(problems, []);
+});
+
+test('every screen: no sideways scrolling from a phone to a projector, and chart text stays legible', async () => {
+  for (const [width, height, least] of [[360, 740, 11], [390, 844, 11], [768, 1024, 11], [1024, 768, 12], [1280, 800, 12]]) {
+    const { page, problems } = await open('', { width, height });
+    await idle(page);
+    const m = await page.evaluate(() => {
+      const sizes = [...document.querySelectorAll('.chart svg text')]
+        .filter((t) => t.getBoundingClientRect().height > 0)
+        .map((t) => {
+          const svg = t.ownerSVGElement;
+          const scale = svg.getBoundingClientRect().width / (svg.viewBox.baseVal?.width || svg.getBoundingClientRect().width);
+          return parseFloat(getComputedStyle(t).fontSize) * scale;
+        });
+      return { scrollWidth: document.documentElement.scrollWidth, smallest: Math.min(...sizes), texts: sizes.length };
+    });
+    assert.ok(m.scrollWidth <= width, `${width}x${height}: the document is ${m.scrollWidth} px wide`);
+    assert.ok(m.texts > 20, `${width}: chart text found`);
+    assert.ok(m.smallest >= least, `${width}x${height}: chart text down to ${m.smallest.toFixed(1)} px`);
+    console.log(`# ${width}x${height}: document ${m.scrollWidth} px wide, chart text >= ${m.smallest.toFixed(1)} px`);
+    // Every control can be reached: the last one is on the page, within its width.
+    const last = await page.getByRole('button', { name: 'New seed' }).boundingBox();
+    assert.ok(last.x >= 0 && last.x + last.width <= width, `${width}: New seed at ${last.x}`);
+    assert.deepEqual(problems, []);
+    await page.close();
+  }
+});
+
+test('a number being typed runs once it is whole: -15 dBm never runs as -1', async () => {
+  const { page, problems } = await open();
+  await page.locator('#advanced summary').click();
+  const tx = page.getByLabel('Tx power (dBm)');
+  await tx.fill('');
+  const before = await tableHtml(page);
+  await tx.pressSequentially('-15', { delay: 120 });
+  // At once the numbers on show are marked as no longer matching the form.
+  assert.equal(await page.locator('[data-panel="results"].stale').count(), 1);
+  await waitForResults(page, before);
+  await page.waitForFunction(() => !document.querySelector('[data-panel="results"].stale'));
+  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
+  const json = JSON.parse(readFileSync(await download.path(), 'utf8'));
+  assert.equal(json.settings.txPower, -15);
+  assert.equal(json.config.txPower, -15, 'the results are those of the settings shown');
+  assert.deepEqual(problems, []);
+});
+
+test('ADR is offered only where it can start, with the reason, and a link asking otherwise is explained', async () => {
+  const { page, problems } = await open('?sf=9&bw=250');
+  assert.equal(await page.locator('#adr option[value="lorawan"]').isDisabled(), true);
+  assert.match(await page.locator('#adr-note').textContent(), /EU868 data rate: SF7–SF12 at 125 kHz or SF7 at 250 kHz/);
+  await page.getByLabel('Spreading factor').selectOption('7');
+  await waitForResults(page);
+  assert.equal(await page.locator('#adr option[value="lorawan"]').isDisabled(), false);
+  const before = await tableHtml(page);
+  await page.getByLabel('Adaptive data rate').selectOption('lorawan');
+  await waitForResults(page, before);
+  for (const sf of ['8', '9', '12']) assert.equal(await page.locator(`#sf option[value="${sf}"]`).isDisabled(), true, `SF${sf} at 250 kHz with ADR`);
+  assert.equal(await page.locator('#bw option[value="500"]').isDisabled(), true);
+  assert.doesNotMatch(await page.locator('#status').textContent(), /cannot be simulated|error/i);
+  const linked = await open('?sf=9&bw=250&adr=lorawan');
+  assert.match(await linked.page.locator('#notice').textContent(), /adr=lorawan was replaced by off/);
+  assert.equal(await linked.page.getByLabel('Adaptive data rate').inputValue(), 'off');
+  assert.deepEqual([...problems, ...linked.problems], []);
+});
+
+test('numbers resting on few packets say so and offer the whole set in one click', async () => {
+  const { page, problems } = await open('?sf=12&bw=125');
+  assert.equal(await page.locator('#rests-on').isVisible(), true);
+  assert.match(await page.locator('#rests-on-text').textContent(), /Too few packets to compare: .* on \d/);
+  const received = number((await cell(page, 'dr', 'packets')).split('/')[0]);
+  assert.ok(received < 10, `${received} packets`);
+  const before = await tableHtml(page);
+  await page.getByRole('button', { name: 'Simulate the whole synthetic set' }).click();
+  await waitForResults(page, before);
+  assert.equal(await page.getByLabel('Trajectory', { exact: true }).inputValue(), 'all');
+  assert.equal(await page.locator('#rests-on').isVisible(), false);
+  assert.match(await page.locator('#results-table caption').textContent(), /over 30 flights × 1 seed/);
+  // The whole set gives intervals over its flights: the verdict rests on them.
+  assert.match(await page.locator('#verdict-text').textContent(), /runs/);
   assert.deepEqual(problems, []);
 });

@@ -3,7 +3,7 @@
 import * as Plot from '@observablehq/plot';
 import type { Boxplot, ModelName } from '../loratrack';
 import { MODEL_LABELS } from '../loratrack';
-import { MODEL_COLORS } from './colors';
+import { MODEL_COLORS, CHART_STYLE } from './colors';
 
 export interface BoxRow {
   group: string;
@@ -19,8 +19,9 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
   const groups = [...new Set(rows.map((r) => r.group))];
   const empty = groups.filter((g) => !data.some((d) => d.group === g)).map((group) => ({ group }));
   return Plot.plot({
+    style: CHART_STYLE,
     width: opts.width,
-    height: 240,
+    height: 200,
     marginLeft: 50,
     fx: { label: opts.groupLabel, domain: groups },
     x: { axis: null, domain: models, paddingInner: 0.25 },
@@ -30,7 +31,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
     color: { domain: models, range: models.map((m) => MODEL_COLORS[data.find((d) => d.label === m)!.model]), legend: true },
     marks: [
       // A group where nothing arrived says so instead of staying blank.
-      Plot.text(empty, { fx: 'group', text: () => 'no packet\narrives', frameAnchor: 'middle', fill: '#5a6068', fontSize: 11 }),
+      Plot.text(empty, { fx: 'group', text: () => 'no packet\narrives', frameAnchor: 'middle', fill: '#5a6068', fontSize: 13 }),
       Plot.ruleX(data, { fx: 'group', x: 'label', y1: 'whiskerLow', y2: 'whiskerHigh', stroke: 'label' }),
       Plot.barY(data, { fx: 'group', x: 'label', y1: 'q1', y2: 'q3', fill: 'label', fillOpacity: 0.35, stroke: 'label' }),
       Plot.tickY(data, { fx: 'group', x: 'label', y: 'median', stroke: 'label', strokeWidth: 2.5 }),
