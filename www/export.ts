@@ -1,6 +1,17 @@
-// Downloads: error series (CSV), configuration and results (JSON), charts (SVG or PNG). Everything
-// is made in the page from data it already has: no request leaves it.
+// Downloads: error series and results (CSV), settings and results (JSON), every chart as SVG or
+// PNG ready for a slide (title, legend, axis labels, a caption with the settings, seed and
+// version; PNGs at least 1600 px wide), and tables as CSV. Everything is made in the page from
+// data it already has: no request leaves it.
 import type { SimReport } from './loratrack';
+
+/** What a slide needs besides the chart: a title and a one-line caption of what made it. */
+export interface SlideText {
+  title: string;
+  caption: string;
+}
+
+/** The narrowest PNG a download gives, px: sharp on a 1080p projector at full width. */
+export const MIN_PNG_WIDTH = 1600;
 
 function save(blob: Blob, name: string): void {
   const a = document.createElement('a');
@@ -11,6 +22,9 @@ function save(blob: Blob, name: string): void {
   a.remove();
   setTimeout(() => URL.revokeObjectURL(a.href), 1000);
 }
+
+const csvCell = (v: string) => (/[",\n]/.test(v) ? `"${v.replace(/"/g, '""')}"` : v);
+const csvText = (rows: string[][]) => rows.map((r) => r.map(csvCell).join(',')).join('\n') + '\n';
 
 /** The first flight's error series: one row per evaluation time, one column per model. */
 export function downloadErrorCsv(report: SimReport): void {
@@ -26,7 +40,21 @@ export function downloadErrorCsv(report: SimReport): void {
     }),
   );
   const rows = [...byTime.entries()].sort((a, b) => a[0] - b[0]).map(([t, cells]) => [t.toFixed(2), ...cells]);
-  save(new Blob([[header, ...rows].map((r) => r.join(',')).join('\n') + '\n'], { type: 'text/csv' }), 'loratrack-error-series.csv');
+  save(new Blob([csvText([header, ...rows])], { type: 'text/csv' }), 'loratrack-error-series.csv');
+}
+
+/** One row per station: the numbers of the results table, unrounded, with the 95 % intervals. */
+export function downloadResultsCsv(report: SimReport): void {
+  const header = ['model', 'payload_bytes', 'time_on_air_s', 'interval_s', 'packets_sent', 'packets_received', 'delivery_ratio', 'mean_m', 'p50_m', 'p75_m', 'p75_lo_m', 'p75_hi_m', 'p95_m', 'max_m', 'samples', 'runs', 'coverage95', 'charge_per_uplink_mC'];
+  const n = (v: number | null | undefined) => (v === null || v === undefined ? '' : String(v));
+  const rows = report.results.map((m) => [m.model, n(m.payloadBytes), n(m.timeOnAir), n(m.interval), n(m.packetsSent), n(m.packetsReceived), n(m.deliveryRatio), n(m.error3d.mean), n(m.error3d.p50), n(m.error3d.p75), n(m.ci95?.p75[0]), n(m.ci95?.p75[1]), n(m.error3d.p95), n(m.error3d.max), n(m.error3d.count), n(m.ci95?.runs ?? 1), n(m.coverage95), n(m.energy.chargePerUplink)]);
+  save(new Blob([csvText([header, ...rows])], { type: 'text/csv' }), 'loratrack-results.csv');
+}
+
+/** An HTML table as CSV: its header row and body rows, cell text as shown. */
+export function downloadTableCsv(table: HTMLTableElement, name: string): void {
+  const rows = [...table.rows].map((r) => [...r.cells].map((c) => (c.textContent ?? '').trim()));
+  save(new Blob([csvText(rows)], { type: 'text/csv' }), `${name}.csv`);
 }
 
 /** Configuration and results, without the bulky series. */
@@ -35,46 +63,163 @@ export function downloadJson(report: SimReport, settings: unknown): void {
   save(new Blob([JSON.stringify({ settings, ...rest }, null, 2)], { type: 'application/json' }), 'loratrack-results.json');
 }
 
+/** The chart's own drawings, top to bottom: every SVG but a legend's small swatches. */
+export function chartSvgs(chart: Element): SVGSVGElement[] {
+  if (chart instanceof SVGSVGElement) return [chart];
+  return [...chart.querySelectorAll('svg')].filter((s) => !isSwatch(s) && !s.parentElement?.closest('svg'));
+}
+
 /** The chart itself: the largest SVG (a figure also holds the legend's small swatches). */
 export function chartSvg(chart: Element): SVGSVGElement | null {
-  if (chart instanceof SVGSVGElement) return chart;
   const area = (s: SVGSVGElement) => Number(s.getAttribute('width') ?? 0) * Number(s.getAttribute('height') ?? 0);
-  return [...chart.querySelectorAll('svg')].reduce<SVGSVGElement | null>((best, s) => (!best || area(s) > area(best) ? s : best), null);
+  return chartSvgs(chart).reduce<SVGSVGElement | null>((best, s) => (!best || area(s) > area(best) ? s : best), null);
 }
 
-function svgText(svg: SVGSVGElement): string {
-  const clone = svg.cloneNode(true) as SVGSVGElement;
-  clone.setAttribute('xmlns', 'http://www.w3.org/2000/svg');
-  clone.style.background = 'white';
-  return new XMLSerializer().serializeToString(clone);
+/** Plot draws a legend as HTML: one `<span class="plot-…-swatch">` per entry, each a small SVG
+ * square and its label. */
+const isSwatch = (svg: SVGSVGElement) => /-swatch\b/.test(svg.parentElement?.getAttribute('class') ?? '');
+
+/** A legend's entries: colour and label. */
+function legendOf(chart: Element): { color: string; label: string }[] {
+  return [...chart.querySelectorAll('svg')].filter(isSwatch).map((svg) => ({
+    color: svg.getAttribute('fill') ?? svg.querySelector('rect')?.getAttribute('fill') ?? '#888',
+    label: (svg.parentElement?.textContent ?? '').trim(),
+  }));
 }
 
-export function downloadSvg(chart: Element, name: string): void {
-  const svg = chartSvg(chart);
-  if (svg) save(new Blob([svgText(svg)], { type: 'image/svg+xml' }), `${name}.svg`);
+const SVG_NS = 'http://www.w3.org/2000/svg';
+const FONT = 'system-ui, -apple-system, "Segoe UI", sans-serif';
+
+function text(x: number, y: number, content: string, size: number, attrs: Record<string, string> = {}): SVGTextElement {
+  const t = document.createElementNS(SVG_NS, 'text');
+  t.setAttribute('x', String(x));
+  t.setAttribute('y', String(y));
+  t.setAttribute('font-size', String(size));
+  t.setAttribute('font-family', FONT);
+  for (const [k, v] of Object.entries(attrs)) t.setAttribute(k, v);
+  t.textContent = content;
+  return t;
 }
 
-export function downloadPng(chart: Element, name: string): void {
-  const svg = chartSvg(chart);
-  if (!svg) return;
-  const { width, height } = svg.getBoundingClientRect();
+/** One standalone SVG for a slide: title, legend, the chart(s) stacked, and the caption. */
+export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null {
+  const parts = chartSvgs(chart);
+  if (!parts.length) return null;
+  const pad = 16;
+  const width = Math.max(...parts.map((p) => p.getBoundingClientRect().width || Number(p.getAttribute('width')) || 600)) + 2 * pad;
+  const out = document.createElementNS(SVG_NS, 'svg');
+  out.setAttribute('xmlns', SVG_NS);
+  const background = document.createElementNS(SVG_NS, 'rect');
+  background.setAttribute('width', '100%');
+  background.setAttribute('height', '100%');
+  background.setAttribute('fill', 'white');
+  out.append(background, text(pad, pad + 18, slide.title, 20, { 'font-weight': '600', fill: '#1b1f24' }));
+  let y = pad + 30;
+  const legend = legendOf(chart);
+  if (legend.length) {
+    let x = pad;
+    for (const { color, label } of legend) {
+      const swatch = document.createElementNS(SVG_NS, 'rect');
+      for (const [k, v] of Object.entries({ x: String(x), y: String(y + 3), width: '12', height: '12', fill: color })) swatch.setAttribute(k, v);
+      out.append(swatch, text(x + 17, y + 14, label, 14, { fill: '#1b1f24' }));
+      x += 30 + label.length * 8;
+    }
+    y += 26;
+  }
+  for (const part of parts) {
+    const clone = part.cloneNode(true) as SVGSVGElement;
+    const w = part.getBoundingClientRect().width || Number(part.getAttribute('width'));
+    const h = part.getBoundingClientRect().height || Number(part.getAttribute('height'));
+    if (!clone.getAttribute('viewBox')) clone.setAttribute('viewBox', `0 0 ${part.getAttribute('width') ?? w} ${part.getAttribute('height') ?? h}`);
+    clone.setAttribute('x', String(pad));
+    clone.setAttribute('y', String(y));
+    clone.setAttribute('width', String(w));
+    clone.setAttribute('height', String(h));
+    clone.removeAttribute('style');
+    out.append(clone);
+    y += h + 8;
+  }
+  // The caption wraps at the chart's width (about 6.6 px per character at 12 px).
+  const lines = wrap(slide.caption, Math.max(30, Math.floor((width - 2 * pad) / 6.6)));
+  lines.forEach((line, i) => out.append(text(pad, y + 14 + 16 * i, line, 12, { fill: '#3a3f45' })));
+  const height = y + 14 + 16 * (lines.length - 1) + pad;
+  out.setAttribute('width', String(Math.ceil(width)));
+  out.setAttribute('height', String(Math.ceil(height)));
+  out.setAttribute('viewBox', `0 0 ${Math.ceil(width)} ${Math.ceil(height)}`);
+  return out;
+}
+
+/** `line` broken at spaces into lines of at most `width` characters (a longer word stands alone). */
+function wrap(line: string, width: number): string[] {
+  const out: string[] = [];
+  let current = '';
+  for (const word of line.split(' ')) {
+    if (current && current.length + 1 + word.length > width) {
+      out.push(current);
+      current = word;
+    } else current = current ? `${current} ${word}` : word;
+  }
+  return [...out, current];
+}
+
+const serialize = (svg: SVGSVGElement) => new XMLSerializer().serializeToString(svg);
+
+/** Saves the slide SVG; false when the chart has nothing drawn to save. */
+export function downloadSvg(chart: Element, name: string, slide: SlideText): boolean {
+  const svg = slideSvg(chart, slide);
+  if (!svg) return false;
+  save(new Blob([serialize(svg)], { type: 'image/svg+xml' }), `${name}.svg`);
+  return true;
+}
+
+/** Saves the slide as a PNG at least [`MIN_PNG_WIDTH`] px wide (2× or more); false when the
+ * chart has nothing drawn to save. */
+export function downloadPng(chart: Element, name: string, slide: SlideText): boolean {
+  const svg = slideSvg(chart, slide);
+  if (!svg) return false;
+  const width = Number(svg.getAttribute('width'));
+  const height = Number(svg.getAttribute('height'));
+  const scale = Math.max(2, MIN_PNG_WIDTH / width);
   const img = new Image();
   img.onload = () => {
     const canvas = document.createElement('canvas');
-    canvas.width = Math.ceil(width * 2);
-    canvas.height = Math.ceil(height * 2);
+    canvas.width = Math.ceil(width * scale);
+    canvas.height = Math.ceil(height * scale);
     const ctx = canvas.getContext('2d')!;
-    ctx.fillStyle = 'white';
-    ctx.fillRect(0, 0, canvas.width, canvas.height);
     ctx.drawImage(img, 0, 0, canvas.width, canvas.height);
     canvas.toBlob((b) => b && save(b, `${name}.png`));
   };
-  img.src = URL.createObjectURL(new Blob([svgText(svg)], { type: 'image/svg+xml' }));
+  img.src = URL.createObjectURL(new Blob([serialize(svg)], { type: 'image/svg+xml' }));
+  return true;
 }
 
-export function downloadDataUrl(url: string, name: string): void {
-  const a = document.createElement('a');
-  a.href = url;
-  a.download = name;
-  a.click();
+/** Saves a rendered picture (the 3D view), drawn at `scale` device pixels per CSS pixel, with
+ * the slide's title and legend above and its caption below. */
+export function downloadPicturePng(picture: HTMLCanvasElement, scale: number, name: string, slide: SlideText, legend: { color: string; label: string }[]): void {
+  const px = (v: number) => v * scale;
+  const pad = px(16);
+  const top = pad + px(30) + (legend.length ? px(26) : 0);
+  const canvas = document.createElement('canvas');
+  canvas.width = picture.width + 2 * pad;
+  canvas.height = top + picture.height + px(20) + pad;
+  const ctx = canvas.getContext('2d')!;
+  ctx.fillStyle = 'white';
+  ctx.fillRect(0, 0, canvas.width, canvas.height);
+  ctx.fillStyle = '#1b1f24';
+  ctx.font = `600 ${px(20)}px ${FONT}`;
+  ctx.fillText(slide.title, pad, pad + px(18));
+  let x = pad;
+  ctx.font = `${px(14)}px ${FONT}`;
+  for (const { color, label } of legend) {
+    ctx.fillStyle = color;
+    ctx.fillRect(x, pad + px(33), px(12), px(12));
+    ctx.fillStyle = '#1b1f24';
+    ctx.fillText(label, x + px(17), pad + px(44));
+    x += px(30) + ctx.measureText(label).width;
+  }
+  ctx.drawImage(picture, pad, top);
+  ctx.fillStyle = '#3a3f45';
+  ctx.font = `${px(12)}px ${FONT}`;
+  ctx.fillText(slide.caption, pad, top + picture.height + px(16));
+  canvas.toBlob((b) => b && save(b, `${name}.png`));
 }

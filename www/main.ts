@@ -9,7 +9,8 @@ import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
 import { boxplotChart, type BoxRow } from './charts/boxplot';
 import { errorOverTimeChart } from './charts/errorOverTime';
 import type { Trajectory3d } from './charts/trajectory3d';
-import { chartSvg, downloadDataUrl, downloadErrorCsv, downloadJson, downloadPng, downloadSvg } from './export';
+import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH } from './export';
+import { MODEL_COLORS, TRUTH_COLOR } from './charts/colors';
 
 const DISTANCES = [500, 1000, 2000, 3000, 4000, 5000];
 /** The largest CSV the core reads (MAX_CSV_BYTES in src/trajectory/csv.rs). */
@@ -31,7 +32,7 @@ let report: SimReport | undefined;
 /** The settings that made `report` (the form may have moved on since). */
 let reportSettings: Settings = settings;
 let trajectory3d: Trajectory3d | undefined;
-const charts: Record<string, Element> = {};
+const charts: Record<string, { chart: Element; caption: string }> = {};
 
 // ---- embedding: ?embed=1&panels=results,error shows only those panels --------------------------
 let panels = 'results,error';
@@ -52,6 +53,30 @@ if (embed) {
   url.searchParams.delete('panels');
   full.href = url.toString();
   full.hidden = false;
+  // An embed says which settings it shows; Pin compares runs, which an embed does not make.
+  $('#embed-caption').hidden = false;
+  $('#pin').hidden = true;
+  // The host page can grow the frame to its content (README: the snippet that listens).
+  if (window.parent !== window) {
+    let last = 0;
+    new ResizeObserver(() => {
+      const height = Math.ceil(document.documentElement.scrollHeight);
+      if (height === last) return;
+      last = height;
+      window.parent.postMessage({ loratrackHeight: height }, '*');
+    }).observe(document.body);
+  }
+}
+
+/** In an embed: the settings behind the numbers, and every notice (the form is not shown). */
+function updateEmbedCaption(): void {
+  if (!embed) return;
+  $('#embed-settings').textContent = `Settings: ${caption(reportSettings)}.`;
+  const lines = [...notices];
+  if (!$('#rests-on').hidden) lines.push($('#rests-on-text').textContent ?? '');
+  if ($('[data-panel="results"]').classList.contains('stale')) lines.push('The numbers shown are for the previous settings.');
+  $('#embed-notices').hidden = lines.length === 0;
+  $('#embed-notices').textContent = lines.join(' ');
 }
 
 // ---- controls <-> settings ---------------------------------------------------------------------
@@ -272,6 +297,7 @@ function send(request: SimulateRequest, made: Settings): void {
 /** The results on show belong to other settings (or to none yet). */
 function markStale(stale: boolean): void {
   $('[data-panel="results"]').classList.toggle('stale', stale);
+  updateEmbedCaption();
 }
 
 function sendQueued(): void {
@@ -367,6 +393,7 @@ function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
 function renderResults(r: SimReport): void {
   const best = clearlyLowest(r);
   renderVerdict(r, best);
+  updateEmbedCaption();
   const rows = r.results
     .map((m) => {
       const ratio = m.packetsSent ? m.packetsReceived / m.packetsSent : 0;
@@ -398,13 +425,13 @@ function renderResults(r: SimReport): void {
 
   renderRateUse(r);
   const width = (id: string) => Math.max(300, $(id).clientWidth || 600);
-  place('error', errorOverTimeChart(r, width('#chart-error')));
+  place('error', errorOverTimeChart(r, width('#chart-error')), reportSettings);
   const axisRows: BoxRow[] = r.results.flatMap((m) => [
     { group: 'x', model: m.model, box: m.boxplot.errorX },
     { group: 'y', model: m.model, box: m.boxplot.errorY },
     { group: 'z', model: m.model, box: m.boxplot.errorZ },
   ]);
-  place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: width('#chart-axes') }));
+  place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: width('#chart-axes') }), reportSettings);
   if (!$('[data-panel="trajectory"]').hidden) void render3d(r);
 }
 
@@ -504,7 +531,7 @@ async function draw3d(r: SimReport): Promise<void> {
 
 function renderDistance(sweep: { distance: number; report: SimReport }[]): void {
   const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d })));
-  place('distance', boxplotChart(rows, { log: true, groupLabel: `gateway distance (SF${settings.sf}, ${settings.bw} kHz)`, width: Math.max(300, $('#chart-distance').clientWidth || 600) }));
+  place('distance', boxplotChart(rows, { log: true, groupLabel: `gateway distance (SF${settings.sf}, ${settings.bw} kHz)`, width: Math.max(300, $('#chart-distance').clientWidth || 600) }), running?.settings ?? reportSettings);
 }
 
 function renderLink(): void {
@@ -520,8 +547,15 @@ function renderAirtime(): void {
   place('airtime', airtimeVsPayloadChart({ ...opts, width: Math.max(300, $('#chart-airtime').clientWidth || 600) }));
 }
 
-function place(name: string, chart: Element): void {
-  charts[name] = chart;
+/** One line for a download's caption: the settings, flight, seed and version behind a chart. */
+function caption(s: Settings, extra = ''): string {
+  const flight = s.flight === 'all' ? 'whole synthetic set' : s.flight === 'canberra' ? 'real flight (Canberra)' : s.flight === 'csv' ? (csv?.name ?? 'uploaded CSV') : `synthetic flight ${s.flightNumber}`;
+  const seeds = s.seeds > 1 ? ` to ${s.seed + s.seeds - 1}` : '';
+  return `${describe(s)}, ${s.lorawan ? '13 B' : 'no'} LoRaWAN overhead; ${flight}; seed ${s.seed}${seeds}${extra}; loratrack ${__LORATRACK_VERSION__}`;
+}
+
+function place(name: string, chart: Element, made: Settings = settings, extra = ''): void {
+  charts[name] = { chart, caption: caption(made, extra) };
   // Plot labels its mark groups; an unlabelled role-less <g> may not carry aria-label, so the
   // chart is one image named by its panel's title instead.
   for (const g of chart.querySelectorAll('g[aria-label]')) g.removeAttribute('aria-label');
@@ -627,6 +661,7 @@ $('#run-swarm').addEventListener('click', () => {
     channels: Number($<HTMLSelectElement>('#swarmChannels').value),
     sfPlan: $<HTMLSelectElement>('#swarmPlan').value as 'fixed' | 'spread',
   };
+  const made = { ...settings };
   const bar = $<HTMLProgressElement>('#swarm-progress');
   bar.hidden = false;
   bar.value = 0;
@@ -648,7 +683,7 @@ $('#run-swarm').addEventListener('click', () => {
     }
     if ('swarms' in r) {
       $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(r.millis / 1000).toFixed(1)} s.`;
-      place('swarm', swarmCharts(r.swarms, Math.max(300, $('#chart-swarm').clientWidth || 600)));
+      place('swarm', swarmCharts(r.swarms, Math.max(300, $('#chart-swarm').clientWidth || 600)), made, `; swarms of ${sizes.join(', ')} drones, ${params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.duration} s each`);
     }
   };
   swarmWorker.postMessage({ id: 1, swarm: { sizes, params } } satisfies Request);
@@ -675,22 +710,88 @@ $('#new-seed').addEventListener('click', () => {
   submit();
 });
 
+/** Says beside a download's buttons why it could not happen (or clears the message). */
+function downloadWhy(button: HTMLElement, why: string): void {
+  const group = button.closest('.buttons') ?? button.parentElement!;
+  let note = group.querySelector<HTMLElement>('.download-why');
+  if (!note) {
+    note = document.createElement('span');
+    note.className = 'note download-why';
+    note.setAttribute('role', 'status');
+    group.append(note);
+  }
+  note.textContent = why;
+}
+
 $('#download-csv').addEventListener('click', () => report && downloadErrorCsv(report));
 $('#download-json').addEventListener('click', () => report && downloadJson(report, reportSettings));
+$('#download-results-csv').addEventListener('click', () => report && downloadResultsCsv(report));
+$('#download-airtime-csv').addEventListener('click', () => {
+  const table = document.querySelector<HTMLTableElement>('#airtime-table table');
+  if (table) downloadTableCsv(table, 'loratrack-time-on-air');
+});
 for (const button of document.querySelectorAll<HTMLButtonElement>('[data-download]')) {
+  const name = button.dataset.download!;
+  const title = document.getElementById(`${name}-title`)?.textContent ?? name;
+  button.setAttribute('aria-label', `Download the ${title.replace(/:.*/, '').toLowerCase()} chart as ${button.dataset.format!.toUpperCase()}`);
   button.addEventListener('click', () => {
-    const name = button.dataset.download!;
+    const slide = (c: string) => ({ title, caption: c });
     if (name === 'trajectory') {
-      const png = trajectory3d?.toPng();
-      if (png) downloadDataUrl(png, 'loratrack-trajectory.png');
-      return;
+      const shot = trajectory3d?.snapshot(MIN_PNG_WIDTH);
+      if (!shot) return downloadWhy(button, 'Nothing to save: the 3D view needs WebGL, which this browser does not offer.');
+      const legend = [{ color: TRUTH_COLOR, label: 'true flight' }, ...(report?.series?.models ?? []).map((m) => ({ color: MODEL_COLORS[m.model], label: MODEL_LABELS[m.model] }))];
+      downloadPicturePng(shot.canvas, shot.scale, `loratrack-${name}`, slide(caption(reportSettings)), legend);
+      return downloadWhy(button, '');
     }
-    const chart = charts[name];
-    if (!chart) return;
-    if (button.dataset.format === 'svg') downloadSvg(chart, `loratrack-${name}`);
-    else downloadPng(chart, `loratrack-${name}`);
+    const entry = charts[name];
+    const saved = entry && (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(entry.chart, `loratrack-${name}`, slide(entry.caption));
+    downloadWhy(button, saved ? '' : name === 'swarm' && !entry ? 'Nothing to save yet: run a swarm first.' : 'Nothing to save: this chart has no data at these settings (no packet arrives).');
   });
 }
+
+// ---- the Embed dialog: pick panels, copy a snippet that sizes its frame ------------------------
+const embedDialog = $<HTMLDialogElement>('#embed-dialog');
+for (const name of PANELS) {
+  const label = document.createElement('label');
+  const box = document.createElement('input');
+  box.type = 'checkbox';
+  box.value = name;
+  box.checked = ['results', 'error'].includes(name);
+  label.append(box, ` ${name}`);
+  $('#embed-panels').append(label);
+}
+
+function embedSnippet(): string {
+  const chosen = [...document.querySelectorAll<HTMLInputElement>('#embed-panels input:checked')].map((b) => b.value);
+  const url = new URL(location.href);
+  url.search = `?${toQuery(settings, { embed: '1', panels: (chosen.length ? chosen : ['results']).join(',') })}`;
+  return `<iframe id="loratrack" src="${url.toString().replace(/&/g, '&amp;')}" title="loratrack: LoRa tracking playground (${describe(settings)})" style="width: 100%; border: 0" height="600" loading="lazy"></iframe>
+<script>
+  // The frame posts its content height; grow it to fit.
+  addEventListener('message', (e) => {
+    const frame = document.getElementById('loratrack');
+    if (e.source === frame.contentWindow && e.data && e.data.loratrackHeight) frame.style.height = e.data.loratrackHeight + 'px';
+  });
+</script>`;
+}
+
+$('#embed-open').addEventListener('click', () => {
+  $<HTMLTextAreaElement>('#embed-snippet').value = embedSnippet();
+  $('#embed-status').textContent = '';
+  embedDialog.showModal();
+});
+$('#embed-panels').addEventListener('change', () => ($<HTMLTextAreaElement>('#embed-snippet').value = embedSnippet()));
+$('#embed-close').addEventListener('click', () => embedDialog.close());
+$('#embed-copy').addEventListener('click', async () => {
+  const snippet = $<HTMLTextAreaElement>('#embed-snippet').value;
+  try {
+    await navigator.clipboard.writeText(snippet);
+    $('#embed-status').textContent = 'Snippet copied.';
+  } catch {
+    $<HTMLTextAreaElement>('#embed-snippet').select();
+    $('#embed-status').textContent = 'Select the snippet and copy it (the clipboard is not available here).';
+  }
+});
 
 // ---- start -------------------------------------------------------------------------------------
 writeControls(settings);
@@ -700,6 +801,7 @@ if (shown.distance !== settings.distance) {
   notices.push(`The link's distance ${settings.distance} m is shown and simulated as ${shown.distance} m, the slider's nearest step.`);
   settings = shown;
 }
+updateEmbedCaption();
 if (notices.length) {
   const box = $('#notice');
   box.textContent = notices.join(' ');

@@ -301,21 +301,41 @@ test('axe finds no serious or critical problem, on the full page and embedded', 
   assert.deepEqual(problems, []);
 });
 
-test('a chart download is the chart, not a legend swatch', async () => {
+test('every chart downloads ready for a slide: title, legend, caption with settings, seed and version; PNGs at least 1600 px wide', async () => {
   const { page, problems } = await open();
   await idle(page);
-  for (const [panel, format] of [['error', 'svg'], ['distance', 'svg'], ['axes', 'png']]) {
-    const [download] = await Promise.all([page.waitForEvent('download'), page.locator(`[data-download="${panel}"][data-format="${format}"]`).click()]);
-    const file = await download.path();
-    if (format === 'svg') {
-      const width = Number(/<svg[^>]*\swidth="(\d+)/.exec(readFileSync(file, 'utf8'))[1]);
-      assert.ok(width > 250, `${panel}: an SVG ${width} px wide`);
-    } else {
-      const png = readFileSync(file);
-      assert.ok(png.readUInt32BE(16) > 250, `${panel}: a PNG ${png.readUInt32BE(16)} px wide`);
-    }
+  const save = async (locator) => {
+    const [download] = await Promise.all([page.waitForEvent('download'), locator.click()]);
+    return readFileSync(await download.path());
+  };
+  for (const [panel, title] of [['error', 'Error over time'], ['distance', 'Error versus distance'], ['axes', 'Error along each axis'], ['link', 'Link budget'], ['airtime', 'Time on air']]) {
+    const svg = (await save(page.getByRole('button', { name: new RegExp(`^Download the ${title.toLowerCase()}.* chart as SVG$`) }))).toString('utf8');
+    const width = Number(/<svg[^>]*\swidth="(\d+)/.exec(svg)[1]);
+    assert.ok(width > 250, `${panel}: an SVG ${width} px wide`);
+    assert.match(svg, new RegExp(`>${title}`), `${panel}: titled`);
+    assert.match(svg, /SF7, 250 kHz, 1\.0 km.*synthetic flight 1; seed 1; loratrack \d+\.\d+\.\d+/, `${panel}: captioned`);
+    if (['error', 'distance', 'axes'].includes(panel)) assert.match(svg, />CTRA\+</, `${panel}: a legend`);
+    assert.match(svg, /\((m|ms|km|dBm)[,)]/, `${panel}: axis units`);
+    const png = await save(page.getByRole('button', { name: new RegExp(`^Download the ${title.toLowerCase()}.* chart as PNG$`) }));
+    assert.ok(png.readUInt32BE(16) >= 1600, `${panel}: a PNG ${png.readUInt32BE(16)} px wide`);
   }
-  assert.deepEqual(problems, []);
+  const shot = await save(page.getByRole('button', { name: 'Download the 3d trajectory chart as PNG' }));
+  assert.ok(shot.readUInt32BE(16) >= 1600, `3D view: a PNG ${shot.readUInt32BE(16)} px wide`);
+  const results = (await save(page.getByRole('button', { name: 'Results (CSV)' }))).toString('utf8').trim().split('\n');
+  assert.equal(results.length, 4);
+  assert.match(results[0], /^model,payload_bytes,.*p75_m,p75_lo_m,p75_hi_m/);
+  const p75 = Number(results[1].split(',')[9]);
+  assert.equal(p75.toFixed(2), number(await cell(page, 'dr', 'p75')).toFixed(2));
+  const airtime = (await save(page.getByRole('button', { name: 'Time-on-air table (CSV)' }))).toString('utf8');
+  assert.match(airtime.split('\n')[0], /SF,bandwidth,9 B/);
+  // Before any swarm, and where no packet arrives, a download says why instead of doing nothing.
+  await page.getByRole('button', { name: 'Download the swarm chart as PNG' }).click();
+  await page.waitForFunction(() => /run a swarm first/.test(document.querySelector('[data-panel="swarm"] .download-why')?.textContent ?? ''));
+  const far = await open('?distance=9000');
+  await idle(far.page);
+  await far.page.getByRole('button', { name: 'Download the error over time chart as SVG' }).click();
+  await far.page.waitForFunction(() => /no packet arrives/.test(document.querySelector('[data-panel="error"] .download-why')?.textContent ?? ''));
+  assert.deepEqual([...problems, ...far.problems], []);
 });
 
 test('the error-series CSV has every model in its column', async () => {
@@ -673,4 +693,27 @@ test('numbers resting on few packets say so and offer the whole set in one click
   // The whole set gives intervals over its flights: the verdict rests on them.
   assert.match(await page.locator('#verdict-text').textContent(), /runs/);
   assert.deepEqual(problems, []);
+});
+
+test('an embed says what it shows and every notice, offers no Pin, and grows its frame; the Embed dialog builds the snippet', async () => {
+  const { page, problems } = await open('?embed=1&panels=error&sf=12&bw=125');
+  await idle(page);
+  assert.match(await page.locator('#embed-settings').textContent(), /Settings: SF12, 125 kHz, 1\.0 km.*seed 1; loratrack \d/);
+  assert.match(await page.locator('#embed-notices').textContent(), /Too few packets to compare/);
+  assert.equal(await page.locator('#pin').isVisible(), false);
+  // A host page gets the frame's height.
+  const host = await browser.newPage();
+  await host.setContent(`<script>addEventListener('message', (e) => (window.frameHeight = e.data && e.data.loratrackHeight));</script><iframe id="f" src="${server.url}?embed=1&panels=results,error" style="width:600px;height:200px"></iframe>`);
+  await host.waitForFunction(() => window.frameHeight > 300, null, { timeout: 30_000 });
+  await host.close();
+  // The dialog: pick panels, the snippet follows.
+  const full = await open();
+  await full.page.getByRole('button', { name: 'Embed…' }).click();
+  await full.page.getByRole('checkbox', { name: 'distance' }).check();
+  const snippet = await full.page.getByLabel('HTML to paste').inputValue();
+  assert.match(snippet, /embed=1&amp;panels=results%2Cerror%2Cdistance|embed=1&amp;panels=results,error,distance/);
+  assert.match(snippet, /loratrackHeight/);
+  assert.deepEqual(await axe(full.page), []);
+  await full.page.getByRole('button', { name: 'Close' }).click();
+  assert.deepEqual([...problems, ...full.problems], []);
 });

@@ -12,7 +12,9 @@ export interface Trajectory3d {
   /** Back to the initial camera. */
   resetView(): void;
   /** PNG of the current view. */
-  toPng(): string;
+  /** The view drawn afresh at least `minWidth` device pixels wide, and the pixels per CSS pixel
+   * it used (null when WebGL is unavailable). */
+  snapshot(minWidth: number): { canvas: HTMLCanvasElement; scale: number } | null;
 }
 
 export function createTrajectory3d(container: HTMLElement): Trajectory3d {
@@ -24,7 +26,7 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
     note.className = 'note';
     note.textContent = 'The 3D view needs WebGL, which this browser does not offer. The other charts work without it.';
     container.replaceChildren(note);
-    return { element: note, update: () => undefined, resetView: () => undefined, toPng: () => '' };
+    return { element: note, update: () => undefined, resetView: () => undefined, snapshot: () => null };
   }
   const width = () => Math.max(280, container.clientWidth);
   const height = () => Math.min(480, Math.round(width() * 0.6));
@@ -118,9 +120,20 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
         place();
       } else render();
     },
-    toPng: () => {
+    snapshot(minWidth: number) {
+      const ratio = renderer.getPixelRatio();
+      const scale = Math.max(2, minWidth / width());
+      renderer.setPixelRatio(scale);
+      renderer.setSize(width(), height());
       render();
-      return renderer.domElement.toDataURL('image/png');
+      const copy = document.createElement('canvas');
+      copy.width = renderer.domElement.width;
+      copy.height = renderer.domElement.height;
+      copy.getContext('2d')!.drawImage(renderer.domElement, 0, 0);
+      renderer.setPixelRatio(ratio);
+      renderer.setSize(width(), height());
+      render();
+      return { canvas: copy, scale };
     },
   };
 }
