@@ -7,12 +7,14 @@ import type { Request, Response, SimulateRequest } from './worker';
 import { SimulationPool } from './pool';
 import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
 import { boxplotChart, type BoxRow } from './charts/boxplot';
+import { p75BySfChart } from './charts/p75BySf';
 import { errorOverTimeChart } from './charts/errorOverTime';
 import type { Trajectory3d } from './charts/trajectory3d';
 import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH } from './export';
 import { MODEL_COLORS, TRUTH_COLOR } from './charts/colors';
 
 const DISTANCES = [500, 1000, 2000, 3000, 4000, 5000];
+const SFS = [7, 8, 9, 10, 11, 12];
 /** The largest CSV the core reads (MAX_CSV_BYTES in src/trajectory/csv.rs). */
 const MAX_CSV_BYTES = 64 * 2 ** 20;
 const $ = <T extends HTMLElement>(sel: string) => document.querySelector<T>(sel)!;
@@ -22,7 +24,7 @@ const progress = $<HTMLProgressElement>('#progress');
 const csvError = $('#csv-error');
 const query = new URLSearchParams(location.search);
 const embed = query.get('embed') === '1';
-const PANELS = ['controls', 'results', 'trajectory', 'error', 'axes', 'distance', 'link', 'swarm', 'airtime'];
+const PANELS = ['controls', 'results', 'trajectory', 'error', 'axes', 'distance', 'sf', 'link', 'swarm', 'airtime'];
 
 const parsed = fromQuery(location.search);
 let settings: Settings = parsed.settings;
@@ -263,7 +265,8 @@ let queued: { request: SimulateRequest; settings: Settings } | undefined;
 let freshSeed = false;
 
 function submit(): void {
-  const request: SimulateRequest = { id: ++nextId, params: toParams(settings, csv), distances: DISTANCES };
+  const sweep = [...DISTANCES.map((distance) => ({ distance })), ...SFS.map((sf) => ({ sf }))];
+  const request: SimulateRequest = { id: ++nextId, params: toParams(settings, csv), sweep };
   if (freshSeed) request.params.seed = 'random';
   if (settings.flight === 'csv' && !csv) {
     status.textContent = 'Choose a CSV file to simulate it.';
@@ -314,7 +317,9 @@ function onResponse(r: Response): void {
     return;
   }
   if ('sweep' in r) {
-    renderDistance(r.sweep);
+    const made = { ...(running?.settings ?? reportSettings), seeds: 1 };
+    renderDistance(r.sweep.flatMap(({ point, report: rep }) => ('distance' in point ? [{ distance: point.distance, report: rep }] : [])), made);
+    renderSfs(r.sweep.flatMap(({ point, report: rep }) => ('sf' in point ? [{ sf: point.sf, report: rep }] : [])), made);
     running = undefined;
     progress.hidden = true;
     updateBusy();
@@ -348,7 +353,7 @@ function onResponse(r: Response): void {
     settings.seed = report.config.seed;
     reportSettings.seed = report.config.seed;
     field('seed').value = String(settings.seed);
-    history.replaceState(null, '', `?${toQuery(settings, embed ? { embed: '1', panels } : {})}`);
+    history.replaceState(null, '', `?${pageQuery()}`);
   }
   // Typing may have moved the form on while this ran: the numbers say so.
   markStale(typing !== undefined || JSON.stringify(reportSettings) !== JSON.stringify(settings));
@@ -401,9 +406,9 @@ function renderResults(r: SimReport): void {
       return `<tr class="${isBest ? 'best' : ''}" data-model="${m.model}">
         <th scope="row">${MODEL_LABELS[m.model]}${isBest ? ' <span class="badge">lowest p75</span>' : ''}</th>
         <td>${m.payloadBytes} B</td><td data-field="toa">${(m.timeOnAir * 1e3).toFixed(1)} ms</td><td data-field="interval">${m.interval.toFixed(2)} s</td>
-        <td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}</td><td data-field="delivery">${(ratio * 100).toFixed(0)} %</td>
+        <td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}${delta(m, 'packets')}</td><td data-field="delivery">${(ratio * 100).toFixed(0)} %</td>
         <td data-field="mean">${fmt(m.error3d.mean)}${delta(m, 'mean')}</td><td data-field="p50">${fmt(m.error3d.p50)}${delta(m, 'p50')}</td><td data-field="p75">${fmt(m.error3d.p75)}${interval(m)}${delta(m, 'p75')}</td>
-        <td data-field="p95">${fmt(m.error3d.p95)}${delta(m, 'p95')}</td><td data-field="max">${fmt(m.error3d.max, 1)}</td>
+        <td data-field="p95">${fmt(m.error3d.p95)}${delta(m, 'p95')}</td><td data-field="max">${fmt(m.error3d.max, 1)}${delta(m, 'max')}</td>
         <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td>
         <td data-field="energy" title="${m.energy.chargePerHour.toFixed(3)} mAh per hour of tracking">${m.energy.chargePerUplink.toFixed(2)}</td></tr>`;
     })
@@ -442,16 +447,31 @@ function interval(m: ModelResult): string {
 }
 
 /** The pinned baseline, if any, and what it was. */
-let baseline: { report: SimReport; label: string } | undefined;
+let baseline: { report: SimReport; settings: Settings } | undefined;
+
+/** The page's URL query: the settings, the pinned baseline's settings, and the embed choice. */
+function pageQuery(): string {
+  const extra: Record<string, string> = embed ? { embed: '1', panels } : {};
+  if (baseline) extra.baseline = toQuery(baseline.settings);
+  return toQuery(settings, extra);
+}
 
 /** The change of statistic `key` against the baseline's same station, as a small signed number. */
-function delta(m: ModelResult, key: 'mean' | 'p50' | 'p75' | 'p95'): string {
-  const b = baseline?.report.results.find((x) => x.model === m.model)?.error3d[key];
-  const v = m.error3d[key];
-  if (b === undefined || b === null || v === null) return '';
+function delta(m: ModelResult, key: 'mean' | 'p50' | 'p75' | 'p95' | 'max' | 'packets'): string {
+  const base = baseline?.report.results.find((x) => x.model === m.model);
+  if (!base) return '';
+  const [b, v] = key === 'packets' ? [base.packetsReceived, m.packetsReceived] : [base.error3d[key], m.error3d[key]];
+  if (b === null || v === null) return '';
   const d = v - b;
-  const cls = Math.abs(d) < 0.005 ? 'same' : d < 0 ? 'better' : 'worse';
-  return ` <span class="delta ${cls}" title="against the baseline (${b.toFixed(2)} m)">${d >= 0 ? '+' : '−'}${Math.abs(d).toFixed(2)}</span>`;
+  // Fewer metres of error is better; more packets received is better. The arrow and the
+  // (screen-reader) word carry the direction without colour.
+  const digits = key === 'packets' ? 0 : 2;
+  const same = Math.abs(d) < (key === 'packets' ? 0.5 : 0.005);
+  const better = key === 'packets' ? d > 0 : d < 0;
+  const cls = same ? 'same' : better ? 'better' : 'worse';
+  const arrow = same ? '=' : d > 0 ? '▲' : '▼';
+  const word = same ? 'unchanged' : better ? 'better' : 'worse';
+  return ` <span class="delta ${cls}" data-delta="${key}" title="against the baseline (${b.toFixed(digits)}${key === 'packets' ? ' packets' : ' m'})">${arrow}\u2009${d >= 0 ? '+' : '−'}${Math.abs(d).toFixed(digits)}<span class="visually-hidden"> (${word} than the baseline)</span></span>`;
 }
 
 function describe(s: Settings): string {
@@ -462,7 +482,7 @@ function renderBaseline(): void {
   const note = $('#baseline-note');
   note.hidden = !baseline;
   $('#pin').textContent = baseline ? 'Clear baseline' : 'Pin as baseline';
-  if (baseline) note.textContent = `Differences (m) are against the pinned baseline: ${baseline.label}. Green: lower error.`;
+  if (baseline) note.textContent = `Differences are against the pinned baseline: ${caption(baseline.settings)}. ▼ lower, ▲ higher; lower error and more packets received are better (green).`;
 }
 
 /** With ADR: how many packets each model sent at each data rate. */
@@ -529,9 +549,14 @@ async function draw3d(r: SimReport): Promise<void> {
   if (r === report) trajectory3d.update(r);
 }
 
-function renderDistance(sweep: { distance: number; report: SimReport }[]): void {
+function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): void {
+  const rows = sweep.flatMap(({ sf, report: r }) => r.results.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived })));
+  place('sf', p75BySfChart(rows, { bw: made.bw, distance: made.distance, width: Math.max(300, $('#chart-sf').clientWidth || 600) }), made);
+}
+
+function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): void {
   const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d })));
-  place('distance', boxplotChart(rows, { log: true, groupLabel: `gateway distance (SF${settings.sf}, ${settings.bw} kHz)`, width: Math.max(300, $('#chart-distance').clientWidth || 600) }), running?.settings ?? reportSettings);
+  place('distance', boxplotChart(rows, { log: true, groupLabel: `gateway distance (SF${settings.sf}, ${settings.bw} kHz)`, width: Math.max(300, $('#chart-distance').clientWidth || 600) }), made);
 }
 
 function renderLink(): void {
@@ -576,7 +601,7 @@ function onChange(): void {
     return;
   }
   settings = next;
-  history.replaceState(null, '', `?${toQuery(settings, embed ? { embed: '1', panels } : {})}`);
+  history.replaceState(null, '', `?${pageQuery()}`);
   renderAirtime();
   renderLink();
   submit();
@@ -690,8 +715,9 @@ $('#run-swarm').addEventListener('click', () => {
 });
 
 $('#pin').addEventListener('click', () => {
-  baseline = baseline || !report ? undefined : { report, label: describe(reportSettings) };
+  baseline = baseline || !report ? undefined : { report, settings: { ...reportSettings } };
   renderBaseline();
+  history.replaceState(null, '', `?${pageQuery()}`);
   if (report) renderResults(report);
 });
 
@@ -801,13 +827,37 @@ if (shown.distance !== settings.distance) {
   notices.push(`The link's distance ${settings.distance} m is shown and simulated as ${shown.distance} m, the slider's nearest step.`);
   settings = shown;
 }
-updateEmbedCaption();
-if (notices.length) {
+/** Adds a sentence to the notices at the top of the settings (and of an embed). */
+function showNotice(text: string): void {
+  if (text) notices.push(text);
   const box = $('#notice');
   box.textContent = notices.join(' ');
-  box.hidden = false;
+  box.hidden = notices.length === 0;
+  updateEmbedCaption();
 }
+showNotice('');
 pool = new SimulationPool();
+// A shared link may carry a pinned baseline: its settings are simulated again (the same seed
+// gives the same numbers) in a worker of its own, then pinned.
+const pinned = query.get('baseline');
+if (pinned !== null) {
+  const b = fromQuery(`?${pinned}`);
+  if (b.problems.length) showNotice(`The link's baseline: ${b.problems.join(' ')}`);
+  const w = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
+  drawing++;
+  updateBusy();
+  w.onmessage = (e: MessageEvent<Response>) => {
+    if (!('report' in e.data) && !('error' in e.data)) return;
+    if ('report' in e.data) baseline = { report: e.data.report, settings: b.settings };
+    else showNotice(`The link's baseline could not be simulated: ${e.data.error}.`);
+    w.terminate();
+    drawing--;
+    renderBaseline();
+    if (report) renderResults(report);
+    updateBusy();
+  };
+  w.postMessage({ id: 1, params: toParams(b.settings) } satisfies Request);
+}
 await load();
 renderAirtime();
 renderLink();

@@ -1,12 +1,15 @@
 // Runs simulations off the main thread so the page never freezes. One message in, one out:
-//   { id, params, distances? }  →  { id, progress }* then { id, report } | { id, error }
-//                                   then, with distances, { id, sweep: [{ distance, report }] }
+//   { id, params, sweep? }  →  { id, progress }* then { id, report } | { id, error }
+//                               then, with sweep points, { id, sweep: [{ point, report }] }
 import { load, loadCsv, simulate, swarm, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
+
+/** One point of a sweep beside the main run: the gateway at another distance, or another SF. */
+export type SweepPoint = { distance: number } | { sf: number };
 
 export interface SimulateRequest {
   id: number;
   params: SimulateParams;
-  distances?: number[];
+  sweep?: SweepPoint[];
 }
 
 /** Swarms of each size in `sizes`, otherwise `params`. */
@@ -21,7 +24,7 @@ export type Response =
   | { id: number; progress: number }
   | { id: number; report: SimReport; millis: number }
   | { id: number; error: string }
-  | { id: number; sweep: { distance: number; report: SimReport }[] }
+  | { id: number; sweep: { point: SweepPoint; report: SimReport }[] }
   | { id: number; swarms: SwarmReport[]; millis: number };
 
 /** CSV texts above this size are read first with their own progress. */
@@ -33,7 +36,7 @@ self.onmessage = async (event: MessageEvent<Request>) => {
   await ready;
   const post = (r: Response) => (self as unknown as Worker).postMessage(r);
   if ('swarm' in event.data) return runSwarms(event.data, post);
-  const { id, params, distances } = event.data;
+  const { id, params, sweep: points } = event.data;
   try {
     const t0 = performance.now();
     let last = 0;
@@ -50,10 +53,15 @@ self.onmessage = async (event: MessageEvent<Request>) => {
     if (large && params.trajectory) loadCsv({ trajectory: params.trajectory, trajectoryName: params.trajectoryName }, report_(0, 0.5));
     const report = simulate({ ...params, series: true }, large ? report_(0.5, 0.5) : report_(0, 1));
     post({ id, report, millis: performance.now() - t0 });
-    if (distances?.length) {
-      // Only the link changes between these runs: the drone filters come from the cache. The
-      // sweep moves the one default gateway, so listed gateways are left out of it.
-      const sweep = distances.map((distance) => ({ distance, report: simulate({ ...params, gateways: [], distance, series: false }) }));
+    if (points?.length) {
+      // Only the link changes between these runs: the drone filters come from the cache. One
+      // seed each (the charts show the spread across the sweep, not across seeds). A distance
+      // moves the one default gateway, so listed gateways are left out; another SF is a fixed
+      // data rate (ADR would move it).
+      const sweep = points.map((point) => ({
+        point,
+        report: simulate({ ...params, ...('distance' in point ? { gateways: [] } : { adr: 'off' }), ...point, seeds: 1, series: false }),
+      }));
       post({ id, sweep });
     }
   } catch (e) {

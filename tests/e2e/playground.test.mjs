@@ -525,9 +525,42 @@ test('pinning a baseline shows the next settings as differences against it', asy
   await page.locator('#distance').fill('3500');
   await waitForResults(page, before);
   const p75 = await page.locator('#results-table tr[data-model="3d-ctra"] td[data-field="p75"] .delta').textContent();
-  assert.match(p75, /^[+−]\d+\.\d\d$/);
+  // Direction by an arrow and a word, not by colour alone.
+  assert.match(p75, /^[▲▼=]\u2009[+−]\d+\.\d\d \((better|worse|unchanged) than the baseline\)$/);
+  for (const key of ['mean', 'p50', 'p75', 'p95', 'max', 'packets']) assert.equal(await page.locator(`[data-delta="${key}"]`).count(), 1, key);
+  // Further away, packets are lost: fewer received is marked worse.
+  const packets = await page.locator('[data-delta="packets"]').textContent();
+  assert.match(packets, /▼\u2009−\d+ \(worse than the baseline\)/);
+  // The link carries the baseline: opened elsewhere, it shows the same comparison.
+  assert.match(page.url(), /baseline=/);
+  const shared = await open(new URL(page.url()).search);
+  await idle(shared.page);
+  await shared.page.waitForSelector('[data-delta="p75"]');
+  assert.equal(await shared.page.locator('[data-delta="p75"]').textContent(), p75);
+  assert.match(await shared.page.locator('#baseline-note').textContent(), /SF7, 250 kHz, 1.0 km/);
   await page.getByRole('button', { name: 'Clear baseline' }).click();
   assert.equal(await page.locator('#results-table .delta').count(), 0);
+  assert.doesNotMatch(page.url(), /baseline=/);
+  assert.deepEqual([...problems, ...shared.problems], []);
+});
+
+test('the p75-against-SF chart gives the p75 at each SF as the CLI does, one line per model, with its download', async () => {
+  const { page, problems } = await open('?distance=2000');
+  await idle(page);
+  await page.waitForSelector('#chart-sf svg');
+  const titles = await page.locator('#chart-sf svg title').allTextContents();
+  assert.equal(titles.filter((t) => /^DR, SF\d+:/.test(t)).length, 6, titles.join('; '));
+  for (const sf of [7, 9, 12]) {
+    const cli = JSON.parse(execFileSync('cargo', ['run', '--quiet', '--', 'simulate', '--synthetic', '1', '--distance', '2000', '--sf', String(sf), '--json'], { encoding: 'utf8' }));
+    for (const r of cli.results) {
+      const label = { dr: 'DR', 'ctra-plus': 'CTRA+', '3d-ctra': '3D-CTRA' }[r.model];
+      const shown = titles.find((t) => t.startsWith(`${label}, SF${sf}:`));
+      assert.ok(shown, `${label} SF${sf}`);
+      assert.equal(Number(/p75 ([\d.]+) m/.exec(shown)[1]).toFixed(2), r.error3d.p75.toFixed(2), `${label} SF${sf}`);
+    }
+  }
+  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: 'Download the error versus spreading factor chart as PNG' }).click()]);
+  assert.ok(readFileSync(await download.path()).readUInt32BE(16) >= 1600);
   assert.deepEqual(problems, []);
 });
 

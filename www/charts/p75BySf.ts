@@ -1,0 +1,40 @@
+// The classic lesson chart: p75 tracking error against the spreading factor (SF7–SF12 at the
+// chosen bandwidth and distance), one line per model. A higher SF reaches further but sends less
+// often: at short range the error grows with SF, beyond SF7's range a higher SF is what arrives.
+import * as Plot from '@observablehq/plot';
+import { MODEL_LABELS, type ModelName } from '../loratrack';
+import { CHART_STYLE, MODEL_COLORS } from './colors';
+
+export interface SfRow {
+  sf: number;
+  model: ModelName;
+  /** null where no packet arrived (no error to measure). */
+  p75: number | null;
+  received: number;
+}
+
+export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number; width: number }): SVGSVGElement | HTMLElement {
+  const data = rows.filter((r) => r.p75 !== null).map((r) => ({ ...r, label: MODEL_LABELS[r.model] }));
+  if (!data.length) {
+    const note = document.createElement('p');
+    note.className = 'empty-chart';
+    note.textContent = `No packet arrives at ${(opts.distance / 1000).toFixed(1)} km at any SF with ${opts.bw} kHz: move the gateway closer.`;
+    return note;
+  }
+  const models = [...new Set(data.map((d) => d.label))];
+  const silent = [...new Set(rows.filter((r) => r.p75 === null).map((r) => r.sf))];
+  return Plot.plot({
+    style: CHART_STYLE,
+    width: opts.width,
+    height: 220,
+    marginLeft: 56,
+    x: { label: `spreading factor (${opts.bw} kHz, gateway at ${(opts.distance / 1000).toFixed(1)} km)`, domain: [6.5, 12.5], ticks: [7, 8, 9, 10, 11, 12], tickFormat: (d: number) => `SF${d}` },
+    y: { label: 'p75 3D error (m, log scale)', type: 'log', grid: true },
+    color: { domain: models, range: models.map((m) => MODEL_COLORS[data.find((d) => d.label === m)!.model]), legend: true },
+    marks: [
+      Plot.line(data, { x: 'sf', y: 'p75', stroke: 'label', z: 'label' }),
+      Plot.dot(data, { x: 'sf', y: 'p75', fill: 'label', r: 3.5, title: (d) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${d.received} packets` }),
+      Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: () => 'none\narrives', fill: '#5a6068', fontSize: 13 }),
+    ],
+  });
+}
