@@ -8,6 +8,7 @@ import { SimulationPool } from './pool';
 import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
 import { boxplotChart, type BoxRow } from './charts/boxplot';
 import { p75BySfChart } from './charts/p75BySf';
+import { LESSONS, lessonQuery } from './lessons';
 import { errorOverTimeChart } from './charts/errorOverTime';
 import type { Trajectory3d } from './charts/trajectory3d';
 import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH } from './export';
@@ -707,7 +708,8 @@ $('#run-swarm').addEventListener('click', () => {
       return;
     }
     if ('swarms' in r) {
-      $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(r.millis / 1000).toFixed(1)} s.`;
+      const rates = r.swarms.map((w) => `${w.config.drones} drones ${(100 * w.collisionRate).toFixed(1)} %`).join(', ');
+      $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(r.millis / 1000).toFixed(1)} s. Packets collided: ${rates}.`;
       place('swarm', swarmCharts(r.swarms, Math.max(300, $('#chart-swarm').clientWidth || 600)), made, `; swarms of ${sizes.join(', ')} drones, ${params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.duration} s each`);
     }
   };
@@ -819,6 +821,29 @@ $('#embed-copy').addEventListener('click', async () => {
   }
 });
 
+// ---- lessons: guided scenarios, each a URL state with what to notice ---------------------------
+for (const l of LESSONS) {
+  const item = document.createElement('li');
+  const link = document.createElement('a');
+  link.href = `?${lessonQuery(l)}`;
+  link.textContent = l.title;
+  item.append(link);
+  $('#lesson-list').append(item);
+}
+const lesson = embed ? undefined : LESSONS.find((l) => l.id === query.get('lesson'));
+if (lesson) {
+  $('#lesson').hidden = false;
+  $('#lesson-title').textContent = `Lesson: ${lesson.title}`;
+  $('#lesson-text').textContent = lesson.text;
+  $('#lesson-notice').replaceChildren(
+    ...lesson.notice.map((n) => {
+      const li = document.createElement('li');
+      li.textContent = n;
+      return li;
+    }),
+  );
+}
+
 // ---- start -------------------------------------------------------------------------------------
 writeControls(settings);
 // The form is the truth: a value the slider cannot show (a distance between its steps) is what it shows.
@@ -862,3 +887,10 @@ await load();
 renderAirtime();
 renderLink();
 submit();
+if (lesson?.swarm) {
+  // The lesson's swarm runs as if its button were pressed with these choices.
+  $<HTMLSelectElement>('#swarmDrones').value = String(lesson.swarm.drones);
+  $<HTMLSelectElement>('#swarmChannels').value = String(lesson.swarm.channels);
+  $<HTMLSelectElement>('#swarmPlan').value = lesson.swarm.plan;
+  $('#run-swarm').click();
+}

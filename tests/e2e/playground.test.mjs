@@ -750,3 +750,76 @@ test('an embed says what it shows and every notice, offers no Pin, and grows its
   await full.page.getByRole('button', { name: 'Close' }).click();
   assert.deepEqual([...problems, ...full.problems], []);
 });
+
+/** Opens the playground, picks `title` from the Lessons menu and waits for its numbers. */
+async function lesson(title) {
+  const opened = await open();
+  await opened.page.getByText('Lessons', { exact: true }).click();
+  await opened.page.getByRole('link', { name: title }).click();
+  await waitForResults(opened.page);
+  await idle(opened.page);
+  assert.match(await opened.page.locator('#lesson-title').textContent(), new RegExp(title.replace(/[?+]/g, '\\$&')));
+  return opened;
+}
+
+const cellNumber = async (page, model, field) => number(await cell(page, model, field));
+
+test('lesson "Why not always SF12?": SF12 sends every ~148 s and its p75 at 1 km is far above SF7 for every model', async () => {
+  const { page, problems } = await lesson('Why not always SF12?');
+  assert.ok(Math.abs((await cellNumber(page, 'dr', 'interval')) - 148.3) < 1);
+  await page.waitForSelector('#chart-sf svg');
+  const titles = await page.locator('#chart-sf svg title').allTextContents();
+  for (const label of ['DR', 'CTRA+', '3D-CTRA']) {
+    const p75 = (sf) => Number(/p75 ([\d.]+) m/.exec(titles.find((t) => t.startsWith(`${label}, SF${sf}:`)))[1]);
+    assert.ok(p75(12) > 10 * p75(7), `${label}: SF12 ${p75(12)} m against SF7 ${p75(7)} m`);
+  }
+  assert.deepEqual(problems, []);
+});
+
+test('lesson "The duty-cycle wall": the interval is 100 times the time on air for every model', async () => {
+  const { page, problems } = await lesson('The duty-cycle wall');
+  for (const m of MODELS) {
+    const toaMs = await cellNumber(page, m, 'toa');
+    const interval = await cellNumber(page, m, 'interval');
+    assert.ok(Math.abs(interval - toaMs / 10) < 0.06, `${m}: ${interval} s against ${toaMs} ms`);
+  }
+  assert.deepEqual(problems, []);
+});
+
+test('lesson "Which motion model when": over the whole set DR is clearly worst, CTRA+ and 3D-CTRA overlap', async () => {
+  const { page, problems } = await lesson('Which motion model when');
+  const shown = Object.fromEntries((await shownP75(page)).map((s) => [s.model, s.ci]));
+  assert.ok(shown.dr[0] > shown['ctra-plus'][1] && shown.dr[0] > shown['3d-ctra'][1], JSON.stringify(shown));
+  assert.ok(shown['ctra-plus'][1] >= shown['3d-ctra'][0] && shown['3d-ctra'][1] >= shown['ctra-plus'][0], JSON.stringify(shown));
+  assert.match(await page.locator('#verdict-text').textContent(), /No clear difference/);
+  assert.deepEqual(problems, []);
+});
+
+test('lesson "Losing packets at range": against the paper station pinned, the bounded one lowers mean and p95 with the same packets', async () => {
+  const { page, problems } = await lesson('Losing packets at range');
+  await page.waitForSelector('[data-delta="mean"]');
+  for (const key of ['mean', 'p95']) assert.match(await page.locator(`tr[data-model="3d-ctra"] [data-delta="${key}"]`).textContent(), /^▼.*better/, key);
+  assert.match(await page.locator('tr[data-model="3d-ctra"] [data-delta="packets"]').textContent(), /unchanged/);
+  assert.deepEqual(problems, []);
+});
+
+test('lesson "Swarms share the air": the collision rate climbs as the swarm grows', async () => {
+  const { page, problems } = await lesson('Swarms share the air');
+  await page.waitForFunction(() => /Packets collided/.test(document.querySelector('#swarm-status')?.textContent ?? ''), null, { timeout: 60_000 });
+  const rates = [...(await page.locator('#swarm-status').textContent()).matchAll(/(\d+) drones ([\d.]+) %/g)].map((m) => [Number(m[1]), Number(m[2])]);
+  assert.equal(rates[0][0], 2);
+  assert.equal(rates.at(-1)[0], 50);
+  assert.ok(rates.at(-1)[1] > rates[0][1] + 5, JSON.stringify(rates));
+  assert.deepEqual(problems, []);
+});
+
+test('lesson "ADR chases the link": from SF12 packets move to DR5 or DR6, far more arrive and every p75 falls', async () => {
+  const { page, problems } = await lesson('ADR chases the link');
+  await page.waitForSelector('[data-delta="p75"]');
+  assert.match(await page.locator('#rate-use').textContent(), /DR[56]/);
+  for (const m of MODELS) {
+    assert.match(await page.locator(`tr[data-model="${m}"] [data-delta="p75"]`).textContent(), /^▼.*better/, m);
+    assert.match(await page.locator(`tr[data-model="${m}"] [data-delta="packets"]`).textContent(), /^▲.*better/, m);
+  }
+  assert.deepEqual(problems, []);
+});

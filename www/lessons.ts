@@ -1,0 +1,80 @@
+// Guided scenarios for teaching: each is a URL state (the settings, sometimes a pinned baseline
+// or a swarm to run), a few sentences, and what to notice. The end-to-end suite checks that each
+// lesson's claim shows in the numbers it loads, so a lesson cannot start teaching the opposite.
+import { toQuery, DEFAULTS, type Settings } from './state';
+
+export interface Lesson {
+  id: string;
+  title: string;
+  /** The settings the lesson opens with (the rest at their defaults). */
+  settings: Partial<Settings>;
+  /** Settings to pin as the baseline, when the lesson is a comparison. */
+  baseline?: Partial<Settings>;
+  /** A swarm to run in the swarm panel: largest size, channels, SF plan. */
+  swarm?: { drones: number; channels: number; plan: 'fixed' | 'spread' };
+  /** Two or three sentences: the idea. */
+  text: string;
+  /** What to look at, and what it should show. */
+  notice: string[];
+}
+
+export const LESSONS: Lesson[] = [
+  {
+    id: 'why-not-sf12',
+    title: 'Why not always SF12?',
+    settings: { sf: 12, bw: 125, flight: 'all' },
+    text: 'SF12 reaches furthest, so why not always use it? Each SF step doubles the time on air, and the 1 % duty cycle makes the drone wait 100 times that between packets: at SF12 a 12-byte state goes out every two and a half minutes.',
+    notice: [
+      'The interval column: about 148 s at SF12 and 125 kHz, against 3 s at the paper’s SF7 and 250 kHz.',
+      'The error-versus-SF chart: at 1 km every model’s p75 rises with the SF; SF12’s is many times SF7’s.',
+    ],
+  },
+  {
+    id: 'duty-cycle-wall',
+    title: 'The duty-cycle wall',
+    settings: { sf: 10, bw: 125 },
+    text: 'In the EU868 band a device may be on air 1 % of the time. Whatever the link could carry, the next packet waits until the last one’s time on air has been paid for 99 times over.',
+    notice: ['The interval is exactly 100 times the time on air, for every model.', 'The time-on-air table: the second number in each cell is that interval.'],
+  },
+  {
+    id: 'which-model',
+    title: 'Which motion model when',
+    settings: { flight: 'all' },
+    text: 'Between packets the station predicts. Dead reckoning (DR) flies straight on; CTRA+ also turns and accelerates; 3D-CTRA also tilts. Over the whole synthetic set, with packets every 3 s, the richer models pay off.',
+    notice: [
+      'DR’s p75 interval lies wholly above CTRA+’s and 3D-CTRA’s: a clear difference.',
+      'CTRA+ and 3D-CTRA overlap: our synthetic climbs are short, so the tilt rate rarely pays off.',
+    ],
+  },
+  {
+    id: 'range-paper-vs-bounded',
+    title: 'Losing packets at range: the paper’s station against a bounded one',
+    settings: { flight: 'all', distance: 3000, model: '3d-ctra', prediction: 'bounded' },
+    baseline: { flight: 'all', distance: 3000, model: '3d-ctra', prediction: 'paper' },
+    text: 'At 3 km and SF7 a fifth of the packets are lost. The paper’s station keeps accelerating and turning through every gap; the bounded one holds the speed in 0–20 m/s and lets a manoeuvre fade once a packet is overdue.',
+    notice: ['The pinned baseline is the paper’s station: the bounded one’s mean and p95 errors are far lower (▼).', 'The delivery column: the same packets arrive for both.'],
+  },
+  {
+    id: 'swarms-share-the-air',
+    title: 'Swarms share the air',
+    settings: {},
+    swarm: { drones: 50, channels: 1, plan: 'fixed' },
+    text: 'Every drone sends on its own schedule. Two packets on the same channel and SF that overlap in time collide, unless one is much stronger: the more drones, the more collisions.',
+    notice: ['The swarm panel: the collision rate climbs as the swarm grows from 2 to 50 drones on one channel.', 'The dashed line is the pure-ALOHA formula.'],
+  },
+  {
+    id: 'adr-chases-the-link',
+    title: 'ADR chases the link',
+    settings: { sf: 12, bw: 125, adr: 'tracking', flight: 'all' },
+    baseline: { sf: 12, bw: 125, adr: 'off', flight: 'all' },
+    text: 'Starting at SF12, adaptive data rate lets the network move the drone to a faster data rate when the link allows. At 1 km it does: packets go out far more often and the error falls.',
+    notice: ['Packets per data rate (below the table): after the first few, they go out at DR5 or DR6.', 'Against the pinned fixed-SF12 baseline every model’s p75 falls (▼) and far more packets arrive (▲).'],
+  },
+];
+
+/** The URL query that opens `lesson`. */
+export function lessonQuery(lesson: Lesson): string {
+  const extra: Record<string, string> = { lesson: lesson.id };
+  if (lesson.baseline) extra.baseline = toQuery({ ...DEFAULTS, ...lesson.baseline });
+  return toQuery({ ...DEFAULTS, ...lesson.settings }, extra);
+}
