@@ -318,9 +318,7 @@ function onResponse(r: Response): void {
     return;
   }
   if ('sweep' in r) {
-    const made = { ...(running?.settings ?? reportSettings), seeds: 1 };
-    renderDistance(r.sweep.flatMap(({ point, report: rep }) => ('distance' in point ? [{ distance: point.distance, report: rep }] : [])), made);
-    renderSfs(r.sweep.flatMap(({ point, report: rep }) => ('sf' in point ? [{ sf: point.sf, report: rep }] : [])), made);
+    renderSweep(r.sweep, { ...(running?.settings ?? reportSettings), seeds: 1 });
     running = undefined;
     progress.hidden = true;
     updateBusy();
@@ -453,6 +451,7 @@ let baseline: { report: SimReport; settings: Settings } | undefined;
 /** The page's URL query: the settings, the pinned baseline's settings, and the embed choice. */
 function pageQuery(): string {
   const extra: Record<string, string> = embed ? { embed: '1', panels } : {};
+  if (document.body.classList.contains('present')) extra.present = '1';
   if (baseline) extra.baseline = toQuery(baseline.settings);
   return toQuery(settings, extra);
 }
@@ -553,6 +552,16 @@ async function draw3d(r: SimReport): Promise<void> {
 function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): void {
   const rows = sweep.flatMap(({ sf, report: r }) => r.results.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived })));
   place('sf', p75BySfChart(rows, { bw: made.bw, distance: made.distance, width: Math.max(300, $('#chart-sf').clientWidth || 600) }), made);
+}
+
+/** The last sweep and swarms drawn, to draw again at another size (presentation mode). */
+let lastSweep: Extract<Response, { sweep: unknown }>['sweep'] | undefined;
+let lastSwarm: (() => void) | undefined;
+
+function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made: Settings): void {
+  lastSweep = sweep;
+  renderDistance(sweep.flatMap(({ point, report: rep }) => ('distance' in point ? [{ distance: point.distance, report: rep }] : [])), made);
+  renderSfs(sweep.flatMap(({ point, report: rep }) => ('sf' in point ? [{ sf: point.sf, report: rep }] : [])), made);
 }
 
 function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): void {
@@ -710,7 +719,9 @@ $('#run-swarm').addEventListener('click', () => {
     if ('swarms' in r) {
       const rates = r.swarms.map((w) => `${w.config.drones} drones ${(100 * w.collisionRate).toFixed(1)} %`).join(', ');
       $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(r.millis / 1000).toFixed(1)} s. Packets collided: ${rates}.`;
-      place('swarm', swarmCharts(r.swarms, Math.max(300, $('#chart-swarm').clientWidth || 600)), made, `; swarms of ${sizes.join(', ')} drones, ${params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.duration} s each`);
+      const swarms = r.swarms;
+      lastSwarm = () => place('swarm', swarmCharts(swarms, Math.max(300, $('#chart-swarm').clientWidth || 600)), made, `; swarms of ${sizes.join(', ')} drones, ${params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.duration} s each`);
+      lastSwarm();
     }
   };
   swarmWorker.postMessage({ id: 1, swarm: { sizes, params } } satisfies Request);
@@ -821,6 +832,37 @@ $('#embed-copy').addEventListener('click', async () => {
   }
 });
 
+// ---- presentation mode: large type, one panel per screen, arrow keys step ---------------------
+function setPresent(on: boolean): void {
+  document.documentElement.classList.toggle('present', on);
+  document.body.classList.toggle('present', on);
+  $('#present-toggle').setAttribute('aria-pressed', String(on));
+  history.replaceState(null, '', `?${pageQuery()}`);
+  // Charts are drawn at their box's width with text in px: draw them again at the new size.
+  renderAirtime();
+  renderLink();
+  if (report) renderResults(report);
+  if (lastSweep) renderSweep(lastSweep, { ...reportSettings, seeds: 1 });
+  lastSwarm?.();
+}
+
+$('#present-toggle').addEventListener('click', () => setPresent(!document.body.classList.contains('present')));
+document.addEventListener('keydown', (e) => {
+  const target = e.target as HTMLElement;
+  if (e.ctrlKey || e.metaKey || e.altKey || target.closest('input, select, textarea, canvas, dialog, [contenteditable]')) return;
+  if (e.key === 'p' || e.key === 'P') {
+    e.preventDefault();
+    setPresent(!document.body.classList.contains('present'));
+    return;
+  }
+  const step = { ArrowDown: 1, ArrowRight: 1, PageDown: 1, ArrowUp: -1, ArrowLeft: -1, PageUp: -1 }[e.key];
+  if (!step || !document.body.classList.contains('present')) return;
+  e.preventDefault();
+  const shown = [...document.querySelectorAll<HTMLElement>('.panel')].filter((p) => p.offsetParent !== null).sort((a, b) => a.getBoundingClientRect().top - b.getBoundingClientRect().top);
+  const next = step > 0 ? shown.find((p) => p.getBoundingClientRect().top > 5) : [...shown].reverse().find((p) => p.getBoundingClientRect().top < -5);
+  next?.scrollIntoView({ block: 'start' });
+});
+
 // ---- lessons: guided scenarios, each a URL state with what to notice ---------------------------
 for (const l of LESSONS) {
   const item = document.createElement('li');
@@ -882,6 +924,11 @@ if (pinned !== null) {
     updateBusy();
   };
   w.postMessage({ id: 1, params: toParams(b.settings) } satisfies Request);
+}
+if (query.get('present') === '1') {
+  document.documentElement.classList.add('present');
+  document.body.classList.add('present');
+  $('#present-toggle').setAttribute('aria-pressed', 'true');
 }
 await load();
 renderAirtime();

@@ -823,3 +823,39 @@ test('lesson "ADR chases the link": from SF12 packets move to DR5 or DR6, far mo
   }
   assert.deepEqual(problems, []);
 });
+
+test('presentation mode: large type and charts at 1024x768, one panel per screen stepped by the arrow keys, toggled by P', async () => {
+  const { page, problems } = await open('', { width: 1024, height: 768 });
+  await idle(page);
+  await page.getByRole('button', { name: 'Presentation mode' }).click();
+  await page.waitForFunction(() => document.body.classList.contains('present'));
+  assert.match(page.url(), /present=1/);
+  await idle(page);
+  const m = await page.evaluate(() => {
+    const sizes = [...document.querySelectorAll('.chart svg text')].filter((t) => t.getBoundingClientRect().height > 0).map((t) => {
+      const svg = t.ownerSVGElement;
+      return parseFloat(getComputedStyle(t).fontSize) * (svg.getBoundingClientRect().width / (svg.viewBox.baseVal?.width || svg.getBoundingClientRect().width));
+    });
+    return { body: parseFloat(getComputedStyle(document.body).fontSize), chart: Math.min(...sizes), width: document.documentElement.scrollWidth, advanced: document.querySelector('#advanced').offsetParent !== null };
+  });
+  assert.ok(m.body >= 20, `body text ${m.body} px`);
+  assert.ok(m.chart >= 18 - 0.05, `chart text ${m.chart} px`);
+  assert.ok(m.width <= 1024, `document ${m.width} px wide`);
+  assert.equal(m.advanced, false, 'the advanced settings are out of the way');
+  console.log(`# presentation 1024x768: body ${m.body} px, chart text >= ${m.chart.toFixed(1)} px`);
+  // Each panel fills the screen; the arrow keys step from one to the next.
+  const first = await page.evaluate(() => [...document.querySelectorAll('.panel')].filter((p) => p.offsetParent !== null).map((p) => p.getBoundingClientRect().height));
+  assert.ok(first.every((h) => h >= 768 - 2.5 * 20 - 1), `panel heights ${first.join(', ')}`);
+  await page.keyboard.press('ArrowDown');
+  await page.waitForFunction(() => [...document.querySelectorAll('.panel')].some((p) => p.offsetParent !== null && Math.abs(p.getBoundingClientRect().top) < 2));
+  const atTop = () => page.evaluate(() => [...document.querySelectorAll('.panel')].find((p) => p.offsetParent !== null && Math.abs(p.getBoundingClientRect().top) < 2)?.getAttribute('data-panel') ?? '');
+  const one = await atTop();
+  await page.keyboard.press('ArrowDown');
+  await page.waitForFunction((prev) => [...document.querySelectorAll('.panel')].some((p) => p.offsetParent !== null && Math.abs(p.getBoundingClientRect().top) < 2 && p.getAttribute('data-panel') !== prev), one);
+  assert.notEqual(await atTop(), one);
+  assert.deepEqual(await axe(page), []);
+  await page.keyboard.press('p');
+  await page.waitForFunction(() => !document.body.classList.contains('present'));
+  assert.doesNotMatch(page.url(), /present=1/);
+  assert.deepEqual(problems, []);
+});

@@ -3,7 +3,7 @@
 import * as Plot from '@observablehq/plot';
 import type { Boxplot, ModelName } from '../loratrack';
 import { MODEL_LABELS } from '../loratrack';
-import { MODEL_COLORS, CHART_STYLE } from './colors';
+import { MODEL_COLORS, chartStyle, chartFont } from './colors';
 
 export interface BoxRow {
   group: string;
@@ -19,7 +19,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
   const groups = [...new Set(rows.map((r) => r.group))];
   const empty = groups.filter((g) => !data.some((d) => d.group === g)).map((group) => ({ group }));
   return Plot.plot({
-    style: CHART_STYLE,
+    style: chartStyle(),
     width: opts.width,
     height: 200,
     marginLeft: 50,
@@ -31,7 +31,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
     color: { domain: models, range: models.map((m) => MODEL_COLORS[data.find((d) => d.label === m)!.model]), legend: true },
     marks: [
       // A group where nothing arrived says so instead of staying blank.
-      Plot.text(empty, { fx: 'group', text: () => 'no packet\narrives', frameAnchor: 'middle', fill: '#5a6068', fontSize: 13 }),
+      Plot.text(empty, { fx: 'group', text: () => 'no packet\narrives', frameAnchor: 'middle', fill: '#5a6068', fontSize: chartFont() }),
       Plot.ruleX(data, { fx: 'group', x: 'label', y1: 'whiskerLow', y2: 'whiskerHigh', stroke: 'label' }),
       Plot.barY(data, { fx: 'group', x: 'label', y1: 'q1', y2: 'q3', fill: 'label', fillOpacity: 0.35, stroke: 'label' }),
       Plot.tickY(data, { fx: 'group', x: 'label', y: 'median', stroke: 'label', strokeWidth: 2.5 }),

@@ -2,7 +2,7 @@
 // (dots on the axis) and lost packets (crosses), over the station's own 95 % bound (dashed band).
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type SimReport } from '../loratrack';
-import { MODEL_COLORS, CHART_STYLE } from './colors';
+import { MODEL_COLORS, chartStyle, chartFont } from './colors';
 
 export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElement | HTMLElement {
   const models = report.series?.models ?? [];
@@ -28,7 +28,7 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
   // The station's own 95 % bound on its error, as a faint band under each model's line.
   const bounds = models.flatMap((m) => m.t.map((t, i) => ({ t, b: m.bound95[i], model: MODEL_LABELS[m.model] })));
   return Plot.plot({
-    style: CHART_STYLE,
+    style: chartStyle(),
     width,
     height: 200,
     marginLeft: 50,
@@ -41,7 +41,7 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
       Plot.lineY(lines, { x: 't', y: 'e', stroke: 'model', strokeWidth: 1.4 }),
       Plot.dot(arrivals, { x: 't', y: 0, fill: 'model', r: 2.5, title: (d) => `${d.model}: packet arrived at ${d.t.toFixed(1)} s${d.dr}` }),
       Plot.dot(lost, { x: 't', y: 0, stroke: 'model', symbol: 'times', r: 4, title: (d) => `${d.model}: packet lost at ${d.t.toFixed(1)} s${d.dr}` }),
-      Plot.text(changes, { x: 't', y: 0, text: 'label', fill: 'model', dy: -10, fontSize: 13 }),
+      Plot.text(changes, { x: 't', y: 0, text: 'label', fill: 'model', dy: -10, fontSize: chartFont() }),
       Plot.ruleY([0]),
       Plot.tip(lines, Plot.pointerX({ x: 't', y: 'e', stroke: 'model' })),
     ],

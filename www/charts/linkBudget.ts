@@ -2,7 +2,7 @@
 // shadowing band, each SF's sensitivity as a line, each gateway's distance from the flight's start
 // marked; and each SF's
 // delivery ratio against distance. The numbers come from the core's linkBudget().
-import { CHART_STYLE } from './colors';
+import { chartStyle, chartFont } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { LinkBudgetReport } from '../loratrack';
 
@@ -14,7 +14,7 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
   const sens = r.sfs.map((s) => ({ sf: `SF${s.sf}`, dbm: s.sensitivityDbm, range: km(s.rangeM) }));
   const color = { domain: sens.map((s) => s.sf), range: SF_COLORS, legend: true };
   const power = Plot.plot({
-    style: CHART_STYLE,
+    style: chartStyle(),
     width: opts.width,
     height: 240,
     marginLeft: 50,
@@ -26,12 +26,12 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
       Plot.lineY(band, { x: 'd', y: 'mean', stroke: '#222', strokeWidth: 1.6 }),
       Plot.ruleY(sens, { y: 'dbm', stroke: 'sf', strokeDasharray: '4,3', strokeWidth: (s) => (s.sf === `SF${opts.sf}` ? 2.2 : 1) }),
       Plot.ruleX(opts.distances.map(km), { stroke: '#b00020', strokeWidth: 1.5 }),
-      Plot.text(opts.distances.map(km), { x: (d) => d, frameAnchor: 'top', dy: 6, text: (_d, i) => (opts.distances.length > 1 ? `gateway ${i + 1}` : 'gateway distance'), fill: '#b00020', fontSize: 13 }),
+      Plot.text(opts.distances.map(km), { x: (d) => d, frameAnchor: 'top', dy: 6, text: (_d, i) => (opts.distances.length > 1 ? `gateway ${i + 1}` : 'gateway distance'), fill: '#b00020', fontSize: chartFont() }),
     ],
   });
   const curves = r.sfs.flatMap((s) => s.delivery.map((p, i) => ({ d: km(r.distances[i]), p: 100 * p, sf: `SF${s.sf}` })));
   const delivery = Plot.plot({
-    style: CHART_STYLE,
+    style: chartStyle(),
     width: opts.width,
     height: 200,
     marginLeft: 50,

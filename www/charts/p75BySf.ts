@@ -3,7 +3,7 @@
 // often: at short range the error grows with SF, beyond SF7's range a higher SF is what arrives.
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type ModelName } from '../loratrack';
-import { CHART_STYLE, MODEL_COLORS } from './colors';
+import { chartStyle, chartFont, MODEL_COLORS } from './colors';
 
 export interface SfRow {
   sf: number;
@@ -24,7 +24,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
   const models = [...new Set(data.map((d) => d.label))];
   const silent = [...new Set(rows.filter((r) => r.p75 === null).map((r) => r.sf))];
   return Plot.plot({
-    style: CHART_STYLE,
+    style: chartStyle(),
     width: opts.width,
     height: 220,
     marginLeft: 56,
@@ -34,7 +34,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
     marks: [
       Plot.line(data, { x: 'sf', y: 'p75', stroke: 'label', z: 'label' }),
       Plot.dot(data, { x: 'sf', y: 'p75', fill: 'label', r: 3.5, title: (d) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${d.received} packets` }),
-      Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: () => 'none\narrives', fill: '#5a6068', fontSize: 13 }),
+      Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: () => 'none\narrives', fill: '#5a6068', fontSize: chartFont() }),
     ],
   });
 }

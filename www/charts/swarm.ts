@@ -1,13 +1,13 @@
 // Swarms sharing one gateway: the measured collision rate as the swarm grows, beside the pure
 // ALOHA formula; and each drone's tracking error (p75) in the largest swarm.
-import { CHART_STYLE } from './colors';
+import { chartStyle, chartFont } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
 
 export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   const rates = swarms.map((r) => ({ n: r.config.drones, measured: 100 * r.collisionRate, theory: 100 * r.collisionRateTheory }));
   const collisions = Plot.plot({
-    style: CHART_STYLE,
+    style: chartStyle(),
     width,
     height: 220,
     marginLeft: 50,
@@ -16,13 +16,13 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
     marks: [
       Plot.lineY(rates, { x: 'n', y: 'theory', stroke: '#888', strokeDasharray: '4,3' }),
       Plot.dot(rates, { x: 'n', y: 'measured', fill: '#4e79a7', r: 4, title: (d) => `${d.n} drones: ${d.measured.toFixed(1)} % collided (ALOHA ${d.theory.toFixed(1)} %)` }),
-      Plot.text(rates.slice(-1), { x: 'n', y: 'theory', text: () => 'ALOHA', dx: -20, dy: -8, fill: '#666', fontSize: 13 }),
+      Plot.text(rates.slice(-1), { x: 'n', y: 'theory', text: () => 'ALOHA', dx: -20, dy: -8, fill: '#666', fontSize: chartFont() }),
     ],
   });
   const largest = swarms[swarms.length - 1];
   const drones = largest.drones.filter((d) => d.error3d.p75 !== null).map((d) => ({ p75: d.error3d.p75 as number, sf: `SF${d.sf}` }));
   const errors = Plot.plot({
-    style: CHART_STYLE,
+    style: chartStyle(),
     width,
     height: 140,
     marginLeft: 50,
