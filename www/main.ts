@@ -546,7 +546,16 @@ async function draw3d(r: SimReport): Promise<void> {
     const { createTrajectory3d } = await import('./charts/trajectory3d');
     trajectory3d ??= createTrajectory3d($('#chart-trajectory'));
   }
-  if (r === report) trajectory3d.update(r);
+  if (r !== report) return;
+  const drawn = trajectory3d.update(r);
+  if (!drawn) return;
+  // The legend lists what is drawn: the truth, each station, the gateways, and the grid's scale.
+  const swatch = (color: string) => `<span class="swatch" style="background:${color}"></span>`;
+  const stations = (r.series?.models ?? []).map((m) => `${swatch(MODEL_COLORS[m.model])}${MODEL_LABELS[m.model]}`).join(', ');
+  const gateways = r.series?.gateways.length ?? 1;
+  const far = drawn.farGateways ? `; orange cone${drawn.farGateways > 1 ? 's' : ''} at the edge: ${drawn.farGateways === gateways ? '' : 'the other '}gateway${drawn.farGateways > 1 ? 's' : ''} beyond the view, with ${drawn.farGateways > 1 ? 'their' : 'its'} distance` : '';
+  const near = gateways - drawn.farGateways;
+  $('#trajectory-legend').innerHTML = `${swatch(TRUTH_COLOR)}true flight, ${stations}${near ? `; grey cone${near > 1 ? 's' : ''}: the gateway${near > 1 ? 's' : ''}` : ''}${far}. Grid squares ${drawn.gridStep >= 10 ? drawn.gridStep.toFixed(0) : drawn.gridStep.toFixed(1)} m.`;
 }
 
 function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): void {

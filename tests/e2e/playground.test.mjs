@@ -59,7 +59,7 @@ async function shownP75(page) {
 
 test('opens with the paper defaults and names no best model from one flight and one seed; ten seeds give intervals equal to the CLI', async () => {
   const { page, problems } = await open();
-  assert.equal(await page.getByLabel('Spreading factor').inputValue(), '7');
+  assert.equal(await page.getByLabel('Spreading factor', { exact: true }).inputValue(), '7');
   assert.equal(await page.getByLabel('Bandwidth').inputValue(), '250');
   assert.equal(await page.locator('#results-table tbody tr').count(), 3);
   // One 81-s flight, one seed: no interval, so no verdict.
@@ -97,7 +97,7 @@ test('opens with the paper defaults and names no best model from one flight and 
 test('SF12 shows the SF12 interval, the same number as the time-on-air table', async () => {
   const { page, problems } = await open();
   const before = await tableHtml(page);
-  await page.getByLabel('Spreading factor').selectOption('12');
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('12');
   await waitForResults(page, before);
   const interval = number(await cell(page, '3d-ctra', 'interval'));
   // The highlighted row of the airtime table is SF12 / 250 kHz; its last column is 12 B.
@@ -138,7 +138,7 @@ test('one model at a time, and the whole synthetic set', async () => {
     return p && !p.hidden && p.value > 0;
   });
   // ...and the next change interrupts it: the results that arrive are for SF8.
-  await page.getByLabel('Spreading factor').selectOption('8');
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('8');
   await waitForResults(page, before);
   assert.match(await page.locator('#status').textContent(), /30 flights, 2640 s/);
   const interval = number(await cell(page, 'ctra-plus', 'interval'));
@@ -173,7 +173,7 @@ test('a good CSV is simulated and a bad one is refused next to the control', asy
   assert.equal(await page.locator('#results-table tbody tr').count(), 3);
   await page.getByLabel('Trajectory', { exact: true }).selectOption('synthetic');
   before = await tableHtml(page);
-  await page.getByLabel('Spreading factor').selectOption('8');
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('8');
   await waitForResults(page, before);
   assert.deepEqual(problems, []);
 });
@@ -181,13 +181,13 @@ test('a good CSV is simulated and a bad one is refused next to the control', asy
 test('the URL carries the state: a shared link reopens the same view; embed shows only chosen panels', async () => {
   const { page, problems } = await open();
   const before = await tableHtml(page);
-  await page.getByLabel('Spreading factor').selectOption('9');
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('9');
   await page.getByLabel('Model').selectOption('3d-ctra');
   await waitForResults(page, before);
   const url = page.url();
   assert.match(url, /sf=9/);
   const again = await open(url.slice(server.url.length));
-  assert.equal(await again.page.getByLabel('Spreading factor').inputValue(), '9');
+  assert.equal(await again.page.getByLabel('Spreading factor', { exact: true }).inputValue(), '9');
   assert.equal(await again.page.locator('#results-table tbody tr').count(), 1);
   assert.equal(await cell(again.page, '3d-ctra', 'p75'), await cell(page, '3d-ctra', 'p75'));
 
@@ -202,10 +202,10 @@ test('the URL carries the state: a shared link reopens the same view; embed show
 test('works on a phone-sized screen and by keyboard', async () => {
   const { page, problems } = await open('', { width: 390, height: 844 });
   const before = await tableHtml(page);
-  await page.getByLabel('Spreading factor').focus();
+  await page.getByLabel('Spreading factor', { exact: true }).focus();
   await page.keyboard.press('ArrowDown');
   await waitForResults(page, before);
-  assert.equal(await page.getByLabel('Spreading factor').inputValue(), '8');
+  assert.equal(await page.getByLabel('Spreading factor', { exact: true }).inputValue(), '8');
   await screenshot(page, 'phone');
   assert.deepEqual(problems, []);
 });
@@ -463,13 +463,37 @@ test('the 3D view keeps its camera across changes and has a legend, a gateway an
   const turned = await snap();
   assert.notEqual(turned, initial, 'arrow keys rotate the view');
   const before = await tableHtml(page);
-  await page.getByLabel('Spreading factor').selectOption('8');
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('8');
   await waitForResults(page, before);
   await idle(page);
   const after = await snap();
   assert.notEqual(after, initial, 'a settings change reset the camera');
-  assert.match(await page.locator('[data-panel="trajectory"] .legend').textContent(), /gateway/);
+  assert.match(await page.locator('[data-panel="trajectory"] .legend').textContent(), /true flight, DR, CTRA\+, 3D-CTRA; grey cone: the gateway\. Grid squares [\d.]+ m\./);
   await page.getByRole('button', { name: 'Reset view' }).click();
+  assert.deepEqual(problems, []);
+});
+
+test('the 3D view lets the page scroll past it, zooms once focused, and always shows the gateway with its distance', async () => {
+  const { page, problems } = await open('?distance=3000');
+  await idle(page);
+  const canvas = page.locator('#chart-trajectory canvas');
+  await canvas.scrollIntoViewIfNeeded();
+  const snap = () => canvas.evaluate((c) => c.toDataURL());
+  const box = await canvas.boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  const [y0, image0] = [await page.evaluate(() => scrollY), await snap()];
+  await page.mouse.wheel(0, 200);
+  await page.waitForFunction((y) => scrollY !== y, y0);
+  assert.equal(await snap(), image0, 'the wheel zoomed a view without focus');
+  await canvas.focus();
+  const image1 = await snap();
+  const y1 = await page.evaluate(() => scrollY);
+  await page.mouse.wheel(0, -200);
+  await page.waitForFunction((before) => document.querySelector('#chart-trajectory canvas').toDataURL() !== before, image1);
+  assert.equal(await page.evaluate(() => scrollY), y1, 'a focused view zooms instead of scrolling the page');
+  // 3 km away the gateway is off the flight's scale: a marker at the edge says where and how far.
+  assert.match(await page.locator('.gateway-label').first().textContent(), /^gateway 3\.0 km →$/);
+  assert.match(await page.locator('#trajectory-legend').textContent(), /orange cone at the edge: gateway beyond the view, with its distance/);
   assert.deepEqual(problems, []);
 });
 
@@ -696,7 +720,7 @@ test('ADR is offered only where it can start, with the reason, and a link asking
   const { page, problems } = await open('?sf=9&bw=250');
   assert.equal(await page.locator('#adr option[value="lorawan"]').isDisabled(), true);
   assert.match(await page.locator('#adr-note').textContent(), /EU868 data rate: SF7–SF12 at 125 kHz or SF7 at 250 kHz/);
-  await page.getByLabel('Spreading factor').selectOption('7');
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('7');
   await waitForResults(page);
   assert.equal(await page.locator('#adr option[value="lorawan"]').isDisabled(), false);
   const before = await tableHtml(page);

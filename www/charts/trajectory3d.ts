@@ -6,12 +6,19 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import type { SimReport } from '../loratrack';
 import { MODEL_COLORS, TRUTH_COLOR } from './colors';
 
+/** What a drawing shows, for its legend. */
+export interface Drawn {
+  /** Side of one grid square, m. */
+  gridStep: number;
+  /** Gateways too far to draw in place: shown as markers at the grid's edge, with their distance. */
+  farGateways: number;
+}
+
 export interface Trajectory3d {
   element: HTMLElement;
-  update(report: SimReport): void;
+  update(report: SimReport): Drawn | undefined;
   /** Back to the initial camera. */
   resetView(): void;
-  /** PNG of the current view. */
   /** The view drawn afresh at least `minWidth` device pixels wide, and the pixels per CSS pixel
    * it used (null when WebGL is unavailable). */
   snapshot(minWidth: number): { canvas: HTMLCanvasElement; scale: number } | null;
@@ -33,7 +40,12 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
   renderer.setPixelRatio(Math.min(2, window.devicePixelRatio));
   renderer.setSize(width(), height());
   renderer.setClearColor(0xffffff);
-  container.replaceChildren(renderer.domElement);
+  // Labels of far gateways, placed over the canvas at their markers after every render.
+  const labels = document.createElement('div');
+  labels.className = 'gateway-labels';
+  labels.setAttribute('aria-hidden', 'true');
+  container.style.position = 'relative';
+  container.replaceChildren(renderer.domElement, labels);
   renderer.domElement.setAttribute('role', 'img');
   renderer.domElement.setAttribute('aria-label', '3D trajectory: true flight and station estimates; drag to rotate, scroll to zoom');
 
@@ -42,9 +54,28 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
   camera.up.set(0, 0, 1);
   const controls = new OrbitControls(camera, renderer.domElement);
   controls.enableDamping = false;
+  // The scroll wheel scrolls the page unless the view has focus (or Ctrl is held): a reader
+  // scrolling past must not be caught zooming. This listener runs before OrbitControls' own.
+  controls.enableZoom = false;
+  renderer.domElement.addEventListener('wheel', (e) => (controls.enableZoom = document.activeElement === renderer.domElement || e.ctrlKey), { capture: true });
   const group = new THREE.Group();
   scene.add(group);
-  const render = () => renderer.render(scene, camera);
+  let far: { at: THREE.Vector3; text: string }[] = [];
+  const render = () => {
+    renderer.render(scene, camera);
+    labels.replaceChildren(
+      ...far.map(({ at, text }) => {
+        const p = at.clone().project(camera);
+        const span = document.createElement('span');
+        span.className = 'gateway-label';
+        span.textContent = text;
+        span.style.left = `${Math.round(((p.x + 1) / 2) * width())}px`;
+        span.style.top = `${Math.round(((1 - p.y) / 2) * height())}px`;
+        span.hidden = p.z > 1;
+        return span;
+      }),
+    );
+  };
   controls.addEventListener('change', render);
   new ResizeObserver(() => {
     renderer.setSize(width(), height());
@@ -107,18 +138,29 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
       grid.rotation.x = Math.PI / 2;
       grid.position.z = box.min.z - centre.z;
       group.add(grid);
-      // Every gateway, on the ground at its height, when it lies within the view.
-      for (const [gx, gy, gz] of s.gateways ?? [s.gateway]) {
+      // Every gateway, at its place when near the flight; otherwise a marker at the grid's edge
+      // in its direction, labelled with its distance (the view would shrink the flight to a dot).
+      far = [];
+      (s.gateways ?? [s.gateway]).forEach(([gx, gy, gz], i, all) => {
         const gateway = new THREE.Mesh(new THREE.ConeGeometry(size * 0.015, size * 0.05, 12), new THREE.MeshBasicMaterial({ color: 0x444444 }));
         gateway.rotation.x = Math.PI / 2;
-        gateway.position.set(gx - centre.x, gy - centre.y, gz - centre.z);
-        if (gateway.position.length() < size * 3) group.add(gateway);
-      }
+        const at = new THREE.Vector3(gx - centre.x, gy - centre.y, gz - centre.z);
+        if (at.length() > size * 3) {
+          const ground = new THREE.Vector3(at.x, at.y, 0);
+          const edge = ground.clone().setLength(size * 0.6);
+          edge.z = box.min.z - centre.z;
+          gateway.position.copy(edge);
+          (gateway.material as THREE.MeshBasicMaterial).color.set(0xb05a00);
+          far.push({ at: edge, text: `${all.length > 1 ? `gateway ${i + 1}` : 'gateway'} ${(ground.length() / 1000).toFixed(1)} km →` });
+        } else gateway.position.copy(at);
+        group.add(gateway);
+      });
       lastSize = size;
       if (placedFor !== s.flight) {
         placedFor = s.flight;
         place();
       } else render();
+      return { gridStep: (size * 1.2) / 12, farGateways: far.length };
     },
     snapshot(minWidth: number) {
       const ratio = renderer.getPixelRatio();
