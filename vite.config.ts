@@ -1,6 +1,6 @@
 import { defineConfig, type Plugin } from 'vite';
 // Every export's caption names the version that made it.
-import { version } from './package.json';
+import packageJson from './package.json' with { type: 'json' };
 
 // The built page talks to no other host: a Content-Security-Policy makes that a rule the browser
 // enforces. Only for the production build; the dev server needs its own websocket and inline client.
@@ -26,7 +26,7 @@ export default defineConfig({
   // Relative asset paths: dist/ works from any static server and under any sub-path.
   base: './',
   plugins: [csp],
-  define: { __LORATRACK_VERSION__: JSON.stringify(version) },
+  define: { __LORATRACK_VERSION__: JSON.stringify(packageJson.version) },
   build: { target: 'es2022', outDir: 'dist', emptyOutDir: true, chunkSizeWarningLimit: 1024 },
   worker: { format: 'es' },
   server: { fs: { allow: ['.'] } },

@@ -15,6 +15,7 @@ const suites = [
   ['wasm-bindgen-test (Node)', 'cargo', ['test', '--target', 'wasm32-unknown-unknown', '--test', 'wasm']],
   ['build (wasm + page)', 'npm', ['run', 'build']],
   ['type check', 'npm', ['run', 'typecheck']],
+  ['TypeScript unit tests (vitest)', 'npm', ['run', 'test:unit']],
   ['end-to-end (headless Chromium)', 'npm', ['run', 'test:e2e']],
 ];
 

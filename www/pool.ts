@@ -75,7 +75,7 @@ export class SimulationPool {
 
 /** The reports of disjoint groups of stations as one report, stations in `models` order: the
  * network totals add up every station's run, as the core's do (`Delivery::add`). */
-function merge(reports: SimReport[], models: string[], model: SimReport['config']['model']): SimReport {
+export function merge(reports: SimReport[], models: string[], model: SimReport['config']['model']): SimReport {
   const results = models.map((m) => reports.flatMap((r) => r.results).find((x) => x.model === m)!);
   const base = reports[0];
   const series = base.series && { ...base.series, models: models.map((m) => reports.flatMap((r) => r.series?.models ?? []).find((s) => s.model === m)!) };

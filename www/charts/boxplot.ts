@@ -21,7 +21,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
   return Plot.plot({
     style: chartStyle(),
     width: opts.width,
-    height: 200,
+    height: 180,
     marginLeft: 50,
     fx: { label: opts.groupLabel, domain: groups },
     x: { axis: null, domain: models, paddingInner: 0.25 },

@@ -30,7 +30,7 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
   return Plot.plot({
     style: chartStyle(),
     width,
-    height: 200,
+    height: 180,
     marginLeft: 50,
     x: { label: 'time (s)' },
     y: { label: '3D error (m)', grid: true, zero: true },

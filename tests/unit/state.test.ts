@@ -1,0 +1,124 @@
+// The page's settings and its URL: every shareable view must come back exactly as it was, and a
+// link asking for something the core refuses must be explained, never silently used.
+import { describe, expect, test } from 'vitest';
+import { adrCanStart, DEFAULTS, fromQuery, gatewaysFromText, gatewaysToText, invalid, LIMITS, toParams, toQuery, type Settings } from '../../www/state';
+import { LESSONS, lessonQuery } from '../../www/lessons';
+
+/** A deterministic stream of settings that differ from the defaults in many ways. */
+function* variedSettings(): Generator<Settings> {
+  let x = 12345;
+  const rand = () => ((x = (x * 1103515245 + 12345) % 2 ** 31) / 2 ** 31);
+  const pick = <T>(list: readonly T[]) => list[Math.floor(rand() * list.length)];
+  for (let i = 0; i < 200; i++) {
+    const sf = pick([7, 8, 9, 10, 11, 12]);
+    const bw = pick([125, 250, 500]);
+    yield {
+      ...DEFAULTS,
+      sf,
+      bw,
+      distance: 100 * Math.ceil(rand() * 100),
+      model: pick(['all', 'dr', 'ctra-plus', '3d-ctra', 'imm', 'dr,ctra-plus,3d-ctra,imm'] as const),
+      prediction: pick(['paper', 'bounded'] as const),
+      sender: pick(['periodic', 'error'] as const),
+      threshold: pick([0.5, 2, 7.5]),
+      dutyCycleMode: pick(['per-packet', 'budget'] as const),
+      adr: adrCanStart(sf, bw) ? pick(['off', 'lorawan', 'tracking'] as const) : 'off',
+      flight: pick(['synthetic', 'all', 'canberra'] as const),
+      flightNumber: 1 + Math.floor(rand() * 30),
+      lorawan: rand() < 0.5,
+      cr: pick([1, 2, 3, 4]),
+      txPower: pick([-10, 0, 14, 20]),
+      seed: Math.floor(rand() * 1e9),
+      seeds: pick([1, 10, 100]),
+      gateways: rand() < 0.5 ? [] : [{ east: 5000, north: -250 }, { east: 0, north: 0, height: 30 }],
+    };
+  }
+}
+
+describe('the URL', () => {
+  test('carries every setting: a shared link reopens exactly the same settings, with nothing to explain', () => {
+    for (const s of variedSettings()) {
+      const back = fromQuery(`?${toQuery(s)}`);
+      expect(back.problems).toEqual([]);
+      expect(back.settings).toEqual(s);
+    }
+  });
+
+  test('holds only what differs from the defaults', () => {
+    expect(toQuery(DEFAULTS)).toBe('');
+    expect(toQuery({ ...DEFAULTS, sf: 9 })).toBe('sf=9');
+  });
+
+  test('explains and replaces every value the core would refuse', () => {
+    const { settings, problems } = fromQuery('?sf=13&bw=300&seeds=0&distance=abc&adr=lorawan&model=nonsense');
+    expect(settings.sf).toBe(DEFAULTS.sf);
+    expect(settings.bw).toBe(DEFAULTS.bw);
+    expect(settings.seeds).toBe(1);
+    expect(settings.model).toBe('all');
+    expect(problems.join(' ')).toMatch(/sf=13 was replaced by 7: Spreading factor must be/);
+    expect(problems.join(' ')).toMatch(/seeds=0 was replaced by 1/);
+    expect(problems.join(' ')).toMatch(/model=nonsense was replaced by all/);
+    expect(problems.length).toBe(5);
+  });
+
+  test('never opens ADR where it cannot start, and says why', () => {
+    const { settings, problems } = fromQuery('?sf=9&bw=250&adr=tracking');
+    expect(settings.adr).toBe('off');
+    expect(problems.join(' ')).toMatch(/adr=tracking was replaced by off: ADR starts at an EU868 data rate/);
+    expect(fromQuery('?sf=9&bw=125&adr=tracking').settings.adr).toBe('tracking');
+  });
+});
+
+describe('limits', () => {
+  test('come from the core table and say the range in the form’s words', () => {
+    expect(LIMITS.seeds).toMatchObject({ min: 1, max: 100, integer: true });
+    expect(invalid('seeds', 101)).toBe('Seeds must be between 1 and 100.');
+    expect(invalid('seeds', 2.5)).toBe('Seeds must be a whole number.');
+    expect(invalid('txPower', NaN)).toMatch(/enter a number/);
+    expect(invalid('sf', 12)).toBeNull();
+  });
+
+  test('ADR starts only at an EU868 data rate', () => {
+    expect([7, 8, 9, 10, 11, 12].every((sf) => adrCanStart(sf, 125))).toBe(true);
+    expect([7, 8, 12].map((sf) => adrCanStart(sf, 250))).toEqual([true, false, false]);
+    expect(adrCanStart(7, 500)).toBe(false);
+  });
+});
+
+describe('gateways', () => {
+  test('round-trip through their URL text, heights optional', () => {
+    const g = [{ east: 5000, north: -250 }, { east: -1.5, north: 2600, height: 30 }];
+    expect(gatewaysFromText(gatewaysToText(g))).toEqual(g);
+    expect(gatewaysFromText('1,2,3,4')).toBeNull();
+    expect(gatewaysFromText('')).toEqual([]);
+  });
+});
+
+describe('simulate() parameters', () => {
+  test('name the flight once and carry the repeats', () => {
+    expect(toParams({ ...DEFAULTS, flight: 'all', seeds: 10 })).toMatchObject({ synthetic: 'all', seeds: 10 });
+    expect(toParams({ ...DEFAULTS, flight: 'canberra' })).toMatchObject({ sample: 'canberra' });
+    const csv = toParams({ ...DEFAULTS, flight: 'csv' }, { text: 't,x,y,z', name: 'mine.csv' });
+    expect(csv).toMatchObject({ trajectory: 't,x,y,z', trajectoryName: 'mine.csv' });
+    expect(csv).not.toHaveProperty('synthetic');
+    expect(toParams({ ...DEFAULTS, lorawan: false }).overhead).toBe(0);
+  });
+});
+
+describe('lessons', () => {
+  test('each opens a link the page reads back without a problem, baseline included', () => {
+    expect(LESSONS.length).toBeGreaterThanOrEqual(5);
+    for (const l of LESSONS) {
+      const q = new URLSearchParams(lessonQuery(l));
+      expect(q.get('lesson')).toBe(l.id);
+      const { settings, problems } = fromQuery(`?${q}`);
+      expect(problems).toEqual([]);
+      expect(settings).toMatchObject(l.settings);
+      if (l.baseline) {
+        const base = fromQuery(`?${q.get('baseline')}`);
+        expect(base.problems).toEqual([]);
+        expect(base.settings).toMatchObject(l.baseline);
+      }
+    }
+  });
+});
