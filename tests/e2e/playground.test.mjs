@@ -889,6 +889,9 @@ test('axe finds no violation in the stale, error, presentation and phone states'
   await stale.page.getByLabel('Path-loss exponent').fill('0.5');
   await stale.page.waitForSelector('#pathLossExponent[aria-invalid="true"]');
   assert.deepEqual(await axe(stale.page), [], 'stale');
+  // The error state: a CSV that cannot be read (once the form is valid again).
+  await stale.page.getByLabel('Path-loss exponent').fill('3');
+  await stale.page.waitForFunction(() => !document.querySelector('[data-panel="results"].stale'));
   const dir = mkdtempSync(join(tmpdir(), 'loratrack-'));
   writeFileSync(join(dir, 'bad.csv'), 't,x,y\n0,1,2\n');
   await stale.page.getByLabel('Trajectory', { exact: true }).selectOption('csv');

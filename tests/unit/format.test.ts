@@ -1,0 +1,25 @@
+// How the page words numbers and settings: captions on every download and embed rest on these.
+import { expect, test } from 'vitest';
+import { caption, describe, fmt, names } from '../../www/format';
+import { DEFAULTS } from '../../www/state';
+import type { ModelResult } from '../../www/loratrack';
+
+test('a statistic with no data is a dash, never NaN or "null"', () => {
+  expect(fmt(null)).toBe('—');
+  expect(fmt(2.345)).toBe('2.35');
+  expect(fmt(16.14, 1)).toBe('16.1');
+});
+
+test('station lists read as a sentence', () => {
+  const m = (model: string) => ({ model }) as ModelResult;
+  expect(names([m('dr')])).toBe('DR');
+  expect(names([m('dr'), m('ctra-plus')])).toBe('DR and CTRA+');
+  expect(names([m('dr'), m('ctra-plus'), m('3d-ctra')])).toBe('DR, CTRA+, 3D-CTRA');
+});
+
+test('a caption names the settings, the flight, every seed and the version', () => {
+  expect(describe(DEFAULTS)).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending');
+  expect(describe({ ...DEFAULTS, adr: 'tracking', sf: 12, bw: 125 })).toBe('SF12, 125 kHz, 1.0 km, paper prediction, periodic sending, tracking ADR');
+  expect(caption(DEFAULTS)).toMatch(/^SF7, 250 kHz, 1\.0 km, paper prediction, periodic sending, 13 B LoRaWAN overhead; synthetic flight 1; seed 1; loratrack \d+\.\d+\.\d+$/);
+  expect(caption({ ...DEFAULTS, flight: 'all', seed: 5, seeds: 10, lorawan: false })).toMatch(/no LoRaWAN overhead; whole synthetic set; seed 5 to 14;/);
+});

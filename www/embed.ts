@@ -1,0 +1,101 @@
+// Embedding: `?embed=1&panels=…` shows only the chosen panels in an iframe, with a caption of
+// the settings and every notice, no Pin, and the frame's height posted to the host page; the
+// Embed dialog builds the snippet that uses it.
+import { $ } from './dom';
+import { caption, describe } from './format';
+import { toQuery } from './state';
+import { store } from './store';
+
+/** Every panel an embed can show, by its `data-panel` name. */
+export const PANELS = ['controls', 'results', 'trajectory', 'error', 'axes', 'distance', 'sf', 'link', 'swarm', 'airtime'];
+
+/** Hides every panel but the chosen ones, explains unknown names, and starts posting the height. */
+export function setUpEmbed(): void {
+  if (!store.embed) return;
+  document.body.classList.add('embed');
+  const asked = (store.query.get('panels') ?? store.panels).split(',').map((p) => p.trim()).filter(Boolean);
+  const known = asked.filter((p) => PANELS.includes(p));
+  if (known.length < asked.length || known.length === 0) {
+    store.notices.push(`Unknown panel${asked.length - known.length === 1 ? '' : 's'} in the link (${asked.filter((p) => !PANELS.includes(p)).join(', ') || 'none named'}); the panels are ${PANELS.join(', ')}.`);
+  }
+  store.panels = (known.length ? known : store.panels.split(',')).join(',');
+  for (const el of document.querySelectorAll<HTMLElement>('[data-panel]')) el.hidden = !store.panels.split(',').includes(el.dataset.panel!);
+  // The heading stays for screen readers, the credit and a way to the full page stay visible.
+  for (const el of document.querySelectorAll<HTMLElement>('[data-chrome]')) el.classList.add('visually-hidden');
+  const full = $<HTMLAnchorElement>('#open-full');
+  const url = new URL(location.href);
+  url.searchParams.delete('embed');
+  url.searchParams.delete('panels');
+  full.href = url.toString();
+  full.hidden = false;
+  // An embed says which settings it shows; Pin compares runs, which an embed does not make.
+  $('#embed-caption').hidden = false;
+  $('#pin').hidden = true;
+  // The host page can grow the frame to its content (README: the snippet that listens).
+  if (window.parent !== window) {
+    let last = 0;
+    new ResizeObserver(() => {
+      const height = Math.ceil(document.documentElement.scrollHeight);
+      if (height === last) return;
+      last = height;
+      window.parent.postMessage({ loratrackHeight: height }, '*');
+    }).observe(document.body);
+  }
+}
+
+/** In an embed: the settings behind the numbers, and every notice (the form is not shown). */
+export function updateEmbedCaption(): void {
+  if (!store.embed) return;
+  $('#embed-settings').textContent = `Settings: ${caption(store.reportSettings)}.`;
+  const lines = [...store.notices];
+  if (!$('#rests-on').hidden) lines.push($('#rests-on-text').textContent ?? '');
+  if ($('[data-panel="results"]').classList.contains('stale')) lines.push('The numbers shown are for the previous settings.');
+  $('#embed-notices').hidden = lines.length === 0;
+  $('#embed-notices').textContent = lines.join(' ');
+}
+
+/** The Embed dialog: pick panels, copy a snippet that sizes its frame. */
+export function setUpEmbedDialog(): void {
+  const embedDialog = $<HTMLDialogElement>('#embed-dialog');
+  for (const name of PANELS) {
+    const label = document.createElement('label');
+    const box = document.createElement('input');
+    box.type = 'checkbox';
+    box.value = name;
+    box.checked = ['results', 'error'].includes(name);
+    label.append(box, ` ${name}`);
+    $('#embed-panels').append(label);
+  }
+
+  function embedSnippet(): string {
+    const chosen = [...document.querySelectorAll<HTMLInputElement>('#embed-panels input:checked')].map((b) => b.value);
+    const url = new URL(location.href);
+    url.search = `?${toQuery(store.settings, { embed: '1', panels: (chosen.length ? chosen : ['results']).join(',') })}`;
+    return `<iframe id="loratrack" src="${url.toString().replace(/&/g, '&amp;')}" title="loratrack: LoRa tracking playground (${describe(store.settings)})" style="width: 100%; border: 0" height="600" loading="lazy"></iframe>
+  <script>
+    // The frame posts its content height; grow it to fit.
+    addEventListener('message', (e) => {
+      const frame = document.getElementById('loratrack');
+      if (e.source === frame.contentWindow && e.data && e.data.loratrackHeight) frame.style.height = e.data.loratrackHeight + 'px';
+    });
+  </script>`;
+  }
+
+  $('#embed-open').addEventListener('click', () => {
+    $<HTMLTextAreaElement>('#embed-snippet').value = embedSnippet();
+    $('#embed-status').textContent = '';
+    embedDialog.showModal();
+  });
+  $('#embed-panels').addEventListener('change', () => ($<HTMLTextAreaElement>('#embed-snippet').value = embedSnippet()));
+  $('#embed-close').addEventListener('click', () => embedDialog.close());
+  $('#embed-copy').addEventListener('click', async () => {
+    const snippet = $<HTMLTextAreaElement>('#embed-snippet').value;
+    try {
+      await navigator.clipboard.writeText(snippet);
+      $('#embed-status').textContent = 'Snippet copied.';
+    } catch {
+      $<HTMLTextAreaElement>('#embed-snippet').select();
+      $('#embed-status').textContent = 'Select the snippet and copy it (the clipboard is not available here).';
+    }
+  });
+}

@@ -1,0 +1,190 @@
+// The settings form: written from the settings, read back with each field checked against the
+// core's limits (the problem shown beside the field), the gateway rows, and the choices offered
+// (settings the core would refuse are disabled, with the reason).
+import type { GatewaySite } from './loratrack';
+import { $ } from './dom';
+import { ADR_START_REASON, adrCanStart, DEFAULTS, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, type Settings } from './state';
+import { store } from './store';
+
+export const form = $<HTMLFormElement>('#controls');
+
+/** What runs when the form changes through its own buttons (adding or removing a gateway). */
+let changed: () => void = () => undefined;
+export function onFormChange(run: () => void): void {
+  changed = run;
+}
+
+export function field(name: string): HTMLInputElement | HTMLSelectElement {
+  return form.elements.namedItem(name) as HTMLInputElement | HTMLSelectElement;
+}
+
+function writeGateways(list: GatewaySite[]): void {
+  const heading = document.createElement('div');
+  heading.className = 'gateway-heading';
+  heading.setAttribute('aria-hidden', 'true');
+  heading.innerHTML = '<span></span><span>east (m)</span><span>north (m)</span><span>height (m)</span>';
+  gatewayRows.replaceChildren(
+    ...(list.length ? [heading] : []),
+    ...list.map((g, i) => {
+      const row = document.createElement('div');
+      row.className = 'gateway-row';
+      const input = (name: string, label: string, value: number | undefined, min: number, max: number) => {
+        const el = document.createElement('input');
+        el.type = 'number';
+        el.name = `gateway-${name}`;
+        el.dataset.gateway = name;
+        el.min = String(min);
+        el.max = String(max);
+        el.step = '10';
+        el.value = value === undefined ? '' : String(value);
+        el.setAttribute('aria-label', `Gateway ${i + 1} ${label}`);
+        // A blank height is the default antenna height (the core's table).
+        if (name === 'height') el.placeholder = String(GATEWAY_LIMITS.height.default ?? '');
+        return el;
+      };
+      const c = GATEWAY_LIMITS.coordinate;
+      const h = GATEWAY_LIMITS.height;
+      const remove = document.createElement('button');
+      remove.type = 'button';
+      remove.textContent = 'Remove';
+      remove.setAttribute('aria-label', `Remove gateway ${i + 1}`);
+      remove.addEventListener('click', () => {
+        store.settings.gateways = store.settings.gateways.filter((_, k) => k !== i);
+        writeGateways(store.settings.gateways);
+        changed();
+      });
+      const label = document.createElement('span');
+      label.textContent = `${i + 1}`;
+      label.className = 'gateway-number';
+      row.append(label, input('east', 'east (m)', g.east, c.min, c.max), input('north', 'north (m)', g.north, c.min, c.max), input('height', 'height (m)', g.height, h.min, h.max), remove);
+      return row;
+    }),
+  );
+  $<HTMLButtonElement>('#add-gateway').disabled = list.length >= GATEWAY_LIMITS.count.max;
+}
+
+/** The gateways in the form, and why they cannot be simulated (null when they can). */
+function readGateways(): { list: GatewaySite[]; why: string | null } {
+  const list = [...gatewayRows.querySelectorAll<HTMLElement>('.gateway-row')].map((row) => {
+    const v = (name: string) => row.querySelector<HTMLInputElement>(`[data-gateway="${name}"]`)!.value.trim();
+    const g: GatewaySite = { east: v('east') === '' ? NaN : Number(v('east')), north: v('north') === '' ? NaN : Number(v('north')) };
+    if (v('height') !== '') g.height = Number(v('height'));
+    return g;
+  });
+  return { list, why: invalidGateways(list) };
+}
+
+export function writeControls(s: Settings): void {
+  writeGateways(s.gateways);
+  for (const [key, value] of Object.entries(s)) {
+    if (key === 'gateways') continue;
+    const el = field(key);
+    if (!el) continue;
+    if (el instanceof HTMLInputElement && el.type === 'checkbox') el.checked = Boolean(value);
+    else el.value = String(value);
+  }
+  showConditional();
+}
+
+/** The form's settings, and the fields whose values are not acceptable (marked next to them). */
+export function readControls(): { next: Settings; errors: string[] } {
+  const s: Settings = { ...store.settings };
+  const errors: string[] = [];
+  const gateways = readGateways();
+  if (gateways.why) errors.push(gateways.why);
+  else s.gateways = gateways.list;
+  for (const key of Object.keys(DEFAULTS) as (keyof Settings)[]) {
+    if (key === 'gateways') continue;
+    const el = field(key);
+    if (!el) continue;
+    if (el instanceof HTMLInputElement && el.type === 'checkbox') (s as unknown as Record<string, unknown>)[key] = el.checked;
+    else if (isNumericKey(key)) {
+      const v = el.value.trim() === '' ? NaN : Number(el.value);
+      const why = invalid(key, v);
+      markField(el, why);
+      if (why) errors.push(why);
+      else (s as unknown as Record<string, unknown>)[key] = v;
+    } else (s as unknown as Record<string, unknown>)[key] = el.value;
+  }
+  return { next: s, errors };
+}
+
+/** Shows (or clears) a field's problem beside it, for eyes and for screen readers. */
+export function markField(el: HTMLInputElement | HTMLSelectElement, why: string | null): void {
+  const id = `${el.id}-error`;
+  let message = document.getElementById(id);
+  if (!why) {
+    el.removeAttribute('aria-invalid');
+    message?.remove();
+    el.setAttribute('aria-describedby', (el.getAttribute('aria-describedby') ?? '').replace(id, '').trim());
+    if (!el.getAttribute('aria-describedby')) el.removeAttribute('aria-describedby');
+    return;
+  }
+  el.setAttribute('aria-invalid', 'true');
+  if (!message) {
+    message = document.createElement('p');
+    message.id = id;
+    message.className = 'error field-error';
+    el.insertAdjacentElement('afterend', message);
+    el.setAttribute('aria-describedby', `${el.getAttribute('aria-describedby') ?? ''} ${id}`.trim());
+  }
+  message.textContent = why;
+}
+
+export function showConditional(): void {
+  for (const el of document.querySelectorAll<HTMLElement>('[data-when]')) el.hidden = el.dataset.when !== field('flight').value;
+  for (const el of document.querySelectorAll<HTMLElement>('[data-when-sender]')) el.hidden = el.dataset.whenSender !== field('sender').value;
+  const km = `${(Number(field('distance').value) / 1000).toFixed(1)} km`;
+  $('#distance-value').textContent = km;
+  // Screen readers hear the distance with its unit, not a bare number of metres.
+  field('distance').setAttribute('aria-valuetext', `${km} to the gateway`);
+  showAdrChoices();
+}
+
+/** Settings the core would refuse are not offered: ADR starts only at an EU868 data rate, so
+ * with ADR on the other SF/bandwidth pairs are disabled, and with such a pair ADR is. */
+function showAdrChoices(): void {
+  const sf = Number(field('sf').value);
+  const bw = Number(field('bw').value);
+  const adrOn = field('adr').value !== 'off';
+  const offer = (select: HTMLSelectElement, ok: (o: HTMLOptionElement) => boolean) => {
+    let any = false;
+    for (const o of select.options) {
+      o.disabled = !ok(o);
+      o.title = o.disabled ? ADR_START_REASON : '';
+      any ||= o.disabled;
+    }
+    return any;
+  };
+  const adrBlocked = offer(field('adr') as HTMLSelectElement, (o) => o.value === 'off' || adrCanStart(sf, bw));
+  // Both lists are updated (no short-circuit).
+  const sfBlocked = offer(field('sf') as HTMLSelectElement, (o) => !adrOn || adrCanStart(Number(o.value), bw));
+  const bwBlocked = offer(field('bw') as HTMLSelectElement, (o) => !adrOn || adrCanStart(sf, Number(o.value)));
+  const rateBlocked = sfBlocked || bwBlocked;
+  const note = $('#adr-note');
+  note.hidden = !adrBlocked && !rateBlocked;
+  note.textContent = adrBlocked ? `ADR is not offered at SF${sf} / ${bw} kHz. ${ADR_START_REASON}` : rateBlocked ? `With ADR on, only EU868 data rates can be chosen. ${ADR_START_REASON}` : '';
+}
+
+/** The form's min and max come from the core's table, as the URL's checks do; the distance
+ * slider keeps its teaching range (0.1–10 km), and a link beyond it is said to be moved. */
+for (const [key, l] of Object.entries(LIMITS)) {
+  const el = field(key);
+  if (el instanceof HTMLInputElement && el.type !== 'checkbox' && el.type !== 'range' && !l.values) {
+    el.min = String(l.min);
+    el.max = String(l.max);
+  }
+  if (el && l.help) el.title = `${l.help} Accepted: ${l.min}–${l.max}${l.unit ? ` ${l.unit}` : ''}.`;
+}
+
+const gatewayRows = $('#gateway-rows');
+
+$('#add-gateway').addEventListener('click', () => {
+  // The first added gateway keeps the default one where it was, so adding never moves it.
+  const list = store.settings.gateways.length ? [...store.settings.gateways] : [{ east: store.settings.distance, north: 0 }];
+  list.push({ east: 0, north: 0 });
+  store.settings.gateways = list;
+  writeGateways(list);
+  changed();
+});
+

@@ -1,0 +1,22 @@
+// How the page words its numbers and settings: one place for every caption, label and dash.
+import { MODEL_LABELS, type ModelResult } from './loratrack';
+import type { Settings } from './state';
+import { store } from './store';
+
+/** A statistic with `digits` decimals, or a dash where there is none (an empty sample). */
+export const fmt = (v: number | null, digits = 2) => (v === null || v === undefined ? '—' : v.toFixed(digits));
+
+/** Station names as a list: "DR", "DR and CTRA+", "DR, CTRA+, 3D-CTRA". */
+export const names = (list: ModelResult[]) => list.map((m) => MODEL_LABELS[m.model]).join(list.length === 2 ? ' and ' : ', ');
+
+/** The settings that matter most, in one short phrase. */
+export function describe(s: Settings): string {
+  return `SF${s.sf}, ${s.bw} kHz, ${(s.distance / 1000).toFixed(1)} km, ${s.prediction} prediction, ${s.sender} sending${s.adr === 'off' ? '' : `, ${s.adr} ADR`}`;
+}
+
+/** One line for a download's caption: the settings, flight, seed and version behind a chart. */
+export function caption(s: Settings, extra = ''): string {
+  const flight = s.flight === 'all' ? 'whole synthetic set' : s.flight === 'canberra' ? 'real flight (Canberra)' : s.flight === 'csv' ? (store.csv?.name ?? 'uploaded CSV') : `synthetic flight ${s.flightNumber}`;
+  const seeds = s.seeds > 1 ? ` to ${s.seed + s.seeds - 1}` : '';
+  return `${describe(s)}, ${s.lorawan ? '13 B' : 'no'} LoRaWAN overhead; ${flight}; seed ${s.seed}${seeds}${extra}; loratrack ${__LORATRACK_VERSION__}`;
+}

@@ -1,0 +1,138 @@
+// The results panel: the table of statistics with their intervals, the verdict on which station
+// is best (only when the intervals say so), the baseline's differences, and the notes under the
+// table. Reads the page's state from the store.
+import { MODEL_LABELS, timeOnAir, type ModelResult, type SimReport } from './loratrack';
+import { $ } from './dom';
+import { caption, fmt, names } from './format';
+import { overheadBytes } from './state';
+import { store } from './store';
+
+/** The results table, the verdict on it, and the notes under it (network, data rates, TTN). */
+export function renderTable(r: SimReport): void {
+  const best = clearlyLowest(r);
+  renderVerdict(r, best);
+  const rows = r.results
+    .map((m) => {
+      const ratio = m.packetsSent ? m.packetsReceived / m.packetsSent : 0;
+      const isBest = m === best;
+      return `<tr class="${isBest ? 'best' : ''}" data-model="${m.model}">
+        <th scope="row">${MODEL_LABELS[m.model]}${isBest ? ' <span class="badge">lowest p75</span>' : ''}</th>
+        <td>${m.payloadBytes} B</td><td data-field="toa">${(m.timeOnAir * 1e3).toFixed(1)} ms</td><td data-field="interval">${m.interval.toFixed(2)} s</td>
+        <td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}${delta(m, 'packets')}</td><td data-field="delivery">${(ratio * 100).toFixed(0)} %</td>
+        <td data-field="mean">${fmt(m.error3d.mean)}${delta(m, 'mean')}</td><td data-field="p50">${fmt(m.error3d.p50)}${delta(m, 'p50')}</td><td data-field="p75">${fmt(m.error3d.p75)}${interval(m)}${delta(m, 'p75')}</td>
+        <td data-field="p95">${fmt(m.error3d.p95)}${delta(m, 'p95')}</td><td data-field="max">${fmt(m.error3d.max, 1)}${delta(m, 'max')}</td>
+        <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td>
+        <td data-field="energy" title="${m.energy.chargePerHour.toFixed(3)} mAh per hour of tracking">${m.energy.chargePerUplink.toFixed(2)}</td></tr>`;
+    })
+    .join('');
+  $('#results-table').innerHTML = `<div class="table-wrap" tabindex="0" role="region" aria-label="Results table"><table class="results">
+    <caption>3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet, over ${r.config.flights} flight${r.config.flights === 1 ? '' : 's'} × ${r.config.seeds} seed${r.config.seeds === 1 ? '' : 's'}; overhead ${r.config.overhead} B; ${r.config.prediction} prediction</caption>
+    <thead><tr><th scope="col">model</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Time between packets: time on air divided by the 1 % duty cycle">interval</th>
+    <th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th><th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Mean 3D distance between the station's estimate and the truth">mean</th><th scope="col" title="Half the time the error is below this">median</th><th scope="col" title="75th percentile: 3 times in 4 the error is below this (the paper's headline statistic)">p75</th><th scope="col" title="95th percentile: the bad moments, typically long gaps">p95</th><th scope="col">max</th>
+    <th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th>
+    <th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th></tr></thead>
+    <tbody>${rows}</tbody></table></div>`;
+  $('#ttn').innerHTML = ttnNote(r);
+  // One gateway and no downlink: the table's delivery column already says it all. Each station's
+  // run is its own (the drone sends that station's payload): the note tells the first station's.
+  const first = r.results[0];
+  const networkShown = first.gateways.length > 1 || first.gateways.some((g) => g.downlinksSent + g.downlinksDropped > 0);
+  $('#network-note').hidden = !networkShown;
+  $('#network-note').textContent = networkShown ? networkNote(first, r.results.length > 1) : '';
+
+  renderRateUse(r);
+}
+
+/** The station whose p75 is lowest, when its 95 % interval lies below every other station's
+ * (docs/reference.md §12); undefined when no difference is clear. */
+function clearlyLowest(r: SimReport): ModelResult | undefined {
+  const withData = r.results.filter((m) => m.error3d.count > 0);
+  const lowest = withData.reduce<ModelResult | undefined>((a, m) => (!a || (m.error3d.p75 ?? Infinity) < (a.error3d.p75 ?? Infinity) ? m : a), undefined);
+  if (r.results.length < 2 || withData.length < r.results.length || !lowest?.ci95) return undefined;
+  const below = lowest.ci95.p75[1];
+  return withData.every((m) => m === lowest || (m.ci95 !== null && below < m.ci95.p75[0])) ? lowest : undefined;
+}
+
+/** How many packets and runs the numbers rest on, and whether the models differ clearly. */
+function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
+  const few = r.results.filter((m) => m.packetsReceived < 10);
+  $('#rests-on').hidden = few.length === 0;
+  $('#use-whole-set').hidden = store.reportSettings.flight === 'all';
+  if (few.length) {
+    $('#rests-on-text').textContent = `Too few packets to compare: ${names(few)} ${few.length === 1 ? 'rests' : 'rest'} on ${few.map((m) => m.packetsReceived).join(few.length === 2 ? ' and ' : ', ')} received packet${few.every((m) => m.packetsReceived === 1) ? '' : 's'} (under 10).`;
+  }
+  const text = $('#verdict-text');
+  const repeat = $<HTMLButtonElement>('#repeat-seeds');
+  const runs = r.results.find((m) => m.ci95)?.ci95?.runs;
+  repeat.hidden = store.reportSettings.seeds >= 10 || r.results.length < 2;
+  if (r.results.length < 2) text.textContent = runs ? `p75's 95 % interval rests on ${runs} runs (flights × seeds).` : '';
+  else if (best) text.textContent = `${MODEL_LABELS[best.model]} has the lowest p75, clearly: its 95 % interval lies below every other model's (${runs} runs).`;
+  else if (!runs) text.textContent = 'One flight with one seed cannot tell whether these differences are larger than chance: no model is named best.';
+  else text.textContent = `No clear difference in p75: the 95 % intervals overlap (${runs} runs). More seeds or flights narrow them.`;
+}
+
+/** p75's 95 % interval, when the run has one. */
+function interval(m: ModelResult): string {
+  const c = m.ci95;
+  return c ? ` <span class="ci" data-field="p75-interval" title="95 % interval over ${c.runs} runs (flights × seeds)">(${fmt(c.p75[0])}–${fmt(c.p75[1])})</span>` : '';
+}
+
+/** The change of statistic `key` against the baseline's same station, as a small signed number. */
+function delta(m: ModelResult, key: 'mean' | 'p50' | 'p75' | 'p95' | 'max' | 'packets'): string {
+  const base = store.baseline?.report.results.find((x) => x.model === m.model);
+  if (!base) return '';
+  const [b, v] = key === 'packets' ? [base.packetsReceived, m.packetsReceived] : [base.error3d[key], m.error3d[key]];
+  if (b === null || v === null) return '';
+  const d = v - b;
+  // Fewer metres of error is better; more packets received is better. The arrow and the
+  // (screen-reader) word carry the direction without colour.
+  const digits = key === 'packets' ? 0 : 2;
+  const same = Math.abs(d) < (key === 'packets' ? 0.5 : 0.005);
+  const better = key === 'packets' ? d > 0 : d < 0;
+  const cls = same ? 'same' : better ? 'better' : 'worse';
+  const arrow = same ? '=' : d > 0 ? '▲' : '▼';
+  const word = same ? 'unchanged' : better ? 'better' : 'worse';
+  return ` <span class="delta ${cls}" data-delta="${key}" title="against the baseline (${b.toFixed(digits)}${key === 'packets' ? ' packets' : ' m'})">${arrow}\u2009${d >= 0 ? '+' : '−'}${Math.abs(d).toFixed(digits)}<span class="visually-hidden"> (${word} than the baseline)</span></span>`;
+}
+
+export function renderBaseline(): void {
+  const note = $('#baseline-note');
+  note.hidden = !store.baseline;
+  $('#pin').textContent = store.baseline ? 'Clear baseline' : 'Pin as baseline';
+  if (store.baseline) note.textContent = `Differences are against the pinned baseline: ${caption(store.baseline.settings)}. ▼ lower, ▲ higher; lower error and more packets received are better (green).`;
+}
+
+/** With ADR: how many packets each model sent at each data rate. */
+function renderRateUse(r: SimReport): void {
+  const note = $('#rate-use');
+  note.hidden = r.config.adr === 'off';
+  if (note.hidden) return;
+  const rate = (u: ModelResult['dataRateUse'][number]) => `${u.dr === null ? `SF${u.sf}/${u.bw}` : `DR${u.dr} (SF${u.sf}/${u.bw})`} ${u.received}/${u.packets}`;
+  const lines = r.results.map((m) => `${MODEL_LABELS[m.model]}: ${[...m.dataRateUse].reverse().map(rate).join(', ')}`);
+  note.textContent = `Packets received / sent per data rate (${r.config.adr === 'lorawan' ? 'LoRaWAN' : 'tracking-aware'} ADR, interval and time on air above are the starting rate's) — ${lines.join('; ')}.`;
+}
+
+/** What each gateway heard, and the copies the network server removed. */
+function networkNote(m: ModelResult, named: boolean): string {
+  const { packetsSent: sent, packetsReceived: received, duplicates, gateways } = m;
+  const each = gateways
+    .map((g, i) => `gateway ${i + 1} at (${(g.east / 1000).toFixed(1)}, ${(g.north / 1000).toFixed(1)}) km heard ${g.heard}${gateways.length > 1 ? ` (${g.onlyHeard} only it)` : ''}${g.downlinksSent + g.downlinksDropped ? `, ${g.downlinksSent} downlinks sent, ${g.downlinksDropped} dropped by its duty cycle` : ''}`)
+    .join('; ');
+  return `Network${named ? ` (${MODEL_LABELS[m.model]}'s packets)` : ''}: ${received} of ${sent} packets delivered (${sent ? ((100 * received) / sent).toFixed(0) : 0} %)${gateways.length > 1 ? `, ${duplicates} duplicate copies removed` : ''} — ${each}.`;
+}
+
+/** The IMM's mean member probabilities, as a tooltip. */
+function probabilities(m: ModelResult): string {
+  const p = m.modelProbability;
+  if (!p) return "Share of the time the truth lay inside the station's 95 % ellipsoid";
+  return `Mean IMM probability: DR ${fmt(p.dr ?? null)}, CTRA+ ${fmt(p['ctra-plus'] ?? null)}, 3D-CTRA ${fmt(p['3d-ctra'] ?? null)}`;
+}
+
+/** The Things Network's fair-use limit, shown for information (the simulation uses the duty cycle). */
+function ttnNote(r: SimReport): string {
+  const m = r.results[r.results.length - 1];
+  const a = timeOnAir({ sf: store.settings.sf, bw: store.settings.bw, payload: m.payloadBytes, overhead: overheadBytes(store.settings), cr: store.settings.cr });
+  const perDay = 86400 / a.minInterval;
+  return `<p class="note" id="ttn-note">On The Things Network, fair use allows 30 s of airtime a day: ${a.ttnPacketsPerDay} packets of ${m.payloadBytes} B
+    (${MODEL_LABELS[m.model]}) at this setting, one every ${(86400 / Math.max(1, a.ttnPacketsPerDay)).toFixed(0)} s — ${(perDay / Math.max(1, a.ttnPacketsPerDay)).toFixed(0)}× fewer than the duty cycle allows. Not applied here.</p>`;
+}

@@ -1,0 +1,49 @@
+// The page's one state store: what the form says, what the numbers on show were made from, what
+// came with the link. Every module of the page reads and changes that state here and nowhere
+// else, so "which settings made these numbers?" has one answer.
+import type { SimReport } from './loratrack';
+import { fromQuery, toQuery, type Settings } from './state';
+
+// Outside a page (the unit tests) there is no link: the defaults.
+const search = typeof location === 'undefined' ? '' : location.search;
+const query = new URLSearchParams(search);
+const parsed = fromQuery(search);
+
+export interface Store {
+  /** The link's query, as the page was opened. */
+  query: URLSearchParams;
+  /** Shown in an iframe with only some panels (`?embed=1`). */
+  embed: boolean;
+  /** The panels an embed shows, comma-separated. */
+  panels: string;
+  /** The settings in the form (the last valid ones). */
+  settings: Settings;
+  /** The settings that made `report`: the form may have moved on since. */
+  reportSettings: Settings;
+  /** The numbers on show. */
+  report?: SimReport;
+  /** The pinned baseline and the settings that made it. */
+  baseline?: { report: SimReport; settings: Settings };
+  /** An uploaded CSV flight (never in the URL). */
+  csv?: { text: string; name: string };
+  /** Sentences about the link: values replaced, unknown panels, a baseline that failed. */
+  notices: string[];
+}
+
+export const store: Store = {
+  query,
+  embed: query.get('embed') === '1',
+  panels: 'results,error',
+  settings: parsed.settings,
+  reportSettings: parsed.settings,
+  notices: [...parsed.problems],
+};
+
+/** The page's URL query: the settings, the pinned baseline's settings, and the embed choice. */
+export function pageQuery(): string {
+  const extra: Record<string, string> = store.embed ? { embed: '1', panels: store.panels } : {};
+  if (document.body.classList.contains('present')) extra.present = '1';
+  if (store.baseline) extra.baseline = toQuery(store.baseline.settings);
+  return toQuery(store.settings, extra);
+}
+
