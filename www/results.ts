@@ -53,6 +53,18 @@ function clearlyLowest(r: SimReport): ModelResult | undefined {
   return withData.every((m) => m === lowest || (m.ci95 !== null && below < m.ci95.p75[0])) ? lowest : undefined;
 }
 
+/** Why no station is named best: the stations whose p75 intervals overlap the lowest one's, and
+ * those clearly above them. */
+function noClearLowest(r: SimReport, runs: number): string {
+  const withData = r.results.filter((m) => m.ci95 !== null);
+  const lowest = withData.reduce((a, m) => ((m.error3d.p75 ?? Infinity) < (a.error3d.p75 ?? Infinity) ? m : a));
+  const top = lowest.ci95!.p75[1];
+  const tied = withData.filter((m) => m === lowest || m.ci95!.p75[0] <= top);
+  const above = withData.filter((m) => !tied.includes(m));
+  const rest = above.length ? `; ${names(above)}'s ${above.length === 1 ? 'lies' : 'lie'} clearly above` : '';
+  return `No clear lowest p75: the 95 % intervals of ${names(tied)} overlap${rest} (${runs} runs). More seeds or flights narrow them.`;
+}
+
 /** How many packets and runs the numbers rest on, and whether the models differ clearly. */
 function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
   const few = r.results.filter((m) => m.packetsReceived < 10);
@@ -68,7 +80,7 @@ function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
   if (r.results.length < 2) text.textContent = runs ? `p75's 95 % interval rests on ${runs} runs (flights × seeds).` : '';
   else if (best) text.textContent = `${MODEL_LABELS[best.model]} has the lowest p75, clearly: its 95 % interval lies below every other model's (${runs} runs).`;
   else if (!runs) text.textContent = 'One flight with one seed cannot tell whether these differences are larger than chance: no model is named best.';
-  else text.textContent = `No clear difference in p75: the 95 % intervals overlap (${runs} runs). More seeds or flights narrow them.`;
+  else text.textContent = noClearLowest(r, runs);
 }
 
 /** p75's 95 % interval, when the run has one. */
