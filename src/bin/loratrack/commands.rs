@@ -686,8 +686,22 @@ fn swarm_text(r: &SwarmReport) -> String {
     let c = &r.config.settings;
     let silent = r.drones.iter().filter(|d| d.error3d.count == 0).count();
     let d = &r.delivery;
+    // With a flight chosen every drone flies it (the duration is for chained synthetic flights).
+    let flown = match (
+        c.flight.synthetic,
+        &c.flight.sample,
+        &c.flight.trajectory_name,
+    ) {
+        (Some(loratrack::SyntheticChoice::All), _, _) => {
+            "each flying the synthetic set".to_string()
+        }
+        (Some(loratrack::SyntheticChoice::One(i)), _, _) => format!("each flying synthetic {i}"),
+        (None, Some(sample), _) => format!("each flying {sample}"),
+        (None, None, Some(name)) => format!("each flying {}", loratrack::api::clean_message(name)),
+        _ => format!("x {:.0} s", c.swarm.duration),
+    };
     format!(
-        "{} drones x {:.0} s at {} m, {} channel{}, {:?} SFs, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
+        "{} drone{} {}, at {} m, {} channel{}, {} SFs, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
          packets sent        {}\n\
          collision rate      {:.4}  (ALOHA theory for periodic senders: {:.4})\n\
          delivery ratio      {:.4}  ({} distinct packets, {} duplicate{} removed)\n\
@@ -697,11 +711,15 @@ fn swarm_text(r: &SwarmReport) -> String {
          energy              {:.2} mC per uplink, {:.3} mAh per hour (mean drone, SX1276 radio only)\n\
          drones that received nothing: {}{}",
         c.swarm.drones,
-        c.swarm.duration,
+        if c.swarm.drones == 1 { "" } else { "s" },
+        flown,
         c.channel.distance,
         c.network.channels,
         if c.network.channels == 1 { "" } else { "s" },
-        c.swarm.sf_plan,
+        match c.swarm.sf_plan {
+            loratrack::SfPlan::Spread => "spread",
+            loratrack::SfPlan::Fixed => "fixed",
+        },
         r.config.station.label(),
         if c.network.capture { "on" } else { "off" },
         if c.network.inter_sf { "on" } else { "off" },
