@@ -224,8 +224,12 @@ let lastSwarm: (() => void) | undefined;
 
 function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made: Settings): void {
   lastSweep = sweep;
-  renderDistance(sweep.flatMap(({ point, report: rep }) => ('distance' in point ? [{ distance: point.distance, report: rep }] : [])), made);
-  renderSfs(sweep.flatMap(({ point, report: rep }) => ('sf' in point ? [{ sf: point.sf, report: rep }] : [])), made);
+  renderDistance(sweep.flatMap(({ point, report: rep }) => ('distance' in point && rep ? [{ distance: point.distance, report: rep }] : [])), made);
+  renderSfs(sweep.flatMap(({ point, report: rep }) => ('sf' in point && rep ? [{ sf: point.sf, report: rep }] : [])), made);
+  // An SF the core refuses at these settings is left out of the chart, and the note says why.
+  const refused = sweep.filter((x) => 'sf' in x.point && !x.report);
+  $('#sf-note').hidden = refused.length === 0;
+  $('#sf-note').textContent = refused.length ? `Not simulated at ${refused.map((x) => ('sf' in x.point ? `SF${x.point.sf}` : '')).join(', ')}: ${refused[0].error}.` : '';
 }
 
 function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): void {

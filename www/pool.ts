@@ -6,9 +6,9 @@
 // flight, the seed and its own settings (the link's random streams are derived per flight), so
 // the merged report equals what one worker (or the CLI) computes for all models at once.
 import { stationsOf, type SimReport } from './loratrack';
-import type { Response, SimulateRequest, SweepPoint } from './worker';
+import type { Response, SimulateRequest, SweepResult } from './worker';
 
-type Part = { progress: number; report?: SimReport; millis?: number; sweep?: { point: SweepPoint; report: SimReport }[] };
+type Part = { progress: number; report?: SimReport; millis?: number; sweep?: SweepResult[] };
 
 export class SimulationPool {
   private workers: Worker[] = [];
@@ -58,7 +58,12 @@ export class SimulationPool {
           on({ id: request.id, report: merge(parts.map((p) => p.report!), models, request.params.model ?? 'all'), millis: Math.max(...parts.map((p) => p.millis ?? 0)) });
         }
         if ('sweep' in r && parts.every((p) => p.sweep)) {
-          const sweep = parts[0].sweep!.map(({ point }, i) => ({ point, report: merge(parts.map((p) => p.sweep![i].report), models, request.params.model ?? 'all') }));
+          // A point is merged when every worker ran it; otherwise it carries the first refusal.
+          const sweep = parts[0].sweep!.map(({ point }, i): SweepResult => {
+            const runs = parts.map((p) => p.sweep![i]);
+            const refused = runs.find((x) => !x.report);
+            return refused ? { point, error: refused.error } : { point, report: merge(runs.map((x) => x.report!), models, request.params.model ?? 'all') };
+          });
           forget();
           on({ id: request.id, sweep });
         }

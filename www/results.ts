@@ -45,9 +45,14 @@ export function renderTable(r: SimReport): void {
 
 /** The station whose p75 is lowest, when its 95 % interval lies below every other station's
  * (docs/reference.md §12); undefined when no difference is clear. */
+/** The station with the lowest p75 among `list` (undefined for none). */
+function lowestP75(list: ModelResult[]): ModelResult | undefined {
+  return list.reduce<ModelResult | undefined>((a, m) => (!a || (m.error3d.p75 ?? Infinity) < (a.error3d.p75 ?? Infinity) ? m : a), undefined);
+}
+
 function clearlyLowest(r: SimReport): ModelResult | undefined {
   const withData = r.results.filter((m) => m.error3d.count > 0);
-  const lowest = withData.reduce<ModelResult | undefined>((a, m) => (!a || (m.error3d.p75 ?? Infinity) < (a.error3d.p75 ?? Infinity) ? m : a), undefined);
+  const lowest = lowestP75(withData);
   if (r.results.length < 2 || withData.length < r.results.length || !lowest?.ci95) return undefined;
   const below = lowest.ci95.p75[1];
   return withData.every((m) => m === lowest || (m.ci95 !== null && below < m.ci95.p75[0])) ? lowest : undefined;
@@ -57,9 +62,8 @@ function clearlyLowest(r: SimReport): ModelResult | undefined {
  * those clearly above them. */
 function noClearLowest(r: SimReport, runs: number): string {
   const withData = r.results.filter((m) => m.ci95 !== null);
-  const lowest = withData.reduce((a, m) => ((m.error3d.p75 ?? Infinity) < (a.error3d.p75 ?? Infinity) ? m : a));
-  const top = lowest.ci95!.p75[1];
-  const tied = withData.filter((m) => m === lowest || m.ci95!.p75[0] <= top);
+  const top = lowestP75(withData)!.ci95!.p75[1];
+  const tied = withData.filter((m) => m.ci95!.p75[0] <= top);
   const above = withData.filter((m) => !tied.includes(m));
   const rest = above.length ? `; ${names(above)}'s ${above.length === 1 ? 'lies' : 'lie'} clearly above` : '';
   return `No clear lowest p75: the 95 % intervals of ${names(tied)} overlap${rest} (${runs} runs). More seeds or flights narrow them.`;

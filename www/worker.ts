@@ -1,10 +1,18 @@
 // Runs simulations off the main thread so the page never freezes. One message in, one out:
 //   { id, params, sweep? }  →  { id, progress }* then { id, report } | { id, error }
-//                               then, with sweep points, { id, sweep: [{ point, report }] }
+//                               then, with sweep points, { id, sweep: [{ point, report | error }] }
 import { load, loadCsv, simulate, swarm, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
 
 /** One point of a sweep beside the main run: the gateway at another distance, or another SF. */
 export type SweepPoint = { distance: number } | { sf: number };
+
+/** One sweep point's run: its report, or why the core refused it (e.g. an error-triggered
+ * heartbeat shorter than SF12's interval); the main run stands either way. */
+export interface SweepResult {
+  point: SweepPoint;
+  report?: SimReport;
+  error?: string;
+}
 
 export interface SimulateRequest {
   id: number;
@@ -24,7 +32,7 @@ export type Response =
   | { id: number; progress: number }
   | { id: number; report: SimReport; millis: number }
   | { id: number; error: string }
-  | { id: number; sweep: { point: SweepPoint; report: SimReport }[] }
+  | { id: number; sweep: SweepResult[] }
   | { id: number; swarms: SwarmReport[]; millis: number };
 
 /** CSV texts above this size are read first with their own progress. */
@@ -58,10 +66,13 @@ self.onmessage = async (event: MessageEvent<Request>) => {
       // seed each (the charts show the spread across the sweep, not across seeds). A distance
       // moves the one default gateway, so listed gateways are left out; another SF is a fixed
       // data rate (ADR would move it).
-      const sweep = points.map((point) => ({
-        point,
-        report: simulate({ ...params, ...('distance' in point ? { gateways: [] } : { adr: 'off' }), ...point, seeds: 1, series: false }),
-      }));
+      const sweep = points.map((point): SweepResult => {
+        try {
+          return { point, report: simulate({ ...params, ...('distance' in point ? { gateways: [] } : { adr: 'off' }), ...point, seeds: 1, series: false }) };
+        } catch (e) {
+          return { point, error: e instanceof Error ? e.message : String(e) };
+        }
+      });
       post({ id, sweep });
     }
   } catch (e) {

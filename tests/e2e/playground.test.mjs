@@ -907,3 +907,15 @@ test('axe finds no violation in the stale, error, presentation and phone states'
   assert.deepEqual(await axe(phone.page), [], 'phone');
   assert.deepEqual([...stale.problems, ...present.problems, ...phone.problems], []);
 });
+
+test('with error-triggered sending the SF chart leaves out the SFs whose interval exceeds the heartbeat, says why, and the results stand', async () => {
+  const { page, problems } = await open('?sender=error');
+  await idle(page);
+  await page.waitForSelector('#chart-sf svg');
+  assert.match(await page.locator('#sf-note').textContent(), /^Not simulated at (SF\d+, )*SF12: maxInterval must be at least the duty-cycle interval/);
+  const titles = await page.locator('#chart-sf svg title').allTextContents();
+  assert.ok(titles.some((t) => t.startsWith('DR, SF7:')), titles.join('; '));
+  assert.equal(await page.locator('[data-panel="results"].stale').count(), 0);
+  assert.doesNotMatch(await page.locator('#status').textContent(), /cannot be simulated/);
+  assert.deepEqual(problems, []);
+});
