@@ -44,14 +44,6 @@ setUpPresent(() => {
   lastSwarm?.();
 });
 
-
-
-// ---- controls <-> settings ---------------------------------------------------------------------
-
-
-// ---- gateways: rows of east, north and height, none for the one default gateway --------------
-
-
 // ---- the workers: latest request wins; a long whole-set run is interrupted by the next change --
 let pool: SimulationPool;
 let nextId = 0;
@@ -89,7 +81,7 @@ function send(request: SimulateRequest, made: Settings): void {
   const repeats = made.seeds > 1 ? `, ${made.seeds} seeds each` : '';
   if (made.flight === 'all') status.textContent = `Simulating 30 flights (44 min of flight${repeats})… change any setting to interrupt.`;
   else if (made.seeds > 1) status.textContent = `Simulating ${made.seeds} seeds… change any setting to interrupt.`;
-  else if (store.settings.flight === 'csv' && store.csv) status.textContent = `Simulating ${store.csv.name} (${(store.csv.text.length / 1024).toFixed(0)} KB)… change any setting to interrupt.`;
+  else if (made.flight === 'csv' && store.csv) status.textContent = `Simulating ${store.csv.name} (${(store.csv.text.length / 1024).toFixed(0)} KB)… change any setting to interrupt.`;
   pool.run(request, onResponse);
 }
 
