@@ -498,3 +498,30 @@ fn every_sweep_takes_a_random_seed_and_reports_it() {
     ]);
     assert_eq!(again, r, "the reported seed repeats the sweep");
 }
+
+#[test]
+fn a_swarm_header_says_what_each_drone_flies() {
+    // It said "1 drones x 600 s" for drones flying an 81-s chosen flight.
+    let out = cli(&[
+        "swarm",
+        "--drones",
+        "1",
+        "--synthetic",
+        "1",
+        "--sf-plan",
+        "fixed",
+        "--channels",
+        "1",
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.starts_with("1 drone each flying synthetic 1, at 1000 m, 1 channel, fixed SFs"),
+        "{text}"
+    );
+    let chained = cli(&["swarm", "--drones", "2", "--duration", "60"]);
+    let text = String::from_utf8_lossy(&chained.stdout);
+    assert!(
+        text.starts_with("2 drones x 60 s, at 1000 m, 3 channels, spread SFs"),
+        "{text}"
+    );
+}
