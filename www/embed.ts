@@ -72,13 +72,13 @@ export function setUpEmbedDialog(): void {
     const url = new URL(location.href);
     url.search = `?${toQuery(store.settings, { embed: '1', panels: (chosen.length ? chosen : ['results']).join(',') })}`;
     return `<iframe id="loratrack" src="${url.toString().replace(/&/g, '&amp;')}" title="loratrack: LoRa tracking playground (${describe(store.settings)})" style="width: 100%; border: 0" height="600" loading="lazy"></iframe>
-  <script>
-    // The frame posts its content height; grow it to fit.
-    addEventListener('message', (e) => {
-      const frame = document.getElementById('loratrack');
-      if (e.source === frame.contentWindow && e.data && e.data.loratrackHeight) frame.style.height = e.data.loratrackHeight + 'px';
-    });
-  </script>`;
+<script>
+  // The frame posts its content height; grow it to fit.
+  addEventListener('message', (e) => {
+    const frame = document.getElementById('loratrack');
+    if (e.source === frame.contentWindow && e.data && e.data.loratrackHeight) frame.style.height = e.data.loratrackHeight + 'px';
+  });
+</script>`;
   }
 
   $('#embed-open').addEventListener('click', () => {

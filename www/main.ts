@@ -153,14 +153,13 @@ function onResponse(r: Response): void {
 function renderResults(r: SimReport): void {
   renderTable(r);
   updateEmbedCaption();
-  const width = (id: string) => Math.max(300, $(id).clientWidth || 600);
-  place('error', errorOverTimeChart(r, width('#chart-error')), store.reportSettings);
+  place('error', errorOverTimeChart(r, chartWidth('error')), store.reportSettings);
   const axisRows: BoxRow[] = r.results.flatMap((m) => [
     { group: 'x', model: m.model, box: m.boxplot.errorX },
     { group: 'y', model: m.model, box: m.boxplot.errorY },
     { group: 'z', model: m.model, box: m.boxplot.errorZ },
   ]);
-  place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: width('#chart-axes') }), store.reportSettings);
+  place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: chartWidth('axes') }), store.reportSettings);
   if (!$('[data-panel="trajectory"]').hidden) void render3d(r);
 }
 
@@ -168,7 +167,7 @@ function renderResults(r: SimReport): void {
 
 
 /** three.js is most of the page's JavaScript: load it only once there is a trajectory to draw. */
-/** Drawings still under way (the 3D view loads three.js on first use) and swarm runs. */
+/** Drawings still under way (the 3D view loads three.js on first use) and a linked baseline being simulated; `swarming`: a swarm run. */
 let drawing = 0;
 let swarming = false;
 
@@ -207,7 +206,7 @@ async function draw3d(r: SimReport): Promise<void> {
 
 function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): void {
   const rows = sweep.flatMap(({ sf, report: r }) => r.results.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived })));
-  place('sf', p75BySfChart(rows, { bw: made.bw, distance: made.distance, width: Math.max(300, $('#chart-sf').clientWidth || 600) }), made);
+  place('sf', p75BySfChart(rows, { bw: made.bw, distance: made.distance, width: chartWidth('sf') }), made);
 }
 
 /** The last sweep and swarms drawn, to draw again at another size (presentation mode). */
@@ -226,20 +225,25 @@ function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made
 
 function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): void {
   const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d })));
-  place('distance', boxplotChart(rows, { log: true, groupLabel: `gateway distance (SF${store.settings.sf}, ${store.settings.bw} kHz)`, width: Math.max(300, $('#chart-distance').clientWidth || 600) }), made);
+  place('distance', boxplotChart(rows, { log: true, groupLabel: `gateway distance (SF${made.sf}, ${made.bw} kHz)`, width: chartWidth('distance') }), made);
 }
 
 function renderLink(): void {
   const r = linkBudget({ bw: store.settings.bw, txPower: store.settings.txPower, pathLossExponent: store.settings.pathLossExponent, shadowing: store.settings.shadowing });
   // Each gateway's distance from the flight's start (the default one: the distance setting).
   const distances = store.settings.gateways.length ? store.settings.gateways.map((g) => Math.hypot(g.east, g.north)) : [store.settings.distance];
-  place('link', linkBudgetCharts(r, { width: Math.max(300, $('#chart-link').clientWidth || 600), distances, sf: store.settings.sf }));
+  place('link', linkBudgetCharts(r, { width: chartWidth('link'), distances, sf: store.settings.sf }));
 }
 
 function renderAirtime(): void {
   const opts = { overhead: overheadBytes(store.settings), cr: store.settings.cr, sf: store.settings.sf, bw: store.settings.bw };
   $('#airtime-table').replaceChildren(airtimeTable(opts));
-  place('airtime', airtimeVsPayloadChart({ ...opts, width: Math.max(300, $('#chart-airtime').clientWidth || 600) }));
+  place('airtime', airtimeVsPayloadChart({ ...opts, width: chartWidth('airtime') }));
+}
+
+/** A chart's drawing width, px: its box's, at least 300 (600 before the box is laid out). */
+function chartWidth(name: string): number {
+  return Math.max(300, $(`#chart-${name}`).clientWidth || 600);
 }
 
 function place(name: string, chart: Element, made: Settings = store.settings, extra = ''): void {
@@ -375,7 +379,7 @@ $('#run-swarm').addEventListener('click', () => {
       const rates = r.swarms.map((w) => `${w.config.drones} drones ${(100 * w.collisionRate).toFixed(1)} %`).join(', ');
       $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(r.millis / 1000).toFixed(1)} s. Packets collided: ${rates}.`;
       const swarms = r.swarms;
-      lastSwarm = () => place('swarm', swarmCharts(swarms, Math.max(300, $('#chart-swarm').clientWidth || 600)), made, `; swarms of ${sizes.join(', ')} drones, ${params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.duration} s each`);
+      lastSwarm = () => place('swarm', swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.duration} s each`);
       lastSwarm();
     }
   };

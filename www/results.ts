@@ -43,13 +43,13 @@ export function renderTable(r: SimReport): void {
   renderRateUse(r);
 }
 
-/** The station whose p75 is lowest, when its 95 % interval lies below every other station's
- * (docs/reference.md §12); undefined when no difference is clear. */
 /** The station with the lowest p75 among `list` (undefined for none). */
 function lowestP75(list: ModelResult[]): ModelResult | undefined {
   return list.reduce<ModelResult | undefined>((a, m) => (!a || (m.error3d.p75 ?? Infinity) < (a.error3d.p75 ?? Infinity) ? m : a), undefined);
 }
 
+/** The station whose p75 is lowest, when its 95 % interval lies below every other station's
+ * (docs/reference.md §12); undefined when no difference is clear. */
 function clearlyLowest(r: SimReport): ModelResult | undefined {
   const withData = r.results.filter((m) => m.error3d.count > 0);
   const lowest = lowestP75(withData);
@@ -147,7 +147,9 @@ function probabilities(m: ModelResult): string {
 /** The Things Network's fair-use limit, shown for information (the simulation uses the duty cycle). */
 function ttnNote(r: SimReport): string {
   const m = r.results[r.results.length - 1];
-  const a = timeOnAir({ sf: store.settings.sf, bw: store.settings.bw, payload: m.payloadBytes, overhead: overheadBytes(store.settings), cr: store.settings.cr });
+  // The settings that made these results, not the form's (which may have moved on).
+  const made = store.reportSettings;
+  const a = timeOnAir({ sf: made.sf, bw: made.bw, payload: m.payloadBytes, overhead: overheadBytes(made), cr: made.cr });
   const perDay = 86400 / a.minInterval;
   return `<p class="note" id="ttn-note">On The Things Network, fair use allows 30 s of airtime a day: ${a.ttnPacketsPerDay} packets of ${m.payloadBytes} B
     (${MODEL_LABELS[m.model]}) at this setting, one every ${(86400 / Math.max(1, a.ttnPacketsPerDay)).toFixed(0)} s — ${(perDay / Math.max(1, a.ttnPacketsPerDay)).toFixed(0)}× fewer than the duty cycle allows. Not applied here.</p>`;
