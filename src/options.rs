@@ -398,6 +398,32 @@ pub const CHANNELS: NumberOption = NumberOption::new(
 )
 .only(&[1.0, 3.0]);
 
+// --- channel access ----------------------------------------------------------------------------
+
+/// The longest random delay before each uplink, s (LoRaMac-node's periodic-uplink example:
+/// `APP_TX_DUTYCYCLE_RND` = 1 s). The default is a swarm's; `simulate` keeps the paper's exact
+/// timing (0) unless given.
+pub const JITTER: NumberOption = NumberOption::new(
+    "jitter",
+    "Jitter",
+    "s",
+    1.0,
+    0.0,
+    60.0,
+    "The longest random delay a drone adds before each uplink (swarm default 1 s as LoRaMac-node's example; simulate default 0, the paper's timing).",
+);
+/// The largest clock error of a drone, ppm (crystals are specified at ±10–20 ppm). The default
+/// is a swarm's; `simulate` keeps a perfect clock (0) unless given.
+pub const CLOCK_DRIFT: NumberOption = NumberOption::new(
+    "clockDrift",
+    "Clock drift",
+    "ppm",
+    20.0,
+    0.0,
+    1000.0,
+    "Each drone's clock runs up to this fast or slow, drawn per drone (swarm default 20 ppm, a common crystal; simulate default 0).",
+);
+
 // --- swarm and run -----------------------------------------------------------------------------
 
 /// Drones in a swarm.
@@ -478,6 +504,8 @@ pub const OPTIONS: &[&NumberOption] = &[
     &ADR_MARGIN,
     &ADR_HISTORY,
     &CHANNELS,
+    &JITTER,
+    &CLOCK_DRIFT,
     &DRONES,
     &DURATION,
     &SEED,

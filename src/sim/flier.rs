@@ -1,11 +1,13 @@
 //! One drone during one episode of the event loop: its flight, its filter's estimates, its
 //! sender under the duty-cycle rule, and its links to every gateway.
 
+use super::clock::{Clock, Timing};
 use super::drone::Estimates;
 use super::link::{Link, Reception};
 use super::packet::Transmission;
 use super::radio::Frame;
 use super::sender::Sender;
+use super::streams;
 use crate::codec::{decode, encode};
 use crate::lora::{Channel, DutyCycle, Outcome};
 use crate::rng::Rng;
@@ -27,16 +29,22 @@ pub struct Flier<'a> {
     channels: u8,
     /// The next sensor step that may carry a packet.
     k: usize,
+    /// With a clock that is not exact: the earliest time the next uplink may start, s (it then
+    /// carries the newest estimate, and starts between sensor steps).
+    from: f64,
+    clock: Clock,
     hint: usize,
     /// Its transmissions so far.
     pub tx: Vec<Transmission>,
 }
 
 impl<'a> Flier<'a> {
-    /// A drone flying `flight` with `estimates`, about to start. `link_rng` first draws
-    /// the first packet's offset (uniform within one `interval`, so every model starts at the
-    /// same fraction of its own interval) and then carries the first gateway's shadowing;
-    /// `gateway_rng(g)` gives the others'. `hop` draws each packet's channel among `channels`.
+    /// A drone flying `flight` with `estimates`, about to start, drawing from the random
+    /// streams of drone `stream` under `seed` ([`streams`]): the link stream first draws the
+    /// first packet's offset (uniform within one `interval`, so every model starts at the same
+    /// fraction of its own interval) and then carries the first gateway's shadowing; the
+    /// gateway streams give the others'; the channel stream draws each packet's channel among
+    /// `channels`; the clock stream the clock's drift and delays (`timing`).
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         drone: usize,
@@ -46,22 +54,33 @@ impl<'a> Flier<'a> {
         rule: DutyCycle,
         gateways: &[[f64; 3]],
         channel: &Channel,
-        mut link_rng: Rng,
-        gateway_rng: impl Fn(usize) -> Rng,
-        hop: Rng,
+        (seed, stream): (u64, u64),
         channels: u8,
         interval: f64,
+        timing: Timing,
     ) -> Self {
+        let mut link_rng = streams::link(seed, stream);
         let offset = link_rng.uniform() * interval;
         let mut first = Some(link_rng);
         let links = gateways
             .iter()
             .enumerate()
             .map(|(g, &at)| {
-                let rng = first.take().unwrap_or_else(|| gateway_rng(g));
+                let rng = first
+                    .take()
+                    .unwrap_or_else(|| streams::gateway(seed, g, stream));
                 Link::new(channel, at, rng)
             })
             .collect();
+        let clock = if timing.is_exact() {
+            Clock::exact()
+        } else {
+            Clock::new(
+                timing.clock_drift_ppm,
+                timing.jitter,
+                streams::clock(seed, stream),
+            )
+        };
         let mut f = Flier {
             drone,
             flight,
@@ -69,13 +88,15 @@ impl<'a> Flier<'a> {
             sender,
             rule,
             links,
-            hop,
+            hop: streams::channel(seed, stream),
             channels,
             k: 0,
+            from: flight.t[0] + offset,
+            clock,
             hint: 0,
             tx: Vec::new(),
         };
-        f.k = f.step_at_or_after(flight.t[0] + offset);
+        f.k = f.step_at_or_after(f.from);
         f
     }
 
@@ -85,14 +106,32 @@ impl<'a> Flier<'a> {
             .max(0.0) as usize
     }
 
+    /// The newest sensor step at or before `t` s.
+    fn step_at_or_before(&self, t: f64) -> usize {
+        ((t - self.estimates.start()) / self.estimates.period() + 1e-9)
+            .floor()
+            .max(0.0) as usize
+    }
+
     fn time_of(&self, k: usize) -> f64 {
         self.estimates.start() + k as f64 * self.estimates.period()
     }
 
-    /// The next sensor step at or after the current candidate and `not_before` s at which the
-    /// sender wants to send; `None` when the flight ends first. Every step considered is one
-    /// the duty-cycle rule allows.
+    /// The next uplink at or after `not_before` s that the sender wants: the sensor step whose
+    /// estimate it carries and its start time, s; `None` when the flight ends first. Every time
+    /// considered is one the duty-cycle rule allows. With an exact clock uplinks start on
+    /// sensor steps; otherwise the first candidate is the planned start itself, carrying the
+    /// newest estimate, and later ones the sensor steps after it.
     pub fn next_uplink(&mut self, not_before: f64) -> Option<(usize, f64)> {
+        if !self.clock.is_exact() {
+            let t = self.from.max(not_before);
+            let k = self.step_at_or_before(t);
+            let e = self.estimates.get(k)?;
+            if self.sender.wants_to_send(t, &[e[0], e[1], e[2]]) {
+                return Some((k, t));
+            }
+            self.k = self.k.max(k + 1);
+        }
         self.k = self.k.max(self.step_at_or_after(not_before));
         while self.k < self.estimates.len() {
             let t = self.time_of(self.k);
@@ -107,25 +146,25 @@ impl<'a> Flier<'a> {
         None
     }
 
-    /// Puts the estimate of step `k` on air with `frame`: spends the duty cycle, tells the
-    /// sender, draws the channel and each gateway's received power. `None` when the estimate
-    /// cannot be encoded (the filter keeps it finite, so this does not happen; the drone would
-    /// then have nothing to send at this step).
+    /// Puts the estimate of step `k` on air at `sent` s with `frame`: spends the duty cycle,
+    /// tells the sender, draws the channel and each gateway's received power. `None` when the
+    /// estimate cannot be encoded (the filter keeps it finite, so this does not happen; the
+    /// drone would then have nothing to send at this step).
     pub fn transmit(
         &mut self,
-        k: usize,
+        (k, sent): (usize, f64),
         frame: &Frame,
         channel: &Channel,
     ) -> Option<Vec<Reception>> {
         let model = self.estimates.model();
         let n = model.state_len();
         let origin = self.flight.pos[0];
-        let sent = self.time_of(k);
         let estimate = self.estimates.get(k)?;
         let decoded =
             encode(model, &estimate[..n], origin).and_then(|e| decode(model, &e.bytes, origin));
         let Ok(decoded) = decoded else {
             self.k = k + 1;
+            self.from = self.time_of(k + 1);
             return None;
         };
         let mut state = [0.0; 9];
@@ -180,12 +219,18 @@ impl<'a> Flier<'a> {
         self.flight.position_at(t, &mut self.hint)
     }
 
-    /// After the packet sent at step `k`: later packets take `time_on_air` s (ADR may have moved
-    /// the rate), and the next candidate is the first step the rule allows after it. The rule
-    /// only relaxes until the next packet, so every later step is allowed too.
-    pub fn after_packet(&mut self, k: usize, time_on_air: f64) {
+    /// After the packet of step `k` that left at `sent` s: later packets take `time_on_air` s
+    /// (ADR may have moved the rate), and the next candidate is the first time the rule allows
+    /// after it, as the drone's clock keeps it. The rule only relaxes until the next packet, so
+    /// every later time is allowed too.
+    pub fn after_packet(&mut self, (k, sent): (usize, f64), time_on_air: f64) {
         self.rule.set_time_on_air(time_on_air);
-        let sent = self.time_of(k);
-        self.k = self.step_at_or_after(self.rule.earliest(sent)).max(k + 1);
+        let earliest = self.rule.earliest(sent);
+        if self.clock.is_exact() {
+            self.k = self.step_at_or_after(earliest).max(k + 1);
+        } else {
+            self.from = self.clock.next_start(sent, earliest);
+            self.k = self.step_at_or_before(self.from).max(k);
+        }
     }
 }

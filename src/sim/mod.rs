@@ -9,6 +9,7 @@
 //! that a link change never re-runs a drone filter) and [`run_swarm`] (`swarm`: many drones).
 
 mod cache_budget;
+mod clock;
 mod drone;
 mod error;
 mod flier;
@@ -27,6 +28,7 @@ mod streams;
 pub mod swarm;
 
 pub use cache_budget::MAX_CACHE_BYTES;
+pub use clock::{Clock, Timing};
 pub use drone::{run_drone, DroneFilter, DroneTrack, Estimates};
 pub use error::SimError;
 pub use flier::Flier;
@@ -38,9 +40,9 @@ pub use report::{
     Boxplots, DataRateUse, Delivery, Energy, ModelResult, ModelSeries, RunConfig, Series, SimReport,
 };
 pub use scenario::{
-    parse_seed, random_seed, ChannelSettings, DroneSettings, FlightSettings, GatewaySite,
-    ModelChoice, NetworkSettings, RadioSettings, RunSettings, Scenario, SfPlan, StationSettings,
-    SwarmSettings, SyntheticChoice, TrajectorySource, Validated, MAX_SEED,
+    parse_seed, random_seed, AccessSettings, ChannelSettings, DroneSettings, FlightSettings,
+    GatewaySite, ModelChoice, NetworkSettings, RadioSettings, RunSettings, Scenario, SfPlan,
+    StationSettings, SwarmSettings, SyntheticChoice, TrajectorySource, Validated, MAX_SEED,
 };
 pub use sender::{
     new_sender, ErrorTriggered, Periodic, Sender, SenderKind, Sending, DEFAULT_BURST,

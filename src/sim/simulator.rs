@@ -14,7 +14,6 @@ use super::station::{
     new_tracker, track_station, Estimate, FlightChains, Prediction, StationModel, StationTrack,
     MAX_GRIDS,
 };
-use super::streams;
 use super::SimError;
 use crate::lora::Channel;
 use crate::math::pow;
@@ -384,11 +383,10 @@ impl Simulator {
                         rule,
                         &gateways,
                         &net.channel,
-                        streams::link(seed, i as u64),
-                        |g| streams::gateway(seed, g, i as u64),
-                        streams::channel(seed, i as u64),
+                        (seed, i as u64),
                         s.network.channels,
                         now.interval,
+                        s.access.single_timing(),
                     );
                     run_episode(net, core::slice::from_mut(&mut flier));
                     let tx = flier.tx;

@@ -11,6 +11,8 @@ pub const LINK_STREAM: u64 = 0x4C49_4E4B; // "LINK"
 pub const CHANNEL_STREAM: u64 = 0x4348_414E; // "CHAN"
 /// A swarm's layout: each drone's first flight and bearing.
 pub const LAYOUT_STREAM: u64 = 0x4C41_594F; // "LAYO"
+/// Each drone's clock: its drift, then the random delay before each uplink.
+pub const CLOCK_STREAM: u64 = 0x434C_4F43; // "CLOC"
 /// The shadowing of every gateway after the first.
 const GATEWAY_STREAM: u64 = 0x4741_5445; // "GATE"
 
@@ -27,4 +29,9 @@ pub fn gateway(seed: u64, g: usize, stream: u64) -> Rng {
 /// Drone `stream`'s channel-hopping stream.
 pub fn channel(seed: u64, stream: u64) -> Rng {
     Rng::derive(seed ^ CHANNEL_STREAM, stream)
+}
+
+/// Drone `stream`'s clock stream.
+pub fn clock(seed: u64, stream: u64) -> Rng {
+    Rng::derive(seed ^ CLOCK_STREAM, stream)
 }

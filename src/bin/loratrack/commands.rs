@@ -4,10 +4,10 @@ use clap::{Args, Subcommand};
 use loratrack::api::{self, ApiError};
 use loratrack::options as opt;
 use loratrack::{
-    ChannelSettings, DroneSettings, FlightSettings, LdroMode, ModelChoice, ModelKind, ModelResult,
-    NetworkSettings, Prediction, RadioSettings, RunSettings, Scenario, SenderKind, Sending, SfPlan,
-    SimReport, Simulator, StationSettings, SwarmReport, SwarmSettings, SyntheticChoice,
-    MAX_CSV_BYTES,
+    AccessSettings, ChannelSettings, DroneSettings, FlightSettings, LdroMode, ModelChoice,
+    ModelKind, ModelResult, NetworkSettings, Prediction, RadioSettings, RunSettings, Scenario,
+    SenderKind, Sending, SfPlan, SimReport, Simulator, StationSettings, SwarmReport, SwarmSettings,
+    SyntheticChoice, MAX_CSV_BYTES,
 };
 use serde::Serialize;
 
@@ -76,6 +76,8 @@ pub struct ScenarioArgs {
     #[command(flatten)]
     drone: DroneSettings,
     #[command(flatten)]
+    access: AccessSettings,
+    #[command(flatten)]
     run: RunSettings,
 }
 
@@ -89,6 +91,7 @@ impl ScenarioArgs {
             channel: self.channel,
             network: self.network,
             drone: self.drone,
+            access: self.access,
             swarm,
             run: self.run,
             unknown: Default::default(),

@@ -46,9 +46,10 @@ impl PartialOrd for Event {
     }
 }
 
-/// The packet a drone has on air: its sensor step, frame and the power each gateway receives.
+/// The packet a drone has on air: its sensor step and start time (s), frame and the power each
+/// gateway receives.
 struct OnAir {
-    k: usize,
+    k: (usize, f64),
     frame: Frame,
     receptions: Vec<Reception>,
 }
@@ -72,7 +73,7 @@ pub fn run_episode(net: &mut Network, fliers: &mut [Flier<'_>]) {
         .map(|_| Gateway::new(net.interference))
         .collect();
     let mut queue = BinaryHeap::new();
-    let mut next: Vec<Option<usize>> = vec![None; fliers.len()];
+    let mut next: Vec<Option<(usize, f64)>> = vec![None; fliers.len()];
     let mut on_air: Vec<Option<OnAir>> = (0..fliers.len()).map(|_| None).collect();
     for (d, f) in fliers.iter_mut().enumerate() {
         plan(f, d, f64::NEG_INFINITY, &mut next, &mut queue);
@@ -162,11 +163,11 @@ fn plan(
     f: &mut Flier<'_>,
     d: usize,
     not_before: f64,
-    next: &mut [Option<usize>],
+    next: &mut [Option<(usize, f64)>],
     queue: &mut BinaryHeap<Event>,
 ) {
     if let Some((k, time)) = f.next_uplink(not_before) {
-        next[d] = Some(k);
+        next[d] = Some((k, time));
         queue.push(Event {
             time,
             start: true,

@@ -18,16 +18,17 @@ pub use gateway::GatewayReport;
 pub use server::Network;
 
 use crate::lora::DutyCycle;
+use crate::sim::clock::Timing;
 use crate::sim::drone::Estimates;
 use crate::sim::flier::Flier;
 use crate::sim::sender::Sender;
-use crate::sim::streams;
 use crate::sim::Transmission;
 use crate::trajectory::Trajectory;
 
 /// One drone (drone 0 of `net`) alone with the network's gateways, placed as `simulate` places
 /// them (relative to the flight's first point), on one channel: its uplinks over `flight`.
-/// The random streams are `seed`'s for flight `stream`, as in `simulate`.
+/// The random streams are `seed`'s for flight `stream`, and the timing exact, as in `simulate`
+/// by default.
 pub fn fly_alone(
     net: &mut Network,
     flight: &Trajectory,
@@ -47,11 +48,10 @@ pub fn fly_alone(
         rule,
         &gateways,
         &net.channel,
-        streams::link(seed, stream),
-        |g| streams::gateway(seed, g, stream),
-        streams::channel(seed, stream),
+        (seed, stream),
         1,
         interval,
+        Timing::EXACT,
     );
     run_episode(net, core::slice::from_mut(&mut flier));
     flier.tx

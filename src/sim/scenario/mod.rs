@@ -7,8 +7,11 @@
 //! The keys are flat on the wire (`{"sf": 9, "adr": "lorawan", "gateways": [...]}`), as they
 //! always were; the sub-structs only group them in Rust. Reference: `docs/reference.md` §6.
 
+mod access;
 mod choices;
 mod gateways;
+
+pub use access::AccessSettings;
 
 pub use choices::{
     parse_seed, random_seed, ModelChoice, SyntheticChoice, TrajectorySource, MAX_SEED,
@@ -396,6 +399,9 @@ pub struct Scenario {
     /// Sensors and filter.
     #[serde(flatten)]
     pub drone: DroneSettings,
+    /// Clocks, delays and schedules.
+    #[serde(flatten)]
+    pub access: AccessSettings,
     /// Swarm size and layout.
     #[serde(flatten)]
     pub swarm: SwarmSettings,
@@ -496,6 +502,7 @@ impl Scenario {
         opt::STEP.check(self.station.step)?;
         opt::ETA.check(self.station.eta)?;
         self.sending.validate()?;
+        self.access.validate()?;
         opt::DRONES.check(self.swarm.drones as f64)?;
         opt::DURATION.check(self.swarm.duration)?;
         opt::SEED

@@ -22,7 +22,7 @@ use super::report::{ratio, Delivery, Energy};
 use super::scenario::{SfPlan, Validated};
 use super::simulator::load_flights;
 use super::station::{new_tracker, track_station, StationModel, StationSetup};
-use super::streams::{self, LAYOUT_STREAM};
+use super::streams::LAYOUT_STREAM;
 use super::{SimError, Transmission};
 use crate::lora::{LoraParams, Outcome};
 use crate::math::sin_cos;
@@ -220,6 +220,7 @@ pub fn run_swarm(
                     .filter(|t| t.outcome == Outcome::Collided)
                     .count(),
                 energy: Energy::of(mine.iter().copied(), time),
+                duty_cycle_used: mine.iter().map(|t| t.time_on_air).sum::<f64>() / time,
                 error3d: Summary::of(&mut e3),
             });
             tx_all.extend(mine);
@@ -272,11 +273,10 @@ fn fly(
                 .rule(s.radio.duty_cycle, now.time_on_air, flight.t[0])?,
             &net.gateways_at(centre),
             &net.channel,
-            streams::link(seed, stream),
-            |g| streams::gateway(seed, g, stream),
-            streams::channel(seed, stream),
+            (seed, stream),
             s.network.channels,
             now.interval,
+            s.access.swarm_timing(),
         ));
     }
     run_episode(net, &mut fliers);
@@ -295,13 +295,17 @@ fn report(
     let count = |o: Outcome| tx.iter().filter(|t| t.outcome == o).count();
     let packets_sent = tx.len();
     let received = count(Outcome::Received);
-    // Theory per SF group, weighted by the packets each group sent.
+    // Theory per SF group at the duty cycle the group achieved, weighted by the packets each
+    // group sent.
     let mut theory = 0.0;
     for sf in 7..=12u8 {
         let group: Vec<&DroneReport> = drones.iter().filter(|d| d.sf == sf).collect();
+        if group.is_empty() {
+            continue;
+        }
         let packets: usize = group.iter().map(|d| d.packets_sent).sum();
-        theory += packets as f64
-            * aloha_collision_rate(s.radio.duty_cycle, s.network.channels, group.len());
+        let used = group.iter().map(|d| d.duty_cycle_used).sum::<f64>() / group.len() as f64;
+        theory += packets as f64 * aloha_collision_rate(used, s.network.channels, group.len());
     }
     let mut p75s: Vec<f64> = drones
         .iter()

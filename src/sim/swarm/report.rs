@@ -44,6 +44,9 @@ pub struct DroneReport {
     pub packets_collided: usize,
     /// Its radio's charge.
     pub energy: Energy,
+    /// The fraction of its flight time it was on air: its achieved duty cycle (the limit, or
+    /// less where random delays lengthen the intervals).
+    pub duty_cycle_used: f64,
     /// Its station's 3D error, m (`count` 0: nothing arrived, nothing counted).
     pub error3d: Summary,
 }
@@ -57,8 +60,9 @@ pub struct SwarmReport {
     pub config: SwarmEcho,
     /// Packets lost to interference at every gateway that could hear them / packets sent.
     pub collision_rate: f64,
-    /// [`aloha_collision_rate`] per SF group, weighted by the packets each group sent: what the
-    /// formula predicts for periodic senders without capture or inter-SF effects (one gateway).
+    /// [`aloha_collision_rate`] per SF group at the group's mean achieved duty cycle, weighted
+    /// by the packets each group sent: what the formula predicts for senders at random phases
+    /// without capture or inter-SF effects (one gateway).
     pub collision_rate_theory: f64,
     /// Packets, copies and gateways (`packetsSent`, `packetsReceived` — distinct packets the
     /// network server passed on —, `deliveryRatio`, `duplicates`, `gateways`).
