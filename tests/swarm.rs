@@ -165,3 +165,86 @@ fn invalid_swarms_are_refused() {
         assert!(e.contains(expected), "{e:?} should contain {expected:?}");
     }
 }
+
+/// One SF7 channel, with the formula's own assumptions (no capture, SFs orthogonal, no
+/// shadowing) and the swarm's default clocks and random delays.
+fn one_channel(drones: usize) -> Scenario {
+    set(
+        &Scenario::default(),
+        json!({"drones": drones, "channels": 1, "duration": 300.0, "bw": 125, "model": "dr", "sfPlan": "fixed", "sf": 7, "capture": false, "interSf": false, "shadowing": 0.0}),
+    )
+}
+
+#[test]
+fn with_random_delays_collisions_follow_the_aloha_formula_within_three_points() {
+    for drones in [12, 36, 72] {
+        let r = swarm(&one_channel(drones)).unwrap();
+        assert!(
+            (r.collision_rate - r.collision_rate_theory).abs() <= 0.03,
+            "{drones} drones: simulated {:.4}, theory {:.4}",
+            r.collision_rate,
+            r.collision_rate_theory
+        );
+    }
+}
+
+#[test]
+fn without_random_delays_or_drift_the_phases_stay_where_they_started() {
+    // The paper's timing in a swarm: every uplink on the shared sensor grid, so two drones
+    // whose first packets collide collide again one interval later, and so on.
+    let exact = set(&one_channel(12), json!({"jitter": 0.0, "clockDrift": 0.0}));
+    let r = swarm(&exact).unwrap();
+    let mut by_drone: Vec<f64> = r
+        .drones
+        .iter()
+        .map(|d| d.packets_collided as f64 / d.packets_sent as f64)
+        .collect();
+    by_drone.sort_by(f64::total_cmp);
+    // Fixed phases: a drone either always or (almost) never collides.
+    assert!(
+        by_drone.iter().all(|&x| !(0.2..=0.8).contains(&x)),
+        "{by_drone:?}"
+    );
+}
+
+#[test]
+fn a_slotted_schedule_of_72_drones_with_spread_sfs_loses_nothing_to_its_own_drones() {
+    for channels in [1, 3] {
+        let base = set(
+            &Scenario::default(),
+            json!({"drones": 72, "channels": channels, "duration": 300.0, "bw": 125, "model": "dr"}),
+        );
+        let aloha = swarm(&base).unwrap();
+        let slotted = swarm(&set(&base, json!({"schedule": "slotted"}))).unwrap();
+        assert_eq!(slotted.packets_collided, 0, "{channels} channels");
+        assert_eq!(slotted.packets_no_demodulator, 0, "{channels} channels");
+        assert!(aloha.packets_collided > 0, "{channels} channels");
+        let frame = slotted.frame_length.unwrap();
+        assert!(slotted
+            .drones
+            .iter()
+            .all(|d| d.frame_length.unwrap() <= frame));
+        assert!(aloha.frame_length.is_none());
+        assert!(slotted.largest_swarm.slotted > slotted.largest_swarm.aloha10);
+    }
+}
+
+#[test]
+fn a_slotted_schedule_is_refused_where_it_cannot_hold() {
+    let base = set(
+        &Scenario::default(),
+        json!({"drones": 6, "duration": 60.0, "schedule": "slotted"}),
+    );
+    let with_adr = set(&base, json!({"adr": "lorawan", "bw": 125}));
+    assert!(swarm(&with_adr).unwrap_err().to_string().contains("adr"));
+    let simulate = set(
+        &Scenario::default(),
+        json!({"synthetic": 1, "schedule": "slotted"}),
+    );
+    assert!(
+        loratrack::api::simulate(&mut loratrack::Simulator::new(), &simulate)
+            .unwrap_err()
+            .to_string()
+            .contains("swarm setting")
+    );
+}

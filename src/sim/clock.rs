@@ -42,6 +42,8 @@ pub struct Clock {
     /// The longest random delay before each uplink, s.
     jitter: f64,
     rng: Rng,
+    /// A slot on GPS time: its offset from time 0 and the frame it repeats in, s.
+    slot: Option<(f64, f64)>,
 }
 
 impl Clock {
@@ -52,19 +54,52 @@ impl Clock {
             drift: 0.0,
             jitter: 0.0,
             rng: Rng::new(0),
+            slot: None,
         }
+    }
+
+    /// A drone that keeps a slot of a schedule: it sends only at `offset` + m·`frame` s, on GPS
+    /// time (which a drone's GPS receiver gives to within a microsecond, so neither drift nor
+    /// random delays apply).
+    pub fn slotted(offset: f64, frame: f64) -> Self {
+        Clock {
+            slot: Some((offset, frame)),
+            ..Clock::exact()
+        }
+    }
+
+    /// The first slot start at or after `t` s, for a slotted clock; `t` otherwise.
+    pub fn slot_at_or_after(&self, t: f64) -> f64 {
+        match self.slot {
+            Some((offset, frame)) => {
+                let m = ((t - offset) / frame - 1e-9).ceil().max(0.0);
+                offset + m * frame
+            }
+            None => t,
+        }
+    }
+
+    /// The slot after the one starting at `t` s, for a slotted clock.
+    pub fn slot_after(&self, t: f64) -> Option<f64> {
+        self.slot
+            .map(|(_, frame)| self.slot_at_or_after(t + frame / 2.0))
     }
 
     /// A clock whose drift is drawn uniformly from ±`max_drift_ppm` parts per million and which
     /// delays each uplink by a uniform draw from [0, `jitter`] s, both from `rng`.
     pub fn new(max_drift_ppm: f64, jitter: f64, mut rng: Rng) -> Self {
         let drift = (2.0 * rng.uniform() - 1.0) * max_drift_ppm * 1e-6;
-        Clock { drift, jitter, rng }
+        Clock {
+            drift,
+            jitter,
+            rng,
+            slot: None,
+        }
     }
 
     /// Whether this is [`Clock::exact`]: uplinks then start on sensor steps, as the paper's do.
     pub fn is_exact(&self) -> bool {
-        self.drift == 0.0 && self.jitter == 0.0
+        self.drift == 0.0 && self.jitter == 0.0 && self.slot.is_none()
     }
 
     /// The drift, as a fraction.
@@ -75,7 +110,13 @@ impl Clock {
     /// When the drone plans its next uplink after one that left at `sent` s, if the duty-cycle
     /// rule (in true time) allows the next at `earliest` s: the wait as the drone's own clock
     /// measures it (a fast clock ends it early, by `drift` of the wait), then the random delay.
+    /// A slotted clock waits for the first slot at or after `earliest`.
     pub fn next_start(&mut self, sent: f64, earliest: f64) -> f64 {
+        if self.slot.is_some() {
+            // The schedule's frame is at least the duty-cycle interval; a rounding error must
+            // not cost a whole frame.
+            return self.slot_at_or_after(earliest - 1e-6);
+        }
         let wait = (earliest - sent).max(0.0);
         sent + wait * (1.0 - self.drift) + self.delay()
     }
@@ -109,6 +150,17 @@ mod tests {
             let next = c.next_start(0.0, 1000.0);
             assert!((next - 1000.0 * (1.0 - c.drift())).abs() < 1e-9);
         }
+    }
+
+    #[test]
+    fn a_slotted_clock_sends_only_in_its_slot() {
+        let mut c = Clock::slotted(0.25, 6.5);
+        assert!(!c.is_exact());
+        assert_eq!(c.slot_at_or_after(0.0), 0.25);
+        assert_eq!(c.slot_at_or_after(0.25), 0.25);
+        assert!((c.slot_at_or_after(0.3) - 6.75).abs() < 1e-12);
+        assert!((c.next_start(0.25, 0.25 + 6.5) - 6.75).abs() < 1e-12);
+        assert!((c.slot_after(6.75).unwrap() - 13.25).abs() < 1e-12);
     }
 
     #[test]

@@ -6,6 +6,7 @@ use super::drone::Estimates;
 use super::link::{Link, Reception};
 use super::packet::Transmission;
 use super::radio::Frame;
+use super::schedule::Slot;
 use super::sender::Sender;
 use super::streams;
 use crate::codec::{decode, encode};
@@ -27,6 +28,8 @@ pub struct Flier<'a> {
     pub links: Vec<Link>,
     hop: Rng,
     channels: u8,
+    /// A schedule's channel for every packet, instead of a random one.
+    fixed_channel: Option<u8>,
     /// The next sensor step that may carry a packet.
     k: usize,
     /// With a clock that is not exact: the earliest time the next uplink may start, s (it then
@@ -90,6 +93,7 @@ impl<'a> Flier<'a> {
             links,
             hop: streams::channel(seed, stream),
             channels,
+            fixed_channel: None,
             k: 0,
             from: flight.t[0] + offset,
             clock,
@@ -104,6 +108,14 @@ impl<'a> Flier<'a> {
         ((t - self.estimates.start()) / self.estimates.period() - 1e-9)
             .ceil()
             .max(0.0) as usize
+    }
+
+    /// The drone keeps `slot` of a schedule: it sends only at the slot's times, on its channel.
+    pub fn with_slot(mut self, slot: &Slot) -> Self {
+        self.clock = Clock::slotted(slot.offset, slot.frame);
+        self.fixed_channel = Some(slot.channel);
+        self.from = self.flight.t[0];
+        self
     }
 
     /// The newest sensor step at or before `t` s.
@@ -124,13 +136,22 @@ impl<'a> Flier<'a> {
     /// newest estimate, and later ones the sensor steps after it.
     pub fn next_uplink(&mut self, not_before: f64) -> Option<(usize, f64)> {
         if !self.clock.is_exact() {
-            let t = self.from.max(not_before);
-            let k = self.step_at_or_before(t);
-            let e = self.estimates.get(k)?;
-            if self.sender.wants_to_send(t, &[e[0], e[1], e[2]]) {
-                return Some((k, t));
+            let mut t = self.clock.slot_at_or_after(self.from.max(not_before));
+            loop {
+                let k = self.step_at_or_before(t);
+                let e = self.estimates.get(k)?;
+                if self.sender.wants_to_send(t, &[e[0], e[1], e[2]]) {
+                    return Some((k, t));
+                }
+                match self.clock.slot_after(t) {
+                    // A scheduled drone that does not need its slot waits for its next one.
+                    Some(next) => t = next,
+                    None => {
+                        self.k = self.k.max(k + 1);
+                        break;
+                    }
+                }
             }
-            self.k = self.k.max(k + 1);
         }
         self.k = self.k.max(self.step_at_or_after(not_before));
         while self.k < self.estimates.len() {
@@ -180,8 +201,10 @@ impl<'a> Flier<'a> {
             .iter_mut()
             .map(|l| l.uplink(channel, pos, frame.power_reduction_db))
             .collect();
-        let c = f64::from(self.channels);
-        let ch = ((self.hop.uniform() * c) as u8).min(self.channels - 1);
+        let ch = self.fixed_channel.unwrap_or_else(|| {
+            let c = f64::from(self.channels);
+            ((self.hop.uniform() * c) as u8).min(self.channels - 1)
+        });
         self.tx.push(Transmission {
             sent,
             arrival: sent + frame.time_on_air,

@@ -10,6 +10,7 @@ use super::pooled::{axis_every, model_series, series_stride, Pooled};
 use super::radio::DroneRadio;
 use super::report::{Delivery, ModelSeries, RunConfig, Series, SimReport};
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
+use super::schedule::Schedule;
 use super::station::{
     new_tracker, track_station, Estimate, FlightChains, Prediction, StationModel, StationTrack,
     MAX_GRIDS,
@@ -298,6 +299,11 @@ impl Simulator {
             return Err(SimError::Source(
                 "drones, duration and sfPlan are swarm settings: simulate flies one drone over its flight"
                     .into(),
+            ));
+        }
+        if s.access.schedule != Schedule::Aloha {
+            return Err(SimError::Source(
+                "schedule is a swarm setting: simulate's one drone has the air to itself".into(),
             ));
         }
         let source = cfg.source.clone().ok_or_else(|| {

@@ -22,6 +22,8 @@ export type AdrMode = "off" | "lorawan" | "tracking";
 
 export type SfPlan = "spread" | "fixed";
 
+export type Schedule = "aloha" | "slotted";
+
 export type GatewaySite = { 
 /**
  * Metres east of the origin.
@@ -171,6 +173,20 @@ sensorRate: number,
  * Process noise q of Q = q·I (drone and station).
  */
 q: number, };
+
+export type AccessSettings = { 
+/**
+ * The longest random delay before each uplink, s.
+ */
+jitter?: number, 
+/**
+ * The largest clock error, ppm.
+ */
+clockDrift?: number, 
+/**
+ * How a swarm's drones share the air: `aloha` or `slotted`.
+ */
+schedule: Schedule, };
 
 export type SwarmSettings = { 
 /**
@@ -324,6 +340,18 @@ sensorRate: number,
  * Process noise q of Q = q·I (drone and station).
  */
 q: number, 
+/**
+ * The longest random delay before each uplink, s.
+ */
+jitter?: number, 
+/**
+ * The largest clock error, ppm.
+ */
+clockDrift?: number, 
+/**
+ * How a swarm's drones share the air: `aloha` or `slotted`.
+ */
+schedule: Schedule, 
 /**
  * Number of drones.
  */
@@ -867,6 +895,18 @@ sensorRate: number,
  */
 q: number, 
 /**
+ * The longest random delay before each uplink, s.
+ */
+jitter?: number, 
+/**
+ * The largest clock error, ppm.
+ */
+clockDrift?: number, 
+/**
+ * How a swarm's drones share the air: `aloha` or `slotted`.
+ */
+schedule: Schedule, 
+/**
  * Number of drones.
  */
 drones: number, 
@@ -960,9 +1000,32 @@ packetsCollided: number,
  */
 energy: Energy, 
 /**
+ * The fraction of its flight time it was on air: its achieved duty cycle (the limit, or
+ * less where random delays lengthen the intervals).
+ */
+dutyCycleUsed: number, 
+/**
+ * Its slot's frame under a slotted schedule, s: its sending interval (`null` for ALOHA).
+ */
+frameLength: number | null, 
+/**
  * Its station's 3D error, m (`count` 0: nothing arrived, nothing counted).
  */
 error3d: Summary, };
+
+export type LargestSwarm = { 
+/**
+ * ALOHA at ≤ 1 % collisions, drones.
+ */
+aloha1: number, 
+/**
+ * ALOHA at ≤ 10 % collisions, drones.
+ */
+aloha10: number, 
+/**
+ * Slotted, with no collisions, drones.
+ */
+slotted: number, };
 
 export type SwarmEcho = { 
 /**
@@ -1096,6 +1159,18 @@ sensorRate: number,
  */
 q: number, 
 /**
+ * The longest random delay before each uplink, s.
+ */
+jitter?: number, 
+/**
+ * The largest clock error, ppm.
+ */
+clockDrift?: number, 
+/**
+ * How a swarm's drones share the air: `aloha` or `slotted`.
+ */
+schedule: Schedule, 
+/**
  * Number of drones.
  */
 drones: number, 
@@ -1131,10 +1206,20 @@ config: SwarmEcho,
  */
 collisionRate: number, 
 /**
- * [`aloha_collision_rate`] per SF group, weighted by the packets each group sent: what the
- * formula predicts for periodic senders without capture or inter-SF effects (one gateway).
+ * [`aloha_collision_rate`] per SF group at the group's mean achieved duty cycle, weighted
+ * by the packets each group sent: what the formula predicts for senders at random phases
+ * without capture or inter-SF effects (one gateway).
  */
 collisionRateTheory: number, 
+/**
+ * The schedule's longest frame, s: the slowest drone's sending interval (`null` for
+ * ALOHA).
+ */
+frameLength: number | null, 
+/**
+ * How many drones one gateway serves under each schedule at these settings.
+ */
+largestSwarm: LargestSwarm, 
 /**
  * Packets no gateway received though one locked on (lost to interference).
  */
@@ -1718,6 +1803,30 @@ export const OPTIONS: NumberOption[] = [
       3.0
     ],
     "help": "Uplink channels: 1, or EU868's 868.1/868.3/868.5 MHz with a random one per packet (the 1 % duty cycle covers all three)."
+  },
+  {
+    "key": "jitter",
+    "label": "Jitter",
+    "unit": "s",
+    "default": 1.0,
+    "min": 0.0,
+    "max": 60.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "The longest random delay a drone adds before each uplink (swarm default 1 s as LoRaMac-node's example; simulate default 0, the paper's timing)."
+  },
+  {
+    "key": "clockDrift",
+    "label": "Clock drift",
+    "unit": "ppm",
+    "default": 20.0,
+    "min": 0.0,
+    "max": 1000.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "Each drone's clock runs up to this fast or slow, drawn per drone (swarm default 20 ppm, a common crystal; simulate default 0)."
   },
   {
     "key": "drones",

@@ -705,8 +705,10 @@ fn swarm_text(r: &SwarmReport) -> String {
     };
     format!(
         "{} drone{} {}, at {} m, {} channel{}, {} SFs, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
+         schedule            {}\n\
          packets sent        {}\n\
-         collision rate      {:.4}  (ALOHA theory for periodic senders: {:.4})\n\
+         collision rate      {:.4}  (pure-ALOHA formula at the duty cycle achieved: {:.4})\n\
+         largest swarm       {} drones at <= 1 % collisions, {} at <= 10 % (ALOHA formula); {} slotted, with none\n\
          delivery ratio      {:.4}  ({} distinct packets, {} duplicate{} removed)\n\
          below sensitivity   {}\n\
          no demodulator      {}\n\
@@ -728,9 +730,13 @@ fn swarm_text(r: &SwarmReport) -> String {
         if c.network.inter_sf { "on" } else { "off" },
         c.network.adr.name(),
         c.run.seed,
+        schedule_text(r),
         d.packets_sent,
         r.collision_rate,
         r.collision_rate_theory,
+        r.largest_swarm.aloha1,
+        r.largest_swarm.aloha10,
+        r.largest_swarm.slotted,
         d.delivery_ratio,
         d.packets_received,
         d.duplicates,
@@ -746,6 +752,21 @@ fn swarm_text(r: &SwarmReport) -> String {
         silent,
         gateway_lines(&d.gateways)
     )
+}
+
+/// The schedule line of `swarm`'s text: ALOHA with its clocks, or the slotted frame.
+fn schedule_text(r: &SwarmReport) -> String {
+    let a = &r.config.settings.access;
+    let t = a.swarm_timing();
+    match r.frame_length {
+        Some(frame) => format!("slotted on GPS time, longest frame {frame:.2} s"),
+        None => format!(
+            "{}, random delay up to {} s, clocks within {} ppm",
+            a.schedule.name(),
+            t.jitter,
+            t.clock_drift_ppm
+        ),
+    }
 }
 
 /// Drone counts of `sweep --swarm`.

@@ -3,12 +3,13 @@
 
 use crate::options as opt;
 use crate::sim::clock::Timing;
+use crate::sim::schedule::Schedule;
 use crate::sim::SimError;
 use serde::{Deserialize, Serialize};
 
-/// Clocks and delays (flat keys `jitter`, `clockDrift`). Unset values take the command's
-/// default: a swarm's drones drift and jitter as real ones do; `simulate` keeps the paper's
-/// exact timing.
+/// Clocks, delays and the swarm's schedule (flat keys `jitter`, `clockDrift`, `schedule`).
+/// Unset clock values take the command's default: a swarm's drones drift and jitter as real
+/// ones do; `simulate` keeps the paper's exact timing.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 #[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
@@ -24,6 +25,17 @@ pub struct AccessSettings {
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
     #[cfg_attr(not(target_arch = "wasm32"), arg(long, help = opt::CLOCK_DRIFT.cli_help(), allow_negative_numbers = true))]
     pub clock_drift: Option<f64>,
+    /// How a swarm's drones share the air: `aloha` or `slotted`.
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(
+            long,
+            value_enum,
+            default_value = "aloha",
+            help = "How a swarm's drones share the air: aloha (each sends when its duty cycle allows, after its random delay) or slotted (a slot each in a frame on GPS time; no two drones on one SF and channel overlap). swarm only; not with --adr."
+        )
+    )]
+    pub schedule: Schedule,
 }
 
 impl AccessSettings {
@@ -68,6 +80,7 @@ mod tests {
         let zero = AccessSettings {
             jitter: Some(0.0),
             clock_drift: Some(0.0),
+            ..Default::default()
         };
         assert!(zero.swarm_timing().is_exact());
     }

@@ -10,7 +10,7 @@
 
 mod report;
 
-pub use report::{aloha_collision_rate, DroneReport, SwarmEcho, SwarmReport};
+pub use report::{aloha_collision_rate, DroneReport, LargestSwarm, SwarmEcho, SwarmReport};
 
 use super::drone::{DroneFilter, Estimates};
 use super::flier::Flier;
@@ -20,11 +20,12 @@ use super::pooled::airtime;
 use super::radio::DroneRadio;
 use super::report::{ratio, Delivery, Energy};
 use super::scenario::{SfPlan, Validated};
+use super::schedule::{self, Airtime, Schedule, Slot};
 use super::simulator::load_flights;
 use super::station::{new_tracker, track_station, StationModel, StationSetup};
 use super::streams::LAYOUT_STREAM;
 use super::{SimError, Transmission};
-use crate::lora::{LoraParams, Outcome};
+use crate::lora::{AdrMode, LoraParams, Outcome};
 use crate::math::sin_cos;
 use crate::metrics::{percentile, Summary};
 use crate::options::MAX_SWARM_FILTER_STEPS;
@@ -159,6 +160,7 @@ pub fn run_swarm(
         cfg.check_heartbeat(r.current().interval)?;
         radios.push(r);
     }
+    let slots = slots(cfg, &radios)?;
     let setups: Vec<StationSetup> = radios
         .iter()
         .map(|r| cfg.station_setup(r.current().interval))
@@ -177,7 +179,7 @@ pub fn run_swarm(
     // Per episode, per drone: its transmissions.
     let mut sent: Vec<Vec<Vec<Transmission>>> = Vec::new();
     for seats in &plan.episodes {
-        sent.push(fly(cfg, &mut net, &plan, seats, model, &setups)?);
+        sent.push(fly(cfg, &mut net, &plan, seats, model, &setups, &slots)?);
         done += 1;
         progress(done, total);
     }
@@ -221,6 +223,7 @@ pub fn run_swarm(
                     .count(),
                 energy: Energy::of(mine.iter().copied(), time),
                 duty_cycle_used: mine.iter().map(|t| t.time_on_air).sum::<f64>() / time,
+                frame_length: slots.as_ref().map(|s| s[i].frame),
                 error3d: Summary::of(&mut e3),
             });
             tx_all.extend(mine);
@@ -228,7 +231,64 @@ pub fn run_swarm(
         done = plan.episodes.len() + drones.len();
         progress(done, total);
     }
-    Ok(report(cfg, model, &net, &tx_all, drones, errors))
+    let largest = largest_swarm(cfg, bytes)?;
+    let mut r = report(cfg, model, &net, &tx_all, drones, errors, largest);
+    r.frame_length = slots.map(|s| s.iter().map(|s| s.frame).fold(0.0, f64::max));
+    Ok(r)
+}
+
+/// [`LargestSwarm`] at `cfg`'s settings, for packets of `bytes`.
+fn largest_swarm(cfg: &Validated, bytes: usize) -> Result<LargestSwarm, SimError> {
+    let s = cfg.s();
+    let timing = s.access.swarm_timing();
+    let (mut toa, mut used) = ([0.0; 6], [0.0; 6]);
+    for sf in 7..=12i64 {
+        let radio = LoraParams::from_settings(sf, s.radio.bw, s.radio.cr)?;
+        let now = DroneRadio::new(&radio, bytes, s.radio.duty_cycle, AdrMode::Off)?.current();
+        let k = (sf - 7) as usize;
+        toa[k] = now.time_on_air;
+        // A random delay of up to J s lengthens the mean interval by J / 2.
+        used[k] = now.time_on_air / (now.interval + timing.jitter / 2.0);
+    }
+    let sf_of = |i: usize| sf_of(cfg, i) as u8;
+    let ch = s.network.channels;
+    Ok(LargestSwarm {
+        aloha1: schedule::largest_aloha(sf_of, &toa, &used, ch, 0.01),
+        aloha10: schedule::largest_aloha(sf_of, &toa, &used, ch, 0.10),
+        slotted: schedule::largest_slotted(
+            sf_of,
+            &toa,
+            ch,
+            s.radio.duty_cycle,
+            timing.clock_drift_ppm,
+        ),
+    })
+}
+
+/// Each drone's slot under a slotted schedule; `None` for ALOHA.
+fn slots(cfg: &Validated, radios: &[DroneRadio]) -> Result<Option<Vec<Slot>>, SimError> {
+    let s = cfg.s();
+    if s.access.schedule == Schedule::Aloha {
+        return Ok(None);
+    }
+    if cfg.adr.mode != AdrMode::Off {
+        return Err(SimError::Source(
+            "a slotted schedule sizes each slot for a drone's data rate: it cannot run with adr, which moves drones between rates".into(),
+        ));
+    }
+    let air: Vec<Airtime> = radios
+        .iter()
+        .map(|r| Airtime {
+            sf: r.current().sf.get(),
+            time_on_air: r.current().time_on_air,
+        })
+        .collect();
+    Ok(Some(schedule::assign(
+        &air,
+        s.network.channels,
+        s.radio.duty_cycle,
+        s.access.swarm_timing().clock_drift_ppm,
+    )))
 }
 
 /// One episode: every drone's filter, sender and links through the event loop.
@@ -239,6 +299,7 @@ fn fly(
     seats: &[Seat],
     model: StationModel,
     setups: &[StationSetup],
+    slots: &Option<Vec<Slot>>,
 ) -> Result<Vec<Vec<Transmission>>, SimError> {
     let s = cfg.s();
     let seed = s.run.seed;
@@ -264,7 +325,7 @@ fn fly(
             seat.stream,
         );
         let stream = seat.stream;
-        fliers.push(Flier::new(
+        let flier = Flier::new(
             i,
             flight,
             Estimates::live(filter),
@@ -277,7 +338,11 @@ fn fly(
             s.network.channels,
             now.interval,
             s.access.swarm_timing(),
-        ));
+        );
+        fliers.push(match slots {
+            Some(slots) => flier.with_slot(&slots[i]),
+            None => flier,
+        });
     }
     run_episode(net, &mut fliers);
     Ok(fliers.into_iter().map(|f| f.tx).collect())
@@ -290,6 +355,7 @@ fn report(
     tx: &[&Transmission],
     drones: Vec<DroneReport>,
     mut errors: Vec<f64>,
+    largest_swarm: LargestSwarm,
 ) -> SwarmReport {
     let s = cfg.s();
     let count = |o: Outcome| tx.iter().filter(|t| t.outcome == o).count();
@@ -320,6 +386,8 @@ fn report(
             station: model,
             bandwidth_khz: s.radio.bw,
         },
+        frame_length: None,
+        largest_swarm,
         collision_rate: ratio(count(Outcome::Collided), packets_sent),
         collision_rate_theory: if packets_sent == 0 {
             0.0

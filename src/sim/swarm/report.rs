@@ -47,6 +47,9 @@ pub struct DroneReport {
     /// The fraction of its flight time it was on air: its achieved duty cycle (the limit, or
     /// less where random delays lengthen the intervals).
     pub duty_cycle_used: f64,
+    /// Its slot's frame under a slotted schedule, s: its sending interval (`null` for ALOHA).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
+    pub frame_length: Option<f64>,
     /// Its station's 3D error, m (`count` 0: nothing arrived, nothing counted).
     pub error3d: Summary,
 }
@@ -64,6 +67,12 @@ pub struct SwarmReport {
     /// by the packets each group sent: what the formula predicts for senders at random phases
     /// without capture or inter-SF effects (one gateway).
     pub collision_rate_theory: f64,
+    /// The schedule's longest frame, s: the slowest drone's sending interval (`null` for
+    /// ALOHA).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
+    pub frame_length: Option<f64>,
+    /// How many drones one gateway serves under each schedule at these settings.
+    pub largest_swarm: LargestSwarm,
     /// Packets, copies and gateways (`packetsSent`, `packetsReceived` — distinct packets the
     /// network server passed on —, `deliveryRatio`, `duplicates`, `gateways`).
     #[serde(flatten)]
@@ -85,6 +94,23 @@ pub struct SwarmReport {
     pub energy: Energy,
     /// Per drone.
     pub drones: Vec<DroneReport>,
+}
+
+/// The largest swarm one gateway serves at a swarm's settings (its SF plan, channels, payload,
+/// duty cycle and random delays), each drone sending as often as its duty cycle allows:
+/// by the pure-ALOHA formula at ≤ 1 % and ≤ 10 % collisions, and with a slotted schedule with
+/// none (and no drone slowed by crowding). Computed, not simulated; the swarm's own collision
+/// rate shows how closely the simulation follows the formula (reference §13).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
+pub struct LargestSwarm {
+    /// ALOHA at ≤ 1 % collisions, drones.
+    pub aloha1: usize,
+    /// ALOHA at ≤ 10 % collisions, drones.
+    pub aloha10: usize,
+    /// Slotted, with no collisions, drones.
+    pub slotted: usize,
 }
 
 /// The echo of a swarm's settings: every key of [`Scenario`], flat, plus the station it ran.

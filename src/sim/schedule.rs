@@ -1,0 +1,337 @@
+//! Swarm schedules: pure ALOHA (each drone sends when its duty cycle and clock let it), or a
+//! slotted frame on shared GPS time in which no two drones on one channel are ever on air
+//! together, whatever their spreading factors (SFs are only nearly orthogonal: the rejection
+//! matrix lets a strong packet on one SF destroy a weak one on another). `docs/reference.md` §13.
+//!
+//! Each SF's drones are dealt round-robin over the channels. On one channel every drone gets a
+//! period that is a power-of-two multiple of one base period, so the periods nest and one
+//! hyperperiod (the longest period) repeats the whole pattern; the base is chosen among the
+//! drones' duty-cycle intervals to slow them least (each period is at least the drone's
+//! duty-cycle interval, at most twice it). Drones are then placed first-fit, shortest period
+//! first, at the earliest offset where all their slots (time on air + guard) fall in free time.
+//! When the channel is too full, every period grows by the same factor until all fit.
+
+use serde::{Deserialize, Serialize};
+
+/// How a swarm's drones share the air (`--schedule`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
+pub enum Schedule {
+    /// Each drone sends when its duty cycle allows, after its random delay (pure ALOHA).
+    #[default]
+    Aloha,
+    /// Each drone has a slot in a frame on GPS time; no two slots overlap on one SF and channel.
+    Slotted,
+}
+
+impl Schedule {
+    /// The CLI/JS name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Schedule::Aloha => "aloha",
+            Schedule::Slotted => "slotted",
+        }
+    }
+}
+
+/// The start-time uncertainty of one drone in a slot, s: a GPS receiver's pulse per second is
+/// within a microsecond of GPS time, but the microcontroller that starts the radio on it adds up
+/// to about a millisecond.
+pub const START_UNCERTAINTY_S: f64 = 1e-3;
+
+/// The guard between two slots, s: both neighbours' start uncertainty, plus what each clock
+/// can drift (`clock_drift_ppm`) in the second between two GPS pulses.
+pub fn guard_s(clock_drift_ppm: f64) -> f64 {
+    2.0 * (START_UNCERTAINTY_S + clock_drift_ppm * 1e-6)
+}
+
+/// One drone's place in a slotted schedule.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Slot {
+    /// Start of its first slot, s after time 0.
+    pub offset: f64,
+    /// The frame its slot repeats in, s: its sending interval.
+    pub frame: f64,
+    /// Its channel.
+    pub channel: u8,
+}
+
+/// What the schedule needs of one drone: its spreading factor and its packets' time on air, s.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Airtime {
+    /// Spreading factor.
+    pub sf: u8,
+    /// Time on air of each packet, s.
+    pub time_on_air: f64,
+}
+
+/// Slots for every drone (in the order given) over `channels` channels under `duty_cycle`,
+/// with guards for clocks that drift up to `clock_drift_ppm`.
+pub fn assign(
+    drones: &[Airtime],
+    channels: u8,
+    duty_cycle: f64,
+    clock_drift_ppm: f64,
+) -> Vec<Slot> {
+    let guard = guard_s(clock_drift_ppm);
+    let c = usize::from(channels.max(1));
+    let mut on: Vec<Vec<usize>> = vec![Vec::new(); c];
+    for sf in 7..=12u8 {
+        let group = (0..drones.len()).filter(|&i| drones[i].sf == sf);
+        for (j, i) in group.enumerate() {
+            on[j % c].push(i);
+        }
+    }
+    let mut slots = vec![
+        Slot {
+            offset: 0.0,
+            frame: 0.0,
+            channel: 0,
+        };
+        drones.len()
+    ];
+    for (ch, members) in on.iter().enumerate() {
+        let need: Vec<f64> = members
+            .iter()
+            .map(|&i| drones[i].time_on_air / duty_cycle)
+            .collect();
+        let len: Vec<f64> = members
+            .iter()
+            .map(|&i| drones[i].time_on_air + guard)
+            .collect();
+        let periods = nested_periods(&need);
+        let load: f64 = len.iter().zip(&periods).map(|(l, p)| l / p).sum();
+        let mut scale = load.max(1.0);
+        let offsets = loop {
+            let scaled: Vec<f64> = periods.iter().map(|p| p * scale).collect();
+            if let Some(o) = pack(&scaled, &len) {
+                break o;
+            }
+            scale *= 1.02;
+        };
+        for (j, &i) in members.iter().enumerate() {
+            slots[i] = Slot {
+                offset: offsets[j],
+                frame: periods[j] * scale,
+                channel: ch as u8,
+            };
+        }
+    }
+    slots
+}
+
+/// Periods at least `need` each, all power-of-two multiples of one base (so they nest), with
+/// the base among the needs that slows the drones least (smallest mean period / need).
+fn nested_periods(need: &[f64]) -> Vec<f64> {
+    let fit = |base: f64| -> Vec<f64> {
+        need.iter()
+            .map(|&n| {
+                let p = base * pow2((n / base).log2().ceil() as i32);
+                // Rounding in log2 must not leave a period a hair under its need.
+                if p < n {
+                    p * 2.0
+                } else {
+                    p
+                }
+            })
+            .collect()
+    };
+    let cost = |p: &[f64]| -> f64 { p.iter().zip(need).map(|(p, n)| p / n).sum() };
+    need.iter()
+        .map(|&b| fit(b))
+        .min_by(|a, b| cost(a).total_cmp(&cost(b)))
+        .unwrap_or_default()
+}
+
+fn pow2(e: i32) -> f64 {
+    2f64.powi(e)
+}
+
+/// First-fit offsets for slots of `len` repeating every `period` (nested periods), shortest
+/// period first; `None` when one does not fit.
+fn pack(period: &[f64], len: &[f64]) -> Option<Vec<f64>> {
+    let hyper = period.iter().copied().fold(0.0, f64::max);
+    let mut order: Vec<usize> = (0..period.len()).collect();
+    order.sort_by(|&a, &b| {
+        period[a]
+            .total_cmp(&period[b])
+            .then(len[b].total_cmp(&len[a]))
+    });
+    // Busy intervals within one hyperperiod, sorted by start.
+    let mut busy: Vec<(f64, f64)> = Vec::new();
+    let mut offsets = vec![0.0; period.len()];
+    for i in order {
+        let (p, l) = (period[i], len[i]);
+        let mut candidates: Vec<f64> = core::iter::once(0.0)
+            .chain(busy.iter().map(|&(_, end)| end % p))
+            .filter(|&o| o + l <= p + 1e-12)
+            .collect();
+        candidates.sort_by(f64::total_cmp);
+        candidates.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+        let repeats = (hyper / p).round() as usize;
+        let free = |o: f64| (0..repeats).all(|r| is_free(&busy, o + r as f64 * p, l));
+        let o = candidates.into_iter().find(|&o| free(o))?;
+        for r in 0..repeats {
+            let start = o + r as f64 * p;
+            let at = busy.partition_point(|&(s, _)| s < start);
+            busy.insert(at, (start, start + l));
+        }
+        offsets[i] = o;
+    }
+    Some(offsets)
+}
+
+/// Whether [start, start + len) overlaps none of `busy` (sorted, disjoint).
+fn is_free(busy: &[(f64, f64)], start: f64, len: f64) -> bool {
+    let end = start + len;
+    let at = busy.partition_point(|&(_, e)| e <= start + 1e-12);
+    busy.get(at).is_none_or(|&(s, _)| s >= end - 1e-12)
+}
+
+/// The most drones a capacity search tries.
+pub const MAX_SWARM_SEARCHED: usize = 100_000;
+
+/// One spreading factor's packets in a swarm: time on air, s, and the duty cycle its drones
+/// achieve (the limit, or less where random delays lengthen the intervals). Index 0 is SF7.
+pub type PerSf = [f64; 6];
+
+/// The largest swarm whose packets collide at most `target` (a fraction) by the pure-ALOHA
+/// formula ([`aloha_collision_rate`](crate::sim::aloha_collision_rate), per SF group, weighted
+/// by the packets each group sends), with drone `i` on SF `sf_of(i)` over `channels` channels.
+pub fn largest_aloha(
+    sf_of: impl Fn(usize) -> u8,
+    time_on_air: &PerSf,
+    used: &PerSf,
+    channels: u8,
+    target: f64,
+) -> usize {
+    let mut n = [0usize; 6];
+    for drones in 1..=MAX_SWARM_SEARCHED {
+        n[usize::from(sf_of(drones - 1) - 7)] += 1;
+        let (mut lost, mut sent) = (0.0, 0.0);
+        for k in 0..6 {
+            let rate = n[k] as f64 * used[k] / time_on_air[k];
+            sent += rate;
+            lost += rate * crate::sim::aloha_collision_rate(used[k], channels, n[k]);
+        }
+        if lost > target * sent {
+            return drones - 1;
+        }
+    }
+    MAX_SWARM_SEARCHED
+}
+
+/// The largest swarm a slotted schedule serves with no collisions and no drone slowed by
+/// crowding: every drone keeps its nested period (at most twice its duty-cycle interval).
+pub fn largest_slotted(
+    sf_of: impl Fn(usize) -> u8,
+    time_on_air: &PerSf,
+    channels: u8,
+    duty_cycle: f64,
+    clock_drift_ppm: f64,
+) -> usize {
+    let swarm = |n: usize| -> Vec<Airtime> {
+        (0..n)
+            .map(|i| {
+                let sf = sf_of(i);
+                Airtime {
+                    sf,
+                    time_on_air: time_on_air[usize::from(sf - 7)],
+                }
+            })
+            .collect()
+    };
+    let uncrowded = |n: usize| {
+        let drones = swarm(n);
+        assign(&drones, channels, duty_cycle, clock_drift_ppm)
+            .iter()
+            .zip(&drones)
+            .all(|(s, d)| s.frame <= 2.0 * d.time_on_air / duty_cycle * (1.0 + 1e-9))
+    };
+    // Each channel holds at most about 1 / duty cycle drones; search below that bound.
+    let (mut lo, mut hi) = (0, (f64::from(channels) / duty_cycle).ceil() as usize + 1);
+    while hi - lo > 1 {
+        let mid = (lo + hi) / 2;
+        if uncrowded(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn swarm(n: usize) -> Vec<Airtime> {
+        (0..n)
+            .map(|i| {
+                let sf = 7 + (i % 6) as u8;
+                Airtime {
+                    sf,
+                    time_on_air: 0.0617 * f64::from(1u32 << (sf - 7)),
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn every_period_is_at_least_the_duty_cycle_interval_and_at_most_twice_it() {
+        let drones = swarm(12);
+        for (d, slot) in drones.iter().zip(assign(&drones, 1, 0.01, 20.0)) {
+            let need = d.time_on_air / 0.01;
+            assert!(
+                slot.frame >= need - 1e-9 && slot.frame <= 2.0 * need,
+                "{slot:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_crowded_channel_slows_every_drone_alike() {
+        let crowded: Vec<Airtime> = (0..200)
+            .map(|_| Airtime {
+                sf: 7,
+                time_on_air: 0.0617,
+            })
+            .collect();
+        let s = assign(&crowded, 1, 0.01, 20.0);
+        let busy = 200.0 * (0.0617 + guard_s(20.0));
+        assert!(
+            s[0].frame >= busy - 1e-9 && s[0].frame <= busy * 1.03,
+            "{}",
+            s[0].frame
+        );
+    }
+
+    #[test]
+    fn capacities_grow_with_channels_and_aloha_serves_fewer_at_one_percent() {
+        let toa = [0.0617, 0.1132, 0.2058, 0.3707, 0.8233, 1.4828];
+        let used = [0.01; 6];
+        let spread = |i: usize| 7 + (i % 6) as u8;
+        let a1 = largest_aloha(spread, &toa, &used, 1, 0.01);
+        let a10 = largest_aloha(spread, &toa, &used, 1, 0.10);
+        let a10_3 = largest_aloha(spread, &toa, &used, 3, 0.10);
+        let slotted = largest_slotted(spread, &toa, 1, 0.01, 20.0);
+        assert!(a1 < a10 && a10 < a10_3, "{a1} {a10} {a10_3}");
+        assert!(slotted > a10, "{slotted} {a10}");
+        assert!(slotted <= 100, "{slotted}");
+    }
+
+    #[test]
+    fn spreads_each_sf_over_the_channels() {
+        let s = assign(&swarm(36), 3, 0.01, 20.0);
+        let on = |sf: u8, ch: u8| {
+            swarm(36)
+                .iter()
+                .zip(&s)
+                .filter(|(a, x)| a.sf == sf && x.channel == ch)
+                .count()
+        };
+        assert_eq!((on(7, 0), on(7, 1), on(7, 2)), (2, 2, 2));
+    }
+}
