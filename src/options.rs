@@ -386,17 +386,18 @@ pub const ADR_HISTORY: NumberOption = NumberOption::new(
     "LoRaWAN ADR: the uplinks whose best SNR decides.",
 )
 .whole();
-/// Uplink channels (EU868's three default channels).
+/// Uplink channels: 1, or the regional plan's (EU868 and IN865 3, US915 and AU915 8, AS923 2;
+/// the default).
 pub const CHANNELS: NumberOption = NumberOption::new(
     "channels",
     "Channels",
     "",
     3.0,
     1.0,
-    3.0,
-    "Uplink channels: 1, or EU868's 868.1/868.3/868.5 MHz with a random one per packet (the 1 % duty cycle covers all three).",
+    8.0,
+    "Uplink channels: 1, or the plan's default channels with a random one per packet (EU868 868.1/868.3/868.5 MHz, under one 1 % duty cycle; US915 and AU915 8 of a sub-band; AS923 2; IN865 3), the default.",
 )
-.only(&[1.0, 3.0]);
+.only(&[1.0, 2.0, 3.0, 8.0]);
 
 // --- channel access ----------------------------------------------------------------------------
 
@@ -422,6 +423,18 @@ pub const CLOCK_DRIFT: NumberOption = NumberOption::new(
     0.0,
     1000.0,
     "Each drone's clock runs up to this fast or slow, drawn per drone (swarm default 20 ppm, a common crystal; simulate default 0).",
+);
+
+/// The sending interval where the plan has no duty cycle (US915, AU915, IN865), s: once a
+/// second, the rate at which drone Remote ID broadcasts (ASTM F3411-22a: at least 1 Hz).
+pub const INTERVAL: NumberOption = NumberOption::new(
+    "interval",
+    "Interval",
+    "s",
+    1.0,
+    0.05,
+    3600.0,
+    "Where the plan has no duty cycle (US915, AU915, IN865): seconds from one uplink's start to the next (default 1 s, Remote ID's rate); at least the time on air.",
 );
 
 // --- swarm and run -----------------------------------------------------------------------------
@@ -504,6 +517,7 @@ pub const OPTIONS: &[&NumberOption] = &[
     &ADR_MARGIN,
     &ADR_HISTORY,
     &CHANNELS,
+    &INTERVAL,
     &JITTER,
     &CLOCK_DRIFT,
     &DRONES,

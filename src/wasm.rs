@@ -109,9 +109,10 @@ pub fn simulate(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> 
     })
 }
 
-/// `swarm({drones?, duration?, sfPlan?, …every simulate setting}, progress?)`
-/// → `{config, collisionRate, collisionRateTheory, packetsSent, packetsReceived, deliveryRatio,
-/// duplicates, gateways, …, drones}` (the CLI's `swarm --json`). `progress(done, total)` is called
+/// `swarm({drones?, duration?, sfPlan?, schedule?, jitter?, clockDrift?, …every simulate
+/// setting}, progress?)` → `{config, collisionRate, collisionRateTheory, frameLength,
+/// largestSwarm, packetsSent, packetsReceived, deliveryRatio, duplicates, gateways, …, drones}`
+/// (the CLI's `swarm --json`). `progress(done, total)` is called
 /// as episodes and drones complete.
 #[wasm_bindgen]
 pub fn swarm(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> {

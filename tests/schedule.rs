@@ -5,13 +5,14 @@
 use loratrack::sim::schedule::{assign, guard_s, Airtime};
 use proptest::prelude::*;
 
-fn swarm() -> impl Strategy<Value = Vec<Airtime>> {
+fn swarm() -> impl Strategy<Value = Vec<(u8, f64)>> {
     prop::collection::vec((7u8..=12, 0.02f64..0.2), 1..160).prop_map(|v| {
         v.into_iter()
-            .map(|(sf, base)| Airtime {
-                sf,
+            .map(|(sf, base)| {
                 // Longer packets at higher SFs, as LoRa's are, but not exactly doubling.
-                time_on_air: base * f64::from(1u32 << (sf - 7)) * 1.1f64.powi(i32::from(sf) - 7),
+                let time_on_air =
+                    base * f64::from(1u32 << (sf - 7)) * 1.1f64.powi(i32::from(sf) - 7);
+                (sf, time_on_air)
             })
             .collect()
     })
@@ -27,12 +28,16 @@ proptest! {
         duty_cycle in prop::sample::select(vec![0.001, 0.01, 0.1]),
         drift in 0.0f64..100.0,
     ) {
-        let slots = assign(&drones, channels, duty_cycle, drift);
+        let drones: Vec<Airtime> = drones
+            .into_iter()
+            .map(|(sf, time_on_air)| Airtime { sf, time_on_air, interval: time_on_air / duty_cycle })
+            .collect();
+        let slots = assign(&drones, channels, drift);
         let horizon = 2.0 * slots.iter().map(|s| s.frame).fold(0.0, f64::max);
         for ch in 0..channels {
             let mut on_air: Vec<(f64, f64)> = Vec::new();
             for (d, s) in drones.iter().zip(&slots) {
-                prop_assert!(s.frame >= d.time_on_air / duty_cycle * (1.0 - 1e-12));
+                prop_assert!(s.frame >= d.interval * (1.0 - 1e-12));
                 prop_assert!(s.offset >= 0.0 && s.offset + d.time_on_air <= s.frame + 1e-9);
                 if s.channel != ch {
                     continue;

@@ -45,7 +45,7 @@ export type SimulateParams = Partial<Omit<Scenario, 'seed'>> & {
   /** A name for the CSV flight, shown in reports. */
   trajectoryName?: string;
 };
-/** Input of swarm: the same settings, with `drones`, `duration` and `sfPlan`. */
+/** Input of swarm: the same settings, with `drones`, `duration`, `sfPlan` and `schedule`. */
 export type SwarmParams = SimulateParams;
 /** Output of predict. */
 export type StateReport = PredictReport;

@@ -354,6 +354,7 @@ $('#run-swarm').addEventListener('click', () => {
     duration: 120,
     channels: Number($<HTMLSelectElement>('#swarmChannels').value),
     sfPlan: $<HTMLSelectElement>('#swarmPlan').value as 'fixed' | 'spread',
+    schedule: $<HTMLSelectElement>('#swarmSchedule').value as 'aloha' | 'slotted',
   };
   const made = { ...store.settings };
   const bar = $<HTMLProgressElement>('#swarm-progress');
@@ -379,7 +380,7 @@ $('#run-swarm').addEventListener('click', () => {
       const rates = r.swarms.map((w) => `${w.config.drones} drones ${(100 * w.collisionRate).toFixed(1)} %`).join(', ');
       $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(r.millis / 1000).toFixed(1)} s. Packets collided: ${rates}.`;
       const swarms = r.swarms;
-      lastSwarm = () => place('swarm', swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.duration} s each`);
+      lastSwarm = () => place('swarm', swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.schedule}, ${params.duration} s each`);
       lastSwarm();
     }
   };

@@ -35,12 +35,47 @@ impl SubBand {
 }
 
 /// The Things Network's fair-use policy: at most 30 s of uplink airtime per device per day.
-/// Shown as information; loratrack does not enforce it.
+/// Enforced with `fairUse: "ttn"` ([`FairUse`]); otherwise shown as information.
 pub const TTN_FAIR_USE_SECONDS_PER_DAY: f64 = 30.0;
 
-/// The smallest duty cycle accepted, 0.01 %: ten times below the strictest EU868 sub-band
-/// (0.1 %), and large enough that every interval stays finite.
-pub const MIN_DUTY_CYCLE: f64 = 1e-4;
+/// A network's fair-use policy on top of the plan's rule (`--fair-use`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(not(target_arch = "wasm32"), derive(clap::ValueEnum))]
+#[serde(rename_all = "lowercase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
+pub enum FairUse {
+    /// None: only the plan's rule.
+    #[default]
+    Off,
+    /// The Things Network's: 30 s of airtime per day, spread evenly over the day (a duty cycle
+    /// of 30 / 86 400 ≈ 0.035 %). A drone that flies only part of the day could send faster
+    /// while it flies and still keep the daily total; the even spread is the conservative reading.
+    Ttn,
+}
+
+impl FairUse {
+    /// The CLI/JS name.
+    pub fn name(self) -> &'static str {
+        match self {
+            FairUse::Off => "off",
+            FairUse::Ttn => "ttn",
+        }
+    }
+
+    /// The largest duty cycle the policy leaves, as a fraction.
+    pub fn duty_cycle(self) -> f64 {
+        match self {
+            FairUse::Off => 1.0,
+            FairUse::Ttn => TTN_FAIR_USE_SECONDS_PER_DAY / 86_400.0,
+        }
+    }
+}
+
+/// The smallest duty-cycle fraction a rule enforces, 10⁻⁶: small enough for a packet of 20 ms
+/// sent once an hour (a plan without duty cycle at its longest `interval`, or TTN's fair use),
+/// large enough that every interval stays finite. The `dutyCycle` setting itself stops at 10⁻⁴
+/// (`options::DUTY_CYCLE`).
+pub const MIN_DUTY_CYCLE: f64 = 1e-6;
 
 /// Minimum interval between transmissions (s) that keeps a device within `duty_cycle`:
 /// the radio may be on air for at most that fraction of the time, so

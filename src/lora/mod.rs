@@ -14,6 +14,7 @@ mod energy;
 mod error;
 mod interference;
 mod reception;
+mod region;
 mod shadowing;
 mod snr;
 
@@ -33,7 +34,7 @@ pub use downlink::{
     downlink_time_on_air, Window, ACK_DOWNLINK_BYTES, ADR_DOWNLINK_BYTES, RECEIVE_DELAY2_S,
 };
 pub use duty_cycle::{
-    min_interval, DutyCycle, DutyCycleMode, SubBand, MAX_BURST, MIN_DUTY_CYCLE,
+    min_interval, DutyCycle, DutyCycleMode, FairUse, SubBand, MAX_BURST, MIN_DUTY_CYCLE,
     TTN_FAIR_USE_SECONDS_PER_DAY,
 };
 pub use energy::{
@@ -46,5 +47,6 @@ pub use interference::{
     sum_dbm, survives, InterferenceModel, CAPTURE_THRESHOLD_DB, INTER_SF_SIR_DB,
 };
 pub use reception::{audible, decide, resolve, Outcome, Receiver, Uplink, SX1301_DEMODULATORS};
+pub use region::{PlanRate, Region, RegionError};
 pub use shadowing::Shadowing;
 pub use snr::{demodulation_floor_db, noise_floor_dbm, snr_db, NOISE_FIGURE_DB};

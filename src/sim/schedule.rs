@@ -58,23 +58,21 @@ pub struct Slot {
     pub channel: u8,
 }
 
-/// What the schedule needs of one drone: its spreading factor and its packets' time on air, s.
+/// What the schedule needs of one drone: its spreading factor, its packets' time on air and
+/// the shortest interval its rule allows (time on air / duty cycle), s.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Airtime {
     /// Spreading factor.
     pub sf: u8,
     /// Time on air of each packet, s.
     pub time_on_air: f64,
+    /// The shortest interval between its packets' starts, s.
+    pub interval: f64,
 }
 
-/// Slots for every drone (in the order given) over `channels` channels under `duty_cycle`,
-/// with guards for clocks that drift up to `clock_drift_ppm`.
-pub fn assign(
-    drones: &[Airtime],
-    channels: u8,
-    duty_cycle: f64,
-    clock_drift_ppm: f64,
-) -> Vec<Slot> {
+/// Slots for every drone (in the order given) over `channels` channels, with guards for clocks
+/// that drift up to `clock_drift_ppm`.
+pub fn assign(drones: &[Airtime], channels: u8, clock_drift_ppm: f64) -> Vec<Slot> {
     let guard = guard_s(clock_drift_ppm);
     let c = usize::from(channels.max(1));
     let mut on: Vec<Vec<usize>> = vec![Vec::new(); c];
@@ -93,10 +91,7 @@ pub fn assign(
         drones.len()
     ];
     for (ch, members) in on.iter().enumerate() {
-        let need: Vec<f64> = members
-            .iter()
-            .map(|&i| drones[i].time_on_air / duty_cycle)
-            .collect();
+        let need: Vec<f64> = members.iter().map(|&i| drones[i].interval).collect();
         let len: Vec<f64> = members
             .iter()
             .map(|&i| drones[i].time_on_air + guard)
@@ -193,8 +188,7 @@ fn is_free(busy: &[(f64, f64)], start: f64, len: f64) -> bool {
 /// The most drones a capacity search tries.
 pub const MAX_SWARM_SEARCHED: usize = 100_000;
 
-/// One spreading factor's packets in a swarm: time on air, s, and the duty cycle its drones
-/// achieve (the limit, or less where random delays lengthen the intervals). Index 0 is SF7.
+/// One value per spreading factor, SF7 first: a time on air or interval (s), or a duty cycle.
 pub type PerSf = [f64; 6];
 
 /// The largest swarm whose packets collide at most `target` (a fraction) by the pure-ALOHA
@@ -224,34 +218,38 @@ pub fn largest_aloha(
 }
 
 /// The largest swarm a slotted schedule serves with no collisions and no drone slowed by
-/// crowding: every drone keeps its nested period (at most twice its duty-cycle interval).
+/// crowding: every drone keeps its nested period (at most twice its shortest `interval`).
 pub fn largest_slotted(
     sf_of: impl Fn(usize) -> u8,
     time_on_air: &PerSf,
+    interval: &PerSf,
     channels: u8,
-    duty_cycle: f64,
     clock_drift_ppm: f64,
 ) -> usize {
     let swarm = |n: usize| -> Vec<Airtime> {
         (0..n)
             .map(|i| {
-                let sf = sf_of(i);
+                let k = usize::from(sf_of(i) - 7);
                 Airtime {
-                    sf,
-                    time_on_air: time_on_air[usize::from(sf - 7)],
+                    sf: sf_of(i),
+                    time_on_air: time_on_air[k],
+                    interval: interval[k],
                 }
             })
             .collect()
     };
     let uncrowded = |n: usize| {
         let drones = swarm(n);
-        assign(&drones, channels, duty_cycle, clock_drift_ppm)
+        assign(&drones, channels, clock_drift_ppm)
             .iter()
             .zip(&drones)
-            .all(|(s, d)| s.frame <= 2.0 * d.time_on_air / duty_cycle * (1.0 + 1e-9))
+            .all(|(s, d)| s.frame <= 2.0 * d.interval * (1.0 + 1e-9))
     };
-    // Each channel holds at most about 1 / duty cycle drones; search below that bound.
-    let (mut lo, mut hi) = (0, (f64::from(channels) / duty_cycle).ceil() as usize + 1);
+    // A channel holds at most interval / time on air drones of one SF; search below that bound.
+    let most = (0..6)
+        .map(|k| interval[k] / time_on_air[k])
+        .fold(0.0, f64::max);
+    let (mut lo, mut hi) = (0, (f64::from(channels) * most).ceil() as usize + 1);
     while hi - lo > 1 {
         let mid = (lo + hi) / 2;
         if uncrowded(mid) {
@@ -271,9 +269,11 @@ mod tests {
         (0..n)
             .map(|i| {
                 let sf = 7 + (i % 6) as u8;
+                let time_on_air = 0.0617 * f64::from(1u32 << (sf - 7));
                 Airtime {
                     sf,
-                    time_on_air: 0.0617 * f64::from(1u32 << (sf - 7)),
+                    time_on_air,
+                    interval: time_on_air / 0.01,
                 }
             })
             .collect()
@@ -282,8 +282,8 @@ mod tests {
     #[test]
     fn every_period_is_at_least_the_duty_cycle_interval_and_at_most_twice_it() {
         let drones = swarm(12);
-        for (d, slot) in drones.iter().zip(assign(&drones, 1, 0.01, 20.0)) {
-            let need = d.time_on_air / 0.01;
+        for (d, slot) in drones.iter().zip(assign(&drones, 1, 20.0)) {
+            let need = d.interval;
             assert!(
                 slot.frame >= need - 1e-9 && slot.frame <= 2.0 * need,
                 "{slot:?}"
@@ -297,9 +297,10 @@ mod tests {
             .map(|_| Airtime {
                 sf: 7,
                 time_on_air: 0.0617,
+                interval: 6.17,
             })
             .collect();
-        let s = assign(&crowded, 1, 0.01, 20.0);
+        let s = assign(&crowded, 1, 20.0);
         let busy = 200.0 * (0.0617 + guard_s(20.0));
         assert!(
             s[0].frame >= busy - 1e-9 && s[0].frame <= busy * 1.03,
@@ -312,11 +313,12 @@ mod tests {
     fn capacities_grow_with_channels_and_aloha_serves_fewer_at_one_percent() {
         let toa = [0.0617, 0.1132, 0.2058, 0.3707, 0.8233, 1.4828];
         let used = [0.01; 6];
+        let interval = toa.map(|t| t / 0.01);
         let spread = |i: usize| 7 + (i % 6) as u8;
         let a1 = largest_aloha(spread, &toa, &used, 1, 0.01);
         let a10 = largest_aloha(spread, &toa, &used, 1, 0.10);
         let a10_3 = largest_aloha(spread, &toa, &used, 3, 0.10);
-        let slotted = largest_slotted(spread, &toa, 1, 0.01, 20.0);
+        let slotted = largest_slotted(spread, &toa, &interval, 1, 20.0);
         assert!(a1 < a10 && a10 < a10_3, "{a1} {a10} {a10_3}");
         assert!(slotted > a10, "{slotted} {a10}");
         assert!(slotted <= 100, "{slotted}");
@@ -324,7 +326,7 @@ mod tests {
 
     #[test]
     fn spreads_each_sf_over_the_channels() {
-        let s = assign(&swarm(36), 3, 0.01, 20.0);
+        let s = assign(&swarm(36), 3, 20.0);
         let on = |sf: u8, ch: u8| {
             swarm(36)
                 .iter()

@@ -332,8 +332,7 @@ impl Simulator {
         let mut series_models = Vec::new();
         let mut delivery = Delivery::default();
         for &model in &cfg.models {
-            let bytes = model.payload_bytes() + s.radio.overhead;
-            let start = DroneRadio::new(&cfg.radio, bytes, s.radio.duty_cycle, cfg.adr.mode)?;
+            let (start, duty_cycle) = cfg.drone_radio(&cfg.radio, model.payload_bytes())?;
             let (toa, interval) = (start.current().time_on_air, start.current().interval);
             cfg.check_heartbeat(interval)?;
             let setup = cfg.station_setup(interval);
@@ -375,9 +374,7 @@ impl Simulator {
                 let one = |i: usize, net: &mut Network| -> Result<FlightRun, SimError> {
                     let (flight, drone) = (&flight_set[i], &drone_set[i]);
                     let now = net.radios[0].current();
-                    let rule = s
-                        .sending
-                        .rule(s.radio.duty_cycle, now.time_on_air, flight.t[0])?;
+                    let rule = s.sending.rule(duty_cycle, now.time_on_air, flight.t[0])?;
                     let gateways = net.gateways_at([flight.pos[0][0], flight.pos[0][1]]);
                     // The same streams for every station: stations that send the same payload see
                     // the same packets, so their comparison is paired.
@@ -390,7 +387,7 @@ impl Simulator {
                         &gateways,
                         &net.channel,
                         (seed, i as u64),
-                        s.network.channels,
+                        cfg.channels,
                         now.interval,
                         s.access.single_timing(),
                     );

@@ -140,9 +140,9 @@ export type NetworkSettings = {
  */
 gateways: Array<GatewaySite>, 
 /**
- * Uplink channels: 1 or 3.
+ * Uplink channels: 1, or the plan's (the default, when unset).
  */
-channels: number, 
+channels?: number, 
 /**
  * Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
  */
@@ -175,6 +175,18 @@ sensorRate: number,
 q: number, };
 
 export type AccessSettings = { 
+/**
+ * The regional plan.
+ */
+region: Region, 
+/**
+ * Where the plan has no duty cycle: seconds between uplink starts.
+ */
+interval?: number, 
+/**
+ * A network's fair-use policy: `off` or `ttn`.
+ */
+fairUse: FairUse, 
 /**
  * The longest random delay before each uplink, s.
  */
@@ -309,9 +321,9 @@ gatewayHeight: number,
  */
 gateways: Array<GatewaySite>, 
 /**
- * Uplink channels: 1 or 3.
+ * Uplink channels: 1, or the plan's (the default, when unset).
  */
-channels: number, 
+channels?: number, 
 /**
  * Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
  */
@@ -340,6 +352,18 @@ sensorRate: number,
  * Process noise q of Q = q·I (drone and station).
  */
 q: number, 
+/**
+ * The regional plan.
+ */
+region: Region, 
+/**
+ * Where the plan has no duty cycle: seconds between uplink starts.
+ */
+interval?: number, 
+/**
+ * A network's fair-use policy: `off` or `ttn`.
+ */
+fairUse: FairUse, 
 /**
  * The longest random delay before each uplink, s.
  */
@@ -863,9 +887,9 @@ gatewayHeight: number,
  */
 gateways: Array<GatewaySite>, 
 /**
- * Uplink channels: 1 or 3.
+ * Uplink channels: 1, or the plan's (the default, when unset).
  */
-channels: number, 
+channels?: number, 
 /**
  * Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
  */
@@ -894,6 +918,18 @@ sensorRate: number,
  * Process noise q of Q = q·I (drone and station).
  */
 q: number, 
+/**
+ * The regional plan.
+ */
+region: Region, 
+/**
+ * Where the plan has no duty cycle: seconds between uplink starts.
+ */
+interval?: number, 
+/**
+ * A network's fair-use policy: `off` or `ttn`.
+ */
+fairUse: FairUse, 
 /**
  * The longest random delay before each uplink, s.
  */
@@ -1127,9 +1163,9 @@ gatewayHeight: number,
  */
 gateways: Array<GatewaySite>, 
 /**
- * Uplink channels: 1 or 3.
+ * Uplink channels: 1, or the plan's (the default, when unset).
  */
-channels: number, 
+channels?: number, 
 /**
  * Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
  */
@@ -1158,6 +1194,18 @@ sensorRate: number,
  * Process noise q of Q = q·I (drone and station).
  */
 q: number, 
+/**
+ * The regional plan.
+ */
+region: Region, 
+/**
+ * Where the plan has no duty cycle: seconds between uplink starts.
+ */
+interval?: number, 
+/**
+ * A network's fair-use policy: `off` or `ttn`.
+ */
+fairUse: FairUse, 
 /**
  * The longest random delay before each uplink, s.
  */
@@ -1795,14 +1843,28 @@ export const OPTIONS: NumberOption[] = [
     "unit": "",
     "default": 3.0,
     "min": 1.0,
-    "max": 3.0,
+    "max": 8.0,
     "aboveMin": false,
     "integer": false,
     "values": [
       1.0,
-      3.0
+      2.0,
+      3.0,
+      8.0
     ],
-    "help": "Uplink channels: 1, or EU868's 868.1/868.3/868.5 MHz with a random one per packet (the 1 % duty cycle covers all three)."
+    "help": "Uplink channels: 1, or the plan's default channels with a random one per packet (EU868 868.1/868.3/868.5 MHz, under one 1 % duty cycle; US915 and AU915 8 of a sub-band; AS923 2; IN865 3), the default."
+  },
+  {
+    "key": "interval",
+    "label": "Interval",
+    "unit": "s",
+    "default": 1.0,
+    "min": 0.05,
+    "max": 3600.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "Where the plan has no duty cycle (US915, AU915, IN865): seconds from one uplink's start to the next (default 1 s, Remote ID's rate); at least the time on air."
   },
   {
     "key": "jitter",

@@ -6,8 +6,8 @@ use loratrack::options as opt;
 use loratrack::{
     AccessSettings, ChannelSettings, DroneSettings, FlightSettings, LdroMode, ModelChoice,
     ModelKind, ModelResult, NetworkSettings, Prediction, RadioSettings, RunSettings, Scenario,
-    SenderKind, Sending, SfPlan, SimReport, Simulator, StationSettings, SwarmReport, SwarmSettings,
-    SyntheticChoice, MAX_CSV_BYTES,
+    Schedule, SenderKind, Sending, SfPlan, SimReport, Simulator, StationSettings, SwarmReport,
+    SwarmSettings, SyntheticChoice, MAX_CSV_BYTES,
 };
 use serde::Serialize;
 
@@ -130,7 +130,7 @@ pub struct SweepKind {
     /// The paper's grid: SF 7/8, 250 kHz, d = 1/2/3 km, whole synthetic set, no LoRaWAN overhead.
     #[arg(long)]
     paper: bool,
-    /// Swarms of 1..500 drones: collision rate (beside the ALOHA formula) and median per-drone p75 for 1 and 3 channels, SF7 for all and spread SFs, periodic and error-triggered sending (300 s per drone, 3D-CTRA, --prediction).
+    /// Swarms of 1..500 drones: collision rate (beside the ALOHA formula) and median per-drone p75 for both schedules (aloha, slotted), 1 and 3 channels, SF7 for all and spread SFs, periodic and error-triggered sending (300 s per drone, 3D-CTRA, --prediction, the swarm's default clocks and delays).
     #[arg(long)]
     swarm: bool,
     /// The airtime / error trade-off of error-triggered sending (thresholds 0.5..10 m, per-packet and budget rules) against periodic sending, on the whole synthetic set at --sf/--bw/--distance, no LoRaWAN overhead, for the first model of --model (3d-ctra when --model is all).
@@ -719,8 +719,8 @@ fn swarm_text(r: &SwarmReport) -> String {
         if c.swarm.drones == 1 { "" } else { "s" },
         flown,
         c.channel.distance,
-        c.network.channels,
-        if c.network.channels == 1 { "" } else { "s" },
+        c.channels(),
+        if c.channels() == 1 { "" } else { "s" },
         match c.swarm.sf_plan {
             loratrack::SfPlan::Spread => "spread",
             loratrack::SfPlan::Fixed => "fixed",
@@ -774,52 +774,58 @@ const SWARM_SIZES: [usize; 7] = [1, 12, 36, 72, 150, 300, 500];
 
 fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError> {
     let mut rows = Vec::new();
-    for channels in [1u8, 3] {
-        for plan in [SfPlan::Fixed, SfPlan::Spread] {
-            for sender in [SenderKind::Periodic, SenderKind::Error] {
-                for drones in SWARM_SIZES {
-                    let p = Scenario {
-                        swarm: SwarmSettings {
-                            drones,
-                            duration: 300.0,
-                            sf_plan: plan,
-                        },
-                        network: NetworkSettings {
-                            channels,
-                            ..NetworkSettings::default()
-                        },
-                        radio: RadioSettings {
-                            sf: 7,
-                            bw: 125.0,
-                            ..RadioSettings::default()
-                        },
-                        station: StationSettings {
-                            model: ModelChoice::one(ModelKind::Ctra3d),
-                            prediction,
-                            ..StationSettings::default()
-                        },
-                        sending: Sending {
-                            sender,
-                            // The heartbeat must cover the slowest drone's interval: SF12's
-                            // with spread SFs.
-                            max_interval: if plan == SfPlan::Spread {
-                                150.0
-                            } else {
-                                opt::MAX_INTERVAL.default
+    for schedule in [Schedule::Aloha, Schedule::Slotted] {
+        for channels in [1u8, 3] {
+            for plan in [SfPlan::Fixed, SfPlan::Spread] {
+                for sender in [SenderKind::Periodic, SenderKind::Error] {
+                    for drones in SWARM_SIZES {
+                        let p = Scenario {
+                            access: AccessSettings {
+                                schedule,
+                                ..AccessSettings::default()
                             },
-                            ..Sending::default()
-                        },
-                        channel: ChannelSettings {
-                            distance: a.distance,
-                            ..ChannelSettings::default()
-                        },
-                        run: RunSettings {
-                            seed: a.seed,
-                            ..RunSettings::default()
-                        },
-                        ..Scenario::default()
-                    };
-                    rows.push(api::swarm(&p)?);
+                            swarm: SwarmSettings {
+                                drones,
+                                duration: 300.0,
+                                sf_plan: plan,
+                            },
+                            network: NetworkSettings {
+                                channels: Some(channels),
+                                ..NetworkSettings::default()
+                            },
+                            radio: RadioSettings {
+                                sf: 7,
+                                bw: 125.0,
+                                ..RadioSettings::default()
+                            },
+                            station: StationSettings {
+                                model: ModelChoice::one(ModelKind::Ctra3d),
+                                prediction,
+                                ..StationSettings::default()
+                            },
+                            sending: Sending {
+                                sender,
+                                // The heartbeat must cover the slowest drone's interval: SF12's
+                                // with spread SFs.
+                                max_interval: if plan == SfPlan::Spread {
+                                    150.0
+                                } else {
+                                    opt::MAX_INTERVAL.default
+                                },
+                                ..Sending::default()
+                            },
+                            channel: ChannelSettings {
+                                distance: a.distance,
+                                ..ChannelSettings::default()
+                            },
+                            run: RunSettings {
+                                seed: a.seed,
+                                ..RunSettings::default()
+                            },
+                            ..Scenario::default()
+                        };
+                        rows.push(api::swarm(&p)?);
+                    }
                 }
             }
         }

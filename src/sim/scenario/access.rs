@@ -1,20 +1,50 @@
-//! How drones get on the air besides the duty cycle: their clocks and random delays (and,
-//! in a swarm, the schedule they keep). `docs/reference.md` §13.
+//! How drones get on the air: the regional plan and what limits their sending (a duty cycle,
+//! or an interval where the plan has none, and a network's fair use), their clocks and random
+//! delays, and in a swarm the schedule they keep. `docs/reference.md` §13, §14.
 
+use crate::lora::{FairUse, Region};
 use crate::options as opt;
 use crate::sim::clock::Timing;
 use crate::sim::schedule::Schedule;
 use crate::sim::SimError;
 use serde::{Deserialize, Serialize};
 
-/// Clocks, delays and the swarm's schedule (flat keys `jitter`, `clockDrift`, `schedule`).
-/// Unset clock values take the command's default: a swarm's drones drift and jitter as real
-/// ones do; `simulate` keeps the paper's exact timing.
+/// The plan, the sending limits, clocks, delays and the swarm's schedule (flat keys `region`,
+/// `interval`, `fairUse`, `jitter`, `clockDrift`, `schedule`). Unset clock values take the
+/// command's default: a swarm's drones drift and jitter as real ones do; `simulate` keeps the
+/// paper's exact timing.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 #[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct AccessSettings {
+    /// The regional plan.
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(
+            long,
+            value_enum,
+            default_value = "eu868",
+            help = "LoRaWAN regional plan (RP002-1.0.4): eu868 (duty cycle; raw LoRa at any SF/bandwidth allowed, as the paper), us915 (DR0-DR4, 400 ms dwell, no duty cycle: --interval), au915 (DR2-DR6, 400 ms dwell, --interval), as923 (DR2-DR6, 400 ms dwell, 1 % duty cycle), in865 (DR0-DR5, --interval)."
+        )
+    )]
+    pub region: Region,
+    /// Where the plan has no duty cycle: seconds between uplink starts.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, help = opt::INTERVAL.cli_help(), allow_negative_numbers = true))]
+    pub interval: Option<f64>,
+    /// A network's fair-use policy: `off` or `ttn`.
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(
+            long,
+            value_enum,
+            default_value = "off",
+            help = "Fair-use policy on top of the plan: off, or ttn (The Things Network: 30 s of airtime per day, spread evenly)."
+        )
+    )]
+    pub fair_use: FairUse,
     /// The longest random delay before each uplink, s.
     #[serde(skip_serializing_if = "Option::is_none")]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
@@ -41,6 +71,15 @@ pub struct AccessSettings {
 impl AccessSettings {
     /// Checks each setting given against its limits.
     pub fn validate(&self) -> Result<(), SimError> {
+        if let Some(i) = self.interval {
+            opt::INTERVAL.check(i)?;
+            if self.region.duty_cycle().is_some() {
+                return Err(SimError::Source(format!(
+                    "interval is for plans without a duty cycle; {} limits sending by its duty cycle (dutyCycle)",
+                    self.region.label()
+                )));
+            }
+        }
         if let Some(j) = self.jitter {
             opt::JITTER.check(j)?;
         }
@@ -57,6 +96,27 @@ impl AccessSettings {
             clock_drift_ppm: self.clock_drift.unwrap_or(opt::CLOCK_DRIFT.default),
             jitter: self.jitter.unwrap_or(opt::JITTER.default),
         }
+    }
+
+    /// The duty cycle a drone's rule enforces for packets of `time_on_air` s: the plan's
+    /// (`duty_cycle`, the setting) or, where the plan has none, time on air / `interval`; never
+    /// above what the fair-use policy leaves. An interval shorter than the time on air is refused.
+    pub fn duty_cycle_for(&self, duty_cycle: f64, time_on_air: f64) -> Result<f64, SimError> {
+        let plan = match self.region.duty_cycle() {
+            Some(_) => duty_cycle,
+            None => {
+                let interval = self.interval.unwrap_or(opt::INTERVAL.default);
+                if interval < time_on_air {
+                    return Err(SimError::Parameter(
+                        "interval",
+                        interval,
+                        "at least the time on air of every drone's frame",
+                    ));
+                }
+                time_on_air / interval
+            }
+        };
+        Ok(plan.min(self.fair_use.duty_cycle()))
     }
 
     /// The timing of `simulate`'s drone: as given, else the paper's exact timing.

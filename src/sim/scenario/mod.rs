@@ -18,12 +18,14 @@ pub use choices::{
 };
 pub use gateways::{validate_sites, GatewaySite};
 
+use super::radio::DroneRadio;
 use super::sender::{SenderKind, Sending};
 use super::station::{Bounds, Prediction, StationModel, StationSetup};
 use super::SimError;
 use crate::filter::PAPER_R_DIAGONAL;
 use crate::lora::{
-    AdrMode, AdrParams, Channel, ChannelParams, DataRate, InterferenceModel, LoraParams,
+    time_on_air, AdrMode, AdrParams, Channel, ChannelParams, DataRate, InterferenceModel,
+    LoraParams, Region,
 };
 use crate::models::ModelKind;
 use crate::options as opt;
@@ -204,9 +206,11 @@ pub struct NetworkSettings {
             help = "A gateway at E metres east and N north of the origin (simulate: the flight's first point; swarm: the centre), antenna H metres high [default: --gateway-height]; repeat for more (1..16, each coordinate within 100 km). Without it: one gateway, simulate at (--distance, 0), swarm at the centre.")
     )]
     pub gateways: Vec<GatewaySite>,
-    /// Uplink channels: 1 or 3.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::CHANNELS.default as u8, help = opt::CHANNELS.cli_help(), allow_negative_numbers = true))]
-    pub channels: u8,
+    /// Uplink channels: 1, or the plan's (the default, when unset).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, help = opt::CHANNELS.cli_help(), allow_negative_numbers = true))]
+    pub channels: Option<u8>,
     /// Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
     #[cfg_attr(
         not(target_arch = "wasm32"),
@@ -244,7 +248,7 @@ impl Default for NetworkSettings {
     fn default() -> Self {
         NetworkSettings {
             gateways: Vec::new(),
-            channels: opt::CHANNELS.default as u8,
+            channels: None,
             capture: true,
             inter_sf: true,
             adr: AdrMode::Off,
@@ -433,6 +437,8 @@ pub struct Validated {
     pub interference: InterferenceModel,
     /// Measurement variances (paper Table I).
     pub r_diagonal: [f64; 9],
+    /// Uplink channels: 1, or the plan's.
+    pub channels: u8,
 }
 
 impl Scenario {
@@ -467,6 +473,13 @@ impl Scenario {
         Ok(out)
     }
 
+    /// Uplink channels: as given, else the regional plan's.
+    pub fn channels(&self) -> u8 {
+        self.network
+            .channels
+            .unwrap_or(self.access.region.channels())
+    }
+
     /// Checks every setting before any work: the first problem, naming the field, the value
     /// and what is accepted.
     pub fn validate(&self) -> Result<Validated, SimError> {
@@ -494,7 +507,16 @@ impl Scenario {
         opt::GATEWAY_HEIGHT.check(c.gateway_height)?;
         let n = &self.network;
         validate_sites(&n.gateways)?;
-        opt::CHANNELS.check(f64::from(n.channels))?;
+        let channels = self.channels();
+        opt::CHANNELS.check(f64::from(channels))?;
+        if channels != 1 && channels != self.access.region.channels() {
+            return Err(SimError::Source(format!(
+                "channels must be 1 or {}'s {}, got {channels}",
+                self.access.region.label(),
+                self.access.region.channels()
+            )));
+        }
+        settings.network.channels = Some(channels);
         opt::ADR_MARGIN.check(n.adr_margin)?;
         opt::ADR_HISTORY.check(n.adr_history as f64)?;
         opt::SENSOR_RATE.check(self.drone.sensor_rate)?;
@@ -515,6 +537,12 @@ impl Scenario {
             margin_db: n.adr_margin,
             history: n.adr_history,
         };
+        if adr.mode != AdrMode::Off && self.access.region != Region::Eu868 {
+            return Err(SimError::Source(format!(
+                "adr runs EU868's data rates; {} has its own (choose a data rate with sf and bw)",
+                self.access.region.label()
+            )));
+        }
         if adr.mode != AdrMode::Off && DataRate::of(radio.sf, radio.bw).is_none() {
             return Err(SimError::AdrStart(radio.sf.get(), radio.bw.khz()));
         }
@@ -537,6 +565,7 @@ impl Scenario {
                 inter_sf: n.inter_sf,
             },
             r_diagonal: PAPER_R_DIAGONAL,
+            channels,
         })
     }
 }
@@ -619,6 +648,32 @@ impl Validated {
         } else {
             given.clone()
         }
+    }
+
+    /// The duty cycle the rule of a drone whose frames take `time_on_air` s enforces (the
+    /// plan's, or time on air / interval, within fair use).
+    pub fn duty_cycle_for(&self, time_on_air: f64) -> Result<f64, SimError> {
+        let s = &self.settings;
+        s.access.duty_cycle_for(s.radio.duty_cycle, time_on_air)
+    }
+
+    /// A drone's radio at `radio` sending `payload` application bytes (plus the overhead), once
+    /// the plan carries its frame (data rate, payload limit, dwell time; reference §14), with
+    /// the duty cycle its rule enforces.
+    pub fn drone_radio(
+        &self,
+        radio: &LoraParams,
+        payload: usize,
+    ) -> Result<(DroneRadio, f64), SimError> {
+        let s = &self.settings;
+        let toa = time_on_air(radio, payload + s.radio.overhead)?.time_on_air;
+        s.access
+            .region
+            .check(radio.sf.get(), radio.bw, payload, toa)
+            .map_err(|e| SimError::Source(e.to_string()))?;
+        let duty_cycle = self.duty_cycle_for(toa)?;
+        let r = DroneRadio::new(radio, payload + s.radio.overhead, duty_cycle, self.adr.mode)?;
+        Ok((r, duty_cycle))
     }
 
     /// Whether error-triggered sending's heartbeat fits a data rate whose duty-cycle interval

@@ -25,7 +25,7 @@ use super::simulator::load_flights;
 use super::station::{new_tracker, track_station, StationModel, StationSetup};
 use super::streams::LAYOUT_STREAM;
 use super::{SimError, Transmission};
-use crate::lora::{AdrMode, LoraParams, Outcome};
+use crate::lora::{time_on_air, AdrMode, LoraParams, Outcome};
 use crate::math::sin_cos;
 use crate::metrics::{percentile, Summary};
 use crate::options::MAX_SWARM_FILTER_STEPS;
@@ -154,16 +154,23 @@ pub fn run_swarm(
     }
     let bytes = model.payload_bytes() + s.radio.overhead;
     let mut radios = Vec::with_capacity(n);
+    let mut duty_cycles = Vec::with_capacity(n);
     for i in 0..n {
         let radio = LoraParams::from_settings(sf_of(cfg, i), s.radio.bw, s.radio.cr)?;
-        let r = DroneRadio::new(&radio, bytes, s.radio.duty_cycle, cfg.adr.mode)?;
+        let (r, duty_cycle) = cfg.drone_radio(&radio, model.payload_bytes())?;
         cfg.check_heartbeat(r.current().interval)?;
         radios.push(r);
+        duty_cycles.push(duty_cycle);
     }
     let slots = slots(cfg, &radios)?;
-    let setups: Vec<StationSetup> = radios
+    let kits: Vec<Kit> = radios
         .iter()
-        .map(|r| cfg.station_setup(r.current().interval))
+        .enumerate()
+        .map(|(i, r)| Kit {
+            setup: cfg.station_setup(r.current().interval),
+            duty_cycle: duty_cycles[i],
+            slot: slots.as_ref().map(|s| s[i]),
+        })
         .collect();
     let mut net = Network::new(
         cfg.sites(0.0),
@@ -179,7 +186,7 @@ pub fn run_swarm(
     // Per episode, per drone: its transmissions.
     let mut sent: Vec<Vec<Vec<Transmission>>> = Vec::new();
     for seats in &plan.episodes {
-        sent.push(fly(cfg, &mut net, &plan, seats, model, &setups, &slots)?);
+        sent.push(fly(cfg, &mut net, &plan, seats, model, &kits)?);
         done += 1;
         progress(done, total);
     }
@@ -191,7 +198,7 @@ pub fn run_swarm(
             let mut e3 = Vec::new();
             for (seats, out) in plan.episodes.iter().zip(&sent) {
                 let flight = &plan.flights[seats[i].flight];
-                let mut tracker = new_tracker(model, setups[i]);
+                let mut tracker = new_tracker(model, kits[i].setup);
                 e3.extend(
                     track_station(flight, tracker.as_mut(), &out[i], s.station.step, false).error3d,
                 );
@@ -200,7 +207,7 @@ pub fn run_swarm(
         });
         for (i, mut e3) in chunk.zip(tracked) {
             let mine: Vec<&Transmission> = sent.iter().flat_map(|ep| ep[i].iter()).collect();
-            let mut channel_use = vec![0; usize::from(s.network.channels)];
+            let mut channel_use = vec![0; usize::from(cfg.channels)];
             for t in &mine {
                 channel_use[usize::from(t.channel)] += 1;
             }
@@ -223,7 +230,7 @@ pub fn run_swarm(
                     .count(),
                 energy: Energy::of(mine.iter().copied(), time),
                 duty_cycle_used: mine.iter().map(|t| t.time_on_air).sum::<f64>() / time,
-                frame_length: slots.as_ref().map(|s| s[i].frame),
+                frame_length: kits[i].slot.map(|s| s.frame),
                 error3d: Summary::of(&mut e3),
             });
             tx_all.extend(mine);
@@ -241,28 +248,30 @@ pub fn run_swarm(
 fn largest_swarm(cfg: &Validated, bytes: usize) -> Result<LargestSwarm, SimError> {
     let s = cfg.s();
     let timing = s.access.swarm_timing();
-    let (mut toa, mut used) = ([0.0; 6], [0.0; 6]);
+    let (mut toa, mut interval, mut used) = ([0.0; 6], [0.0; 6], [0.0; 6]);
     for sf in 7..=12i64 {
         let radio = LoraParams::from_settings(sf, s.radio.bw, s.radio.cr)?;
-        let now = DroneRadio::new(&radio, bytes, s.radio.duty_cycle, AdrMode::Off)?.current();
         let k = (sf - 7) as usize;
-        toa[k] = now.time_on_air;
+        toa[k] = time_on_air(&radio, bytes)?.time_on_air;
+        interval[k] = toa[k] / cfg.duty_cycle_for(toa[k])?;
         // A random delay of up to J s lengthens the mean interval by J / 2.
-        used[k] = now.time_on_air / (now.interval + timing.jitter / 2.0);
+        used[k] = toa[k] / (interval[k] + timing.jitter / 2.0);
     }
     let sf_of = |i: usize| sf_of(cfg, i) as u8;
-    let ch = s.network.channels;
+    let ch = cfg.channels;
     Ok(LargestSwarm {
         aloha1: schedule::largest_aloha(sf_of, &toa, &used, ch, 0.01),
         aloha10: schedule::largest_aloha(sf_of, &toa, &used, ch, 0.10),
-        slotted: schedule::largest_slotted(
-            sf_of,
-            &toa,
-            ch,
-            s.radio.duty_cycle,
-            timing.clock_drift_ppm,
-        ),
+        slotted: schedule::largest_slotted(sf_of, &toa, &interval, ch, timing.clock_drift_ppm),
     })
+}
+
+/// What one drone of the swarm keeps through its episodes: its station's setup, the duty cycle
+/// its rule enforces and its slot, if the schedule gives it one.
+struct Kit {
+    setup: StationSetup,
+    duty_cycle: f64,
+    slot: Option<Slot>,
 }
 
 /// Each drone's slot under a slotted schedule; `None` for ALOHA.
@@ -281,12 +290,12 @@ fn slots(cfg: &Validated, radios: &[DroneRadio]) -> Result<Option<Vec<Slot>>, Si
         .map(|r| Airtime {
             sf: r.current().sf.get(),
             time_on_air: r.current().time_on_air,
+            interval: r.current().interval,
         })
         .collect();
     Ok(Some(schedule::assign(
         &air,
-        s.network.channels,
-        s.radio.duty_cycle,
+        cfg.channels,
         s.access.swarm_timing().clock_drift_ppm,
     )))
 }
@@ -298,8 +307,7 @@ fn fly(
     plan: &Plan,
     seats: &[Seat],
     model: StationModel,
-    setups: &[StationSetup],
-    slots: &Option<Vec<Slot>>,
+    kits: &[Kit],
 ) -> Result<Vec<Vec<Transmission>>, SimError> {
     let s = cfg.s();
     let seed = s.run.seed;
@@ -329,18 +337,18 @@ fn fly(
             i,
             flight,
             Estimates::live(filter),
-            s.sending.sender(model, setups[i]),
+            s.sending.sender(model, kits[i].setup),
             s.sending
-                .rule(s.radio.duty_cycle, now.time_on_air, flight.t[0])?,
+                .rule(kits[i].duty_cycle, now.time_on_air, flight.t[0])?,
             &net.gateways_at(centre),
             &net.channel,
             (seed, stream),
-            s.network.channels,
+            cfg.channels,
             now.interval,
             s.access.swarm_timing(),
         );
-        fliers.push(match slots {
-            Some(slots) => flier.with_slot(&slots[i]),
+        fliers.push(match &kits[i].slot {
+            Some(slot) => flier.with_slot(slot),
             None => flier,
         });
     }
@@ -371,7 +379,7 @@ fn report(
         }
         let packets: usize = group.iter().map(|d| d.packets_sent).sum();
         let used = group.iter().map(|d| d.duty_cycle_used).sum::<f64>() / group.len() as f64;
-        theory += packets as f64 * aloha_collision_rate(used, s.network.channels, group.len());
+        theory += packets as f64 * aloha_collision_rate(used, cfg.channels, group.len());
     }
     let mut p75s: Vec<f64> = drones
         .iter()
