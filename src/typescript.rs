@@ -4,7 +4,7 @@
 //! `UPDATE_TYPES=1 cargo test --lib typescript`.
 
 use crate::api::*;
-use crate::lora::{AdrMode, DutyCycleMode, LdroMode};
+use crate::lora::{AdrMode, DutyCycleMode, FairUse, LdroMode, Region};
 use crate::metrics::{Boxplot, Intervals, Summary};
 use crate::models::ModelKind;
 use crate::options::{NumberOption, OPTIONS};
@@ -34,6 +34,8 @@ fn decls() -> Vec<String> {
         SenderKind::decl(&c),
         DutyCycleMode::decl(&c),
         AdrMode::decl(&c),
+        Region::decl(&c),
+        FairUse::decl(&c),
         SfPlan::decl(&c),
         Schedule::decl(&c),
         GatewaySite::decl(&c),

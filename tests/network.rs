@@ -39,9 +39,12 @@ fn a_one_drone_swarm_is_simulate_with_the_same_flight() {
             .unwrap()
             .extend(extra.as_object().unwrap().clone());
         let one = simulate(&mut Simulator::new(), &scenario(settings.clone())).unwrap();
+        // With the paper's exact timing: a swarm's drones otherwise drift and jitter.
         settings.as_object_mut().unwrap().extend([
             ("drones".into(), json!(1)),
             ("sfPlan".into(), json!("fixed")),
+            ("jitter".into(), json!(0)),
+            ("clockDrift".into(), json!(0)),
         ]);
         let sw = swarm(&scenario(settings.clone())).unwrap();
         let r = &one.results[0];
@@ -188,7 +191,7 @@ fn settings_are_checked_before_any_work_with_the_key_and_the_limit() {
         ),
         (
             json!({"synthetic": 1, "channels": 2}),
-            "channels must be 1 or 3",
+            "channels must be 1 or EU868's 3",
         ),
     ] {
         let e = simulate(&mut Simulator::new(), &scenario(settings.clone()))

@@ -158,7 +158,7 @@ fn invalid_swarms_are_refused() {
         ),
         (
             set(&Scenario::default(), json!({"channels": 2})),
-            "channels must be 1 or 3",
+            "channels must be 1 or EU868's 3",
         ),
     ] {
         let e = swarm(&p).unwrap_err().to_string();

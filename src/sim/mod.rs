@@ -45,7 +45,7 @@ pub use scenario::{
     GatewaySite, ModelChoice, NetworkSettings, RadioSettings, RunSettings, Scenario, SfPlan,
     StationSettings, SwarmSettings, SyntheticChoice, TrajectorySource, Validated, MAX_SEED,
 };
-pub use schedule::{Schedule, Slot};
+pub use schedule::{aloha_collision_rate, Schedule, Slot};
 pub use sender::{
     new_sender, ErrorTriggered, Periodic, Sender, SenderKind, Sending, DEFAULT_BURST,
     DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M,
@@ -56,6 +56,4 @@ pub use station::{
     StationSetup, StationTrack, Tracker,
 };
 pub use streams::{channel as channel_stream, gateway as gateway_stream, link as link_stream};
-pub use swarm::{
-    aloha_collision_rate, run_swarm, DroneReport, LargestSwarm, SwarmEcho, SwarmReport,
-};
+pub use swarm::{run_swarm, DroneReport, LargestSwarm, SwarmEcho, SwarmReport};

@@ -35,6 +35,10 @@ pub struct RunConfig {
     pub sensitivity_dbm: f64,
     /// Range where the mean received power meets the sensitivity, m.
     pub range_m: f64,
+    /// The regional plan's data rate at `sf`/`bw` (with ADR: the start), `null` for raw LoRa
+    /// outside the plan's data rates (EU868 allows it: the paper's SF8 at 250 kHz).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
+    pub data_rate: Option<u8>,
 }
 
 /// The drone radio's charge (SX1276 currents; `docs/reference.md` §7).

@@ -11,6 +11,7 @@
 //! first, at the earliest offset where all their slots (time on air + guard) fall in free time.
 //! When the channel is too full, every period grows by the same factor until all fit.
 
+use crate::math::pow;
 use serde::{Deserialize, Serialize};
 
 /// How a swarm's drones share the air (`--schedule`).
@@ -34,6 +35,22 @@ impl Schedule {
             Schedule::Slotted => "slotted",
         }
     }
+}
+
+/// The collision probability of one packet among `n` periodic senders that share an SF and hop
+/// at random over `channels` channels, each on air a fraction `duty_cycle` of the time: another
+/// sender's packet overlaps it with probability 2·DC (a window of two packet lengths) and lands
+/// on its channel with probability 1/C, so P = 1 − (1 − 2·DC/C)^(n−1) (pure ALOHA; reference §10).
+///
+/// ```
+/// let p = loratrack::aloha_collision_rate(0.01, 3, 12);
+/// assert!((p - (1.0 - (1.0f64 - 0.02 / 3.0).powi(11))).abs() < 1e-15);
+/// ```
+pub fn aloha_collision_rate(duty_cycle: f64, channels: u8, n: usize) -> f64 {
+    if n <= 1 {
+        return 0.0;
+    }
+    1.0 - pow(1.0 - 2.0 * duty_cycle / f64::from(channels), (n - 1) as f64)
 }
 
 /// The start-time uncertainty of one drone in a slot, s: a GPS receiver's pulse per second is
@@ -182,7 +199,7 @@ fn pack(period: &[f64], len: &[f64]) -> Option<Vec<f64>> {
 fn is_free(busy: &[(f64, f64)], start: f64, len: f64) -> bool {
     let end = start + len;
     let at = busy.partition_point(|&(_, e)| e <= start + 1e-12);
-    busy.get(at).is_none_or(|&(s, _)| s >= end - 1e-12)
+    busy.get(at).map_or(true, |&(s, _)| s >= end - 1e-12)
 }
 
 /// The most drones a capacity search tries.
@@ -192,7 +209,7 @@ pub const MAX_SWARM_SEARCHED: usize = 100_000;
 pub type PerSf = [f64; 6];
 
 /// The largest swarm whose packets collide at most `target` (a fraction) by the pure-ALOHA
-/// formula ([`aloha_collision_rate`](crate::sim::aloha_collision_rate), per SF group, weighted
+/// formula ([`aloha_collision_rate`], per SF group, weighted
 /// by the packets each group sends), with drone `i` on SF `sf_of(i)` over `channels` channels.
 pub fn largest_aloha(
     sf_of: impl Fn(usize) -> u8,
@@ -205,10 +222,10 @@ pub fn largest_aloha(
     for drones in 1..=MAX_SWARM_SEARCHED {
         n[usize::from(sf_of(drones - 1) - 7)] += 1;
         let (mut lost, mut sent) = (0.0, 0.0);
-        for k in 0..6 {
+        for k in (0..6).filter(|&k| n[k] > 0) {
             let rate = n[k] as f64 * used[k] / time_on_air[k];
             sent += rate;
-            lost += rate * crate::sim::aloha_collision_rate(used[k], channels, n[k]);
+            lost += rate * aloha_collision_rate(used[k], channels, n[k]);
         }
         if lost > target * sent {
             return drones - 1;
@@ -247,6 +264,7 @@ pub fn largest_slotted(
     };
     // A channel holds at most interval / time on air drones of one SF; search below that bound.
     let most = (0..6)
+        .filter(|&k| time_on_air[k] > 0.0)
         .map(|k| interval[k] / time_on_air[k])
         .fold(0.0, f64::max);
     let (mut lo, mut hi) = (0, (f64::from(channels) * most).ceil() as usize + 1);

@@ -332,7 +332,7 @@ impl Simulator {
         let mut series_models = Vec::new();
         let mut delivery = Delivery::default();
         for &model in &cfg.models {
-            let (start, duty_cycle) = cfg.drone_radio(&cfg.radio, model.payload_bytes())?;
+            let (start, duty_cycle) = cfg.drone_radio(&cfg.radio, model)?;
             let (toa, interval) = (start.current().time_on_air, start.current().interval);
             cfg.check_heartbeat(interval)?;
             let setup = cfg.station_setup(interval);
@@ -501,6 +501,7 @@ impl Simulator {
                 eta_per_second: pow(s.station.eta, 1.0 / s.station.step),
                 sensitivity_dbm: Channel::sensitivity_dbm(sf, bw),
                 range_m: cfg.channel.range_m(sf, bw),
+                data_rate: s.access.region.rate(sf.get(), bw).map(|r| r.dr),
             },
             delivery,
             results,

@@ -20,6 +20,10 @@ export type DutyCycleMode = "per-packet" | "budget";
 
 export type AdrMode = "off" | "lorawan" | "tracking";
 
+export type Region = "eu868" | "us915" | "au915" | "as923" | "in865";
+
+export type FairUse = "off" | "ttn";
+
 export type SfPlan = "spread" | "fixed";
 
 export type Schedule = "aloha" | "slotted";
@@ -796,6 +800,11 @@ sensitivityDbm: number,
  * Range where the mean received power meets the sensitivity, m.
  */
 rangeM: number, 
+/**
+ * The regional plan's data rate at `sf`/`bw` (with ADR: the start), `null` for raw LoRa
+ * outside the plan's data rates (EU868 allows it: the paper's SF8 at 250 kHz).
+ */
+dataRate: number | null, 
 /**
  * Synthetic flight(s): `all` or 1..30.
  */

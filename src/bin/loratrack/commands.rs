@@ -477,18 +477,43 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
     }
     let c = &r.config;
     Ok(format!(
-        "{} ({} flight{}, {:.0} s), SF{} / {} kHz, overhead {} B, seed {}\n{}\n{}",
+        "{} ({} flight{}, {:.0} s), SF{} / {} kHz ({}), overhead {} B, seed {}\n{}\n{}",
         c.trajectory,
         c.flights,
         if c.flights == 1 { "" } else { "s" },
         c.flight_time,
         c.settings.radio.sf,
         c.bandwidth_khz,
+        plan_text(c),
         c.settings.radio.overhead,
         c.settings.run.seed,
         results_table(&r.results),
         network_lines(&r)
     ))
+}
+
+/// The plan in words: `US915 DR1, every 1 s (no duty cycle)`, `EU868 DR5, 1 % duty cycle`,
+/// `EU868, raw LoRa outside its data rates, 1 % duty cycle`.
+fn plan_text(c: &loratrack::RunConfig) -> String {
+    let a = &c.settings.access;
+    let region = a.region.label();
+    let rate = c
+        .data_rate
+        .map_or(format!("{region}, raw LoRa outside its data rates"), |dr| {
+            format!("{region} DR{dr}")
+        });
+    let limit = match a.region.duty_cycle() {
+        Some(_) => format!("{} % duty cycle", 100.0 * c.settings.radio.duty_cycle),
+        None => format!(
+            "every {} s (no duty cycle)",
+            a.interval.unwrap_or(opt::INTERVAL.default)
+        ),
+    };
+    let fair = match a.fair_use {
+        loratrack::FairUse::Off => String::new(),
+        f => format!(", {} fair use", f.name()),
+    };
+    format!("{rate}, {limit}{fair}")
 }
 
 /// A number with `decimals`, or a dash where there is none (an empty sample's statistic).

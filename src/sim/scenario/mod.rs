@@ -25,7 +25,7 @@ use super::SimError;
 use crate::filter::PAPER_R_DIAGONAL;
 use crate::lora::{
     time_on_air, AdrMode, AdrParams, Channel, ChannelParams, DataRate, InterferenceModel,
-    LoraParams, Region,
+    LoraParams, Region, RegionError,
 };
 use crate::models::ModelKind;
 use crate::options as opt;
@@ -288,7 +288,8 @@ impl Default for DroneSettings {
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum SfPlan {
     /// SF7..SF12 in turn (drone i gets SF 7 + i mod 6), the paper's suggestion for up to 72
-    /// drones.
+    /// drones; in a plan without raw LoRa, the SFs it has uplink data rates for at the
+    /// bandwidth (US915 at 125 kHz: SF7..SF10).
     #[default]
     Spread,
     /// Every drone at `sf`.
@@ -314,7 +315,7 @@ pub struct SwarmSettings {
             long,
             value_enum,
             default_value = "spread",
-            help = "Spreading factors: spread (SF7..SF12 in turn, a sixth of the swarm each) or fixed (everyone at --sf)."
+            help = "Spreading factors: spread (SF7..SF12 in turn, a sixth of the swarm each; outside EU868, the plan's SFs at --bw) or fixed (everyone at --sf)."
         )
     )]
     pub sf_plan: SfPlan,
@@ -657,20 +658,30 @@ impl Validated {
         s.access.duty_cycle_for(s.radio.duty_cycle, time_on_air)
     }
 
-    /// A drone's radio at `radio` sending `payload` application bytes (plus the overhead), once
-    /// the plan carries its frame (data rate, payload limit, dwell time; reference §14), with
-    /// the duty cycle its rule enforces.
+    /// The radio of a drone at `radio` sending `model`'s payload (plus the overhead), once the
+    /// plan carries its frame (data rate, payload limit, dwell time; reference §14), with the
+    /// duty cycle its rule enforces.
     pub fn drone_radio(
         &self,
         radio: &LoraParams,
-        payload: usize,
+        model: StationModel,
     ) -> Result<(DroneRadio, f64), SimError> {
         let s = &self.settings;
+        let payload = model.payload_bytes();
         let toa = time_on_air(radio, payload + s.radio.overhead)?.time_on_air;
         s.access
             .region
             .check(radio.sf.get(), radio.bw, payload, toa)
-            .map_err(|e| SimError::Source(e.to_string()))?;
+            .map_err(|e| {
+                SimError::Source(match e {
+                    RegionError::NoDataRate { .. } | RegionError::Barred { .. } => e.to_string(),
+                    _ => format!(
+                        "{} sends {payload} bytes (+{} overhead): {e}; choose a faster data rate or a station with a smaller payload (dr 9 bytes, ctra-plus 11)",
+                        model.label(),
+                        s.radio.overhead,
+                    ),
+                })
+            })?;
         let duty_cycle = self.duty_cycle_for(toa)?;
         let r = DroneRadio::new(radio, payload + s.radio.overhead, duty_cycle, self.adr.mode)?;
         Ok((r, duty_cycle))

@@ -10,7 +10,7 @@
 
 mod report;
 
-pub use report::{aloha_collision_rate, DroneReport, LargestSwarm, SwarmEcho, SwarmReport};
+pub use report::{DroneReport, LargestSwarm, SwarmEcho, SwarmReport};
 
 use super::drone::{DroneFilter, Estimates};
 use super::flier::Flier;
@@ -20,7 +20,7 @@ use super::pooled::airtime;
 use super::radio::DroneRadio;
 use super::report::{ratio, Delivery, Energy};
 use super::scenario::{SfPlan, Validated};
-use super::schedule::{self, Airtime, Schedule, Slot};
+use super::schedule::{self, aloha_collision_rate, Airtime, Schedule, Slot};
 use super::simulator::load_flights;
 use super::station::{new_tracker, track_station, StationModel, StationSetup};
 use super::streams::LAYOUT_STREAM;
@@ -112,10 +112,29 @@ fn plan(cfg: &Validated) -> Result<Plan, SimError> {
     Ok(Plan { flights, episodes })
 }
 
+/// The spreading factors a spread swarm deals out in turn: SF7..SF12, or those the plan has
+/// uplink data rates for at the swarm's bandwidth (US915 at 125 kHz: SF7..SF10).
+fn spread_sfs(cfg: &Validated) -> Vec<i64> {
+    let region = cfg.s().access.region;
+    (7..=12)
+        .filter(|&sf| {
+            region.allows_raw_lora()
+                || region
+                    .rate(sf as u8, cfg.radio.bw)
+                    .is_some_and(|r| r.max_payload.is_some())
+        })
+        .collect()
+}
+
 /// The spreading factor of drone `i`.
 fn sf_of(cfg: &Validated, i: usize) -> i64 {
     match cfg.s().swarm.sf_plan {
-        SfPlan::Spread => 7 + (i % 6) as i64,
+        SfPlan::Spread => {
+            let sfs = spread_sfs(cfg);
+            sfs.get(i % sfs.len().max(1))
+                .copied()
+                .unwrap_or(cfg.s().radio.sf)
+        }
         SfPlan::Fixed => cfg.s().radio.sf,
     }
 }
@@ -157,7 +176,7 @@ pub fn run_swarm(
     let mut duty_cycles = Vec::with_capacity(n);
     for i in 0..n {
         let radio = LoraParams::from_settings(sf_of(cfg, i), s.radio.bw, s.radio.cr)?;
-        let (r, duty_cycle) = cfg.drone_radio(&radio, model.payload_bytes())?;
+        let (r, duty_cycle) = cfg.drone_radio(&radio, model)?;
         cfg.check_heartbeat(r.current().interval)?;
         radios.push(r);
         duty_cycles.push(duty_cycle);
@@ -249,7 +268,11 @@ fn largest_swarm(cfg: &Validated, bytes: usize) -> Result<LargestSwarm, SimError
     let s = cfg.s();
     let timing = s.access.swarm_timing();
     let (mut toa, mut interval, mut used) = ([0.0; 6], [0.0; 6], [0.0; 6]);
-    for sf in 7..=12i64 {
+    let sfs = match s.swarm.sf_plan {
+        SfPlan::Spread => spread_sfs(cfg),
+        SfPlan::Fixed => vec![s.radio.sf],
+    };
+    for sf in sfs {
         let radio = LoraParams::from_settings(sf, s.radio.bw, s.radio.cr)?;
         let k = (sf - 7) as usize;
         toa[k] = time_on_air(&radio, bytes)?.time_on_air;

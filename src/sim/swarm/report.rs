@@ -1,27 +1,10 @@
-//! The output of `swarm`, and the ALOHA collision rate it is checked against.
+//! The output of `swarm`.
 
-use crate::math::pow;
 use crate::metrics::Summary;
 use crate::sim::report::{Delivery, Energy};
 use crate::sim::scenario::Scenario;
 use crate::sim::station::StationModel;
 use serde::Serialize;
-
-/// The collision probability of one packet among `n` periodic senders that share an SF and hop
-/// at random over `channels` channels, each on air a fraction `duty_cycle` of the time: another
-/// sender's packet overlaps it with probability 2·DC (a window of two packet lengths) and lands
-/// on its channel with probability 1/C, so P = 1 − (1 − 2·DC/C)^(n−1) (pure ALOHA; reference §10).
-///
-/// ```
-/// let p = loratrack::aloha_collision_rate(0.01, 3, 12);
-/// assert!((p - (1.0 - (1.0f64 - 0.02 / 3.0).powi(11))).abs() < 1e-15);
-/// ```
-pub fn aloha_collision_rate(duty_cycle: f64, channels: u8, n: usize) -> f64 {
-    if n <= 1 {
-        return 0.0;
-    }
-    1.0 - pow(1.0 - 2.0 * duty_cycle / f64::from(channels), (n - 1) as f64)
-}
 
 /// One drone of the swarm.
 #[derive(Clone, Debug, PartialEq, Serialize)]
