@@ -4,7 +4,7 @@
 //! `UPDATE_TYPES=1 cargo test --lib typescript`.
 
 use crate::api::*;
-use crate::lora::{AdrMode, DutyCycleMode, FairUse, LdroMode, Region};
+use crate::lora::{AdrMode, ChannelAccess, DutyCycleMode, FairUse, LdroMode, Region};
 use crate::metrics::{Boxplot, Intervals, Summary};
 use crate::models::ModelKind;
 use crate::options::{NumberOption, OPTIONS};
@@ -36,6 +36,7 @@ fn decls() -> Vec<String> {
         AdrMode::decl(&c),
         Region::decl(&c),
         FairUse::decl(&c),
+        ChannelAccess::decl(&c),
         SfPlan::decl(&c),
         Schedule::decl(&c),
         GatewaySite::decl(&c),

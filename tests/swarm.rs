@@ -248,3 +248,39 @@ fn a_slotted_schedule_is_refused_where_it_cannot_hold() {
             .contains("swarm setting")
     );
 }
+
+#[test]
+fn listen_before_talk_runs_in_a_swarm_and_reports_what_it_deferred_and_avoided() {
+    // 36 drones within a few hundred metres of each other on one SF7 channel: most hear each
+    // other above -80 dBm (about 200 m at 14 dBm and exponent 3.76).
+    let base = set(
+        &Scenario::default(),
+        json!({"drones": 36, "channels": 1, "sfPlan": "fixed", "sf": 7, "bw": 125, "distance": 50, "duration": 300.0, "model": "dr"}),
+    );
+    let aloha = swarm(&base).unwrap();
+    let lbt = swarm(&set(&base, json!({"access": "lbt"}))).unwrap();
+    assert_eq!(
+        (aloha.lbt_deferrals, aloha.lbt_collisions_avoided),
+        (None, None)
+    );
+    let (deferred, avoided) = (
+        lbt.lbt_deferrals.unwrap(),
+        lbt.lbt_collisions_avoided.unwrap(),
+    );
+    assert!(avoided > 0 && avoided <= deferred, "{deferred} {avoided}");
+    // ETSI's 100 s per hour: almost three times the packets of the 1 % duty cycle.
+    assert!(lbt.delivery.packets_sent as f64 > 2.0 * aloha.delivery.packets_sent as f64);
+    // Listening keeps collisions well below what ALOHA would give at the same airtime; the
+    // rest are hidden drones and simultaneous starts.
+    assert!(
+        lbt.collision_rate < 0.8 * lbt.collision_rate_theory,
+        "{} against {}",
+        lbt.collision_rate,
+        lbt.collision_rate_theory
+    );
+    let us = set(&base, json!({"access": "lbt", "region": "us915"}));
+    assert!(swarm(&us)
+        .unwrap_err()
+        .to_string()
+        .contains("US915 has none"));
+}

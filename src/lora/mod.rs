@@ -13,6 +13,7 @@ mod duty_cycle;
 mod energy;
 mod error;
 mod interference;
+pub mod lbt;
 mod reception;
 mod region;
 mod shadowing;
@@ -46,6 +47,7 @@ pub use error::LoraError;
 pub use interference::{
     sum_dbm, survives, InterferenceModel, CAPTURE_THRESHOLD_DB, INTER_SF_SIR_DB,
 };
+pub use lbt::ChannelAccess;
 pub use reception::{audible, decide, resolve, Outcome, Receiver, Uplink, SX1301_DEMODULATORS};
 pub use region::{PlanRate, Region, RegionError};
 pub use shadowing::Shadowing;

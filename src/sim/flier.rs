@@ -37,6 +37,14 @@ pub struct Flier<'a> {
     from: f64,
     clock: Clock,
     hint: usize,
+    /// Where its flight frame's origin lies in the network's frame (the swarm's centre is the
+    /// network's origin): its position there is its own minus this, m.
+    origin: [f64; 3],
+    /// Listen-before-talk: times it found its channel busy, and of those, how many on its own
+    /// spreading factor (a collision avoided).
+    pub lbt_deferrals: usize,
+    /// See `lbt_deferrals`.
+    pub lbt_avoided: usize,
     /// Its transmissions so far.
     pub tx: Vec<Transmission>,
 }
@@ -98,6 +106,9 @@ impl<'a> Flier<'a> {
             from: flight.t[0] + offset,
             clock,
             hint: 0,
+            origin: [0.0; 3],
+            lbt_deferrals: 0,
+            lbt_avoided: 0,
             tx: Vec::new(),
         };
         f.k = f.step_at_or_after(f.from);
@@ -116,6 +127,44 @@ impl<'a> Flier<'a> {
         self.fixed_channel = Some(slot.channel);
         self.from = self.flight.t[0];
         self
+    }
+
+    /// Places the network's origin at `origin` in this flight's frame (a swarm's centre).
+    pub fn with_origin(mut self, origin: [f64; 3]) -> Self {
+        self.origin = origin;
+        self
+    }
+
+    /// Its position at `t` s in the network's frame, m.
+    pub fn network_position(&mut self, t: f64) -> [f64; 3] {
+        let p = self.position_at(t);
+        [
+            p[0] - self.origin[0],
+            p[1] - self.origin[1],
+            p[2] - self.origin[2],
+        ]
+    }
+
+    /// How many channels it may use, and the one its next packet would take: its schedule's,
+    /// or a random one.
+    pub fn pick_channel(&mut self) -> (u8, u8) {
+        let ch = self.fixed_channel.unwrap_or_else(|| {
+            let c = f64::from(self.channels);
+            ((self.hop.uniform() * c) as u8).min(self.channels - 1)
+        });
+        (
+            ch,
+            if self.fixed_channel.is_some() {
+                1
+            } else {
+                self.channels
+            },
+        )
+    }
+
+    /// A random backoff of up to `max` s (listen-before-talk found every channel busy).
+    pub fn backoff(&mut self, max: f64) -> f64 {
+        self.hop.uniform() * max
     }
 
     /// The newest sensor step at or before `t` s.
@@ -167,13 +216,14 @@ impl<'a> Flier<'a> {
         None
     }
 
-    /// Puts the estimate of step `k` on air at `sent` s with `frame`: spends the duty cycle,
-    /// tells the sender, draws the channel and each gateway's received power. `None` when the
+    /// Puts the estimate of step `k` on air at `sent` s with `frame` on channel `ch`: spends the
+    /// duty cycle, tells the sender, draws each gateway's received power. `None` when the
     /// estimate cannot be encoded (the filter keeps it finite, so this does not happen; the
     /// drone would then have nothing to send at this step).
     pub fn transmit(
         &mut self,
         (k, sent): (usize, f64),
+        ch: u8,
         frame: &Frame,
         channel: &Channel,
     ) -> Option<Vec<Reception>> {
@@ -201,10 +251,6 @@ impl<'a> Flier<'a> {
             .iter_mut()
             .map(|l| l.uplink(channel, pos, frame.power_reduction_db))
             .collect();
-        let ch = self.fixed_channel.unwrap_or_else(|| {
-            let c = f64::from(self.channels);
-            ((self.hop.uniform() * c) as u8).min(self.channels - 1)
-        });
         self.tx.push(Transmission {
             sent,
             arrival: sent + frame.time_on_air,

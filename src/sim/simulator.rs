@@ -7,7 +7,6 @@ use super::network::{run_episode, Network};
 use super::packet::Transmission;
 use super::parallel::par_map_ticking;
 use super::pooled::{axis_every, model_series, series_stride, Pooled};
-use super::radio::DroneRadio;
 use super::report::{Delivery, ModelSeries, RunConfig, Series, SimReport};
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::Schedule;
@@ -370,7 +369,7 @@ impl Simulator {
                 let (flight_set, drone_set): (&[Trajectory], &[DroneTrack]) = (&flights, &drones);
                 let chains: Option<&[Mutex<FlightChains>]> =
                     chains.as_deref().map(|c| c.as_slice());
-                let network = || network_of(cfg, start.clone());
+                let network = || Network::of(cfg, s.channel.distance, vec![start.clone()]);
                 let one = |i: usize, net: &mut Network| -> Result<FlightRun, SimError> {
                     let (flight, drone) = (&flight_set[i], &drone_set[i]);
                     let now = net.radios[0].current();
@@ -528,19 +527,6 @@ pub(crate) fn load_flights(source: &TrajectorySource) -> Result<Vec<Trajectory>,
 }
 
 /// A network of the run's gateways for one drone with radio `radio`.
-fn network_of(cfg: &Validated, radio: DroneRadio) -> Network {
-    let s = cfg.s();
-    Network::new(
-        cfg.sites(s.channel.distance),
-        s.channel.gateway_height,
-        vec![radio],
-        &cfg.adr,
-        cfg.channel,
-        cfg.interference,
-        s.radio.overhead > 0,
-    )
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

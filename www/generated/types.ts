@@ -24,6 +24,8 @@ export type Region = "eu868" | "us915" | "au915" | "as923" | "in865";
 
 export type FairUse = "off" | "ttn";
 
+export type ChannelAccess = "duty-cycle" | "lbt";
+
 export type SfPlan = "spread" | "fixed";
 
 export type Schedule = "aloha" | "slotted";
@@ -187,6 +189,10 @@ region: Region,
  * Where the plan has no duty cycle: seconds between uplink starts.
  */
 interval?: number, 
+/**
+ * How a drone earns the right to send: the plan's duty cycle, or listen-before-talk.
+ */
+access: ChannelAccess, 
 /**
  * A network's fair-use policy: `off` or `ttn`.
  */
@@ -364,6 +370,10 @@ region: Region,
  * Where the plan has no duty cycle: seconds between uplink starts.
  */
 interval?: number, 
+/**
+ * How a drone earns the right to send: the plan's duty cycle, or listen-before-talk.
+ */
+access: ChannelAccess, 
 /**
  * A network's fair-use policy: `off` or `ttn`.
  */
@@ -936,6 +946,10 @@ region: Region,
  */
 interval?: number, 
 /**
+ * How a drone earns the right to send: the plan's duty cycle, or listen-before-talk.
+ */
+access: ChannelAccess, 
+/**
  * A network's fair-use policy: `off` or `ttn`.
  */
 fairUse: FairUse, 
@@ -1212,6 +1226,10 @@ region: Region,
  */
 interval?: number, 
 /**
+ * How a drone earns the right to send: the plan's duty cycle, or listen-before-talk.
+ */
+access: ChannelAccess, 
+/**
  * A network's fair-use policy: `off` or `ttn`.
  */
 fairUse: FairUse, 
@@ -1277,6 +1295,18 @@ frameLength: number | null,
  * How many drones one gateway serves under each schedule at these settings.
  */
 largestSwarm: LargestSwarm, 
+/**
+ * Listen-before-talk: how often a drone found its channel busy and moved to another or
+ * backed off (`null` without it).
+ */
+lbtDeferrals: number | null, 
+/**
+ * Of those, how often the busy channel carried a packet on the drone's own SF, which its
+ * packet would have overlapped: collisions avoided. The collisions that remain
+ * (`packetsCollided`) are those listening could not avoid: hidden drones, too far apart
+ * to hear each other, and packets that start within one listen time.
+ */
+lbtCollisionsAvoided: number | null, 
 /**
  * Packets no gateway received though one locked on (lost to interference).
  */

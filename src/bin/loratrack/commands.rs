@@ -503,6 +503,9 @@ fn plan_text(c: &loratrack::RunConfig) -> String {
             format!("{region} DR{dr}")
         });
     let limit = match a.region.duty_cycle() {
+        Some(_) if a.access == loratrack::ChannelAccess::Lbt => {
+            "listen-before-talk, 100 s of airtime per hour".to_string()
+        }
         Some(_) => format!("{} % duty cycle", 100.0 * c.settings.radio.duty_cycle),
         None => format!(
             "every {} s (no duty cycle)",
@@ -730,7 +733,7 @@ fn swarm_text(r: &SwarmReport) -> String {
     };
     format!(
         "{} drone{} {}, at {} m, {} channel{}, {} SFs, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
-         schedule            {}\n\
+         channel access      {}\n\
          packets sent        {}\n\
          collision rate      {:.4}  (pure-ALOHA formula at the duty cycle achieved: {:.4})\n\
          largest swarm       {} drones at <= 1 % collisions, {} at <= 10 % (ALOHA formula); {} slotted, with none\n\
@@ -783,6 +786,11 @@ fn swarm_text(r: &SwarmReport) -> String {
 fn schedule_text(r: &SwarmReport) -> String {
     let a = &r.config.settings.access;
     let t = a.swarm_timing();
+    if let (Some(deferred), Some(avoided)) = (r.lbt_deferrals, r.lbt_collisions_avoided) {
+        return format!(
+            "listen-before-talk: {deferred} deferrals (channel busy), {avoided} of them on the drone's own SF (collisions avoided)"
+        );
+    }
     match r.frame_length {
         Some(frame) => format!("slotted on GPS time, longest frame {frame:.2} s"),
         None => format!(

@@ -7,7 +7,7 @@
 use super::gateway::Gateway;
 use super::server::Network;
 use crate::lora::{
-    audible, downlink_time_on_air, empty_window_s, Bandwidth, DataRate, LinkAdrReq, Outcome,
+    audible, downlink_time_on_air, empty_window_s, lbt, Bandwidth, DataRate, LinkAdrReq, Outcome,
     Uplink, UplinkActivity, Window, ACK_DOWNLINK_BYTES, ADR_DOWNLINK_BYTES,
 };
 use crate::sim::flier::Flier;
@@ -46,12 +46,14 @@ impl PartialOrd for Event {
     }
 }
 
-/// The packet a drone has on air: its sensor step and start time (s), frame and the power each
-/// gateway receives.
+/// The packet a drone has on air: its sensor step and start time (s), frame, the power each
+/// gateway receives, its channel, and where the drone was when it started (network frame, m).
 struct OnAir {
     k: (usize, f64),
     frame: Frame,
     receptions: Vec<Reception>,
+    channel: u8,
+    at: [f64; 3],
 }
 
 fn packet_id(drone: usize, index: usize) -> u64 {
@@ -94,7 +96,26 @@ pub fn run_episode(net: &mut Network, fliers: &mut [Flier<'_>]) {
                 continue;
             };
             let frame = net.radios[f.drone].uplink();
-            let Some(receptions) = f.transmit(k, &frame, &net.channel) else {
+            let (first, channels) = f.pick_channel();
+            let at = f.network_position(e.time);
+            let heard = if net.listen_before_talk {
+                listen(net, &on_air, at, (first, channels), frame.sf.get())
+            } else {
+                Heard::Free(first)
+            };
+            if let Heard::Moved(_, same) | Heard::Busy(same) = heard {
+                f.lbt_deferrals += 1;
+                f.lbt_avoided += usize::from(same);
+            }
+            let ch = match heard {
+                Heard::Free(c) | Heard::Moved(c, _) => c,
+                Heard::Busy(_) => {
+                    let wait = f.backoff(lbt::max_backoff(frame.time_on_air));
+                    plan(f, e.drone, e.time + wait, &mut next, &mut queue);
+                    continue;
+                }
+            };
+            let Some(receptions) = f.transmit(k, ch, &frame, &net.channel) else {
                 plan(f, e.drone, e.time, &mut next, &mut queue);
                 continue;
             };
@@ -128,6 +149,8 @@ pub fn run_episode(net: &mut Network, fliers: &mut [Flier<'_>]) {
                 k,
                 frame,
                 receptions,
+                channel: ch,
+                at,
             });
         } else {
             let Some(air) = on_air[e.drone].take() else {
@@ -157,6 +180,53 @@ pub fn run_episode(net: &mut Network, fliers: &mut [Flier<'_>]) {
             }
         }
     }
+}
+
+/// What a drone listening before talk heard. The flag says whether the busy first channel
+/// carried a packet on the drone's own SF (a collision avoided).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Heard {
+    /// Its first channel was free.
+    Free(u8),
+    /// Its first channel was busy, this one free: it moves there.
+    Moved(u8, bool),
+    /// Every channel was busy: it backs off.
+    Busy(bool),
+}
+
+/// Listen-before-talk at `at` (network frame, m) on the `(first, channels)` a drone of spreading
+/// factor `sf` may use: a channel is busy when any packet on air on it reaches the listener
+/// above the threshold (the shared path-loss model, drone to drone, without shadowing). Every
+/// packet on air now was on air during the listen time before (packets last longer than it).
+fn listen(
+    net: &Network,
+    on_air: &[Option<OnAir>],
+    at: [f64; 3],
+    (first, channels): (u8, u8),
+    sf: u8,
+) -> Heard {
+    let heard_on = |c: u8| -> Option<bool> {
+        let mut heard = None;
+        for a in on_air.iter().flatten().filter(|a| a.channel == c) {
+            let d =
+                ((a.at[0] - at[0]).powi(2) + (a.at[1] - at[1]).powi(2) + (a.at[2] - at[2]).powi(2))
+                    .sqrt();
+            let rx = net.channel.mean_rx_power_dbm(d.max(1.0)) - a.frame.power_reduction_db;
+            if lbt::busy(rx) {
+                heard = Some(heard.unwrap_or(false) || a.frame.sf.get() == sf);
+            }
+        }
+        heard
+    };
+    let Some(same) = heard_on(first) else {
+        return Heard::Free(first);
+    };
+    for c in (1..channels).map(|i| (first + i) % channels) {
+        if heard_on(c).is_none() {
+            return Heard::Moved(c, same);
+        }
+    }
+    Heard::Busy(same)
 }
 
 fn plan(

@@ -6,11 +6,11 @@
 
 use super::gateway::GatewayReport;
 use crate::lora::{
-    snr_db, AdrNetwork, AdrParams, Channel, InterferenceModel, LinkAdrReq, UplinkFrame,
-    UplinkReport,
+    snr_db, AdrNetwork, AdrParams, Channel, ChannelAccess, InterferenceModel, LinkAdrReq,
+    UplinkFrame, UplinkReport,
 };
 use crate::sim::radio::DroneRadio;
-use crate::sim::scenario::GatewaySite;
+use crate::sim::scenario::{GatewaySite, Validated};
 
 /// Everything that lasts across the episodes (flights) of a run: the gateways and their counts,
 /// each drone's radio, and the server's ADR state per drone.
@@ -33,6 +33,8 @@ pub struct Network {
     pub lorawan: bool,
     /// Receptions beyond the first of each packet, removed by the server.
     pub duplicates: usize,
+    /// Whether the drones listen before they talk (reference §15).
+    pub listen_before_talk: bool,
 }
 
 impl Network {
@@ -74,7 +76,26 @@ impl Network {
             interference,
             lorawan,
             duplicates: 0,
+            listen_before_talk: false,
         }
+    }
+
+    /// The network of a validated scenario for drones with `radios`: its gateways (the one
+    /// default gateway `east` m east of the origin when none is given), ADR, channel, reception
+    /// rules, and whether drones listen before they talk.
+    pub fn of(cfg: &Validated, east: f64, radios: Vec<DroneRadio>) -> Self {
+        let s = cfg.s();
+        let mut net = Network::new(
+            cfg.sites(east),
+            s.channel.gateway_height,
+            radios,
+            &cfg.adr,
+            cfg.channel,
+            cfg.interference,
+            s.radio.overhead > 0,
+        );
+        net.listen_before_talk = s.access.access == ChannelAccess::Lbt;
+        net
     }
 
     /// Replaces drone `drone`'s ADR algorithm (to compare a rule of one's own).

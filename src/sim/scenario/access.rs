@@ -2,7 +2,7 @@
 //! or an interval where the plan has none, and a network's fair use), their clocks and random
 //! delays, and in a swarm the schedule they keep. `docs/reference.md` §13, §14.
 
-use crate::lora::{FairUse, Region};
+use crate::lora::{lbt, ChannelAccess, FairUse, Region};
 use crate::options as opt;
 use crate::sim::clock::Timing;
 use crate::sim::schedule::Schedule;
@@ -34,6 +34,17 @@ pub struct AccessSettings {
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
     #[cfg_attr(not(target_arch = "wasm32"), arg(long, help = opt::INTERVAL.cli_help(), allow_negative_numbers = true))]
     pub interval: Option<f64>,
+    /// How a drone earns the right to send: the plan's duty cycle, or listen-before-talk.
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(
+            long,
+            value_enum,
+            default_value = "duty-cycle",
+            help = "How a drone earns the right to send: duty-cycle (the plan's), or lbt (listen 5 ms before each uplink, send only below -80 dBm, else try another channel or back off; ETSI's 100 s of airtime per hour). Plans with a duty cycle only (eu868, as923)."
+        )
+    )]
+    pub access: ChannelAccess,
     /// A network's fair-use policy: `off` or `ttn`.
     #[cfg_attr(
         not(target_arch = "wasm32"),
@@ -69,8 +80,30 @@ pub struct AccessSettings {
 }
 
 impl AccessSettings {
-    /// Checks each setting given against its limits.
-    pub fn validate(&self) -> Result<(), SimError> {
+    /// Checks each setting given against its limits, and that `duty_cycle` (the `dutyCycle`
+    /// setting) applies: a plan without a duty cycle, or listen-before-talk, would ignore it.
+    pub fn validate(&self, duty_cycle: f64) -> Result<(), SimError> {
+        let changed = duty_cycle != opt::DUTY_CYCLE.default;
+        if self.region.duty_cycle().is_none() {
+            if self.access == ChannelAccess::Lbt {
+                return Err(SimError::Source(format!(
+                    "access lbt replaces a duty cycle; {} has none (its sending interval is interval)",
+                    self.region.label()
+                )));
+            }
+            if changed {
+                return Err(SimError::Source(format!(
+                    "{} has no duty cycle: set interval instead of dutyCycle",
+                    self.region.label()
+                )));
+            }
+        }
+        if self.access == ChannelAccess::Lbt && changed {
+            return Err(SimError::Source(
+                "dutyCycle does not apply with access lbt (ETSI's 100 s of airtime per hour)"
+                    .into(),
+            ));
+        }
         if let Some(i) = self.interval {
             opt::INTERVAL.check(i)?;
             if self.region.duty_cycle().is_some() {
@@ -103,6 +136,7 @@ impl AccessSettings {
     /// above what the fair-use policy leaves. An interval shorter than the time on air is refused.
     pub fn duty_cycle_for(&self, duty_cycle: f64, time_on_air: f64) -> Result<f64, SimError> {
         let plan = match self.region.duty_cycle() {
+            Some(_) if self.access == ChannelAccess::Lbt => lbt::duty_cycle(),
             Some(_) => duty_cycle,
             None => {
                 let interval = self.interval.unwrap_or(opt::INTERVAL.default);
@@ -151,6 +185,6 @@ mod tests {
             jitter: Some(-1.0),
             ..Default::default()
         };
-        assert!(a.validate().is_err());
+        assert!(a.validate(0.01).is_err());
     }
 }

@@ -525,7 +525,7 @@ impl Scenario {
         opt::STEP.check(self.station.step)?;
         opt::ETA.check(self.station.eta)?;
         self.sending.validate()?;
-        self.access.validate()?;
+        self.access.validate(r.duty_cycle)?;
         opt::DRONES.check(self.swarm.drones as f64)?;
         opt::DURATION.check(self.swarm.duration)?;
         opt::SEED

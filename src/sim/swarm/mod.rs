@@ -191,21 +191,15 @@ pub fn run_swarm(
             slot: slots.as_ref().map(|s| s[i]),
         })
         .collect();
-    let mut net = Network::new(
-        cfg.sites(0.0),
-        s.channel.gateway_height,
-        radios,
-        &cfg.adr,
-        cfg.channel,
-        cfg.interference,
-        s.radio.overhead > 0,
-    );
+    let mut net = Network::of(cfg, 0.0, radios);
     let total = plan.episodes.len() + n;
     let mut done = 0;
     // Per episode, per drone: its transmissions.
     let mut sent: Vec<Vec<Vec<Transmission>>> = Vec::new();
+    // Listen-before-talk: deferrals, and collisions avoided.
+    let mut lbt = (0, 0);
     for seats in &plan.episodes {
-        sent.push(fly(cfg, &mut net, &plan, seats, model, &kits)?);
+        sent.push(fly(cfg, &mut net, &plan, seats, model, &kits, &mut lbt)?);
         done += 1;
         progress(done, total);
     }
@@ -260,6 +254,9 @@ pub fn run_swarm(
     let largest = largest_swarm(cfg, bytes)?;
     let mut r = report(cfg, model, &net, &tx_all, drones, errors, largest);
     r.frame_length = slots.map(|s| s.iter().map(|s| s.frame).fold(0.0, f64::max));
+    if net.listen_before_talk {
+        (r.lbt_deferrals, r.lbt_collisions_avoided) = (Some(lbt.0), Some(lbt.1));
+    }
     Ok(r)
 }
 
@@ -331,6 +328,7 @@ fn fly(
     seats: &[Seat],
     model: StationModel,
     kits: &[Kit],
+    lbt: &mut (usize, usize),
 ) -> Result<Vec<Vec<Transmission>>, SimError> {
     let s = cfg.s();
     let seed = s.run.seed;
@@ -370,12 +368,17 @@ fn fly(
             now.interval,
             s.access.swarm_timing(),
         );
+        let flier = flier.with_origin([centre[0], centre[1], 0.0]);
         fliers.push(match &kits[i].slot {
             Some(slot) => flier.with_slot(slot),
             None => flier,
         });
     }
     run_episode(net, &mut fliers);
+    for f in &fliers {
+        lbt.0 += f.lbt_deferrals;
+        lbt.1 += f.lbt_avoided;
+    }
     Ok(fliers.into_iter().map(|f| f.tx).collect())
 }
 
@@ -419,6 +422,8 @@ fn report(
         },
         frame_length: None,
         largest_swarm,
+        lbt_deferrals: None,
+        lbt_collisions_avoided: None,
         collision_rate: ratio(count(Outcome::Collided), packets_sent),
         collision_rate_theory: if packets_sent == 0 {
             0.0

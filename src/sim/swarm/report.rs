@@ -56,6 +56,16 @@ pub struct SwarmReport {
     pub frame_length: Option<f64>,
     /// How many drones one gateway serves under each schedule at these settings.
     pub largest_swarm: LargestSwarm,
+    /// Listen-before-talk: how often a drone found its channel busy and moved to another or
+    /// backed off (`null` without it).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
+    pub lbt_deferrals: Option<usize>,
+    /// Of those, how often the busy channel carried a packet on the drone's own SF, which its
+    /// packet would have overlapped: collisions avoided. The collisions that remain
+    /// (`packetsCollided`) are those listening could not avoid: hidden drones, too far apart
+    /// to hear each other, and packets that start within one listen time.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
+    pub lbt_collisions_avoided: Option<usize>,
     /// Packets, copies and gateways (`packetsSent`, `packetsReceived` — distinct packets the
     /// network server passed on —, `deliveryRatio`, `duplicates`, `gateways`).
     #[serde(flatten)]
