@@ -4,7 +4,9 @@
 //! `UPDATE_TYPES=1 cargo test --lib typescript`.
 
 use crate::api::*;
-use crate::lora::{AdrMode, ChannelAccess, DutyCycleMode, FairUse, LdroMode, Region};
+use crate::lora::{
+    AdrMode, ChannelAccess, DutyCycleMode, FairUse, LdroMode, Plan, PlanRate, Region,
+};
 use crate::metrics::{Boxplot, Intervals, Summary};
 use crate::models::ModelKind;
 use crate::options::{NumberOption, OPTIONS};
@@ -35,6 +37,8 @@ fn decls() -> Vec<String> {
         DutyCycleMode::decl(&c),
         AdrMode::decl(&c),
         Region::decl(&c),
+        PlanRate::decl(&c),
+        Plan::decl(&c),
         FairUse::decl(&c),
         ChannelAccess::decl(&c),
         SfPlan::decl(&c),
@@ -95,6 +99,11 @@ fn generated() -> String {
     let options = serde_json::to_string_pretty(&OPTIONS.to_vec()).unwrap_or_default();
     out.push_str(&format!(
         "\n/** Every numeric setting's default and accepted range, as the core validates them (src/options.rs). */\nexport const OPTIONS: NumberOption[] = {options};\n"
+    ));
+    let plans: Vec<Plan> = Region::ALL.iter().map(|r| r.plan()).collect();
+    let plans = serde_json::to_string_pretty(&plans).unwrap_or_default();
+    out.push_str(&format!(
+        "\n/** Every regional plan's data rates and limits, as the core checks them (src/lora/region.rs). */\nexport const PLANS: Plan[] = {plans};\n"
     ));
     out
 }

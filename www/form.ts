@@ -1,9 +1,9 @@
 // The settings form: written from the settings, read back with each field checked against the
 // core's limits (the problem shown beside the field), the gateway rows, and the choices offered
 // (settings the core would refuse are disabled, with the reason).
-import type { GatewaySite } from './loratrack';
+import type { GatewaySite, Region } from './loratrack';
 import { $ } from './dom';
-import { ADR_START_REASON, adrCanStart, DEFAULTS, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, type Settings } from './state';
+import { ADR_START_REASON, adrCanStart, DEFAULTS, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, plan, planAllows, planReason, type Settings } from './state';
 import { store } from './store';
 
 export const form = $<HTMLFormElement>('#controls');
@@ -138,32 +138,43 @@ export function showConditional(): void {
   $('#distance-value').textContent = km;
   // Screen readers hear the distance with its unit, not a bare number of metres.
   field('distance').setAttribute('aria-valuetext', `${km} to the gateway`);
-  showAdrChoices();
+  const noDutyCycle = plan(field('region').value as Region).dutyCycle === null;
+  for (const el of document.querySelectorAll<HTMLElement>('[data-when-plan]')) el.hidden = (el.dataset.whenPlan === 'interval') !== noDutyCycle;
+  showPlanChoices();
 }
 
-/** Settings the core would refuse are not offered: ADR starts only at an EU868 data rate, so
- * with ADR on the other SF/bandwidth pairs are disabled, and with such a pair ADR is. */
-function showAdrChoices(): void {
+/** Settings the core would refuse are not offered: a plan's missing SF/bandwidth pairs; ADR
+ * outside EU868 or away from an EU868 data rate; listen-before-talk where the plan has no duty
+ * cycle. Each disabled choice says why. */
+function showPlanChoices(): void {
   const sf = Number(field('sf').value);
   const bw = Number(field('bw').value);
+  const region = field('region').value as Region;
   const adrOn = field('adr').value !== 'off';
-  const offer = (select: HTMLSelectElement, ok: (o: HTMLOptionElement) => boolean) => {
+  const allowed = (s: number, b: number) => planAllows(region, s, b) && (!adrOn || adrCanStart(s, b));
+  const offer = (name: string, ok: (o: HTMLOptionElement) => boolean, why: string) => {
     let any = false;
-    for (const o of select.options) {
+    for (const o of (field(name) as HTMLSelectElement).options) {
       o.disabled = !ok(o);
-      o.title = o.disabled ? ADR_START_REASON : '';
+      o.title = o.disabled ? why : '';
       any ||= o.disabled;
     }
     return any;
   };
-  const adrBlocked = offer(field('adr') as HTMLSelectElement, (o) => o.value === 'off' || adrCanStart(sf, bw));
-  // Both lists are updated (no short-circuit).
-  const sfBlocked = offer(field('sf') as HTMLSelectElement, (o) => !adrOn || adrCanStart(Number(o.value), bw));
-  const bwBlocked = offer(field('bw') as HTMLSelectElement, (o) => !adrOn || adrCanStart(sf, Number(o.value)));
+  const adrWhy = region === 'eu868' ? ADR_START_REASON : `ADR runs EU868's data rates; ${plan(region).label} has its own.`;
+  const adrBlocked = offer('adr', (o) => o.value === 'off' || (region === 'eu868' && adrCanStart(sf, bw)), adrWhy);
+  // Every list is updated (no short-circuit).
+  const sfBlocked = offer('sf', (o) => allowed(Number(o.value), bw), adrOn ? ADR_START_REASON : planReason(region));
+  const bwBlocked = offer('bw', (o) => allowed(sf, Number(o.value)), adrOn ? ADR_START_REASON : planReason(region));
+  offer('region', (o) => planAllows(o.value as Region, sf, bw) && (!adrOn || o.value === 'eu868'), `Not at SF${sf} / ${bw} kHz${adrOn ? ' with ADR on' : ''}.`);
+  offer('access', (o) => o.value === 'duty-cycle' || plan(region).dutyCycle !== null, `Listen-before-talk replaces a duty cycle; ${plan(region).label} has none.`);
   const rateBlocked = sfBlocked || bwBlocked;
   const note = $('#adr-note');
-  note.hidden = !adrBlocked && !rateBlocked;
-  note.textContent = adrBlocked ? `ADR is not offered at SF${sf} / ${bw} kHz. ${ADR_START_REASON}` : rateBlocked ? `With ADR on, only EU868 data rates can be chosen. ${ADR_START_REASON}` : '';
+  note.hidden = !adrBlocked || region !== 'eu868';
+  note.textContent = note.hidden ? '' : `ADR is not offered at SF${sf} / ${bw} kHz. ${ADR_START_REASON}`;
+  const planNote = $('#region-note');
+  planNote.hidden = !rateBlocked;
+  planNote.textContent = !rateBlocked ? '' : adrOn ? `With ADR on, only EU868 data rates can be chosen. ${ADR_START_REASON}` : `Some SF and bandwidth pairs are not offered: ${planReason(region)}`;
 }
 
 /** The form's min and max come from the core's table, as the URL's checks do; the distance

@@ -24,7 +24,7 @@ import type {
 } from './generated/types';
 
 export type * from './generated/types';
-export { OPTIONS } from './generated/types';
+export { OPTIONS, PLANS } from './generated/types';
 
 let ready: Promise<void> | undefined;
 

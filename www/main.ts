@@ -19,7 +19,7 @@ import { LESSONS, lessonQuery } from './lessons';
 import { SimulationPool } from './pool';
 import { renderBaseline, renderTable } from './results';
 import { setUpPresent } from './present';
-import { DEFAULTS, fromQuery, overheadBytes, toParams, type Settings } from './state';
+import { DEFAULTS, fromQuery, overheadBytes, plan, toParams, type Settings } from './state';
 import { pageQuery, store } from './store';
 import type { Request, Response, SimulateRequest } from './worker';
 
@@ -236,7 +236,8 @@ function renderLink(): void {
 }
 
 function renderAirtime(): void {
-  const opts = { overhead: overheadBytes(store.settings), cr: store.settings.cr, sf: store.settings.sf, bw: store.settings.bw };
+  const s = store.settings;
+  const opts = { overhead: overheadBytes(s), cr: s.cr, sf: s.sf, bw: s.bw, region: s.region, access: s.access, fairUse: s.fairUse, ...(plan(s.region).dutyCycle === null ? { interval: s.interval } : {}) };
   $('#airtime-table').replaceChildren(airtimeTable(opts));
   place('airtime', airtimeVsPayloadChart({ ...opts, width: chartWidth('airtime') }));
 }
@@ -352,7 +353,8 @@ $('#run-swarm').addEventListener('click', () => {
     ...shared,
     model: stationsOf(store.settings.model).length === 1 ? store.settings.model : 'all',
     duration: 120,
-    channels: Number($<HTMLSelectElement>('#swarmChannels').value),
+    // One channel, or all the plan's (its default).
+    ...($<HTMLSelectElement>('#swarmChannels').value === '1' ? { channels: 1 } : {}),
     sfPlan: $<HTMLSelectElement>('#swarmPlan').value as 'fixed' | 'spread',
     schedule: $<HTMLSelectElement>('#swarmSchedule').value as 'aloha' | 'slotted',
   };
@@ -380,7 +382,7 @@ $('#run-swarm').addEventListener('click', () => {
       const rates = r.swarms.map((w) => `${w.config.drones} drones ${(100 * w.collisionRate).toFixed(1)} %`).join(', ');
       $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(r.millis / 1000).toFixed(1)} s. Packets collided: ${rates}.`;
       const swarms = r.swarms;
-      lastSwarm = () => place('swarm', swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.schedule}, ${params.duration} s each`);
+      lastSwarm = () => place('swarm', swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${swarms[0]?.drones[0]?.channelUse.length ?? params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.schedule}, ${params.duration} s each`);
       lastSwarm();
     }
   };

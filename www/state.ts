@@ -2,7 +2,7 @@
 // round trip that makes every view shareable. Every numeric default and limit comes from the
 // core's one table (src/options.rs, generated into www/generated/types.ts), so the form, the URL
 // checks, the CLI help and the core's validation cannot disagree.
-import { OPTIONS, type AdrMode, type GatewaySite, type ModelChoice, type NumberOption, type Prediction, type SimulateParams } from './loratrack';
+import { OPTIONS, PLANS, type AdrMode, type ChannelAccess, type FairUse, type GatewaySite, type ModelChoice, type NumberOption, type Plan, type Prediction, type Region, type SimulateParams } from './loratrack';
 
 export type FlightChoice = 'synthetic' | 'all' | 'canberra' | 'csv';
 
@@ -16,6 +16,13 @@ export interface Settings {
   threshold: number;
   dutyCycleMode: 'per-packet' | 'budget';
   adr: AdrMode;
+  /** The LoRaWAN regional plan. */
+  region: Region;
+  /** Where the plan has no duty cycle: seconds between uplinks. */
+  interval: number;
+  /** Duty cycle or listen-before-talk (plans with a duty cycle). */
+  access: ChannelAccess;
+  fairUse: FairUse;
   flight: FlightChoice;
   flightNumber: number;
   lorawan: boolean;
@@ -51,6 +58,10 @@ export const DEFAULTS: Settings = {
   threshold: def('threshold'),
   dutyCycleMode: 'per-packet',
   adr: 'off',
+  region: 'eu868',
+  interval: def('interval'),
+  access: 'duty-cycle',
+  fairUse: 'off',
   flight: 'synthetic',
   flightNumber: 1,
   lorawan: def('overhead') > 0,
@@ -98,6 +109,7 @@ export const LIMITS: Record<NumericKey, Limit> = {
   bw: limit('bw'),
   distance: limit('distance'),
   threshold: limit('threshold'),
+  interval: limit('interval'),
   flightNumber: { label: 'Synthetic flight number', min: 1, max: 30, integer: true },
   cr: limit('cr'),
   txPower: limit('txPower'),
@@ -113,7 +125,7 @@ export const LIMITS: Record<NumericKey, Limit> = {
 /** What a gateway's coordinates and height accept (the core's limits). */
 export const GATEWAY_LIMITS = { coordinate: limit('gateway', 'Gateway coordinate'), height: limit('gatewayHeight', 'Gateway height'), count: limit('gateways', 'Gateways') };
 
-type NumericKey = 'sf' | 'bw' | 'distance' | 'threshold' | 'flightNumber' | 'cr' | 'txPower' | 'pathLossExponent' | 'shadowing' | 'sensorRate' | 'step' | 'eta' | 'seed' | 'seeds';
+type NumericKey = 'sf' | 'bw' | 'distance' | 'threshold' | 'interval' | 'flightNumber' | 'cr' | 'txPower' | 'pathLossExponent' | 'shadowing' | 'sensorRate' | 'step' | 'eta' | 'seed' | 'seeds';
 const NUMERIC = Object.keys(LIMITS) as NumericKey[];
 
 /** Why `value` is not acceptable for `key`, in the words of the form; null when it is. */
@@ -127,10 +139,34 @@ export function invalid(key: NumericKey, value: number): string | null {
   return null;
 }
 
-/** Whether ADR can start at `sf` / `bw` kHz: only at an EU868 data rate (DR0–DR5 are SF12–SF7 at
- * 125 kHz, DR6 SF7 at 250 kHz; src/lora/data_rate.rs), as the core checks. */
+/** The regional plan `region` (data rates and limits from the core's table, src/lora/region.rs). */
+export function plan(region: Region): Plan {
+  return PLANS.find((p) => p.region === region) ?? PLANS[0];
+}
+
+/** The plan's data rate at `sf` / `bw` kHz, if it has one it allows. */
+export function planRate(region: Region, sf: number, bw: number): number | null {
+  const r = plan(region).rates.find((x) => x.sf === sf && x.bw === bw && x.maxPayload !== null);
+  return r ? r.dr : null;
+}
+
+/** Whether the plan lets a drone send at `sf` / `bw` kHz: at one of its data rates, or as raw
+ * LoRa where it allows that (EU868). The core also checks the payload and the dwell time. */
+export function planAllows(region: Region, sf: number, bw: number): boolean {
+  return plan(region).rawLora || planRate(region, sf, bw) !== null;
+}
+
+/** Why the plan does not offer `sf` / `bw`, in the form's words. */
+export function planReason(region: Region): string {
+  const p = plan(region);
+  const rates = p.rates.filter((r) => r.maxPayload !== null).map((r) => `DR${r.dr} SF${r.sf}/${r.bw}`);
+  return `${p.label} offers only ${rates.join(', ')}.`;
+}
+
+/** Whether ADR can start at `sf` / `bw` kHz: only at an EU868 data rate (the core's table), as
+ * the core checks. */
 export function adrCanStart(sf: number, bw: number): boolean {
-  return bw === 125 || (bw === 250 && sf === 7);
+  return planRate('eu868', sf, bw) !== null;
 }
 
 /** Why ADR cannot start here, in the form's words (shown beside the disabled choices). */
@@ -162,6 +198,11 @@ export function toParams(s: Settings, csv?: { text: string; name: string }): Sim
     threshold: s.threshold,
     dutyCycleMode: s.dutyCycleMode,
     adr: s.adr,
+    region: s.region,
+    // The interval applies only where the plan has no duty cycle (the core refuses it elsewhere).
+    ...(plan(s.region).dutyCycle === null ? { interval: s.interval } : {}),
+    access: s.access,
+    fairUse: s.fairUse,
     sf: s.sf,
     bw: s.bw,
     distance: s.distance,
@@ -245,9 +286,24 @@ export function fromQuery(search: string): { settings: Settings; problems: strin
   choice('sender', ['periodic', 'error']);
   choice('dutyCycleMode', ['per-packet', 'budget']);
   choice('adr', ['off', 'lorawan', 'tracking']);
+  choice('region', PLANS.map((p) => p.region));
+  choice('access', ['duty-cycle', 'lbt']);
+  choice('fairUse', ['off', 'ttn']);
   // An uploaded CSV cannot travel in a URL; such links open the default flight.
   choice('flight', ['synthetic', 'all', 'canberra']);
   if (q.get('lorawan') === 'false') s.lorawan = false;
+  if (!planAllows(s.region, s.sf, s.bw)) {
+    problems.push(`The link's region=${s.region} was replaced by eu868: SF${s.sf} / ${s.bw} kHz is not in it. ${planReason(s.region)}`);
+    s.region = 'eu868';
+  }
+  if (s.access === 'lbt' && plan(s.region).dutyCycle === null) {
+    problems.push(`The link's access=lbt was replaced by duty-cycle: listen-before-talk replaces a duty cycle, and ${plan(s.region).label} has none.`);
+    s.access = 'duty-cycle';
+  }
+  if (s.adr !== 'off' && s.region !== 'eu868') {
+    problems.push(`The link's adr=${s.adr} was replaced by off: ADR runs EU868's data rates.`);
+    s.adr = 'off';
+  }
   if (s.adr !== 'off' && !adrCanStart(s.sf, s.bw)) {
     problems.push(`The link's adr=${s.adr} was replaced by off: ${ADR_START_REASON}`);
     s.adr = 'off';

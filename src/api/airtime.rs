@@ -1,7 +1,10 @@
 //! `airtime` / `timeOnAir`: time on air and duty-cycle interval of one packet (reference §6, §8).
 
 use super::ApiError;
-use crate::lora::{self, LdroMode, LoraParams, LORAWAN_OVERHEAD_BYTES};
+use crate::lora::{
+    self, ChannelAccess, FairUse, LdroMode, LoraParams, Region, LORAWAN_OVERHEAD_BYTES,
+};
+use crate::sim::AccessSettings;
 use serde::{Deserialize, Serialize};
 
 /// Input of `airtime`. Field names are the CLI's long options in camelCase.
@@ -33,9 +36,22 @@ pub struct AirtimeParams {
     /// Low data rate optimisation.
     #[serde(default)]
     pub ldro: LdroMode,
-    /// Duty-cycle limit as a fraction (EU868 g1 sub-band: 0.01).
+    /// Duty-cycle limit as a fraction (EU868 g1 sub-band: 0.01), in plans with a duty cycle.
     #[serde(default = "default_duty_cycle")]
     pub duty_cycle: f64,
+    /// The regional plan (reference §14).
+    #[serde(default)]
+    pub region: Region,
+    /// Where the plan has no duty cycle: seconds between uplinks (default 1).
+    #[serde(default)]
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
+    pub interval: Option<f64>,
+    /// Duty cycle or listen-before-talk.
+    #[serde(default)]
+    pub access: ChannelAccess,
+    /// A network's fair-use policy.
+    #[serde(default)]
+    pub fair_use: FairUse,
 }
 
 fn default_overhead() -> usize {
@@ -81,8 +97,17 @@ pub struct AirtimeReport {
     pub phy_payload_bytes: usize,
     /// Whether low data rate optimisation is on.
     pub low_data_rate_optimize: bool,
-    /// Minimum interval between packets under the duty cycle, s.
+    /// Minimum interval between packets under the plan's rule (duty cycle, listen-before-talk's
+    /// 100 s per hour, or the interval where the plan has none; within fair use), s.
     pub min_interval: f64,
+    /// The plan's data rate at this SF and bandwidth (`null`: raw LoRa outside the data rates,
+    /// which EU868 allows).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
+    pub data_rate: Option<u8>,
+    /// Why the plan refuses this packet (no such data rate, payload limit, dwell time); `null`
+    /// when it carries it.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "string | null"))]
+    pub refused: Option<String>,
     /// Packets per day within The Things Network's fair-use policy (30 s of airtime a day), for
     /// information: loratrack does not enforce it.
     pub ttn_packets_per_day: u32,
@@ -96,13 +121,31 @@ pub fn airtime(p: &AirtimeParams) -> Result<AirtimeReport, ApiError> {
         .checked_add(p.overhead)
         .ok_or(lora::LoraError::PayloadTooLarge(usize::MAX))?;
     let t = lora::time_on_air(&radio, phy)?;
+    let access = AccessSettings {
+        region: p.region,
+        interval: p.interval,
+        access: p.access,
+        fair_use: p.fair_use,
+        ..AccessSettings::default()
+    };
+    access.validate(p.duty_cycle)?;
+    let check = p
+        .region
+        .check(radio.sf.get(), radio.bw, p.payload, t.time_on_air);
+    // An interval shorter than the time on air is the packet's own refusal, not the call's.
+    let (duty_cycle, short) = match access.duty_cycle_for(p.duty_cycle, t.time_on_air) {
+        Ok(dc) => (dc, None),
+        Err(e) => (1.0, Some(e.to_string())),
+    };
     Ok(AirtimeReport {
         time_on_air: t.time_on_air,
         symbol_time: t.symbol_time,
         payload_symbols: t.payload_symbols,
         phy_payload_bytes: t.phy_payload_bytes,
         low_data_rate_optimize: t.low_data_rate_optimize,
-        min_interval: lora::min_interval(t.time_on_air, p.duty_cycle)?,
+        min_interval: lora::min_interval(t.time_on_air, duty_cycle)?,
+        data_rate: check.as_ref().ok().and_then(|r| r.map(|r| r.dr)),
+        refused: check.err().map(|e| e.to_string()).or(short),
         ttn_packets_per_day: (lora::TTN_FAIR_USE_SECONDS_PER_DAY / t.time_on_air).floor() as u32,
     })
 }

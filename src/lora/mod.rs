@@ -49,6 +49,6 @@ pub use interference::{
 };
 pub use lbt::ChannelAccess;
 pub use reception::{audible, decide, resolve, Outcome, Receiver, Uplink, SX1301_DEMODULATORS};
-pub use region::{PlanRate, Region, RegionError};
+pub use region::{Plan, PlanRate, Region, RegionError};
 pub use shadowing::Shadowing;
 pub use snr::{demodulation_floor_db, noise_floor_dbm, snr_db, NOISE_FIGURE_DB};

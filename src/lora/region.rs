@@ -35,16 +35,50 @@ pub enum Region {
 
 /// One uplink data rate of a plan: its index, spreading factor, bandwidth and largest
 /// application payload (`None`: not usable under the dwell time).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct PlanRate {
     /// DR index in the plan.
     pub dr: u8,
     /// Spreading factor.
     pub sf: u8,
     /// Bandwidth.
+    #[serde(serialize_with = "khz")]
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number"))]
     pub bw: Bandwidth,
-    /// Largest FRMPayload, bytes; `None` where the plan bars the rate.
+    /// Largest FRMPayload, bytes; `None` (`null`) where the plan bars the rate.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub max_payload: Option<usize>,
+}
+
+fn khz<S: serde::Serializer>(bw: &Bandwidth, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_f64(bw.khz())
+}
+
+/// A plan as the page and `limits()` show it: every number [`Region`]'s methods give.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
+pub struct Plan {
+    /// The CLI/JS name.
+    pub region: Region,
+    /// The name people write.
+    pub label: &'static str,
+    /// Uplink data rates, slowest first.
+    pub rates: Vec<PlanRate>,
+    /// Longest time on air of one uplink, s (`null`: no limit).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
+    pub dwell_time: Option<f64>,
+    /// Duty cycle of the uplink channels (`null`: none; the sending interval is a setting).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
+    pub duty_cycle: Option<f64>,
+    /// Uplink channels hopped over.
+    pub channels: u8,
+    /// Largest transmit power (EIRP), dBm.
+    pub max_eirp_dbm: f64,
+    /// Whether LoRa outside the data rates is allowed (EU868).
+    pub raw_lora: bool,
 }
 
 const fn rate(dr: u8, sf: u8, bw: Bandwidth, max_payload: Option<usize>) -> PlanRate {
@@ -221,6 +255,20 @@ impl Region {
             Region::Au915 => "AU915",
             Region::As923 => "AS923",
             Region::In865 => "IN865",
+        }
+    }
+
+    /// Everything about the plan, as one value.
+    pub fn plan(self) -> Plan {
+        Plan {
+            region: self,
+            label: self.label(),
+            rates: self.rates(),
+            dwell_time: self.dwell_time(),
+            duty_cycle: self.duty_cycle(),
+            channels: self.channels(),
+            max_eirp_dbm: self.max_eirp_dbm(),
+            raw_lora: self.allows_raw_lora(),
         }
     }
 

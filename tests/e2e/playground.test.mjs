@@ -326,7 +326,8 @@ test('every chart downloads ready for a slide: title, legend, caption with setti
   const p75 = Number(results[1].split(',')[9]);
   assert.equal(p75.toFixed(2), number(await cell(page, 'dr', 'p75')).toFixed(2));
   const airtime = (await save(page.getByRole('button', { name: 'Time-on-air table (CSV)' }))).toString('utf8');
-  assert.match(airtime.split('\n')[0], /SF,bandwidth,9 B/);
+  assert.match(airtime.split('\n')[0], /SF,bandwidth,data rate,9 B/);
+  assert.match(airtime, /^SF7,250 kHz,DR6,/m, 'the plan names each pair\'s data rate');
   // Before any swarm, and where no packet arrives, a download says why instead of doing nothing.
   await page.getByRole('button', { name: 'Download the swarm chart as PNG' }).click();
   await page.waitForFunction(() => /run a swarm first/.test(document.querySelector('[data-panel="swarm"] .download-why')?.textContent ?? ''));
@@ -651,6 +652,47 @@ test('the swarm panel takes the single drone settings, ADR included, and reports
   assert.deepEqual(problems, []);
 });
 
+test('the regional plan: US915 offers only its data rates, asks for an interval, and its numbers are the CLI\'s', async () => {
+  const { page, problems } = await open('?sf=9&bw=125');
+  const before = await tableHtml(page);
+  await page.getByLabel('Regional plan').selectOption('us915');
+  await waitForResults(page, before);
+  await idle(page);
+  for (const sf of ['11', '12']) assert.equal(await page.locator(`#sf option[value="${sf}"]`).isDisabled(), true, `SF${sf} is not in US915`);
+  assert.match(await page.locator('#sf option[value="12"]').getAttribute('title'), /US915 offers only DR0 SF10\/125/);
+  assert.equal(await page.locator('#access option[value="lbt"]').isDisabled(), true);
+  assert.equal(await page.getByLabel('Interval (s)').isVisible(), true);
+  assert.equal(await page.getByLabel('Channel access').isVisible(), false);
+  for (const m of MODELS) assert.equal(await cellNumber(page, m, 'interval'), 1, `${m} sends every second`);
+  // The time-on-air table speaks the plan: DR names, pairs it lacks, frames over the dwell time.
+  const rows = await page.locator('#airtime-table tbody tr').allTextContents();
+  assert.ok(rows.some((r) => /^SF9125 kHzDR1/.test(r)), rows.join('|'));
+  assert.ok(rows.some((r) => /^SF12125 kHznot in US915/.test(r)), rows.join('|'));
+  assert.match(rows.find((r) => /^SF10125 kHz/.test(r)), /411\.6 ms · refused$/);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
+  const browserJson = JSON.parse(readFileSync(await download.path(), 'utf8'));
+  const cli = JSON.parse(execFileSync('cargo', ['run', '--quiet', '--', 'simulate', '--synthetic', '1', '--sf', '9', '--bw', '125', '--region', 'us915', '--interval', '1', '--json'], { encoding: 'utf8' }));
+  const strip = ({ settings: _a, series: _b, config: { series: _c, ...config }, ...rest }) => ({ config, ...rest });
+  assert.deepStrictEqual(strip(browserJson), strip(cli));
+  assert.deepEqual(await axe(page), []);
+  assert.deepEqual(problems, []);
+});
+
+test('a slotted swarm collides with none of its own drones and says how many drones a gateway serves', async () => {
+  const { page, problems } = await open();
+  await page.getByLabel('Drones', { exact: true }).selectOption('50');
+  await page.getByLabel('SF plan').selectOption('spread');
+  await page.getByLabel('Schedule').selectOption('slotted');
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await page.waitForFunction(() => /Packets collided/.test(document.querySelector('#swarm-status')?.textContent ?? ''), null, { timeout: 60_000 });
+  const rates = [...(await page.locator('#swarm-status').textContent()).matchAll(/(\d+) drones ([\d.]+) %/g)].map((m) => Number(m[2]));
+  assert.deepEqual(rates, rates.map(() => 0), 'no slotted drone collides');
+  const notes = await page.locator('#chart-swarm .note').allTextContents();
+  assert.match(notes.join(' '), /Slotted: longest frame [\d.]+ s/);
+  assert.match(notes.join(' '), /Largest swarm one gateway serves at these settings.*: \d+ drones at ≤ 1 % collisions and \d+ at ≤ 10 % with ALOHA \(by its formula\), \d+ slotted with none/);
+  assert.deepEqual(problems, []);
+});
+
 test('a large CSV is read with its own progress, then simulated', async () => {
   const dir = mkdtempSync(join(tmpdir(), 'loratrack-'));
   const path = join(dir, 'long.csv');
@@ -844,6 +886,19 @@ test('lesson "ADR chases the link": from SF12 packets move to DR5 or DR6, far mo
     assert.match(await page.locator(`tr[data-model="${m}"] [data-delta="p75"]`).textContent(), /^▼.*better/, m);
     assert.match(await page.locator(`tr[data-model="${m}"] [data-delta="packets"]`).textContent(), /^▲.*better/, m);
   }
+  assert.deepEqual(problems, []);
+});
+
+test('lesson "The same drone in Europe and in the US": US915 sends every second, and every p75 falls against EU868 pinned', async () => {
+  const { page, problems } = await lesson('The same drone in Europe and in the US');
+  await page.waitForSelector('[data-delta="p75"]');
+  for (const m of MODELS) {
+    assert.equal(await cellNumber(page, m, 'interval'), 1, m);
+    assert.match(await page.locator(`tr[data-model="${m}"] [data-delta="p75"]`).textContent(), /^▼.*better/, m);
+  }
+  const rows = await page.locator('#airtime-table tbody tr').allTextContents();
+  assert.ok(rows.some((r) => /^SF11125 kHznot in US915/.test(r)), rows.join('|'));
+  assert.match(rows.find((r) => /^SF10125 kHz/.test(r)), /refused$/);
   assert.deepEqual(problems, []);
 });
 

@@ -1,7 +1,8 @@
 // The page's settings and its URL: every shareable view must come back exactly as it was, and a
 // link asking for something the core refuses must be explained, never silently used.
 import { describe, expect, test } from 'vitest';
-import { adrCanStart, DEFAULTS, fromQuery, gatewaysFromText, gatewaysToText, invalid, LIMITS, toParams, toQuery, type Settings } from '../../www/state';
+import { adrCanStart, DEFAULTS, fromQuery, gatewaysFromText, gatewaysToText, invalid, LIMITS, planAllows, toParams, toQuery, type Settings } from '../../www/state';
+import type { Region } from '../../www/loratrack';
 import { LESSONS, lessonQuery } from '../../www/lessons';
 
 /** A deterministic stream of settings that differ from the defaults in many ways. */
@@ -22,7 +23,19 @@ function* variedSettings(): Generator<Settings> {
       sender: pick(['periodic', 'error'] as const),
       threshold: pick([0.5, 2, 7.5]),
       dutyCycleMode: pick(['per-packet', 'budget'] as const),
-      adr: adrCanStart(sf, bw) ? pick(['off', 'lorawan', 'tracking'] as const) : 'off',
+      ...(() => {
+        // A plan that has this SF and bandwidth; ADR only in EU868, listen-before-talk only where
+        // the plan has a duty cycle.
+        const region = pick((['eu868', 'us915', 'au915', 'as923', 'in865'] as Region[]).filter((r) => planAllows(r, sf, bw)));
+        const dutyCycled = region === 'eu868' || region === 'as923';
+        return {
+          adr: region === 'eu868' && adrCanStart(sf, bw) ? pick(['off', 'lorawan', 'tracking'] as const) : 'off',
+          region,
+          interval: pick([0.5, 1, 30]),
+          access: dutyCycled ? pick(['duty-cycle', 'lbt'] as const) : 'duty-cycle',
+          fairUse: pick(['off', 'ttn'] as const),
+        };
+      })(),
       flight: pick(['synthetic', 'all', 'canberra'] as const),
       flightNumber: 1 + Math.floor(rand() * 30),
       lorawan: rand() < 0.5,
@@ -59,6 +72,19 @@ describe('the URL', () => {
     expect(problems.join(' ')).toMatch(/seeds=0 was replaced by 1/);
     expect(problems.join(' ')).toMatch(/model=nonsense was replaced by all/);
     expect(problems.length).toBe(5);
+  });
+
+  test('never opens a plan without the SF and bandwidth, or listen-before-talk without a duty cycle, and says why', () => {
+    const a = fromQuery('?region=us915&sf=12&bw=125');
+    expect(a.settings.region).toBe('eu868');
+    expect(a.problems.join(' ')).toMatch(/region=us915 was replaced by eu868: SF12 \/ 125 kHz is not in it. US915 offers only DR0 SF10\/125/);
+    const b = fromQuery('?region=in865&sf=7&bw=125&access=lbt');
+    expect(b.settings.access).toBe('duty-cycle');
+    expect(b.problems.join(' ')).toMatch(/IN865 has none/);
+    expect(fromQuery('?region=us915&sf=9&bw=125').problems).toEqual([]);
+    expect(toParams({ ...DEFAULTS, region: 'us915', sf: 9, bw: 125, interval: 2 })).toMatchObject({ region: 'us915', interval: 2 });
+    // The interval is not sent where the plan has a duty cycle (the core would refuse it).
+    expect(toParams({ ...DEFAULTS, interval: 2 })).not.toHaveProperty('interval');
   });
 
   test('never opens ADR where it cannot start, and says why', () => {

@@ -2,18 +2,30 @@
 // air versus payload size, computed by the Rust core for the current overhead and coding rate.
 import { chartStyle } from './colors';
 import * as Plot from '@observablehq/plot';
-import { timeOnAir } from '../loratrack';
+import { PLANS, timeOnAir, type AirtimeParams, type Region } from '../loratrack';
 
 const SFS = [7, 8, 9, 10, 11, 12];
 const BWS = [125, 250, 500];
 const PAYLOADS = [9, 11, 12];
 
-/** SF × bandwidth × payload table; the current SF/bandwidth row is highlighted. */
-export function airtimeTable(opts: { overhead: number; cr: number; sf: number; bw: number }): HTMLTableElement {
+const inPlan = (region: Region, sf: number, bw: number) => PLANS.some((p) => p.region === region && p.rates.some((r) => r.sf === sf && r.bw === bw));
+const rawLora = (region: Region) => PLANS.some((p) => p.region === region && p.rawLora);
+
+/** The plan's settings the table speaks: region, interval where it has no duty cycle, access,
+ * fair use. */
+export type PlanOpts = Pick<AirtimeParams, 'region' | 'interval' | 'access' | 'fairUse'>;
+
+/** SF × bandwidth × payload table in the plan's words: each pair's data rate (or that the plan
+ * lacks it), and for each payload its time on air and interval, or why the plan refuses it (the
+ * core decides). The current SF/bandwidth row is highlighted. */
+export function airtimeTable(opts: { overhead: number; cr: number; sf: number; bw: number } & PlanOpts): HTMLTableElement {
   const table = document.createElement('table');
   table.className = 'airtime-table';
+  const caption = table.createCaption();
+  const label = opts.region.toUpperCase();
+  caption.textContent = `${label}: time on air · shortest interval between packets; refused where the plan does not carry the packet.`;
   const head = table.createTHead().insertRow();
-  for (const h of ['SF', 'bandwidth', '9 B (DR)', '11 B (CTRA+)', '12 B (3D-CTRA)']) {
+  for (const h of ['SF', 'bandwidth', 'data rate', '9 B (DR)', '11 B (CTRA+)', '12 B (3D-CTRA)']) {
     const th = document.createElement('th');
     th.textContent = h;
     head.appendChild(th);
@@ -25,9 +37,17 @@ export function airtimeTable(opts: { overhead: number; cr: number; sf: number; b
       if (sf === opts.sf && bw === opts.bw) row.className = 'current';
       row.insertCell().textContent = `SF${sf}`;
       row.insertCell().textContent = `${bw} kHz`;
-      for (const payload of PAYLOADS) {
-        const r = timeOnAir({ sf, bw, payload, overhead: opts.overhead, cr: opts.cr });
-        row.insertCell().textContent = `${(r.timeOnAir * 1e3).toFixed(1)} ms · ${r.minInterval.toFixed(2)} s`;
+      const rate = row.insertCell();
+      const plan = { region: opts.region, interval: opts.interval, access: opts.access, fairUse: opts.fairUse };
+      for (const [i, payload] of PAYLOADS.entries()) {
+        const r = timeOnAir({ sf, bw, payload, overhead: opts.overhead, cr: opts.cr, ...plan });
+        if (i === 0) rate.textContent = r.dataRate !== null ? `DR${r.dataRate}` : inPlan(opts.region, sf, bw) || rawLora(opts.region) ? 'raw LoRa' : `not in ${label}`;
+        const cell = row.insertCell();
+        cell.textContent = `${(r.timeOnAir * 1e3).toFixed(1)} ms · ${r.refused ? 'refused' : `${r.minInterval.toFixed(2)} s`}`;
+        if (r.refused) {
+          cell.className = 'refused';
+          cell.title = r.refused;
+        }
       }
     }
   }

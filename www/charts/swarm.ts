@@ -33,12 +33,10 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   });
   const note = document.createElement('p');
   note.className = 'note';
-  note.textContent = `${largest.config.drones} drones, ${largest.config.channels} channel${largest.config.channels > 1 ? 's' : ''}, ${largest.config.sfPlan === 'spread' ? 'SFs spread by distance' : `all on SF${largest.config.sf}`}: ${(100 * largest.collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %), median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m; ${(100 * largest.deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${largest.config.adr === 'off' ? '' : `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped`}; radio ${largest.energy.chargePerUplink.toFixed(2)} mC per uplink.${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
-  const capacity = document.createElement('p');
-  capacity.className = 'note';
+  note.textContent = `${largest.config.drones} drones, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${largest.config.sfPlan === 'spread' ? 'SFs spread by distance' : `all on SF${largest.config.sf}`}: ${(100 * largest.collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %), median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m; ${(100 * largest.deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${largest.config.adr === 'off' ? '' : `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped`}; radio ${largest.energy.chargePerUplink.toFixed(2)} mC per uplink.${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
   const l = largest.largestSwarm;
-  capacity.textContent = `Largest swarm one gateway serves at these settings, every drone sending as often as its duty cycle allows: ${l.aloha1} drones at ≤ 1 % collisions and ${l.aloha10} at ≤ 10 % with ALOHA (by its formula), ${l.slotted} slotted with none.`;
+  note.textContent += ` Largest swarm one gateway serves at these settings, every drone sending as often as its duty cycle allows: ${l.aloha1} drones at ≤ 1 % collisions and ${l.aloha10} at ≤ 10 % with ALOHA (by its formula), ${l.slotted} slotted with none.`;
   const box = document.createElement('div');
-  box.append(collisions, errors, note, capacity);
+  box.append(collisions, errors, note);
   return box;
 }

@@ -22,6 +22,58 @@ export type AdrMode = "off" | "lorawan" | "tracking";
 
 export type Region = "eu868" | "us915" | "au915" | "as923" | "in865";
 
+export type PlanRate = { 
+/**
+ * DR index in the plan.
+ */
+dr: number, 
+/**
+ * Spreading factor.
+ */
+sf: number, 
+/**
+ * Bandwidth.
+ */
+bw: number, 
+/**
+ * Largest FRMPayload, bytes; `None` (`null`) where the plan bars the rate.
+ */
+maxPayload: number | null, };
+
+export type Plan = { 
+/**
+ * The CLI/JS name.
+ */
+region: Region, 
+/**
+ * The name people write.
+ */
+label: string, 
+/**
+ * Uplink data rates, slowest first.
+ */
+rates: Array<PlanRate>, 
+/**
+ * Longest time on air of one uplink, s (`null`: no limit).
+ */
+dwellTime: number | null, 
+/**
+ * Duty cycle of the uplink channels (`null`: none; the sending interval is a setting).
+ */
+dutyCycle: number | null, 
+/**
+ * Uplink channels hopped over.
+ */
+channels: number, 
+/**
+ * Largest transmit power (EIRP), dBm.
+ */
+maxEirpDbm: number, 
+/**
+ * Whether LoRa outside the data rates is allowed (EU868).
+ */
+rawLora: boolean, };
+
 export type FairUse = "off" | "ttn";
 
 export type ChannelAccess = "duty-cycle" | "lbt";
@@ -1440,9 +1492,25 @@ noCrc: boolean,
  */
 ldro: LdroMode, 
 /**
- * Duty-cycle limit as a fraction (EU868 g1 sub-band: 0.01).
+ * Duty-cycle limit as a fraction (EU868 g1 sub-band: 0.01), in plans with a duty cycle.
  */
-dutyCycle: number, };
+dutyCycle: number, 
+/**
+ * The regional plan (reference §14).
+ */
+region: Region, 
+/**
+ * Where the plan has no duty cycle: seconds between uplinks (default 1).
+ */
+interval?: number, 
+/**
+ * Duty cycle or listen-before-talk.
+ */
+access: ChannelAccess, 
+/**
+ * A network's fair-use policy.
+ */
+fairUse: FairUse, };
 
 export type AirtimeReport = { 
 /**
@@ -1466,9 +1534,20 @@ phyPayloadBytes: number,
  */
 lowDataRateOptimize: boolean, 
 /**
- * Minimum interval between packets under the duty cycle, s.
+ * Minimum interval between packets under the plan's rule (duty cycle, listen-before-talk's
+ * 100 s per hour, or the interval where the plan has none; within fair use), s.
  */
 minInterval: number, 
+/**
+ * The plan's data rate at this SF and bandwidth (`null`: raw LoRa outside the data rates,
+ * which EU868 allows).
+ */
+dataRate: number | null, 
+/**
+ * Why the plan refuses this packet (no such data rate, payload limit, dwell time); `null`
+ * when it carries it.
+ */
+refused: string | null, 
 /**
  * Packets per day within The Things Network's fair-use policy (30 s of airtime a day), for
  * information: loratrack does not enforce it.
@@ -1976,5 +2055,256 @@ export const OPTIONS: NumberOption[] = [
     "integer": true,
     "values": [],
     "help": "Repeat the simulation with this many seeds (seed, seed + 1, ...): the statistics pool every run and each gets a 95 % interval."
+  }
+];
+
+/** Every regional plan's data rates and limits, as the core checks them (src/lora/region.rs). */
+export const PLANS: Plan[] = [
+  {
+    "region": "eu868",
+    "label": "EU868",
+    "rates": [
+      {
+        "dr": 0,
+        "sf": 12,
+        "bw": 125.0,
+        "maxPayload": 51
+      },
+      {
+        "dr": 1,
+        "sf": 11,
+        "bw": 125.0,
+        "maxPayload": 51
+      },
+      {
+        "dr": 2,
+        "sf": 10,
+        "bw": 125.0,
+        "maxPayload": 51
+      },
+      {
+        "dr": 3,
+        "sf": 9,
+        "bw": 125.0,
+        "maxPayload": 115
+      },
+      {
+        "dr": 4,
+        "sf": 8,
+        "bw": 125.0,
+        "maxPayload": 242
+      },
+      {
+        "dr": 5,
+        "sf": 7,
+        "bw": 125.0,
+        "maxPayload": 242
+      },
+      {
+        "dr": 6,
+        "sf": 7,
+        "bw": 250.0,
+        "maxPayload": 242
+      }
+    ],
+    "dwellTime": null,
+    "dutyCycle": 0.01,
+    "channels": 3,
+    "maxEirpDbm": 16.0,
+    "rawLora": true
+  },
+  {
+    "region": "us915",
+    "label": "US915",
+    "rates": [
+      {
+        "dr": 0,
+        "sf": 10,
+        "bw": 125.0,
+        "maxPayload": 11
+      },
+      {
+        "dr": 1,
+        "sf": 9,
+        "bw": 125.0,
+        "maxPayload": 53
+      },
+      {
+        "dr": 2,
+        "sf": 8,
+        "bw": 125.0,
+        "maxPayload": 125
+      },
+      {
+        "dr": 3,
+        "sf": 7,
+        "bw": 125.0,
+        "maxPayload": 242
+      },
+      {
+        "dr": 4,
+        "sf": 8,
+        "bw": 500.0,
+        "maxPayload": 242
+      }
+    ],
+    "dwellTime": 0.4,
+    "dutyCycle": null,
+    "channels": 8,
+    "maxEirpDbm": 30.0,
+    "rawLora": false
+  },
+  {
+    "region": "au915",
+    "label": "AU915",
+    "rates": [
+      {
+        "dr": 0,
+        "sf": 12,
+        "bw": 125.0,
+        "maxPayload": null
+      },
+      {
+        "dr": 1,
+        "sf": 11,
+        "bw": 125.0,
+        "maxPayload": null
+      },
+      {
+        "dr": 2,
+        "sf": 10,
+        "bw": 125.0,
+        "maxPayload": 11
+      },
+      {
+        "dr": 3,
+        "sf": 9,
+        "bw": 125.0,
+        "maxPayload": 53
+      },
+      {
+        "dr": 4,
+        "sf": 8,
+        "bw": 125.0,
+        "maxPayload": 125
+      },
+      {
+        "dr": 5,
+        "sf": 7,
+        "bw": 125.0,
+        "maxPayload": 242
+      },
+      {
+        "dr": 6,
+        "sf": 8,
+        "bw": 500.0,
+        "maxPayload": 242
+      }
+    ],
+    "dwellTime": 0.4,
+    "dutyCycle": null,
+    "channels": 8,
+    "maxEirpDbm": 30.0,
+    "rawLora": false
+  },
+  {
+    "region": "as923",
+    "label": "AS923",
+    "rates": [
+      {
+        "dr": 0,
+        "sf": 12,
+        "bw": 125.0,
+        "maxPayload": null
+      },
+      {
+        "dr": 1,
+        "sf": 11,
+        "bw": 125.0,
+        "maxPayload": null
+      },
+      {
+        "dr": 2,
+        "sf": 10,
+        "bw": 125.0,
+        "maxPayload": 11
+      },
+      {
+        "dr": 3,
+        "sf": 9,
+        "bw": 125.0,
+        "maxPayload": 53
+      },
+      {
+        "dr": 4,
+        "sf": 8,
+        "bw": 125.0,
+        "maxPayload": 125
+      },
+      {
+        "dr": 5,
+        "sf": 7,
+        "bw": 125.0,
+        "maxPayload": 242
+      },
+      {
+        "dr": 6,
+        "sf": 7,
+        "bw": 250.0,
+        "maxPayload": 242
+      }
+    ],
+    "dwellTime": 0.4,
+    "dutyCycle": 0.01,
+    "channels": 2,
+    "maxEirpDbm": 16.0,
+    "rawLora": false
+  },
+  {
+    "region": "in865",
+    "label": "IN865",
+    "rates": [
+      {
+        "dr": 0,
+        "sf": 12,
+        "bw": 125.0,
+        "maxPayload": 51
+      },
+      {
+        "dr": 1,
+        "sf": 11,
+        "bw": 125.0,
+        "maxPayload": 51
+      },
+      {
+        "dr": 2,
+        "sf": 10,
+        "bw": 125.0,
+        "maxPayload": 51
+      },
+      {
+        "dr": 3,
+        "sf": 9,
+        "bw": 125.0,
+        "maxPayload": 115
+      },
+      {
+        "dr": 4,
+        "sf": 8,
+        "bw": 125.0,
+        "maxPayload": 242
+      },
+      {
+        "dr": 5,
+        "sf": 7,
+        "bw": 125.0,
+        "maxPayload": 242
+      }
+    ],
+    "dwellTime": null,
+    "dutyCycle": null,
+    "channels": 3,
+    "maxEirpDbm": 30.0,
+    "rawLora": false
   }
 ];

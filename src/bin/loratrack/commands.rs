@@ -306,6 +306,17 @@ pub struct AirtimeArgs {
     /// Duty-cycle limit as a fraction, 0.0001..1 (EU868 868.0–868.6 MHz: 0.01).
     #[arg(long, default_value_t = opt::DUTY_CYCLE.default, allow_negative_numbers = true)]
     duty_cycle: f64,
+    /// Regional plan: its data rate for this SF and bandwidth, and whether it carries the packet.
+    #[arg(long, value_enum, default_value = "eu868")]
+    region: loratrack::Region,
+    #[arg(long, help = opt::INTERVAL.cli_help(), allow_negative_numbers = true)]
+    interval: Option<f64>,
+    /// duty-cycle, or lbt (ETSI's 100 s of airtime per hour).
+    #[arg(long, value_enum, default_value = "duty-cycle")]
+    access: loratrack::ChannelAccess,
+    /// off, or ttn (30 s of airtime per day).
+    #[arg(long, value_enum, default_value = "off")]
+    fair_use: loratrack::FairUse,
     #[command(flatten)]
     out: Output,
 }
@@ -357,21 +368,30 @@ fn airtime(a: AirtimeArgs) -> Result<String, ApiError> {
         no_crc: a.no_crc,
         ldro: a.ldro.into(),
         duty_cycle: a.duty_cycle,
+        region: a.region,
+        interval: a.interval,
+        access: a.access,
+        fair_use: a.fair_use,
     };
     let r = api::airtime(&params)?;
     if a.out.json {
         return Ok(json(&r));
     }
+    let rate = match (r.data_rate, &r.refused) {
+        (_, Some(why)) => format!("refused: {why}"),
+        (Some(dr), None) => format!("{} DR{dr}", a.region.label()),
+        (None, None) => format!("raw LoRa (no {} data rate)", a.region.label()),
+    };
     Ok(format!(
-        "time on air      {:.3} ms\nsymbol time      {:.3} ms\npayload symbols  {}\nPHY payload      {} B\nLDRO             {}\nmin interval     {:.3} s (duty cycle {})\nTTN fair use     {} packets/day (30 s of airtime; not enforced)",
+        "time on air      {:.3} ms\nsymbol time      {:.3} ms\npayload symbols  {}\nPHY payload      {} B\nLDRO             {}\ndata rate        {rate}\nmin interval     {:.3} s\nTTN fair use     {} packets/day (30 s of airtime; {})",
         r.time_on_air * 1e3,
         r.symbol_time * 1e3,
         r.payload_symbols,
         r.phy_payload_bytes,
         if r.low_data_rate_optimize { "on" } else { "off" },
         r.min_interval,
-        a.duty_cycle,
-        r.ttn_packets_per_day
+        r.ttn_packets_per_day,
+        if a.fair_use == loratrack::FairUse::Ttn { "applied to the interval" } else { "not enforced; --fair-use ttn applies it" }
     ))
 }
 
