@@ -229,10 +229,10 @@ function renderDistance(sweep: { distance: number; report: SimReport }[], made: 
 }
 
 function renderLink(): void {
-  const r = linkBudget({ bw: store.settings.bw, txPower: store.settings.txPower, pathLossExponent: store.settings.pathLossExponent, shadowing: store.settings.shadowing });
+  const r = linkBudget({ bw: store.settings.bw, txPower: store.settings.txPower, pathLossExponent: store.settings.pathLossExponent, shadowing: store.settings.shadowing, region: store.settings.region });
   // Each gateway's distance from the flight's start (the default one: the distance setting).
   const distances = store.settings.gateways.length ? store.settings.gateways.map((g) => Math.hypot(g.east, g.north)) : [store.settings.distance];
-  place('link', linkBudgetCharts(r, { width: chartWidth('link'), distances, sf: store.settings.sf }));
+  place('link', linkBudgetCharts(r, { width: chartWidth('link'), distances, sf: store.settings.sf, plan: plan(store.settings.region).label }));
 }
 
 function renderAirtime(): void {

@@ -2,7 +2,7 @@
 //! and range of each spreading factor, and the delivery ratio the shadowing leaves (reference §6).
 
 use super::ApiError;
-use crate::lora::{Bandwidth, Channel, ChannelParams, SpreadingFactor};
+use crate::lora::{Bandwidth, Channel, ChannelParams, Region, SpreadingFactor};
 use crate::math::{hypot, normal_cdf};
 use serde::{Deserialize, Serialize};
 
@@ -23,6 +23,8 @@ pub struct LinkBudgetParams {
     pub gateway_height: f64,
     /// Horizontal distances, m (at most 1000 of them, each 1..100000).
     pub distances: Vec<f64>,
+    /// The regional plan: each SF's data rate at `bw`, or that the plan lacks it (§14).
+    pub region: Region,
 }
 
 impl Default for LinkBudgetParams {
@@ -35,6 +37,7 @@ impl Default for LinkBudgetParams {
             shadowing: opt::SHADOWING.default,
             gateway_height: opt::GATEWAY_HEIGHT.default,
             distances: (1..=100).map(|k| 100.0 * f64::from(k)).collect(),
+            region: Region::Eu868,
         }
     }
 }
@@ -52,6 +55,12 @@ pub struct SfBudget {
     pub range_m: f64,
     /// Share of packets received at each distance: Φ((mean power − sensitivity) / σ).
     pub delivery: Vec<f64>,
+    /// The plan's data rate at this SF and the bandwidth (`null`: none; then `inPlan` says
+    /// whether the plan allows the SF as raw LoRa, as EU868 does).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
+    pub data_rate: Option<u8>,
+    /// Whether the plan lets a drone send at this SF and bandwidth.
+    pub in_plan: bool,
 }
 
 /// The output of `linkBudget`.
@@ -102,7 +111,13 @@ pub fn link_budget(p: &LinkBudgetParams) -> Result<LinkBudgetReport, ApiError> {
             let sf = SpreadingFactor::new(n).map_err(ApiError::Lora)?;
             let sens = Channel::sensitivity_dbm(sf, bw);
             let range3d = channel.range_m(sf, bw);
+            let rate = p
+                .region
+                .rate(sf.get(), bw)
+                .filter(|r| r.max_payload.is_some());
             Ok(SfBudget {
+                data_rate: rate.map(|r| r.dr),
+                in_plan: rate.is_some() || p.region.allows_raw_lora(),
                 sf: sf.get(),
                 sensitivity_dbm: sens,
                 range_m: (range3d * range3d - h * h).max(0.0).sqrt(),

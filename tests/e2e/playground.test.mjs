@@ -533,10 +533,11 @@ test('the link-budget panel shows power, sensitivities and delivery, and follows
   await page.waitForSelector('#chart-link svg');
   assert.ok((await page.locator('#chart-link svg').count()) >= 2);
   const before = await page.locator('#chart-link .note').textContent();
-  assert.match(before, /SF7 [\d.]+ km.*SF12 [\d.]+ km/);
+  // Each SF is named with its EU868 data rate where it has one (SF7 at 250 kHz is DR6).
+  assert.match(before, /SF7 \(DR6\) [\d.]+ km.*SF12 [\d.]+ km/);
   await page.getByLabel('Bandwidth').selectOption('125');
   await page.waitForFunction((old) => document.querySelector('#chart-link .note')?.textContent !== old, before);
-  const sf7 = (t) => Number(/SF7 ([\d.]+) km/.exec(t)[1]);
+  const sf7 = (t) => Number(/SF7(?: \(DR\d\))? ([\d.]+) km/.exec(t)[1]);
   assert.ok(sf7(await page.locator('#chart-link .note').textContent()) > sf7(before), 'a narrower band reaches further');
   assert.deepEqual(problems, []);
 });
@@ -669,6 +670,10 @@ test('the regional plan: US915 offers only its data rates, asks for an interval,
   assert.ok(rows.some((r) => /^SF9125 kHzDR1/.test(r)), rows.join('|'));
   assert.ok(rows.some((r) => /^SF12125 kHznot in US915/.test(r)), rows.join('|'));
   assert.match(rows.find((r) => /^SF10125 kHz/.test(r)), /411\.6 ms · refused$/);
+  // So does the link budget: US915's SFs with their data rates, and the ones it lacks.
+  const link = await page.locator('#chart-link .note').textContent();
+  assert.match(link, /SF9 \(DR1\) [\d.]+ km/);
+  assert.match(link, /US915 has no uplink data rate at SF11, SF12 with this bandwidth/);
   const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
   const browserJson = JSON.parse(readFileSync(await download.path(), 'utf8'));
   const cli = JSON.parse(execFileSync('cargo', ['run', '--quiet', '--', 'simulate', '--synthetic', '1', '--sf', '9', '--bw', '125', '--region', 'us915', '--interval', '1', '--json'], { encoding: 'utf8' }));

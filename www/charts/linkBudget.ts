@@ -8,11 +8,17 @@ import type { LinkBudgetReport } from '../loratrack';
 
 const SF_COLORS = ['#4e79a7', '#59a14f', '#9c755f', '#f28e2b', '#e15759', '#76b7b2'];
 
-export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; distances: number[]; sf: number }): HTMLElement {
+/** The charts, in the plan's words: only the SFs the plan allows at this bandwidth, each named
+ * with its data rate (`SF9 (DR1)`); the note says which the plan lacks. */
+export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; distances: number[]; sf: number; plan: string }): HTMLElement {
   const km = (d: number) => d / 1000;
   const band = r.distances.map((d, i) => ({ d: km(d), lo: r.meanRxDbm[i] - 1.645 * r.shadowing, hi: r.meanRxDbm[i] + 1.645 * r.shadowing, mean: r.meanRxDbm[i] }));
-  const sens = r.sfs.map((s) => ({ sf: `SF${s.sf}`, dbm: s.sensitivityDbm, range: km(s.rangeM) }));
-  const color = { domain: sens.map((s) => s.sf), range: SF_COLORS, legend: true };
+  const shown = r.sfs.filter((s) => s.inPlan);
+  const name = (s: LinkBudgetReport['sfs'][number]) => (s.dataRate === null ? `SF${s.sf}` : `SF${s.sf} (DR${s.dataRate})`);
+  const chosen = shown.find((s) => s.sf === opts.sf);
+  const current = chosen ? name(chosen) : '';
+  const sens = shown.map((s) => ({ sf: name(s), dbm: s.sensitivityDbm, range: km(s.rangeM) }));
+  const color = { domain: sens.map((s) => s.sf), range: shown.map((s) => SF_COLORS[s.sf - 7]), legend: true };
   const power = Plot.plot({
     style: chartStyle(),
     width: opts.width,
@@ -24,12 +30,12 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
     marks: [
       Plot.areaY(band, { x: 'd', y1: 'lo', y2: 'hi', fill: '#888', fillOpacity: 0.15 }),
       Plot.lineY(band, { x: 'd', y: 'mean', stroke: '#222', strokeWidth: 1.6 }),
-      Plot.ruleY(sens, { y: 'dbm', stroke: 'sf', strokeDasharray: '4,3', strokeWidth: (s) => (s.sf === `SF${opts.sf}` ? 2.2 : 1) }),
+      Plot.ruleY(sens, { y: 'dbm', stroke: 'sf', strokeDasharray: '4,3', strokeWidth: (s) => (s.sf === current ? 2.2 : 1) }),
       Plot.ruleX(opts.distances.map(km), { stroke: '#b00020', strokeWidth: 1.5 }),
       Plot.text(opts.distances.map(km), { x: (d) => d, frameAnchor: 'top', dy: 6, text: (_d, i) => (opts.distances.length > 1 ? `gateway ${i + 1}` : 'gateway distance'), fill: '#b00020', fontSize: chartFont() }),
     ],
   });
-  const curves = r.sfs.flatMap((s) => s.delivery.map((p, i) => ({ d: km(r.distances[i]), p: 100 * p, sf: `SF${s.sf}` })));
+  const curves = shown.flatMap((s) => s.delivery.map((p, i) => ({ d: km(r.distances[i]), p: 100 * p, sf: name(s) })));
   const delivery = Plot.plot({
     style: chartStyle(),
     width: opts.width,
@@ -39,14 +45,15 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
     y: { label: 'packets delivered (%)', domain: [0, 100], grid: true },
     color,
     marks: [
-      Plot.lineY(curves, { x: 'd', y: 'p', stroke: 'sf', strokeWidth: (c) => (c.sf === `SF${opts.sf}` ? 2.4 : 1.2) }),
+      Plot.lineY(curves, { x: 'd', y: 'p', stroke: 'sf', strokeWidth: (c) => (c.sf === current ? 2.4 : 1.2) }),
       Plot.ruleX(opts.distances.map(km), { stroke: '#b00020', strokeWidth: 1.5 }),
       Plot.tip(curves, Plot.pointerX({ x: 'd', y: 'p', stroke: 'sf', title: (c) => `${c.sf} at ${c.d.toFixed(1)} km: ${c.p.toFixed(0)} % delivered` })),
     ],
   });
   const ranges = document.createElement('p');
   ranges.className = 'note';
-  ranges.textContent = `Range (mean power = sensitivity): ${sens.map((s) => `${s.sf} ${s.range.toFixed(1)} km`).join(', ')}. The grey band holds 90 % of packets (shadowing σ ${r.shadowing} dB).`;
+  const missing = r.sfs.filter((s) => !s.inPlan).map((s) => `SF${s.sf}`);
+  ranges.textContent = `Range (mean power = sensitivity): ${sens.map((s) => `${s.sf} ${s.range.toFixed(1)} km`).join(', ')}. The grey band holds 90 % of packets (shadowing σ ${r.shadowing} dB).${missing.length ? ` ${opts.plan} has no uplink data rate at ${missing.join(', ')} with this bandwidth.` : ''}`;
   const box = document.createElement('div');
   box.append(power, delivery, ranges);
   return box;

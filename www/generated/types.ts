@@ -1578,7 +1578,11 @@ gatewayHeight: number,
 /**
  * Horizontal distances, m (at most 1000 of them, each 1..100000).
  */
-distances: Array<number>, };
+distances: Array<number>, 
+/**
+ * The regional plan: each SF's data rate at `bw`, or that the plan lacks it (§14).
+ */
+region: Region, };
 
 export type SfBudget = { 
 /**
@@ -1596,7 +1600,16 @@ rangeM: number,
 /**
  * Share of packets received at each distance: Φ((mean power − sensitivity) / σ).
  */
-delivery: Array<number>, };
+delivery: Array<number>, 
+/**
+ * The plan's data rate at this SF and the bandwidth (`null`: none; then `inPlan` says
+ * whether the plan allows the SF as raw LoRa, as EU868 does).
+ */
+dataRate: number | null, 
+/**
+ * Whether the plan lets a drone send at this SF and bandwidth.
+ */
+inPlan: boolean, };
 
 export type LinkBudgetReport = { 
 /**
