@@ -200,3 +200,35 @@ fn settings_are_checked_before_any_work_with_the_key_and_the_limit() {
         assert!(e.contains(expected), "{settings}: {e}");
     }
 }
+
+#[test]
+fn simulate_keeps_the_papers_timing_unless_given_a_jitter_and_never_sends_sooner_than_the_rule() {
+    let arrivals = |extra: Value| {
+        let mut settings = json!({"synthetic": 1, "model": "dr", "series": true});
+        settings
+            .as_object_mut()
+            .unwrap()
+            .extend(extra.as_object().unwrap().clone());
+        let r = simulate(&mut Simulator::new(), &scenario(settings)).unwrap();
+        let toa = r.results[0].time_on_air;
+        let interval = r.results[0].interval;
+        (r.series.unwrap().models[0].arrivals.clone(), toa, interval)
+    };
+    let (exact, toa, interval) = arrivals(json!({}));
+    // The paper's timing: every uplink starts on a 10 Hz sensor step.
+    for a in &exact {
+        let start = (a - toa) * 10.0;
+        assert!((start - start.round()).abs() < 1e-6, "{a}");
+    }
+    let (jittered, ..) = arrivals(json!({"jitter": 1.0, "clockDrift": 20}));
+    assert_ne!(exact, jittered);
+    assert!(jittered.iter().any(|a| {
+        let start = (a - toa) * 10.0;
+        (start - start.round()).abs() > 1e-3
+    }));
+    for w in jittered.windows(2) {
+        // At most 20 ppm early, at most 1 s late on each interval.
+        assert!(w[1] - w[0] >= interval * (1.0 - 2e-5) - 1e-9, "{w:?}");
+        assert!(w[1] - w[0] <= interval + 1.0 + 0.1 + 1e-9, "{w:?}");
+    }
+}

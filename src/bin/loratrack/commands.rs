@@ -883,8 +883,29 @@ fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError
             }
         }
     }
+    // Periodic sending slowed to error-triggered sending's airtime, 72 drones on one SF7
+    // channel: the fair comparison for a sender that saves airtime.
+    let mut equal = Vec::new();
+    for schedule in [Schedule::Aloha, Schedule::Slotted] {
+        let find = |sender| {
+            rows.iter().find(|r: &&SwarmReport| {
+                let c = &r.config.settings;
+                c.access.schedule == schedule
+                    && c.channels() == 1
+                    && c.swarm.sf_plan == SfPlan::Fixed
+                    && c.sending.sender == sender
+                    && c.swarm.drones == 72
+            })
+        };
+        if let (Some(p), Some(e)) = (find(SenderKind::Periodic), find(SenderKind::Error)) {
+            let mut slowed = p.config.settings.clone();
+            slowed.radio.duty_cycle = (slowed.radio.duty_cycle * e.airtime / p.airtime)
+                .clamp(opt::DUTY_CYCLE.min, opt::DUTY_CYCLE.max);
+            equal.push((e.clone(), api::swarm(&slowed)?));
+        }
+    }
     if a.out.json {
         return Ok(json(&rows));
     }
-    Ok(crate::reproduction::swarm_markdown(&rows, a.markdown))
+    Ok(crate::reproduction::swarm_markdown(&rows, &equal, a.markdown))
 }

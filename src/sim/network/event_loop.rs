@@ -143,7 +143,7 @@ pub fn run_episode(net: &mut Network, fliers: &mut [Flier<'_>]) {
             if !net.radios[f.drone].adaptive() {
                 // No downlink can change anything: the next uplink is planned at once.
                 f.after_packet(k, frame.time_on_air);
-                plan(f, e.drone, arrival, &mut next, &mut queue);
+                plan(f, e.drone, arrival + off_time(net), &mut next, &mut queue);
             }
             on_air[e.drone] = Some(OnAir {
                 k,
@@ -176,9 +176,19 @@ pub fn run_episode(net: &mut Network, fliers: &mut [Flier<'_>]) {
             if net.radios[f.drone].adaptive() {
                 let toa = net.radios[f.drone].current().time_on_air;
                 f.after_packet(air.k, toa);
-                plan(f, e.drone, next_from, &mut next, &mut queue);
+                plan(f, e.drone, next_from + off_time(net), &mut next, &mut queue);
             }
         }
+    }
+}
+
+/// The least silence after an uplink ends before the next may start, s: listen-before-talk's
+/// 100 ms (which a budget of airtime could otherwise skip), nothing under a duty cycle.
+fn off_time(net: &Network) -> f64 {
+    if net.listen_before_talk {
+        lbt::MIN_OFF_TIME_S
+    } else {
+        0.0
     }
 }
 
