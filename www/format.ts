@@ -1,6 +1,6 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
 import { MODEL_LABELS, type ModelResult } from './loratrack';
-import type { Settings } from './state';
+import { plan, type Settings } from './state';
 import { store } from './store';
 
 /** A statistic with `digits` decimals, or a dash where there is none (an empty sample). */
@@ -9,9 +9,14 @@ export const fmt = (v: number | null, digits = 2) => (v === null || v === undefi
 /** Station names as a list: "DR", "DR and CTRA+", "DR, CTRA+, 3D-CTRA". */
 export const names = (list: ModelResult[]) => list.map((m) => MODEL_LABELS[m.model]).join(list.length === 2 ? ' and ' : ', ');
 
-/** The settings that matter most, in one short phrase. */
+/** The settings that matter most, in one short phrase: the plan's limit whenever it is not the
+ * paper's EU868 1 % duty cycle. */
 export function describe(s: Settings): string {
-  return `SF${s.sf}, ${s.bw} kHz, ${(s.distance / 1000).toFixed(1)} km, ${s.prediction} prediction, ${s.sender} sending${s.adr === 'off' ? '' : `, ${s.adr} ADR`}`;
+  const p = plan(s.region);
+  const limit = p.dutyCycle === null ? `, every ${s.interval} s` : s.access === 'lbt' ? ', listen before talk' : '';
+  const region = s.region === 'eu868' && !limit ? '' : `, ${p.label}${limit}`;
+  const fair = s.fairUse === 'off' ? '' : `, ${s.fairUse.toUpperCase()} fair use`;
+  return `SF${s.sf}, ${s.bw} kHz${region}${fair}, ${(s.distance / 1000).toFixed(1)} km, ${s.prediction} prediction, ${s.sender} sending${s.adr === 'off' ? '' : `, ${s.adr} ADR`}`;
 }
 
 /** One line for a download's caption: the settings, flight, seed and version behind a chart. */

@@ -20,6 +20,10 @@ test('station lists read as a sentence', () => {
 test('a caption names the settings, the flight, every seed and the version', () => {
   expect(describe(DEFAULTS)).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending');
   expect(describe({ ...DEFAULTS, adr: 'tracking', sf: 12, bw: 125 })).toBe('SF12, 125 kHz, 1.0 km, paper prediction, periodic sending, tracking ADR');
+  // The plan is named whenever its limit is not the paper's 1 % duty cycle.
+  expect(describe({ ...DEFAULTS, region: 'us915', sf: 9, bw: 125 })).toBe('SF9, 125 kHz, US915, every 1 s, 1.0 km, paper prediction, periodic sending');
+  expect(describe({ ...DEFAULTS, access: 'lbt', fairUse: 'ttn' })).toBe('SF7, 250 kHz, EU868, listen before talk, TTN fair use, 1.0 km, paper prediction, periodic sending');
+  expect(describe({ ...DEFAULTS, region: 'as923', sf: 7, bw: 125 })).toMatch(/^SF7, 125 kHz, AS923, 1\.0 km/);
   expect(caption(DEFAULTS)).toMatch(/^SF7, 250 kHz, 1\.0 km, paper prediction, periodic sending, 13 B LoRaWAN overhead; synthetic flight 1; seed 1; loratrack \d+\.\d+\.\d+$/);
   expect(caption({ ...DEFAULTS, flight: 'all', seed: 5, seeds: 10, lorawan: false })).toMatch(/no LoRaWAN overhead; whole synthetic set; seed 5 to 14;/);
 });
