@@ -119,14 +119,6 @@ const DWELL_LIMITED: &[PlanRate] = &[
 ];
 const AU915_500: PlanRate = rate(6, 8, K500, Some(242));
 const AS923_250: PlanRate = rate(6, 7, K250, Some(242));
-const IN865: &[PlanRate] = &[
-    rate(0, 12, K125, Some(51)),
-    rate(1, 11, K125, Some(51)),
-    rate(2, 10, K125, Some(51)),
-    rate(3, 9, K125, Some(115)),
-    rate(4, 8, K125, Some(242)),
-    rate(5, 7, K125, Some(242)),
-];
 
 /// Why a plan refuses a packet.
 #[derive(Clone, Debug, PartialEq)]
@@ -279,7 +271,8 @@ impl Region {
             Region::Us915 => US915.to_vec(),
             Region::Au915 => [DWELL_LIMITED, &[AU915_500]].concat(),
             Region::As923 => [DWELL_LIMITED, &[AS923_250]].concat(),
-            Region::In865 => IN865.to_vec(),
+            // IN865's DR0–DR5 and their payloads are EU868's (Tables 83, 86); it has no DR6.
+            Region::In865 => EU868[..6].to_vec(),
         }
     }
 

@@ -907,5 +907,7 @@ fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError
     if a.out.json {
         return Ok(json(&rows));
     }
-    Ok(crate::reproduction::swarm_markdown(&rows, &equal, a.markdown))
+    Ok(crate::reproduction::swarm_markdown(
+        &rows, &equal, a.markdown,
+    ))
 }
