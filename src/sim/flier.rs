@@ -145,8 +145,8 @@ impl<'a> Flier<'a> {
         ]
     }
 
-    /// How many channels it may use, and the one its next packet would take: its schedule's,
-    /// or a random one.
+    /// The channel its next packet would take (its schedule's, or a random one), and how many
+    /// channels it may use (1 with a schedule).
     pub fn pick_channel(&mut self) -> (u8, u8) {
         let ch = self.fixed_channel.unwrap_or_else(|| {
             let c = f64::from(self.channels);
