@@ -3,7 +3,10 @@
 #![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::api::{airtime, AirtimeParams};
-use loratrack::{Bandwidth, Channel, ChannelParams, LdroMode, Rng, Shadowing, SpreadingFactor};
+use loratrack::{
+    Bandwidth, Channel, ChannelAccess, ChannelParams, FairUse, LdroMode, Region, Rng, Shadowing,
+    SpreadingFactor,
+};
 
 fn params(sf: i64, bw: f64, payload: usize, overhead: usize) -> AirtimeParams {
     AirtimeParams {
@@ -17,7 +20,48 @@ fn params(sf: i64, bw: f64, payload: usize, overhead: usize) -> AirtimeParams {
         no_crc: false,
         ldro: LdroMode::Auto,
         duty_cycle: 0.01,
+        region: Region::Eu868,
+        interval: None,
+        access: ChannelAccess::DutyCycle,
+        fair_use: FairUse::Off,
     }
+}
+
+#[test]
+fn airtime_names_the_plans_data_rate_and_says_why_a_plan_refuses_a_packet() {
+    let eu = airtime(&params(7, 250.0, 12, 13)).unwrap();
+    assert_eq!((eu.data_rate, eu.refused.as_deref()), (Some(6), None));
+    let raw = airtime(&params(8, 250.0, 12, 0)).unwrap();
+    assert_eq!(
+        (raw.data_rate, raw.refused.as_deref()),
+        (None, None),
+        "raw LoRa in EU868"
+    );
+    let us = |sf, payload| {
+        airtime(&AirtimeParams {
+            region: Region::Us915,
+            ..params(sf, 125.0, payload, 13)
+        })
+        .unwrap()
+    };
+    assert_eq!(us(9, 12).data_rate, Some(1));
+    assert_eq!(
+        us(9, 12).min_interval,
+        1.0,
+        "no duty cycle: the default interval"
+    );
+    assert!(us(10, 12)
+        .refused
+        .unwrap()
+        .contains("over the 400 ms dwell time"));
+    assert!(us(10, 9).refused.is_none());
+    assert!(us(12, 9).refused.unwrap().contains("no uplink data rate"));
+    let lbt = airtime(&AirtimeParams {
+        access: ChannelAccess::Lbt,
+        ..params(7, 125.0, 12, 13)
+    })
+    .unwrap();
+    assert!((lbt.min_interval * 100.0 / 3600.0 - lbt.time_on_air).abs() < 1e-12);
 }
 
 #[test]
