@@ -826,62 +826,64 @@ fn schedule_text(r: &SwarmReport) -> String {
 const SWARM_SIZES: [usize; 7] = [1, 12, 36, 72, 150, 300, 500];
 
 fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError> {
-    let mut rows = Vec::new();
+    // Every combination, in the table's order: schedule, channels, SF plan, sender, size.
+    let mut cases = Vec::new();
     for schedule in [Schedule::Aloha, Schedule::Slotted] {
         for channels in [1u8, 3] {
             for plan in [SfPlan::Fixed, SfPlan::Spread] {
                 for sender in [SenderKind::Periodic, SenderKind::Error] {
-                    for drones in SWARM_SIZES {
-                        let p = Scenario {
-                            access: AccessSettings {
-                                schedule,
-                                ..AccessSettings::default()
-                            },
-                            swarm: SwarmSettings {
-                                drones,
-                                duration: 300.0,
-                                sf_plan: plan,
-                            },
-                            network: NetworkSettings {
-                                channels: Some(channels),
-                                ..NetworkSettings::default()
-                            },
-                            radio: RadioSettings {
-                                sf: 7,
-                                bw: 125.0,
-                                ..RadioSettings::default()
-                            },
-                            station: StationSettings {
-                                model: ModelChoice::one(ModelKind::Ctra3d),
-                                prediction,
-                                ..StationSettings::default()
-                            },
-                            sending: Sending {
-                                sender,
-                                // The heartbeat must cover the slowest drone's interval: SF12's
-                                // with spread SFs.
-                                max_interval: if plan == SfPlan::Spread {
-                                    150.0
-                                } else {
-                                    opt::MAX_INTERVAL.default
-                                },
-                                ..Sending::default()
-                            },
-                            channel: ChannelSettings {
-                                distance: a.distance,
-                                ..ChannelSettings::default()
-                            },
-                            run: RunSettings {
-                                seed: a.seed,
-                                ..RunSettings::default()
-                            },
-                            ..Scenario::default()
-                        };
-                        rows.push(api::swarm(&p)?);
-                    }
+                    cases.extend(SWARM_SIZES.map(|n| (schedule, channels, plan, sender, n)));
                 }
             }
         }
+    }
+    let mut rows = Vec::new();
+    for (schedule, channels, plan, sender, drones) in cases {
+        let p = Scenario {
+            access: AccessSettings {
+                schedule,
+                ..AccessSettings::default()
+            },
+            swarm: SwarmSettings {
+                drones,
+                duration: 300.0,
+                sf_plan: plan,
+            },
+            network: NetworkSettings {
+                channels: Some(channels),
+                ..NetworkSettings::default()
+            },
+            radio: RadioSettings {
+                sf: 7,
+                bw: 125.0,
+                ..RadioSettings::default()
+            },
+            station: StationSettings {
+                model: ModelChoice::one(ModelKind::Ctra3d),
+                prediction,
+                ..StationSettings::default()
+            },
+            sending: Sending {
+                sender,
+                // The heartbeat must cover the slowest drone's interval: SF12's with spread SFs.
+                max_interval: if plan == SfPlan::Spread {
+                    150.0
+                } else {
+                    opt::MAX_INTERVAL.default
+                },
+                ..Sending::default()
+            },
+            channel: ChannelSettings {
+                distance: a.distance,
+                ..ChannelSettings::default()
+            },
+            run: RunSettings {
+                seed: a.seed,
+                ..RunSettings::default()
+            },
+            ..Scenario::default()
+        };
+        rows.push(api::swarm(&p)?);
     }
     // Periodic sending slowed to error-triggered sending's airtime, 72 drones on one SF7
     // channel: the fair comparison for a sender that saves airtime.

@@ -10,6 +10,7 @@ use crate::lora::{
     audible, downlink_time_on_air, empty_window_s, lbt, Bandwidth, DataRate, LinkAdrReq, Outcome,
     Uplink, UplinkActivity, Window, ACK_DOWNLINK_BYTES, ADR_DOWNLINK_BYTES,
 };
+use crate::math::distance;
 use crate::sim::flier::Flier;
 use crate::sim::link::Reception;
 use crate::sim::parallel::par_each;
@@ -96,24 +97,11 @@ pub fn run_episode(net: &mut Network, fliers: &mut [Flier<'_>]) {
                 continue;
             };
             let frame = net.radios[f.drone].uplink();
-            let (first, channels) = f.pick_channel();
             let at = f.network_position(e.time);
-            let heard = if net.listen_before_talk {
-                listen(net, &on_air, at, (first, channels), frame.sf.get())
-            } else {
-                Heard::Free(first)
-            };
-            if let Heard::Moved(_, same) | Heard::Busy(same) = heard {
-                f.lbt_deferrals += 1;
-                f.lbt_avoided += usize::from(same);
-            }
-            let ch = match heard {
-                Heard::Free(c) | Heard::Moved(c, _) => c,
-                Heard::Busy(_) => {
-                    let wait = f.backoff(lbt::max_backoff(frame.time_on_air));
-                    plan(f, e.drone, e.time + wait, &mut next, &mut queue);
-                    continue;
-                }
+            let Some(ch) = channel_for(net, &on_air, f, at, frame.sf.get()) else {
+                let wait = f.backoff(lbt::max_backoff(frame.time_on_air));
+                plan(f, e.drone, e.time + wait, &mut next, &mut queue);
+                continue;
             };
             let Some(receptions) = f.transmit(k, ch, &frame, &net.channel) else {
                 plan(f, e.drone, e.time, &mut next, &mut queue);
@@ -192,6 +180,31 @@ fn off_time(net: &Network) -> f64 {
     }
 }
 
+/// The channel `f`'s uplink from `at` (network frame, m) takes: its first pick, or with
+/// listen-before-talk a free one (a busy first channel counted as a deferral, and as a collision
+/// avoided when it carried the drone's own SF `sf`); `None` when every channel is busy.
+fn channel_for(
+    net: &Network,
+    on_air: &[Option<OnAir>],
+    f: &mut Flier<'_>,
+    at: [f64; 3],
+    sf: u8,
+) -> Option<u8> {
+    let (first, channels) = f.pick_channel();
+    if !net.listen_before_talk {
+        return Some(first);
+    }
+    let heard = listen(net, on_air, at, (first, channels), sf);
+    if let Heard::Moved(_, same) | Heard::Busy(same) = heard {
+        f.lbt_deferrals += 1;
+        f.lbt_avoided += usize::from(same);
+    }
+    match heard {
+        Heard::Free(c) | Heard::Moved(c, _) => Some(c),
+        Heard::Busy(_) => None,
+    }
+}
+
 /// What a drone listening before talk heard. The flag says whether the busy first channel
 /// carried a packet on the drone's own SF (a collision avoided).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -218,10 +231,9 @@ fn listen(
     let heard_on = |c: u8| -> Option<bool> {
         let mut heard = None;
         for a in on_air.iter().flatten().filter(|a| a.channel == c) {
-            let d =
-                ((a.at[0] - at[0]).powi(2) + (a.at[1] - at[1]).powi(2) + (a.at[2] - at[2]).powi(2))
-                    .sqrt();
-            let rx = net.channel.mean_rx_power_dbm(d.max(1.0)) - a.frame.power_reduction_db;
+            // Two drones at one spot are 1 m apart: the path loss's reference distance.
+            let d = distance(&a.at, &at).max(1.0);
+            let rx = net.channel.mean_rx_power_dbm(d) - a.frame.power_reduction_db;
             if lbt::busy(rx) {
                 heard = Some(heard.unwrap_or(false) || a.frame.sf.get() == sf);
             }
