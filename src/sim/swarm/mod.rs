@@ -112,31 +112,34 @@ fn plan(cfg: &Validated) -> Result<Plan, SimError> {
     Ok(Plan { flights, episodes })
 }
 
-/// The spreading factors a spread swarm deals out in turn: SF7..SF12, or those the plan has
-/// uplink data rates for at the swarm's bandwidth (US915 at 125 kHz: SF7..SF10).
-fn spread_sfs(cfg: &Validated) -> Vec<i64> {
-    let region = cfg.s().access.region;
-    (7..=12)
-        .filter(|&sf| {
-            region.allows_raw_lora()
-                || region
-                    .rate(sf as u8, cfg.radio.bw)
-                    .is_some_and(|r| r.max_payload.is_some())
-        })
-        .collect()
+/// The spreading factors the swarm deals out in turn, drone i taking entry i mod its length:
+/// `fixed`, `sf` alone; `spread`, SF7..SF12, or those the plan has uplink data rates for at the
+/// swarm's bandwidth (US915 at 125 kHz: SF7..SF10). A plan with none at that bandwidth gets `sf`,
+/// which the plan then refuses with its reason.
+fn swarm_sfs(cfg: &Validated) -> Vec<i64> {
+    let s = cfg.s();
+    let region = s.access.region;
+    let spread: Vec<i64> = match s.swarm.sf_plan {
+        SfPlan::Spread => (7..=12)
+            .filter(|&sf| {
+                region.allows_raw_lora()
+                    || region
+                        .rate(sf as u8, cfg.radio.bw)
+                        .is_some_and(|r| r.max_payload.is_some())
+            })
+            .collect(),
+        SfPlan::Fixed => Vec::new(),
+    };
+    if spread.is_empty() {
+        vec![s.radio.sf]
+    } else {
+        spread
+    }
 }
 
-/// The spreading factor of drone `i`.
-fn sf_of(cfg: &Validated, i: usize) -> i64 {
-    match cfg.s().swarm.sf_plan {
-        SfPlan::Spread => {
-            let sfs = spread_sfs(cfg);
-            sfs.get(i % sfs.len().max(1))
-                .copied()
-                .unwrap_or(cfg.s().radio.sf)
-        }
-        SfPlan::Fixed => cfg.s().radio.sf,
-    }
+/// The spreading factor of drone `i`, of the swarm's [`swarm_sfs`].
+fn sf_of(sfs: &[i64], i: usize) -> i64 {
+    sfs[i % sfs.len()]
 }
 
 /// Runs the swarm, calling `progress(done, total)` as episodes run and stations complete
@@ -172,10 +175,11 @@ pub fn run_swarm(
         });
     }
     let bytes = model.payload_bytes() + s.radio.overhead;
+    let sfs = swarm_sfs(cfg);
     let mut radios = Vec::with_capacity(n);
     let mut duty_cycles = Vec::with_capacity(n);
     for i in 0..n {
-        let radio = LoraParams::from_settings(sf_of(cfg, i), s.radio.bw, s.radio.cr)?;
+        let radio = LoraParams::from_settings(sf_of(&sfs, i), s.radio.bw, s.radio.cr)?;
         let (r, duty_cycle) = cfg.drone_radio(&radio, model)?;
         cfg.check_heartbeat(r.current().interval)?;
         radios.push(r);
@@ -232,7 +236,7 @@ pub fn run_swarm(
             errors.extend_from_slice(&e3);
             drones.push(DroneReport {
                 id: i,
-                sf: sf_of(cfg, i) as u8,
+                sf: sf_of(&sfs, i) as u8,
                 bearing_deg: plan.episodes[0][i].bearing.to_degrees(),
                 channel_use,
                 packets_sent: mine.len(),
@@ -251,7 +255,7 @@ pub fn run_swarm(
         done = plan.episodes.len() + drones.len();
         progress(done, total);
     }
-    let largest = largest_swarm(cfg, bytes)?;
+    let largest = largest_swarm(cfg, &sfs, bytes)?;
     let mut r = report(cfg, model, &net, &tx_all, drones, errors, largest);
     r.frame_length = slots.map(|s| s.iter().map(|s| s.frame).fold(0.0, f64::max));
     if net.listen_before_talk {
@@ -260,16 +264,12 @@ pub fn run_swarm(
     Ok(r)
 }
 
-/// [`LargestSwarm`] at `cfg`'s settings, for packets of `bytes`.
-fn largest_swarm(cfg: &Validated, bytes: usize) -> Result<LargestSwarm, SimError> {
+/// [`LargestSwarm`] at `cfg`'s settings, the swarm dealing out `sfs`, for packets of `bytes`.
+fn largest_swarm(cfg: &Validated, sfs: &[i64], bytes: usize) -> Result<LargestSwarm, SimError> {
     let s = cfg.s();
     let timing = s.access.swarm_timing();
     let (mut toa, mut interval, mut used) = ([0.0; 6], [0.0; 6], [0.0; 6]);
-    let sfs = match s.swarm.sf_plan {
-        SfPlan::Spread => spread_sfs(cfg),
-        SfPlan::Fixed => vec![s.radio.sf],
-    };
-    for sf in sfs {
+    for &sf in sfs {
         let radio = LoraParams::from_settings(sf, s.radio.bw, s.radio.cr)?;
         let k = (sf - 7) as usize;
         toa[k] = time_on_air(&radio, bytes)?.time_on_air;
@@ -277,7 +277,7 @@ fn largest_swarm(cfg: &Validated, bytes: usize) -> Result<LargestSwarm, SimError
         // A random delay of up to J s lengthens the mean interval by J / 2.
         used[k] = toa[k] / (interval[k] + timing.jitter / 2.0);
     }
-    let sf_of = |i: usize| sf_of(cfg, i) as u8;
+    let sf_of = |i: usize| sf_of(sfs, i) as u8;
     let ch = cfg.channels;
     Ok(LargestSwarm {
         aloha1: schedule::largest_aloha(sf_of, &toa, &used, ch, 0.01),
