@@ -88,7 +88,53 @@ impl<const N: usize> Ukf<N> {
     }
 
     /// Update step with a measurement `z` of the full state and its noise covariance `r`.
+    ///
+    /// h is the identity, and the unscented transform of a linear map is exact: the sigma points'
+    /// mean is x and their covariance P, so the update is the Kalman filter's, and it is computed
+    /// as such (no sigma points). Only where an angle's spread reaches ±pi, so that wrapping the
+    /// points changes their mean and covariance, are the sigma points used.
     pub fn update(&mut self, z: &SVector<f64, N>, r: &SMatrix<f64, N, N>) {
+        if self.angles_stay_within_pi() {
+            self.linear_update(z, r);
+        } else {
+            self.unscented_update(z, r);
+        }
+    }
+
+    /// Whether every sigma point lies within pi of the mean in every angle: |γ L_ki| ≤ γ √P_kk
+    /// (a row of the Cholesky factor has the norm √P_kk), so no point wraps.
+    fn angles_stay_within_pi(&self) -> bool {
+        let gamma = self.weights.gamma;
+        self.angles
+            .iter()
+            .all(|&k| gamma * self.p[(k, k)].sqrt() < core::f64::consts::PI)
+    }
+
+    /// The Kalman update for h = I: S = P + R, K = P S⁻¹, x += K (z − x), P −= K P.
+    fn linear_update(&mut self, z: &SVector<f64, N>, r: &SMatrix<f64, N, N>) {
+        let mut x_mean = self.x;
+        for &i in self.angles {
+            x_mean[i] = wrap_angle(x_mean[i]);
+        }
+        let s = self.p + r;
+        let Some(chol) = Cholesky::new(0.5 * (s + s.transpose())) else {
+            self.recoveries += 1;
+            return;
+        };
+        let innovation = SigmaPoints::<N>::residual(z, &x_mean, self.angles);
+        // K = P S⁻¹ = (S⁻¹ P)ᵀ, P symmetric.
+        let k = chol.solve(&self.p).transpose();
+        self.x = x_mean + k * innovation;
+        for &i in self.angles {
+            self.x[i] = wrap_angle(self.x[i]);
+        }
+        // K S Kᵀ = P S⁻¹ P = K P.
+        self.p -= k * self.p;
+        self.stabilise();
+    }
+
+    /// The update through sigma points, for spreads wide enough that angles wrap.
+    fn unscented_update(&mut self, z: &SVector<f64, N>, r: &SMatrix<f64, N, N>) {
         let points = self.sigma_points();
         let x_mean = points.mean(&self.weights, self.angles);
         // h is the identity: the measurement sigma points are the state sigma points.
@@ -227,6 +273,49 @@ mod tests {
         let c = pts.covariance(&m, &[], &w);
         assert!((m - a * x).norm() < 1e-12);
         assert!((c - a * p * a.transpose()).norm() < 1e-12);
+    }
+
+    #[test]
+    fn the_kalman_update_equals_the_unscented_one_while_no_angle_wraps() {
+        use crate::models::{Ctra3d, ANGLES};
+        let x = SVector::<f64, 9>::from([10.0, -5.0, 40.0, 3.1, 0.1, 8.0, 0.3, 0.2, 0.05]);
+        let p =
+            SMatrix::<f64, 9, 9>::from_fn(|i, j| if i == j { 0.2 + 0.01 * i as f64 } else { 0.01 });
+        let r = SMatrix::<f64, 9, 9>::from_diagonal_element(0.3);
+        let z = x.map(|v| v + 0.1);
+        let mut ukf = Ukf::new(x, p, p * 0.1, SigmaParams::default(), ANGLES).unwrap();
+        ukf.predict(&Ctra3d, 0.5);
+        assert!(ukf.angles_stay_within_pi());
+        let (mut linear, mut unscented) = (ukf.clone(), ukf);
+        linear.linear_update(&z, &r);
+        unscented.unscented_update(&z, &r);
+        assert!(
+            (linear.x - unscented.x).norm() < 1e-12,
+            "{} vs {}",
+            linear.x,
+            unscented.x
+        );
+        assert!((linear.p - unscented.p).norm() < 1e-12);
+    }
+
+    #[test]
+    fn a_spread_past_pi_in_an_angle_takes_the_unscented_update() {
+        let mut ukf = Ukf::<2>::new(
+            SVector::from([0.0, 1.0]),
+            SMatrix::<f64, 2, 2>::from_diagonal(&SVector::from([4.0, 1.0])),
+            SMatrix::identity() * 1e-3,
+            SigmaParams::default(),
+            &[0],
+        )
+        .unwrap();
+        assert!(!ukf.angles_stay_within_pi());
+        let mut linear = ukf.clone();
+        let z = SVector::from([3.0, 1.0]);
+        let r = SMatrix::<f64, 2, 2>::identity() * 0.1;
+        ukf.update(&z, &r);
+        linear.linear_update(&z, &r);
+        // Points at ±√3·2 rad wrap: the wrapped covariance is smaller, so the gain differs.
+        assert!((ukf.x[0] - linear.x[0]).abs() > 1e-3);
     }
 
     #[test]
