@@ -94,6 +94,28 @@ impl<const N: usize> SigmaPoints<N> {
         }
     }
 
+    /// The points around `mean` (as [`SigmaPoints::new`]) with `f` applied to each as it is made:
+    /// the same numbers as `new(..).map(f)` without building and copying the unmapped set.
+    pub fn new_mapped(
+        mean: &SVector<f64, N>,
+        l: &SMatrix<f64, N, N>,
+        gamma: f64,
+        mut f: impl FnMut(&SVector<f64, N>) -> SVector<f64, N>,
+    ) -> Self {
+        let mut plus = SMatrix::<f64, N, N>::zeros();
+        let mut minus = SMatrix::<f64, N, N>::zeros();
+        for i in 0..N {
+            let offset = l.column(i) * gamma;
+            plus.set_column(i, &f(&(mean + offset)));
+            minus.set_column(i, &f(&(mean - offset)));
+        }
+        SigmaPoints {
+            center: f(mean),
+            plus,
+            minus,
+        }
+    }
+
     /// Applies `f` (a motion model, a measurement of the full state) to every point.
     pub fn map(&self, mut f: impl FnMut(&SVector<f64, N>) -> SVector<f64, N>) -> Self {
         let mut out = *self;

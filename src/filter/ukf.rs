@@ -79,7 +79,9 @@ impl<const N: usize> Ukf<N> {
     /// Prediction step: propagates the sigma points through `model` over `dt` seconds,
     /// recombines them and adds Q·dt.
     pub fn predict<M: MotionModel<N>>(&mut self, model: &M, dt: f64) {
-        let points = self.sigma_points().map(|s| model.propagate(s, dt));
+        let l = self.sqrt_covariance();
+        let points =
+            SigmaPoints::new_mapped(&self.x, &l, self.weights.gamma, |s| model.propagate(s, dt));
         let mean = points.mean(&self.weights, self.angles);
         let cov = points.covariance(&mean, self.angles, &self.weights);
         self.x = mean;
