@@ -1,38 +1,137 @@
-// `npm test`: set-up, then every suite in order, then a pass/fail summary. Exit 1 if any failed.
-import { spawnSync } from 'node:child_process';
+// `npm test`: set-up, then every suite, then each suite's time and a pass/fail summary. Exit 1 if
+// any failed.
+//
+// Why it is shaped this way (a 2-core machine; every dependency build is minutes):
+// - Clippy lints while the tests compile: every crate of ours is compiled by clippy-driver
+//   (scripts/clippy-rustc.sh, warnings are errors), so the test builds are also the clippy passes and
+//   no dependency is checked a second time only to be linted.
+// - The WebAssembly tests run in the release profile, on the dependencies the production build
+//   has just compiled.
+// - Fuzzing (its own nightly build in fuzz/target) runs beside the browser suite, which mostly waits
+//   on Chromium; its output goes to test-results/fuzz.log and is summarised at the end.
+import { spawn, spawnSync } from 'node:child_process';
+import { createHash } from 'node:crypto';
+import { createWriteStream, existsSync, mkdirSync, readFileSync, readdirSync, statSync, writeFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const root = join(dirname(fileURLToPath(import.meta.url)), '..');
+const env = { ...process.env, RUSTC_WORKSPACE_WRAPPER: join(root, 'scripts', 'clippy-rustc.sh') };
+const WASM = ['--target', 'wasm32-unknown-unknown'];
 
+/**
+ * Everything the native tests read: the crate, its tests and benches, the bundled flight, the
+ * checked-in TypeScript types (a test compares them with the Rust source), the lint wrapper and
+ * the toolchain. When none of it changed since the suite last passed on this machine, the suite is
+ * not run again (`npm test -- --all` runs it anyway); a fresh clone, as in CI, has no record.
+ */
+const RUST_INPUTS = ['Cargo.toml', 'Cargo.lock', 'build.rs', '.cargo', 'src', 'tests', 'benches', 'data', 'www/generated', 'scripts/clippy-rustc.sh'];
+const NOT_RUST = ['tests/e2e', 'tests/unit'];
+
+/** Each suite is one or more commands run in order; the first failure fails the suite. */
 const suites = [
-  ['set-up', 'node', ['scripts/setup.mjs', '--browser']],
-  ['format', 'cargo', ['fmt', '--all', '--check']],
-  ['clippy', 'cargo', ['clippy', '--all-targets', '--', '-D', 'warnings']],
-  ['clippy (wasm32)', 'cargo', ['clippy', '--lib', '--tests', '--target', 'wasm32-unknown-unknown', '--', '-D', 'warnings']],
-  ['cargo test (native)', 'cargo', ['test']],
-  ['fuzz (nightly, 20 s per target)', 'node', ['scripts/fuzz.mjs', '20']],
-  ['wasm-bindgen-test (Node)', 'cargo', ['test', '--target', 'wasm32-unknown-unknown', '--test', 'wasm']],
-  ['build (wasm + page)', 'npm', ['run', 'build']],
-  ['type check', 'npm', ['run', 'typecheck']],
-  ['TypeScript unit tests (vitest)', 'npm', ['run', 'test:unit']],
-  ['end-to-end (headless Chromium)', 'npm', ['run', 'test:e2e']],
+  ['set-up', [['node', ['scripts/setup.mjs', '--browser']]]],
+  ['format', [['cargo', ['fmt', '--all', '--check']]]],
+  [
+    'clippy + cargo test (native)',
+    [
+      ['cargo', ['test', '--all-targets', '--no-run']],
+      ['cargo', ['test']],
+    ],
+    RUST_INPUTS,
+  ],
+  ['build (wasm + page)', [['npm', ['run', 'build']]]],
+  ['clippy + wasm-bindgen-test (Node)', [['cargo', ['test', '--release', ...WASM, '--test', 'wasm']]]],
+  ['type check', [['npm', ['run', 'typecheck']]]],
+  ['TypeScript unit tests (vitest)', [['npm', ['run', 'test:unit']]]],
+  ['end-to-end (headless Chromium)', [['npm', ['run', 'test:e2e']]]],
 ];
+/** Started in the background just before this suite; waited for at the end. */
+const BESIDE = 'end-to-end (headless Chromium)';
+const FUZZ = ['fuzz (nightly, 20 s per target)', 'node', ['scripts/fuzz.mjs', '20']];
+
+/** A digest of the files under `paths` (and of the toolchain), or null when `paths` is not given. */
+function digest(paths) {
+  if (!paths) return null;
+  const hash = createHash('sha256');
+  hash.update(spawnSync('rustc', ['-vV'], { encoding: 'utf8' }).stdout ?? '');
+  const walk = (rel) => {
+    if (NOT_RUST.includes(rel) || !existsSync(join(root, rel))) return;
+    if (statSync(join(root, rel)).isDirectory()) {
+      for (const name of readdirSync(join(root, rel)).sort()) walk(`${rel}/${name}`);
+    } else {
+      hash.update(`${rel}\0`).update(readFileSync(join(root, rel)));
+    }
+  };
+  paths.forEach(walk);
+  return hash.digest('hex');
+}
+
+const stampOf = (name) => join(root, 'target', 'npm-test', `${name.replace(/[^a-z0-9]+/gi, '-')}.sha256`);
+const runAll = process.argv.includes('--all');
+
+function runSuite(commands) {
+  for (const [cmd, args] of commands) {
+    console.log(`\n=== ${cmd} ${args.join(' ')}`);
+    if (spawnSync(cmd, args, { cwd: root, stdio: 'inherit', env }).status !== 0) return false;
+  }
+  return true;
+}
+
+/** Runs the fuzz suite with its output in a log file; resolves to its result. */
+function fuzzInBackground() {
+  const [name, cmd, args] = FUZZ;
+  mkdirSync(join(root, 'test-results'), { recursive: true });
+  const log = join(root, 'test-results', 'fuzz.log');
+  const out = createWriteStream(log);
+  console.log(`\n=== ${name}: ${cmd} ${args.join(' ')} (in the background, output in ${log})`);
+  const started = Date.now();
+  // Not through clippy-driver: cargo-fuzz builds with a minimal nightly toolchain, which has no clippy.
+  const child = spawn(cmd, args, { cwd: root, stdio: ['ignore', 'pipe', 'pipe'] });
+  child.stdout.pipe(out);
+  child.stderr.pipe(out);
+  return new Promise((resolve) => {
+    child.on('close', (code) => {
+      out.end(() => resolve({ name, ok: code === 0, seconds: (Date.now() - started) / 1000, log }));
+    });
+  });
+}
 
 const results = [];
-for (const [name, cmd, args] of suites) {
-  console.log(`\n=== ${name}: ${cmd} ${args.join(' ')}`);
+const began = Date.now();
+let fuzz = null;
+for (const [name, commands, inputs] of suites) {
+  if (name === BESIDE) fuzz = fuzzInBackground();
   const started = Date.now();
-  const r = spawnSync(cmd, args, { cwd: root, stdio: 'inherit' });
-  const ok = r.status === 0;
+  const before = digest(inputs);
+  const stamp = stampOf(name);
+  if (before && !runAll && existsSync(stamp) && readFileSync(stamp, 'utf8') === before) {
+    console.log(`\n=== ${name}: nothing it reads changed since it passed here (npm test -- --all runs it)`);
+    results.push({ name, ok: true, seconds: 0, note: 'unchanged, not run' });
+    continue;
+  }
+  const ok = runSuite(commands);
+  // Only what was read before the run and is still there after it counts as tested.
+  if (ok && before && digest(inputs) === before) {
+    mkdirSync(dirname(stamp), { recursive: true });
+    writeFileSync(stamp, before);
+  }
   results.push({ name, ok, seconds: (Date.now() - started) / 1000 });
   // Without the set-up nothing else can run.
   if (!ok && name === 'set-up') break;
 }
+if (fuzz) {
+  const r = await fuzz;
+  const lines = readFileSync(r.log, 'utf8').trimEnd().split('\n');
+  // A failure shows the fuzzer's report; a pass only its last words.
+  console.log(`\n=== ${r.name}: the last lines of ${r.log}\n${lines.slice(r.ok ? -4 : -150).join('\n')}`);
+  results.push(r);
+}
 
+const expected = suites.length + 1;
 console.log('\n=== summary');
-for (const r of results) console.log(`${r.ok ? 'PASS' : 'FAIL'}  ${r.name} (${r.seconds.toFixed(1)} s)`);
+for (const r of results) console.log(`${r.ok ? 'PASS' : 'FAIL'}  ${r.name} (${r.note ?? `${r.seconds.toFixed(1)} s`})`);
 const failed = results.filter((r) => !r.ok).length;
-const skipped = suites.length - results.length;
-console.log(`suites: ${results.length - failed} passed, ${failed + skipped} failed`);
+const skipped = expected - results.length;
+console.log(`suites: ${results.length - failed} passed, ${failed + skipped} failed, in ${((Date.now() - began) / 60000).toFixed(1)} min`);
 process.exit(failed + skipped === 0 ? 0 : 1);
