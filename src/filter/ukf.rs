@@ -11,9 +11,10 @@ use nalgebra::{Cholesky, SMatrix, SVector};
 ///   components listed as angles (theta, phi for the motion models).
 /// * Prediction through any [`MotionModel`]; the update takes a measurement of the full state
 ///   (the drone's sensors measure every component, reference §4), so h is the identity.
-/// * The covariance is symmetrised after every step; when its Cholesky factorisation fails
-///   (rounding has made it indefinite) jitter is added on the diagonal until it succeeds, and the
-///   event is counted in [`Ukf::recoveries`]. The filter never yields NaN from a finite input.
+/// * The covariance is symmetrised after every step and factorised after every update and before
+///   every prediction; when its Cholesky factorisation fails (rounding has made it indefinite)
+///   jitter is added on the diagonal until it succeeds, and the event is counted in
+///   [`Ukf::recoveries`]. The filter never yields NaN from a finite input.
 ///
 /// ```
 /// use loratrack::{Ukf, Dr, SigmaParams, process_noise};
@@ -86,7 +87,7 @@ impl<const N: usize> Ukf<N> {
         let cov = points.covariance(&mean, self.angles, &self.weights);
         self.x = mean;
         self.p = cov + self.q * dt.abs();
-        self.stabilise();
+        self.defer_check();
     }
 
     /// Update step with a measurement `z` of the full state and its noise covariance `r`.
@@ -181,7 +182,21 @@ impl<const N: usize> Ukf<N> {
         }
     }
 
-    /// Keeps P symmetric and positive definite after a step.
+    /// After a prediction: keeps P symmetric and finite, and leaves the factorisation that proves it
+    /// positive definite to the next step that needs the factor ([`Self::sqrt_covariance`] repairs P
+    /// there when it fails). A weighted sum of outer products plus Q·dt is positive definite unless
+    /// rounding broke it, and a drone's update (Kalman form) needs no factor of P: its predict and
+    /// update factorise twice instead of three times.
+    fn defer_check(&mut self) {
+        self.p = 0.5 * (self.p + self.p.transpose());
+        self.factor = None;
+        if !self.p.iter().all(|v| v.is_finite()) {
+            self.repair();
+        }
+    }
+
+    /// Keeps P symmetric and positive definite after an update, and keeps its factor for the
+    /// prediction that follows.
     fn stabilise(&mut self) {
         self.p = 0.5 * (self.p + self.p.transpose());
         self.factor = None;

@@ -130,7 +130,7 @@ mod tests {
                 .rev()
                 .fold(0.0, |acc, c| acc * u * u + c)
         };
-        for u in [1e-9, 1e-3, 0.05, -0.1, 0.124_999] {
+        for u in [1e-9f64, 1e-3, 0.05, -0.1, 0.124_999] {
             let (s, c) = (0.5 * u).sin_cos();
             let short = odd_moment(u, u.sin(), c, s);
             assert!(
