@@ -20,9 +20,9 @@ const env = { ...process.env, RUSTC_WORKSPACE_WRAPPER: join(root, 'scripts', 'cl
 const WASM = ['--target', 'wasm32-unknown-unknown'];
 
 /**
- * Everything the native tests read: the crate, its tests and benches, the bundled flight, the
+ * Everything the Rust suites read: the crate, its tests and benches, the bundled flight, the
  * checked-in TypeScript types (a test compares them with the Rust source), the lint wrapper and
- * the toolchain. When none of it changed since the suite last passed on this machine, the suite is
+ * the toolchain. When none of it changed since a suite last passed on this machine, that suite is
  * not run again (`npm test -- --all` runs it anyway); a fresh clone, as in CI, has no record.
  */
 const RUST_INPUTS = ['Cargo.toml', 'Cargo.lock', 'build.rs', '.cargo', 'src', 'tests', 'benches', 'data', 'www/generated', 'scripts/clippy-rustc.sh'];
@@ -41,7 +41,7 @@ const suites = [
     RUST_INPUTS,
   ],
   ['build (wasm + page)', [['npm', ['run', 'build']]]],
-  ['clippy + wasm-bindgen-test (Node)', [['cargo', ['test', '--release', ...WASM, '--test', 'wasm']]]],
+  ['clippy + wasm-bindgen-test (Node)', [['cargo', ['test', '--release', ...WASM, '--test', 'wasm']]], RUST_INPUTS],
   ['type check', [['npm', ['run', 'typecheck']]]],
   ['TypeScript unit tests (vitest)', [['npm', ['run', 'test:unit']]]],
   ['end-to-end (headless Chromium)', [['npm', ['run', 'test:e2e']]]],
