@@ -7,8 +7,9 @@
 //   no dependency is checked a second time only to be linted.
 // - The WebAssembly tests run in the release profile, on the dependencies the production build
 //   has just compiled.
-// - Fuzzing (its own nightly build in fuzz/target) runs beside the browser suite, which mostly waits
-//   on Chromium; its output goes to test-results/fuzz.log and is summarised at the end.
+// - Fuzzing (its own nightly build in fuzz/target) runs beside the WebAssembly and browser suites,
+//   which mostly wait on one core, Node or Chromium; its output goes to test-results/fuzz.log and is
+//   summarised at the end.
 import { spawn, spawnSync } from 'node:child_process';
 import { createHash } from 'node:crypto';
 import { createWriteStream, existsSync, mkdirSync, readFileSync, readdirSync, statSync, writeFileSync } from 'node:fs';
@@ -46,8 +47,11 @@ const suites = [
   ['TypeScript unit tests (vitest)', [['npm', ['run', 'test:unit']]]],
   ['end-to-end (headless Chromium)', [['npm', ['run', 'test:e2e']]]],
 ];
-/** Started in the background just before this suite; waited for at the end. */
-const BESIDE = 'end-to-end (headless Chromium)';
+/**
+ * Started in the background just before this suite, once the native build has had both cores:
+ * what follows links with LTO on one core and waits on Node and Chromium. Waited for at the end.
+ */
+const BESIDE = 'build (wasm + page)';
 const FUZZ = ['fuzz (nightly, 20 s per target)', 'node', ['scripts/fuzz.mjs', '20']];
 
 /** A digest of the files under `paths` (and of the toolchain), or null when `paths` is not given. */

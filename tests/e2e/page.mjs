@@ -1,0 +1,92 @@
+// The playground as the browser test files open it: one server for dist/ and one Chromium per test
+// file (`usePlayground()`), and the steps every test shares: open the page, wait for results,
+// read the results table, run axe, open a lesson.
+import { after, before } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { launch, openPage, serveDist } from './harness.mjs';
+
+let server;
+let browser;
+
+/** Starts the server and the browser before this file's tests and stops them after. */
+export function usePlayground() {
+  before(async () => {
+    server = await serveDist();
+    browser = await launch();
+  });
+  after(async () => {
+    await browser?.close();
+    server?.close();
+  });
+}
+
+/** Where this file's page is served, and its browser. */
+export const playground = {
+  get url() {
+    return server.url;
+  },
+  get browser() {
+    return browser;
+  },
+};
+
+/** Opens the page (with an optional query) and waits for the first results. */
+export async function open(query = '', viewport) {
+  const { page, problems } = await openPage(browser, server.origin, viewport);
+  await page.goto(server.url + query);
+  await waitForResults(page);
+  return { page, problems };
+}
+
+export async function waitForResults(page, previous) {
+  await page.waitForFunction(
+    (old) => {
+      const t = document.querySelector('#results-table tbody');
+      return t && t.rows.length > 0 && t.innerHTML !== old;
+    },
+    previous,
+    { timeout: 30_000 },
+  );
+}
+
+export const tableHtml = (page) => page.locator('#results-table tbody').innerHTML();
+export const cell = (page, model, fieldName) => page.locator(`#results-table tr[data-model="${model}"] td[data-field="${fieldName}"]`).textContent();
+export const number = (text) => Number.parseFloat(text);
+export const cellNumber = async (page, model, field) => number(await cell(page, model, field));
+
+export const MODELS = ['dr', 'ctra-plus', '3d-ctra'];
+/** Each model's p75 and its shown 95 % interval, as the table shows them. */
+export async function shownP75(page) {
+  return Promise.all(
+    MODELS.map(async (m) => {
+      const text = await cell(page, m, 'p75');
+      const ci = text.match(/\(([\d.]+)–([\d.]+)\)/);
+      return { model: m, p75: number(text), ci: ci ? [Number(ci[1]), Number(ci[2])] : null };
+    }),
+  );
+}
+
+/** Runs axe-core on the page; returns every violation as "impact rule: target" lines. */
+export async function axe(page) {
+  // Evaluated through the DevTools protocol: the page's CSP rightly refuses inline scripts.
+  await page.evaluate(readFileSync(join(process.cwd(), 'node_modules', 'axe-core', 'axe.min.js'), 'utf8'));
+  const result = await page.evaluate(async () => await window.axe.run(document, { resultTypes: ['violations'] }));
+  // Every violation counts, whatever its impact.
+  return result.violations.flatMap((v) => v.nodes.map((n) => `${v.impact} ${v.id}: ${n.target.join(' ')}`));
+}
+
+/** Waits until no simulation or drawing is under way (`<body data-busy>` gone). */
+export const idle = (page) => page.waitForFunction(() => !('busy' in document.body.dataset), null, { timeout: 30_000 });
+
+/** Opens the playground, picks `title` from the Lessons menu and waits for its numbers. */
+export async function lesson(title) {
+  const opened = await open();
+  await opened.page.getByText('Lessons', { exact: true }).click();
+  await opened.page.getByRole('link', { name: title }).click();
+  await waitForResults(opened.page);
+  await idle(opened.page);
+  assert.match(await opened.page.locator('#lesson-title').textContent(), new RegExp(title.replace(/[?+]/g, '\\$&')));
+  return opened;
+}
