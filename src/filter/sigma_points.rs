@@ -80,18 +80,7 @@ pub struct SigmaPoints<const N: usize> {
 impl<const N: usize> SigmaPoints<N> {
     /// Points around `mean` from a lower-triangular square root `l` of the covariance.
     pub fn new(mean: &SVector<f64, N>, l: &SMatrix<f64, N, N>, gamma: f64) -> Self {
-        let mut plus = SMatrix::<f64, N, N>::zeros();
-        let mut minus = SMatrix::<f64, N, N>::zeros();
-        for i in 0..N {
-            let offset = l.column(i) * gamma;
-            plus.set_column(i, &(mean + offset));
-            minus.set_column(i, &(mean - offset));
-        }
-        SigmaPoints {
-            center: *mean,
-            plus,
-            minus,
-        }
+        Self::new_mapped(mean, l, gamma, |s| *s)
     }
 
     /// The points around `mean` (as [`SigmaPoints::new`]) with `f` applied to each as it is made:

@@ -198,11 +198,10 @@ impl<const N: usize> Ukf<N> {
     /// Keeps P symmetric and positive definite after an update, and keeps its factor for the
     /// prediction that follows.
     fn stabilise(&mut self) {
-        self.p = 0.5 * (self.p + self.p.transpose());
-        self.factor = None;
+        self.defer_check();
         match Cholesky::new(self.p) {
-            Some(c) if self.p.iter().all(|v| v.is_finite()) => self.factor = Some((self.p, c.l())),
-            _ => self.repair(),
+            Some(c) => self.factor = Some((self.p, c.l())),
+            None => self.repair(),
         }
     }
 
