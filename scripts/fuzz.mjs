@@ -4,15 +4,12 @@
 // property tests cover the same ground on stable.
 //   node scripts/fuzz.mjs [seconds per target, default 20]
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdirSync, mkdtempSync, readdirSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { dirname, join, resolve } from 'node:path';
+import { existsSync, mkdirSync, readdirSync } from 'node:fs';
+import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const root = join(dirname(fileURLToPath(import.meta.url)), '..');
 const seconds = Number(process.argv[2] ?? 20);
-/** Runs shorter than this (seconds per target) leave the working corpus alone. */
-const QUICK_BELOW = 120;
 const say = (msg) => console.log(`[fuzz] ${msg}`);
 const run = (cmd, args, opts = {}) => spawnSync(cmd, args, { cwd: root, stdio: 'inherit', ...opts }).status === 0;
 const quiet = (cmd, args) => spawnSync(cmd, args, { cwd: root, stdio: 'ignore' }).status === 0;
@@ -40,16 +37,11 @@ for (const target of targets) {
   say(`${target}: ${seconds} s`);
   // The working corpus (git-ignored) first, then the committed seeds (fuzz/seeds/<target>: e.g.
   // CSVs with and without velocity columns, so the derivative path is reached from the start).
-  // libFuzzer replays a whole corpus before its clock starts, and a long run leaves thousands of
-  // inputs (replaying the CSV target's took three minutes): a short run, as in `npm test`, starts
-  // from the seeds alone with a throw-away corpus, as on a fresh clone.
-  const corpus = seconds < QUICK_BELOW ? mkdtempSync(join(tmpdir(), `fuzz-${target}-`)) : join('fuzz', 'corpus', target);
-  mkdirSync(resolve(root, corpus), { recursive: true });
+  const corpus = join('fuzz', 'corpus', target);
+  mkdirSync(join(root, corpus), { recursive: true });
   const seeds = join('fuzz', 'seeds', target);
   const dirs = existsSync(join(root, seeds)) ? [corpus, seeds] : [corpus];
-  const ok = run('cargo', ['+nightly', 'fuzz', 'run', target, ...dirs, '--', `-max_total_time=${seconds}`, '-rss_limit_mb=4096']);
-  if (seconds < QUICK_BELOW) rmSync(corpus, { recursive: true, force: true });
-  if (!ok) {
+  if (!run('cargo', ['+nightly', 'fuzz', 'run', target, ...dirs, '--', `-max_total_time=${seconds}`, '-rss_limit_mb=4096'])) {
     console.error(`[fuzz] error: ${target} found a failing input (see fuzz/artifacts/${target}/)`);
     process.exit(1);
   }
