@@ -500,6 +500,42 @@ fn every_sweep_takes_a_random_seed_and_reports_it() {
 }
 
 #[test]
+fn the_adr_document_pools_the_seeds_it_names_and_judges_every_adr_row() {
+    let out = cli(&["sweep", "--distances", "2000", "--seeds", "2", "--markdown"]);
+    assert_eq!(out.status.code(), Some(0));
+    let md = String::from_utf8_lossy(&out.stdout);
+    assert!(md.contains("seeds 1–2 pooled"), "{md}");
+    let findings = md
+        .split("## What the table shows")
+        .nth(1)
+        .expect("a findings section");
+    for row in [
+        "lorawan from DR6",
+        "tracking from DR6",
+        "lorawan from DR0",
+        "tracking from DR0",
+    ] {
+        assert_eq!(
+            findings
+                .matches(&format!("- `{row}`: worst p75 / best fixed"))
+                .count(),
+            1,
+            "{row}: {findings}"
+        );
+    }
+    // Two seeds fly the set twice: about twice the packets of one (the random start of each
+    // run's duty-cycle phase moves a packet or two).
+    let packets = |seeds: &str| {
+        let r = json(&["sweep", "--distances", "2000", "--seeds", seeds, "--json"]);
+        r["runs"][6]["result"]["packetsSent"]
+            .as_u64()
+            .expect("DR6's packets")
+    };
+    let (one, two) = (packets("1"), packets("2"));
+    assert!(two.abs_diff(2 * one) <= 4, "{one} then {two}");
+}
+
+#[test]
 fn a_swarm_header_says_what_each_drone_flies() {
     // It said "1 drones x 600 s" for drones flying an 81-s chosen flight.
     let out = cli(&[

@@ -168,6 +168,10 @@ pub struct SweepArgs {
     /// Seed of all random draws, 0..2^53-1, or random for a fresh one (reported in the output).
     #[arg(long, default_value = "1", value_name = "N|random", value_parser = loratrack::parse_seed)]
     seed: u64,
+    /// --distances, --senders: seeds each run pools (seed, seed + 1, ...), so that a comparison
+    /// rests on more than one draw of the shadowing and noise.
+    #[arg(long, default_value_t = opt::SEEDS.default as u32, allow_negative_numbers = true)]
+    seeds: u32,
     /// Station model(s): dr, ctra-plus, 3d-ctra, imm, a comma list, or all (the paper's three).
     #[arg(long, default_value = "all")]
     model: String,
@@ -688,6 +692,7 @@ fn trade_off_base(a: &SweepArgs, model: ModelChoice, prediction: Prediction) -> 
     p.channel.distance = a.distance;
     p.sending.max_interval = a.max_interval;
     p.run.seed = a.seed;
+    p.run.seeds = a.seeds;
     p
 }
 
