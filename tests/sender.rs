@@ -56,6 +56,7 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
         q: PAPER_Q,
         r_diagonal: PAPER_R_DIAGONAL,
         interval: min_interval(toa, dc).unwrap(),
+        drone_covariance: None,
     };
     let network = || {
         let r = DroneRadio::new(&radio, 12, dc, AdrMode::Off).unwrap();

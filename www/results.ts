@@ -139,9 +139,10 @@ function networkNote(m: ModelResult, named: boolean): string {
 
 /** The IMM's mean member probabilities, as a tooltip. */
 function probabilities(m: ModelResult): string {
+  const nees = m.nees === null ? '' : `; mean NEES ${m.nees.toFixed(1)} (3 when the station's uncertainty is honest)`;
   const p = m.modelProbability;
-  if (!p) return "Share of the time the truth lay inside the station's 95 % ellipsoid";
-  return `Mean IMM probability: DR ${fmt(p.dr ?? null)}, CTRA+ ${fmt(p['ctra-plus'] ?? null)}, 3D-CTRA ${fmt(p['3d-ctra'] ?? null)}`;
+  if (!p) return `Share of the time the truth lay inside the station's 95 % ellipsoid${nees}`;
+  return `Mean IMM probability: DR ${fmt(p.dr ?? null)}, CTRA+ ${fmt(p['ctra-plus'] ?? null)}, 3D-CTRA ${fmt(p['3d-ctra'] ?? null)}${nees}`;
 }
 
 /** The Things Network's fair-use limit: what it sets when chosen, otherwise what it would. */

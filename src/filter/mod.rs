@@ -3,8 +3,10 @@
 
 mod noise;
 mod sigma_points;
+mod steady_state;
 mod ukf;
 
 pub use noise::{measurement_noise, process_noise, PAPER_Q, PAPER_R_DIAGONAL};
 pub use sigma_points::{SigmaParams, SigmaPoints, SigmaWeights};
+pub use steady_state::steady_state_covariance;
 pub use ukf::Ukf;

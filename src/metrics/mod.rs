@@ -10,6 +10,6 @@ mod summary;
 
 pub use bootstrap::{bootstrap, Intervals, RESAMPLES};
 pub use boxplot::Boxplot;
-pub use coverage::{bound_95, coverage, inside_95, CHI2_3DOF_95};
+pub use coverage::{bound_95, inside_95, nees, Consistency, CHI2_3DOF_95};
 pub use percentile::percentile;
 pub use summary::Summary;

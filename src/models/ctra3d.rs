@@ -2,7 +2,7 @@
 
 use super::{arc_integral_from, ModelKind, MotionModel, A, OMEGA, PHI, PSI, THETA, V, X, Y, Z};
 use crate::math::{sin_cos, wrap_angle};
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 
 /// 3D-CTRA: the drone turns at a constant rate omega in the horizontal plane and tilts its
 /// velocity at a constant rate psi, while accelerating at a constant a: a curved helix.
@@ -51,12 +51,28 @@ impl MotionModel<9> for Ctra3d {
     fn decay_tilt_rate(&self, state: &mut SVector<f64, 9>, eta: f64) {
         state[PSI] *= eta;
     }
+
+    fn decay_tilt_rate_covariance(&self, p: &mut SMatrix<f64, 9, 9>, eta: f64) {
+        for k in 0..9 {
+            p[(PSI, k)] *= eta;
+            p[(k, PSI)] *= eta;
+        }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::models::CtraPlus;
+
+    #[test]
+    fn the_tilt_rate_covariance_decays_like_the_tilt_rate() {
+        let mut p = SMatrix::<f64, 9, 9>::from_element(1.0);
+        Ctra3d.decay_tilt_rate_covariance(&mut p, 0.9);
+        assert!((p[(PSI, PSI)] - 0.81).abs() < 1e-15);
+        assert!((p[(0, PSI)] - 0.9).abs() < 1e-15 && (p[(PSI, 0)] - 0.9).abs() < 1e-15);
+        assert_eq!(p[(0, 1)], 1.0);
+    }
 
     #[test]
     fn equals_ctra_plus_when_psi_is_zero() {

@@ -17,7 +17,7 @@ pub use ctra_plus::CtraPlus;
 pub use dr::Dr;
 pub use kind::{ModelError, ModelKind, MAX_DT, STATE_RANGES};
 
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 
 /// Runs a function generic over `MotionModel<N>` with the model chosen at run time:
 /// `with_model!(kind, run(args…))` becomes `run::<N, _>(Model, args…)` for the matching model,
@@ -68,4 +68,9 @@ pub trait MotionModel<const N: usize> {
     /// Applies the station's tilt-rate decay after one prediction step: psi ← eta·psi
     /// (paper §III-B, last paragraph). Models without psi leave the state unchanged.
     fn decay_tilt_rate(&self, _state: &mut SVector<f64, N>, _eta: f64) {}
+
+    /// The same decay for a covariance of the state: P ← D P Dᵀ with D scaling psi by eta, so
+    /// that the uncertainty of the tilt rate dies out with the tilt rate itself (a bounded
+    /// station; the paper decays the state only). Models without psi leave it unchanged.
+    fn decay_tilt_rate_covariance(&self, _p: &mut SMatrix<f64, N, N>, _eta: f64) {}
 }

@@ -4,7 +4,7 @@ use super::packet::Transmission;
 use super::report::{Boxplots, DataRateUse, Delivery, Energy, ModelResult, ModelSeries};
 use super::station::{StationModel, StationTrack};
 use crate::lora::DataRate;
-use crate::metrics::{bootstrap, coverage, Summary};
+use crate::metrics::{bootstrap, Consistency, Summary};
 use crate::models::ModelKind;
 use std::collections::BTreeMap;
 
@@ -21,7 +21,7 @@ pub(crate) struct Pooled {
     ex: Vec<f64>,
     ey: Vec<f64>,
     ez: Vec<f64>,
-    inside: Vec<bool>,
+    consistency: Consistency,
     probability_sum: Option<[f64; 3]>,
     sent: usize,
     received: usize,
@@ -61,7 +61,7 @@ impl Pooled {
             self.ey.push(e[1]);
             self.ez.push(e[2]);
         }
-        self.inside.extend_from_slice(&st.inside95);
+        self.consistency.merge(&st.consistency);
         if let Some(p) = st.probability_sum {
             let sum = self.probability_sum.get_or_insert([0.0; 3]);
             for k in 0..3 {
@@ -144,7 +144,8 @@ impl Pooled {
             // Summary::of left each sample sorted.
             boxplot: Boxplots::of_sorted(&self.e3, &self.ex, &self.ey, &self.ez),
             filter_recoveries,
-            coverage95: coverage(&self.inside),
+            coverage95: self.consistency.coverage95(),
+            nees: self.consistency.mean_nees(),
             data_rate_use,
             delivery,
             energy,

@@ -200,6 +200,11 @@ pub struct ModelResult {
     /// an overconfident one lower. `null` when nothing was evaluated.
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub coverage95: f64,
+    /// Mean normalised estimation error squared of the station's position (Bar-Shalom et al.
+    /// 2001, §5.4) over the same steps: 3 for a station whose covariance is honest, above 3 when
+    /// it claims too little uncertainty, below 3 too much. `null` when nothing was evaluated.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
+    pub nees: f64,
     /// The packets sent at each data rate (one entry without ADR), slowest rate first.
     pub data_rate_use: Vec<DataRateUse>,
     /// Packets, copies and gateways of this station's run.

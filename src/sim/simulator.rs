@@ -11,8 +11,8 @@ use super::report::{Delivery, ModelSeries, RunConfig, Series, SimReport};
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::Schedule;
 use super::station::{
-    new_tracker, track_station, Estimate, FlightChains, Prediction, StationModel, StationTrack,
-    MAX_GRIDS,
+    new_tracker, track_station, Estimate, FlightChains, Prediction, StationModel, StationSetup,
+    StationTrack, MAX_GRIDS,
 };
 use super::SimError;
 use crate::lora::Channel;
@@ -330,11 +330,12 @@ impl Simulator {
         let mut results = Vec::new();
         let mut series_models = Vec::new();
         let mut delivery = Delivery::default();
+        let base = cfg.station_setup(0.0);
         for &model in &cfg.models {
             let (start, duty_cycle) = cfg.drone_radio(&cfg.radio, model)?;
             let (toa, interval) = (start.current().time_on_air, start.current().interval);
             cfg.check_heartbeat(interval)?;
-            let setup = cfg.station_setup(interval);
+            let setup = StationSetup { interval, ..base };
             let mut pooled = Pooled::default();
             let mut counted = Delivery::default();
             let mut recoveries = 0;

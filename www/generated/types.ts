@@ -716,6 +716,12 @@ filterRecoveries: number,
  */
 coverage95: number | null, 
 /**
+ * Mean normalised estimation error squared of the station's position (Bar-Shalom et al.
+ * 2001, §5.4) over the same steps: 3 for a station whose covariance is honest, above 3 when
+ * it claims too little uncertainty, below 3 too much. `null` when nothing was evaluated.
+ */
+nees: number | null, 
+/**
  * The packets sent at each data rate (one entry without ADR), slowest rate first.
  */
 dataRateUse: Array<DataRateUse>, 

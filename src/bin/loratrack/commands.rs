@@ -554,11 +554,11 @@ fn num(v: f64, width: usize, decimals: usize) -> String {
 
 fn results_table(results: &[ModelResult]) -> String {
     let mut out = String::from(
-        "model     interval  received   mean    p50    p75    p95    max  cover95  mC/uplink  (3D error, m)\n",
+        "model     interval  received   mean    p50    p75    p95    max  cover95   NEES  mC/uplink  (3D error, m)\n",
     );
     for m in results {
         out += &format!(
-            "{:<9} {:>7.2}s {:>5}/{:<5} {} {} {} {} {} {} {:>10.2}\n",
+            "{:<9} {:>7.2}s {:>5}/{:<5} {} {} {} {} {} {} {} {:>10.2}\n",
             m.model.label(),
             m.interval,
             m.delivery.packets_received,
@@ -569,6 +569,7 @@ fn results_table(results: &[ModelResult]) -> String {
             num(m.error3d.p95, 6, 2),
             num(m.error3d.max, 6, 1),
             num(m.coverage95, 7, 3),
+            num(m.nees, 6, 2),
             m.energy.charge_per_uplink,
         );
         if let Some(p) = &m.model_probability {

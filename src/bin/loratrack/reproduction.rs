@@ -60,17 +60,21 @@ pub fn markdown(r: &SweepReport) -> String {
          canonical synthetic set ({:.0} s of flight, 30 flights), no LoRaWAN overhead (as in the paper's Table II), \
          Table I noise, eta = 0.9, T = 0.1 s, shadowing 4 dB, seed {}. `paper` is the station as published \
          (constant acceleration and turn rate between packets); `bounded` keeps speed in [0, 20 m/s] and pitch \
-         within ±90°, and lets an overdue manoeuvre decay (`src/sim/station/prediction.rs`). IMM mixes DR, \
+         within ±90°, and lets an overdue manoeuvre decay (`src/sim/station/prediction.rs`); its covariance \
+         starts from the drone filter's settled covariance and adds what its model leaves out of the motion \
+         (`Bounds::model_error_variance`). IMM mixes DR, \
          CTRA+ and 3D-CTRA from the 12-byte 3D-CTRA packet (`src/sim/station/imm.rs`). cover95 is the share of \
-         steps whose true position lies inside the station's own 95 % ellipsoid (0.95 when its covariance is honest).\n\n",
+         steps whose true position lies inside the station's own 95 % ellipsoid (0.95 when its covariance is honest); \
+         NEES the mean normalised estimation error squared of the position (3 when honest; more: the station \
+         claims too little uncertainty, less: too much).\n\n",
         r.flight_time, r.seed
     );
-    s += "## 3D tracking error (m)\n\n| prediction | SF | d (m) | model | interval (s) | received | mean | p50 | p75 | p95 | max | cover95 |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    s += "## 3D tracking error (m)\n\n| prediction | SF | d (m) | model | interval (s) | received | mean | p50 | p75 | p95 | max | cover95 | NEES |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
     for run in &r.runs {
         for m in &run.results {
             let e = &m.error3d;
             s += &format!(
-                "| {} | {} | {} | {} | {:.2} | {}/{} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1} | {:.3} |\n",
+                "| {} | {} | {} | {} | {:.2} | {}/{} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1} | {:.3} | {:.2} |\n",
                 run.prediction.name(),
                 run.sf,
                 run.distance,
@@ -83,7 +87,8 @@ pub fn markdown(r: &SweepReport) -> String {
                 e.p75,
                 e.p95,
                 e.max,
-                m.coverage95
+                m.coverage95,
+                m.nees
             );
         }
     }
@@ -186,8 +191,9 @@ const WHERE_THEY_DIFFER: &str = "
   constant acceleration and turn rate for tens of seconds; their rare errors grow quadratically,
   which inflates the mean and max even where p75 still favours them. The paper's averages at 3 km
   are lower; its station may bound the prediction in ways it does not describe. The `bounded`
-  rows show what a station that knows it is flying blind does instead: identical while packets
-  arrive on time, sane after a loss.
+  rows show what a station that knows it is flying blind does instead: the same equations while
+  packets arrive on time (3D-CTRA's tilt-rate variance decays with the tilt rate, which moves its
+  unscented mean a little closer), sane after a loss, and a covariance that says how sure it is.
 - **Channel.** The same ns-3 defaults (log-distance 3.76, 7.7 dB at 1 m, 14 dBm, the SX1301
   sensitivities, 4 dB shadowing) but no interference from other devices, and a gateway placed along
   +x from each flight's start.

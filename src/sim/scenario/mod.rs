@@ -20,7 +20,7 @@ pub use gateways::{validate_sites, GatewaySite};
 
 use super::radio::DroneRadio;
 use super::sender::{SenderKind, Sending};
-use super::station::{Bounds, Prediction, StationModel, StationSetup};
+use super::station::{Bounds, DroneCovariances, Prediction, StationModel, StationSetup};
 use super::SimError;
 use crate::filter::PAPER_R_DIAGONAL;
 use crate::lora::{
@@ -622,9 +622,12 @@ impl Validated {
     }
 
     /// The station of every drone whose packets come every `interval` s (its data rate's
-    /// duty-cycle interval).
+    /// duty-cycle interval). A bounded station resets to the drone filter's settled covariance
+    /// ([`DroneCovariances`], computed here: about 2 ms, so build one setup and copy it).
     pub fn station_setup(&self, interval: f64) -> StationSetup {
         let s = &self.settings;
+        let drone_covariance = (s.station.prediction == Prediction::Bounded)
+            .then(|| DroneCovariances::new(1.0 / s.drone.sensor_rate, s.drone.q, &self.r_diagonal));
         StationSetup {
             prediction: s.station.prediction,
             bounds: Bounds::default(),
@@ -633,6 +636,7 @@ impl Validated {
             q: s.drone.q,
             r_diagonal: self.r_diagonal,
             interval,
+            drone_covariance,
         }
     }
 

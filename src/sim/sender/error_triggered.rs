@@ -70,6 +70,7 @@ mod tests {
             q,
             r_diagonal: PAPER_R_DIAGONAL,
             interval: 2.0,
+            drone_covariance: None,
         };
         let mirror = new_tracker(StationModel::Single(ModelKind::Dr), setup);
         ErrorTriggered::new(mirror, threshold, 10.0)

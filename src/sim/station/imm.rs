@@ -173,6 +173,7 @@ mod tests {
             q: PAPER_Q,
             r_diagonal: PAPER_R_DIAGONAL,
             interval: 2.0,
+            drone_covariance: None,
         }
     }
 

@@ -8,19 +8,21 @@
 //! Both implement [`Tracker`], which is also what an error-triggered drone mirrors.
 
 mod chains;
+mod drone_covariance;
 mod imm;
 mod prediction;
 mod predictor;
 mod station_model;
 
 pub(crate) use chains::{FlightChains, MAX_GRIDS};
+pub use drone_covariance::{DroneCovariances, NOMINAL_SPEED};
 pub use imm::{Imm, ImmMember, IMM_STAY};
 pub use prediction::{Bounded, Bounds, Prediction};
 pub use predictor::{StationPredictor, StationSetup};
 pub use station_model::StationModel;
 
 use super::packet::Transmission;
-use crate::metrics::{bound_95, inside_95};
+use crate::metrics::{bound_95, Consistency};
 use crate::models::{with_model, ModelKind, MotionModel};
 use crate::trajectory::Trajectory;
 use nalgebra::Matrix3;
@@ -72,8 +74,9 @@ pub struct StationTrack {
     pub error_axes: Vec<[f64; 3]>,
     /// 3D distance between estimate and truth, m.
     pub error3d: Vec<f64>,
-    /// Whether the truth lay inside the station's 95 % position ellipsoid.
-    pub inside95: Vec<bool>,
+    /// How the truth fell against the station's claimed position uncertainty (95 % coverage,
+    /// NEES).
+    pub consistency: Consistency,
     /// The longest semi-axis of that ellipsoid, m (only when asked for: it needs an
     /// eigen-decomposition per step).
     pub bound95: Vec<f64>,
@@ -162,7 +165,6 @@ pub(crate) fn score_station(
         estimate: Vec::with_capacity(capacity),
         error_axes: Vec::with_capacity(capacity),
         error3d: Vec::with_capacity(capacity),
-        inside95: Vec::with_capacity(capacity),
         ..StationTrack::default()
     };
     loop {
@@ -185,7 +187,7 @@ pub(crate) fn score_station(
         out.error_axes.push(d.map(f64::abs));
         out.error3d
             .push((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
-        out.inside95.push(inside_95(&d, &e.covariance));
+        out.consistency.add(&d, &e.covariance);
         if with_bounds {
             out.bound95.push(bound_95(&e.covariance));
         }

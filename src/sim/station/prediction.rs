@@ -63,6 +63,25 @@ pub struct Bounds {
     /// 1.5: a periodic packet is at most one interval plus a sensor step plus its time on air
     /// late, so the decay starts only after a loss.
     pub grace_intervals: f64,
+    /// The spread, m/s, of the speed about 0 that an overdue speed decays toward: as the decay
+    /// forgets the speed it restores this much uncertainty, so the station's covariance grows
+    /// with its ignorance instead of shrinking with the speed (Singer 1970: the discrete
+    /// Gauss–Markov step x ← ρx + w, Var w = (1 − ρ²)σ²). 5 m/s: the root mean square speed
+    /// of the synthetic set is 5.4 m/s, of the Canberra flight 3.7 m/s.
+    pub sigma_v: f64,
+    /// The same for the acceleration, m/s²: 1.5 (synthetic set 0.92, Canberra 1.8 rms).
+    pub sigma_a: f64,
+    /// The same for the turn rate, rad/s: 0.5 (synthetic set 0.27, Canberra 0.73 rms).
+    pub sigma_omega: f64,
+    /// The acceleration DR leaves out, m/s² rms per axis (tangential a, centripetal v·omega,
+    /// vertical v·psi): 1.2 (synthetic set 0.98, Canberra 1.39). See
+    /// [`Bounds::model_error_variance`].
+    pub unmodelled_acceleration: f64,
+    /// The jerk CTRA+ and 3D-CTRA leave out, m/s³ per axis: 0.1, a sixth of the synthetic
+    /// set's rms jerk (0.59), since a jerk seldom lasts a whole gap. Calibrated so that the
+    /// 95 % region covers 93–97 % of the synthetic set at 1 and 3 km (docs/paper-reproduction.md);
+    /// the Canberra flight, jerkier (3.4 rms), is covered less (about 85 %).
+    pub unmodelled_jerk: f64,
 }
 
 impl Default for Bounds {
@@ -74,6 +93,11 @@ impl Default for Bounds {
             tau_omega: 4.0,
             tau_v: 5.0,
             grace_intervals: 1.5,
+            sigma_v: 5.0,
+            sigma_a: 1.5,
+            sigma_omega: 0.5,
+            unmodelled_acceleration: 1.2,
+            unmodelled_jerk: 0.1,
         }
     }
 }
@@ -168,11 +192,29 @@ impl<const N: usize, M: MotionModel<N>> MotionModel<N> for Bounded<M> {
 }
 
 impl Bounds {
+    /// The variance per axis, m², of what `kind`'s extrapolation leaves out after `age` s without
+    /// a packet: the first derivative the model holds at zero, held for the whole gap. DR
+    /// extrapolates a constant velocity, so an acceleration a moves the drone a·age²/2 off it;
+    /// CTRA+ and 3D-CTRA extrapolate a constant acceleration and turn rate, so a jerk j moves it
+    /// j·age³/6 off. A bounded station adds it to the position covariance it reports: the
+    /// filter's own covariance grows only with the drone's process noise, which describes the
+    /// 10 Hz filter's steps, not minutes of extrapolation (without it the 95 % region covered
+    /// 51 % of the synthetic set at 5 km).
+    pub fn model_error_variance(&self, kind: ModelKind, age: f64) -> f64 {
+        let off = match kind {
+            ModelKind::Dr => self.unmodelled_acceleration * age * age / 2.0,
+            ModelKind::CtraPlus | ModelKind::Ctra3d => self.unmodelled_jerk * age * age * age / 6.0,
+        };
+        off * off
+    }
+
     /// The manoeuvre decay of a bounded station after a step that took the time since the last
     /// packet from `age_before` to `age_after` (s), with `grace` s before a packet is overdue:
     /// v ← v·e^(−τ/tau_v), a ← a·e^(−τ/tau_a), omega ← omega·e^(−τ/tau_omega) over the overdue
-    /// part τ of the step, and the covariance transformed alike (x ← Dx, P ← DPDᵀ). A first-order
-    /// Gauss–Markov (Singer 1970) model of how a manoeuvre, and the motion itself, decorrelate.
+    /// part τ of the step, and the covariance transformed alike (x ← Dx, P ← DPDᵀ), with the
+    /// forgotten part's uncertainty restored on the diagonal ((1 − ρ²)σ², [`Bounds::sigma_v`] …).
+    /// A first-order Gauss–Markov (Singer 1970) model of how a manoeuvre, and the motion itself,
+    /// decorrelate.
     pub fn decay_manoeuvre<const N: usize>(
         &self,
         x: &mut SVector<f64, N>,
@@ -185,7 +227,12 @@ impl Bounds {
         if overdue <= 0.0 {
             return;
         }
-        for (i, tau) in [(V, self.tau_v), (A, self.tau_a), (OMEGA, self.tau_omega)] {
+        let decays = [
+            (V, self.tau_v, self.sigma_v),
+            (A, self.tau_a, self.sigma_a),
+            (OMEGA, self.tau_omega, self.sigma_omega),
+        ];
+        for (i, tau, sigma) in decays {
             if i >= N {
                 continue;
             }
@@ -195,6 +242,7 @@ impl Bounds {
                 p[(i, k)] *= rho;
                 p[(k, i)] *= rho;
             }
+            p[(i, i)] += (1.0 - rho * rho) * sigma * sigma;
         }
     }
 }
@@ -268,7 +316,35 @@ mod tests {
         b.decay_manoeuvre(&mut x, &mut p, 2.5, 3.5, 3.0);
         assert!((x[A] - exp(-0.5 / b.tau_a)).abs() < 1e-15);
         assert!((x[OMEGA] - 0.4 * exp(-0.5 / b.tau_omega)).abs() < 1e-15);
-        assert!((p[(A, A)] - exp(-1.0 / b.tau_a)).abs() < 1e-15);
+        // The variance shrinks with the mean and regains what the decay forgot.
+        let rho = exp(-0.5 / b.tau_a);
+        let restored = rho * rho + (1.0 - rho * rho) * b.sigma_a * b.sigma_a;
+        assert!((p[(A, A)] - restored).abs() < 1e-15);
+        assert!((p[(X, A)] - 0.0).abs() < 1e-15 && p[(V, A)] == 0.0);
         assert_eq!(x[THETA], 0.0);
+    }
+
+    #[test]
+    fn a_long_silence_leaves_the_manoeuvre_as_uncertain_as_the_flights_are() {
+        // However sure the last packet was, after many time constants the speed's variance is
+        // its stationary spread, not zero.
+        let b = Bounds::default();
+        let mut x = SVector::<f64, 8>::from([0.0, 0.0, 0.0, 0.0, 0.0, 5.0, 1.0, 0.4]);
+        let mut p = SMatrix::<f64, 8, 8>::identity() * 1e-4;
+        b.decay_manoeuvre(&mut x, &mut p, 0.0, 200.0, 1.0);
+        assert!((p[(V, V)] - b.sigma_v * b.sigma_v).abs() < 1e-6);
+        assert!((p[(OMEGA, OMEGA)] - b.sigma_omega * b.sigma_omega).abs() < 1e-6);
+    }
+
+    #[test]
+    fn the_model_error_grows_with_the_first_derivative_each_model_leaves_out() {
+        let b = Bounds::default();
+        // DR: a·t²/2; CTRA: j·t³/6, so doubling the age multiplies the spread by 4 and 8.
+        let dr = |t| b.model_error_variance(ModelKind::Dr, t).sqrt();
+        let ct = |t| b.model_error_variance(ModelKind::Ctra3d, t).sqrt();
+        assert!((dr(2.0) - b.unmodelled_acceleration * 2.0).abs() < 1e-12);
+        assert!((dr(4.0) / dr(2.0) - 4.0).abs() < 1e-12);
+        assert!((ct(4.0) / ct(2.0) - 8.0).abs() < 1e-12);
+        assert_eq!(b.model_error_variance(ModelKind::CtraPlus, 0.0), 0.0);
     }
 }

@@ -186,11 +186,15 @@ pub fn run_swarm(
         duty_cycles.push(duty_cycle);
     }
     let slots = slots(cfg, &radios)?;
+    let setup = cfg.station_setup(0.0);
     let kits: Vec<Kit> = radios
         .iter()
         .enumerate()
         .map(|(i, r)| Kit {
-            setup: cfg.station_setup(r.current().interval),
+            setup: StationSetup {
+                interval: r.current().interval,
+                ..setup
+            },
             duty_cycle: duty_cycles[i],
             slot: slots.as_ref().map(|s| s[i]),
         })
