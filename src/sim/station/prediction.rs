@@ -80,7 +80,7 @@ pub struct Bounds {
     /// The jerk CTRA+ and 3D-CTRA leave out, m/s³ per axis: 0.1, a sixth of the synthetic
     /// set's rms jerk (0.59), since a jerk seldom lasts a whole gap. Calibrated so that the
     /// 95 % region covers 93–97 % of the synthetic set at 1 and 3 km (docs/paper-reproduction.md);
-    /// the Canberra flight, jerkier (3.4 rms), is covered less (about 85 %).
+    /// the Canberra flight, jerkier (3.4 rms), is covered less (80–85 %).
     pub unmodelled_jerk: f64,
 }
 
