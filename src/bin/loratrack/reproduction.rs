@@ -731,8 +731,8 @@ fn adr_findings(r: &DistanceSweepReport, base: &Scenario) -> String {
     out += "\nThe tracking ADR aims to stay within 5 % of the best fixed rate at every distance, since it may \
             always choose that rate. Where the list above says otherwise it does not reach that aim: its delivery \
             estimate comes from a window of frames whose shadowing is correlated along the path, so a deep patch can \
-            send it to a slow rate (see the packets per data rate), and at a slow rate it judges again only after \
-            four frames, minutes apart. Starting from DR0 also costs the first frames' long intervals.\n";
+            send it to a slow rate (see the packets per data rate), where each frame, and so each chance to move \
+            again, is minutes apart. Starting from DR0 also costs the first frame's long interval.\n";
     let start = r.runs.iter().find_map(|x| x.start).unwrap_or(0);
     let dr0_interval = r
         .runs
