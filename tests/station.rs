@@ -37,7 +37,12 @@ fn steady_turn(t: f64) -> [f64; 9] {
     core::array::from_fn(|i| x[i])
 }
 
-fn paper_and_bounded_agree<const N: usize, M: MotionModel<N> + Copy>(model: M) {
+/// A paper and a bounded station of `model` fed a steady climbing turn's packets every 2 s for a
+/// minute, both predicting every 0.1 s: `check(t, age, paper, bounded)` after each step.
+fn fly_steady_turn<const N: usize, M: MotionModel<N> + Copy>(
+    model: M,
+    mut check: impl FnMut(f64, f64, &StationPredictor<N, M>, &StationPredictor<N, M>),
+) {
     let mut paper = StationPredictor::new(model, setup(Prediction::Paper));
     let mut bounded = StationPredictor::new(model, setup(Prediction::Bounded));
     for k in 0..30 {
@@ -48,29 +53,34 @@ fn paper_and_bounded_agree<const N: usize, M: MotionModel<N> + Copy>(model: M) {
             let t = sent + 0.1 * j as f64;
             paper.predict_to(t);
             bounded.predict_to(t);
-            // The unscented mean moves by a hair (under a millimetre) with the covariance: the
-            // bounded station puts no noise on the position itself.
-            let (a, b) = (paper.position(), bounded.position());
-            assert!(
-                (0..3).all(|i| (a[i] - b[i]).abs() < 1e-3),
-                "{:?} at {t}: {a:?} vs {b:?}",
-                M::KIND
-            );
-            // The bounded station's covariance leaves out white noise on the position itself
-            // and adds what its model leaves out of the motion.
-            let age = t - sent;
-            let extra = Bounds::default().model_error_variance(M::KIND, age) - PAPER_Q * age;
-            let expected = paper.position_covariance() + Matrix3::identity() * extra;
-            let diff = (bounded.position_covariance() - expected).abs().max();
-            // Up to 1 %: the missing position noise also moves the sigma points a little.
-            let scale = expected.abs().max();
-            assert!(
-                diff < 0.01 * scale,
-                "{:?} at {t}: off by {diff} of {scale}",
-                M::KIND
-            );
+            check(t, t - sent, &paper, &bounded);
         }
     }
+}
+
+fn paper_and_bounded_agree<const N: usize, M: MotionModel<N> + Copy>(model: M) {
+    fly_steady_turn(model, |t, age, paper, bounded| {
+        // The unscented mean moves by a hair (under a millimetre) with the covariance: the
+        // bounded station puts no noise on the position itself.
+        let (a, b) = (paper.position(), bounded.position());
+        assert!(
+            (0..3).all(|i| (a[i] - b[i]).abs() < 1e-3),
+            "{:?} at {t}: {a:?} vs {b:?}",
+            M::KIND
+        );
+        // The bounded station's covariance leaves out white noise on the position itself
+        // and adds what its model leaves out of the motion.
+        let extra = Bounds::default().model_error_variance(M::KIND, age) - PAPER_Q * age;
+        let expected = paper.position_covariance() + Matrix3::identity() * extra;
+        let diff = (bounded.position_covariance() - expected).abs().max();
+        // Up to 1 %: the missing position noise also moves the sigma points a little.
+        let scale = expected.abs().max();
+        assert!(
+            diff < 0.01 * scale,
+            "{:?} at {t}: off by {diff} of {scale}",
+            M::KIND
+        );
+    });
 }
 
 #[test]
@@ -84,29 +94,19 @@ fn bounded_prediction_equals_the_paper_while_packets_arrive_on_time_and_only_its
 fn the_bounded_3d_ctra_station_lets_the_tilt_rates_uncertainty_die_with_it_and_tracks_closer() {
     // The paper decays psi but not its variance, which then grows with q for ever; its sigma
     // points fly up and down and pull the unscented mean off a steady climbing turn.
-    let mut paper = StationPredictor::new(Ctra3d, setup(Prediction::Paper));
-    let mut bounded = StationPredictor::new(Ctra3d, setup(Prediction::Bounded));
     let (mut worse, mut better) = (0, 0);
-    for k in 0..30 {
-        let sent = 2.0 * k as f64;
-        paper.reset(&steady_turn(sent), sent);
-        bounded.reset(&steady_turn(sent), sent);
-        for j in 1..=20 {
-            let t = sent + 0.1 * j as f64;
-            paper.predict_to(t);
-            bounded.predict_to(t);
-            let truth = steady_turn(t);
-            let off = |p: [f64; 3]| {
-                (0..3)
-                    .map(|i| (p[i] - truth[i]).powi(2))
-                    .sum::<f64>()
-                    .sqrt()
-            };
-            let (a, b) = (off(paper.position()), off(bounded.position()));
-            worse += usize::from(b > a + 1e-9);
-            better += usize::from(b < a - 1e-9);
-        }
-    }
+    fly_steady_turn(Ctra3d, |t, _, paper, bounded| {
+        let truth = steady_turn(t);
+        let off = |p: [f64; 3]| {
+            (0..3)
+                .map(|i| (p[i] - truth[i]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        };
+        let (a, b) = (off(paper.position()), off(bounded.position()));
+        worse += usize::from(b > a + 1e-9);
+        better += usize::from(b < a - 1e-9);
+    });
     assert!(
         better > 500 && worse == 0,
         "closer {better} times, farther {worse}"
