@@ -21,6 +21,15 @@ impl ModelKind {
     /// All models, in the paper's order.
     pub const ALL: [ModelKind; 3] = [ModelKind::Dr, ModelKind::CtraPlus, ModelKind::Ctra3d];
 
+    /// The model's place in [`ModelKind::ALL`] (for arrays indexed by model).
+    pub fn index(self) -> usize {
+        match self {
+            ModelKind::Dr => 0,
+            ModelKind::CtraPlus => 1,
+            ModelKind::Ctra3d => 2,
+        }
+    }
+
     /// Number of state components.
     pub fn state_len(self) -> usize {
         match self {
@@ -144,6 +153,18 @@ impl FromStr for ModelKind {
             "ctra-plus" | "ctra+" | "ctraplus" => Ok(ModelKind::CtraPlus),
             "3d-ctra" | "3dctra" | "ctra3d" => Ok(ModelKind::Ctra3d),
             _ => Err(ModelError::UnknownModel(s.to_string())),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_model_sits_at_its_index_in_all() {
+        for (i, m) in ModelKind::ALL.iter().enumerate() {
+            assert_eq!(m.index(), i);
         }
     }
 }

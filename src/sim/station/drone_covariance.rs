@@ -33,8 +33,7 @@ impl DroneCovariances {
 
     /// The `N × N` covariance of `kind`'s state.
     pub fn of<const N: usize>(&self, kind: ModelKind) -> SMatrix<f64, N, N> {
-        let k = ModelKind::ALL.iter().position(|m| *m == kind).unwrap_or(0);
-        self.0[k].fixed_view::<N, N>(0, 0).into_owned()
+        self.0[kind.index()].fixed_view::<N, N>(0, 0).into_owned()
     }
 }
 

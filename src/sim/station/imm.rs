@@ -151,8 +151,7 @@ impl Tracker for Imm {
     fn model_probabilities(&self) -> Option<[f64; 3]> {
         let mut out = [0.0; 3];
         for (k, mu) in self.kinds.iter().zip(&self.probability) {
-            let i = ModelKind::ALL.iter().position(|m| m == k).unwrap_or(0);
-            out[i] = *mu;
+            out[k.index()] = *mu;
         }
         Some(out)
     }
