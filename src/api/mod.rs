@@ -21,7 +21,10 @@ pub use error::{clean_message, ApiError, MAX_ECHO_CHARS};
 pub use link_budget::{link_budget, LinkBudgetParams, LinkBudgetReport, SfBudget};
 pub use payload::{decode, encode, DecodeParams, DecodeReport, EncodeParams, EncodeReport};
 pub use predict::{predict, validate_state, PredictParams, PredictReport, MAX_STEPS};
-pub use senders::{sweep_senders, SenderPoint, SenderSweepReport, SENDER_THRESHOLDS};
+pub use senders::{
+    sweep_senders, sweep_senders_at, SenderPoint, SenderSweepReport, HEARTBEAT_INTERVALS,
+    SENDER_SETTINGS, SENDER_THRESHOLDS,
+};
 pub use simulate::{
     p75, simulate, simulate_with_progress, sweep_paper, SweepReport, SweepRun, PAPER_DISTANCES,
     PAPER_SFS,

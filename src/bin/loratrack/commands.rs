@@ -725,7 +725,24 @@ fn sweep_senders(
         return Ok(json(&r));
     }
     if a.markdown {
-        return Ok(crate::reproduction::senders_markdown(&r, &base));
+        let mut sim = Simulator::new();
+        let mut overview = Vec::new();
+        for at in api::SENDER_SETTINGS {
+            overview.push((
+                prediction,
+                api::sweep_senders_at(&mut sim, &base, a.burst, at)?,
+            ));
+        }
+        if prediction != Prediction::Paper {
+            let mut paper = base.clone();
+            paper.station.prediction = Prediction::Paper;
+            let at = api::SENDER_SETTINGS[0];
+            overview.push((
+                Prediction::Paper,
+                api::sweep_senders_at(&mut sim, &paper, a.burst, at)?,
+            ));
+        }
+        return Ok(crate::reproduction::senders_markdown(&r, &base, &overview));
     }
     Ok(crate::reproduction::senders_table(&r))
 }
