@@ -5,11 +5,10 @@
 
 use loratrack::api::simulate;
 use loratrack::{
-    fly_alone, min_interval, new_tracker, run_drone, synthetic_flight, time_on_air, AdrMode,
-    AdrParams, Bounds, Channel, ChannelParams, DroneRadio, DutyCycle, DutyCycleMode,
-    ErrorTriggered, Estimates, GatewaySite, InterferenceModel, LoraParams, ModelKind, Network,
-    Periodic, Prediction, Scenario, Sender, SenderKind, Simulator, StationModel, StationSetup,
-    PAPER_Q, PAPER_R_DIAGONAL,
+    fly_alone, min_interval, run_drone, synthetic_flight, time_on_air, AdrMode, AdrParams, Bounds,
+    Channel, ChannelParams, DroneRadio, DutyCycle, DutyCycleMode, ErrorTriggered, Estimates,
+    GatewaySite, InterferenceModel, LoraParams, ModelKind, Network, Periodic, Prediction, Scenario,
+    Sender, SenderKind, Simulator, StationModel, StationSetup, PAPER_Q, PAPER_R_DIAGONAL,
 };
 use serde_json::{json, Value};
 
@@ -56,6 +55,7 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
         q: PAPER_Q,
         r_diagonal: PAPER_R_DIAGONAL,
         interval: min_interval(toa, dc).unwrap(),
+        heartbeat: None,
         drone_covariance: None,
     };
     let network = || {
@@ -99,7 +99,11 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
                     let sender: Box<dyn Sender> = match threshold {
                         None => Box::new(Periodic),
                         Some(m) => Box::new(ErrorTriggered::new(
-                            new_tracker(StationModel::Single(ModelKind::Ctra3d), setup),
+                            StationModel::Single(ModelKind::Ctra3d),
+                            StationSetup {
+                                heartbeat: Some(10.0),
+                                ..setup
+                            },
                             m,
                             10.0,
                         )),
@@ -236,5 +240,32 @@ fn the_sender_sweep_compares_3d_ctra_by_default_and_keeps_periodic_as_its_baseli
                 w[1]
             );
         }
+    }
+}
+
+/// #24's aim for the sender: at SF7 / 250 kHz / 1 km on the whole set, with a bounded station,
+/// wherever error-triggered sending uses at most 80 % of the airtime its p75 is at most 0.8×
+/// that of periodic sending slowed to the same airtime.
+#[test]
+fn error_triggered_sending_beats_periodic_sending_at_equal_airtime() {
+    let base = set(
+        &Scenario::default(),
+        json!({"synthetic": "all", "model": "3d-ctra", "overhead": 0, "prediction": "bounded"}),
+    );
+    let r = loratrack::api::sweep_senders(&mut Simulator::new(), &base, 10).unwrap();
+    let within: Vec<_> = r.points.iter().filter(|p| p.airtime_share <= 0.8).collect();
+    assert!(within.len() >= 8, "{} points within 80 %", within.len());
+    for p in within {
+        // The comparison is what it says: the slowed periodic sender spent the same airtime.
+        let spent = p.equal_airtime.airtime / p.result.airtime;
+        assert!((spent - 1.0).abs() < 0.03, "{} m: {spent}", p.threshold);
+        assert!(
+            p.p75_vs_equal <= 0.8,
+            "{} m {:?}: p75 {:.2} against {:.2}",
+            p.threshold,
+            p.duty_cycle_mode,
+            p.result.error3d.p75,
+            p.equal_airtime.error3d.p75
+        );
     }
 }

@@ -189,7 +189,7 @@ impl<'a> Flier<'a> {
             loop {
                 let k = self.step_at_or_before(t);
                 let e = self.estimates.get(k)?;
-                if self.sender.wants_to_send(t, &[e[0], e[1], e[2]]) {
+                if self.sender.wants_to_send(t, &e) {
                     return Some((k, t));
                 }
                 match self.clock.slot_after(t) {
@@ -208,7 +208,7 @@ impl<'a> Flier<'a> {
             let Some(e) = self.estimates.get(self.k) else {
                 break;
             };
-            if self.sender.wants_to_send(t, &[e[0], e[1], e[2]]) {
+            if self.sender.wants_to_send(t, &e) {
                 return Some((self.k, t));
             }
             self.k += 1;

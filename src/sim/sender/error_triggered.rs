@@ -1,46 +1,73 @@
 //! Error-triggered sending: the drone runs the station's own predictor on what it sent and sends
-//! when that belief has drifted from its own estimate (the paper's future work, §V).
+//! when that belief has drifted from its own estimate (the paper's future work, §V; reference
+//! §4, "Station under an error-triggered drone").
 
 use super::Sender;
 use crate::math::distance;
-use crate::sim::station::Tracker;
+use crate::sim::station::{new_tracker, StationModel, StationSetup, Tracker};
 
 /// The drone mirrors the station: a [`Tracker`] of the station's kind (same model, same
-/// prediction setting), reset to each packet's decoded — quantised — state. It wants to send
-/// when the mirror's position is more than `threshold` m from its own estimate, or when
-/// `max_interval` s have passed since its last packet (a heartbeat, so that a lost packet, which
-/// an unconfirmed uplink cannot reveal, is repaired). The mirror assumes every packet arrived.
-/// Before its first packet the drone always wants to send: the station knows nothing yet.
+/// prediction setting, same heartbeat), reset to each packet's decoded — quantised — state and
+/// stepped every T from it, as the station steps between packets. It wants to send when the
+/// mirror's position is more than `threshold` m from its own estimate, or when `max_interval` s
+/// have passed since its last packet (a heartbeat, so that a lost packet, which an unconfirmed
+/// uplink cannot reveal, is repaired). The mirror assumes every packet arrived. Before its first
+/// packet the drone always wants to send: the station knows nothing yet.
+///
+/// What makes this pay at equal airtime is a station whose forecast holds while nothing
+/// happens: a bounded station (`--prediction bounded`) neither lags behind a straight line nor
+/// decays a manoeuvre during a silence the heartbeat explains ([`StationSetup::heartbeat`]), so
+/// the drone sends in turns, climbs and stops and stays quiet in between (docs/senders.md).
 pub struct ErrorTriggered {
     mirror: Box<dyn Tracker>,
+    /// The station's step T, s, and the time the mirror has been stepped to.
+    step: f64,
+    clock: f64,
     threshold: f64,
     max_interval: f64,
     last: Option<f64>,
 }
 
 impl ErrorTriggered {
-    /// A sender mirroring `mirror` (a fresh station), with `threshold` in m and `max_interval`
-    /// in s.
-    pub fn new(mirror: Box<dyn Tracker>, threshold: f64, max_interval: f64) -> Self {
+    /// A sender mirroring a station of `model` with `setup`, with `threshold` in m and
+    /// `max_interval` in s.
+    pub fn new(
+        model: StationModel,
+        setup: StationSetup,
+        threshold: f64,
+        max_interval: f64,
+    ) -> Self {
         ErrorTriggered {
-            mirror,
+            mirror: new_tracker(model, setup),
+            step: setup.step,
+            clock: 0.0,
             threshold,
             max_interval,
             last: None,
         }
     }
+
+    /// The mirror's position at `t` s, stepped there every T from the last packet.
+    fn mirror_at(&mut self, t: f64) -> [f64; 3] {
+        while self.clock + self.step < t - 1e-9 {
+            self.clock += self.step;
+            self.mirror.predict_to(self.clock);
+        }
+        self.clock = self.clock.max(t);
+        self.mirror.predict_to(t);
+        self.mirror.position()
+    }
 }
 
 impl Sender for ErrorTriggered {
-    fn wants_to_send(&mut self, t: f64, own: &[f64; 3]) -> bool {
+    fn wants_to_send(&mut self, t: f64, own: &[f64; 9]) -> bool {
         let Some(last) = self.last else {
             return true;
         };
         if t - last >= self.max_interval - 1e-9 {
             return true;
         }
-        self.mirror.predict_to(t);
-        distance(&self.mirror.position(), own) > self.threshold
+        distance(&self.mirror_at(t), &[own[0], own[1], own[2]]) > self.threshold
     }
 
     fn data_rate_changed(&mut self, interval: f64) {
@@ -49,6 +76,7 @@ impl Sender for ErrorTriggered {
 
     fn sent(&mut self, state: &[f64; 9], t: f64) {
         self.mirror.reset(state, t);
+        self.clock = t;
         self.last = Some(t);
     }
 }
@@ -58,7 +86,7 @@ mod tests {
     use super::*;
     use crate::filter::{PAPER_Q, PAPER_R_DIAGONAL};
     use crate::models::ModelKind;
-    use crate::sim::station::{new_tracker, Bounds, Prediction, StationModel, StationSetup};
+    use crate::sim::station::{Bounds, Prediction};
 
     /// A sender mirroring a DR station with process noise `q` per second.
     fn sender(threshold: f64, q: f64) -> ErrorTriggered {
@@ -70,10 +98,10 @@ mod tests {
             q,
             r_diagonal: PAPER_R_DIAGONAL,
             interval: 2.0,
+            heartbeat: Some(10.0),
             drone_covariance: None,
         };
-        let mirror = new_tracker(StationModel::Single(ModelKind::Dr), setup);
-        ErrorTriggered::new(mirror, threshold, 10.0)
+        ErrorTriggered::new(StationModel::Single(ModelKind::Dr), setup, threshold, 10.0)
     }
 
     /// With little process noise the DR station predicts a straight line exactly. (With the
@@ -87,7 +115,7 @@ mod tests {
         for k in 0..600 {
             let t = 0.1 * k as f64;
             let st = state(t);
-            if s.wants_to_send(t, &[st[0], st[1], st[2]]) {
+            if s.wants_to_send(t, &st) {
                 s.sent(&st, t);
                 sends.push(t);
             }
@@ -102,7 +130,31 @@ mod tests {
     fn a_drift_beyond_the_threshold_triggers_a_packet() {
         let mut s = sender(2.0, PAPER_Q);
         s.sent(&[0.0, 0.0, 30.0, 0.0, 0.0, 5.0, 0.0, 0.0, 0.0], 0.0);
-        assert!(!s.wants_to_send(1.0, &[5.0, 1.5, 30.0]));
-        assert!(s.wants_to_send(1.1, &[5.5, 2.5, 30.0]));
+        assert!(!s.wants_to_send(1.0, &[5.0, 1.5, 30.0, 0.0, 0.0, 5.0, 0.0, 0.0, 0.0]));
+        assert!(s.wants_to_send(1.1, &[5.5, 2.5, 30.0, 0.0, 0.0, 5.0, 0.0, 0.0, 0.0]));
+    }
+
+    /// The mirror steps every T as the station does, however far apart the drone asks: asked
+    /// once after 2 s it must stand where a station stepped 20 times stands.
+    #[test]
+    fn the_mirror_steps_as_the_station_does() {
+        let packet = [0.0, 0.0, 30.0, 0.0, 0.0, 5.0, 0.0, 0.0, 0.0];
+        let mut s = sender(2.0, PAPER_Q);
+        s.sent(&packet, 0.0);
+        let jumped = s.mirror_at(2.0);
+        let mut station = sender(2.0, PAPER_Q).mirror;
+        station.reset(&packet, 0.0);
+        for k in 1..=20 {
+            station.predict_to(0.1 * k as f64);
+        }
+        let stepped = station.position();
+        assert!(distance(&jumped, &stepped) < 1e-9, "{jumped:?} {stepped:?}");
+        let mut once = sender(2.0, PAPER_Q).mirror;
+        once.reset(&packet, 0.0);
+        once.predict_to(2.0);
+        assert!(
+            distance(&once.position(), &stepped) > 1e-3,
+            "one 2-s step differs"
+        );
     }
 }

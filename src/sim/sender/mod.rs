@@ -10,7 +10,7 @@ pub use error_triggered::ErrorTriggered;
 pub use periodic::Periodic;
 pub use sending::{Sending, DEFAULT_BURST, DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M};
 
-use super::station::{new_tracker, StationModel, StationSetup};
+use super::station::{StationModel, StationSetup};
 use serde::{Deserialize, Serialize};
 
 /// The sending policy (`--sender`).
@@ -39,8 +39,9 @@ impl SenderKind {
 
 /// A sending policy, asked at every sensor step at which the duty-cycle rule allows a packet.
 pub trait Sender {
-    /// Whether the drone wants to send at time `t` (s), with its own position estimate `own` (m).
-    fn wants_to_send(&mut self, t: f64, own: &[f64; 3]) -> bool;
+    /// Whether the drone wants to send at time `t` (s), with its own estimate `own` (the state it
+    /// would send: 9 components, the unused ones 0; m, rad, m/s).
+    fn wants_to_send(&mut self, t: f64, own: &[f64; 9]) -> bool;
     /// Tells the sender that the packet carrying `state` (decoded, as the station will see it;
     /// 9 components, the unused ones 0) left at `t` (s).
     fn sent(&mut self, state: &[f64; 9], t: f64);
@@ -59,10 +60,6 @@ pub fn new_sender(
 ) -> Box<dyn Sender> {
     match kind {
         SenderKind::Periodic => Box::new(Periodic),
-        SenderKind::Error => Box::new(ErrorTriggered::new(
-            new_tracker(model, setup),
-            threshold,
-            max_interval,
-        )),
+        SenderKind::Error => Box::new(ErrorTriggered::new(model, setup, threshold, max_interval)),
     }
 }

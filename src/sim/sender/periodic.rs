@@ -7,7 +7,7 @@ use super::Sender;
 pub struct Periodic;
 
 impl Sender for Periodic {
-    fn wants_to_send(&mut self, _t: f64, _own: &[f64; 3]) -> bool {
+    fn wants_to_send(&mut self, _t: f64, _own: &[f64; 9]) -> bool {
         true
     }
 

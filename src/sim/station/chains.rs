@@ -12,8 +12,9 @@ use crate::sim::packet::Transmission;
 use crate::trajectory::Trajectory;
 use std::collections::HashMap;
 
-/// A packet as the station sees it: send time, arrival time and interval, bit for bit.
-type PacketKey = (u64, u64, u64);
+/// A packet as the station sees it: send time, arrival time and interval, bit for bit, and
+/// whether the station trusts the silence after it.
+type PacketKey = (u64, u64, u64, bool);
 
 /// The estimates of one packet's predictions, from the first grid time it is applied at.
 #[derive(Default)]
@@ -51,7 +52,7 @@ impl FlightChains {
         }
         // The packet being served, how far into its chain, and a live tracker once the chain
         // runs out (replayed from the packet over the grid times already served).
-        let mut key: PacketKey = (0, 0, 0);
+        let mut key: PacketKey = (0, 0, 0, false);
         let mut k = 0;
         let mut served: Vec<f64> = Vec::new();
         let mut live: Option<Box<dyn Tracker>> = None;
@@ -61,12 +62,14 @@ impl FlightChains {
             transmissions,
             step,
             with_bounds,
-            &mut |t, packet, fresh| {
+            &mut |t, received, fresh| {
                 if fresh {
+                    let packet = received.packet;
                     key = (
                         packet.sent.to_bits(),
                         packet.arrival.to_bits(),
                         packet.interval.to_bits(),
+                        received.silence_trusted,
                     );
                     k = 0;
                     served.clear();
@@ -78,7 +81,7 @@ impl FlightChains {
                     None => {
                         let tracker = live.get_or_insert_with(|| {
                             let mut tr = new_tracker();
-                            start_from(tr.as_mut(), packet);
+                            start_from(tr.as_mut(), received);
                             for &s in &served {
                                 tr.predict_to(s);
                             }

@@ -125,6 +125,12 @@ impl Tracker for Imm {
         }
     }
 
+    fn trust_silence(&mut self, trusted: bool) {
+        for m in &mut self.members {
+            m.trust_silence(trusted);
+        }
+    }
+
     fn position(&self) -> [f64; 3] {
         let mut p = [0.0; 3];
         for (m, mu) in self.members.iter().zip(&self.probability) {
@@ -172,6 +178,7 @@ mod tests {
             q: PAPER_Q,
             r_diagonal: PAPER_R_DIAGONAL,
             interval: 2.0,
+            heartbeat: None,
             drone_covariance: None,
         }
     }

@@ -46,6 +46,30 @@ pub trait Tracker {
     fn model_probabilities(&self) -> Option<[f64; 3]> {
         None
     }
+    /// Whether the link has been delivering well enough for an error-triggered drone's silence
+    /// to mean that the forecast holds ([`StationSetup::heartbeat`]; [`silence_trusted`]).
+    fn trust_silence(&mut self, _trusted: bool) {}
+}
+
+/// How many of a drone's latest frames (by frame counter, up to a received one) the station
+/// counts when it decides whether to trust its silence, and how many of them may be lost.
+pub const SILENCE_WINDOW: usize = 10;
+/// See [`SILENCE_WINDOW`]: one frame in ten.
+pub const SILENCE_LOSSES: usize = 1;
+
+/// For each received transmission (in order), whether the station trusts the sender's silence
+/// after it: at most [`SILENCE_LOSSES`] of the latest [`SILENCE_WINDOW`] frames up to it were
+/// lost. A network server sees the losses as gaps in the frame counter. Where frames collide or
+/// fade, silence is as likely a loss as a forecast that holds, and the station keeps hedging.
+pub fn silence_trusted(transmissions: &[Transmission]) -> Vec<bool> {
+    let mut out = Vec::new();
+    for (i, t) in transmissions.iter().enumerate() {
+        if t.received {
+            let window = &transmissions[(i + 1).saturating_sub(SILENCE_WINDOW)..=i];
+            out.push(window.iter().filter(|w| !w.received).count() <= SILENCE_LOSSES);
+        }
+    }
+    out
 }
 
 fn single<const N: usize, M: MotionModel<N> + Copy + 'static>(
@@ -134,10 +158,20 @@ pub fn track_station(
     )
 }
 
+/// A transmission as the station received it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Received<'a> {
+    /// The transmission.
+    pub packet: &'a Transmission,
+    /// Whether the station trusts the sender's silence after it ([`silence_trusted`]).
+    pub silence_trusted: bool,
+}
+
 /// Resets `tracker` to a received packet, at the interval the packet came with.
-pub(crate) fn start_from(tracker: &mut dyn Tracker, packet: &Transmission) {
-    tracker.set_interval(packet.interval);
-    tracker.reset(&packet.state, packet.sent);
+pub(crate) fn start_from(tracker: &mut dyn Tracker, r: &Received) {
+    tracker.set_interval(r.packet.interval);
+    tracker.trust_silence(r.silence_trusted);
+    tracker.reset(&r.packet.state, r.packet.sent);
 }
 
 /// The evaluation loop of [`track_station`], with the station's estimate at each grid time `t`
@@ -147,15 +181,23 @@ pub(crate) fn score_station(
     transmissions: &[Transmission],
     step: f64,
     with_bounds: bool,
-    estimate: &mut dyn FnMut(f64, &Transmission, bool) -> Estimate,
+    estimate: &mut dyn FnMut(f64, &Received, bool) -> Estimate,
 ) -> StationTrack {
-    let received: Vec<&Transmission> = transmissions.iter().filter(|t| t.received).collect();
+    let received: Vec<Received> = transmissions
+        .iter()
+        .filter(|t| t.received)
+        .zip(silence_trusted(transmissions))
+        .map(|(packet, silence_trusted)| Received {
+            packet,
+            silence_trusted,
+        })
+        .collect();
     let Some(first) = received.first() else {
         return StationTrack::default();
     };
     let t0 = flight.t[0];
     let end = flight.t[flight.t.len() - 1];
-    let mut j = ((first.arrival - t0) / step - 1e-9).ceil().max(0.0) as usize;
+    let mut j = ((first.packet.arrival - t0) / step - 1e-9).ceil().max(0.0) as usize;
     let mut next = 0;
     let mut applied = usize::MAX; // index of the packet the tracker was last reset to
     let mut hint = 0;
@@ -172,13 +214,13 @@ pub(crate) fn score_station(
         if t > end + 1e-9 {
             break;
         }
-        while next < received.len() && received[next].arrival <= t + 1e-9 {
+        while next < received.len() && received[next].packet.arrival <= t + 1e-9 {
             next += 1;
         }
         // j starts at the first arrival, so at least one packet has arrived.
         let fresh = next - 1 != applied;
         applied = next - 1;
-        let e = estimate(t, received[applied], fresh);
+        let e = estimate(t, &received[applied], fresh);
         let truth = flight.position_at(t, &mut hint);
         let est = e.position;
         let d: [f64; 3] = core::array::from_fn(|k| est[k] - truth[k]);
@@ -200,4 +242,49 @@ pub(crate) fn score_station(
         j += 1;
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lora::{Bandwidth, Outcome, SpreadingFactor};
+
+    /// Frames sent every 2 s, received where `pattern` has a 1.
+    fn frames(pattern: &str) -> Vec<Transmission> {
+        pattern
+            .chars()
+            .enumerate()
+            .map(|(i, c)| Transmission {
+                sent: 2.0 * i as f64,
+                arrival: 2.0 * i as f64 + 0.02,
+                received: c == '1',
+                outcome: Outcome::BelowSensitivity,
+                heard_by: 0,
+                state: [0.0; 9],
+                distance: 1000.0,
+                rx_power_dbm: -100.0,
+                sf: SpreadingFactor::new(7).unwrap(),
+                bw: Bandwidth::from_khz(250.0).unwrap(),
+                channel: 0,
+                time_on_air: 0.02,
+                interval: 2.0,
+                charge_mc: 0.0,
+                active_s: 0.0,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn silence_is_trusted_while_at_most_one_frame_in_ten_is_lost() {
+        // One flag per received frame.
+        assert_eq!(silence_trusted(&frames("1111")), vec![true; 4]);
+        assert_eq!(silence_trusted(&frames("1011")), vec![true; 3]);
+        assert_eq!(silence_trusted(&frames("10011")), vec![true, false, false]);
+        // The trust returns once one of the two losses has left the last ten frames.
+        let t = silence_trusted(&frames("1001111111111"));
+        let mut expected = vec![true];
+        expected.extend([false; 8]);
+        expected.extend([true; 2]);
+        assert_eq!(t, expected);
+    }
 }

@@ -24,6 +24,12 @@ pub struct StationSetup {
     pub r_diagonal: [f64; 9],
     /// The nominal interval between packets under the duty cycle, s (bounded: the grace time).
     pub interval: f64,
+    /// With an error-triggered drone, its heartbeat, s: the longest it stays silent while the
+    /// station's forecast holds. Silence up to it is news (the forecast is right), so a bounded
+    /// prediction counts a packet overdue only after it ([`Bounds::grace`]) and follows its
+    /// model without the unscented mean's hedge, while the link delivers well enough for a
+    /// silence to be news ([`Tracker::trust_silence`]); `None` for a periodic drone.
+    pub heartbeat: Option<f64>,
     /// The drone filters' settled covariances, when the station resets to them after a packet
     /// (bounded prediction); `None` resets to R + quantisation (the paper's station, reference
     /// §4).
@@ -37,8 +43,9 @@ pub struct StationSetup {
 /// after every step.
 ///
 /// With [`Prediction::Bounded`] it keeps speed and pitch within limits and lets an overdue
-/// manoeuvre decay ([`Bounds`]); and once a packet is overdue its estimate follows the model
-/// from its own last value, while the unscented transform carries only the covariance. Over a
+/// manoeuvre decay ([`Bounds`]); and once a packet is overdue (with an error-triggered drone,
+/// from the packet on: [`StationSetup::heartbeat`]) its estimate follows the model from its own
+/// last value, while the unscented transform carries only the covariance. Over a
 /// long gap the covariance grows until the sigma points span every heading, and their weighted
 /// mean (whose centre weight λ/(n+λ) is negative for κ = 3 − n) then drifts *backwards*, away
 /// from where the drone flew: the paper's station flies its estimate back over its own track.
@@ -56,6 +63,9 @@ pub struct StationPredictor<const N: usize, M> {
     reset_at: f64,
     /// That packet's state.
     received: SVector<f64, N>,
+    /// Whether the link lets it read an error-triggered drone's silence as news
+    /// ([`Tracker::trust_silence`]).
+    silence_trusted: bool,
 }
 
 /// The station's process noise per second: the drone's q·I for the paper's station; for a
@@ -105,7 +115,14 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
             clock: 0.0,
             reset_at: 0.0,
             received: x,
+            silence_trusted: true,
         }
+    }
+
+    /// The drone's heartbeat when it sends on error and the link delivers well enough for its
+    /// silence to mean that the forecast holds.
+    fn trusted_heartbeat(&self) -> Option<f64> {
+        self.setup.heartbeat.filter(|_| self.silence_trusted)
     }
 
     /// The state estimate.
@@ -123,11 +140,18 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
                     model: self.model,
                     bounds: self.setup.bounds,
                 };
-                let grace = self.setup.bounds.grace_intervals * self.setup.interval;
+                let grace = self
+                    .setup
+                    .bounds
+                    .grace(self.setup.interval, self.trusted_heartbeat());
                 let (before, after) = (self.clock - self.reset_at, t - self.reset_at);
                 let own = bounded.propagate(&self.ukf.x, dt);
                 self.ukf.predict(&bounded, dt);
-                if after > grace {
+                // With an error-triggered drone the estimate follows the model from the start:
+                // the unscented mean hedges against turns the station cannot see (its heading
+                // spread shortens a straight line), but that drone reports every drift past its
+                // threshold itself, so the hedge would only cost.
+                if after > grace || self.trusted_heartbeat().is_some() {
                     self.ukf.x = own;
                 }
                 let b = self.setup.bounds;
@@ -194,6 +218,10 @@ impl<const N: usize, M: MotionModel<N> + Copy> Tracker for StationPredictor<N, M
 
     fn set_interval(&mut self, interval: f64) {
         self.setup.interval = interval;
+    }
+
+    fn trust_silence(&mut self, trusted: bool) {
+        self.silence_trusted = trusted;
     }
 
     fn position(&self) -> [f64; 3] {
