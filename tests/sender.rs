@@ -269,3 +269,26 @@ fn error_triggered_sending_beats_periodic_sending_at_equal_airtime() {
         );
     }
 }
+
+#[test]
+fn the_sender_chart_draws_every_point_of_the_sweep() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_loratrack"))
+        .args(["sweep", "--senders", "--svg", "--prediction", "bounded"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let svg = String::from_utf8(out.stdout).unwrap();
+    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    for name in [
+        "periodic, slowed to the same airtime",
+        "error-triggered, per-packet",
+        "error-triggered, budget 10",
+        "p75 3D error",
+        "p95 3D error",
+        "bounded prediction",
+    ] {
+        assert!(svg.contains(name), "{name}");
+    }
+    // Two panels, each: periodic at 8 slowed airtimes and the full one, 16 error-triggered points.
+    assert_eq!(svg.matches("<circle").count(), 2 * (9 + 16));
+}

@@ -181,6 +181,9 @@ pub struct SweepArgs {
     /// Print the paper-reproduction document (Markdown) instead of a table.
     #[arg(long, conflicts_with = "json")]
     markdown: bool,
+    /// --senders: print the trade-off chart (SVG: p75 and p95 against airtime) instead of a table.
+    #[arg(long, conflicts_with_all = ["json", "markdown"])]
+    svg: bool,
     #[command(flatten)]
     out: Output,
 }
@@ -723,6 +726,9 @@ fn sweep_senders(
     let r = api::sweep_senders(&mut Simulator::new(), &base, a.burst)?;
     if a.out.json {
         return Ok(json(&r));
+    }
+    if a.svg {
+        return Ok(crate::reproduction::senders_svg(&r, &base));
     }
     if a.markdown {
         let mut sim = Simulator::new();

@@ -7,6 +7,7 @@
 mod commands;
 #[cfg(not(target_arch = "wasm32"))]
 mod reproduction;
+mod svg;
 
 #[cfg(not(target_arch = "wasm32"))]
 use std::io::Write;

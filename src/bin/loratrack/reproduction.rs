@@ -1,13 +1,14 @@
 //! `loratrack sweep --paper --markdown`: the paper-reproduction document (docs/paper-reproduction.md).
 
+use crate::svg;
 use loratrack::api::{
     p75, DistanceRun, DistanceSweepReport, SenderPoint, SenderSweepReport, SweepReport, SweepRun,
     SENDER_THRESHOLDS,
 };
 use loratrack::{
-    AdrMode, DutyCycleMode, ModelKind, Prediction, Scenario, StationModel, Summary, SwarmReport,
-    ADR_ACK_DELAY, ADR_ACK_LIMIT, DEFAULT_ADR_HISTORY, DEFAULT_ADR_MARGIN_DB, TRACKING_HYSTERESIS,
-    TRACKING_WINDOW,
+    AdrMode, DutyCycleMode, ModelKind, ModelResult, Prediction, Scenario, StationModel, Summary,
+    SwarmReport, ADR_ACK_DELAY, ADR_ACK_LIMIT, DEFAULT_ADR_HISTORY, DEFAULT_ADR_MARGIN_DB,
+    TRACKING_HYSTERESIS, TRACKING_WINDOW,
 };
 
 fn ratio(a: f64, b: f64) -> String {
@@ -313,9 +314,82 @@ pub fn senders_markdown(
         base.sending.max_interval,
     );
     s += &sender_rows(r, true);
+    s += "\n![p75 and p95 against the airtime share: periodic sending slowed to each airtime, error-triggered sending at \
+          each threshold under both rules](senders.svg)\n";
     s += &senders_overview(overview);
     s += &senders_reading(r, overview);
     s
+}
+
+/// `sweep --senders --svg`: docs/senders.svg, the trade-off as two panels (p75 and p95 against the
+/// airtime share): periodic sending slowed to each airtime, and error-triggered sending at each
+/// threshold under both rules.
+pub fn senders_svg(r: &SenderSweepReport, base: &Scenario) -> String {
+    let panel = |name: &str, stat: fn(&ModelResult) -> f64| {
+        let mut periodic: Vec<(f64, f64, Option<String>)> = r
+            .points
+            .iter()
+            .filter(|p| p.duty_cycle_mode == DutyCycleMode::PerPacket)
+            .map(|p| (p.airtime_share, stat(&p.equal_airtime), None))
+            .collect();
+        periodic.push((1.0, stat(&r.periodic), None));
+        periodic.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // Thresholds are labelled on the per-packet line only: the two lines run close.
+        let error = |mode: DutyCycleMode| {
+            r.points
+                .iter()
+                .filter(|p| p.duty_cycle_mode == mode)
+                .map(|p| {
+                    let label =
+                        (mode == DutyCycleMode::PerPacket).then(|| format!("{} m", p.threshold));
+                    (p.airtime_share, stat(&p.result), label)
+                })
+                .collect()
+        };
+        let budget = format!(
+            "error-triggered, budget {}",
+            r.points.last().map_or(0, |p| p.burst)
+        );
+        svg::Panel {
+            title: format!("{name} 3D error against airtime"),
+            x_label: "airtime, share of the periodic sender's at the full duty cycle",
+            y_label: "3D error, m",
+            series: vec![
+                svg::Series {
+                    name: "periodic, slowed to the same airtime".into(),
+                    color: "#5a6068",
+                    dashed: true,
+                    points: periodic,
+                },
+                svg::Series {
+                    name: "error-triggered, per-packet".into(),
+                    color: "#1f6fd1",
+                    dashed: false,
+                    points: error(DutyCycleMode::PerPacket),
+                },
+                svg::Series {
+                    name: budget,
+                    color: "#c2410c",
+                    dashed: false,
+                    points: error(DutyCycleMode::Budget),
+                },
+            ],
+        }
+    };
+    svg::chart(
+        "When to send: error-triggered against periodic sending at equal airtime",
+        &[panel("p75", |m| m.error3d.p75), panel("p95", |m| m.error3d.p95)],
+        &format!(
+            "Whole synthetic set, {} station ({} prediction), SF{} / {} kHz, gateway at {} m, no LoRaWAN overhead, heartbeat {} s, seed {}; loratrack sweep --senders --svg",
+            r.periodic.model.label(),
+            base.station.prediction.name(),
+            base.radio.sf,
+            base.radio.bw,
+            base.channel.distance,
+            base.sending.max_interval,
+            base.run.seed
+        ),
+    )
 }
 
 /// The equal-airtime table over the overview's settings: one row per setting and rule, one
