@@ -55,7 +55,7 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
         q: PAPER_Q,
         r_diagonal: PAPER_R_DIAGONAL,
         interval: min_interval(toa, dc).unwrap(),
-        heartbeat: None,
+        error_triggered: false,
         drone_covariance: None,
     };
     let network = || {
@@ -101,7 +101,7 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
                         Some(m) => Box::new(ErrorTriggered::new(
                             StationModel::Single(ModelKind::Ctra3d),
                             StationSetup {
-                                heartbeat: Some(10.0),
+                                error_triggered: true,
                                 ..setup
                             },
                             m,

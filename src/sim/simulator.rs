@@ -60,8 +60,8 @@ struct StationKey {
     step: u64,
     eta: u64,
     q: u64,
-    /// An error-triggered drone's heartbeat (bits): it moves when a bounded station decays.
-    heartbeat: Option<u64>,
+    /// Whether the drone sends on error: a bounded station then follows its model.
+    error_triggered: bool,
 }
 
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -361,7 +361,7 @@ impl Simulator {
                             step: s.station.step.to_bits(),
                             eta: s.station.eta.to_bits(),
                             q: s.drone.q.to_bits(),
-                            heartbeat: setup.heartbeat.map(f64::to_bits),
+                            error_triggered: setup.error_triggered,
                         },
                         flights.len(),
                         flight_time / s.station.step + flights.len() as f64,

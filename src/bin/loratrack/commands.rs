@@ -731,22 +731,28 @@ fn sweep_senders(
         return Ok(crate::reproduction::senders_svg(&r, &base));
     }
     if a.markdown {
+        // The whole synthetic set at every setting; the real flight (short: eight seeds pooled)
+        // near and far; the paper's station at the first setting.
         let mut sim = Simulator::new();
         let mut overview = Vec::new();
+        let station = prediction.name();
         for at in api::SENDER_SETTINGS {
-            overview.push((
-                prediction,
-                api::sweep_senders_at(&mut sim, &base, a.burst, at)?,
-            ));
+            let r = api::sweep_senders_at(&mut sim, &base, a.burst, at)?;
+            overview.push((format!("synthetic set, {station}"), r));
+        }
+        let mut real = base.clone();
+        (real.flight.synthetic, real.flight.sample) = (None, Some("canberra".into()));
+        real.run.seeds = real.run.seeds.max(8);
+        for at in [api::SENDER_SETTINGS[0], api::SENDER_SETTINGS[1]] {
+            let r = api::sweep_senders_at(&mut sim, &real, a.burst, at)?;
+            let label = format!("Canberra (real), {station}, {} seeds", real.run.seeds);
+            overview.push((label, r));
         }
         if prediction != Prediction::Paper {
             let mut paper = base.clone();
             paper.station.prediction = Prediction::Paper;
-            let at = api::SENDER_SETTINGS[0];
-            overview.push((
-                Prediction::Paper,
-                api::sweep_senders_at(&mut sim, &paper, a.burst, at)?,
-            ));
+            let r = api::sweep_senders_at(&mut sim, &paper, a.burst, api::SENDER_SETTINGS[0])?;
+            overview.push(("synthetic set, paper".to_string(), r));
         }
         return Ok(crate::reproduction::senders_markdown(&r, &base, &overview));
     }

@@ -636,7 +636,7 @@ impl Validated {
             q: s.drone.q,
             r_diagonal: self.r_diagonal,
             interval,
-            heartbeat: (s.sending.sender == SenderKind::Error).then_some(s.sending.max_interval),
+            error_triggered: s.sending.sender == SenderKind::Error,
             drone_covariance,
         }
     }

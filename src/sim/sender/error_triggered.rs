@@ -7,7 +7,7 @@ use crate::math::distance;
 use crate::sim::station::{new_tracker, StationModel, StationSetup, Tracker};
 
 /// The drone mirrors the station: a [`Tracker`] of the station's kind (same model, same
-/// prediction setting, same heartbeat), reset to each packet's decoded — quantised — state and
+/// prediction setting, told the drone sends on error), reset to each packet's decoded — quantised — state and
 /// stepped every T from it, as the station steps between packets. It wants to send when the
 /// mirror's position is more than `threshold` m from its own estimate, or when `max_interval` s
 /// have passed since its last packet (a heartbeat, so that a lost packet, which an unconfirmed
@@ -15,9 +15,9 @@ use crate::sim::station::{new_tracker, StationModel, StationSetup, Tracker};
 /// packet the drone always wants to send: the station knows nothing yet.
 ///
 /// What makes this pay at equal airtime is a station whose forecast holds while nothing
-/// happens: a bounded station (`--prediction bounded`) neither lags behind a straight line nor
-/// decays a manoeuvre during a silence the heartbeat explains ([`StationSetup::heartbeat`]), so
-/// the drone sends in turns, climbs and stops and stays quiet in between (docs/senders.md).
+/// happens: a bounded station (`--prediction bounded`) under an error-triggered drone does not
+/// lag behind a straight line ([`StationSetup::error_triggered`]), so the drone sends in turns,
+/// climbs and stops and stays quiet in between (docs/senders.md).
 pub struct ErrorTriggered {
     mirror: Box<dyn Tracker>,
     /// The station's step T, s, and the time the mirror has been stepped to.
@@ -98,7 +98,7 @@ mod tests {
             q,
             r_diagonal: PAPER_R_DIAGONAL,
             interval: 2.0,
-            heartbeat: Some(10.0),
+            error_triggered: true,
             drone_covariance: None,
         };
         ErrorTriggered::new(StationModel::Single(ModelKind::Dr), setup, threshold, 10.0)

@@ -178,7 +178,7 @@ mod tests {
             q: PAPER_Q,
             r_diagonal: PAPER_R_DIAGONAL,
             interval: 2.0,
-            heartbeat: None,
+            error_triggered: false,
             drone_covariance: None,
         }
     }

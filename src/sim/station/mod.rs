@@ -47,7 +47,7 @@ pub trait Tracker {
         None
     }
     /// Whether the link has been delivering well enough for an error-triggered drone's silence
-    /// to mean that the forecast holds ([`StationSetup::heartbeat`]; [`silence_trusted`]).
+    /// to mean that the forecast holds ([`StationSetup::error_triggered`]; [`silence_trusted`]).
     fn trust_silence(&mut self, _trusted: bool) {}
 }
 

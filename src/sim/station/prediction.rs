@@ -61,7 +61,7 @@ pub struct Bounds {
     pub tau_v: f64,
     /// How many nominal send intervals may pass after a packet before it counts as overdue.
     /// 1.5: a periodic packet is at most one interval plus a sensor step plus its time on air
-    /// late, so the decay starts only after a loss ([`Bounds::grace`]).
+    /// late, so the decay starts only after a loss.
     pub grace_intervals: f64,
     /// The spread, m/s, of the speed about 0 that an overdue speed decays toward: as the decay
     /// forgets the speed it restores this much uncertainty, so the station's covariance grows
@@ -192,17 +192,6 @@ impl<const N: usize, M: MotionModel<N>> MotionModel<N> for Bounded<M> {
 }
 
 impl Bounds {
-    /// How long after a packet, s, the next one counts as overdue: the longest a drone stays
-    /// silent by design (its send `interval`, or an error-triggered drone's `heartbeat` when
-    /// that is longer) plus the slack of [`Bounds::grace_intervals`] − 1 intervals. For a
-    /// periodic drone that is 1.5 intervals. An error-triggered drone is silent exactly while the
-    /// station's forecast holds, so decaying the manoeuvre after one interval of silence would
-    /// undo the forecast the silence confirms.
-    pub fn grace(&self, interval: f64, heartbeat: Option<f64>) -> f64 {
-        let longest = heartbeat.map_or(interval, |h| h.max(interval));
-        longest + (self.grace_intervals - 1.0) * interval
-    }
-
     /// The variance per axis, m², of what `kind`'s extrapolation leaves out after `age` s without
     /// a packet: the first derivative the model holds at zero, held for the whole gap. DR
     /// extrapolates a constant velocity, so an acceleration a moves the drone a·age²/2 off it;
@@ -314,19 +303,6 @@ mod tests {
     fn dr_is_unchanged() {
         let s = SVector::<f64, 6>::from([1.0, 2.0, 3.0, 0.6, 0.2, 5.0]);
         assert_eq!(bounded(Dr).propagate(&s, 7.0), Dr.propagate(&s, 7.0));
-    }
-
-    #[test]
-    fn an_error_triggered_drones_silence_is_not_overdue_before_its_heartbeat() {
-        let b = Bounds::default();
-        assert_eq!(b.grace(2.0, None), 3.0, "a periodic drone: 1.5 intervals");
-        assert_eq!(
-            b.grace(2.0, Some(10.0)),
-            11.0,
-            "the heartbeat plus half an interval"
-        );
-        // A heartbeat shorter than the interval cannot be kept: the interval rules.
-        assert_eq!(b.grace(14.0, Some(10.0)), 21.0);
     }
 
     #[test]

@@ -24,12 +24,11 @@ pub struct StationSetup {
     pub r_diagonal: [f64; 9],
     /// The nominal interval between packets under the duty cycle, s (bounded: the grace time).
     pub interval: f64,
-    /// With an error-triggered drone, its heartbeat, s: the longest it stays silent while the
-    /// station's forecast holds. Silence up to it is news (the forecast is right), so a bounded
-    /// prediction counts a packet overdue only after it ([`Bounds::grace`]) and follows its
-    /// model without the unscented mean's hedge, while the link delivers well enough for a
-    /// silence to be news ([`Tracker::trust_silence`]); `None` for a periodic drone.
-    pub heartbeat: Option<f64>,
+    /// Whether the drone sends on error (`--sender error`): it is then silent while the
+    /// station's forecast holds, so a bounded prediction follows its model without the unscented
+    /// mean's hedge, while the link delivers well enough for a silence to be news
+    /// ([`Tracker::trust_silence`]); `false` for a periodic drone.
+    pub error_triggered: bool,
     /// The drone filters' settled covariances, when the station resets to them after a packet
     /// (bounded prediction); `None` resets to R + quantisation (the paper's station, reference
     /// §4).
@@ -44,7 +43,7 @@ pub struct StationSetup {
 ///
 /// With [`Prediction::Bounded`] it keeps speed and pitch within limits and lets an overdue
 /// manoeuvre decay ([`Bounds`]); and once a packet is overdue (with an error-triggered drone,
-/// from the packet on: [`StationSetup::heartbeat`]) its estimate follows the model from its own
+/// from the packet on: [`StationSetup::error_triggered`]) its estimate follows the model from its own
 /// last value, while the unscented transform carries only the covariance. Over a
 /// long gap the covariance grows until the sigma points span every heading, and their weighted
 /// mean (whose centre weight λ/(n+λ) is negative for κ = 3 − n) then drifts *backwards*, away
@@ -119,10 +118,10 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
         }
     }
 
-    /// The drone's heartbeat when it sends on error and the link delivers well enough for its
-    /// silence to mean that the forecast holds.
-    fn trusted_heartbeat(&self) -> Option<f64> {
-        self.setup.heartbeat.filter(|_| self.silence_trusted)
+    /// Whether the drone sends on error and the link delivers well enough for its silence to
+    /// mean that the forecast holds.
+    fn silence_is_news(&self) -> bool {
+        self.setup.error_triggered && self.silence_trusted
     }
 
     /// The state estimate.
@@ -140,10 +139,7 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
                     model: self.model,
                     bounds: self.setup.bounds,
                 };
-                let grace = self
-                    .setup
-                    .bounds
-                    .grace(self.setup.interval, self.trusted_heartbeat());
+                let grace = self.setup.bounds.grace_intervals * self.setup.interval;
                 let (before, after) = (self.clock - self.reset_at, t - self.reset_at);
                 let own = bounded.propagate(&self.ukf.x, dt);
                 self.ukf.predict(&bounded, dt);
@@ -151,7 +147,7 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
                 // the unscented mean hedges against turns the station cannot see (its heading
                 // spread shortens a straight line), but that drone reports every drift past its
                 // threshold itself, so the hedge would only cost.
-                if after > grace || self.trusted_heartbeat().is_some() {
+                if after > grace || self.silence_is_news() {
                     self.ukf.x = own;
                 }
                 let b = self.setup.bounds;
