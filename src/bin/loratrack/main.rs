@@ -7,6 +7,7 @@
 mod commands;
 #[cfg(not(target_arch = "wasm32"))]
 mod reproduction;
+#[cfg(not(target_arch = "wasm32"))]
 mod svg;
 
 #[cfg(not(target_arch = "wasm32"))]

@@ -7,12 +7,13 @@ use crate::math::distance;
 use crate::sim::station::{new_tracker, StationModel, StationSetup, Tracker};
 
 /// The drone mirrors the station: a [`Tracker`] of the station's kind (same model, same
-/// prediction setting, told the drone sends on error), reset to each packet's decoded — quantised — state and
-/// stepped every T from it, as the station steps between packets. It wants to send when the
-/// mirror's position is more than `threshold` m from its own estimate, or when `max_interval` s
-/// have passed since its last packet (a heartbeat, so that a lost packet, which an unconfirmed
-/// uplink cannot reveal, is repaired). The mirror assumes every packet arrived. Before its first
-/// packet the drone always wants to send: the station knows nothing yet.
+/// prediction setting, told that the drone sends on error), reset to each packet's decoded —
+/// quantised — state and stepped every T from it, as the station steps between packets. It
+/// wants to send when the mirror's position is more than `threshold` m from its own estimate, or
+/// when `max_interval` s have passed since its last packet (a heartbeat, so that a lost packet,
+/// which an unconfirmed uplink cannot reveal, is repaired). The mirror assumes every packet
+/// arrived (and so that the station trusts the silence after it). Before its first packet the
+/// drone always wants to send: the station knows nothing yet.
 ///
 /// What makes this pay at equal airtime is a station whose forecast holds while nothing
 /// happens: a bounded station (`--prediction bounded`) under an error-triggered drone does not
