@@ -3,9 +3,9 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { execFileSync } from 'node:child_process';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { nativeJson } from './harness.mjs';
 
 const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
 
@@ -21,7 +21,7 @@ test('simulate in WASM under Node equals the native CLI bit for bit', async () =
     [['--synthetic', 'all', '--model', '3d-ctra', '--adr', 'tracking', '--distance', '5000'], { synthetic: 'all', model: '3d-ctra', adr: 'tracking', distance: 5000 }],
   ]) {
     const wasm = pkg.simulate(params);
-    const native = JSON.parse(execFileSync('cargo', ['run', '--quiet', '--', 'simulate', ...args, '--json'], { cwd: root, encoding: 'utf8' }));
+    const native = nativeJson(['simulate', ...args]);
     // Both sides print the shortest decimal that round-trips, so equal text means equal bits.
     assert.deepStrictEqual(wasm.results, native.results, args.join(' '));
     assert.deepStrictEqual(wasm.series, native.series, args.join(' '));
@@ -42,7 +42,7 @@ test('a swarm with gateways and ADR in WASM under Node equals the native CLI, an
   const args = ['--drones', '24', '--duration', '120', '--adr', 'lorawan', '--sf-plan', 'fixed', '--bw', '125', '--gateway', '0,0', '--gateway', '1500,-800,30'];
   const params = { drones: 24, duration: 120, adr: 'lorawan', sfPlan: 'fixed', bw: 125, gateways: [{ east: 0, north: 0 }, { east: 1500, north: -800, height: 30 }] };
   const wasm = pkg.swarm(params);
-  const native = JSON.parse(execFileSync('cargo', ['run', '--quiet', '--', 'swarm', ...args, '--json'], { cwd: root, encoding: 'utf8' }));
+  const native = nativeJson(['swarm', ...args]);
   const { config: _w, ...w } = wasm;
   const { config: _n, ...n } = native;
   assert.deepStrictEqual(w, n);

@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync, mkdtempSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { execFileSync } from 'node:child_process';
+import { nativeJson } from './harness.mjs';
 import { axe, cell, cellNumber, idle, lesson, MODELS, number, open, playground, shownP75, tableHtml, usePlayground, waitForResults } from './page.mjs';
 
 usePlayground();
@@ -46,7 +46,7 @@ test('the p75-against-SF chart gives the p75 at each SF as the CLI does, one lin
   const titles = await page.locator('#chart-sf svg title').allTextContents();
   assert.equal(titles.filter((t) => /^DR, SF\d+:/.test(t)).length, 6, titles.join('; '));
   for (const sf of [7, 9, 12]) {
-    const cli = JSON.parse(execFileSync('cargo', ['run', '--quiet', '--', 'simulate', '--synthetic', '1', '--distance', '2000', '--sf', String(sf), '--json'], { encoding: 'utf8' }));
+    const cli = nativeJson(['simulate', '--synthetic', '1', '--distance', '2000', '--sf', String(sf)]);
     for (const r of cli.results) {
       const label = { dr: 'DR', 'ctra-plus': 'CTRA+', '3d-ctra': '3D-CTRA' }[r.model];
       const shown = titles.find((t) => t.startsWith(`${label}, SF${sf}:`));
@@ -90,9 +90,7 @@ test('gateways are added, moved and removed in the form; each is reported, kept 
   await page.waitForFunction(() => !document.body.hasAttribute('data-busy') && !document.querySelector('[data-panel="results"].stale'));
   const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
   const browserJson = JSON.parse(readFileSync(await download.path(), 'utf8'));
-  const cli = JSON.parse(
-    execFileSync('cargo', ['run', '--quiet', '--', 'simulate', '--synthetic', '1', '--model', '3d-ctra', '--distance', '5000', '--gateway', '5000,0', '--gateway', '0,2500', '--json'], { encoding: 'utf8' }),
-  );
+  const cli = nativeJson(['simulate', '--synthetic', '1', '--model', '3d-ctra', '--distance', '5000', '--gateway', '5000,0', '--gateway', '0,2500']);
   // Everything but the echo's `series` flag (the page always asks for the plotted series).
   const strip = ({ settings: _a, series: _b, config: { series: _c, ...config }, ...rest }) => ({ config, ...rest });
   assert.deepStrictEqual(strip(browserJson), strip(cli));
@@ -146,7 +144,7 @@ test('the regional plan: US915 offers only its data rates, asks for an interval,
   assert.match(link, /US915 has no uplink data rate at SF11, SF12 with this bandwidth/);
   const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
   const browserJson = JSON.parse(readFileSync(await download.path(), 'utf8'));
-  const cli = JSON.parse(execFileSync('cargo', ['run', '--quiet', '--', 'simulate', '--synthetic', '1', '--sf', '9', '--bw', '125', '--region', 'us915', '--interval', '1', '--json'], { encoding: 'utf8' }));
+  const cli = nativeJson(['simulate', '--synthetic', '1', '--sf', '9', '--bw', '125', '--region', 'us915', '--interval', '1']);
   const strip = ({ settings: _a, series: _b, config: { series: _c, ...config }, ...rest }) => ({ config, ...rest });
   assert.deepStrictEqual(strip(browserJson), strip(cli));
   assert.deepEqual(await axe(page), []);

@@ -8,8 +8,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync, mkdtempSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { execFileSync } from 'node:child_process';
-import { screenshot } from './harness.mjs';
+import { nativeJson, screenshot } from './harness.mjs';
 import { axe, cell, idle, number, open, playground, shownP75, tableHtml, usePlayground, waitForResults } from './page.mjs';
 
 usePlayground();
@@ -30,7 +29,7 @@ test('opens with the paper defaults and names no best model from one flight and 
   assert.equal(await page.getByLabel('Seeds (repeats)').inputValue(), '10');
   assert.match(await page.locator('#results-table caption').textContent(), /over 1 flight × 10 seeds/);
   const shown = await shownP75(page);
-  const cli = JSON.parse(execFileSync('cargo', ['run', '--quiet', '--', 'simulate', '--synthetic', '1', '--seeds', '10', '--json'], { encoding: 'utf8' }));
+  const cli = nativeJson(['simulate', '--synthetic', '1', '--seeds', '10']);
   for (const s of shown) {
     const r = cli.results.find((x) => x.model === s.model);
     assert.equal(s.p75.toFixed(2), r.error3d.p75.toFixed(2), s.model);
@@ -178,7 +177,7 @@ test('the JSON download equals the native CLI bit for bit, stations split over t
     const { page, problems } = await open(query);
     const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
     const browserJson = JSON.parse(readFileSync(await download.path(), 'utf8'));
-    const cli = JSON.parse(execFileSync('cargo', ['run', '--quiet', '--', 'simulate', ...args, '--json'], { encoding: 'utf8' }));
+    const cli = nativeJson(['simulate', ...args]);
     assert.deepStrictEqual(browserJson.results, cli.results, query);
     // The totals of the merged report add up every station's run, as the CLI's do.
     for (const key of ['packetsSent', 'packetsReceived', 'deliveryRatio', 'duplicates', 'gateways']) assert.deepStrictEqual(browserJson[key], cli[key], `${query}: ${key}`);
