@@ -872,54 +872,55 @@ fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError
             }
         }
     }
-    let mut rows = Vec::new();
-    for (schedule, channels, plan, sender, drones) in cases {
-        let p = Scenario {
-            access: AccessSettings {
-                schedule,
-                ..AccessSettings::default()
-            },
-            swarm: SwarmSettings {
-                drones,
-                duration: 300.0,
-                sf_plan: plan,
-            },
-            network: NetworkSettings {
-                channels: Some(channels),
-                ..NetworkSettings::default()
-            },
-            radio: RadioSettings {
-                sf: 7,
-                bw: 125.0,
-                ..RadioSettings::default()
-            },
-            station: StationSettings {
-                model: ModelChoice::one(ModelKind::Ctra3d),
-                prediction,
-                ..StationSettings::default()
-            },
-            sending: Sending {
-                sender,
-                // The heartbeat must cover the slowest drone's interval: SF12's with spread SFs.
-                max_interval: if plan == SfPlan::Spread {
-                    150.0
-                } else {
-                    opt::MAX_INTERVAL.default
+    let scenarios = cases
+        .into_iter()
+        .map(|(schedule, channels, plan, sender, drones)| {
+            Scenario {
+                access: AccessSettings {
+                    schedule,
+                    ..AccessSettings::default()
                 },
-                ..Sending::default()
-            },
-            channel: ChannelSettings {
-                distance: a.distance,
-                ..ChannelSettings::default()
-            },
-            run: RunSettings {
-                seed: a.seed,
-                ..RunSettings::default()
-            },
-            ..Scenario::default()
-        };
-        rows.push(api::swarm(&p)?);
-    }
+                swarm: SwarmSettings {
+                    drones,
+                    duration: 300.0,
+                    sf_plan: plan,
+                },
+                network: NetworkSettings {
+                    channels: Some(channels),
+                    ..NetworkSettings::default()
+                },
+                radio: RadioSettings {
+                    sf: 7,
+                    bw: 125.0,
+                    ..RadioSettings::default()
+                },
+                station: StationSettings {
+                    model: ModelChoice::one(ModelKind::Ctra3d),
+                    prediction,
+                    ..StationSettings::default()
+                },
+                sending: Sending {
+                    sender,
+                    // The heartbeat must cover the slowest drone's interval: SF12's with spread SFs.
+                    max_interval: if plan == SfPlan::Spread {
+                        150.0
+                    } else {
+                        opt::MAX_INTERVAL.default
+                    },
+                    ..Sending::default()
+                },
+                channel: ChannelSettings {
+                    distance: a.distance,
+                    ..ChannelSettings::default()
+                },
+                run: RunSettings {
+                    seed: a.seed,
+                    ..RunSettings::default()
+                },
+                ..Scenario::default()
+            }
+        });
+    let rows = swarms(scenarios.collect())?;
     let crowd = [Schedule::Aloha, Schedule::Slotted]
         .into_iter()
         .filter_map(|schedule| crowd_seeds(&rows, schedule).transpose())
@@ -930,6 +931,13 @@ fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError
     Ok(crate::reproduction::swarm_markdown(
         &rows, &crowd, a.markdown,
     ))
+}
+
+/// Each swarm of `scenarios`, in order; independent, so natively they share the cores (each
+/// swarm alone leaves one idle for most of its loop).
+fn swarms(scenarios: Vec<Scenario>) -> Result<Vec<SwarmReport>, ApiError> {
+    use rayon::prelude::*;
+    scenarios.par_iter().map(api::swarm).collect()
 }
 
 /// Seeds of the crowd comparison: one seed's swarm says little, since which packets collide
@@ -957,26 +965,34 @@ fn crowd_seeds(
     let (Some(p), Some(e)) = (find(SenderKind::Periodic), find(SenderKind::Error)) else {
         return Ok(None);
     };
-    let mut seeds = Vec::new();
-    for k in 0..CROWD_SEEDS {
-        let at_seed = |r: &SwarmReport| -> Result<SwarmReport, ApiError> {
-            if k == 0 {
-                return Ok(r.clone());
-            }
-            let mut c = r.config.settings.clone();
-            c.run.seed += k;
-            api::swarm(&c)
-        };
-        let (periodic, error) = (at_seed(p)?, at_seed(e)?);
-        let mut slowed = periodic.config.settings.clone();
-        slowed.radio.duty_cycle = (slowed.radio.duty_cycle * error.airtime / periodic.airtime)
-            .clamp(opt::DUTY_CYCLE.min, opt::DUTY_CYCLE.max);
-        let equal = api::swarm(&slowed)?;
-        seeds.push(crate::reproduction::CrowdSeed {
-            periodic,
-            error,
+    let at_seed = |r: &SwarmReport, k: u64| {
+        let mut c = r.config.settings.clone();
+        c.run.seed += k;
+        c
+    };
+    let pairs: Vec<Scenario> = (1..CROWD_SEEDS)
+        .flat_map(|k| [at_seed(p, k), at_seed(e, k)])
+        .collect();
+    let mut runs = vec![p.clone(), e.clone()];
+    runs.extend(swarms(pairs)?);
+    // Periodic sending slowed by its duty cycle to the airtime error-triggered sending used.
+    let slowed: Vec<Scenario> = runs
+        .chunks(2)
+        .map(|pe| {
+            let mut c = pe[0].config.settings.clone();
+            c.radio.duty_cycle = (c.radio.duty_cycle * pe[1].airtime / pe[0].airtime)
+                .clamp(opt::DUTY_CYCLE.min, opt::DUTY_CYCLE.max);
+            c
+        })
+        .collect();
+    let seeds = runs
+        .chunks(2)
+        .zip(swarms(slowed)?)
+        .map(|(pe, equal)| crate::reproduction::CrowdSeed {
+            periodic: pe[0].clone(),
+            error: pe[1].clone(),
             equal,
-        });
-    }
+        })
+        .collect();
     Ok(Some(crate::reproduction::Crowd { schedule, seeds }))
 }
