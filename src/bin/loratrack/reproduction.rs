@@ -509,9 +509,8 @@ fn senders_reading(r: &SenderSweepReport, overview: &[(String, SenderSweepReport
     s
 }
 
-/// `sweep --swarm`: collision rate and per-drone error against swarm size (docs/swarm.md with
-/// `markdown`, a plain table otherwise).
-/// `sweep --swarm`'s table; with `markdown`, the document with the paper's claim per schedule,
+/// `sweep --swarm`: collision rate and per-drone error against swarm size as a plain table, or
+/// with `markdown` docs/swarm.md: the table, the paper's claim per schedule,
 /// the largest swarms, and error-triggered sending against periodic sending in a crowd, seed by
 /// seed (`crowd`).
 pub fn swarm_markdown(rows: &[SwarmReport], crowd: &[Crowd], markdown: bool) -> String {
@@ -745,7 +744,7 @@ fn crowd_markdown(crowd: &[Crowd]) -> String {
 }
 
 /// The verdict on the means over seeds: against periodic sending as the duty cycle allows
-/// (#24's bar: no worse) and at equal airtime.
+/// (the bar a sender beyond the paper must clear: no worse) and at equal airtime.
 fn crowd_verdict(vs_periodic: f64, vs_equal: f64) -> &'static str {
     match (vs_periodic <= 1.0, vs_equal <= 1.0) {
         (true, true) if vs_periodic.max(vs_equal) <= 0.95 => "error-triggered sending wins against both",
