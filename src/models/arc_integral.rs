@@ -32,32 +32,62 @@ pub fn arc_integral(alpha: f64, k: f64, v0: f64, a: f64, t: f64) -> (f64, f64) {
     arc_integral_from(sa, ca, k, v0, a, t)
 }
 
-/// Below this |u| the sincs are taken as their series 1 − u²/6 (and 1 − u²/24), which is exactly
-/// 1 there. Above it, down to the smallest normal numbers, sin(u)/u by division is exact too
-/// (sin u rounds to u), and keeping the division there leaves every result above it unchanged
-/// bit for bit; below it, u/2 is subnormal and loses bits, and the division gave 0.67 for a
-/// 1.5e-323 rad/s turn, or 0/0 once it underflowed.
-const SINC_SERIES_BELOW: f64 = 1e-200;
+/// Below this |u/2| the half angle's sinc and cosine are summed as their Taylor series (five terms
+/// each; the first left out is below 3e-19 of the result) instead of calling sincos and dividing:
+/// within one filter step (|ω dt| ≲ 0.1) that is nearly always, and a sincos and a division are
+/// most of an arc integral's cost. The series are also exact at u = 0 and for subnormal u, where
+/// sin(u/2)/(u/2) by division loses bits or becomes 0/0.
+const HALF_ANGLE_SERIES_BELOW: f64 = 0.0625;
+
+/// sinc x = Σ (−1)ⁿ x²ⁿ / (2n+1)!, coefficients of x²ⁿ.
+const SINC_SERIES: [f64; 5] = taylor_coefficients(1);
+
+/// cos x = Σ (−1)ⁿ x²ⁿ / (2n)!, coefficients of x²ⁿ.
+const COS_SERIES: [f64; 5] = taylor_coefficients(0);
+
+/// (−1)ⁿ / (2n + offset)! for n = 0..5.
+const fn taylor_coefficients(offset: usize) -> [f64; 5] {
+    let mut c = [0.0; 5];
+    let mut n = 0;
+    while n < 5 {
+        let mut factorial = 1.0;
+        let mut m = 2;
+        while m <= 2 * n + offset {
+            factorial *= m as f64;
+            m += 1;
+        }
+        c[n] = if n % 2 == 0 { 1.0 } else { -1.0 } / factorial;
+        n += 1;
+    }
+    c
+}
+
+/// (sin x / x, sin x, cos x) for the half angle x = u/2.
+#[inline(always)]
+fn half_angle(x: f64) -> (f64, f64, f64) {
+    if x.abs() < HALF_ANGLE_SERIES_BELOW {
+        let x2 = x * x;
+        let sinc = horner(&SINC_SERIES, x2);
+        (sinc, x * sinc, horner(&COS_SERIES, x2))
+    } else {
+        let (s, c) = sin_cos(x);
+        (s / x, s, c)
+    }
+}
 
 /// [`arc_integral`] with sin α and cos α given: the models build them for θ ± φ from the sines
 /// and cosines of θ and φ, which saves the trigonometric calls that dominate a UKF prediction.
+#[inline(always)]
 pub(crate) fn arc_integral_from(sa: f64, ca: f64, k: f64, v0: f64, a: f64, t: f64) -> (f64, f64) {
     let u = k * t;
-    // One sincos serves everything: sin u = 2 sin(u/2) cos(u/2), cos u = cos²(u/2) − sin²(u/2).
-    let (s_half, c_half) = sin_cos(0.5 * u);
-    let sin_u = 2.0 * s_half * c_half;
-    let (sinc_u, sinc_half) = if u.abs() < SINC_SERIES_BELOW {
-        let u2 = u * u;
-        (1.0 - u2 / 6.0, 1.0 - u2 / 24.0)
-    } else {
-        // sin u / u = cos(u/2) · sin(u/2) / (u/2): one division instead of two.
-        let sinc_half = s_half / (0.5 * u);
-        (c_half * sinc_half, sinc_half)
-    };
+    // The half angle serves everything: sin u / u = cos(u/2) · sinc(u/2), sin u = 2 sin(u/2)
+    // cos(u/2), cos u = cos²(u/2) − sin²(u/2).
+    let (sinc_half, s_half, c_half) = half_angle(0.5 * u);
+    let sinc_u = c_half * sinc_half;
     let f = (sinc_u, s_half * sinc_half);
     let g = (
         sinc_u - 0.5 * sinc_half * sinc_half,
-        odd_moment(u, sin_u, c_half, s_half),
+        odd_moment(u, c_half, s_half),
     );
     let re = v0 * t * f.0 + a * t * t * g.0;
     let im = v0 * t * f.1 + a * t * t * g.1;
@@ -82,22 +112,34 @@ const ODD_MOMENT_SERIES: [f64; 10] = {
     c
 };
 
-/// Below this |u| six terms of the series reach 1e-21 relative (the seventh is c₆ u¹² < 5e-22 of
-/// the first), so the other four are left out: the turn over one filter step (|ω dt| ≲ 0.1) is
+/// Below this |u| five terms of the series reach 1e-17 relative (the sixth is c₅ u¹⁰ < 6e-18 of
+/// the first), so the other five are left out: the turn over one filter step (|ω dt| ≲ 0.1) is
 /// nearly always here, and the shorter chain of dependent multiply-adds is what a step waits on.
 const SHORT_SERIES_BELOW: f64 = 0.125;
 
+/// Σ cₙ xⁿ by Horner's rule from the highest coefficient. The coefficient count is a constant, so
+/// the loop unrolls: with a count chosen at run time its bookkeeping cost as much as its arithmetic.
+#[inline(always)]
+fn horner<const TERMS: usize>(coefficients: &[f64; TERMS], x: f64) -> f64 {
+    let mut acc = 0.0;
+    for c in coefficients.iter().rev() {
+        acc = acc * x + c;
+    }
+    acc
+}
+
 /// (sin u − u cos u) / u², the imaginary part of g(u).
-fn odd_moment(u: f64, sin_u: f64, c_half: f64, s_half: f64) -> f64 {
+fn odd_moment(u: f64, c_half: f64, s_half: f64) -> f64 {
     if u.abs() < 1.0 {
         // Ten terms reach 1e-19 relative for |u| < 1; Horner in u².
         let u2 = u * u;
-        let terms = if u.abs() < SHORT_SERIES_BELOW { 6 } else { 10 };
-        u * ODD_MOMENT_SERIES[..terms]
-            .iter()
-            .rev()
-            .fold(0.0, |acc, c| acc * u2 + c)
+        if u.abs() < SHORT_SERIES_BELOW {
+            u * horner(ODD_MOMENT_SERIES.first_chunk::<5>().unwrap(), u2)
+        } else {
+            u * horner(&ODD_MOMENT_SERIES, u2)
+        }
     } else {
+        let sin_u = 2.0 * s_half * c_half;
         let cos_u = c_half * c_half - s_half * s_half;
         (sin_u - u * cos_u) / (u * u)
     }
@@ -112,7 +154,7 @@ mod tests {
         for u in [0.5f64, 0.9, -0.7, 0.99] {
             let closed = (u.sin() - u * u.cos()) / (u * u);
             let (s, c) = (0.5 * u).sin_cos();
-            let series = odd_moment(u, u.sin(), c, s);
+            let series = odd_moment(u, c, s);
             assert!(
                 (series - closed).abs() < 1e-15,
                 "u {u}: {series} vs {closed}"
@@ -132,7 +174,7 @@ mod tests {
         };
         for u in [1e-9f64, 1e-3, 0.05, -0.1, 0.124_999] {
             let (s, c) = (0.5 * u).sin_cos();
-            let short = odd_moment(u, u.sin(), c, s);
+            let short = odd_moment(u, c, s);
             assert!(
                 (short - long(u)).abs() <= 2.0 * f64::EPSILON * long(u).abs(),
                 "u {u}"
@@ -165,10 +207,24 @@ mod tests {
     }
 
     #[test]
-    fn continuous_across_the_sinc_series_switch() {
-        let below = arc_integral(0.3, 0.999_999_999_9e-200, 7.0, 2.0, 1.0);
-        let above = arc_integral(0.3, 1.000_000_000_1e-200, 7.0, 2.0, 1.0);
-        assert_eq!(below, above);
+    fn the_half_angle_series_agrees_with_sincos_to_rounding() {
+        for x in [1e-300f64, 1e-8, 1e-3, -0.01, 0.03, -0.05, 0.062_499] {
+            let (sinc, s, c) = half_angle(x);
+            let (s_ref, c_ref) = sin_cos(x);
+            assert!(
+                (s - s_ref).abs() <= 2.0 * f64::EPSILON * s_ref.abs(),
+                "sin {x}"
+            );
+            assert!((c - c_ref).abs() <= f64::EPSILON, "cos {x}");
+            assert!((sinc - s_ref / x).abs() <= 2.0 * f64::EPSILON, "sinc {x}");
+        }
+    }
+
+    #[test]
+    fn continuous_across_the_half_angle_series_switch() {
+        let below = arc_integral(0.3, 0.125 * (1.0 - 1e-15), 7.0, 2.0, 1.0);
+        let above = arc_integral(0.3, 0.125 * (1.0 + 1e-15), 7.0, 2.0, 1.0);
+        assert!((below.0 - above.0).abs() < 1e-13 && (below.1 - above.1).abs() < 1e-13);
     }
 
     #[test]
