@@ -1,6 +1,7 @@
 //! Scaled sigma points (van der Merwe, "Sigma-Point Kalman Filters", 2004, §3.2).
 
 use crate::math::wrap_angle;
+use crate::models::{Heading, MotionModel};
 use nalgebra::{SMatrix, SVector};
 use serde::{Deserialize, Serialize};
 
@@ -105,6 +106,36 @@ impl<const N: usize> SigmaPoints<N> {
         }
     }
 
+    /// The points around `mean` (as [`SigmaPoints::new`]) propagated through `model` over `dt`
+    /// seconds. A model that [shares headings](MotionModel::SHARES_HEADING) gets each point's
+    /// sines and cosines of θ and φ from the centre's ([`Heading::around`]) instead of computing
+    /// them: the same points, and the same images up to rounding, for half the trigonometry.
+    pub fn propagated<M: MotionModel<N>>(
+        model: &M,
+        mean: &SVector<f64, N>,
+        l: &SMatrix<f64, N, N>,
+        gamma: f64,
+        dt: f64,
+    ) -> Self {
+        if !M::SHARES_HEADING {
+            return Self::new_mapped(mean, l, gamma, |s| model.propagate(s, dt));
+        }
+        let centre = Heading::of(mean);
+        let mut plus = SMatrix::<f64, N, N>::zeros();
+        let mut minus = SMatrix::<f64, N, N>::zeros();
+        for i in 0..N {
+            let offset = l.column(i) * gamma;
+            let (up, down) = centre.around(&offset);
+            plus.set_column(i, &model.propagate_with(&(mean + offset), &up, dt));
+            minus.set_column(i, &model.propagate_with(&(mean - offset), &down, dt));
+        }
+        SigmaPoints {
+            center: model.propagate_with(mean, &centre, dt),
+            plus,
+            minus,
+        }
+    }
+
     /// Applies `f` (a motion model, a measurement of the full state) to every point.
     pub fn map(&self, mut f: impl FnMut(&SVector<f64, N>) -> SVector<f64, N>) -> Self {
         let mut out = *self;
@@ -151,27 +182,6 @@ impl<const N: usize> SigmaPoints<N> {
         d
     }
 
-    /// Residuals of the centre and of the two mirrored sets from `mean`, angles wrapped.
-    fn deviations(
-        &self,
-        mean: &SVector<f64, N>,
-        angles: &[usize],
-    ) -> (SVector<f64, N>, SMatrix<f64, N, N>, SMatrix<f64, N, N>) {
-        let mut plus = self.plus;
-        let mut minus = self.minus;
-        for i in 0..N {
-            plus.column_mut(i).axpy(-1.0, mean, 1.0);
-            minus.column_mut(i).axpy(-1.0, mean, 1.0);
-        }
-        for &k in angles {
-            for i in 0..N {
-                plus[(k, i)] = wrap_angle(plus[(k, i)]);
-                minus[(k, i)] = wrap_angle(minus[(k, i)]);
-            }
-        }
-        (Self::residual(&self.center, mean, angles), plus, minus)
-    }
-
     /// Weighted covariance Σ w (χ − x̄)(χ − x̄)ᵀ of these points.
     pub fn covariance(
         &self,
@@ -179,15 +189,16 @@ impl<const N: usize> SigmaPoints<N> {
         angles: &[usize],
         w: &SigmaWeights,
     ) -> SMatrix<f64, N, N> {
-        let (d0, dp, dm) = self.deviations(mean, angles);
+        let d0 = Self::residual(&self.center, mean, angles);
         // The result is symmetric: each product commutes, so the upper triangle repeats the
         // lower bit for bit. Sum the lower one in the same order as the matrix form
         // d0 d0ᵀ c0 + (Dp Dpᵀ + Dm Dmᵀ) w (over k, point by point) and mirror it: half the
-        // multiplications.
+        // multiplications. Each pair's residuals are made as they are needed, not stored.
         let mut p = SMatrix::<f64, N, N>::zeros();
         let mut m = SMatrix::<f64, N, N>::zeros();
         for k in 0..N {
-            let (a, b) = (dp.column(k), dm.column(k));
+            let a = Self::residual(&self.plus.column(k).into_owned(), mean, angles);
+            let b = Self::residual(&self.minus.column(k).into_owned(), mean, angles);
             for j in 0..N {
                 let (aj, bj) = (a[j], b[j]);
                 for i in j..N {

@@ -1,7 +1,9 @@
 //! 3D-CTRA: constant turn rate, constant tilt rate and constant acceleration (paper §III-B).
 
-use super::{arc_integral_from, ModelKind, MotionModel, A, OMEGA, PHI, PSI, THETA, V, X, Y, Z};
-use crate::math::{sin_cos, wrap_angle};
+use super::{
+    arc_integral_from, Heading, ModelKind, MotionModel, A, OMEGA, PHI, PSI, THETA, V, X, Y, Z,
+};
+use crate::math::wrap_angle;
 use nalgebra::{SMatrix, SVector};
 
 /// 3D-CTRA: the drone turns at a constant rate omega in the horizontal plane and tilts its
@@ -29,11 +31,16 @@ pub struct Ctra3d;
 impl MotionModel<9> for Ctra3d {
     const KIND: ModelKind = ModelKind::Ctra3d;
 
+    const SHARES_HEADING: bool = true;
+
     fn propagate(&self, s: &SVector<f64, 9>, dt: f64) -> SVector<f64, 9> {
+        self.propagate_with(s, &Heading::of(s), dt)
+    }
+
+    fn propagate_with(&self, s: &SVector<f64, 9>, heading: &Heading, dt: f64) -> SVector<f64, 9> {
         let (theta, phi, v, a) = (s[THETA], s[PHI], s[V], s[A]);
         let (omega, psi) = (s[OMEGA], s[PSI]);
-        let (st, ct) = sin_cos(theta);
-        let (sp, cp) = sin_cos(phi);
+        let ((st, ct), (sp, cp)) = (heading.theta, heading.phi);
         // sin and cos of theta ± phi by the addition formulas.
         let plus = arc_integral_from(st * cp + ct * sp, ct * cp - st * sp, omega + psi, v, a, dt);
         let minus = arc_integral_from(st * cp - ct * sp, ct * cp + st * sp, omega - psi, v, a, dt);

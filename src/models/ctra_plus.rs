@@ -1,7 +1,7 @@
 //! CTRA+: 2D CTRA on a plane tilted by a constant pitch (paper §III-A).
 
-use super::{arc_integral_from, ModelKind, MotionModel, A, OMEGA, PHI, THETA, V, X, Y, Z};
-use crate::math::{sin_cos, wrap_angle};
+use super::{arc_integral_from, Heading, ModelKind, MotionModel, A, OMEGA, THETA, V, X, Y, Z};
+use crate::math::wrap_angle;
 use nalgebra::SVector;
 
 /// CTRA+: constant turn rate omega, constant tangential acceleration a, constant pitch phi.
@@ -24,9 +24,14 @@ pub struct CtraPlus;
 impl MotionModel<8> for CtraPlus {
     const KIND: ModelKind = ModelKind::CtraPlus;
 
+    const SHARES_HEADING: bool = true;
+
     fn propagate(&self, s: &SVector<f64, 8>, dt: f64) -> SVector<f64, 8> {
-        let (sp, cp) = sin_cos(s[PHI]);
-        let (st, ct) = sin_cos(s[THETA]);
+        self.propagate_with(s, &Heading::of(s), dt)
+    }
+
+    fn propagate_with(&self, s: &SVector<f64, 8>, heading: &Heading, dt: f64) -> SVector<f64, 8> {
+        let ((st, ct), (sp, cp)) = (heading.theta, heading.phi);
         let (dx, dy) = arc_integral_from(st, ct, s[OMEGA], s[V], s[A], dt);
         let along = s[V] * dt + 0.5 * s[A] * dt * dt;
         let mut out = *s;

@@ -1,7 +1,6 @@
 //! Dead reckoning (DR): uniform rectilinear motion, the paper's baseline.
 
-use super::{ModelKind, MotionModel, PHI, THETA, V, X, Y, Z};
-use crate::math::sin_cos;
+use super::{Heading, ModelKind, MotionModel, V, X, Y, Z};
 use nalgebra::SVector;
 
 /// Dead reckoning: the drone keeps its velocity vector.
@@ -21,9 +20,14 @@ pub struct Dr;
 impl MotionModel<6> for Dr {
     const KIND: ModelKind = ModelKind::Dr;
 
+    const SHARES_HEADING: bool = true;
+
     fn propagate(&self, s: &SVector<f64, 6>, dt: f64) -> SVector<f64, 6> {
-        let (st, ct) = sin_cos(s[THETA]);
-        let (sp, cp) = sin_cos(s[PHI]);
+        self.propagate_with(s, &Heading::of(s), dt)
+    }
+
+    fn propagate_with(&self, s: &SVector<f64, 6>, heading: &Heading, dt: f64) -> SVector<f64, 6> {
+        let ((st, ct), (sp, cp)) = (heading.theta, heading.phi);
         let d = s[V] * dt;
         let mut out = *s;
         out[X] += d * ct * cp;

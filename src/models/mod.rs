@@ -8,6 +8,7 @@ mod arc_integral;
 mod ctra3d;
 mod ctra_plus;
 mod dr;
+mod heading;
 mod kind;
 
 pub use arc_integral::arc_integral;
@@ -15,6 +16,7 @@ use arc_integral::arc_integral_from;
 pub use ctra3d::Ctra3d;
 pub use ctra_plus::CtraPlus;
 pub use dr::Dr;
+pub use heading::Heading;
 pub use kind::{ModelError, ModelKind, MAX_DT, STATE_RANGES};
 
 use nalgebra::{SMatrix, SVector};
@@ -62,8 +64,25 @@ pub trait MotionModel<const N: usize> {
     /// Which of the paper's models this is.
     const KIND: ModelKind;
 
+    /// Whether [`Self::propagate_with`] uses the [`Heading`] it is given: then the filter
+    /// derives its sigma points' headings from the centre's instead of calling sin and cos for
+    /// each point (see [`Heading`]). The paper's three models do; a model whose state has no θ
+    /// and φ at [`THETA`] and [`PHI`] must not.
+    const SHARES_HEADING: bool = false;
+
     /// The state after `dt` seconds (`dt` may be any finite value; the station uses dt ≥ 0).
     fn propagate(&self, state: &SVector<f64, N>, dt: f64) -> SVector<f64, N>;
+
+    /// [`Self::propagate`] with the sines and cosines of the state's θ and φ given (equal to
+    /// `Heading::of(state)` up to rounding). Models that do not share headings ignore them.
+    fn propagate_with(
+        &self,
+        state: &SVector<f64, N>,
+        _heading: &Heading,
+        dt: f64,
+    ) -> SVector<f64, N> {
+        self.propagate(state, dt)
+    }
 
     /// Applies the station's tilt-rate decay after one prediction step: psi ← eta·psi
     /// (paper §III-B, last paragraph). Models without psi leave the state unchanged.

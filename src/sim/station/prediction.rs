@@ -2,7 +2,7 @@
 //! what a quadcopter can do and by how long a manoeuvre lasts (`--prediction paper|bounded`).
 
 use crate::math::exp;
-use crate::models::{ModelKind, MotionModel, A, OMEGA, PHI, PSI, V};
+use crate::models::{Heading, ModelKind, MotionModel, A, OMEGA, PHI, PSI, V};
 use core::f64::consts::FRAC_PI_2;
 use nalgebra::{SMatrix, SVector};
 use serde::{Deserialize, Serialize};
@@ -184,6 +184,18 @@ impl<const N: usize, M: MotionModel<N>> MotionModel<N> for Bounded<M> {
             left -= t;
         }
         self.model.propagate(&x, left)
+    }
+
+    const SHARES_HEADING: bool = M::SHARES_HEADING;
+
+    /// [`Self::propagate`], passing the heading on where no limit is reached within `dt` (the
+    /// common case), so that a bounded station's sigma points share headings as the model's do.
+    fn propagate_with(&self, s: &SVector<f64, N>, heading: &Heading, dt: f64) -> SVector<f64, N> {
+        let x = self.hold(*s);
+        match self.next_limit(&x, dt) {
+            None => self.model.propagate_with(&x, heading, dt),
+            Some(_) => self.propagate(s, dt),
+        }
     }
 
     fn decay_tilt_rate(&self, state: &mut SVector<f64, N>, eta: f64) {
