@@ -1,6 +1,6 @@
 //! The Unscented Kalman Filter, generic over the state size, on the stack.
 
-use super::{SigmaParams, SigmaPoints, SigmaWeights};
+use super::{cholesky_lower, forward_substitute, SigmaParams, SigmaPoints, SigmaWeights};
 use crate::math::wrap_angle;
 use crate::models::MotionModel;
 use nalgebra::{Cholesky, SMatrix, SVector};
@@ -81,8 +81,7 @@ impl<const N: usize> Ukf<N> {
     /// recombines them and adds Q·dt.
     pub fn predict<M: MotionModel<N>>(&mut self, model: &M, dt: f64) {
         let l = self.sqrt_covariance();
-        let points =
-            SigmaPoints::new_mapped(&self.x, &l, self.weights.gamma, |s| model.propagate(s, dt));
+        let points = SigmaPoints::propagated(model, &self.x, &l, self.weights.gamma, dt);
         let mean = points.mean(&self.weights, self.angles);
         let cov = points.covariance(&mean, self.angles, &self.weights);
         self.x = mean;
@@ -114,25 +113,40 @@ impl<const N: usize> Ukf<N> {
     }
 
     /// The Kalman update for h = I: S = P + R, K = P S⁻¹, x += K (z − x), P −= K P.
+    ///
+    /// With S = L Lᵀ, W = L⁻¹ P and y = L⁻¹ (z − x), the gain is never formed: K (z − x) = Wᵀ y
+    /// and K P = P S⁻¹ P = Wᵀ W, which is symmetric by construction. Two forward substitutions
+    /// replace the solve for K (forward and back) and the product K P.
     fn linear_update(&mut self, z: &SVector<f64, N>, r: &SMatrix<f64, N, N>) {
         let mut x_mean = self.x;
         for &i in self.angles {
             x_mean[i] = wrap_angle(x_mean[i]);
         }
-        let s = self.p + r;
-        let Some(chol) = Cholesky::new(0.5 * (s + s.transpose())) else {
+        let mut s = self.p + r;
+        let factor = if symmetrise(&mut s) {
+            cholesky_lower(&s)
+        } else {
+            None
+        };
+        let Some(l) = factor else {
             self.recoveries += 1;
             return;
         };
         let innovation = SigmaPoints::<N>::residual(z, &x_mean, self.angles);
-        // K = P S⁻¹ = (S⁻¹ P)ᵀ, P symmetric.
-        let k = chol.solve(&self.p).transpose();
-        self.x = x_mean + k * innovation;
+        let w = forward_substitute(&l, &self.p);
+        let y = forward_substitute(&l, &innovation);
+        self.x = x_mean + w.tr_mul(&y);
         for &i in self.angles {
             self.x[i] = wrap_angle(self.x[i]);
         }
-        // K S Kᵀ = P S⁻¹ P = K P.
-        self.p -= k * self.p;
+        // P − Wᵀ W, the lower triangle computed and mirrored.
+        for j in 0..N {
+            for i in j..N {
+                let v = self.p[(i, j)] - w.column(i).dot(&w.column(j));
+                self.p[(i, j)] = v;
+                self.p[(j, i)] = v;
+            }
+        }
         self.stabilise();
     }
 
@@ -172,12 +186,12 @@ impl<const N: usize> Ukf<N> {
                 return *l;
             }
         }
-        if let Some(c) = Cholesky::new(self.p) {
-            return c.l();
+        if let Some(l) = cholesky_lower(&self.p) {
+            return l;
         }
         self.repair();
-        match Cholesky::new(self.p) {
-            Some(c) => c.l(),
+        match cholesky_lower(&self.p) {
+            Some(l) => l,
             None => SMatrix::from_diagonal(&self.p.diagonal().map(|d| d.abs().sqrt())),
         }
     }
@@ -188,9 +202,8 @@ impl<const N: usize> Ukf<N> {
     /// rounding broke it, and a drone's update (Kalman form) needs no factor of P: its predict and
     /// update factorise twice instead of three times.
     fn defer_check(&mut self) {
-        self.p = 0.5 * (self.p + self.p.transpose());
         self.factor = None;
-        if !self.p.iter().all(|v| v.is_finite()) {
+        if !symmetrise(&mut self.p) {
             self.repair();
         }
     }
@@ -199,8 +212,8 @@ impl<const N: usize> Ukf<N> {
     /// prediction that follows.
     fn stabilise(&mut self) {
         self.defer_check();
-        match Cholesky::new(self.p) {
-            Some(c) => self.factor = Some((self.p, c.l())),
+        match cholesky_lower(&self.p) {
+            Some(l) => self.factor = Some((self.p, l)),
             None => self.repair(),
         }
     }
@@ -216,7 +229,7 @@ impl<const N: usize> Ukf<N> {
         let mut jitter = scale * 1e-12;
         for _ in 0..30 {
             let candidate = self.p + SMatrix::<f64, N, N>::identity() * jitter;
-            if Cholesky::new(candidate).is_some() {
+            if cholesky_lower(&candidate).is_some() {
                 self.p = candidate;
                 return;
             }
@@ -224,6 +237,22 @@ impl<const N: usize> Ukf<N> {
         }
         self.p = SMatrix::from_diagonal(&self.p.diagonal().map(|d| d.abs().max(scale)));
     }
+}
+
+/// Makes `p` exactly symmetric, each pair of entries across the diagonal replaced by their mean
+/// (the numbers of ½(P + Pᵀ) in half the operations), and tells whether every entry is finite.
+fn symmetrise<const N: usize>(p: &mut SMatrix<f64, N, N>) -> bool {
+    let mut finite = true;
+    for j in 0..N {
+        finite &= p[(j, j)].is_finite();
+        for i in j + 1..N {
+            let v = 0.5 * (p[(i, j)] + p[(j, i)]);
+            p[(i, j)] = v;
+            p[(j, i)] = v;
+            finite &= v.is_finite();
+        }
+    }
+    finite
 }
 
 #[cfg(test)]
