@@ -9,8 +9,8 @@ use nalgebra::SMatrix;
 ///
 /// The operations and their order are those of nalgebra's `Cholesky::new` (column by column, each
 /// column first updated by the ones before it, then divided by the square root of its pivot), so
-/// the factor is the same bit for bit; with the size fixed at compile time and no views or
-/// strides, the loops unroll and the factorisation of a 9×9 covariance costs a third as much.
+/// the factor is the same bit for bit; the size is fixed at compile time, with no views or
+/// strides and no second copy for the lower triangle.
 ///
 /// ```
 /// use loratrack::cholesky_lower;
@@ -46,7 +46,7 @@ pub fn cholesky_lower<const N: usize>(p: &SMatrix<f64, N, N>) -> Option<SMatrix<
 
 /// X with L X = `b`, for the lower-triangular `l` of [`cholesky_lower`] (a positive diagonal), by
 /// forward substitution: row by row, each row's sum taken over the rows before it.
-pub fn forward_substitute<const N: usize, const C: usize>(
+pub(crate) fn forward_substitute<const N: usize, const C: usize>(
     l: &SMatrix<f64, N, N>,
     b: &SMatrix<f64, N, C>,
 ) -> SMatrix<f64, N, C> {

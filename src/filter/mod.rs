@@ -7,7 +7,8 @@ mod sigma_points;
 mod steady_state;
 mod ukf;
 
-pub use cholesky::{cholesky_lower, forward_substitute};
+pub use cholesky::cholesky_lower;
+pub(crate) use cholesky::forward_substitute;
 pub use noise::{measurement_noise, process_noise, PAPER_Q, PAPER_R_DIAGONAL};
 pub use sigma_points::{SigmaParams, SigmaPoints, SigmaWeights};
 pub use steady_state::steady_state_covariance;
