@@ -327,6 +327,17 @@ pub const Q: NumberOption = NumberOption::new(
     "Process noise q of Q = q I per second.",
 )
 .above();
+/// How far from its plan a packet may place the drone for the mission station to follow the
+/// plan, m (reference §16).
+pub const PLAN_TOLERANCE: NumberOption = NumberOption::new(
+    "planTolerance",
+    "Off-plan distance",
+    "m",
+    10.0,
+    0.1,
+    1000.0,
+    "Mission station: a packet farther than this from the plan hands over to bounded 3D-CTRA.",
+);
 
 // --- sending -----------------------------------------------------------------------------------
 
@@ -511,6 +522,7 @@ pub const OPTIONS: &[&NumberOption] = &[
     &STEP,
     &ETA,
     &Q,
+    &PLAN_TOLERANCE,
     &THRESHOLD,
     &MAX_INTERVAL,
     &BURST,

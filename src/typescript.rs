@@ -20,11 +20,23 @@ const HEADER: &str = "// Generated from the Rust types by `UPDATE_TYPES=1 cargo 
 
 /** A motion model: what predict, encode and decode take. */
 export type MotionModelName = 'dr' | 'ctra-plus' | '3d-ctra';
-/** A station: one motion model, or the IMM mixture of the three. */
-export type ModelName = MotionModelName | 'imm';
-/** `all` (the paper's three), one station, a comma list such as `dr,3d-ctra,imm`, or an array. */
-export type ModelChoice = ModelName | 'all' | (string & {}) | ModelName[];
 ";
+
+/// The stations beyond the motion models, by their Rust names.
+fn model_name() -> String {
+    let beyond: Vec<String> = [StationModel::Imm, StationModel::Mission]
+        .iter()
+        .map(|m| format!("'{}'", m.name()))
+        .collect();
+    format!(
+        "/** A station: one motion model, the IMM mixture of the three, or the mission-aware station. */
+export type ModelName = MotionModelName | {};
+/** `all` (the paper's three), one station, a comma list such as `dr,3d-ctra,imm`, or an array. */
+export type ModelChoice = ModelName | 'all' | (string & {{}}) | ModelName[];
+",
+        beyond.join(" | ")
+    )
+}
 
 fn decls() -> Vec<String> {
     // u64 counts and seeds stay below 2^53: plain numbers in JavaScript.
@@ -33,6 +45,7 @@ fn decls() -> Vec<String> {
         ModelKind::decl(&c),
         LdroMode::decl(&c),
         Prediction::decl(&c),
+        PlanPace::decl(&c),
         SenderKind::decl(&c),
         DutyCycleMode::decl(&c),
         AdrMode::decl(&c),
@@ -90,6 +103,7 @@ fn decls() -> Vec<String> {
 /// The whole generated file.
 fn generated() -> String {
     let mut out = String::from(HEADER);
+    out.push_str(&model_name());
     for d in decls() {
         out.push('\n');
         out.push_str("export ");

@@ -104,6 +104,7 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
                                 error_triggered: true,
                                 ..setup
                             },
+                            None,
                             m,
                             10.0,
                         )),

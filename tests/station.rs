@@ -381,7 +381,7 @@ fn an_error_triggered_drones_station_holds_a_straight_line() {
             error_triggered,
             ..setup(Prediction::Bounded)
         };
-        let mut tracker = new_tracker(StationModel::Single(ModelKind::Ctra3d), s);
+        let mut tracker = new_tracker(StationModel::Single(ModelKind::Ctra3d), s, None);
         tracker.reset(&packet, 0.0);
         // Within the 3 s grace (1.5 intervals of 2 s): nothing decays yet.
         for k in 1..=29 {

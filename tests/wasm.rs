@@ -177,6 +177,36 @@ fn simulate_returns_the_cli_shape_and_refuses_a_bad_csv() {
 }
 
 #[wasm_bindgen_test]
+fn a_plan_crosses_the_boundary_and_a_mission_station_needs_one() {
+    // A straight leg east at 20 m altitude, and a flight along it at 5 m/s.
+    let rows: String = (0..=200)
+        .map(|i| format!("{},{},0,20\n", f64::from(i) * 0.1, f64::from(i) * 0.5))
+        .collect();
+    let csv = format!("t,x,y,z\n{rows}");
+    let run = |plan: Option<&str>| {
+        let mut settings = vec![
+            ("trajectory", csv.as_str().into()),
+            ("model", "mission".into()),
+            ("planTolerance", 5.into()),
+        ];
+        if let Some(p) = plan {
+            settings.push(("plan", p.into()));
+        }
+        wasm::simulate(obj(&settings), JsValue::UNDEFINED)
+    };
+    let r = run(Some("x,y,z,speed\n0,0,20\n100,0,20,5\n")).unwrap();
+    let results = js_sys::Array::from(&get(&r, "results"));
+    assert_eq!(
+        get(&results.get(0), "model").as_string().as_deref(),
+        Some("mission")
+    );
+    let e = run(None).unwrap_err();
+    assert!(error_message(e).contains("needs the drone's plan"));
+    let e = run(Some("0,0,20\n1,zero,20\n")).unwrap_err();
+    assert!(error_message(e).contains("plan line 2"));
+}
+
+#[wasm_bindgen_test]
 fn simulate_reports_progress_up_to_the_total() {
     use std::cell::RefCell;
     use std::rc::Rc;

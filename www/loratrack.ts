@@ -34,7 +34,7 @@ export function load(): Promise<void> {
   return ready;
 }
 
-export const MODEL_LABELS: Record<ModelName, string> = { dr: 'DR', 'ctra-plus': 'CTRA+', '3d-ctra': '3D-CTRA', imm: 'IMM' };
+export const MODEL_LABELS: Record<ModelName, string> = { dr: 'DR', 'ctra-plus': 'CTRA+', '3d-ctra': '3D-CTRA', imm: 'IMM', mission: 'Mission' };
 
 /** Input of simulate and swarm: any of the Scenario's settings (the rest take their defaults);
  * `seed: 'random'` draws one from Web Crypto (reported in `config.seed`). */
@@ -44,6 +44,9 @@ export type SimulateParams = Partial<Omit<Scenario, 'seed'>> & {
   trajectory?: string;
   /** A name for the CSV flight, shown in reports. */
   trajectoryName?: string;
+  /** The drone's mission plan for a CSV or sample flight (input only): CSV text of
+   * `x,y,z[,speed]` or a QGroundControl `.plan`; the synthetic flights carry their own. */
+  plan?: string;
 };
 /** Input of swarm: the same settings, with `drones`, `duration`, `sfPlan` and `schedule`. */
 export type SwarmParams = SimulateParams;

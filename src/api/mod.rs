@@ -9,6 +9,7 @@ mod airtime;
 mod distances;
 mod error;
 mod link_budget;
+mod mission;
 mod payload;
 mod predict;
 mod senders;
@@ -19,6 +20,9 @@ pub use airtime::{airtime, AirtimeParams, AirtimeReport};
 pub use distances::{sweep_distances, DistanceRun, DistanceSweepReport, ADR_DISTANCES};
 pub use error::{clean_message, ApiError, MAX_ECHO_CHARS};
 pub use link_budget::{link_budget, LinkBudgetParams, LinkBudgetReport, SfBudget};
+pub use mission::{
+    sweep_mission, MissionRun, MissionSweepReport, MISSION_DISTANCES, MISSION_MODELS, MISSION_RATES,
+};
 pub use payload::{decode, encode, DecodeParams, DecodeReport, EncodeParams, EncodeReport};
 pub use predict::{predict, validate_state, PredictParams, PredictReport, MAX_STEPS};
 pub use senders::{

@@ -337,7 +337,7 @@ impl Simulator {
             let (start, duty_cycle) = cfg.drone_radio(&cfg.radio, model)?;
             let (toa, interval) = (start.current().time_on_air, start.current().interval);
             cfg.check_heartbeat(interval)?;
-            let setup = StationSetup { interval, ..base };
+            let setup = cfg.setup_for(model, StationSetup { interval, ..base });
             let mut pooled = Pooled::default();
             let mut counted = Delivery::default();
             let mut recoveries = 0;
@@ -366,8 +366,9 @@ impl Simulator {
                         flights.len(),
                         flight_time / s.station.step + flights.len() as f64,
                     )),
-                    // An IMM's probabilities carry over from packet to packet: nothing to reuse.
-                    StationModel::Imm => None,
+                    // An IMM's probabilities and a mission station's place on the plan carry over
+                    // from packet to packet: nothing to reuse.
+                    StationModel::Imm | StationModel::Mission => None,
                 };
                 let drones = self.drone_tracks(key, &flights, cfg, &mut tick);
                 let (flight_set, drone_set): (&[Trajectory], &[DroneTrack]) = (&flights, &drones);
@@ -376,6 +377,7 @@ impl Simulator {
                 let network = || Network::of(cfg, s.channel.distance, vec![start.clone()]);
                 let one = |i: usize, net: &mut Network| -> Result<FlightRun, SimError> {
                     let (flight, drone) = (&flight_set[i], &drone_set[i]);
+                    let plan = cfg.mission_plan(model, flight);
                     let now = net.radios[0].current();
                     let rule = s.sending.rule(duty_cycle, now.time_on_air, flight.t[0])?;
                     let gateways = net.gateways_at([flight.pos[0][0], flight.pos[0][1]]);
@@ -385,7 +387,7 @@ impl Simulator {
                         0,
                         flight,
                         Estimates::Stored(drone),
-                        s.sending.sender(model, setup),
+                        s.sending.sender(model, setup, plan.as_ref()),
                         rule,
                         &gateways,
                         &net.channel,
@@ -400,13 +402,13 @@ impl Simulator {
                     let st = match chains {
                         Some(c) => c[i].lock().unwrap_or_else(|e| e.into_inner()).track(
                             flight,
-                            &|| new_tracker(model, setup),
+                            &|| new_tracker(model, setup, None),
                             &tx,
                             s.station.step,
                             with_series,
                         ),
                         None => {
-                            let mut tracker = new_tracker(model, setup);
+                            let mut tracker = new_tracker(model, setup, plan.as_ref());
                             track_station(
                                 flight,
                                 tracker.as_mut(),

@@ -5,6 +5,8 @@ mod chain;
 mod csv;
 mod error;
 mod kinematics;
+mod plan;
+mod plan_file;
 mod sample;
 mod synthetic;
 mod track;
@@ -15,6 +17,10 @@ pub use csv::{
 };
 pub use error::TrajectoryError;
 pub use kinematics::{kinematic_states, HOVER_SPEED};
+pub use plan::{
+    FlightPlan, OnPlan, MAX_PLAN_COORDINATE, MAX_PLAN_SPEED, MAX_WAYPOINTS, TRACE_TOLERANCE,
+};
+pub use plan_file::{parse_plan, PlanError};
 pub use sample::{canberra_flight, CANBERRA_CREDIT};
 pub use synthetic::{
     synthetic_flight, synthetic_set, SYNTHETIC_FLIGHTS, SYNTHETIC_SEED, SYNTHETIC_TOTAL_SECONDS,

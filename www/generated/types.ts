@@ -3,8 +3,8 @@
 
 /** A motion model: what predict, encode and decode take. */
 export type MotionModelName = 'dr' | 'ctra-plus' | '3d-ctra';
-/** A station: one motion model, or the IMM mixture of the three. */
-export type ModelName = MotionModelName | 'imm';
+/** A station: one motion model, the IMM mixture of the three, or the mission-aware station. */
+export type ModelName = MotionModelName | 'imm' | 'mission';
 /** `all` (the paper's three), one station, a comma list such as `dr,3d-ctra,imm`, or an array. */
 export type ModelChoice = ModelName | 'all' | (string & {}) | ModelName[];
 
@@ -13,6 +13,8 @@ export type ModelKind = "dr" | "ctra-plus" | "3d-ctra";
 export type LdroMode = "auto" | "on" | "off";
 
 export type Prediction = "paper" | "bounded";
+
+export type PlanPace = "plan" | "packet";
 
 export type SenderKind = "periodic" | "error";
 
@@ -108,7 +110,8 @@ sample?: string, };
 
 export type StationSettings = { 
 /**
- * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`.
+ * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`,
+ * `mission`.
  */
 model: ModelChoice, 
 /**
@@ -122,7 +125,15 @@ step: number,
 /**
  * Tilt-rate decay per station step.
  */
-eta: number, };
+eta: number, 
+/**
+ * How the mission station paces the drone along its plan.
+ */
+planPace: PlanPace, 
+/**
+ * The mission station's off-plan distance, m.
+ */
+planTolerance: number, };
 
 export type Sending = { 
 /**
@@ -301,7 +312,8 @@ synthetic?: number | 'all',
  */
 sample?: string, 
 /**
- * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`.
+ * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`,
+ * `mission`.
  */
 model: ModelChoice, 
 /**
@@ -316,6 +328,14 @@ step: number,
  * Tilt-rate decay per station step.
  */
 eta: number, 
+/**
+ * How the mission station paces the drone along its plan.
+ */
+planPace: PlanPace, 
+/**
+ * The mission station's off-plan distance, m.
+ */
+planTolerance: number, 
 /**
  * The sending policy.
  */
@@ -882,7 +902,8 @@ synthetic?: number | 'all',
  */
 sample?: string, 
 /**
- * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`.
+ * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`,
+ * `mission`.
  */
 model: ModelChoice, 
 /**
@@ -897,6 +918,14 @@ step: number,
  * Tilt-rate decay per station step.
  */
 eta: number, 
+/**
+ * How the mission station paces the drone along its plan.
+ */
+planPace: PlanPace, 
+/**
+ * The mission station's off-plan distance, m.
+ */
+planTolerance: number, 
 /**
  * The sending policy.
  */
@@ -1162,7 +1191,8 @@ synthetic?: number | 'all',
  */
 sample?: string, 
 /**
- * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`.
+ * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`,
+ * `mission`.
  */
 model: ModelChoice, 
 /**
@@ -1177,6 +1207,14 @@ step: number,
  * Tilt-rate decay per station step.
  */
 eta: number, 
+/**
+ * How the mission station paces the drone along its plan.
+ */
+planPace: PlanPace, 
+/**
+ * The mission station's off-plan distance, m.
+ */
+planTolerance: number, 
 /**
  * The sending policy.
  */
@@ -1913,6 +1951,18 @@ export const OPTIONS: NumberOption[] = [
     "integer": false,
     "values": [],
     "help": "Process noise q of Q = q I per second."
+  },
+  {
+    "key": "planTolerance",
+    "label": "Off-plan distance",
+    "unit": "m",
+    "default": 10.0,
+    "min": 0.1,
+    "max": 1000.0,
+    "aboveMin": false,
+    "integer": false,
+    "values": [],
+    "help": "Mission station: a packet farther than this from the plan hands over to bounded 3D-CTRA."
   },
   {
     "key": "threshold",

@@ -42,6 +42,9 @@ pub struct FlightArgs {
     /// A bundled real flight: canberra (ArduCopter log171, CC BY-SA 3.0).
     #[arg(long, value_name = "NAME")]
     sample: Option<String>,
+    /// The drone's mission plan for --model mission with --trajectory or --sample: a CSV of x,y,z[,speed] (m, the flight's frame; speed m/s on the leg to that waypoint) or a QGroundControl .plan (its home is the frame's origin). The synthetic flights carry their own.
+    #[arg(long, value_name = "FILE", conflicts_with = "synthetic")]
+    plan: Option<std::path::PathBuf>,
 }
 
 impl FlightArgs {
@@ -55,6 +58,7 @@ impl FlightArgs {
                 .map(|s| SyntheticChoice::parse(s).map_err(ApiError::Invalid))
                 .transpose()?,
             sample: self.sample.clone(),
+            plan: self.plan.as_deref().map(read_flight).transpose()?,
         })
     }
 }
@@ -133,6 +137,9 @@ pub struct SweepKind {
     /// Swarms of 1..500 drones: collision rate (beside the ALOHA formula) and median per-drone p75 for both schedules (aloha, slotted), 1 and 3 channels, SF7 for all and spread SFs, periodic and error-triggered sending (300 s per drone, 3D-CTRA, --prediction, the swarm's default clocks and delays).
     #[arg(long)]
     swarm: bool,
+    /// The mission station beside DR, CTRA+, 3D-CTRA and IMM at every EU868 data rate (SF7/250, SF7..SF12/125) at 1 and 3 km, on the whole synthetic set (each flight's own plan), no LoRaWAN overhead.
+    #[arg(long)]
+    mission: bool,
     /// The airtime / error trade-off of error-triggered sending (thresholds 0.5..10 m, per-packet and budget rules) against periodic sending, on the whole synthetic set at --sf/--bw/--distance, no LoRaWAN overhead, for the first model of --model (3d-ctra when --model is all).
     #[arg(long)]
     senders: bool,
@@ -447,7 +454,7 @@ fn decode(a: DecodeArgs) -> Result<String, ApiError> {
     })
 }
 
-/// Reads a CSV flight: a regular file of at most [`MAX_CSV_BYTES`], so that a device, a FIFO or
+/// Reads a CSV flight (or a plan): a regular file of at most [`MAX_CSV_BYTES`], so that a device, a FIFO or
 /// a huge file is refused at once instead of filling memory or blocking.
 fn read_flight(path: &std::path::Path) -> Result<String, ApiError> {
     use std::io::Read;
@@ -649,6 +656,9 @@ fn sweep(a: SweepArgs) -> Result<String, ApiError> {
     if a.kind.swarm {
         return sweep_swarm(&a, predictions[0]);
     }
+    if a.kind.mission {
+        return sweep_mission(&a, predictions[0]);
+    }
     if let Some(distances) = &a.kind.distances {
         return sweep_distances(&a, model, predictions[0], distances);
     }
@@ -715,6 +725,18 @@ fn sweep_distances(
         return Ok(crate::reproduction::distances_markdown(&r, &base));
     }
     Ok(crate::reproduction::distances_table(&r))
+}
+
+fn sweep_mission(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError> {
+    let base = trade_off_base(a, ModelChoice::all(), prediction);
+    let r = api::sweep_mission(&mut Simulator::new(), &base)?;
+    if a.out.json {
+        return Ok(json(&r));
+    }
+    if a.markdown {
+        return Ok(crate::mission_doc::mission_markdown(&r, &base));
+    }
+    Ok(crate::mission_doc::mission_table(&r))
 }
 
 fn sweep_senders(

@@ -6,6 +6,8 @@
 #[cfg(not(target_arch = "wasm32"))]
 mod commands;
 #[cfg(not(target_arch = "wasm32"))]
+mod mission_doc;
+#[cfg(not(target_arch = "wasm32"))]
 mod reproduction;
 #[cfg(not(target_arch = "wasm32"))]
 mod svg;

@@ -20,7 +20,9 @@ pub use gateways::{validate_sites, GatewaySite};
 
 use super::radio::DroneRadio;
 use super::sender::{SenderKind, Sending};
-use super::station::{Bounds, DroneCovariances, Prediction, StationModel, StationSetup};
+use super::station::{
+    Bounds, DroneCovariances, MissionPlan, PlanPace, Prediction, StationModel, StationSetup,
+};
 use super::SimError;
 use crate::filter::PAPER_R_DIAGONAL;
 use crate::lora::{
@@ -29,6 +31,7 @@ use crate::lora::{
 };
 use crate::models::ModelKind;
 use crate::options as opt;
+use crate::trajectory::{parse_plan, FlightPlan, Trajectory, TRACE_TOLERANCE};
 use choices::seed_or_random;
 use serde::de::IgnoredAny;
 use serde::{Deserialize, Serialize};
@@ -75,6 +78,13 @@ pub struct FlightSettings {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
     pub sample: Option<String>,
+    /// The drone's mission plan for a CSV or sample flight, as text: a CSV of `x,y,z[,speed]` or
+    /// a QGroundControl `.plan` (the CLI reads `--plan FILE` into this; reference §16); input
+    /// only, not echoed (the JS API's `SimulateParams` adds it to the generated type). The
+    /// synthetic flights carry their own.
+    #[serde(default, skip_serializing)]
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(skip))]
+    pub plan: Option<String>,
 }
 
 /// The ground station.
@@ -83,11 +93,12 @@ pub struct FlightSettings {
 #[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct StationSettings {
-    /// Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`.
+    /// Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`,
+    /// `mission`.
     #[cfg_attr(
         not(target_arch = "wasm32"),
         arg(long, default_value = "all", value_parser = ModelChoice::parse,
-            help = "Station model(s): dr, ctra-plus, 3d-ctra, imm (IMM over the three), a comma list, or all (the paper's three). A swarm runs one station: all means 3d-ctra.")
+            help = "Station model(s): dr, ctra-plus, 3d-ctra, imm (IMM over the three), mission (along the drone's plan: the synthetic flights' own, or --plan), a comma list, or all (the paper's three). A swarm runs one station: all means 3d-ctra.")
     )]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "ModelChoice"))]
     pub model: ModelChoice,
@@ -108,6 +119,20 @@ pub struct StationSettings {
     /// Tilt-rate decay per station step.
     #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::ETA.default, help = opt::ETA.cli_help(), allow_negative_numbers = true))]
     pub eta: f64,
+    /// How the mission station paces the drone along its plan.
+    #[cfg_attr(
+        not(target_arch = "wasm32"),
+        arg(
+            long,
+            value_enum,
+            default_value = "plan",
+            help = "Mission station: pace along the plan by the plan's leg speeds (plan: the packet's speed gives way to them) or by the packet's speed alone (packet: for a drone that does not keep its plan's timing)."
+        )
+    )]
+    pub plan_pace: PlanPace,
+    /// The mission station's off-plan distance, m.
+    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::PLAN_TOLERANCE.default, help = opt::PLAN_TOLERANCE.cli_help(), allow_negative_numbers = true))]
+    pub plan_tolerance: f64,
 }
 
 impl Default for StationSettings {
@@ -117,6 +142,8 @@ impl Default for StationSettings {
             prediction: Prediction::Paper,
             step: opt::STEP.default,
             eta: opt::ETA.default,
+            plan_pace: PlanPace::Plan,
+            plan_tolerance: opt::PLAN_TOLERANCE.default,
         }
     }
 }
@@ -440,6 +467,9 @@ pub struct Validated {
     pub r_diagonal: [f64; 9],
     /// Uplink channels: 1, or the plan's.
     pub channels: u8,
+    /// The drone's mission plan as given (`plan`); the synthetic flights' own are traced per
+    /// flight ([`Validated::mission_plan`]).
+    pub plan: Option<FlightPlan>,
 }
 
 impl Scenario {
@@ -470,6 +500,9 @@ impl Scenario {
         if changes.get("trajectory").is_none() {
             out.flight.trajectory = self.flight.trajectory.clone();
             out.flight.trajectory_name = self.flight.trajectory_name.clone();
+        }
+        if changes.get("plan").is_none() {
+            out.flight.plan = self.flight.plan.clone();
         }
         Ok(out)
     }
@@ -524,6 +557,8 @@ impl Scenario {
         opt::Q.check(self.drone.q)?;
         opt::STEP.check(self.station.step)?;
         opt::ETA.check(self.station.eta)?;
+        opt::PLAN_TOLERANCE.check(self.station.plan_tolerance)?;
+        let plan = settings.flight.take_plan(&source, &self.station.model)?;
         self.sending.validate()?;
         self.access.validate(r.duty_cycle)?;
         opt::DRONES.check(self.swarm.drones as f64)?;
@@ -567,11 +602,41 @@ impl Scenario {
             },
             r_diagonal: PAPER_R_DIAGONAL,
             channels,
+            plan,
         })
     }
 }
 
 impl FlightSettings {
+    /// The plan, read and taken out of the settings (one copy, like the CSV text). Refused with
+    /// synthetic flights, which carry their own; a mission station needs one.
+    fn take_plan(
+        &mut self,
+        source: &Option<TrajectorySource>,
+        models: &ModelChoice,
+    ) -> Result<Option<FlightPlan>, SimError> {
+        let synthetic = matches!(source, Some(TrajectorySource::Synthetic(_)));
+        let plan = match self.plan.take() {
+            Some(_) if synthetic => return Err(SimError::Source(
+                "the synthetic flights carry their own plans: plan goes with trajectory or sample"
+                    .into(),
+            )),
+            Some(text) => Some(parse_plan(&text).map_err(|e| SimError::Source(e.to_string()))?),
+            None => None,
+        };
+        if plan.is_none()
+            && source.is_some()
+            && !synthetic
+            && models.models().contains(&StationModel::Mission)
+        {
+            return Err(SimError::Source(
+                "the mission station needs the drone's plan: give plan (a CSV of x,y,z[,speed] or a QGroundControl .plan), or fly the synthetic flights, which carry their own"
+                    .into(),
+            ));
+        }
+        Ok(plan)
+    }
+
     /// The chosen flight(s), taking the CSV text out of the settings: `None` when nothing is
     /// chosen, an error when more than one is.
     pub fn take_source(&mut self) -> Result<Option<TrajectorySource>, SimError> {
@@ -611,6 +676,10 @@ impl Validated {
     /// `all`, as the trade-off sweeps read it.
     pub fn swarm_station(&self) -> Result<StationModel, SimError> {
         match self.models.as_slice() {
+            [StationModel::Mission] => Err(SimError::Source(
+                "a swarm runs no mission station: its drones fly without one plan each (name dr, ctra-plus, 3d-ctra or imm)"
+                    .into(),
+            )),
             [one] => Ok(*one),
             _ if self.settings.station.model == ModelChoice::all() => {
                 Ok(StationModel::Single(ModelKind::Ctra3d))
@@ -621,13 +690,51 @@ impl Validated {
         }
     }
 
+    /// `model`'s station setup from the run's `base`: a mission station's fallback is bounded
+    /// 3D-CTRA, which resets to the drone filter's settled covariance whatever `prediction` says
+    /// (computed here when `base` has none).
+    pub fn setup_for(&self, model: StationModel, base: StationSetup) -> StationSetup {
+        match (model, base.drone_covariance) {
+            (StationModel::Mission, None) => StationSetup {
+                drone_covariance: Some(self.drone_covariances()),
+                ..base
+            },
+            _ => base,
+        }
+    }
+
+    fn drone_covariances(&self) -> DroneCovariances {
+        let s = &self.settings;
+        DroneCovariances::new(1.0 / s.drone.sensor_rate, s.drone.q, &self.r_diagonal)
+    }
+
+    /// The plan a mission station follows over `flight` (`None` for any other `model`): a
+    /// synthetic flight's own ([`FlightPlan::traced`]), else the one given.
+    pub fn mission_plan(&self, model: StationModel, flight: &Trajectory) -> Option<MissionPlan> {
+        if model != StationModel::Mission {
+            return None;
+        }
+        let plan = match &self.source {
+            Some(TrajectorySource::Synthetic(_)) => FlightPlan::traced(flight, TRACE_TOLERANCE),
+            _ => self.plan.clone()?,
+        };
+        let plan = match self.settings.station.plan_pace {
+            PlanPace::Plan => plan,
+            PlanPace::Packet => plan.without_speeds(),
+        };
+        Some(MissionPlan {
+            plan,
+            tolerance: self.settings.station.plan_tolerance,
+        })
+    }
+
     /// The station of every drone whose packets come every `interval` s (its data rate's
     /// duty-cycle interval). A bounded station resets to the drone filter's settled covariance
     /// ([`DroneCovariances`], computed here: about 2 ms, so build one setup and copy it).
     pub fn station_setup(&self, interval: f64) -> StationSetup {
         let s = &self.settings;
-        let drone_covariance = (s.station.prediction == Prediction::Bounded)
-            .then(|| DroneCovariances::new(1.0 / s.drone.sensor_rate, s.drone.q, &self.r_diagonal));
+        let drone_covariance =
+            (s.station.prediction == Prediction::Bounded).then(|| self.drone_covariances());
         StationSetup {
             prediction: s.station.prediction,
             bounds: Bounds::default(),

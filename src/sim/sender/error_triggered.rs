@@ -4,7 +4,7 @@
 
 use super::Sender;
 use crate::math::distance;
-use crate::sim::station::{new_tracker, StationModel, StationSetup, Tracker};
+use crate::sim::station::{new_tracker, MissionPlan, StationModel, StationSetup, Tracker};
 
 /// The drone mirrors the station: a [`Tracker`] of the station's kind (same model, same
 /// prediction setting, told that the drone sends on error), reset to each packet's decoded —
@@ -35,11 +35,12 @@ impl ErrorTriggered {
     pub fn new(
         model: StationModel,
         setup: StationSetup,
+        plan: Option<&MissionPlan>,
         threshold: f64,
         max_interval: f64,
     ) -> Self {
         ErrorTriggered {
-            mirror: new_tracker(model, setup),
+            mirror: new_tracker(model, setup, plan),
             step: setup.step,
             clock: 0.0,
             threshold,
@@ -102,7 +103,13 @@ mod tests {
             error_triggered: true,
             drone_covariance: None,
         };
-        ErrorTriggered::new(StationModel::Single(ModelKind::Dr), setup, threshold, 10.0)
+        ErrorTriggered::new(
+            StationModel::Single(ModelKind::Dr),
+            setup,
+            None,
+            threshold,
+            10.0,
+        )
     }
 
     /// With little process noise the DR station predicts a straight line exactly. (With the

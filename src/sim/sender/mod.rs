@@ -10,7 +10,7 @@ pub use error_triggered::ErrorTriggered;
 pub use periodic::Periodic;
 pub use sending::{Sending, DEFAULT_BURST, DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M};
 
-use super::station::{StationModel, StationSetup};
+use super::station::{MissionPlan, StationModel, StationSetup};
 use serde::{Deserialize, Serialize};
 
 /// The sending policy (`--sender`).
@@ -57,9 +57,16 @@ pub fn new_sender(
     max_interval: f64,
     model: StationModel,
     setup: StationSetup,
+    plan: Option<&MissionPlan>,
 ) -> Box<dyn Sender> {
     match kind {
         SenderKind::Periodic => Box::new(Periodic),
-        SenderKind::Error => Box::new(ErrorTriggered::new(model, setup, threshold, max_interval)),
+        SenderKind::Error => Box::new(ErrorTriggered::new(
+            model,
+            setup,
+            plan,
+            threshold,
+            max_interval,
+        )),
     }
 }

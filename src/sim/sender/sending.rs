@@ -3,7 +3,7 @@
 use super::{new_sender, Sender, SenderKind};
 use crate::lora::{DutyCycle, DutyCycleMode, LoraError};
 use crate::options::{BURST, MAX_INTERVAL, THRESHOLD};
-use crate::sim::station::{StationModel, StationSetup};
+use crate::sim::station::{MissionPlan, StationModel, StationSetup};
 use crate::sim::SimError;
 use serde::{Deserialize, Serialize};
 
@@ -93,8 +93,21 @@ impl Sending {
         )
     }
 
-    /// The drone's sender, mirroring a station of `model` with `setup`.
-    pub fn sender(&self, model: StationModel, setup: StationSetup) -> Box<dyn Sender> {
-        new_sender(self.sender, self.threshold, self.max_interval, model, setup)
+    /// The drone's sender, mirroring a station of `model` with `setup` (and, for a mission
+    /// station, the drone's `plan`).
+    pub fn sender(
+        &self,
+        model: StationModel,
+        setup: StationSetup,
+        plan: Option<&MissionPlan>,
+    ) -> Box<dyn Sender> {
+        new_sender(
+            self.sender,
+            self.threshold,
+            self.max_interval,
+            model,
+            setup,
+            plan,
+        )
     }
 }

@@ -4,12 +4,14 @@
 //! * [`StationPredictor`]: one motion model, reset on each packet (the paper's station), with the
 //!   paper's or a bounded prediction ([`Prediction`]).
 //! * [`Imm`]: an Interacting Multiple Model mixture of the three.
+//! * [`MissionStation`]: flies the drone's plan between packets, a bounded 3D-CTRA off it.
 //!
-//! Both implement [`Tracker`], which is also what an error-triggered drone mirrors.
+//! All implement [`Tracker`], which is also what an error-triggered drone mirrors.
 
 mod chains;
 mod drone_covariance;
 mod imm;
+mod mission;
 mod prediction;
 mod predictor;
 mod station_model;
@@ -17,6 +19,7 @@ mod station_model;
 pub(crate) use chains::{FlightChains, MAX_GRIDS};
 pub use drone_covariance::{DroneCovariances, NOMINAL_SPEED};
 pub use imm::{Imm, ImmMember, IMM_STAY};
+pub use mission::{MissionPlan, MissionStation, PlanPace, OFFSET_TIME, PACE_SIGMA, PACE_TIME};
 pub use prediction::{Bounded, Bounds, Prediction};
 pub use predictor::{StationPredictor, StationSetup};
 pub use station_model::StationModel;
@@ -79,11 +82,18 @@ fn single<const N: usize, M: MotionModel<N> + Copy + 'static>(
     Box::new(StationPredictor::new(model, setup))
 }
 
-/// A fresh station of the given kind, having received nothing yet.
-pub fn new_tracker(model: StationModel, setup: StationSetup) -> Box<dyn Tracker> {
+/// A fresh station of the given kind, having received nothing yet; `plan` is the drone's
+/// mission, which only a [`StationModel::Mission`] station reads (without one it is its bounded
+/// fallback throughout).
+pub fn new_tracker(
+    model: StationModel,
+    setup: StationSetup,
+    plan: Option<&MissionPlan>,
+) -> Box<dyn Tracker> {
     match model {
         StationModel::Single(m) => with_model!(m, single(setup)),
         StationModel::Imm => Box::new(Imm::new(&ModelKind::ALL, setup)),
+        StationModel::Mission => Box::new(MissionStation::new(plan.cloned(), setup)),
     }
 }
 

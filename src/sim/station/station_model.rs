@@ -13,6 +13,9 @@ pub enum StationModel {
     /// An Interacting Multiple Model station over DR, CTRA+ and 3D-CTRA
     /// ([`Imm`](super::Imm)); the drone sends the 12-byte 3D-CTRA payload.
     Imm,
+    /// The mission-aware station ([`MissionStation`](super::MissionStation)): along the drone's
+    /// plan between packets, a bounded 3D-CTRA off it; the drone sends the 3D-CTRA payload.
+    Mission,
 }
 
 impl StationModel {
@@ -27,7 +30,7 @@ impl StationModel {
     pub fn sent_model(self) -> ModelKind {
         match self {
             StationModel::Single(m) => m,
-            StationModel::Imm => ModelKind::Ctra3d,
+            StationModel::Imm | StationModel::Mission => ModelKind::Ctra3d,
         }
     }
 
@@ -41,6 +44,7 @@ impl StationModel {
         match self {
             StationModel::Single(m) => m.name(),
             StationModel::Imm => "imm",
+            StationModel::Mission => "mission",
         }
     }
 
@@ -49,6 +53,7 @@ impl StationModel {
         match self {
             StationModel::Single(m) => m.label(),
             StationModel::Imm => "IMM",
+            StationModel::Mission => "Mission",
         }
     }
 }
@@ -77,6 +82,9 @@ impl FromStr for StationModel {
         if s.eq_ignore_ascii_case("imm") {
             return Ok(StationModel::Imm);
         }
+        if s.eq_ignore_ascii_case("mission") {
+            return Ok(StationModel::Mission);
+        }
         s.parse().map(StationModel::Single)
     }
 }
@@ -93,7 +101,10 @@ mod tests {
 
     #[test]
     fn names_round_trip() {
-        for m in StationModel::PAPER.into_iter().chain([StationModel::Imm]) {
+        for m in StationModel::PAPER
+            .into_iter()
+            .chain([StationModel::Imm, StationModel::Mission])
+        {
             assert_eq!(m.name().parse::<StationModel>().unwrap(), m);
         }
         assert!("kalman".parse::<StationModel>().is_err());

@@ -219,7 +219,7 @@ pub fn run_swarm(
             let mut e3 = Vec::new();
             for (seats, out) in plan.episodes.iter().zip(&sent) {
                 let flight = &plan.flights[seats[i].flight];
-                let mut tracker = new_tracker(model, kits[i].setup);
+                let mut tracker = new_tracker(model, kits[i].setup, None);
                 e3.extend(
                     track_station(flight, tracker.as_mut(), &out[i], s.station.step, false).error3d,
                 );
@@ -362,7 +362,7 @@ fn fly(
             i,
             flight,
             Estimates::live(filter),
-            s.sending.sender(model, kits[i].setup),
+            s.sending.sender(model, kits[i].setup, None),
             s.sending
                 .rule(kits[i].duty_cycle, now.time_on_air, flight.t[0])?,
             &net.gateways_at(centre),

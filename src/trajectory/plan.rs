@@ -1,0 +1,326 @@
+//! A mission plan: the waypoints a drone is told to fly, in order, in the flight's local frame
+//! (reference §16). The mission-aware station ([`MissionStation`](crate::sim::MissionStation))
+//! predicts along it between packets.
+
+use super::plan_file::PlanError;
+use super::Trajectory;
+use crate::math::distance;
+
+/// At most this many waypoints (a QGroundControl mission rarely has more than a few hundred).
+pub const MAX_WAYPOINTS: usize = 10_000;
+/// The largest |coordinate| of a waypoint, m: as for a CSV flight.
+pub const MAX_PLAN_COORDINATE: f64 = 1.0e6;
+/// The largest planned speed, m/s: as for a CSV flight.
+pub const MAX_PLAN_SPEED: f64 = 300.0;
+/// How far the flown path of a synthetic flight may stray from the plan traced through it, m
+/// ([`FlightPlan::traced`]): a mission planner's waypoints on a curve, every few metres of sagitta.
+pub const TRACE_TOLERANCE: f64 = 2.0;
+
+/// Waypoints joined by straight legs, with an optional planned ground speed per leg.
+///
+/// Positions are ENU metres in the flight's frame; `along` is the distance flown along the legs.
+///
+/// ```
+/// use loratrack::FlightPlan;
+/// let plan = FlightPlan::new(vec![[0.0, 0.0, 10.0], [100.0, 0.0, 10.0], [100.0, 50.0, 10.0]], vec![None, Some(5.0)]).unwrap();
+/// assert_eq!(plan.length(), 150.0);
+/// assert_eq!(plan.point_at(120.0), [100.0, 20.0, 10.0]);
+/// assert_eq!(plan.speed_at(120.0), Some(5.0));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct FlightPlan {
+    points: Vec<[f64; 3]>,
+    /// Distance along the plan at each waypoint, m (0 at the first).
+    along: Vec<f64>,
+    /// Planned ground speed on leg i (from waypoint i to i + 1), m/s.
+    speeds: Vec<Option<f64>>,
+}
+
+/// The nearest point of a plan to a position.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OnPlan {
+    /// Distance along the plan, m.
+    pub along: f64,
+    /// Distance from the position to that point, m.
+    pub off: f64,
+}
+
+impl FlightPlan {
+    /// A plan through `points` with `speeds[i]` on the leg from point i to i + 1 (one fewer than
+    /// the points; `None` where the plan gives no speed). A waypoint equal to the one before it
+    /// is dropped, with its leg. Refuses fewer than two distinct waypoints, more than
+    /// [`MAX_WAYPOINTS`], non-finite or absurd values (line numbers count waypoints from 1).
+    pub fn new(points: Vec<[f64; 3]>, speeds: Vec<Option<f64>>) -> Result<Self, PlanError> {
+        if points.len() > MAX_WAYPOINTS {
+            return Err(PlanError::TooManyWaypoints { max: MAX_WAYPOINTS });
+        }
+        if speeds.len() + 1 != points.len() && !points.is_empty() {
+            return Err(PlanError::Invalid(format!(
+                "{} waypoints need {} leg speeds, got {}",
+                points.len(),
+                points.len() - 1,
+                speeds.len()
+            )));
+        }
+        for (i, p) in points.iter().enumerate() {
+            if p.iter()
+                .any(|c| !c.is_finite() || c.abs() > MAX_PLAN_COORDINATE)
+            {
+                return Err(PlanError::Invalid(format!(
+                    "waypoint {}: every coordinate must be finite and within 1000 km",
+                    i + 1
+                )));
+            }
+        }
+        for (i, v) in speeds.iter().enumerate() {
+            if let Some(v) = v {
+                if !(v.is_finite() && *v > 0.0 && *v <= MAX_PLAN_SPEED) {
+                    return Err(PlanError::Invalid(format!(
+                        "waypoint {}: speed must be in (0, {MAX_PLAN_SPEED}] m/s, got {v}",
+                        i + 2
+                    )));
+                }
+            }
+        }
+        let mut plan = FlightPlan {
+            points: Vec::with_capacity(points.len()),
+            along: Vec::with_capacity(points.len()),
+            speeds: Vec::with_capacity(speeds.len()),
+        };
+        for (i, p) in points.into_iter().enumerate() {
+            match plan.points.last() {
+                None => plan.along.push(0.0),
+                Some(last) => {
+                    let leg = distance(last, &p);
+                    if leg == 0.0 {
+                        continue;
+                    }
+                    plan.along.push(plan.along[plan.along.len() - 1] + leg);
+                    plan.speeds.push(speeds[i - 1]);
+                }
+            }
+            plan.points.push(p);
+        }
+        if plan.points.len() < 2 {
+            return Err(PlanError::TooFewWaypoints);
+        }
+        Ok(plan)
+    }
+
+    /// The plan a synthetic flight flies: its path simplified (Douglas–Peucker) until no sample
+    /// lies more than `tolerance` m from the legs, each leg's speed its length over the time
+    /// the flight took for it. The flight then keeps to its plan within `tolerance`, on time on
+    /// average over each leg; a real mission strays further (wind, corner cutting).
+    pub fn traced(flight: &Trajectory, tolerance: f64) -> Self {
+        let keep = simplify(&flight.pos, tolerance);
+        let points: Vec<[f64; 3]> = keep.iter().map(|&i| flight.pos[i]).collect();
+        let speeds = keep
+            .windows(2)
+            .map(|w| {
+                let leg = distance(&flight.pos[w[0]], &flight.pos[w[1]]);
+                Some((leg / (flight.t[w[1]] - flight.t[w[0]])).clamp(1e-3, MAX_PLAN_SPEED))
+            })
+            .collect();
+        let p = points[0];
+        // A flight that never moves traces one point; a leg of a millimetre keeps it a plan.
+        FlightPlan::new(points, speeds).unwrap_or_else(|_| FlightPlan {
+            points: vec![p, [p[0] + 1e-3, p[1], p[2]]],
+            along: vec![0.0, 1e-3],
+            speeds: vec![Some(1e-3)],
+        })
+    }
+
+    /// The same waypoints without planned speeds.
+    pub fn without_speeds(&self) -> Self {
+        FlightPlan {
+            speeds: vec![None; self.speeds.len()],
+            ..self.clone()
+        }
+    }
+
+    /// The waypoints, m.
+    pub fn waypoints(&self) -> &[[f64; 3]] {
+        &self.points
+    }
+
+    /// Total length along the legs, m.
+    pub fn length(&self) -> f64 {
+        self.along[self.along.len() - 1]
+    }
+
+    /// The leg that contains distance `along` (the last leg past the end).
+    fn leg(&self, along: f64) -> usize {
+        self.along
+            .partition_point(|&a| a <= along)
+            .saturating_sub(1)
+            .min(self.points.len() - 2)
+    }
+
+    /// The point `along` m along the plan, clamped to its ends.
+    pub fn point_at(&self, along: f64) -> [f64; 3] {
+        let i = self.leg(along);
+        let (a, b) = (self.points[i], self.points[i + 1]);
+        let w = ((along - self.along[i]) / (self.along[i + 1] - self.along[i])).clamp(0.0, 1.0);
+        core::array::from_fn(|k| a[k] + w * (b[k] - a[k]))
+    }
+
+    /// The unit direction of the leg at `along`.
+    pub fn direction_at(&self, along: f64) -> [f64; 3] {
+        let i = self.leg(along);
+        let (a, b) = (self.points[i], self.points[i + 1]);
+        let len = self.along[i + 1] - self.along[i];
+        core::array::from_fn(|k| (b[k] - a[k]) / len)
+    }
+
+    /// The planned speed of the leg at `along`, m/s, if the plan gives one.
+    pub fn speed_at(&self, along: f64) -> Option<f64> {
+        self.speeds[self.leg(along)]
+    }
+
+    /// Where the leg at `along` ends, m along the plan.
+    pub fn leg_end(&self, along: f64) -> f64 {
+        self.along[self.leg(along) + 1]
+    }
+
+    /// The point of the plan nearest to `p` among those between `from` and `to` m along it.
+    pub fn nearest(&self, p: &[f64; 3], from: f64, to: f64) -> OnPlan {
+        let (from, to) = (from.max(0.0), to.min(self.length()));
+        let mut best = OnPlan {
+            along: from,
+            off: distance(p, &self.point_at(from)),
+        };
+        let first = self.leg(from);
+        for i in first..self.points.len() - 1 {
+            if self.along[i] > to {
+                break;
+            }
+            let (a, b) = (self.points[i], self.points[i + 1]);
+            let len = self.along[i + 1] - self.along[i];
+            let w: f64 = (0..3).map(|k| (p[k] - a[k]) * (b[k] - a[k])).sum::<f64>() / (len * len);
+            let along = (self.along[i] + w.clamp(0.0, 1.0) * len).clamp(from, to);
+            let off = distance(p, &self.point_at(along));
+            if off < best.off {
+                best = OnPlan { along, off };
+            }
+        }
+        best
+    }
+}
+
+/// Indices of the samples Douglas–Peucker keeps so that every sample lies within `tolerance` m
+/// of the polyline through them (3D; first and last always kept). Iterative, so a long flight
+/// cannot overflow the stack.
+fn simplify(points: &[[f64; 3]], tolerance: f64) -> Vec<usize> {
+    let n = points.len();
+    let mut keep = vec![false; n];
+    keep[0] = true;
+    keep[n - 1] = true;
+    let mut stack = vec![(0, n - 1)];
+    while let Some((a, b)) = stack.pop() {
+        let (mut worst, mut at) = (0.0, a);
+        for (i, p) in points.iter().enumerate().take(b).skip(a + 1) {
+            let d = segment_distance(p, &points[a], &points[b]);
+            if d > worst {
+                (worst, at) = (d, i);
+            }
+        }
+        if worst > tolerance {
+            keep[at] = true;
+            stack.push((a, at));
+            stack.push((at, b));
+        }
+    }
+    (0..n).filter(|&i| keep[i]).collect()
+}
+
+/// Distance from `p` to the segment from `a` to `b`, m.
+fn segment_distance(p: &[f64; 3], a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    let ab: [f64; 3] = core::array::from_fn(|k| b[k] - a[k]);
+    let len2: f64 = ab.iter().map(|c| c * c).sum();
+    let w = if len2 == 0.0 {
+        0.0
+    } else {
+        ((0..3).map(|k| (p[k] - a[k]) * ab[k]).sum::<f64>() / len2).clamp(0.0, 1.0)
+    };
+    distance(p, &core::array::from_fn(|k| a[k] + w * ab[k]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::trajectory::synthetic_flight;
+
+    fn square() -> FlightPlan {
+        let pts = vec![
+            [0.0, 0.0, 10.0],
+            [100.0, 0.0, 10.0],
+            [100.0, 100.0, 10.0],
+            [0.0, 100.0, 10.0],
+        ];
+        FlightPlan::new(pts, vec![Some(10.0), None, Some(5.0)]).unwrap()
+    }
+
+    #[test]
+    fn points_along_the_legs_and_their_speeds() {
+        let p = square();
+        assert_eq!(p.length(), 300.0);
+        assert_eq!(p.point_at(150.0), [100.0, 50.0, 10.0]);
+        assert_eq!(p.point_at(-5.0), [0.0, 0.0, 10.0]);
+        assert_eq!(p.point_at(400.0), [0.0, 100.0, 10.0]);
+        assert_eq!(p.speed_at(50.0), Some(10.0));
+        assert_eq!(p.speed_at(150.0), None);
+        assert_eq!(p.direction_at(250.0), [-1.0, 0.0, 0.0]);
+        assert_eq!(p.leg_end(120.0), 200.0);
+    }
+
+    #[test]
+    fn the_nearest_point_respects_the_window() {
+        let p = square();
+        let near = p.nearest(&[50.0, 3.0, 10.0], 0.0, 300.0);
+        assert_eq!(near.along, 50.0);
+        assert!((near.off - 3.0).abs() < 1e-12);
+        // The same position, searched only on the third leg, projects onto its start.
+        let far = p.nearest(&[50.0, 3.0, 10.0], 200.0, 300.0);
+        assert_eq!(far.along, 250.0);
+        assert!((far.off - 97.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn repeated_waypoints_are_dropped_and_too_few_refused() {
+        let p = FlightPlan::new(
+            vec![[0.0; 3], [0.0; 3], [3.0, 4.0, 0.0]],
+            vec![Some(1.0), Some(2.0)],
+        )
+        .unwrap();
+        assert_eq!(p.waypoints().len(), 2);
+        assert_eq!(p.speed_at(1.0), Some(2.0));
+        assert_eq!(
+            FlightPlan::new(vec![[1.0; 3], [1.0; 3]], vec![None]),
+            Err(PlanError::TooFewWaypoints)
+        );
+        assert!(FlightPlan::new(vec![[0.0; 3], [f64::NAN, 0.0, 0.0]], vec![None]).is_err());
+        assert!(FlightPlan::new(vec![[0.0; 3], [1.0, 0.0, 0.0]], vec![Some(0.0)]).is_err());
+    }
+
+    #[test]
+    fn a_traced_plan_stays_within_its_tolerance_and_keeps_time() {
+        let flight = synthetic_flight(4).unwrap();
+        let plan = FlightPlan::traced(&flight, TRACE_TOLERANCE);
+        assert!(plan.waypoints().len() < flight.pos.len() / 10);
+        let mut from = 0.0;
+        for p in &flight.pos {
+            let near = plan.nearest(p, 0.0, plan.length());
+            assert!(near.off <= TRACE_TOLERANCE + 1e-9, "{}", near.off);
+            from = near.along.max(from);
+        }
+        assert!(from > 0.99 * plan.length());
+        // Flying every leg at its planned speed takes the flight's time.
+        let time: f64 = (0..plan.waypoints().len() - 1)
+            .map(|i| (plan.along[i + 1] - plan.along[i]) / plan.speeds[i].unwrap())
+            .sum();
+        assert!(
+            (time - flight.duration()).abs() < 1e-6 * flight.duration(),
+            "{time}"
+        );
+    }
+}

@@ -1,0 +1,174 @@
+//! The mission-aware station (reference §16): what it claims on the synthetic set, that a plan
+//! given as a file is read and followed, that it falls back to bounded 3D-CTRA off its plan, and
+//! that the settings it needs are checked first.
+#![cfg(not(target_arch = "wasm32"))]
+
+use loratrack::api::{simulate, swarm};
+use loratrack::{
+    synthetic_flight, FlightPlan, ModelResult, Scenario, Simulator, StationModel, Trajectory,
+    TRACE_TOLERANCE,
+};
+use serde_json::{json, Value};
+
+fn run(settings: Value) -> Vec<ModelResult> {
+    let s = Scenario::default().with(&settings).unwrap();
+    simulate(&mut Simulator::new(), &s).unwrap().results
+}
+
+fn p75(results: &[ModelResult], model: &str) -> f64 {
+    results
+        .iter()
+        .find(|r| r.model.name() == model)
+        .unwrap()
+        .error3d
+        .p75
+}
+
+/// The flight as CSV text with its velocities and accelerations, so that it is the same flight.
+fn csv(f: &Trajectory) -> String {
+    let mut s = String::from("t,x,y,z,vx,vy,vz,ax,ay,az\n");
+    for i in 0..f.t.len() {
+        let (p, v, a) = (f.pos[i], f.vel[i], f.acc[i]);
+        s += &format!(
+            "{},{},{},{},{},{},{},{},{},{}\n",
+            f.t[i], p[0], p[1], p[2], v[0], v[1], v[2], a[0], a[1], a[2]
+        );
+    }
+    s
+}
+
+/// A plan as CSV text, shifted by `east` m, with its speeds.
+fn plan_csv(plan: &FlightPlan, speeds: &[f64], east: f64) -> String {
+    let mut s = String::from("x,y,z,speed\n");
+    for (i, w) in plan.waypoints().iter().enumerate() {
+        let speed = if i == 0 {
+            String::new()
+        } else {
+            format!(",{}", speeds[i - 1])
+        };
+        s += &format!("{},{},{}{speed}\n", w[0] + east, w[1], w[2]);
+    }
+    s
+}
+
+#[test]
+fn the_mission_station_beats_every_other_station_where_packets_are_scarce() {
+    for (sf, bw) in [(10, 125.0), (12, 125.0)] {
+        let r = run(
+            json!({"synthetic": "all", "model": "all,imm,mission", "prediction": "bounded",
+                            "sf": sf, "bw": bw, "overhead": 0}),
+        );
+        let mission = p75(&r, "mission");
+        for other in ["dr", "ctra-plus", "3d-ctra", "imm"] {
+            assert!(
+                mission < 0.5 * p75(&r, other),
+                "SF{sf}: mission {mission} against {other} {}",
+                p75(&r, other)
+            );
+        }
+    }
+}
+
+#[test]
+fn with_packets_every_two_seconds_it_still_beats_bounded_3d_ctra() {
+    let r = run(
+        json!({"synthetic": "all", "model": "3d-ctra,mission", "prediction": "bounded",
+                        "overhead": 0}),
+    );
+    assert!(p75(&r, "mission") < p75(&r, "3d-ctra"), "{r:?}");
+}
+
+#[test]
+fn its_uncertainty_is_honest_on_the_synthetic_set() {
+    for sf in [7, 9, 12] {
+        let bw = if sf == 7 { 250.0 } else { 125.0 };
+        let r = run(json!({"synthetic": "all", "model": "mission", "sf": sf, "bw": bw}));
+        let c = r[0].coverage95;
+        assert!((0.93..=0.995).contains(&c), "SF{sf}: coverage95 {c}");
+    }
+}
+
+#[test]
+fn a_plan_file_is_followed_as_the_synthetic_flight_follows_its_own() {
+    let flight = synthetic_flight(5).unwrap();
+    let traced = FlightPlan::traced(&flight, TRACE_TOLERANCE);
+    let speeds: Vec<f64> = (0..traced.waypoints().len() - 1)
+        .map(|i| traced.speed_at(leg_middle(&traced, i)).unwrap())
+        .collect();
+    let settings = json!({"trajectory": csv(&flight), "model": "3d-ctra,mission",
+                          "prediction": "bounded", "sf": 9, "bw": 125.0,
+                          "plan": plan_csv(&traced, &speeds, 0.0)});
+    let from_file = run(settings.clone());
+    let own = run(
+        json!({"synthetic": 5, "model": "3d-ctra,mission", "prediction": "bounded",
+                         "sf": 9, "bw": 125.0}),
+    );
+    let (a, b) = (p75(&from_file, "mission"), p75(&own, "mission"));
+    assert!(
+        (a - b).abs() <= 1e-6 * b.max(1.0),
+        "file {a} against own {b}"
+    );
+    // A plan 1 km away is never the drone's: every packet hands over to bounded 3D-CTRA.
+    let mut away = settings;
+    away["plan"] = json!(plan_csv(&traced, &speeds, 1000.0));
+    let r = run(away);
+    assert_eq!(r[1].error3d, r[0].error3d);
+    assert_eq!(r[1].coverage95, r[0].coverage95);
+}
+
+/// The middle of leg `i`, m along the plan.
+fn leg_middle(plan: &FlightPlan, i: usize) -> f64 {
+    let w = plan.waypoints();
+    let mut along = 0.0;
+    for k in 0..i {
+        along += loratrack::math::distance(&w[k], &w[k + 1]);
+    }
+    along + 0.5 * loratrack::math::distance(&w[i], &w[i + 1])
+}
+
+#[test]
+fn packet_pace_ignores_the_plans_speeds() {
+    let r = |pace: &str| {
+        run(json!({"synthetic": 2, "model": "mission", "sf": 10, "bw": 125.0, "planPace": pace}))
+    };
+    assert_ne!(r("plan")[0].error3d, r("packet")[0].error3d);
+}
+
+#[test]
+fn error_triggered_sending_mirrors_the_mission_station() {
+    let periodic = run(json!({"synthetic": "all", "model": "mission", "overhead": 0}));
+    let error = run(
+        json!({"synthetic": "all", "model": "mission", "overhead": 0,
+                           "sender": "error", "threshold": 3}),
+    );
+    // On its plan the drone's mirror drifts little: it sends less than periodically.
+    assert!(error[0].airtime < 0.9 * periodic[0].airtime, "{error:?}");
+}
+
+#[test]
+fn what_the_mission_station_needs_is_checked_before_any_run() {
+    let refuse = |settings: Value| -> String {
+        let s = Scenario::default().with(&settings).unwrap();
+        simulate(&mut Simulator::new(), &s).unwrap_err().to_string()
+    };
+    let e = refuse(json!({"sample": "canberra", "model": "mission"}));
+    assert!(e.contains("needs the drone's plan"), "{e}");
+    let e = refuse(json!({"synthetic": 1, "plan": "0,0,10\n10,0,10\n"}));
+    assert!(e.contains("carry their own plans"), "{e}");
+    let e = refuse(json!({"sample": "canberra", "model": "mission", "plan": "0,0,10\n1,x,2\n"}));
+    assert!(e.contains("plan line 2"), "{e}");
+    let e = refuse(json!({"synthetic": 1, "model": "mission", "planTolerance": 0}));
+    assert!(e.contains("planTolerance"), "{e}");
+    let s = Scenario::default()
+        .with(&json!({"drones": 3, "duration": 60, "model": "mission"}))
+        .unwrap();
+    let e = swarm(&s).unwrap_err().to_string();
+    assert!(e.contains("no mission station"), "{e}");
+}
+
+#[test]
+fn the_mission_station_sends_the_3d_ctra_payload() {
+    assert_eq!(StationModel::Mission.payload_bytes(), 12);
+    let r = run(json!({"synthetic": 1, "model": "3d-ctra,mission"}));
+    assert_eq!(r[0].delivery, r[1].delivery);
+}
