@@ -3,7 +3,7 @@
 // (settings the core would refuse are disabled, with the reason).
 import type { GatewaySite, Region } from './loratrack';
 import { $ } from './dom';
-import { ADR_START_REASON, adrCanStart, DEFAULTS, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, plan, planAllows, planReason, type Settings } from './state';
+import { ADR_START_REASON, adrCanStart, DEFAULTS, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, MISSION_REASON, plan, planAllows, planKnown, planReason, runsMission, type FlightChoice, type Settings } from './state';
 import { store } from './store';
 
 export const form = $<HTMLFormElement>('#controls');
@@ -106,6 +106,11 @@ export function readControls(): { next: Settings; errors: string[] } {
       else (s as unknown as Record<string, unknown>)[key] = v;
     } else (s as unknown as Record<string, unknown>)[key] = el.value;
   }
+  // A flight without a known plan cannot run the mission station: 3D-CTRA, its fallback, instead.
+  if (runsMission(s.model) && !planKnown(s.flight)) {
+    s.model = '3d-ctra';
+    field('model').value = s.model;
+  }
   return { next: s, errors };
 }
 
@@ -168,6 +173,10 @@ function showPlanChoices(): void {
   const bwBlocked = offer('bw', (o) => allowed(sf, Number(o.value)), adrOn ? ADR_START_REASON : planReason(region));
   offer('region', (o) => planAllows(o.value as Region, sf, bw) && (!adrOn || o.value === 'eu868'), `Not at SF${sf} / ${bw} kHz${adrOn ? ' with ADR on' : ''}.`);
   offer('access', (o) => o.value === 'duty-cycle' || plan(region).dutyCycle !== null, `Listen-before-talk replaces a duty cycle; ${plan(region).label} has none.`);
+  const missionBlocked = offer('model', (o) => planKnown(field('flight').value as FlightChoice) || !runsMission(o.value), MISSION_REASON);
+  const modelNote = $('#model-note');
+  modelNote.hidden = !missionBlocked;
+  modelNote.textContent = missionBlocked ? MISSION_REASON : '';
   const rateBlocked = sfBlocked || bwBlocked;
   const note = $('#adr-note');
   note.hidden = !adrBlocked || region !== 'eu868';

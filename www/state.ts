@@ -78,7 +78,21 @@ export const DEFAULTS: Settings = {
 };
 
 /** The model choices the page offers (the options of its Model control). */
-export const MODEL_CHOICES: string[] = ['all', 'dr', 'ctra-plus', '3d-ctra', 'imm', 'dr,ctra-plus,3d-ctra,imm'];
+export const MODEL_CHOICES: string[] = ['all', 'dr', 'ctra-plus', '3d-ctra', 'imm', 'dr,ctra-plus,3d-ctra,imm', 'mission', '3d-ctra,mission', 'dr,ctra-plus,3d-ctra,imm,mission'];
+
+/** Whether the flight's plan is known to the page: the synthetic flights carry theirs; the real
+ * and an uploaded flight have none here (the CLI's `--plan` and the JS API's `plan` give one). */
+export function planKnown(flight: FlightChoice): boolean {
+  return flight === 'synthetic' || flight === 'all';
+}
+
+/** Whether a model choice runs the mission station. */
+export function runsMission(model: ModelChoice): boolean {
+  return (Array.isArray(model) ? model : model.split(',')).includes('mission');
+}
+
+/** Why the mission station is not offered for this flight (shown beside the Model control). */
+export const MISSION_REASON = 'The mission station follows the drone’s flight plan: the synthetic flights carry theirs; for the real or an uploaded flight give a plan with the CLI’s --plan or the JS API’s plan.';
 
 /** What each numeric setting accepts, as the form and the URL enforce it: the core's own limits. */
 export interface Limit {
@@ -299,6 +313,10 @@ export function fromQuery(search: string): { settings: Settings; problems: strin
   if (s.access === 'lbt' && plan(s.region).dutyCycle === null) {
     problems.push(`The link's access=lbt was replaced by duty-cycle: listen-before-talk replaces a duty cycle, and ${plan(s.region).label} has none.`);
     s.access = 'duty-cycle';
+  }
+  if (runsMission(s.model) && !planKnown(s.flight)) {
+    problems.push(`The link's model=${s.model} was replaced by 3d-ctra: ${MISSION_REASON}`);
+    s.model = '3d-ctra';
   }
   if (s.adr !== 'off' && s.region !== 'eu868') {
     problems.push(`The link's adr=${s.adr} was replaced by off: ADR runs EU868's data rates.`);

@@ -17,6 +17,8 @@ test('simulate in WASM under Node equals the native CLI bit for bit', async () =
     [['--synthetic', '17', '--paper', '--bw', '125'], { synthetic: 17, overhead: 0, bw: 125 }],
     // Natively the flights run on every core; in WebAssembly one after another.
     [['--synthetic', 'all', '--model', '3d-ctra,imm', '--prediction', 'bounded'], { synthetic: 'all', model: '3d-ctra,imm', prediction: 'bounded' }],
+    // The mission station follows each synthetic flight's own plan.
+    [['--synthetic', 'all', '--model', '3d-ctra,mission', '--sf', '10', '--bw', '125'], { synthetic: 'all', model: '3d-ctra,mission', sf: 10, bw: 125 }],
     // With ADR the flights run in order everywhere (the data rate carries over).
     [['--synthetic', 'all', '--model', '3d-ctra', '--adr', 'tracking', '--distance', '5000'], { synthetic: 'all', model: '3d-ctra', adr: 'tracking', distance: 5000 }],
   ]) {

@@ -58,9 +58,9 @@ export const cellNumber = async (page, model, field) => number(await cell(page, 
 
 export const MODELS = ['dr', 'ctra-plus', '3d-ctra'];
 /** Each model's p75 and its shown 95 % interval, as the table shows them. */
-export async function shownP75(page) {
+export async function shownP75(page, models = MODELS) {
   return Promise.all(
-    MODELS.map(async (m) => {
+    models.map(async (m) => {
       const text = await cell(page, m, 'p75');
       const ci = text.match(/\(([\d.]+)–([\d.]+)\)/);
       return { model: m, p75: number(text), ci: ci ? [Number(ci[1]), Number(ci[2])] : null };

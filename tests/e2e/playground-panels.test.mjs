@@ -302,6 +302,25 @@ test('lesson "Why not always SF12?": SF12 sends every ~148 s and its p75 at 1 km
   assert.deepEqual(problems, []);
 });
 
+test('lesson "A flight plan beats any motion model": at SF11 the mission station is clearly lowest, and it is offered only where a plan is known', async () => {
+  const { page, problems } = await lesson('A flight plan beats any motion model');
+  const stations = [...MODELS, 'imm', 'mission'];
+  const shown = Object.fromEntries((await shownP75(page, stations)).map((s) => [s.model, s.ci]));
+  for (const m of stations.filter((m) => m !== 'mission')) assert.ok(shown.mission[1] < shown[m][0], `${m}: ${JSON.stringify(shown)}`);
+  assert.match(await page.locator('#verdict-text').textContent(), /^Mission has the lowest p75, clearly/);
+  assert.deepEqual(await axe(page), []);
+  // The real flight has no plan here: the mission choices are disabled with the reason, and the
+  // run falls back to 3D-CTRA instead of failing.
+  await page.selectOption('#flight', 'canberra');
+  await waitForResults(page);
+  await idle(page);
+  assert.equal(await page.locator('#model').inputValue(), '3d-ctra');
+  assert.equal(await page.locator('#model option[value="mission"]').isDisabled(), true);
+  assert.match(await page.locator('#model-note').textContent(), /flight plan/);
+  assert.deepEqual(await axe(page), []);
+  assert.deepEqual(problems, []);
+});
+
 test('lesson "The duty-cycle wall": the interval is 100 times the time on air for every model', async () => {
   const { page, problems } = await lesson('The duty-cycle wall');
   for (const m of MODELS) {

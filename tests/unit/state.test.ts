@@ -87,6 +87,13 @@ describe('the URL', () => {
     expect(toParams({ ...DEFAULTS, interval: 2 })).not.toHaveProperty('interval');
   });
 
+  test('never opens the mission station without a known plan, and says why', () => {
+    const { settings, problems } = fromQuery('?flight=canberra&model=3d-ctra%2Cmission');
+    expect(settings.model).toBe('3d-ctra');
+    expect(problems.join(' ')).toMatch(/model=3d-ctra,mission was replaced by 3d-ctra: The mission station follows the drone’s flight plan/);
+    expect(fromQuery('?flight=all&model=mission').problems).toEqual([]);
+  });
+
   test('never opens ADR where it cannot start, and says why', () => {
     const { settings, problems } = fromQuery('?sf=9&bw=250&adr=tracking');
     expect(settings.adr).toBe('off');
