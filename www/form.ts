@@ -107,7 +107,7 @@ export function readControls(): { next: Settings; errors: string[] } {
     } else (s as unknown as Record<string, unknown>)[key] = el.value;
   }
   // A flight without a known plan cannot run the mission station: 3D-CTRA, its fallback, instead.
-  if (runsMission(s.model) && !planKnown(s.flight)) {
+  if (runsMission(s.model) && !planKnown(s.flight, Boolean(store.plan))) {
     s.model = '3d-ctra';
     field('model').value = s.model;
   }
@@ -173,7 +173,7 @@ function showPlanChoices(): void {
   const bwBlocked = offer('bw', (o) => allowed(sf, Number(o.value)), adrOn ? ADR_START_REASON : planReason(region));
   offer('region', (o) => planAllows(o.value as Region, sf, bw) && (!adrOn || o.value === 'eu868'), `Not at SF${sf} / ${bw} kHz${adrOn ? ' with ADR on' : ''}.`);
   offer('access', (o) => o.value === 'duty-cycle' || plan(region).dutyCycle !== null, `Listen-before-talk replaces a duty cycle; ${plan(region).label} has none.`);
-  const missionBlocked = offer('model', (o) => planKnown(field('flight').value as FlightChoice) || !runsMission(o.value), MISSION_REASON);
+  const missionBlocked = offer('model', (o) => planKnown(field('flight').value as FlightChoice, Boolean(store.plan)) || !runsMission(o.value), MISSION_REASON);
   const modelNote = $('#model-note');
   modelNote.hidden = !missionBlocked;
   modelNote.textContent = missionBlocked ? MISSION_REASON : '';

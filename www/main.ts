@@ -30,6 +30,7 @@ const MAX_CSV_BYTES = 64 * 2 ** 20;
 const status = $('#status');
 const progress = $<HTMLProgressElement>('#progress');
 const csvError = $('#csv-error');
+const planError = $('#plan-error');
 
 let trajectory3d: Trajectory3d | undefined;
 const charts: Record<string, { chart: Element; caption: string }> = {};
@@ -54,7 +55,7 @@ let freshSeed = false;
 
 function submit(): void {
   const sweep = [...DISTANCES.map((distance) => ({ distance })), ...SFS.map((sf) => ({ sf }))];
-  const request: SimulateRequest = { id: ++nextId, params: toParams(store.settings, store.csv), sweep };
+  const request: SimulateRequest = { id: ++nextId, params: toParams(store.settings, store.csv, store.plan), sweep };
   if (freshSeed) request.params.seed = 'random';
   if (store.settings.flight === 'csv' && !store.csv) {
     status.textContent = 'Choose a CSV file to simulate it.';
@@ -118,7 +119,11 @@ function onResponse(r: Response): void {
     progress.hidden = true;
     updateBusy();
     markStale(true);
-    if (failed.flight === 'csv') {
+    if (failed.flight === 'csv' && /^(plan|QGroundControl plan)\b/.test(r.error)) {
+      planError.textContent = r.error;
+      planError.hidden = false;
+      status.textContent = 'The flight plan could not be read; the results below are for the previous settings.';
+    } else if (failed.flight === 'csv') {
       csvError.textContent = r.error;
       csvError.hidden = false;
       status.textContent = 'The CSV could not be simulated; the results below are for the previous settings.';
@@ -130,6 +135,7 @@ function onResponse(r: Response): void {
   }
   if (!('report' in r)) return;
   csvError.hidden = true;
+  planError.hidden = true;
   progress.hidden = true;
   store.report = r.report;
   store.reportSettings = { ...running.settings };
@@ -287,7 +293,7 @@ function commitTyping(): void {
 }
 
 form.addEventListener('input', (e) => {
-  if ((e.target as HTMLElement).id === 'csv') return;
+  if (['csv', 'plan-file'].includes((e.target as HTMLElement).id)) return;
   if (isTyped(e.target)) {
     // The numbers on show no longer match the form: say so at once, run after a pause or when
     // the field is left.
@@ -316,6 +322,19 @@ $<HTMLInputElement>('#csv').addEventListener('change', async (e) => {
   }
   store.csv = { text: await file.text(), name: file.name };
   csvError.hidden = true;
+  onChange();
+});
+
+$<HTMLInputElement>('#plan-file').addEventListener('change', async (e) => {
+  const file = (e.target as HTMLInputElement).files?.[0];
+  if (!file) return;
+  if (file.size > MAX_CSV_BYTES) {
+    planError.textContent = `${file.name} is ${(file.size / 2 ** 20).toFixed(1)} MiB; at most 64 MiB is read.`;
+    planError.hidden = false;
+    return;
+  }
+  store.plan = { text: await file.text(), name: file.name };
+  planError.hidden = true;
   onChange();
 });
 
@@ -348,7 +367,7 @@ $('#run-swarm').addEventListener('click', () => {
   const sizes = [...new Set([2, Math.round(n / 8), Math.round(n / 4), Math.round(n / 2), n])].filter((k) => k >= 1);
   // The swarm takes every setting of the single drone; its drones chain synthetic flights around
   // the centre, and run one station (a list of models runs 3D-CTRA, as `all` does).
-  const { synthetic: _s, sample: _m, trajectory: _t, trajectoryName: _n, ...shared } = toParams(store.settings, store.csv);
+  const { synthetic: _s, sample: _m, trajectory: _t, trajectoryName: _n, plan: _p, ...shared } = toParams(store.settings, store.csv);
   const params: SwarmParams = {
     ...shared,
     model: stationsOf(store.settings.model).length === 1 ? store.settings.model : 'all',

@@ -80,10 +80,11 @@ export const DEFAULTS: Settings = {
 /** The model choices the page offers (the options of its Model control). */
 export const MODEL_CHOICES: string[] = ['all', 'dr', 'ctra-plus', '3d-ctra', 'imm', 'dr,ctra-plus,3d-ctra,imm', 'mission', '3d-ctra,mission', 'dr,ctra-plus,3d-ctra,imm,mission'];
 
-/** Whether the flight's plan is known to the page: the synthetic flights carry theirs; the real
- * and an uploaded flight have none here (the CLI's `--plan` and the JS API's `plan` give one). */
-export function planKnown(flight: FlightChoice): boolean {
-  return flight === 'synthetic' || flight === 'all';
+/** Whether the flight's plan is known to the page: the synthetic flights carry theirs, an
+ * uploaded flight has one when its plan was uploaded too; the real flight has none here (the
+ * CLI's `--plan` and the JS API's `plan` give one). */
+export function planKnown(flight: FlightChoice, uploadedPlan = false): boolean {
+  return flight === 'synthetic' || flight === 'all' || (flight === 'csv' && uploadedPlan);
 }
 
 /** Whether a model choice runs the mission station. */
@@ -92,7 +93,7 @@ export function runsMission(model: ModelChoice): boolean {
 }
 
 /** Why the mission station is not offered for this flight (shown beside the Model control). */
-export const MISSION_REASON = 'The mission station follows the drone’s flight plan: the synthetic flights carry theirs; for the real or an uploaded flight give a plan with the CLI’s --plan or the JS API’s plan.';
+export const MISSION_REASON = 'The mission station follows the drone’s flight plan: the synthetic flights carry theirs; for an uploaded flight upload its plan too; for the real flight give one with the CLI’s --plan or the JS API’s plan.';
 
 /** What each numeric setting accepts, as the form and the URL enforce it: the core's own limits. */
 export interface Limit {
@@ -194,15 +195,16 @@ export function overheadBytes(s: Settings): number {
   return s.lorawan ? 13 : 0;
 }
 
-/** simulate() parameters for these settings; `csv` supplies the uploaded text. */
-export function toParams(s: Settings, csv?: { text: string; name: string }): SimulateParams {
+/** simulate() parameters for these settings; `csv` supplies the uploaded text and `missionPlan`
+ * its mission plan. */
+export function toParams(s: Settings, csv?: { text: string; name: string }, missionPlan?: { text: string }): SimulateParams {
   const flight: SimulateParams =
     s.flight === 'all'
       ? { synthetic: 'all' }
       : s.flight === 'canberra'
         ? { sample: 'canberra' }
         : s.flight === 'csv' && csv
-          ? { trajectory: csv.text, trajectoryName: csv.name }
+          ? { trajectory: csv.text, trajectoryName: csv.name, ...(missionPlan ? { plan: missionPlan.text } : {}) }
           : { synthetic: s.flightNumber };
   return {
     ...flight,

@@ -26,6 +26,8 @@ export interface Store {
   baseline?: { report: SimReport; settings: Settings };
   /** An uploaded CSV flight (never in the URL). */
   csv?: { text: string; name: string };
+  /** The uploaded flight's mission plan (never in the URL): what the mission station flies. */
+  plan?: { text: string; name: string };
   /** Sentences about the link: values replaced, unknown panels, a baseline that failed. */
   notices: string[];
 }

@@ -137,6 +137,51 @@ test('a good CSV is simulated and a bad one is refused next to the control', asy
   assert.deepEqual(problems, []);
 });
 
+test('an uploaded flight with its uploaded plan runs the mission station, with the CLI\'s numbers; a bad plan is refused next to its control', async () => {
+  const { page, problems } = await open();
+  const dir = mkdtempSync(join(tmpdir(), 'loratrack-'));
+  // A 100 m square at 5 m/s and 30 m, flown once round, and its plan.
+  const corner = (k) => [[0, 0], [100, 0], [100, 100], [0, 100]][k % 4];
+  const rows = ['t,x,y,z'];
+  for (let i = 0; i <= 800; i++) {
+    const s = (i * 0.1 * 5) % 400;
+    const [a, b] = [corner(Math.floor(s / 100)), corner(Math.floor(s / 100) + 1)];
+    const w = (s % 100) / 100;
+    rows.push(`${(i * 0.1).toFixed(1)},${(a[0] + w * (b[0] - a[0])).toFixed(3)},${(a[1] + w * (b[1] - a[1])).toFixed(3)},30`);
+  }
+  const flight = join(dir, 'square.csv');
+  writeFileSync(flight, rows.join('\n') + '\n');
+  const plan = join(dir, 'square-plan.csv');
+  writeFileSync(plan, 'x,y,z,speed\n0,0,30\n100,0,30,5\n100,100,30,5\n0,100,30,5\n0,0,30,5\n');
+
+  let before = await tableHtml(page);
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
+  await page.getByLabel('CSV file').setInputFiles(flight);
+  await waitForResults(page, before);
+  // No plan yet: the mission station is not offered, and says why.
+  assert.equal(await page.locator('#model option[value="3d-ctra,mission"]').isDisabled(), true);
+  assert.match(await page.locator('#model-note').textContent(), /upload its plan too/);
+  await page.getByLabel(/Flight plan/).setInputFiles(plan);
+  await page.waitForFunction(() => !document.querySelector('#model option[value="3d-ctra,mission"]').disabled);
+  before = await tableHtml(page);
+  await page.getByLabel('Model').selectOption('3d-ctra,mission');
+  await waitForResults(page, before);
+  const cli = nativeJson(['simulate', '--trajectory', flight, '--plan', plan, '--model', '3d-ctra,mission']);
+  for (const m of ['3d-ctra', 'mission']) {
+    const r = cli.results.find((x) => x.model === m);
+    assert.equal(number(await cell(page, m, 'p75')).toFixed(2), r.error3d.p75.toFixed(2), m);
+  }
+  assert.deepEqual(await axe(page), []);
+
+  const bad = join(dir, 'bad-plan.csv');
+  writeFileSync(bad, '0,0,30\n100,zero,30\n');
+  await page.getByLabel(/Flight plan/).setInputFiles(bad);
+  await page.waitForSelector('#plan-error:not([hidden])');
+  assert.match(await page.locator('#plan-error').textContent(), /plan line 2/);
+  assert.equal(await page.locator('#results-table tbody tr').count(), 2);
+  assert.deepEqual(problems, []);
+});
+
 test('the URL carries the state: a shared link reopens the same view; embed shows only chosen panels', async () => {
   const { page, problems } = await open();
   const before = await tableHtml(page);
