@@ -311,32 +311,24 @@ form.addEventListener('submit', (e) => e.preventDefault());
 // Adding or removing a gateway changes the settings as typing does.
 onFormChange(onChange);
 
-$<HTMLInputElement>('#csv').addEventListener('change', async (e) => {
-  const file = (e.target as HTMLInputElement).files?.[0];
-  if (!file) return;
-  if (file.size > MAX_CSV_BYTES) {
-    // The core refuses more than 64 MiB too; say so before reading the file into memory.
-    csvError.textContent = `${file.name} is ${(file.size / 2 ** 20).toFixed(1)} MiB; at most 64 MiB is read.`;
-    csvError.hidden = false;
-    return;
-  }
-  store.csv = { text: await file.text(), name: file.name };
-  csvError.hidden = true;
-  onChange();
-});
-
-$<HTMLInputElement>('#plan-file').addEventListener('change', async (e) => {
-  const file = (e.target as HTMLInputElement).files?.[0];
-  if (!file) return;
-  if (file.size > MAX_CSV_BYTES) {
-    planError.textContent = `${file.name} is ${(file.size / 2 ** 20).toFixed(1)} MiB; at most 64 MiB is read.`;
-    planError.hidden = false;
-    return;
-  }
-  store.plan = { text: await file.text(), name: file.name };
-  planError.hidden = true;
-  onChange();
-});
+/** Reads the file chosen in `input` into `keep` and runs; a file over the core's 64 MiB is
+ * refused in `error` before it is read into memory. */
+function onUpload(input: string, error: HTMLElement, keep: (file: { text: string; name: string }) => void): void {
+  $<HTMLInputElement>(input).addEventListener('change', async (e) => {
+    const file = (e.target as HTMLInputElement).files?.[0];
+    if (!file) return;
+    if (file.size > MAX_CSV_BYTES) {
+      error.textContent = `${file.name} is ${(file.size / 2 ** 20).toFixed(1)} MiB; at most 64 MiB is read.`;
+      error.hidden = false;
+      return;
+    }
+    keep({ text: await file.text(), name: file.name });
+    error.hidden = true;
+    onChange();
+  });
+}
+onUpload('#csv', csvError, (f) => (store.csv = f));
+onUpload('#plan-file', planError, (f) => (store.plan = f));
 
 $('#copy-link').addEventListener('click', async () => {
   const url = location.href;
