@@ -177,11 +177,6 @@ impl FlightPlan {
         self.speeds[self.leg(along)]
     }
 
-    /// Where the leg at `along` ends, m along the plan.
-    pub fn leg_end(&self, along: f64) -> f64 {
-        self.along[self.leg(along) + 1]
-    }
-
     /// The point of the plan nearest to `p` among those between `from` and `to` m along it.
     pub fn nearest(&self, p: &[f64; 3], from: f64, to: f64) -> OnPlan {
         let (from, to) = (from.max(0.0), to.min(self.length()));
@@ -270,7 +265,6 @@ mod tests {
         assert_eq!(p.speed_at(50.0), Some(10.0));
         assert_eq!(p.speed_at(150.0), None);
         assert_eq!(p.direction_at(250.0), [-1.0, 0.0, 0.0]);
-        assert_eq!(p.leg_end(120.0), 200.0);
     }
 
     #[test]

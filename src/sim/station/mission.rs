@@ -47,8 +47,9 @@ pub const OFFSET_TIME: f64 = 5.0;
 /// How fast the station's position uncertainty grows on the plan, m per second since the
 /// packet, in every direction: the speed it does not know (planned against flown) moves the
 /// drone along the leg, and near a waypoint along the next one. 1 m/s puts coverage95 at
-/// 0.95–0.98 on the synthetic set at SF7–SF12 (0.5 m/s: 0.81–0.89; 2 m/s: 0.99–1.00); a
-/// growth only along the leg was far too narrow at the corners (NEES 25 at SF9–12).
+/// 0.93–0.99 on the synthetic set at SF7–SF12 (docs/mission.md; with 0.5 m/s 0.81–0.89, with
+/// 2 m/s 0.99–1.00); a growth only along the leg was far too narrow at the corners (NEES about
+/// 25 at SF9–12).
 pub const PACE_SIGMA: f64 = 1.0;
 /// The smallest half-width of the stretch of plan searched for a packet near where the station
 /// expected the drone, m; it widens by [`SEARCH_SPEED`] for every second since the last packet.
