@@ -37,20 +37,6 @@ fn csv(f: &Trajectory) -> String {
     s
 }
 
-/// A plan as CSV text, shifted by `east` m, with its speeds.
-fn plan_csv(plan: &FlightPlan, speeds: &[f64], east: f64) -> String {
-    let mut s = String::from("x,y,z,speed\n");
-    for (i, w) in plan.waypoints().iter().enumerate() {
-        let speed = if i == 0 {
-            String::new()
-        } else {
-            format!(",{}", speeds[i - 1])
-        };
-        s += &format!("{},{},{}{speed}\n", w[0] + east, w[1], w[2]);
-    }
-    s
-}
-
 #[test]
 fn the_mission_station_beats_every_other_station_where_packets_are_scarce() {
     for (sf, bw) in [(10, 125.0), (12, 125.0)] {
@@ -92,12 +78,9 @@ fn its_uncertainty_is_honest_on_the_synthetic_set() {
 fn a_plan_file_is_followed_as_the_synthetic_flight_follows_its_own() {
     let flight = synthetic_flight(5).unwrap();
     let traced = FlightPlan::traced(&flight, TRACE_TOLERANCE);
-    let speeds: Vec<f64> = (0..traced.waypoints().len() - 1)
-        .map(|i| traced.speed_at(leg_middle(&traced, i)).unwrap())
-        .collect();
     let settings = json!({"trajectory": csv(&flight), "model": "3d-ctra,mission",
                           "prediction": "bounded", "sf": 9, "bw": 125.0,
-                          "plan": plan_csv(&traced, &speeds, 0.0)});
+                          "plan": traced.to_csv()});
     let from_file = run(settings.clone());
     let own = run(
         json!({"synthetic": 5, "model": "3d-ctra,mission", "prediction": "bounded",
@@ -109,21 +92,17 @@ fn a_plan_file_is_followed_as_the_synthetic_flight_follows_its_own() {
         "file {a} against own {b}"
     );
     // A plan 1 km away is never the drone's: every packet hands over to bounded 3D-CTRA.
-    let mut away = settings;
-    away["plan"] = json!(plan_csv(&traced, &speeds, 1000.0));
-    let r = run(away);
+    let away: Vec<[f64; 3]> = traced
+        .waypoints()
+        .iter()
+        .map(|w| [w[0] + 1000.0, w[1], w[2]])
+        .collect();
+    let speeds = vec![None; away.len() - 1];
+    let mut far = settings;
+    far["plan"] = json!(FlightPlan::new(away, speeds).unwrap().to_csv());
+    let r = run(far);
     assert_eq!(r[1].error3d, r[0].error3d);
     assert_eq!(r[1].coverage95, r[0].coverage95);
-}
-
-/// The middle of leg `i`, m along the plan.
-fn leg_middle(plan: &FlightPlan, i: usize) -> f64 {
-    let w = plan.waypoints();
-    let mut along = 0.0;
-    for k in 0..i {
-        along += loratrack::math::distance(&w[k], &w[k + 1]);
-    }
-    along + 0.5 * loratrack::math::distance(&w[i], &w[i + 1])
 }
 
 #[test]

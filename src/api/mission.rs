@@ -5,6 +5,7 @@ use super::ApiError;
 use crate::sim::{
     ModelChoice, ModelResult, PlanPace, Scenario, Simulator, StationModel, SyntheticChoice,
 };
+use crate::trajectory::{canberra_flight, FlightPlan, TRACE_TOLERANCE};
 use serde::Serialize;
 
 /// The data rates of the sweep, (SF, bandwidth kHz): EU868 DR6 (SF7 at 250 kHz), then DR5..DR0
@@ -22,6 +23,14 @@ pub const MISSION_RATES: [(i64, f64); 7] = [
 /// Gateway distances of the sweep, m: one where nearly every packet arrives, one where SF7 loses
 /// a fifth of them.
 pub const MISSION_DISTANCES: [f64; 2] = [1000.0, 3000.0];
+
+/// The data rates of the real flight's rows: the paper's, one where packets are a few per
+/// minute, and the slowest.
+pub const REAL_RATES: [(i64, f64); 3] = [(7, 250.0), (9, 125.0), (12, 125.0)];
+
+/// Seeds the real flight's rows pool at least: the flight is short (162 s), so one seed rests on
+/// a handful of packets.
+pub const REAL_SEEDS: u32 = 8;
 
 /// The stations compared: the paper's three, the IMM and the mission station.
 pub const MISSION_MODELS: &str = "dr,ctra-plus,3d-ctra,imm,mission";
@@ -75,6 +84,11 @@ pub struct MissionSweepReport {
     pub seeds: u32,
     /// Every setting, distance by distance, fastest data rate first.
     pub runs: Vec<MissionRun>,
+    /// The real Canberra flight with the plan traced from its own log, at [`REAL_RATES`] and 1 km,
+    /// pooled over at least [`REAL_SEEDS`] seeds.
+    pub real: Vec<MissionRun>,
+    /// Seeds pooled in each of `real`.
+    pub real_seeds: u32,
 }
 
 /// Runs `base` over the whole synthetic set (each flight's own plan) with every station of
@@ -90,24 +104,46 @@ pub fn sweep_mission(sim: &mut Simulator, base: &Scenario) -> Result<MissionSwee
     let mut runs = Vec::new();
     for &distance in &MISSION_DISTANCES {
         for &(sf, bw) in &MISSION_RATES {
-            (s.radio.sf, s.radio.bw, s.channel.distance) = (sf, bw, distance);
-            let report = sim.run(&s.validate()?)?;
-            let mut packet = s.clone();
-            packet.station.model = ModelChoice::one(StationModel::Mission);
-            packet.station.plan_pace = PlanPace::Packet;
-            let packet_pace = sim.run(&packet.validate()?)?.results.pop();
-            runs.push(MissionRun {
-                sf,
-                bw,
-                distance,
-                results: report.results,
-                packet_pace,
-            });
+            runs.push(mission_run(sim, &s, sf, bw, distance)?);
         }
     }
+    let mut real = s.clone();
+    real.flight = Default::default();
+    real.flight.sample = Some("canberra".into());
+    real.flight.plan = Some(FlightPlan::traced(&canberra_flight(), TRACE_TOLERANCE).to_csv());
+    real.run.seeds = real.run.seeds.max(REAL_SEEDS);
+    let real_runs = REAL_RATES
+        .iter()
+        .map(|&(sf, bw)| mission_run(sim, &real, sf, bw, MISSION_DISTANCES[0]))
+        .collect::<Result<_, _>>()?;
     Ok(MissionSweepReport {
         seed: base.run.seed,
         seeds: s.run.seeds.max(1),
         runs,
+        real: real_runs,
+        real_seeds: real.run.seeds,
+    })
+}
+
+/// Every station of `s` at one rate and distance, and the mission station pacing by the packet.
+fn mission_run(
+    sim: &mut Simulator,
+    s: &Scenario,
+    sf: i64,
+    bw: f64,
+    distance: f64,
+) -> Result<MissionRun, ApiError> {
+    let mut s = s.clone();
+    (s.radio.sf, s.radio.bw, s.channel.distance) = (sf, bw, distance);
+    let report = sim.run(&s.validate()?)?;
+    s.station.model = ModelChoice::one(StationModel::Mission);
+    s.station.plan_pace = PlanPace::Packet;
+    let packet_pace = sim.run(&s.validate()?)?.results.pop();
+    Ok(MissionRun {
+        sf,
+        bw,
+        distance,
+        results: report.results,
+        packet_pace,
     })
 }

@@ -138,6 +138,20 @@ impl FlightPlan {
         }
     }
 
+    /// The plan as CSV text that [`parse_plan`](super::parse_plan) reads back to the same plan:
+    /// `x,y,z,speed`, every number in its shortest round-trip form.
+    pub fn to_csv(&self) -> String {
+        let mut out = String::from("x,y,z,speed\n");
+        for (i, p) in self.points.iter().enumerate() {
+            let speed = match i.checked_sub(1).and_then(|leg| self.speeds[leg]) {
+                Some(v) => format!(",{v}"),
+                None => String::new(),
+            };
+            out += &format!("{},{},{}{speed}\n", p[0], p[1], p[2]);
+        }
+        out
+    }
+
     /// The waypoints, m.
     pub fn waypoints(&self) -> &[[f64; 3]] {
         &self.points
@@ -265,6 +279,17 @@ mod tests {
         assert_eq!(p.speed_at(50.0), Some(10.0));
         assert_eq!(p.speed_at(150.0), None);
         assert_eq!(p.direction_at(250.0), [-1.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn csv_text_reads_back_to_the_same_plan() {
+        let p = square();
+        assert_eq!(crate::trajectory::parse_plan(&p.to_csv()).unwrap(), p);
+        let traced = FlightPlan::traced(&synthetic_flight(9).unwrap(), TRACE_TOLERANCE);
+        assert_eq!(
+            crate::trajectory::parse_plan(&traced.to_csv()).unwrap(),
+            traced
+        );
     }
 
     #[test]

@@ -4,9 +4,8 @@ use loratrack::api::{MissionRun, MissionSweepReport, MISSION_MODELS};
 use loratrack::{ModelResult, Scenario, OFFSET_TIME, PACE_SIGMA, PACE_TIME, TRACE_TOLERANCE};
 
 /// The stations' labels in the sweep's order.
-fn labels(r: &MissionSweepReport) -> Vec<&'static str> {
-    r.runs
-        .first()
+fn labels(runs: &[MissionRun]) -> Vec<&'static str> {
+    runs.first()
         .map(|run| run.results.iter().map(|x| x.model.label()).collect())
         .unwrap_or_default()
 }
@@ -59,12 +58,12 @@ fn cells(run: &MissionRun) -> Vec<String> {
     c
 }
 
-fn header(r: &MissionSweepReport) -> Vec<String> {
+fn header(runs: &[MissionRun]) -> Vec<String> {
     let mut h: Vec<String> = ["distance", "rate", "interval (s)", "received"]
         .iter()
         .map(|s| s.to_string())
         .collect();
-    h.extend(labels(r).iter().map(|l| format!("{l} p75")));
+    h.extend(labels(runs).iter().map(|l| format!("{l} p75")));
     h.extend(
         [
             "Mission p95",
@@ -82,15 +81,22 @@ fn header(r: &MissionSweepReport) -> Vec<String> {
 
 /// `sweep --mission`: a plain table.
 pub fn mission_table(r: &MissionSweepReport) -> String {
-    let mut out =
-        String::from("mission station against the others (3D error in m, whole synthetic set)\n");
-    out += &header(r).join("  ");
-    out += "\n";
-    for run in &r.runs {
-        out += &cells(run).join("  ");
-        out += "\n";
-    }
-    out.trim_end().to_string()
+    let text = |runs: &[MissionRun]| -> String {
+        let mut out = header(runs).join("  ") + "\n";
+        for run in runs {
+            out += &cells(run).join("  ");
+            out += "\n";
+        }
+        out
+    };
+    format!(
+        "mission station against the others (3D error in m, whole synthetic set)\n{}\nthe real Canberra flight, its plan traced from its own log, {} seeds\n{}",
+        text(&r.runs),
+        r.real_seeds,
+        text(&r.real)
+    )
+    .trim_end()
+    .to_string()
 }
 
 /// `sweep --mission --markdown`: docs/mission.md.
@@ -113,19 +119,54 @@ pub fn mission_markdown(r: &MissionSweepReport, base: &Scenario) -> String {
          throughout, the plan's speeds ignored (a drone that does not keep its plan's timing). `best other` is the other station with the lowest p75 at that setting; cover95 and NEES are \
          the mission station's (0.95 and 3 when its covariance is honest).\n\n",
         seeds(r),
-        labels(r).join(", "),
+        labels(&r.runs).join(", "),
         MISSION_MODELS,
         base.station.prediction.name(),
         base.station.plan_tolerance,
     );
-    let h = header(r);
-    s += &format!("| {} |\n", h.join(" | "));
+    s += &markdown_table(&r.runs);
+    s += &findings(r);
+    s += &format!(
+        "\n## The real flight\n\nThe bundled Canberra flight (a real ArduCopter, 162 s, mostly loitering and jerkier than the \
+         synthetic set) with a plan traced from its own log as the synthetic flights' are (within {TRACE_TOLERANCE} m, each \
+         leg on time): the same best case for the plan, but the drone's real motion between the waypoints. 1 km, {} seeds \
+         pooled (the flight is short).\n\n",
+        r.real_seeds
+    );
+    s += &markdown_table(&r.real);
+    s += &real_findings(r);
+    s
+}
+
+fn markdown_table(runs: &[MissionRun]) -> String {
+    let h = header(runs);
+    let mut s = format!("| {} |\n", h.join(" | "));
     s += &format!("|{}\n", " --- |".repeat(h.len()));
-    for run in &r.runs {
+    for run in runs {
         s += &format!("| {} |\n", cells(run).join(" | "));
     }
-    s += &findings(r);
     s
+}
+
+/// The real flight's rows in words: where the mission station is lowest and where not.
+fn real_findings(r: &MissionSweepReport) -> String {
+    let rows: Vec<String> = r
+        .real
+        .iter()
+        .filter_map(|run| {
+            let ratio = run.ratio()?;
+            let best = run.best_other()?.model.label();
+            Some(format!(
+                "{}: {ratio:.2}× {best}'s p75{}",
+                rate(run),
+                if ratio < 1.0 { "" } else { " — not lower" }
+            ))
+        })
+        .collect();
+    format!(
+        "\nMission p75 against the best other station on the real flight: {}.\n",
+        rows.join("; ")
+    )
 }
 
 fn seeds(r: &MissionSweepReport) -> String {
@@ -226,8 +267,9 @@ fn findings(r: &MissionSweepReport) -> String {
          a packet that shows the drone more than the tolerance off its plan, the mission station is the bounded \
          3D-CTRA station; between the moment the drone leaves the plan and that packet it still flies the plan, \
          and a drone that keeps to the plan but runs late or early is followed with the timing of its last \
-         packet, given way to the planned speeds. No real flight with its plan is bundled, so this \
-         document does not measure one; `--plan FILE` with `--trajectory` or `--sample` runs yours.\n"
+         packet, given way to the planned speeds. No real flight is bundled with the plan it was flown to: the \
+         real flight below carries a plan traced from its own log, which tests the station against real motion \
+         but not against a real plan's errors. `--plan FILE` with `--trajectory` or `--sample` runs yours.\n"
     );
     out
 }
