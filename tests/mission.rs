@@ -151,3 +151,19 @@ fn the_mission_station_sends_the_3d_ctra_payload() {
     let r = run(json!({"synthetic": 1, "model": "3d-ctra,mission"}));
     assert_eq!(r[0].delivery, r[1].delivery);
 }
+
+#[test]
+fn the_series_carries_the_plan_only_when_a_mission_station_runs() {
+    let series = |model: &str| {
+        let s = Scenario::default()
+            .with(&json!({"synthetic": 3, "model": model, "series": true}))
+            .unwrap();
+        simulate(&mut Simulator::new(), &s).unwrap().series.unwrap()
+    };
+    let traced = FlightPlan::traced(&synthetic_flight(3).unwrap(), TRACE_TOLERANCE);
+    assert_eq!(
+        series("3d-ctra,mission").plan.as_deref(),
+        Some(traced.waypoints())
+    );
+    assert_eq!(series("3d-ctra").plan, None);
+}

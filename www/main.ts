@@ -4,7 +4,7 @@
 import { linkBudget, load, MODEL_LABELS, stationsOf, type SimReport, type SwarmParams } from './loratrack';
 import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
 import { boxplotChart, type BoxRow } from './charts/boxplot';
-import { MODEL_COLORS, TRUTH_COLOR } from './charts/colors';
+import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './charts/colors';
 import { errorOverTimeChart } from './charts/errorOverTime';
 import { linkBudgetCharts } from './charts/linkBudget';
 import { p75BySfChart } from './charts/p75BySf';
@@ -207,7 +207,8 @@ async function draw3d(r: SimReport): Promise<void> {
   const gateways = r.series?.gateways.length ?? 1;
   const far = drawn.farGateways ? `; orange cone${drawn.farGateways > 1 ? 's' : ''} at the edge: ${drawn.farGateways === gateways ? '' : 'the other '}gateway${drawn.farGateways > 1 ? 's' : ''} beyond the view, with ${drawn.farGateways > 1 ? 'their' : 'its'} distance` : '';
   const near = gateways - drawn.farGateways;
-  $('#trajectory-legend').innerHTML = `${swatch(TRUTH_COLOR)}true flight, ${stations}${near ? `; grey cone${near > 1 ? 's' : ''}: the gateway${near > 1 ? 's' : ''}` : ''}${far}. Grid squares ${drawn.gridStep >= 10 ? drawn.gridStep.toFixed(0) : drawn.gridStep.toFixed(1)} m.`;
+  const plan = r.series?.plan ? `${swatch(PLAN_COLOR)}flight plan (dashed), ` : '';
+  $('#trajectory-legend').innerHTML = `${swatch(TRUTH_COLOR)}true flight, ${plan}${stations}${near ? `; grey cone${near > 1 ? 's' : ''}: the gateway${near > 1 ? 's' : ''}` : ''}${far}. Grid squares ${drawn.gridStep >= 10 ? drawn.gridStep.toFixed(0) : drawn.gridStep.toFixed(1)} m.`;
 }
 
 function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): void {
@@ -451,7 +452,8 @@ for (const button of document.querySelectorAll<HTMLButtonElement>('[data-downloa
     if (name === 'trajectory') {
       const shot = trajectory3d?.snapshot(MIN_PNG_WIDTH);
       if (!shot) return downloadWhy(button, 'Nothing to save: the 3D view needs WebGL, which this browser does not offer.');
-      const legend = [{ color: TRUTH_COLOR, label: 'true flight' }, ...(store.report?.series?.models ?? []).map((m) => ({ color: MODEL_COLORS[m.model], label: MODEL_LABELS[m.model] }))];
+      const series = store.report?.series;
+      const legend = [{ color: TRUTH_COLOR, label: 'true flight' }, ...(series?.plan ? [{ color: PLAN_COLOR, label: 'flight plan (dashed)' }] : []), ...(series?.models ?? []).map((m) => ({ color: MODEL_COLORS[m.model], label: MODEL_LABELS[m.model] }))];
       downloadPicturePng(shot.canvas, shot.scale, `loratrack-${name}`, slide(caption(store.reportSettings)), legend);
       return downloadWhy(button, '');
     }

@@ -290,6 +290,11 @@ pub struct Series {
     pub gateway: [f64; 3],
     /// Every gateway's position x, y, z, m.
     pub gateways: Vec<[f64; 3]>,
+    /// The waypoints of the plan the mission station flies over this flight, m (only when a
+    /// mission station ran).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
+    pub plan: Option<Vec<[f64; 3]>>,
     /// Per model.
     pub models: Vec<ModelSeries>,
 }

@@ -481,6 +481,12 @@ impl Simulator {
                 z: axis(2),
                 gateway: gateways[0],
                 gateways,
+                plan: cfg
+                    .models
+                    .contains(&StationModel::Mission)
+                    .then(|| cfg.mission_plan(StationModel::Mission, f))
+                    .flatten()
+                    .map(|m| m.plan.waypoints().to_vec()),
                 models: series_models,
             }
         });

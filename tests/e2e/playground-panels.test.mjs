@@ -308,6 +308,9 @@ test('lesson "A flight plan beats any motion model": at SF11 the mission station
   const shown = Object.fromEntries((await shownP75(page, stations)).map((s) => [s.model, s.ci]));
   for (const m of stations.filter((m) => m !== 'mission')) assert.ok(shown.mission[1] < shown[m][0], `${m}: ${JSON.stringify(shown)}`);
   assert.match(await page.locator('#verdict-text').textContent(), /^Mission has the lowest p75, clearly/);
+  // The 3D view draws the plan the mission station flies.
+  await page.waitForSelector('#chart-trajectory canvas');
+  assert.match(await page.locator('#trajectory-legend').textContent(), /flight plan \(dashed\)/);
   assert.deepEqual(await axe(page), []);
   // The real flight has no plan here: the mission choices are disabled with the reason, and the
   // run falls back to 3D-CTRA instead of failing.
@@ -317,6 +320,7 @@ test('lesson "A flight plan beats any motion model": at SF11 the mission station
   assert.equal(await page.locator('#model').inputValue(), '3d-ctra');
   assert.equal(await page.locator('#model option[value="mission"]').isDisabled(), true);
   assert.match(await page.locator('#model-note').textContent(), /flight plan/);
+  assert.doesNotMatch(await page.locator('#trajectory-legend').textContent(), /flight plan/);
   assert.deepEqual(await axe(page), []);
   assert.deepEqual(problems, []);
 });

@@ -4,7 +4,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import type { SimReport } from '../loratrack';
-import { MODEL_COLORS, TRUTH_COLOR } from './colors';
+import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './colors';
 
 /** What a drawing shows, for its legend. */
 export interface Drawn {
@@ -133,6 +133,13 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
       const centre = box.getCenter(new THREE.Vector3());
       const size = box.getSize(new THREE.Vector3()).length() || 10;
       group.add(line(s.x, s.y, s.z, TRUTH_COLOR, centre));
+      if (s.plan) {
+        // The mission's plan: dashed, so it reads as intent rather than a track.
+        const plan = line(s.plan.map((w) => w[0]), s.plan.map((w) => w[1]), s.plan.map((w) => w[2]), PLAN_COLOR, centre);
+        plan.material = new THREE.LineDashedMaterial({ color: PLAN_COLOR, dashSize: size * 0.015, gapSize: size * 0.01 });
+        plan.computeLineDistances();
+        group.add(plan);
+      }
       for (const m of s.models) group.add(line(m.x, m.y, m.z, MODEL_COLORS[m.model], centre));
       const grid = new THREE.GridHelper(size * 1.2, 12, 0xcccccc, 0xeeeeee);
       grid.rotation.x = Math.PI / 2;

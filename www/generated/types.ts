@@ -851,6 +851,11 @@ gateway: [number, number, number],
  */
 gateways: Array<[number, number, number]>, 
 /**
+ * The waypoints of the plan the mission station flies over this flight, m (only when a
+ * mission station ran).
+ */
+plan?: Array<[number, number, number]>, 
+/**
  * Per model.
  */
 models: Array<ModelSeries>, };
