@@ -1,7 +1,8 @@
 //! `sweep --mission`: the mission-aware station beside every other station at every EU868 data
 //! rate, near and far (reference §16).
 
-use super::ApiError;
+use super::{sweep_senders, ApiError, SenderSweepReport};
+use crate::sim::DEFAULT_BURST;
 use crate::sim::{
     ModelChoice, ModelResult, PlanPace, Scenario, Simulator, StationModel, SyntheticChoice,
 };
@@ -89,6 +90,10 @@ pub struct MissionSweepReport {
     pub real: Vec<MissionRun>,
     /// Seeds pooled in each of `real`.
     pub real_seeds: u32,
+    /// Error-triggered sending with the mission station against periodic sending, also slowed
+    /// to the same airtime, over the synthetic set at SF7/250 kHz and 1 km (the drone mirrors the
+    /// mission station, plan and all).
+    pub senders: SenderSweepReport,
 }
 
 /// Runs `base` over the whole synthetic set (each flight's own plan) with every station of
@@ -116,12 +121,18 @@ pub fn sweep_mission(sim: &mut Simulator, base: &Scenario) -> Result<MissionSwee
         .iter()
         .map(|&(sf, bw)| mission_run(sim, &real, sf, bw, MISSION_DISTANCES[0]))
         .collect::<Result<_, _>>()?;
+    let mut senders = s.clone();
+    senders.station.model = ModelChoice::one(StationModel::Mission);
+    (senders.radio.sf, senders.radio.bw) = MISSION_RATES[0];
+    senders.channel.distance = MISSION_DISTANCES[0];
+    let senders = sweep_senders(sim, &senders, DEFAULT_BURST)?;
     Ok(MissionSweepReport {
         seed: base.run.seed,
         seeds: s.run.seeds.max(1),
         runs,
         real: real_runs,
         real_seeds: real.run.seeds,
+        senders,
     })
 }
 

@@ -219,7 +219,8 @@ fn text_row(cells: &[String], widths: &[isize]) -> String {
 }
 
 /// The rows of the sender trade-off, one line each (text and Markdown share them).
-fn sender_rows(r: &SenderSweepReport, markdown: bool) -> String {
+/// The rows of a sender sweep: Markdown, or plain text.
+pub(crate) fn sender_rows(r: &SenderSweepReport, markdown: bool) -> String {
     let p = &r.periodic;
     let row = |cells: [String; 11]| {
         if markdown {
@@ -436,7 +437,10 @@ fn setting_name(r: &SenderSweepReport) -> String {
 
 /// The points that use at most 80 % of the airtime with the worst ratio to equal-airtime
 /// periodic sending by `ratio` (p75 or p95).
-fn worst_within_80(r: &SenderSweepReport, ratio: fn(&SenderPoint) -> f64) -> Option<&SenderPoint> {
+pub(crate) fn worst_within_80(
+    r: &SenderSweepReport,
+    ratio: fn(&SenderPoint) -> f64,
+) -> Option<&SenderPoint> {
     r.points
         .iter()
         .filter(|p| p.airtime_share <= 0.8)
