@@ -1,6 +1,6 @@
 use crate::lora::LoraError;
 use crate::options::{OutOfRange, MAX_FILTER_STEPS, SEED};
-use crate::trajectory::TrajectoryError;
+use crate::trajectory::{PlanError, TrajectoryError};
 use core::fmt;
 
 /// Why a simulation could not run.
@@ -8,6 +8,8 @@ use core::fmt;
 pub enum SimError {
     /// The flight could not be read.
     Trajectory(TrajectoryError),
+    /// The mission plan could not be read (reference §16).
+    Plan(PlanError),
     /// A LoRa setting is invalid.
     Lora(LoraError),
     /// A setting outside its declared limits ([`crate::options`]).
@@ -33,6 +35,7 @@ impl fmt::Display for SimError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             SimError::Trajectory(e) => e.fmt(f),
+            SimError::Plan(e) => e.fmt(f),
             SimError::Lora(e) => e.fmt(f),
             SimError::OutOfRange(e) => e.fmt(f),
             SimError::Parameter(name, v, allowed) => write!(f, "{name} must be {allowed}, got {v:?}"),
@@ -61,6 +64,12 @@ impl std::error::Error for SimError {}
 impl From<TrajectoryError> for SimError {
     fn from(e: TrajectoryError) -> Self {
         SimError::Trajectory(e)
+    }
+}
+
+impl From<PlanError> for SimError {
+    fn from(e: PlanError) -> Self {
+        SimError::Plan(e)
     }
 }
 

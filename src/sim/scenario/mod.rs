@@ -621,7 +621,7 @@ impl FlightSettings {
                 "the synthetic flights carry their own plans: plan goes with trajectory or sample"
                     .into(),
             )),
-            Some(text) => Some(parse_plan(&text).map_err(|e| SimError::Source(e.to_string()))?),
+            Some(text) => Some(parse_plan(&text)?),
             None => None,
         };
         if plan.is_none()
