@@ -87,6 +87,24 @@ fn simulation(c: &mut Criterion) {
     g.finish();
 }
 
+/// The mission station's cost beside bounded 3D-CTRA's: the whole set, one station, cold (both
+/// run the same 3D-CTRA drone filter; the mission station also traces each flight's plan and
+/// runs its bounded fallback beside the plan).
+fn mission(c: &mut Criterion) {
+    let mut g = c.benchmark_group("mission");
+    g.sample_size(10);
+    for model in ["3d-ctra", "mission"] {
+        let p = set(
+            &Scenario::default(),
+            json!({"synthetic": "all", "model": model, "prediction": "bounded"}),
+        );
+        g.bench_function(format!("whole_set_cold/{model}"), |b| {
+            b.iter(|| simulate(&mut Simulator::new(), black_box(&p)).unwrap())
+        });
+    }
+    g.finish();
+}
+
 fn swarms(c: &mut Criterion) {
     let mut g = c.benchmark_group("swarm");
     g.sample_size(10);
@@ -102,5 +120,13 @@ fn swarms(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, airtime, propagation, filters, simulation, swarms);
+criterion_group!(
+    benches,
+    airtime,
+    propagation,
+    filters,
+    simulation,
+    mission,
+    swarms
+);
 criterion_main!(benches);
