@@ -139,6 +139,7 @@ fn a_lost_downlink_delays_the_change_by_exactly_one_uplink() {
             power_reduction_db: f.power_reduction_db,
             rssi_dbm: -100.0,
             snr_db: snr_db(-100.0, f.dr.bw()),
+            adr_ack_req: f.adr_ack_req,
         }
     };
     let first_change = |lost: &[usize]| {
@@ -182,6 +183,7 @@ fn constant_channel(mut network: Box<dyn AdrNetwork>, rssi: f64) -> Vec<DataRate
                 power_reduction_db: f.power_reduction_db,
                 rssi_dbm: rx,
                 snr_db: snr_db(rx, f.dr.bw()),
+                adr_ack_req: f.adr_ack_req,
             });
             if command.is_some() || f.adr_ack_req {
                 device.downlink(command);

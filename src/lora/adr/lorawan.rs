@@ -83,6 +83,7 @@ mod tests {
             power_reduction_db: reduction,
             rssi_dbm: snr - 117.0,
             snr_db: snr,
+            adr_ack_req: false,
         }
     }
 

@@ -122,6 +122,8 @@ pub struct UplinkReport {
     pub rssi_dbm: f64,
     /// SNR, dB ([`snr_db`](super::snr_db)).
     pub snr_db: f64,
+    /// The frame's `ADRACKReq` bit: the server answers it with a downlink, command or not.
+    pub adr_ack_req: bool,
 }
 
 /// A `LinkADRReq`: the data rate and power the device should use from its next uplink.

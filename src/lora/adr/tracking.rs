@@ -1,6 +1,6 @@
 //! A tracking-aware ADR: choose the data rate that keeps the station's newest packet youngest.
 
-use super::{AdrNetwork, LinkAdrReq, UplinkReport};
+use super::{AdrNetwork, LinkAdrReq, UplinkReport, ADR_ACK_DELAY, ADR_ACK_LIMIT};
 use crate::lora::{Channel, DataRate};
 use crate::math::normal_cdf;
 use std::collections::VecDeque;
@@ -126,6 +126,9 @@ pub struct TrackingAdr {
     settings: Option<(DataRate, f64)>,
     /// The settings last asked for, until a frame shows whether they were applied.
     commanded: Option<(DataRate, f64)>,
+    /// The frame counter of the last uplink the network answered with a downlink: the device's
+    /// back-off counts from the one after it.
+    answered: Option<u32>,
 }
 
 impl TrackingAdr {
@@ -140,27 +143,37 @@ impl TrackingAdr {
             next_fcnt: 0,
             settings: None,
             commanded: None,
+            answered: None,
         }
     }
 
     fn record(&mut self, up: &UplinkReport) {
         let now = (up.dr, up.power_reduction_db);
-        let before = self.settings.unwrap_or(now);
-        // Frames lost in a gap went at the old settings if the device still uses them; if it
-        // has moved, mostly at what the network last asked for (a back-off only comes after
-        // 64 + 32 silent frames).
-        let (dr, reduction) = if now == before {
-            before
-        } else {
-            self.commanded.unwrap_or(before)
+        // Frames lost in a gap went at the settings the device used after the last frame heard:
+        // the old ones if it still uses them, else mostly what the network last asked for.
+        // Before the first frame the network knows nothing; the fastest rate is the guess that
+        // claims least (a frame lost there says little about a slower rate's link).
+        let start = match self.settings {
+            Some(before) if before == now => before,
+            Some(before) => self.commanded.unwrap_or(before),
+            None => (DataRate::DR6, 0.0),
         };
         self.commanded = None;
-        for _ in self.next_fcnt..up.fcnt {
-            self.frames.push_back(Frame {
-                dr,
-                power_reduction_db: reduction,
-                rssi_dbm: None,
-            });
+        for fcnt in self.next_fcnt..up.fcnt {
+            let frame = if up.dr < start.0 {
+                Frame {
+                    dr: self.backed_off(start.0, up, fcnt),
+                    power_reduction_db: 0.0,
+                    rssi_dbm: None,
+                }
+            } else {
+                Frame {
+                    dr: start.0,
+                    power_reduction_db: start.1,
+                    rssi_dbm: None,
+                }
+            };
+            self.frames.push_back(frame);
         }
         self.frames.push_back(Frame {
             dr: up.dr,
@@ -172,6 +185,29 @@ impl TrackingAdr {
         }
         self.settings = Some(now);
         self.next_fcnt = up.fcnt.wrapping_add(1);
+    }
+
+    /// The data rate lost frame `fcnt` most likely went at when the device arrives slower than
+    /// `start` without being told to: it backed off on its own ([`AdrDevice::no_downlink`]), one
+    /// rate per `ADR_ACK_DELAY` frames once `ADR_ACK_LIMIT + ADR_ACK_DELAY` went unanswered since
+    /// the last downlink the network sent. Counting back from `up` puts the frames just before it
+    /// at its rate and earlier ones faster, never faster than `start`. Without this the whole gap
+    /// counted as lost at the slow rate it ended on (at 7 km from DR6, 166 frames "lost at DR3"
+    /// for one heard), and the estimate sank ~8 dB below the link.
+    ///
+    /// [`AdrDevice::no_downlink`]: super::AdrDevice::no_downlink
+    fn backed_off(&self, start: DataRate, up: &UplinkReport, fcnt: u32) -> DataRate {
+        let reset = self.answered.map_or(0, |a| a.wrapping_add(1));
+        let steps = |f: u32| {
+            let silent = f.wrapping_sub(reset);
+            match silent.checked_sub(ADR_ACK_LIMIT) {
+                Some(past) if past >= ADR_ACK_DELAY => past / ADR_ACK_DELAY,
+                _ => 0,
+            }
+        };
+        let faster_by = steps(up.fcnt).saturating_sub(steps(fcnt));
+        let index = (u32::from(up.dr.index()) + faster_by).min(u32::from(start.index()));
+        DataRate::ALL[index as usize]
     }
 
     /// The maximum-likelihood mean full-power RSSI, dBm, of the frames in the window.
@@ -242,6 +278,9 @@ impl AdrNetwork for TrackingAdr {
             power_reduction_db: 0.0,
         });
         self.commanded = command.map(|c| (c.dr, c.power_reduction_db));
+        if command.is_some() || up.adr_ack_req {
+            self.answered = Some(up.fcnt);
+        }
         command
     }
 }
@@ -263,7 +302,29 @@ mod tests {
             power_reduction_db: 0.0,
             rssi_dbm: rssi,
             snr_db: rssi + 114.0,
+            adr_ack_req: false,
         }
+    }
+
+    #[test]
+    fn a_gap_that_ends_at_a_slower_rate_is_counted_as_the_devices_own_back_off() {
+        // At 7 km from DR6 nothing is heard until the device, unanswered, has backed off to DR3:
+        // 64 + 32 silent frames, then one rate per 32 more (frame 160 is its first at DR3).
+        let (toa, interval) = table();
+        let mut adr = TrackingAdr::new(toa, interval, 4.0);
+        adr.on_uplink(&up(166, 3, -125.0));
+        // The window keeps the last TRACKING_WINDOW frames: lost frames 71..=165 and the one heard.
+        assert_eq!(adr.frames.len(), TRACKING_WINDOW);
+        let lost: Vec<u8> = adr.frames.iter().take(95).map(|f| f.dr.index()).collect();
+        assert!(adr.frames.iter().take(95).all(|f| f.rssi_dbm.is_none()));
+        // Counted back from the frame heard: DR3 from 160, DR4 from 128, DR5 from 96, DR6 before.
+        let at = |dr: u8| lost.iter().filter(|&&d| d == dr).count();
+        assert_eq!((at(6), at(5), at(4), at(3)), (25, 32, 32, 6), "{lost:?}");
+        // A gap at the rate the device already had stays at that rate.
+        let mut steady = TrackingAdr::new(toa, interval, 4.0);
+        steady.on_uplink(&up(0, 3, -120.0));
+        steady.on_uplink(&up(10, 3, -121.0));
+        assert!(steady.frames.iter().all(|f| f.dr.index() == 3));
     }
 
     #[test]

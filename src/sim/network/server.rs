@@ -149,6 +149,7 @@ impl Network {
             power_reduction_db: frame.power_reduction_db,
             rssi_dbm,
             snr_db: snr_db(rssi_dbm, frame.dr.bw()),
+            adr_ack_req: frame.adr_ack_req,
         });
         (command.is_some() || frame.adr_ack_req, command)
     }
