@@ -201,7 +201,7 @@ fn a_plan_crosses_the_boundary_and_a_mission_station_needs_one() {
         Some("mission")
     );
     let e = run(None).unwrap_err();
-    assert!(error_message(e).contains("needs the drone's plan"));
+    assert!(error_message(e).contains("needs the plan the drone flies"));
     let e = run(Some("0,0,20\n1,zero,20\n")).unwrap_err();
     assert!(error_message(e).contains("plan line 2"));
 }

@@ -630,7 +630,7 @@ impl FlightSettings {
             && models.models().contains(&StationModel::Mission)
         {
             return Err(SimError::Source(
-                "the mission station needs the drone's plan: give plan (a CSV of x,y,z[,speed] or a QGroundControl .plan), or fly the synthetic flights, which carry their own"
+                "the mission station needs the plan the drone flies: give plan (a CSV of x,y,z[,speed] or a QGroundControl .plan), or fly the synthetic flights, which carry their own"
                     .into(),
             ));
         }
