@@ -108,7 +108,7 @@ pub fn mission_markdown(r: &MissionSweepReport, base: &Scenario) -> String {
         r.seeds
     );
     s += &format!(
-        "Setting: the whole synthetic set (30 flights, 44 min), each flight flying its own plan, periodic sending at \
+        "Setting: the whole synthetic set (30 flights, 44 min), each flight with the plan traced from it, periodic sending at \
          the 1 % duty cycle, no LoRaWAN overhead, shadowing 4 dB, {}. Stations: {} (`{}`), the single-model \
          ones and the IMM with {} prediction. The mission station (`--model mission`, `src/sim/station/mission.rs`, \
          reference §16) receives the 12-byte 3D-CTRA packet, projects it onto the plan and flies the plan from there: \
@@ -116,8 +116,9 @@ pub fn mission_markdown(r: &MissionSweepReport, base: &Scenario) -> String {
          plan closing over {OFFSET_TIME} s; a packet more than {} m off the plan hands over to a bounded 3D-CTRA \
          station until one is back on it. Its covariance grows by {PACE_SIGMA} m/s × the time since the packet in \
          every direction. `packet pace` is the same station with `--plan-pace packet`: the packet's speed \
-         throughout, the plan's speeds ignored (a drone that does not keep its plan's timing). `best other` is the other station with the lowest p75 at that setting; cover95 and NEES are \
-         the mission station's (0.95 and 3 when its covariance is honest).\n\n",
+         throughout, the plan's speeds ignored (a drone that does not keep its plan's timing). `best other` is the other station with the lowest p75 at that setting; interval, received, \
+         cover95 and NEES are the mission station's (its 12-byte packet: DR's 9-byte and CTRA+'s 11-byte packets go \
+         out more often; cover95 0.95 and NEES 3 when its covariance is honest).\n\n",
         seeds(r),
         labels(&r.runs).join(", "),
         MISSION_MODELS,
