@@ -74,14 +74,18 @@ pub fn clean_message(msg: &str) -> String {
     let mut out = String::with_capacity(msg.len().min(1024));
     let mut quote: Option<char> = None;
     let mut quoted = 0usize;
+    let mut previous = ' ';
     for c in msg.chars() {
+        // An apostrophe after a letter or digit (the drone's, LoRa's) opens no quote.
+        let opens = c == '`' || (c == '\'' && !previous.is_alphanumeric());
+        previous = c;
         match quote {
             Some(q) if c == q => {
                 quote = None;
                 out.push(c);
                 continue;
             }
-            None if c == '\'' || c == '`' => {
+            None if opens => {
                 quote = Some(c);
                 quoted = 0;
                 out.push(c);
@@ -121,5 +125,11 @@ mod tests {
         ));
         assert_eq!(m, format!("got '{}…' and `bbbbbbbbbb`", "a".repeat(80)));
         assert_eq!(clean_message("it's fine"), "it's fine");
+        // An apostrophe is no quote: a long message with one is printed whole...
+        let long = format!("the drone's plan {}", "x".repeat(200));
+        assert_eq!(clean_message(&long), long);
+        // ...while quoted input after it is still cut.
+        let m = clean_message(&format!("the drone's file '{}'", "c".repeat(200)));
+        assert_eq!(m, format!("the drone's file '{}…'", "c".repeat(80)));
     }
 }
