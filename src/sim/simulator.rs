@@ -11,8 +11,8 @@ use super::report::{Delivery, ModelSeries, RunConfig, Series, SimReport};
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::Schedule;
 use super::station::{
-    new_tracker, track_station, Estimate, FlightChains, Prediction, StationModel, StationSetup,
-    StationTrack, MAX_GRIDS,
+    new_tracker, track_station, Estimate, FlightChains, MissionPlan, Prediction, StationModel,
+    StationSetup, StationTrack, MAX_GRIDS,
 };
 use super::SimError;
 use crate::lora::Channel;
@@ -331,6 +331,8 @@ impl Simulator {
         };
         let mut results = Vec::new();
         let mut series_models = Vec::new();
+        // The first flight's plan, for the series, when a mission station runs.
+        let mut series_plan = None;
         let mut delivery = Delivery::default();
         let base = cfg.station_setup(0.0);
         for &model in &cfg.models {
@@ -338,6 +340,12 @@ impl Simulator {
             let (toa, interval) = (start.current().time_on_air, start.current().interval);
             cfg.check_heartbeat(interval)?;
             let setup = cfg.setup_for(model, StationSetup { interval, ..base });
+            // Each flight's plan (a mission station's only), traced once for every seed.
+            let plans: Vec<Option<MissionPlan>> =
+                flights.iter().map(|f| cfg.mission_plan(model, f)).collect();
+            if let Some(first) = &plans[0] {
+                series_plan = Some(first.plan.waypoints().to_vec());
+            }
             let mut pooled = Pooled::default();
             let mut counted = Delivery::default();
             let mut recoveries = 0;
@@ -377,7 +385,7 @@ impl Simulator {
                 let network = || Network::of(cfg, s.channel.distance, vec![start.clone()]);
                 let one = |i: usize, net: &mut Network| -> Result<FlightRun, SimError> {
                     let (flight, drone) = (&flight_set[i], &drone_set[i]);
-                    let plan = cfg.mission_plan(model, flight);
+                    let plan = plans[i].as_ref();
                     let now = net.radios[0].current();
                     let rule = s.sending.rule(duty_cycle, now.time_on_air, flight.t[0])?;
                     let gateways = net.gateways_at([flight.pos[0][0], flight.pos[0][1]]);
@@ -387,7 +395,7 @@ impl Simulator {
                         0,
                         flight,
                         Estimates::Stored(drone),
-                        s.sending.sender(model, setup, plan.as_ref()),
+                        s.sending.sender(model, setup, plan),
                         rule,
                         &gateways,
                         &net.channel,
@@ -408,7 +416,7 @@ impl Simulator {
                             with_series,
                         ),
                         None => {
-                            let mut tracker = new_tracker(model, setup, plan.as_ref());
+                            let mut tracker = new_tracker(model, setup, plan);
                             track_station(
                                 flight,
                                 tracker.as_mut(),
@@ -481,12 +489,7 @@ impl Simulator {
                 z: axis(2),
                 gateway: gateways[0],
                 gateways,
-                plan: cfg
-                    .models
-                    .contains(&StationModel::Mission)
-                    .then(|| cfg.mission_plan(StationModel::Mission, f))
-                    .flatten()
-                    .map(|m| m.plan.waypoints().to_vec()),
+                plan: series_plan,
                 models: series_models,
             }
         });
