@@ -83,7 +83,9 @@ export class SimulationPool {
 export function merge(reports: SimReport[], models: string[], model: SimReport['config']['model']): SimReport {
   const results = models.map((m) => reports.flatMap((r) => r.results).find((x) => x.model === m)!);
   const base = reports[0];
-  const series = base.series && { ...base.series, models: models.map((m) => reports.flatMap((r) => r.series?.models ?? []).find((s) => s.model === m)!) };
+  // The mission's plan comes with whichever group ran the mission station.
+  const plan = reports.map((r) => r.series?.plan).find((p) => p !== undefined);
+  const series = base.series && { ...base.series, ...(plan ? { plan } : {}), models: models.map((m) => reports.flatMap((r) => r.series?.models ?? []).find((s) => s.model === m)!) };
   const sum = (f: (r: SimReport['results'][number]) => number) => results.reduce((a, r) => a + f(r), 0);
   const packetsSent = sum((r) => r.packetsSent);
   const packetsReceived = sum((r) => r.packetsReceived);

@@ -171,6 +171,9 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
     const r = cli.results.find((x) => x.model === m);
     assert.equal(number(await cell(page, m, 'p75')).toFixed(2), r.error3d.p75.toFixed(2), m);
   }
+  // The 3D view draws the plan, whichever worker ran the mission station.
+  await page.waitForSelector('#chart-trajectory canvas');
+  assert.match(await page.locator('#trajectory-legend').textContent(), /flight plan \(dashed\)/);
   assert.deepEqual(await axe(page), []);
 
   const bad = join(dir, 'bad-plan.csv');

@@ -23,3 +23,12 @@ test('merged stations come in the request order and the network totals add up ev
   expect(m.config.model).toBe('all');
   expect(m.config.models).toEqual(['dr', 'ctra-plus', '3d-ctra']);
 });
+
+test('the mission plan is kept whichever worker ran the mission station', () => {
+  const a = report([result('3d-ctra', 26, 26)]);
+  const b = report([result('mission', 26, 26)]);
+  const plan = [[0, 0, 10], [100, 0, 10]] as [number, number, number][];
+  (b.series as { plan?: typeof plan }).plan = plan;
+  expect(merge([a, b], ['3d-ctra', 'mission'], '3d-ctra,mission').series?.plan).toEqual(plan);
+  expect(merge([a], ['3d-ctra'], '3d-ctra').series?.plan).toBeUndefined();
+});
