@@ -10,6 +10,6 @@ mod ukf;
 pub use cholesky::cholesky_lower;
 pub(crate) use cholesky::forward_substitute;
 pub use noise::{measurement_noise, process_noise, PAPER_Q, PAPER_R_DIAGONAL};
-pub use sigma_points::{SigmaParams, SigmaPoints, SigmaWeights};
+pub use sigma_points::{SigmaParams, SigmaPoints, SigmaWeights, UNWRAPPED_SPREAD};
 pub use steady_state::steady_state_covariance;
 pub use ukf::Ukf;

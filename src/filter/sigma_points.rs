@@ -1,9 +1,17 @@
 //! Scaled sigma points (van der Merwe, "Sigma-Point Kalman Filters", 2004, §3.2).
 
 use crate::math::wrap_angle;
-use crate::models::{Heading, MotionModel};
+use crate::models::{Heading, MotionModel, ANGLES, PHI, Z};
 use nalgebra::{SMatrix, SVector};
 use serde::{Deserialize, Serialize};
+
+/// The rows a [linear tail](MotionModel::LINEAR_TAIL) leaves nonlinear: x, y and z.
+const POSITION_ROWS: usize = Z + 1;
+
+/// How far (rad) an angle's sigma points may lie from the centre for
+/// [`SigmaPoints::kinematic_moments`]: below π with a margin, so that no residual wraps, even
+/// after the rounding of the mean.
+pub const UNWRAPPED_SPREAD: f64 = 3.0;
 
 /// Scaling parameters of the sigma points: lambda = alpha² (n + kappa) − n.
 ///
@@ -169,6 +177,99 @@ impl<const N: usize> SigmaPoints<N> {
         sum
     }
 
+    /// The mean and covariance of points propagated (by [`Self::propagated`]) through a model
+    /// with a [linear tail](MotionModel::LINEAR_TAIL) `rates`, from the covariance `p` the
+    /// points were drawn with (`l` its Cholesky factor, `dt` the step): equal to
+    /// [`Self::mean`] and [`Self::covariance`] up to rounding, for a third of the work.
+    ///
+    /// Only x, y and z need the points. A point's offset from the centre in the linear rows is
+    /// exactly γ F Lₖ (F the tail's linear map), so those rows' weighted mean is the centre's,
+    /// their covariance is 2wγ² F L Lᵀ Fᵀ = F P Fᵀ, and their cross-covariance with the
+    /// position is w Σₖ (χₖ⁺ − χₖ⁻)ₚ (γ F Lₖ)ᵀ. The position rows' mean and covariance are
+    /// summed as [`Self::mean`] and [`Self::covariance`] sum them, bit for bit.
+    ///
+    /// `None` when an angle's points reach [`UNWRAPPED_SPREAD`] from the centre (wrapping would
+    /// then change the residuals: use the general sums), or when `angles` are not θ and φ.
+    #[allow(clippy::too_many_arguments)]
+    pub fn kinematic_moments(
+        &self,
+        p: &SMatrix<f64, N, N>,
+        l: &SMatrix<f64, N, N>,
+        rates: &[(usize, usize)],
+        dt: f64,
+        w: &SigmaWeights,
+        angles: &[usize],
+    ) -> Option<(SVector<f64, N>, SMatrix<f64, N, N>)> {
+        if angles != ANGLES || N <= PHI {
+            return None;
+        }
+        // e = γ F L: column k is point k's offset in the linear rows (its position rows unused).
+        let mut e = l * w.gamma;
+        for &(i, j) in rates {
+            for k in 0..N {
+                e[(i, k)] += dt * e[(j, k)];
+            }
+        }
+        let unwrapped = |a: &usize| (0..N).all(|k| e[(*a, k)].abs() < UNWRAPPED_SPREAD);
+        if !angles.iter().all(unwrapped) {
+            return None;
+        }
+        let mut mean = self.center;
+        for &a in angles {
+            mean[a] = wrap_angle(mean[a]);
+        }
+        for r in 0..POSITION_ROWS {
+            let mut sum = self.center[r] * w.mean0;
+            for k in 0..N {
+                sum += (self.plus[(r, k)] + self.minus[(r, k)]) * w.other;
+            }
+            mean[r] = sum;
+        }
+        let mut cov = *p;
+        for &(i, j) in rates {
+            for c in 0..N {
+                cov[(i, c)] += dt * cov[(j, c)];
+            }
+            for r in 0..N {
+                cov[(r, i)] += dt * cov[(r, j)];
+            }
+        }
+        let position = |v: &SVector<f64, N>| -> [f64; POSITION_ROWS] {
+            core::array::from_fn(|r| v[r] - mean[r])
+        };
+        let d0 = position(&self.center);
+        let mut pp = [[0.0; POSITION_ROWS]; POSITION_ROWS];
+        let mut mm = [[0.0; POSITION_ROWS]; POSITION_ROWS];
+        let mut cross = [[0.0; N]; POSITION_ROWS];
+        for k in 0..N {
+            let a = position(&self.plus.column(k).into_owned());
+            let b = position(&self.minus.column(k).into_owned());
+            for j in 0..POSITION_ROWS {
+                for i in j..POSITION_ROWS {
+                    pp[j][i] += a[i] * a[j];
+                    mm[j][i] += b[i] * b[j];
+                }
+                let spread = a[j] - b[j];
+                for t in POSITION_ROWS..N {
+                    cross[j][t] += spread * e[(t, k)];
+                }
+            }
+        }
+        for j in 0..POSITION_ROWS {
+            for i in j..POSITION_ROWS {
+                let v = d0[i] * d0[j] * w.cov0 + (pp[j][i] + mm[j][i]) * w.other;
+                cov[(i, j)] = v;
+                cov[(j, i)] = v;
+            }
+            for t in POSITION_ROWS..N {
+                let v = cross[j][t] * w.other;
+                cov[(t, j)] = v;
+                cov[(j, t)] = v;
+            }
+        }
+        Some((mean, cov))
+    }
+
     /// Residual of one point from `mean`, with angles wrapped to (−pi, pi].
     pub fn residual(
         point: &SVector<f64, N>,
@@ -253,6 +354,72 @@ mod tests {
             }
         )
         .is_none());
+    }
+
+    /// The moments [`SigmaPoints::kinematic_moments`] finds, against the general sums, for a
+    /// model and a covariance with correlations everywhere.
+    fn closed_form_against_sums<const N: usize, M: MotionModel<N>>(model: M, scale: f64) {
+        let x =
+            SVector::<f64, N>::from_fn(|i, _| [5.0, -2.0, 40.0, 3.0, 0.2, 8.0, 0.5, 0.3, -0.1][i]);
+        let a = SMatrix::<f64, N, N>::from_fn(|i, j| ((i * 7 + j * 3) % 11) as f64 / 11.0 - 0.4);
+        let p = (a * a.transpose() + SMatrix::identity()) * scale;
+        let l = crate::cholesky_lower(&p).unwrap();
+        let w = SigmaWeights::new(N, SigmaParams::default()).unwrap();
+        let points = SigmaPoints::propagated(&model, &x, &l, w.gamma, 0.4);
+        let rates = M::LINEAR_TAIL.unwrap();
+        let (mean, cov) = points
+            .kinematic_moments(&p, &l, rates, 0.4, &w, ANGLES)
+            .expect("the points stay within the unwrapped spread");
+        let sum_mean = points.mean(&w, ANGLES);
+        let sum_cov = points.covariance(&sum_mean, ANGLES, &w);
+        for i in 0..N {
+            assert!((mean[i] - sum_mean[i]).abs() < 1e-12, "mean {i}");
+            for j in 0..N {
+                let tolerance = 1e-13 * (1.0 + sum_cov[(i, j)].abs());
+                assert!(
+                    (cov[(i, j)] - sum_cov[(i, j)]).abs() < tolerance,
+                    "cov ({i}, {j}): {} vs {}",
+                    cov[(i, j)],
+                    sum_cov[(i, j)]
+                );
+            }
+        }
+        // The position rows are summed in the same order as the general sums: the same bits.
+        for i in 0..3 {
+            assert_eq!(mean[i], sum_mean[i]);
+            for j in 0..3 {
+                assert_eq!(cov[(i, j)], sum_cov[(i, j)]);
+            }
+        }
+    }
+
+    #[test]
+    fn closed_form_moments_equal_the_sums_to_rounding() {
+        closed_form_against_sums::<6, _>(crate::Dr, 0.01);
+        closed_form_against_sums::<8, _>(crate::CtraPlus, 0.01);
+        closed_form_against_sums::<9, _>(crate::Ctra3d, 0.01);
+        closed_form_against_sums::<9, _>(crate::Ctra3d, 0.2);
+    }
+
+    #[test]
+    fn closed_form_moments_step_aside_when_an_angle_could_wrap() {
+        let x = SVector::<f64, 9>::from([0.0, 0.0, 0.0, 3.0, 0.0, 5.0, 0.0, 0.0, 0.0]);
+        let p = SMatrix::<f64, 9, 9>::identity() * 4.0;
+        let l = crate::cholesky_lower(&p).unwrap();
+        let w = SigmaWeights::new(9, SigmaParams::default()).unwrap();
+        let points = SigmaPoints::propagated(&crate::Ctra3d, &x, &l, w.gamma, 0.1);
+        let rates = crate::Ctra3d::LINEAR_TAIL.unwrap();
+        // γ·2 rad = 3.46 rad: the points of θ reach past UNWRAPPED_SPREAD.
+        assert!(points
+            .kinematic_moments(&p, &l, rates, 0.1, &w, ANGLES)
+            .is_none());
+        // Without θ and φ as the angles the closed form makes no claim.
+        let small = SMatrix::<f64, 9, 9>::identity() * 1e-4;
+        let l = crate::cholesky_lower(&small).unwrap();
+        let points = SigmaPoints::propagated(&crate::Ctra3d, &x, &l, w.gamma, 0.1);
+        assert!(points
+            .kinematic_moments(&small, &l, rates, 0.1, &w, &[])
+            .is_none());
     }
 
     #[test]

@@ -80,10 +80,18 @@ impl<const N: usize> Ukf<N> {
     /// Prediction step: propagates the sigma points through `model` over `dt` seconds,
     /// recombines them and adds Q·dt.
     pub fn predict<M: MotionModel<N>>(&mut self, model: &M, dt: f64) {
-        let l = self.sqrt_covariance();
+        let (l, exact) = self.factor_covariance();
         let points = SigmaPoints::propagated(model, &self.x, &l, self.weights.gamma, dt);
-        let mean = points.mean(&self.weights, self.angles);
-        let cov = points.covariance(&mean, self.angles, &self.weights);
+        let closed_form = match M::LINEAR_TAIL {
+            Some(rates) if exact => {
+                points.kinematic_moments(&self.p, &l, rates, dt, &self.weights, self.angles)
+            }
+            _ => None,
+        };
+        let (mean, cov) = closed_form.unwrap_or_else(|| {
+            let mean = points.mean(&self.weights, self.angles);
+            (mean, points.covariance(&mean, self.angles, &self.weights))
+        });
         self.x = mean;
         self.p = cov + self.q * dt.abs();
         self.defer_check();
@@ -181,18 +189,27 @@ impl<const N: usize> Ukf<N> {
 
     /// Lower Cholesky factor of P, repairing P first if needed.
     fn sqrt_covariance(&mut self) -> SMatrix<f64, N, N> {
+        self.factor_covariance().0
+    }
+
+    /// Lower Cholesky factor of P, repairing P first if needed, and whether it is one (`false`:
+    /// the repair failed and the factor is the square root of P's diagonal only).
+    fn factor_covariance(&mut self) -> (SMatrix<f64, N, N>, bool) {
         if let Some((p, l)) = &self.factor {
             if *p == self.p {
-                return *l;
+                return (*l, true);
             }
         }
         if let Some(l) = cholesky_lower(&self.p) {
-            return l;
+            return (l, true);
         }
         self.repair();
         match cholesky_lower(&self.p) {
-            Some(l) => l,
-            None => SMatrix::from_diagonal(&self.p.diagonal().map(|d| d.abs().sqrt())),
+            Some(l) => (l, true),
+            None => (
+                SMatrix::from_diagonal(&self.p.diagonal().map(|d| d.abs().sqrt())),
+                false,
+            ),
         }
     }
 

@@ -33,6 +33,9 @@ impl MotionModel<9> for Ctra3d {
 
     const SHARES_HEADING: bool = true;
 
+    const LINEAR_TAIL: Option<&'static [(usize, usize)]> =
+        Some(&[(THETA, OMEGA), (PHI, PSI), (V, A)]);
+
     fn propagate(&self, s: &SVector<f64, 9>, dt: f64) -> SVector<f64, 9> {
         self.propagate_with(s, &Heading::of(s), dt)
     }

@@ -26,6 +26,8 @@ impl MotionModel<8> for CtraPlus {
 
     const SHARES_HEADING: bool = true;
 
+    const LINEAR_TAIL: Option<&'static [(usize, usize)]> = Some(&[(THETA, OMEGA), (V, A)]);
+
     fn propagate(&self, s: &SVector<f64, 8>, dt: f64) -> SVector<f64, 8> {
         self.propagate_with(s, &Heading::of(s), dt)
     }

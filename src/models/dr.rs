@@ -22,6 +22,8 @@ impl MotionModel<6> for Dr {
 
     const SHARES_HEADING: bool = true;
 
+    const LINEAR_TAIL: Option<&'static [(usize, usize)]> = Some(&[]);
+
     fn propagate(&self, s: &SVector<f64, 6>, dt: f64) -> SVector<f64, 6> {
         self.propagate_with(s, &Heading::of(s), dt)
     }

@@ -70,6 +70,16 @@ pub trait MotionModel<const N: usize> {
     /// and φ at [`THETA`] and [`PHI`] must not.
     const SHARES_HEADING: bool = false;
 
+    /// The kinematic part of the model, when it has one: every component past [`Z`] advances
+    /// linearly, component i by dt · component j for each listed (i, j) (θ by ω, φ by ψ, v by a;
+    /// the angles wrapped into (−π, π]) and the rest stay constant; the rates j are themselves
+    /// constant. Only x, y and z are nonlinear. The filter then takes the linear rows' mean and
+    /// covariance in closed form, F P Fᵀ, and the sigma points only for the position rows
+    /// ([`SigmaPoints::kinematic_moments`](crate::SigmaPoints::kinematic_moments)). `None` (the
+    /// default) claims nothing; the paper's three models declare theirs, checked against
+    /// [`Self::propagate`] by a test.
+    const LINEAR_TAIL: Option<&'static [(usize, usize)]> = None;
+
     /// The state after `dt` seconds (`dt` may be any finite value; the station uses dt ≥ 0).
     fn propagate(&self, state: &SVector<f64, N>, dt: f64) -> SVector<f64, N>;
 
@@ -92,4 +102,49 @@ pub trait MotionModel<const N: usize> {
     /// that the uncertainty of the tilt rate dies out with the tilt rate itself (a bounded
     /// station; the paper decays the state only). Models without psi leave it unchanged.
     fn decay_tilt_rate_covariance(&self, _p: &mut SMatrix<f64, N, N>, _eta: f64) {}
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::wrap_angle;
+
+    /// Checks a model's [`MotionModel::LINEAR_TAIL`] against its propagation on states with
+    /// angles near ±π (so that the wrap is exercised), manoeuvres and steps of either sign.
+    fn tail_claim_holds<const N: usize, M: MotionModel<N>>(model: M) {
+        let rates = M::LINEAR_TAIL.expect("the paper's models declare their linear tail");
+        for (n, dt) in [0.1, 2.5, -0.7].into_iter().enumerate() {
+            let mut s = SVector::<f64, N>::from_fn(|i, _| {
+                [12.0, -3.0, 50.0, 3.1, -1.5, 9.0, 0.8, 0.4, -0.3][i] * (1.0 + 0.1 * n as f64)
+            });
+            for &i in ANGLES {
+                s[i] = wrap_angle(s[i]);
+            }
+            let out = model.propagate(&s, dt);
+            for i in Z + 1..N {
+                let expected = match rates.iter().find(|&&(row, _)| row == i) {
+                    Some(&(_, rate)) => s[i] + dt * s[rate],
+                    None => s[i],
+                };
+                let expected = if ANGLES.contains(&i) {
+                    wrap_angle(expected)
+                } else {
+                    expected
+                };
+                assert!(
+                    (out[i] - expected).abs() < 1e-12,
+                    "{:?} component {i}, dt {dt}: {} vs {expected}",
+                    M::KIND,
+                    out[i]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_declared_linear_tails_match_the_propagation() {
+        tail_claim_holds::<6, _>(Dr);
+        tail_claim_holds::<8, _>(CtraPlus);
+        tail_claim_holds::<9, _>(Ctra3d);
+    }
 }
