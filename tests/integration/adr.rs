@@ -2,7 +2,6 @@
 //! LoRaWAN network settles where its margin says and never slows the rate itself, a lost downlink
 //! delays a change by exactly one uplink, a constant channel never makes ADR oscillate, and where
 //! a naive rule flips with the shadowing the tracking-aware one holds still.
-#![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::api::simulate;
 use loratrack::{

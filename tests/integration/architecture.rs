@@ -1,7 +1,6 @@
 //! The simulation's files form a pipeline, not a web: no file in `src/sim` imports, directly or
 //! through others (re-exports included), a file that imports it back; and the core never
 //! imports the JavaScript bindings.
-#![cfg(not(target_arch = "wasm32"))]
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};

@@ -1,6 +1,5 @@
 //! The payload codec: round trip within half a quantisation step, saturation, and no input that
 //! makes the decoder fail other than by a length error (reference §5).
-#![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::{decode, encode, wrap_angle, ModelKind, FIELDS};
 use proptest::prelude::*;

@@ -1,6 +1,5 @@
 //! The UKF over long, noisy flights: the covariance must stay symmetric positive definite and
 //! every number finite for 10^5 steps per model (reference §4), and the filter must actually track.
-#![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::{
     measurement_noise, process_noise, Ctra3d, CtraPlus, Dr, MotionModel, Rng, SigmaParams, Ukf,

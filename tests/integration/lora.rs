@@ -1,6 +1,5 @@
 //! Time on air against the paper's Table II (with reference §3's two corrections) and independent
 //! reference values; the channel's delivery statistics against the Gaussian tail.
-#![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::api::{airtime, AirtimeParams};
 use loratrack::{

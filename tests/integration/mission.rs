@@ -1,7 +1,6 @@
 //! The mission-aware station (reference §16): what it claims on the synthetic set, that a plan
 //! given as a file is read and followed, that it falls back to bounded 3D-CTRA off its plan, and
 //! that the settings it needs are checked first.
-#![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::api::{clean_message, simulate, swarm};
 use loratrack::{

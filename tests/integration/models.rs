@@ -1,7 +1,6 @@
 //! The closed forms of DR, CTRA+ and 3D-CTRA against an accurate numerical integration of the
 //! ODE of reference §3, everywhere in the required envelope and especially at and near the special
 //! cases omega = 0, psi = 0, omega = ±psi.
-#![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::{Ctra3d, CtraPlus, Dr, MotionModel};
 use nalgebra::SVector;

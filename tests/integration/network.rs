@@ -1,7 +1,6 @@
 //! One network simulation: `simulate` and a one-drone `swarm` are the same event loop, more
 //! gateways never deliver less, the network server keeps one copy of each packet, ADR runs in
 //! swarms with its downlinks counted, and every drone reports its radio's charge.
-#![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::api::{simulate, swarm};
 use loratrack::{Scenario, Simulator};

@@ -1,6 +1,5 @@
 //! Regional plans (reference §14): each plan's data rates and limits as LoRaWAN Regional
 //! Parameters RP002-1.0.4 gives them, and what they change for a tracking drone.
-#![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::api::{simulate, swarm};
 use loratrack::{Bandwidth, Region, Scenario, SimReport, Simulator};

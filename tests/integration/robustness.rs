@@ -2,7 +2,6 @@
 //! a silently wrong number, `null` for infinity, panicked, hung or ate memory now gives a finite
 //! answer or a one-line refusal with exit status 2 (the WebAssembly cases are in `tests/wasm.rs`:
 //! a deeply nested argument, a progress that is not a function, null statistics).
-#![cfg(not(target_arch = "wasm32"))]
 
 use std::io::Write;
 use std::process::{Command, Output, Stdio};

@@ -1,6 +1,5 @@
 //! Slotted schedules (reference §13): over random swarms, no two drones on one channel are
 //! ever on air together, and no drone sends more often than its duty cycle allows.
-#![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::sim::schedule::{assign, guard_s, Airtime};
 use proptest::prelude::*;

@@ -1,7 +1,6 @@
 //! When to send (issue: error-triggered transmissions within the duty-cycle budget): no schedule
 //! breaks its rule, the error sender degenerates to the periodic one at threshold 0, invalid
 //! settings are refused, and the trade-off goes the right way.
-#![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::api::simulate;
 use loratrack::{

@@ -1,6 +1,5 @@
 //! The end-to-end simulation: reproducibility, the drone-run cache, link effects and the JSON
 //! contract of reference §9.
-#![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::api::{simulate, sweep_paper};
 use loratrack::{ModelChoice, ModelKind, Prediction, Scenario, Simulator, MAX_SEED};

@@ -1,7 +1,6 @@
 //! The station under loss (issue: bounded prediction, IMM, honest uncertainty): the bounded
 //! predictor is the paper's while packets come on time and stays physical after a gap; the IMM
 //! reports its members' probabilities; the 95 % coverage is right for a correctly specified case.
-#![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::api::simulate;
 use loratrack::{

@@ -1,7 +1,6 @@
 //! Swarms (issue "many drones, one gateway"): the simulated collision rate agrees with the ALOHA
 //! formula where its assumptions hold, the paper's "72 drones below 10 %" claim, and every
 //! drone's error reported.
-#![cfg(not(target_arch = "wasm32"))]
 
 use loratrack::api::swarm;
 use loratrack::{Scenario, SwarmReport};

@@ -5,7 +5,7 @@
 //! times, the interval it came at) and on the evaluation grid. Moving the gateway changes which
 //! packets arrive, never when the drone sends them or what they carry, so a link change reuses
 //! every chain and only pays for the evaluation. The numbers are the same as without the cache
-//! (tests/station.rs checks).
+//! (tests/integration/station.rs checks).
 
 use super::{score_station, start_from, Estimate, StationTrack, Tracker};
 use crate::sim::packet::Transmission;

@@ -1,0 +1,22 @@
+//! The native integration suites: one module per concern, built and linked as one test binary.
+//!
+//! Each file of `tests/` used to be a binary of its own, and every one of them linked the whole
+//! crate and its dependencies, optimised (Cargo's `test` profile): fifteen links and fifteen
+//! copies of the same generic code on a 2-core machine, most of `cargo test`'s build time.
+#![cfg(not(target_arch = "wasm32"))]
+
+mod adr;
+mod architecture;
+mod codec;
+mod filter;
+mod lora;
+mod mission;
+mod models;
+mod network;
+mod region;
+mod robustness;
+mod schedule;
+mod sender;
+mod sim;
+mod station;
+mod swarm;
