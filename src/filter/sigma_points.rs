@@ -234,16 +234,16 @@ impl<const N: usize> SigmaPoints<N> {
                 cov[(r, i)] += dt * cov[(r, j)];
             }
         }
-        let position = |v: &SVector<f64, N>| -> [f64; POSITION_ROWS] {
-            core::array::from_fn(|r| v[r] - mean[r])
+        let residual = |points: &SMatrix<f64, N, N>, k: usize| -> [f64; POSITION_ROWS] {
+            core::array::from_fn(|r| points[(r, k)] - mean[r])
         };
-        let d0 = position(&self.center);
+        let d0: [f64; POSITION_ROWS] = core::array::from_fn(|r| self.center[r] - mean[r]);
         let mut pp = [[0.0; POSITION_ROWS]; POSITION_ROWS];
         let mut mm = [[0.0; POSITION_ROWS]; POSITION_ROWS];
         let mut cross = [[0.0; N]; POSITION_ROWS];
         for k in 0..N {
-            let a = position(&self.plus.column(k).into_owned());
-            let b = position(&self.minus.column(k).into_owned());
+            let a = residual(&self.plus, k);
+            let b = residual(&self.minus, k);
             for j in 0..POSITION_ROWS {
                 for i in j..POSITION_ROWS {
                     pp[j][i] += a[i] * a[j];
