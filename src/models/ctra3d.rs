@@ -1,7 +1,7 @@
 //! 3D-CTRA: constant turn rate, constant tilt rate and constant acceleration (paper §III-B).
 
 use super::{
-    arc_integral_from, Heading, ModelKind, MotionModel, A, OMEGA, PHI, PSI, THETA, V, X, Y, Z,
+    arc_integrals, Heading, ModelKind, MotionModel, A, OMEGA, PHI, PSI, THETA, V, X, Y, Z,
 };
 use crate::math::wrap_angle;
 use nalgebra::{SMatrix, SVector};
@@ -44,14 +44,19 @@ impl MotionModel<9> for Ctra3d {
         let (theta, phi, v, a) = (s[THETA], s[PHI], s[V], s[A]);
         let (omega, psi) = (s[OMEGA], s[PSI]);
         let ((st, ct), (sp, cp)) = (heading.theta, heading.phi);
-        // sin and cos of theta ± phi by the addition formulas.
-        let plus = arc_integral_from(st * cp + ct * sp, ct * cp - st * sp, omega + psi, v, a, dt);
-        let minus = arc_integral_from(st * cp - ct * sp, ct * cp + st * sp, omega - psi, v, a, dt);
-        let vertical = arc_integral_from(sp, cp, psi, v, a, dt);
+        // sin and cos of theta ± phi by the addition formulas; the three integrals in one batch.
+        let (cosines, sines) = arc_integrals(
+            [st * cp + ct * sp, st * cp - ct * sp, sp],
+            [ct * cp - st * sp, ct * cp + st * sp, cp],
+            [omega + psi, omega - psi, psi],
+            [v; 3],
+            [a; 3],
+            dt,
+        );
         let mut out = *s;
-        out[X] += 0.5 * (plus.0 + minus.0);
-        out[Y] += 0.5 * (plus.1 + minus.1);
-        out[Z] += vertical.1;
+        out[X] += 0.5 * (cosines[0] + cosines[1]);
+        out[Y] += 0.5 * (sines[0] + sines[1]);
+        out[Z] += sines[2];
         out[THETA] = wrap_angle(theta + omega * dt);
         out[PHI] = wrap_angle(phi + psi * dt);
         out[V] = v + a * dt;
