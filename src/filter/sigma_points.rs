@@ -134,8 +134,10 @@ impl<const N: usize> SigmaPoints<N> {
         for i in 0..N {
             let offset = l.column(i) * gamma;
             let (up, down) = centre.around(&offset);
-            plus.set_column(i, &model.propagate_with(&(mean + offset), &up, dt));
-            minus.set_column(i, &model.propagate_with(&(mean - offset), &down, dt));
+            let [p, m] =
+                model.propagate_pair([&(mean + offset), &(mean - offset)], [&up, &down], dt);
+            plus.set_column(i, &p);
+            minus.set_column(i, &m);
         }
         SigmaPoints {
             center: model.propagate_with(mean, &centre, dt),

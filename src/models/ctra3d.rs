@@ -40,27 +40,39 @@ impl MotionModel<9> for Ctra3d {
         self.propagate_with(s, &Heading::of(s), dt)
     }
 
+    #[inline(always)]
     fn propagate_with(&self, s: &SVector<f64, 9>, heading: &Heading, dt: f64) -> SVector<f64, 9> {
-        let (theta, phi, v, a) = (s[THETA], s[PHI], s[V], s[A]);
-        let (omega, psi) = (s[OMEGA], s[PSI]);
-        let ((st, ct), (sp, cp)) = (heading.theta, heading.phi);
-        // sin and cos of theta ± phi by the addition formulas; the three integrals in one batch.
-        let (cosines, sines) = arc_integrals(
-            [st * cp + ct * sp, st * cp - ct * sp, sp],
-            [ct * cp - st * sp, ct * cp + st * sp, cp],
-            [omega + psi, omega - psi, psi],
-            [v; 3],
-            [a; 3],
+        let arcs = Arcs::of(s, heading);
+        let (cosines, sines) = arc_integrals(arcs.sa, arcs.ca, arcs.k, [s[V]; 3], [s[A]; 3], dt);
+        finish(s, cosines, sines, dt)
+    }
+
+    #[inline(always)]
+    fn propagate_pair(
+        &self,
+        states: [&SVector<f64, 9>; 2],
+        headings: [&Heading; 2],
+        dt: f64,
+    ) -> [SVector<f64, 9>; 2] {
+        let [p, m] = states;
+        let (ap, am) = (Arcs::of(p, headings[0]), Arcs::of(m, headings[1]));
+        let join = |x: [f64; 3], y: [f64; 3]| [x[0], x[1], x[2], y[0], y[1], y[2]];
+        let (v, a) = (
+            [p[V], p[V], p[V], m[V], m[V], m[V]],
+            [p[A], p[A], p[A], m[A], m[A], m[A]],
+        );
+        let (c, s) = arc_integrals(
+            join(ap.sa, am.sa),
+            join(ap.ca, am.ca),
+            join(ap.k, am.k),
+            v,
+            a,
             dt,
         );
-        let mut out = *s;
-        out[X] += 0.5 * (cosines[0] + cosines[1]);
-        out[Y] += 0.5 * (sines[0] + sines[1]);
-        out[Z] += sines[2];
-        out[THETA] = wrap_angle(theta + omega * dt);
-        out[PHI] = wrap_angle(phi + psi * dt);
-        out[V] = v + a * dt;
-        out
+        [
+            finish(p, [c[0], c[1], c[2]], [s[0], s[1], s[2]], dt),
+            finish(m, [c[3], c[4], c[5]], [s[3], s[4], s[5]], dt),
+        ]
     }
 
     fn decay_tilt_rate(&self, state: &mut SVector<f64, 9>, eta: f64) {
@@ -73,6 +85,41 @@ impl MotionModel<9> for Ctra3d {
             p[(k, PSI)] *= eta;
         }
     }
+}
+
+/// The three arc integrals of a 3D-CTRA step (eqs. `x_int`–`z_int`): along θ + φ at ω + ψ, along
+/// θ − φ at ω − ψ, and the vertical one along φ at ψ; their directions' sines and cosines by the
+/// addition formulas.
+struct Arcs {
+    sa: [f64; 3],
+    ca: [f64; 3],
+    k: [f64; 3],
+}
+
+impl Arcs {
+    #[inline(always)]
+    fn of(s: &SVector<f64, 9>, heading: &Heading) -> Self {
+        let ((st, ct), (sp, cp)) = (heading.theta, heading.phi);
+        Arcs {
+            sa: [st * cp + ct * sp, st * cp - ct * sp, sp],
+            ca: [ct * cp - st * sp, ct * cp + st * sp, cp],
+            k: [s[OMEGA] + s[PSI], s[OMEGA] - s[PSI], s[PSI]],
+        }
+    }
+}
+
+/// The state after `dt` from the three integrals' cosine and sine parts (Werner's formula for x
+/// and y, the vertical integral's sine part for z).
+#[inline(always)]
+fn finish(s: &SVector<f64, 9>, cosines: [f64; 3], sines: [f64; 3], dt: f64) -> SVector<f64, 9> {
+    let mut out = *s;
+    out[X] += 0.5 * (cosines[0] + cosines[1]);
+    out[Y] += 0.5 * (sines[0] + sines[1]);
+    out[Z] += sines[2];
+    out[THETA] = wrap_angle(s[THETA] + s[OMEGA] * dt);
+    out[PHI] = wrap_angle(s[PHI] + s[PSI] * dt);
+    out[V] = s[V] + s[A] * dt;
+    out
 }
 
 #[cfg(test)]
@@ -103,6 +150,20 @@ mod tests {
                 a[i],
                 b[i]
             );
+        }
+    }
+
+    #[test]
+    fn a_pair_propagates_to_the_bits_of_two_single_points() {
+        let centre = SVector::<f64, 9>::from([3.0, -1.0, 20.0, 2.9, 0.2, 7.0, 0.3, 0.05, -0.02]);
+        // A short turn for both points (the batched series), then a long one for one of them.
+        for d_omega in [0.01, 3.0] {
+            let d = SVector::<f64, 9>::from([0.5, 0.2, -0.3, 0.4, 0.1, 0.6, 0.2, d_omega, 0.03]);
+            let (p, m) = (centre + d, centre - d);
+            let (hp, hm) = (Heading::of(&p), Heading::of(&m));
+            let [a, b] = Ctra3d.propagate_pair([&p, &m], [&hp, &hm], 0.1);
+            assert_eq!(a, Ctra3d.propagate_with(&p, &hp, 0.1));
+            assert_eq!(b, Ctra3d.propagate_with(&m, &hm, 0.1));
         }
     }
 

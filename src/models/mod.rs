@@ -94,6 +94,21 @@ pub trait MotionModel<const N: usize> {
         self.propagate(state, dt)
     }
 
+    /// [`Self::propagate_with`] for the two points of a sigma pair x̄ ± d, with their headings:
+    /// the same results, which a model may compute together (3D-CTRA batches the pair's six arc
+    /// integrals).
+    fn propagate_pair(
+        &self,
+        states: [&SVector<f64, N>; 2],
+        headings: [&Heading; 2],
+        dt: f64,
+    ) -> [SVector<f64, N>; 2] {
+        [
+            self.propagate_with(states[0], headings[0], dt),
+            self.propagate_with(states[1], headings[1], dt),
+        ]
+    }
+
     /// Applies the station's tilt-rate decay after one prediction step: psi ← eta·psi
     /// (paper §III-B, last paragraph). Models without psi leave the state unchanged.
     fn decay_tilt_rate(&self, _state: &mut SVector<f64, N>, _eta: f64) {}
