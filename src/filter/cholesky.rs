@@ -21,47 +21,59 @@ use nalgebra::SMatrix;
 /// ```
 pub fn cholesky_lower<const N: usize>(p: &SMatrix<f64, N, N>) -> Option<SMatrix<f64, N, N>> {
     let mut l = SMatrix::<f64, N, N>::zeros();
+    let data = l.as_mut_slice();
     for j in 0..N {
-        for i in j..N {
-            l[(i, j)] = p[(i, j)];
-        }
+        // Column j below the diagonal, and the finished columns before it, as separate slices:
+        // each update is a loop over contiguous memory that the compiler vectorises.
+        let (done, rest) = data.split_at_mut(j * N);
+        let column = &mut rest[j..N];
+        column.copy_from_slice(&p.as_slice()[j * N + j..(j + 1) * N]);
         for k in 0..j {
-            let factor = -l[(j, k)];
-            for i in j..N {
-                l[(i, j)] += factor * l[(i, k)];
+            let earlier = &done[k * N + j..(k + 1) * N];
+            let factor = -earlier[0];
+            for (x, e) in column.iter_mut().zip(earlier) {
+                *x += factor * e;
             }
         }
-        let pivot = l[(j, j)];
+        let pivot = column[0];
         if pivot.is_nan() || pivot <= 0.0 {
             return None;
         }
         let root = pivot.sqrt();
-        l[(j, j)] = root;
-        for i in j + 1..N {
-            l[(i, j)] /= root;
+        column[0] = root;
+        for x in &mut column[1..] {
+            *x /= root;
         }
     }
     Some(l)
 }
 
 /// X with L X = `b`, for the lower-triangular `l` of [`cholesky_lower`] (a positive diagonal), by
-/// forward substitution: row by row, each row's sum taken over the rows before it.
+/// forward substitution: row by row, each entry's sum taken over the rows before it in order.
+///
+/// X is built transposed, so that a row of X is contiguous and each step updates all its
+/// entries in one loop (vectorised; every entry's own sum keeps its order).
 pub(crate) fn forward_substitute<const N: usize, const C: usize>(
     l: &SMatrix<f64, N, N>,
     b: &SMatrix<f64, N, C>,
 ) -> SMatrix<f64, N, C> {
-    let mut x = *b;
+    let mut xt = b.transpose();
+    let data = xt.as_mut_slice();
     for i in 0..N {
         let inverse = 1.0 / l[(i, i)];
-        for c in 0..C {
-            let mut sum = x[(i, c)];
-            for k in 0..i {
-                sum -= l[(i, k)] * x[(k, c)];
+        let (done, rest) = data.split_at_mut(i * C);
+        let row = &mut rest[..C];
+        for k in 0..i {
+            let lik = l[(i, k)];
+            for (x, d) in row.iter_mut().zip(&done[k * C..(k + 1) * C]) {
+                *x -= lik * d;
             }
-            x[(i, c)] = sum * inverse;
+        }
+        for x in row.iter_mut() {
+            *x *= inverse;
         }
     }
-    x
+    xt.transpose()
 }
 
 #[cfg(test)]
