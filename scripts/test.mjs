@@ -9,7 +9,8 @@
 //   has just compiled.
 // - Fuzzing (its own nightly build in fuzz/target) runs beside the WebAssembly and browser suites,
 //   which mostly wait on one core, Node or Chromium; its output goes to test-results/fuzz.log and is
-//   summarised at the end.
+//   summarised at the end. Like the Rust suites it is skipped when nothing it reads changed since
+//   it last passed here, so a change to the page alone does not share the cores with a fuzz build.
 import { spawn, spawnSync } from 'node:child_process';
 import { createHash } from 'node:crypto';
 import { closeSync, existsSync, mkdirSync, openSync, readFileSync, readdirSync, statSync, writeFileSync } from 'node:fs';
@@ -27,7 +28,9 @@ const WASM = ['--target', 'wasm32-unknown-unknown'];
  * not run again (`npm test -- --all` runs it anyway); a fresh clone, as in CI, has no record.
  */
 const RUST_INPUTS = ['Cargo.toml', 'Cargo.lock', 'build.rs', '.cargo', 'src', 'tests', 'benches', 'data', 'www/generated', 'scripts/clippy-rustc.sh'];
-const NOT_RUST = ['tests/e2e', 'tests/unit'];
+const NOT_RUST = ['tests/e2e', 'tests/unit', 'fuzz/target', 'fuzz/corpus', 'fuzz/artifacts'];
+/** What the fuzz suite reads: the crate and its fuzz targets and seeds (not its working corpus). */
+const FUZZ_INPUTS = [...RUST_INPUTS, 'fuzz'];
 
 /** Each suite is one or more commands run in order; the first failure fails the suite. */
 const suites = [
@@ -89,6 +92,12 @@ function runSuite(commands) {
  */
 function fuzzInBackground() {
   const [name, cmd, args] = FUZZ;
+  const before = digest(FUZZ_INPUTS);
+  const stamp = stampOf(name);
+  if (!runAll && existsSync(stamp) && readFileSync(stamp, 'utf8') === before) {
+    console.log(`\n=== ${name}: nothing it reads changed since it passed here (npm test -- --all runs it)`);
+    return Promise.resolve({ name, ok: true, seconds: 0, note: 'unchanged, not run' });
+  }
   mkdirSync(join(root, 'test-results'), { recursive: true });
   const log = join(root, 'test-results', 'fuzz.log');
   const out = openSync(log, 'w');
@@ -99,7 +108,14 @@ function fuzzInBackground() {
   closeSync(out);
   return new Promise((resolve) => {
     // Its exit is only seen once the suites in front are done; its last write says when it ended.
-    child.on('close', (code) => resolve({ name, ok: code === 0, seconds: (statSync(log).mtimeMs - started) / 1000, log }));
+    child.on('close', (code) => {
+      const ok = code === 0;
+      if (ok && digest(FUZZ_INPUTS) === before) {
+        mkdirSync(dirname(stamp), { recursive: true });
+        writeFileSync(stamp, before);
+      }
+      resolve({ name, ok, seconds: (statSync(log).mtimeMs - started) / 1000, log });
+    });
   });
 }
 
@@ -128,9 +144,11 @@ for (const [name, commands, inputs] of suites) {
 }
 if (fuzz) {
   const r = await fuzz;
-  const lines = readFileSync(r.log, 'utf8').trimEnd().split('\n');
-  // A failure shows the fuzzer's report; a pass only its last words.
-  console.log(`\n=== ${r.name}: the last lines of ${r.log}\n${lines.slice(r.ok ? -4 : -150).join('\n')}`);
+  if (r.log) {
+    const lines = readFileSync(r.log, 'utf8').trimEnd().split('\n');
+    // A failure shows the fuzzer's report; a pass only its last words.
+    console.log(`\n=== ${r.name}: the last lines of ${r.log}\n${lines.slice(r.ok ? -4 : -150).join('\n')}`);
+  }
   results.push(r);
 }
 
