@@ -103,52 +103,89 @@ pub fn bootstrap(runs: &[&[f64]], seed: u64) -> Option<Intervals> {
 }
 
 /// At most this many entries (4 bytes each) in a [`Ranks`] table: the whole synthetic set with
-/// one seed needs about 0.8 million; beyond the budget the draws search each run instead.
+/// one seed fits every candidate (0.8 million entries); more runs keep every 2nd, 4th, …
 const RANKS_BUDGET: usize = 4_000_000;
 
-/// For each candidate `all[m]` and each run i, how many of the run's samples are at most
-/// `all[m]` (row m, column i): a draw's count at a candidate is then one weighted sum instead of
-/// a binary search in every run, the same integers (tested), about ten times faster.
+/// For every `stride`-th candidate `all[m]` and each run i, how many of the run's samples are at
+/// most `all[m]`: a draw's count at such a candidate is one weighted sum instead of a binary
+/// search in every run (the same integers, tested). An order statistic is bracketed between two
+/// rows of the table and found within the bracket by the searches: log₂ stride of them instead of
+/// log₂ of every sample.
 struct Ranks {
     runs: usize,
+    stride: usize,
+    rows: usize,
     counts: Vec<u32>,
 }
 
 impl Ranks {
-    /// The table, or `None` when it would pass [`RANKS_BUDGET`], a run is longer than `u32`
-    /// counts, or a sample is not finite (a NaN breaks the merge's order).
+    /// The table, with the smallest stride (a power of two) that keeps it within
+    /// [`RANKS_BUDGET`]; `None` when no stride does, a run is longer than `u32` counts, or a
+    /// sample is not finite (a NaN breaks the merge's order).
     fn of(runs: &[&[f64]], all: &[f64]) -> Option<Self> {
+        Self::with_budget(runs, all, RANKS_BUDGET)
+    }
+
+    fn with_budget(runs: &[&[f64]], all: &[f64], budget: usize) -> Option<Self> {
         let finite =
             all.first().is_some_and(|v| v.is_finite()) && all.last().is_some_and(|v| v.is_finite());
-        if !finite
-            || all.len().saturating_mul(runs.len()) > RANKS_BUDGET
-            || all.len() > u32::MAX as usize
-        {
+        if !finite || all.len() > u32::MAX as usize || runs.is_empty() || runs.len() > budget {
             return None;
         }
-        let mut counts = vec![0u32; all.len() * runs.len()];
+        let mut stride = 1;
+        while (all.len() - 1) / stride + 1 > budget / runs.len() {
+            stride *= 2;
+        }
+        let rows = (all.len() - 1) / stride + 1;
+        let mut counts = vec![0u32; rows * runs.len()];
         for (i, run) in runs.iter().enumerate() {
             let mut j = 0;
-            for (m, v) in all.iter().enumerate() {
-                while j < run.len() && run[j] <= *v {
+            for row in 0..rows {
+                let v = all[row * stride];
+                while j < run.len() && run[j] <= v {
                     j += 1;
                 }
-                counts[m * runs.len() + i] = j as u32;
+                counts[row * runs.len() + i] = j as u32;
             }
         }
         Some(Ranks {
             runs: runs.len(),
+            stride,
+            rows,
             counts,
         })
     }
 
-    /// The samples of a draw with `weights` that are at most candidate `m`.
-    fn count(&self, m: usize, weights: &[u32]) -> u64 {
-        self.counts[m * self.runs..(m + 1) * self.runs]
+    /// The samples of a draw with `weights` that are at most the candidate of `row`.
+    fn count(&self, row: usize, weights: &[u32]) -> u64 {
+        self.counts[row * self.runs..(row + 1) * self.runs]
             .iter()
             .zip(weights)
             .map(|(&c, &w)| u64::from(c) * u64::from(w))
             .sum()
+    }
+
+    /// The candidates `[lo, hi]` among which the first with more than `k` samples of the draw at
+    /// or below it lies, from the table alone (the last candidate, `last`, has all n > k).
+    fn bracket(&self, k: u64, weights: &[u32], last: usize) -> (usize, usize) {
+        if self.count(self.rows - 1, weights) <= k {
+            return ((self.rows - 1) * self.stride + 1, last);
+        }
+        let (mut lo, mut hi) = (0, self.rows - 1);
+        while lo < hi {
+            let mid = (lo + hi) / 2;
+            if self.count(mid, weights) > k {
+                hi = mid;
+            } else {
+                lo = mid + 1;
+            }
+        }
+        let start = if lo == 0 {
+            0
+        } else {
+            (lo - 1) * self.stride + 1
+        };
+        (start, lo * self.stride)
     }
 }
 
@@ -176,14 +213,14 @@ impl Draw<'_> {
     /// The `k`-th smallest sample of the draw (0-based), by bisection over the sorted candidates:
     /// the smallest candidate with more than `k` samples at or below it.
     fn order_statistic(&self, k: u64) -> f64 {
-        let (mut lo, mut hi) = (0usize, self.all.len() - 1);
+        let last = self.all.len() - 1;
+        let (mut lo, mut hi) = match self.ranks {
+            Some(r) => r.bracket(k, self.weights, last),
+            None => (0, last),
+        };
         while lo < hi {
             let mid = (lo + hi) / 2;
-            let at_most = match self.ranks {
-                Some(r) => r.count(mid, self.weights),
-                None => self.count_at_most(self.all[mid]),
-            };
-            if at_most > k {
+            if self.count_at_most(self.all[mid]) > k {
                 hi = mid;
             } else {
                 lo = mid + 1;
@@ -251,41 +288,36 @@ mod tests {
             })
             .collect();
         let refs: Vec<&[f64]> = runs.iter().map(Vec::as_slice).collect();
-        let mut all: Vec<f64> = runs.concat();
-        all.sort_by(f64::total_cmp);
-        let table = Ranks::of(&refs, &all).unwrap();
-        for weights in [
-            [1, 1, 1, 1, 1, 1, 1],
-            [0, 3, 0, 2, 1, 0, 1],
-            [7, 0, 0, 0, 0, 0, 0],
-        ] {
-            let (with, without) = (
-                Draw {
+        let all = sorted(runs.concat());
+        // Every candidate, then (a small budget) every 2nd, 4th, … with searches in the brackets.
+        for budget in [RANKS_BUDGET, 7 * 100, 7 * 20, 7 * 3, 7] {
+            let table = Ranks::with_budget(&refs, &all, budget).unwrap();
+            assert!(table.counts.len() <= budget);
+            for weights in [
+                [1, 1, 1, 1, 1, 1, 1],
+                [0, 3, 0, 2, 1, 0, 1],
+                [7, 0, 0, 0, 0, 0, 0],
+            ] {
+                let draw = |ranks| Draw {
                     runs: &refs,
                     weights: &weights,
                     all: &all,
-                    ranks: Some(&table),
-                },
-                Draw {
-                    runs: &refs,
-                    weights: &weights,
-                    all: &all,
-                    ranks: None,
-                },
-            );
-            let n = without.count_at_most(f64::INFINITY);
-            for k in 0..n {
-                assert_eq!(with.order_statistic(k), without.order_statistic(k), "k {k}");
+                    ranks,
+                };
+                let (with, without) = (draw(Some(&table)), draw(None));
+                let n = without.count_at_most(f64::INFINITY);
+                for k in 0..n {
+                    assert_eq!(
+                        with.order_statistic(k),
+                        without.order_statistic(k),
+                        "budget {budget}, k {k}"
+                    );
+                }
             }
         }
-        // Not finite, or past the budget: no table.
+        // Not finite, or more runs than the budget: no table.
         assert!(Ranks::of(&refs, &[f64::NAN]).is_none());
-        let long = vec![0.0; RANKS_BUDGET / 2 + 1];
-        assert!(Ranks::of(
-            &[&long[..], &long[..]],
-            &[long.clone(), long.clone()].concat()
-        )
-        .is_none());
+        assert!(Ranks::with_budget(&refs, &all, 6).is_none());
     }
 
     #[test]
