@@ -192,7 +192,6 @@ impl<const N: usize> SigmaPoints<N> {
     ///
     /// `None` when an angle's points reach [`UNWRAPPED_SPREAD`] from the centre (wrapping would
     /// then change the residuals: use the general sums), or when `angles` are not θ and φ.
-    #[allow(clippy::too_many_arguments)]
     pub fn kinematic_moments(
         &self,
         p: &SMatrix<f64, N, N>,

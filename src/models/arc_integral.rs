@@ -66,13 +66,19 @@ const fn taylor_coefficients(offset: usize) -> [f64; 5] {
 #[inline(always)]
 fn half_angle(x: f64) -> (f64, f64, f64) {
     if x.abs() < HALF_ANGLE_SERIES_BELOW {
-        let x2 = x * x;
-        let sinc = horner(&SINC_SERIES, x2);
-        (sinc, x * sinc, horner(&COS_SERIES, x2))
+        half_angle_series(x)
     } else {
         let (s, c) = sin_cos(x);
         (s / x, s, c)
     }
+}
+
+/// [`half_angle`] below [`HALF_ANGLE_SERIES_BELOW`]: the series.
+#[inline(always)]
+fn half_angle_series(x: f64) -> (f64, f64, f64) {
+    let x2 = x * x;
+    let sinc = horner(&SINC_SERIES, x2);
+    (sinc, x * sinc, horner(&COS_SERIES, x2))
 }
 
 /// [`arc_integral`] with sin α and cos α given: the models build them for θ ± φ from the sines
@@ -82,13 +88,25 @@ pub(crate) fn arc_integral_from(sa: f64, ca: f64, k: f64, v0: f64, a: f64, t: f6
     let u = k * t;
     // The half angle serves everything: sin u / u = cos(u/2) · sinc(u/2), sin u = 2 sin(u/2)
     // cos(u/2), cos u = cos²(u/2) − sin²(u/2).
-    let (sinc_half, s_half, c_half) = half_angle(0.5 * u);
+    let half = half_angle(0.5 * u);
+    let odd = odd_moment(u, half.2, half.1);
+    assemble((sa, ca), v0, a, t, half, odd)
+}
+
+/// The integral along (cos α, sin α) = (`ca`, `sa`) from the half angle's (sinc, sin, cos) and
+/// the odd moment: e^{iα} [v0 t f(u) + a t² g(u)].
+#[inline(always)]
+fn assemble(
+    (sa, ca): (f64, f64),
+    v0: f64,
+    a: f64,
+    t: f64,
+    (sinc_half, s_half, c_half): (f64, f64, f64),
+    odd: f64,
+) -> (f64, f64) {
     let sinc_u = c_half * sinc_half;
     let f = (sinc_u, s_half * sinc_half);
-    let g = (
-        sinc_u - 0.5 * sinc_half * sinc_half,
-        odd_moment(u, c_half, s_half),
-    );
+    let g = (sinc_u - 0.5 * sinc_half * sinc_half, odd);
     let re = v0 * t * f.0 + a * t * t * g.0;
     let im = v0 * t * f.1 + a * t * t * g.1;
     (ca * re - sa * im, sa * re + ca * im)
@@ -120,21 +138,9 @@ pub(crate) fn arc_integrals<const L: usize>(
     }
     let (mut x, mut y) = ([0.0; L], [0.0; L]);
     for l in 0..L {
-        let half = 0.5 * u[l];
-        let half2 = half * half;
-        let sinc_half = horner(&SINC_SERIES, half2);
-        let s_half = half * sinc_half;
-        let c_half = horner(&COS_SERIES, half2);
-        let sinc_u = c_half * sinc_half;
-        let f = (sinc_u, s_half * sinc_half);
-        let g = (
-            sinc_u - 0.5 * sinc_half * sinc_half,
-            u[l] * horner(ODD_MOMENT_SERIES.first_chunk::<5>().unwrap(), u[l] * u[l]),
-        );
-        let re = v0[l] * t * f.0 + a[l] * t * t * g.0;
-        let im = v0[l] * t * f.1 + a[l] * t * t * g.1;
-        x[l] = ca[l] * re - sa[l] * im;
-        y[l] = sa[l] * re + ca[l] * im;
+        let half = half_angle_series(0.5 * u[l]);
+        let odd = odd_moment_short(u[l]);
+        (x[l], y[l]) = assemble((sa[l], ca[l]), v0[l], a[l], t, half, odd);
     }
     (x, y)
 }
@@ -173,13 +179,19 @@ fn horner<const TERMS: usize>(coefficients: &[f64; TERMS], x: f64) -> f64 {
     acc
 }
 
+/// [`odd_moment`] below [`SHORT_SERIES_BELOW`]: five terms of the series.
+#[inline(always)]
+fn odd_moment_short(u: f64) -> f64 {
+    u * horner(ODD_MOMENT_SERIES.first_chunk::<5>().unwrap(), u * u)
+}
+
 /// (sin u − u cos u) / u², the imaginary part of g(u).
 fn odd_moment(u: f64, c_half: f64, s_half: f64) -> f64 {
     if u.abs() < 1.0 {
         // Ten terms reach 1e-19 relative for |u| < 1; Horner in u².
         let u2 = u * u;
         if u.abs() < SHORT_SERIES_BELOW {
-            u * horner(ODD_MOMENT_SERIES.first_chunk::<5>().unwrap(), u2)
+            odd_moment_short(u)
         } else {
             u * horner(&ODD_MOMENT_SERIES, u2)
         }
