@@ -76,6 +76,23 @@ function digest(paths) {
 
 const stampOf = (name) => join(root, 'target', 'npm-test', `${name.replace(/[^a-z0-9]+/gi, '-')}.sha256`);
 const runAll = process.argv.includes('--all');
+const UNCHANGED = { ok: true, seconds: 0, note: 'unchanged, not run' };
+
+/** Whether suite `name` last passed here on inputs that digest to `before` (it then says so). */
+function passedOn(name, before) {
+  const stamp = stampOf(name);
+  if (!before || runAll || !existsSync(stamp) || readFileSync(stamp, 'utf8') !== before) return false;
+  console.log(`\n=== ${name}: nothing it reads changed since it passed here (npm test -- --all runs it)`);
+  return true;
+}
+
+/** Records that suite `name` passed on `before`: only what was read before the run and is still
+ * there after it counts as tested. */
+function recordPass(name, inputs, before) {
+  if (!before || digest(inputs) !== before) return;
+  mkdirSync(dirname(stampOf(name)), { recursive: true });
+  writeFileSync(stampOf(name), before);
+}
 
 function runSuite(commands) {
   for (const [cmd, args] of commands) {
@@ -93,11 +110,7 @@ function runSuite(commands) {
 function fuzzInBackground() {
   const [name, cmd, args] = FUZZ;
   const before = digest(FUZZ_INPUTS);
-  const stamp = stampOf(name);
-  if (!runAll && existsSync(stamp) && readFileSync(stamp, 'utf8') === before) {
-    console.log(`\n=== ${name}: nothing it reads changed since it passed here (npm test -- --all runs it)`);
-    return Promise.resolve({ name, ok: true, seconds: 0, note: 'unchanged, not run' });
-  }
+  if (passedOn(name, before)) return Promise.resolve({ name, ...UNCHANGED });
   mkdirSync(join(root, 'test-results'), { recursive: true });
   const log = join(root, 'test-results', 'fuzz.log');
   const out = openSync(log, 'w');
@@ -110,10 +123,7 @@ function fuzzInBackground() {
     // Its exit is only seen once the suites in front are done; its last write says when it ended.
     child.on('close', (code) => {
       const ok = code === 0;
-      if (ok && digest(FUZZ_INPUTS) === before) {
-        mkdirSync(dirname(stamp), { recursive: true });
-        writeFileSync(stamp, before);
-      }
+      if (ok) recordPass(name, FUZZ_INPUTS, before);
       resolve({ name, ok, seconds: (statSync(log).mtimeMs - started) / 1000, log });
     });
   });
@@ -126,18 +136,12 @@ for (const [name, commands, inputs] of suites) {
   if (name === BESIDE) fuzz = fuzzInBackground();
   const started = Date.now();
   const before = digest(inputs);
-  const stamp = stampOf(name);
-  if (before && !runAll && existsSync(stamp) && readFileSync(stamp, 'utf8') === before) {
-    console.log(`\n=== ${name}: nothing it reads changed since it passed here (npm test -- --all runs it)`);
-    results.push({ name, ok: true, seconds: 0, note: 'unchanged, not run' });
+  if (passedOn(name, before)) {
+    results.push({ name, ...UNCHANGED });
     continue;
   }
   const ok = runSuite(commands);
-  // Only what was read before the run and is still there after it counts as tested.
-  if (ok && before && digest(inputs) === before) {
-    mkdirSync(dirname(stamp), { recursive: true });
-    writeFileSync(stamp, before);
-  }
+  if (ok) recordPass(name, inputs, before);
   results.push({ name, ok, seconds: (Date.now() - started) / 1000 });
   // Without the set-up nothing else can run.
   if (!ok && name === 'set-up') break;
