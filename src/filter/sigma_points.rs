@@ -13,6 +13,15 @@ const POSITION_ROWS: usize = Z + 1;
 /// after the rounding of the mean.
 pub const UNWRAPPED_SPREAD: f64 = 3.0;
 
+/// F `m` for a [linear tail](MotionModel::LINEAR_TAIL) `rates` over `dt`: row i gains dt · row j.
+fn advance_rows<const N: usize>(m: &mut SMatrix<f64, N, N>, rates: &[(usize, usize)], dt: f64) {
+    for &(i, j) in rates {
+        for c in 0..N {
+            m[(i, c)] += dt * m[(j, c)];
+        }
+    }
+}
+
 /// Scaling parameters of the sigma points: lambda = alpha² (n + kappa) − n.
 ///
 /// Defaults: alpha = 1, beta = 2, kappa = 3 − n, so that n + lambda = 3 and the points sit at
@@ -206,11 +215,7 @@ impl<const N: usize> SigmaPoints<N> {
         }
         // e = γ F L: column k is point k's offset in the linear rows (its position rows unused).
         let mut e = l * w.gamma;
-        for &(i, j) in rates {
-            for k in 0..N {
-                e[(i, k)] += dt * e[(j, k)];
-            }
-        }
+        advance_rows(&mut e, rates, dt);
         let unwrapped = |a: &usize| (0..N).all(|k| e[(*a, k)].abs() < UNWRAPPED_SPREAD);
         if !angles.iter().all(unwrapped) {
             return None;
@@ -226,6 +231,7 @@ impl<const N: usize> SigmaPoints<N> {
             }
             mean[r] = sum;
         }
+        // F P Fᵀ, one rate at a time: its row, then its column.
         let mut cov = *p;
         for &(i, j) in rates {
             for c in 0..N {

@@ -188,12 +188,11 @@ fn odd_moment_short(u: f64) -> f64 {
 /// (sin u − u cos u) / u², the imaginary part of g(u).
 fn odd_moment(u: f64, c_half: f64, s_half: f64) -> f64 {
     if u.abs() < 1.0 {
-        // Ten terms reach 1e-19 relative for |u| < 1; Horner in u².
-        let u2 = u * u;
         if u.abs() < SHORT_SERIES_BELOW {
             odd_moment_short(u)
         } else {
-            u * horner(&ODD_MOMENT_SERIES, u2)
+            // Ten terms reach 1e-19 relative for |u| < 1; Horner in u².
+            u * horner(&ODD_MOMENT_SERIES, u * u)
         }
     } else {
         let sin_u = 2.0 * s_half * c_half;
