@@ -15,6 +15,7 @@ import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadP
 import { field, form, onFormChange, readControls, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
 import { caption } from './format';
+import { later, drawingLater, onDrawing } from './later';
 import { LESSONS, lessonQuery } from './lessons';
 import { SimulationPool } from './pool';
 import { renderBaseline, renderTable } from './results';
@@ -38,11 +39,10 @@ const charts: Record<string, { chart: Element; caption: string }> = {};
 setUpEmbed();
 setUpEmbedDialog();
 setUpPresent(() => {
-  renderAirtime();
-  renderLink();
+  renderSettingsCharts();
   if (store.report) renderResults(store.report);
   if (lastSweep) renderSweep(lastSweep, { ...store.reportSettings, seeds: 1 });
-  lastSwarm?.();
+  if (lastSwarm) later('swarm', lastSwarm);
 });
 
 // ---- the workers: latest request wins; a long whole-set run is interrupted by the next change --
@@ -130,6 +130,7 @@ function onResponse(r: Response): void {
     } else {
       status.textContent = `These settings cannot be simulated: ${r.error}. Change a setting; the results below are for the previous settings.`;
     }
+    if (settingsChartsWait) renderSettingsCharts();
     sendQueued();
     return;
   }
@@ -152,21 +153,37 @@ function onResponse(r: Response): void {
   const c = store.report.config;
   status.textContent = `${c.trajectory}: ${c.flights} flight${c.flights > 1 ? 's' : ''}, ${c.flightTime.toFixed(0)} s simulated in ${r.millis.toFixed(0)} ms. Gateway range (mean power = sensitivity ${c.sensitivityDbm.toFixed(1)} dBm): ${(c.rangeM / 1000).toFixed(2)} km.`;
   renderResults(store.report);
+  if (settingsChartsWait) renderSettingsCharts();
 }
 
 // ---- rendering ---------------------------------------------------------------------------------
 
+/** The table at once; the charts each in a later task, so the numbers are painted first. */
 function renderResults(r: SimReport): void {
   renderTable(r);
   updateEmbedCaption();
-  place('error', errorOverTimeChart(r, chartWidth('error')), store.reportSettings);
-  const axisRows: BoxRow[] = r.results.flatMap((m) => [
-    { group: 'x', model: m.model, box: m.boxplot.errorX },
-    { group: 'y', model: m.model, box: m.boxplot.errorY },
-    { group: 'z', model: m.model, box: m.boxplot.errorZ },
-  ]);
-  place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: chartWidth('axes') }), store.reportSettings);
-  if (!$('[data-panel="trajectory"]').hidden) void render3d(r);
+  const made = store.reportSettings;
+  later('error', () => place('error', errorOverTimeChart(r, chartWidth('error')), made));
+  later('axes', () => {
+    const axisRows: BoxRow[] = r.results.flatMap((m) => [
+      { group: 'x', model: m.model, box: m.boxplot.errorX },
+      { group: 'y', model: m.model, box: m.boxplot.errorY },
+      { group: 'z', model: m.model, box: m.boxplot.errorZ },
+    ]);
+    place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: chartWidth('axes') }), made);
+  });
+  if (!$('[data-panel="trajectory"]').hidden) later('trajectory', () => render3d(r));
+}
+
+/** On load, the panels that need no simulation wait for the first run's answer: drawn at once
+ * they would take the cores the first results need (about 200 ms later on 2 cores). */
+let settingsChartsWait = false;
+
+/** The panels that follow the settings alone (time on air, link budget), drawn after the run is asked for. */
+function renderSettingsCharts(): void {
+  settingsChartsWait = false;
+  later('airtime', renderAirtime);
+  later('link', renderLink);
 }
 
 /** The pinned baseline, if any, and what it was. */
@@ -179,7 +196,7 @@ let swarming = false;
 
 /** `<body data-busy>` while anything visible is still being computed or drawn (tests wait on it). */
 function updateBusy(): void {
-  if (running || drawing > 0 || swarming) document.body.dataset.busy = '';
+  if (running || drawing > 0 || swarming || drawingLater()) document.body.dataset.busy = '';
   else delete document.body.dataset.busy;
 }
 
@@ -222,8 +239,8 @@ let lastSwarm: (() => void) | undefined;
 
 function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made: Settings): void {
   lastSweep = sweep;
-  renderDistance(sweep.flatMap(({ point, report: rep }) => ('distance' in point && rep ? [{ distance: point.distance, report: rep }] : [])), made);
-  renderSfs(sweep.flatMap(({ point, report: rep }) => ('sf' in point && rep ? [{ sf: point.sf, report: rep }] : [])), made);
+  later('distance', () => renderDistance(sweep.flatMap(({ point, report: rep }) => ('distance' in point && rep ? [{ distance: point.distance, report: rep }] : [])), made));
+  later('sf', () => renderSfs(sweep.flatMap(({ point, report: rep }) => ('sf' in point && rep ? [{ sf: point.sf, report: rep }] : [])), made));
   // An SF the core refuses at these settings is left out of the chart, and the note says why.
   const refused = sweep.filter((x) => 'sf' in x.point && !x.report);
   $('#sf-note').hidden = refused.length === 0;
@@ -277,9 +294,8 @@ function onChange(): void {
   }
   store.settings = next;
   history.replaceState(null, '', `?${pageQuery()}`);
-  renderAirtime();
-  renderLink();
   submit();
+  renderSettingsCharts();
 }
 
 /** A pending run of a number being typed (a half-typed −1 of −15 must not run). */
@@ -395,7 +411,7 @@ $('#run-swarm').addEventListener('click', () => {
       $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(r.millis / 1000).toFixed(1)} s. Packets collided: ${rates}.`;
       const swarms = r.swarms;
       lastSwarm = () => place('swarm', swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${swarms[0]?.drones[0]?.channelUse.length ?? params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.schedule}, ${params.duration} s each`);
-      lastSwarm();
+      later('swarm', lastSwarm);
     }
   };
   swarmWorker.postMessage({ id: 1, swarm: { sizes, params } } satisfies Request);
@@ -525,10 +541,13 @@ if (pinned !== null) {
   };
   w.postMessage({ id: 1, params: toParams(b.settings) } satisfies Request);
 }
+onDrawing(updateBusy);
 await load();
-renderAirtime();
-renderLink();
 submit();
+if (running) settingsChartsWait = true;
+else renderSettingsCharts();
+// three.js is fetched and parsed off the main thread while the first run computes.
+if (!$('[data-panel="trajectory"]').hidden) void import('./charts/trajectory3d');
 if (lesson?.swarm) {
   // The lesson's swarm runs as if its button were pressed with these choices.
   $<HTMLSelectElement>('#swarmDrones').value = String(lesson.swarm.drones);
