@@ -88,11 +88,16 @@ test('one model at a time, and the whole synthetic set', async () => {
   assert.equal(await page.locator('#results-table tbody tr').count(), 1);
   before = await tableHtml(page);
   await page.getByLabel('Trajectory', { exact: true }).selectOption('all');
-  // The whole set shows its progress while it runs...
-  await page.waitForFunction(() => {
-    const p = document.querySelector('#progress');
-    return p && !p.hidden && p.value > 0;
-  });
+  // The whole set shows its progress while it runs (polled every 10 ms: animation frames are
+  // throttled on a busy machine, and one model's whole set takes well under a second)...
+  await page.waitForFunction(
+    () => {
+      const p = document.querySelector('#progress');
+      return p && !p.hidden && p.value > 0;
+    },
+    null,
+    { polling: 10 },
+  );
   // ...and the next change interrupts it: the results that arrive are for SF8.
   await page.getByLabel('Spreading factor', { exact: true }).selectOption('8');
   await waitForResults(page, before);
