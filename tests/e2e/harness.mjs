@@ -13,15 +13,27 @@ const dist = join(root, 'dist');
 export const SCREENSHOTS = join(root, 'test-results', 'screenshots');
 export const SUB_PATH = '/docs/loratrack/';
 
-/**
- * The native CLI's JSON for `args` (`--json` is added). It runs in Cargo's `test` profile:
- * optimised, and already compiled by `npm test`'s native suite, so only the binary is linked
- * again. The default dev profile would compile the crate unoptimised, and the whole synthetic
- * set then takes about 50 s a run instead of half a second.
- */
+/** The CLI binary as `cargo test` builds it for the integration tests (Cargo's optimised `test`
+ * profile), found once per test file. `cargo run --profile test` would build another copy: without
+ * the dev-dependencies its dependencies resolve to other feature sets, and a fresh clone spent
+ * about 80 s compiling them again in the middle of this suite. */
+let cli;
+function cliPath() {
+  if (cli) return cli;
+  const out = execFileSync('cargo', ['test', '--no-run', '--quiet', '--test', 'integration', '--message-format=json'], { cwd: root, encoding: 'utf8', maxBuffer: 64 << 20 });
+  for (const line of out.split('\n')) {
+    if (!line.startsWith('{')) continue;
+    const m = JSON.parse(line);
+    if (m.reason === 'compiler-artifact' && m.target.kind.includes('bin') && m.target.name === 'loratrack' && m.executable) cli = m.executable;
+  }
+  if (!cli) throw new Error('cargo test --no-run built no loratrack binary');
+  return cli;
+}
+
+/** The native CLI's JSON for `args` (`--json` is added). It is already compiled when `npm test`'s
+ * native suite has run; otherwise it is compiled once here. */
 export function nativeJson(args) {
-  const out = execFileSync('cargo', ['run', '--profile', 'test', '--quiet', '--', ...args, '--json'], { cwd: root, encoding: 'utf8' });
-  return JSON.parse(out);
+  return JSON.parse(execFileSync(cliPath(), [...args, '--json'], { cwd: root, encoding: 'utf8', maxBuffer: 256 << 20 }));
 }
 
 const TYPES = {
