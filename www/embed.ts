@@ -50,6 +50,7 @@ export function updateEmbedCaption(): void {
   const lines = [...store.notices];
   if (!$('#rests-on').hidden) lines.push($('#rests-on-text').textContent ?? '');
   if ($('[data-panel="results"]').classList.contains('stale')) lines.push('The numbers shown are for the previous settings.');
+  if ($('[data-panel="results"]').classList.contains('partial')) lines.push('The numbers shown are the first flight’s alone; the rest of the set is still running.');
   $('#embed-notices').hidden = lines.length === 0;
   $('#embed-notices').textContent = lines.join(' ');
 }

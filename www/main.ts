@@ -65,6 +65,8 @@ function submit(): void {
     // A whole-set run takes about a second: stop it rather than make the user wait for stale numbers.
     pool.restart();
     running = undefined;
+    // A first flight on show belongs to the run just stopped.
+    if (showPartial(false)) markStale(true);
   }
   if (running) {
     queued = { request, settings: { ...store.settings } };
@@ -86,6 +88,26 @@ function send(request: SimulateRequest, made: Settings): void {
   pool.run(request, onResponse);
 }
 
+/** The results on show are a whole set's first flight while the set runs (`.partial`); returns
+ * whether they were. */
+function showPartial(partial: boolean): boolean {
+  const panel = $('[data-panel="results"]');
+  const was = panel.classList.contains('partial');
+  panel.classList.toggle('partial', partial);
+  updateEmbedCaption();
+  return was;
+}
+
+/** The whole set's first flight while the other flights run: its table (whose caption says one
+ * flight) and its error chart, which is the one the whole set's report draws too. */
+function renderPartial(r: SimReport, made: Settings): void {
+  markStale(false);
+  showPartial(true);
+  renderTable(r);
+  later('error', () => place('error', errorOverTimeChart(r, chartWidth('error')), made));
+  status.textContent = 'Flight 1 of the 30 shown, its numbers alone; simulating the rest of the set… change any setting to interrupt.';
+}
+
 /** The results on show belong to other settings (or to none yet). */
 function markStale(stale: boolean): void {
   $('[data-panel="results"]').classList.toggle('stale', stale);
@@ -105,6 +127,11 @@ function onResponse(r: Response): void {
     progress.value = r.progress;
     return;
   }
+  if ('partial' in r) {
+    renderPartial(r.partial, running.settings);
+    return;
+  }
+  showPartial(false);
   if ('sweep' in r) {
     renderSweep(r.sweep, { ...(running?.settings ?? store.reportSettings), seeds: 1 });
     running = undefined;

@@ -8,7 +8,7 @@
 import { stationsOf, type SimReport } from './loratrack';
 import type { Response, SimulateRequest, SweepResult } from './worker';
 
-type Part = { progress: number; report?: SimReport; millis?: number; sweep?: SweepResult[] };
+type Part = { progress: number; partial?: SimReport; report?: SimReport; millis?: number; sweep?: SweepResult[] };
 
 export class SimulationPool {
   private workers: Worker[] = [];
@@ -29,8 +29,8 @@ export class SimulationPool {
     });
   }
 
-  /** Runs `request`, calling `on` with progress, then the merged report, then the merged sweep
-   * (or one error), as a single worker would. */
+  /** Runs `request`, calling `on` with the merged first flight of a whole set, progress, then the
+   * merged report, then the merged sweep (or one error), as a single worker would. */
   run(request: SimulateRequest, on: (r: Response) => void): void {
     // The core reads the model setting (the page has loaded the module before any run).
     const models: string[] = stationsOf(request.params.model);
@@ -49,6 +49,10 @@ export class SimulationPool {
           forget();
           on({ id: request.id, error: r.error });
           return;
+        }
+        if ('partial' in r) {
+          part.partial = r.partial;
+          if (parts.every((p) => p.partial)) on({ id: request.id, partial: merge(parts.map((p) => p.partial!), models, request.params.model ?? 'all') });
         }
         if ('progress' in r) part.progress = r.progress;
         if ('report' in r) [part.report, part.millis] = [r.report, r.millis];

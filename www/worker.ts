@@ -1,5 +1,5 @@
 // Runs simulations off the main thread so the page never freezes. One message in, one out:
-//   { id, params, sweep? }  →  { id, progress }* then { id, report } | { id, error }
+//   { id, params, sweep? }  →  [{ id, partial }] { id, progress }* then { id, report } | { id, error }
 //                               then, with sweep points, { id, sweep: [{ point, report | error }] }
 import { load, loadCsv, simulate, swarm, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
 
@@ -30,6 +30,8 @@ export type Request = SimulateRequest | SwarmRequest;
 
 export type Response =
   | { id: number; progress: number }
+  /** The whole synthetic set's first flight alone, sent before the set (its own report: 1 flight). */
+  | { id: number; partial: SimReport }
   | { id: number; report: SimReport; millis: number }
   | { id: number; error: string }
   | { id: number; sweep: SweepResult[] }
@@ -58,6 +60,9 @@ self.onmessage = async (event: MessageEvent<Request>) => {
       }
     };
     const large = (params.trajectory?.length ?? 0) > LARGE_CSV_BYTES;
+    // The whole set takes 30 flights' time; its first flight alone, about a thirtieth of it, gives
+    // the page numbers to show (marked as one flight) while the rest runs.
+    if (params.synthetic === 'all') post({ id, partial: simulate({ ...params, synthetic: 1, series: true }) });
     if (large && params.trajectory) loadCsv({ trajectory: params.trajectory, trajectoryName: params.trajectoryName }, report_(0, 0.5));
     const report = simulate({ ...params, series: true }, large ? report_(0.5, 0.5) : report_(0, 1));
     post({ id, report, millis: performance.now() - t0 });

@@ -32,7 +32,7 @@ export const playground = {
   },
 };
 
-/** Opens the page (with an optional query) and waits for the first results. */
+/** Opens the page (with an optional query) and waits for its results. */
 export async function open(query = '', viewport) {
   const { page, problems } = await openPage(browser, server.origin, viewport);
   await page.goto(server.url + query);
@@ -40,11 +40,14 @@ export async function open(query = '', viewport) {
   return { page, problems };
 }
 
+/** Waits until the results table has rows other than `previous`, and not a whole set's first
+ * flight shown while the rest runs (`.partial`). */
 export async function waitForResults(page, previous) {
   await page.waitForFunction(
     (old) => {
       const t = document.querySelector('#results-table tbody');
-      return t && t.rows.length > 0 && t.innerHTML !== old;
+      const partial = document.querySelector('[data-panel="results"]')?.classList.contains('partial');
+      return t && t.rows.length > 0 && t.innerHTML !== old && !partial;
     },
     previous,
     { timeout: 30_000 },

@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync, mkdtempSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { nativeJson, screenshot } from './harness.mjs';
+import { nativeJson, openPage, screenshot } from './harness.mjs';
 import { axe, cell, idle, number, open, playground, shownP75, tableHtml, usePlayground, waitForResults } from './page.mjs';
 
 usePlayground();
@@ -108,6 +108,26 @@ test('one model at a time, and the whole synthetic set', async () => {
   const interval = number(await cell(page, 'ctra-plus', 'interval'));
   assert.ok(interval > 5, `SF8 interval expected, got ${interval} s`);
   assert.match(await page.locator('#ttn-note').textContent(), /30 s of airtime a day/);
+  assert.deepEqual(problems, []);
+});
+
+test('the whole set shows its first flight at once, marked as that flight alone with the CLI’s numbers, then the whole set', async () => {
+  // At 100 Hz the set takes seconds; its first flight is a thirtieth of that.
+  const { page, problems } = await openPage(playground.browser, new URL(playground.url).origin, { width: 1280, height: 800 });
+  await page.goto(`${playground.url}?flight=all&sensorRate=100`);
+  await page.waitForSelector('[data-panel="results"].partial #results-table tbody tr', { timeout: 30_000 });
+  assert.match(await page.locator('#results-table caption').textContent(), /over 1 flight × 1 seed/);
+  assert.match(await page.locator('#status').textContent(), /Flight 1 of the 30 shown, its numbers alone/);
+  assert.equal(await page.locator('#verdict').isVisible(), false);
+  const marker = await page.locator('#results-table').evaluate((t) => getComputedStyle(t, '::before').content);
+  assert.match(marker, /First flight only/);
+  const shown = await shownP75(page);
+  const cli = nativeJson(['simulate', '--synthetic', '1', '--sensor-rate', '100']);
+  for (const s of shown) assert.equal(s.p75.toFixed(2), cli.results.find((x) => x.model === s.model).error3d.p75.toFixed(2), s.model);
+  assert.deepEqual(await axe(page), []);
+  await waitForResults(page);
+  assert.match(await page.locator('#results-table caption').textContent(), /over 30 flights × 1 seed/);
+  assert.equal(await page.locator('[data-panel="results"].partial').count(), 0);
   assert.deepEqual(problems, []);
 });
 
