@@ -101,7 +101,7 @@ function showPartial(partial: boolean): boolean {
 /** The whole set's first flight while the other flights run: its table (whose caption says one
  * flight) and its error chart, which is the one the whole set's report draws too. */
 function renderPartial(r: SimReport, made: Settings): void {
-  markStale(false);
+  markStale(typing !== undefined || JSON.stringify(made) !== JSON.stringify(store.settings));
   showPartial(true);
   renderTable(r);
   later('error', () => place('error', errorOverTimeChart(r, chartWidth('error')), made));
