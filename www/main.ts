@@ -1,6 +1,7 @@
 // The playground's wiring: reads the form, asks the worker pool to simulate, hands the numbers
 // to the panels that draw them. The state lives in ./store, the form in ./form, the results
 // table in ./results, embeds in ./embed, presentation mode in ./present.
+import { pool } from './boot';
 import { linkBudget, load, MODEL_LABELS, stationsOf, type SimReport, type SwarmParams } from './loratrack';
 import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
 import { boxplotChart, type BoxRow } from './charts/boxplot';
@@ -17,7 +18,6 @@ import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
 import { caption } from './format';
 import { later, drawingLater, onDrawing } from './later';
 import { LESSONS, lessonQuery } from './lessons';
-import { SimulationPool } from './pool';
 import { renderBaseline, renderTable } from './results';
 import { setUpPresent } from './present';
 import { DEFAULTS, fromQuery, overheadBytes, plan, toParams, type Settings } from './state';
@@ -46,7 +46,6 @@ setUpPresent(() => {
 });
 
 // ---- the workers: latest request wins; a long whole-set run is interrupted by the next change --
-let pool: SimulationPool;
 let nextId = 0;
 let running: { id: number; long: boolean; started: number; settings: Settings } | undefined;
 let queued: { request: SimulateRequest; settings: Settings } | undefined;
@@ -546,7 +545,6 @@ function showNotice(text: string): void {
   updateEmbedCaption();
 }
 showNotice('');
-pool = new SimulationPool();
 // A shared link may carry a pinned baseline: its settings are simulated again (the same seed
 // gives the same numbers) in a worker of its own, then pinned.
 const pinned = store.query.get('baseline');
