@@ -93,6 +93,8 @@ function showPartial(partial: boolean): boolean {
   const panel = $('[data-panel="results"]');
   const was = panel.classList.contains('partial');
   panel.classList.toggle('partial', partial);
+  // A "still running" note beside the results' buttons is out of date once the set's report is on show.
+  if (was && !partial) for (const note of panel.querySelectorAll('.download-why')) note.textContent = '';
   updateEmbedCaption();
   return was;
 }
@@ -444,7 +446,8 @@ $('#run-swarm').addEventListener('click', () => {
 });
 
 $('#pin').addEventListener('click', () => {
-  store.baseline = store.baseline || !store.report ? undefined : { report: store.report, settings: { ...store.reportSettings } };
+  const report = store.baseline ? undefined : shownReport($('#pin'));
+  store.baseline = report && { report, settings: { ...store.reportSettings } };
   renderBaseline();
   history.replaceState(null, '', `?${pageQuery()}`);
   if (store.report) renderResults(store.report);
@@ -478,9 +481,24 @@ function downloadWhy(button: HTMLElement, why: string): void {
   note.textContent = why;
 }
 
-$('#download-csv').addEventListener('click', () => store.report && downloadErrorCsv(store.report));
-$('#download-json').addEventListener('click', () => store.report && downloadJson(store.report, store.reportSettings));
-$('#download-results-csv').addEventListener('click', () => store.report && downloadResultsCsv(store.report));
+/** The report behind the numbers on show, for a download or Pin; none while a whole set's first
+ * flight stands in for it (the table is not that report), which is said beside `button`. */
+function shownReport(button: HTMLElement): SimReport | undefined {
+  const waiting = $('[data-panel="results"]').classList.contains('partial');
+  downloadWhy(button, waiting ? 'The whole set is still running: its results can be saved or pinned when it ends.' : '');
+  return waiting ? undefined : store.report;
+}
+
+for (const [id, save] of [
+  ['download-csv', (r: SimReport) => downloadErrorCsv(r)],
+  ['download-json', (r: SimReport) => downloadJson(r, store.reportSettings)],
+  ['download-results-csv', (r: SimReport) => downloadResultsCsv(r)],
+] as const) {
+  $(`#${id}`).addEventListener('click', () => {
+    const report = shownReport($(`#${id}`));
+    if (report) save(report);
+  });
+}
 $('#download-airtime-csv').addEventListener('click', () => {
   const table = document.querySelector<HTMLTableElement>('#airtime-table table');
   if (table) downloadTableCsv(table, 'loratrack-time-on-air');
