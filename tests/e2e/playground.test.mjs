@@ -81,7 +81,9 @@ test('5 km at SF7 loses packets and the bandwidth changes the time on air', asyn
 });
 
 test('one model at a time, and the whole synthetic set', async () => {
-  const { page, problems } = await open();
+  // At 100 Hz one model's whole set runs for seconds, not a few hundred milliseconds: on a busy
+  // machine the page's main thread could otherwise first be polled after the set had ended.
+  const { page, problems } = await open('?sensorRate=100');
   let before = await tableHtml(page);
   await page.getByLabel('Model').selectOption('ctra-plus');
   await waitForResults(page, before);
@@ -89,7 +91,7 @@ test('one model at a time, and the whole synthetic set', async () => {
   before = await tableHtml(page);
   await page.getByLabel('Trajectory', { exact: true }).selectOption('all');
   // The whole set shows its progress while it runs (polled every 10 ms: animation frames are
-  // throttled on a busy machine, and one model's whole set takes well under a second)...
+  // throttled on a busy machine)...
   await page.waitForFunction(
     () => {
       const p = document.querySelector('#progress');
@@ -124,10 +126,25 @@ test('the whole set shows its first flight at once, marked as that flight alone 
   const shown = await shownP75(page);
   const cli = nativeJson(['simulate', '--synthetic', '1', '--sensor-rate', '100']);
   for (const s of shown) assert.equal(s.p75.toFixed(2), cli.results.find((x) => x.model === s.model).error3d.p75.toFixed(2), s.model);
+  // The downloads and Pin would give the previous report, not this table: they say why they wait.
+  await page.getByRole('button', { name: 'Results (CSV)' }).click();
+  const why = page.locator('[data-panel="results"] .download-why');
+  assert.match(await why.textContent(), /The whole set is still running: its results can be saved or pinned when it ends/);
   assert.deepEqual(await axe(page), []);
   await waitForResults(page);
   assert.match(await page.locator('#results-table caption').textContent(), /over 30 flights × 1 seed/);
   assert.equal(await page.locator('[data-panel="results"].partial').count(), 0);
+  assert.equal(await why.textContent(), '');
+  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: 'Results (CSV)' }).click()]);
+  // The file is the set's report: 30 runs per station, the p75s the table now shows.
+  const [header, ...rows] = readFileSync(await download.path(), 'utf8').trim().split('\n').map((l) => l.split(','));
+  const final = await shownP75(page);
+  for (const row of rows) {
+    const col = (name) => row[header.indexOf(name)];
+    assert.equal(col('runs'), '30', row.join(','));
+    assert.equal(Number(col('p75_m')).toFixed(2), final.find((f) => f.model === col('model')).p75.toFixed(2), col('model'));
+  }
+  assert.equal(rows.length, 3);
   assert.deepEqual(problems, []);
 });
 
