@@ -63,7 +63,7 @@ export const LESSONS: Lesson[] = [
     title: 'Losing packets at range: the paper’s station against a bounded one',
     settings: { flight: 'all', distance: 3000, model: '3d-ctra', prediction: 'bounded' },
     baseline: { flight: 'all', distance: 3000, model: '3d-ctra', prediction: 'paper' },
-    text: 'At 3 km and SF7 a fifth of the packets are lost. The paper’s station keeps accelerating and turning through every gap; the bounded one holds the speed in 0–20 m/s and lets a manoeuvre fade once a packet is overdue.',
+    text: 'At 3 km and SF7 a fifth of the packets are lost. The paper’s station keeps accelerating and turning through every gap; the bounded one holds the speed in 0–20 m/s, lets an acceleration fade within seconds (as a multicopter’s does) and a turn once a packet is overdue.',
     notice: ['The pinned baseline is the paper’s station: the bounded one’s mean and p95 errors are far lower (▼).', 'The delivery column: the same packets arrive for both.'],
   },
   {

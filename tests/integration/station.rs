@@ -60,11 +60,14 @@ fn fly_steady_turn<const N: usize, M: MotionModel<N> + Copy>(
 
 fn paper_and_bounded_agree<const N: usize, M: MotionModel<N> + Copy>(model: M) {
     fly_steady_turn(model, |t, age, paper, bounded| {
-        // The unscented mean moves by a hair (under a millimetre) with the covariance: the
-        // bounded station puts no noise on the position itself.
+        // The unscented mean moves by a hair with the covariance: the bounded station puts no
+        // noise on the position itself (under a millimetre), and a model with an acceleration
+        // lets its variance fade from the packet on (a few millimetres).
+        let accelerates = M::KIND != ModelKind::Dr;
+        let hair = if accelerates { 5e-3 } else { 1e-3 };
         let (a, b) = (paper.position(), bounded.position());
         assert!(
-            (0..3).all(|i| (a[i] - b[i]).abs() < 1e-3),
+            (0..3).all(|i| (a[i] - b[i]).abs() < hair),
             "{:?} at {t}: {a:?} vs {b:?}",
             M::KIND
         );
@@ -73,13 +76,24 @@ fn paper_and_bounded_agree<const N: usize, M: MotionModel<N> + Copy>(model: M) {
         let extra = Bounds::default().model_error_variance(M::KIND, age) - PAPER_Q * age;
         let expected = paper.position_covariance() + Matrix3::identity() * extra;
         let diff = (bounded.position_covariance() - expected).abs().max();
-        // Up to 1 %: the missing position noise also moves the sigma points a little.
+        // Up to 1 %: the missing position noise also moves the sigma points a little. A model
+        // with an acceleration also lets it, and its variance, fade from the packet on, which
+        // narrows the position's spread a little more (a steady turn has none to lose).
         let scale = expected.abs().max();
+        let tolerance = if accelerates { 0.03 } else { 0.01 };
         assert!(
-            diff < 0.01 * scale,
+            diff < tolerance * scale,
             "{:?} at {t}: off by {diff} of {scale}",
             M::KIND
         );
+        if accelerates {
+            let wider = (bounded.position_covariance() - expected).max();
+            assert!(
+                wider < 0.01 * scale,
+                "{:?} at {t}: wider by {wider}",
+                M::KIND
+            );
+        }
     });
 }
 

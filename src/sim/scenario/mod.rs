@@ -109,7 +109,7 @@ pub struct StationSettings {
             long,
             value_enum,
             default_value = "paper",
-            help = "Station prediction between packets: paper (constant a and omega, as published) or bounded (speed and pitch limits, overdue manoeuvres decay)."
+            help = "Station prediction between packets: paper (constant a and omega, as published) or bounded (speed and pitch limits, the acceleration fades, overdue manoeuvres decay)."
         )
     )]
     pub prediction: Prediction,
