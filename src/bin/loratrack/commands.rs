@@ -667,7 +667,8 @@ fn sweep(a: SweepArgs) -> Result<String, ApiError> {
         return Ok(json(&r));
     }
     if a.markdown {
-        return Ok(crate::reproduction::markdown(&r));
+        let real = real_flight_runs(a.seed, &predictions, &model)?;
+        return Ok(crate::reproduction::markdown(&r, &real));
     }
     let mut out = format!(
         "paper sweep: synthetic set ({:.0} s), 250 kHz, no LoRaWAN overhead, seed {}\n",
@@ -683,6 +684,39 @@ fn sweep(a: SweepArgs) -> Result<String, ApiError> {
         );
     }
     Ok(out.trim_end().to_string())
+}
+
+/// The bundled real flight beside the paper's grid: SF7 / 250 kHz at [`REAL_DISTANCES`], without
+/// and with the LoRaWAN overhead, [`REAL_SEEDS`] seeds pooled (one 162 s flight is one draw of the
+/// shadowing), every prediction and model of the sweep.
+fn real_flight_runs(
+    seed: u64,
+    predictions: &[Prediction],
+    model: &ModelChoice,
+) -> Result<Vec<crate::reproduction::RealRun>, ApiError> {
+    let mut sim = Simulator::new();
+    let mut runs = Vec::new();
+    for &prediction in predictions {
+        for overhead in [0, Scenario::default().radio.overhead] {
+            for distance in crate::reproduction::REAL_DISTANCES {
+                let mut p = Scenario::default();
+                p.flight.sample = Some("canberra".into());
+                p.station.model = model.clone();
+                p.station.prediction = prediction;
+                (p.radio.sf, p.radio.bw, p.radio.overhead) = (7, 250.0, overhead);
+                p.channel.distance = distance;
+                (p.run.seed, p.run.seeds) = (seed, crate::reproduction::REAL_SEEDS);
+                let results = api::simulate(&mut sim, &p)?.results;
+                runs.push(crate::reproduction::RealRun {
+                    overhead,
+                    distance,
+                    prediction,
+                    results,
+                });
+            }
+        }
+    }
+    Ok(runs)
 }
 
 /// The one station a trade-off sweep runs: `all` (the default) means the paper's best, 3D-CTRA.
