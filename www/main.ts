@@ -5,7 +5,7 @@ import { pool } from './boot';
 import { linkBudget, load, MODEL_LABELS, stationsOf, type SimReport, type SwarmParams } from './loratrack';
 import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
 import { boxplotChart, type BoxRow } from './charts/boxplot';
-import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './charts/colors';
+import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR, chartFont } from './charts/colors';
 import { errorOverTimeChart } from './charts/errorOverTime';
 import { linkBudgetCharts } from './charts/linkBudget';
 import { p75BySfChart } from './charts/p75BySf';
@@ -105,8 +105,24 @@ function renderPartial(r: SimReport, made: Settings): void {
   markStale(typing !== undefined || JSON.stringify(made) !== JSON.stringify(store.settings));
   showPartial(true);
   renderTable(r);
-  later('error', () => place('error', errorOverTimeChart(r, chartWidth('error')), made));
+  drawErrorChart(r, made);
   status.textContent = 'Flight 1 of the 30 shown, its numbers alone; simulating the rest of the set… change any setting to interrupt.';
+}
+
+/** What the error chart on show was drawn from: a whole set's report draws the chart its first
+ * flight already drew (the series is always the first flight's), so that second draw is skipped. */
+let errorChartDrawn: { key: string; chart: Element } | undefined;
+
+function drawErrorChart(r: SimReport, made: Settings): void {
+  later('error', () => {
+    const width = chartWidth('error');
+    const key = JSON.stringify([width, chartFont(), made, r.config.adr, r.series]);
+    const onShow = $('#chart-error').firstElementChild;
+    if (errorChartDrawn?.key === key && onShow === errorChartDrawn.chart) return;
+    const chart = errorOverTimeChart(r, width);
+    place('error', chart, made);
+    errorChartDrawn = { key, chart };
+  });
 }
 
 /** The results on show belong to other settings (or to none yet). */
@@ -191,7 +207,7 @@ function renderResults(r: SimReport): void {
   renderTable(r);
   updateEmbedCaption();
   const made = store.reportSettings;
-  later('error', () => place('error', errorOverTimeChart(r, chartWidth('error')), made));
+  drawErrorChart(r, made);
   later('axes', () => {
     const axisRows: BoxRow[] = r.results.flatMap((m) => [
       { group: 'x', model: m.model, box: m.boxplot.errorX },
