@@ -11,8 +11,8 @@ use super::report::{Delivery, ModelSeries, RunConfig, Series, SimReport};
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::Schedule;
 use super::station::{
-    new_tracker, track_station, Estimate, FlightChains, MissionPlan, Prediction, StationModel,
-    StationSetup, StationTrack, MAX_GRIDS,
+    new_tracker, track_station, Estimate, FlightChains, MissionPlan, Prediction, Scoring,
+    StationModel, StationSetup, StationTrack, MAX_GRIDS,
 };
 use super::SimError;
 use crate::lora::Channel;
@@ -407,23 +407,21 @@ impl Simulator {
                     run_episode(net, core::slice::from_mut(&mut flier));
                     let tx = flier.tx;
                     let with_series = s.run.series && i == 0 && j == 0;
+                    let scoring = Scoring {
+                        step: s.station.step,
+                        with_bounds: with_series,
+                        calibrate: setup.prediction == Prediction::Bounded,
+                    };
                     let st = match chains {
                         Some(c) => c[i].lock().unwrap_or_else(|e| e.into_inner()).track(
                             flight,
                             &|| new_tracker(model, setup, None),
                             &tx,
-                            s.station.step,
-                            with_series,
+                            scoring,
                         ),
                         None => {
                             let mut tracker = new_tracker(model, setup, plan);
-                            track_station(
-                                flight,
-                                tracker.as_mut(),
-                                &tx,
-                                s.station.step,
-                                with_series,
-                            )
+                            track_station(flight, tracker.as_mut(), &tx, scoring)
                         }
                     };
                     let series = with_series.then(|| model_series(model, &st, &tx));

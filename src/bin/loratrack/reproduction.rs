@@ -84,7 +84,8 @@ pub fn markdown(r: &SweepReport, real: &[RealRun]) -> String {
          within ±90°, lets an acceleration fade from the packet on (it lasts about 2 s on a multicopter) \
          and an overdue manoeuvre decay (`src/sim/station/prediction.rs`); its covariance \
          starts from the drone filter's settled covariance and adds what its model leaves out of the motion \
-         (`Bounds::model_error_variance`). IMM mixes DR, \
+         (`Bounds::model_error_variance`), scaled by what its forecasts of the packets show \
+         (`src/sim/station/calibration.rs`). IMM mixes DR, \
          CTRA+ and 3D-CTRA from the 12-byte 3D-CTRA packet (`src/sim/station/imm.rs`). cover95 is the share of \
          steps whose true position lies inside the station's own 95 % ellipsoid (0.95 when its covariance is honest); \
          NEES the mean normalised estimation error squared of the position (3 when honest; more: the station \

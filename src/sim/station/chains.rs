@@ -7,7 +7,7 @@
 //! every chain and only pays for the evaluation. The numbers are the same as without the cache
 //! (tests/integration/station.rs checks).
 
-use super::{score_station, start_from, Estimate, StationTrack, Tracker};
+use super::{score_station, start_from, Estimate, Scoring, StationTrack, Tracker};
 use crate::sim::packet::Transmission;
 use crate::trajectory::Trajectory;
 use std::collections::HashMap;
@@ -42,10 +42,9 @@ impl FlightChains {
         flight: &Trajectory,
         new_tracker: &dyn Fn() -> Box<dyn Tracker>,
         transmissions: &[Transmission],
-        step: f64,
-        with_bounds: bool,
+        scoring: Scoring,
     ) -> StationTrack {
-        let grid = (flight.duration() / step).max(1.0);
+        let grid = (flight.duration() / scoring.step).max(1.0);
         if self.stored as f64 > MAX_GRIDS * grid {
             self.chains.clear();
             self.stored = 0;
@@ -57,47 +56,41 @@ impl FlightChains {
         let mut served: Vec<f64> = Vec::new();
         let mut live: Option<Box<dyn Tracker>> = None;
         let (chains, stored) = (&mut self.chains, &mut self.stored);
-        score_station(
-            flight,
-            transmissions,
-            step,
-            with_bounds,
-            &mut |t, received, fresh| {
-                if fresh {
-                    let packet = received.packet;
-                    key = (
-                        packet.sent.to_bits(),
-                        packet.arrival.to_bits(),
-                        packet.interval.to_bits(),
-                        received.silence_trusted,
-                    );
-                    k = 0;
-                    served.clear();
-                    live = None;
+        score_station(flight, transmissions, scoring, &mut |t, received, fresh| {
+            if fresh {
+                let packet = received.packet;
+                key = (
+                    packet.sent.to_bits(),
+                    packet.arrival.to_bits(),
+                    packet.interval.to_bits(),
+                    received.silence_trusted,
+                );
+                k = 0;
+                served.clear();
+                live = None;
+            }
+            let chain = chains.entry(key).or_default();
+            let e = match chain.estimates.get(k) {
+                Some(e) => *e,
+                None => {
+                    let tracker = live.get_or_insert_with(|| {
+                        let mut tr = new_tracker();
+                        start_from(tr.as_mut(), received);
+                        for &s in &served {
+                            tr.predict_to(s);
+                        }
+                        tr
+                    });
+                    tracker.predict_to(t);
+                    let e = Estimate::of(tracker.as_ref());
+                    chain.estimates.push(e);
+                    *stored += 1;
+                    e
                 }
-                let chain = chains.entry(key).or_default();
-                let e = match chain.estimates.get(k) {
-                    Some(e) => *e,
-                    None => {
-                        let tracker = live.get_or_insert_with(|| {
-                            let mut tr = new_tracker();
-                            start_from(tr.as_mut(), received);
-                            for &s in &served {
-                                tr.predict_to(s);
-                            }
-                            tr
-                        });
-                        tracker.predict_to(t);
-                        let e = Estimate::of(tracker.as_ref());
-                        chain.estimates.push(e);
-                        *stored += 1;
-                        e
-                    }
-                };
-                served.push(t);
-                k += 1;
-                e
-            },
-        )
+            };
+            served.push(t);
+            k += 1;
+            e
+        })
     }
 }

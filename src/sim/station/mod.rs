@@ -8,6 +8,7 @@
 //!
 //! All implement [`Tracker`], which is also what an error-triggered drone mirrors.
 
+mod calibration;
 mod chains;
 mod drone_covariance;
 mod imm;
@@ -16,6 +17,7 @@ mod prediction;
 mod predictor;
 mod station_model;
 
+pub use calibration::{Calibration, CALIBRATION_GAIN};
 pub(crate) use chains::{FlightChains, MAX_GRIDS};
 pub use drone_covariance::{DroneCovariances, NOMINAL_SPEED};
 pub use imm::{Imm, ImmMember, IMM_STAY};
@@ -140,6 +142,18 @@ impl Estimate {
     }
 }
 
+/// How a station is scored over a flight.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Scoring {
+    /// The evaluation step T, s.
+    pub step: f64,
+    /// Whether to keep the longest semi-axis of the 95 % ellipsoid at every step (the series).
+    pub with_bounds: bool,
+    /// Whether the station calibrates its covariance against its forecasts of the packets
+    /// ([`Calibration`]; a bounded station: the paper's is scored as published).
+    pub calibrate: bool,
+}
+
 /// Runs a station over the flight.
 ///
 /// At every grid time t0 + jT from the first arrival on, the newest packet that has fully arrived
@@ -150,22 +164,15 @@ pub fn track_station(
     flight: &Trajectory,
     tracker: &mut dyn Tracker,
     transmissions: &[Transmission],
-    step: f64,
-    with_bounds: bool,
+    scoring: Scoring,
 ) -> StationTrack {
-    score_station(
-        flight,
-        transmissions,
-        step,
-        with_bounds,
-        &mut |t, packet, fresh| {
-            if fresh {
-                start_from(tracker, packet);
-            }
-            tracker.predict_to(t);
-            Estimate::of(tracker)
-        },
-    )
+    score_station(flight, transmissions, scoring, &mut |t, packet, fresh| {
+        if fresh {
+            start_from(tracker, packet);
+        }
+        tracker.predict_to(t);
+        Estimate::of(tracker)
+    })
 }
 
 /// A transmission as the station received it.
@@ -189,10 +196,14 @@ pub(crate) fn start_from(tracker: &mut dyn Tracker, r: &Received) {
 pub(crate) fn score_station(
     flight: &Trajectory,
     transmissions: &[Transmission],
-    step: f64,
-    with_bounds: bool,
+    scoring: Scoring,
     estimate: &mut dyn FnMut(f64, &Received, bool) -> Estimate,
 ) -> StationTrack {
+    let Scoring {
+        step,
+        with_bounds,
+        calibrate,
+    } = scoring;
     let received: Vec<Received> = transmissions
         .iter()
         .filter(|t| t.received)
@@ -211,6 +222,7 @@ pub(crate) fn score_station(
     let mut next = 0;
     let mut applied = usize::MAX; // index of the packet the tracker was last reset to
     let mut hint = 0;
+    let mut calibration = calibrate.then(|| Calibration::new(CALIBRATION_GAIN));
     let capacity = ((end - t0) / step) as usize + 1;
     let mut out = StationTrack {
         times: Vec::with_capacity(capacity),
@@ -230,7 +242,13 @@ pub(crate) fn score_station(
         // j starts at the first arrival, so at least one packet has arrived.
         let fresh = next - 1 != applied;
         applied = next - 1;
-        let e = estimate(t, &received[applied], fresh);
+        let mut e = estimate(t, &received[applied], fresh);
+        if let Some(c) = &mut calibration {
+            if fresh {
+                c.packet(received[applied].packet);
+            }
+            e.covariance = c.estimate(t, e.position, e.covariance);
+        }
         let truth = flight.position_at(t, &mut hint);
         let est = e.position;
         let d: [f64; 3] = core::array::from_fn(|k| est[k] - truth[k]);

@@ -22,7 +22,7 @@ use super::report::{ratio, Delivery, Energy};
 use super::scenario::{SfPlan, Validated};
 use super::schedule::{self, aloha_collision_rate, Airtime, Schedule, Slot};
 use super::simulator::load_flights;
-use super::station::{new_tracker, track_station, StationModel, StationSetup};
+use super::station::{new_tracker, track_station, Scoring, StationModel, StationSetup};
 use super::streams::LAYOUT_STREAM;
 use super::{SimError, Transmission};
 use crate::lora::{time_on_air, AdrMode, LoraParams, Outcome};
@@ -220,9 +220,13 @@ pub fn run_swarm(
             for (seats, out) in plan.episodes.iter().zip(&sent) {
                 let flight = &plan.flights[seats[i].flight];
                 let mut tracker = new_tracker(model, kits[i].setup, None);
-                e3.extend(
-                    track_station(flight, tracker.as_mut(), &out[i], s.station.step, false).error3d,
-                );
+                // Only the error is kept: the covariance's calibration would change nothing.
+                let scoring = Scoring {
+                    step: s.station.step,
+                    with_bounds: false,
+                    calibrate: false,
+                };
+                e3.extend(track_station(flight, tracker.as_mut(), &out[i], scoring).error3d);
             }
             e3
         });
