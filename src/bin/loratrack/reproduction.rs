@@ -172,10 +172,7 @@ pub fn markdown(r: &SweepReport, real: &[RealRun]) -> String {
             let Some(imm) = run.results.iter().find(|m| m.model == StationModel::Imm) else {
                 continue;
             };
-            let best = StationModel::PAPER
-                .iter()
-                .map(|&m| p75(run, m))
-                .fold(f64::INFINITY, f64::min);
+            let best = best_single_p75(run);
             let probs = imm.model_probability.as_ref().map_or("—".into(), |p| {
                 ModelKind::ALL
                     .iter()
@@ -200,6 +197,23 @@ pub fn markdown(r: &SweepReport, real: &[RealRun]) -> String {
     s
 }
 
+/// The lowest p75 of the paper's three models in a sweep run, m.
+fn best_single_p75(run: &SweepRun) -> f64 {
+    StationModel::PAPER
+        .iter()
+        .map(|&m| p75(run, m))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Of two (ratio, label) pairs, the one with the larger ratio (the first on a tie).
+fn larger<'a>(a: (f64, &'a str), b: (f64, &'a str)) -> (f64, &'a str) {
+    if b.0 > a.0 {
+        b
+    } else {
+        a
+    }
+}
+
 /// IMM's p75 against the best single model's, per prediction: the range, and where it is more
 /// than 2 % worse.
 fn imm_verdict(r: &SweepReport) -> String {
@@ -211,10 +225,7 @@ fn imm_verdict(r: &SweepReport) -> String {
             .filter(|run| run.prediction == prediction)
             .filter_map(|run| {
                 let imm = run.results.iter().find(|m| m.model == StationModel::Imm)?;
-                let best = StationModel::PAPER
-                    .iter()
-                    .map(|&m| p75(run, m))
-                    .fold(f64::INFINITY, f64::min);
+                let best = best_single_p75(run);
                 let at = format!("SF{} {} km", run.sf, run.distance / 1000.0);
                 Some((at, imm.error3d.p75 / best))
             })
@@ -293,7 +304,7 @@ fn real_flight(runs: &[RealRun]) -> String {
                     .iter()
                     .filter(|m| m.model != DR)
                     .map(|m| (m.error3d.p95 / dr.error3d.p95, m.model.label()))
-                    .fold((0.0, ""), |a, b| if b.0 > a.0 { b } else { a });
+                    .fold((0.0, ""), larger);
                 (format!("{w:.2} ({who})"), w)
             }
             None => ("—".into(), f64::NAN),
@@ -319,7 +330,7 @@ fn real_flight(runs: &[RealRun]) -> String {
             .iter()
             .filter(|x| x.0 == p && x.1.is_finite())
             .map(|x| (x.1, x.2.as_str()))
-            .fold((0.0, ""), |a, b| if b.0 > a.0 { b } else { a });
+            .fold((0.0, ""), larger);
         let verdict = if w <= 1.10 {
             "within the 10 % aim"
         } else {
