@@ -7,7 +7,7 @@ use crate::api::*;
 use crate::lora::{
     AdrMode, ChannelAccess, DutyCycleMode, FairUse, LdroMode, Plan, PlanRate, Region,
 };
-use crate::metrics::{Boxplot, Intervals, Summary};
+use crate::metrics::{Boxplot, Intervals, Summary, WholeFlightError};
 use crate::models::ModelKind;
 use crate::options::{NumberOption, OPTIONS};
 use crate::sim::scenario::*;
@@ -69,6 +69,7 @@ fn decls() -> Vec<String> {
         RunSettings::decl(&c),
         Scenario::decl(&c),
         Summary::decl(&c),
+        WholeFlightError::decl(&c),
         Intervals::decl(&c),
         Boxplot::decl(&c),
         Boxplots::decl(&c),

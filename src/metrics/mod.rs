@@ -1,15 +1,18 @@
 //! Error statistics: summaries (mean and percentiles), boxplots (reference §9; paper Figs. 3–6) and the
 //! consistency of the station's uncertainty (95 % coverage), and how sure each statistic is
-//! (bootstrap intervals over runs).
+//! (bootstrap intervals over runs), and the error over the whole flight time, untracked time
+//! included.
 
 mod bootstrap;
 mod boxplot;
 mod coverage;
 mod percentile;
 mod summary;
+mod whole_flight;
 
 pub use bootstrap::{bootstrap, Intervals, RESAMPLES};
 pub use boxplot::Boxplot;
 pub use coverage::{bound_95, inside_95, nees, Consistency, CHI2_3DOF_95};
 pub use percentile::percentile;
 pub use summary::Summary;
+pub use whole_flight::WholeFlightError;

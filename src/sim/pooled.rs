@@ -4,7 +4,7 @@ use super::packet::Transmission;
 use super::report::{Boxplots, DataRateUse, Delivery, Energy, ModelResult, ModelSeries};
 use super::station::{StationModel, StationTrack};
 use crate::lora::DataRate;
-use crate::metrics::{bootstrap, Consistency, Summary};
+use crate::metrics::{bootstrap, Consistency, Summary, WholeFlightError};
 use crate::models::ModelKind;
 use std::collections::BTreeMap;
 
@@ -18,6 +18,8 @@ pub(crate) struct Pooled {
     e3: Vec<f64>,
     /// Where each run's 3D errors end in `e3`: the units the intervals resample.
     run_ends: Vec<usize>,
+    /// Evaluation times with no packet yet, summed over the runs.
+    untracked: usize,
     ex: Vec<f64>,
     ey: Vec<f64>,
     ez: Vec<f64>,
@@ -56,6 +58,7 @@ impl Pooled {
         }
         self.e3.extend_from_slice(&st.error3d);
         self.run_ends.push(self.e3.len());
+        self.untracked += st.untracked;
         for e in &st.error_axes {
             self.ex.push(e[0]);
             self.ey.push(e[1]);
@@ -137,6 +140,7 @@ impl Pooled {
             interval,
             airtime,
             error3d: s3,
+            whole_flight: WholeFlightError::of_sorted(&self.e3, self.untracked),
             ci95,
             error_x: sx,
             error_y: sy,

@@ -5,7 +5,7 @@ use super::packet::Transmission;
 use super::scenario::Scenario;
 use super::station::StationModel;
 use crate::lora::SX1276_SLEEP_CURRENT_MA;
-use crate::metrics::{Boxplot, Intervals, Summary};
+use crate::metrics::{Boxplot, Intervals, Summary, WholeFlightError};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -177,8 +177,11 @@ pub struct ModelResult {
     pub interval: f64,
     /// Total time on air of the packets sent over all flights, s.
     pub airtime: f64,
-    /// 3D error, m.
+    /// 3D error, m, at the evaluation times after each flight's first packet arrived.
     pub error3d: Summary,
+    /// The share of the flight time with a packet, and the 3D error's percentiles over the
+    /// whole flight time (time before a flight's first packet counting as the largest error).
+    pub whole_flight: WholeFlightError,
     /// 95 % intervals of `error3d`'s statistics, by bootstrap over the runs (flights × seeds)
     /// pooled in it (`docs/reference.md` §12); `null` for a single run, which cannot show its
     /// own spread.

@@ -119,6 +119,38 @@ fn five_km_at_sf7_loses_packets_and_tracks_worse_than_one_km() {
 }
 
 #[test]
+fn the_whole_flight_error_counts_the_time_before_a_flights_first_packet() {
+    let mut sim = Simulator::new();
+    let flights = set(
+        &Scenario::default(),
+        json!({"synthetic": "all", "model": "dr"}),
+    );
+    let fast = simulate(&mut sim, &flights).unwrap().results.remove(0);
+    let slow = simulate(&mut sim, &set(&flights, json!({"sf": 12})))
+        .unwrap()
+        .results
+        .remove(0);
+    // SF7 sends every 3 s, SF12 / 250 kHz every 74 s, on flights of 88 s on average.
+    assert!(fast.whole_flight.tracked > 0.95, "{:?}", fast.whole_flight);
+    assert!(slow.whole_flight.tracked < 0.8, "{:?}", slow.whole_flight);
+    for r in [&fast, &slow] {
+        // Untracked time only adds errors above every tracked one.
+        if let Some(p) = r.whole_flight.p75 {
+            assert!(p >= r.error3d.p75, "{p} < {}", r.error3d.p75);
+        }
+        assert_eq!(r.whole_flight.p75.is_none(), r.whole_flight.tracked < 0.75);
+    }
+    // Tracked and untracked times add up to the same evaluation grid at both rates.
+    let grid = |r: &loratrack::ModelResult| r.error3d.count as f64 / r.whole_flight.tracked;
+    assert!(
+        (grid(&fast) - grid(&slow)).abs() < 0.5,
+        "{} {}",
+        grid(&fast),
+        grid(&slow)
+    );
+}
+
+#[test]
 fn without_shadowing_delivery_is_all_or_nothing_around_the_range() {
     let mut sim = Simulator::new();
     let p = |d| {

@@ -514,6 +514,26 @@ max: number | null,
  */
 count: number, };
 
+export type WholeFlightError = { 
+/**
+ * Share of the evaluation times (every T over the flights) at which the station had
+ * received a packet, 0–1 (`null` when there were none at all).
+ */
+tracked: number | null, 
+/**
+ * Median over the whole flight time, m (`null` when half of it or more was untracked).
+ */
+p50: number | null, 
+/**
+ * 75th percentile over the whole flight time, m (`null` when a quarter or more was
+ * untracked).
+ */
+p75: number | null, 
+/**
+ * 95th percentile over the whole flight time, m (`null` when 5 % or more was untracked).
+ */
+p95: number | null, };
+
 export type Intervals = { 
 /**
  * Independent runs resampled (flights × seeds).
@@ -700,9 +720,14 @@ interval: number,
  */
 airtime: number, 
 /**
- * 3D error, m.
+ * 3D error, m, at the evaluation times after each flight's first packet arrived.
  */
 error3d: Summary, 
+/**
+ * The share of the flight time with a packet, and the 3D error's percentiles over the
+ * whole flight time (time before a flight's first packet counting as the largest error).
+ */
+wholeFlight: WholeFlightError, 
 /**
  * 95 % intervals of `error3d`'s statistics, by bootstrap over the runs (flights × seeds)
  * pooled in it (`docs/reference.md` §12); `null` for a single run, which cannot show its

@@ -564,15 +564,16 @@ fn num(v: f64, width: usize, decimals: usize) -> String {
 
 fn results_table(results: &[ModelResult]) -> String {
     let mut out = String::from(
-        "model     interval  received   mean    p50    p75    p95    max  cover95   NEES  mC/uplink  (3D error, m)\n",
+        "model     interval  received  tracked   mean    p50    p75    p95    max  cover95   NEES  mC/uplink  (3D error, m)\n",
     );
     for m in results {
         out += &format!(
-            "{:<9} {:>7.2}s {:>5}/{:<5} {} {} {} {} {} {} {} {:>10.2}\n",
+            "{:<9} {:>7.2}s {:>5}/{:<5} {:>6}% {} {} {} {} {} {} {} {:>10.2}\n",
             m.model.label(),
             m.interval,
             m.delivery.packets_received,
             m.delivery.packets_sent,
+            num(100.0 * m.whole_flight.tracked, 6, 1),
             num(m.error3d.mean, 6, 2),
             num(m.error3d.p50, 6, 2),
             num(m.error3d.p75, 6, 2),
@@ -600,6 +601,9 @@ fn results_table(results: &[ModelResult]) -> String {
             c.runs,
             intervals.join(", ")
         );
+    }
+    if results.iter().any(|m| m.whole_flight.tracked < 0.95) {
+        out += "tracked: the share of the flight time after each flight's first packet; the errors cover only that time\n";
     }
     out.trim_end().to_string()
 }

@@ -118,6 +118,11 @@ pub struct StationTrack {
     pub bound95: Vec<f64>,
     /// Sum over the evaluation times of the model probabilities (multiple-model trackers).
     pub probability_sum: Option<[f64; 3]>,
+    /// Evaluation times (every T from the flight's start) before the first packet arrived, or
+    /// all of them when none did: the station had no estimate there ([`WholeFlightError`]).
+    ///
+    /// [`WholeFlightError`]: crate::metrics::WholeFlightError
+    pub untracked: usize,
 }
 
 /// What a station believes at one evaluation time.
@@ -213,22 +218,27 @@ pub(crate) fn score_station(
             silence_trusted,
         })
         .collect();
-    let Some(first) = received.first() else {
-        return StationTrack::default();
-    };
     let t0 = flight.t[0];
     let end = flight.t[flight.t.len() - 1];
+    // The evaluation times t0 + j·T up to the flight's end, as the loop below steps them.
+    let grid = ((end - t0 + 1e-9) / step).floor() as usize + 1;
+    let Some(first) = received.first() else {
+        return StationTrack {
+            untracked: grid,
+            ..StationTrack::default()
+        };
+    };
     let mut j = ((first.packet.arrival - t0) / step - 1e-9).ceil().max(0.0) as usize;
     let mut next = 0;
     let mut applied = usize::MAX; // index of the packet the tracker was last reset to
     let mut hint = 0;
     let mut calibration = calibrate.then(|| Calibration::new(CALIBRATION_GAIN));
-    let capacity = ((end - t0) / step) as usize + 1;
     let mut out = StationTrack {
-        times: Vec::with_capacity(capacity),
-        estimate: Vec::with_capacity(capacity),
-        error_axes: Vec::with_capacity(capacity),
-        error3d: Vec::with_capacity(capacity),
+        times: Vec::with_capacity(grid),
+        estimate: Vec::with_capacity(grid),
+        error_axes: Vec::with_capacity(grid),
+        error3d: Vec::with_capacity(grid),
+        untracked: j.min(grid),
         ..StationTrack::default()
     };
     loop {
