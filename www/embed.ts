@@ -49,6 +49,7 @@ export function updateEmbedCaption(): void {
   $('#embed-settings').textContent = `Settings: ${caption(store.reportSettings)}.`;
   const lines = [...store.notices];
   if (!$('#rests-on').hidden) lines.push($('#rests-on-text').textContent ?? '');
+  if (!$('#untracked').hidden) lines.push($('#untracked').textContent ?? '');
   if ($('[data-panel="results"]').classList.contains('stale')) lines.push('The numbers shown are for the previous settings.');
   if ($('[data-panel="results"]').classList.contains('partial')) lines.push('The numbers shown are the first flight’s alone; the rest of the set is still running.');
   $('#embed-notices').hidden = lines.length === 0;

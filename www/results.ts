@@ -11,6 +11,7 @@ import { store } from './store';
 export function renderTable(r: SimReport): void {
   const best = clearlyLowest(r);
   renderVerdict(r, best);
+  renderUntracked(r);
   const rows = r.results
     .map((m) => {
       const ratio = m.packetsSent ? m.packetsReceived / m.packetsSent : 0;
@@ -85,6 +86,20 @@ function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
   else if (best) text.textContent = `${MODEL_LABELS[best.model]} has the lowest p75, clearly: its 95 % interval lies below every other model's (${runs} runs).`;
   else if (!runs) text.textContent = 'One flight with one seed cannot tell whether these differences are larger than chance: no model is named best.';
   else text.textContent = noClearLowest(r, runs);
+}
+
+/** How much of the flight time the statistics cover, when a flight's first packet comes late
+ * (SF11-12, long range): before it the station has no estimate and no error is counted
+ * (`wholeFlight`, docs/reference.md §12). Said below 95 %. */
+function renderUntracked(r: SimReport): void {
+  const note = $('#untracked');
+  const share = (m: ModelResult) => Math.round(100 * (m.wholeFlight.tracked ?? 0));
+  const short = r.results.filter((m) => share(m) < 95);
+  note.hidden = short.length === 0;
+  if (!short.length) return;
+  const shares = new Set(r.results.map(share));
+  const cover = shares.size === 1 ? `${share(r.results[0])} %` : r.results.map((m) => `${share(m)} % (${MODEL_LABELS[m.model]})`).join(', ');
+  note.textContent = `These errors cover ${cover} of the flight time: until a flight's first packet arrives the station has no estimate, and that time is not in the table.`;
 }
 
 /** p75's 95 % interval, when the run has one. */

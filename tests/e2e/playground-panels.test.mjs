@@ -255,11 +255,21 @@ test('numbers resting on few packets say so and offer the whole set in one click
   assert.match(await page.locator('#rests-on-text').textContent(), /Too few packets to compare: .* on \d/);
   const received = number((await cell(page, 'dr', 'packets')).split('/')[0]);
   assert.ok(received < 10, `${received} packets`);
+  // Packets 148 s apart on an 81 s flight: the note says how little of it the errors cover, as
+  // the CLI counts it.
+  const untracked = await page.locator('#untracked').textContent();
+  for (const m of nativeJson(['simulate', '--synthetic', '1', '--sf', '12', '--bw', '125']).results) {
+    const pct = Math.round(100 * m.wholeFlight.tracked);
+    assert.ok(pct < 95, `${m.model}: ${pct} %`);
+    assert.match(untracked, new RegExp(`cover .*\\b${pct} %`), `${m.model} ${pct} %: ${untracked}`);
+  }
   const before = await tableHtml(page);
   await page.getByRole('button', { name: 'Simulate the whole synthetic set' }).click();
   await waitForResults(page, before);
   assert.equal(await page.getByLabel('Trajectory', { exact: true }).inputValue(), 'all');
   assert.equal(await page.locator('#rests-on').isVisible(), false);
+  // More flights give more packets, not an earlier first one in each.
+  assert.match(await page.locator('#untracked').textContent(), /These errors cover \d+ %.* of the flight time/);
   assert.match(await page.locator('#results-table caption').textContent(), /over 30 flights × 1 seed/);
   // The whole set gives intervals over its flights: the verdict rests on them.
   assert.match(await page.locator('#verdict-text').textContent(), /runs/);

@@ -363,6 +363,9 @@ test('every chart downloads ready for a slide: title, legend, caption with setti
   assert.match(results[0], /^model,payload_bytes,.*p75_m,p75_lo_m,p75_hi_m/);
   const p75 = Number(results[1].split(',')[9]);
   assert.equal(p75.toFixed(2), number(await cell(page, 'dr', 'p75')).toFixed(2));
+  // What the errors rest on: the share of the flight time after its first packet (SF7: most of it).
+  const tracked = Number(results[1].split(',')[results[0].split(',').indexOf('tracked_share')]);
+  assert.ok(tracked > 0.95 && tracked < 1, `tracked share ${tracked}`);
   const airtime = (await save(page.getByRole('button', { name: 'Time-on-air table (CSV)' }))).toString('utf8');
   assert.match(airtime.split('\n')[0], /SF,bandwidth,data rate,9 B/);
   assert.match(airtime, /^SF7,250 kHz,DR6,/m, 'the plan names each pair\'s data rate');
