@@ -287,3 +287,25 @@ fn listen_before_talk_runs_in_a_swarm_and_reports_what_it_deferred_and_avoided()
         .to_string()
         .contains("US915 has none"));
 }
+
+#[test]
+fn every_drone_says_how_much_of_its_flight_time_its_errors_cover() {
+    let r = swarm(&aloha(12, 3, 1)).unwrap();
+    let share = |sf: u8| {
+        let group: Vec<f64> = r
+            .drones
+            .iter()
+            .filter(|d| d.sf == sf)
+            .map(|d| d.whole_flight.tracked)
+            .collect();
+        group.iter().sum::<f64>() / group.len() as f64
+    };
+    // SF12 at 125 kHz sends a minute or more apart: each episode waits longer for its first packet.
+    assert!(share(12) < share(7), "SF12 {} SF7 {}", share(12), share(7));
+    assert!(share(7) > 0.9, "SF7 {}", share(7));
+    let (lo, hi) = r.drones.iter().fold((1.0_f64, 0.0_f64), |(lo, hi), d| {
+        (lo.min(d.whole_flight.tracked), hi.max(d.whole_flight.tracked))
+    });
+    let pooled = r.whole_flight.tracked;
+    assert!(lo <= pooled && pooled <= hi, "{lo} {pooled} {hi}");
+}

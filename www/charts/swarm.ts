@@ -4,6 +4,13 @@ import { chartStyle, chartFont } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
 
+/** " (errors over 88 % of the flight time: ...)": said when a swarm's stations spend more than 5 % of
+ * it waiting for an episode's first packet (docs/reference.md §12). */
+function untracked(r: SwarmReport): string {
+  const share = r.wholeFlight.tracked;
+  return share !== null && share < 0.95 ? ` (errors over ${(100 * share).toFixed(0)} % of the flight time: before an episode's first packet a station has no estimate)` : '';
+}
+
 export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   const rates = swarms.map((r) => ({ n: r.config.drones, measured: 100 * r.collisionRate, theory: 100 * r.collisionRateTheory }));
   const collisions = Plot.plot({
@@ -33,7 +40,7 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   });
   const note = document.createElement('p');
   note.className = 'note';
-  note.textContent = `${largest.config.drones} drones, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${largest.config.sfPlan === 'spread' ? 'SFs spread by distance' : `all on SF${largest.config.sf}`}: ${(100 * largest.collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %), median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m; ${(100 * largest.deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${largest.config.adr === 'off' ? '' : `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped`}; radio ${largest.energy.chargePerUplink.toFixed(2)} mC per uplink.${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
+  note.textContent = `${largest.config.drones} drones, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${largest.config.sfPlan === 'spread' ? 'SFs spread by distance' : `all on SF${largest.config.sf}`}: ${(100 * largest.collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %), median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${untracked(largest)}; ${(100 * largest.deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${largest.config.adr === 'off' ? '' : `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped`}; radio ${largest.energy.chargePerUplink.toFixed(2)} mC per uplink.${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
   const l = largest.largestSwarm;
   note.textContent += ` Largest swarm one gateway serves at these settings, every drone sending as often as its duty cycle allows: ${l.aloha1} drones at ≤ 1 % collisions and ${l.aloha10} at ≤ 10 % with ALOHA (by its formula), ${l.slotted} slotted with none.`;
   const box = document.createElement('div');

@@ -1185,9 +1185,15 @@ dutyCycleUsed: number,
  */
 frameLength: number | null, 
 /**
- * Its station's 3D error, m (`count` 0: nothing arrived, nothing counted).
+ * Its station's 3D error, m, after each episode's first packet (`count` 0: nothing arrived,
+ * nothing counted).
  */
-error3d: Summary, };
+error3d: Summary, 
+/**
+ * The share of its flight time after each episode's first packet, and its error's
+ * percentiles over the whole flight time ([`WholeFlightError`]).
+ */
+wholeFlight: WholeFlightError, };
 
 export type LargestSwarm = { 
 /**
@@ -1450,9 +1456,13 @@ packetsNoDemodulator: number,
  */
 airtime: number, 
 /**
- * Every drone's errors pooled, m.
+ * Every drone's errors pooled, m (after each episode's first packet).
  */
 error3d: Summary, 
+/**
+ * Every drone's tracked share and errors over the whole flight time, pooled.
+ */
+wholeFlight: WholeFlightError, 
 /**
  * The median over drones of each drone's p75, m (`null` when no drone received anything).
  */

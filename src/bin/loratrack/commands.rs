@@ -856,6 +856,7 @@ fn swarm_text(r: &SwarmReport) -> String {
          below sensitivity   {}\n\
          no demodulator      {}\n\
          3D error (pooled)   mean {}  p75 {}  p95 {} m; median drone p75 {} m\n\
+         tracked             {}  (the share of the flight time after each flight's first packet, all the errors cover){}\n\
          energy              {:.2} mC per uplink, {:.3} mAh per hour (mean drone, SX1276 radio only)\n\
          drones that received nothing: {}{}",
         c.swarm.drones,
@@ -890,11 +891,40 @@ fn swarm_text(r: &SwarmReport) -> String {
         num(r.error3d.p75, 0, 2),
         num(r.error3d.p95, 0, 2),
         num(r.median_drone_p75, 0, 2),
+        percent(r.whole_flight.tracked),
+        tracked_by_sf(r),
         r.energy.charge_per_uplink,
         r.energy.charge_per_hour,
         silent,
         gateway_lines(&d.gateways)
     )
+}
+
+/// A share as "78.2 %", or a dash.
+fn percent(share: f64) -> String {
+    if share.is_finite() {
+        format!("{:.1} %", 100.0 * share)
+    } else {
+        "-".to_string()
+    }
+}
+
+/// "; SF7 99.1 %, ..., SF12 23.0 %": the tracked share of each SF's drones, when the swarm
+/// spreads them over more than one.
+fn tracked_by_sf(r: &SwarmReport) -> String {
+    let mut by_sf: std::collections::BTreeMap<u8, (usize, f64)> = Default::default();
+    for d in &r.drones {
+        let e = by_sf.entry(d.sf).or_default();
+        (e.0, e.1) = (e.0 + 1, e.1 + d.whole_flight.tracked);
+    }
+    if by_sf.len() < 2 {
+        return String::new();
+    }
+    let parts: Vec<String> = by_sf
+        .iter()
+        .map(|(sf, (n, sum))| format!("SF{sf} {}", percent(sum / *n as f64)))
+        .collect();
+    format!("; by SF (mean drone) {}", parts.join(", "))
 }
 
 /// The schedule line of `swarm`'s text: ALOHA with its clocks, or the slotted frame.

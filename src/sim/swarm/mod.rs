@@ -27,7 +27,7 @@ use super::streams::LAYOUT_STREAM;
 use super::{SimError, Transmission};
 use crate::lora::{time_on_air, AdrMode, LoraParams, Outcome};
 use crate::math::sin_cos;
-use crate::metrics::{percentile, Summary};
+use crate::metrics::{percentile, Summary, WholeFlightError};
 use crate::options::MAX_SWARM_FILTER_STEPS;
 use crate::rng::Rng;
 use crate::trajectory::{chain_flights, synthetic_set, Trajectory};
@@ -213,10 +213,11 @@ pub fn run_swarm(
     }
     let mut drones = Vec::with_capacity(n);
     let mut errors = Vec::new();
+    let mut all_untracked = 0;
     let mut tx_all: Vec<&Transmission> = Vec::new();
     for chunk in (0..n.div_ceil(CHUNK)).map(|c| c * CHUNK..((c + 1) * CHUNK).min(n)) {
         let tracked = par_map(chunk.clone(), |i| {
-            let mut e3 = Vec::new();
+            let (mut e3, mut untracked) = (Vec::new(), 0);
             for (seats, out) in plan.episodes.iter().zip(&sent) {
                 let flight = &plan.flights[seats[i].flight];
                 let mut tracker = new_tracker(model, kits[i].setup, None);
@@ -226,11 +227,13 @@ pub fn run_swarm(
                     with_bounds: false,
                     calibrate: false,
                 };
-                e3.extend(track_station(flight, tracker.as_mut(), &out[i], scoring).error3d);
+                let track = track_station(flight, tracker.as_mut(), &out[i], scoring);
+                e3.extend(track.error3d);
+                untracked += track.untracked;
             }
-            e3
+            (e3, untracked)
         });
-        for (i, mut e3) in chunk.zip(tracked) {
+        for (i, (mut e3, untracked)) in chunk.zip(tracked) {
             let mine: Vec<&Transmission> = sent.iter().flat_map(|ep| ep[i].iter()).collect();
             let mut channel_use = vec![0; usize::from(cfg.channels)];
             for t in &mine {
@@ -242,6 +245,8 @@ pub fn run_swarm(
                 .map(|ep| plan.flights[ep[i].flight].duration())
                 .sum();
             errors.extend_from_slice(&e3);
+            all_untracked += untracked;
+            let error3d = Summary::of(&mut e3);
             drones.push(DroneReport {
                 id: i,
                 sf: sf_of(&sfs, i) as u8,
@@ -256,7 +261,9 @@ pub fn run_swarm(
                 energy: Energy::of(mine.iter().copied(), time),
                 duty_cycle_used: mine.iter().map(|t| t.time_on_air).sum::<f64>() / time,
                 frame_length: kits[i].slot.map(|s| s.frame),
-                error3d: Summary::of(&mut e3),
+                error3d,
+                // Summary::of left e3 sorted.
+                whole_flight: WholeFlightError::of_sorted(&e3, untracked),
             });
             tx_all.extend(mine);
         }
@@ -264,7 +271,15 @@ pub fn run_swarm(
         progress(done, total);
     }
     let largest = largest_swarm(cfg, &sfs, bytes)?;
-    let mut r = report(cfg, model, &net, &tx_all, drones, errors, largest);
+    let mut r = report(
+        cfg,
+        model,
+        &net,
+        &tx_all,
+        drones,
+        (errors, all_untracked),
+        largest,
+    );
     r.frame_length = slots.map(|s| s.iter().map(|s| s.frame).fold(0.0, f64::max));
     if net.listen_before_talk {
         (r.lbt_deferrals, r.lbt_collisions_avoided) = (Some(lbt.0), Some(lbt.1));
@@ -390,13 +405,15 @@ fn fly(
     Ok(fliers.into_iter().map(|f| f.tx).collect())
 }
 
+/// The swarm's report from its drones' reports, every drone's errors pooled with the number of
+/// evaluation times before an episode's first packet (`errors`), and the network's counts.
 fn report(
     cfg: &Validated,
     model: StationModel,
     net: &Network,
     tx: &[&Transmission],
     drones: Vec<DroneReport>,
-    mut errors: Vec<f64>,
+    (mut errors, untracked): (Vec<f64>, usize),
     largest_swarm: LargestSwarm,
 ) -> SwarmReport {
     let s = cfg.s();
@@ -450,6 +467,7 @@ fn report(
         packets_no_demodulator: count(Outcome::NoDemodulator),
         airtime: airtime(tx.iter().copied()),
         error3d: Summary::of(&mut errors),
+        whole_flight: WholeFlightError::of_sorted(&errors, untracked),
         median_drone_p75: percentile(&p75s, 50.0),
         energy: Energy {
             charge_per_uplink: drones

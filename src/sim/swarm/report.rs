@@ -1,6 +1,6 @@
 //! The output of `swarm`.
 
-use crate::metrics::Summary;
+use crate::metrics::{Summary, WholeFlightError};
 use crate::sim::report::{Delivery, Energy};
 use crate::sim::scenario::Scenario;
 use crate::sim::station::StationModel;
@@ -33,8 +33,12 @@ pub struct DroneReport {
     /// Its slot's frame under a slotted schedule, s: its sending interval (`null` for ALOHA).
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub frame_length: Option<f64>,
-    /// Its station's 3D error, m (`count` 0: nothing arrived, nothing counted).
+    /// Its station's 3D error, m, after each episode's first packet (`count` 0: nothing arrived,
+    /// nothing counted).
     pub error3d: Summary,
+    /// The share of its flight time after each episode's first packet, and its error's
+    /// percentiles over the whole flight time ([`WholeFlightError`]).
+    pub whole_flight: WholeFlightError,
 }
 
 /// The output of `swarm`.
@@ -78,8 +82,10 @@ pub struct SwarmReport {
     pub packets_no_demodulator: usize,
     /// Seconds on air, all drones.
     pub airtime: f64,
-    /// Every drone's errors pooled, m.
+    /// Every drone's errors pooled, m (after each episode's first packet).
     pub error3d: Summary,
+    /// Every drone's tracked share and errors over the whole flight time, pooled.
+    pub whole_flight: WholeFlightError,
     /// The median over drones of each drone's p75, m (`null` when no drone received anything).
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub median_drone_p75: f64,
