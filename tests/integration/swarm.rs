@@ -304,7 +304,10 @@ fn every_drone_says_how_much_of_its_flight_time_its_errors_cover() {
     assert!(share(12) < share(7), "SF12 {} SF7 {}", share(12), share(7));
     assert!(share(7) > 0.9, "SF7 {}", share(7));
     let (lo, hi) = r.drones.iter().fold((1.0_f64, 0.0_f64), |(lo, hi), d| {
-        (lo.min(d.whole_flight.tracked), hi.max(d.whole_flight.tracked))
+        (
+            lo.min(d.whole_flight.tracked),
+            hi.max(d.whole_flight.tracked),
+        )
     });
     let pooled = r.whole_flight.tracked;
     assert!(lo <= pooled && pooled <= hi, "{lo} {pooled} {hi}");
