@@ -27,6 +27,7 @@ export const LESSONS: Lesson[] = [
     notice: [
       'The interval column: about 148 s at SF12 and 125 kHz, against 3 s at the paper’s SF7 and 250 kHz.',
       'The error-versus-SF chart: at 1 km every model’s p75 rises with the SF; SF12’s is many times SF7’s.',
+      'The note under the table: the errors cover only part of each flight, because a flight is untracked until its first packet, which at SF12 comes late in the flight or not at all (packets 148 s apart, flights of 88 s on average): SF12 is worse than its p75 says.',
     ],
   },
   {

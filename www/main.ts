@@ -273,7 +273,7 @@ async function draw3d(r: SimReport): Promise<void> {
 }
 
 function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): void {
-  const rows = sweep.flatMap(({ sf, report: r }) => r.results.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived })));
+  const rows = sweep.flatMap(({ sf, report: r }) => r.results.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived, tracked: m.wholeFlight.tracked })));
   place('sf', p75BySfChart(rows, { bw: made.bw, distance: made.distance, width: chartWidth('sf') }), made);
 }
 

@@ -308,7 +308,12 @@ test('lesson "Why not always SF12?": SF12 sends every ~148 s and its p75 at 1 km
   for (const label of ['DR', 'CTRA+', '3D-CTRA']) {
     const p75 = (sf) => Number(/p75 ([\d.]+) m/.exec(titles.find((t) => t.startsWith(`${label}, SF${sf}:`)))[1]);
     assert.ok(p75(12) > 10 * p75(7), `${label}: SF12 ${p75(12)} m against SF7 ${p75(7)} m`);
+    // Each point says how much of the flight time its p75 covers: SF12's first packet comes late.
+    const covered = (sf) => Number(/errors over (\d+) % of the flight time/.exec(titles.find((t) => t.startsWith(`${label}, SF${sf}:`)))[1]);
+    assert.ok(covered(12) < 95 && covered(7) >= 95, `${label}: SF12 ${covered(12)} %, SF7 ${covered(7)} %`);
   }
+  // The lesson points at the note under the table, which the table's own run (SF12) shows.
+  assert.match(await page.locator('#untracked').textContent(), /These errors cover \d+ %.* of the flight time/);
   assert.deepEqual(problems, []);
 });
 

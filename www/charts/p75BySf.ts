@@ -11,6 +11,14 @@ export interface SfRow {
   /** null where no packet arrived (no error to measure). */
   p75: number | null;
   received: number;
+  /** Share of the flight time after each flight's first packet: all the p75 covers. */
+  tracked: number | null;
+}
+
+/** "errors over 62 % of the flight time (before a flight's first packet there is none)". */
+function covered(tracked: number | null): string {
+  const pct = Math.round(100 * (tracked ?? 0));
+  return `errors over ${pct} % of the flight time${pct < 95 ? ' (before a flight\'s first packet there is none)' : ''}`;
 }
 
 export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number; width: number }): SVGSVGElement | HTMLElement {
@@ -33,7 +41,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
     color: { domain: models, range: models.map((m) => MODEL_COLORS[data.find((d) => d.label === m)!.model]), legend: true },
     marks: [
       Plot.line(data, { x: 'sf', y: 'p75', stroke: 'label', z: 'label' }),
-      Plot.dot(data, { x: 'sf', y: 'p75', fill: 'label', r: 3.5, title: (d) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${d.received} packets` }),
+      Plot.dot(data, { x: 'sf', y: 'p75', fill: 'label', r: 3.5, title: (d) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${d.received} packets, ${covered(d.tracked)}` }),
       Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: () => 'none\narrives', fill: '#5a6068', fontSize: chartFont() }),
     ],
   });
