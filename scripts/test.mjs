@@ -18,7 +18,9 @@ import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const root = join(dirname(fileURLToPath(import.meta.url)), '..');
-const env = { ...process.env, RUSTC_WORKSPACE_WRAPPER: join(root, 'scripts', 'clippy-rustc.sh') };
+// Not incremental: the test profile optimises, so an incremental cache saves little on a rebuild
+// and costs its writing on every build (a clean build of the crate's test targets: 109 -> 97 s).
+const env = { ...process.env, RUSTC_WORKSPACE_WRAPPER: join(root, 'scripts', 'clippy-rustc.sh'), CARGO_INCREMENTAL: '0' };
 const WASM = ['--target', 'wasm32-unknown-unknown'];
 
 /**
