@@ -10,6 +10,11 @@
 //! bindings (`src/wasm.rs`) and the CLI (`src/bin/loratrack`) are thin skins over [`api`].
 //! Conventions (reference §2): local ENU metres, seconds, radians.
 
+// No unsafe code: the native build (the CLI, the tests and the fuzz targets, which run without
+// AddressSanitizer for that reason: scripts/fuzz.mjs) forbids it. The WebAssembly build cannot,
+// since wasm-bindgen's macros in src/wasm.rs expand to unsafe blocks.
+#![cfg_attr(not(target_arch = "wasm32"), forbid(unsafe_code))]
+
 pub mod api;
 pub mod codec;
 pub mod filter;
