@@ -970,12 +970,17 @@ fn flight_p75(run: &DistanceRun) -> Option<f64> {
     run.result.whole_flight.p75
 }
 
-/// The fixed data rate of lowest p75 over the flight time at `distance`.
-fn best_fixed(r: &DistanceSweepReport, distance: f64) -> Option<&DistanceRun> {
+/// The fixed data rates' runs at `distance`.
+fn fixed_at(r: &DistanceSweepReport, distance: f64) -> impl Iterator<Item = &DistanceRun> {
     r.runs
         .iter()
+        .filter(move |x| x.distance == distance && x.dr.is_some())
+}
+
+/// The fixed data rate of lowest p75 over the flight time at `distance`.
+fn best_fixed(r: &DistanceSweepReport, distance: f64) -> Option<&DistanceRun> {
+    fixed_at(r, distance)
         .filter_map(|x| Some((x, flight_p75(x)?)))
-        .filter(|(x, _)| x.distance == distance && x.dr.is_some())
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .map(|(x, _)| x)
 }
@@ -1203,15 +1208,12 @@ fn p75_phrase(run: &DistanceRun) -> String {
 
 /// The fixed data rate with a packet for the largest share of the flight time at `distance`.
 fn most_tracked_fixed(r: &DistanceSweepReport, distance: f64) -> Option<&DistanceRun> {
-    r.runs
-        .iter()
-        .filter(|x| x.distance == distance && x.dr.is_some())
-        .max_by(|a, b| {
-            a.result
-                .whole_flight
-                .tracked
-                .total_cmp(&b.result.whole_flight.tracked)
-        })
+    fixed_at(r, distance).max_by(|a, b| {
+        a.result
+            .whole_flight
+            .tracked
+            .total_cmp(&b.result.whole_flight.tracked)
+    })
 }
 
 /// Why LoRaWAN's ADR lands where it does, with the sweep's own numbers.
