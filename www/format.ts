@@ -6,6 +6,13 @@ import { store } from './store';
 /** A statistic with `digits` decimals, or a dash where there is none (an empty sample). */
 export const fmt = (v: number | null, digits = 2) => (v === null || v === undefined ? '—' : v.toFixed(digits));
 
+/** The share of the flight time a station's errors cover (`wholeFlight.tracked`, 0-1; before a
+ * flight's first packet there is no estimate), in whole percent. */
+export const trackedPercent = (tracked: number | null) => Math.round(100 * (tracked ?? 0));
+
+/** Whether the page says what the errors cover: below 95 % of the flight time (docs/reference.md §12). */
+export const untrackedWorthSaying = (tracked: number | null) => trackedPercent(tracked) < 95;
+
 /** Station names as a list: "DR", "DR and CTRA+", "DR, CTRA+, 3D-CTRA". */
 export const names = (list: ModelResult[]) => list.map((m) => MODEL_LABELS[m.model]).join(list.length === 2 ? ' and ' : ', ');
 

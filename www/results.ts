@@ -3,7 +3,7 @@
 // table. Reads the page's state from the store.
 import { MODEL_LABELS, timeOnAir, type ModelResult, type SimReport } from './loratrack';
 import { $ } from './dom';
-import { caption, fmt, names } from './format';
+import { caption, fmt, names, trackedPercent, untrackedWorthSaying } from './format';
 import { overheadBytes } from './state';
 import { store } from './store';
 
@@ -90,13 +90,12 @@ function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
 
 /** How much of the flight time the statistics cover, when a flight's first packet comes late
  * (SF11-12, long range): before it the station has no estimate and no error is counted
- * (`wholeFlight`, docs/reference.md §12). Said below 95 %. */
+ * (`wholeFlight`, docs/reference.md §12). */
 function renderUntracked(r: SimReport): void {
   const note = $('#untracked');
-  const share = (m: ModelResult) => Math.round(100 * (m.wholeFlight.tracked ?? 0));
-  const short = r.results.filter((m) => share(m) < 95);
-  note.hidden = short.length === 0;
-  if (!short.length) return;
+  const share = (m: ModelResult) => trackedPercent(m.wholeFlight.tracked);
+  note.hidden = !r.results.some((m) => untrackedWorthSaying(m.wholeFlight.tracked));
+  if (note.hidden) return;
   const shares = new Set(r.results.map(share));
   const cover = shares.size === 1 ? `${share(r.results[0])} %` : r.results.map((m) => `${share(m)} % (${MODEL_LABELS[m.model]})`).join(', ');
   note.textContent = `These errors cover ${cover} of the flight time: until a flight's first packet arrives the station has no estimate, and that time is not in the table.`;

@@ -4,6 +4,7 @@
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type ModelName } from '../loratrack';
 import { chartStyle, chartFont, MODEL_COLORS } from './colors';
+import { trackedPercent, untrackedWorthSaying } from '../format';
 
 export interface SfRow {
   sf: number;
@@ -17,8 +18,8 @@ export interface SfRow {
 
 /** "errors over 62 % of the flight time (before a flight's first packet there is none)". */
 function covered(tracked: number | null): string {
-  const pct = Math.round(100 * (tracked ?? 0));
-  return `errors over ${pct} % of the flight time${pct < 95 ? ' (before a flight\'s first packet there is none)' : ''}`;
+  const why = untrackedWorthSaying(tracked) ? ' (before a flight\'s first packet there is none)' : '';
+  return `errors over ${trackedPercent(tracked)} % of the flight time${why}`;
 }
 
 export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number; width: number }): SVGSVGElement | HTMLElement {

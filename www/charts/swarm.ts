@@ -3,12 +3,13 @@
 import { chartStyle, chartFont } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
+import { trackedPercent, untrackedWorthSaying } from '../format';
 
-/** " (errors over 88 % of the flight time: ...)": said when a swarm's stations spend more than 5 % of
- * it waiting for an episode's first packet (docs/reference.md §12). */
+/** " (errors over 88 % of the flight time: ...)": said when a swarm's stations spend enough of it
+ * waiting for an episode's first packet ({@link untrackedWorthSaying}). */
 function untracked(r: SwarmReport): string {
   const share = r.wholeFlight.tracked;
-  return share !== null && share < 0.95 ? ` (errors over ${(100 * share).toFixed(0)} % of the flight time: before an episode's first packet a station has no estimate)` : '';
+  return untrackedWorthSaying(share) ? ` (errors over ${trackedPercent(share)} % of the flight time: before an episode's first packet a station has no estimate)` : '';
 }
 
 export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
