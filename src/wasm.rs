@@ -158,7 +158,7 @@ pub fn load_csv(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> 
     #[derive(serde::Deserialize)]
     #[serde(rename_all = "camelCase", deny_unknown_fields)]
     struct Params {
-        trajectory: String,
+        trajectory: std::sync::Arc<str>,
         #[serde(default)]
         trajectory_name: Option<String>,
     }

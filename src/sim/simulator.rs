@@ -25,6 +25,7 @@ use crate::trajectory::{
 };
 use std::collections::HashMap;
 use std::rc::Rc;
+use std::sync::Arc;
 use std::sync::Mutex;
 
 /// One flight's transmissions, station track, (first flight, when asked) plotted series, and
@@ -96,7 +97,7 @@ pub struct Simulator {
     flights: HashMap<FlightKey, Rc<Vec<Trajectory>>>,
     /// The CSV texts behind `FlightKey::Csv` ids, with their hash: a hit compares the bytes, so
     /// two texts that share a hash never share results.
-    csv_texts: Vec<(u64, Rc<str>, u64)>,
+    csv_texts: Vec<(u64, Arc<str>, u64)>,
     next_csv_id: u64,
     drones: HashMap<DroneKey, Rc<Vec<DroneTrack>>>,
     stations: HashMap<StationKey, Rc<Vec<Mutex<FlightChains>>>>,
@@ -139,11 +140,11 @@ impl Simulator {
 
     /// The key of CSV `text` whose hash is `hash`: the id it was given before if the same text
     /// is remembered, otherwise a fresh one (the oldest text is forgotten past the cache size).
-    fn csv_key(&mut self, text: &str, hash: u64) -> FlightKey {
+    fn csv_key(&mut self, text: &Arc<str>, hash: u64) -> FlightKey {
         if let Some((_, _, id)) = self
             .csv_texts
             .iter()
-            .find(|(h, t, _)| *h == hash && t.as_ref() == text)
+            .find(|(h, t, _)| *h == hash && t == text)
         {
             let id = *id;
             self.ledger.touch(&Entry::CsvText(id));
@@ -155,7 +156,7 @@ impl Simulator {
         }
         let id = self.next_csv_id;
         self.next_csv_id += 1;
-        self.csv_texts.push((hash, text.into(), id));
+        self.csv_texts.push((hash, Arc::clone(text), id));
         self.remember(Entry::CsvText(id), text.len());
         FlightKey::Csv(id)
     }
@@ -166,7 +167,7 @@ impl Simulator {
     /// count.
     pub fn load_csv(
         &mut self,
-        text: String,
+        text: Arc<str>,
         name: String,
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<usize, SimError> {
@@ -547,14 +548,14 @@ mod tests {
     #[test]
     fn csv_texts_that_share_a_hash_never_share_a_key() {
         let mut sim = Simulator::new();
-        let a = sim.csv_key("t,x,y,z\n0,0,0,0\n", 42);
-        let b = sim.csv_key("t,x,y,z\n0,1,0,0\n", 42);
+        let a = sim.csv_key(&"t,x,y,z\n0,0,0,0\n".into(), 42);
+        let b = sim.csv_key(&"t,x,y,z\n0,1,0,0\n".into(), 42);
         assert_ne!(
             a, b,
             "a hash collision must not give the first file's results"
         );
         assert_eq!(
-            sim.csv_key("t,x,y,z\n0,0,0,0\n", 42),
+            sim.csv_key(&"t,x,y,z\n0,0,0,0\n".into(), 42),
             a,
             "the same text keeps its key"
         );

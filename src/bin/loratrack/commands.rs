@@ -50,7 +50,12 @@ pub struct FlightArgs {
 impl FlightArgs {
     fn settings(&self) -> Result<FlightSettings, ApiError> {
         Ok(FlightSettings {
-            trajectory: self.trajectory.as_deref().map(read_flight).transpose()?,
+            trajectory: self
+                .trajectory
+                .as_deref()
+                .map(read_flight)
+                .transpose()?
+                .map(Into::into),
             trajectory_name: self.trajectory.as_ref().map(|p| p.display().to_string()),
             synthetic: self
                 .synthetic

@@ -2,6 +2,7 @@
 
 use crate::sim::station::StationModel;
 use serde::{Deserialize, Serialize, Serializer};
+use std::sync::Arc;
 
 /// The largest seed: 2^53 − 1, so that a seed round-trips through a JavaScript number (and the
 /// page's URL) unchanged.
@@ -226,8 +227,8 @@ impl<'de> Deserialize<'de> for ModelChoice {
 /// Where the flight comes from.
 #[derive(Clone, Debug, PartialEq)]
 pub enum TrajectorySource {
-    /// CSV text and a name.
-    Csv(String, String),
+    /// CSV text (shared with the settings it came from) and a name.
+    Csv(Arc<str>, String),
     /// Synthetic set or one flight of it.
     Synthetic(SyntheticChoice),
     /// A bundled sample by name.

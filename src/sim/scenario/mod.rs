@@ -36,6 +36,7 @@ use choices::seed_or_random;
 use serde::de::IgnoredAny;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 #[cfg(not(target_arch = "wasm32"))]
 fn on_off(text: &str) -> Result<bool, String> {
@@ -59,10 +60,12 @@ pub const DEFAULT_CSV_NAME: &str = "uploaded CSV";
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct FlightSettings {
     /// CSV text of a flight (the CLI reads `--trajectory FILE` into this); input only, not
-    /// echoed (the JS API's `SimulateParams` adds it to the generated type).
+    /// echoed (the JS API's `SimulateParams` adds it to the generated type). Shared, not
+    /// copied, by the settings' clones, the source and the simulator's cache: a 10⁶-row
+    /// flight's text is tens of megabytes.
     #[serde(default, skip_serializing)]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(skip))]
-    pub trajectory: Option<String>,
+    pub trajectory: Option<Arc<str>>,
     /// A name for the CSV flight, shown in reports; input only.
     #[serde(default, skip_serializing)]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(skip))]
@@ -523,8 +526,8 @@ impl Scenario {
                 key.chars().take(40).collect::<String>()
             )));
         }
-        // The settings kept with the run give their CSV text to the source: one copy, not one in
-        // each (the echo in every report clones these settings).
+        // The settings kept with the run give their CSV text to the source (the echo in every
+        // report clones these settings).
         let mut settings = self.clone();
         let source = settings.flight.take_source()?;
         let r = &self.radio;
