@@ -41,6 +41,10 @@ type FlightRun = (
 const MAX_CACHED_FLIGHTS: usize = 4;
 const MAX_CACHED_DRONE_RUNS: usize = 24;
 const MAX_CACHED_STATIONS: usize = 6;
+/// A station's remembered predictions may take at most this fraction (1/n) of
+/// [`MAX_CACHE_BYTES`]: a long flight's (a 10⁶-row CSV at 25 Hz: ~200 MB) would otherwise evict
+/// its own drone runs and every other station's, and be evicted by the next station's.
+const MAX_STATION_SHARE: usize = 4;
 
 /// A cached entry, for the byte budget.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -256,17 +260,23 @@ impl Simulator {
     }
 
     /// The remembered station predictions for `key`, one entry per flight; `grid` is the
-    /// number of evaluation times over all the flights.
+    /// number of evaluation times over all the flights. `None` when they would take more than
+    /// [`MAX_STATION_SHARE`] of the budget: the station then predicts afresh.
     fn station_chains(
         &mut self,
         key: StationKey,
         flights: usize,
         grid: f64,
-    ) -> Rc<Vec<Mutex<FlightChains>>> {
+    ) -> Option<Rc<Vec<Mutex<FlightChains>>>> {
         if let Some(c) = self.stations.get(&key) {
             let c = Rc::clone(c);
             self.ledger.touch(&Entry::Stations(key));
-            return c;
+            return Some(c);
+        }
+        // At most MAX_GRIDS grids' worth of estimates per flight (FlightChains).
+        let bytes = (grid * MAX_GRIDS * core::mem::size_of::<Estimate>() as f64) as usize;
+        if bytes > MAX_CACHE_BYTES / MAX_STATION_SHARE {
+            return None;
         }
         if self.stations.len() >= MAX_CACHED_STATIONS {
             self.stations
@@ -276,10 +286,8 @@ impl Simulator {
         }
         let chains = Rc::new((0..flights).map(|_| Mutex::default()).collect::<Vec<_>>());
         self.stations.insert(key.clone(), Rc::clone(&chains));
-        // At most MAX_GRIDS grids' worth of estimates per flight (FlightChains).
-        let bytes = (grid * MAX_GRIDS * core::mem::size_of::<Estimate>() as f64) as usize;
         self.remember(Entry::Stations(key), bytes);
-        chains
+        Some(chains)
     }
 
     /// Runs one simulation.
@@ -362,7 +370,7 @@ impl Simulator {
                     seed,
                 };
                 let chains = match model {
-                    StationModel::Single(m) => Some(self.station_chains(
+                    StationModel::Single(m) => self.station_chains(
                         StationKey {
                             drone: key.clone(),
                             model: m,
@@ -374,7 +382,7 @@ impl Simulator {
                         },
                         flights.len(),
                         flight_time / s.station.step + flights.len() as f64,
-                    )),
+                    ),
                     // An IMM's probabilities and a mission station's place on the plan carry over
                     // from packet to packet: nothing to reuse.
                     StationModel::Imm | StationModel::Mission => None,

@@ -307,6 +307,38 @@ fn the_caches_account_for_their_bytes_and_stay_within_the_budget() {
 }
 
 #[test]
+fn a_station_too_long_for_a_quarter_of_the_budget_is_not_remembered() {
+    // 200 s evaluated every millisecond: 2·10⁵ grid times, whose remembered predictions would
+    // reserve ~100 MB; the flight and its drone runs take a few.
+    let csv: String = std::iter::once("t,x,y,z\n".to_string())
+        .chain((0..=2000).map(|i| {
+            let t = i as f64 * 0.1;
+            format!("{t},{},{},40\n", 5.0 * t, 20.0 * (t / 20.0).sin())
+        }))
+        .collect();
+    let long = set(
+        &Scenario::default(),
+        json!({"trajectory": csv, "model": "3d-ctra", "step": 0.001}),
+    );
+    let mut sim = Simulator::new();
+    let first = simulate(&mut sim, &long).unwrap();
+    assert!(
+        sim.cached_bytes() < loratrack::MAX_CACHE_BYTES / 8,
+        "{} bytes cached",
+        sim.cached_bytes()
+    );
+    // Predicting afresh gives the numbers a remembered chain would.
+    let again = simulate(&mut sim, &set(&long, json!({"distance": 1500}))).unwrap();
+    let short = simulate(
+        &mut Simulator::new(),
+        &set(&long, json!({"distance": 1500})),
+    )
+    .unwrap();
+    assert_eq!(again.results[0].error3d, short.results[0].error3d);
+    assert!(first.results[0].error3d.p75 > 0.0);
+}
+
+#[test]
 fn seeds_pool_their_runs_and_give_each_statistic_an_interval() {
     let flight = set(&one_flight(3), json!({"model": "dr,3d-ctra"}));
     let mut sim = Simulator::new();
