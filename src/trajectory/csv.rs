@@ -111,18 +111,22 @@ pub fn parse_csv_with_progress(
     let has_vel = columns[4..7].iter().all(Option::is_some);
     let has_acc = has_vel && columns[7..10].iter().all(Option::is_some);
 
-    let mut rows: Vec<[f64; 10]> = Vec::new();
+    // Columns straight from the rows (no table of rows: a 10⁶-row file's would be 80 MB), and
+    // the line of each row only where a derivative's refusal may need to name it.
+    let (mut t, mut pos, mut vel, mut acc) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut line_numbers = Vec::new();
+    let mut fields: Vec<&str> = Vec::with_capacity(header.len());
     let total = text.bytes().filter(|&b| b == b'\n').count().max(1);
     let every = (total / 100).max(1);
     for (line, l) in lines {
         if line % every == 0 {
             progress(line.min(total), total);
         }
-        if rows.len() >= MAX_ROWS {
+        if t.len() >= MAX_ROWS {
             return Err(TrajectoryError::TooManyRows { max: MAX_ROWS });
         }
-        let fields: Vec<&str> = l.split(',').map(str::trim).collect();
+        fields.clear();
+        fields.extend(l.split(',').map(str::trim));
         if fields.len() != header.len() {
             return Err(TrajectoryError::FieldCount {
                 line,
@@ -147,14 +151,14 @@ pub fn parse_csv_with_progress(
             }
             row[k] = v;
         }
-        if let Some(prev) = rows.last() {
-            if row[0] <= prev[0] {
+        if let Some(&prev) = t.last() {
+            if row[0] <= prev {
                 return Err(TrajectoryError::TimeNotIncreasing { line });
             }
-            if row[0] - prev[0] < MIN_TIME_STEP {
+            if row[0] - prev < MIN_TIME_STEP {
                 return Err(TrajectoryError::TimeStep {
                     line,
-                    step: row[0] - prev[0],
+                    step: row[0] - prev,
                 });
             }
         }
@@ -178,34 +182,37 @@ pub fn parse_csv_with_progress(
                 what: format!("an acceleration over {MAX_ACCELERATION} m/s²"),
             });
         }
-        if let Some(first) = rows.first() {
-            if row[0] - first[0] > MAX_DURATION {
+        if let Some(&first) = t.first() {
+            if row[0] - first > MAX_DURATION {
                 return Err(TrajectoryError::Absurd {
                     line,
                     what: format!("a flight longer than {MAX_DURATION} s"),
                 });
             }
         }
-        rows.push(row);
-        line_numbers.push(line);
+        t.push(row[0]);
+        pos.push([row[1], row[2], row[3]]);
+        if has_vel {
+            vel.push([row[4], row[5], row[6]]);
+        }
+        if has_acc {
+            acc.push([row[7], row[8], row[9]]);
+        } else {
+            line_numbers.push(line);
+        }
     }
-    if rows.is_empty() {
+    if t.is_empty() {
         return Err(TrajectoryError::HeaderOnly);
     }
-    if rows.len() < MIN_ROWS {
+    if t.len() < MIN_ROWS {
         return Err(TrajectoryError::TooFewRows {
-            rows: rows.len(),
+            rows: t.len(),
             min: MIN_ROWS,
         });
     }
-
-    let t: Vec<f64> = rows.iter().map(|r| r[0]).collect();
-    let pos: Vec<[f64; 3]> = rows.iter().map(|r| [r[1], r[2], r[3]]).collect();
-    let vel = if has_vel {
-        rows.iter().map(|r| [r[4], r[5], r[6]]).collect()
-    } else {
-        smoothed_derivative(&t, &pos, 0.15)
-    };
+    if !has_vel {
+        vel = smoothed_derivative(&t, &pos, 0.15);
+    }
     if !has_vel {
         if let Some(i) = vel.iter().position(|v| !within(v, MAX_SPEED)) {
             return Err(TrajectoryError::Absurd {
@@ -214,18 +221,15 @@ pub fn parse_csv_with_progress(
             });
         }
     }
-    let acc = if has_acc {
-        rows.iter().map(|r| [r[7], r[8], r[9]]).collect()
-    } else {
-        let acc = smoothed_derivative(&t, &vel, 0.3);
+    if !has_acc {
+        acc = smoothed_derivative(&t, &vel, 0.3);
         if let Some(i) = acc.iter().position(|a| !within(a, MAX_ACCELERATION)) {
             return Err(TrajectoryError::Absurd {
                 line: line_numbers[i],
                 what: format!("the motion implies an acceleration over {MAX_ACCELERATION} m/s²"),
             });
         }
-        acc
-    };
+    }
     Trajectory::new(name.to_string(), t, pos, vel, acc)
 }
 
@@ -425,7 +429,7 @@ mod tests {
         assert!((tr.vel[i][0] - 3.0).abs() < 1e-9);
         assert!((tr.vel[i][1] - tr.t[i]).abs() < 1e-9);
         assert!((tr.acc[i][1] - 1.0).abs() < 1e-6);
-        assert!(tr.states.iter().all(|s| s.iter().all(|v| v.is_finite())));
+        assert!((0..tr.len()).all(|i| tr.state(i).iter().all(|v| v.is_finite())));
     }
 
     #[test]

@@ -6,7 +6,8 @@ use crate::math::{atan2, hypot};
 /// last defined value, and the rates are regularised towards zero by this scale.
 pub const HOVER_SPEED: f64 = 0.2;
 
-/// Derives `[x y z theta phi v a omega psi]` at every sample.
+/// Derives `[x y z theta phi v a omega psi]` at every sample: [`heading_angles`] and
+/// [`kinematic_state`] at each.
 ///
 /// * theta = atan2(vy, vx), phi = atan2(vz, |v_h|), v = |v| (reference §3 erratum: with the root).
 /// * a = v·acc / |v| (tangential acceleration), omega = dtheta/dt = (vx ay − vy ax) / |v_h|²,
@@ -15,7 +16,17 @@ pub const HOVER_SPEED: f64 = 0.2;
 /// The denominators are regularised with [`HOVER_SPEED`]² (e.g. |v_h|² + s²) so hovering gives
 /// finite rates that fade to zero instead of NaN; above a few m/s the effect is negligible.
 pub fn kinematic_states(pos: &[[f64; 3]], vel: &[[f64; 3]], acc: &[[f64; 3]]) -> Vec<[f64; 9]> {
-    let eps2 = HOVER_SPEED * HOVER_SPEED;
+    let angles = heading_angles(vel);
+    (0..pos.len())
+        .map(|i| kinematic_state(&pos[i], &vel[i], &acc[i], angles[i]))
+        .collect()
+}
+
+/// The direction of motion `[theta, phi]` (rad) at every sample: the velocity's, or, below
+/// [`HOVER_SPEED`], the last defined one (the first defined one before any). The only part of
+/// a sample's state that depends on the samples before it, so a flight stores these and derives
+/// the rest of each state when asked ([`kinematic_state`]).
+pub fn heading_angles(vel: &[[f64; 3]]) -> Vec<[f64; 2]> {
     // The first defined direction also serves the samples before it.
     let first_moving = vel
         .iter()
@@ -23,27 +34,34 @@ pub fn kinematic_states(pos: &[[f64; 3]], vel: &[[f64; 3]], acc: &[[f64; 3]]) ->
     let (mut theta, mut phi) = first_moving
         .map(|v| (atan2(v[1], v[0]), atan2(v[2], hypot(v[0], v[1]))))
         .unwrap_or((0.0, 0.0));
-    pos.iter()
-        .zip(vel)
-        .zip(acc)
-        .map(|((p, v), a)| {
-            let vh2 = v[0] * v[0] + v[1] * v[1];
-            let vh = vh2.sqrt();
-            let speed = hypot(vh, v[2]);
-            if speed >= HOVER_SPEED {
+    vel.iter()
+        .map(|v| {
+            let vh = (v[0] * v[0] + v[1] * v[1]).sqrt();
+            if hypot(vh, v[2]) >= HOVER_SPEED {
                 phi = atan2(v[2], vh);
                 if vh >= HOVER_SPEED {
                     theta = atan2(v[1], v[0]);
                 }
             }
-            let along = v[0] * a[0] + v[1] * a[1] + v[2] * a[2];
-            let tangential = along / (speed * speed + eps2).sqrt();
-            let omega = (v[0] * a[1] - v[1] * a[0]) / (vh2 + eps2);
-            let psi = (vh2 * a[2] - v[2] * (v[0] * a[0] + v[1] * a[1]))
-                / ((vh2 + eps2).sqrt() * (speed * speed + eps2));
-            [p[0], p[1], p[2], theta, phi, speed, tangential, omega, psi]
+            [theta, phi]
         })
         .collect()
+}
+
+/// One sample's state `[x y z theta phi v a omega psi]` from its position (m), velocity (m/s),
+/// acceleration (m/s²) and direction of motion (rad, [`heading_angles`]); the formulas are
+/// [`kinematic_states`]'.
+pub fn kinematic_state(p: &[f64; 3], v: &[f64; 3], a: &[f64; 3], angles: [f64; 2]) -> [f64; 9] {
+    let eps2 = HOVER_SPEED * HOVER_SPEED;
+    let vh2 = v[0] * v[0] + v[1] * v[1];
+    let speed = hypot(vh2.sqrt(), v[2]);
+    let along = v[0] * a[0] + v[1] * a[1] + v[2] * a[2];
+    let tangential = along / (speed * speed + eps2).sqrt();
+    let omega = (v[0] * a[1] - v[1] * a[0]) / (vh2 + eps2);
+    let psi = (vh2 * a[2] - v[2] * (v[0] * a[0] + v[1] * a[1]))
+        / ((vh2 + eps2).sqrt() * (speed * speed + eps2));
+    let [theta, phi] = angles;
+    [p[0], p[1], p[2], theta, phi, speed, tangential, omega, psi]
 }
 
 #[cfg(test)]

@@ -16,7 +16,7 @@ pub use csv::{
     parse_csv, parse_csv_with_progress, MAX_CSV_BYTES, MAX_ROWS, MIN_ROWS, MIN_TIME_STEP,
 };
 pub use error::TrajectoryError;
-pub use kinematics::{kinematic_states, HOVER_SPEED};
+pub use kinematics::{heading_angles, kinematic_state, kinematic_states, HOVER_SPEED};
 pub use plan::{
     FlightPlan, OnPlan, MAX_PLAN_COORDINATE, MAX_PLAN_SPEED, MAX_WAYPOINTS, TRACE_TOLERANCE,
 };

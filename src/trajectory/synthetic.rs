@@ -170,7 +170,7 @@ mod tests {
                 assert!(jerk.abs() < 30.0, "jerk {jerk}");
             }
         }
-        let vmax = a.states.iter().map(|s| s[5]).fold(0.0, f64::max);
+        let vmax = (0..a.len()).map(|i| a.state(i)[5]).fold(0.0, f64::max);
         assert!(vmax < 17.0, "{vmax}");
         assert!(a.pos.iter().all(|p| p[2] > 0.0));
     }

@@ -1,11 +1,12 @@
 //! A ground-truth flight sampled in time.
 
-use super::kinematics::kinematic_states;
+use super::kinematics::{heading_angles, kinematic_state};
 use super::TrajectoryError;
 use crate::math::{distance, wrap_angle};
 
 /// A flight: times (s) and, at each, position (m), velocity (m/s) and acceleration (m/s²) in
-/// local ENU, plus the derived 3D-CTRA state `x y z theta phi v a omega psi` (reference §2).
+/// local ENU, from which the 3D-CTRA state `x y z theta phi v a omega psi` (reference §2) is
+/// derived at each sample ([`Trajectory::state`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Trajectory {
     /// A short name ("synthetic 3", "canberra", a file name).
@@ -18,8 +19,10 @@ pub struct Trajectory {
     pub vel: Vec<[f64; 3]>,
     /// Accelerations, m/s².
     pub acc: Vec<[f64; 3]>,
-    /// The full model state at each sample (derived from velocity and acceleration).
-    pub states: Vec<[f64; 9]>,
+    /// The direction of motion `[theta, phi]` at each sample, rad ([`heading_angles`]): the
+    /// rest of a sample's state is derived when asked, so a 10⁶-row flight holds 16 bytes per
+    /// sample for its states instead of 72.
+    angles: Vec<[f64; 2]>,
 }
 
 impl Trajectory {
@@ -52,15 +55,31 @@ impl Trajectory {
         if let Some(i) = t.windows(2).position(|w| w[1] <= w[0]) {
             return Err(TrajectoryError::TimeNotIncreasing { line: i + 2 });
         }
-        let states = kinematic_states(&pos, &vel, &acc);
+        let angles = heading_angles(&vel);
         Ok(Trajectory {
             name,
             t,
             pos,
             vel,
             acc,
-            states,
+            angles,
         })
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    /// Whether the flight has no samples (never, once built: at least two).
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+
+    /// The model state `x y z theta phi v a omega psi` at sample `i` (reference §2;
+    /// [`kinematic_state`]). Panics if `i` is out of range, like indexing.
+    pub fn state(&self, i: usize) -> [f64; 9] {
+        kinematic_state(&self.pos[i], &self.vel[i], &self.acc[i], self.angles[i])
     }
 
     /// Seconds from the first to the last sample.
@@ -92,7 +111,7 @@ impl Trajectory {
     /// The full model state at `time`, interpolating angles along the shorter arc.
     pub fn state_at(&self, time: f64, hint: &mut usize) -> [f64; 9] {
         let (i, w) = self.segment(time, hint);
-        let (a, b) = (&self.states[i], &self.states[i + 1]);
+        let (a, b) = (self.state(i), self.state(i + 1));
         core::array::from_fn(|k| {
             if k == 3 || k == 4 {
                 wrap_angle(a[k] + w * wrap_angle(b[k] - a[k]))
