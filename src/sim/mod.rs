@@ -25,6 +25,7 @@ pub mod schedule;
 pub mod sender;
 mod simulator;
 pub mod station;
+mod station_run;
 mod streams;
 pub mod swarm;
 

@@ -12,7 +12,9 @@ pub(crate) fn par_map<T: Send>(
     #[cfg(not(target_arch = "wasm32"))]
     {
         use rayon::prelude::*;
-        range.into_par_iter().map(f).collect()
+        // One item per task: items differ widely in cost (a long flight's IMM station against
+        // its DR drone), so each is left free to be stolen by an idle core.
+        range.into_par_iter().with_max_len(1).map(f).collect()
     }
     #[cfg(target_arch = "wasm32")]
     {
@@ -58,6 +60,26 @@ pub(crate) fn par_map_ticking<T: Send>(
     }
 }
 
+/// [`par_map_ticking`] over `0..n`, starting the items in decreasing `cost` (ties in index
+/// order) and returning the results in index order. With a few items of very different cost
+/// (one long flight's four stations), the costliest then never starts last on a core that has
+/// already done its share while the other core idles.
+pub(crate) fn par_map_costliest_first<T: Send>(
+    n: usize,
+    cost: impl Fn(usize) -> u32,
+    f: impl Fn(usize) -> T + Sync + Send,
+    tick: &mut dyn FnMut(),
+) -> Vec<T> {
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by_key(|&i| core::cmp::Reverse(cost(i)));
+    let done = par_map_ticking(0..n, |k| f(order[k]), tick);
+    let mut slots: Vec<Option<T>> = (0..n).map(|_| None).collect();
+    for (i, r) in order.into_iter().zip(done) {
+        slots[i] = Some(r);
+    }
+    slots.into_iter().flatten().collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -68,5 +90,28 @@ mod tests {
         let out = par_map_ticking(0..100, |i| i * i, &mut || ticks += 1);
         assert_eq!(out, (0..100).map(|i| i * i).collect::<Vec<_>>());
         assert_eq!(ticks, 100);
+    }
+
+    #[test]
+    fn the_costliest_start_first_and_results_keep_index_order() {
+        let started = std::sync::Mutex::new(Vec::new());
+        let mut ticks = 0;
+        let out = par_map_costliest_first(
+            6,
+            |i| [1, 5, 0, 5, 9, 2][i],
+            |i| {
+                started.lock().unwrap().push(i);
+                10 * i
+            },
+            &mut || ticks += 1,
+        );
+        assert_eq!(out, vec![0, 10, 20, 30, 40, 50]);
+        assert_eq!(ticks, 6);
+        #[cfg(target_arch = "wasm32")]
+        assert_eq!(*started.lock().unwrap(), vec![4, 1, 3, 5, 0, 2]);
+        // Natively the cores take the items in that order, but finish them in any.
+        let mut all = started.into_inner().unwrap();
+        all.sort();
+        assert_eq!(all, (0..6).collect::<Vec<_>>());
     }
 }

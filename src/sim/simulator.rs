@@ -1,19 +1,14 @@
 //! Runs simulations and caches what does not depend on the link.
 
 use super::cache_budget::{Ledger, MAX_CACHE_BYTES};
-use super::drone::{run_drone, DroneTrack, Estimates};
-use super::flier::Flier;
-use super::network::{run_episode, Network};
-use super::packet::Transmission;
-use super::parallel::par_map_ticking;
-use super::pooled::{axis_every, model_series, series_stride, Pooled};
-use super::report::{Delivery, ModelSeries, RunConfig, Series, SimReport};
+use super::drone::{run_drone, DroneTrack};
+use super::parallel::par_map_costliest_first;
+use super::pooled::{axis_every, series_stride, Pooled};
+use super::report::{Delivery, RunConfig, Series, SimReport};
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::Schedule;
-use super::station::{
-    new_tracker, track_station, Estimate, FlightChains, MissionPlan, Prediction, Scoring,
-    StationModel, StationSetup, StationTrack, MAX_GRIDS,
-};
+use super::station::{Estimate, FlightChains, Prediction, StationModel, MAX_GRIDS};
+use super::station_run::{FlightRun, StationPlan, StationRun};
 use super::SimError;
 use crate::lora::Channel;
 use crate::math::pow;
@@ -28,14 +23,6 @@ use std::rc::Rc;
 use std::sync::Arc;
 use std::sync::Mutex;
 
-/// One flight's transmissions, station track, (first flight, when asked) plotted series, and
-/// what the network counted.
-type FlightRun = (
-    Vec<Transmission>,
-    StationTrack,
-    Option<ModelSeries>,
-    Option<Delivery>,
-);
 /// Cache sizes by count; past them the cache starts afresh (a page rarely alternates between
 /// more). Together the caches also stay within [`MAX_CACHE_BYTES`], least recently used out.
 const MAX_CACHED_FLIGHTS: usize = 4;
@@ -207,32 +194,41 @@ impl Simulator {
                 .for_each(|k| self.ledger.remove(&Entry::Flights(k.clone())));
             self.flights.clear();
         }
-        // Time, position, velocity, acceleration and the derived state per sample.
-        let bytes = flights.iter().map(|f| f.t.len() * 19 * 8).sum();
+        // Time, position, velocity, acceleration and direction of motion per sample.
+        let bytes = flights.iter().map(|f| f.t.len() * 12 * 8).sum();
         let flights = Rc::new(flights);
         self.flights.insert(key.clone(), Rc::clone(&flights));
         self.remember(Entry::Flights(key.clone()), bytes);
         Ok((key, flights))
     }
 
-    /// The drone runs of every flight for one model, from the cache or computed; `tick` is
-    /// called once per flight.
-    fn drone_tracks(
+    /// The drone runs of every flight for each of `keys` (in their order; a key may repeat),
+    /// from the cache or computed, every missing (key, flight) pair in one parallel batch;
+    /// `tick` is called once per key and flight.
+    fn drone_sets(
         &mut self,
-        key: DroneKey,
+        keys: &[DroneKey],
         flights: &[Trajectory],
         cfg: &Validated,
         tick: &mut dyn FnMut(),
-    ) -> Rc<Vec<DroneTrack>> {
-        if let Some(d) = self.drones.get(&key) {
-            let d = Rc::clone(d);
-            flights.iter().for_each(|_| tick());
-            self.ledger.touch(&Entry::Drones(key));
-            return d;
+    ) -> Vec<Rc<Vec<DroneTrack>>> {
+        // The cached ones are held here first: remembering the new ones may evict them.
+        let mut sets: HashMap<DroneKey, Rc<Vec<DroneTrack>>> = HashMap::new();
+        let mut missing: Vec<&DroneKey> = Vec::new();
+        for key in keys {
+            if let Some(d) = self.drones.get(key) {
+                sets.insert(key.clone(), Rc::clone(d));
+                self.ledger.touch(&Entry::Drones(key.clone()));
+            } else if !missing.contains(&key) {
+                missing.push(key);
+            }
         }
-        let tracks: Vec<DroneTrack> = par_map_ticking(
-            0..flights.len(),
-            |i| {
+        let n = flights.len();
+        let mut computed = par_map_costliest_first(
+            missing.len() * n,
+            |k| missing[k / n].model.state_len() as u32,
+            |k| {
+                let (key, i) = (missing[k / n], k % n);
                 run_drone(
                     &flights[i],
                     key.model,
@@ -244,8 +240,20 @@ impl Simulator {
                 )
             },
             tick,
-        );
-        self.drone_runs += tracks.len() as u64;
+        )
+        .into_iter();
+        (0..(keys.len() - missing.len()) * n).for_each(|_| tick());
+        self.drone_runs += (missing.len() * n) as u64;
+        for key in missing {
+            let tracks = Rc::new(computed.by_ref().take(n).collect::<Vec<_>>());
+            sets.insert(key.clone(), Rc::clone(&tracks));
+            self.remember_drones(key.clone(), tracks);
+        }
+        keys.iter().map(|key| Rc::clone(&sets[key])).collect()
+    }
+
+    /// Keeps one key's drone runs in the cache.
+    fn remember_drones(&mut self, key: DroneKey, tracks: Rc<Vec<DroneTrack>>) {
         if self.drones.len() >= MAX_CACHED_DRONE_RUNS {
             self.drones
                 .keys()
@@ -253,10 +261,8 @@ impl Simulator {
             self.drones.clear();
         }
         let bytes = tracks.iter().map(|t| t.states.len() * 9 * 8).sum();
-        let tracks = Rc::new(tracks);
-        self.drones.insert(key.clone(), Rc::clone(&tracks));
+        self.drones.insert(key.clone(), tracks);
         self.remember(Entry::Drones(key), bytes);
-        tracks
     }
 
     /// The remembered station predictions for `key`, one entry per flight; `grid` is the
@@ -338,141 +344,99 @@ impl Simulator {
             done += 1;
             progress(done, total);
         };
+        // Each station's radio, setup and plans, checked before any work.
+        let stations = cfg
+            .models
+            .iter()
+            .map(|&model| StationPlan::new(cfg, model, &flights))
+            .collect::<Result<Vec<_>, _>>()?;
+        // The first flight's plan, for the series, when a mission station runs.
+        let series_plan = stations
+            .iter()
+            .find_map(|p| p.plans[0].as_ref())
+            .map(|first| first.plan.waypoints().to_vec());
+        // Each seed is the same run with other random draws (sensor noise, send offsets,
+        // shadowing): its flights join the pool as runs of their own. Station-major order.
+        let pairs: Vec<(&StationPlan, u64)> = stations
+            .iter()
+            .flat_map(|p| (0..seeds).map(move |j| (p, s.run.seed.wrapping_add(j))))
+            .collect();
+        let drone_key = |p: &StationPlan, seed: u64| DroneKey {
+            flights: flight_key.clone(),
+            model: p.model.sent_model(),
+            sensor_rate: s.drone.sensor_rate.to_bits(),
+            q: s.drone.q.to_bits(),
+            seed,
+        };
+        let keys: Vec<DroneKey> = pairs.iter().map(|&(p, seed)| drone_key(p, seed)).collect();
+        let drones = self.drone_sets(&keys, &flights, cfg, &mut tick);
+        let grid = flight_time / s.station.step + flights.len() as f64;
+        let chains: Vec<_> = pairs
+            .iter()
+            .zip(&keys)
+            .map(|(&(p, _), key)| match p.model {
+                StationModel::Single(m) => self.station_chains(
+                    StationKey {
+                        drone: key.clone(),
+                        model: m,
+                        prediction: s.station.prediction,
+                        step: s.station.step.to_bits(),
+                        eta: s.station.eta.to_bits(),
+                        q: s.drone.q.to_bits(),
+                        error_triggered: p.setup.error_triggered,
+                    },
+                    flights.len(),
+                    grid,
+                ),
+                // An IMM's probabilities and a mission station's place on the plan carry over
+                // from packet to packet: nothing to reuse.
+                StationModel::Imm | StationModel::Mission => None,
+            })
+            .collect();
+        let runs: Vec<StationRun> = pairs
+            .iter()
+            .zip(&drones)
+            .zip(&chains)
+            .map(|((&(plan, seed), d), c)| StationRun {
+                plan,
+                cfg,
+                flights: &flights,
+                drones: d,
+                chains: c.as_deref().map(|c| c.as_slice()),
+                seed,
+                first_seed: seed == s.run.seed,
+            })
+            .collect();
+        let mut flown = fly_all(&runs, flights.len(), &mut tick)
+            .into_iter()
+            .zip(&runs);
         let mut results = Vec::new();
         let mut series_models = Vec::new();
-        // The first flight's plan, for the series, when a mission station runs.
-        let mut series_plan = None;
         let mut delivery = Delivery::default();
-        let base = cfg.station_setup(0.0);
-        for &model in &cfg.models {
-            let (start, duty_cycle) = cfg.drone_radio(&cfg.radio, model)?;
-            let (toa, interval) = (start.current().time_on_air, start.current().interval);
-            cfg.check_heartbeat(interval)?;
-            let setup = cfg.setup_for(model, StationSetup { interval, ..base });
-            // Each flight's plan (a mission station's only), traced once for every seed.
-            let plans: Vec<Option<MissionPlan>> =
-                flights.iter().map(|f| cfg.mission_plan(model, f)).collect();
-            if let Some(first) = &plans[0] {
-                series_plan = Some(first.plan.waypoints().to_vec());
-            }
+        for station in &stations {
             let mut pooled = Pooled::default();
             let mut counted = Delivery::default();
             let mut recoveries = 0;
-            // Each seed is the same run with other random draws (sensor noise, send offsets,
-            // shadowing): its flights join the pool as runs of their own.
-            for j in 0..seeds {
-                let seed = s.run.seed.wrapping_add(j);
-                let key = DroneKey {
-                    flights: flight_key.clone(),
-                    model: model.sent_model(),
-                    sensor_rate: s.drone.sensor_rate.to_bits(),
-                    q: s.drone.q.to_bits(),
-                    seed,
-                };
-                let chains = match model {
-                    StationModel::Single(m) => self.station_chains(
-                        StationKey {
-                            drone: key.clone(),
-                            model: m,
-                            prediction: s.station.prediction,
-                            step: s.station.step.to_bits(),
-                            eta: s.station.eta.to_bits(),
-                            q: s.drone.q.to_bits(),
-                            error_triggered: setup.error_triggered,
-                        },
-                        flights.len(),
-                        flight_time / s.station.step + flights.len() as f64,
-                    ),
-                    // An IMM's probabilities and a mission station's place on the plan carry over
-                    // from packet to packet: nothing to reuse.
-                    StationModel::Imm | StationModel::Mission => None,
-                };
-                let drones = self.drone_tracks(key, &flights, cfg, &mut tick);
-                let (flight_set, drone_set): (&[Trajectory], &[DroneTrack]) = (&flights, &drones);
-                let chains: Option<&[Mutex<FlightChains>]> =
-                    chains.as_deref().map(|c| c.as_slice());
-                let network = || Network::of(cfg, s.channel.distance, vec![start.clone()]);
-                let one = |i: usize, net: &mut Network| -> Result<FlightRun, SimError> {
-                    let (flight, drone) = (&flight_set[i], &drone_set[i]);
-                    let plan = plans[i].as_ref();
-                    let now = net.radios[0].current();
-                    let rule = s.sending.rule(duty_cycle, now.time_on_air, flight.t[0])?;
-                    let gateways = net.gateways_at([flight.pos[0][0], flight.pos[0][1]]);
-                    // The same streams for every station: stations that send the same payload see
-                    // the same packets, so their comparison is paired.
-                    let mut flier = Flier::new(
-                        0,
-                        flight,
-                        Estimates::Stored(drone),
-                        s.sending.sender(model, setup, plan),
-                        rule,
-                        &gateways,
-                        &net.channel,
-                        (seed, i as u64),
-                        cfg.channels,
-                        now.interval,
-                        s.access.single_timing(),
-                    );
-                    run_episode(net, core::slice::from_mut(&mut flier));
-                    let tx = flier.tx;
-                    let with_series = s.run.series && i == 0 && j == 0;
-                    let scoring = Scoring {
-                        step: s.station.step,
-                        with_bounds: with_series,
-                        calibrate: setup.prediction == Prediction::Bounded,
-                    };
-                    let st = match chains {
-                        Some(c) => c[i].lock().unwrap_or_else(|e| e.into_inner()).track(
-                            flight,
-                            &|| new_tracker(model, setup, None),
-                            &tx,
-                            scoring,
-                        ),
-                        None => {
-                            let mut tracker = new_tracker(model, setup, plan);
-                            track_station(flight, tracker.as_mut(), &tx, scoring)
-                        }
-                    };
-                    let series = with_series.then(|| model_series(model, &st, &tx));
-                    Ok((tx, st, series, None))
-                };
-                let runs: Vec<Result<FlightRun, SimError>> = if start.adaptive() {
-                    // ADR state passes from one flight to the next: fly them in order, one network.
-                    let mut net = network();
-                    let mut runs: Vec<_> = (0..flights.len())
-                        .map(|i| {
-                            let r = one(i, &mut net);
-                            tick();
-                            r
-                        })
-                        .collect();
-                    if let Some(Ok(last)) = runs.last_mut() {
-                        last.3 = Some(Delivery::counted(&net));
-                    }
-                    runs
-                } else {
-                    par_map_ticking(
-                        0..flights.len(),
-                        |i| {
-                            let mut net = network();
-                            let mut r = one(i, &mut net)?;
-                            r.3 = Some(Delivery::counted(&net));
-                            Ok(r)
-                        },
-                        &mut tick,
-                    )
-                };
-                for (i, run) in runs.into_iter().enumerate() {
-                    let (tx, st, series, net) = run?;
+            for (one_seed, run) in flown.by_ref().take(seeds as usize) {
+                for (i, flight) in one_seed.into_iter().enumerate() {
+                    let (tx, st, series, net) = flight?;
                     series_models.extend(series);
                     pooled.add(&tx, st, flights[i].duration());
                     if let Some(n) = net {
                         counted.add(&n);
                     }
                 }
-                recoveries += drones.iter().map(|d| d.recoveries).sum::<u64>();
+                recoveries += run.drones.iter().map(|d| d.recoveries).sum::<u64>();
             }
-            let result = pooled.finish(model, toa, interval, recoveries, &counted, s.run.seed);
+            let now = station.start.current();
+            let result = pooled.finish(
+                station.model,
+                now.time_on_air,
+                now.interval,
+                recoveries,
+                &counted,
+                s.run.seed,
+            );
             delivery.add(&result.delivery);
             results.push(result);
         }
@@ -529,6 +493,36 @@ impl Simulator {
             series,
         })
     }
+}
+
+/// Every run's flights: the runs whose drones adapt their data rate fly theirs in order
+/// ([`StationRun::fly_in_order`]), every other (run, flight) pair in one parallel batch. One
+/// list of flights per run, in flight order; `tick` once per run and flight.
+fn fly_all(
+    runs: &[StationRun],
+    flights: usize,
+    tick: &mut dyn FnMut(),
+) -> Vec<Vec<Result<FlightRun, SimError>>> {
+    let alone: Vec<(usize, usize)> = (0..runs.len())
+        .filter(|&r| !runs[r].adaptive())
+        .flat_map(|r| (0..flights).map(move |i| (r, i)))
+        .collect();
+    let mut flown = par_map_costliest_first(
+        alone.len(),
+        |k| runs[alone[k].0].plan.model.relative_cost(),
+        |k| {
+            let (r, i) = alone[k];
+            runs[r].fly_alone(i)
+        },
+        tick,
+    )
+    .into_iter();
+    runs.iter()
+        .map(|run| match run.adaptive() {
+            true => run.fly_in_order(tick),
+            false => flown.by_ref().take(flights).collect(),
+        })
+        .collect()
 }
 
 /// Reads or builds the flights `source` names.

@@ -102,9 +102,10 @@ pub fn new_tracker(
 /// The station's estimate and its error at every T from the first arrival on.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct StationTrack {
-    /// Evaluation times, s.
+    /// Evaluation times, s (only when asked for, [`Scoring::series`]: the errors are what the
+    /// statistics need, and a 10⁶-row flight's four stations would hold ~50 MB more).
     pub times: Vec<f64>,
-    /// Estimated position at each time, m.
+    /// Estimated position at each time, m (only with [`Scoring::series`]).
     pub estimate: Vec<[f64; 3]>,
     /// |estimate − truth| per axis, m.
     pub error_axes: Vec<[f64; 3]>,
@@ -113,7 +114,7 @@ pub struct StationTrack {
     /// How the truth fell against the station's claimed position uncertainty (95 % coverage,
     /// NEES).
     pub consistency: Consistency,
-    /// The longest semi-axis of that ellipsoid, m (only when asked for: it needs an
+    /// The longest semi-axis of that ellipsoid, m (only with [`Scoring::series`]: it needs an
     /// eigen-decomposition per step).
     pub bound95: Vec<f64>,
     /// Sum over the evaluation times of the model probabilities (multiple-model trackers).
@@ -152,8 +153,9 @@ impl Estimate {
 pub struct Scoring {
     /// The evaluation step T, s.
     pub step: f64,
-    /// Whether to keep the longest semi-axis of the 95 % ellipsoid at every step (the series).
-    pub with_bounds: bool,
+    /// Whether to keep what a plot of the flight shows at every step: the time, the estimate
+    /// and the longest semi-axis of the 95 % ellipsoid.
+    pub series: bool,
     /// Whether the station calibrates its covariance against its forecasts of the packets
     /// ([`Calibration`]; a bounded station: the paper's is scored as published).
     pub calibrate: bool,
@@ -206,7 +208,7 @@ pub(crate) fn score_station(
 ) -> StationTrack {
     let Scoring {
         step,
-        with_bounds,
+        series,
         calibrate,
     } = scoring;
     let received: Vec<Received> = transmissions
@@ -234,8 +236,8 @@ pub(crate) fn score_station(
     let mut hint = 0;
     let mut calibration = calibrate.then(|| Calibration::new(CALIBRATION_GAIN));
     let mut out = StationTrack {
-        times: Vec::with_capacity(grid),
-        estimate: Vec::with_capacity(grid),
+        times: Vec::with_capacity(if series { grid } else { 0 }),
+        estimate: Vec::with_capacity(if series { grid } else { 0 }),
         error_axes: Vec::with_capacity(grid),
         error3d: Vec::with_capacity(grid),
         untracked: j.min(grid),
@@ -262,13 +264,13 @@ pub(crate) fn score_station(
         let truth = flight.position_at(t, &mut hint);
         let est = e.position;
         let d: [f64; 3] = core::array::from_fn(|k| est[k] - truth[k]);
-        out.times.push(t);
-        out.estimate.push(est);
         out.error_axes.push(d.map(f64::abs));
         out.error3d
             .push((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
         out.consistency.add(&d, &e.covariance);
-        if with_bounds {
+        if series {
+            out.times.push(t);
+            out.estimate.push(est);
             out.bound95.push(bound_95(&e.covariance));
         }
         if let Some(p) = e.probabilities {

@@ -224,7 +224,7 @@ pub fn run_swarm(
                 // Only the error is kept: the covariance's calibration would change nothing.
                 let scoring = Scoring {
                     step: s.station.step,
-                    with_bounds: false,
+                    series: false,
                     calibrate: false,
                 };
                 let track = track_station(flight, tracker.as_mut(), &out[i], scoring);
