@@ -56,14 +56,17 @@ impl Pooled {
             e.packets += 1;
             e.received += usize::from(t.received);
         }
-        self.e3.extend_from_slice(&st.error3d);
+        let [ex, ey, ez] = st.error_axes;
+        for (pool, run) in [
+            (&mut self.e3, st.error3d),
+            (&mut self.ex, ex),
+            (&mut self.ey, ey),
+            (&mut self.ez, ez),
+        ] {
+            append(pool, run);
+        }
         self.run_ends.push(self.e3.len());
         self.untracked += st.untracked;
-        for e in &st.error_axes {
-            self.ex.push(e[0]);
-            self.ey.push(e[1]);
-            self.ez.push(e[2]);
-        }
         self.consistency.merge(&st.consistency);
         if let Some(p) = st.probability_sum {
             let sum = self.probability_sum.get_or_insert([0.0; 3]);
@@ -179,6 +182,16 @@ pub(crate) fn series_stride(len: usize) -> usize {
 /// Component `k` (0 x, 1 y, 2 z) of every `every`-th point.
 pub(crate) fn axis_every(points: &[[f64; 3]], k: usize, every: usize) -> Vec<f64> {
     points.iter().step_by(every).map(|p| p[k]).collect()
+}
+
+/// Appends `run` to `pool`, taking it whole when the pool is empty: a long flight's errors are
+/// then never held twice.
+fn append(pool: &mut Vec<f64>, run: Vec<f64>) {
+    if pool.is_empty() {
+        *pool = run;
+    } else {
+        pool.extend_from_slice(&run);
+    }
 }
 
 /// The plotted series of one station on one flight, decimated to at most

@@ -28,6 +28,11 @@ use std::sync::Mutex;
 const MAX_CACHED_FLIGHTS: usize = 4;
 const MAX_CACHED_DRONE_RUNS: usize = 24;
 const MAX_CACHED_STATIONS: usize = 6;
+/// A run's drone runs may take at most this fraction (1/n) of [`MAX_CACHE_BYTES`] together: a
+/// 10⁶-row flight at 25 Hz (40 000 s; 29 MB per model at 10 Hz) streams its drones instead.
+const MAX_DRONE_SHARE: usize = 4;
+/// Bytes of one remembered drone estimate.
+const DRONE_STEP_BYTES: usize = core::mem::size_of::<[f64; 9]>();
 /// A station's remembered predictions may take at most this fraction (1/n) of
 /// [`MAX_CACHE_BYTES`]: a long flight's (a 10⁶-row CSV at 25 Hz: ~200 MB) would otherwise evict
 /// its own drone runs and every other station's, and be evicted by the next station's.
@@ -204,14 +209,31 @@ impl Simulator {
 
     /// The drone runs of every flight for each of `keys` (in their order; a key may repeat),
     /// from the cache or computed, every missing (key, flight) pair in one parallel batch;
-    /// `tick` is called once per key and flight.
+    /// `tick` is called once per key and flight. `None` for all when they would take more
+    /// than [`MAX_DRONE_SHARE`] of the budget together: each station's event loop then runs
+    /// the drone's filter as it reads it ([`Estimates::Live`](super::Estimates)), holding only
+    /// a few estimates.
     fn drone_sets(
         &mut self,
         keys: &[DroneKey],
         flights: &[Trajectory],
         cfg: &Validated,
         tick: &mut dyn FnMut(),
-    ) -> Vec<Rc<Vec<DroneTrack>>> {
+    ) -> Vec<Option<Rc<Vec<DroneTrack>>>> {
+        let n = flights.len();
+        let rate = cfg.s().drone.sensor_rate;
+        let steps: usize = flights
+            .iter()
+            .map(|f| (f.duration() * rate + 1e-9).floor() as usize + 1)
+            .sum();
+        let mut distinct: Vec<&DroneKey> = keys.iter().collect();
+        distinct.sort_by_key(|k| (k.model.index(), k.seed));
+        distinct.dedup();
+        if distinct.len() * steps * DRONE_STEP_BYTES > MAX_CACHE_BYTES / MAX_DRONE_SHARE {
+            (0..keys.len() * n).for_each(|_| tick());
+            self.drone_runs += (keys.len() * n) as u64;
+            return vec![None; keys.len()];
+        }
         // The cached ones are held here first: remembering the new ones may evict them.
         let mut sets: HashMap<DroneKey, Rc<Vec<DroneTrack>>> = HashMap::new();
         let mut missing: Vec<&DroneKey> = Vec::new();
@@ -223,7 +245,6 @@ impl Simulator {
                 missing.push(key);
             }
         }
-        let n = flights.len();
         let mut computed = par_map_costliest_first(
             missing.len() * n,
             |k| missing[k / n].model.state_len() as u32,
@@ -249,7 +270,7 @@ impl Simulator {
             sets.insert(key.clone(), Rc::clone(&tracks));
             self.remember_drones(key.clone(), tracks);
         }
-        keys.iter().map(|key| Rc::clone(&sets[key])).collect()
+        keys.iter().map(|key| Some(Rc::clone(&sets[key]))).collect()
     }
 
     /// Keeps one key's drone runs in the cache.
@@ -260,7 +281,7 @@ impl Simulator {
                 .for_each(|k| self.ledger.remove(&Entry::Drones(k.clone())));
             self.drones.clear();
         }
-        let bytes = tracks.iter().map(|t| t.states.len() * 9 * 8).sum();
+        let bytes = tracks.iter().map(|t| t.states.len()).sum::<usize>() * DRONE_STEP_BYTES;
         self.drones.insert(key.clone(), tracks);
         self.remember(Entry::Drones(key), bytes);
     }
@@ -401,15 +422,13 @@ impl Simulator {
                 plan,
                 cfg,
                 flights: &flights,
-                drones: d,
+                drones: d.as_deref().map(|d| d.as_slice()),
                 chains: c.as_deref().map(|c| c.as_slice()),
                 seed,
                 first_seed: seed == s.run.seed,
             })
             .collect();
-        let mut flown = fly_all(&runs, flights.len(), &mut tick)
-            .into_iter()
-            .zip(&runs);
+        let mut flown = fly_all(&runs, flights.len(), &mut tick).into_iter();
         let mut results = Vec::new();
         let mut series_models = Vec::new();
         let mut delivery = Delivery::default();
@@ -417,16 +436,16 @@ impl Simulator {
             let mut pooled = Pooled::default();
             let mut counted = Delivery::default();
             let mut recoveries = 0;
-            for (one_seed, run) in flown.by_ref().take(seeds as usize) {
+            for one_seed in flown.by_ref().take(seeds as usize) {
                 for (i, flight) in one_seed.into_iter().enumerate() {
-                    let (tx, st, series, net) = flight?;
-                    series_models.extend(series);
-                    pooled.add(&tx, st, flights[i].duration());
-                    if let Some(n) = net {
+                    let run = flight?;
+                    series_models.extend(run.series);
+                    pooled.add(&run.tx, run.track, flights[i].duration());
+                    if let Some(n) = run.delivery {
                         counted.add(&n);
                     }
+                    recoveries += run.recoveries;
                 }
-                recoveries += run.drones.iter().map(|d| d.recoveries).sum::<u64>();
             }
             let now = station.start.current();
             let result = pooled.finish(

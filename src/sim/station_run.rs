@@ -5,7 +5,7 @@
 //! [`StationRun`] per station and seed, then flies every (run, flight) pair in one parallel
 //! batch: a long single flight with four stations keeps both cores busy instead of one.
 
-use super::drone::{DroneTrack, Estimates};
+use super::drone::{DroneFilter, DroneTrack, Estimates};
 use super::flier::Flier;
 use super::network::{run_episode, Network};
 use super::packet::Transmission;
@@ -21,14 +21,19 @@ use super::SimError;
 use crate::trajectory::Trajectory;
 use std::sync::Mutex;
 
-/// One flight's transmissions, station track, (first flight of the first seed, when asked)
-/// plotted series, and what the network counted.
-pub(crate) type FlightRun = (
-    Vec<Transmission>,
-    StationTrack,
-    Option<ModelSeries>,
-    Option<Delivery>,
-);
+/// What one flight of one station gave.
+pub(crate) struct FlightRun {
+    /// Every transmission, received or not.
+    pub tx: Vec<Transmission>,
+    /// The station's errors.
+    pub track: StationTrack,
+    /// The plotted series (the first flight of the first seed, when asked).
+    pub series: Option<ModelSeries>,
+    /// What the network counted (each flight alone; the last flight of a run in order).
+    pub delivery: Option<Delivery>,
+    /// How often the drone's filter repaired its covariance over the flight.
+    pub recoveries: u64,
+}
 
 /// What one station's drone sends with and how the station predicts, the same for every seed.
 pub(crate) struct StationPlan {
@@ -79,8 +84,9 @@ pub(crate) struct StationRun<'a> {
     pub cfg: &'a Validated,
     /// The flights.
     pub flights: &'a [Trajectory],
-    /// The drone's estimates on each flight, for this seed.
-    pub drones: &'a [DroneTrack],
+    /// The drone's estimates on each flight, for this seed, or `None` to run its filter as the
+    /// event loop reads it (a flight too long to remember them).
+    pub drones: Option<&'a [DroneTrack]>,
     /// The remembered predictions of a single-model station, one entry per flight; `None` for
     /// the others and when too large to remember.
     pub chains: Option<&'a [Mutex<FlightChains>]>,
@@ -107,7 +113,7 @@ impl StationRun<'_> {
     pub fn fly_alone(&self, i: usize) -> Result<FlightRun, SimError> {
         let mut net = self.network();
         let mut run = self.fly(i, &mut net)?;
-        run.3 = Some(Delivery::counted(&net));
+        run.delivery = Some(Delivery::counted(&net));
         Ok(run)
     }
 
@@ -123,7 +129,7 @@ impl StationRun<'_> {
             })
             .collect();
         if let Some(Ok(last)) = runs.last_mut() {
-            last.3 = Some(Delivery::counted(&net));
+            last.delivery = Some(Delivery::counted(&net));
         }
         runs
     }
@@ -140,10 +146,22 @@ impl StationRun<'_> {
         let gateways = net.gateways_at([flight.pos[0][0], flight.pos[0][1]]);
         // The same streams for every station: stations that send the same payload see the same
         // packets, so their comparison is paired.
+        let estimates = match self.drones {
+            Some(d) => Estimates::Stored(&d[i]),
+            None => Estimates::live(DroneFilter::new(
+                flight,
+                model.sent_model(),
+                s.drone.sensor_rate,
+                s.drone.q,
+                &self.cfg.r_diagonal,
+                self.seed,
+                i as u64,
+            )),
+        };
         let mut flier = Flier::new(
             0,
             flight,
-            Estimates::Stored(&self.drones[i]),
+            estimates,
             s.sending.sender(model, setup, plan),
             rule,
             &gateways,
@@ -154,6 +172,9 @@ impl StationRun<'_> {
             s.access.single_timing(),
         );
         run_episode(net, core::slice::from_mut(&mut flier));
+        // A live filter runs to the flight's end, as a stored run did: the same repair count.
+        flier.estimates.prefetch(flier.estimates.len());
+        let recoveries = flier.estimates.recoveries();
         let tx = flier.tx;
         let with_series = s.run.series && i == 0 && self.first_seed;
         let scoring = Scoring {
@@ -174,6 +195,68 @@ impl StationRun<'_> {
             }
         };
         let series = with_series.then(|| model_series(model, &st, &tx));
-        Ok((tx, st, series, None))
+        Ok(FlightRun {
+            tx,
+            track: st,
+            series,
+            delivery: None,
+            recoveries,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::drone::run_drone;
+    use crate::sim::Scenario;
+    use crate::trajectory::synthetic_flight;
+
+    /// Flight 3 at SF7 / 3 km (packets lost), with `settings` on top.
+    fn flown(settings: serde_json::Value, stored: bool) -> FlightRun {
+        let cfg = Scenario::default()
+            .with(&serde_json::json!({"synthetic": 3, "distance": 3000, "seed": 9}))
+            .and_then(|s| s.with(&settings))
+            .unwrap()
+            .validate()
+            .unwrap();
+        let flights = vec![synthetic_flight(3).unwrap()];
+        let plan = StationPlan::new(&cfg, cfg.models[0], &flights).unwrap();
+        let drones = vec![run_drone(
+            &flights[0],
+            plan.model.sent_model(),
+            cfg.s().drone.sensor_rate,
+            cfg.s().drone.q,
+            &cfg.r_diagonal,
+            9,
+            0,
+        )];
+        let run = StationRun {
+            plan: &plan,
+            cfg: &cfg,
+            flights: &flights,
+            drones: stored.then_some(drones.as_slice()),
+            chains: None,
+            seed: 9,
+            first_seed: true,
+        };
+        run.fly_alone(0).unwrap()
+    }
+
+    #[test]
+    fn a_drone_filter_run_live_gives_what_its_stored_run_gives() {
+        for settings in [
+            serde_json::json!({"model": "imm"}),
+            serde_json::json!({"model": "ctra-plus", "sender": "error", "threshold": 3}),
+        ] {
+            let (stored, live) = (flown(settings.clone(), true), flown(settings, false));
+            assert!(stored.tx.iter().any(|t| !t.received), "some packets lost");
+            assert_eq!(stored.tx.len(), live.tx.len());
+            for (a, b) in stored.tx.iter().zip(&live.tx) {
+                assert_eq!((a.sent, a.received, a.state), (b.sent, b.received, b.state));
+            }
+            assert_eq!(stored.track.error3d, live.track.error3d);
+            assert_eq!(stored.recoveries, live.recoveries);
+        }
     }
 }

@@ -107,8 +107,8 @@ pub struct StationTrack {
     pub times: Vec<f64>,
     /// Estimated position at each time, m (only with [`Scoring::series`]).
     pub estimate: Vec<[f64; 3]>,
-    /// |estimate − truth| per axis, m.
-    pub error_axes: Vec<[f64; 3]>,
+    /// |estimate − truth| along east, north and up, m.
+    pub error_axes: [Vec<f64>; 3],
     /// 3D distance between estimate and truth, m.
     pub error3d: Vec<f64>,
     /// How the truth fell against the station's claimed position uncertainty (95 % coverage,
@@ -238,7 +238,7 @@ pub(crate) fn score_station(
     let mut out = StationTrack {
         times: Vec::with_capacity(if series { grid } else { 0 }),
         estimate: Vec::with_capacity(if series { grid } else { 0 }),
-        error_axes: Vec::with_capacity(grid),
+        error_axes: core::array::from_fn(|_| Vec::with_capacity(grid)),
         error3d: Vec::with_capacity(grid),
         untracked: j.min(grid),
         ..StationTrack::default()
@@ -264,7 +264,9 @@ pub(crate) fn score_station(
         let truth = flight.position_at(t, &mut hint);
         let est = e.position;
         let d: [f64; 3] = core::array::from_fn(|k| est[k] - truth[k]);
-        out.error_axes.push(d.map(f64::abs));
+        for (axis, d) in out.error_axes.iter_mut().zip(d) {
+            axis.push(d.abs());
+        }
         out.error3d
             .push((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
         out.consistency.add(&d, &e.covariance);
