@@ -120,6 +120,67 @@ fn swarms(c: &mut Criterion) {
     g.finish();
 }
 
+/// A flight of `rows` samples every `dt` s: a slow climbing circle, velocities and accelerations
+/// given when `derivatives` (else derived by the importer), written the way a log would be.
+fn long_flight(rows: usize, dt: f64, derivatives: bool) -> String {
+    use std::fmt::Write;
+    // 8 m/s on a 40 m circle; at most ~62 bytes a row, so 10⁶ rows stay under the 64 MiB limit.
+    let (r, w) = (40.0, 0.2);
+    let mut csv = String::from(if derivatives {
+        "t,x,y,z,vx,vy,vz,ax,ay,az\n"
+    } else {
+        "t,x,y,z\n"
+    });
+    for i in 0..rows {
+        let t = i as f64 * dt;
+        let (s, c) = (w * t).sin_cos();
+        write!(
+            csv,
+            "{t:.4},{:.3},{:.3},{:.3}",
+            r * s,
+            r * (1.0 - c),
+            40.0 + 1e-3 * t
+        )
+        .unwrap();
+        if derivatives {
+            let (v, a) = (r * w, r * w * w);
+            write!(
+                csv,
+                ",{:.3},{:.3},0.001,{:.3},{:.3},0",
+                v * c,
+                v * s,
+                -a * s,
+                a * c
+            )
+            .unwrap();
+        }
+        csv.push('\n');
+    }
+    csv
+}
+
+/// A 10⁶-row flight through the four stations (the paper's three and IMM), parsing included:
+/// at 25 Hz without derivatives (40 000 s: the drones' filters and the stations' predictions
+/// dominate) and at 10 kHz with them (100 s: the import dominates). Each file is also written
+/// to `target/tmp/long-flight-*.csv`, for measuring the CLI's peak memory on it (README).
+fn long_flights(c: &mut Criterion) {
+    let mut g = c.benchmark_group("long_flight");
+    g.sample_size(10);
+    for (name, dt, derivatives) in [("25hz", 0.04, false), ("10khz", 1e-4, true)] {
+        let csv = long_flight(1_000_000, dt, derivatives);
+        let file = format!("{}/long-flight-{name}.csv", env!("CARGO_TARGET_TMPDIR"));
+        std::fs::write(&file, &csv).unwrap();
+        let p = set(
+            &Scenario::default(),
+            json!({"trajectory": csv, "model": "dr,ctra-plus,3d-ctra,imm"}),
+        );
+        g.bench_function(format!("{name}_four_stations_cold"), |b| {
+            b.iter(|| simulate(&mut Simulator::new(), black_box(&p)).unwrap())
+        });
+    }
+    g.finish();
+}
+
 criterion_group!(
     benches,
     airtime,
@@ -127,6 +188,7 @@ criterion_group!(
     filters,
     simulation,
     mission,
-    swarms
+    swarms,
+    long_flights
 );
 criterion_main!(benches);
