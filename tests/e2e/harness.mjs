@@ -3,7 +3,8 @@
 // leaves the local origin.
 import { execFileSync } from 'node:child_process';
 import { createServer } from 'node:http';
-import { mkdirSync, readFileSync, statSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, readFileSync, rmSync, statSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import { dirname, extname, join, normalize } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
@@ -47,6 +48,16 @@ const TYPES = {
 };
 
 /** A static file server for dist/ mounted at SUB_PATH, like a documentation site would host it. */
+const scratch = [];
+process.on('exit', () => scratch.forEach((dir) => rmSync(dir, { recursive: true, force: true })));
+
+/** A fresh directory for a test's files (uploads, downloads), removed when the test file's process exits. */
+export function scratchDir() {
+  const dir = mkdtempSync(join(tmpdir(), 'loratrack-'));
+  scratch.push(dir);
+  return dir;
+}
+
 export async function serveDist() {
   const server = createServer((req, res) => {
     const url = new URL(req.url, 'http://x');

@@ -4,10 +4,9 @@
 // HTTP error or a request to any other host.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFileSync, writeFileSync, mkdtempSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { nativeJson } from './harness.mjs';
+import { nativeJson, scratchDir } from './harness.mjs';
 import { axe, cell, cellNumber, idle, lesson, MODELS, number, open, playground, shownP75, tableHtml, usePlayground, waitForResults } from './page.mjs';
 
 usePlayground();
@@ -167,7 +166,7 @@ test('a slotted swarm collides with none of its own drones and says how many dro
 });
 
 test('a large CSV is read with its own progress, then simulated', async () => {
-  const dir = mkdtempSync(join(tmpdir(), 'loratrack-'));
+  const dir = scratchDir();
   const path = join(dir, 'long.csv');
   // 40 000 rows at 50 Hz (13 min of flight), about 1.4 MB: above the size read first.
   const rows = Array.from({ length: 40_000 }, (_, i) => {
@@ -446,7 +445,7 @@ test('axe finds no violation in the stale, error, presentation and phone states'
   // The error state: a CSV that cannot be read (once the form is valid again).
   await stale.page.getByLabel('Path-loss exponent').fill('3');
   await stale.page.waitForFunction(() => !document.querySelector('[data-panel="results"].stale'));
-  const dir = mkdtempSync(join(tmpdir(), 'loratrack-'));
+  const dir = scratchDir();
   writeFileSync(join(dir, 'bad.csv'), 't,x,y\n0,1,2\n');
   await stale.page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
   await stale.page.locator('#csv').setInputFiles(join(dir, 'bad.csv'));

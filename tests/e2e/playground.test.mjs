@@ -5,10 +5,9 @@
 // files run side by side.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFileSync, writeFileSync, mkdtempSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { nativeJson, openPage, screenshot } from './harness.mjs';
+import { nativeJson, scratchDir, openPage, screenshot } from './harness.mjs';
 import { axe, cell, idle, number, open, playground, shownP75, tableHtml, usePlayground, waitForResults } from './page.mjs';
 
 usePlayground();
@@ -150,7 +149,7 @@ test('the whole set shows its first flight at once, marked as that flight alone 
 
 test('a good CSV is simulated and a bad one is refused next to the control', async () => {
   const { page, problems } = await open();
-  const dir = mkdtempSync(join(tmpdir(), 'loratrack-'));
+  const dir = scratchDir();
   const good = join(dir, 'circle.csv');
   const rows = ['t,x,y,z'];
   for (let i = 0; i <= 600; i++) {
@@ -181,7 +180,7 @@ test('a good CSV is simulated and a bad one is refused next to the control', asy
 
 test('an uploaded flight with its uploaded plan runs the mission station, with the CLI\'s numbers; a bad plan is refused next to its control', async () => {
   const { page, problems } = await open();
-  const dir = mkdtempSync(join(tmpdir(), 'loratrack-'));
+  const dir = scratchDir();
   // A 100 m square at 5 m/s and 30 m, flown once round, and its plan.
   const corner = (k) => [[0, 0], [100, 0], [100, 100], [0, 100]][k % 4];
   const rows = ['t,x,y,z'];
@@ -475,7 +474,7 @@ test('embedding: unknown panels are explained, spaces are forgiven, the credit a
 });
 
 test('copying a link after a CSV upload says the link cannot carry the file', async () => {
-  const dir = mkdtempSync(join(tmpdir(), 'loratrack-'));
+  const dir = scratchDir();
   const path = join(dir, 'square.csv');
   writeFileSync(path, 't,x,y,z\n' + Array.from({ length: 400 }, (_, i) => `${(i * 0.1).toFixed(1)},${Math.sin(i / 40) * 50},${Math.cos(i / 40) * 50},20`).join('\n') + '\n');
   const { page, problems } = await open();

@@ -43,7 +43,23 @@ fn json(args: &[&str]) -> serde_json::Value {
     serde_json::from_slice(&out.stdout).expect("JSON output")
 }
 
-fn temp_file(name: &str, content: &[u8]) -> std::path::PathBuf {
+/// A file in the temporary directory, removed when dropped: also when its test fails.
+struct TempFile(std::path::PathBuf);
+
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.0);
+    }
+}
+
+impl std::ops::Deref for TempFile {
+    type Target = std::path::Path;
+    fn deref(&self) -> &std::path::Path {
+        &self.0
+    }
+}
+
+fn temp_file(name: &str, content: &[u8]) -> TempFile {
     let path = std::env::temp_dir().join(format!(
         "loratrack-robustness-{}-{name}",
         std::process::id()
@@ -52,7 +68,7 @@ fn temp_file(name: &str, content: &[u8]) -> std::path::PathBuf {
         .unwrap()
         .write_all(content)
         .unwrap();
-    path
+    TempFile(path)
 }
 
 // 1. NaN from valid settings: psi decayed by eta to subnormal values divided 0 by 0.
@@ -128,9 +144,10 @@ fn devices_fifos_and_huge_files_are_refused_at_once() {
         &["simulate", "--trajectory", "/dev/urandom"],
         "not a regular file",
     );
-    let fifo = std::env::temp_dir().join(format!("loratrack-fifo-{}", std::process::id()));
+    let fifo =
+        TempFile(std::env::temp_dir().join(format!("loratrack-fifo-{}", std::process::id())));
     if Command::new("mkfifo")
-        .arg(&fifo)
+        .arg(&*fifo)
         .status()
         .is_ok_and(|s| s.success())
     {
@@ -138,12 +155,11 @@ fn devices_fifos_and_huge_files_are_refused_at_once() {
             &["simulate", "--trajectory", fifo.to_str().unwrap()],
             "not a regular file",
         );
-        let _ = std::fs::remove_file(&fifo);
     }
     let big = temp_file("big.csv", b"t,x,y,z\n");
     std::fs::OpenOptions::new()
         .write(true)
-        .open(&big)
+        .open(&*big)
         .unwrap()
         .set_len(65 << 20)
         .unwrap();
@@ -151,7 +167,6 @@ fn devices_fifos_and_huge_files_are_refused_at_once() {
         &["simulate", "--trajectory", big.to_str().unwrap()],
         "at most 64 MiB",
     );
-    let _ = std::fs::remove_file(&big);
 }
 
 // 5. Infinities: every output is finite or the input is refused naming the field and its range.
@@ -287,9 +302,6 @@ fn csv_kinematics_are_bounded_and_every_refusal_names_a_line() {
         "--json",
     ]);
     assert_eq!(r["config"]["flightTime"].as_f64(), Some(1.9));
-    for f in [acc, tiny, bad, cr] {
-        let _ = std::fs::remove_file(f);
-    }
 }
 
 #[test]
@@ -381,7 +393,7 @@ fn runs_beyond_the_work_limit_are_refused_quickly() {
         "refused in {:?}",
         started.elapsed()
     );
-    let _ = std::fs::remove_file(long);
+    drop(long);
     // The page's most demanding setting stays allowed.
     let r = json(&[
         "simulate",
