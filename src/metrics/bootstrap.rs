@@ -79,7 +79,7 @@ pub fn bootstrap(runs: &[&[f64]], seed: u64) -> Option<Intervals> {
         let max = runs
             .iter()
             .zip(&weights)
-            .filter(|(_, &w)| w > 0)
+            .filter(|&(_, &w)| w > 0)
             .map(|(r, _)| r[r.len() - 1])
             .fold(f64::NEG_INFINITY, f64::max);
         stats[0].push(sum / n as f64);
@@ -205,7 +205,7 @@ impl Draw<'_> {
         self.runs
             .iter()
             .zip(self.weights)
-            .filter(|(_, &w)| w > 0)
+            .filter(|&(_, &w)| w > 0)
             .map(|(r, &w)| u64::from(w) * r.partition_point(|x| *x <= v) as u64)
             .sum()
     }

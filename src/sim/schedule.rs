@@ -199,7 +199,7 @@ fn pack(period: &[f64], len: &[f64]) -> Option<Vec<f64>> {
 fn is_free(busy: &[(f64, f64)], start: f64, len: f64) -> bool {
     let end = start + len;
     let at = busy.partition_point(|&(_, e)| e <= start + 1e-12);
-    busy.get(at).map_or(true, |&(s, _)| s >= end - 1e-12)
+    busy.get(at).is_none_or(|&(s, _)| s >= end - 1e-12)
 }
 
 /// The most drones a capacity search tries.
