@@ -3,7 +3,9 @@
 //!
 //! [`Simulator`](super::Simulator) prepares one [`StationPlan`] per station and one
 //! [`StationRun`] per station and seed, then flies every (run, flight) pair in one parallel
-//! batch: a long single flight with four stations keeps both cores busy instead of one.
+//! batch, the costliest stations first: a long single flight with four stations keeps both
+//! cores busy instead of one. A run whose drone adapts its data rate (ADR) carries the device's
+//! state from flight to flight, so it flies its flights in order instead.
 
 use super::drone::{DroneFilter, DroneTrack, Estimates};
 use super::flier::Flier;
