@@ -57,7 +57,7 @@ pub fn bootstrap(runs: &[&[f64]], seed: u64) -> Option<Intervals> {
     }
     let sums: Vec<f64> = runs.iter().map(|r| r.iter().sum()).collect();
     let mut all: Vec<f64> = runs.iter().flat_map(|r| r.iter().copied()).collect();
-    all.sort_by(f64::total_cmp);
+    all.sort_unstable_by(f64::total_cmp);
     let ranks = Ranks::of(&runs, &all);
     let mut rng = Rng::derive(seed, 0xb00_757a);
     let mut stats: [Vec<f64>; 5] = Default::default();
@@ -89,7 +89,7 @@ pub fn bootstrap(runs: &[&[f64]], seed: u64) -> Option<Intervals> {
         stats[4].push(max);
     }
     let [mean, p50, p75, p95, max] = stats.map(|mut s| {
-        s.sort_by(f64::total_cmp);
+        s.sort_unstable_by(f64::total_cmp);
         [percentile(&s, 2.5), percentile(&s, 97.5)]
     });
     Some(Intervals {
@@ -244,7 +244,7 @@ mod tests {
     use super::*;
 
     fn sorted(mut v: Vec<f64>) -> Vec<f64> {
-        v.sort_by(f64::total_cmp);
+        v.sort_unstable_by(f64::total_cmp);
         v
     }
 
@@ -254,7 +254,7 @@ mod tests {
         let b = sorted(vec![5.0, 0.5, 4.0]);
         let runs = [&a[..], &b[..]];
         let mut all: Vec<f64> = a.iter().chain(&b).copied().collect();
-        all.sort_by(f64::total_cmp);
+        all.sort_unstable_by(f64::total_cmp);
         let draw = Draw {
             runs: &runs,
             weights: &[1, 1],

@@ -28,7 +28,7 @@ pub struct Summary {
 impl Summary {
     /// Summarises `data` (any order; it is sorted in place).
     pub fn of(data: &mut [f64]) -> Self {
-        data.sort_by(f64::total_cmp);
+        data.sort_unstable_by(f64::total_cmp);
         let n = data.len();
         Summary {
             mean: if n == 0 {

@@ -88,7 +88,7 @@ impl Pooled {
         let mut from = 0;
         for &to in &self.run_ends {
             let mut run = self.e3[from..to].to_vec();
-            run.sort_by(f64::total_cmp);
+            run.sort_unstable_by(f64::total_cmp);
             runs.push(run);
             from = to;
         }
