@@ -212,8 +212,6 @@ pub fn parse_csv_with_progress(
     }
     if !has_vel {
         vel = smoothed_derivative(&t, &pos, 0.15);
-    }
-    if !has_vel {
         if let Some(i) = vel.iter().position(|v| !within(v, MAX_SPEED)) {
             return Err(TrajectoryError::Absurd {
                 line: line_numbers[i],
