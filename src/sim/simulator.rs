@@ -4,7 +4,7 @@ use super::cache_budget::{Ledger, MAX_CACHE_BYTES};
 use super::drone::{run_drone, DroneTrack};
 use super::parallel::par_map_costliest_first;
 use super::pooled::{axis_every, series_stride, Pooled};
-use super::report::{Delivery, RunConfig, Series, SimReport};
+use super::report::{Delivery, ModelResult, ModelSeries, RunConfig, Series, SimReport};
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::Schedule;
 use super::station::{Estimate, FlightChains, Prediction, StationModel, MAX_GRIDS};
@@ -317,6 +317,33 @@ impl Simulator {
         Some(chains)
     }
 
+    /// The remembered predictions of station `p` receiving from drone runs `key`: a single-model
+    /// station's ([`Self::station_chains`]); `None` for the others, whose IMM probabilities or
+    /// place on the plan carry over from packet to packet, so nothing can be reused.
+    fn chains_for(
+        &mut self,
+        p: &StationPlan,
+        key: &DroneKey,
+        cfg: &Validated,
+        flights: usize,
+        grid: f64,
+    ) -> Option<Rc<Vec<Mutex<FlightChains>>>> {
+        let StationModel::Single(model) = p.model else {
+            return None;
+        };
+        let s = cfg.s();
+        let station = StationKey {
+            drone: key.clone(),
+            model,
+            prediction: s.station.prediction,
+            step: s.station.step.to_bits(),
+            eta: s.station.eta.to_bits(),
+            q: s.drone.q.to_bits(),
+            error_triggered: p.setup.error_triggered,
+        };
+        self.station_chains(station, flights, grid)
+    }
+
     /// Runs one simulation.
     pub fn run(&mut self, cfg: &Validated) -> Result<SimReport, SimError> {
         self.run_with_progress(cfg, &mut |_, _| {})
@@ -395,24 +422,7 @@ impl Simulator {
         let chains: Vec<_> = pairs
             .iter()
             .zip(&keys)
-            .map(|(&(p, _), key)| match p.model {
-                StationModel::Single(m) => self.station_chains(
-                    StationKey {
-                        drone: key.clone(),
-                        model: m,
-                        prediction: s.station.prediction,
-                        step: s.station.step.to_bits(),
-                        eta: s.station.eta.to_bits(),
-                        q: s.drone.q.to_bits(),
-                        error_triggered: p.setup.error_triggered,
-                    },
-                    flights.len(),
-                    grid,
-                ),
-                // An IMM's probabilities and a mission station's place on the plan carry over
-                // from packet to packet: nothing to reuse.
-                StationModel::Imm | StationModel::Mission => None,
-            })
+            .map(|(&(p, _), key)| self.chains_for(p, key, cfg, flights.len(), grid))
             .collect();
         let runs: Vec<StationRun> = pairs
             .iter()
@@ -428,61 +438,14 @@ impl Simulator {
                 first_seed: seed == s.run.seed,
             })
             .collect();
-        let mut flown = fly_all(&runs, flights.len(), &mut tick).into_iter();
-        let mut results = Vec::new();
-        let mut series_models = Vec::new();
+        let flown = fly_all(&runs, flights.len(), &mut tick);
+        let (results, series_models) = pool(&stations, flown, &flights, s.run.seed)?;
         let mut delivery = Delivery::default();
-        for station in &stations {
-            let mut pooled = Pooled::default();
-            let mut counted = Delivery::default();
-            let mut recoveries = 0;
-            for one_seed in flown.by_ref().take(seeds as usize) {
-                for (i, flight) in one_seed.into_iter().enumerate() {
-                    let run = flight?;
-                    series_models.extend(run.series);
-                    pooled.add(&run.tx, run.track, flights[i].duration());
-                    if let Some(n) = run.delivery {
-                        counted.add(&n);
-                    }
-                    recoveries += run.recoveries;
-                }
-            }
-            let now = station.start.current();
-            let result = pooled.finish(
-                station.model,
-                now.time_on_air,
-                now.interval,
-                recoveries,
-                &counted,
-                s.run.seed,
-            );
-            delivery.add(&result.delivery);
-            results.push(result);
-        }
-        let series = s.run.series.then(|| {
-            let f = &flights[0];
-            let every = series_stride(f.t.len());
-            let axis = |k: usize| axis_every(&f.pos, k, every);
-            let gateways: Vec<[f64; 3]> = cfg
-                .sites(s.channel.distance)
-                .iter()
-                .map(|g| {
-                    let [e, n, h] = g.position(s.channel.gateway_height);
-                    [f.pos[0][0] + e, f.pos[0][1] + n, h]
-                })
-                .collect();
-            Series {
-                flight: f.name.clone(),
-                t: f.t.iter().step_by(every).copied().collect(),
-                x: axis(0),
-                y: axis(1),
-                z: axis(2),
-                gateway: gateways[0],
-                gateways,
-                plan: series_plan,
-                models: series_models,
-            }
-        });
+        results.iter().for_each(|r| delivery.add(&r.delivery));
+        let series = s
+            .run
+            .series
+            .then(|| plotted(cfg, &flights[0], series_plan, series_models));
         let (sf, bw) = (cfg.radio.sf, cfg.radio.bw);
         let mut settings = s.clone();
         // What was flown: one drone, on its SF, for the flight time.
@@ -512,6 +475,79 @@ impl Simulator {
             series,
         })
     }
+}
+
+/// The series a page plots: `flight` (decimated), the gateways beside it, the drone's plan and
+/// each station's series on it.
+fn plotted(
+    cfg: &Validated,
+    flight: &Trajectory,
+    plan: Option<Vec<[f64; 3]>>,
+    models: Vec<ModelSeries>,
+) -> Series {
+    let s = cfg.s();
+    let every = series_stride(flight.t.len());
+    let axis = |k: usize| axis_every(&flight.pos, k, every);
+    let origin = flight.pos[0];
+    let gateways: Vec<[f64; 3]> = cfg
+        .sites(s.channel.distance)
+        .iter()
+        .map(|g| {
+            let [e, n, h] = g.position(s.channel.gateway_height);
+            [origin[0] + e, origin[1] + n, h]
+        })
+        .collect();
+    Series {
+        flight: flight.name.clone(),
+        t: flight.t.iter().step_by(every).copied().collect(),
+        x: axis(0),
+        y: axis(1),
+        z: axis(2),
+        gateway: gateways[0],
+        gateways,
+        plan,
+        models,
+    }
+}
+
+/// Each station's result from its runs' flights (`flown`, station-major as [`fly_all`] gives
+/// them: every seed's flights join one pool), and the plotted series that came with them.
+fn pool(
+    stations: &[StationPlan],
+    flown: Vec<Vec<Result<FlightRun, SimError>>>,
+    flights: &[Trajectory],
+    seed: u64,
+) -> Result<(Vec<ModelResult>, Vec<ModelSeries>), SimError> {
+    let per_station = flown.len() / stations.len().max(1);
+    let mut flown = flown.into_iter();
+    let mut results = Vec::new();
+    let mut series = Vec::new();
+    for station in stations {
+        let mut pooled = Pooled::default();
+        let mut counted = Delivery::default();
+        let mut recoveries = 0;
+        for one_seed in flown.by_ref().take(per_station) {
+            for (i, flight) in one_seed.into_iter().enumerate() {
+                let run = flight?;
+                series.extend(run.series);
+                pooled.add(&run.tx, run.track, flights[i].duration());
+                if let Some(n) = run.delivery {
+                    counted.add(&n);
+                }
+                recoveries += run.recoveries;
+            }
+        }
+        let now = station.start.current();
+        results.push(pooled.finish(
+            station.model,
+            now.time_on_air,
+            now.interval,
+            recoveries,
+            &counted,
+            seed,
+        ));
+    }
+    Ok((results, series))
 }
 
 /// Every run's flights: the runs whose drones adapt their data rate fly theirs in order
