@@ -146,8 +146,6 @@ impl StationRun<'_> {
             .sending
             .rule(self.plan.duty_cycle, now.time_on_air, flight.t[0])?;
         let gateways = net.gateways_at([flight.pos[0][0], flight.pos[0][1]]);
-        // The same streams for every station: stations that send the same payload see the same
-        // packets, so their comparison is paired.
         let estimates = match self.drones {
             Some(d) => Estimates::Stored(&d[i]),
             None => Estimates::live(DroneFilter::new(
@@ -160,6 +158,8 @@ impl StationRun<'_> {
                 i as u64,
             )),
         };
+        // The same streams for every station: stations that send the same payload see the same
+        // packets, so their comparison is paired.
         let mut flier = Flier::new(
             0,
             flight,
