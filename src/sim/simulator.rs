@@ -226,9 +226,12 @@ impl Simulator {
             .iter()
             .map(|f| (f.duration() * rate + 1e-9).floor() as usize + 1)
             .sum();
-        let mut distinct: Vec<&DroneKey> = keys.iter().collect();
-        distinct.sort_by_key(|k| (k.model.index(), k.seed));
-        distinct.dedup();
+        let mut distinct: Vec<&DroneKey> = Vec::new();
+        for key in keys {
+            if !distinct.contains(&key) {
+                distinct.push(key);
+            }
+        }
         if distinct.len() * steps * DRONE_STEP_BYTES > MAX_CACHE_BYTES / MAX_DRONE_SHARE {
             (0..keys.len() * n).for_each(|_| tick());
             self.drone_runs += (keys.len() * n) as u64;
@@ -237,11 +240,11 @@ impl Simulator {
         // The cached ones are held here first: remembering the new ones may evict them.
         let mut sets: HashMap<DroneKey, Rc<Vec<DroneTrack>>> = HashMap::new();
         let mut missing: Vec<&DroneKey> = Vec::new();
-        for key in keys {
+        for key in distinct {
             if let Some(d) = self.drones.get(key) {
                 sets.insert(key.clone(), Rc::clone(d));
                 self.ledger.touch(&Entry::Drones(key.clone()));
-            } else if !missing.contains(&key) {
+            } else {
                 missing.push(key);
             }
         }
@@ -435,7 +438,6 @@ impl Simulator {
                 drones: d.as_deref().map(|d| d.as_slice()),
                 chains: c.as_deref().map(|c| c.as_slice()),
                 seed,
-                first_seed: seed == s.run.seed,
             })
             .collect();
         let flown = fly_all(&runs, flights.len(), &mut tick);

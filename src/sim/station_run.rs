@@ -92,10 +92,8 @@ pub(crate) struct StationRun<'a> {
     /// The remembered predictions of a single-model station, one entry per flight; `None` for
     /// the others and when too large to remember.
     pub chains: Option<&'a [Mutex<FlightChains>]>,
-    /// The seed.
+    /// The seed (the run's first seed's first flight gives the series).
     pub seed: u64,
-    /// Whether this is the run's first seed (whose first flight gives the series).
-    pub first_seed: bool,
 }
 
 impl StationRun<'_> {
@@ -178,7 +176,7 @@ impl StationRun<'_> {
         flier.estimates.prefetch(flier.estimates.len());
         let recoveries = flier.estimates.recoveries();
         let tx = flier.tx;
-        let with_series = s.run.series && i == 0 && self.first_seed;
+        let with_series = s.run.series && i == 0 && self.seed == s.run.seed;
         let scoring = Scoring {
             step: s.station.step,
             series: with_series,
@@ -240,7 +238,6 @@ mod tests {
             drones: stored.then_some(drones.as_slice()),
             chains: None,
             seed: 9,
-            first_seed: true,
         };
         run.fly_alone(0).unwrap()
     }
