@@ -47,7 +47,6 @@ const TYPES = {
   '.csv': 'text/csv',
 };
 
-/** A static file server for dist/ mounted at SUB_PATH, like a documentation site would host it. */
 const scratch = [];
 process.on('exit', () => scratch.forEach((dir) => rmSync(dir, { recursive: true, force: true })));
 
@@ -58,6 +57,7 @@ export function scratchDir() {
   return dir;
 }
 
+/** A static file server for dist/ mounted at SUB_PATH, like a documentation site would host it. */
 export async function serveDist() {
   const server = createServer((req, res) => {
     const url = new URL(req.url, 'http://x');
