@@ -26,11 +26,22 @@ import type {
 export type * from './generated/types';
 export { OPTIONS, PLANS } from './generated/types';
 
+let compiled: Promise<WebAssembly.Module> | undefined;
 let ready: Promise<void> | undefined;
 
-/** Loads and instantiates the WebAssembly module once; later calls return the same promise. */
-export function load(): Promise<void> {
-  ready ??= init({ module_or_path: wasmUrl }).then(() => undefined);
+/** The WebAssembly module, compiled once while it downloads (or from its bytes where the server
+ * does not say `application/wasm`). The page's instance and every worker's are made from this one
+ * compilation: each thread compiling its own copy would triple the work the first results wait
+ * for, and the code each thread compiles on first use would not serve the others. */
+export function compiledModule(): Promise<WebAssembly.Module> {
+  compiled ??= WebAssembly.compileStreaming(fetch(wasmUrl)).catch(async () => WebAssembly.compile(await (await fetch(wasmUrl)).arrayBuffer()));
+  return compiled;
+}
+
+/** Instantiates the module once (from `module`, a worker's copy of the page's compilation, or
+ * else `compiledModule()`); later calls return the same promise. */
+export function load(module?: Promise<WebAssembly.Module>): Promise<void> {
+  ready ??= (module ?? compiledModule()).then((m) => init({ module_or_path: m })).then(() => undefined);
   return ready;
 }
 

@@ -2,6 +2,7 @@
 // to the panels that draw them. The state lives in ./store, the form in ./form, the results
 // table in ./results, embeds in ./embed, presentation mode in ./present.
 import { pool } from './boot';
+import { spawnWorker } from './pool';
 import { linkBudget, load, MODEL_LABELS, stationsOf, type SimReport, type SwarmParams } from './loratrack';
 import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
 import { boxplotChart, type BoxRow } from './charts/boxplot';
@@ -415,7 +416,7 @@ $('#reset-view').addEventListener('click', () => trajectory3d?.resetView());
 let swarmWorker: Worker | undefined;
 $('#run-swarm').addEventListener('click', () => {
   swarmWorker?.terminate();
-  swarmWorker = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
+  swarmWorker = spawnWorker();
   const n = Number($<HTMLSelectElement>('#swarmDrones').value);
   const sizes = [...new Set([2, Math.round(n / 8), Math.round(n / 4), Math.round(n / 2), n])].filter((k) => k >= 1);
   // The swarm takes every setting of the single drone; its drones chain synthetic flights around
@@ -585,7 +586,7 @@ const pinned = store.query.get('baseline');
 if (pinned !== null) {
   const b = fromQuery(`?${pinned}`);
   if (b.problems.length) showNotice(`The link's baseline: ${b.problems.join(' ')}`);
-  const w = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
+  const w = spawnWorker();
   drawing++;
   updateBusy();
   w.onmessage = (e: MessageEvent<Response>) => {

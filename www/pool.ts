@@ -5,8 +5,16 @@
 // their reports in the request's model order. Every station's numbers depend only on the
 // flight, the seed and its own settings (the link's random streams are derived per flight), so
 // the merged report equals what one worker (or the CLI) computes for all models at once.
-import { stationsOf, type SimReport } from './loratrack';
-import type { Response, SimulateRequest, SweepResult } from './worker';
+import { compiledModule, stationsOf, type SimReport } from './loratrack';
+import type { ModuleMessage, Response, SimulateRequest, SweepResult } from './worker';
+
+/** A simulation worker (www/worker.ts), given the page's compiled module once it is ready;
+ * messages sent before then wait in the worker until it has instantiated the module. */
+export function spawnWorker(): Worker {
+  const worker = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
+  void compiledModule().then((module) => worker.postMessage({ module } satisfies ModuleMessage));
+  return worker;
+}
 
 type Part = { progress: number; partial?: SimReport; report?: SimReport; millis?: number; sweep?: SweepResult[] };
 
@@ -23,7 +31,7 @@ export class SimulationPool {
     for (const w of this.workers) w.terminate();
     this.handlers.clear();
     this.workers = Array.from({ length: this.size }, () => {
-      const w = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
+      const w = spawnWorker();
       w.onmessage = (e: MessageEvent<Response>) => this.handlers.get(e.data.id)?.(e.data);
       return w;
     });

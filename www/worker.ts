@@ -26,6 +26,11 @@ export interface SwarmRequest {
   swarm: { sizes: number[]; params: SwarmParams };
 }
 
+/** A worker's first message: the page's compiled module, which it instantiates (`spawnWorker`). */
+export interface ModuleMessage {
+  module: WebAssembly.Module;
+}
+
 export type Request = SimulateRequest | SwarmRequest;
 
 export type Response =
@@ -40,9 +45,11 @@ export type Response =
 /** CSV texts above this size are read first with their own progress. */
 const LARGE_CSV_BYTES = 1 << 20;
 
-const ready = load();
+let give: (module: WebAssembly.Module) => void;
+const ready = load(new Promise((resolve) => (give = resolve)));
 
-self.onmessage = async (event: MessageEvent<Request>) => {
+self.onmessage = async (event: MessageEvent<Request | ModuleMessage>) => {
+  if ('module' in event.data) return give(event.data.module);
   await ready;
   const post = (r: Response) => (self as unknown as Worker).postMessage(r);
   if ('swarm' in event.data) return runSwarms(event.data, post);
