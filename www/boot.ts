@@ -1,9 +1,15 @@
-// Evaluated first (main.ts imports it before anything else): the simulation workers and the
-// page's own copy of the WebAssembly module start loading while the rest of the page's modules
-// (the chart libraries among them) are still being evaluated.
+// The page's entry. It starts what the first results wait for before the rest of the page's code
+// (./main, with the chart libraries) is evaluated: the module's compilation, the simulation
+// workers, and the run of the link's settings, which main.ts takes over when it asks for the same
+// (pool.ts `start`). As one script, the workers could not even start until all of it had been
+// evaluated, since a worker starts only once the page's thread is free.
 import { load } from './loratrack';
 import { SimulationPool } from './pool';
+import { simulateRequest } from './state';
+import { store } from './store';
 
 /** The page's worker pool, one worker per core. */
 export const pool = new SimulationPool();
-void load();
+// An uploaded flight is never in a link: such a page waits for the file.
+void load().then(() => store.settings.flight !== 'csv' && pool.start(simulateRequest(0, store.settings)));
+void import('./main');

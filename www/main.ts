@@ -21,12 +21,10 @@ import { later, drawingLater, onDrawing } from './later';
 import { LESSONS, lessonQuery } from './lessons';
 import { renderBaseline, renderTable } from './results';
 import { setUpPresent } from './present';
-import { DEFAULTS, fromQuery, overheadBytes, plan, toParams, type Settings } from './state';
+import { DEFAULTS, fromQuery, overheadBytes, plan, simulateRequest, toParams, type Settings } from './state';
 import { pageQuery, store } from './store';
 import type { Request, Response, SimulateRequest } from './worker';
 
-const DISTANCES = [500, 1000, 2000, 3000, 4000, 5000];
-const SFS = [7, 8, 9, 10, 11, 12];
 /** The largest CSV the core reads (MAX_CSV_BYTES in src/trajectory/csv.rs). */
 const MAX_CSV_BYTES = 64 * 2 ** 20;
 const status = $('#status');
@@ -54,8 +52,7 @@ let queued: { request: SimulateRequest; settings: Settings } | undefined;
 let freshSeed = false;
 
 function submit(): void {
-  const sweep = [...DISTANCES.map((distance) => ({ distance })), ...SFS.map((sf) => ({ sf }))];
-  const request: SimulateRequest = { id: ++nextId, params: toParams(store.settings, store.csv, store.plan), sweep };
+  const request = simulateRequest(++nextId, store.settings, store.csv, store.plan);
   if (freshSeed) request.params.seed = 'random';
   if (store.settings.flight === 'csv' && !store.csv) {
     status.textContent = 'Choose a CSV file to simulate it.';

@@ -21,6 +21,8 @@ type Part = { progress: number; partial?: SimReport; report?: SimReport; millis?
 export class SimulationPool {
   private workers: Worker[] = [];
   private handlers = new Map<number, (r: Response) => void>();
+  /** A run started before anyone asked for it (`start`), with the answers it has had so far. */
+  private early?: { key: string; answers: Response[]; on?: (r: Response) => void };
 
   constructor(readonly size = Math.max(1, Math.min(8, navigator.hardwareConcurrency || 2))) {
     this.restart();
@@ -37,9 +39,27 @@ export class SimulationPool {
     });
   }
 
+  /** Starts `request` before anyone asks for it (boot.ts: the link's settings, while the rest of
+   * the page loads); the next `run` takes it over, answers so far included, if it asks for the
+   * same, and stops it otherwise. */
+  start(request: SimulateRequest): void {
+    const early: NonNullable<typeof this.early> = { key: sameRun(request), answers: [] };
+    this.run(request, (r) => (early.on ? early.on(r) : early.answers.push(r)));
+    this.early = early;
+  }
+
   /** Runs `request`, calling `on` with the merged first flight of a whole set, progress, then the
    * merged report, then the merged sweep (or one error), as a single worker would. */
   run(request: SimulateRequest, on: (r: Response) => void): void {
+    const early = this.early;
+    this.early = undefined;
+    if (early?.key === sameRun(request)) {
+      early.on = (r) => on({ ...r, id: request.id });
+      for (const r of early.answers) early.on(r);
+      return;
+    }
+    // Its answers would come before this run's: drop it.
+    if (early) this.restart();
     // The core reads the model setting (the page has loaded the module before any run).
     const models: string[] = stationsOf(request.params.model);
     // Station k always goes to worker k mod size, so each worker's caches keep serving it.
@@ -88,6 +108,11 @@ export class SimulationPool {
       } satisfies SimulateRequest);
     });
   }
+}
+
+/** Two requests with the same key ask for the same run (whatever their ids). */
+function sameRun(request: SimulateRequest): string {
+  return JSON.stringify({ ...request, id: 0 });
 }
 
 /** The reports of disjoint groups of stations as one report, stations in `models` order: the

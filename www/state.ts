@@ -2,6 +2,7 @@
 // round trip that makes every view shareable. Every numeric default and limit comes from the
 // core's one table (src/options.rs, generated into www/generated/types.ts), so the form, the URL
 // checks, the CLI help and the core's validation cannot disagree.
+import type { SimulateRequest, SweepPoint } from './worker';
 import { OPTIONS, PLANS, type AdrMode, type ChannelAccess, type FairUse, type GatewaySite, type ModelChoice, type NumberOption, type Plan, type Prediction, type Region, type SimulateParams } from './loratrack';
 
 export type FlightChoice = 'synthetic' | 'all' | 'canberra' | 'csv';
@@ -193,6 +194,15 @@ export function isNumericKey(key: string): key is NumericKey {
 
 export function overheadBytes(s: Settings): number {
   return s.lorawan ? 13 : 0;
+}
+
+/** Beside every run, the gateway distances (m) and spreading factors the distance and SF charts
+ * show: only the link changes between them, so they reuse the run's drone filters. */
+const SWEEP: SweepPoint[] = [...[500, 1000, 2000, 3000, 4000, 5000].map((distance) => ({ distance })), ...[7, 8, 9, 10, 11, 12].map((sf) => ({ sf }))];
+
+/** What the page asks its workers for these settings: the run and the charts' sweep. */
+export function simulateRequest(id: number, s: Settings, csv?: { text: string; name: string }, missionPlan?: { text: string }): SimulateRequest {
+  return { id, params: toParams(s, csv, missionPlan), sweep: SWEEP };
 }
 
 /** simulate() parameters for these settings; `csv` supplies the uploaded text and `missionPlan`

@@ -1,8 +1,35 @@
 // The worker pool splits a run by station and merges the reports: the merged report must be what
 // one worker (or the CLI) reports for all stations at once.
-import { expect, test } from 'vitest';
-import { merge } from '../../www/pool';
+import { expect, test, vi } from 'vitest';
+import { merge, SimulationPool } from '../../www/pool';
 import type { SimReport } from '../../www/loratrack';
+import type { Response, SimulateRequest } from '../../www/worker';
+
+// The pool's workers are stand-ins: each keeps what it was sent and answers when told to. The
+// module never compiles here (the stand-ins need none) and a model list names its stations.
+vi.mock('../../www/loratrack', () => ({ compiledModule: () => new Promise(() => {}), stationsOf: (model: string) => model.split(',') }));
+class StandIn {
+  static all: StandIn[] = [];
+  sent: SimulateRequest[] = [];
+  terminated = false;
+  onmessage?: (e: { data: Response }) => void;
+  constructor() {
+    StandIn.all.push(this);
+  }
+  postMessage(m: SimulateRequest) {
+    this.sent.push(m);
+  }
+  terminate() {
+    this.terminated = true;
+  }
+  /** Answers the last request it was sent with a report of its stations. */
+  answer() {
+    const last = this.sent.at(-1)!;
+    const stations = String(last.params.model).split(',');
+    this.onmessage?.({ data: { id: last.id, report: report(stations.map((m) => result(m, 10, 10))), millis: 1 } });
+  }
+}
+vi.stubGlobal('Worker', StandIn);
 
 const gateway = (heard: number) => ({ east: 1000, north: 0, height: 15, heard, onlyHeard: heard, downlinksSent: 0, downlinksDropped: 0 });
 const result = (model: string, sent: number, received: number) => ({ model, packetsSent: sent, packetsReceived: received, duplicates: 1, gateways: [gateway(received)] });
@@ -31,4 +58,45 @@ test('the mission plan is kept whichever worker ran the mission station', () => 
   (b.series as { plan?: typeof plan }).plan = plan;
   expect(merge([a, b], ['3d-ctra', 'mission'], '3d-ctra,mission').series?.plan).toEqual(plan);
   expect(merge([a], ['3d-ctra'], '3d-ctra').series?.plan).toBeUndefined();
+});
+
+const request = (id: number, distance: number): SimulateRequest => ({ id, params: { model: 'dr,ctra-plus', distance } });
+
+test('a run asked for with the settings of the run started early takes it over, answers so far included', () => {
+  StandIn.all = [];
+  const pool = new SimulationPool(2);
+  pool.start(request(0, 1000));
+  StandIn.all.forEach((w) => w.answer());
+  const answers: Response[] = [];
+  pool.run(request(7, 1000), (r) => answers.push(r));
+  // Nothing is asked again, and the merged report comes under the new run's id.
+  expect(StandIn.all.map((w) => w.sent.length)).toEqual([1, 1]);
+  expect(StandIn.all.some((w) => w.terminated)).toBe(false);
+  expect(answers.map((r) => r.id)).toEqual([7]);
+  expect('report' in answers[0] && answers[0].report.results.map((r) => r.model)).toEqual(['dr', 'ctra-plus']);
+});
+
+test('answers of the early run that come after the takeover reach the new run', () => {
+  StandIn.all = [];
+  const pool = new SimulationPool(2);
+  pool.start(request(0, 1000));
+  StandIn.all[0].answer();
+  const answers: Response[] = [];
+  pool.run(request(3, 1000), (r) => answers.push(r));
+  expect(answers).toEqual([]);
+  StandIn.all[1].answer();
+  expect(answers.map((r) => r.id)).toEqual([3]);
+});
+
+test('a run asked for with other settings stops the early run and runs on fresh workers', () => {
+  StandIn.all = [];
+  const pool = new SimulationPool(2);
+  pool.start(request(0, 1000));
+  const answers: Response[] = [];
+  pool.run(request(1, 3000), (r) => answers.push(r));
+  const [early, fresh] = [StandIn.all.slice(0, 2), StandIn.all.slice(2)];
+  expect(early.every((w) => w.terminated)).toBe(true);
+  expect(fresh.map((w) => w.sent.map((m) => m.params.distance))).toEqual([[3000], [3000]]);
+  fresh.forEach((w) => w.answer());
+  expect(answers.map((r) => r.id)).toEqual([1]);
 });
