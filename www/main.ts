@@ -4,13 +4,8 @@
 import { pool } from './boot';
 import { spawnWorker } from './pool';
 import { linkBudget, load, MODEL_LABELS, stationsOf, type SimReport, type SwarmParams } from './loratrack';
-import { airtimeTable, airtimeVsPayloadChart } from './charts/airtime';
-import { boxplotChart, type BoxRow } from './charts/boxplot';
 import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR, chartFont } from './charts/colors';
-import { errorOverTimeChart } from './charts/errorOverTime';
-import { linkBudgetCharts } from './charts/linkBudget';
-import { p75BySfChart } from './charts/p75BySf';
-import { swarmCharts } from './charts/swarm';
+import type { BoxRow } from './charts/plots';
 import type { Trajectory3d } from './charts/trajectory3d';
 import { $ } from './dom';
 import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH } from './export';
@@ -33,6 +28,9 @@ const csvError = $('#csv-error');
 const planError = $('#plan-error');
 
 let trajectory3d: Trajectory3d | undefined;
+let plotsLoading: Promise<typeof import('./charts/plots')> | undefined;
+/** The Plot charts (./charts/plots), loaded on first use. */
+const plots = () => (plotsLoading ??= import('./charts/plots'));
 const charts: Record<string, { chart: Element; caption: string }> = {};
 
 setUpEmbed();
@@ -112,7 +110,8 @@ function renderPartial(r: SimReport, made: Settings): void {
 let errorChartDrawn: { key: string; chart: Element } | undefined;
 
 function drawErrorChart(r: SimReport, made: Settings): void {
-  later('error', () => {
+  later('error', async () => {
+    const { errorOverTimeChart } = await plots();
     const width = chartWidth('error');
     const key = JSON.stringify([width, chartFont(), made, r.config.adr, r.series]);
     const onShow = $('#chart-error').firstElementChild;
@@ -206,7 +205,8 @@ function renderResults(r: SimReport): void {
   updateEmbedCaption();
   const made = store.reportSettings;
   drawErrorChart(r, made);
-  later('axes', () => {
+  later('axes', async () => {
+    const { boxplotChart } = await plots();
     const axisRows: BoxRow[] = r.results.flatMap((m) => [
       { group: 'x', model: m.model, box: m.boxplot.errorX },
       { group: 'y', model: m.model, box: m.boxplot.errorY },
@@ -228,10 +228,6 @@ function renderSettingsCharts(): void {
   later('link', renderLink);
 }
 
-/** The pinned baseline, if any, and what it was. */
-
-
-/** three.js is most of the page's JavaScript: load it only once there is a trajectory to draw. */
 /** Drawings still under way (the 3D view loads three.js on first use) and a linked baseline being simulated; `swarming`: a swarm run. */
 let drawing = 0;
 let swarming = false;
@@ -270,14 +266,15 @@ async function draw3d(r: SimReport): Promise<void> {
   $('#trajectory-legend').innerHTML = `${swatch(TRUTH_COLOR)}true flight, ${plan}${stations}${near ? `; grey cone${near > 1 ? 's' : ''}: the gateway${near > 1 ? 's' : ''}` : ''}${far}. Grid squares ${drawn.gridStep >= 10 ? drawn.gridStep.toFixed(0) : drawn.gridStep.toFixed(1)} m.`;
 }
 
-function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): void {
+async function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): Promise<void> {
+  const { p75BySfChart } = await plots();
   const rows = sweep.flatMap(({ sf, report: r }) => r.results.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived, tracked: m.wholeFlight.tracked })));
   place('sf', p75BySfChart(rows, { bw: made.bw, distance: made.distance, width: chartWidth('sf') }), made);
 }
 
 /** The last sweep and swarms drawn, to draw again at another size (presentation mode). */
 let lastSweep: Extract<Response, { sweep: unknown }>['sweep'] | undefined;
-let lastSwarm: (() => void) | undefined;
+let lastSwarm: (() => Promise<void>) | undefined;
 
 function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made: Settings): void {
   lastSweep = sweep;
@@ -289,19 +286,22 @@ function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made
   $('#sf-note').textContent = refused.length ? `Not simulated at ${refused.map((x) => ('sf' in x.point ? `SF${x.point.sf}` : '')).join(', ')}: ${refused[0].error}.` : '';
 }
 
-function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): void {
+async function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): Promise<void> {
+  const { boxplotChart } = await plots();
   const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d })));
   place('distance', boxplotChart(rows, { log: true, groupLabel: `gateway distance (SF${made.sf}, ${made.bw} kHz)`, width: chartWidth('distance') }), made);
 }
 
-function renderLink(): void {
+async function renderLink(): Promise<void> {
+  const { linkBudgetCharts } = await plots();
   const r = linkBudget({ bw: store.settings.bw, txPower: store.settings.txPower, pathLossExponent: store.settings.pathLossExponent, shadowing: store.settings.shadowing, region: store.settings.region });
   // Each gateway's distance from the flight's start (the default one: the distance setting).
   const distances = store.settings.gateways.length ? store.settings.gateways.map((g) => Math.hypot(g.east, g.north)) : [store.settings.distance];
   place('link', linkBudgetCharts(r, { width: chartWidth('link'), distances, sf: store.settings.sf, plan: plan(store.settings.region).label }));
 }
 
-function renderAirtime(): void {
+async function renderAirtime(): Promise<void> {
+  const { airtimeTable, airtimeVsPayloadChart } = await plots();
   const s = store.settings;
   const opts = { overhead: overheadBytes(s), cr: s.cr, sf: s.sf, bw: s.bw, region: s.region, access: s.access, fairUse: s.fairUse, ...(plan(s.region).dutyCycle === null ? { interval: s.interval } : {}) };
   $('#airtime-table').replaceChildren(airtimeTable(opts));
@@ -452,7 +452,7 @@ $('#run-swarm').addEventListener('click', () => {
       const rates = r.swarms.map((w) => `${w.config.drones} drones ${(100 * w.collisionRate).toFixed(1)} %`).join(', ');
       $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(r.millis / 1000).toFixed(1)} s. Packets collided: ${rates}.`;
       const swarms = r.swarms;
-      lastSwarm = () => place('swarm', swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${swarms[0]?.drones[0]?.channelUse.length ?? params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.schedule}, ${params.duration} s each`);
+      lastSwarm = async () => place('swarm', (await plots()).swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${swarms[0]?.drones[0]?.channelUse.length ?? params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.schedule}, ${params.duration} s each`);
       later('swarm', lastSwarm);
     }
   };
@@ -603,8 +603,6 @@ await load();
 submit();
 if (running) settingsChartsWait = true;
 else renderSettingsCharts();
-// three.js is fetched and parsed off the main thread while the first run computes.
-if (!$('[data-panel="trajectory"]').hidden) void import('./charts/trajectory3d');
 if (lesson?.swarm) {
   // The lesson's swarm runs as if its button were pressed with these choices.
   $<HTMLSelectElement>('#swarmDrones').value = String(lesson.swarm.drones);
