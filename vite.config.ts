@@ -22,10 +22,27 @@ const csp: Plugin = {
   },
 };
 
+// The WebAssembly module is the page's largest download and every simulation needs it: fetch it from the first
+// line of the page, not from when the entry script runs (www/loratrack.ts compiles the response).
+const preloadWasm: Plugin = {
+  name: 'loratrack-preload-wasm',
+  apply: 'build',
+  transformIndexHtml: {
+    order: 'post',
+    handler(html, { bundle }) {
+      const wasm = Object.keys(bundle ?? {}).find((f) => f.endsWith('.wasm'));
+      if (!wasm) throw new Error('no .wasm asset in the bundle');
+      const charset = '<meta charset="utf-8" />';
+      if (!html.includes(charset)) throw new Error('index.html has no charset declaration to follow');
+      return html.replace(charset, `${charset}\n    <link rel="preload" href="./${wasm}" as="fetch" type="application/wasm" crossorigin>`);
+    },
+  },
+};
+
 export default defineConfig({
   // Relative asset paths: dist/ works from any static server and under any sub-path.
   base: './',
-  plugins: [csp],
+  plugins: [csp, preloadWasm],
   define: { __LORATRACK_VERSION__: JSON.stringify(packageJson.version) },
   build: { target: 'es2022', outDir: 'dist', emptyOutDir: true, chunkSizeWarningLimit: 1024 },
   worker: { format: 'es' },
