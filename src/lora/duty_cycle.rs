@@ -216,6 +216,19 @@ impl DutyCycle {
         self.credit = self.credit.min(self.capacity);
     }
 
+    /// The same rule for a device that starts at `t` (s): one packet's credit then, as
+    /// [`new`](Self::new) gives. Credit accrues from when a device starts, not from a time all
+    /// devices share: a budget started at the flight's first instant by a drone whose first
+    /// packet waits a random offset would hold that offset's credit, and its second packet,
+    /// like every other drone's, would fall one interval after the shared start.
+    pub fn starting_at(self, t: f64) -> Self {
+        DutyCycle {
+            credit: self.time_on_air,
+            at: t,
+            ..self
+        }
+    }
+
     /// Records a packet that starts at `t` (s): its time on air is taken from the credit. The
     /// caller sends only at or after [`earliest`](Self::earliest).
     pub fn spend(&mut self, t: f64) {
@@ -245,6 +258,19 @@ mod tests {
         let later = t + 100.0;
         a.spend(later);
         assert!((a.earliest(later) - (later + interval)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_rule_started_later_holds_one_packet_then_and_accrues_from_there() {
+        // 20 ms at 1 %: one packet every 2 s. Started at 0, by 3 s the credit holds 2.5 packets;
+        // started at 3 s, one: the next packet waits the whole interval.
+        let rule = DutyCycle::new(DutyCycleMode::Budget, 0.01, 0.02, 10, 0.0).unwrap();
+        let mut from_zero = rule.clone();
+        from_zero.spend(3.0);
+        assert_eq!(from_zero.earliest(3.0), 3.0);
+        let mut late = rule.starting_at(3.0);
+        late.spend(3.0);
+        assert!((late.earliest(3.0) - 5.0).abs() < 1e-12);
     }
 
     #[test]

@@ -71,7 +71,7 @@ impl<'a> Flier<'a> {
         timing: Timing,
     ) -> Self {
         let mut link_rng = streams::link(seed, stream);
-        let offset = link_rng.uniform() * interval;
+        let from = flight.t[0] + link_rng.uniform() * interval;
         let mut first = Some(link_rng);
         let links = gateways
             .iter()
@@ -97,13 +97,14 @@ impl<'a> Flier<'a> {
             flight,
             estimates,
             sender,
-            rule,
+            // The drone starts sending at `from`: its duty-cycle credit starts there too.
+            rule: rule.starting_at(from),
             links,
             hop: streams::channel(seed, stream),
             channels,
             fixed_channel: None,
             k: 0,
-            from: flight.t[0] + offset,
+            from,
             clock,
             hint: 0,
             origin: [0.0; 3],
@@ -126,6 +127,7 @@ impl<'a> Flier<'a> {
         self.clock = Clock::slotted(slot.offset, slot.frame);
         self.fixed_channel = Some(slot.channel);
         self.from = self.flight.t[0];
+        self.rule = self.rule.starting_at(self.from);
         self
     }
 

@@ -140,9 +140,7 @@ impl StationRun<'_> {
         let (flight, plan) = (&self.flights[i], self.plan.plans[i].as_ref());
         let (model, setup) = (self.plan.model, self.plan.setup);
         let now = net.radios[0].current();
-        let rule = s
-            .sending
-            .rule(self.plan.duty_cycle, now.time_on_air, flight.t[0])?;
+        let rule = s.sending.rule(self.plan.duty_cycle, now.time_on_air)?;
         let gateways = net.gateways_at([flight.pos[0][0], flight.pos[0][1]]);
         let estimates = match self.drones {
             Some(d) => Estimates::Stored(&d[i]),

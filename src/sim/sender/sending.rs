@@ -77,19 +77,15 @@ impl Sending {
         Ok(())
     }
 
-    /// The duty-cycle rule for packets of `time_on_air` s at `duty_cycle`, from `start` s.
-    pub fn rule(
-        &self,
-        duty_cycle: f64,
-        time_on_air: f64,
-        start: f64,
-    ) -> Result<DutyCycle, LoraError> {
+    /// The duty-cycle rule for packets of `time_on_air` s at `duty_cycle`, from time 0: the
+    /// [`Flier`](crate::sim::Flier) starts it when its drone first may send.
+    pub fn rule(&self, duty_cycle: f64, time_on_air: f64) -> Result<DutyCycle, LoraError> {
         DutyCycle::new(
             self.duty_cycle_mode,
             duty_cycle,
             time_on_air,
             self.burst,
-            start,
+            0.0,
         )
     }
 

@@ -382,8 +382,7 @@ fn fly(
             flight,
             Estimates::live(filter),
             s.sending.sender(model, kits[i].setup, None),
-            s.sending
-                .rule(kits[i].duty_cycle, now.time_on_air, flight.t[0])?,
+            s.sending.rule(kits[i].duty_cycle, now.time_on_air)?,
             &net.gateways_at(centre),
             &net.channel,
             (seed, stream),
