@@ -4,10 +4,10 @@ use clap::{Args, Subcommand};
 use loratrack::api::{self, ApiError};
 use loratrack::options as opt;
 use loratrack::{
-    AccessSettings, ChannelSettings, DroneSettings, FlightSettings, LdroMode, ModelChoice,
-    ModelKind, ModelResult, NetworkSettings, Prediction, RadioSettings, RunSettings, Scenario,
-    Schedule, SenderKind, Sending, SfPlan, SimReport, Simulator, StationSettings, SwarmReport,
-    SwarmSettings, SyntheticChoice, MAX_CSV_BYTES,
+    AccessSettings, ChannelSettings, DroneSettings, DutyCycleMode, FlightSettings, LdroMode,
+    ModelChoice, ModelKind, ModelResult, NetworkSettings, Prediction, RadioSettings, RunSettings,
+    Scenario, Schedule, SenderKind, Sending, SfPlan, SimReport, Simulator, StationSettings,
+    SwarmReport, SwarmSettings, SyntheticChoice, MAX_CSV_BYTES,
 };
 use serde::Serialize;
 
@@ -1016,10 +1016,16 @@ fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError
             }
         });
     let rows = swarms(scenarios.collect())?;
-    let crowd = [Schedule::Aloha, Schedule::Slotted]
-        .into_iter()
-        .filter_map(|schedule| crowd_seeds(&rows, schedule).transpose())
-        .collect::<Result<Vec<_>, _>>()?;
+    // The budget rule in the crowd under ALOHA only: a slotted drone sends in its slot whatever
+    // credit it holds.
+    let crowd = [
+        (Schedule::Aloha, DutyCycleMode::PerPacket),
+        (Schedule::Slotted, DutyCycleMode::PerPacket),
+        (Schedule::Aloha, DutyCycleMode::Budget),
+    ]
+    .into_iter()
+    .filter_map(|(schedule, rule)| crowd_seeds(&rows, schedule, rule).transpose())
+    .collect::<Result<Vec<_>, _>>()?;
     if a.out.json {
         return Ok(json(&rows));
     }
@@ -1039,13 +1045,15 @@ fn swarms(scenarios: Vec<Scenario>) -> Result<Vec<SwarmReport>, ApiError> {
 /// moves the median drone's p75 by ±5 m from seed to seed at 72 drones on one channel.
 const CROWD_SEEDS: u64 = 8;
 
-/// Error-triggered against periodic sending with 72 drones on one SF7 channel under
-/// `schedule`, seed by seed from the sweep's own seed (whose two runs are in `rows`), each
-/// with periodic sending slowed by its duty cycle to the airtime error-triggered sending used:
-/// the fair comparison for a sender that saves airtime. None when `rows` lacks that setting.
+/// Error-triggered sending under the duty-cycle `rule` against periodic sending (per packet,
+/// the paper's) with 72 drones on one SF7 channel under `schedule`, seed by seed from the
+/// sweep's own seed (whose per-packet runs are in `rows`), each with periodic sending slowed
+/// by its duty cycle to the airtime error-triggered sending used: the fair comparison for a
+/// sender that saves airtime. None when `rows` lacks that setting.
 fn crowd_seeds(
     rows: &[SwarmReport],
     schedule: Schedule,
+    rule: DutyCycleMode,
 ) -> Result<Option<crate::reproduction::Crowd>, ApiError> {
     let find = |sender| {
         rows.iter().find(|r: &&SwarmReport| {
@@ -1065,10 +1073,20 @@ fn crowd_seeds(
         c.run.seed += k;
         c
     };
+    let error_at = |k: u64| {
+        let mut c = at_seed(e, k);
+        c.sending.duty_cycle_mode = rule;
+        c
+    };
     let pairs: Vec<Scenario> = (1..CROWD_SEEDS)
-        .flat_map(|k| [at_seed(p, k), at_seed(e, k)])
+        .flat_map(|k| [at_seed(p, k), error_at(k)])
         .collect();
-    let mut runs = vec![p.clone(), e.clone()];
+    let first_error = if e.config.settings.sending.duty_cycle_mode == rule {
+        e.clone()
+    } else {
+        api::swarm(&error_at(0))?
+    };
+    let mut runs = vec![p.clone(), first_error];
     runs.extend(swarms(pairs)?);
     // Periodic sending slowed by its duty cycle to the airtime error-triggered sending used.
     let slowed: Vec<Scenario> = runs
