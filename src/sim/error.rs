@@ -22,6 +22,18 @@ pub enum SimError {
     Seed(u64),
     /// ADR asked for with a start (SF, bandwidth in kHz) that is no EU868 data rate.
     AdrStart(u8, f64),
+    /// Error-triggered sending's heartbeat shorter than a drone's duty-cycle interval: it could
+    /// never be kept.
+    Heartbeat {
+        /// The heartbeat (`maxInterval`), s.
+        max_interval: f64,
+        /// The spreading factor and bandwidth (kHz) whose interval it misses.
+        sf: u8,
+        /// See `sf`.
+        bw_khz: f64,
+        /// That data rate's duty-cycle interval, s.
+        interval: f64,
+    },
     /// More filter steps than one run may take (flight time × (sensor rate + 1 / T)).
     TooLong {
         /// Seconds of flight.
@@ -39,6 +51,15 @@ impl fmt::Display for SimError {
             SimError::Lora(e) => e.fmt(f),
             SimError::OutOfRange(e) => e.fmt(f),
             SimError::Parameter(name, v, allowed) => write!(f, "{name} must be {allowed}, got {v:?}"),
+            SimError::Heartbeat {
+                max_interval,
+                sf,
+                bw_khz,
+                interval,
+            } => write!(
+                f,
+                "maxInterval must be at least the duty-cycle interval of every drone's data rate (SF{sf} at {bw_khz} kHz: {interval:.1} s), got {max_interval:?}"
+            ),
             SimError::Source(msg) => f.write_str(msg),
             SimError::Seed(seed) => write!(
                 f,

@@ -60,7 +60,7 @@ impl StationPlan {
     ) -> Result<Self, SimError> {
         let (start, duty_cycle) = cfg.drone_radio(&cfg.radio, model)?;
         let interval = start.current().interval;
-        cfg.check_heartbeat(interval)?;
+        cfg.check_heartbeat(&start.current())?;
         let setup = cfg.setup_for(
             model,
             StationSetup {

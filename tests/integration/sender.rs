@@ -179,7 +179,8 @@ fn invalid_sending_settings_are_refused_with_a_message() {
                 &one_flight(SenderKind::Error, 1.0),
                 json!({"maxInterval": 1.0}),
             ),
-            "maxInterval must be at least the duty-cycle interval",
+            // The data rate it misses is named: with spread SFs that is not the one chosen.
+            "maxInterval must be at least the duty-cycle interval of every drone's data rate (SF7 at 250 kHz: ",
         ),
     ];
     for (p, expected) in cases {

@@ -18,7 +18,7 @@ pub use choices::{
 };
 pub use gateways::{validate_sites, GatewaySite};
 
-use super::radio::DroneRadio;
+use super::radio::{DroneRadio, Frame};
 use super::sender::{SenderKind, Sending};
 use super::station::{
     Bounds, DroneCovariances, MissionPlan, PlanPace, Prediction, StationModel, StationSetup,
@@ -802,16 +802,18 @@ impl Validated {
         Ok((r, duty_cycle))
     }
 
-    /// Whether error-triggered sending's heartbeat fits a data rate whose duty-cycle interval
-    /// is `interval` s: a heartbeat shorter than the interval could never be kept.
-    pub fn check_heartbeat(&self, interval: f64) -> Result<(), SimError> {
+    /// Whether error-triggered sending's heartbeat fits the data rate of `frame`: a heartbeat
+    /// shorter than its duty-cycle interval could never be kept. The error names the data rate
+    /// (a swarm with spread SFs needs SF12's).
+    pub fn check_heartbeat(&self, frame: &Frame) -> Result<(), SimError> {
         let s = self.sending();
-        if s.sender == SenderKind::Error && s.max_interval < interval {
-            return Err(SimError::Parameter(
-                "maxInterval",
-                s.max_interval,
-                "at least the duty-cycle interval of every drone's data rate",
-            ));
+        if s.sender == SenderKind::Error && s.max_interval < frame.interval {
+            return Err(SimError::Heartbeat {
+                max_interval: s.max_interval,
+                sf: frame.sf.get(),
+                bw_khz: frame.bw.khz(),
+                interval: frame.interval,
+            });
         }
         Ok(())
     }

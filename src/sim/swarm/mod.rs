@@ -181,7 +181,7 @@ pub fn run_swarm(
     for i in 0..n {
         let radio = LoraParams::from_settings(sf_of(&sfs, i), s.radio.bw, s.radio.cr)?;
         let (r, duty_cycle) = cfg.drone_radio(&radio, model)?;
-        cfg.check_heartbeat(r.current().interval)?;
+        cfg.check_heartbeat(&r.current())?;
         radios.push(r);
         duty_cycles.push(duty_cycle);
     }
