@@ -59,8 +59,9 @@ impl StationPlan {
         flights: &[Trajectory],
     ) -> Result<Self, SimError> {
         let (start, duty_cycle) = cfg.drone_radio(&cfg.radio, model)?;
-        let interval = start.current().interval;
-        cfg.check_heartbeat(&start.current())?;
+        let frame = start.current();
+        cfg.check_heartbeat(&frame)?;
+        let interval = frame.interval;
         let setup = cfg.setup_for(
             model,
             StationSetup {
