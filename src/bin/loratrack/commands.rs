@@ -1016,19 +1016,11 @@ fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError
             }
         });
     let rows = swarms(scenarios.collect())?;
-    // The budget rule in the crowd under ALOHA only: a slotted drone sends in its slot whatever
-    // credit it holds.
-    let crowd = [
-        (Schedule::Aloha, DutyCycleMode::PerPacket),
-        (Schedule::Slotted, DutyCycleMode::PerPacket),
-        (Schedule::Aloha, DutyCycleMode::Budget),
-    ]
-    .into_iter()
-    .filter_map(|(schedule, rule)| crowd_seeds(&rows, schedule, rule).transpose())
-    .collect::<Result<Vec<_>, _>>()?;
     if a.out.json {
         return Ok(json(&rows));
     }
+    // The crowd comparisons are for the tables only (JSON gives the sweep's own rows).
+    let crowd = crowds(&rows)?;
     Ok(crate::reproduction::swarm_markdown(
         &rows, &crowd, a.markdown,
     ))
@@ -1045,17 +1037,15 @@ fn swarms(scenarios: Vec<Scenario>) -> Result<Vec<SwarmReport>, ApiError> {
 /// moves the median drone's p75 by ±5 m from seed to seed at 72 drones on one channel.
 const CROWD_SEEDS: u64 = 8;
 
-/// Error-triggered sending under the duty-cycle `rule` against periodic sending (per packet,
-/// the paper's) with 72 drones on one SF7 channel under `schedule`, seed by seed from the
-/// sweep's own seed (whose per-packet runs are in `rows`), each with periodic sending slowed
-/// by its duty cycle to the airtime error-triggered sending used: the fair comparison for a
-/// sender that saves airtime. None when `rows` lacks that setting.
-fn crowd_seeds(
-    rows: &[SwarmReport],
-    schedule: Schedule,
-    rule: DutyCycleMode,
-) -> Result<Option<crate::reproduction::Crowd>, ApiError> {
-    let find = |sender| {
+/// The crowd comparisons: error-triggered sending under each duty-cycle rule against periodic
+/// sending (per packet, the paper's) with 72 drones on one SF7 channel, ALOHA and slotted,
+/// seed by seed from the sweep's own seed (whose per-packet runs are in `rows`), each with
+/// periodic sending slowed by its duty cycle to the airtime error-triggered sending used: the
+/// fair comparison for a sender that saves airtime. The budget rule under ALOHA only: a slotted
+/// drone sends in its slot whatever credit it holds. Each schedule's periodic runs serve every
+/// rule compared under it. A comparison is left out when `rows` lacks its setting.
+fn crowds(rows: &[SwarmReport]) -> Result<Vec<crate::reproduction::Crowd>, ApiError> {
+    let find = |schedule, sender| {
         rows.iter().find(|r: &&SwarmReport| {
             let c = &r.config.settings;
             c.access.schedule == schedule
@@ -1065,47 +1055,69 @@ fn crowd_seeds(
                 && c.swarm.drones == 72
         })
     };
-    let (Some(p), Some(e)) = (find(SenderKind::Periodic), find(SenderKind::Error)) else {
-        return Ok(None);
-    };
-    let at_seed = |r: &SwarmReport, k: u64| {
-        let mut c = r.config.settings.clone();
-        c.run.seed += k;
-        c
-    };
-    let error_at = |k: u64| {
-        let mut c = at_seed(e, k);
-        c.sending.duty_cycle_mode = rule;
-        c
-    };
-    let pairs: Vec<Scenario> = (1..CROWD_SEEDS)
-        .flat_map(|k| [at_seed(p, k), error_at(k)])
-        .collect();
-    let first_error = if e.config.settings.sending.duty_cycle_mode == rule {
-        e.clone()
-    } else {
-        api::swarm(&error_at(0))?
-    };
-    let mut runs = vec![p.clone(), first_error];
-    runs.extend(swarms(pairs)?);
-    // Periodic sending slowed by its duty cycle to the airtime error-triggered sending used.
-    let slowed: Vec<Scenario> = runs
-        .chunks(2)
-        .map(|pe| {
-            let mut c = pe[0].config.settings.clone();
-            c.radio.duty_cycle = (c.radio.duty_cycle * pe[1].airtime / pe[0].airtime)
-                .clamp(opt::DUTY_CYCLE.min, opt::DUTY_CYCLE.max);
+    let mut periodic: Vec<(Schedule, Vec<SwarmReport>)> = Vec::new();
+    for schedule in [Schedule::Aloha, Schedule::Slotted] {
+        if let Some(p) = find(schedule, SenderKind::Periodic) {
+            periodic.push((schedule, crowd_runs(p, |_| {})?));
+        }
+    }
+    let mut crowd = Vec::new();
+    for (schedule, rule) in [
+        (Schedule::Aloha, DutyCycleMode::PerPacket),
+        (Schedule::Slotted, DutyCycleMode::PerPacket),
+        (Schedule::Aloha, DutyCycleMode::Budget),
+    ] {
+        let (Some((_, periodic)), Some(e)) = (
+            periodic.iter().find(|(s, _)| *s == schedule),
+            find(schedule, SenderKind::Error),
+        ) else {
+            continue;
+        };
+        let error = crowd_runs(e, |c| c.sending.duty_cycle_mode = rule)?;
+        // Periodic sending slowed by its duty cycle to the airtime error-triggered sending used.
+        let slowed: Vec<Scenario> = periodic
+            .iter()
+            .zip(&error)
+            .map(|(p, e)| {
+                let mut c = p.config.settings.clone();
+                c.radio.duty_cycle = (c.radio.duty_cycle * e.airtime / p.airtime)
+                    .clamp(opt::DUTY_CYCLE.min, opt::DUTY_CYCLE.max);
+                c
+            })
+            .collect();
+        let seeds = periodic
+            .iter()
+            .zip(error)
+            .zip(swarms(slowed)?)
+            .map(|((p, error), equal)| crate::reproduction::CrowdSeed {
+                periodic: p.clone(),
+                error,
+                equal,
+            })
+            .collect();
+        crowd.push(crate::reproduction::Crowd { schedule, seeds });
+    }
+    Ok(crowd)
+}
+
+/// The swarm of `row` with `change` made, at [`CROWD_SEEDS`] seeds from its own, in one
+/// batch; `row` itself stands for the first when the change leaves it as it was.
+fn crowd_runs(
+    row: &SwarmReport,
+    change: impl Fn(&mut Scenario),
+) -> Result<Vec<SwarmReport>, ApiError> {
+    let scenarios: Vec<Scenario> = (0..CROWD_SEEDS)
+        .map(|k| {
+            let mut c = row.config.settings.clone();
+            c.run.seed += k;
+            change(&mut c);
             c
         })
         .collect();
-    let seeds = runs
-        .chunks(2)
-        .zip(swarms(slowed)?)
-        .map(|(pe, equal)| crate::reproduction::CrowdSeed {
-            periodic: pe[0].clone(),
-            error: pe[1].clone(),
-            equal,
-        })
-        .collect();
-    Ok(Some(crate::reproduction::Crowd { schedule, seeds }))
+    if scenarios[0] != row.config.settings {
+        return swarms(scenarios);
+    }
+    let mut runs = vec![row.clone()];
+    runs.extend(swarms(scenarios[1..].to_vec())?);
+    Ok(runs)
 }
