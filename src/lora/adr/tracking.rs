@@ -129,6 +129,8 @@ pub struct TrackingAdr {
     /// The frame counter of the last uplink the network answered with a downlink: the device's
     /// back-off counts from the one after it.
     answered: Option<u32>,
+    /// `answered` before the last downlink, restored when a frame shows that downlink was lost.
+    answered_before: Option<u32>,
 }
 
 impl TrackingAdr {
@@ -144,6 +146,7 @@ impl TrackingAdr {
             settings: None,
             commanded: None,
             answered: None,
+            answered_before: None,
         }
     }
 
@@ -153,12 +156,19 @@ impl TrackingAdr {
         // the old ones if it still uses them, else mostly what the network last asked for.
         // Before the first frame the network knows nothing; the fastest rate is the guess that
         // claims least (a frame lost there says little about a slower rate's link).
-        let start = match self.settings {
-            Some(before) if before == now => before,
-            Some(before) => self.commanded.unwrap_or(before),
-            None => (DataRate::DR6, 0.0),
+        let start = match (self.settings, self.commanded.take()) {
+            (None, _) => (DataRate::DR6, 0.0),
+            (Some(before), _) if before == now => before,
+            // A device that obeyed is at the commanded rate or, backing off, slower; one that
+            // arrives faster never heard the command (its downlink was lost): the gap went at
+            // the old settings, and its back-off counts from the downlink before.
+            (Some(_), Some(asked)) if up.dr <= asked.0 => asked,
+            (Some(before), Some(_)) => {
+                self.answered = self.answered_before;
+                before
+            }
+            (Some(before), None) => before,
         };
-        self.commanded = None;
         for fcnt in self.next_fcnt..up.fcnt {
             let frame = if up.dr < start.0 {
                 Frame {
@@ -279,6 +289,7 @@ impl AdrNetwork for TrackingAdr {
         });
         self.commanded = command.map(|c| (c.dr, c.power_reduction_db));
         if command.is_some() || up.adr_ack_req {
+            self.answered_before = self.answered;
             self.answered = Some(up.fcnt);
         }
         command
@@ -325,6 +336,53 @@ mod tests {
         steady.on_uplink(&up(0, 3, -120.0));
         steady.on_uplink(&up(10, 3, -121.0));
         assert!(steady.frames.iter().all(|f| f.dr.index() == 3));
+    }
+
+    #[test]
+    fn a_frame_faster_than_the_command_shows_the_command_was_lost() {
+        let (toa, iv) = table();
+        let mut adr = TrackingAdr::new(toa, iv, 4.0);
+        // One frame in ten heard at DR6: the network asks for a slower rate.
+        let (fcnt, cmd) = (0..4)
+            .find_map(|k| {
+                adr.on_uplink(&up(10 * k + 9, 6, -126.0))
+                    .map(|c| (10 * k + 9, c))
+            })
+            .expect("a command");
+        assert!(cmd.dr < DataRate::DR5, "{cmd:?}");
+        // The downlink was lost: the device stayed at DR6 until, unanswered for 64 + 32
+        // frames, it backed off to DR5 on its own, and is heard there. Its lost frames went
+        // at DR6, then DR5, never at the rate asked for.
+        adr.on_uplink(&up(fcnt + 100, 5, -120.0));
+        let gap: Vec<u8> = adr
+            .frames
+            .iter()
+            .rev()
+            .skip(1)
+            .take(60)
+            .map(|f| f.dr.index())
+            .collect();
+        assert!(gap.iter().all(|&d| d == 5 || d == 6), "{gap:?}");
+        assert!(gap.contains(&6), "{gap:?}");
+        // A device that obeyed is counted at the rate it was asked for.
+        let mut obeyed = TrackingAdr::new(toa, iv, 4.0);
+        let (fcnt, cmd) = (0..4)
+            .find_map(|k| {
+                obeyed
+                    .on_uplink(&up(10 * k + 9, 6, -126.0))
+                    .map(|c| (10 * k + 9, c))
+            })
+            .expect("a command");
+        obeyed.on_uplink(&up(fcnt + 10, cmd.dr.index(), -120.0));
+        let gap: Vec<u8> = obeyed
+            .frames
+            .iter()
+            .rev()
+            .skip(1)
+            .take(9)
+            .map(|f| f.dr.index())
+            .collect();
+        assert_eq!(gap, vec![cmd.dr.index(); 9]);
     }
 
     #[test]
