@@ -547,6 +547,57 @@ fn the_adr_document_pools_the_seeds_it_names_and_judges_every_adr_row() {
 }
 
 #[test]
+fn held_out_judges_the_adr_rows_again_on_the_next_block_of_seeds() {
+    let verdicts = |md: &str, after: &str| -> Vec<String> {
+        md.split(after)
+            .nth(1)
+            .unwrap_or_default()
+            .lines()
+            .take_while(|l| !l.starts_with("LoRaWAN's ADR") && !l.starts_with("## "))
+            .filter(|l| l.starts_with("- `"))
+            .map(str::to_string)
+            .collect()
+    };
+    let markdown = |args: &[&str]| {
+        let out = cli(args);
+        assert_eq!(out.status.code(), Some(0), "{args:?}");
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    let md = markdown(&[
+        "sweep",
+        "--distances",
+        "2000",
+        "--seeds",
+        "2",
+        "--held-out",
+        "--markdown",
+    ]);
+    assert!(md.contains("--seeds 2 --held-out --markdown"), "{md}");
+    let held = verdicts(&md, "## The same runs on seeds 3–4");
+    assert_eq!(held.len(), 4, "{md}");
+    // The held-out section is what the next block alone reports.
+    let next = markdown(&[
+        "sweep",
+        "--distances",
+        "2000",
+        "--seed",
+        "3",
+        "--seeds",
+        "2",
+        "--markdown",
+    ]);
+    assert_eq!(held, verdicts(&next, "## What the table shows"));
+    assert_ne!(
+        held,
+        verdicts(&md, "## What the table shows"),
+        "a different block"
+    );
+    // It is a document's section: without --markdown it is refused.
+    let out = cli(&["sweep", "--distances", "2000", "--held-out"]);
+    assert_eq!(out.status.code(), Some(2));
+}
+
+#[test]
 fn a_swarm_header_says_what_each_drone_flies() {
     // It said "1 drones x 600 s" for drones flying an 81-s chosen flight.
     let out = cli(&[

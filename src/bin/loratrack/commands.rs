@@ -184,6 +184,11 @@ pub struct SweepArgs {
     /// rests on more than one draw of the shadowing and noise.
     #[arg(long, default_value_t = opt::SEEDS.default as u32, allow_negative_numbers = true)]
     seeds: u32,
+    /// --distances --markdown: run everything again on the next block of as many seeds (seed +
+    /// seeds, ...) and judge the ADR rows there too: a verdict read off one block of seeds is
+    /// checked on seeds it was not read from.
+    #[arg(long, requires = "markdown")]
+    held_out: bool,
     /// Station model(s): dr, ctra-plus, 3d-ctra, imm, a comma list, or all (the paper's three).
     #[arg(long, default_value = "all")]
     model: String,
@@ -760,12 +765,22 @@ fn sweep_distances(
     distances: &[f64],
 ) -> Result<String, ApiError> {
     let base = trade_off_base(a, model, prediction);
-    let r = api::sweep_distances(&mut Simulator::new(), &base, distances)?;
+    let mut sim = Simulator::new();
+    let r = api::sweep_distances(&mut sim, &base, distances)?;
     if a.out.json {
         return Ok(json(&r));
     }
     if a.markdown {
-        return Ok(crate::reproduction::distances_markdown(&r, &base));
+        let held_out = if a.held_out {
+            let mut next = base.clone();
+            next.run.seed = base.run.seed + u64::from(base.run.seeds.max(1));
+            let r = api::sweep_distances(&mut sim, &next, distances)?;
+            Some((r, next))
+        } else {
+            None
+        };
+        let held_out = held_out.as_ref().map(|(r, b)| (r, b));
+        return Ok(crate::reproduction::distances_markdown(&r, &base, held_out));
     }
     Ok(crate::reproduction::distances_table(&r))
 }
