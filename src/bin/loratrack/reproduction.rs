@@ -1225,10 +1225,13 @@ fn adr_findings(r: &DistanceSweepReport, base: &Scenario) -> String {
         "\n## What the table shows\n\n{}\nThe tracking ADR aims to stay within 5 % of the best fixed rate at every \
          distance, since it may always choose that rate. Where the list above says otherwise it does not reach that \
          aim. Its cost describes a station that is always tracking; here every flight starts untracked, so time at a \
-         slow rate also delays each flight's first packet, which the cost does not count. Its delivery estimate comes \
-         from a window of frames whose shadowing is correlated along the path, so a deep patch can send it to a slow \
-         rate (see the packets per data rate), where each frame, and so each chance to move again, is minutes apart. \
-         Starting from DR0 costs the first frame's long interval, in which the first flight goes untracked; starting \
+         slow rate also delays each flight's first packet, which the cost does not count. Its delivery estimate treats \
+         every frame of its window as an independent draw of the shadowing, but the shadowing is correlated along \
+         the path and stands still while the drone does: a drone waiting in a deep fade (at the start of a flight, \
+         say) loses a run of frames that reads as a poor link and sends it to a slower \
+         rate (see the packets per data rate), and the hysteresis, about as large as the true difference in cost \
+         between neighbouring rates, holds it there until the window has forgotten those frames; at the slowest \
+         rates each frame, and so each chance to move again, is minutes apart. Starting from DR0 costs the first frame's long interval, in which the first flight goes untracked; starting \
          too fast for the link, as at SF7 at 5 and 7 km, costs the device's back-off before the network hears it \
          at all.\n\n{}",
         adr_verdicts(r),
