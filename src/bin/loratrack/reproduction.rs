@@ -1127,11 +1127,10 @@ pub fn distances_markdown(
     base: &Scenario,
     held_out: Option<(&DistanceSweepReport, &Scenario)>,
 ) -> String {
-    let distances: Vec<String> = {
-        let mut d: Vec<f64> = r.runs.iter().map(|x| x.distance).collect();
-        d.dedup();
-        d.iter().map(|x| format!("{x:.0}")).collect()
-    };
+    let distances: Vec<String> = sweep_distances(r)
+        .iter()
+        .map(|x| format!("{x:.0}"))
+        .collect();
     let model = base.station.model.models()[0];
     let mut s = String::from(
         "# Adaptive data rate: fixed data rates against LoRaWAN's ADR and a tracking-aware one\n\n",
@@ -1181,12 +1180,17 @@ pub fn distances_markdown(
     s
 }
 
+/// The distances the sweep ran, m, in its order (its runs come grouped by distance).
+fn sweep_distances(r: &DistanceSweepReport) -> Vec<f64> {
+    let mut d: Vec<f64> = r.runs.iter().map(|x| x.distance).collect();
+    d.dedup();
+    d
+}
+
 /// `--held-out`: the best fixed rate and every ADR row's verdict on seeds the table above was
 /// not read from.
 fn held_out_findings(r: &DistanceSweepReport, base: &Scenario) -> String {
-    let mut distances: Vec<f64> = r.runs.iter().map(|x| x.distance).collect();
-    distances.dedup();
-    let best: Vec<String> = distances
+    let best: Vec<String> = sweep_distances(r)
         .iter()
         .map(
             |&d| match best_fixed(r, d).or_else(|| most_tracked_fixed(r, d)) {
