@@ -341,14 +341,17 @@ mod tests {
     #[test]
     fn a_frame_faster_than_the_command_shows_the_command_was_lost() {
         let (toa, iv) = table();
-        let mut adr = TrackingAdr::new(toa, iv, 4.0);
         // One frame in ten heard at DR6: the network asks for a slower rate.
-        let (fcnt, cmd) = (0..4)
-            .find_map(|k| {
-                adr.on_uplink(&up(10 * k + 9, 6, -126.0))
-                    .map(|c| (10 * k + 9, c))
-            })
-            .expect("a command");
+        let slowed = |adr: &mut TrackingAdr| {
+            (0..4)
+                .find_map(|k| {
+                    adr.on_uplink(&up(10 * k + 9, 6, -126.0))
+                        .map(|c| (10 * k + 9, c))
+                })
+                .expect("a command")
+        };
+        let mut adr = TrackingAdr::new(toa, iv, 4.0);
+        let (fcnt, cmd) = slowed(&mut adr);
         assert!(cmd.dr < DataRate::DR5, "{cmd:?}");
         // The downlink was lost: the device stayed at DR6 until, unanswered for 64 + 32
         // frames, it backed off to DR5 on its own, and is heard there. Its lost frames went
@@ -366,13 +369,7 @@ mod tests {
         assert!(gap.contains(&6), "{gap:?}");
         // A device that obeyed is counted at the rate it was asked for.
         let mut obeyed = TrackingAdr::new(toa, iv, 4.0);
-        let (fcnt, cmd) = (0..4)
-            .find_map(|k| {
-                obeyed
-                    .on_uplink(&up(10 * k + 9, 6, -126.0))
-                    .map(|c| (10 * k + 9, c))
-            })
-            .expect("a command");
+        let (fcnt, cmd) = slowed(&mut obeyed);
         obeyed.on_uplink(&up(fcnt + 10, cmd.dr.index(), -120.0));
         let gap: Vec<u8> = obeyed
             .frames
