@@ -595,6 +595,12 @@ fn held_out_judges_the_adr_rows_again_on_the_next_block_of_seeds() {
     // It is a document's section: without --markdown it is refused.
     let out = cli(&["sweep", "--distances", "2000", "--held-out"]);
     assert_eq!(out.status.code(), Some(2));
+    // Naming what it lacks: the one-line error once cut clap's list off and named nothing.
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("required arguments were not provided: --markdown"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -55,12 +55,27 @@ fn main() -> std::process::ExitCode {
 }
 
 /// clap's message in one line: its first line, without its own `error: ` prefix, and a pointer
-/// to --help instead of the usage block.
+/// to --help instead of the usage block. A first line ending in a colon lists what it means on
+/// the indented lines after it ("the following required arguments were not provided:" then
+/// `--markdown`): those join it, or the message would name nothing.
 #[cfg(not(target_arch = "wasm32"))]
 fn one_line(rendered: &str) -> String {
-    let first = rendered.lines().next().unwrap_or("invalid arguments");
+    let mut lines = rendered.lines();
+    let first = lines.next().unwrap_or("invalid arguments");
     let first = first.strip_prefix("error: ").unwrap_or(first);
-    format!("{first} (see --help)")
+    let listed: Vec<&str> = if first.ends_with(':') {
+        lines
+            .take_while(|l| l.starts_with(' '))
+            .map(str::trim)
+            .collect()
+    } else {
+        Vec::new()
+    };
+    if listed.is_empty() {
+        format!("{first} (see --help)")
+    } else {
+        format!("{first} {} (see --help)", listed.join(", "))
+    }
 }
 
 /// Prints `error: <msg>` on stderr and returns exit status 2.
