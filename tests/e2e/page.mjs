@@ -1,7 +1,7 @@
 // The playground as the browser test files open it: one server for dist/ and one Chromium per test
 // file (`usePlayground()`), and the steps every test shares: open the page, wait for results,
 // read the results table, run axe, open a lesson.
-import { after, before } from 'node:test';
+import { after, afterEach, before } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -10,11 +10,17 @@ import { launch, openPage, serveDist } from './harness.mjs';
 let server;
 let browser;
 
-/** Starts the server and the browser before this file's tests and stops them after. */
+/** Starts the server and the browser before this file's tests, closes each test's pages after it,
+ * and stops both after the last test. */
 export function usePlayground() {
   before(async () => {
     server = await serveDist();
     browser = await launch();
+  });
+  // A test's pages close with it. Left open, each went on computing its remaining panels (the SF
+  // chart, the whole set) in its two workers while the next tests ran, on the same two cores.
+  afterEach(async () => {
+    await Promise.all(browser?.contexts().map((context) => context.close()) ?? []);
   });
   after(async () => {
     await browser?.close();
