@@ -35,17 +35,17 @@ pub(crate) fn par_each<T: Send>(items: &mut [T], f: impl Fn(&mut T) + Sync + Sen
     }
 }
 
-/// [`par_map`] calling `tick` once per item: after each item in WebAssembly (so a long run can
-/// report progress between items), after all of them natively.
+/// [`par_map`] calling `tick(i)` once per item `i`: after each item in WebAssembly (so a long
+/// run can report progress between items), after all of them natively.
 pub(crate) fn par_map_ticking<T: Send>(
     range: core::ops::Range<usize>,
     f: impl Fn(usize) -> T + Sync + Send,
-    tick: &mut dyn FnMut(),
+    tick: &mut dyn FnMut(usize),
 ) -> Vec<T> {
     #[cfg(not(target_arch = "wasm32"))]
     {
-        let out = par_map(range, f);
-        out.iter().for_each(|_| tick());
+        let out = par_map(range.clone(), f);
+        range.for_each(tick);
         out
     }
     #[cfg(target_arch = "wasm32")]
@@ -53,7 +53,7 @@ pub(crate) fn par_map_ticking<T: Send>(
         range
             .map(|i| {
                 let r = f(i);
-                tick();
+                tick(i);
                 r
             })
             .collect()
@@ -68,11 +68,11 @@ pub(crate) fn par_map_costliest_first<T: Send>(
     n: usize,
     cost: impl Fn(usize) -> u32,
     f: impl Fn(usize) -> T + Sync + Send,
-    tick: &mut dyn FnMut(),
+    tick: &mut dyn FnMut(usize),
 ) -> Vec<T> {
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by_key(|&i| core::cmp::Reverse(cost(i)));
-    let done = par_map_ticking(0..n, |k| f(order[k]), tick);
+    let done = par_map_ticking(0..n, |k| f(order[k]), &mut |k| tick(order[k]));
     let mut slots: Vec<Option<T>> = (0..n).map(|_| None).collect();
     for (i, r) in order.into_iter().zip(done) {
         slots[i] = Some(r);
@@ -86,16 +86,16 @@ mod tests {
 
     #[test]
     fn results_come_back_in_index_order_with_one_tick_each() {
-        let mut ticks = 0;
-        let out = par_map_ticking(0..100, |i| i * i, &mut || ticks += 1);
+        let mut ticked = Vec::new();
+        let out = par_map_ticking(0..100, |i| i * i, &mut |i| ticked.push(i));
         assert_eq!(out, (0..100).map(|i| i * i).collect::<Vec<_>>());
-        assert_eq!(ticks, 100);
+        assert_eq!(ticked, (0..100).collect::<Vec<_>>());
     }
 
     #[test]
     fn the_costliest_start_first_and_results_keep_index_order() {
         let started = std::sync::Mutex::new(Vec::new());
-        let mut ticks = 0;
+        let mut ticked = Vec::new();
         let out = par_map_costliest_first(
             6,
             |i| [1, 5, 0, 5, 9, 2][i],
@@ -103,10 +103,11 @@ mod tests {
                 started.lock().unwrap().push(i);
                 10 * i
             },
-            &mut || ticks += 1,
+            &mut |i| ticked.push(i),
         );
         assert_eq!(out, vec![0, 10, 20, 30, 40, 50]);
-        assert_eq!(ticks, 6);
+        // Each tick names its item, in the order the items were started.
+        assert_eq!(ticked, vec![4, 1, 3, 5, 0, 2]);
         #[cfg(target_arch = "wasm32")]
         assert_eq!(*started.lock().unwrap(), vec![4, 1, 3, 5, 0, 2]);
         // Natively the cores take the items in that order, but finish them in any.

@@ -263,7 +263,7 @@ impl Simulator {
                     i as u64,
                 )
             },
-            tick,
+            &mut |_| tick(),
         )
         .into_iter();
         (0..(keys.len() - missing.len()) * n).for_each(|_| tick());
@@ -553,33 +553,56 @@ fn pool(
 }
 
 /// Every run's flights: the runs whose drones adapt their data rate fly theirs in order
-/// ([`StationRun::fly_in_order`]), every other (run, flight) pair in one parallel batch. One
-/// list of flights per run, in flight order; `tick` once per run and flight.
+/// ([`StationRun::fly_in_order`]); every other run joins the first run whose drone sends the same
+/// transmissions ([`StationRun::sends_as`]), and each such group's flights are one parallel batch,
+/// the costliest groups first. One list of flights per run, in flight order; `tick` once per run
+/// and flight.
 fn fly_all(
     runs: &[StationRun],
     flights: usize,
     tick: &mut dyn FnMut(),
 ) -> Vec<Vec<Result<FlightRun, SimError>>> {
-    let alone: Vec<(usize, usize)> = (0..runs.len())
-        .filter(|&r| !runs[r].adaptive())
-        .flat_map(|r| (0..flights).map(move |i| (r, i)))
+    let fixed_rate = (0..runs.len()).filter(|&r| !runs[r].adaptive());
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for r in fixed_rate {
+        match groups.iter_mut().find(|g| runs[g[0]].sends_as(&runs[r])) {
+            Some(g) => g.push(r),
+            None => groups.push(vec![r]),
+        }
+    }
+    let jobs: Vec<(usize, usize)> = (0..groups.len())
+        .flat_map(|g| (0..flights).map(move |i| (g, i)))
         .collect();
-    let mut flown = par_map_costliest_first(
-        alone.len(),
-        |k| runs[alone[k].0].plan.model.relative_cost(),
+    let cost = |g: &[usize]| {
+        g.iter()
+            .map(|&r| runs[r].plan.model.relative_cost())
+            .sum::<u32>()
+    };
+    let flown = par_map_costliest_first(
+        jobs.len(),
+        |k| cost(&groups[jobs[k].0]),
         |k| {
-            let (r, i) = alone[k];
-            runs[r].fly_alone(i)
+            let (g, i) = jobs[k];
+            let members: Vec<&StationRun> = groups[g].iter().map(|&r| &runs[r]).collect();
+            members[0].fly_shared(i, &members)
         },
-        tick,
-    )
-    .into_iter();
-    runs.iter()
-        .map(|run| match run.adaptive() {
-            true => run.fly_in_order(tick),
-            false => flown.by_ref().take(flights).collect(),
-        })
-        .collect()
+        // One tick per run and flight: a group's job is as many.
+        &mut |k| groups[jobs[k].0].iter().for_each(|_| tick()),
+    );
+    // Back to one list per run: group g's job for flight i holds its members' flights in order.
+    let mut per_run: Vec<Vec<Result<FlightRun, SimError>>> =
+        (0..runs.len()).map(|_| Vec::new()).collect();
+    for ((g, _), members) in jobs.into_iter().zip(flown) {
+        for (&r, run) in groups[g].iter().zip(members) {
+            per_run[r].push(run);
+        }
+    }
+    for (r, run) in runs.iter().enumerate() {
+        if run.adaptive() {
+            per_run[r] = run.fly_in_order(tick);
+        }
+    }
+    per_run
 }
 
 /// Reads or builds the flights `source` names.

@@ -2,19 +2,23 @@
 //! event loop ([`run_episode`]) and the station's scoring, for one seed's drone runs.
 //!
 //! [`Simulator`](super::Simulator) prepares one [`StationPlan`] per station and one
-//! [`StationRun`] per station and seed, then flies every (run, flight) pair in one parallel
-//! batch, the costliest stations first: a long single flight with four stations keeps both
-//! cores busy instead of one. A run whose drone adapts its data rate (ADR) carries the device's
-//! state from flight to flight, so it flies its flights in order instead.
+//! [`StationRun`] per station and seed, groups the runs whose drones send the same
+//! transmissions ([`StationRun::sends_as`]: one event loop then serves the group, and its
+//! stations are scored on it side by side), and flies every (group, flight) pair in one
+//! parallel batch, the costliest groups first: a long single flight with four stations keeps
+//! both cores busy instead of one. A run whose drone adapts its data rate (ADR) carries the
+//! device's state from flight to flight, so it flies its flights in order instead.
 
 use super::drone::{DroneFilter, DroneTrack, Estimates};
 use super::flier::Flier;
 use super::network::{run_episode, Network};
 use super::packet::Transmission;
+use super::parallel::par_map;
 use super::pooled::model_series;
 use super::radio::DroneRadio;
 use super::report::{Delivery, ModelSeries};
 use super::scenario::Validated;
+use super::sender::SenderKind;
 use super::station::{
     new_tracker, track_station, FlightChains, MissionPlan, Prediction, Scoring, StationModel,
     StationSetup, StationTrack,
@@ -110,14 +114,6 @@ impl StationRun<'_> {
         Network::of(self.cfg, distance, vec![self.plan.start.clone()])
     }
 
-    /// Flight `i` alone, through a network of its own.
-    pub fn fly_alone(&self, i: usize) -> Result<FlightRun, SimError> {
-        let mut net = self.network();
-        let mut run = self.fly(i, &mut net)?;
-        run.delivery = Some(Delivery::counted(&net));
-        Ok(run)
-    }
-
     /// Every flight in order through one network, calling `tick` after each; the last one
     /// carries what the network counted.
     pub fn fly_in_order(&self, tick: &mut dyn FnMut()) -> Vec<Result<FlightRun, SimError>> {
@@ -135,8 +131,69 @@ impl StationRun<'_> {
         runs
     }
 
+    /// Whether `other`'s drone sends exactly this run's transmissions on every flight, so one
+    /// event loop serves both ([`Self::fly_shared`]): the same seed, payload model, frame and duty
+    /// cycle, a fixed data rate, and periodic sending, whose instants do not depend on the
+    /// station (an error-triggered drone mirrors its own station). A 3D-CTRA, an IMM and a
+    /// mission station all send 3D-CTRA's payload: their drone runs once instead of three times,
+    /// which on a flight too long to remember its drone run is a whole filter run each.
+    pub fn sends_as(&self, other: &StationRun) -> bool {
+        let (a, b) = (self.plan, other.plan);
+        self.seed == other.seed
+            && self.cfg.s().sending.sender == SenderKind::Periodic
+            && !self.adaptive()
+            && !other.adaptive()
+            && a.model.sent_model() == b.model.sent_model()
+            && a.start.current() == b.start.current()
+            && a.duty_cycle == b.duty_cycle
+    }
+
+    /// Flight `i` for every run of `members` (this one first; each [`Self::sends_as`] this
+    /// one): the drone sends once through a network of its own, then each station is scored on
+    /// those transmissions, in parallel.
+    pub fn fly_shared(
+        &self,
+        i: usize,
+        members: &[&StationRun],
+    ) -> Vec<Result<FlightRun, SimError>> {
+        let mut net = self.network();
+        let sent = self.send(i, &mut net);
+        let delivery = Delivery::counted(&net);
+        let (tx, recoveries) = match sent {
+            Ok(sent) => sent,
+            Err(e) => return members.iter().map(|_| Err(e.clone())).collect(),
+        };
+        par_map(0..members.len(), |k| {
+            let (track, series) = members[k].score(i, &tx);
+            FlightRun {
+                tx: tx.clone(),
+                track,
+                series,
+                delivery: Some(delivery.clone()),
+                recoveries,
+            }
+        })
+        .into_iter()
+        .map(Ok)
+        .collect()
+    }
+
     /// Flight `i` through `net`: the drone sends over the event loop, the station is scored.
     fn fly(&self, i: usize, net: &mut Network) -> Result<FlightRun, SimError> {
+        let (tx, recoveries) = self.send(i, net)?;
+        let (track, series) = self.score(i, &tx);
+        Ok(FlightRun {
+            tx,
+            track,
+            series,
+            delivery: None,
+            recoveries,
+        })
+    }
+
+    /// Flight `i`'s transmissions through `net`, and how often the drone's filter repaired its
+    /// covariance over the flight.
+    fn send(&self, i: usize, net: &mut Network) -> Result<(Vec<Transmission>, u64), SimError> {
         let s = self.cfg.s();
         let (flight, plan) = (&self.flights[i], self.plan.plans[i].as_ref());
         let (model, setup) = (self.plan.model, self.plan.setup);
@@ -173,8 +230,15 @@ impl StationRun<'_> {
         run_episode(net, core::slice::from_mut(&mut flier));
         // A live filter runs to the flight's end, as a stored run did: the same repair count.
         flier.estimates.prefetch(flier.estimates.len());
-        let recoveries = flier.estimates.recoveries();
-        let tx = flier.tx;
+        Ok((flier.tx, flier.estimates.recoveries()))
+    }
+
+    /// The station scored on flight `i`'s transmissions `tx`, with the plotted series when this
+    /// is the series' flight.
+    fn score(&self, i: usize, tx: &[Transmission]) -> (StationTrack, Option<ModelSeries>) {
+        let s = self.cfg.s();
+        let (flight, plan) = (&self.flights[i], self.plan.plans[i].as_ref());
+        let (model, setup) = (self.plan.model, self.plan.setup);
         let with_series = s.run.series && i == 0 && self.seed == s.run.seed;
         let scoring = Scoring {
             step: s.station.step,
@@ -185,22 +249,16 @@ impl StationRun<'_> {
             Some(c) => c[i].lock().unwrap_or_else(|e| e.into_inner()).track(
                 flight,
                 &|| new_tracker(model, setup, None),
-                &tx,
+                tx,
                 scoring,
             ),
             None => {
                 let mut tracker = new_tracker(model, setup, plan);
-                track_station(flight, tracker.as_mut(), &tx, scoring)
+                track_station(flight, tracker.as_mut(), tx, scoring)
             }
         };
-        let series = with_series.then(|| model_series(model, &st, &tx));
-        Ok(FlightRun {
-            tx,
-            track: st,
-            series,
-            delivery: None,
-            recoveries,
-        })
+        let series = with_series.then(|| model_series(model, &st, tx));
+        (st, series)
     }
 }
 
@@ -238,7 +296,7 @@ mod tests {
             chains: None,
             seed: 9,
         };
-        run.fly_alone(0).unwrap()
+        run.fly_shared(0, &[&run]).remove(0).unwrap()
     }
 
     #[test]
@@ -255,6 +313,63 @@ mod tests {
             }
             assert_eq!(stored.track.error3d, live.track.error3d);
             assert_eq!(stored.recoveries, live.recoveries);
+        }
+    }
+
+    #[test]
+    fn stations_that_send_alike_share_one_event_loop_and_keep_their_own_numbers() {
+        for (sender, shared) in [("periodic", true), ("error", false)] {
+            let cfg = Scenario::default()
+                .with(&serde_json::json!({
+                    "synthetic": 3, "distance": 3000, "seed": 9, "series": true,
+                    "model": "3d-ctra,imm,mission,ctra-plus", "sender": sender,
+                }))
+                .unwrap()
+                .validate()
+                .unwrap();
+            let flights = vec![synthetic_flight(3).unwrap()];
+            let plans: Vec<StationPlan> = cfg
+                .models
+                .iter()
+                .map(|&m| StationPlan::new(&cfg, m, &flights).unwrap())
+                .collect();
+            let runs: Vec<StationRun> = plans
+                .iter()
+                .map(|plan| StationRun {
+                    plan,
+                    cfg: &cfg,
+                    flights: &flights,
+                    drones: None,
+                    chains: None,
+                    seed: 9,
+                })
+                .collect();
+            // IMM and mission send 3D-CTRA's payload; CTRA+ sends its own.
+            assert_eq!(runs[1].sends_as(&runs[0]), shared, "{sender}");
+            assert_eq!(runs[2].sends_as(&runs[0]), shared, "{sender}");
+            assert!(!runs[3].sends_as(&runs[0]));
+            if !shared {
+                continue;
+            }
+            let members = [&runs[0], &runs[1], &runs[2]];
+            let together = runs[0].fly_shared(0, &members);
+            for (run, got) in members.iter().zip(together) {
+                let (got, alone) = (got.unwrap(), run.fly_shared(0, &[run]).remove(0).unwrap());
+                assert!(got.tx.iter().any(|t| !t.received), "some packets lost");
+                assert_eq!(got.tx.len(), alone.tx.len());
+                assert!(got
+                    .tx
+                    .iter()
+                    .zip(&alone.tx)
+                    .all(|(a, b)| (a.sent, a.received, a.state) == (b.sent, b.received, b.state)));
+                assert_eq!(
+                    got.track.error3d, alone.track.error3d,
+                    "{:?}",
+                    run.plan.model
+                );
+                assert_eq!(got.series.map(|s| s.model), alone.series.map(|s| s.model));
+                assert_eq!(got.delivery, alone.delivery);
+            }
         }
     }
 }
