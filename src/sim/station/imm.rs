@@ -1,9 +1,11 @@
 //! An Interacting Multiple Model station over DR, CTRA+ and 3D-CTRA (Blom & Bar-Shalom 1988;
 //! Bar-Shalom, Li & Kirubarajan 2001, §11.6).
 
-use super::{StationPredictor, StationSetup, Tracker};
+use super::{received, StationPredictor, StationSetup, Tracker};
 use crate::math::exp;
 use crate::models::{with_model, ModelKind, MotionModel};
+use crate::sim::packet::Transmission;
+use crate::sim::parallel::par_map;
 use nalgebra::{Matrix3, Vector3};
 
 /// Probability that the drone keeps flying the manoeuvre one model describes from one packet to
@@ -13,18 +15,31 @@ use nalgebra::{Matrix3, Vector3};
 pub const IMM_STAY: f64 = 0.9;
 
 /// An IMM member: a station predictor whose prediction can be scored against a packet.
-pub trait ImmMember: Tracker {
+pub trait ImmMember: Tracker + Send + Sync {
     /// See [`StationPredictor::log_likelihood`].
     fn log_likelihood(&self, z: &[f64; 9], sent: f64) -> f64;
+    /// The log-likelihood of received packet `now` under a copy of this member as it stands
+    /// when `now` arrives after `before`: reset to `before`, at `now`'s interval and with the
+    /// station's trust in the silence after `now` ([`Tracker::trust_silence`]).
+    fn forecast(&self, before: &Transmission, now: &Transmission, silence_trusted: bool) -> f64;
 }
 
-impl<const N: usize, M: MotionModel<N> + Copy> ImmMember for StationPredictor<N, M> {
+impl<const N: usize, M: MotionModel<N> + Copy + Send + Sync> ImmMember for StationPredictor<N, M> {
     fn log_likelihood(&self, z: &[f64; 9], sent: f64) -> f64 {
         StationPredictor::log_likelihood(self, z, sent)
     }
+
+    fn forecast(&self, before: &Transmission, now: &Transmission, silence_trusted: bool) -> f64 {
+        let mut m = self.clone();
+        m.reset(&before.state, before.sent);
+        // start_from sets these before the reset whose probabilities the forecast scores.
+        m.set_interval(now.interval);
+        m.trust_silence(silence_trusted);
+        m.log_likelihood(&now.state, now.sent)
+    }
 }
 
-fn member<const N: usize, M: MotionModel<N> + Copy + 'static>(
+fn member<const N: usize, M: MotionModel<N> + Copy + Send + Sync + 'static>(
     model: M,
     setup: StationSetup,
 ) -> Box<dyn ImmMember> {
@@ -47,6 +62,19 @@ pub struct Imm {
     kinds: Vec<ModelKind>,
     probability: Vec<f64>,
     started: bool,
+    /// The send time of the packet the members were last reset to.
+    last_sent: f64,
+    /// Each member's log-likelihood of the received packets, forecast from the packet before
+    /// each ([`Tracker::prepare`]), in time order, and how many of them have been passed.
+    forecasts: Vec<Forecast>,
+    passed: usize,
+}
+
+/// The members' log-likelihoods of the packet sent at `to`, forecast from the one sent at `from`.
+struct Forecast {
+    from: f64,
+    to: f64,
+    log_l: Vec<f64>,
 }
 
 impl Imm {
@@ -63,6 +91,9 @@ impl Imm {
             kinds: models.to_vec(),
             probability: vec![1.0 / n; models.len()],
             started: false,
+            last_sent: f64::NAN,
+            forecasts: Vec::new(),
+            passed: 0,
         }
     }
 
@@ -83,11 +114,14 @@ impl Imm {
         let predicted: Vec<f64> = (0..n)
             .map(|j| stay * self.probability[j] + off * (total - self.probability[j]))
             .collect();
-        let log_l: Vec<f64> = self
-            .members
-            .iter()
-            .map(|m| m.log_likelihood(z, sent))
-            .collect();
+        let log_l = match self.prepared(sent) {
+            Some(log_l) => log_l,
+            None => self
+                .members
+                .iter()
+                .map(|m| m.log_likelihood(z, sent))
+                .collect(),
+        };
         let best = log_l.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         if !best.is_finite() {
             // No member could score the packet: keep the Markov prediction alone.
@@ -102,12 +136,48 @@ impl Imm {
     }
 }
 
+impl Imm {
+    /// The members' log-likelihoods of the packet sent at `sent` as [`Tracker::prepare`]
+    /// forecast them, when it forecast this packet from the one the members were reset to (a
+    /// packet that arrived in the same step as a newer one is never applied; the newer one is
+    /// then forecast in order).
+    fn prepared(&mut self, sent: f64) -> Option<Vec<f64>> {
+        while self.forecasts.get(self.passed).is_some_and(|f| f.to < sent) {
+            self.passed += 1;
+        }
+        let f = self.forecasts.get(self.passed)?;
+        (f.to == sent && f.from == self.last_sent).then(|| f.log_l.clone())
+    }
+}
+
 impl Tracker for Imm {
+    /// Forecasts every received packet from the one before under each member, in parallel:
+    /// a forecast depends only on the two packets (a member's forecast restarts from its last
+    /// packet), and it is half of what an IMM station computes.
+    fn prepare(&mut self, transmissions: &[Transmission]) {
+        let packets = received(transmissions);
+        let members = &self.members;
+        self.forecasts = par_map(1..packets.len().max(1), |k| {
+            let (before, now) = (packets[k - 1].packet, &packets[k]);
+            let log_l = members
+                .iter()
+                .map(|m| m.forecast(before, now.packet, now.silence_trusted))
+                .collect();
+            Forecast {
+                from: before.sent,
+                to: now.packet.sent,
+                log_l,
+            }
+        });
+        self.passed = 0;
+    }
+
     fn reset(&mut self, state: &[f64; 9], sent: f64) {
         if self.started {
             self.update_probabilities(state, sent);
         }
         self.started = true;
+        self.last_sent = sent;
         for m in &mut self.members {
             m.reset(state, sent);
         }
@@ -231,5 +301,80 @@ mod tests {
         }
         let p = imm.probabilities();
         assert!(p[0] < 0.1, "DR should lose a steady turn: {p:?}");
+    }
+
+    /// Flight 2's state every 2 s at intervals that vary, received where `pattern` has a 1;
+    /// frame 3 goes out 0.05 s before frame 4 and arrives in the same 0.1 s step, so only frame
+    /// 4 is applied and the IMM forecasts it from frame 2, in order.
+    fn packets(flight: &crate::trajectory::Trajectory, pattern: &str) -> Vec<Transmission> {
+        use crate::lora::{Bandwidth, Outcome, SpreadingFactor};
+        let t0 = flight.t[0];
+        pattern
+            .chars()
+            .enumerate()
+            .map(|(k, c)| {
+                let sent = if k == 3 { t0 + 7.95 } else { t0 + 2.0 * k as f64 };
+                let i = flight
+                    .t
+                    .partition_point(|&t| t < sent)
+                    .min(flight.t.len() - 1);
+                Transmission {
+                    sent,
+                    arrival: if k == 3 { t0 + 8.01 } else { sent + 0.02 },
+                    received: c == '1',
+                    outcome: Outcome::BelowSensitivity,
+                    heard_by: 0,
+                    state: flight.state(i),
+                    distance: 1000.0,
+                    rx_power_dbm: -100.0,
+                    sf: SpreadingFactor::new(7).unwrap(),
+                    bw: Bandwidth::from_khz(250.0).unwrap(),
+                    channel: 0,
+                    time_on_air: 0.02,
+                    interval: 2.0 + 0.5 * (k % 3) as f64,
+                    charge_mc: 0.0,
+                    active_s: 0.0,
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn forecasts_made_ahead_in_parallel_score_as_those_made_in_order() {
+        use crate::sim::station::{score_station, start_from, track_station, Estimate, Scoring};
+        let flight = crate::trajectory::synthetic_flight(2).unwrap();
+        let tx = packets(&flight, "11111110110111111100111111111");
+        // Bounded and error-triggered: the forecasts depend on each packet's interval and on
+        // the station's trust in the drone's silence, which the losses move.
+        let setup = StationSetup {
+            prediction: Prediction::Bounded,
+            error_triggered: true,
+            ..setup()
+        };
+        let scoring = Scoring {
+            step: 0.1,
+            series: false,
+            calibrate: false,
+        };
+        let mut ahead = Imm::new(&ModelKind::ALL, setup);
+        let prepared = track_station(&flight, &mut ahead, &tx, scoring);
+        assert_eq!(
+            ahead.forecasts.len(),
+            tx.iter().filter(|t| t.received).count() - 1
+        );
+        let mut imm = Imm::new(&ModelKind::ALL, setup);
+        let in_order = score_station(&flight, &tx, scoring, &mut |t, packet, fresh| {
+            if fresh {
+                start_from(&mut imm, packet);
+            }
+            imm.predict_to(t);
+            Estimate::of(&imm)
+        });
+        assert_eq!(prepared, in_order);
+        assert_eq!(ahead.probabilities(), imm.probabilities());
+        assert!(
+            imm.probabilities().iter().all(|&p| p != 1.0 / 3.0),
+            "the packets moved them"
+        );
     }
 }

@@ -54,6 +54,11 @@ pub trait Tracker {
     /// Whether the link has been delivering well enough for an error-triggered drone's silence
     /// to mean that the forecast holds ([`StationSetup::error_triggered`]; [`silence_trusted`]).
     fn trust_silence(&mut self, _trusted: bool) {}
+    /// Sees the flight's transmissions before the flight is scored ([`track_station`]), so that
+    /// work which does not depend on the scoring's order is done ahead, on every core: an IMM
+    /// forecasts each received packet from the one before under each member. The numbers are
+    /// those of the work done in order.
+    fn prepare(&mut self, _transmissions: &[Transmission]) {}
 }
 
 /// How many of a drone's latest frames (by frame counter, up to a received one) the station
@@ -173,6 +178,7 @@ pub fn track_station(
     transmissions: &[Transmission],
     scoring: Scoring,
 ) -> StationTrack {
+    tracker.prepare(transmissions);
     score_station(flight, transmissions, scoring, &mut |t, packet, fresh| {
         if fresh {
             start_from(tracker, packet);
@@ -189,6 +195,20 @@ pub(crate) struct Received<'a> {
     pub packet: &'a Transmission,
     /// Whether the station trusts the sender's silence after it ([`silence_trusted`]).
     pub silence_trusted: bool,
+}
+
+/// The received transmissions in order, each with whether the station trusts the silence
+/// after it.
+pub(crate) fn received(transmissions: &[Transmission]) -> Vec<Received<'_>> {
+    transmissions
+        .iter()
+        .filter(|t| t.received)
+        .zip(silence_trusted(transmissions))
+        .map(|(packet, silence_trusted)| Received {
+            packet,
+            silence_trusted,
+        })
+        .collect()
 }
 
 /// Resets `tracker` to a received packet, at the interval the packet came with.
@@ -211,15 +231,7 @@ pub(crate) fn score_station(
         series,
         calibrate,
     } = scoring;
-    let received: Vec<Received> = transmissions
-        .iter()
-        .filter(|t| t.received)
-        .zip(silence_trusted(transmissions))
-        .map(|(packet, silence_trusted)| Received {
-            packet,
-            silence_trusted,
-        })
-        .collect();
+    let received = received(transmissions);
     let t0 = flight.t[0];
     let end = flight.t[flight.t.len() - 1];
     // The evaluation times t0 + j·T up to the flight's end, as the loop below steps them.
