@@ -307,36 +307,16 @@ mod tests {
     /// frame 3 goes out 0.05 s before frame 4 and arrives in the same 0.1 s step, so only frame
     /// 4 is applied and the IMM forecasts it from frame 2, in order.
     fn packets(flight: &crate::trajectory::Trajectory, pattern: &str) -> Vec<Transmission> {
-        use crate::lora::{Bandwidth, Outcome, SpreadingFactor};
         let t0 = flight.t[0];
-        pattern
-            .chars()
-            .enumerate()
-            .map(|(k, c)| {
-                let sent = if k == 3 { t0 + 7.95 } else { t0 + 2.0 * k as f64 };
-                let i = flight
-                    .t
-                    .partition_point(|&t| t < sent)
-                    .min(flight.t.len() - 1);
-                Transmission {
-                    sent,
-                    arrival: if k == 3 { t0 + 8.01 } else { sent + 0.02 },
-                    received: c == '1',
-                    outcome: Outcome::BelowSensitivity,
-                    heard_by: 0,
-                    state: flight.state(i),
-                    distance: 1000.0,
-                    rx_power_dbm: -100.0,
-                    sf: SpreadingFactor::new(7).unwrap(),
-                    bw: Bandwidth::from_khz(250.0).unwrap(),
-                    channel: 0,
-                    time_on_air: 0.02,
-                    interval: 2.0 + 0.5 * (k % 3) as f64,
-                    charge_mc: 0.0,
-                    active_s: 0.0,
-                }
-            })
-            .collect()
+        let mut tx = crate::sim::station::tests::frames(pattern);
+        for (k, t) in tx.iter_mut().enumerate() {
+            t.sent = if k == 3 { t0 + 7.95 } else { t0 + t.sent };
+            t.arrival = if k == 3 { t0 + 8.01 } else { t.sent + 0.02 };
+            let i = flight.t.partition_point(|&s| s < t.sent);
+            t.state = flight.state(i.min(flight.t.len() - 1));
+            t.interval = 2.0 + 0.5 * (k % 3) as f64;
+        }
+        tx
     }
 
     #[test]

@@ -299,12 +299,12 @@ pub(crate) fn score_station(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::lora::{Bandwidth, Outcome, SpreadingFactor};
 
     /// Frames sent every 2 s, received where `pattern` has a 1.
-    fn frames(pattern: &str) -> Vec<Transmission> {
+    pub(crate) fn frames(pattern: &str) -> Vec<Transmission> {
         pattern
             .chars()
             .enumerate()
