@@ -1203,7 +1203,7 @@ fn held_out_findings(r: &DistanceSweepReport, base: &Scenario) -> String {
         "\n## The same runs on {}\n\nEverything above rests on one block of seeds; the same runs on the next \
          block (`--held-out`) show which verdicts hold beyond it. Where two rates are close, the best fixed rate \
          itself can change between blocks. The best fixed rate at each distance: {}.\n\n{}",
-        seeds_phrase(base).split(" pooled").next().unwrap_or_default(),
+        seeds_range(base),
         best.join("; "),
         adr_verdicts(r)
     )
@@ -1212,10 +1212,21 @@ fn held_out_findings(r: &DistanceSweepReport, base: &Scenario) -> String {
 /// "seed 1", or "seeds 1–8 pooled (…)" when a run repeats.
 fn seeds_phrase(base: &Scenario) -> String {
     match base.run.seeds {
+        0 | 1 => seeds_range(base),
+        n => format!(
+            "{} pooled (every statistic is over all {n} runs of the set, so the best fixed rate is not \
+             one lucky draw of the shadowing)",
+            seeds_range(base)
+        ),
+    }
+}
+
+/// "seed 1", or "seeds 1–8" when a run repeats.
+fn seeds_range(base: &Scenario) -> String {
+    match base.run.seeds {
         0 | 1 => format!("seed {}", base.run.seed),
         n => format!(
-            "seeds {}–{} pooled (every statistic is over all {n} runs of the set, so the best fixed rate is not \
-             one lucky draw of the shadowing)",
+            "seeds {}–{}",
             base.run.seed,
             base.run.seed + u64::from(n) - 1
         ),
