@@ -40,6 +40,18 @@ fn main() -> std::process::ExitCode {
                 Err(w) => fail(&format!("cannot write the output: {w}")),
             };
         }
+        // Without a command clap's message is the whole help; one line names the commands.
+        Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            use clap::CommandFactory;
+            let names: Vec<String> = Cli::command()
+                .get_subcommands()
+                .map(|c| c.get_name().to_string())
+                .collect();
+            return fail(&format!(
+                "a command is needed: {} (see --help)",
+                names.join(", ")
+            ));
+        }
         Err(e) => return fail(&one_line(&e.render().to_string())),
     };
     match commands::run(cli.command) {
