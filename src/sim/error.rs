@@ -20,6 +20,13 @@ pub enum SimError {
     Source(String),
     /// A seed above 2^53 − 1.
     Seed(u64),
+    /// Repeats whose seeds (`first`, `first` + 1, …, `count` of them) run past 2^53 − 1.
+    Seeds {
+        /// The first seed.
+        first: u64,
+        /// How many seeds.
+        count: u32,
+    },
     /// ADR asked for with a start (SF, bandwidth in kHz) that is no EU868 data rate.
     AdrStart(u8, f64),
     /// Error-triggered sending's heartbeat shorter than a drone's duty-cycle interval: it could
@@ -65,6 +72,13 @@ impl fmt::Display for SimError {
                 f,
                 "seed must be 0..{} (2^53 - 1, the largest integer JavaScript holds exactly), got {seed}",
                 SEED.max
+            ),
+            SimError::Seeds { first, count } => write!(
+                f,
+                "seeds {first}..{} run past the largest seed, {} (2^53 - 1); with {count} seeds the seed can be at most {}",
+                first.saturating_add(u64::from(*count) - 1),
+                SEED.max,
+                SEED.max as u64 + 1 - u64::from(*count)
             ),
             SimError::AdrStart(sf, bw) => write!(
                 f,

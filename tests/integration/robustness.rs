@@ -335,6 +335,10 @@ fn a_closed_stdout_and_a_full_disk_are_write_errors() {
 
 #[test]
 fn argument_errors_are_one_line() {
+    refused(
+        &[],
+        "a command is needed: airtime, predict, encode, decode, simulate, sweep, swarm",
+    );
     refused(&["simulate", "--foo"], "unexpected argument '--foo'");
     refused(&["simulate", "--sf"], "--sf");
     refused(
@@ -344,6 +348,33 @@ fn argument_errors_are_one_line() {
     refused(
         &["simulate", "--synthetic", "1", "--seed", "9007199254740992"],
         "seed must be 0..9007199254740991",
+    );
+    // Repeats run seed, seed + 1, …: every one of them must be a seed.
+    refused(
+        &[
+            "simulate",
+            "--synthetic",
+            "1",
+            "--seed",
+            "9007199254740990",
+            "--seeds",
+            "3",
+        ],
+        "seeds 9007199254740990..9007199254740992 run past the largest seed",
+    );
+    refused(
+        &[
+            "sweep",
+            "--distances",
+            "1000",
+            "--seeds",
+            "4",
+            "--seed",
+            "9007199254740986",
+            "--held-out",
+            "--markdown",
+        ],
+        "--held-out runs the next 4 seeds, 9007199254740990..9007199254740993",
     );
 }
 

@@ -765,24 +765,44 @@ fn sweep_distances(
     distances: &[f64],
 ) -> Result<String, ApiError> {
     let base = trade_off_base(a, model, prediction);
+    let next = if a.held_out && a.markdown {
+        Some(held_out_block(&base)?)
+    } else {
+        None
+    };
     let mut sim = Simulator::new();
     let r = api::sweep_distances(&mut sim, &base, distances)?;
     if a.out.json {
         return Ok(json(&r));
     }
     if a.markdown {
-        let held_out = if a.held_out {
-            let mut next = base.clone();
-            next.run.seed = base.run.seed + u64::from(base.run.seeds.max(1));
-            let r = api::sweep_distances(&mut sim, &next, distances)?;
-            Some((r, next))
-        } else {
-            None
+        let held_out = match next {
+            Some(next) => Some((api::sweep_distances(&mut sim, &next, distances)?, next)),
+            None => None,
         };
         let held_out = held_out.as_ref().map(|(r, b)| (r, b));
         return Ok(crate::reproduction::distances_markdown(&r, &base, held_out));
     }
     Ok(crate::reproduction::distances_table(&r))
+}
+
+/// `--held-out`'s runs: the next block of as many seeds. Refused before anything runs when that
+/// block passes the seed limit, naming the seeds the user did not type.
+fn held_out_block(base: &Scenario) -> Result<Scenario, ApiError> {
+    let count = u64::from(base.run.seeds.max(1));
+    let first = base.run.seed.saturating_add(count);
+    if first.saturating_add(count - 1) <= loratrack::MAX_SEED {
+        let mut next = base.clone();
+        next.run.seed = first;
+        return Ok(next);
+    }
+    Err(ApiError::Invalid(format!(
+        "--held-out runs the next {count} seeds, {first}..{}, past the largest seed, {}; \
+         with --held-out the seed can be at most {}",
+        first.saturating_add(count - 1),
+        loratrack::MAX_SEED,
+        loratrack::MAX_SEED + 1 - 2 * count
+    )))
 }
 
 fn sweep_mission(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError> {

@@ -570,6 +570,13 @@ impl Scenario {
             .check(self.run.seed as f64)
             .map_err(|_| SimError::Seed(self.run.seed))?;
         opt::SEEDS.check(f64::from(self.run.seeds))?;
+        // Repeats run seed, seed + 1, …: the last must be a seed too.
+        if self.run.seed + u64::from(self.run.seeds.max(1)) - 1 > MAX_SEED {
+            return Err(SimError::Seeds {
+                first: self.run.seed,
+                count: self.run.seeds,
+            });
+        }
         let radio = LoraParams::from_settings(r.sf, r.bw, r.cr)?;
         let adr = AdrParams {
             mode: n.adr,
