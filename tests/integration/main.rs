@@ -8,6 +8,7 @@
 mod adr;
 mod architecture;
 mod codec;
+mod docs;
 mod filter;
 mod lora;
 mod mission;
