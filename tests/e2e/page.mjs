@@ -86,6 +86,29 @@ export async function axe(page) {
   return result.violations.flatMap((v) => v.nodes.map((n) => `${v.impact} ${v.id}: ${n.target.join(' ')}`));
 }
 
+/** Every chart's axis label (Plot marks them → and ↑) that overlaps other text of its chart, as
+ * "chart id: label over text" lines: at the page's 13 px and presentation mode's 18 px, Plot's
+ * default margins once put them on the tick labels. */
+export function axisLabelOverlaps(page) {
+  return page.evaluate(() => {
+    const out = new Set();
+    for (const svg of document.querySelectorAll('.chart svg')) {
+      const texts = [...svg.querySelectorAll('text')].filter((t) => t.textContent.trim() && t.getBoundingClientRect().height > 0);
+      for (const label of texts.filter((t) => /[→↑]/.test(t.textContent))) {
+        const a = label.getBoundingClientRect();
+        for (const other of texts) {
+          const b = other.getBoundingClientRect();
+          // A pixel of slack: glyph boxes of neighbouring lines may touch.
+          if (other !== label && a.left < b.right - 1 && b.left < a.right - 1 && a.top < b.bottom - 1 && b.top < a.bottom - 1) {
+            out.add(`${svg.closest('[id]')?.id}: "${label.textContent}" over "${other.textContent}"`);
+          }
+        }
+      }
+    }
+    return [...out];
+  });
+}
+
 /** Waits until no simulation or drawing is under way (`<body data-busy>` gone). */
 export const idle = (page) => page.waitForFunction(() => !('busy' in document.body.dataset), null, { timeout: 30_000 });
 

@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { nativeJson, scratchDir } from './harness.mjs';
-import { axe, cell, cellNumber, idle, lesson, MODELS, number, open, playground, shownP75, tableHtml, usePlayground, waitForResults } from './page.mjs';
+import { axe, axisLabelOverlaps, cell, cellNumber, idle, lesson, MODELS, number, open, playground, shownP75, tableHtml, usePlayground, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -185,8 +185,8 @@ test('a large CSV is read with its own progress, then simulated', async () => {
   assert.deepEqual(problems, []);
 });
 
-test('every screen: no sideways scrolling from a phone to a projector, and chart text stays legible', async () => {
-  for (const [width, height, least] of [[360, 740, 11], [390, 844, 11], [768, 1024, 11], [1024, 768, 12], [1280, 800, 12]]) {
+test('every screen: no sideways scrolling from a phone to a projector, and chart text stays legible and clear of other text', async () => {
+  for (const [width, height, least] of [[360, 740, 11], [390, 844, 11], [768, 1024, 11], [1024, 768, 12], [1280, 800, 12], [1920, 1080, 12]]) {
     const { page, problems } = await open('', { width, height });
     await idle(page);
     const m = await page.evaluate(() => {
@@ -203,6 +203,7 @@ test('every screen: no sideways scrolling from a phone to a projector, and chart
     assert.ok(m.texts > 20, `${width}: chart text found`);
     assert.ok(m.smallest >= least, `${width}x${height}: chart text down to ${m.smallest.toFixed(1)} px`);
     console.log(`# ${width}x${height}: document ${m.scrollWidth} px wide, chart text >= ${m.smallest.toFixed(1)} px`);
+    assert.deepEqual(await axisLabelOverlaps(page), [], `${width}x${height}: axis labels on other text`);
     // Every control can be reached: the last one is on the page, within its width.
     const last = await page.getByRole('button', { name: 'New seed' }).boundingBox();
     assert.ok(last.x >= 0 && last.x + last.width <= width, `${width}: New seed at ${last.x}`);
@@ -419,6 +420,7 @@ test('presentation mode: large type and charts at 1024x768, one panel per screen
   assert.ok(m.width <= 1024, `document ${m.width} px wide`);
   assert.equal(m.advanced, false, 'the advanced settings are out of the way');
   console.log(`# presentation 1024x768: body ${m.body} px, chart text >= ${m.chart.toFixed(1)} px`);
+  assert.deepEqual(await axisLabelOverlaps(page), [], 'presentation: axis labels on other text');
   // Each panel fills the screen; the arrow keys step from one to the next.
   const first = await page.evaluate(() => [...document.querySelectorAll('.panel')].filter((p) => p.offsetParent !== null).map((p) => p.getBoundingClientRect().height));
   assert.ok(first.every((h) => h >= 768 - 2.5 * 20 - 1), `panel heights ${first.join(', ')}`);

@@ -1,6 +1,6 @@
 // Paper Table II (time on air and duty-cycle interval per SF, bandwidth and payload) and time on
 // air versus payload size, computed by the Rust core for the current overhead and coding rate.
-import { chartStyle } from './colors';
+import { chartFrame } from './colors';
 import * as Plot from '@observablehq/plot';
 import { PLANS, timeOnAir, type AirtimeParams, type Region } from '../loratrack';
 
@@ -65,9 +65,8 @@ export function airtimeVsPayloadChart(opts: { overhead: number; cr: number; sf: 
   );
   const ours = PAYLOADS.map((payload) => ({ payload, ms: timeOnAir({ sf: opts.sf, bw: opts.bw, payload, overhead: opts.overhead, cr: opts.cr }).timeOnAir * 1e3 }));
   return Plot.plot({
-    style: chartStyle(),
+    ...chartFrame(300),
     width: opts.width,
-    height: 300,
     marginLeft: 55,
     x: { label: 'application payload (bytes)' },
     y: { label: 'time on air (ms)', type: 'log', grid: true },

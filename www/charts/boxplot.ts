@@ -3,7 +3,7 @@
 import * as Plot from '@observablehq/plot';
 import type { Boxplot, ModelName } from '../loratrack';
 import { MODEL_LABELS } from '../loratrack';
-import { MODEL_COLORS, chartStyle, chartFont } from './colors';
+import { MODEL_COLORS, chartFrame, chartFont } from './colors';
 
 export interface BoxRow {
   group: string;
@@ -19,9 +19,8 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
   const groups = [...new Set(rows.map((r) => r.group))];
   const empty = groups.filter((g) => !data.some((d) => d.group === g)).map((group) => ({ group }));
   return Plot.plot({
-    style: chartStyle(),
+    ...chartFrame(180),
     width: opts.width,
-    height: 180,
     marginLeft: 50,
     fx: { label: opts.groupLabel, domain: groups },
     x: { axis: null, domain: models, paddingInner: 0.25 },

@@ -17,3 +17,21 @@ export function chartFont(): number {
 export function chartStyle(): Partial<CSSStyleDeclaration> {
   return { fontSize: `${chartFont()}px`, overflow: 'visible' };
 }
+
+/** Plot's default margins above and below the frame, px: sized for its own 10 px text. */
+const PLOT_MARGIN_TOP = 20;
+const PLOT_MARGIN_BOTTOM = 30;
+
+/**
+ * Every chart's style, height and vertical margins at [`chartFont`]: below the frame a row of
+ * tick labels and, under it, the x axis's label; above it the y axis's label clear of the top
+ * tick label. Plot's default margins, made for 10 px, put both axis labels on tick labels at 13
+ * and 18 px (`tests/e2e` checks that no axis label overlaps other text). The margins grow the
+ * chart, not shrink its plot area: `height` is what the frame and Plot's default margins take.
+ */
+export function chartFrame(height: number): { style: Partial<CSSStyleDeclaration>; height: number; marginTop: number; marginBottom: number } {
+  const font = chartFont();
+  const marginTop = font + 14;
+  const marginBottom = 2 * font + 14;
+  return { style: chartStyle(), height: height + marginTop - PLOT_MARGIN_TOP + marginBottom - PLOT_MARGIN_BOTTOM, marginTop, marginBottom };
+}

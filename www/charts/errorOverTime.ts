@@ -2,7 +2,7 @@
 // (dots on the axis) and lost packets (crosses), over the station's own 95 % bound (dashed band).
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type SimReport } from '../loratrack';
-import { MODEL_COLORS, chartStyle, chartFont } from './colors';
+import { MODEL_COLORS, chartFrame, chartFont } from './colors';
 
 export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElement | HTMLElement {
   const models = report.series?.models ?? [];
@@ -28,9 +28,8 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
   // The station's own 95 % bound on its error, as a faint band under each model's line.
   const bounds = models.flatMap((m) => m.t.map((t, i) => ({ t, b: m.bound95[i], model: MODEL_LABELS[m.model] })));
   return Plot.plot({
-    style: chartStyle(),
+    ...chartFrame(180),
     width,
-    height: 180,
     marginLeft: 50,
     x: { label: 'time (s)' },
     y: { label: '3D error (m)', grid: true, zero: true },

@@ -2,7 +2,7 @@
 // shadowing band, each SF's sensitivity as a line, each gateway's distance from the flight's start
 // marked; and each SF's
 // delivery ratio against distance. The numbers come from the core's linkBudget().
-import { chartStyle, chartFont } from './colors';
+import { chartFrame, chartFont } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { LinkBudgetReport } from '../loratrack';
 
@@ -20,9 +20,8 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
   const sens = shown.map((s) => ({ sf: name(s), dbm: s.sensitivityDbm, range: km(s.rangeM) }));
   const color = { domain: sens.map((s) => s.sf), range: shown.map((s) => SF_COLORS[s.sf - 7]), legend: true };
   const power = Plot.plot({
-    style: chartStyle(),
+    ...chartFrame(240),
     width: opts.width,
-    height: 240,
     marginLeft: 50,
     x: { label: 'distance (km)' },
     y: { label: 'received power (dBm)', grid: true },
@@ -37,9 +36,8 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
   });
   const curves = shown.flatMap((s) => s.delivery.map((p, i) => ({ d: km(r.distances[i]), p: 100 * p, sf: name(s) })));
   const delivery = Plot.plot({
-    style: chartStyle(),
+    ...chartFrame(200),
     width: opts.width,
-    height: 200,
     marginLeft: 50,
     x: { label: 'distance (km)' },
     y: { label: 'packets delivered (%)', domain: [0, 100], grid: true },

@@ -3,7 +3,7 @@
 // often: at short range the error grows with SF, beyond SF7's range a higher SF is what arrives.
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type ModelName } from '../loratrack';
-import { chartStyle, chartFont, MODEL_COLORS } from './colors';
+import { chartFrame, chartFont, MODEL_COLORS } from './colors';
 import { trackedPercent, untrackedWorthSaying } from '../format';
 
 export interface SfRow {
@@ -33,9 +33,8 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
   const models = [...new Set(data.map((d) => d.label))];
   const silent = [...new Set(rows.filter((r) => r.p75 === null).map((r) => r.sf))];
   return Plot.plot({
-    style: chartStyle(),
+    ...chartFrame(220),
     width: opts.width,
-    height: 220,
     marginLeft: 56,
     x: { label: `spreading factor (${opts.bw} kHz, gateway at ${(opts.distance / 1000).toFixed(1)} km)`, domain: [6.5, 12.5], ticks: [7, 8, 9, 10, 11, 12], tickFormat: (d: number) => `SF${d}` },
     y: { label: 'p75 3D error (m, log scale)', type: 'log', grid: true },

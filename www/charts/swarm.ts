@@ -1,6 +1,6 @@
 // Swarms sharing one gateway: the measured collision rate as the swarm grows, beside the pure
 // ALOHA formula; and each drone's tracking error (p75) in the largest swarm.
-import { chartStyle, chartFont } from './colors';
+import { chartFrame, chartFont } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
 import { trackedPercent, untrackedWorthSaying } from '../format';
@@ -15,9 +15,8 @@ function untracked(r: SwarmReport): string {
 export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   const rates = swarms.map((r) => ({ n: r.config.drones, measured: 100 * r.collisionRate, theory: 100 * r.collisionRateTheory }));
   const collisions = Plot.plot({
-    style: chartStyle(),
+    ...chartFrame(220),
     width,
-    height: 220,
     marginLeft: 50,
     x: { label: 'drones sharing the gateway', type: 'log' },
     y: { label: 'packets collided (%)', grid: true, zero: true },
@@ -30,9 +29,8 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   const largest = swarms[swarms.length - 1];
   const drones = largest.drones.filter((d) => d.error3d.p75 !== null).map((d) => ({ p75: d.error3d.p75 as number, sf: `SF${d.sf}` }));
   const errors = Plot.plot({
-    style: chartStyle(),
+    ...chartFrame(140),
     width,
-    height: 140,
     marginLeft: 50,
     x: { label: `p75 error of each of ${largest.config.drones} drones (m, log scale)`, type: 'log', tickFormat: (d: number) => (Math.abs(Math.log10(d) - Math.round(Math.log10(d))) < 1e-9 ? String(d) : '') },
     y: { axis: null },
