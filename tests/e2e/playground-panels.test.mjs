@@ -58,6 +58,17 @@ test('the p75-against-SF chart gives the p75 at each SF as the CLI does, one lin
   assert.deepEqual(problems, []);
 });
 
+/** The swarm panel's strip of each drone's p75: the numbers on its axis and its legend's SFs. */
+const swarmStrip = async (page) => {
+  await page.waitForSelector('#chart-swarm figure svg');
+  return page.evaluate(() => {
+    const figure = [...document.querySelectorAll('#chart-swarm figure')].at(-1);
+    const numbers = [...figure.querySelectorAll(':scope > svg text')].map((t) => t.textContent).filter((t) => /^[\d.,]+$/.test(t));
+    const legend = [...figure.querySelectorAll('span')].map((s) => s.textContent.trim()).filter((t) => /^SF\d+$/.test(t));
+    return { numbers, legend };
+  });
+};
+
 test('the swarm panel runs growing swarms and sets the collision rate against ALOHA', async () => {
   const { page, problems } = await open();
   await page.getByLabel('Drones', { exact: true }).selectOption('20');
@@ -117,6 +128,9 @@ test('the swarm panel takes the single drone settings, ADR included, and reports
   const note = await page.locator('#chart-swarm .note').textContent();
   assert.match(note, /all on SF9/);
   assert.match(note, /\d+ ADR downlinks sent, \d+ dropped; radio [\d.]+ mC per uplink/);
+  // One SF, p75s within a decade: its axis still has numbers (powers of ten alone left none).
+  const { numbers } = await swarmStrip(page);
+  assert.ok(numbers.length >= 2, `p75 axis numbers: ${numbers}`);
   assert.deepEqual(problems, []);
 });
 
@@ -159,6 +173,11 @@ test('a slotted swarm collides with none of its own drones and says how many dro
   await page.waitForFunction(() => /Packets collided/.test(document.querySelector('#swarm-status')?.textContent ?? ''), null, { timeout: 60_000 });
   const rates = [...(await page.locator('#swarm-status').textContent()).matchAll(/(\d+) drones ([\d.]+) %/g)].map((m) => Number(m[2]));
   assert.deepEqual(rates, rates.map(() => 0), 'no slotted drone collides');
+  // The strip's legend lists the SFs in order (sorting their names put SF10 first).
+  const { legend } = await swarmStrip(page);
+  const order = legend.map((t) => Number(t.slice(2)));
+  assert.ok(order.length > 1, `legend ${legend}`);
+  assert.deepEqual(order, [...order].sort((a, b) => a - b), `legend ${legend}`);
   const notes = await page.locator('#chart-swarm .note').allTextContents();
   assert.match(notes.join(' '), /Slotted: longest frame [\d.]+ s/);
   assert.match(notes.join(' '), /Largest swarm one gateway serves at these settings.*: \d+ drones at ≤ 1 % collisions and \d+ at ≤ 10 % with ALOHA \(by its formula\), \d+ slotted with none/);

@@ -1,6 +1,6 @@
 // Paper Table II (time on air and duty-cycle interval per SF, bandwidth and payload) and time on
 // air versus payload size, computed by the Rust core for the current overhead and coding rate.
-import { chartFrame } from './colors';
+import { chartFrame, SF_COLORS } from './colors';
 import * as Plot from '@observablehq/plot';
 import { PLANS, timeOnAir, type AirtimeParams, type Region } from '../loratrack';
 
@@ -70,7 +70,7 @@ export function airtimeVsPayloadChart(opts: { overhead: number; cr: number; sf: 
     marginLeft: 55,
     x: { label: 'application payload (bytes)' },
     y: { label: 'time on air (ms)', type: 'log', grid: true },
-    color: { legend: true, scheme: 'viridis', domain: SFS.map((sf) => `SF${sf}`) },
+    color: { legend: true, domain: SFS.map((sf) => `SF${sf}`), range: SFS.map((sf) => SF_COLORS[sf - 7]) },
     marks: [
       Plot.line(data, { x: 'payload', y: 'ms', stroke: 'sf', curve: 'step-after' }),
       Plot.dot(ours, { x: 'payload', y: 'ms', r: 4, fill: 'black', title: (d) => `${d.payload} B at SF${opts.sf}: ${d.ms.toFixed(1)} ms` }),

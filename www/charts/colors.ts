@@ -3,6 +3,9 @@ import type { ModelName } from '../loratrack';
 /** One colour per model everywhere on the page (colour-blind-safe Tableau hues). */
 export const MODEL_COLORS: Record<ModelName, string> = { dr: '#e15759', 'ctra-plus': '#4e79a7', '3d-ctra': '#59a14f', imm: '#b07aa1', mission: '#f28e2b' };
 export const TRUTH_COLOR = '#222222';
+/** One colour per spreading factor, SF7 first, in every chart that tells SFs apart (link budget,
+ * time on air, the swarm's drones): the same SF reads the same from chart to chart. */
+export const SF_COLORS = ['#4e79a7', '#59a14f', '#9c755f', '#f28e2b', '#e15759', '#76b7b2'];
 /** The mission's flight plan in the 3D view (dashed). */
 export const PLAN_COLOR = '#9c755f';
 

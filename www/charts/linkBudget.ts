@@ -2,11 +2,10 @@
 // shadowing band, each SF's sensitivity as a line, each gateway's distance from the flight's start
 // marked; and each SF's
 // delivery ratio against distance. The numbers come from the core's linkBudget().
-import { chartFrame, chartFont } from './colors';
+import { chartFrame, chartFont, SF_COLORS } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { LinkBudgetReport } from '../loratrack';
 
-const SF_COLORS = ['#4e79a7', '#59a14f', '#9c755f', '#f28e2b', '#e15759', '#76b7b2'];
 
 /** The charts, in the plan's words: only the SFs the plan allows at this bandwidth, each named
  * with its data rate (`SF9 (DR1)`); the note says which the plan lacks. */

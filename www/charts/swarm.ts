@@ -1,6 +1,6 @@
 // Swarms sharing one gateway: the measured collision rate as the swarm grows, beside the pure
 // ALOHA formula; and each drone's tracking error (p75) in the largest swarm.
-import { chartFrame, chartFont } from './colors';
+import { chartFrame, chartFont, SF_COLORS } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
 import { trackedPercent, untrackedWorthSaying } from '../format';
@@ -28,13 +28,18 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   });
   const largest = swarms[swarms.length - 1];
   const drones = largest.drones.filter((d) => d.error3d.p75 !== null).map((d) => ({ p75: d.error3d.p75 as number, sf: `SF${d.sf}` }));
+  // SF7 first (not SF10, as sorting the names put it), in the SFs' page-wide colours.
+  const sfs = [...new Set(largest.drones.map((d) => d.sf))].sort((a, b) => a - b);
   const errors = Plot.plot({
     ...chartFrame(140),
     width,
     marginLeft: 50,
-    x: { label: `p75 error of each of ${largest.config.drones} drones (m, log scale)`, type: 'log', tickFormat: (d: number) => (Math.abs(Math.log10(d) - Math.round(Math.log10(d))) < 1e-9 ? String(d) : '') },
+    // d3's log ticks, labelled as many as fit and as plain numbers ("0.5", not SI's "500m", which
+    // reads as metres): labelling only the powers of ten left a swarm whose p75s lie within one
+    // decade (all on SF7: 2–7 m) without a single number on its axis.
+    x: { label: `p75 error of each of ${largest.config.drones} drones (m, log scale)`, type: 'log', tickFormat: '~g' },
     y: { axis: null },
-    color: { legend: true },
+    color: { legend: true, domain: sfs.map((sf) => `SF${sf}`), range: sfs.map((sf) => SF_COLORS[sf - 7]) },
     marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: 'sf', r: 3, title: (d: { p75: number; sf: string }) => `${d.sf}: p75 ${d.p75.toFixed(2)} m` }))],
   });
   const note = document.createElement('p');
