@@ -16,8 +16,8 @@ export function chartFont(): number {
   return document.body.classList.contains('present') ? 18 : 13;
 }
 
-/** Plot's style for every chart, at [`chartFont`]. */
-export function chartStyle(): Partial<CSSStyleDeclaration> {
+/** Plot's style for every chart, at [`chartFont`] ([`chartFrame`] gives it with the margins). */
+function chartStyle(): Partial<CSSStyleDeclaration> {
   return { fontSize: `${chartFont()}px`, overflow: 'visible' };
 }
 
