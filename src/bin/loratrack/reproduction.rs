@@ -250,27 +250,28 @@ fn imm_verdict(r: &SweepReport) -> String {
         out += &if over.is_empty() {
             "It stays within 2 % of it everywhere.\n".to_string()
         } else {
-            format!(
-                "**More than 2 % worse** at {}: it never beats the best of its own members.\n",
-                over.join(", ")
-            )
+            format!("**More than 2 % worse** at {}.\n", over.join(", "))
         };
     }
     out + IMM_WHY
 }
 
 const IMM_WHY: &str = "
-Why it does not get closer: every member restarts from the same packet, so the IMM's only evidence is
-how well each member predicted the next packet. Between packets 2–4 s apart the members' predictions
-differ by less than a metre, within the packet's own noise, so the probabilities stay near their prior
-(DR keeps a fifth to a half) and the mixture sits between DR and the richer models. Tried and measured by
-hand on 2026-11-25 (bounded, SF7 1/3 km, SF8 / 250 kHz and SF9 / 125 kHz 1 km, no overhead): staying probabilities of 0.97 instead of 0.9 move
-the ratios by at most 0.01; a sharper likelihood (one fix's noise, or half of it) makes them worse; the
-textbook likelihood against each member's predicted position covariance (which for the bounded station
-includes what its model leaves out) worse still (SF7 1 km 1.06×, SF9 1 km 1.21× where DR is best).
-What IMM buys is robustness: it stays within 10 % of the best model, whichever that is (the richer
-models at SF7 and SF8; DR at SF9 / 125 kHz, 1 km, where the richer models' 12-byte packets come less
-often: there IMM's p75 was 1.03× DR's, CTRA+'s 1.24×), and its 95 % region is the most cautious.
+Every member restarts from the same packet, so the IMM's evidence is the packet itself, in two parts
+(`src/sim/station/imm.rs`): how well each member forecast it from the packet before (the interval just
+flown), and the packet's own acceleration, turn rate and tilt rate, which a member without them reads as
+the drone filter's noise around zero and a member with them as drawn from the manoeuvres the flights
+fly (`src/sim/station/manoeuvre_evidence.rs`). The forecast alone learns of a manoeuvre one packet after
+it began, and between packets 2–4 s apart the members' forecasts differ by less than the packet's noise:
+the probabilities stayed near their prior (DR kept a fifth to a half of the weight), and the IMM's p75
+was 1.03–1.08× its best member's with bounded prediction and 1.04–1.09× with the paper's. With the
+packet's manoeuvre it beats every member alone on this grid. Tried before and not kept (bounded, SF7 1/3
+km, SF8): staying probabilities of 0.97 (at most 0.01 better), a forecast likelihood on one fix's noise
+or half of it, the textbook one against each member's predicted covariance (SF7 1 km 1.06×, SF9 1 km
+1.21×), and the forecast scored on position alone, on velocity alone, or against the path the two
+packets imply (cubic Hermite) at every step between them (at most 0.01–0.03 better). Where packets are
+scarce (SF10–SF12 / 125 kHz: a dozen or fewer per flight) it is still 1.1–1.3× DR's p75
+(docs/mission.md): too few packets to learn that a straight line wins over half-minute gaps.
 ";
 
 /// The real flight's section: each model's p75 and p95 per setting, and the worst p95 of a
