@@ -53,6 +53,12 @@ test('the p75-against-SF chart gives the p75 at each SF as the CLI does, one lin
       assert.equal(Number(/p75 ([\d.]+) m/.exec(shown)[1]).toFixed(2), r.error3d.p75.toFixed(2), `${label} SF${sf}`);
     }
   }
+  // Its log axis has a number below the lowest line's decade's top: SF7's p75 of about 2 m can
+  // be read off it (Plot's default labelled 10, 20 and 100 only).
+  const lowest = Math.min(...titles.map((t) => Number(/p75 ([\d.]+) m/.exec(t)[1])));
+  const yLabels = await page.evaluate(() => [...document.querySelectorAll('#chart-sf svg g[text-anchor="end"] text')].map((t) => t.textContent).filter((t) => /^[\d.,]+$/.test(t)).map((t) => Number(t.replace(/,/g, ''))));
+  assert.ok(lowest < 10 && yLabels.some((y) => y <= lowest * 2.5), `lowest p75 ${lowest}, labels ${yLabels}`);
+  assert.ok(yLabels.length >= 4, `labels ${yLabels}`);
   const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: 'Download the error versus spreading factor chart as PNG' }).click()]);
   assert.ok(readFileSync(await download.path()).readUInt32BE(16) >= 1600);
   assert.deepEqual(problems, []);

@@ -5,6 +5,7 @@ import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type ModelName } from '../loratrack';
 import { chartFrame, chartFont, MODEL_COLORS } from './colors';
 import { trackedPercent, untrackedWorthSaying } from '../format';
+import { logAxis, plainNumber } from './logAxis';
 
 export interface SfRow {
   sf: number;
@@ -37,7 +38,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
     width: opts.width,
     marginLeft: 56,
     x: { label: `spreading factor (${opts.bw} kHz, gateway at ${(opts.distance / 1000).toFixed(1)} km)`, domain: [6.5, 12.5], ticks: [7, 8, 9, 10, 11, 12], tickFormat: (d: number) => `SF${d}` },
-    y: { label: 'p75 3D error (m, log scale)', type: 'log', grid: true },
+    y: { label: 'p75 3D error (m, log scale)', type: 'log', grid: true, ...logAxis(data.map((d) => d.p75!)), tickFormat: plainNumber },
     color: { domain: models, range: models.map((m) => MODEL_COLORS[data.find((d) => d.label === m)!.model]), legend: true },
     marks: [
       Plot.line(data, { x: 'sf', y: 'p75', stroke: 'label', z: 'label' }),
