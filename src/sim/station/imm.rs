@@ -267,22 +267,8 @@ impl Tracker for Imm {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::filter::{PAPER_Q, PAPER_R_DIAGONAL};
-    use crate::sim::station::{Bounds, Prediction};
-
-    fn setup() -> StationSetup {
-        StationSetup {
-            prediction: Prediction::Paper,
-            bounds: Bounds::default(),
-            step: 0.1,
-            eta: 0.9,
-            q: PAPER_Q,
-            r_diagonal: PAPER_R_DIAGONAL,
-            interval: 2.0,
-            error_triggered: false,
-            drone_covariance: None,
-        }
-    }
+    use crate::sim::station::tests::paper_setup as setup;
+    use crate::sim::station::Prediction;
 
     /// Packets of a drone on a steady turn, 2 s apart.
     fn turn(k: usize) -> [f64; 9] {

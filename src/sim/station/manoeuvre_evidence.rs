@@ -71,19 +71,14 @@ impl ManoeuvreEvidence {
 mod tests {
     use super::*;
     use crate::filter::{PAPER_Q, PAPER_R_DIAGONAL};
-    use crate::sim::station::{Bounds, DroneCovariances, Prediction};
+    use crate::sim::station::tests::paper_setup;
+    use crate::sim::station::{DroneCovariances, Prediction};
 
     fn evidence() -> ManoeuvreEvidence {
         ManoeuvreEvidence::new(&StationSetup {
             prediction: Prediction::Bounded,
-            bounds: Bounds::default(),
-            step: 0.1,
-            eta: 0.9,
-            q: PAPER_Q,
-            r_diagonal: PAPER_R_DIAGONAL,
-            interval: 2.0,
-            error_triggered: false,
             drone_covariance: Some(DroneCovariances::new(0.1, PAPER_Q, &PAPER_R_DIAGONAL)),
+            ..paper_setup()
         })
     }
 

@@ -201,19 +201,11 @@ impl Tracker for MissionStation {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::filter::PAPER_R_DIAGONAL;
 
     fn setup() -> StationSetup {
         StationSetup {
             prediction: Prediction::Bounded,
-            bounds: Default::default(),
-            step: 0.1,
-            eta: 0.9,
-            q: 0.1,
-            r_diagonal: PAPER_R_DIAGONAL,
-            interval: 2.0,
-            error_triggered: false,
-            drone_covariance: None,
+            ..crate::sim::station::tests::paper_setup()
         }
     }
 

@@ -305,6 +305,22 @@ pub(crate) mod tests {
     use super::*;
     use crate::lora::{Bandwidth, Outcome, SpreadingFactor};
 
+    /// The paper's station at T = 0.1 s, η 0.9, Table I noise and a 2 s interval, under a
+    /// periodic drone.
+    pub(crate) fn paper_setup() -> StationSetup {
+        StationSetup {
+            prediction: Prediction::Paper,
+            bounds: Bounds::default(),
+            step: 0.1,
+            eta: 0.9,
+            q: crate::filter::PAPER_Q,
+            r_diagonal: crate::filter::PAPER_R_DIAGONAL,
+            interval: 2.0,
+            error_triggered: false,
+            drone_covariance: None,
+        }
+    }
+
     /// Frames sent every 2 s, received where `pattern` has a 1.
     pub(crate) fn frames(pattern: &str) -> Vec<Transmission> {
         pattern
