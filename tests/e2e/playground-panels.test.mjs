@@ -384,6 +384,19 @@ test('lesson "Which motion model when": over the whole set DR is clearly worst, 
   assert.deepEqual(problems, []);
 });
 
+test('lesson "Let the packets choose the model": at SF8 the IMM has the lowest p75 and p95, DR about half its weight', async () => {
+  const { page, problems } = await lesson('Let the packets choose the model');
+  const others = ['dr', 'ctra-plus', '3d-ctra'];
+  for (const field of ['p75', 'p95']) {
+    const imm = await cellNumber(page, 'imm', field);
+    for (const m of others) assert.ok(imm < (await cellNumber(page, m, field)), `${field}: IMM ${imm} against ${m}`);
+  }
+  const tooltip = await page.locator('tr[data-model="imm"] td[data-field="coverage"]').getAttribute('title');
+  const dr = Number(/DR ([\d.]+)/.exec(tooltip)[1]);
+  assert.ok(dr > 0.4 && dr < 0.6, tooltip);
+  assert.deepEqual(problems, []);
+});
+
 test('lesson "Losing packets at range": against the paper station pinned, the bounded one lowers mean and p95 with the same packets', async () => {
   const { page, problems } = await lesson('Losing packets at range');
   await page.waitForSelector('[data-delta="mean"]');
