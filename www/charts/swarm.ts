@@ -4,6 +4,7 @@ import { chartFrame, chartFont, SF_COLORS } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
 import { trackedPercent, untrackedWorthSaying } from '../format';
+import { logAxis, plainNumber } from './logAxis';
 
 /** " (errors over 88 % of the flight time: ...)": said when a swarm's stations spend enough of it
  * waiting for an episode's first packet ({@link untrackedWorthSaying}). */
@@ -18,7 +19,7 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
     ...chartFrame(220),
     width,
     marginLeft: 50,
-    x: { label: 'drones sharing the gateway', type: 'log' },
+    x: { label: 'drones sharing the gateway', type: 'log', ...logAxis(rates.map((r) => r.n)), tickFormat: plainNumber },
     y: { label: 'packets collided (%)', grid: true, zero: true },
     marks: [
       Plot.lineY(rates, { x: 'n', y: 'theory', stroke: '#888', strokeDasharray: '4,3' }),
@@ -34,10 +35,9 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
     ...chartFrame(140),
     width,
     marginLeft: 50,
-    // d3's log ticks, labelled as many as fit and as plain numbers ("0.5", not SI's "500m", which
-    // reads as metres): labelling only the powers of ten left a swarm whose p75s lie within one
-    // decade (all on SF7: 2–7 m) without a single number on its axis.
-    x: { label: `p75 error of each of ${largest.config.drones} drones (m, log scale)`, type: 'log', tickFormat: '~g' },
+    // Labelling only the powers of ten left a swarm whose p75s lie within one decade (all on SF7:
+    // 2–7 m) without a single number on its axis.
+    x: { label: `p75 error of each of ${largest.config.drones} drones (m, log scale)`, type: 'log', ...logAxis(drones.map((d) => d.p75)), tickFormat: plainNumber },
     y: { axis: null },
     color: { legend: true, domain: sfs.map((sf) => `SF${sf}`), range: sfs.map((sf) => SF_COLORS[sf - 7]) },
     marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: 'sf', r: 3, title: (d: { p75: number; sf: string }) => `${d.sf}: p75 ${d.p75.toFixed(2)} m` }))],
