@@ -63,7 +63,7 @@ fn member<const N: usize, M: MotionModel<N> + Copy + Send + Sync + 'static>(
 /// drone is flying as the packet leaves, which the coming interval continues. Without M the
 /// probabilities learnt a manoeuvre one packet after it began and stayed near their prior (DR
 /// kept a fifth to a half), and the IMM's p75 was 1.03–1.08× its best member's on the paper's
-/// grid; with it 0.93–0.99× (docs/paper-reproduction.md). The first packet, with nothing to
+/// grid; with it 0.91–0.98× (docs/paper-reproduction.md). The first packet, with nothing to
 /// forecast it from, is scored by M alone.
 pub struct Imm {
     members: Vec<Box<dyn ImmMember>>,

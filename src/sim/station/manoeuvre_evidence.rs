@@ -1,5 +1,5 @@
 //! What a packet's own manoeuvre fields say about which IMM member fits the drone now
-//! (reference §4, "The IMM station").
+//! (reference §4, `imm`).
 //!
 //! The IMM's forecast likelihood scores each member by how well it predicted this packet from
 //! the last one: evidence about the interval just flown, one packet late at the start of every
@@ -7,7 +7,7 @@
 //! tilt rate *now*. A member without a field (DR has none of them, CTRA+ no tilt rate) says the
 //! drone is not doing it, so the field is the drone filter's estimation noise around zero; a
 //! member with it says the field is drawn from the manoeuvres the drone flies. This is the usual
-//! mode-conditioned measurement likelihood of an IMM (Bar-Shalom, Li & Kirubarajan 2001, §11.6.6)
+//! mode-conditioned measurement likelihood of an IMM (Bar-Shalom, Li & Kirubarajan 2001, §11.6)
 //! applied to the fields on which the modes differ.
 
 use super::StationSetup;
@@ -26,8 +26,8 @@ pub const MANOEUVRE_SPREAD: [f64; 3] = [0.92, 0.27, 0.12];
 /// The manoeuvre fields a, ω, ψ of the 9-component state, in [`MANOEUVRE_SPREAD`]'s order.
 const FIELDS: [usize; 3] = [A, OMEGA, PSI];
 
-/// The variances of one packet's manoeuvre fields under "not manoeuvring" and under
-/// "manoeuvring", each field's.
+/// How uncertain a packet's manoeuvre fields are when the drone is not manoeuvring; a member
+/// that models a field adds [`MANOEUVRE_SPREAD`]² to its variance.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ManoeuvreEvidence {
     /// The drone filter's estimation variance of each field + the payload's quantisation.
