@@ -6,7 +6,7 @@ use loratrack::api::simulate;
 use loratrack::{
     inside_95, new_tracker, Bounds, Ctra3d, CtraPlus, Dr, ModelChoice, ModelKind, MotionModel,
     Prediction, Rng, Scenario, Simulator, StationModel, StationPredictor, StationSetup, Tracker,
-    Ukf, PAPER_Q, PAPER_R_DIAGONAL,
+    Ukf, MANOEUVRE_SPREAD, PAPER_Q, PAPER_R_DIAGONAL,
 };
 use nalgebra::{Matrix3, SMatrix, SVector};
 use serde_json::{json, Value};
@@ -360,12 +360,17 @@ fn the_bounded_stations_manoeuvre_spreads_are_those_the_flights_show() {
         "canberra",
     )
     .unwrap();
+    let synthetic = manoeuvre_spreads(&loratrack::synthetic_set());
+    // The IMM's manoeuvre evidence expects the synthetic set's acceleration, turn and tilt rates.
+    for (k, spread) in [1, 2, 5].into_iter().zip(MANOEUVRE_SPREAD) {
+        assert!(
+            (synthetic[k] - spread).abs() < 0.03 * spread,
+            "{k}: {}",
+            synthetic[k]
+        );
+    }
     let documented = [
-        (
-            "synthetic",
-            manoeuvre_spreads(&loratrack::synthetic_set()),
-            [5.4, 0.92, 0.27, 0.98, 0.59, 0.12],
-        ),
+        ("synthetic", synthetic, [5.4, 0.92, 0.27, 0.98, 0.59, 0.12]),
         (
             "canberra",
             manoeuvre_spreads(&[canberra]),
