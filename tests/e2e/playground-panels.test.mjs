@@ -376,7 +376,7 @@ test('lesson "The duty-cycle wall": the interval is 100 times the time on air fo
 });
 
 test('lesson "Which motion model when": over the whole set DR is clearly worst, CTRA+ and 3D-CTRA overlap', async () => {
-  const { page, problems } = await lesson('Which motion model when');
+  const { page, problems } = await lesson('Which motion model when', { settled: false });
   const shown = Object.fromEntries((await shownP75(page)).map((s) => [s.model, s.ci]));
   assert.ok(shown.dr[0] > shown['ctra-plus'][1] && shown.dr[0] > shown['3d-ctra'][1], JSON.stringify(shown));
   assert.ok(shown['ctra-plus'][1] >= shown['3d-ctra'][0] && shown['3d-ctra'][1] >= shown['ctra-plus'][0], JSON.stringify(shown));
@@ -385,7 +385,7 @@ test('lesson "Which motion model when": over the whole set DR is clearly worst, 
 });
 
 test('lesson "Let the packets choose the model": at SF8 the IMM has the lowest p75 and p95, DR about half its weight', async () => {
-  const { page, problems } = await lesson('Let the packets choose the model');
+  const { page, problems } = await lesson('Let the packets choose the model', { settled: false });
   const others = ['dr', 'ctra-plus', '3d-ctra'];
   for (const field of ['p75', 'p95']) {
     const imm = await cellNumber(page, 'imm', field);
