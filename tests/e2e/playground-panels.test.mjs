@@ -366,7 +366,7 @@ test('lesson "A flight plan beats any motion model": at SF11 the mission station
 });
 
 test('lesson "The duty-cycle wall": the interval is 100 times the time on air for every model', async () => {
-  const { page, problems } = await lesson('The duty-cycle wall');
+  const { page, problems } = await lesson('The duty-cycle wall', { settled: false });
   for (const m of MODELS) {
     const toaMs = await cellNumber(page, m, 'toa');
     const interval = await cellNumber(page, m, 'interval');
@@ -398,7 +398,7 @@ test('lesson "Let the packets choose the model": at SF8 the IMM has the lowest p
 });
 
 test('lesson "Losing packets at range": against the paper station pinned, the bounded one lowers mean and p95 with the same packets', async () => {
-  const { page, problems } = await lesson('Losing packets at range');
+  const { page, problems } = await lesson('Losing packets at range', { settled: false });
   await page.waitForSelector('[data-delta="mean"]');
   for (const key of ['mean', 'p95']) assert.match(await page.locator(`tr[data-model="3d-ctra"] [data-delta="${key}"]`).textContent(), /^▼.*better/, key);
   assert.match(await page.locator('tr[data-model="3d-ctra"] [data-delta="packets"]').textContent(), /unchanged/);
@@ -416,7 +416,7 @@ test('lesson "Swarms share the air": the collision rate climbs as the swarm grow
 });
 
 test('lesson "ADR chases the link": from SF12 packets move to DR5 or DR6, far more arrive and every p75 falls', async () => {
-  const { page, problems } = await lesson('ADR chases the link');
+  const { page, problems } = await lesson('ADR chases the link', { settled: false });
   await page.waitForSelector('[data-delta="p75"]');
   assert.match(await page.locator('#rate-use').textContent(), /DR[56]/);
   for (const m of MODELS) {
