@@ -19,7 +19,7 @@ use super::parallel::par_map;
 use super::pooled::airtime;
 use super::radio::DroneRadio;
 use super::report::{ratio, Delivery, Energy};
-use super::scenario::{SfPlan, Validated};
+use super::scenario::{SfPlan, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::{self, aloha_collision_rate, Airtime, Schedule, Slot};
 use super::simulator::load_flights;
 use super::station::{new_tracker, track_station, Scoring, StationModel, StationSetup};
@@ -30,7 +30,7 @@ use crate::math::sin_cos;
 use crate::metrics::{percentile, Summary, WholeFlightError};
 use crate::options::MAX_SWARM_FILTER_STEPS;
 use crate::rng::Rng;
-use crate::trajectory::{chain_flights, synthetic_set, Trajectory};
+use crate::trajectory::{chain_flights, Trajectory};
 use core::f64::consts::TAU;
 use std::sync::Arc;
 
@@ -56,7 +56,7 @@ fn plan(cfg: &Validated) -> Result<Plan, SimError> {
     let s = cfg.s();
     let n = s.swarm.drones;
     let Some(source) = &cfg.source else {
-        let set = synthetic_set();
+        let set = load_flights(&TrajectorySource::Synthetic(SyntheticChoice::All))?;
         let mut layout = Rng::derive(s.run.seed, LAYOUT_STREAM);
         let firsts: Vec<(usize, f64)> = (0..n)
             .map(|_| {
