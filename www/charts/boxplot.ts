@@ -4,6 +4,7 @@ import * as Plot from '@observablehq/plot';
 import type { Boxplot, ModelName } from '../loratrack';
 import { MODEL_LABELS } from '../loratrack';
 import { MODEL_COLORS, chartFrame, chartFont } from './colors';
+import { plainNumber } from './logAxis';
 
 export interface BoxRow {
   group: string;
@@ -42,5 +43,5 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
 /** Labels only the powers of ten of a log axis, as plain numbers. */
 function decade(d: number): string {
   const e = Math.log10(d);
-  return Math.abs(e - Math.round(e)) < 1e-9 ? d.toLocaleString('en', { maximumFractionDigits: 6 }) : '';
+  return Math.abs(e - Math.round(e)) < 1e-9 ? plainNumber(d) : '';
 }

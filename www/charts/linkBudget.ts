@@ -6,7 +6,6 @@ import { chartFrame, chartFont, SF_COLORS } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { LinkBudgetReport } from '../loratrack';
 
-
 /** The charts, in the plan's words: only the SFs the plan allows at this bandwidth, each named
  * with its data rate (`SF9 (DR1)`); the note says which the plan lacks. */
 export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; distances: number[]; sf: number; plan: string }): HTMLElement {

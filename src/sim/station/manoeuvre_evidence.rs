@@ -40,10 +40,8 @@ impl ManoeuvreEvidence {
     /// fix's R (the paper's station, which resets to R as well).
     pub fn new(setup: &StationSetup) -> Self {
         let quant = quantization_variance(ModelKind::Ctra3d);
-        let estimate = |i: usize| match &setup.drone_covariance {
-            Some(c) => c.of::<9>(ModelKind::Ctra3d)[(i, i)],
-            None => setup.r_diagonal[i],
-        };
+        let drone = setup.drone_covariance.map(|c| c.of::<9>(ModelKind::Ctra3d));
+        let estimate = |i: usize| drone.map_or(setup.r_diagonal[i], |p| p[(i, i)]);
         ManoeuvreEvidence {
             noise: FIELDS.map(|i| estimate(i) + quant[i]),
         }
