@@ -314,6 +314,15 @@ impl<'a> Estimates<'a> {
         }
     }
 
+    /// How many estimates the filter has computed so far (all of them, when stored).
+    #[cfg(test)]
+    pub(crate) fn computed(&self) -> usize {
+        match self {
+            Estimates::Stored(t) => t.states.len(),
+            Estimates::Live { window, first, .. } => first + window.len(),
+        }
+    }
+
     /// How often the filter repaired its covariance.
     pub fn recoveries(&self) -> u64 {
         match self {

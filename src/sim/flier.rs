@@ -190,7 +190,7 @@ impl<'a> Flier<'a> {
             let mut t = self.clock.slot_at_or_after(self.from.max(not_before));
             loop {
                 let k = self.step_at_or_before(t);
-                let e = self.estimates.get(k)?;
+                let e = self.sender_view(k)?;
                 if self.sender.wants_to_send(t, &e) {
                     return Some((k, t));
                 }
@@ -207,7 +207,7 @@ impl<'a> Flier<'a> {
         self.k = self.k.max(self.step_at_or_after(not_before));
         while self.k < self.estimates.len() {
             let t = self.time_of(self.k);
-            let Some(e) = self.estimates.get(self.k) else {
+            let Some(e) = self.sender_view(self.k) else {
                 break;
             };
             if self.sender.wants_to_send(t, &e) {
@@ -216,6 +216,18 @@ impl<'a> Flier<'a> {
             self.k += 1;
         }
         None
+    }
+
+    /// What the sender is shown of step `k` (`None` past the flight's end): the estimate, or
+    /// zeros for a sender that does not read it, whose filter then runs only as far as the
+    /// packets it sends (in a swarm, ahead on every core: a periodic drone at SF12 plans its next
+    /// uplink two and a half minutes ahead, which the event loop once filtered on one core).
+    fn sender_view(&mut self, k: usize) -> Option<[f64; 9]> {
+        if self.sender.reads_estimate() {
+            self.estimates.get(k)
+        } else {
+            (k < self.estimates.len()).then_some([0.0; 9])
+        }
     }
 
     /// Puts the estimate of step `k` on air at `sent` s with `frame` on channel `ch`: spends the
@@ -303,5 +315,74 @@ impl<'a> Flier<'a> {
             self.from = self.clock.next_start(sent, earliest);
             self.k = self.step_at_or_before(self.from).max(k);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::filter::{PAPER_Q, PAPER_R_DIAGONAL};
+    use crate::lora::{ChannelParams, DutyCycleMode};
+    use crate::models::ModelKind;
+    use crate::sim::clock::Timing;
+    use crate::sim::drone::DroneFilter;
+    use crate::sim::sender::{ErrorTriggered, Periodic};
+    use crate::sim::station::tests::paper_setup;
+    use crate::sim::station::StationModel;
+    use crate::trajectory::synthetic_flight;
+
+    /// A 3D-CTRA drone with a live filter, one packet a second allowed.
+    fn flier(flight: &Trajectory, sender: Box<dyn Sender>) -> Flier<'_> {
+        let filter = DroneFilter::new(
+            flight,
+            ModelKind::Ctra3d,
+            10.0,
+            PAPER_Q,
+            &PAPER_R_DIAGONAL,
+            1,
+            0,
+        );
+        let rule = DutyCycle::new(DutyCycleMode::PerPacket, 0.01, 0.01, 1, flight.t[0]).unwrap();
+        let channel = Channel::new(ChannelParams::default()).unwrap();
+        Flier::new(
+            0,
+            flight,
+            Estimates::live(filter),
+            sender,
+            rule,
+            &[[1000.0, 0.0, 0.0]],
+            &channel,
+            (1, 0),
+            1,
+            1.0,
+            Timing::EXACT,
+        )
+    }
+
+    #[test]
+    fn a_periodic_sender_plans_an_uplink_without_running_the_filter_up_to_it() {
+        let flight = synthetic_flight(1).unwrap();
+        let later = flight.t[0] + 60.0;
+        let mut periodic = flier(&flight, Box::new(Periodic));
+        let (k, t) = periodic.next_uplink(later).unwrap();
+        assert!(k >= 600 && t >= later - 1e-9, "{k} {t}");
+        assert_eq!(periodic.estimates.computed(), 0);
+        // The packet reads its estimate when it goes out.
+        assert!(periodic.estimates.get(k).is_some());
+        assert_eq!(periodic.estimates.computed(), k + 1);
+        // An error-triggered sender looks at every step it considers.
+        let sender = ErrorTriggered::new(
+            StationModel::Single(ModelKind::Ctra3d),
+            paper_setup(),
+            None,
+            1.0,
+            30.0,
+        );
+        let mut triggered = flier(&flight, Box::new(sender));
+        let (k, _) = triggered.next_uplink(later).unwrap();
+        assert_eq!(triggered.estimates.computed(), k + 1);
+        // Past the flight's end neither plans an uplink.
+        let end = flight.t[flight.t.len() - 1] + 1.0;
+        assert_eq!(flier(&flight, Box::new(Periodic)).next_uplink(end), None);
     }
 }

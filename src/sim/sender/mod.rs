@@ -47,6 +47,12 @@ pub trait Sender {
     fn sent(&mut self, state: &[f64; 9], t: f64);
     /// ADR moved the drone to a data rate whose duty-cycle interval is `interval` s.
     fn data_rate_changed(&mut self, _interval: f64) {}
+    /// Whether [`Sender::wants_to_send`] looks at the drone's estimate. One that does not lets
+    /// the event loop plan an uplink without running the drone's filter up to it, so that a
+    /// swarm's filters run ahead on every core rather than in the loop.
+    fn reads_estimate(&self) -> bool {
+        true
+    }
 }
 
 /// A drone's sender for one flight; an error-triggered one mirrors a fresh station of the kind

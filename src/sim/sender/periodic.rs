@@ -12,4 +12,8 @@ impl Sender for Periodic {
     }
 
     fn sent(&mut self, _state: &[f64; 9], _t: f64) {}
+
+    fn reads_estimate(&self) -> bool {
+        false
+    }
 }
