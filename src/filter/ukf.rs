@@ -196,7 +196,9 @@ impl<const N: usize> Ukf<N> {
     /// the repair failed and the factor is the square root of P's diagonal only).
     fn factor_covariance(&mut self) -> (SMatrix<f64, N, N>, bool) {
         if let Some((p, l)) = &self.factor {
-            if *p == self.p {
+            // As slices: nalgebra's `==` walks both matrices through zipped iterators, which
+            // cost a drone's step ~5 % (perf); the slices compare in one tight loop.
+            if p.as_slice() == self.p.as_slice() {
                 return (*l, true);
             }
         }
