@@ -51,14 +51,25 @@ impl Intervals {
 /// assert!(ci.p75[0] <= ci.p75[1] && ci.max[1] == 9.0);
 /// ```
 pub fn bootstrap(runs: &[&[f64]], seed: u64) -> Option<Intervals> {
+    if runs.iter().filter(|r| !r.is_empty()).count() < 2 {
+        return None;
+    }
+    let mut all: Vec<f64> = runs.iter().flat_map(|r| r.iter().copied()).collect();
+    all.sort_unstable_by(f64::total_cmp);
+    bootstrap_sorted(runs, &all, seed)
+}
+
+/// [`bootstrap`] given every sample of `runs` pooled and in ascending order (`f64::total_cmp`)
+/// as `all`: a caller that has already sorted the pooled errors for their summary does not
+/// sort them again.
+pub(crate) fn bootstrap_sorted(runs: &[&[f64]], all: &[f64], seed: u64) -> Option<Intervals> {
     let runs: Vec<&[f64]> = runs.iter().copied().filter(|r| !r.is_empty()).collect();
     if runs.len() < 2 {
         return None;
     }
+    debug_assert_eq!(all.len(), runs.iter().map(|r| r.len()).sum::<usize>());
     let sums: Vec<f64> = runs.iter().map(|r| r.iter().sum()).collect();
-    let mut all: Vec<f64> = runs.iter().flat_map(|r| r.iter().copied()).collect();
-    all.sort_unstable_by(f64::total_cmp);
-    let ranks = Ranks::of(&runs, &all);
+    let ranks = Ranks::of(&runs, all);
     let mut rng = Rng::derive(seed, 0xb00_757a);
     let mut stats: [Vec<f64>; 5] = Default::default();
     let mut weights = vec![0u32; runs.len()];
@@ -71,7 +82,7 @@ pub fn bootstrap(runs: &[&[f64]], seed: u64) -> Option<Intervals> {
         let draw = Draw {
             runs: &runs,
             weights: &weights,
-            all: &all,
+            all,
             ranks: ranks.as_ref(),
         };
         let n = draw.count_at_most(f64::INFINITY);

@@ -10,6 +10,7 @@ mod percentile;
 mod summary;
 mod whole_flight;
 
+pub(crate) use bootstrap::bootstrap_sorted;
 pub use bootstrap::{bootstrap, Intervals, RESAMPLES};
 pub use boxplot::Boxplot;
 pub use coverage::{bound_95, inside_95, nees, Consistency, CHI2_3DOF_95};

@@ -22,6 +22,22 @@ pub(crate) fn par_map<T: Send>(
     }
 }
 
+/// `f(item)` for every item of `items`, taken by value, in order.
+pub(crate) fn par_map_owned<T: Send, U: Send>(
+    items: Vec<T>,
+    f: impl Fn(T) -> U + Sync + Send,
+) -> Vec<U> {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        use rayon::prelude::*;
+        items.into_par_iter().with_max_len(1).map(f).collect()
+    }
+    #[cfg(target_arch = "wasm32")]
+    {
+        items.into_iter().map(f).collect()
+    }
+}
+
 /// `f(item)` for every item of `items`, in parallel natively and in turn in WebAssembly.
 pub(crate) fn par_each<T: Send>(items: &mut [T], f: impl Fn(&mut T) + Sync + Send) {
     #[cfg(not(target_arch = "wasm32"))]

@@ -4,7 +4,7 @@ use super::packet::Transmission;
 use super::report::{Boxplots, DataRateUse, Delivery, Energy, ModelResult, ModelSeries};
 use super::station::{StationModel, StationTrack};
 use crate::lora::DataRate;
-use crate::metrics::{bootstrap, Consistency, Summary, WholeFlightError};
+use crate::metrics::{bootstrap_sorted, Consistency, Summary, WholeFlightError};
 use crate::models::ModelKind;
 use std::collections::BTreeMap;
 
@@ -81,19 +81,28 @@ impl Pooled {
         Energy::from_sums(self.sent, self.charge_mc, self.active_s, self.flight_time)
     }
 
-    /// The 95 % intervals of the 3D error's statistics over the runs added (`None` for fewer
-    /// than two runs with errors), drawn from `seed`.
-    fn intervals(&self, seed: u64) -> Option<crate::metrics::Intervals> {
-        let mut runs: Vec<Vec<f64>> = Vec::with_capacity(self.run_ends.len());
-        let mut from = 0;
-        for &to in &self.run_ends {
-            let mut run = self.e3[from..to].to_vec();
-            run.sort_unstable_by(f64::total_cmp);
-            runs.push(run);
-            from = to;
+    /// Each run's 3D errors in ascending order, the samples the intervals resample; `None` with
+    /// fewer than two runs that have errors (one run cannot show its own spread). Read before
+    /// `e3` itself is sorted.
+    fn sorted_runs(&self) -> Option<Vec<Vec<f64>>> {
+        let spans: Vec<(usize, usize)> = self
+            .run_ends
+            .iter()
+            .scan(0, |from, &to| Some((std::mem::replace(from, to), to)))
+            .collect();
+        if spans.iter().filter(|(a, b)| b > a).count() < 2 {
+            return None;
         }
-        let refs: Vec<&[f64]> = runs.iter().map(Vec::as_slice).collect();
-        bootstrap(&refs, seed)
+        Some(
+            spans
+                .into_iter()
+                .map(|(a, b)| {
+                    let mut run = self.e3[a..b].to_vec();
+                    run.sort_unstable_by(f64::total_cmp);
+                    run
+                })
+                .collect(),
+        )
     }
 
     /// The result row; `time_on_air`, `interval` in s (of the starting data rate); `network`
@@ -109,7 +118,7 @@ impl Pooled {
         seed: u64,
     ) -> ModelResult {
         let energy = self.energy();
-        let ci95 = self.intervals(seed);
+        let runs = self.sorted_runs();
         let delivery = Delivery {
             packets_sent: self.sent,
             packets_received: self.received,
@@ -136,6 +145,11 @@ impl Pooled {
             Summary::of(&mut self.ey),
             Summary::of(&mut self.ez),
         );
+        // Summary::of left e3 sorted: the pooled sample the intervals need, not sorted twice.
+        let ci95 = runs.and_then(|runs| {
+            let refs: Vec<&[f64]> = runs.iter().map(Vec::as_slice).collect();
+            bootstrap_sorted(&refs, &self.e3, seed)
+        });
         ModelResult {
             model,
             payload_bytes: model.payload_bytes(),

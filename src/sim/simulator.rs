@@ -2,7 +2,7 @@
 
 use super::cache_budget::{Ledger, MAX_CACHE_BYTES};
 use super::drone::{run_drone, DroneTrack};
-use super::parallel::{par_map, par_map_costliest_first};
+use super::parallel::{par_map, par_map_costliest_first, par_map_owned};
 use super::pooled::{axis_every, series_stride, Pooled};
 use super::report::{Delivery, ModelResult, ModelSeries, RunConfig, Series, SimReport};
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
@@ -522,7 +522,7 @@ fn pool(
 ) -> Result<(Vec<ModelResult>, Vec<ModelSeries>), SimError> {
     let per_station = flown.len() / stations.len().max(1);
     let mut flown = flown.into_iter();
-    let mut results = Vec::new();
+    let mut gathered = Vec::with_capacity(stations.len());
     let mut series = Vec::new();
     for station in stations {
         let mut pooled = Pooled::default();
@@ -539,16 +539,21 @@ fn pool(
                 recoveries += run.recoveries;
             }
         }
+        gathered.push((station, pooled, counted, recoveries));
+    }
+    // Each station's errors sorted and resampled on a core of its own: on one long flight
+    // that was a second of one core while the other idled.
+    let results = par_map_owned(gathered, |(station, pooled, counted, recoveries)| {
         let now = station.start.current();
-        results.push(pooled.finish(
+        pooled.finish(
             station.model,
             now.time_on_air,
             now.interval,
             recoveries,
             &counted,
             seed,
-        ));
-    }
+        )
+    });
     Ok((results, series))
 }
 
