@@ -9,17 +9,7 @@ pub(crate) fn par_map<T: Send>(
     range: core::ops::Range<usize>,
     f: impl Fn(usize) -> T + Sync + Send,
 ) -> Vec<T> {
-    #[cfg(not(target_arch = "wasm32"))]
-    {
-        use rayon::prelude::*;
-        // One item per task: items differ widely in cost (a long flight's IMM station against
-        // its DR drone), so each is left free to be stolen by an idle core.
-        range.into_par_iter().with_max_len(1).map(f).collect()
-    }
-    #[cfg(target_arch = "wasm32")]
-    {
-        range.map(f).collect()
-    }
+    par_map_owned(range.collect(), f)
 }
 
 /// `f(item)` for every item of `items`, taken by value, in order.
@@ -30,6 +20,8 @@ pub(crate) fn par_map_owned<T: Send, U: Send>(
     #[cfg(not(target_arch = "wasm32"))]
     {
         use rayon::prelude::*;
+        // One item per task: items differ widely in cost (a long flight's IMM station against
+        // its DR drone), so each is left free to be stolen by an idle core.
         items.into_par_iter().with_max_len(1).map(f).collect()
     }
     #[cfg(target_arch = "wasm32")]
