@@ -55,7 +55,8 @@ pub use simulator::Simulator;
 pub use station::{
     new_tracker, track_station, Bounds, Calibration, Imm, ManoeuvreEvidence, MissionPlan,
     MissionStation, PlanPace, Prediction, Scoring, StationModel, StationPredictor, StationSetup,
-    StationTrack, Tracker, CALIBRATION_GAIN, MANOEUVRE_SPREAD, OFFSET_TIME, PACE_SIGMA, PACE_TIME,
+    StationTrack, Tracker, Upcoming, CALIBRATION_GAIN, MANOEUVRE_SPREAD, OFFSET_TIME, PACE_SIGMA,
+    PACE_TIME,
 };
 pub use streams::{channel as channel_stream, gateway as gateway_stream, link as link_stream};
 pub use swarm::{run_swarm, DroneReport, LargestSwarm, SwarmEcho, SwarmReport};

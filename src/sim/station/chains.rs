@@ -57,7 +57,7 @@ impl FlightChains {
         let mut live: Option<Box<dyn Tracker>> = None;
         let (chains, stored) = (&mut self.chains, &mut self.stored);
         score_station(flight, transmissions, scoring, &mut |t, received, fresh| {
-            if fresh {
+            if fresh.is_some() {
                 let packet = received.packet;
                 key = (
                     packet.sent.to_bits(),

@@ -1,11 +1,11 @@
 //! An Interacting Multiple Model station over DR, CTRA+ and 3D-CTRA (Blom & Bar-Shalom 1988;
 //! Bar-Shalom, Li & Kirubarajan 2001, §11.6).
 
-use super::{received, ManoeuvreEvidence, StationPredictor, StationSetup, Tracker};
+use super::{received, ManoeuvreEvidence, StationPredictor, StationSetup, Tracker, Upcoming};
 use crate::math::exp;
 use crate::models::{with_model, ModelKind, MotionModel};
 use crate::sim::packet::Transmission;
-use crate::sim::parallel::par_map;
+use crate::sim::parallel::{par_map, par_map_owned};
 use nalgebra::{Matrix3, Vector3};
 
 /// Probability that the drone keeps flying the manoeuvre one model describes from one packet to
@@ -22,9 +22,13 @@ pub trait ImmMember: Tracker + Send + Sync {
     /// when `now` arrives after `before`: reset to `before`, at `now`'s interval and with the
     /// station's trust in the silence after `now` ([`Tracker::trust_silence`]).
     fn forecast(&self, before: &Transmission, now: &Transmission, silence_trusted: bool) -> f64;
+    /// A copy, to run ahead without moving this one ([`Tracker::look_ahead`]).
+    fn boxed(&self) -> Box<dyn ImmMember>;
 }
 
-impl<const N: usize, M: MotionModel<N> + Copy + Send + Sync> ImmMember for StationPredictor<N, M> {
+impl<const N: usize, M: MotionModel<N> + Copy + Send + Sync + 'static> ImmMember
+    for StationPredictor<N, M>
+{
     fn log_likelihood(&self, z: &[f64; 9], sent: f64) -> f64 {
         StationPredictor::log_likelihood(self, z, sent)
     }
@@ -36,6 +40,10 @@ impl<const N: usize, M: MotionModel<N> + Copy + Send + Sync> ImmMember for Stati
         m.set_interval(now.interval);
         m.trust_silence(silence_trusted);
         m.log_likelihood(&now.state, now.sent)
+    }
+
+    fn boxed(&self) -> Box<dyn ImmMember> {
+        Box::new(self.clone())
     }
 }
 
@@ -77,6 +85,27 @@ pub struct Imm {
     /// each ([`Tracker::prepare`]), in time order, and how many of them have been passed.
     forecasts: Vec<Forecast>,
     passed: usize,
+    /// The members' estimates at the evaluation times of the next packets, computed ahead
+    /// ([`Tracker::look_ahead`]).
+    ahead: Option<Ahead>,
+}
+
+/// Evaluation times a batch of [`Tracker::look_ahead`] covers at least (if the packets last
+/// that long): each member's share is then milliseconds of work, on a core of its own.
+const AHEAD_TIMES: usize = 4096;
+
+/// A member's position (m) and its covariance (m²) at one time.
+type MemberEstimate = ([f64; 3], Matrix3<f64>);
+
+/// Each member's position and its covariance at the evaluation times of a run of packets, and
+/// where the station stands in it.
+struct Ahead {
+    /// Per packet: its send time (s) and evaluation times (s).
+    packets: Vec<(f64, Vec<f64>)>,
+    /// Per member, per packet, per time.
+    at: Vec<Vec<Vec<MemberEstimate>>>,
+    /// The packet the members were last reset to, and the time reached after it, if in `packets`.
+    now: Option<(usize, Option<usize>)>,
 }
 
 /// The members' log-likelihoods of the packet sent at `to`, forecast from the one sent at `from`.
@@ -104,7 +133,25 @@ impl Imm {
             last_sent: f64::NAN,
             forecasts: Vec::new(),
             passed: 0,
+            ahead: None,
         }
+    }
+
+    /// Each member's position and its covariance now, in the members' order: from what
+    /// [`Tracker::look_ahead`] computed where it covers the time reached, else the members'.
+    fn member_estimates(&self) -> Vec<MemberEstimate> {
+        if let Some(Ahead {
+            at,
+            now: Some((p, Some(k))),
+            ..
+        }) = &self.ahead
+        {
+            return at.iter().map(|m| m[*p][*k]).collect();
+        }
+        self.members
+            .iter()
+            .map(|m| (m.position(), m.position_covariance()))
+            .collect()
     }
 
     /// The current model probabilities, in the order of `new`'s models.
@@ -212,9 +259,95 @@ impl Tracker for Imm {
         for m in &mut self.members {
             m.reset(state, sent);
         }
+        if let Some(a) = &mut self.ahead {
+            a.now = a
+                .packets
+                .iter()
+                .position(|(s, _)| *s == sent)
+                .map(|p| (p, None));
+        }
+    }
+
+    /// Runs copies of the members through the next packets' evaluation times (at least
+    /// [`AHEAD_TIMES`] of them), each member on a core of its own, unless the last batch
+    /// covers this packet: between packets each member predicts alone, and one after another
+    /// they were the longest sequential work of a long flight. The members themselves only
+    /// reset; `predict_to` then reads the batch.
+    fn look_ahead(&mut self, upcoming: &Upcoming) {
+        let mut batch = Vec::new();
+        let mut times = 0;
+        for (packet, trusted, served) in upcoming.packets() {
+            if batch.is_empty()
+                && self
+                    .ahead
+                    .as_ref()
+                    .is_some_and(|a| a.packets.iter().any(|(s, _)| *s == packet.sent))
+            {
+                return;
+            }
+            times += served.len();
+            batch.push((packet.clone(), trusted, served));
+            if times >= AHEAD_TIMES {
+                break;
+            }
+        }
+        // The largest state first: this thread runs it while the others are taken by an idle
+        // core (3D-CTRA's predictions alone cost about as much as CTRA+'s and DR's together).
+        let mut order: Vec<usize> = (0..self.members.len()).collect();
+        order.sort_by_key(|&i| core::cmp::Reverse(self.kinds[i].state_len()));
+        let copies: Vec<(usize, Box<dyn ImmMember>)> = order
+            .iter()
+            .map(|&i| (i, self.members[i].boxed()))
+            .collect();
+        let mut done = par_map_owned(copies, |(i, mut m)| {
+            let at: Vec<Vec<MemberEstimate>> = batch
+                .iter()
+                .map(|(packet, trusted, served)| {
+                    // As start_from applies a packet.
+                    m.set_interval(packet.interval);
+                    m.trust_silence(*trusted);
+                    m.reset(&packet.state, packet.sent);
+                    served
+                        .iter()
+                        .map(|&t| {
+                            m.predict_to(t);
+                            (m.position(), m.position_covariance())
+                        })
+                        .collect()
+                })
+                .collect();
+            (i, at)
+        });
+        done.sort_by_key(|&(i, _)| i);
+        let at = done.into_iter().map(|(_, at)| at).collect();
+        self.ahead = Some(Ahead {
+            packets: batch
+                .into_iter()
+                .map(|(p, _, served)| (p.sent, served))
+                .collect(),
+            at,
+            now: None,
+        });
     }
 
     fn predict_to(&mut self, t: f64) {
+        if let Some(Ahead {
+            packets,
+            now: Some((p, reached)),
+            ..
+        }) = &mut self.ahead
+        {
+            let from = reached.unwrap_or(0);
+            if let Some(k) = packets[*p].1[from..].iter().position(|&s| s == t) {
+                *reached = Some(from + k);
+                return;
+            }
+        }
+        // A time the batch does not hold (an IMM not scored by track_station, or a packet
+        // outside the batch): the members predict, from the packet they were reset to.
+        if let Some(a) = &mut self.ahead {
+            a.now = None;
+        }
         for m in &mut self.members {
             m.predict_to(t);
         }
@@ -234,8 +367,7 @@ impl Tracker for Imm {
 
     fn position(&self) -> [f64; 3] {
         let mut p = [0.0; 3];
-        for (m, mu) in self.members.iter().zip(&self.probability) {
-            let q = m.position();
+        for ((q, _), mu) in self.member_estimates().iter().zip(&self.probability) {
             for k in 0..3 {
                 p[k] += mu * q[k];
             }
@@ -245,12 +377,12 @@ impl Tracker for Imm {
 
     fn position_covariance(&self) -> Matrix3<f64> {
         let mean = Vector3::from(self.position());
-        self.members
+        self.member_estimates()
             .iter()
             .zip(&self.probability)
-            .map(|(m, mu)| {
-                let d = Vector3::from(m.position()) - mean;
-                (m.position_covariance() + d * d.transpose()) * *mu
+            .map(|((q, c), mu)| {
+                let d = Vector3::from(*q) - mean;
+                (c + d * d.transpose()) * *mu
             })
             .sum()
     }
@@ -337,6 +469,49 @@ mod tests {
     }
 
     #[test]
+    fn members_run_ahead_in_batches_score_as_members_stepped_in_order() {
+        use crate::sim::station::{score_station, start_from, track_station, Estimate, Scoring};
+        let set: Vec<_> = (1..=12)
+            .map(|i| crate::trajectory::synthetic_flight(i).unwrap())
+            .collect();
+        // 9000 evaluation times: three batches of look_ahead.
+        let flight = crate::trajectory::chain_flights(&set, 0, 900.0, 10).unwrap();
+        let t0 = flight.t[0];
+        let pattern: String = (0..359)
+            .map(|k| if k % 7 == 3 { '0' } else { '1' })
+            .collect();
+        let mut tx = crate::sim::station::tests::frames(&pattern);
+        for (k, t) in tx.iter_mut().enumerate() {
+            t.sent = t0 + 2.5 * k as f64;
+            t.arrival = t.sent + 0.02;
+            let i = flight.t.partition_point(|&s| s < t.sent);
+            t.state = flight.state(i.min(flight.t.len() - 1));
+        }
+        let scoring = Scoring {
+            step: 0.1,
+            series: true,
+            calibrate: true,
+        };
+        let setup = StationSetup {
+            prediction: Prediction::Bounded,
+            ..setup()
+        };
+        let mut ahead = Imm::new(&ModelKind::ALL, setup);
+        let batched = track_station(&flight, &mut ahead, &tx, scoring);
+        assert!(batched.error3d.len() > 2 * AHEAD_TIMES);
+        let mut imm = Imm::new(&ModelKind::ALL, setup);
+        let in_order = score_station(&flight, &tx, scoring, &mut |t, packet, upcoming| {
+            if upcoming.is_some() {
+                start_from(&mut imm, packet);
+            }
+            imm.predict_to(t);
+            Estimate::of(&imm)
+        });
+        assert!(imm.ahead.is_none());
+        assert_eq!(batched, in_order);
+    }
+
+    #[test]
     fn forecasts_made_ahead_in_parallel_score_as_those_made_in_order() {
         use crate::sim::station::{score_station, start_from, track_station, Estimate, Scoring};
         let flight = crate::trajectory::synthetic_flight(2).unwrap();
@@ -360,8 +535,8 @@ mod tests {
             tx.iter().filter(|t| t.received).count() - 1
         );
         let mut imm = Imm::new(&ModelKind::ALL, setup);
-        let in_order = score_station(&flight, &tx, scoring, &mut |t, packet, fresh| {
-            if fresh {
+        let in_order = score_station(&flight, &tx, scoring, &mut |t, packet, upcoming| {
+            if upcoming.is_some() {
                 start_from(&mut imm, packet);
             }
             imm.predict_to(t);

@@ -61,6 +61,73 @@ pub trait Tracker {
     /// forecasts each received packet from the one before under each member. The numbers are
     /// those of the work done in order.
     fn prepare(&mut self, _transmissions: &[Transmission]) {}
+    /// Just before a packet is applied during scoring ([`track_station`]): the packets still to
+    /// come and the evaluation times each will serve, this one first, so that work on them may
+    /// be done ahead, on every core (an IMM runs its members through them side by side). The
+    /// numbers are those of the work done in order.
+    fn look_ahead(&mut self, _upcoming: &Upcoming) {}
+}
+
+/// The received packets a station has still to apply during scoring, from the one being
+/// applied now, each with the evaluation times it serves (until the next one applies or the
+/// flight ends; [`Tracker::look_ahead`]).
+pub struct Upcoming<'a> {
+    spans: &'a [Span],
+    received: &'a [Received<'a>],
+    t0: f64,
+    step: f64,
+}
+
+impl Upcoming<'_> {
+    /// Each packet, whether the station trusts the silence after it, and its evaluation times,
+    /// s, in order.
+    pub fn packets(&self) -> impl Iterator<Item = (&Transmission, bool, Vec<f64>)> + '_ {
+        self.spans.iter().map(|s| {
+            let r = &self.received[s.packet];
+            let times = (s.first..s.first + s.count)
+                .map(|j| self.t0 + j as f64 * self.step)
+                .collect();
+            (r.packet, r.silence_trusted, times)
+        })
+    }
+}
+
+/// One received packet's turn in the scoring: from evaluation time `first` (its index on the
+/// grid), `count` times.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Span {
+    packet: usize,
+    first: usize,
+    count: usize,
+}
+
+/// The turns of the received packets from grid index `j` on: at each time t0 + jT up to `end`
+/// (s), the newest packet that has fully arrived applies (a packet overtaken within one step
+/// never does).
+fn spans(received: &[Received], t0: f64, step: f64, end: f64, mut j: usize) -> Vec<Span> {
+    let mut out: Vec<Span> = Vec::new();
+    let mut next = 0;
+    loop {
+        let t = t0 + j as f64 * step;
+        if t > end + 1e-9 {
+            break;
+        }
+        while next < received.len() && received[next].packet.arrival <= t + 1e-9 {
+            next += 1;
+        }
+        // j starts at the first arrival, so at least one packet has arrived.
+        let packet = next - 1;
+        match out.last_mut() {
+            Some(s) if s.packet == packet => s.count += 1,
+            _ => out.push(Span {
+                packet,
+                first: j,
+                count: 1,
+            }),
+        }
+        j += 1;
+    }
+    out
 }
 
 /// How many of a drone's latest frames (by frame counter, up to a received one) the station
@@ -181,13 +248,19 @@ pub fn track_station(
     scoring: Scoring,
 ) -> StationTrack {
     tracker.prepare(transmissions);
-    score_station(flight, transmissions, scoring, &mut |t, packet, fresh| {
-        if fresh {
-            start_from(tracker, packet);
-        }
-        tracker.predict_to(t);
-        Estimate::of(tracker)
-    })
+    score_station(
+        flight,
+        transmissions,
+        scoring,
+        &mut |t, packet, upcoming| {
+            if let Some(upcoming) = upcoming {
+                tracker.look_ahead(upcoming);
+                start_from(tracker, packet);
+            }
+            tracker.predict_to(t);
+            Estimate::of(tracker)
+        },
+    )
 }
 
 /// A transmission as the station received it.
@@ -221,12 +294,13 @@ pub(crate) fn start_from(tracker: &mut dyn Tracker, r: &Received) {
 }
 
 /// The evaluation loop of [`track_station`], with the station's estimate at each grid time `t`
-/// from `estimate(t, newest packet, whether it is newly applied)`.
+/// from `estimate(t, newest packet, upcoming)`; `upcoming` is `Some` where the packet is newly
+/// applied, and holds it and the packets after it with the times each serves.
 pub(crate) fn score_station(
     flight: &Trajectory,
     transmissions: &[Transmission],
     scoring: Scoring,
-    estimate: &mut dyn FnMut(f64, &Received, bool) -> Estimate,
+    estimate: &mut dyn FnMut(f64, &Received, Option<&Upcoming>) -> Estimate,
 ) -> StationTrack {
     let Scoring {
         step,
@@ -244,9 +318,8 @@ pub(crate) fn score_station(
             ..StationTrack::default()
         };
     };
-    let mut j = ((first.packet.arrival - t0) / step - 1e-9).ceil().max(0.0) as usize;
-    let mut next = 0;
-    let mut applied = usize::MAX; // index of the packet the tracker was last reset to
+    let j = ((first.packet.arrival - t0) / step - 1e-9).ceil().max(0.0) as usize;
+    let spans = spans(&received, t0, step, end, j);
     let mut hint = 0;
     let mut calibration = calibrate.then(|| Calibration::new(CALIBRATION_GAIN));
     let mut out = StationTrack {
@@ -257,47 +330,68 @@ pub(crate) fn score_station(
         untracked: j.min(grid),
         ..StationTrack::default()
     };
-    loop {
-        let t = t0 + j as f64 * step;
-        if t > end + 1e-9 {
-            break;
+    for (s, span) in spans.iter().enumerate() {
+        let packet = &received[span.packet];
+        for j in span.first..span.first + span.count {
+            let t = t0 + j as f64 * step;
+            let fresh = j == span.first;
+            let upcoming = fresh.then(|| Upcoming {
+                spans: &spans[s..],
+                received: &received,
+                t0,
+                step,
+            });
+            let e = estimate(t, packet, upcoming.as_ref());
+            score_one(
+                &mut out,
+                &mut calibration,
+                (t, fresh, packet),
+                e,
+                (flight, &mut hint),
+                series,
+            );
         }
-        while next < received.len() && received[next].packet.arrival <= t + 1e-9 {
-            next += 1;
-        }
-        // j starts at the first arrival, so at least one packet has arrived.
-        let fresh = next - 1 != applied;
-        applied = next - 1;
-        let mut e = estimate(t, &received[applied], fresh);
-        if let Some(c) = &mut calibration {
-            if fresh {
-                c.packet(received[applied].packet);
-            }
-            e.covariance = c.estimate(t, e.position, e.covariance);
-        }
-        let truth = flight.position_at(t, &mut hint);
-        let est = e.position;
-        let d: [f64; 3] = core::array::from_fn(|k| est[k] - truth[k]);
-        for (axis, d) in out.error_axes.iter_mut().zip(d) {
-            axis.push(d.abs());
-        }
-        out.error3d
-            .push((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
-        out.consistency.add(&d, &e.covariance);
-        if series {
-            out.times.push(t);
-            out.estimate.push(est);
-            out.bound95.push(bound_95(&e.covariance));
-        }
-        if let Some(p) = e.probabilities {
-            let sum = out.probability_sum.get_or_insert([0.0; 3]);
-            for k in 0..3 {
-                sum[k] += p[k];
-            }
-        }
-        j += 1;
     }
     out
+}
+
+/// Adds the estimate `e` at time `t` (s) to `out`: its error against the flight's truth, its
+/// covariance calibrated (once per packet, as it is applied) and scored, and what a plot shows
+/// when `series`.
+fn score_one(
+    out: &mut StationTrack,
+    calibration: &mut Option<Calibration>,
+    (t, fresh, packet): (f64, bool, &Received),
+    mut e: Estimate,
+    (flight, hint): (&Trajectory, &mut usize),
+    series: bool,
+) {
+    if let Some(c) = calibration {
+        if fresh {
+            c.packet(packet.packet);
+        }
+        e.covariance = c.estimate(t, e.position, e.covariance);
+    }
+    let truth = flight.position_at(t, hint);
+    let est = e.position;
+    let d: [f64; 3] = core::array::from_fn(|k| est[k] - truth[k]);
+    for (axis, d) in out.error_axes.iter_mut().zip(d) {
+        axis.push(d.abs());
+    }
+    out.error3d
+        .push((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
+    out.consistency.add(&d, &e.covariance);
+    if series {
+        out.times.push(t);
+        out.estimate.push(est);
+        out.bound95.push(bound_95(&e.covariance));
+    }
+    if let Some(p) = e.probabilities {
+        let sum = out.probability_sum.get_or_insert([0.0; 3]);
+        for k in 0..3 {
+            sum[k] += p[k];
+        }
+    }
 }
 
 #[cfg(test)]
