@@ -154,6 +154,18 @@ impl Imm {
             .collect()
     }
 
+    /// The probability-weighted mean of the members' positions `members` (as
+    /// [`Self::member_estimates`] gives them), m.
+    fn mixed_position(&self, members: &[MemberEstimate]) -> [f64; 3] {
+        let mut p = [0.0; 3];
+        for ((q, _), mu) in members.iter().zip(&self.probability) {
+            for k in 0..3 {
+                p[k] += mu * q[k];
+            }
+        }
+        p
+    }
+
     /// The current model probabilities, in the order of `new`'s models.
     pub fn probabilities(&self) -> &[f64] {
         &self.probability
@@ -366,18 +378,13 @@ impl Tracker for Imm {
     }
 
     fn position(&self) -> [f64; 3] {
-        let mut p = [0.0; 3];
-        for ((q, _), mu) in self.member_estimates().iter().zip(&self.probability) {
-            for k in 0..3 {
-                p[k] += mu * q[k];
-            }
-        }
-        p
+        self.mixed_position(&self.member_estimates())
     }
 
     fn position_covariance(&self) -> Matrix3<f64> {
-        let mean = Vector3::from(self.position());
-        self.member_estimates()
+        let members = self.member_estimates();
+        let mean = Vector3::from(self.mixed_position(&members));
+        members
             .iter()
             .zip(&self.probability)
             .map(|((q, c), mu)| {
@@ -468,9 +475,29 @@ mod tests {
         tx
     }
 
+    /// An IMM at `setup` scored over `tx` with its members stepped in order at every
+    /// evaluation time (no look-ahead), and the IMM after it.
+    fn scored_in_order(
+        flight: &crate::trajectory::Trajectory,
+        tx: &[Transmission],
+        scoring: crate::sim::station::Scoring,
+        setup: StationSetup,
+    ) -> (crate::sim::station::StationTrack, Imm) {
+        use crate::sim::station::{score_station, start_from, Estimate};
+        let mut imm = Imm::new(&ModelKind::ALL, setup);
+        let track = score_station(flight, tx, scoring, &mut |t, packet, upcoming| {
+            if upcoming.is_some() {
+                start_from(&mut imm, packet);
+            }
+            imm.predict_to(t);
+            Estimate::of(&imm)
+        });
+        (track, imm)
+    }
+
     #[test]
     fn members_run_ahead_in_batches_score_as_members_stepped_in_order() {
-        use crate::sim::station::{score_station, start_from, track_station, Estimate, Scoring};
+        use crate::sim::station::{track_station, Scoring};
         let set: Vec<_> = (1..=12)
             .map(|i| crate::trajectory::synthetic_flight(i).unwrap())
             .collect();
@@ -499,21 +526,14 @@ mod tests {
         let mut ahead = Imm::new(&ModelKind::ALL, setup);
         let batched = track_station(&flight, &mut ahead, &tx, scoring);
         assert!(batched.error3d.len() > 2 * AHEAD_TIMES);
-        let mut imm = Imm::new(&ModelKind::ALL, setup);
-        let in_order = score_station(&flight, &tx, scoring, &mut |t, packet, upcoming| {
-            if upcoming.is_some() {
-                start_from(&mut imm, packet);
-            }
-            imm.predict_to(t);
-            Estimate::of(&imm)
-        });
+        let (in_order, imm) = scored_in_order(&flight, &tx, scoring, setup);
         assert!(imm.ahead.is_none());
         assert_eq!(batched, in_order);
     }
 
     #[test]
     fn forecasts_made_ahead_in_parallel_score_as_those_made_in_order() {
-        use crate::sim::station::{score_station, start_from, track_station, Estimate, Scoring};
+        use crate::sim::station::{track_station, Scoring};
         let flight = crate::trajectory::synthetic_flight(2).unwrap();
         let tx = packets(&flight, "11111110110111111100111111111");
         // Bounded and error-triggered: the forecasts depend on each packet's interval and on
@@ -534,14 +554,7 @@ mod tests {
             ahead.forecasts.len(),
             tx.iter().filter(|t| t.received).count() - 1
         );
-        let mut imm = Imm::new(&ModelKind::ALL, setup);
-        let in_order = score_station(&flight, &tx, scoring, &mut |t, packet, upcoming| {
-            if upcoming.is_some() {
-                start_from(&mut imm, packet);
-            }
-            imm.predict_to(t);
-            Estimate::of(&imm)
-        });
+        let (in_order, imm) = scored_in_order(&flight, &tx, scoring, setup);
         assert_eq!(prepared, in_order);
         assert_eq!(ahead.probabilities(), imm.probabilities());
         assert!(
