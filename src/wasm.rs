@@ -24,10 +24,20 @@ thread_local! {
 ///   WebAssembly stack on a deeply nested argument and leave the module trapping on every later
 ///   call;
 /// * out, `serde_json` then `JSON.parse`, so a statistic of an empty sample is `null` exactly as
-///   in `--json` (a direct conversion would give `NaN`).
+///   in `--json` (a direct conversion would give `NaN`). The one exception is simulate's time
+///   series, whose numbers are all finite: they are converted directly ([`report_value`]).
 fn call<P: DeserializeOwned, R: Serialize>(
     params: JsValue,
     op: impl FnOnce(P) -> Result<R, ApiError>,
+) -> Result<JsValue, JsError> {
+    call_with(params, op, |r| json_value(&r))
+}
+
+/// [`call`] with the report turned into a JS value by `to_js`.
+fn call_with<P: DeserializeOwned, R>(
+    params: JsValue,
+    op: impl FnOnce(P) -> Result<R, ApiError>,
+    to_js: impl FnOnce(R) -> Result<JsValue, JsError>,
 ) -> Result<JsValue, JsError> {
     let invalid = |e: &dyn core::fmt::Display| {
         JsError::new(&api::clean_message(&format!("invalid parameters: {e}")))
@@ -47,8 +57,37 @@ fn call<P: DeserializeOwned, R: Serialize>(
         None => invalid(&e),
     })?;
     let report = op(p).map_err(|e| JsError::new(&api::clean_message(&e.to_string())))?;
-    let json = serde_json::to_string(&report).map_err(|e| JsError::new(&e.to_string()))?;
+    to_js(report)
+}
+
+/// `value` as JSON text, parsed by JS (see the module's note on why).
+fn json_value<R: Serialize>(value: &R) -> Result<JsValue, JsError> {
+    let json = serde_json::to_string(value).map_err(|e| JsError::new(&e.to_string()))?;
     js_sys::JSON::parse(&json).map_err(|_| JsError::new("could not build the result"))
+}
+
+/// simulate's report: JSON text like every report, but its time series, most of its numbers
+/// (25 000 for one synthetic flight, 450 KB of text), go straight into JS arrays. Written and
+/// parsed as text they took a run on the page 15-40 ms once the code was warm and more while it
+/// was not (the float formatting's 128-bit products are library calls in WebAssembly). The values
+/// are the same f64s either way, and serde-wasm-bindgen's JSON-compatible mode writes `None` as
+/// `null` and maps as objects as `serde_json` does; a series holding a non-finite number, which
+/// JSON writes as `null`, goes the JSON way.
+fn report_value(mut report: crate::sim::SimReport) -> Result<JsValue, JsError> {
+    let series = report.series.take();
+    let value = json_value(&report)?;
+    if let Some(series) = series {
+        let arrays = if series.is_finite() {
+            series
+                .serialize(&serde_wasm_bindgen::Serializer::json_compatible())
+                .map_err(|e| JsError::new(&e.to_string()))?
+        } else {
+            json_value(&series)?
+        };
+        js_sys::Reflect::set(&value, &JsValue::from_str("series"), &arrays)
+            .map_err(|_| JsError::new("could not build the result"))?;
+    }
+    Ok(value)
 }
 
 /// The first top-level key of a JSON object whose value is `null`, if any.
@@ -96,17 +135,21 @@ pub fn decode(params: JsValue) -> Result<JsValue, JsError> {
 #[wasm_bindgen]
 pub fn simulate(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> {
     let progress = progress_function(progress)?;
-    call(params, |p: crate::sim::Scenario| {
-        SIMULATOR.with(|s| {
-            let mut report = reporter(&progress);
-            // A progress callback that calls simulate again would find the simulator busy: refuse
-            // that call with an error rather than trap.
-            let mut sim = s.try_borrow_mut().map_err(|_| {
-                ApiError::Invalid("simulate was called from its own progress callback".into())
-            })?;
-            api::simulate_with_progress(&mut sim, &p, &mut report)
-        })
-    })
+    call_with(
+        params,
+        |p: crate::sim::Scenario| {
+            SIMULATOR.with(|s| {
+                let mut report = reporter(&progress);
+                // A progress callback that calls simulate again would find the simulator busy: refuse
+                // that call with an error rather than trap.
+                let mut sim = s.try_borrow_mut().map_err(|_| {
+                    ApiError::Invalid("simulate was called from its own progress callback".into())
+                })?;
+                api::simulate_with_progress(&mut sim, &p, &mut report)
+            })
+        },
+        report_value,
+    )
 }
 
 /// `swarm({drones?, duration?, sfPlan?, schedule?, jitter?, clockDrift?, …every simulate

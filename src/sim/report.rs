@@ -302,6 +302,49 @@ pub struct Series {
     pub models: Vec<ModelSeries>,
 }
 
+impl Series {
+    /// Whether every number in the series is finite, so that it reads the same in JSON (which
+    /// writes a non-finite number as `null`) and in any other encoding. The WebAssembly binding
+    /// checks this before it hands the series over as JS arrays (`src/wasm.rs`).
+    pub fn is_finite(&self) -> bool {
+        // Destructured in full, so a field added to either struct must be considered here.
+        let Series {
+            flight: _,
+            t,
+            x,
+            y,
+            z,
+            gateway,
+            gateways,
+            plan,
+            models,
+        } = self;
+        let finite = |v: &[f64]| v.iter().all(|n| n.is_finite());
+        [t, x, y, z].iter().all(|v| finite(v))
+            && finite(gateway)
+            && finite(gateways.as_flattened())
+            && plan.as_ref().is_none_or(|p| finite(p.as_flattened()))
+            && models.iter().all(|m| {
+                let ModelSeries {
+                    model: _,
+                    t,
+                    error3d,
+                    bound95,
+                    x,
+                    y,
+                    z,
+                    arrivals,
+                    lost,
+                    arrival_dr: _,
+                    lost_dr: _,
+                } = m;
+                [t, error3d, bound95, x, y, z, arrivals, lost]
+                    .iter()
+                    .all(|v| finite(v))
+            })
+    }
+}
+
 /// The output of `simulate`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
@@ -317,4 +360,33 @@ pub struct SimReport {
     /// Time series of the first flight, when asked for.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub series: Option<Series>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::Simulator;
+
+    fn series_of(changes: serde_json::Value) -> Series {
+        let s = Scenario::default().with(&changes).unwrap();
+        crate::api::simulate(&mut Simulator::new(), &s)
+            .unwrap()
+            .series
+            .unwrap()
+    }
+
+    #[test]
+    fn a_series_with_a_non_finite_number_anywhere_is_not_finite() {
+        let series = series_of(serde_json::json!({"synthetic": 1, "series": true}));
+        assert!(series.is_finite());
+        let mut lost_bound = series.clone();
+        lost_bound.models[2].bound95[7] = f64::NAN;
+        assert!(!lost_bound.is_finite());
+        let mut far_gateway = series.clone();
+        far_gateway.gateways[0][1] = f64::INFINITY;
+        assert!(!far_gateway.is_finite());
+        let mut bad_plan = series;
+        bad_plan.plan = Some(vec![[0.0, f64::NEG_INFINITY, 10.0]]);
+        assert!(!bad_plan.is_finite());
+    }
 }
