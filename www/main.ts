@@ -601,12 +601,6 @@ if (pinned !== null) {
 onDrawing(updateBusy);
 await load();
 submit();
-// The workers take a few hundred milliseconds over the first run, with this thread idle: the chart
-// code the results will need is fetched and evaluated meanwhile instead of after them.
-if (running) {
-  void plots();
-  if (!$('[data-panel="trajectory"]').hidden) void import('./charts/trajectory3d');
-}
 if (running) settingsChartsWait = true;
 else renderSettingsCharts();
 if (lesson?.swarm) {
