@@ -31,7 +31,7 @@ pub mod swarm;
 
 pub use cache_budget::MAX_CACHE_BYTES;
 pub use clock::{Clock, Timing};
-pub use drone::{run_drone, DroneFilter, DroneTrack, Estimates};
+pub use drone::{run_drone, run_drones, DroneFilter, DroneTrack, Estimates};
 pub use error::SimError;
 pub use flier::Flier;
 pub use link::{Link, Reception};

@@ -1,7 +1,7 @@
 //! Runs simulations and caches what does not depend on the link.
 
 use super::cache_budget::{Ledger, MAX_CACHE_BYTES};
-use super::drone::{run_drone, DroneTrack};
+use super::drone::{run_drones, DroneTrack};
 use super::parallel::{par_map, par_map_costliest_first, par_map_owned};
 use super::pooled::{axis_every, series_stride, Pooled};
 use super::report::{Delivery, ModelResult, ModelSeries, RunConfig, Series, SimReport};
@@ -248,30 +248,56 @@ impl Simulator {
                 missing.push(key);
             }
         }
-        let mut computed = par_map_costliest_first(
-            missing.len() * n,
-            |k| missing[k / n].model.state_len() as u32,
+        // Keys that differ only in their model read the same sensors (the noise depends on the
+        // seed and the flight alone): one task per seed and flight reads them once for all of
+        // its models (`run_drones`).
+        let mut seeds: Vec<(u64, Vec<usize>)> = Vec::new();
+        for (m, key) in missing.iter().enumerate() {
+            match seeds.iter_mut().find(|(seed, _)| *seed == key.seed) {
+                Some((_, members)) => members.push(m),
+                None => seeds.push((key.seed, vec![m])),
+            }
+        }
+        let computed = par_map_costliest_first(
+            seeds.len() * n,
             |k| {
-                let (key, i) = (missing[k / n], k % n);
-                run_drone(
+                seeds[k / n]
+                    .1
+                    .iter()
+                    .map(|&m| missing[m].model.state_len() as u32)
+                    .sum()
+            },
+            |k| {
+                let ((seed, members), i) = (&seeds[k / n], k % n);
+                let models: Vec<ModelKind> = members.iter().map(|&m| missing[m].model).collect();
+                let s = cfg.s();
+                run_drones(
                     &flights[i],
-                    key.model,
-                    cfg.s().drone.sensor_rate,
-                    cfg.s().drone.q,
+                    &models,
+                    s.drone.sensor_rate,
+                    s.drone.q,
                     &cfg.r_diagonal,
-                    key.seed,
+                    *seed,
                     i as u64,
                 )
             },
-            &mut |_| tick(),
-        )
-        .into_iter();
+            &mut |k| seeds[k / n].1.iter().for_each(|_| tick()),
+        );
         (0..(keys.len() - missing.len()) * n).for_each(|_| tick());
         self.drone_runs += (missing.len() * n) as u64;
-        for key in missing {
-            let tracks = Rc::new(computed.by_ref().take(n).collect::<Vec<_>>());
-            sets.insert(key.clone(), Rc::clone(&tracks));
-            self.remember_drones(key.clone(), tracks);
+        // Task (seed, flight) holds its members' tracks in member order.
+        let mut slots: Vec<Vec<Option<DroneTrack>>> = computed
+            .into_iter()
+            .map(|tracks| tracks.into_iter().map(Some).collect())
+            .collect();
+        for (g, (_, members)) in seeds.iter().enumerate() {
+            for (j, &m) in members.iter().enumerate() {
+                let tracks: Vec<DroneTrack> =
+                    (0..n).filter_map(|i| slots[g * n + i][j].take()).collect();
+                let tracks = Rc::new(tracks);
+                sets.insert(missing[m].clone(), Rc::clone(&tracks));
+                self.remember_drones(missing[m].clone(), tracks);
+            }
         }
         keys.iter().map(|key| Some(Rc::clone(&sets[key]))).collect()
     }
