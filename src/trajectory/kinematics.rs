@@ -48,6 +48,73 @@ pub fn heading_angles(vel: &[[f64; 3]]) -> Vec<[f64; 2]> {
         .collect()
 }
 
+/// Where each sample's direction of motion comes from, without computing it: what
+/// [`heading_angles`] returns, in the form a flight stores (8 bytes a sample instead of 16, and
+/// no arctangent for the samples no one asks about: a synthetic flight is sampled at 100 Hz and
+/// read at 10).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Directions {
+    /// The angles before the first sample that defines them: the first defined ones (or 0).
+    initial: [f64; 2],
+    /// Per sample, the sample whose velocity gives theta and the one that gives phi
+    /// ([`Directions::INITIAL`]: `initial`'s).
+    sources: Vec<[u32; 2]>,
+}
+
+impl Directions {
+    /// The source of an angle no sample has defined yet.
+    const INITIAL: u32 = u32::MAX;
+
+    /// The sources of [`heading_angles`]`(vel)` (the same tests, in the same order). At most
+    /// `u32::MAX` samples (flights are at most 10⁶ rows).
+    pub fn of(vel: &[[f64; 3]]) -> Self {
+        let first_moving = vel
+            .iter()
+            .find(|v| hypot(hypot(v[0], v[1]), v[2]) >= HOVER_SPEED);
+        let initial = first_moving
+            .map(|v| [atan2(v[1], v[0]), atan2(v[2], hypot(v[0], v[1]))])
+            .unwrap_or([0.0, 0.0]);
+        let mut source = [Self::INITIAL; 2];
+        let sources = vel
+            .iter()
+            .enumerate()
+            .map(|(i, v)| {
+                let vh = (v[0] * v[0] + v[1] * v[1]).sqrt();
+                if hypot(vh, v[2]) >= HOVER_SPEED {
+                    source[1] = i as u32;
+                    if vh >= HOVER_SPEED {
+                        source[0] = i as u32;
+                    }
+                }
+                source
+            })
+            .collect();
+        Directions { initial, sources }
+    }
+
+    /// `[theta, phi]` at sample `i` of the flight whose velocities are `vel`: exactly
+    /// [`heading_angles`]`(vel)[i]`.
+    pub fn at(&self, vel: &[[f64; 3]], i: usize) -> [f64; 2] {
+        let [theta, phi] = self.sources[i];
+        [
+            match theta {
+                Self::INITIAL => self.initial[0],
+                j => {
+                    let v = vel[j as usize];
+                    atan2(v[1], v[0])
+                }
+            },
+            match phi {
+                Self::INITIAL => self.initial[1],
+                j => {
+                    let v = vel[j as usize];
+                    atan2(v[2], (v[0] * v[0] + v[1] * v[1]).sqrt())
+                }
+            },
+        ]
+    }
+}
+
 /// One sample's state `[x y z theta phi v a omega psi]` from its position (m), velocity (m/s),
 /// acceleration (m/s²) and direction of motion (rad, [`heading_angles`]); the formulas are
 /// [`kinematic_states`]'.
@@ -99,5 +166,33 @@ mod tests {
         let s = kinematic_states(&[[0.0; 3]], &[[4.0, 0.0, 3.0]], &[[0.0; 3]])[0];
         assert!((s[4] - (0.75f64).atan()).abs() < 1e-12);
         assert!((s[5] - 5.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn directions_give_the_heading_angles_bit_for_bit_through_hovers() {
+        // Hovering first (the first defined direction serves the samples before it), then
+        // climbing straight up (phi defined, theta held), moving, and hovering again.
+        let mut vel = vec![[0.0, 0.0, 0.01]; 5];
+        vel.extend([
+            [0.0, 0.05, 3.0],
+            [2.0, 1.0, 0.5],
+            [-1.0, 2.5, -0.3],
+            [0.1, 0.0, 0.0],
+        ]);
+        vel.extend((0..50).map(|k| {
+            let a = k as f64 * 0.3;
+            [4.0 * a.cos(), 4.0 * a.sin(), (0.1 * a).sin()]
+        }));
+        vel.extend([[0.0, 0.0, 0.0], [0.15, 0.1, 0.0], [0.0, 0.0, -0.5]]);
+        let angles = heading_angles(&vel);
+        let directions = Directions::of(&vel);
+        for (i, a) in angles.iter().enumerate() {
+            let d = directions.at(&vel, i);
+            assert_eq!(d.map(f64::to_bits), a.map(f64::to_bits), "sample {i}");
+        }
+        assert_eq!(
+            Directions::of(&[[0.0; 3]; 3]).at(&[[0.0; 3]; 3], 2),
+            [0.0, 0.0]
+        );
     }
 }

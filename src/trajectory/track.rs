@@ -1,6 +1,6 @@
 //! A ground-truth flight sampled in time.
 
-use super::kinematics::{heading_angles, kinematic_state};
+use super::kinematics::{kinematic_state, Directions};
 use super::TrajectoryError;
 use crate::math::{distance, wrap_angle};
 
@@ -19,10 +19,10 @@ pub struct Trajectory {
     pub vel: Vec<[f64; 3]>,
     /// Accelerations, m/s².
     pub acc: Vec<[f64; 3]>,
-    /// The direction of motion `[theta, phi]` at each sample, rad ([`heading_angles`]): the
-    /// rest of a sample's state is derived when asked, so a 10⁶-row flight holds 16 bytes per
-    /// sample for its states instead of 72.
-    angles: Vec<[f64; 2]>,
+    /// Where the direction of motion `[theta, phi]` at each sample comes from
+    /// ([`super::heading_angles`]): the whole state is derived when asked, so a 10⁶-row flight
+    /// holds 8 bytes per sample for its states instead of 72.
+    directions: Directions,
 }
 
 impl Trajectory {
@@ -55,14 +55,14 @@ impl Trajectory {
         if let Some(i) = t.windows(2).position(|w| w[1] <= w[0]) {
             return Err(TrajectoryError::TimeNotIncreasing { line: i + 2 });
         }
-        let angles = heading_angles(&vel);
+        let directions = Directions::of(&vel);
         Ok(Trajectory {
             name,
             t,
             pos,
             vel,
             acc,
-            angles,
+            directions,
         })
     }
 
@@ -79,7 +79,8 @@ impl Trajectory {
     /// The model state `x y z theta phi v a omega psi` at sample `i` (reference §2;
     /// [`kinematic_state`]). Panics if `i` is out of range, like indexing.
     pub fn state(&self, i: usize) -> [f64; 9] {
-        kinematic_state(&self.pos[i], &self.vel[i], &self.acc[i], self.angles[i])
+        let angles = self.directions.at(&self.vel, i);
+        kinematic_state(&self.pos[i], &self.vel[i], &self.acc[i], angles)
     }
 
     /// Seconds from the first to the last sample.
