@@ -30,6 +30,20 @@ pub(crate) fn par_map_owned<T: Send, U: Send>(
     }
 }
 
+/// Whether `tasks` tasks keep every core busy natively (at least two per core, so that one
+/// costly task does not leave a core idle); always in WebAssembly, which runs them in turn.
+pub(crate) fn enough_tasks(tasks: usize) -> bool {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        tasks >= 2 * rayon::current_num_threads()
+    }
+    #[cfg(target_arch = "wasm32")]
+    {
+        let _ = tasks;
+        true
+    }
+}
+
 /// `f(item)` for every item of `items`, in parallel natively and in turn in WebAssembly.
 pub(crate) fn par_each<T: Send>(items: &mut [T], f: impl Fn(&mut T) + Sync + Send) {
     #[cfg(not(target_arch = "wasm32"))]

@@ -2,7 +2,7 @@
 
 use super::cache_budget::{Ledger, MAX_CACHE_BYTES};
 use super::drone::{run_drones, DroneTrack};
-use super::parallel::{par_map, par_map_costliest_first, par_map_owned};
+use super::parallel::{enough_tasks, par_map, par_map_costliest_first, par_map_owned};
 use super::pooled::{axis_every, series_stride, Pooled};
 use super::report::{Delivery, ModelResult, ModelSeries, RunConfig, Series, SimReport};
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
@@ -99,6 +99,31 @@ pub struct Simulator {
     stations: HashMap<StationKey, Rc<Vec<Mutex<FlightChains>>>>,
     drone_runs: u64,
     ledger: Ledger<Entry>,
+}
+
+/// The drone runs to compute, `missing`, grouped into the tasks that compute them over each of
+/// `n` flights: keys that differ only in their model read the same sensors (the noise depends on
+/// the seed and the flight alone), so one task per seed and flight reads them once for all of its
+/// models (`run_drones`): a tenth of a whole-set run. With fewer such tasks than two per core
+/// (one flight, say) each key keeps a task of its own, so that the models' filters run side by
+/// side. Each group: its seed and its members' indices in `missing`.
+fn sensor_groups(missing: &[&DroneKey], n: usize) -> Vec<(u64, Vec<usize>)> {
+    let mut seeds: Vec<(u64, Vec<usize>)> = Vec::new();
+    for (m, key) in missing.iter().enumerate() {
+        match seeds.iter_mut().find(|(seed, _)| *seed == key.seed) {
+            Some((_, members)) => members.push(m),
+            None => seeds.push((key.seed, vec![m])),
+        }
+    }
+    if enough_tasks(seeds.len() * n) {
+        seeds
+    } else {
+        missing
+            .iter()
+            .enumerate()
+            .map(|(m, key)| (key.seed, vec![m]))
+            .collect()
+    }
 }
 
 impl Simulator {
@@ -248,16 +273,7 @@ impl Simulator {
                 missing.push(key);
             }
         }
-        // Keys that differ only in their model read the same sensors (the noise depends on the
-        // seed and the flight alone): one task per seed and flight reads them once for all of
-        // its models (`run_drones`).
-        let mut seeds: Vec<(u64, Vec<usize>)> = Vec::new();
-        for (m, key) in missing.iter().enumerate() {
-            match seeds.iter_mut().find(|(seed, _)| *seed == key.seed) {
-                Some((_, members)) => members.push(m),
-                None => seeds.push((key.seed, vec![m])),
-            }
-        }
+        let seeds = sensor_groups(&missing, n);
         let computed = par_map_costliest_first(
             seeds.len() * n,
             |k| {
@@ -285,7 +301,7 @@ impl Simulator {
         );
         (0..(keys.len() - missing.len()) * n).for_each(|_| tick());
         self.drone_runs += (missing.len() * n) as u64;
-        // Task (seed, flight) holds its members' tracks in member order.
+        // Task (group, flight) holds its members' tracks in member order.
         let mut slots: Vec<Vec<Option<DroneTrack>>> = computed
             .into_iter()
             .map(|tracks| tracks.into_iter().map(Some).collect())
@@ -677,6 +693,32 @@ mod tests {
             sim.csv_key(&"t,x,y,z\n0,0,0,0\n".into(), 42),
             a,
             "the same text keeps its key"
+        );
+    }
+
+    #[test]
+    fn many_flights_read_each_seeds_sensors_once_and_one_flight_keeps_a_task_per_model() {
+        let key = |model, seed| DroneKey {
+            flights: FlightKey::Sample("canberra".into()),
+            model,
+            sensor_rate: 10f64.to_bits(),
+            q: 0.1f64.to_bits(),
+            seed,
+        };
+        let keys = [
+            key(ModelKind::Dr, 1),
+            key(ModelKind::Ctra3d, 1),
+            key(ModelKind::Dr, 2),
+            key(ModelKind::CtraPlus, 1),
+        ];
+        let missing: Vec<&DroneKey> = keys.iter().collect();
+        assert_eq!(
+            sensor_groups(&missing, 1000),
+            vec![(1, vec![0, 1, 3]), (2, vec![2])]
+        );
+        assert_eq!(
+            sensor_groups(&missing, 1),
+            vec![(1, vec![0]), (1, vec![1]), (2, vec![2]), (1, vec![3])]
         );
     }
 }
