@@ -27,31 +27,13 @@ pub fn kinematic_states(pos: &[[f64; 3]], vel: &[[f64; 3]], acc: &[[f64; 3]]) ->
 /// a sample's state that depends on the samples before it, so a flight stores these and derives
 /// the rest of each state when asked ([`kinematic_state`]).
 pub fn heading_angles(vel: &[[f64; 3]]) -> Vec<[f64; 2]> {
-    // The first defined direction also serves the samples before it.
-    let first_moving = vel
-        .iter()
-        .find(|v| hypot(hypot(v[0], v[1]), v[2]) >= HOVER_SPEED);
-    let (mut theta, mut phi) = first_moving
-        .map(|v| (atan2(v[1], v[0]), atan2(v[2], hypot(v[0], v[1]))))
-        .unwrap_or((0.0, 0.0));
-    vel.iter()
-        .map(|v| {
-            let vh = (v[0] * v[0] + v[1] * v[1]).sqrt();
-            if hypot(vh, v[2]) >= HOVER_SPEED {
-                phi = atan2(v[2], vh);
-                if vh >= HOVER_SPEED {
-                    theta = atan2(v[1], v[0]);
-                }
-            }
-            [theta, phi]
-        })
-        .collect()
+    let directions = Directions::of(vel);
+    (0..vel.len()).map(|i| directions.at(vel, i)).collect()
 }
 
-/// Where each sample's direction of motion comes from, without computing it: what
-/// [`heading_angles`] returns, in the form a flight stores (8 bytes a sample instead of 16, and
-/// no arctangent for the samples no one asks about: a synthetic flight is sampled at 100 Hz and
-/// read at 10).
+/// Where each sample's direction of motion ([`heading_angles`]) comes from, without computing
+/// it: the form a flight stores (8 bytes a sample instead of 16, and no arctangent for the
+/// samples no one asks about: a synthetic flight is sampled at 100 Hz and read at 10).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Directions {
     /// The angles before the first sample that defines them: the first defined ones (or 0).
@@ -65,7 +47,9 @@ impl Directions {
     /// The source of an angle no sample has defined yet.
     const INITIAL: u32 = u32::MAX;
 
-    /// The sources of [`heading_angles`]`(vel)` (the same tests, in the same order). At most
+    /// The sources of the directions of motion at `vel`: a sample defines phi from a speed of
+    /// [`HOVER_SPEED`], and theta from that horizontal speed; below, the last defined one holds,
+    /// and before the first, the first (tested as `hypot(hypot(vx, vy), vz)`). At most
     /// `u32::MAX` samples (flights are at most 10⁶ rows).
     pub fn of(vel: &[[f64; 3]]) -> Self {
         let first_moving = vel
@@ -92,8 +76,8 @@ impl Directions {
         Directions { initial, sources }
     }
 
-    /// `[theta, phi]` at sample `i` of the flight whose velocities are `vel`: exactly
-    /// [`heading_angles`]`(vel)[i]`.
+    /// `[theta, phi]` (rad) at sample `i` of the flight whose velocities are `vel` (those
+    /// [`Directions::of`] was given).
     pub fn at(&self, vel: &[[f64; 3]], i: usize) -> [f64; 2] {
         let [theta, phi] = self.sources[i];
         [
@@ -169,30 +153,26 @@ mod tests {
     }
 
     #[test]
-    fn directions_give_the_heading_angles_bit_for_bit_through_hovers() {
-        // Hovering first (the first defined direction serves the samples before it), then
-        // climbing straight up (phi defined, theta held), moving, and hovering again.
-        let mut vel = vec![[0.0, 0.0, 0.01]; 5];
-        vel.extend([
+    fn a_vertical_climb_keeps_the_course_and_a_hover_keeps_both_angles() {
+        let vel = [
+            // Hovering before any direction: the first defined one serves.
+            [0.0, 0.0, 0.01],
+            [3.0, 3.0, 0.0],
+            // Straight up: the climb angle follows, the course holds.
             [0.0, 0.05, 3.0],
-            [2.0, 1.0, 0.5],
-            [-1.0, 2.5, -0.3],
-            [0.1, 0.0, 0.0],
-        ]);
-        vel.extend((0..50).map(|k| {
-            let a = k as f64 * 0.3;
-            [4.0 * a.cos(), 4.0 * a.sin(), (0.1 * a).sin()]
-        }));
-        vel.extend([[0.0, 0.0, 0.0], [0.15, 0.1, 0.0], [0.0, 0.0, -0.5]]);
-        let angles = heading_angles(&vel);
-        let directions = Directions::of(&vel);
-        for (i, a) in angles.iter().enumerate() {
-            let d = directions.at(&vel, i);
-            assert_eq!(d.map(f64::to_bits), a.map(f64::to_bits), "sample {i}");
-        }
-        assert_eq!(
-            Directions::of(&[[0.0; 3]; 3]).at(&[[0.0; 3]; 3], 2),
-            [0.0, 0.0]
-        );
+            // Hovering again: both hold.
+            [0.1, 0.0, -0.05],
+            [-2.0, 0.0, 0.0],
+        ];
+        let a = heading_angles(&vel);
+        let (east, north_east) = (0.0, core::f64::consts::FRAC_PI_4);
+        assert_eq!(a[0], [north_east, 0.0]);
+        assert_eq!(a[1], [north_east, 0.0]);
+        assert_eq!(a[2][0], north_east);
+        assert!((a[2][1] - (3.0f64).atan2(0.05)).abs() < 1e-15);
+        assert_eq!(a[3], a[2]);
+        assert_eq!(a[4], [core::f64::consts::PI, 0.0]);
+        assert_eq!(Directions::of(&vel).at(&vel, 3), a[3]);
+        assert_eq!(heading_angles(&[[0.0; 3]; 2]), vec![[east, 0.0]; 2]);
     }
 }
