@@ -8,11 +8,19 @@
 // - each panel's drawing time (the page's `draw <panel>` performance measures, www/later.ts).
 // Reports, never asserts: wall-clock time on a shared machine is a measurement, not a test.
 //   npm run bench:page [-- loads [query]]      e.g. -- 5 '?flight=all' (builds dist/ first)
+//   node scripts/bench-page.mjs --compare DIR_A DIR_B [loads [query]]
+// compares two builds (copies of dist/): one load of each in turn, so that the machine's drift,
+// which on this 2-core machine moves the first results by more than most changes do, falls on
+// both alike. Batches of loads per build, one build after the other, once misled (docs/performance.md).
+import { resolve } from 'node:path';
 import { launch, serveDist } from '../tests/e2e/harness.mjs';
 
-const loads = Number(process.argv[2] ?? 7);
-const query = process.argv[3] ?? '';
-const server = await serveDist();
+const compare = process.argv[2] === '--compare' ? process.argv.slice(3, 5).map((d) => resolve(d)) : null;
+const args = compare ? process.argv.slice(5) : process.argv.slice(2);
+const loads = Number(args[0] ?? (compare ? 8 : 7));
+const query = args[1] ?? '';
+const builds = compare ?? [undefined];
+const servers = await Promise.all(builds.map((dir) => serveDist(dir)));
 const browser = await launch();
 
 /** Runs in the page before its scripts: records long tasks and when results and idleness arrive. */
@@ -33,8 +41,8 @@ function observe() {
   document.addEventListener('DOMContentLoaded', () => new MutationObserver(check).observe(document.body, { subtree: true, childList: true, attributes: true }));
 }
 
-const runs = [];
-for (let i = 0; i < loads; i++) {
+/** One cold load of the build `server` serves: its timings and each panel's drawing time. */
+async function load(server) {
   const context = await browser.newContext({ viewport: { width: 1280, height: 800 } });
   const page = await context.newPage();
   await page.addInitScript(observe);
@@ -42,26 +50,35 @@ for (let i = 0; i < loads; i++) {
   // Waits on a promise the observer resolves, not with waitForFunction: that injects Playwright's
   // own script into the page, ~100 ms of the page's thread in the middle of the load it measures.
   await page.evaluate(() => new Promise((resolve) => (window.__timing.idle !== undefined ? resolve() : (window.__idle = resolve))));
-  runs.push(
-    await page.evaluate(() => ({
-      ...window.__timing,
-      draws: Object.fromEntries(performance.getEntriesByType('measure').filter((m) => m.name.startsWith('draw ')).map((m) => [m.name.slice(5), m.duration])),
-    })),
-  );
+  const run = await page.evaluate(() => ({
+    ...window.__timing,
+    draws: Object.fromEntries(performance.getEntriesByType('measure').filter((m) => m.name.startsWith('draw ')).map((m) => [m.name.slice(5), m.duration])),
+  }));
   await context.close();
+  return run;
+}
+
+// runs[b]: build b's loads; the builds take turns, in alternating order.
+const runs = builds.map(() => []);
+for (let i = 0; i < loads; i++) {
+  const order = builds.map((_, b) => b);
+  if (i % 2) order.reverse();
+  for (const b of order) runs[b].push(await load(servers[b]));
 }
 await browser.close();
-server.close();
+servers.forEach((s) => s.close());
 
 const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
 const range = (xs) => `${Math.round(Math.min(...xs))}–${Math.round(Math.max(...xs))}`;
-const row = (label, xs) => `| ${label} | ${Math.round(median(xs))} | ${range(xs)} |`;
-console.log(`Cold loads of the playground${query ? ` (${query})` : ''} at 1280×800 (headless Chromium, ${loads} loads), ms:\n`);
-console.log('| measure | median | range |\n|---|---:|---:|');
-console.log(row('first results', runs.map((r) => r.first)));
-console.log(row('final results', runs.map((r) => r.final)));
-console.log(row('every panel drawn', runs.map((r) => r.idle)));
-console.log(row('long tasks (> 50 ms), count', runs.map((r) => r.long.length)));
-console.log(row('longest task', runs.map((r) => Math.max(0, ...r.long))));
-console.log(row('long tasks, sum', runs.map((r) => r.long.reduce((a, b) => a + b, 0))));
-for (const panel of Object.keys(runs[0].draws)) console.log(row(`draw ${panel}`, runs.map((r) => r.draws[panel] ?? 0)));
+const cells = (xs) => `${Math.round(median(xs))} | ${range(xs)}`;
+const row = (label, f) => `| ${label} | ${runs.map((r) => cells(r.map(f))).join(' | ')} |`;
+const heads = compare ? compare.map((d) => `${d}: median | range`).join(' | ') : 'median | range';
+console.log(`Cold loads of the playground${query ? ` (${query})` : ''} at 1280×800 (headless Chromium, ${loads} loads${compare ? ' of each build, in turn' : ''}), ms:\n`);
+console.log(`| measure | ${heads} |\n|---|${builds.map(() => '---:|---:|').join('')}`);
+console.log(row('first results', (r) => r.first));
+console.log(row('final results', (r) => r.final));
+console.log(row('every panel drawn', (r) => r.idle));
+console.log(row('long tasks (> 50 ms), count', (r) => r.long.length));
+console.log(row('longest task', (r) => Math.max(0, ...r.long)));
+console.log(row('long tasks, sum', (r) => r.long.reduce((a, b) => a + b, 0)));
+for (const panel of Object.keys(runs[0][0].draws)) console.log(row(`draw ${panel}`, (r) => r.draws[panel] ?? 0));

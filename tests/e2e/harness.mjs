@@ -57,8 +57,9 @@ export function scratchDir() {
   return dir;
 }
 
-/** A static file server for dist/ mounted at SUB_PATH, like a documentation site would host it. */
-export async function serveDist() {
+/** A static file server for dist/ (or another build's directory, `root`) mounted at SUB_PATH,
+ * like a documentation site would host it. */
+export async function serveDist(root = dist) {
   const server = createServer((req, res) => {
     const url = new URL(req.url, 'http://x');
     if (!url.pathname.startsWith(SUB_PATH)) {
@@ -67,8 +68,8 @@ export async function serveDist() {
     }
     let rel = normalize(decodeURIComponent(url.pathname.slice(SUB_PATH.length)));
     if (rel === '.' || rel === '' || rel.endsWith('/')) rel = join(rel, 'index.html');
-    const file = join(dist, rel);
-    if (!file.startsWith(dist)) {
+    const file = join(root, rel);
+    if (!file.startsWith(root)) {
       res.writeHead(403).end();
       return;
     }
