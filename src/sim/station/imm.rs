@@ -1,7 +1,10 @@
 //! An Interacting Multiple Model station over DR, CTRA+ and 3D-CTRA (Blom & Bar-Shalom 1988;
 //! Bar-Shalom, Li & Kirubarajan 2001, §11.6).
 
-use super::{received, ManoeuvreEvidence, StationPredictor, StationSetup, Tracker, Upcoming};
+use super::{
+    received, start_from, ManoeuvreEvidence, Received, StationPredictor, StationSetup, Tracker,
+    Upcoming,
+};
 use crate::math::exp;
 use crate::models::{with_model, ModelKind, MotionModel};
 use crate::sim::packet::Transmission;
@@ -288,7 +291,7 @@ impl Tracker for Imm {
     fn look_ahead(&mut self, upcoming: &Upcoming) {
         let mut batch = Vec::new();
         let mut times = 0;
-        for (packet, trusted, served) in upcoming.packets() {
+        for (packet, silence_trusted, served) in upcoming.packets() {
             if batch.is_empty()
                 && self
                     .ahead
@@ -298,7 +301,11 @@ impl Tracker for Imm {
                 return;
             }
             times += served.len();
-            batch.push((packet.clone(), trusted, served));
+            let received = Received {
+                packet,
+                silence_trusted,
+            };
+            batch.push((received, served));
             if times >= AHEAD_TIMES {
                 break;
             }
@@ -314,11 +321,8 @@ impl Tracker for Imm {
         let mut done = par_map_owned(copies, |(i, mut m)| {
             let at: Vec<Vec<MemberEstimate>> = batch
                 .iter()
-                .map(|(packet, trusted, served)| {
-                    // As start_from applies a packet.
-                    m.set_interval(packet.interval);
-                    m.trust_silence(*trusted);
-                    m.reset(&packet.state, packet.sent);
+                .map(|(received, served)| {
+                    start_from(m.as_mut(), received);
                     served
                         .iter()
                         .map(|&t| {
@@ -335,7 +339,7 @@ impl Tracker for Imm {
         self.ahead = Some(Ahead {
             packets: batch
                 .into_iter()
-                .map(|(p, _, served)| (p.sent, served))
+                .map(|(r, served)| (r.packet.sent, served))
                 .collect(),
             at,
             now: None,
