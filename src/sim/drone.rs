@@ -47,24 +47,15 @@ pub fn run_drone(
     seed: u64,
     stream: u64,
 ) -> DroneTrack {
-    let mut f = DroneFilter::new(flight, model, sensor_rate, q, r_diagonal, seed, stream);
-    let mut states = Vec::with_capacity(f.steps);
-    while let Some(x) = f.next_estimate() {
-        states.push(x);
-    }
-    DroneTrack {
-        model,
-        start: f.start,
-        period: f.period,
-        states,
-        recoveries: f.recoveries(),
-    }
+    let mut tracks = run_drones(flight, &[model], sensor_rate, q, r_diagonal, seed, stream);
+    tracks.remove(0)
 }
 
 /// [`run_drone`] for each of `models` on the same readings: the sensors are read once per step
 /// and every model's filter takes that reading, which is what each would have drawn alone (the
-/// same draws, in the same order), so each track equals its [`run_drone`]. Reading the true
-/// state and drawing nine normals was a tenth of a whole-set run with three models (perf).
+/// same draws, in the same order), so each track equals its [`run_drone`] (and a
+/// [`DroneFilter`]'s estimates). Reading the true state and drawing nine normals was a tenth of
+/// a whole-set run with three models (perf).
 pub fn run_drones(
     flight: &Trajectory,
     models: &[ModelKind],
@@ -410,8 +401,14 @@ mod tests {
         let together = run_drones(&flight, &models, 10.0, 0.1, &PAPER_R_DIAGONAL, 7, 3);
         assert_eq!(together.len(), 3);
         for (track, &model) in together.iter().zip(&models) {
+            // Alone, and step by step as a swarm's live drone runs it.
             let alone = run_drone(&flight, model, 10.0, 0.1, &PAPER_R_DIAGONAL, 7, 3);
             assert_eq!(track, &alone, "{model:?}");
+            let mut live = DroneFilter::new(&flight, model, 10.0, 0.1, &PAPER_R_DIAGONAL, 7, 3);
+            let states: Vec<[f64; 9]> = core::iter::from_fn(|| live.next_estimate()).collect();
+            assert_eq!(states, track.states, "{model:?} live");
+            assert_eq!(live.recoveries(), track.recoveries);
+            assert_eq!((live.start, live.period), (track.start, track.period));
         }
         // Another stream reads other noise: the tracks would not be equal by accident.
         let other = run_drone(&flight, ModelKind::Dr, 10.0, 0.1, &PAPER_R_DIAGONAL, 7, 4);

@@ -301,19 +301,19 @@ impl Simulator {
         );
         (0..(keys.len() - missing.len()) * n).for_each(|_| tick());
         self.drone_runs += (missing.len() * n) as u64;
-        // Task (group, flight) holds its members' tracks in member order.
-        let mut slots: Vec<Vec<Option<DroneTrack>>> = computed
-            .into_iter()
-            .map(|tracks| tracks.into_iter().map(Some).collect())
-            .collect();
-        for (g, (_, members)) in seeds.iter().enumerate() {
-            for (j, &m) in members.iter().enumerate() {
-                let tracks: Vec<DroneTrack> =
-                    (0..n).filter_map(|i| slots[g * n + i][j].take()).collect();
-                let tracks = Rc::new(tracks);
-                sets.insert(missing[m].clone(), Rc::clone(&tracks));
-                self.remember_drones(missing[m].clone(), tracks);
+        // Task k is group k / n on flight k % n, its tracks in member order: dealt out in task
+        // order, each key's tracks come in flight order.
+        let mut tracks: Vec<Vec<DroneTrack>> =
+            missing.iter().map(|_| Vec::with_capacity(n)).collect();
+        for (k, task) in computed.into_iter().enumerate() {
+            for (&m, track) in seeds[k / n].1.iter().zip(task) {
+                tracks[m].push(track);
             }
+        }
+        for (key, tracks) in missing.into_iter().zip(tracks) {
+            let tracks = Rc::new(tracks);
+            sets.insert(key.clone(), Rc::clone(&tracks));
+            self.remember_drones(key.clone(), tracks);
         }
         keys.iter().map(|key| Some(Rc::clone(&sets[key]))).collect()
     }
