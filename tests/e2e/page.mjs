@@ -115,9 +115,13 @@ export const idle = (page) => page.waitForFunction(() => !('busy' in document.bo
 /** Opens the playground, picks `title` from the Lessons menu and waits for its numbers (and, unless
  * `settled` is false, for every panel). */
 export async function lesson(title, { settled = true } = {}) {
-  const opened = await open();
+  // A user need not wait for the default results before picking a lesson, and the lesson's link
+  // loads the page afresh: waiting for them here cost each lesson test a whole first run.
+  const opened = await openPage(browser, server.origin);
+  await opened.page.goto(server.url);
   await opened.page.getByText('Lessons', { exact: true }).click();
   await opened.page.getByRole('link', { name: title }).click();
+  await opened.page.waitForURL(/[?&]lesson=/);
   await waitForResults(opened.page);
   // A lesson whose claim is in the results table need not wait for the charts of a whole set
   // (the SF chart runs it six more times).
