@@ -5,7 +5,7 @@
 //! falls at each one), so they are not resampled one by one; the runs are, which keeps every
 //! run's own structure (`docs/reference.md` §12).
 
-use super::percentile;
+use super::{percentile, sort_total};
 use crate::rng::Rng;
 use serde::Serialize;
 
@@ -55,7 +55,7 @@ pub fn bootstrap(runs: &[&[f64]], seed: u64) -> Option<Intervals> {
         return None;
     }
     let mut all: Vec<f64> = runs.iter().flat_map(|r| r.iter().copied()).collect();
-    all.sort_unstable_by(f64::total_cmp);
+    sort_total(&mut all);
     bootstrap_sorted(runs, &all, seed)
 }
 
@@ -100,7 +100,7 @@ pub(crate) fn bootstrap_sorted(runs: &[&[f64]], all: &[f64], seed: u64) -> Optio
         stats[4].push(max);
     }
     let [mean, p50, p75, p95, max] = stats.map(|mut s| {
-        s.sort_unstable_by(f64::total_cmp);
+        sort_total(&mut s);
         [percentile(&s, 2.5), percentile(&s, 97.5)]
     });
     Some(Intervals {

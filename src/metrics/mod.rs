@@ -7,6 +7,7 @@ mod bootstrap;
 mod boxplot;
 mod coverage;
 mod percentile;
+mod sort;
 mod summary;
 mod whole_flight;
 
@@ -15,5 +16,6 @@ pub use bootstrap::{bootstrap, Intervals, RESAMPLES};
 pub use boxplot::Boxplot;
 pub use coverage::{bound_95, inside_95, nees, Consistency, CHI2_3DOF_95};
 pub use percentile::percentile;
+pub use sort::sort_total;
 pub use summary::Summary;
 pub use whole_flight::WholeFlightError;

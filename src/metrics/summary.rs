@@ -1,4 +1,4 @@
-use super::percentile;
+use super::{percentile, sort_total};
 use serde::Serialize;
 
 /// Summary of absolute errors (m): the shape of `error3d`, `errorX`, … in reference §9. With no
@@ -28,7 +28,7 @@ pub struct Summary {
 impl Summary {
     /// Summarises `data` (any order; it is sorted in place).
     pub fn of(data: &mut [f64]) -> Self {
-        data.sort_unstable_by(f64::total_cmp);
+        sort_total(data);
         let n = data.len();
         Summary {
             mean: if n == 0 {

@@ -4,7 +4,7 @@ use super::packet::Transmission;
 use super::report::{Boxplots, DataRateUse, Delivery, Energy, ModelResult, ModelSeries};
 use super::station::{StationModel, StationTrack};
 use crate::lora::DataRate;
-use crate::metrics::{bootstrap_sorted, Consistency, Summary, WholeFlightError};
+use crate::metrics::{bootstrap_sorted, sort_total, Consistency, Summary, WholeFlightError};
 use crate::models::ModelKind;
 use std::collections::BTreeMap;
 
@@ -98,7 +98,7 @@ impl Pooled {
                 .into_iter()
                 .map(|(a, b)| {
                     let mut run = self.e3[a..b].to_vec();
-                    run.sort_unstable_by(f64::total_cmp);
+                    sort_total(&mut run);
                     run
                 })
                 .collect(),
