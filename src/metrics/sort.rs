@@ -1,7 +1,7 @@
 //! Sorting samples in [`f64::total_cmp`]'s order, the order every statistic here reads them in.
 
-/// Below this length a slice is sorted by comparison: the keys' allocation would cost more
-/// than it saves.
+/// Below this length a slice is sorted by comparison, without allocating keys. Not tuned: the
+/// sorts that cost anything are of 10⁴–10⁶ errors, far above it.
 const KEYED_FROM: usize = 256;
 
 /// Sorts `data` ascending in [`f64::total_cmp`]'s order: bit for bit the order
