@@ -5,7 +5,7 @@ import { execFileSync } from 'node:child_process';
 import { createServer } from 'node:http';
 import { mkdirSync, mkdtempSync, readFileSync, rmSync, statSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { dirname, extname, join, normalize } from 'node:path';
+import { dirname, extname, isAbsolute, join, normalize, relative, sep } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 
@@ -57,9 +57,9 @@ export function scratchDir() {
   return dir;
 }
 
-/** A static file server for dist/ (or another build's directory, `root`) mounted at SUB_PATH,
+/** A static file server for dist/ (or another build's directory, `dir`) mounted at SUB_PATH,
  * like a documentation site would host it. */
-export async function serveDist(root = dist) {
+export async function serveDist(dir = dist) {
   const server = createServer((req, res) => {
     const url = new URL(req.url, 'http://x');
     if (!url.pathname.startsWith(SUB_PATH)) {
@@ -68,8 +68,10 @@ export async function serveDist(root = dist) {
     }
     let rel = normalize(decodeURIComponent(url.pathname.slice(SUB_PATH.length)));
     if (rel === '.' || rel === '' || rel.endsWith('/')) rel = join(rel, 'index.html');
-    const file = join(root, rel);
-    if (!file.startsWith(root)) {
+    const file = join(dir, rel);
+    // Inside `dir` itself: a bare prefix test would also pass a sibling such as `dist-old/`.
+    const inside = relative(dir, file);
+    if (inside === '..' || inside.startsWith(`..${sep}`) || isAbsolute(inside)) {
       res.writeHead(403).end();
       return;
     }
