@@ -15,6 +15,8 @@ export interface Settings {
   prediction: Prediction;
   sender: 'periodic' | 'error';
   threshold: number;
+  /** Error-triggered sending's heartbeat: the longest silence, s. */
+  maxInterval: number;
   dutyCycleMode: 'per-packet' | 'budget';
   adr: AdrMode;
   /** The LoRaWAN regional plan. */
@@ -57,6 +59,7 @@ export const DEFAULTS: Settings = {
   prediction: 'paper',
   sender: 'periodic',
   threshold: def('threshold'),
+  maxInterval: def('maxInterval'),
   dutyCycleMode: 'per-packet',
   adr: 'off',
   region: 'eu868',
@@ -125,6 +128,7 @@ export const LIMITS: Record<NumericKey, Limit> = {
   bw: limit('bw'),
   distance: limit('distance'),
   threshold: limit('threshold'),
+  maxInterval: limit('maxInterval'),
   interval: limit('interval'),
   flightNumber: { label: 'Synthetic flight number', min: 1, max: 30, integer: true },
   cr: limit('cr'),
@@ -141,7 +145,7 @@ export const LIMITS: Record<NumericKey, Limit> = {
 /** What a gateway's coordinates and height accept (the core's limits). */
 export const GATEWAY_LIMITS = { coordinate: limit('gateway', 'Gateway coordinate'), height: limit('gatewayHeight', 'Gateway height'), count: limit('gateways', 'Gateways') };
 
-type NumericKey = 'sf' | 'bw' | 'distance' | 'threshold' | 'interval' | 'flightNumber' | 'cr' | 'txPower' | 'pathLossExponent' | 'shadowing' | 'sensorRate' | 'step' | 'eta' | 'seed' | 'seeds';
+type NumericKey = 'sf' | 'bw' | 'distance' | 'threshold' | 'maxInterval' | 'interval' | 'flightNumber' | 'cr' | 'txPower' | 'pathLossExponent' | 'shadowing' | 'sensorRate' | 'step' | 'eta' | 'seed' | 'seeds';
 const NUMERIC = Object.keys(LIMITS) as NumericKey[];
 
 /** Why `value` is not acceptable for `key`, in the words of the form; null when it is. */
@@ -222,6 +226,7 @@ export function toParams(s: Settings, csv?: { text: string; name: string }, miss
     prediction: s.prediction,
     sender: s.sender,
     threshold: s.threshold,
+    maxInterval: s.maxInterval,
     dutyCycleMode: s.dutyCycleMode,
     adr: s.adr,
     region: s.region,

@@ -501,14 +501,26 @@ test('axe finds no violation in the stale, error, presentation and phone states'
   assert.deepEqual([...stale.problems, ...present.problems, ...phone.problems], []);
 });
 
-test('with error-triggered sending the SF chart leaves out the SFs whose interval exceeds the heartbeat, says why, and the results stand', async () => {
+test('with error-triggered sending the SF chart leaves out the SFs whose interval exceeds the heartbeat, says why, and the results stand; a longer heartbeat brings them back', async () => {
   const { page, problems } = await open('?sender=error');
   await idle(page);
   await page.waitForSelector('#chart-sf svg');
   assert.match(await page.locator('#sf-note').textContent(), /^Not simulated at (SF\d+, )*SF12: maxInterval must be at least the duty-cycle interval/);
   const titles = await page.locator('#chart-sf svg title').allTextContents();
   assert.ok(titles.some((t) => t.startsWith('DR, SF7:')), titles.join('; '));
+  assert.ok(!titles.some((t) => t.includes('SF12:')), titles.join('; '));
   assert.equal(await page.locator('[data-panel="results"].stale').count(), 0);
   assert.doesNotMatch(await page.locator('#status').textContent(), /cannot be simulated/);
+  // The heartbeat the note names is a control beside the threshold, with the core's default.
+  const heartbeat = page.getByLabel('Heartbeat (s)');
+  assert.equal(await heartbeat.inputValue(), '10');
+  const before = await page.locator('#chart-sf').innerHTML();
+  await heartbeat.fill('200');
+  await page.waitForFunction((html) => document.querySelector('#chart-sf')?.innerHTML !== html && document.querySelector('#chart-sf svg'), before);
+  await idle(page);
+  assert.match(page.url(), /maxInterval=200/);
+  assert.equal(await page.locator('#sf-note').isVisible(), false);
+  const longer = await page.locator('#chart-sf svg title').allTextContents();
+  assert.ok(longer.some((t) => t.startsWith('DR, SF12:')), longer.join('; '));
   assert.deepEqual(problems, []);
 });

@@ -22,6 +22,7 @@ function* variedSettings(): Generator<Settings> {
       prediction: pick(['paper', 'bounded'] as const),
       sender: pick(['periodic', 'error'] as const),
       threshold: pick([0.5, 2, 7.5]),
+      maxInterval: pick([10, 60, 150]),
       dutyCycleMode: pick(['per-packet', 'budget'] as const),
       ...(() => {
         // A plan that has this SF and bandwidth; ADR only in EU868, listen-before-talk only where
