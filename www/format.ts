@@ -1,6 +1,6 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
 import { MODEL_LABELS, type ModelResult } from './loratrack';
-import { plan, type Settings } from './state';
+import { DEFAULTS, LIMITS, plan, type Settings } from './state';
 import { store } from './store';
 
 /** A statistic with `digits` decimals, or a dash where there is none (an empty sample). */
@@ -16,14 +16,36 @@ export const untrackedWorthSaying = (tracked: number | null) => trackedPercent(t
 /** Station names as a list: "DR", "DR and CTRA+", "DR, CTRA+, 3D-CTRA". */
 export const names = (list: ModelResult[]) => list.map((m) => MODEL_LABELS[m.model]).join(list.length === 2 ? ' and ' : ', ');
 
-/** The settings that matter most, in one short phrase: the plan's limit whenever it is not the
- * paper's EU868 1 % duty cycle. */
+/** The sending policy with what it rests on, and the duty-cycle rule when it is not the paper's
+ * off-time per packet: two error-triggered runs with different thresholds must not read alike. */
+function sending(s: Settings): string {
+  const sender = s.sender === 'error' ? `error-triggered sending (${s.threshold} m, heartbeat ${s.maxInterval} s)` : 'periodic sending';
+  return s.dutyCycleMode === 'budget' ? `${sender}, duty-cycle budget` : sender;
+}
+
+/** The form's advanced settings (link and filter), named where they differ from the paper's
+ * defaults, in the core table's words: "shadowing sigma 8 dB". */
+const ADVANCED = ['cr', 'txPower', 'pathLossExponent', 'shadowing', 'sensorRate', 'step', 'eta'] as const;
+
+function advanced(s: Settings): string {
+  return ADVANCED.filter((k) => s[k] !== DEFAULTS[k])
+    .map((k) => {
+      if (k === 'cr') return `, coding rate 4/${4 + s.cr}`;
+      const { label, unit } = LIMITS[k];
+      return `, ${label.charAt(0).toLowerCase()}${label.slice(1)} ${s[k]}${unit ? ` ${unit}` : ''}`;
+    })
+    .join('');
+}
+
+/** The settings behind a number, in one short phrase: the plan's limit whenever it is not the
+ * paper's EU868 1 % duty cycle, the sender's threshold and heartbeat, and any advanced setting
+ * changed from its default. */
 export function describe(s: Settings): string {
   const p = plan(s.region);
   const limit = p.dutyCycle === null ? `, every ${s.interval} s` : s.access === 'lbt' ? ', listen before talk' : '';
   const region = s.region === 'eu868' && !limit ? '' : `, ${p.label}${limit}`;
   const fair = s.fairUse === 'off' ? '' : `, ${s.fairUse.toUpperCase()} fair use`;
-  return `SF${s.sf}, ${s.bw} kHz${region}${fair}, ${(s.distance / 1000).toFixed(1)} km, ${s.prediction} prediction, ${s.sender} sending${s.adr === 'off' ? '' : `, ${s.adr} ADR`}`;
+  return `SF${s.sf}, ${s.bw} kHz${region}${fair}, ${(s.distance / 1000).toFixed(1)} km, ${s.prediction} prediction, ${sending(s)}${s.adr === 'off' ? '' : `, ${s.adr} ADR`}${advanced(s)}`;
 }
 
 /** One line for a download's caption: the settings, flight, seed and version behind a chart. */

@@ -304,6 +304,8 @@ test('the bounded and IMM stations and error-triggered sending are one control a
   assert.ok(errorSent < periodicSent, `error-triggered sent ${errorSent}, periodic ${periodicSent}`);
   assert.match(page.url(), /sender=error/);
   assert.match(page.url(), /threshold=5/);
+  // The table says what its numbers rest on: the sender and its threshold and heartbeat.
+  assert.match(await page.locator('#results-table caption').textContent(), /error-triggered sending \(5 m, heartbeat 10 s\)/);
   assert.deepEqual(problems, []);
 });
 

@@ -34,6 +34,11 @@ test('a caption names the settings, the flight, every seed and the version', () 
   expect(describe({ ...DEFAULTS, region: 'us915', sf: 9, bw: 125 })).toBe('SF9, 125 kHz, US915, every 1 s, 1.0 km, paper prediction, periodic sending');
   expect(describe({ ...DEFAULTS, access: 'lbt', fairUse: 'ttn' })).toBe('SF7, 250 kHz, EU868, listen before talk, TTN fair use, 1.0 km, paper prediction, periodic sending');
   expect(describe({ ...DEFAULTS, region: 'as923', sf: 7, bw: 125 })).toMatch(/^SF7, 125 kHz, AS923, 1\.0 km/);
+  // Two error-triggered runs with different thresholds, or different link settings, must not read alike.
+  expect(describe({ ...DEFAULTS, sender: 'error', threshold: 20, maxInterval: 60, dutyCycleMode: 'budget' })).toBe(
+    'SF7, 250 kHz, 1.0 km, paper prediction, error-triggered sending (20 m, heartbeat 60 s), duty-cycle budget',
+  );
+  expect(describe({ ...DEFAULTS, shadowing: 8, cr: 4, sensorRate: 5 })).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending, coding rate 4/8, shadowing sigma 8 dB, sensor rate 5 Hz');
   expect(caption(DEFAULTS)).toMatch(/^SF7, 250 kHz, 1\.0 km, paper prediction, periodic sending, 13 B LoRaWAN overhead; synthetic flight 1; seed 1; loratrack \d+\.\d+\.\d+$/);
   expect(caption({ ...DEFAULTS, flight: 'all', seed: 5, seeds: 10, lorawan: false })).toMatch(/no LoRaWAN overhead; whole synthetic set; seed 5 to 14;/);
 });
