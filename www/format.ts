@@ -37,6 +37,14 @@ function advanced(s: Settings): string {
     .join('');
 }
 
+/** Where the gateways stand: the default gateway's distance, or the sites given (the distance
+ * then places nothing). */
+function link(s: Settings): string {
+  if (s.gateways.length === 0) return `${(s.distance / 1000).toFixed(1)} km`;
+  const sites = s.gateways.map((g) => `(${g.east}, ${g.north}) m`).join(', ');
+  return `${s.gateways.length === 1 ? 'gateway' : 'gateways'} at ${sites}`;
+}
+
 /** The settings behind a number, in one short phrase: the plan's limit whenever it is not the
  * paper's EU868 1 % duty cycle, the sender's threshold and heartbeat, and any advanced setting
  * changed from its default. */
@@ -45,7 +53,7 @@ export function describe(s: Settings): string {
   const limit = p.dutyCycle === null ? `, every ${s.interval} s` : s.access === 'lbt' ? ', listen before talk' : '';
   const region = s.region === 'eu868' && !limit ? '' : `, ${p.label}${limit}`;
   const fair = s.fairUse === 'off' ? '' : `, ${s.fairUse.toUpperCase()} fair use`;
-  return `SF${s.sf}, ${s.bw} kHz${region}${fair}, ${(s.distance / 1000).toFixed(1)} km, ${s.prediction} prediction, ${sending(s)}${s.adr === 'off' ? '' : `, ${s.adr} ADR`}${advanced(s)}`;
+  return `SF${s.sf}, ${s.bw} kHz${region}${fair}, ${link(s)}, ${s.prediction} prediction, ${sending(s)}${s.adr === 'off' ? '' : `, ${s.adr} ADR`}${advanced(s)}`;
 }
 
 /** One line for a download's caption: the settings, flight, seed and version behind a chart. */

@@ -38,6 +38,10 @@ test('a caption names the settings, the flight, every seed and the version', () 
   expect(describe({ ...DEFAULTS, sender: 'error', threshold: 20, maxInterval: 60, dutyCycleMode: 'budget' })).toBe(
     'SF7, 250 kHz, 1.0 km, paper prediction, error-triggered sending (20 m, heartbeat 60 s), duty-cycle budget',
   );
+  // Gateways placed by hand replace the default gateway's distance.
+  expect(describe({ ...DEFAULTS, gateways: [{ east: 500, north: -200 }, { east: 0, north: 3000 }] })).toBe(
+    'SF7, 250 kHz, gateways at (500, -200) m, (0, 3000) m, paper prediction, periodic sending',
+  );
   expect(describe({ ...DEFAULTS, shadowing: 8, cr: 4, sensorRate: 5 })).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending, coding rate 4/8, shadowing sigma 8 dB, sensor rate 5 Hz');
   expect(caption(DEFAULTS)).toMatch(/^SF7, 250 kHz, 1\.0 km, paper prediction, periodic sending, 13 B LoRaWAN overhead; synthetic flight 1; seed 1; loratrack \d+\.\d+\.\d+$/);
   expect(caption({ ...DEFAULTS, flight: 'all', seed: 5, seeds: 10, lorawan: false })).toMatch(/no LoRaWAN overhead; whole synthetic set; seed 5 to 14;/);
