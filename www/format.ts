@@ -17,8 +17,9 @@ export const untrackedWorthSaying = (tracked: number | null) => trackedPercent(t
 export const names = (list: ModelResult[]) => list.map((m) => MODEL_LABELS[m.model]).join(list.length === 2 ? ' and ' : ', ');
 
 /** The sending policy with what it rests on, and the duty-cycle rule when it is not the paper's
- * off-time per packet: two error-triggered runs with different thresholds must not read alike. */
-function sending(s: Settings): string {
+ * off-time per packet: two error-triggered runs with different thresholds must not read alike.
+ * Takes the page's settings or a report's own config. */
+export function sending(s: Pick<Settings, 'sender' | 'threshold' | 'maxInterval' | 'dutyCycleMode'>): string {
   const sender = s.sender === 'error' ? `error-triggered sending (${s.threshold} m, heartbeat ${s.maxInterval} s)` : 'periodic sending';
   return s.dutyCycleMode === 'budget' ? `${sender}, duty-cycle budget` : sender;
 }
