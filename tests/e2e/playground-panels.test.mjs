@@ -415,6 +415,30 @@ test('lesson "Swarms share the air": the collision rate climbs as the swarm grow
   assert.deepEqual(problems, []);
 });
 
+test('lesson "In a crowd, send less": error-triggered drones on the crowd\'s scale track better than periodic ones, with the CLI\'s numbers', async () => {
+  const { page, problems } = await lesson('In a crowd, send less');
+  // Drawn once the swarms are done; `before` is the note of the swarm drawn before, if any.
+  const swarmed = (before = null) =>
+    page.waitForFunction((old) => /Packets collided/.test(document.querySelector('#swarm-status')?.textContent ?? '') && (document.querySelector('#chart-swarm .note')?.textContent ?? old) !== old, before, { timeout: 90_000 });
+  const median = async () => Number((await page.locator('#chart-swarm .note').textContent()).match(/median per-drone p75 ([\d.]+) m/)[1]);
+  await swarmed();
+  const error = await median();
+  const crowd = ['swarm', '--drones', '72', '--duration', '120', '--channels', '1', '--sf-plan', 'fixed', '--sf', '7', '--bw', '125', '--prediction', 'bounded'];
+  const cli = nativeJson([...crowd, '--sender', 'error', '--threshold', '20', '--max-interval', '60', '--duty-cycle-mode', 'budget']);
+  assert.equal(error.toFixed(2), cli.medianDroneP75.toFixed(2));
+  // The lesson's second step, as a user takes it: the paper's drone (periodic sending, an off-time
+  // per packet), the swarm run again.
+  const note = await page.locator('#chart-swarm .note').textContent();
+  await page.getByLabel('Sending').selectOption('periodic');
+  await page.getByLabel('Duty-cycle rule').selectOption('per-packet');
+  await page.locator('#run-swarm').click();
+  await swarmed(note);
+  const periodic = await median();
+  assert.equal(periodic.toFixed(2), nativeJson(crowd).medianDroneP75.toFixed(2));
+  assert.ok(error < periodic, `error-triggered ${error} m, periodic ${periodic} m`);
+  assert.deepEqual(problems, []);
+});
+
 test('lesson "ADR chases the link": from SF12 packets move to DR5 or DR6, far more arrive and every p75 falls', async () => {
   const { page, problems } = await lesson('ADR chases the link', { settled: false });
   await page.waitForSelector('[data-delta="p75"]');
