@@ -9,14 +9,14 @@ import type { BoxRow } from './charts/plots';
 import type { Trajectory3d } from './charts/trajectory3d';
 import { $ } from './dom';
 import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH } from './export';
-import { field, form, onFormChange, readControls, showConditional, writeControls } from './form';
+import { field, form, markField, onFormChange, readControls, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
 import { caption } from './format';
 import { later, drawingLater, onDrawing } from './later';
 import { LESSONS, lessonQuery } from './lessons';
 import { renderBaseline, renderTable } from './results';
 import { setUpPresent } from './present';
-import { DEFAULTS, fromQuery, overheadBytes, plan, simulateRequest, toParams, type Settings } from './state';
+import { DEFAULTS, fromQuery, isNumericKey, overheadBytes, plan, simulateRequest, toParams, type Settings } from './state';
 import { pageQuery, store } from './store';
 import type { Request, Response, SimulateRequest } from './worker';
 
@@ -170,6 +170,12 @@ function onResponse(r: Response): void {
       status.textContent = 'The CSV could not be simulated; the results below are for the previous settings.';
     } else {
       status.textContent = `These settings cannot be simulated: ${r.error}. Change a setting; the results below are for the previous settings.`;
+      // The core names the setting it refuses first ("maxInterval must be at least …", a limit that
+      // depends on the data rate, which the form cannot check alone): mark that control as the form
+      // marks its own (the next change of any setting checks every control afresh and clears it).
+      const named = /^(\w+) must\b/.exec(r.error)?.[1];
+      const control = named && isNumericKey(named) ? field(named) : null;
+      if (control) markField(control, `${r.error}.`);
     }
     if (settingsChartsWait) renderSettingsCharts();
     sendQueued();

@@ -535,13 +535,22 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   assert.ok(!titles.some((t) => t.includes('SF12:')), titles.join('; '));
   assert.equal(await page.locator('[data-panel="results"].stale').count(), 0);
   assert.doesNotMatch(await page.locator('#status').textContent(), /cannot be simulated/);
-  // The heartbeat the note names is a control beside the threshold, with the core's default.
+  // The heartbeat the note names is a control beside the threshold, with the core's default; at
+  // SF12 the run itself is refused, and the refusal is marked on that control.
   const heartbeat = page.getByLabel('Heartbeat (s)');
   assert.equal(await heartbeat.inputValue(), '10');
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('12');
+  await page.waitForFunction(() => /cannot be simulated: maxInterval must be/.test(document.querySelector('#status')?.textContent ?? ''));
+  assert.equal(await heartbeat.getAttribute('aria-invalid'), 'true');
+  assert.match(await page.locator('#maxInterval-error').textContent(), /SF12 at 250 kHz: [\d.]+ s\), got 10/);
   const before = await page.locator('#chart-sf').innerHTML();
+  const table = await tableHtml(page);
   await heartbeat.fill('200');
+  await waitForResults(page, table);
   await page.waitForFunction((html) => document.querySelector('#chart-sf')?.innerHTML !== html && document.querySelector('#chart-sf svg'), before);
   await idle(page);
+  assert.equal(await heartbeat.getAttribute('aria-invalid'), null);
+  assert.equal(await page.locator('#maxInterval-error').count(), 0);
   assert.match(page.url(), /maxInterval=200/);
   assert.equal(await page.locator('#sf-note').isVisible(), false);
   const longer = await page.locator('#chart-sf svg title').allTextContents();
