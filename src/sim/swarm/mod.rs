@@ -27,7 +27,7 @@ use super::streams::LAYOUT_STREAM;
 use super::{SimError, Transmission};
 use crate::lora::{time_on_air, AdrMode, LoraParams, Outcome};
 use crate::math::sin_cos;
-use crate::metrics::{percentile, Summary, WholeFlightError};
+use crate::metrics::{percentile, sort_total, Summary, WholeFlightError};
 use crate::options::MAX_SWARM_FILTER_STEPS;
 use crate::rng::Rng;
 use crate::trajectory::{chain_flights, Trajectory};
@@ -436,7 +436,7 @@ fn report(
         .filter(|d| d.error3d.count > 0)
         .map(|d| d.error3d.p75)
         .collect();
-    p75s.sort_by(f64::total_cmp);
+    sort_total(&mut p75s);
     let nd = drones.len().max(1) as f64;
     SwarmReport {
         config: SwarmEcho {
