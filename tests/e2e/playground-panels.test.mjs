@@ -1,5 +1,5 @@
 // The playground's panels beyond the results table (baseline, SF chart, swarm, gateways, regional
-// plans, large files, every screen size), its lessons and presentation mode, in headless Chromium
+// plans, large files), its lessons and presentation mode, in headless Chromium
 // against the production build. Every test fails on a console error, an uncaught exception, an
 // HTTP error or a request to any other host.
 import { test } from 'node:test';
@@ -208,33 +208,6 @@ test('a large CSV is read with its own progress, then simulated', async () => {
   assert.match(await page.locator('#status').textContent(), /long\.csv: 1 flight, 800 s simulated/);
   assert.ok(number(await cell(page, 'dr', 'delivery')) > 0);
   assert.deepEqual(problems, []);
-});
-
-test('every screen: no sideways scrolling from a phone to a projector, and chart text stays legible and clear of other text', async () => {
-  for (const [width, height, least] of [[360, 740, 11], [390, 844, 11], [768, 1024, 11], [1024, 768, 12], [1280, 800, 12], [1920, 1080, 12]]) {
-    const { page, problems } = await open('', { width, height });
-    await idle(page);
-    const m = await page.evaluate(() => {
-      const sizes = [...document.querySelectorAll('.chart svg text')]
-        .filter((t) => t.getBoundingClientRect().height > 0)
-        .map((t) => {
-          const svg = t.ownerSVGElement;
-          const scale = svg.getBoundingClientRect().width / (svg.viewBox.baseVal?.width || svg.getBoundingClientRect().width);
-          return parseFloat(getComputedStyle(t).fontSize) * scale;
-        });
-      return { scrollWidth: document.documentElement.scrollWidth, smallest: Math.min(...sizes), texts: sizes.length };
-    });
-    assert.ok(m.scrollWidth <= width, `${width}x${height}: the document is ${m.scrollWidth} px wide`);
-    assert.ok(m.texts > 20, `${width}: chart text found`);
-    assert.ok(m.smallest >= least, `${width}x${height}: chart text down to ${m.smallest.toFixed(1)} px`);
-    console.log(`# ${width}x${height}: document ${m.scrollWidth} px wide, chart text >= ${m.smallest.toFixed(1)} px`);
-    assert.deepEqual(await axisLabelOverlaps(page), [], `${width}x${height}: axis labels on other text`);
-    // Every control can be reached: the last one is on the page, within its width.
-    const last = await page.getByRole('button', { name: 'New seed' }).boundingBox();
-    assert.ok(last.x >= 0 && last.x + last.width <= width, `${width}: New seed at ${last.x}`);
-    assert.deepEqual(problems, []);
-    await page.close();
-  }
 });
 
 test('a number being typed runs once it is whole: -15 dBm never runs as -1', async () => {

@@ -1,14 +1,14 @@
 // The playground as a user drives it, in headless Chromium against the production build served
-// under a sub-path: settings, results, downloads, links, embedding and the 3D view. Every test
-// fails on a console error, an uncaught exception, an HTTP error or a request to any other host.
-// The other panels, the lessons and presentation mode are in playground-panels.test.mjs; the two
-// files run side by side.
+// under a sub-path: settings, results, downloads, links, embedding, every screen size and the 3D
+// view. Every test fails on a console error, an uncaught exception, an HTTP error or a request to
+// any other host. The other panels, the lessons and presentation mode are in
+// playground-panels.test.mjs; the two files run side by side.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { nativeJson, scratchDir, openPage, screenshot } from './harness.mjs';
-import { axe, cell, idle, number, open, playground, shownP75, tableHtml, usePlayground, waitForResults } from './page.mjs';
+import { axe, axisLabelOverlaps, cell, idle, number, open, playground, shownP75, tableHtml, usePlayground, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -256,6 +256,33 @@ test('works on a phone-sized screen and by keyboard', async () => {
   assert.equal(await page.getByLabel('Spreading factor', { exact: true }).inputValue(), '8');
   await screenshot(page, 'phone');
   assert.deepEqual(problems, []);
+});
+
+test('every screen: no sideways scrolling from a phone to a projector, and chart text stays legible and clear of other text', async () => {
+  for (const [width, height, least] of [[360, 740, 11], [390, 844, 11], [768, 1024, 11], [1024, 768, 12], [1280, 800, 12], [1920, 1080, 12]]) {
+    const { page, problems } = await open('', { width, height });
+    await idle(page);
+    const m = await page.evaluate(() => {
+      const sizes = [...document.querySelectorAll('.chart svg text')]
+        .filter((t) => t.getBoundingClientRect().height > 0)
+        .map((t) => {
+          const svg = t.ownerSVGElement;
+          const scale = svg.getBoundingClientRect().width / (svg.viewBox.baseVal?.width || svg.getBoundingClientRect().width);
+          return parseFloat(getComputedStyle(t).fontSize) * scale;
+        });
+      return { scrollWidth: document.documentElement.scrollWidth, smallest: Math.min(...sizes), texts: sizes.length };
+    });
+    assert.ok(m.scrollWidth <= width, `${width}x${height}: the document is ${m.scrollWidth} px wide`);
+    assert.ok(m.texts > 20, `${width}: chart text found`);
+    assert.ok(m.smallest >= least, `${width}x${height}: chart text down to ${m.smallest.toFixed(1)} px`);
+    console.log(`# ${width}x${height}: document ${m.scrollWidth} px wide, chart text >= ${m.smallest.toFixed(1)} px`);
+    assert.deepEqual(await axisLabelOverlaps(page), [], `${width}x${height}: axis labels on other text`);
+    // Every control can be reached: the last one is on the page, within its width.
+    const last = await page.getByRole('button', { name: 'New seed' }).boundingBox();
+    assert.ok(last.x >= 0 && last.x + last.width <= width, `${width}: New seed at ${last.x}`);
+    assert.deepEqual(problems, []);
+    await page.close();
+  }
 });
 
 test('the JSON download equals the native CLI bit for bit, stations split over the worker pool', async () => {
