@@ -3,7 +3,9 @@
 // - first results: navigation start until the results table has rows (for the whole set, its
 //   first flight, shown while the rest runs);
 // - final results: until the results are the settings' own (no first flight standing in);
-// - all drawn: until nothing is being computed or drawn (`<body data-busy>` gone);
+// - all drawn: until nothing is being computed or drawn (`<body data-busy>` gone): every panel but
+//   the 3D view, which is drawn once it comes near the viewport (2.5 screens down at 1280×800);
+// - the 3D view: from scrolling to it, after all the rest is drawn, until it is drawn;
 // - long tasks: main-thread tasks over 50 ms until then (count, longest, sum);
 // - each panel's drawing time (the page's `draw <panel>` performance measures, www/later.ts).
 // Reports, never asserts: wall-clock time on a shared machine is a measurement, not a test.
@@ -54,8 +56,25 @@ async function load(server) {
     ...window.__timing,
     draws: Object.fromEntries(performance.getEntriesByType('measure').filter((m) => m.name.startsWith('draw ')).map((m) => [m.name.slice(5), m.duration])),
   }));
+  // The 3D view is drawn once it comes near the viewport: the time from scrolling to it until it is drawn.
+  const view3d = await page.evaluate(
+    () =>
+      new Promise((resolve) => {
+        // A build that draws it on load has already drawn it: nothing to wait for.
+        if (performance.getEntriesByName('draw trajectory').length > 0) return resolve(0);
+        const start = performance.now();
+        setTimeout(() => resolve(Number.NaN), 10_000);
+        new PerformanceObserver((list, observer) => {
+          const drawn = list.getEntries().find((e) => e.name === 'draw trajectory');
+          if (!drawn) return;
+          observer.disconnect();
+          resolve(drawn.startTime + drawn.duration - start);
+        }).observe({ type: 'measure' });
+        document.querySelector('[data-panel="trajectory"]').scrollIntoView();
+      }),
+  );
   await context.close();
-  return run;
+  return { ...run, view3d };
 }
 
 // runs[b]: build b's loads; the builds take turns, in alternating order.
@@ -78,6 +97,7 @@ console.log(`| measure | ${heads} |\n|---|${builds.map(() => '---:|---:|').join(
 console.log(row('first results', (r) => r.first));
 console.log(row('final results', (r) => r.final));
 console.log(row('every panel drawn', (r) => r.idle));
+console.log(row('3D view drawn, from scrolling to it', (r) => r.view3d));
 console.log(row('long tasks (> 50 ms), count', (r) => r.long.length));
 console.log(row('longest task', (r) => Math.max(0, ...r.long)));
 console.log(row('long tasks, sum', (r) => r.long.reduce((a, b) => a + b, 0)));

@@ -220,7 +220,33 @@ function renderResults(r: SimReport): void {
     ]);
     place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: chartWidth('axes') }), made);
   });
-  if (!$('[data-panel="trajectory"]').hidden) later('trajectory', () => render3d(r));
+  if (!$('[data-panel="trajectory"]').hidden && trajectoryNear) later('trajectory', () => render3d(r));
+}
+
+/** Whether the 3D view has come within a screen of the viewport. Until then it is not drawn: its
+ * first drawing (three.js, a WebGL context, the first frame) is the page's costliest, and at
+ * 1280×800 the panel starts 2.5 screens down, so drawing it on load delayed every panel in view
+ * by ~250 ms (docs/performance.md). Once near, it is drawn as every other panel is. */
+let trajectoryNear = false;
+let trajectoryWatched = false;
+const trajectoryPanel = $('[data-panel="trajectory"]');
+const nearTrajectory = new IntersectionObserver(
+  (entries) => {
+    if (!entries.some((e) => e.isIntersecting)) return;
+    nearTrajectory.disconnect();
+    trajectoryNear = true;
+    const r = store.report;
+    if (r && !trajectoryPanel.hidden) later('trajectory', () => render3d(r));
+  },
+  { rootMargin: '100% 0px' },
+);
+
+/** Starts watching for the 3D view once the first results and the panels above it are drawn: before
+ * that the empty panels above are short, and the view would seem near on every screen. */
+function watchTrajectory(): void {
+  if (trajectoryWatched || !store.report) return;
+  trajectoryWatched = true;
+  nearTrajectory.observe(trajectoryPanel);
 }
 
 /** On load, the panels that need no simulation wait for the first run's answer: drawn at once
@@ -241,7 +267,10 @@ let swarming = false;
 /** `<body data-busy>` while anything visible is still being computed or drawn (tests wait on it). */
 function updateBusy(): void {
   if (running || drawing > 0 || swarming || drawingLater()) document.body.dataset.busy = '';
-  else delete document.body.dataset.busy;
+  else {
+    delete document.body.dataset.busy;
+    watchTrajectory();
+  }
 }
 
 async function render3d(r: SimReport): Promise<void> {
@@ -252,6 +281,18 @@ async function render3d(r: SimReport): Promise<void> {
     drawing--;
     updateBusy();
   }
+}
+
+/** The 3D view as a PNG for slides; a view not drawn yet (its button reached before the panel came
+ * near the viewport) is drawn first. */
+async function download3d(button: HTMLButtonElement, title: string): Promise<void> {
+  if (!trajectory3d && store.report) await render3d(store.report);
+  const shot = trajectory3d?.snapshot(MIN_PNG_WIDTH);
+  if (!shot) return downloadWhy(button, 'Nothing to save: the 3D view needs WebGL, which this browser does not offer.');
+  const series = store.report?.series;
+  const legend = [{ color: TRUTH_COLOR, label: 'true flight' }, ...(series?.plan ? [{ color: PLAN_COLOR, label: 'flight plan (dashed)' }] : []), ...(series?.models ?? []).map((m) => ({ color: MODEL_COLORS[m.model], label: MODEL_LABELS[m.model] }))];
+  downloadPicturePng(shot.canvas, shot.scale, 'loratrack-trajectory', { title, caption: caption(store.reportSettings) }, legend);
+  downloadWhy(button, '');
 }
 
 async function draw3d(r: SimReport): Promise<void> {
@@ -529,14 +570,7 @@ for (const button of document.querySelectorAll<HTMLButtonElement>('[data-downloa
   button.setAttribute('aria-label', `Download the ${title.replace(/:.*/, '').toLowerCase()} chart as ${button.dataset.format!.toUpperCase()}`);
   button.addEventListener('click', () => {
     const slide = (c: string) => ({ title, caption: c });
-    if (name === 'trajectory') {
-      const shot = trajectory3d?.snapshot(MIN_PNG_WIDTH);
-      if (!shot) return downloadWhy(button, 'Nothing to save: the 3D view needs WebGL, which this browser does not offer.');
-      const series = store.report?.series;
-      const legend = [{ color: TRUTH_COLOR, label: 'true flight' }, ...(series?.plan ? [{ color: PLAN_COLOR, label: 'flight plan (dashed)' }] : []), ...(series?.models ?? []).map((m) => ({ color: MODEL_COLORS[m.model], label: MODEL_LABELS[m.model] }))];
-      downloadPicturePng(shot.canvas, shot.scale, `loratrack-${name}`, slide(caption(store.reportSettings)), legend);
-      return downloadWhy(button, '');
-    }
+    if (name === 'trajectory') return void download3d(button, title);
     const entry = charts[name];
     const saved = entry && (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(entry.chart, `loratrack-${name}`, slide(entry.caption));
     downloadWhy(button, saved ? '' : name === 'swarm' && !entry ? 'Nothing to save yet: run a swarm first.' : 'Nothing to save: this chart has no data at these settings (no packet arrives).');

@@ -112,6 +112,15 @@ export function axisLabelOverlaps(page) {
 /** Waits until no simulation or drawing is under way (`<body data-busy>` gone). */
 export const idle = (page) => page.waitForFunction(() => !('busy' in document.body.dataset), null, { timeout: 30_000 });
 
+/** Scrolls to the 3D view as a reader does (it is drawn once it comes within a screen of the
+ * viewport, www/main.ts) and waits for it: its canvas, then nothing left to draw. Returns the canvas. */
+export async function view3d(page) {
+  await page.locator('[data-panel="trajectory"]').scrollIntoViewIfNeeded();
+  await page.waitForSelector('#chart-trajectory canvas');
+  await idle(page);
+  return page.locator('#chart-trajectory canvas');
+}
+
 /** Opens the playground, picks `title` from the Lessons menu and waits for its numbers (and, unless
  * `settled` is false, for every panel). */
 export async function lesson(title, { settled = true } = {}) {

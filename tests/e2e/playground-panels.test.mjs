@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { nativeJson, scratchDir } from './harness.mjs';
-import { axe, axisLabelOverlaps, cell, cellNumber, idle, lesson, MODELS, number, open, playground, shownP75, tableHtml, usePlayground, waitForResults } from './page.mjs';
+import { axe, axisLabelOverlaps, cell, cellNumber, idle, lesson, MODELS, number, open, playground, shownP75, tableHtml, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -322,7 +322,7 @@ test('lesson "A flight plan beats any motion model": at SF11 the mission station
   for (const m of stations.filter((m) => m !== 'mission')) assert.ok(shown.mission[1] < shown[m][0], `${m}: ${JSON.stringify(shown)}`);
   assert.match(await page.locator('#verdict-text').textContent(), /^Mission has the lowest p75, clearly/);
   // The 3D view draws the plan the mission station flies.
-  await page.waitForSelector('#chart-trajectory canvas');
+  await view3d(page);
   assert.match(await page.locator('#trajectory-legend').textContent(), /flight plan \(dashed\)/);
   assert.deepEqual(await axe(page), []);
   // The real flight has no plan here: the mission choices are disabled with the reason, and the

@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { nativeJson, scratchDir, openPage, screenshot } from './harness.mjs';
-import { axe, axisLabelOverlaps, cell, idle, number, open, playground, shownP75, tableHtml, usePlayground, waitForResults } from './page.mjs';
+import { axe, axisLabelOverlaps, cell, idle, number, open, playground, shownP75, tableHtml, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -213,7 +213,7 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
     assert.equal(number(await cell(page, m, 'p75')).toFixed(2), r.error3d.p75.toFixed(2), m);
   }
   // The 3D view draws the plan, whichever worker ran the mission station.
-  await page.waitForSelector('#chart-trajectory canvas');
+  await view3d(page);
   assert.match(await page.locator('#trajectory-legend').textContent(), /flight plan \(dashed\)/);
   assert.deepEqual(await axe(page), []);
 
@@ -523,10 +523,12 @@ test('copying a link after a CSV upload says the link cannot carry the file', as
   assert.deepEqual(problems, []);
 });
 
-test('the 3D view keeps its camera across changes and has a legend, a gateway and a reset', async () => {
+test('the 3D view is drawn as the reader comes near it, keeps its camera across changes and has a legend, a gateway and a reset', async () => {
   const { page, problems } = await open('?distance=300');
-  await page.waitForSelector('#chart-trajectory canvas');
-  const canvas = page.locator('#chart-trajectory canvas');
+  // Two screens below the results, the view waits until the reader comes near it.
+  await idle(page);
+  assert.equal(await page.locator('#chart-trajectory canvas').count(), 0, 'the 3D view was drawn before it came near the viewport');
+  const canvas = await view3d(page);
   await canvas.focus();
   const snap = () => canvas.evaluate((c) => c.toDataURL());
   await idle(page);
@@ -548,9 +550,7 @@ test('the 3D view keeps its camera across changes and has a legend, a gateway an
 
 test('the 3D view lets the page scroll past it, zooms once focused, and always shows the gateway with its distance', async () => {
   const { page, problems } = await open('?distance=3000');
-  await idle(page);
-  const canvas = page.locator('#chart-trajectory canvas');
-  await canvas.scrollIntoViewIfNeeded();
+  const canvas = await view3d(page);
   const snap = () => canvas.evaluate((c) => c.toDataURL());
   const box = await canvas.boundingBox();
   await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
