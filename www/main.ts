@@ -283,10 +283,11 @@ async function render3d(r: SimReport): Promise<void> {
   }
 }
 
-/** The 3D view as a PNG for slides; a view not drawn yet (its button reached before the panel came
- * near the viewport) is drawn first. */
+/** The 3D view as a PNG for slides. Until the panel has come near the viewport the view is not
+ * kept up to date (its button reached without scrolling there): it is drawn from the results on
+ * show first. */
 async function download3d(button: HTMLButtonElement, title: string): Promise<void> {
-  if (!trajectory3d && store.report) await render3d(store.report);
+  if (!trajectoryNear && store.report) await render3d(store.report);
   const shot = trajectory3d?.snapshot(MIN_PNG_WIDTH);
   if (!shot) return downloadWhy(button, 'Nothing to save: the 3D view needs WebGL, which this browser does not offer.');
   const series = store.report?.series;
