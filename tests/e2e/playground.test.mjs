@@ -262,6 +262,8 @@ test('every screen: no sideways scrolling from a phone to a projector, and chart
   for (const [width, height, least] of [[360, 740, 11], [390, 844, 11], [768, 1024, 11], [1024, 768, 12], [1280, 800, 12], [1920, 1080, 12]]) {
     const { page, problems } = await open('', { width, height });
     await idle(page);
+    // The whole page, as a reader scrolls it: the 3D view is drawn once it comes near.
+    await view3d(page);
     const m = await page.evaluate(() => {
       const sizes = [...document.querySelectorAll('.chart svg text')]
         .filter((t) => t.getBoundingClientRect().height > 0)
