@@ -360,6 +360,8 @@ test('axe finds no violation at all, on the full page and embedded', async () =>
   const { page, problems } = await open();
   await idle(page);
   await page.waitForSelector('#chart-distance svg');
+  // Every panel drawn, the 3D view included (it waits until the reader comes near).
+  await view3d(page);
   assert.deepEqual(await axe(page), []);
   await page.goto(`${playground.url}?embed=1&panels=results,error,distance`);
   await waitForResults(page);
