@@ -220,7 +220,7 @@ function renderResults(r: SimReport): void {
     ]);
     place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: chartWidth('axes') }), made);
   });
-  if (!$('[data-panel="trajectory"]').hidden && trajectoryNear) later('trajectory', () => render3d(r));
+  if (!trajectoryPanel.hidden && trajectoryNear) later('trajectory', () => render3d(r));
 }
 
 /** Whether the 3D view has come within a screen of the viewport. Until then it is not drawn: its
@@ -228,7 +228,6 @@ function renderResults(r: SimReport): void {
  * 1280×800 the panel starts 2.5 screens down, so drawing it on load delayed every panel in view
  * by ~250 ms (docs/performance.md). Once near, it is drawn as every other panel is. */
 let trajectoryNear = false;
-let trajectoryWatched = false;
 const trajectoryPanel = $('[data-panel="trajectory"]');
 const nearTrajectory = new IntersectionObserver(
   (entries) => {
@@ -241,12 +240,11 @@ const nearTrajectory = new IntersectionObserver(
   { rootMargin: '100% 0px' },
 );
 
-/** Starts watching for the 3D view once the first results and the panels above it are drawn: before
- * that the empty panels above are short, and the view would seem near on every screen. */
+/** Watches for the 3D view once the first results and the panels above it are drawn: before that
+ * the empty panels above are short, and the view would seem near on every screen. Observing a
+ * panel already observed does nothing, so this may run whenever the page falls idle. */
 function watchTrajectory(): void {
-  if (trajectoryWatched || !store.report) return;
-  trajectoryWatched = true;
-  nearTrajectory.observe(trajectoryPanel);
+  if (!trajectoryNear && store.report) nearTrajectory.observe(trajectoryPanel);
 }
 
 /** On load, the panels that need no simulation wait for the first run's answer: drawn at once
