@@ -281,6 +281,13 @@ async function render3d(r: SimReport): Promise<void> {
   }
 }
 
+/** The lines the 3D view draws for `r`, in the legend's order: the truth, the plan, each station
+ * (the page's legend and the PNG's). */
+function tracksDrawn(r: SimReport | undefined): { color: string; label: string }[] {
+  const series = r?.series;
+  return [{ color: TRUTH_COLOR, label: 'true flight' }, ...(series?.plan ? [{ color: PLAN_COLOR, label: 'flight plan (dashed)' }] : []), ...(series?.models ?? []).map((m) => ({ color: MODEL_COLORS[m.model], label: MODEL_LABELS[m.model] }))];
+}
+
 /** The 3D view as a PNG for slides. Until the panel has come near the viewport the view is not
  * kept up to date (its button reached without scrolling there): it is drawn from the results on
  * show first. */
@@ -288,9 +295,7 @@ async function download3d(button: HTMLButtonElement, title: string): Promise<voi
   if (!trajectoryNear && store.report) await render3d(store.report);
   const shot = trajectory3d?.snapshot(MIN_PNG_WIDTH);
   if (!shot) return downloadWhy(button, 'Nothing to save: the 3D view needs WebGL, which this browser does not offer.');
-  const series = store.report?.series;
-  const legend = [{ color: TRUTH_COLOR, label: 'true flight' }, ...(series?.plan ? [{ color: PLAN_COLOR, label: 'flight plan (dashed)' }] : []), ...(series?.models ?? []).map((m) => ({ color: MODEL_COLORS[m.model], label: MODEL_LABELS[m.model] }))];
-  downloadPicturePng(shot.canvas, shot.scale, 'loratrack-trajectory', { title, caption: caption(store.reportSettings) }, legend);
+  downloadPicturePng(shot.canvas, shot.scale, 'loratrack-trajectory', { title, caption: caption(store.reportSettings) }, tracksDrawn(store.report));
   downloadWhy(button, '');
 }
 
@@ -304,12 +309,11 @@ async function draw3d(r: SimReport): Promise<void> {
   if (!drawn) return;
   // The legend lists what is drawn: the truth, each station, the gateways, and the grid's scale.
   const swatch = (color: string) => `<span class="swatch" style="background:${color}"></span>`;
-  const stations = (r.series?.models ?? []).map((m) => `${swatch(MODEL_COLORS[m.model])}${MODEL_LABELS[m.model]}`).join(', ');
   const gateways = r.series?.gateways.length ?? 1;
   const far = drawn.farGateways ? `; orange cone${drawn.farGateways > 1 ? 's' : ''} at the edge: ${drawn.farGateways === gateways ? '' : 'the other '}gateway${drawn.farGateways > 1 ? 's' : ''} beyond the view, with ${drawn.farGateways > 1 ? 'their' : 'its'} distance` : '';
   const near = gateways - drawn.farGateways;
-  const plan = r.series?.plan ? `${swatch(PLAN_COLOR)}flight plan (dashed), ` : '';
-  $('#trajectory-legend').innerHTML = `${swatch(TRUTH_COLOR)}true flight, ${plan}${stations}${near ? `; grey cone${near > 1 ? 's' : ''}: the gateway${near > 1 ? 's' : ''}` : ''}${far}. Grid squares ${drawn.gridStep >= 10 ? drawn.gridStep.toFixed(0) : drawn.gridStep.toFixed(1)} m.`;
+  const tracks = tracksDrawn(r).map((t) => `${swatch(t.color)}${t.label}`).join(', ');
+  $('#trajectory-legend').innerHTML = `${tracks}${near ? `; grey cone${near > 1 ? 's' : ''}: the gateway${near > 1 ? 's' : ''}` : ''}${far}. Grid squares ${drawn.gridStep >= 10 ? drawn.gridStep.toFixed(0) : drawn.gridStep.toFixed(1)} m.`;
 }
 
 async function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): Promise<void> {
