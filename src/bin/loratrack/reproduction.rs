@@ -904,6 +904,7 @@ fn swarm_claims(rows: &[SwarmReport], crowd: &[Crowd]) -> String {
     }
     s += "\n## Error-triggered sending in a crowd\n\n";
     s += &crowd_markdown(crowd);
+    s += &budget_by_threshold(crowd);
     s += "\nA slotted drone that has nothing to send leaves its slot empty: no other drone takes it (a drone cannot learn in time that another's slot is free without a beacon from the network, which loratrack does not model).\n";
     s
 }
@@ -997,6 +998,77 @@ fn crowd_markdown(crowd: &[Crowd]) -> String {
     }
     s
 }
+
+/// The budget rule's groups side by side (means over the seeds, as in the verdicts) and where
+/// its p95 at equal airtime reaches [`P95_AIM`]: the less airtime a threshold spends, the more
+/// the packets it keeps must carry, so one threshold's ratio says little alone.
+fn budget_by_threshold(crowd: &[Crowd]) -> String {
+    let groups: Vec<&Crowd> = crowd
+        .iter()
+        .filter(|g| {
+            g.seeds.first().is_some_and(|x| {
+                x.error.config.settings.sending.duty_cycle_mode == loratrack::DutyCycleMode::Budget
+            })
+        })
+        .collect();
+    if groups.len() < 2 {
+        return String::new();
+    }
+    let mut s = format!(
+        "\nThe budget rule by threshold (means over the seeds). A higher threshold spends less airtime, so \
+         periodic sending slowed to the same airtime sends less too; the aim for a sender that knows it may be lost is a \
+         p95 at most {P95_AIM}× that of periodic sending at equal airtime.\n\n\
+         | rule | airtime share | delivery, error-triggered / equal airtime | p75, error / periodic | p75, error / equal airtime | p95, error / equal airtime | seeds within the aim |\n\
+         | --- | --- | --- | --- | --- | --- | --- |\n"
+    );
+    let mut within = Vec::new();
+    for g in &groups {
+        let mean = |f: &dyn Fn(&CrowdSeed) -> f64| {
+            g.seeds.iter().map(f).sum::<f64>() / g.seeds.len() as f64
+        };
+        let e = mean(&|x| x.error.median_drone_p75);
+        let p95 = mean(&|x| x.error.error3d.p95) / mean(&|x| x.equal.error3d.p95);
+        let share = mean(&|x| x.error.airtime / x.periodic.airtime);
+        let rule = rule_label(&g.seeds[0].error.config.settings.sending);
+        let seeds_within = g
+            .seeds
+            .iter()
+            .filter(|x| x.error.error3d.p95 <= P95_AIM * x.equal.error3d.p95)
+            .count();
+        s += &format!(
+            "| {rule} | {share:.2} | {:.2} / {:.2} | {:.2} | {:.2} | {p95:.2} | {seeds_within} of {} |\n",
+            mean(&|x| x.error.delivery.delivery_ratio),
+            mean(&|x| x.equal.delivery.delivery_ratio),
+            e / mean(&|x| x.periodic.median_drone_p75),
+            e / mean(&|x| x.equal.median_drone_p75),
+            g.seeds.len(),
+        );
+        within.push((rule, share, p95));
+    }
+    let met: Vec<String> = within
+        .iter()
+        .filter(|(_, _, p95)| *p95 <= P95_AIM)
+        .map(|(rule, share, p95)| format!("{rule} ({p95:.2}×, {share:.2} of the airtime)"))
+        .collect();
+    let missed: Vec<String> = within
+        .iter()
+        .filter(|(_, _, p95)| *p95 > P95_AIM)
+        .map(|(rule, share, p95)| format!("{rule} ({p95:.2}×, {share:.2} of the airtime)"))
+        .collect();
+    s += &format!(
+        "\nWithin the aim on the means: {}. Not within it: {}. Without feedback a drone cannot tell which of its packets \
+         collided, and hedging against a loss means sending more, which in a crowd is what loses packets (README, \
+         error-triggered sending); what the rule can do is spend its airtime where the drift is, and that pays more the \
+         less airtime there is to spend.\n",
+        if met.is_empty() { "none".to_string() } else { met.join("; ") },
+        if missed.is_empty() { "none".to_string() } else { missed.join("; ") },
+    );
+    s
+}
+
+/// The aim for the budget rule in a crowd: its p95 at most this share of periodic sending's at
+/// equal airtime.
+const P95_AIM: f64 = 0.6;
 
 /// A sender's duty-cycle rule as the crowd table names it, with its threshold and heartbeat
 /// where they are not the defaults.
