@@ -2,8 +2,8 @@
 //!
 //! Each export takes one plain JS object, deserializes it into the matching [`crate::api`]
 //! parameter struct, runs the operation and serializes the report back. Every error becomes a
-//! thrown JS `Error` with the core's message; nothing here panics, so a bad call never poisons
-//! the module.
+//! thrown JS `Error` with the core's message (and, where one setting is at fault, its key as
+//! `setting`); nothing here panics, so a bad call never poisons the module.
 
 use crate::api::{self, ApiError};
 use crate::sim::Simulator;
@@ -29,7 +29,7 @@ thread_local! {
 fn call<P: DeserializeOwned, R: Serialize>(
     params: JsValue,
     op: impl FnOnce(P) -> Result<R, ApiError>,
-) -> Result<JsValue, JsError> {
+) -> Result<JsValue, JsValue> {
     call_with(params, op, |r| json_value(&r))
 }
 
@@ -37,10 +37,10 @@ fn call<P: DeserializeOwned, R: Serialize>(
 fn call_with<P: DeserializeOwned, R>(
     params: JsValue,
     op: impl FnOnce(P) -> Result<R, ApiError>,
-    to_js: impl FnOnce(R) -> Result<JsValue, JsError>,
-) -> Result<JsValue, JsError> {
+    to_js: impl FnOnce(R) -> Result<JsValue, JsValue>,
+) -> Result<JsValue, JsValue> {
     let invalid = |e: &dyn core::fmt::Display| {
-        JsError::new(&api::clean_message(&format!("invalid parameters: {e}")))
+        js_error(&api::clean_message(&format!("invalid parameters: {e}")))
     };
     let text = js_sys::JSON::stringify(&params)
         .ok()
@@ -56,14 +56,35 @@ fn call_with<P: DeserializeOwned, R>(
         )),
         None => invalid(&e),
     })?;
-    let report = op(p).map_err(|e| JsError::new(&api::clean_message(&e.to_string())))?;
+    let report = op(p).map_err(|e| api_error(&e))?;
     to_js(report)
 }
 
+/// A JS `Error` with `message`.
+fn js_error(message: &str) -> JsValue {
+    js_sys::Error::new(message).into()
+}
+
+/// The JS `Error` for an operation the core refused: its message, and as `setting` the key of
+/// the setting at fault where one is ([`ApiError::setting`], e.g. `maxInterval`), so that a
+/// caller such as the page can point at that control without reading the message.
+fn api_error(e: &ApiError) -> JsValue {
+    let error = js_sys::Error::new(&api::clean_message(&e.to_string()));
+    if let Some(key) = e.setting() {
+        // Defining a property on a fresh Error cannot fail.
+        let _ = js_sys::Reflect::set(
+            &error,
+            &JsValue::from_str("setting"),
+            &JsValue::from_str(key),
+        );
+    }
+    error.into()
+}
+
 /// `value` as JSON text, parsed by JS (see the module's note on why).
-fn json_value<R: Serialize>(value: &R) -> Result<JsValue, JsError> {
-    let json = serde_json::to_string(value).map_err(|e| JsError::new(&e.to_string()))?;
-    js_sys::JSON::parse(&json).map_err(|_| JsError::new("could not build the result"))
+fn json_value<R: Serialize>(value: &R) -> Result<JsValue, JsValue> {
+    let json = serde_json::to_string(value).map_err(|e| js_error(&e.to_string()))?;
+    js_sys::JSON::parse(&json).map_err(|_| js_error("could not build the result"))
 }
 
 /// simulate's report: JSON text like every report, but its time series, most of its numbers
@@ -73,19 +94,19 @@ fn json_value<R: Serialize>(value: &R) -> Result<JsValue, JsError> {
 /// are the same f64s either way, and serde-wasm-bindgen's JSON-compatible mode writes `None` as
 /// `null` and maps as objects as `serde_json` does; a series holding a non-finite number, which
 /// JSON writes as `null`, goes the JSON way.
-fn report_value(mut report: crate::sim::SimReport) -> Result<JsValue, JsError> {
+fn report_value(mut report: crate::sim::SimReport) -> Result<JsValue, JsValue> {
     let series = report.series.take();
     let value = json_value(&report)?;
     if let Some(series) = series {
         let arrays = if series.is_finite() {
             series
                 .serialize(&serde_wasm_bindgen::Serializer::json_compatible())
-                .map_err(|e| JsError::new(&e.to_string()))?
+                .map_err(|e| js_error(&e.to_string()))?
         } else {
             json_value(&series)?
         };
         js_sys::Reflect::set(&value, &JsValue::from_str("series"), &arrays)
-            .map_err(|_| JsError::new("could not build the result"))?;
+            .map_err(|_| js_error("could not build the result"))?;
     }
     Ok(value)
 }
@@ -99,32 +120,32 @@ fn null_key(text: &str) -> Option<String> {
 /// `linkBudget({bw?, txPower?, pathLossExponent?, shadowing?, gatewayHeight?, distances?})`
 /// → `{distances, meanRxDbm, shadowing, sfs: [{sf, sensitivityDbm, rangeM, delivery}]}`.
 #[wasm_bindgen(js_name = linkBudget)]
-pub fn link_budget(params: JsValue) -> Result<JsValue, JsError> {
+pub fn link_budget(params: JsValue) -> Result<JsValue, JsValue> {
     call(params, |p: api::LinkBudgetParams| api::link_budget(&p))
 }
 
 /// `timeOnAir({sf, bw, payload, overhead?, cr?, preamble?, implicitHeader?, noCrc?, ldro?, dutyCycle?})`
 /// → `{timeOnAir, symbolTime, payloadSymbols, phyPayloadBytes, lowDataRateOptimize, minInterval}`.
 #[wasm_bindgen(js_name = timeOnAir)]
-pub fn time_on_air(params: JsValue) -> Result<JsValue, JsError> {
+pub fn time_on_air(params: JsValue) -> Result<JsValue, JsValue> {
     call(params, |p: api::AirtimeParams| api::airtime(&p))
 }
 
 /// `predict({model, state, dt, step?, eta?})` → `{model, state}` (noise-free model propagation).
 #[wasm_bindgen]
-pub fn predict(params: JsValue) -> Result<JsValue, JsError> {
+pub fn predict(params: JsValue) -> Result<JsValue, JsValue> {
     call(params, |p: api::PredictParams| api::predict(&p))
 }
 
 /// `encode({model, state, origin?})` → `{hex, saturated}`.
 #[wasm_bindgen]
-pub fn encode(params: JsValue) -> Result<JsValue, JsError> {
+pub fn encode(params: JsValue) -> Result<JsValue, JsValue> {
     call(params, |p: api::EncodeParams| api::encode(&p))
 }
 
 /// `decode({model, hex, origin?})` → `{model, state}`.
 #[wasm_bindgen]
-pub fn decode(params: JsValue) -> Result<JsValue, JsError> {
+pub fn decode(params: JsValue) -> Result<JsValue, JsValue> {
     call(params, |p: api::DecodeParams| api::decode(&p))
 }
 
@@ -133,7 +154,7 @@ pub fn decode(params: JsValue) -> Result<JsValue, JsError> {
 /// `progress(done, total)`, if given, is called as flights complete (it must not call back into
 /// this module).
 #[wasm_bindgen]
-pub fn simulate(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> {
+pub fn simulate(params: JsValue, progress: JsValue) -> Result<JsValue, JsValue> {
     let progress = progress_function(progress)?;
     call_with(
         params,
@@ -158,7 +179,7 @@ pub fn simulate(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> 
 /// (the CLI's `swarm --json`). `progress(done, total)` is called
 /// as episodes and drones complete.
 #[wasm_bindgen]
-pub fn swarm(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> {
+pub fn swarm(params: JsValue, progress: JsValue) -> Result<JsValue, JsValue> {
     let progress = progress_function(progress)?;
     call(params, |p: crate::sim::Scenario| {
         api::swarm_with_progress(&p, &mut reporter(&progress))
@@ -169,7 +190,7 @@ pub fn swarm(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> {
 /// numeric setting's default and accepted range, as the core validates them
 /// ([`crate::options`]).
 #[wasm_bindgen]
-pub fn limits() -> Result<JsValue, JsError> {
+pub fn limits() -> Result<JsValue, JsValue> {
     call(JsValue::NULL, |_: serde_json::Value| {
         Ok(crate::options::OPTIONS.to_vec())
     })
@@ -178,7 +199,7 @@ pub fn limits() -> Result<JsValue, JsError> {
 /// `stationsOf({model})` → the stations `model` names, in order (`all`: the paper's three), as
 /// `simulate` reads it.
 #[wasm_bindgen(js_name = stationsOf)]
-pub fn stations_of(params: JsValue) -> Result<JsValue, JsError> {
+pub fn stations_of(params: JsValue) -> Result<JsValue, JsValue> {
     #[derive(serde::Deserialize)]
     struct Params {
         #[serde(default)]
@@ -197,7 +218,7 @@ pub fn stations_of(params: JsValue) -> Result<JsValue, JsError> {
 /// module's cache, calling `progress(lines read, lines)` about a hundred times, so that the page
 /// can show how far a large file is; a following `simulate` of the same text starts at once.
 #[wasm_bindgen(js_name = loadCsv)]
-pub fn load_csv(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> {
+pub fn load_csv(params: JsValue, progress: JsValue) -> Result<JsValue, JsValue> {
     #[derive(serde::Deserialize)]
     #[serde(rename_all = "camelCase", deny_unknown_fields)]
     struct Params {
@@ -226,7 +247,7 @@ pub fn load_csv(params: JsValue, progress: JsValue) -> Result<JsValue, JsError> 
 }
 
 /// A progress argument: a function, or undefined/null for none; anything else is refused.
-fn progress_function(progress: JsValue) -> Result<Option<js_sys::Function>, JsError> {
+fn progress_function(progress: JsValue) -> Result<Option<js_sys::Function>, JsValue> {
     use wasm_bindgen::JsCast;
     if progress.is_undefined() || progress.is_null() {
         return Ok(None);
@@ -234,7 +255,7 @@ fn progress_function(progress: JsValue) -> Result<Option<js_sys::Function>, JsEr
     progress
         .dyn_into()
         .map(Some)
-        .map_err(|_| JsError::new("progress must be a function (done, total) => void, or left out"))
+        .map_err(|_| js_error("progress must be a function (done, total) => void, or left out"))
 }
 
 /// Calls `progress(done, total)`; a throwing callback must not abort the run, so its error is
@@ -256,7 +277,7 @@ fn reporter(progress: &Option<js_sys::Function>) -> impl FnMut(usize, usize) + '
 /// `{model, steps}` → `{predictMicros, updateMicros}` per step.
 #[cfg(feature = "bench")]
 #[wasm_bindgen(js_name = benchUkf)]
-pub fn bench_ukf(params: JsValue) -> Result<JsValue, JsError> {
+pub fn bench_ukf(params: JsValue) -> Result<JsValue, JsValue> {
     use crate::filter::{
         measurement_noise, process_noise, SigmaParams, Ukf, PAPER_Q, PAPER_R_DIAGONAL,
     };
@@ -308,7 +329,7 @@ pub fn bench_ukf(params: JsValue) -> Result<JsValue, JsError> {
 /// Benchmark support (feature `bench`): `simulate` with a fresh simulator (no cached drone runs).
 #[cfg(feature = "bench")]
 #[wasm_bindgen(js_name = benchSimulateCold)]
-pub fn bench_simulate_cold(params: JsValue) -> Result<JsValue, JsError> {
+pub fn bench_simulate_cold(params: JsValue) -> Result<JsValue, JsValue> {
     call(params, |p: crate::sim::Scenario| {
         api::simulate(&mut Simulator::new(), &p)
     })

@@ -26,9 +26,8 @@ fn num(v: &JsValue, key: &str) -> f64 {
         .unwrap_or_else(|| panic!("{key} is not a number"))
 }
 
-fn error_message(e: wasm_bindgen::JsError) -> String {
-    let v: JsValue = e.into();
-    v.dyn_into::<js_sys::Error>()
+fn error_message(e: JsValue) -> String {
+    e.dyn_into::<js_sys::Error>()
         .map(|e| String::from(e.message()))
         .unwrap_or_default()
 }
@@ -75,6 +74,37 @@ fn bad_input_throws_a_readable_error_and_the_module_keeps_working() {
     ]))
     .unwrap();
     assert!((num(&ok, "timeOnAir") - 0.072192).abs() < 1e-9);
+}
+
+/// The JS API's promise (README, JavaScript API): where one setting is at fault the thrown Error
+/// names it as `setting`, the key the functions take, so that a caller need not parse messages.
+#[wasm_bindgen_test]
+fn a_refused_setting_is_named_on_the_thrown_error() {
+    let setting = |e: &JsValue| get(e, "setting").as_string();
+    let e = wasm::time_on_air(obj(&[
+        ("sf", 13.into()),
+        ("bw", 125.into()),
+        ("payload", 12.into()),
+    ]))
+    .unwrap_err();
+    assert_eq!(setting(&e).as_deref(), Some("sf"));
+    // A heartbeat shorter than SF12's interval: a limit that depends on another setting.
+    let e = wasm::simulate(
+        obj(&[
+            ("synthetic", 1.into()),
+            ("sf", 12.into()),
+            ("bw", 125.into()),
+            ("sender", "error".into()),
+            ("maxInterval", 10.into()),
+        ]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    assert!(error_message(e.clone()).starts_with("maxInterval must be"));
+    assert_eq!(setting(&e).as_deref(), Some("maxInterval"));
+    // A misspelt key is no setting the core knows: the message says so, and names none.
+    let e = wasm::simulate(obj(&[("bogus", 1.into())]), JsValue::UNDEFINED).unwrap_err();
+    assert_eq!(setting(&e), None);
 }
 
 fn array(values: &[f64]) -> JsValue {
@@ -203,6 +233,8 @@ fn a_plan_crosses_the_boundary_and_a_mission_station_needs_one() {
     let e = run(None).unwrap_err();
     assert!(error_message(e).contains("needs the plan the drone flies"));
     let e = run(Some("0,0,20\n1,zero,20\n")).unwrap_err();
+    // The page shows a plan's error beside the plan control by this name.
+    assert_eq!(get(&e, "setting").as_string().as_deref(), Some("plan"));
     assert!(error_message(e).contains("plan line 2"));
 }
 

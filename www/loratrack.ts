@@ -1,7 +1,8 @@
 // The one module that imports the generated WebAssembly package (www/pkg, built by
 // scripts/build-wasm.mjs). Everything else — the page and its worker — imports these typed
 // functions. Each takes the CLI's long options in camelCase and returns what
-// `loratrack <command> --json` prints; bad input throws an Error. The types come from the Rust
+// `loratrack <command> --json` prints; bad input throws an Error (`settingOf` names the setting
+// at fault). The types come from the Rust
 // ones (www/generated/types.ts, generated and checked by `cargo test`); see docs/reference.md.
 import init, * as wasm from './pkg/loratrack.js';
 import wasmUrl from './pkg/loratrack_bg.wasm?url';
@@ -107,6 +108,15 @@ export function swarm(params: SwarmParams, onProgress?: (done: number, total: nu
  * goes; a following simulate of the same text starts at once. */
 export function loadCsv(params: { trajectory: string; trajectoryName?: string }, onProgress?: (done: number, total: number) => void): { rows: number } {
   return wasm.loadCsv(params, onProgress) as { rows: number };
+}
+
+/** The setting a thrown error refuses: its key as these functions take it (`maxInterval`,
+ * `sf`, `plan`, …), which the core names where one setting is at fault; `undefined` otherwise
+ * (a setting that conflicts with another, a run too long for several together, a value of the
+ * wrong type). */
+export function settingOf(error: unknown): string | undefined {
+  const setting = (error as { setting?: unknown } | null)?.setting;
+  return typeof setting === 'string' ? setting : undefined;
 }
 
 /** Every numeric setting's default and accepted range, as the core validates them. */

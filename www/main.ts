@@ -160,7 +160,7 @@ function onResponse(r: Response): void {
     progress.hidden = true;
     updateBusy();
     markStale(true);
-    if (failed.flight === 'csv' && /^(plan|QGroundControl plan)\b/.test(r.error)) {
+    if (r.setting === 'plan') {
       planError.textContent = r.error;
       planError.hidden = false;
       status.textContent = 'The flight plan could not be read; the results below are for the previous settings.';
@@ -170,11 +170,10 @@ function onResponse(r: Response): void {
       status.textContent = 'The CSV could not be simulated; the results below are for the previous settings.';
     } else {
       status.textContent = `These settings cannot be simulated: ${r.error}. Change a setting; the results below are for the previous settings.`;
-      // The core names the setting it refuses first ("maxInterval must be at least …", a limit that
-      // depends on the data rate, which the form cannot check alone): mark that control as the form
-      // marks its own (the next change of any setting checks every control afresh and clears it).
-      const named = /^(\w+) must\b/.exec(r.error)?.[1];
-      const control = named && isNumericKey(named) ? field(named) : null;
+      // The core names the setting it refuses (`maxInterval` shorter than the data rate's
+      // interval, a limit the form cannot check alone): mark that control as the form marks its
+      // own (the next change of any setting checks every control afresh and clears it).
+      const control = r.setting && isNumericKey(r.setting) ? field(r.setting) : null;
       if (control) markField(control, `${r.error}.`);
     }
     if (settingsChartsWait) renderSettingsCharts();

@@ -75,7 +75,7 @@ export class SimulationPool {
         if ('error' in r) {
           failed = true;
           forget();
-          on({ id: request.id, error: r.error });
+          on({ id: request.id, error: r.error, setting: r.setting });
           return;
         }
         if ('partial' in r) {

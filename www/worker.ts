@@ -1,7 +1,7 @@
 // Runs simulations off the main thread so the page never freezes. One message in, one out:
 //   { id, params, sweep? }  →  [{ id, partial }] { id, progress }* then { id, report } | { id, error }
 //                               then, with sweep points, { id, sweep: [{ point, report | error }] }
-import { load, loadCsv, simulate, swarm, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
+import { load, loadCsv, settingOf, simulate, swarm, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
 
 /** One point of a sweep beside the main run: the gateway at another distance, or another SF. */
 export type SweepPoint = { distance: number } | { sf: number };
@@ -38,7 +38,8 @@ export type Response =
   /** The whole synthetic set's first flight alone, sent before the set (its own report: 1 flight). */
   | { id: number; partial: SimReport }
   | { id: number; report: SimReport; millis: number }
-  | { id: number; error: string }
+  /** The core's message, and the setting it refuses where one is at fault (`settingOf`). */
+  | { id: number; error: string; setting?: string }
   | { id: number; sweep: SweepResult[] }
   | { id: number; swarms: SwarmReport[]; millis: number };
 
@@ -88,7 +89,7 @@ self.onmessage = async (event: MessageEvent<Request | ModuleMessage>) => {
       post({ id, sweep });
     }
   } catch (e) {
-    post({ id, error: e instanceof Error ? e.message : String(e) });
+    post({ id, error: e instanceof Error ? e.message : String(e), setting: settingOf(e) });
   }
 };
 

@@ -33,6 +33,32 @@ impl fmt::Display for ApiError {
 
 impl std::error::Error for ApiError {}
 
+impl ApiError {
+    /// The setting this error refuses, by its key in the JS API and the page's form (the CLI's long
+    /// option in camelCase, e.g. `maxInterval`), or `None` where no one setting is at fault. The
+    /// bindings give it to JS as the thrown `Error`'s `setting`, so that the page marks that
+    /// control without reading the message.
+    ///
+    /// ```
+    /// use loratrack::{api, Scenario, SenderKind, Simulator, SyntheticChoice};
+    /// let mut s = Scenario::default();
+    /// s.flight.synthetic = Some(SyntheticChoice::One(1));
+    /// // A heartbeat shorter than SF12's duty-cycle interval (about 148 s).
+    /// (s.radio.sf, s.radio.bw) = (12, 125.0);
+    /// (s.sending.sender, s.sending.max_interval) = (SenderKind::Error, 10.0);
+    /// let e = api::simulate(&mut Simulator::new(), &s).unwrap_err();
+    /// assert_eq!(e.setting(), Some("maxInterval"));
+    /// ```
+    pub fn setting(&self) -> Option<&'static str> {
+        match self {
+            ApiError::Lora(e) => e.setting(),
+            ApiError::Model(e) => e.setting(),
+            ApiError::Sim(e) => e.setting(),
+            ApiError::Codec(_) | ApiError::Invalid(_) => None,
+        }
+    }
+}
+
 impl From<LoraError> for ApiError {
     fn from(e: LoraError) -> Self {
         ApiError::Lora(e)
@@ -114,6 +140,43 @@ pub fn clean_message(msg: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sim::{Scenario, SenderKind, Simulator, SyntheticChoice};
+
+    /// The error of a run of synthetic flight 1 with `change` made.
+    fn refused(change: impl FnOnce(&mut Scenario)) -> ApiError {
+        let mut s = Scenario::default();
+        s.flight.synthetic = Some(SyntheticChoice::One(1));
+        change(&mut s);
+        crate::api::simulate(&mut Simulator::new(), &s).unwrap_err()
+    }
+
+    #[test]
+    fn an_error_names_the_one_setting_at_fault() {
+        let e = refused(|s| s.radio.sf = 13);
+        assert_eq!(e.setting(), Some("sf"), "{e}");
+        // A limit that depends on another setting: the heartbeat against SF12's interval.
+        let e = refused(|s| {
+            s.radio.sf = 12;
+            s.radio.bw = 125.0;
+            s.sending.sender = SenderKind::Error;
+            s.sending.max_interval = 10.0;
+        });
+        assert_eq!(e.setting(), Some("maxInterval"), "{e}");
+        assert!(e.to_string().starts_with("maxInterval must be"), "{e}");
+        let e = refused(|s| s.radio.duty_cycle = 2.0);
+        assert_eq!(e.setting(), Some("dutyCycle"), "{e}");
+    }
+
+    #[test]
+    fn an_error_of_settings_together_names_none() {
+        let e = refused(|s| s.flight.synthetic = None);
+        assert!(e.to_string().starts_with("choose a flight"), "{e}");
+        assert_eq!(e.setting(), None);
+        assert_eq!(
+            ApiError::Invalid("unknown setting 'x'".into()).setting(),
+            None
+        );
+    }
 
     #[test]
     fn messages_escape_control_characters_and_cut_long_quotes() {

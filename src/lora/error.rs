@@ -61,3 +61,21 @@ impl fmt::Display for LoraError {
 }
 
 impl std::error::Error for LoraError {}
+
+impl LoraError {
+    /// The setting this error refuses, by its key in the JS API and the page's form (the CLI's long
+    /// option in camelCase), so that a caller can point at it without reading the message.
+    pub fn setting(&self) -> Option<&'static str> {
+        Some(match self {
+            LoraError::SpreadingFactor(_) => "sf",
+            LoraError::Bandwidth(_) => "bw",
+            LoraError::CodingRate(_) => "cr",
+            // The application payload is fixed per model; the overhead is what a caller chose.
+            LoraError::PayloadTooLarge(_) => "overhead",
+            LoraError::Preamble(_) => "preamble",
+            LoraError::DutyCycle(_) => "dutyCycle",
+            LoraError::Parameter(name, ..) => name,
+            LoraError::OutOfRange(e) => e.option.key,
+        })
+    }
+}

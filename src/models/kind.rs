@@ -145,6 +145,18 @@ impl fmt::Display for ModelError {
 
 impl std::error::Error for ModelError {}
 
+impl ModelError {
+    /// The setting this error refuses, by its key in the JS API (as [`crate::LoraError::setting`]).
+    pub fn setting(&self) -> Option<&'static str> {
+        Some(match self {
+            ModelError::UnknownModel(_) => "model",
+            ModelError::StateLength { .. } | ModelError::OutOfRange { .. } => "state",
+            ModelError::TimeStep(_) => "dt",
+            ModelError::Eta(_) => "eta",
+        })
+    }
+}
+
 impl FromStr for ModelKind {
     type Err = ModelError;
     fn from_str(s: &str) -> Result<Self, ModelError> {

@@ -96,6 +96,26 @@ impl fmt::Display for SimError {
 
 impl std::error::Error for SimError {}
 
+impl SimError {
+    /// The setting this error refuses, by its key in the JS API and the page's form (as
+    /// [`LoraError::setting`]); `None` where no one setting is at fault (a choice of flight that
+    /// conflicts with another setting, a run too long for its several settings together).
+    pub fn setting(&self) -> Option<&'static str> {
+        match self {
+            SimError::Trajectory(e) => Some(e.setting()),
+            SimError::Plan(_) => Some("plan"),
+            SimError::Lora(e) => e.setting(),
+            SimError::OutOfRange(e) => Some(e.option.key),
+            SimError::Parameter(name, ..) => Some(name),
+            SimError::Heartbeat { .. } => Some("maxInterval"),
+            SimError::Seed(_) => Some("seed"),
+            SimError::Seeds { .. } => Some("seeds"),
+            SimError::AdrStart(..) => Some("adr"),
+            SimError::Source(_) | SimError::TooLong { .. } => None,
+        }
+    }
+}
+
 impl From<TrajectoryError> for SimError {
     fn from(e: TrajectoryError) -> Self {
         SimError::Trajectory(e)

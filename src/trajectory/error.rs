@@ -151,3 +151,15 @@ impl fmt::Display for TrajectoryError {
 }
 
 impl std::error::Error for TrajectoryError {}
+
+impl TrajectoryError {
+    /// The setting this error refuses, by its key in the JS API (as [`crate::LoraError::setting`]):
+    /// the flight given as `trajectory` (a CSV), `synthetic` or `sample`.
+    pub fn setting(&self) -> &'static str {
+        match self {
+            TrajectoryError::SyntheticIndex(_) => "synthetic",
+            TrajectoryError::UnknownSample(_) => "sample",
+            _ => "trajectory",
+        }
+    }
+}

@@ -100,3 +100,15 @@ test('a run asked for with other settings stops the early run and runs on fresh 
   fresh.forEach((w) => w.answer());
   expect(answers.map((r) => r.id)).toEqual([1]);
 });
+
+test('a refusal reaches the page once, with the setting the core named', () => {
+  StandIn.all = [];
+  const pool = new SimulationPool(2);
+  const answers: Response[] = [];
+  pool.run(request(3, 1000), (r) => answers.push(r));
+  for (const w of StandIn.all) {
+    const id = w.sent.at(-1)!.id;
+    w.onmessage?.({ data: { id, error: 'maxInterval must be at least …', setting: 'maxInterval' } });
+  }
+  expect(answers).toEqual([{ id: 3, error: 'maxInterval must be at least …', setting: 'maxInterval' }]);
+});
