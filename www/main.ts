@@ -227,10 +227,16 @@ function renderResults(r: SimReport): void {
  * 1280×800 the panel starts 2.5 screens down, so drawing it on load delayed every panel in view
  * by ~250 ms (docs/performance.md). Once near, it is drawn as every other panel is. */
 let trajectoryNear = false;
+/** Whether the watch has answered once: until then, whether the view is in view (and so still to
+ * be drawn) is unknown, and the page stays busy. At 1920×1080 the view is near once the panels
+ * above are drawn; `data-busy` cleared before that answer came would be set again at once, and a
+ * caller waiting for it (a screenshot of an embed) would take the view blank. */
+let trajectoryAnswered = false;
 const trajectoryPanel = $('[data-panel="trajectory"]');
 const nearTrajectory = new IntersectionObserver(
   (entries) => {
-    if (!entries.some((e) => e.isIntersecting)) return;
+    trajectoryAnswered = true;
+    if (!entries.some((e) => e.isIntersecting)) return updateBusy();
     nearTrajectory.disconnect();
     trajectoryNear = true;
     const r = store.report;
@@ -263,11 +269,12 @@ let swarming = false;
 
 /** `<body data-busy>` while anything visible is still being computed or drawn (tests wait on it). */
 function updateBusy(): void {
-  if (running || drawing > 0 || swarming || drawingLater()) document.body.dataset.busy = '';
-  else {
-    delete document.body.dataset.busy;
-    watchTrajectory();
-  }
+  const working = running || drawing > 0 || swarming || drawingLater();
+  if (!working) watchTrajectory();
+  // Watched from here on once there are results (the line above); its first answer is pending.
+  const unknown = store.report !== undefined && !trajectoryAnswered && !trajectoryNear;
+  if (working || unknown) document.body.dataset.busy = '';
+  else delete document.body.dataset.busy;
 }
 
 async function render3d(r: SimReport): Promise<void> {

@@ -262,6 +262,10 @@ test('every screen: no sideways scrolling from a phone to a projector, and chart
   for (const [width, height, least] of [[360, 740, 11], [390, 844, 11], [768, 1024, 11], [1024, 768, 12], [1280, 800, 12], [1920, 1080, 12]]) {
     const { page, problems } = await open('', { width, height });
     await idle(page);
+    // `data-busy` gone means all in view is drawn: the 3D view too where it lies within a screen
+    // of the viewport (at 1920×1080 once the panels above are drawn), and not elsewhere.
+    const near = await page.evaluate(() => document.querySelector('[data-panel="trajectory"]').getBoundingClientRect().top < 2 * innerHeight);
+    assert.equal(await page.locator('#chart-trajectory canvas').count(), near ? 1 : 0, `${width}x${height}: the 3D view ${near ? 'not drawn although' : 'drawn although not'} near when the page fell idle`);
     // The whole page, as a reader scrolls it: the 3D view is drawn once it comes near.
     await view3d(page);
     const m = await page.evaluate(() => {
