@@ -1045,23 +1045,24 @@ fn budget_by_threshold(crowd: &[Crowd]) -> String {
         );
         within.push((rule, share, p95));
     }
-    let met: Vec<String> = within
-        .iter()
-        .filter(|(_, _, p95)| *p95 <= P95_AIM)
-        .map(|(rule, share, p95)| format!("{rule} ({p95:.2}×, {share:.2} of the airtime)"))
-        .collect();
-    let missed: Vec<String> = within
-        .iter()
-        .filter(|(_, _, p95)| *p95 > P95_AIM)
-        .map(|(rule, share, p95)| format!("{rule} ({p95:.2}×, {share:.2} of the airtime)"))
-        .collect();
+    let (met, missed): (Vec<_>, Vec<_>) = within.iter().partition(|(_, _, p95)| *p95 <= P95_AIM);
+    let list = |groups: Vec<&(String, f64, f64)>| {
+        if groups.is_empty() {
+            return "none".to_string();
+        }
+        groups
+            .iter()
+            .map(|(rule, share, p95)| format!("{rule} ({p95:.2}×, {share:.2} of the airtime)"))
+            .collect::<Vec<_>>()
+            .join("; ")
+    };
     s += &format!(
         "\nWithin the aim on the means: {}. Not within it: {}. Without feedback a drone cannot tell which of its packets \
          collided, and hedging against a loss means sending more, which in a crowd is what loses packets (README, \
          error-triggered sending); what the rule can do is spend its airtime where the drift is, and that pays more the \
          less airtime there is to spend.\n",
-        if met.is_empty() { "none".to_string() } else { met.join("; ") },
-        if missed.is_empty() { "none".to_string() } else { missed.join("; ") },
+        list(met),
+        list(missed),
     );
     s
 }
