@@ -39,22 +39,28 @@ fn call_with<P: DeserializeOwned, R>(
     op: impl FnOnce(P) -> Result<R, ApiError>,
     to_js: impl FnOnce(R) -> Result<JsValue, JsValue>,
 ) -> Result<JsValue, JsValue> {
-    let invalid = |e: &dyn core::fmt::Display| {
-        js_error(&api::clean_message(&format!("invalid parameters: {e}")))
+    let invalid = |e: &dyn core::fmt::Display, setting: Option<&str>| {
+        error_naming(
+            &api::clean_message(&format!("invalid parameters: {e}")),
+            setting,
+        )
     };
     let text = js_sys::JSON::stringify(&params)
         .ok()
         .and_then(|s| s.as_string())
         .ok_or_else(|| {
-            invalid(&"not a plain object of numbers, strings, booleans and arrays (too deep, circular, or holding a BigInt?)")
+            invalid(&"not a plain object of numbers, strings, booleans and arrays (too deep, circular, or holding a BigInt?)", None)
         })?;
     // JSON.stringify turns NaN and Infinity into null, and serde's message cannot name the key
     // of a flattened setting: name it.
     let p: P = serde_json::from_str(&text).map_err(|e| match null_key(&text) {
-        Some(key) => invalid(&format!(
-            "{key} is not a number (NaN, Infinity and null are not accepted): give a finite number or leave it out"
-        )),
-        None => invalid(&e),
+        Some(key) => invalid(
+            &format!(
+                "{key} is not a number (NaN, Infinity and null are not accepted): give a finite number or leave it out"
+            ),
+            crate::options::option(&key).map(|o| o.key),
+        ),
+        None => invalid(&e, None),
     })?;
     let report = op(p).map_err(|e| api_error(&e))?;
     to_js(report)
@@ -62,15 +68,20 @@ fn call_with<P: DeserializeOwned, R>(
 
 /// A JS `Error` with `message`.
 fn js_error(message: &str) -> JsValue {
-    js_sys::Error::new(message).into()
+    error_naming(message, None)
 }
 
-/// The JS `Error` for an operation the core refused: its message, and as `setting` the key of
-/// the setting at fault where one is ([`ApiError::setting`], e.g. `maxInterval`), so that a
-/// caller such as the page can point at that control without reading the message.
+/// The JS `Error` for an operation the core refused: its message, and the setting at fault
+/// where one is ([`ApiError::setting`], e.g. `maxInterval`).
 fn api_error(e: &ApiError) -> JsValue {
-    let error = js_sys::Error::new(&api::clean_message(&e.to_string()));
-    if let Some(key) = e.setting() {
+    error_naming(&api::clean_message(&e.to_string()), e.setting())
+}
+
+/// A JS `Error` with `message` and, as `setting`, the key of the setting at fault, so that a
+/// caller such as the page can point at that control without reading the message.
+fn error_naming(message: &str, setting: Option<&str>) -> JsValue {
+    let error = js_sys::Error::new(message);
+    if let Some(key) = setting {
         // Defining a property on a fresh Error cannot fail.
         let _ = js_sys::Reflect::set(
             &error,

@@ -102,6 +102,18 @@ fn a_refused_setting_is_named_on_the_thrown_error() {
     .unwrap_err();
     assert!(error_message(e.clone()).starts_with("maxInterval must be"));
     assert_eq!(setting(&e).as_deref(), Some("maxInterval"));
+    // NaN reaches the core as null (JSON.stringify): refused while the settings are read, and named.
+    let e = wasm::simulate(
+        obj(&[("synthetic", 1.into()), ("distance", f64::NAN.into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    assert_eq!(
+        setting(&e).as_deref(),
+        Some("distance"),
+        "{}",
+        error_message(e)
+    );
     // A misspelt key is no setting the core knows: the message says so, and names none.
     let e = wasm::simulate(obj(&[("bogus", 1.into())]), JsValue::UNDEFINED).unwrap_err();
     assert_eq!(setting(&e), None);
