@@ -43,9 +43,9 @@ export function setUpEmbed(): void {
   }
 }
 
-/** In an embed: the settings behind the numbers, and every notice (the form is not shown). */
+/** In an embed: the settings behind the numbers, and every notice (the form is not shown). The
+ * settings line is kept on the full page too, hidden: a printed page shows it instead of the form. */
 export function updateEmbedCaption(): void {
-  if (!store.embed) return;
   $('#embed-settings').textContent = `Settings: ${caption(store.reportSettings)}.`;
   const lines = [...store.notices];
   if (!$('#rests-on').hidden) lines.push($('#rests-on-text').textContent ?? '');

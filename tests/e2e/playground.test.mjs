@@ -578,6 +578,27 @@ test('the 3D view lets the page scroll past it, zooms once focused, and always s
   assert.deepEqual(problems, []);
 });
 
+test('printed, the page shows the numbers and charts with the settings they rest on instead of the form', async () => {
+  // At a phone's width the 3D view stays more than a screen away on paper too (on a wider page
+  // the printed layout, without the form, brings it near, and it is drawn).
+  const { page, problems } = await open('?sf=8&distance=2000', { width: 390, height: 844 });
+  await idle(page);
+  await page.emulateMedia({ media: 'print' });
+  assert.equal(await page.locator('#controls').isVisible(), false, 'the form is printed');
+  assert.equal(await page.getByRole('button', { name: 'Pin as baseline' }).isVisible(), false, 'buttons are printed');
+  assert.match(await page.locator('#embed-settings').textContent(), /^Settings: SF8, 250 kHz, 2\.0 km, /);
+  assert.equal(await page.locator('#embed-settings').isVisible(), true, 'the settings line is not printed');
+  assert.equal(await page.locator('#results-table').isVisible(), true);
+  // Not run, the swarm panel has nothing to print; not yet near, the 3D view says why it is blank.
+  assert.equal(await page.locator('[data-panel="swarm"]').isVisible(), false);
+  const why = await page.locator('#chart-trajectory').evaluate((el) => getComputedStyle(el, '::before').content);
+  assert.match(why, /Not drawn: .*scroll there before printing/);
+  await page.emulateMedia({ media: 'screen' });
+  assert.equal(await page.locator('#controls').isVisible(), true);
+  assert.equal(await page.locator('#embed-settings').isVisible(), false, 'the settings line shows on screen');
+  assert.deepEqual(problems, []);
+});
+
 test('New seed draws a fresh seed, shows it and puts it in the link', async () => {
   const { page, problems } = await open();
   const before = await tableHtml(page);
