@@ -44,9 +44,11 @@ export function setUpEmbed(): void {
 }
 
 /** In an embed: the settings behind the numbers, and every notice (the form is not shown). The
- * settings line is kept on the full page too, hidden: a printed page shows it instead of the form. */
+ * settings line is kept on the full page too, hidden: a printed page shows it instead of the form,
+ * and prints the results' own notes where they stand. */
 export function updateEmbedCaption(): void {
   $('#embed-settings').textContent = `Settings: ${caption(store.reportSettings)}.`;
+  if (!store.embed) return;
   const lines = [...store.notices];
   if (!$('#rests-on').hidden) lines.push($('#rests-on-text').textContent ?? '');
   if (!$('#untracked').hidden) lines.push($('#untracked').textContent ?? '');

@@ -588,6 +588,8 @@ test('printed, the page shows the numbers and charts with the settings they rest
   assert.equal(await page.getByRole('button', { name: 'Pin as baseline' }).isVisible(), false, 'buttons are printed');
   assert.match(await page.locator('#embed-settings').textContent(), /^Settings: SF8, 250 kHz, 2\.0 km, /);
   assert.equal(await page.locator('#embed-settings').isVisible(), true, 'the settings line is not printed');
+  // The full page prints the results' own notes where they stand, not a second time in the caption.
+  assert.equal(await page.locator('#embed-notices').isVisible(), false, 'notices printed twice');
   assert.equal(await page.locator('#results-table').isVisible(), true);
   // Not run, the swarm panel has nothing to print; not yet near, the 3D view says why it is blank.
   assert.equal(await page.locator('[data-panel="swarm"]').isVisible(), false);
