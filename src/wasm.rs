@@ -51,16 +51,13 @@ fn call_with<P: DeserializeOwned, R>(
         .ok_or_else(|| {
             invalid(&"not a plain object of numbers, strings, booleans and arrays (too deep, circular, or holding a BigInt?)", None)
         })?;
-    // JSON.stringify turns NaN and Infinity into null, and serde's message cannot name the key
-    // of a flattened setting: name it.
-    let p: P = serde_json::from_str(&text).map_err(|e| match null_key(&text) {
-        Some(key) => invalid(
-            &format!(
-                "{key} is not a number (NaN, Infinity and null are not accepted): give a finite number or leave it out"
-            ),
-            crate::options::option(&key).map(|o| o.key),
-        ),
-        None => invalid(&e, None),
+    // serde's message cannot name the key of a flattened setting given the wrong kind of value
+    // (or a NaN, which JSON.stringify turns into null): name it.
+    let p: P = serde_json::from_str(&text).map_err(|e| match api::misread_setting(&text) {
+        Some((message, setting)) if !e.to_string().starts_with("unknown field") => {
+            invalid(&message, setting)
+        }
+        _ => invalid(&e, None),
     })?;
     let report = op(p).map_err(|e| api_error(&e))?;
     to_js(report)
@@ -120,12 +117,6 @@ fn report_value(mut report: crate::sim::SimReport) -> Result<JsValue, JsValue> {
             .map_err(|_| js_error("could not build the result"))?;
     }
     Ok(value)
-}
-
-/// The first top-level key of a JSON object whose value is `null`, if any.
-fn null_key(text: &str) -> Option<String> {
-    let map: serde_json::Map<String, serde_json::Value> = serde_json::from_str(text).ok()?;
-    map.into_iter().find(|(_, v)| v.is_null()).map(|(k, _)| k)
 }
 
 /// `linkBudget({bw?, txPower?, pathLossExponent?, shadowing?, gatewayHeight?, distances?})`

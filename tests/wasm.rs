@@ -114,6 +114,13 @@ fn a_refused_setting_is_named_on_the_thrown_error() {
         "{}",
         error_message(e)
     );
+    // So does a number given as text, which serde refuses before the core's checks.
+    let e = wasm::simulate(
+        obj(&[("synthetic", 1.into()), ("sf", "7".into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    assert_eq!(setting(&e).as_deref(), Some("sf"), "{}", error_message(e));
     // A misspelt key is no setting the core knows: the message says so, and names none.
     let e = wasm::simulate(obj(&[("bogus", 1.into())]), JsValue::UNDEFINED).unwrap_err();
     assert_eq!(setting(&e), None);

@@ -1,0 +1,99 @@
+//! Which setting a parameter object got wrong, when it could not be read at all.
+//!
+//! The JS API takes its parameters as JSON text (`JSON.stringify` of the caller's object, reference
+//! §9). serde refuses a value of the wrong type before any of the core's checks run, and its message
+//! cannot name the key of a flattened setting ("invalid type: string \"7\", expected u8 at line 1
+//! column 9"). This reads the object again and names the first setting whose value could not be
+//! read, so that the thrown `Error` carries its `setting` as the core's own refusals do.
+
+use crate::options::option;
+use serde_json::Value;
+
+/// A setting named in `json` whose value serde could not read, as a message and, when the key is a
+/// numeric option's ([`crate::options`]), that option's key: the first top-level key whose value is
+/// `null` (what `JSON.stringify` makes of NaN and ±Infinity), and otherwise the first numeric option
+/// given something other than a number, or a fraction where it takes whole numbers. `None` when
+/// `json` is no object or every value has the right kind (serde refused something else, such as an
+/// unknown key).
+///
+/// ```
+/// use loratrack::api::misread_setting;
+/// let (message, key) = misread_setting(r#"{"synthetic":1,"sf":"7"}"#).unwrap();
+/// assert_eq!(key, Some("sf"));
+/// assert_eq!(message, "sf must be a number, not the text \"7\"");
+/// assert_eq!(misread_setting(r#"{"sf":7}"#), None);
+/// ```
+pub fn misread_setting(json: &str) -> Option<(String, Option<&'static str>)> {
+    let map: serde_json::Map<String, Value> = serde_json::from_str(json).ok()?;
+    if let Some((key, _)) = map.iter().find(|(_, v)| v.is_null()) {
+        let message = format!(
+            "{key} is not a number (NaN, Infinity and null are not accepted): give a finite number or leave it out"
+        );
+        return Some((message, option(key).map(|o| o.key)));
+    }
+    map.iter().find_map(|(key, value)| {
+        let o = option(key)?;
+        let found = match value {
+            Value::Number(n) if o.integer && n.as_f64().is_some_and(|x| x.fract() != 0.0) => {
+                return Some((
+                    format!("{key} must be a whole number, not {n}"),
+                    Some(o.key),
+                ));
+            }
+            Value::Number(_) => return None,
+            Value::String(s) => format!("the text {}", Value::String(s.clone())),
+            Value::Bool(b) => format!("{b}"),
+            Value::Array(_) => "a list".to_owned(),
+            Value::Object(_) => "an object".to_owned(),
+            Value::Null => unreachable!("nulls are named above"),
+        };
+        Some((format!("{key} must be a number, not {found}"), Some(o.key)))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_null_is_named_first_and_keyed_only_when_it_is_an_option() {
+        let (m, key) = misread_setting(r#"{"sf":"7","distance":null}"#).unwrap();
+        assert!(m.starts_with("distance is not a number"), "{m}");
+        assert_eq!(key, Some("distance"));
+        let (m, key) = misread_setting(r#"{"sample":null}"#).unwrap();
+        assert!(m.starts_with("sample is not a number"), "{m}");
+        assert_eq!(key, None);
+    }
+
+    #[test]
+    fn a_numeric_option_given_text_a_boolean_a_list_or_an_object_is_named() {
+        for (value, what) in [
+            (r#""1000""#, "the text \"1000\""),
+            ("true", "true"),
+            ("[1000]", "a list"),
+            (r#"{"m":1000}"#, "an object"),
+        ] {
+            let json = format!(r#"{{"model":"dr","distance":{value}}}"#);
+            let (m, key) = misread_setting(&json).unwrap();
+            assert_eq!(m, format!("distance must be a number, not {what}"));
+            assert_eq!(key, Some("distance"));
+        }
+    }
+
+    #[test]
+    fn a_fraction_is_named_only_where_whole_numbers_are_asked() {
+        let (m, key) = misread_setting(r#"{"sf":7.5}"#).unwrap();
+        assert_eq!(
+            (m.as_str(), key),
+            ("sf must be a whole number, not 7.5", Some("sf"))
+        );
+        assert_eq!(misread_setting(r#"{"distance":1000.5}"#), None);
+    }
+
+    #[test]
+    fn keys_that_are_no_numeric_option_and_text_that_is_no_object_name_nothing() {
+        assert_eq!(misread_setting(r#"{"model":3,"bogus":"x"}"#), None);
+        assert_eq!(misread_setting("[1,2]"), None);
+        assert_eq!(misread_setting("not json"), None);
+    }
+}
