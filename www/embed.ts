@@ -44,16 +44,17 @@ export function setUpEmbed(): void {
 }
 
 /** In an embed: the settings behind the numbers, and every notice (the form is not shown). The
- * settings line is kept on the full page too, hidden: a printed page shows it instead of the form,
- * and prints the results' own notes where they stand. */
+ * caption is kept on the full page too, hidden: a printed page shows it instead of the form, with
+ * the link's notices from the top of the form, and prints the results' own notes where they stand. */
 export function updateEmbedCaption(): void {
   $('#embed-settings').textContent = `Settings: ${caption(store.reportSettings)}.`;
-  if (!store.embed) return;
   const lines = [...store.notices];
-  if (!$('#rests-on').hidden) lines.push($('#rests-on-text').textContent ?? '');
-  if (!$('#untracked').hidden) lines.push($('#untracked').textContent ?? '');
-  if ($('[data-panel="results"]').classList.contains('stale')) lines.push('The numbers shown are for the previous settings.');
-  if ($('[data-panel="results"]').classList.contains('partial')) lines.push('The numbers shown are the first flight’s alone; the rest of the set is still running.');
+  if (store.embed) {
+    if (!$('#rests-on').hidden) lines.push($('#rests-on-text').textContent ?? '');
+    if (!$('#untracked').hidden) lines.push($('#untracked').textContent ?? '');
+    if ($('[data-panel="results"]').classList.contains('stale')) lines.push('The numbers shown are for the previous settings.');
+    if ($('[data-panel="results"]').classList.contains('partial')) lines.push('The numbers shown are the first flight’s alone; the rest of the set is still running.');
+  }
   $('#embed-notices').hidden = lines.length === 0;
   $('#embed-notices').textContent = lines.join(' ');
 }

@@ -597,15 +597,20 @@ test('the 3D view lets the page scroll past it, zooms once focused, and always s
 test('printed, the page shows the numbers and charts with the settings they rest on instead of the form', async () => {
   // At a phone's width the 3D view stays more than a screen away on paper too (on a wider page
   // the printed layout, without the form, brings it near, and it is drawn).
-  const { page, problems } = await open('?sf=8&distance=2000', { width: 390, height: 844 });
+  // A distance between the slider's steps leaves a notice at the top of the form.
+  const { page, problems } = await open('?sf=8&distance=2040', { width: 390, height: 844 });
   await idle(page);
   await page.emulateMedia({ media: 'print' });
   assert.equal(await page.locator('#controls').isVisible(), false, 'the form is printed');
   assert.equal(await page.getByRole('button', { name: 'Pin as baseline' }).isVisible(), false, 'buttons are printed');
   assert.match(await page.locator('#embed-settings').textContent(), /^Settings: SF8, 250 kHz, 2\.0 km, /);
   assert.equal(await page.locator('#embed-settings').isVisible(), true, 'the settings line is not printed');
-  // The full page prints the results' own notes where they stand, not a second time in the caption.
-  assert.equal(await page.locator('#embed-notices').isVisible(), false, 'notices printed twice');
+  // The form's notices about the link are printed in the caption; the results' own notes where
+  // they stand, not a second time.
+  assert.equal(await page.locator('#embed-notices').isVisible(), true, 'the link\'s notice is not printed');
+  const printed = await page.locator('#embed-notices').textContent();
+  assert.match(printed, /^The link's distance 2040 m is shown and simulated as 2000 m/);
+  assert.equal(printed, await page.locator('#notice').textContent(), 'the caption prints more than the form\'s notices');
   assert.equal(await page.locator('#results-table').isVisible(), true);
   // Not run, the swarm panel has nothing to print; not yet near, the 3D view says why it is blank.
   assert.equal(await page.locator('[data-panel="swarm"]').isVisible(), false);
