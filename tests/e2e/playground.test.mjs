@@ -283,6 +283,23 @@ test('every screen: no sideways scrolling from a phone to a projector, and chart
     assert.ok(m.smallest >= least, `${width}x${height}: chart text down to ${m.smallest.toFixed(1)} px`);
     console.log(`# ${width}x${height}: document ${m.scrollWidth} px wide, chart text >= ${m.smallest.toFixed(1)} px`);
     assert.deepEqual(await axisLabelOverlaps(page), [], `${width}x${height}: axis labels on other text`);
+    // A table wider than the screen scrolls; what its numbers rest on (its caption) stays within
+    // the visible width, scrolled or not.
+    for (const scrolled of [0, 10_000]) {
+      const cut = await page.evaluate((left) => {
+        const out = [];
+        for (const wrap of document.querySelectorAll('.table-wrap')) {
+          const caption = wrap.querySelector('caption');
+          if (!caption || wrap.getBoundingClientRect().width === 0) continue;
+          wrap.scrollLeft = left;
+          const [w, c] = [wrap.getBoundingClientRect(), caption.getBoundingClientRect()];
+          if (c.left < w.left - 1 || c.right > w.right + 1) out.push(`${wrap.closest('[id]').id}: caption ${c.left}..${c.right} in ${w.left}..${w.right}`);
+          wrap.scrollLeft = 0;
+        }
+        return out;
+      }, scrolled);
+      assert.deepEqual(cut, [], `${width}x${height}, scrolled ${scrolled}: a caption runs off its table's visible width`);
+    }
     // Every control can be reached: the last one is on the page, within its width.
     const last = await page.getByRole('button', { name: 'New seed' }).boundingBox();
     assert.ok(last.x >= 0 && last.x + last.width <= width, `${width}: New seed at ${last.x}`);
