@@ -294,12 +294,18 @@ test('every screen: no sideways scrolling from a phone to a projector, and chart
           wrap.scrollLeft = left;
           const [w, c] = [wrap.getBoundingClientRect(), caption.getBoundingClientRect()];
           if (c.left < w.left - 1 || c.right > w.right + 1) out.push(`${wrap.closest('[id]').id}: caption ${c.left}..${c.right} in ${w.left}..${w.right}`);
+          // So does the results' model name, which labels each row.
+          const name = wrap.querySelector('table.results tbody th')?.getBoundingClientRect();
+          if (name && name.left < w.left - 1) out.push(`${wrap.closest('[id]').id}: model name at ${name.left}, left of ${w.left}`);
           wrap.scrollLeft = 0;
         }
         return out;
       }, scrolled);
-      assert.deepEqual(cut, [], `${width}x${height}, scrolled ${scrolled}: a caption runs off its table's visible width`);
+      assert.deepEqual(cut, [], `${width}x${height}, scrolled ${scrolled}: a caption or the model's name runs off its table's visible width`);
     }
+    // The headline p75 is on the table's first screen, not after a sideways scroll.
+    const [p75, wrap] = [await page.locator('#results-table td[data-field="p75"]').first().boundingBox(), await page.locator('#results-table .table-wrap').boundingBox()];
+    assert.ok(p75.x + p75.width <= wrap.x + wrap.width + 1, `${width}x${height}: p75 at ${p75.x}..${p75.x + p75.width}, the table shows up to ${wrap.x + wrap.width}`);
     // Every control can be reached: the last one is on the page, within its width.
     const last = await page.getByRole('button', { name: 'New seed' }).boundingBox();
     assert.ok(last.x >= 0 && last.x + last.width <= width, `${width}: New seed at ${last.x}`);
