@@ -454,6 +454,13 @@ test('presentation mode: large type and charts at 1024x768, one panel per screen
   assert.ok(m.chart >= 18 - 0.05, `chart text ${m.chart} px`);
   assert.ok(m.width <= 1024, `document ${m.width} px wide`);
   assert.equal(m.advanced, false, 'the advanced settings are out of the way');
+  // The controls grow with the text: a browser's own 13 px select stays small on a projector.
+  const small = await page.evaluate(() =>
+    [...document.querySelectorAll('select, input:not([type="range"]), button')]
+      .filter((e) => e.offsetParent !== null && parseFloat(getComputedStyle(e).fontSize) < 16)
+      .map((e) => `${e.id || e.textContent.trim()}: ${getComputedStyle(e).fontSize}`),
+  );
+  assert.deepEqual(small, [], 'controls in small type');
   console.log(`# presentation 1024x768: body ${m.body} px, chart text >= ${m.chart.toFixed(1)} px`);
   assert.deepEqual(await axisLabelOverlaps(page), [], 'presentation: axis labels on other text');
   // Each panel fills the screen; the arrow keys step from one to the next.
