@@ -283,6 +283,18 @@ test('every screen: no sideways scrolling from a phone to a projector, and chart
     assert.ok(m.smallest >= least, `${width}x${height}: chart text down to ${m.smallest.toFixed(1)} px`);
     console.log(`# ${width}x${height}: document ${m.scrollWidth} px wide, chart text >= ${m.smallest.toFixed(1)} px`);
     assert.deepEqual(await axisLabelOverlaps(page), [], `${width}x${height}: axis labels on other text`);
+    // A distance where no packet arrives says so within its own column, clear of the boxes beside it.
+    const overBoxes = await page.evaluate(() => {
+      const svg = [...document.querySelectorAll('#chart-distance svg')].at(-1);
+      const notes = [...(svg?.querySelectorAll('text') ?? [])].filter((t) => t.textContent.startsWith('no packet'));
+      // The boxes (Q1–Q3) are the chart's rects; its grid and whiskers are lines.
+      const boxes = [...(svg?.querySelectorAll('rect') ?? [])].map((r) => r.getBoundingClientRect()).filter((b) => b.width > 0 && b.height > 0);
+      return notes.flatMap((t) => {
+        const a = t.getBoundingClientRect();
+        return boxes.filter((b) => a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom).map((b) => `"${t.textContent}" ${a.left}..${a.right} over a box ${b.left}..${b.right}`);
+      });
+    });
+    assert.deepEqual(overBoxes, [], `${width}x${height}: a note on the distance chart runs over its boxes`);
     // A table wider than the screen scrolls; what its numbers rest on (its caption) stays within
     // the visible width, scrolled or not.
     for (const scrolled of [0, 10_000]) {

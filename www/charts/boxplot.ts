@@ -6,6 +6,10 @@ import { MODEL_LABELS } from '../loratrack';
 import { MODEL_COLORS, chartFrame, chartFont } from './colors';
 import { plainNumber } from './logAxis';
 
+/** The plot's margins, px: room for the y axis's labels on the left. */
+const MARGIN_LEFT = 50;
+const MARGIN_RIGHT = 20;
+
 export interface BoxRow {
   group: string;
   model: ModelName;
@@ -22,7 +26,8 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
   return Plot.plot({
     ...chartFrame(180),
     width: opts.width,
-    marginLeft: 50,
+    marginLeft: MARGIN_LEFT,
+    marginRight: MARGIN_RIGHT,
     fx: { label: opts.groupLabel, domain: groups },
     x: { axis: null, domain: models, paddingInner: 0.25 },
     // A log scale keeps the boxes near the gateway readable beside the metres-to-kilometres ones beyond its range.
@@ -30,14 +35,21 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
     y: opts.log ? { label: opts.yLabel ?? 'error (m, log scale)', grid: true, type: 'log', tickFormat: decade } : { label: opts.yLabel ?? 'error (m)', grid: true, zero: true },
     color: { domain: models, range: models.map((m) => MODEL_COLORS[data.find((d) => d.label === m)!.model]), legend: true },
     marks: [
-      // A group where nothing arrived says so instead of staying blank.
-      Plot.text(empty, { fx: 'group', text: () => 'no packet\narrives', frameAnchor: 'middle', fill: '#5a6068', fontSize: chartFont() }),
+      // A group where nothing arrived says so instead of staying blank, wrapped within its own
+      // column (on a phone a column is ~45 px, and one line ran over the boxes beside it).
+      Plot.text(empty, { fx: 'group', text: () => 'no packet arrives', lineWidth: groupEms(opts.width, groups.length), frameAnchor: 'middle', fill: '#5a6068', fontSize: chartFont() }),
       Plot.ruleX(data, { fx: 'group', x: 'label', y1: 'whiskerLow', y2: 'whiskerHigh', stroke: 'label' }),
       Plot.barY(data, { fx: 'group', x: 'label', y1: 'q1', y2: 'q3', fill: 'label', fillOpacity: 0.35, stroke: 'label' }),
       Plot.tickY(data, { fx: 'group', x: 'label', y: 'median', stroke: 'label', strokeWidth: 2.5 }),
       Plot.tip(data, Plot.pointerX({ fx: 'group', x: 'label', y: 'median', title: (d) => `${d.label}\nmedian ${d.median.toFixed(2)} m\nQ1–Q3 ${d.q1.toFixed(2)}–${d.q3.toFixed(2)} m\nwhiskers ${d.whiskerLow.toFixed(2)}–${d.whiskerHigh.toFixed(2)} m\n${d.outliers} outliers of ${d.count}` })),
     ],
   });
+}
+
+/** The width of one group's column in ems of the chart's type, a little inside it: `width` px
+ * less the left margin and Plot's default right margin, shared by `groups`. */
+function groupEms(width: number, groups: number): number {
+  return (0.85 * (width - MARGIN_LEFT - MARGIN_RIGHT)) / Math.max(1, groups) / chartFont();
 }
 
 /** Labels only the powers of ten of a log axis, as plain numbers. */
