@@ -86,6 +86,14 @@ export async function axe(page) {
   return result.violations.flatMap((v) => v.nodes.map((n) => `${v.impact} ${v.id}: ${n.target.join(' ')}`));
 }
 
+/** The texts of the charts in `selector`, each as a reader sees it: Plot writes a wrapped text's
+ * lines as tspans with no space between them, so they are joined by one. */
+export function chartTexts(page, selector) {
+  return page.locator(`${selector} svg text`).evaluateAll((texts) =>
+    texts.map((t) => (t.querySelector('tspan') ? [...t.querySelectorAll('tspan')].map((s) => s.textContent).join(' ') : t.textContent)),
+  );
+}
+
 /** Every chart's axis label (Plot marks them → and ↑) that overlaps other text of its chart, as
  * "chart id: label over text" lines: at the page's 13 px and presentation mode's 18 px, Plot's
  * default margins once put them on the tick labels. */

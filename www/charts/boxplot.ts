@@ -49,7 +49,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
 /** The width of one group's column in ems of the chart's type, a little inside it: `width` px
  * less the plot's margins, shared by `groups`. */
 function groupEms(width: number, groups: number): number {
-  return (0.85 * (width - MARGIN_LEFT - MARGIN_RIGHT)) / Math.max(1, groups) / chartFont();
+  return (0.95 * (width - MARGIN_LEFT - MARGIN_RIGHT)) / Math.max(1, groups) / chartFont();
 }
 
 /** Labels only the powers of ten of a log axis, as plain numbers. */
