@@ -8,7 +8,7 @@ import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR, chartFont } from './charts/color
 import type { BoxRow } from './charts/plots';
 import type { Trajectory3d } from './charts/trajectory3d';
 import { $ } from './dom';
-import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH } from './export';
+import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH, tableSvg } from './export';
 import { field, form, markField, onFormChange, readControls, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
 import { caption } from './format';
@@ -569,6 +569,17 @@ for (const [id, save] of [
     if (report) save(report);
   });
 }
+/** The results table as drawn, for a slide: its caption (what the numbers are), the settings they
+ * rest on and, with a baseline pinned, what the differences are against. None while a whole set's
+ * first flight stands in for the set. */
+function downloadResultsPicture(button: HTMLButtonElement): void {
+  const table = document.querySelector<HTMLTableElement>('#results-table table');
+  if (!shownReport(button) || !table) return;
+  const what = table.caption?.textContent?.trim() ?? '';
+  const against = $('#baseline-note').hidden ? '' : ` ${$('#baseline-note').textContent ?? ''}`;
+  const slide = { title: 'Results', caption: `${what ? `${what}. ` : ''}${caption(store.reportSettings)}.${against}` };
+  (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(tableSvg(table), 'loratrack-results', slide);
+}
 $('#download-airtime-csv').addEventListener('click', () => {
   const table = document.querySelector<HTMLTableElement>('#airtime-table table');
   if (table) downloadTableCsv(table, 'loratrack-time-on-air');
@@ -576,10 +587,11 @@ $('#download-airtime-csv').addEventListener('click', () => {
 for (const button of document.querySelectorAll<HTMLButtonElement>('[data-download]')) {
   const name = button.dataset.download!;
   const title = document.getElementById(`${name}-title`)?.textContent ?? name;
-  button.setAttribute('aria-label', `Download the ${title.replace(/:.*/, '').toLowerCase()} chart as ${button.dataset.format!.toUpperCase()}`);
+  button.setAttribute('aria-label', `Download the ${title.replace(/:.*/, '').toLowerCase()} ${name === 'results' ? 'table' : 'chart'} as ${button.dataset.format!.toUpperCase()}`);
   button.addEventListener('click', () => {
     const slide = (c: string) => ({ title, caption: c });
     if (name === 'trajectory') return void download3d(button, title);
+    if (name === 'results') return void downloadResultsPicture(button);
     const entry = charts[name];
     const saved = entry && (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(entry.chart, `loratrack-${name}`, slide(entry.caption));
     downloadWhy(button, saved ? '' : name === 'swarm' && !entry ? 'Nothing to save yet: run a swarm first.' : 'Nothing to save: this chart has no data at these settings (no packet arrives).');

@@ -397,7 +397,7 @@ test('axe finds no violation at all, on the full page and embedded', async () =>
   assert.deepEqual(problems, []);
 });
 
-test('every chart downloads ready for a slide: title, legend, caption with settings, seed and version; PNGs at least 1600 px wide', async () => {
+test('every chart and the results table download ready for a slide: title, legend, caption with settings, seed and version; PNGs at least 1600 px wide', async () => {
   const { page, problems } = await open();
   await idle(page);
   const save = async (locator) => {
@@ -415,6 +415,15 @@ test('every chart downloads ready for a slide: title, legend, caption with setti
     const png = await save(page.getByRole('button', { name: new RegExp(`^Download the ${title.toLowerCase()}.* chart as PNG$`) }));
     assert.ok(png.readUInt32BE(16) >= 1600, `${panel}: a PNG ${png.readUInt32BE(16)} px wide`);
   }
+  // The results table as a picture: the numbers on show, what they are and what they rest on.
+  const table = (await save(page.getByRole('button', { name: 'Download the results table as SVG' }))).toString('utf8');
+  assert.match(table, />Results</);
+  // Its caption wraps over several lines: read as running text.
+  const words = table.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ');
+  assert.match(words, /3D tracking error \(m\) at the station.*SF7, 250 kHz, 1\.0 km.*synthetic flight 1; seed 1; loratrack \d+\.\d+\.\d+/, 'results: captioned');
+  for (const model of ['dr', 'ctra-plus', '3d-ctra']) assert.ok(table.includes(`>${(await cell(page, model, 'p75')).trim().split(/\s+/)[0]}<`), `results: ${model}'s p75 in the picture`);
+  const tablePng = await save(page.getByRole('button', { name: 'Download the results table as PNG' }));
+  assert.ok(tablePng.readUInt32BE(16) >= 1600, `results: a PNG ${tablePng.readUInt32BE(16)} px wide`);
   const shot = await save(page.getByRole('button', { name: 'Download the 3d trajectory chart as PNG' }));
   assert.ok(shot.readUInt32BE(16) >= 1600, `3D view: a PNG ${shot.readUInt32BE(16)} px wide`);
   const results = (await save(page.getByRole('button', { name: 'Results (CSV)' }))).toString('utf8').trim().split('\n');
