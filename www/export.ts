@@ -154,7 +154,7 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
  * rows in columns, a cell's lines (a p75 with its interval below) one under another, the first
  * column left-aligned and the numbers right-aligned, the highlighted row shaded. Its `<caption>`
  * is left to the slide's caption. Column widths follow the longest line at about 7.4 px per
- * character of its 13 px type (the slide's caption wraps on the same estimate).
+ * character of its 13 px type.
  */
 export function tableSvg(table: HTMLTableElement): SVGSVGElement {
   const SIZE = 13;
