@@ -167,9 +167,19 @@ export function tableSvg(table: HTMLTableElement): SVGSVGElement {
     [...cell.querySelectorAll('.visually-hidden')]
       .reduce((t, hidden) => t.replace((hidden.textContent ?? '').trim(), ''), cell instanceof HTMLElement && cell.closest('tbody') ? cell.innerText : (cell.textContent ?? ''))
       .split('\n')
-      .map((l) => l.replace(/\s+/g, ' ').trim())
+      // Runs of white space become one space; a thin space (between a difference's arrow and
+      // its number) stays as drawn.
+      .map((l) => l.replace(/[^\S\u2009]+/g, ' ').trim())
       .filter(Boolean);
-  const rows = [...table.rows].filter((row) => row.closest('thead, tbody')).map((row) => ({ head: !!row.closest('thead'), best: row.classList.contains('best'), cells: [...row.cells].map(linesOf) }));
+  // A difference against the baseline keeps its colour (better green, worse red), as on the page.
+  const deltaOf = (cell: Element) => {
+    const d = cell.querySelector('.delta');
+    const colour = d?.classList.contains('better') ? '#1b7a2b' : d?.classList.contains('worse') ? '#b00020' : '#5a6068';
+    return d ? { text: linesOf(d).join(' '), colour } : undefined;
+  };
+  const rows = [...table.rows]
+    .filter((row) => row.closest('thead, tbody'))
+    .map((row) => ({ head: !!row.closest('thead'), best: row.classList.contains('best'), cells: [...row.cells].map(linesOf), deltas: [...row.cells].map(deltaOf) }));
   const columns = Math.max(...rows.map((r) => r.cells.length));
   // The first column is bold: its characters run about a fifth wider.
   const widths = Array.from({ length: columns }, (_, c) => PAD * 2 + CHAR * (c === 0 ? 1.2 : 1) * Math.max(1, ...rows.flatMap((r) => (r.cells[c] ?? []).map((l) => l.length))));
@@ -187,9 +197,12 @@ export function tableSvg(table: HTMLTableElement): SVGSVGElement {
     let x = 0;
     row.cells.forEach((lines, c) => {
       const left = c === 0;
-      lines.forEach((line, i) =>
-        out.append(text(left ? x + PAD : x + widths[c] - PAD, y + PAD / 2 + LINE * (i + 1) - 4, line, i > 0 ? SIZE - 2 : SIZE, { fill: i > 0 ? '#5a6068' : '#1b1f24', 'text-anchor': left ? 'start' : 'end', ...(row.head || left ? { 'font-weight': '600' } : {}) })),
-      );
+      lines.forEach((line, i) => {
+        const t = text(left ? x + PAD : x + widths[c] - PAD, y + PAD / 2 + LINE * (i + 1) - 4, line, i > 0 ? SIZE - 2 : SIZE, { fill: i > 0 ? '#5a6068' : '#1b1f24', 'text-anchor': left ? 'start' : 'end', ...(row.head || left ? { 'font-weight': '600' } : {}) });
+        const delta = i === 0 ? row.deltas[c] : undefined;
+        if (delta && line.endsWith(delta.text)) colourTail(t, delta);
+        out.append(t);
+      });
       x += widths[c];
     });
     y += height;
@@ -200,6 +213,17 @@ export function tableSvg(table: HTMLTableElement): SVGSVGElement {
   out.setAttribute('width', String(Math.ceil(width)));
   out.setAttribute('height', String(Math.ceil(y + 1)));
   return out;
+}
+
+/** Splits `t`'s text so that its last `tail.text` is a tspan of its own, in `tail.colour`. */
+function colourTail(t: SVGTextElement, tail: { text: string; colour: string }): void {
+  const line = t.textContent ?? '';
+  const head = document.createElementNS(SVG_NS, 'tspan');
+  head.textContent = line.slice(0, line.length - tail.text.length);
+  const coloured = document.createElementNS(SVG_NS, 'tspan');
+  coloured.setAttribute('fill', tail.colour);
+  coloured.textContent = tail.text;
+  t.replaceChildren(head, coloured);
 }
 
 /** `line` broken at spaces into lines of at most `width` characters (a longer word stands alone). */

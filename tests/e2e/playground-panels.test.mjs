@@ -25,6 +25,15 @@ test('pinning a baseline shows the next settings as differences against it', asy
   // Further away, packets are lost: fewer received is marked worse.
   const packets = await page.locator('[data-delta="packets"]').textContent();
   assert.match(packets, /▼\u2009−\d+ \(worse than the baseline\)/);
+  // The table's picture for a slide keeps each difference, in its colour, and says what it is against.
+  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: 'Download the results table as SVG' }).click()]);
+  const picture = readFileSync(await download.path(), 'utf8');
+  const shown = p75.replace(/ \(.*\)$/, '');
+  assert.ok(picture.includes(`>${shown}</tspan>`), `the p75's difference ${shown} in the picture`);
+  const colour = /better/.test(p75) ? '#1b7a2b' : /worse/.test(p75) ? '#b00020' : '#5a6068';
+  assert.ok(picture.includes(`<tspan fill="${colour}">${shown}<`), `${shown} in its colour ${colour}`);
+  assert.doesNotMatch(picture, /than the baseline\)/, 'the screen-reader words are left out');
+  assert.match(picture.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' '), /against the pinned baseline: SF7, 250 kHz, 1\.0 km/);
   // The link carries the baseline: opened elsewhere, it shows the same comparison.
   assert.match(page.url(), /baseline=/);
   const shared = await open(new URL(page.url()).search);
