@@ -111,9 +111,9 @@ export function loadCsv(params: { trajectory: string; trajectoryName?: string },
 }
 
 /** The setting a thrown error refuses: its key as these functions take it (`maxInterval`,
- * `sf`, `plan`, …), which the core names where one setting is at fault; `undefined` otherwise
- * (a setting that conflicts with another, a run too long for several together, a value of the
- * wrong type). */
+ * `sf`, `plan`, a number given as text, …), which the core names where one setting is at fault;
+ * `undefined` otherwise (a setting that conflicts with another, a run too long for several
+ * together, an unknown key). */
 export function settingOf(error: unknown): string | undefined {
   const setting = (error as { setting?: unknown } | null)?.setting;
   return typeof setting === 'string' ? setting : undefined;
