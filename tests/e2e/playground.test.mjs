@@ -294,14 +294,22 @@ test('every screen: no sideways scrolling from a phone to a projector, and chart
           wrap.scrollLeft = left;
           const [w, c] = [wrap.getBoundingClientRect(), caption.getBoundingClientRect()];
           if (c.left < w.left - 1 || c.right > w.right + 1) out.push(`${wrap.closest('[id]').id}: caption ${c.left}..${c.right} in ${w.left}..${w.right}`);
-          // So does the results' model name, which labels each row.
-          const name = wrap.querySelector('table.results tbody th')?.getBoundingClientRect();
-          if (name && name.left < w.left - 1) out.push(`${wrap.closest('[id]').id}: model name at ${name.left}, left of ${w.left}`);
+          // So do the row headers that name each row (the results' model; the time on air's SF and
+          // bandwidth), side by side.
+          let right = w.left;
+          const headers = wrap.querySelectorAll('tbody tr:first-child th');
+          const named = { 'results-table': 1, 'airtime-table': 2 }[wrap.closest('[id]').id];
+          if (named !== undefined && headers.length !== named) out.push(`${wrap.closest('[id]').id}: ${headers.length} row headers, not ${named}`);
+          for (const th of headers) {
+            const r = th.getBoundingClientRect();
+            if (r.left < right - 1 || r.right > w.right + 1) out.push(`${wrap.closest('[id]').id}: row header "${th.textContent}" at ${r.left}..${r.right}, the visible ${right}..${w.right}`);
+            right = r.right;
+          }
           wrap.scrollLeft = 0;
         }
         return out;
       }, scrolled);
-      assert.deepEqual(cut, [], `${width}x${height}, scrolled ${scrolled}: a caption or the model's name runs off its table's visible width`);
+      assert.deepEqual(cut, [], `${width}x${height}, scrolled ${scrolled}: a caption or a row header runs off its table's visible width`);
     }
     // The headline p75 is on the table's first screen, not after a sideways scroll.
     const [p75, wrap] = [await page.locator('#results-table td[data-field="p75"]').first().boundingBox(), await page.locator('#results-table .table-wrap').boundingBox()];

@@ -35,8 +35,13 @@ export function airtimeTable(opts: { overhead: number; cr: number; sf: number; b
     for (const bw of BWS) {
       const row = body.insertRow();
       if (sf === opts.sf && bw === opts.bw) row.className = 'current';
-      row.insertCell().textContent = `SF${sf}`;
-      row.insertCell().textContent = `${bw} kHz`;
+      // SF and bandwidth name the row (row headers, kept in view as the table scrolls sideways).
+      for (const name of [`SF${sf}`, `${bw} kHz`]) {
+        const th = document.createElement('th');
+        th.scope = 'row';
+        th.textContent = name;
+        row.appendChild(th);
+      }
       const rate = row.insertCell();
       const plan = { region: opts.region, interval: opts.interval, access: opts.access, fairUse: opts.fairUse };
       for (const [i, payload] of PAYLOADS.entries()) {
