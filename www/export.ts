@@ -151,10 +151,11 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
 
 /**
  * A table as the page shows it, drawn as an SVG for a slide (through [`slideSvg`]): its header and
- * rows in columns, a cell's lines (a p75 with its interval below) one under another, the first
- * column left-aligned and the numbers right-aligned, the highlighted row shaded. Its `<caption>`
- * is left to the slide's caption. Column widths follow the longest line at about 7.4 px per
- * character of its 13 px type.
+ * rows in columns, a cell's lines (a p75 with its interval below) one under another, the columns
+ * of row headers (the results' model; the time on air's SF and bandwidth) bold and left-aligned
+ * and the numbers right-aligned, the highlighted row shaded as on the page (the lowest p75 green,
+ * the current data rate yellow), a refused cell red. Its `<caption>` is left to the slide's
+ * caption. Column widths follow the longest line at about 7.4 px per character of its 13 px type.
  */
 export function tableSvg(table: HTMLTableElement): SVGSVGElement {
   const SIZE = 13;
@@ -177,28 +178,38 @@ export function tableSvg(table: HTMLTableElement): SVGSVGElement {
     const colour = d?.classList.contains('better') ? '#1b7a2b' : d?.classList.contains('worse') ? '#b00020' : '#5a6068';
     return d ? { text: linesOf(d).join(' '), colour } : undefined;
   };
+  const shadeOf = (row: HTMLTableRowElement) => (row.closest('thead') ? '#f6f7f9' : row.classList.contains('best') ? '#e8f5e9' : row.classList.contains('current') ? '#fff7d6' : undefined);
   const rows = [...table.rows]
     .filter((row) => row.closest('thead, tbody'))
-    .map((row) => ({ head: !!row.closest('thead'), best: row.classList.contains('best'), cells: [...row.cells].map(linesOf), deltas: [...row.cells].map(deltaOf) }));
+    .map((row) => ({
+      head: !!row.closest('thead'),
+      shade: shadeOf(row),
+      cells: [...row.cells].map(linesOf),
+      deltas: [...row.cells].map(deltaOf),
+      refused: [...row.cells].map((c) => c.classList.contains('refused')),
+    }));
   const columns = Math.max(...rows.map((r) => r.cells.length));
-  // The first column is bold: its characters run about a fifth wider.
-  const widths = Array.from({ length: columns }, (_, c) => PAD * 2 + CHAR * (c === 0 ? 1.2 : 1) * Math.max(1, ...rows.flatMap((r) => (r.cells[c] ?? []).map((l) => l.length))));
+  // Columns of row headers, as the first row of the body has them.
+  const named = [...(table.tBodies[0]?.rows[0]?.cells ?? [])].map((c) => c.tagName === 'TH');
+  // A bold column's characters run about a fifth wider.
+  const widths = Array.from({ length: columns }, (_, c) => PAD * 2 + CHAR * (named[c] ? 1.2 : 1) * Math.max(1, ...rows.flatMap((r) => (r.cells[c] ?? []).map((l) => l.length))));
   const width = widths.reduce((a, b) => a + b, 0);
   const out = document.createElementNS(SVG_NS, 'svg');
   out.setAttribute('xmlns', SVG_NS);
   let y = 0;
   for (const row of rows) {
     const height = PAD + LINE * Math.max(1, ...row.cells.map((c) => c.length));
-    if (row.head || row.best) {
+    if (row.shade) {
       const shade = document.createElementNS(SVG_NS, 'rect');
-      for (const [k, v] of Object.entries({ x: '0', y: String(y), width: String(width), height: String(height), fill: row.head ? '#f6f7f9' : '#e8f5e9' })) shade.setAttribute(k, v);
+      for (const [k, v] of Object.entries({ x: '0', y: String(y), width: String(width), height: String(height), fill: row.shade })) shade.setAttribute(k, v);
       out.append(shade);
     }
     let x = 0;
     row.cells.forEach((lines, c) => {
-      const left = c === 0;
+      const left = named[c];
+      const fill = row.refused[c] ? '#a40000' : '#1b1f24';
       lines.forEach((line, i) => {
-        const t = text(left ? x + PAD : x + widths[c] - PAD, y + PAD / 2 + LINE * (i + 1) - 4, line, i > 0 ? SIZE - 2 : SIZE, { fill: i > 0 ? '#5a6068' : '#1b1f24', 'text-anchor': left ? 'start' : 'end', ...(row.head || left ? { 'font-weight': '600' } : {}) });
+        const t = text(left ? x + PAD : x + widths[c] - PAD, y + PAD / 2 + LINE * (i + 1) - 4, line, i > 0 ? SIZE - 2 : SIZE, { fill: i > 0 ? '#5a6068' : fill, 'text-anchor': left ? 'start' : 'end', ...(row.head || left ? { 'font-weight': '600' } : {}) });
         const delta = i === 0 ? row.deltas[c] : undefined;
         if (delta && line.endsWith(delta.text)) colourTail(t, delta);
         out.append(t);

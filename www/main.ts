@@ -580,18 +580,30 @@ function downloadResultsPicture(button: HTMLButtonElement): void {
   const slide = { title: 'Results', caption: `${what ? `${what}. ` : ''}${caption(store.reportSettings)}.${against}` };
   (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(tableSvg(table), 'loratrack-results', slide);
 }
+/** The time-on-air table as drawn, for a slide: its caption (what the numbers are and what the plan
+ * refuses) and the settings it follows (the overhead and coding rate among them). */
+function downloadAirtimePicture(button: HTMLButtonElement): void {
+  const table = document.querySelector<HTMLTableElement>('#airtime-table table');
+  if (!table) return;
+  const what = table.caption?.textContent?.trim() ?? '';
+  const slide = { title: 'Time on air', caption: `${what} ${caption(store.settings)}.` };
+  (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(tableSvg(table), 'loratrack-time-on-air', slide);
+}
 $('#download-airtime-csv').addEventListener('click', () => {
   const table = document.querySelector<HTMLTableElement>('#airtime-table table');
   if (table) downloadTableCsv(table, 'loratrack-time-on-air');
 });
 for (const button of document.querySelectorAll<HTMLButtonElement>('[data-download]')) {
   const name = button.dataset.download!;
-  const title = document.getElementById(`${name}-title`)?.textContent ?? name;
-  button.setAttribute('aria-label', `Download the ${title.replace(/:.*/, '').toLowerCase()} ${name === 'results' ? 'table' : 'chart'} as ${button.dataset.format!.toUpperCase()}`);
+  // `airtime-table` is the time-on-air panel's table, beside its chart (`airtime`).
+  const table = name === 'results' || name === 'airtime-table';
+  const title = document.getElementById(`${name.replace(/-table$/, '')}-title`)?.textContent ?? name;
+  button.setAttribute('aria-label', `Download the ${title.replace(/:.*/, '').toLowerCase()} ${table ? 'table' : 'chart'} as ${button.dataset.format!.toUpperCase()}`);
   button.addEventListener('click', () => {
     const slide = (c: string) => ({ title, caption: c });
     if (name === 'trajectory') return void download3d(button, title);
     if (name === 'results') return void downloadResultsPicture(button);
+    if (name === 'airtime-table') return void downloadAirtimePicture(button);
     const entry = charts[name];
     const saved = entry && (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(entry.chart, `loratrack-${name}`, slide(entry.caption));
     downloadWhy(button, saved ? '' : name === 'swarm' && !entry ? 'Nothing to save yet: run a swarm first.' : 'Nothing to save: this chart has no data at these settings (no packet arrives).');

@@ -405,7 +405,7 @@ test('axe finds no violation at all, on the full page and embedded', async () =>
   assert.deepEqual(problems, []);
 });
 
-test('every chart and the results table download ready for a slide: title, legend, caption with settings, seed and version; PNGs at least 1600 px wide', async () => {
+test('every chart and both tables download ready for a slide: title, legend, caption with settings, seed and version; PNGs at least 1600 px wide', async () => {
   const { page, problems } = await open();
   await idle(page);
   const save = async (locator) => {
@@ -445,6 +445,17 @@ test('every chart and the results table download ready for a slide: title, legen
   const airtime = (await save(page.getByRole('button', { name: 'Time-on-air table (CSV)' }))).toString('utf8');
   assert.match(airtime.split('\n')[0], /SF,bandwidth,data rate,9 B/);
   assert.match(airtime, /^SF7,250 kHz,DR6,/m, 'the plan names each pair\'s data rate');
+  // The time-on-air table as a picture (Table II on a slide): each row as the page shows it, the
+  // current data rate shaded, captioned with what the numbers are and the settings they follow.
+  const airSvg = (await save(page.getByRole('button', { name: 'Download the time on air table as SVG' }))).toString('utf8');
+  assert.match(airSvg, />Time on air</);
+  assert.match(airSvg.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' '), /EU868: time on air · shortest interval.*SF7, 250 kHz.*13 B LoRaWAN overhead.*loratrack \d+\.\d+\.\d+/, 'time on air: captioned');
+  const shown = await page.locator('.airtime-table tbody tr').evaluateAll((rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
+  assert.equal(shown.length, 18);
+  for (const row of shown) for (const text of row) assert.ok(airSvg.includes(`>${text}<`), `time on air: "${text}" in the picture`);
+  assert.equal((airSvg.match(/fill="#fff7d6"/g) ?? []).length, 1, 'time on air: the current data rate shaded');
+  const airPng = await save(page.getByRole('button', { name: 'Download the time on air table as PNG' }));
+  assert.ok(airPng.readUInt32BE(16) >= 1600, `time on air: a PNG ${airPng.readUInt32BE(16)} px wide`);
   // Before any swarm, and where no packet arrives, a download says why instead of doing nothing.
   await page.getByRole('button', { name: 'Download the swarm chart as PNG' }).click();
   await page.waitForFunction(() => /run a swarm first/.test(document.querySelector('[data-panel="swarm"] .download-why')?.textContent ?? ''));
