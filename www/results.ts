@@ -12,6 +12,7 @@ export function renderTable(r: SimReport): void {
   const best = clearlyLowest(r);
   renderVerdict(r, best);
   renderUntracked(r);
+  renderSilenceNote(r);
   // The tracking error first, then what the link spent on it: on a phone or in a narrow embed the
   // table scrolls sideways, and the headline p75 must be within the first screen, not after the
   // link's columns (which the time-on-air and link panels show too).
@@ -100,6 +101,21 @@ function renderUntracked(r: SimReport): void {
   const shares = new Set(r.results.map(share));
   const cover = shares.size === 1 ? `${share(r.results[0])} %` : r.results.map((m) => `${share(m)} % (${MODEL_LABELS[m.model]})`).join(', ');
   note.textContent = `These errors cover ${cover} of the flight time: until a flight's first packet arrives the station has no estimate, and that time is not in the table.`;
+}
+
+/** The share of packets lost above which an error-triggered drone's silence is worth a warning. */
+const SILENCE_LOSS = 0.05;
+
+/** Where an error-triggered drone's packets are lost, what its results rest on: the drone never
+ * learns of a loss, so it stays silent while the station drifts (docs/senders.md, README
+ * "Beyond the paper, at a glance"). */
+function renderSilenceNote(r: SimReport): void {
+  const note = $('#silence-note');
+  const sent = r.results.reduce((n, m) => n + m.packetsSent, 0);
+  const lost = sent ? 1 - r.results.reduce((n, m) => n + m.packetsReceived, 0) / sent : 0;
+  note.hidden = r.config.sender !== 'error' || lost <= SILENCE_LOSS;
+  if (note.hidden) return;
+  note.textContent = `${(lost * 100).toFixed(0)} % of the packets sent were lost. An error-triggered drone cannot tell a lost packet from a delivered one: after a loss it stays silent while the station drifts. Where packets are lost it can track worse than periodic sending at the same airtime (at 3 km its p95 up to 1.06× on the synthetic set, on the real flight its p75 up to 3×; docs/senders.md).`;
 }
 
 /** p75's 95 % interval, when the run has one. */

@@ -370,7 +370,29 @@ test('the bounded and IMM stations and error-triggered sending are one control a
   assert.match(page.url(), /threshold=5/);
   // The table says what its numbers rest on: the sender and its threshold and heartbeat.
   assert.match(await page.locator('#results-table caption').textContent(), /error-triggered sending \(5 m, heartbeat 10 s\)/);
+  // At 3 km packets are lost: the results say what the drone's silence rests on.
+  assert.equal(await page.locator('#silence-note').isVisible(), true);
   assert.deepEqual(problems, []);
+});
+
+test('where packets are lost, an error-triggered run says what its silence rests on, with the table\'s share of losses', async () => {
+  const { page, problems } = await open('?sender=error&distance=3000&prediction=bounded&model=3d-ctra');
+  await idle(page);
+  const [received, sent] = (await cell(page, '3d-ctra', 'packets')).split('/').map(number);
+  assert.ok(received < 0.95 * sent, `${received} of ${sent} received at 3 km`);
+  const note = await page.locator('#silence-note').textContent();
+  assert.match(note, new RegExp(`^${Math.round(100 * (1 - received / sent))} % of the packets sent were lost\\. An error-triggered drone cannot tell a lost packet from a delivered one`), note);
+  // Periodic sending at the same distance learns nothing from silence: no such note.
+  const before = await tableHtml(page);
+  await page.getByLabel('Sending').selectOption('periodic');
+  await waitForResults(page, before);
+  assert.equal(await page.locator('#silence-note').isVisible(), false);
+  // Nor does error-triggered sending where every packet arrives (1 km).
+  const near = await open('?sender=error&model=3d-ctra');
+  await idle(near.page);
+  assert.match(await cell(near.page, '3d-ctra', 'delivery'), /^100 %$/);
+  assert.equal(await near.page.locator('#silence-note').isVisible(), false);
+  assert.deepEqual([...problems, ...near.problems], []);
 });
 
 test('adaptive data rate is one control away: from SF12 it speeds up and says where the packets went', async () => {
