@@ -3,6 +3,7 @@
 // Embed dialog builds the snippet that uses it.
 import { $ } from './dom';
 import { caption, describe } from './format';
+import { restingNotes } from './results';
 import { toQuery } from './state';
 import { store } from './store';
 
@@ -50,8 +51,7 @@ export function updateEmbedCaption(): void {
   $('#embed-settings').textContent = `Settings: ${caption(store.reportSettings)}.`;
   const lines = [...store.notices];
   if (store.embed) {
-    if (!$('#rests-on').hidden) lines.push($('#rests-on-text').textContent ?? '');
-    if (!$('#untracked').hidden) lines.push($('#untracked').textContent ?? '');
+    lines.push(...restingNotes());
     if ($('[data-panel="results"]').classList.contains('stale')) lines.push('The numbers shown are for the previous settings.');
     if ($('[data-panel="results"]').classList.contains('partial')) lines.push('The numbers shown are the first flight’s alone; the rest of the set is still running.');
   }

@@ -14,7 +14,7 @@ import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
 import { caption } from './format';
 import { later, drawingLater, onDrawing } from './later';
 import { LESSONS, lessonQuery } from './lessons';
-import { renderBaseline, renderTable } from './results';
+import { renderBaseline, renderTable, restingNotes } from './results';
 import { setUpPresent } from './present';
 import { DEFAULTS, fromQuery, isNumericKey, overheadBytes, plan, simulateRequest, toParams, type Settings } from './state';
 import { pageQuery, store } from './store';
@@ -101,6 +101,7 @@ function renderPartial(r: SimReport, made: Settings): void {
   markStale(typing !== undefined || JSON.stringify(made) !== JSON.stringify(store.settings));
   showPartial(true);
   renderTable(r);
+  updateEmbedCaption();
   drawErrorChart(r, made);
   status.textContent = 'Flight 1 of the 30 shown, its numbers alone; simulating the rest of the set… change any setting to interrupt.';
 }
@@ -577,7 +578,8 @@ function downloadResultsPicture(button: HTMLButtonElement): void {
   if (!shownReport(button) || !table) return;
   const what = table.caption?.textContent?.trim() ?? '';
   const against = $('#baseline-note').hidden ? '' : ` ${$('#baseline-note').textContent ?? ''}`;
-  const slide = { title: 'Results', caption: `${what ? `${what}. ` : ''}${caption(store.reportSettings)}.${against}` };
+  const notes = restingNotes().map((n) => `${n} `).join('');
+  const slide = { title: 'Results', caption: `${what ? `${what}. ` : ''}${notes}${caption(store.reportSettings)}.${against}` };
   (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(tableSvg(table), 'loratrack-results', slide);
 }
 /** The time-on-air table as drawn, for a slide: its caption (what the numbers are and what the plan

@@ -103,6 +103,17 @@ function renderUntracked(r: SimReport): void {
   note.textContent = `These errors cover ${cover} of the flight time: until a flight's first packet arrives the station has no estimate, and that time is not in the table.`;
 }
 
+/** The notes under the table that say what its numbers rest on (too few packets, untracked time,
+ * an error-triggered drone's lost packets), as shown: an embed's caption and the table's slide
+ * carry them too. */
+export function restingNotes(): string[] {
+  return [
+    ['#rests-on', '#rests-on-text'],
+    ['#untracked', '#untracked'],
+    ['#silence-note', '#silence-note'],
+  ].flatMap(([box, text]) => ($(box).hidden ? [] : [$(text).textContent ?? '']));
+}
+
 /** The share of packets lost above which an error-triggered drone's silence is worth a warning. */
 const SILENCE_LOSS = 0.05;
 

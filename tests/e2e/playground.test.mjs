@@ -382,6 +382,13 @@ test('where packets are lost, an error-triggered run says what its silence rests
   assert.ok(received < 0.95 * sent, `${received} of ${sent} received at 3 km`);
   const note = await page.locator('#silence-note').textContent();
   assert.match(note, new RegExp(`^${Math.round(100 * (1 - received / sent))} % of the packets sent were lost\\. An error-triggered drone cannot tell a lost packet from a delivered one`), note);
+  // The table on a slide, and an embed without the table, carry the note too.
+  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: 'Download the results table as SVG' }).click()]);
+  const slide = readFileSync(await download.path(), 'utf8').replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ');
+  assert.ok(slide.includes(note.split('. ')[0]), `the slide's caption: ${slide.slice(-600)}`);
+  const embedded = await open('?embed=1&panels=error&sender=error&distance=3000&prediction=bounded&model=3d-ctra');
+  await idle(embedded.page);
+  assert.ok((await embedded.page.locator('#embed-notices').textContent()).includes(note), 'the embed\'s notices');
   // Periodic sending at the same distance learns nothing from silence: no such note.
   const before = await tableHtml(page);
   await page.getByLabel('Sending').selectOption('periodic');
@@ -392,7 +399,7 @@ test('where packets are lost, an error-triggered run says what its silence rests
   await idle(near.page);
   assert.match(await cell(near.page, '3d-ctra', 'delivery'), /^100 %$/);
   assert.equal(await near.page.locator('#silence-note').isVisible(), false);
-  assert.deepEqual([...problems, ...near.problems], []);
+  assert.deepEqual([...problems, ...near.problems, ...embedded.problems], []);
 });
 
 test('adaptive data rate is one control away: from SF12 it speeds up and says where the packets went', async () => {
