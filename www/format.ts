@@ -10,9 +10,6 @@ export const fmt = (v: number | null, digits = 2) => (v === null || v === undefi
  * flight's first packet there is no estimate), in whole percent. */
 export const trackedPercent = (tracked: number | null) => Math.round(100 * (tracked ?? 0));
 
-/** Whether the page says what the errors cover: below 95 % of the flight time (docs/reference.md §12). */
-export const untrackedWorthSaying = (tracked: number | null) => trackedPercent(tracked) < 95;
-
 /** Station names as a list: "DR", "DR and CTRA+", "DR, CTRA+, 3D-CTRA". */
 export const names = (list: ModelResult[]) => list.map((m) => MODEL_LABELS[m.model]).join(list.length === 2 ? ' and ' : ', ');
 

@@ -325,7 +325,7 @@ async function draw3d(r: SimReport): Promise<void> {
 
 async function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): Promise<void> {
   const { p75BySfChart } = await plots();
-  const rows = sweep.flatMap(({ sf, report: r }) => r.results.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived, tracked: m.wholeFlight.tracked })));
+  const rows = sweep.flatMap(({ sf, report: r }) => r.results.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived, wholeFlight: m.wholeFlight })));
   place('sf', p75BySfChart(rows, { bw: made.bw, distance: made.distance, width: chartWidth('sf') }), made);
 }
 

@@ -3,7 +3,7 @@
 // table. Reads the page's state from the store.
 import { MODEL_LABELS, timeOnAir, type ModelResult, type SimReport } from './loratrack';
 import { $ } from './dom';
-import { caption, fmt, names, sending, trackedPercent, untrackedWorthSaying } from './format';
+import { caption, fmt, names, sending, trackedPercent } from './format';
 import { overheadBytes } from './state';
 import { store } from './store';
 
@@ -96,7 +96,7 @@ function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
 function renderUntracked(r: SimReport): void {
   const note = $('#untracked');
   const share = (m: ModelResult) => trackedPercent(m.wholeFlight.tracked);
-  note.hidden = !r.results.some((m) => untrackedWorthSaying(m.wholeFlight.tracked));
+  note.hidden = !r.results.some((m) => m.wholeFlight.partlyTracked);
   if (note.hidden) return;
   const shares = new Set(r.results.map(share));
   const cover = shares.size === 1 ? `${share(r.results[0])} %` : r.results.map((m) => `${share(m)} % (${MODEL_LABELS[m.model]})`).join(', ');

@@ -18,4 +18,4 @@ pub use coverage::{bound_95, inside_95, nees, Consistency, CHI2_3DOF_95};
 pub use percentile::percentile;
 pub use sort::sort_total;
 pub use summary::Summary;
-pub use whole_flight::WholeFlightError;
+pub use whole_flight::{WholeFlightError, TRACKED_IN_FULL_PERCENT};

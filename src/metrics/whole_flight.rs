@@ -21,6 +21,7 @@ use serde::Serialize;
 /// assert_eq!(e.p95, None);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct WholeFlightError {
     /// Share of the evaluation times (every T over the flights) at which the station had
@@ -34,22 +35,33 @@ pub struct WholeFlightError {
     pub p75: Option<f64>,
     /// 95th percentile over the whole flight time, m (`null` when 5 % or more was untracked).
     pub p95: Option<f64>,
+    /// Whether the untracked time is worth saying beside the errors: `tracked` in whole percent
+    /// is below [`TRACKED_IN_FULL_PERCENT`] (or nothing was evaluated). The CLI's line under its
+    /// table and the page's notes follow it, so that both say it for the same runs.
+    pub partly_tracked: bool,
 }
+
+/// The share of the flight time, in whole percent as the page shows it, from which the errors
+/// are said to cover the flight ([`WholeFlightError::partly_tracked`]): below it, a reader is told
+/// how much of the flight the statistics leave out (docs/reference.md §12).
+pub const TRACKED_IN_FULL_PERCENT: f64 = 95.0;
 
 impl WholeFlightError {
     /// From the ascending errors of the tracked evaluation times and the number of `untracked`
     /// ones, by the same interpolation as [`percentile`](super::percentile) over all of them.
     pub fn of_sorted(sorted: &[f64], untracked: usize) -> Self {
         let all = sorted.len() + untracked;
+        let tracked = if all == 0 {
+            f64::NAN
+        } else {
+            sorted.len() as f64 / all as f64
+        };
         WholeFlightError {
-            tracked: if all == 0 {
-                f64::NAN
-            } else {
-                sorted.len() as f64 / all as f64
-            },
+            tracked,
             p50: percentile_tracked(sorted, all, 50.0),
             p75: percentile_tracked(sorted, all, 75.0),
             p95: percentile_tracked(sorted, all, 95.0),
+            partly_tracked: tracked.is_nan() || (100.0 * tracked).round() < TRACKED_IN_FULL_PERCENT,
         }
     }
 }
@@ -97,6 +109,20 @@ mod tests {
         assert_eq!(e.p95, None);
         // Half of 100 steps: rank 49.5 of 0..99 between the 50th and 51st smallest.
         assert_eq!(e.p50, Some(50.5));
+    }
+
+    #[test]
+    fn the_untracked_time_is_worth_saying_below_95_percent_as_shown() {
+        let share =
+            |tracked: usize| WholeFlightError::of_sorted(&vec![1.0; tracked], 1000 - tracked);
+        assert!(share(620).partly_tracked);
+        assert!(share(944).partly_tracked);
+        // 94.6 % reads as 95 %: not said, so no note or line ever says "95 %" of the flight.
+        assert!(!share(946).partly_tracked);
+        assert!(!share(984).partly_tracked);
+        assert!(!share(1000).partly_tracked);
+        // Nothing evaluated: nothing covered.
+        assert!(WholeFlightError::of_sorted(&[], 0).partly_tracked);
     }
 
     #[test]

@@ -133,6 +133,7 @@ fn the_whole_flight_error_counts_the_time_before_a_flights_first_packet() {
     // SF7 sends every 3 s, SF12 / 250 kHz every 74 s, on flights of 88 s on average.
     assert!(fast.whole_flight.tracked > 0.95, "{:?}", fast.whole_flight);
     assert!(slow.whole_flight.tracked < 0.8, "{:?}", slow.whole_flight);
+    assert!(!fast.whole_flight.partly_tracked && slow.whole_flight.partly_tracked);
     for r in [&fast, &slow] {
         // Untracked time only adds errors above every tracked one.
         if let Some(p) = r.whole_flight.p75 {
@@ -404,4 +405,33 @@ fn seeds_are_checked_and_a_swarm_refuses_more_than_one() {
     let swarm = set(&Scenario::default(), json!({"drones": 2, "seeds": 2}));
     let e = loratrack::api::swarm(&swarm).unwrap_err().to_string();
     assert!(e.contains("a swarm runs one seed"), "{e}");
+}
+
+/// The CLI's line under its table says what the errors cover exactly where the core's
+/// `partlyTracked` (which the page's notes read) says so.
+#[test]
+fn the_cli_says_what_the_errors_cover_for_the_runs_the_page_does() {
+    for (sf, said) in [("7", false), ("12", true)] {
+        let run = |json: bool| {
+            let mut args = vec!["simulate", "--synthetic", "1", "--bw", "125", "--sf", sf];
+            if json {
+                args.push("--json");
+            }
+            let out = std::process::Command::new(env!("CARGO_BIN_EXE_loratrack"))
+                .args(&args)
+                .output()
+                .unwrap();
+            assert!(out.status.success(), "{args:?}");
+            String::from_utf8(out.stdout).unwrap()
+        };
+        let report: serde_json::Value = serde_json::from_str(&run(true)).unwrap();
+        let flags: Vec<bool> = report["results"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|m| m["wholeFlight"]["partlyTracked"].as_bool().unwrap())
+            .collect();
+        assert_eq!(flags.iter().any(|&f| f), said, "SF{sf}: {flags:?}");
+        assert_eq!(run(false).contains("\ntracked: "), said, "SF{sf}");
+    }
 }

@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { caption, describe, fmt, names, trackedPercent, untrackedWorthSaying } from '../../www/format';
+import { caption, describe, fmt, names, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -10,14 +10,11 @@ test('a statistic with no data is a dash, never NaN or "null"', () => {
   expect(fmt(16.14, 1)).toBe('16.1');
 });
 
-test('the tracked share is said in whole percent, and only below 95 %', () => {
+// Whether it is said at all is the core's `wholeFlight.partlyTracked` (src/metrics/whole_flight.rs).
+test('the tracked share is said in whole percent', () => {
   expect(trackedPercent(0.169)).toBe(17);
+  expect(trackedPercent(0.946)).toBe(95);
   expect(trackedPercent(null)).toBe(0);
-  expect(untrackedWorthSaying(0.62)).toBe(true);
-  expect(untrackedWorthSaying(0.944)).toBe(true);
-  // 94.6 % reads as 95 %: not said, so no note ever shows "95 %".
-  expect(untrackedWorthSaying(0.946)).toBe(false);
-  expect(untrackedWorthSaying(0.984)).toBe(false);
 });
 
 test('station lists read as a sentence', () => {

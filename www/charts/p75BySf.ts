@@ -2,9 +2,9 @@
 // chosen bandwidth and distance), one line per model. A higher SF reaches further but sends less
 // often: at short range the error grows with SF, beyond SF7's range a higher SF is what arrives.
 import * as Plot from '@observablehq/plot';
-import { MODEL_LABELS, type ModelName } from '../loratrack';
+import { MODEL_LABELS, type ModelName, type WholeFlightError } from '../loratrack';
 import { chartFrame, chartFont, MODEL_COLORS } from './colors';
-import { trackedPercent, untrackedWorthSaying } from '../format';
+import { trackedPercent } from '../format';
 import { logAxis, plainNumber } from './logAxis';
 
 export interface SfRow {
@@ -13,13 +13,14 @@ export interface SfRow {
   /** null where no packet arrived (no error to measure). */
   p75: number | null;
   received: number;
-  /** Share of the flight time after each flight's first packet: all the p75 covers. */
-  tracked: number | null;
+  /** The share of the flight time after each flight's first packet (all the p75 covers), and
+   * whether that is worth saying. */
+  wholeFlight: Pick<WholeFlightError, 'tracked' | 'partlyTracked'>;
 }
 
 /** "errors over 62 % of the flight time (before a flight's first packet there is none)". */
-function covered(tracked: number | null): string {
-  const why = untrackedWorthSaying(tracked) ? ' (before a flight\'s first packet there is none)' : '';
+function covered({ tracked, partlyTracked }: SfRow['wholeFlight']): string {
+  const why = partlyTracked ? ' (before a flight\'s first packet there is none)' : '';
   return `errors over ${trackedPercent(tracked)} % of the flight time${why}`;
 }
 
@@ -42,7 +43,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
     color: { domain: models, range: models.map((m) => MODEL_COLORS[data.find((d) => d.label === m)!.model]), legend: true },
     marks: [
       Plot.line(data, { x: 'sf', y: 'p75', stroke: 'label', z: 'label' }),
-      Plot.dot(data, { x: 'sf', y: 'p75', fill: 'label', r: 3.5, title: (d) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${d.received} packets, ${covered(d.tracked)}` }),
+      Plot.dot(data, { x: 'sf', y: 'p75', fill: 'label', r: 3.5, title: (d) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${d.received} packets, ${covered(d.wholeFlight)}` }),
       Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: () => 'none\narrives', fill: '#5a6068', fontSize: chartFont() }),
     ],
   });

@@ -3,14 +3,13 @@
 import { chartFrame, chartFont, SF_COLORS } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
-import { trackedPercent, untrackedWorthSaying } from '../format';
+import { trackedPercent } from '../format';
 import { logAxis, plainNumber } from './logAxis';
 
 /** " (errors over 88 % of the flight time: ...)": said when a swarm's stations spend enough of it
- * waiting for an episode's first packet ({@link untrackedWorthSaying}). */
+ * waiting for an episode's first packet (the core's `wholeFlight.partlyTracked`). */
 function untracked(r: SwarmReport): string {
-  const share = r.wholeFlight.tracked;
-  return untrackedWorthSaying(share) ? ` (errors over ${trackedPercent(share)} % of the flight time: before an episode's first packet a station has no estimate)` : '';
+  return r.wholeFlight.partlyTracked ? ` (errors over ${trackedPercent(r.wholeFlight.tracked)} % of the flight time: before an episode's first packet a station has no estimate)` : '';
 }
 
 export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {

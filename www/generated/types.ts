@@ -532,7 +532,13 @@ p75: number | null,
 /**
  * 95th percentile over the whole flight time, m (`null` when 5 % or more was untracked).
  */
-p95: number | null, };
+p95: number | null, 
+/**
+ * Whether the untracked time is worth saying beside the errors: `tracked` in whole percent
+ * is below [`TRACKED_IN_FULL_PERCENT`] (or nothing was evaluated). The CLI's line under its
+ * table and the page's notes follow it, so that both say it for the same runs.
+ */
+partlyTracked: boolean, };
 
 export type Intervals = { 
 /**

@@ -612,7 +612,7 @@ fn results_table(results: &[ModelResult]) -> String {
             intervals.join(", ")
         );
     }
-    if results.iter().any(|m| m.whole_flight.tracked < 0.95) {
+    if results.iter().any(|m| m.whole_flight.partly_tracked) {
         out += "tracked: the share of the flight time after each flight's first packet; the errors cover only that time\n";
     }
     out.trim_end().to_string()
