@@ -70,6 +70,7 @@ fn decls() -> Vec<String> {
         Scenario::decl(&c),
         Summary::decl(&c),
         WholeFlightError::decl(&c),
+        Caveats::decl(&c),
         Intervals::decl(&c),
         Boxplot::decl(&c),
         Boxplots::decl(&c),

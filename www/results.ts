@@ -74,11 +74,11 @@ function noClearLowest(r: SimReport, runs: number): string {
 
 /** How many packets and runs the numbers rest on, and whether the models differ clearly. */
 function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
-  const few = r.results.filter((m) => m.packetsReceived < 10);
+  const few = r.results.filter((m) => m.caveats.fewPackets);
   $('#rests-on').hidden = few.length === 0;
   $('#use-whole-set').hidden = store.reportSettings.flight === 'all';
   if (few.length) {
-    $('#rests-on-text').textContent = `Too few packets to compare: ${names(few)} ${few.length === 1 ? 'rests' : 'rest'} on ${few.map((m) => m.packetsReceived).join(few.length === 2 ? ' and ' : ', ')} received packet${few.every((m) => m.packetsReceived === 1) ? '' : 's'} (under 10).`;
+    $('#rests-on-text').textContent = `Too few packets to compare: ${names(few)} ${few.length === 1 ? 'rests' : 'rest'} on ${few.map((m) => m.packetsReceived).join(few.length === 2 ? ' and ' : ', ')} received packet${few.every((m) => m.packetsReceived === 1) ? '' : 's'}.`;
   }
   const text = $('#verdict-text');
   const repeat = $<HTMLButtonElement>('#repeat-seeds');
@@ -114,18 +114,15 @@ export function restingNotes(): string[] {
   ].flatMap(([box, text]) => ($(box).hidden ? [] : [$(text).textContent ?? '']));
 }
 
-/** The share of packets lost above which an error-triggered drone's silence is worth a warning. */
-const SILENCE_LOSS = 0.05;
-
-/** Where an error-triggered drone's packets are lost, what its results rest on: the drone never
- * learns of a loss, so it stays silent while the station drifts (docs/senders.md, README
- * "Beyond the paper, at a glance"). */
+/** Where an error-triggered drone's packets are lost (the core's `caveats.silenceAfterLoss`: over
+ * 5 %), what its results rest on: the drone never learns of a loss, so it stays silent while the
+ * station drifts (docs/senders.md, README "Beyond the paper, at a glance"). */
 function renderSilenceNote(r: SimReport): void {
   const note = $('#silence-note');
-  const sent = r.results.reduce((n, m) => n + m.packetsSent, 0);
-  const lost = sent ? 1 - r.results.reduce((n, m) => n + m.packetsReceived, 0) / sent : 0;
-  note.hidden = r.config.sender !== 'error' || lost <= SILENCE_LOSS;
+  note.hidden = !r.results.some((m) => m.caveats.silenceAfterLoss);
   if (note.hidden) return;
+  const sent = r.results.reduce((n, m) => n + m.packetsSent, 0);
+  const lost = 1 - r.results.reduce((n, m) => n + m.packetsReceived, 0) / sent;
   note.textContent = `${(lost * 100).toFixed(0)} % of the packets sent were lost. An error-triggered drone cannot tell a lost packet from a delivered one: after a loss it stays silent while the station drifts. Where packets are lost it can track worse than periodic sending at the same airtime (at 3 km its p95 up to 1.06× on the synthetic set, on the real flight its p75 up to 3×; docs/senders.md).`;
 }
 

@@ -9,6 +9,7 @@
 //! that a link change never re-runs a drone filter) and [`run_swarm`] (`swarm`: many drones).
 
 mod cache_budget;
+mod caveats;
 mod clock;
 mod drone;
 mod error;
@@ -30,6 +31,7 @@ mod streams;
 pub mod swarm;
 
 pub use cache_budget::MAX_CACHE_BYTES;
+pub use caveats::{Caveats, FEW_PACKETS, SILENCE_LOSS};
 pub use clock::{Clock, Timing};
 pub use drone::{run_drone, run_drones, DroneFilter, DroneTrack, Estimates};
 pub use error::SimError;

@@ -1,5 +1,6 @@
 //! One station's outcome pooled over every flight of a run.
 
+use super::caveats::Caveats;
 use super::packet::Transmission;
 use super::report::{Boxplots, DataRateUse, Delivery, Energy, ModelResult, ModelSeries};
 use super::station::{StationModel, StationTrack};
@@ -158,6 +159,8 @@ impl Pooled {
             airtime,
             error3d: s3,
             whole_flight: WholeFlightError::of_sorted(&self.e3, self.untracked),
+            // The sender is the run's: the simulator sets them (`Caveats::of`).
+            caveats: Caveats::default(),
             ci95,
             error_x: sx,
             error_y: sy,

@@ -1,5 +1,6 @@
 //! The JSON shapes of `simulate` and `sweep` (reference §9): a contract, changed only additively.
 
+use super::caveats::Caveats;
 use super::network::{GatewayReport, Network};
 use super::packet::Transmission;
 use super::scenario::Scenario;
@@ -182,6 +183,9 @@ pub struct ModelResult {
     /// The share of the flight time with a packet, and the 3D error's percentiles over the
     /// whole flight time (time before a flight's first packet counting as the largest error).
     pub whole_flight: WholeFlightError,
+    /// What these numbers rest on, where a reader could be misled: too few packets received, an
+    /// error-triggered drone whose packets were lost ([`Caveats`]).
+    pub caveats: Caveats,
     /// 95 % intervals of `error3d`'s statistics, by bootstrap over the runs (flights × seeds)
     /// pooled in it (`docs/reference.md` §12); `null` for a single run, which cannot show its
     /// own spread.

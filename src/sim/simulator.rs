@@ -1,6 +1,7 @@
 //! Runs simulations and caches what does not depend on the link.
 
 use super::cache_budget::{Ledger, MAX_CACHE_BYTES};
+use super::caveats::Caveats;
 use super::drone::{run_drones, DroneTrack};
 use super::parallel::{enough_tasks, par_map, par_map_costliest_first, par_map_owned};
 use super::pooled::{axis_every, series_stride, Pooled};
@@ -483,7 +484,10 @@ impl Simulator {
             })
             .collect();
         let flown = fly_all(&runs, flights.len(), &mut tick);
-        let (results, series_models) = pool(&stations, flown, &flights, s.run.seed)?;
+        let (mut results, series_models) = pool(&stations, flown, &flights, s.run.seed)?;
+        for r in &mut results {
+            r.caveats = Caveats::of(&r.delivery, s.sending.sender);
+        }
         let mut delivery = Delivery::default();
         results.iter().for_each(|r| delivery.add(&r.delivery));
         let series = s

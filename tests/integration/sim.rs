@@ -407,31 +407,60 @@ fn seeds_are_checked_and_a_swarm_refuses_more_than_one() {
     assert!(e.contains("a swarm runs one seed"), "{e}");
 }
 
-/// The CLI's line under its table says what the errors cover exactly where the core's
-/// `partlyTracked` (which the page's notes read) says so.
+/// The CLI's lines under its table say what the numbers rest on exactly where the core's flags
+/// (which the page's notes read) say so: the untracked time, too few packets, an error-triggered
+/// drone's lost packets.
 #[test]
-fn the_cli_says_what_the_errors_cover_for_the_runs_the_page_does() {
-    for (sf, said) in [("7", false), ("12", true)] {
-        let run = |json: bool| {
-            let mut args = vec!["simulate", "--synthetic", "1", "--bw", "125", "--sf", sf];
-            if json {
-                args.push("--json");
-            }
-            let out = std::process::Command::new(env!("CARGO_BIN_EXE_loratrack"))
-                .args(&args)
-                .output()
-                .unwrap();
-            assert!(out.status.success(), "{args:?}");
-            String::from_utf8(out.stdout).unwrap()
-        };
-        let report: serde_json::Value = serde_json::from_str(&run(true)).unwrap();
-        let flags: Vec<bool> = report["results"]
-            .as_array()
-            .unwrap()
+fn the_cli_says_what_the_numbers_rest_on_for_the_runs_the_page_does() {
+    let cli = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_loratrack"))
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{args:?}");
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let runs: [&[&str]; 3] = [
+        &["--bw", "125"],
+        &["--bw", "125", "--sf", "12"],
+        &[
+            "--sender",
+            "error",
+            "--distance",
+            "3000",
+            "--prediction",
+            "bounded",
+        ],
+    ];
+    let mut said = [0; 3];
+    for extra in runs {
+        let args: Vec<&str> = ["simulate", "--synthetic", "1"]
             .iter()
-            .map(|m| m["wholeFlight"]["partlyTracked"].as_bool().unwrap())
+            .chain(extra)
+            .copied()
             .collect();
-        assert_eq!(flags.iter().any(|&f| f), said, "SF{sf}: {flags:?}");
-        assert_eq!(run(false).contains("\ntracked: "), said, "SF{sf}");
+        let report: serde_json::Value =
+            serde_json::from_str(&cli(&[args.as_slice(), &["--json"]].concat())).unwrap();
+        let text = cli(&args);
+        let any = |flag: &str| {
+            report["results"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .any(|m| m.pointer(flag).unwrap().as_bool().unwrap())
+        };
+        for (k, (flag, line)) in [
+            ("/wholeFlight/partlyTracked", "\ntracked: "),
+            ("/caveats/fewPackets", "\ntoo few packets to compare"),
+            ("/caveats/silenceAfterLoss", "\nlost: "),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            assert_eq!(any(flag), text.contains(line), "{extra:?}: {flag}");
+            said[k] += usize::from(any(flag));
+        }
     }
+    // Each caveat is said by one of the runs and not by all of them.
+    assert_eq!(said, [1, 1, 1], "{said:?}");
 }

@@ -540,6 +540,16 @@ p95: number | null,
  */
 partlyTracked: boolean, };
 
+export type Caveats = { 
+/**
+ * Fewer than [`FEW_PACKETS`] packets received.
+ */
+fewPackets: boolean, 
+/**
+ * Error-triggered sending, more than [`SILENCE_LOSS`] of its packets lost.
+ */
+silenceAfterLoss: boolean, };
+
 export type Intervals = { 
 /**
  * Independent runs resampled (flights × seeds).
@@ -734,6 +744,11 @@ error3d: Summary,
  * whole flight time (time before a flight's first packet counting as the largest error).
  */
 wholeFlight: WholeFlightError, 
+/**
+ * What these numbers rest on, where a reader could be misled: too few packets received, an
+ * error-triggered drone whose packets were lost ([`Caveats`]).
+ */
+caveats: Caveats, 
 /**
  * 95 % intervals of `error3d`'s statistics, by bootstrap over the runs (flights × seeds)
  * pooled in it (`docs/reference.md` §12); `null` for a single run, which cannot show its

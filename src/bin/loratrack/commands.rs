@@ -7,7 +7,7 @@ use loratrack::{
     AccessSettings, ChannelSettings, DroneSettings, DutyCycleMode, FlightSettings, LdroMode,
     ModelChoice, ModelKind, ModelResult, NetworkSettings, Prediction, RadioSettings, RunSettings,
     Scenario, Schedule, SenderKind, Sending, SfPlan, SimReport, Simulator, StationSettings,
-    SwarmReport, SwarmSettings, SyntheticChoice, MAX_CSV_BYTES,
+    SwarmReport, SwarmSettings, SyntheticChoice, FEW_PACKETS, MAX_CSV_BYTES,
 };
 use serde::Serialize;
 
@@ -615,7 +615,37 @@ fn results_table(results: &[ModelResult]) -> String {
     if results.iter().any(|m| m.whole_flight.partly_tracked) {
         out += "tracked: the share of the flight time after each flight's first packet; the errors cover only that time\n";
     }
+    out += &caveat_lines(results);
     out.trim_end().to_string()
+}
+
+/// The lines the page shows as notes under its results, for the stations whose `caveats` say so:
+/// too few packets to compare, an error-triggered drone misled by its silence after losses.
+fn caveat_lines(results: &[ModelResult]) -> String {
+    let flagged = |f: fn(&ModelResult) -> bool, each: fn(&ModelResult) -> String| {
+        let list: Vec<String> = results.iter().filter(|m| f(m)).map(each).collect();
+        (!list.is_empty()).then(|| list.join(", "))
+    };
+    let mut out = String::new();
+    if let Some(list) = flagged(
+        |m| m.caveats.few_packets,
+        |m| format!("{} {}", m.model.label(), m.delivery.packets_received),
+    ) {
+        out += &format!("too few packets to compare (under {FEW_PACKETS} received): {list}\n");
+    }
+    if let Some(list) = flagged(
+        |m| m.caveats.silence_after_loss,
+        |m| {
+            format!(
+                "{} {:.0} %",
+                m.model.label(),
+                100.0 * (1.0 - m.delivery.delivery_ratio)
+            )
+        },
+    ) {
+        out += &format!("lost: {list} of the packets; an error-triggered drone cannot tell a lost packet from a delivered one, so after a loss its silence misleads the station (docs/senders.md)\n");
+    }
+    out
 }
 
 /// The network summary under a simulate table: each gateway, the copies removed, the energy.
