@@ -3,7 +3,6 @@
 //! it for the same runs (README "The playground"; the untracked time is
 //! [`WholeFlightError::partly_tracked`](crate::WholeFlightError::partly_tracked)).
 
-use super::report::Delivery;
 use super::sender::SenderKind;
 use serde::Serialize;
 
@@ -20,11 +19,11 @@ pub const SILENCE_LOSS: f64 = 0.05;
 /// The caveats on one station's result.
 ///
 /// ```
-/// use loratrack::{Caveats, Delivery, SenderKind};
-/// let lost = Delivery { packets_sent: 21, packets_received: 14, ..Delivery::default() };
-/// let c = Caveats::of(&lost, SenderKind::Error);
+/// use loratrack::{Caveats, SenderKind};
+/// // 14 of 21 packets received.
+/// let c = Caveats::of(14, 21, SenderKind::Error);
 /// assert!(c.silence_after_loss && !c.few_packets);
-/// assert!(!Caveats::of(&lost, SenderKind::Periodic).silence_after_loss);
+/// assert!(!Caveats::of(14, 21, SenderKind::Periodic).silence_after_loss);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "camelCase")]
@@ -37,14 +36,14 @@ pub struct Caveats {
 }
 
 impl Caveats {
-    /// The caveats on a station whose run delivered `d`, sent by `sender`.
-    pub fn of(d: &Delivery, sender: SenderKind) -> Self {
+    /// The caveats on a station whose run's drone sent `sent` packets by `sender`, of which
+    /// `received` arrived.
+    pub fn of(received: usize, sent: usize, sender: SenderKind) -> Self {
         // In packets, not as 1 − received / sent, whose rounding puts 5 lost of 100 above 5 %.
-        let lost = d.packets_sent.saturating_sub(d.packets_received) as f64;
+        let lost = sent.saturating_sub(received) as f64;
         Caveats {
-            few_packets: d.packets_received < FEW_PACKETS,
-            silence_after_loss: sender == SenderKind::Error
-                && lost > SILENCE_LOSS * d.packets_sent as f64,
+            few_packets: received < FEW_PACKETS,
+            silence_after_loss: sender == SenderKind::Error && lost > SILENCE_LOSS * sent as f64,
         }
     }
 }
@@ -53,27 +52,19 @@ impl Caveats {
 mod tests {
     use super::*;
 
-    fn delivered(received: usize, sent: usize) -> Delivery {
-        Delivery {
-            packets_sent: sent,
-            packets_received: received,
-            ..Delivery::default()
-        }
-    }
-
     #[test]
     fn under_ten_received_packets_are_too_few_to_compare() {
-        assert!(Caveats::of(&delivered(9, 9), SenderKind::Periodic).few_packets);
-        assert!(!Caveats::of(&delivered(10, 30), SenderKind::Periodic).few_packets);
-        assert!(Caveats::of(&delivered(0, 0), SenderKind::Periodic).few_packets);
+        assert!(Caveats::of(9, 9, SenderKind::Periodic).few_packets);
+        assert!(!Caveats::of(10, 30, SenderKind::Periodic).few_packets);
+        assert!(Caveats::of(0, 0, SenderKind::Periodic).few_packets);
     }
 
     #[test]
     fn only_an_error_triggered_drone_that_lost_over_5_percent_is_misled_by_its_silence() {
-        let error = |r, s| Caveats::of(&delivered(r, s), SenderKind::Error).silence_after_loss;
+        let error = |r, s| Caveats::of(r, s, SenderKind::Error).silence_after_loss;
         assert!(error(94, 100));
         assert!(!error(95, 100));
         assert!(!error(0, 0));
-        assert!(!Caveats::of(&delivered(50, 100), SenderKind::Periodic).silence_after_loss);
+        assert!(!Caveats::of(50, 100, SenderKind::Periodic).silence_after_loss);
     }
 }

@@ -486,7 +486,8 @@ impl Simulator {
         let flown = fly_all(&runs, flights.len(), &mut tick);
         let (mut results, series_models) = pool(&stations, flown, &flights, s.run.seed)?;
         for r in &mut results {
-            r.caveats = Caveats::of(&r.delivery, s.sending.sender);
+            let d = &r.delivery;
+            r.caveats = Caveats::of(d.packets_received, d.packets_sent, s.sending.sender);
         }
         let mut delivery = Delivery::default();
         results.iter().for_each(|r| delivery.add(&r.delivery));
