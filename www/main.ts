@@ -570,6 +570,11 @@ for (const [id, save] of [
     if (report) save(report);
   });
 }
+/** Saves `picture` on a slide in the format `button` names (SVG or PNG); false when it has
+ * nothing drawn to save. */
+function saveSlide(button: HTMLButtonElement, picture: Element, name: string, slide: { title: string; caption: string }): boolean {
+  return (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(picture, name, slide);
+}
 /** The results table as drawn, for a slide: its caption (what the numbers are), the settings they
  * rest on and, with a baseline pinned, what the differences are against. None while a whole set's
  * first flight stands in for the set. */
@@ -580,7 +585,7 @@ function downloadResultsPicture(button: HTMLButtonElement): void {
   const against = $('#baseline-note').hidden ? '' : ` ${$('#baseline-note').textContent ?? ''}`;
   const notes = restingNotes().map((n) => `${n} `).join('');
   const slide = { title: 'Results', caption: `${what ? `${what}. ` : ''}${notes}${caption(store.reportSettings)}.${against}` };
-  (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(tableSvg(table), 'loratrack-results', slide);
+  saveSlide(button, tableSvg(table), 'loratrack-results', slide);
 }
 /** The time-on-air table as drawn, for a slide: its caption (what the numbers are and what the plan
  * refuses) and the settings it follows (the overhead and coding rate among them). */
@@ -589,7 +594,7 @@ function downloadAirtimePicture(button: HTMLButtonElement): void {
   if (!table) return;
   const what = table.caption?.textContent?.trim() ?? '';
   const slide = { title: 'Time on air', caption: `${what} ${caption(store.settings)}.` };
-  (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(tableSvg(table), 'loratrack-time-on-air', slide);
+  saveSlide(button, tableSvg(table), 'loratrack-time-on-air', slide);
 }
 $('#download-airtime-csv').addEventListener('click', () => {
   const table = document.querySelector<HTMLTableElement>('#airtime-table table');
@@ -607,7 +612,7 @@ for (const button of document.querySelectorAll<HTMLButtonElement>('[data-downloa
     if (name === 'results') return void downloadResultsPicture(button);
     if (name === 'airtime-table') return void downloadAirtimePicture(button);
     const entry = charts[name];
-    const saved = entry && (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(entry.chart, `loratrack-${name}`, slide(entry.caption));
+    const saved = entry && saveSlide(button, entry.chart, `loratrack-${name}`, slide(entry.caption));
     downloadWhy(button, saved ? '' : name === 'swarm' && !entry ? 'Nothing to save yet: run a swarm first.' : 'Nothing to save: this chart has no data at these settings (no packet arrives).');
   });
 }
