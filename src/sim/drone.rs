@@ -7,6 +7,31 @@ use crate::rng::Rng;
 use crate::trajectory::Trajectory;
 use nalgebra::{SMatrix, SVector};
 
+/// The drone's sensors and filter on one flight (reference §4, "Drone side"): how often it
+/// measures, the noise it assumes and meets, and the random streams its sensor noise draws from.
+///
+/// ```
+/// use loratrack::{run_drone, synthetic_flight, ModelKind, Sensing, PAPER_R_DIAGONAL};
+/// let flight = synthetic_flight(1).unwrap();
+/// let sensing = Sensing { rate: 10.0, q: 0.1, r_diagonal: PAPER_R_DIAGONAL, seed: 1, stream: 0 };
+/// let track = run_drone(&flight, ModelKind::Dr, &sensing);
+/// assert_eq!(track.period, 0.1);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sensing {
+    /// Sensor and filter rate, Hz.
+    pub rate: f64,
+    /// Process noise q of Q = q·I per second (the filter's; reference §4).
+    pub q: f64,
+    /// Measurement variances (paper Table I): the sensors' noise and the filter's R.
+    pub r_diagonal: [f64; 9],
+    /// The run's seed.
+    pub seed: u64,
+    /// Which of the seed's streams: the flight's index in a `simulate` run, the drone's in a
+    /// swarm. The noise draws depend on `seed` and `stream` only.
+    pub stream: u64,
+}
+
 /// The drone's own estimates at every sensor step, padded to 9 components (unused ones 0).
 #[derive(Clone, Debug, PartialEq)]
 pub struct DroneTrack {
@@ -35,19 +60,11 @@ impl DroneTrack {
 }
 
 /// Runs the drone's sensors and UKF over `flight`: at every sensor step the full true state is
-/// measured with Gaussian noise of variances `r_diagonal` (paper Table I), and the filter runs
-/// predict + update. The noise draws depend on `seed` and `stream` only — every model sees the
-/// same noise on the components they share, so the comparison between models is paired.
-pub fn run_drone(
-    flight: &Trajectory,
-    model: ModelKind,
-    sensor_rate: f64,
-    q: f64,
-    r_diagonal: &[f64; 9],
-    seed: u64,
-    stream: u64,
-) -> DroneTrack {
-    let mut tracks = run_drones(flight, &[model], sensor_rate, q, r_diagonal, seed, stream);
+/// measured with Gaussian noise of variances `sensing.r_diagonal` (paper Table I), and the filter
+/// runs predict + update. The noise draws depend on the seed and stream only — every model sees
+/// the same noise on the components they share, so the comparison between models is paired.
+pub fn run_drone(flight: &Trajectory, model: ModelKind, sensing: &Sensing) -> DroneTrack {
+    let mut tracks = run_drones(flight, &[model], sensing);
     tracks.remove(0)
 }
 
@@ -56,20 +73,12 @@ pub fn run_drone(
 /// same draws, in the same order), so each track equals its [`run_drone`] (and a
 /// [`DroneFilter`]'s estimates). Reading the true state and drawing nine normals was a tenth of
 /// a whole-set run with three models (perf).
-pub fn run_drones(
-    flight: &Trajectory,
-    models: &[ModelKind],
-    sensor_rate: f64,
-    q: f64,
-    r_diagonal: &[f64; 9],
-    seed: u64,
-    stream: u64,
-) -> Vec<DroneTrack> {
-    let mut sensors = Sensors::new(flight, sensor_rate, r_diagonal, seed, stream);
+pub fn run_drones(flight: &Trajectory, models: &[ModelKind], sensing: &Sensing) -> Vec<DroneTrack> {
+    let mut sensors = Sensors::new(flight, sensing);
     let steps = sensors.steps();
     let mut filters: Vec<Box<dyn Onboard + Send>> = models
         .iter()
-        .map(|&m| with_model!(m, onboard(q, r_diagonal, sensors.period)))
+        .map(|&m| with_model!(m, onboard(sensing, sensors.period)))
         .collect();
     let mut states: Vec<Vec<[f64; 9]>> = models.iter().map(|_| Vec::with_capacity(steps)).collect();
     for k in 0..steps {
@@ -121,20 +130,14 @@ struct Sensors<'a> {
 }
 
 impl<'a> Sensors<'a> {
-    fn new(
-        flight: &'a Trajectory,
-        sensor_rate: f64,
-        r_diagonal: &[f64; 9],
-        seed: u64,
-        stream: u64,
-    ) -> Self {
+    fn new(flight: &'a Trajectory, sensing: &Sensing) -> Self {
         Sensors {
             flight,
-            sd: core::array::from_fn(|i| r_diagonal[i].sqrt()),
-            rng: Rng::derive(seed, stream),
+            sd: core::array::from_fn(|i| sensing.r_diagonal[i].sqrt()),
+            rng: Rng::derive(sensing.seed, sensing.stream),
             hint: 0,
             start: flight.t[0],
-            period: 1.0 / sensor_rate,
+            period: 1.0 / sensing.rate,
         }
     }
 
@@ -177,15 +180,14 @@ struct OnboardUkf<const N: usize, M> {
 
 fn onboard<const N: usize, M: MotionModel<N> + Send + 'static>(
     model: M,
-    q: f64,
-    r_diagonal: &[f64; 9],
+    sensing: &Sensing,
     period: f64,
 ) -> Box<dyn Onboard + Send> {
     Box::new(OnboardUkf {
         model,
         ukf: None,
-        r: measurement_noise::<N>(r_diagonal),
-        q,
+        r: measurement_noise::<N>(&sensing.r_diagonal),
+        q: sensing.q,
         period,
     })
 }
@@ -224,23 +226,15 @@ impl<const N: usize, M: MotionModel<N>> Onboard for OnboardUkf<N, M> {
 
 impl<'a> DroneFilter<'a> {
     /// A filter about to take its first measurement (see [`run_drone`]).
-    pub fn new(
-        flight: &'a Trajectory,
-        model: ModelKind,
-        sensor_rate: f64,
-        q: f64,
-        r_diagonal: &[f64; 9],
-        seed: u64,
-        stream: u64,
-    ) -> Self {
-        let sensors = Box::new(Sensors::new(flight, sensor_rate, r_diagonal, seed, stream));
+    pub fn new(flight: &'a Trajectory, model: ModelKind, sensing: &Sensing) -> Self {
+        let sensors = Box::new(Sensors::new(flight, sensing));
         DroneFilter {
             model,
             start: sensors.start,
             period: sensors.period,
             steps: sensors.steps(),
             k: 0,
-            onboard: with_model!(model, onboard(q, r_diagonal, sensors.period)),
+            onboard: with_model!(model, onboard(sensing, sensors.period)),
             sensors,
         }
     }
@@ -398,20 +392,34 @@ mod tests {
     fn models_reading_shared_sensors_track_as_each_would_alone() {
         let flight = synthetic_flight(4).unwrap();
         let models = [ModelKind::Ctra3d, ModelKind::Dr, ModelKind::CtraPlus];
-        let together = run_drones(&flight, &models, 10.0, 0.1, &PAPER_R_DIAGONAL, 7, 3);
+        let sensing = Sensing {
+            rate: 10.0,
+            q: 0.1,
+            r_diagonal: PAPER_R_DIAGONAL,
+            seed: 7,
+            stream: 3,
+        };
+        let together = run_drones(&flight, &models, &sensing);
         assert_eq!(together.len(), 3);
         for (track, &model) in together.iter().zip(&models) {
             // Alone, and step by step as a swarm's live drone runs it.
-            let alone = run_drone(&flight, model, 10.0, 0.1, &PAPER_R_DIAGONAL, 7, 3);
+            let alone = run_drone(&flight, model, &sensing);
             assert_eq!(track, &alone, "{model:?}");
-            let mut live = DroneFilter::new(&flight, model, 10.0, 0.1, &PAPER_R_DIAGONAL, 7, 3);
+            let mut live = DroneFilter::new(&flight, model, &sensing);
             let states: Vec<[f64; 9]> = core::iter::from_fn(|| live.next_estimate()).collect();
             assert_eq!(states, track.states, "{model:?} live");
             assert_eq!(live.recoveries(), track.recoveries);
             assert_eq!((live.start, live.period), (track.start, track.period));
         }
         // Another stream reads other noise: the tracks would not be equal by accident.
-        let other = run_drone(&flight, ModelKind::Dr, 10.0, 0.1, &PAPER_R_DIAGONAL, 7, 4);
+        let other = run_drone(
+            &flight,
+            ModelKind::Dr,
+            &Sensing {
+                stream: 4,
+                ..sensing
+            },
+        );
         assert_ne!(together[1].states, other.states);
     }
 }

@@ -14,6 +14,37 @@ use crate::lora::{Channel, DutyCycle, Outcome};
 use crate::rng::Rng;
 use crate::trajectory::Trajectory;
 
+/// What a drone flies with in an episode: its flight (in its own frame), its filter's estimates,
+/// when it wants to send, and the duty-cycle rule that bounds that.
+pub struct Aboard<'a> {
+    /// Its flight, in its own frame.
+    pub flight: &'a Trajectory,
+    /// Its filter's estimate at every sensor step.
+    pub estimates: Estimates<'a>,
+    /// When it wants to send.
+    pub sender: Box<dyn Sender>,
+    /// The duty-cycle rule, from time 0 ([`Sending::rule`](super::sender::Sending::rule)); the
+    /// flier starts it when its drone first may send.
+    pub rule: DutyCycle,
+}
+
+/// How a drone meets the network in an episode.
+#[derive(Clone, Copy)]
+pub struct Air<'g> {
+    /// Every gateway's position in the drone's flight frame, m, in the network's order.
+    pub gateways: &'g [[f64; 3]],
+    /// The link budget all links share.
+    pub channel: &'g Channel,
+    /// The run's seed and the drone's stream of it ([`streams`]).
+    pub streams: (u64, u64),
+    /// The uplink channels it picks among.
+    pub channels: u8,
+    /// Its data rate's duty-cycle interval, s: its first packet's offset is drawn within it.
+    pub interval: f64,
+    /// Its clock's drift and delays.
+    pub timing: Timing,
+}
+
 /// One drone in an episode.
 pub struct Flier<'a> {
     /// Which drone (index into the network's radios).
@@ -50,45 +81,40 @@ pub struct Flier<'a> {
 }
 
 impl<'a> Flier<'a> {
-    /// A drone flying `flight` with `estimates`, about to start, drawing from the random
-    /// streams of drone `stream` under `seed` ([`streams`]): the link stream first draws the
-    /// first packet's offset (uniform within one `interval`, so every model starts at the same
-    /// fraction of its own interval) and then carries the first gateway's shadowing; the
-    /// gateway streams give the others'; the channel stream draws each packet's channel among
-    /// `channels`; the clock stream the clock's drift and delays (`timing`).
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        drone: usize,
-        flight: &'a Trajectory,
-        estimates: Estimates<'a>,
-        sender: Box<dyn Sender>,
-        rule: DutyCycle,
-        gateways: &[[f64; 3]],
-        channel: &Channel,
-        (seed, stream): (u64, u64),
-        channels: u8,
-        interval: f64,
-        timing: Timing,
-    ) -> Self {
+    /// Drone number `drone` flying with `aboard`, about to start, meeting the network through
+    /// `air`. It draws from the random streams of `air.streams` ([`streams`]): the link stream
+    /// first draws the first packet's offset (uniform within one `air.interval`, so every model
+    /// starts at the same fraction of its own interval) and then carries the first gateway's
+    /// shadowing; the gateway streams give the others'; the channel stream draws each packet's
+    /// channel among `air.channels`; the clock stream the clock's drift and delays.
+    pub fn new(drone: usize, aboard: Aboard<'a>, air: &Air<'_>) -> Self {
+        let Aboard {
+            flight,
+            estimates,
+            sender,
+            rule,
+        } = aboard;
+        let (seed, stream) = air.streams;
         let mut link_rng = streams::link(seed, stream);
-        let from = flight.t[0] + link_rng.uniform() * interval;
+        let from = flight.t[0] + link_rng.uniform() * air.interval;
         let mut first = Some(link_rng);
-        let links = gateways
+        let links = air
+            .gateways
             .iter()
             .enumerate()
             .map(|(g, &at)| {
                 let rng = first
                     .take()
                     .unwrap_or_else(|| streams::gateway(seed, g, stream));
-                Link::new(channel, at, rng)
+                Link::new(air.channel, at, rng)
             })
             .collect();
-        let clock = if timing.is_exact() {
+        let clock = if air.timing.is_exact() {
             Clock::exact()
         } else {
             Clock::new(
-                timing.clock_drift_ppm,
-                timing.jitter,
+                air.timing.clock_drift_ppm,
+                air.timing.jitter,
                 streams::clock(seed, stream),
             )
         };
@@ -101,7 +127,7 @@ impl<'a> Flier<'a> {
             rule: rule.starting_at(from),
             links,
             hop: streams::channel(seed, stream),
-            channels,
+            channels: air.channels,
             fixed_channel: None,
             k: 0,
             from,
@@ -325,7 +351,7 @@ mod tests {
     use crate::lora::{ChannelParams, DutyCycleMode};
     use crate::models::ModelKind;
     use crate::sim::clock::Timing;
-    use crate::sim::drone::DroneFilter;
+    use crate::sim::drone::{DroneFilter, Sensing};
     use crate::sim::sender::{ErrorTriggered, Periodic};
     use crate::sim::station::tests::paper_setup;
     use crate::sim::station::StationModel;
@@ -333,30 +359,31 @@ mod tests {
 
     /// A 3D-CTRA drone with a live filter, one packet a second allowed.
     fn flier(flight: &Trajectory, sender: Box<dyn Sender>) -> Flier<'_> {
-        let filter = DroneFilter::new(
-            flight,
-            ModelKind::Ctra3d,
-            10.0,
-            PAPER_Q,
-            &PAPER_R_DIAGONAL,
-            1,
-            0,
-        );
+        let sensing = Sensing {
+            rate: 10.0,
+            q: PAPER_Q,
+            r_diagonal: PAPER_R_DIAGONAL,
+            seed: 1,
+            stream: 0,
+        };
+        let filter = DroneFilter::new(flight, ModelKind::Ctra3d, &sensing);
         let rule = DutyCycle::new(DutyCycleMode::PerPacket, 0.01, 0.01, 1, flight.t[0]).unwrap();
         let channel = Channel::new(ChannelParams::default()).unwrap();
-        Flier::new(
-            0,
+        let aboard = Aboard {
             flight,
-            Estimates::live(filter),
+            estimates: Estimates::live(filter),
             sender,
             rule,
-            &[[1000.0, 0.0, 0.0]],
-            &channel,
-            (1, 0),
-            1,
-            1.0,
-            Timing::EXACT,
-        )
+        };
+        let air = Air {
+            gateways: &[[1000.0, 0.0, 0.0]],
+            channel: &channel,
+            streams: (1, 0),
+            channels: 1,
+            interval: 1.0,
+            timing: Timing::EXACT,
+        };
+        Flier::new(0, aboard, &air)
     }
 
     #[test]

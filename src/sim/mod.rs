@@ -33,9 +33,9 @@ pub mod swarm;
 pub use cache_budget::MAX_CACHE_BYTES;
 pub use caveats::{Caveats, FEW_PACKETS, SILENCE_LOSS};
 pub use clock::{Clock, Timing};
-pub use drone::{run_drone, run_drones, DroneFilter, DroneTrack, Estimates};
+pub use drone::{run_drone, run_drones, DroneFilter, DroneTrack, Estimates, Sensing};
 pub use error::SimError;
-pub use flier::Flier;
+pub use flier::{Aboard, Air, Flier};
 pub use link::{Link, Reception};
 pub use network::{fly_alone, run_episode, GatewayReport, Network};
 pub use packet::Transmission;
@@ -50,8 +50,8 @@ pub use scenario::{
 };
 pub use schedule::{aloha_collision_rate, Schedule, Slot};
 pub use sender::{
-    new_sender, ErrorTriggered, Periodic, Sender, SenderKind, Sending, DEFAULT_BURST,
-    DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M,
+    ErrorTriggered, Periodic, Sender, SenderKind, Sending, DEFAULT_BURST, DEFAULT_MAX_INTERVAL_S,
+    DEFAULT_THRESHOLD_M,
 };
 pub use simulator::Simulator;
 pub use station::{

@@ -287,16 +287,7 @@ impl Simulator {
             |k| {
                 let ((seed, members), i) = (&seeds[k / n], k % n);
                 let models: Vec<ModelKind> = members.iter().map(|&m| missing[m].model).collect();
-                let s = cfg.s();
-                run_drones(
-                    &flights[i],
-                    &models,
-                    s.drone.sensor_rate,
-                    s.drone.q,
-                    &cfg.r_diagonal,
-                    *seed,
-                    i as u64,
-                )
+                run_drones(&flights[i], &models, &cfg.sensing(*seed, i as u64))
             },
             &mut |k| seeds[k / n].1.iter().for_each(|_| tick()),
         );

@@ -10,7 +10,7 @@
 //! device's state from flight to flight, so it flies its flights in order instead.
 
 use super::drone::{DroneFilter, DroneTrack, Estimates};
-use super::flier::Flier;
+use super::flier::{Aboard, Air, Flier};
 use super::network::{run_episode, Network};
 use super::packet::Transmission;
 use super::parallel::par_map;
@@ -205,28 +205,26 @@ impl StationRun<'_> {
             None => Estimates::live(DroneFilter::new(
                 flight,
                 model.sent_model(),
-                s.drone.sensor_rate,
-                s.drone.q,
-                &self.cfg.r_diagonal,
-                self.seed,
-                i as u64,
+                &self.cfg.sensing(self.seed, i as u64),
             )),
         };
         // The same streams for every station: stations that send the same payload see the same
         // packets, so their comparison is paired.
-        let mut flier = Flier::new(
-            0,
+        let aboard = Aboard {
             flight,
             estimates,
-            s.sending.sender(model, setup, plan),
+            sender: s.sending.sender(model, setup, plan),
             rule,
-            &gateways,
-            &net.channel,
-            (self.seed, i as u64),
-            self.cfg.channels,
-            now.interval,
-            s.access.single_timing(),
-        );
+        };
+        let air = Air {
+            gateways: &gateways,
+            channel: &net.channel,
+            streams: (self.seed, i as u64),
+            channels: self.cfg.channels,
+            interval: now.interval,
+            timing: s.access.single_timing(),
+        };
+        let mut flier = Flier::new(0, aboard, &air);
         run_episode(net, core::slice::from_mut(&mut flier));
         // A live filter runs to the flight's end, as a stored run did: the same repair count.
         flier.estimates.prefetch(flier.estimates.len());
@@ -282,11 +280,7 @@ mod tests {
         let drones = vec![run_drone(
             &flights[0],
             plan.model.sent_model(),
-            cfg.s().drone.sensor_rate,
-            cfg.s().drone.q,
-            &cfg.r_diagonal,
-            9,
-            0,
+            &cfg.sensing(9, 0),
         )];
         let run = StationRun {
             plan: &plan,

@@ -6,10 +6,10 @@
 use loratrack::api::simulate;
 use loratrack::{
     chain_flights, demodulation_floor_db, fly_alone, noise_floor_dbm, run_drone, snr_db,
-    synthetic_set, AdrDevice, AdrMode, AdrNetwork, AdrParams, Channel, ChannelParams, DataRate,
-    DroneRadio, DutyCycle, DutyCycleMode, Estimates, GatewaySite, InterferenceModel, LinkAdrReq,
-    LoraParams, LorawanAdr, ModelKind, Network, Periodic, Scenario, Simulator, TrackingAdr,
-    Transmission, UplinkReport, PAPER_Q, PAPER_R_DIAGONAL,
+    synthetic_set, Aboard, AdrDevice, AdrMode, AdrNetwork, AdrParams, Channel, ChannelParams,
+    DataRate, DroneRadio, DutyCycle, DutyCycleMode, Estimates, GatewaySite, InterferenceModel,
+    LinkAdrReq, LoraParams, LorawanAdr, ModelKind, Network, Periodic, Scenario, Sensing, Simulator,
+    TrackingAdr, Transmission, UplinkReport, PAPER_Q, PAPER_R_DIAGONAL,
 };
 use serde_json::{json, Value};
 
@@ -32,11 +32,13 @@ fn fly(
     let drone = run_drone(
         &flight,
         ModelKind::Ctra3d,
-        10.0,
-        PAPER_Q,
-        &PAPER_R_DIAGONAL,
-        1,
-        0,
+        &Sensing {
+            rate: 10.0,
+            q: PAPER_Q,
+            r_diagonal: PAPER_R_DIAGONAL,
+            seed: 1,
+            stream: 0,
+        },
     );
     let radio = LoraParams::new(start.sf(), start.bw());
     let params = AdrParams {
@@ -70,15 +72,13 @@ fn fly(
         net.set_adr_network(0, n);
     }
     let rule = DutyCycle::new(DutyCycleMode::PerPacket, 0.01, toa, 1, flight.t[0]).unwrap();
-    fly_alone(
-        &mut net,
-        &flight,
-        Estimates::Stored(&drone),
-        Box::new(Periodic),
+    let aboard = Aboard {
+        flight: &flight,
+        estimates: Estimates::Stored(&drone),
+        sender: Box::new(Periodic),
         rule,
-        7,
-        0,
-    )
+    };
+    fly_alone(&mut net, aboard, (7, 0))
 }
 
 fn rates(tx: &[Transmission]) -> Vec<u8> {

@@ -4,10 +4,11 @@
 
 use loratrack::api::simulate;
 use loratrack::{
-    fly_alone, min_interval, run_drone, synthetic_flight, time_on_air, AdrMode, AdrParams, Bounds,
-    Channel, ChannelParams, DroneRadio, DutyCycle, DutyCycleMode, ErrorTriggered, Estimates,
-    GatewaySite, InterferenceModel, LoraParams, ModelKind, Network, Periodic, Prediction, Scenario,
-    Sender, SenderKind, Simulator, StationModel, StationSetup, PAPER_Q, PAPER_R_DIAGONAL,
+    fly_alone, min_interval, run_drone, synthetic_flight, time_on_air, Aboard, AdrMode, AdrParams,
+    Bounds, Channel, ChannelParams, DroneRadio, DutyCycle, DutyCycleMode, ErrorTriggered,
+    Estimates, GatewaySite, InterferenceModel, LoraParams, ModelKind, Network, Periodic,
+    Prediction, Scenario, Sender, SenderKind, Sensing, Simulator, StationModel, StationSetup,
+    PAPER_Q, PAPER_R_DIAGONAL,
 };
 use serde_json::{json, Value};
 
@@ -83,11 +84,13 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
             let drone = run_drone(
                 &flight,
                 ModelKind::Ctra3d,
-                10.0,
-                PAPER_Q,
-                &PAPER_R_DIAGONAL,
-                seed,
-                0,
+                &Sensing {
+                    rate: 10.0,
+                    q: PAPER_Q,
+                    r_diagonal: PAPER_R_DIAGONAL,
+                    seed,
+                    stream: 0,
+                },
             );
             for (mode, burst) in [
                 (DutyCycleMode::PerPacket, 1),
@@ -109,15 +112,13 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
                         )),
                     };
                     let rule = DutyCycle::new(mode, dc, toa, burst, flight.t[0]).unwrap();
-                    let tx = fly_alone(
-                        &mut network(),
-                        &flight,
-                        Estimates::Stored(&drone),
+                    let aboard = Aboard {
+                        flight: &flight,
+                        estimates: Estimates::Stored(&drone),
                         sender,
                         rule,
-                        seed,
-                        99,
-                    );
+                    };
+                    let tx = fly_alone(&mut network(), aboard, (seed, 99));
                     let sends: Vec<f64> = tx.iter().map(|t| t.sent).collect();
                     assert!(sends.len() > 5);
                     assert!(

@@ -17,42 +17,26 @@ pub use event_loop::run_episode;
 pub use gateway::GatewayReport;
 pub use server::Network;
 
-use crate::lora::DutyCycle;
 use crate::sim::clock::Timing;
-use crate::sim::drone::Estimates;
-use crate::sim::flier::Flier;
-use crate::sim::sender::Sender;
+use crate::sim::flier::{Aboard, Air, Flier};
 use crate::sim::Transmission;
-use crate::trajectory::Trajectory;
 
-/// One drone (drone 0 of `net`) alone with the network's gateways, placed as `simulate` places
-/// them (relative to the flight's first point), on one channel: its uplinks over `flight`.
-/// The random streams are `seed`'s for flight `stream`, and the timing exact, as in `simulate`
-/// by default.
-pub fn fly_alone(
-    net: &mut Network,
-    flight: &Trajectory,
-    estimates: Estimates<'_>,
-    sender: Box<dyn Sender>,
-    rule: DutyCycle,
-    seed: u64,
-    stream: u64,
-) -> Vec<Transmission> {
-    let gateways = net.gateways_at([flight.pos[0][0], flight.pos[0][1]]);
-    let interval = net.radios[0].current().interval;
-    let mut flier = Flier::new(
-        0,
-        flight,
-        estimates,
-        sender,
-        rule,
-        &gateways,
-        &net.channel,
-        (seed, stream),
-        1,
-        interval,
-        Timing::EXACT,
-    );
+/// One drone (drone 0 of `net`) flying with `aboard`, alone with the network's gateways, placed
+/// as `simulate` places them (relative to the flight's first point), on one channel: its
+/// uplinks. The random streams are `streams` (the seed, and the flight's stream of it), and the
+/// timing exact, as in `simulate` by default.
+pub fn fly_alone(net: &mut Network, aboard: Aboard<'_>, streams: (u64, u64)) -> Vec<Transmission> {
+    let first = aboard.flight.pos[0];
+    let gateways = net.gateways_at([first[0], first[1]]);
+    let air = Air {
+        gateways: &gateways,
+        channel: &net.channel,
+        streams,
+        channels: 1,
+        interval: net.radios[0].current().interval,
+        timing: Timing::EXACT,
+    };
+    let mut flier = Flier::new(0, aboard, &air);
     run_episode(net, core::slice::from_mut(&mut flier));
     flier.tx
 }

@@ -18,6 +18,7 @@ pub use choices::{
 };
 pub use gateways::{validate_sites, GatewaySite};
 
+use super::drone::Sensing;
 use super::radio::{DroneRadio, Frame};
 use super::sender::{SenderKind, Sending};
 use super::station::{
@@ -710,6 +711,19 @@ impl Validated {
                 ..base
             },
             _ => base,
+        }
+    }
+
+    /// The drone's sensors and filter on flight (`simulate`) or drone (`swarm`) `stream` of a run
+    /// with `seed`.
+    pub fn sensing(&self, seed: u64, stream: u64) -> Sensing {
+        let s = &self.settings;
+        Sensing {
+            rate: s.drone.sensor_rate,
+            q: s.drone.q,
+            r_diagonal: self.r_diagonal,
+            seed,
+            stream,
         }
     }
 

@@ -10,7 +10,6 @@ pub use error_triggered::ErrorTriggered;
 pub use periodic::Periodic;
 pub use sending::{Sending, DEFAULT_BURST, DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M};
 
-use super::station::{MissionPlan, StationModel, StationSetup};
 use serde::{Deserialize, Serialize};
 
 /// The sending policy (`--sender`).
@@ -52,27 +51,5 @@ pub trait Sender {
     /// swarm's filters run ahead on every core rather than in the loop.
     fn reads_estimate(&self) -> bool {
         true
-    }
-}
-
-/// A drone's sender for one flight; an error-triggered one mirrors a fresh station of the kind
-/// the ground runs (`model`, `setup`), with `threshold` m and `max_interval` s.
-pub fn new_sender(
-    kind: SenderKind,
-    threshold: f64,
-    max_interval: f64,
-    model: StationModel,
-    setup: StationSetup,
-    plan: Option<&MissionPlan>,
-) -> Box<dyn Sender> {
-    match kind {
-        SenderKind::Periodic => Box::new(Periodic),
-        SenderKind::Error => Box::new(ErrorTriggered::new(
-            model,
-            setup,
-            plan,
-            threshold,
-            max_interval,
-        )),
     }
 }

@@ -1,6 +1,6 @@
 //! The sending settings, validated in one place for every run.
 
-use super::{new_sender, Sender, SenderKind};
+use super::{ErrorTriggered, Periodic, Sender, SenderKind};
 use crate::lora::{DutyCycle, DutyCycleMode, LoraError};
 use crate::options::{BURST, MAX_INTERVAL, THRESHOLD};
 use crate::sim::station::{MissionPlan, StationModel, StationSetup};
@@ -89,21 +89,23 @@ impl Sending {
         )
     }
 
-    /// The drone's sender, mirroring a station of `model` with `setup` (and, for a mission
-    /// station, the drone's `plan`).
+    /// A drone's sender for one flight; an error-triggered one mirrors a fresh station of the
+    /// kind the ground runs (`model` with `setup`, and for a mission station the drone's `plan`).
     pub fn sender(
         &self,
         model: StationModel,
         setup: StationSetup,
         plan: Option<&MissionPlan>,
     ) -> Box<dyn Sender> {
-        new_sender(
-            self.sender,
-            self.threshold,
-            self.max_interval,
-            model,
-            setup,
-            plan,
-        )
+        match self.sender {
+            SenderKind::Periodic => Box::new(Periodic),
+            SenderKind::Error => Box::new(ErrorTriggered::new(
+                model,
+                setup,
+                plan,
+                self.threshold,
+                self.max_interval,
+            )),
+        }
     }
 }

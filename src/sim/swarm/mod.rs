@@ -13,7 +13,7 @@ mod report;
 pub use report::{DroneReport, LargestSwarm, SwarmEcho, SwarmReport};
 
 use super::drone::{DroneFilter, Estimates};
-use super::flier::Flier;
+use super::flier::{Aboard, Air, Flier};
 use super::network::{run_episode, Network};
 use super::parallel::par_map;
 use super::pooled::airtime;
@@ -148,16 +148,330 @@ pub fn run_swarm(
     cfg: &Validated,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<SwarmReport, SimError> {
-    let s = cfg.s();
-    if s.run.seeds != 1 {
-        return Err(SimError::Source(format!(
-            "seeds repeats a simulate run; a swarm runs one seed (its drones already give its spread), got {}",
-            s.run.seeds
-        )));
+    let (swarm, mut net) = Swarm::new(cfg)?;
+    let episodes = swarm.plan.episodes.len();
+    let total = episodes + swarm.kits.len();
+    // Per episode, per drone: its transmissions.
+    let mut sent: Vec<Vec<Vec<Transmission>>> = Vec::with_capacity(episodes);
+    // Listen-before-talk: deferrals, and collisions avoided.
+    let mut lbt = (0, 0);
+    for seats in &swarm.plan.episodes {
+        sent.push(swarm.fly(&mut net, seats, &mut lbt)?);
+        progress(sent.len(), total);
     }
-    let model = cfg.swarm_station()?;
-    let n = s.swarm.drones;
-    let plan = plan(cfg)?;
+    let scored = swarm.score(&sent, &mut |drones| progress(episodes + drones, total));
+    let mut r = swarm.report(&net, scored)?;
+    if net.listen_before_talk {
+        (r.lbt_deferrals, r.lbt_collisions_avoided) = (Some(lbt.0), Some(lbt.1));
+    }
+    Ok(r)
+}
+
+/// A swarm about to fly: its settings, what each drone flies, the station its packets go to,
+/// the spreading factors it deals out, and each drone's kit.
+struct Swarm<'a> {
+    cfg: &'a Validated,
+    plan: Plan,
+    model: StationModel,
+    sfs: Vec<i64>,
+    kits: Vec<Kit>,
+    /// A slotted schedule's longest period, s.
+    frame_length: Option<f64>,
+}
+
+/// What the drones' stations made of the packets that reached them.
+struct Scored<'s> {
+    /// Each drone's report, in drone order.
+    drones: Vec<DroneReport>,
+    /// Every drone's errors, pooled, m.
+    errors: Vec<f64>,
+    /// Evaluation times before an episode's first packet, over every drone.
+    untracked: usize,
+    /// Every drone's transmissions.
+    tx: Vec<&'s Transmission>,
+}
+
+impl<'a> Swarm<'a> {
+    /// The swarm `cfg` describes, with its network: checked against the limits, each drone given
+    /// its radio, duty cycle and (slotted) slot.
+    fn new(cfg: &'a Validated) -> Result<(Self, Network), SimError> {
+        let s = cfg.s();
+        if s.run.seeds != 1 {
+            return Err(SimError::Source(format!(
+                "seeds repeats a simulate run; a swarm runs one seed (its drones already give its spread), got {}",
+                s.run.seeds
+            )));
+        }
+        let model = cfg.swarm_station()?;
+        let plan = plan(cfg)?;
+        check_length(cfg, &plan)?;
+        let sfs = swarm_sfs(cfg);
+        let mut radios = Vec::with_capacity(s.swarm.drones);
+        let mut duty_cycles = Vec::with_capacity(s.swarm.drones);
+        for i in 0..s.swarm.drones {
+            let radio = LoraParams::from_settings(sf_of(&sfs, i), s.radio.bw, s.radio.cr)?;
+            let (r, duty_cycle) = cfg.drone_radio(&radio, model)?;
+            cfg.check_heartbeat(&r.current())?;
+            radios.push(r);
+            duty_cycles.push(duty_cycle);
+        }
+        let slots = slots(cfg, &radios)?;
+        let setup = cfg.station_setup(0.0);
+        let kits = radios
+            .iter()
+            .enumerate()
+            .map(|(i, r)| Kit {
+                setup: StationSetup {
+                    interval: r.current().interval,
+                    ..setup
+                },
+                duty_cycle: duty_cycles[i],
+                slot: slots.as_ref().map(|s| s[i]),
+            })
+            .collect();
+        let frame_length = slots.map(|s| s.iter().map(|s| s.frame).fold(0.0, f64::max));
+        let swarm = Swarm {
+            cfg,
+            plan,
+            model,
+            sfs,
+            kits,
+            frame_length,
+        };
+        Ok((swarm, Network::of(cfg, 0.0, radios)))
+    }
+
+    /// One episode: every drone's filter, sender and links through the event loop.
+    fn fly(
+        &self,
+        net: &mut Network,
+        seats: &[Seat],
+        lbt: &mut (usize, usize),
+    ) -> Result<Vec<Vec<Transmission>>, SimError> {
+        let s = self.cfg.s();
+        let mut fliers = Vec::with_capacity(seats.len());
+        for (i, seat) in seats.iter().enumerate() {
+            let flight: &Trajectory = &self.plan.flights[seat.flight];
+            let (sb, cb) = sin_cos(seat.bearing);
+            let p0 = flight.pos[0];
+            // The centre, in this drone's flight frame: `distance` from its first point along
+            // the bearing.
+            let centre = [
+                p0[0] + s.channel.distance * cb,
+                p0[1] + s.channel.distance * sb,
+            ];
+            let now = net.radios[i].current();
+            let kit = &self.kits[i];
+            let sensing = self.cfg.sensing(s.run.seed, seat.stream);
+            let aboard = Aboard {
+                flight,
+                estimates: Estimates::live(DroneFilter::new(
+                    flight,
+                    self.model.sent_model(),
+                    &sensing,
+                )),
+                sender: s.sending.sender(self.model, kit.setup, None),
+                rule: s.sending.rule(kit.duty_cycle, now.time_on_air)?,
+            };
+            let air = Air {
+                gateways: &net.gateways_at(centre),
+                channel: &net.channel,
+                streams: (s.run.seed, seat.stream),
+                channels: self.cfg.channels,
+                interval: now.interval,
+                timing: s.access.swarm_timing(),
+            };
+            let flier = Flier::new(i, aboard, &air).with_origin([centre[0], centre[1], 0.0]);
+            fliers.push(match &kit.slot {
+                Some(slot) => flier.with_slot(slot),
+                None => flier,
+            });
+        }
+        run_episode(net, &mut fliers);
+        for f in &fliers {
+            lbt.0 += f.lbt_deferrals;
+            lbt.1 += f.lbt_avoided;
+        }
+        Ok(fliers.into_iter().map(|f| f.tx).collect())
+    }
+
+    /// Each drone's station over what the network passed on in every episode (`sent`: per
+    /// episode, per drone), drones in parallel, calling `progress(drones done)` after each
+    /// chunk of them.
+    fn score<'s>(
+        &self,
+        sent: &'s [Vec<Vec<Transmission>>],
+        progress: &mut dyn FnMut(usize),
+    ) -> Scored<'s> {
+        let n = self.kits.len();
+        let mut scored = Scored {
+            drones: Vec::with_capacity(n),
+            errors: Vec::new(),
+            untracked: 0,
+            tx: Vec::new(),
+        };
+        for chunk in (0..n.div_ceil(CHUNK)).map(|c| c * CHUNK..((c + 1) * CHUNK).min(n)) {
+            let tracked = par_map(chunk.clone(), |i| self.track(i, sent));
+            for (i, (mut e3, untracked)) in chunk.zip(tracked) {
+                let mine: Vec<&Transmission> = sent.iter().flat_map(|ep| ep[i].iter()).collect();
+                scored.errors.extend_from_slice(&e3);
+                scored.untracked += untracked;
+                let error3d = Summary::of(&mut e3);
+                // Summary::of left e3 sorted.
+                let whole_flight = WholeFlightError::of_sorted(&e3, untracked);
+                scored
+                    .drones
+                    .push(self.drone_report(i, &mine, error3d, whole_flight));
+                scored.tx.extend(mine);
+            }
+            progress(scored.drones.len());
+        }
+        scored
+    }
+
+    /// Drone `i`'s station over its transmissions in every episode: its errors, m, and the
+    /// evaluation times before each episode's first packet.
+    fn track(&self, i: usize, sent: &[Vec<Vec<Transmission>>]) -> (Vec<f64>, usize) {
+        let (mut e3, mut untracked) = (Vec::new(), 0);
+        for (seats, out) in self.plan.episodes.iter().zip(sent) {
+            let flight = &self.plan.flights[seats[i].flight];
+            let mut tracker = new_tracker(self.model, self.kits[i].setup, None);
+            // Only the error is kept: the covariance's calibration would change nothing.
+            let scoring = Scoring {
+                step: self.cfg.s().station.step,
+                series: false,
+                calibrate: false,
+            };
+            let track = track_station(flight, tracker.as_mut(), &out[i], scoring);
+            e3.extend(track.error3d);
+            untracked += track.untracked;
+        }
+        (e3, untracked)
+    }
+
+    /// Drone `i`'s report from its transmissions `mine` and its station's errors.
+    fn drone_report(
+        &self,
+        i: usize,
+        mine: &[&Transmission],
+        error3d: Summary,
+        whole_flight: WholeFlightError,
+    ) -> DroneReport {
+        let mut channel_use = vec![0; usize::from(self.cfg.channels)];
+        for t in mine {
+            channel_use[usize::from(t.channel)] += 1;
+        }
+        let plan = &self.plan;
+        let time: f64 = plan
+            .episodes
+            .iter()
+            .map(|ep| plan.flights[ep[i].flight].duration())
+            .sum();
+        DroneReport {
+            id: i,
+            sf: sf_of(&self.sfs, i) as u8,
+            bearing_deg: plan.episodes[0][i].bearing.to_degrees(),
+            channel_use,
+            packets_sent: mine.len(),
+            packets_received: mine.iter().filter(|t| t.received).count(),
+            packets_collided: mine
+                .iter()
+                .filter(|t| t.outcome == Outcome::Collided)
+                .count(),
+            energy: Energy::of(mine.iter().copied(), time),
+            duty_cycle_used: mine.iter().map(|t| t.time_on_air).sum::<f64>() / time,
+            frame_length: self.kits[i].slot.map(|s| s.frame),
+            error3d,
+            whole_flight,
+        }
+    }
+
+    /// The swarm's report: every drone's errors pooled (with the evaluation times before an
+    /// episode's first packet), the network's counts, and the largest swarm the settings allow.
+    fn report(&self, net: &Network, scored: Scored<'_>) -> Result<SwarmReport, SimError> {
+        let (cfg, model) = (self.cfg, self.model);
+        let bytes = model.payload_bytes() + cfg.s().radio.overhead;
+        let largest_swarm = largest_swarm(cfg, &self.sfs, bytes)?;
+        let Scored {
+            drones,
+            mut errors,
+            untracked,
+            tx,
+        } = scored;
+        let s = cfg.s();
+        let count = |o: Outcome| tx.iter().filter(|t| t.outcome == o).count();
+        let packets_sent = tx.len();
+        let received = count(Outcome::Received);
+        let mut p75s: Vec<f64> = drones
+            .iter()
+            .filter(|d| d.error3d.count > 0)
+            .map(|d| d.error3d.p75)
+            .collect();
+        sort_total(&mut p75s);
+        let nd = drones.len().max(1) as f64;
+        Ok(SwarmReport {
+            config: SwarmEcho {
+                settings: s.clone(),
+                station: model,
+                bandwidth_khz: s.radio.bw,
+            },
+            frame_length: self.frame_length,
+            largest_swarm,
+            lbt_deferrals: None,
+            lbt_collisions_avoided: None,
+            collision_rate: ratio(count(Outcome::Collided), packets_sent),
+            collision_rate_theory: collision_theory(&drones, cfg.channels),
+            delivery: Delivery {
+                packets_sent,
+                packets_received: received,
+                delivery_ratio: ratio(received, packets_sent),
+                duplicates: net.duplicates,
+                gateways: net.gateways.clone(),
+            },
+            packets_collided: count(Outcome::Collided),
+            packets_below_sensitivity: count(Outcome::BelowSensitivity),
+            packets_no_demodulator: count(Outcome::NoDemodulator),
+            airtime: airtime(tx.iter().copied()),
+            error3d: Summary::of(&mut errors),
+            whole_flight: WholeFlightError::of_sorted(&errors, untracked),
+            median_drone_p75: percentile(&p75s, 50.0),
+            energy: Energy {
+                charge_per_uplink: drones
+                    .iter()
+                    .map(|d| d.energy.charge_per_uplink)
+                    .sum::<f64>()
+                    / nd,
+                charge_per_hour: drones.iter().map(|d| d.energy.charge_per_hour).sum::<f64>() / nd,
+            },
+            drones,
+        })
+    }
+}
+
+/// Pure ALOHA's collision rate for `drones` on `channels` channels: per SF group at the duty
+/// cycle the group achieved, weighted by the packets each group sent (reference §13).
+fn collision_theory(drones: &[DroneReport], channels: u8) -> f64 {
+    let mut theory = 0.0;
+    for sf in 7..=12u8 {
+        let group: Vec<&DroneReport> = drones.iter().filter(|d| d.sf == sf).collect();
+        if group.is_empty() {
+            continue;
+        }
+        let packets: usize = group.iter().map(|d| d.packets_sent).sum();
+        let used = group.iter().map(|d| d.duty_cycle_used).sum::<f64>() / group.len() as f64;
+        theory += packets as f64 * aloha_collision_rate(used, channels, group.len());
+    }
+    let sent: usize = drones.iter().map(|d| d.packets_sent).sum();
+    if sent == 0 {
+        0.0
+    } else {
+        theory / sent as f64
+    }
+}
+
+/// Refuses a swarm whose filters would take more than [`MAX_SWARM_FILTER_STEPS`] steps.
+fn check_length(cfg: &Validated, plan: &Plan) -> Result<(), SimError> {
+    let s = cfg.s();
     let flown: f64 = plan
         .episodes
         .iter()
@@ -174,117 +488,7 @@ pub fn run_swarm(
             steps,
         });
     }
-    let bytes = model.payload_bytes() + s.radio.overhead;
-    let sfs = swarm_sfs(cfg);
-    let mut radios = Vec::with_capacity(n);
-    let mut duty_cycles = Vec::with_capacity(n);
-    for i in 0..n {
-        let radio = LoraParams::from_settings(sf_of(&sfs, i), s.radio.bw, s.radio.cr)?;
-        let (r, duty_cycle) = cfg.drone_radio(&radio, model)?;
-        cfg.check_heartbeat(&r.current())?;
-        radios.push(r);
-        duty_cycles.push(duty_cycle);
-    }
-    let slots = slots(cfg, &radios)?;
-    let setup = cfg.station_setup(0.0);
-    let kits: Vec<Kit> = radios
-        .iter()
-        .enumerate()
-        .map(|(i, r)| Kit {
-            setup: StationSetup {
-                interval: r.current().interval,
-                ..setup
-            },
-            duty_cycle: duty_cycles[i],
-            slot: slots.as_ref().map(|s| s[i]),
-        })
-        .collect();
-    let mut net = Network::of(cfg, 0.0, radios);
-    let total = plan.episodes.len() + n;
-    let mut done = 0;
-    // Per episode, per drone: its transmissions.
-    let mut sent: Vec<Vec<Vec<Transmission>>> = Vec::new();
-    // Listen-before-talk: deferrals, and collisions avoided.
-    let mut lbt = (0, 0);
-    for seats in &plan.episodes {
-        sent.push(fly(cfg, &mut net, &plan, seats, model, &kits, &mut lbt)?);
-        done += 1;
-        progress(done, total);
-    }
-    let mut drones = Vec::with_capacity(n);
-    let mut errors = Vec::new();
-    let mut all_untracked = 0;
-    let mut tx_all: Vec<&Transmission> = Vec::new();
-    for chunk in (0..n.div_ceil(CHUNK)).map(|c| c * CHUNK..((c + 1) * CHUNK).min(n)) {
-        let tracked = par_map(chunk.clone(), |i| {
-            let (mut e3, mut untracked) = (Vec::new(), 0);
-            for (seats, out) in plan.episodes.iter().zip(&sent) {
-                let flight = &plan.flights[seats[i].flight];
-                let mut tracker = new_tracker(model, kits[i].setup, None);
-                // Only the error is kept: the covariance's calibration would change nothing.
-                let scoring = Scoring {
-                    step: s.station.step,
-                    series: false,
-                    calibrate: false,
-                };
-                let track = track_station(flight, tracker.as_mut(), &out[i], scoring);
-                e3.extend(track.error3d);
-                untracked += track.untracked;
-            }
-            (e3, untracked)
-        });
-        for (i, (mut e3, untracked)) in chunk.zip(tracked) {
-            let mine: Vec<&Transmission> = sent.iter().flat_map(|ep| ep[i].iter()).collect();
-            let mut channel_use = vec![0; usize::from(cfg.channels)];
-            for t in &mine {
-                channel_use[usize::from(t.channel)] += 1;
-            }
-            let time: f64 = plan
-                .episodes
-                .iter()
-                .map(|ep| plan.flights[ep[i].flight].duration())
-                .sum();
-            errors.extend_from_slice(&e3);
-            all_untracked += untracked;
-            let error3d = Summary::of(&mut e3);
-            drones.push(DroneReport {
-                id: i,
-                sf: sf_of(&sfs, i) as u8,
-                bearing_deg: plan.episodes[0][i].bearing.to_degrees(),
-                channel_use,
-                packets_sent: mine.len(),
-                packets_received: mine.iter().filter(|t| t.received).count(),
-                packets_collided: mine
-                    .iter()
-                    .filter(|t| t.outcome == Outcome::Collided)
-                    .count(),
-                energy: Energy::of(mine.iter().copied(), time),
-                duty_cycle_used: mine.iter().map(|t| t.time_on_air).sum::<f64>() / time,
-                frame_length: kits[i].slot.map(|s| s.frame),
-                error3d,
-                // Summary::of left e3 sorted.
-                whole_flight: WholeFlightError::of_sorted(&e3, untracked),
-            });
-            tx_all.extend(mine);
-        }
-        done = plan.episodes.len() + drones.len();
-        progress(done, total);
-    }
-    let largest = largest_swarm(cfg, &sfs, bytes)?;
-    let mut r = report(
-        cfg,
-        model,
-        &net,
-        &tx_all,
-        drones,
-        (errors, all_untracked),
-        largest,
-    );
-    r.frame_length = slots.map(|s| s.iter().map(|s| s.frame).fold(0.0, f64::max));
-    if net.listen_before_talk {
-        (r.lbt_deferrals, r.lbt_collisions_avoided) = (Some(lbt.0), Some(lbt.1));
-    }
-    Ok(r)
+    Ok(())
 }
 
 /// [`LargestSwarm`] at `cfg`'s settings, the swarm dealing out `sfs`, for packets of `bytes`.
@@ -341,141 +545,4 @@ fn slots(cfg: &Validated, radios: &[DroneRadio]) -> Result<Option<Vec<Slot>>, Si
         cfg.channels,
         s.access.swarm_timing().clock_drift_ppm,
     )))
-}
-
-/// One episode: every drone's filter, sender and links through the event loop.
-fn fly(
-    cfg: &Validated,
-    net: &mut Network,
-    plan: &Plan,
-    seats: &[Seat],
-    model: StationModel,
-    kits: &[Kit],
-    lbt: &mut (usize, usize),
-) -> Result<Vec<Vec<Transmission>>, SimError> {
-    let s = cfg.s();
-    let seed = s.run.seed;
-    let mut fliers = Vec::with_capacity(seats.len());
-    for (i, seat) in seats.iter().enumerate() {
-        let flight: &Trajectory = &plan.flights[seat.flight];
-        let (sb, cb) = sin_cos(seat.bearing);
-        let p0 = flight.pos[0];
-        // The centre, in this drone's flight frame: `distance` from its first point along the
-        // bearing.
-        let centre = [
-            p0[0] + s.channel.distance * cb,
-            p0[1] + s.channel.distance * sb,
-        ];
-        let now = net.radios[i].current();
-        let filter = DroneFilter::new(
-            flight,
-            model.sent_model(),
-            s.drone.sensor_rate,
-            s.drone.q,
-            &cfg.r_diagonal,
-            seed,
-            seat.stream,
-        );
-        let stream = seat.stream;
-        let flier = Flier::new(
-            i,
-            flight,
-            Estimates::live(filter),
-            s.sending.sender(model, kits[i].setup, None),
-            s.sending.rule(kits[i].duty_cycle, now.time_on_air)?,
-            &net.gateways_at(centre),
-            &net.channel,
-            (seed, stream),
-            cfg.channels,
-            now.interval,
-            s.access.swarm_timing(),
-        );
-        let flier = flier.with_origin([centre[0], centre[1], 0.0]);
-        fliers.push(match &kits[i].slot {
-            Some(slot) => flier.with_slot(slot),
-            None => flier,
-        });
-    }
-    run_episode(net, &mut fliers);
-    for f in &fliers {
-        lbt.0 += f.lbt_deferrals;
-        lbt.1 += f.lbt_avoided;
-    }
-    Ok(fliers.into_iter().map(|f| f.tx).collect())
-}
-
-/// The swarm's report from its drones' reports, every drone's errors pooled with the number of
-/// evaluation times before an episode's first packet (`errors`), and the network's counts.
-fn report(
-    cfg: &Validated,
-    model: StationModel,
-    net: &Network,
-    tx: &[&Transmission],
-    drones: Vec<DroneReport>,
-    (mut errors, untracked): (Vec<f64>, usize),
-    largest_swarm: LargestSwarm,
-) -> SwarmReport {
-    let s = cfg.s();
-    let count = |o: Outcome| tx.iter().filter(|t| t.outcome == o).count();
-    let packets_sent = tx.len();
-    let received = count(Outcome::Received);
-    // Theory per SF group at the duty cycle the group achieved, weighted by the packets each
-    // group sent.
-    let mut theory = 0.0;
-    for sf in 7..=12u8 {
-        let group: Vec<&DroneReport> = drones.iter().filter(|d| d.sf == sf).collect();
-        if group.is_empty() {
-            continue;
-        }
-        let packets: usize = group.iter().map(|d| d.packets_sent).sum();
-        let used = group.iter().map(|d| d.duty_cycle_used).sum::<f64>() / group.len() as f64;
-        theory += packets as f64 * aloha_collision_rate(used, cfg.channels, group.len());
-    }
-    let mut p75s: Vec<f64> = drones
-        .iter()
-        .filter(|d| d.error3d.count > 0)
-        .map(|d| d.error3d.p75)
-        .collect();
-    sort_total(&mut p75s);
-    let nd = drones.len().max(1) as f64;
-    SwarmReport {
-        config: SwarmEcho {
-            settings: s.clone(),
-            station: model,
-            bandwidth_khz: s.radio.bw,
-        },
-        frame_length: None,
-        largest_swarm,
-        lbt_deferrals: None,
-        lbt_collisions_avoided: None,
-        collision_rate: ratio(count(Outcome::Collided), packets_sent),
-        collision_rate_theory: if packets_sent == 0 {
-            0.0
-        } else {
-            theory / packets_sent as f64
-        },
-        delivery: Delivery {
-            packets_sent,
-            packets_received: received,
-            delivery_ratio: ratio(received, packets_sent),
-            duplicates: net.duplicates,
-            gateways: net.gateways.clone(),
-        },
-        packets_collided: count(Outcome::Collided),
-        packets_below_sensitivity: count(Outcome::BelowSensitivity),
-        packets_no_demodulator: count(Outcome::NoDemodulator),
-        airtime: airtime(tx.iter().copied()),
-        error3d: Summary::of(&mut errors),
-        whole_flight: WholeFlightError::of_sorted(&errors, untracked),
-        median_drone_p75: percentile(&p75s, 50.0),
-        energy: Energy {
-            charge_per_uplink: drones
-                .iter()
-                .map(|d| d.energy.charge_per_uplink)
-                .sum::<f64>()
-                / nd,
-            charge_per_hour: drones.iter().map(|d| d.energy.charge_per_hour).sum::<f64>() / nd,
-        },
-        drones,
-    }
 }
