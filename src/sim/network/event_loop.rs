@@ -70,102 +70,153 @@ const LOOKAHEAD_S: f64 = 30.0;
 /// The network's radios, ADR state and gateway counts carry over to the next episode; the
 /// gateways' receivers and duty cycles start afresh (each flight has its own time axis).
 pub fn run_episode(net: &mut Network, fliers: &mut [Flier<'_>]) {
-    let mut gateways: Vec<Gateway> = net
-        .sites
-        .iter()
-        .map(|_| Gateway::new(net.interference))
-        .collect();
-    let mut queue = BinaryHeap::new();
-    let mut next: Vec<Option<(usize, f64)>> = vec![None; fliers.len()];
-    let mut on_air: Vec<Option<OnAir>> = (0..fliers.len()).map(|_| None).collect();
+    let mut episode = Episode::new(net, fliers.len());
     for (d, f) in fliers.iter_mut().enumerate() {
-        plan(f, d, f64::NEG_INFINITY, &mut next, &mut queue);
+        episode.plan(f, d, f64::NEG_INFINITY);
     }
-    let mut computed_to = f64::NEG_INFINITY;
-    while let Some(e) = queue.pop() {
-        if e.time >= computed_to && fliers.len() > 1 {
-            computed_to = e.time + LOOKAHEAD_S;
-            let mut ahead: Vec<_> = fliers
-                .iter_mut()
-                .map(|f| f.estimates_until(computed_to))
-                .collect();
-            par_each(&mut ahead, |(est, upto)| est.prefetch(*upto));
-        }
+    while let Some(e) = episode.queue.pop() {
+        episode.look_ahead(fliers, e.time);
         let f = &mut fliers[e.drone];
         if e.start {
-            let Some(k) = next[e.drone].take() else {
-                continue;
-            };
-            let frame = net.radios[f.drone].uplink();
-            let at = f.network_position(e.time);
-            let Some(ch) = channel_for(net, &on_air, f, at, frame.sf.get()) else {
-                let wait = f.backoff(lbt::max_backoff(frame.time_on_air));
-                plan(f, e.drone, e.time + wait, &mut next, &mut queue);
-                continue;
-            };
-            let Some(receptions) = f.transmit(k, ch, &frame, &net.channel) else {
-                plan(f, e.drone, e.time, &mut next, &mut queue);
-                continue;
-            };
-            let Some(t) = f.tx.last() else { continue };
-            let (sent, arrival, channel, sf, bw) = (t.sent, t.arrival, t.channel, t.sf, t.bw);
-            let id = packet_id(e.drone, f.tx.len() - 1);
-            for (g, r) in gateways.iter_mut().zip(&receptions) {
-                g.start(
-                    id,
-                    Uplink {
-                        start: sent,
-                        end: arrival,
-                        channel,
-                        sf: sf.get(),
-                        rx_dbm: r.rx_dbm,
-                        audible: audible(r.rx_dbm, sf, bw),
-                    },
-                );
-            }
-            queue.push(Event {
-                time: arrival,
-                start: false,
-                drone: e.drone,
-            });
-            if !net.radios[f.drone].adaptive() {
-                // No downlink can change anything: the next uplink is planned at once.
-                f.after_packet(k, frame.time_on_air);
-                plan(f, e.drone, arrival + off_time(net), &mut next, &mut queue);
-            }
-            on_air[e.drone] = Some(OnAir {
-                k,
-                frame,
-                receptions,
-                channel: ch,
-                at,
-            });
+            episode.start(net, f, e);
         } else {
-            let Some(air) = on_air[e.drone].take() else {
-                continue;
-            };
-            let index = f.tx.len() - 1;
-            let id = packet_id(e.drone, index);
-            let mut heard_by = 0u32;
-            let mut outcome = Outcome::BelowSensitivity;
-            for (g, gw) in gateways.iter_mut().enumerate() {
-                let o = gw.finish(id);
-                if o == Outcome::Received {
-                    heard_by |= 1 << g;
-                }
-                outcome = outcome.max(o);
+            episode.end(net, f, e);
+        }
+    }
+}
+
+/// One episode under way: the gateways' receivers and downlink duty cycles, the events to come,
+/// each drone's planned uplink (its sensor step and start time) and the packet it has on air.
+struct Episode {
+    gateways: Vec<Gateway>,
+    queue: BinaryHeap<Event>,
+    next: Vec<Option<(usize, f64)>>,
+    on_air: Vec<Option<OnAir>>,
+    /// The time up to which every drone's estimates have been computed ahead, s.
+    computed_to: f64,
+}
+
+impl Episode {
+    fn new(net: &Network, drones: usize) -> Self {
+        Episode {
+            gateways: net
+                .sites
+                .iter()
+                .map(|_| Gateway::new(net.interference))
+                .collect(),
+            queue: BinaryHeap::new(),
+            next: vec![None; drones],
+            on_air: (0..drones).map(|_| None).collect(),
+            computed_to: f64::NEG_INFINITY,
+        }
+    }
+
+    /// Several drones: once the loop reaches `time`, their estimates for the next
+    /// [`LOOKAHEAD_S`] seconds are computed on every core.
+    fn look_ahead(&mut self, fliers: &mut [Flier<'_>], time: f64) {
+        if time < self.computed_to || fliers.len() < 2 {
+            return;
+        }
+        self.computed_to = time + LOOKAHEAD_S;
+        let mut ahead: Vec<_> = fliers
+            .iter_mut()
+            .map(|f| f.estimates_until(self.computed_to))
+            .collect();
+        par_each(&mut ahead, |(est, upto)| est.prefetch(*upto));
+    }
+
+    /// Drone `e.drone`'s planned uplink starts: it takes a channel (or, listening before talk,
+    /// backs off), goes on air and reaches each gateway. Without ADR its next uplink is planned
+    /// now; with ADR once its receive windows have told it what the network answered.
+    fn start(&mut self, net: &mut Network, f: &mut Flier<'_>, e: Event) {
+        let Some(k) = self.next[e.drone].take() else {
+            return;
+        };
+        let frame = net.radios[f.drone].uplink();
+        let at = f.network_position(e.time);
+        let Some(ch) = channel_for(net, &self.on_air, f, at, frame.sf.get()) else {
+            let wait = f.backoff(lbt::max_backoff(frame.time_on_air));
+            self.plan(f, e.drone, e.time + wait);
+            return;
+        };
+        let Some(receptions) = f.transmit(k, ch, &frame, &net.channel) else {
+            self.plan(f, e.drone, e.time);
+            return;
+        };
+        let Some(t) = f.tx.last() else { return };
+        let (sent, arrival, channel, sf, bw) = (t.sent, t.arrival, t.channel, t.sf, t.bw);
+        let id = packet_id(e.drone, f.tx.len() - 1);
+        for (g, r) in self.gateways.iter_mut().zip(&receptions) {
+            g.start(
+                id,
+                Uplink {
+                    start: sent,
+                    end: arrival,
+                    channel,
+                    sf: sf.get(),
+                    rx_dbm: r.rx_dbm,
+                    audible: audible(r.rx_dbm, sf, bw),
+                },
+            );
+        }
+        self.queue.push(Event {
+            time: arrival,
+            start: false,
+            drone: e.drone,
+        });
+        if !net.radios[f.drone].adaptive() {
+            // No downlink can change anything: the next uplink is planned at once.
+            f.after_packet(k, frame.time_on_air);
+            self.plan(f, e.drone, arrival + off_time(net));
+        }
+        self.on_air[e.drone] = Some(OnAir {
+            k,
+            frame,
+            receptions,
+            channel: ch,
+            at,
+        });
+    }
+
+    /// Drone `e.drone`'s uplink ends: each gateway decides it, the network server keeps the
+    /// first copy and answers, and the packet's outcome is recorded.
+    fn end(&mut self, net: &mut Network, f: &mut Flier<'_>, e: Event) {
+        let Some(air) = self.on_air[e.drone].take() else {
+            return;
+        };
+        let index = f.tx.len() - 1;
+        let id = packet_id(e.drone, index);
+        let mut heard_by = 0u32;
+        let mut outcome = Outcome::BelowSensitivity;
+        for (g, gw) in self.gateways.iter_mut().enumerate() {
+            let o = gw.finish(id);
+            if o == Outcome::Received {
+                heard_by |= 1 << g;
             }
-            net.count_copies(heard_by);
-            let next_from = finish_exchange(net, &mut gateways, f, &air, heard_by, e.time);
-            let t = &mut f.tx[index];
-            t.received = heard_by != 0;
-            t.heard_by = heard_by;
-            t.outcome = outcome;
-            if net.radios[f.drone].adaptive() {
-                let toa = net.radios[f.drone].current().time_on_air;
-                f.after_packet(air.k, toa);
-                plan(f, e.drone, next_from + off_time(net), &mut next, &mut queue);
-            }
+            outcome = outcome.max(o);
+        }
+        net.count_copies(heard_by);
+        let next_from = self.finish_exchange(net, f, &air, heard_by, e.time);
+        let t = &mut f.tx[index];
+        t.received = heard_by != 0;
+        t.heard_by = heard_by;
+        t.outcome = outcome;
+        if net.radios[f.drone].adaptive() {
+            let toa = net.radios[f.drone].current().time_on_air;
+            f.after_packet(air.k, toa);
+            self.plan(f, e.drone, next_from + off_time(net));
+        }
+    }
+
+    /// Plans drone `d`'s next uplink at or after `not_before` s, if its flight has one.
+    fn plan(&mut self, f: &mut Flier<'_>, d: usize, not_before: f64) {
+        if let Some((k, time)) = f.next_uplink(not_before) {
+            self.next[d] = Some((k, time));
+            self.queue.push(Event {
+                time,
+                start: true,
+                drone: d,
+            });
         }
     }
 }
@@ -251,108 +302,93 @@ fn listen(
     Heard::Busy(same)
 }
 
-fn plan(
-    f: &mut Flier<'_>,
-    d: usize,
-    not_before: f64,
-    next: &mut [Option<(usize, f64)>],
-    queue: &mut BinaryHeap<Event>,
-) {
-    if let Some((k, time)) = f.next_uplink(not_before) {
-        next[d] = Some((k, time));
-        queue.push(Event {
-            time,
-            start: true,
-            drone: d,
-        });
-    }
-}
-
 /// A downlink the network sent: its window, its time on air (s), whether the drone heard it.
 type Downlink = (Window, f64, bool);
 
-/// After an uplink ends at `end`: ADR's answer (if any), the drone's radio told what came, and
-/// the uplink's charge recorded. Returns the earliest time the drone's next uplink may start,
-/// s: once a downlink it heard has fully arrived (a command cannot apply before it is heard),
-/// otherwise at the uplink's end (nothing was learnt; the drone's empty receive windows cost
-/// energy but do not hold back the next uplink, as before ADR existed).
-fn finish_exchange(
-    net: &mut Network,
-    gateways: &mut [Gateway],
-    f: &mut Flier<'_>,
-    air: &OnAir,
-    heard_by: u32,
-    end: f64,
-) -> f64 {
-    let (downlink, command) = answer(net, gateways, f, air, heard_by, end);
-    let heard = matches!(downlink, Some((_, _, true)));
-    net.radios[f.drone].exchange_done(heard.then_some(command));
-    // Class A receive windows, when the drone speaks LoRaWAN.
-    let opens = net.lorawan || air.frame.adr.is_some();
-    let activity = UplinkActivity {
-        tx_power_dbm: net.channel.params().tx_power_dbm - air.frame.power_reduction_db,
-        time_on_air: air.frame.time_on_air,
-        windows: if opens {
-            listening(&air.frame, downlink)
-        } else {
-            [(0.0, air.frame.bw), (0.0, DataRate::DR0.bw())]
-        },
-    };
-    if let Some(t) = f.tx.last_mut() {
-        t.charge_mc = activity.charge_mc();
-        t.active_s = activity.active_s();
-    }
-    match downlink {
-        Some((w, toa, true)) => end + w.delay_s() + toa,
-        _ => end,
-    }
-}
-
-/// The network server's answer to a received uplink with ADR: through the gateway that heard
-/// it best, in RX1, or in RX2 when that gateway's RX1 duty cycle forbids it, or dropped (and
-/// counted) when both do. The downlink sent, if any, and the ADR command.
-fn answer(
-    net: &mut Network,
-    gateways: &mut [Gateway],
-    f: &mut Flier<'_>,
-    air: &OnAir,
-    heard_by: u32,
-    end: f64,
-) -> (Option<Downlink>, Option<LinkAdrReq>) {
-    let best = (0..gateways.len())
-        .filter(|g| heard_by & (1 << g) != 0)
-        .max_by(|&a, &b| {
-            air.receptions[a]
-                .rx_dbm
-                .total_cmp(&air.receptions[b].rx_dbm)
-        });
-    let (Some(g), Some(frame)) = (best, air.frame.adr) else {
-        return (None, None);
-    };
-    let (answers, command) = net.adr_hears(f.drone, &frame, air.receptions[g].rx_dbm);
-    if !answers {
-        return (None, command);
-    }
-    let bytes = if command.is_some() {
-        ADR_DOWNLINK_BYTES
-    } else {
-        ACK_DOWNLINK_BYTES
-    };
-    for w in [Window::Rx1, Window::Rx2] {
-        let dr = w.data_rate(frame.dr);
-        let Ok(toa) = downlink_time_on_air(dr, bytes) else {
-            break;
+impl Episode {
+    /// After an uplink ends at `end`: ADR's answer (if any), the drone's radio told what came, and
+    /// the uplink's charge recorded. Returns the earliest time the drone's next uplink may start,
+    /// s: once a downlink it heard has fully arrived (a command cannot apply before it is heard),
+    /// otherwise at the uplink's end (nothing was learnt; the drone's empty receive windows cost
+    /// energy but do not hold back the next uplink, as before ADR existed).
+    fn finish_exchange(
+        &mut self,
+        net: &mut Network,
+        f: &mut Flier<'_>,
+        air: &OnAir,
+        heard_by: u32,
+        end: f64,
+    ) -> f64 {
+        let (downlink, command) = self.answer(net, f, air, heard_by, end);
+        let heard = matches!(downlink, Some((_, _, true)));
+        net.radios[f.drone].exchange_done(heard.then_some(command));
+        // Class A receive windows, when the drone speaks LoRaWAN.
+        let opens = net.lorawan || air.frame.adr.is_some();
+        let activity = UplinkActivity {
+            tx_power_dbm: net.channel.params().tx_power_dbm - air.frame.power_reduction_db,
+            time_on_air: air.frame.time_on_air,
+            windows: if opens {
+                listening(&air.frame, downlink)
+            } else {
+                [(0.0, air.frame.bw), (0.0, DataRate::DR0.bw())]
+            },
         };
-        let at = end + w.delay_s();
-        if gateways[g].try_downlink(w, at, toa) {
-            net.gateways[g].downlinks_sent += 1;
-            let pos = f.position_at(at);
-            let r = f.links[g].downlink(&net.channel, pos);
-            return (Some((w, toa, audible(r.rx_dbm, dr.sf(), dr.bw()))), command);
+        if let Some(t) = f.tx.last_mut() {
+            t.charge_mc = activity.charge_mc();
+            t.active_s = activity.active_s();
+        }
+        match downlink {
+            Some((w, toa, true)) => end + w.delay_s() + toa,
+            _ => end,
         }
     }
-    net.gateways[g].downlinks_dropped += 1;
-    (None, command)
+
+    /// The network server's answer to a received uplink with ADR: through the gateway that heard
+    /// it best, in RX1, or in RX2 when that gateway's RX1 duty cycle forbids it, or dropped (and
+    /// counted) when both do. The downlink sent, if any, and the ADR command.
+    fn answer(
+        &mut self,
+        net: &mut Network,
+        f: &mut Flier<'_>,
+        air: &OnAir,
+        heard_by: u32,
+        end: f64,
+    ) -> (Option<Downlink>, Option<LinkAdrReq>) {
+        let best = (0..self.gateways.len())
+            .filter(|g| heard_by & (1 << g) != 0)
+            .max_by(|&a, &b| {
+                air.receptions[a]
+                    .rx_dbm
+                    .total_cmp(&air.receptions[b].rx_dbm)
+            });
+        let (Some(g), Some(frame)) = (best, air.frame.adr) else {
+            return (None, None);
+        };
+        let (answers, command) = net.adr_hears(f.drone, &frame, air.receptions[g].rx_dbm);
+        if !answers {
+            return (None, command);
+        }
+        let bytes = if command.is_some() {
+            ADR_DOWNLINK_BYTES
+        } else {
+            ACK_DOWNLINK_BYTES
+        };
+        for w in [Window::Rx1, Window::Rx2] {
+            let dr = w.data_rate(frame.dr);
+            let Ok(toa) = downlink_time_on_air(dr, bytes) else {
+                break;
+            };
+            let at = end + w.delay_s();
+            if self.gateways[g].try_downlink(w, at, toa) {
+                net.gateways[g].downlinks_sent += 1;
+                let pos = f.position_at(at);
+                let r = f.links[g].downlink(&net.channel, pos);
+                return (Some((w, toa, audible(r.rx_dbm, dr.sf(), dr.bw()))), command);
+            }
+        }
+        net.gateways[g].downlinks_dropped += 1;
+        (None, command)
+    }
 }
 
 /// Seconds each class A receive window listens, and at which bandwidth: RX1 at the uplink's
