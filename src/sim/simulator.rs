@@ -396,33 +396,11 @@ impl Simulator {
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<SimReport, SimError> {
         let s = cfg.s();
-        if s.swarm != SwarmSettings::default() {
-            return Err(SimError::Source(
-                "drones, duration and sfPlan are swarm settings: simulate flies one drone over its flight"
-                    .into(),
-            ));
-        }
-        if s.access.schedule != Schedule::Aloha {
-            return Err(SimError::Source(
-                "schedule is a swarm setting: simulate's one drone has the air to itself".into(),
-            ));
-        }
-        let source = cfg.source.clone().ok_or_else(|| {
-            SimError::Source(
-                "choose a flight: trajectory (CSV), synthetic (all or 1..30) or sample (canberra)"
-                    .into(),
-            )
-        })?;
-        let (flight_key, flights) = self.flights(&source, &mut |_, _| {})?;
+        let source = simulated_source(cfg)?;
+        let (flight_key, flights) = self.flights(source, &mut |_, _| {})?;
         let flight_time: f64 = flights.iter().map(Trajectory::duration).sum();
         let seeds = u64::from(s.run.seeds.max(1));
-        let steps = flight_time * (s.drone.sensor_rate + 1.0 / s.station.step) * seeds as f64;
-        if steps > MAX_FILTER_STEPS as f64 {
-            return Err(SimError::TooLong {
-                flight_time: flight_time * seeds as f64,
-                steps,
-            });
-        }
+        check_steps(cfg, flight_time, seeds)?;
         let total = 2 * flights.len() * cfg.models.len() * seeds as usize;
         let mut done = 0;
         let mut tick = || {
@@ -486,34 +464,78 @@ impl Simulator {
             .run
             .series
             .then(|| plotted(cfg, &flights[0], series_plan, series_models));
-        let (sf, bw) = (cfg.radio.sf, cfg.radio.bw);
-        let mut settings = s.clone();
-        // What was flown: one drone, on its SF, for the flight time.
-        settings.swarm = SwarmSettings {
-            drones: 1,
-            duration: flight_time,
-            sf_plan: SfPlan::Fixed,
-        };
         Ok(SimReport {
-            config: RunConfig {
-                settings,
-                trajectory: match &source {
-                    TrajectorySource::Synthetic(SyntheticChoice::All) => "synthetic all".into(),
-                    _ => flights[0].name.clone(),
-                },
-                flights: flights.len(),
-                flight_time,
-                models: cfg.models.clone(),
-                bandwidth_khz: bw.khz(),
-                eta_per_second: pow(s.station.eta, 1.0 / s.station.step),
-                sensitivity_dbm: Channel::sensitivity_dbm(sf, bw),
-                range_m: cfg.channel.range_m(sf, bw),
-                data_rate: s.access.region.rate(sf.get(), bw).map(|r| r.dr),
-            },
+            config: run_config(cfg, source, &flights),
             delivery,
             results,
             series,
         })
+    }
+}
+
+/// The flight(s) a `simulate` run flies; refuses a swarm's settings, which one drone alone
+/// cannot honour.
+fn simulated_source(cfg: &Validated) -> Result<&TrajectorySource, SimError> {
+    let s = cfg.s();
+    if s.swarm != SwarmSettings::default() {
+        return Err(SimError::Source(
+            "drones, duration and sfPlan are swarm settings: simulate flies one drone over its flight"
+                .into(),
+        ));
+    }
+    if s.access.schedule != Schedule::Aloha {
+        return Err(SimError::Source(
+            "schedule is a swarm setting: simulate's one drone has the air to itself".into(),
+        ));
+    }
+    cfg.source.as_ref().ok_or_else(|| {
+        SimError::Source(
+            "choose a flight: trajectory (CSV), synthetic (all or 1..30) or sample (canberra)"
+                .into(),
+        )
+    })
+}
+
+/// Refuses a run whose flights (`flight_time` s, flown once per seed of `seeds`) would take
+/// more than [`MAX_FILTER_STEPS`] filter steps, the drone's and the station's.
+fn check_steps(cfg: &Validated, flight_time: f64, seeds: u64) -> Result<(), SimError> {
+    let s = cfg.s();
+    let steps = flight_time * (s.drone.sensor_rate + 1.0 / s.station.step) * seeds as f64;
+    if steps > MAX_FILTER_STEPS as f64 {
+        return Err(SimError::TooLong {
+            flight_time: flight_time * seeds as f64,
+            steps,
+        });
+    }
+    Ok(())
+}
+
+/// What a `simulate` run flew (JSON `config`): the settings, with one drone on its SF for the
+/// flight time of `flights` (from `source`), and the link they imply.
+fn run_config(cfg: &Validated, source: &TrajectorySource, flights: &[Trajectory]) -> RunConfig {
+    let s = cfg.s();
+    let flight_time: f64 = flights.iter().map(Trajectory::duration).sum();
+    let (sf, bw) = (cfg.radio.sf, cfg.radio.bw);
+    let mut settings = s.clone();
+    settings.swarm = SwarmSettings {
+        drones: 1,
+        duration: flight_time,
+        sf_plan: SfPlan::Fixed,
+    };
+    RunConfig {
+        settings,
+        trajectory: match source {
+            TrajectorySource::Synthetic(SyntheticChoice::All) => "synthetic all".into(),
+            _ => flights[0].name.clone(),
+        },
+        flights: flights.len(),
+        flight_time,
+        models: cfg.models.clone(),
+        bandwidth_khz: bw.khz(),
+        eta_per_second: pow(s.station.eta, 1.0 / s.station.step),
+        sensitivity_dbm: Channel::sensitivity_dbm(sf, bw),
+        range_m: cfg.channel.range_m(sf, bw),
+        data_rate: s.access.region.rate(sf.get(), bw).map(|r| r.dr),
     }
 }
 
