@@ -196,14 +196,19 @@ impl Episode {
             outcome = outcome.max(o);
         }
         net.count_copies(heard_by);
-        let next_from = self.finish_exchange(net, f, &air, heard_by, e.time);
+        let ended = Ended {
+            air,
+            heard_by,
+            time: e.time,
+        };
+        let next_from = self.finish_exchange(net, f, &ended);
         let t = &mut f.tx[index];
         t.received = heard_by != 0;
         t.heard_by = heard_by;
         t.outcome = outcome;
         if net.radios[f.drone].adaptive() {
             let toa = net.radios[f.drone].current().time_on_air;
-            f.after_packet(air.k, toa);
+            f.after_packet(ended.air.k, toa);
             self.plan(f, e.drone, next_from + off_time(net));
         }
     }
@@ -302,6 +307,14 @@ fn listen(
     Heard::Busy(same)
 }
 
+/// An uplink as it ends: what was on air, the gateways that received it (bit `g` for gateway
+/// `g`), and the time it ended, s.
+struct Ended {
+    air: OnAir,
+    heard_by: u32,
+    time: f64,
+}
+
 /// A downlink the network sent: its window, its time on air (s), whether the drone heard it.
 type Downlink = (Window, f64, bool);
 
@@ -311,15 +324,9 @@ impl Episode {
     /// s: once a downlink it heard has fully arrived (a command cannot apply before it is heard),
     /// otherwise at the uplink's end (nothing was learnt; the drone's empty receive windows cost
     /// energy but do not hold back the next uplink, as before ADR existed).
-    fn finish_exchange(
-        &mut self,
-        net: &mut Network,
-        f: &mut Flier<'_>,
-        air: &OnAir,
-        heard_by: u32,
-        end: f64,
-    ) -> f64 {
-        let (downlink, command) = self.answer(net, f, air, heard_by, end);
+    fn finish_exchange(&mut self, net: &mut Network, f: &mut Flier<'_>, ended: &Ended) -> f64 {
+        let (air, end) = (&ended.air, ended.time);
+        let (downlink, command) = self.answer(net, f, ended);
         let heard = matches!(downlink, Some((_, _, true)));
         net.radios[f.drone].exchange_done(heard.then_some(command));
         // Class A receive windows, when the drone speaks LoRaWAN.
@@ -350,10 +357,13 @@ impl Episode {
         &mut self,
         net: &mut Network,
         f: &mut Flier<'_>,
-        air: &OnAir,
-        heard_by: u32,
-        end: f64,
+        ended: &Ended,
     ) -> (Option<Downlink>, Option<LinkAdrReq>) {
+        let Ended {
+            air,
+            heard_by,
+            time: end,
+        } = ended;
         let best = (0..self.gateways.len())
             .filter(|g| heard_by & (1 << g) != 0)
             .max_by(|&a, &b| {
