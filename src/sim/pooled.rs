@@ -3,6 +3,7 @@
 use super::caveats::Caveats;
 use super::packet::Transmission;
 use super::report::{Boxplots, DataRateUse, Delivery, Energy, ModelResult, ModelSeries};
+use super::sender::SenderKind;
 use super::station::{StationModel, StationTrack};
 use crate::lora::DataRate;
 use crate::metrics::{bootstrap_sorted, sort_total, Consistency, Summary, WholeFlightError};
@@ -16,6 +17,8 @@ pub(crate) const MAX_SERIES_POINTS: usize = 3000;
 /// seed).
 #[derive(Default)]
 pub(crate) struct Pooled {
+    /// How the runs' drone sent: what the lost packets cost depends on it ([`Caveats::of`]).
+    sender: SenderKind,
     e3: Vec<f64>,
     /// Where each run's 3D errors end in `e3`: the units the intervals resample.
     run_ends: Vec<usize>,
@@ -37,6 +40,14 @@ pub(crate) struct Pooled {
 }
 
 impl Pooled {
+    /// An empty pool for a station whose drone sends by `sender`.
+    pub fn new(sender: SenderKind) -> Self {
+        Pooled {
+            sender,
+            ..Pooled::default()
+        }
+    }
+
     /// Adds one drone's transmissions and station track over `flight_time` s.
     pub fn add(&mut self, tx: &[Transmission], st: StationTrack, flight_time: f64) {
         self.sent += tx.len();
@@ -159,8 +170,7 @@ impl Pooled {
             airtime,
             error3d: s3,
             whole_flight: WholeFlightError::of_sorted(&self.e3, self.untracked),
-            // The sender is the run's: the simulator sets them (`Caveats::of`).
-            caveats: Caveats::default(),
+            caveats: Caveats::of(self.received, self.sent, self.sender),
             ci95,
             error_x: sx,
             error_y: sy,

@@ -1,7 +1,6 @@
 //! Runs simulations and caches what does not depend on the link.
 
 use super::cache_budget::{Ledger, MAX_CACHE_BYTES};
-use super::caveats::Caveats;
 use super::drone::{run_drones, DroneTrack};
 use super::parallel::{enough_tasks, par_map, par_map_costliest_first, par_map_owned};
 use super::pooled::{axis_every, series_stride, Pooled};
@@ -453,11 +452,7 @@ impl Simulator {
             })
             .collect();
         let flown = fly_all(&runs, flights.len(), &mut tick);
-        let (mut results, series_models) = pool(&stations, flown, &flights, s.run.seed)?;
-        for r in &mut results {
-            let d = &r.delivery;
-            r.caveats = Caveats::of(d.packets_received, d.packets_sent, s.sending.sender);
-        }
+        let (results, series_models) = pool(cfg, &stations, flown, &flights)?;
         let mut delivery = Delivery::default();
         results.iter().for_each(|r| delivery.add(&r.delivery));
         let series = s
@@ -575,17 +570,18 @@ fn plotted(
 /// Each station's result from its runs' flights (`flown`, station-major as [`fly_all`] gives
 /// them: every seed's flights join one pool), and the plotted series that came with them.
 fn pool(
+    cfg: &Validated,
     stations: &[StationPlan],
     flown: Vec<Vec<Result<FlightRun, SimError>>>,
     flights: &[Trajectory],
-    seed: u64,
 ) -> Result<(Vec<ModelResult>, Vec<ModelSeries>), SimError> {
+    let s = cfg.s();
     let per_station = flown.len() / stations.len().max(1);
     let mut flown = flown.into_iter();
     let mut gathered = Vec::with_capacity(stations.len());
     let mut series = Vec::new();
     for station in stations {
-        let mut pooled = Pooled::default();
+        let mut pooled = Pooled::new(s.sending.sender);
         let mut counted = Delivery::default();
         let mut recoveries = 0;
         for one_seed in flown.by_ref().take(per_station) {
@@ -611,7 +607,7 @@ fn pool(
             now.interval,
             recoveries,
             &counted,
-            seed,
+            s.run.seed,
         )
     });
     Ok((results, series))

@@ -449,7 +449,7 @@ impl<'a> Swarm<'a> {
 }
 
 /// Pure ALOHA's collision rate for `drones` on `channels` channels: per SF group at the duty
-/// cycle the group achieved, weighted by the packets each group sent (reference §13).
+/// cycle the group achieved, weighted by the packets each group sent (reference §10).
 fn collision_theory(drones: &[DroneReport], channels: u8) -> f64 {
     let mut theory = 0.0;
     for sf in 7..=12u8 {
@@ -545,4 +545,46 @@ fn slots(cfg: &Validated, radios: &[DroneRadio]) -> Result<Option<Vec<Slot>>, Si
         cfg.channels,
         s.access.swarm_timing().clock_drift_ppm,
     )))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A drone on `sf` that sent `packets_sent` packets, on air `duty_cycle_used` of the time.
+    fn drone(sf: u8, packets_sent: usize, duty_cycle_used: f64) -> DroneReport {
+        DroneReport {
+            id: 0,
+            sf,
+            bearing_deg: 0.0,
+            channel_use: vec![packets_sent],
+            packets_sent,
+            packets_received: packets_sent,
+            packets_collided: 0,
+            energy: Energy::default(),
+            duty_cycle_used,
+            frame_length: None,
+            error3d: Summary::of(&mut Vec::new()),
+            whole_flight: WholeFlightError::of_sorted(&[], 0),
+        }
+    }
+
+    #[test]
+    fn the_collision_theory_is_alohas_per_sf_group_weighted_by_packets() {
+        // One group: pure ALOHA at the group's mean duty cycle.
+        let one = [drone(7, 10, 0.01), drone(7, 30, 0.03)];
+        let expected = aloha_collision_rate(0.02, 1, 2);
+        assert!((collision_theory(&one, 1) - expected).abs() < 1e-15);
+        // Two groups do not collide with each other: each group's rate, weighted by its packets.
+        let two = [drone(7, 10, 0.01), drone(7, 10, 0.01), drone(9, 30, 0.01)];
+        let sf7 = aloha_collision_rate(0.01, 1, 2);
+        let sf9 = aloha_collision_rate(0.01, 1, 1);
+        assert_eq!(sf9, 0.0, "a drone alone on its SF collides with no one");
+        let mixed = collision_theory(&two, 1);
+        assert!((mixed - (20.0 * sf7 + 30.0 * sf9) / 50.0).abs() < 1e-15);
+        assert!(mixed < sf7);
+        // More channels, fewer collisions; no packets, no rate.
+        assert!(collision_theory(&one, 3) < collision_theory(&one, 1));
+        assert_eq!(collision_theory(&[drone(7, 0, 0.0)], 1), 0.0);
+    }
 }
