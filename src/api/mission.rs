@@ -85,8 +85,8 @@ pub struct MissionSweepReport {
     pub seeds: u32,
     /// Every setting, distance by distance, fastest data rate first.
     pub runs: Vec<MissionRun>,
-    /// The real Canberra flight with the plan traced from its own log, at [`REAL_RATES`] and 1 km,
-    /// pooled over at least [`REAL_SEEDS`] seeds.
+    /// The real Canberra flight with the plan traced from its own log, at `REAL_RATES` and 1 km,
+    /// pooled over at least `REAL_SEEDS` seeds.
     pub real: Vec<MissionRun>,
     /// Seeds pooled in each of `real`.
     pub real_seeds: u32,

@@ -35,7 +35,7 @@ pub struct Air<'g> {
     pub gateways: &'g [[f64; 3]],
     /// The link budget all links share.
     pub channel: &'g Channel,
-    /// The run's seed and the drone's stream of it ([`streams`]).
+    /// The run's seed and the drone's stream of it (`sim/streams.rs`).
     pub streams: (u64, u64),
     /// The uplink channels it picks among.
     pub channels: u8,
@@ -82,7 +82,7 @@ pub struct Flier<'a> {
 
 impl<'a> Flier<'a> {
     /// Drone number `drone` flying with `aboard`, about to start, meeting the network through
-    /// `air`. It draws from the random streams of `air.streams` ([`streams`]): the link stream
+    /// `air`. It draws from the random streams of `air.streams` (`sim/streams.rs`): the link stream
     /// first draws the first packet's offset (uniform within one `air.interval`, so every model
     /// starts at the same fraction of its own interval) and then carries the first gateway's
     /// shadowing; the gateway streams give the others'; the channel stream draws each packet's

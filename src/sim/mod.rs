@@ -1,5 +1,5 @@
 //! The end-to-end tracking simulation (paper §IV; `docs/reference.md`), read as its pipeline:
-//! drone (sensors, UKF: [`drone`]) → sender (when to send: [`sender`]) → duty-cycle rule
+//! drone (sensors, UKF: [`run_drone`], [`DroneFilter`]) → sender (when to send: [`sender`]) → duty-cycle rule
 //! ([`DutyCycle`](crate::lora::DutyCycle)) → link (path loss and shadowing per drone–gateway
 //! link: `link`) → gateways and network server (reception, first copy, ADR: [`network`]) →
 //! station (predictor: [`station`]) → metrics.

@@ -1,10 +1,10 @@
 //! The network: gateways that receive, a network server that keeps one copy of each uplink and
 //! runs ADR, and the one event loop that moves every drone and every gateway through time.
 //!
-//! * [`gateway`]: one gateway's receiver and downlink duty cycle, and what it counted.
-//! * [`server`]: the network server: first copy of each packet, ADR from the best SNR, which
+//! * `gateway`: one gateway's receiver and downlink duty cycle, and what it counted.
+//! * `server`: the network server: first copy of each packet, ADR from the best SNR, which
 //!   gateway answers in which receive window.
-//! * [`event_loop`]: [`run_episode`], the loop itself: N ≥ 1 drones, M ≥ 1 gateways, one time axis.
+//! * `event_loop`: [`run_episode`], the loop itself: N ≥ 1 drones, M ≥ 1 gateways, one time axis.
 //!
 //! `simulate` is this loop with one drone; `swarm` is the same loop with many.
 

@@ -26,7 +26,7 @@ const MISS_RATE: f64 = 0.05;
 /// forecast it had made for that moment against the packet, and scales its whole position
 /// covariance so that 5 % of those forecasts fall outside the 95 % region — a Robbins–Monro
 /// step on the miss indicator (covariance matching; Mehra 1972): log s ← log s +
-/// gain·(1[miss] − 0.05). Only what has arrived is used, so the scale at any time rests on
+/// gain·(1\[miss\] − 0.05). Only what has arrived is used, so the scale at any time rests on
 /// the past; it starts at 1 (the synthetic calibration) for each flight.
 #[derive(Clone, Copy, Debug)]
 pub struct Calibration {

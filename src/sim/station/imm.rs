@@ -284,7 +284,7 @@ impl Tracker for Imm {
     }
 
     /// Runs copies of the members through the next packets' evaluation times (at least
-    /// [`AHEAD_TIMES`] of them), each member on a core of its own, unless the last batch
+    /// `AHEAD_TIMES` of them), each member on a core of its own, unless the last batch
     /// covers this packet: between packets each member predicts alone, and one after another
     /// they were the longest sequential work of a long flight. The members themselves only
     /// reset; `predict_to` then reads the batch.
