@@ -216,6 +216,21 @@ pub fn stations_of(params: JsValue) -> Result<JsValue, JsValue> {
     })
 }
 
+/// `poolDelivery({results})` → the network's totals (`packetsSent`, `packetsReceived`,
+/// `deliveryRatio`, `duplicates`, `gateways`) over `simulate` results run apart, as one run of
+/// all their stations reports them ([`Delivery::pooled`](crate::Delivery::pooled)): the page's
+/// worker pool runs stations on several workers and pools their results with it.
+#[wasm_bindgen(js_name = poolDelivery)]
+pub fn pool_delivery(params: JsValue) -> Result<JsValue, JsValue> {
+    #[derive(serde::Deserialize)]
+    struct Params {
+        results: Vec<crate::sim::Delivery>,
+    }
+    call(params, |p: Params| {
+        Ok(crate::sim::Delivery::pooled(&p.results))
+    })
+}
+
 /// `loadCsv({trajectory, trajectoryName?}, progress?)` → `{rows}`: reads a CSV flight into the
 /// module's cache, calling `progress(lines read, lines)` about a hundred times, so that the page
 /// can show how far a large file is; a following `simulate` of the same text starts at once.

@@ -661,3 +661,36 @@ fn seeds_give_each_result_an_interval_and_a_swarm_refuses_them() {
     .unwrap_err();
     assert!(error_message(e).contains("seeds must be 1..100"));
 }
+
+#[wasm_bindgen_test]
+fn pooling_stations_run_apart_gives_the_totals_of_one_run_of_them_all() {
+    // At 3 km packets are lost, and each station's drone loses its own.
+    let settings = |model: &str| {
+        obj(&[
+            ("synthetic", 2.into()),
+            ("model", model.into()),
+            ("distance", 3000.into()),
+        ])
+    };
+    let together = wasm::simulate(settings("all"), JsValue::UNDEFINED).unwrap();
+    // The page's pool: each station on a worker of its own, then their results pooled.
+    let apart = js_sys::Array::new();
+    for model in ["dr", "ctra-plus", "3d-ctra"] {
+        let one = wasm::simulate(settings(model), JsValue::UNDEFINED).unwrap();
+        apart.push(&js_sys::Array::from(&get(&one, "results")).get(0));
+    }
+    let pooled = wasm::pool_delivery(obj(&[("results", apart.into())])).unwrap();
+    for key in [
+        "packetsSent",
+        "packetsReceived",
+        "deliveryRatio",
+        "duplicates",
+    ] {
+        assert_eq!(num(&pooled, key), num(&together, key), "{key}");
+    }
+    assert!(num(&pooled, "packetsReceived") < num(&pooled, "packetsSent"));
+    let heard = |r: &JsValue| num(&js_sys::Array::from(&get(r, "gateways")).get(0), "heard");
+    assert_eq!(heard(&pooled), heard(&together));
+    let e = wasm::pool_delivery(obj(&[("results", 3.into())])).unwrap_err();
+    assert!(error_message(e).contains("invalid parameters"));
+}

@@ -11,6 +11,7 @@ import type {
   AirtimeReport,
   DecodeParams,
   DecodeReport,
+  Delivery,
   EncodeParams,
   EncodeReport,
   LinkBudgetParams,
@@ -122,6 +123,13 @@ export function settingOf(error: unknown): string | undefined {
 /** Every numeric setting's default and accepted range, as the core validates them. */
 export function limits(): NumberOption[] {
   return wasm.limits() as NumberOption[];
+}
+
+/** The network's totals over `simulate` results run apart (each result carries its own run's
+ * counts), as one run of all their stations reports them: packets, copies and every gateway's
+ * counts added up (the core's `Delivery::pooled`). */
+export function poolDelivery(results: Delivery[]): Delivery {
+  return wasm.poolDelivery({ results }) as Delivery;
 }
 
 /** The stations a `model` setting names, in order (`all` is the paper's three). */

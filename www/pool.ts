@@ -5,7 +5,7 @@
 // their reports in the request's model order. Every station's numbers depend only on the
 // flight, the seed and its own settings (the link's random streams are derived per flight), so
 // the merged report equals what one worker (or the CLI) computes for all models at once.
-import { compiledModule, stationsOf, type SimReport } from './loratrack';
+import { compiledModule, poolDelivery, stationsOf, type SimReport } from './loratrack';
 import type { ModuleMessage, Response, SimulateRequest, SweepResult } from './worker';
 
 /** A simulation worker (www/worker.ts), given the page's compiled module once it is ready;
@@ -115,32 +115,18 @@ function sameRun(request: SimulateRequest): string {
   return JSON.stringify({ ...request, id: 0 });
 }
 
-/** The reports of disjoint groups of stations as one report, stations in `models` order: the
- * network totals add up every station's run, as the core's do (`Delivery::add`). */
+/** The reports of disjoint groups of stations as one report, stations in `models` order, with the
+ * network totals the core pools from every station's run (`poolDelivery`). */
 export function merge(reports: SimReport[], models: string[], model: SimReport['config']['model']): SimReport {
   const results = models.map((m) => reports.flatMap((r) => r.results).find((x) => x.model === m)!);
   const base = reports[0];
   // The mission's plan comes with whichever group ran the mission station.
   const plan = reports.map((r) => r.series?.plan).find((p) => p !== undefined);
   const series = base.series && { ...base.series, ...(plan ? { plan } : {}), models: models.map((m) => reports.flatMap((r) => r.series?.models ?? []).find((s) => s.model === m)!) };
-  const sum = (f: (r: SimReport['results'][number]) => number) => results.reduce((a, r) => a + f(r), 0);
-  const packetsSent = sum((r) => r.packetsSent);
-  const packetsReceived = sum((r) => r.packetsReceived);
-  const gateways = base.gateways.map((g, i) => ({
-    ...g,
-    heard: sum((r) => r.gateways[i].heard),
-    onlyHeard: sum((r) => r.gateways[i].onlyHeard),
-    downlinksSent: sum((r) => r.gateways[i].downlinksSent),
-    downlinksDropped: sum((r) => r.gateways[i].downlinksDropped),
-  }));
   return {
     ...base,
     config: { ...base.config, model, models: results.map((r) => r.model) },
-    packetsSent,
-    packetsReceived,
-    deliveryRatio: packetsSent ? packetsReceived / packetsSent : 0,
-    duplicates: sum((r) => r.duplicates),
-    gateways,
+    ...poolDelivery(results),
     results,
     ...(series ? { series } : {}),
   };

@@ -7,7 +7,7 @@ use super::scenario::Scenario;
 use super::station::StationModel;
 use crate::lora::SX1276_SLEEP_CURRENT_MA;
 use crate::metrics::{Boxplot, Intervals, Summary, WholeFlightError};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 /// Echo of the settings (every key of [`Scenario`], flat, as given), plus what the run covered.
@@ -82,7 +82,7 @@ impl Energy {
 }
 
 /// Packets and copies over the whole network (JSON, at the top of `simulate` and `swarm`).
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct Delivery {
@@ -107,6 +107,24 @@ impl Delivery {
             gateways: net.gateways.clone(),
             ..Delivery::default()
         }
+    }
+
+    /// The network's totals over `runs` (each station's, or each flight's): packets, copies and
+    /// every gateway's counts added up. A `simulate` report's top-level counts are its stations'
+    /// pooled this way, and the page's worker pool, which runs the stations apart, pools their
+    /// results with it too (JS `poolDelivery`).
+    ///
+    /// ```
+    /// use loratrack::Delivery;
+    /// let run = |sent, received| Delivery { packets_sent: sent, packets_received: received, ..Delivery::default() };
+    /// let total = Delivery::pooled(&[run(10, 9), run(30, 21)]);
+    /// assert_eq!((total.packets_sent, total.packets_received), (40, 30));
+    /// assert_eq!(total.delivery_ratio, 0.75);
+    /// ```
+    pub fn pooled<'a>(runs: impl IntoIterator<Item = &'a Delivery>) -> Delivery {
+        let mut total = Delivery::default();
+        runs.into_iter().for_each(|r| total.add(r));
+        total
     }
 
     /// Adds another run's counts (same gateways).

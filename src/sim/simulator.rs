@@ -453,8 +453,7 @@ impl Simulator {
             .collect();
         let flown = fly_all(&runs, flights.len(), &mut tick);
         let (results, series_models) = pool(cfg, &stations, flown, &flights)?;
-        let mut delivery = Delivery::default();
-        results.iter().for_each(|r| delivery.add(&r.delivery));
+        let delivery = Delivery::pooled(results.iter().map(|r| &r.delivery));
         let series = s
             .run
             .series

@@ -1434,9 +1434,9 @@ config: SwarmEcho,
  */
 collisionRate: number, 
 /**
- * [`aloha_collision_rate`] per SF group at the group's mean achieved duty cycle, weighted
- * by the packets each group sent: what the formula predicts for senders at random phases
- * without capture or inter-SF effects (one gateway).
+ * Pure ALOHA's collision rate (`aloha_collision_rate`) per SF group at the group's mean
+ * achieved duty cycle, weighted by the packets each group sent: what the formula predicts
+ * for senders at random phases without capture or inter-SF effects (one gateway).
  */
 collisionRateTheory: number, 
 /**

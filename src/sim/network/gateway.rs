@@ -5,10 +5,10 @@ use crate::lora::{
     DutyCycle, DutyCycleMode, InterferenceModel, Outcome, Receiver, Uplink, Window,
     SX1301_DEMODULATORS,
 };
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// What one gateway did over a run (JSON `gateways[]`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct GatewayReport {

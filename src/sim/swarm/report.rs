@@ -50,9 +50,9 @@ pub struct SwarmReport {
     pub config: SwarmEcho,
     /// Packets lost to interference at every gateway that could hear them / packets sent.
     pub collision_rate: f64,
-    /// [`aloha_collision_rate`](crate::aloha_collision_rate) per SF group at the group's mean achieved duty cycle, weighted
-    /// by the packets each group sent: what the formula predicts for senders at random phases
-    /// without capture or inter-SF effects (one gateway).
+    /// Pure ALOHA's collision rate (`aloha_collision_rate`) per SF group at the group's mean
+    /// achieved duty cycle, weighted by the packets each group sent: what the formula predicts
+    /// for senders at random phases without capture or inter-SF effects (one gateway).
     pub collision_rate_theory: f64,
     /// The schedule's longest frame, s: the slowest drone's sending interval (`null` for
     /// ALOHA).
