@@ -116,7 +116,11 @@ impl Delivery {
     ///
     /// ```
     /// use loratrack::Delivery;
-    /// let run = |sent, received| Delivery { packets_sent: sent, packets_received: received, ..Delivery::default() };
+    /// let run = |packets_sent, packets_received| Delivery {
+    ///     packets_sent,
+    ///     packets_received,
+    ///     ..Delivery::default()
+    /// };
     /// let total = Delivery::pooled(&[run(10, 9), run(30, 21)]);
     /// assert_eq!((total.packets_sent, total.packets_received), (40, 30));
     /// assert_eq!(total.delivery_ratio, 0.75);
