@@ -8,8 +8,8 @@ use loratrack::{
     chain_flights, demodulation_floor_db, fly_alone, noise_floor_dbm, run_drone, snr_db,
     synthetic_set, Aboard, AdrDevice, AdrMode, AdrNetwork, AdrParams, Channel, ChannelParams,
     DataRate, DroneRadio, DutyCycle, DutyCycleMode, Estimates, GatewaySite, InterferenceModel,
-    LinkAdrReq, LoraParams, LorawanAdr, ModelKind, Network, Periodic, Scenario, Sensing, Simulator,
-    TrackingAdr, Transmission, UplinkReport, PAPER_Q, PAPER_R_DIAGONAL,
+    LinkAdrReq, LoraParams, LorawanAdr, ModelKind, Network, NetworkSetup, Periodic, Scenario,
+    Sensing, Simulator, TrackingAdr, Transmission, UplinkReport, PAPER_Q, PAPER_R_DIAGONAL,
 };
 use serde_json::{json, Value};
 
@@ -52,22 +52,23 @@ fn fly(
     .unwrap();
     let drone_radio = DroneRadio::new(&radio, 12, 0.01, mode).unwrap();
     let toa = drone_radio.current().time_on_air;
-    let mut net = Network::new(
-        vec![GatewaySite {
+    let setup = NetworkSetup {
+        sites: vec![GatewaySite {
             east: distance,
             north: 0.0,
             height: None,
         }],
-        15.0,
-        vec![drone_radio],
-        &params,
+        default_height: 15.0,
+        adr: params,
         channel,
-        InterferenceModel {
+        interference: InterferenceModel {
             capture: true,
             inter_sf: true,
         },
-        false,
-    );
+        lorawan: false,
+        listen_before_talk: false,
+    };
+    let mut net = Network::new(setup, vec![drone_radio]);
     if let Some(n) = custom {
         net.set_adr_network(0, n);
     }

@@ -6,9 +6,9 @@ use loratrack::api::simulate;
 use loratrack::{
     fly_alone, min_interval, run_drone, synthetic_flight, time_on_air, Aboard, AdrMode, AdrParams,
     Bounds, Channel, ChannelParams, DroneRadio, DutyCycle, DutyCycleMode, ErrorTriggered,
-    Estimates, GatewaySite, InterferenceModel, LoraParams, ModelKind, Network, Periodic,
-    Prediction, Scenario, Sender, SenderKind, Sensing, Simulator, StationModel, StationSetup,
-    PAPER_Q, PAPER_R_DIAGONAL,
+    Estimates, GatewaySite, InterferenceModel, LoraParams, ModelKind, Network, NetworkSetup,
+    Periodic, Prediction, Scenario, Sender, SenderKind, Sensing, Simulator, StationModel,
+    StationSetup, PAPER_Q, PAPER_R_DIAGONAL,
 };
 use serde_json::{json, Value};
 
@@ -60,22 +60,23 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
     };
     let network = || {
         let r = DroneRadio::new(&radio, 12, dc, AdrMode::Off).unwrap();
-        Network::new(
-            vec![GatewaySite {
+        let setup = NetworkSetup {
+            sites: vec![GatewaySite {
                 east: 1000.0,
                 north: 0.0,
                 height: None,
             }],
-            15.0,
-            vec![r],
-            &AdrParams::default(),
-            Channel::new(ChannelParams::default()).unwrap(),
-            InterferenceModel {
+            default_height: 15.0,
+            adr: AdrParams::default(),
+            channel: Channel::new(ChannelParams::default()).unwrap(),
+            interference: InterferenceModel {
                 capture: true,
                 inter_sf: true,
             },
-            false,
-        )
+            lorawan: false,
+            listen_before_talk: false,
+        };
+        Network::new(setup, vec![r])
     };
     let mut checked = 0;
     for flight_no in [2, 9, 17, 25] {

@@ -15,7 +15,7 @@ mod server;
 pub use event_loop::run_episode;
 
 pub use gateway::GatewayReport;
-pub use server::Network;
+pub use server::{Network, NetworkSetup};
 
 use crate::sim::clock::Timing;
 use crate::sim::flier::{Aboard, Air, Flier};

@@ -12,6 +12,27 @@ use crate::lora::{
 use crate::sim::radio::DroneRadio;
 use crate::sim::scenario::{GatewaySite, Validated};
 
+/// What a network is built from: its gateways, the link budget and reception rules they share,
+/// the server's ADR settings, and how the drones speak.
+#[derive(Clone, Debug)]
+pub struct NetworkSetup {
+    /// The gateways, in the scenario's frame.
+    pub sites: Vec<GatewaySite>,
+    /// Antenna height of a site given none, m.
+    pub default_height: f64,
+    /// ADR settings, run for each drone whose radio adapts.
+    pub adr: AdrParams,
+    /// Link budget shared by every link.
+    pub channel: Channel,
+    /// Reception rules of every gateway.
+    pub interference: InterferenceModel,
+    /// Whether the drones speak LoRaWAN (open class A receive windows; counted in their
+    /// energy). Raw LoRa, the paper's Table II, does not.
+    pub lorawan: bool,
+    /// Whether the drones listen before they talk (reference §15).
+    pub listen_before_talk: bool,
+}
+
 /// Everything that lasts across the episodes (flights) of a run: the gateways and their counts,
 /// each drone's radio, and the server's ADR state per drone.
 pub struct Network {
@@ -38,21 +59,22 @@ pub struct Network {
 }
 
 impl Network {
-    /// A network of `sites` for drones with `radios`; with ADR on, the server runs `adr` for
-    /// each drone (`shadowing_db` informs the tracking-aware choice).
-    pub fn new(
-        sites: Vec<GatewaySite>,
-        default_height: f64,
-        radios: Vec<DroneRadio>,
-        adr: &AdrParams,
-        channel: Channel,
-        interference: InterferenceModel,
-        lorawan: bool,
-    ) -> Self {
+    /// The network `setup` describes, for drones with `radios`; for each drone whose radio
+    /// adapts, the server runs ADR (the channel's shadowing informs the tracking-aware choice).
+    pub fn new(setup: NetworkSetup, radios: Vec<DroneRadio>) -> Self {
+        let NetworkSetup {
+            sites,
+            default_height,
+            adr,
+            channel,
+            interference,
+            lorawan,
+            listen_before_talk,
+        } = setup;
         let shadowing = channel.params().shadowing_sigma_db;
         let algorithms = radios
             .iter()
-            .map(|r| r.rates().map(|t| t.network(adr, shadowing)))
+            .map(|r| r.rates().map(|t| t.network(&adr, shadowing)))
             .collect();
         let gateways = sites
             .iter()
@@ -76,7 +98,7 @@ impl Network {
             interference,
             lorawan,
             duplicates: 0,
-            listen_before_talk: false,
+            listen_before_talk,
         }
     }
 
@@ -85,17 +107,16 @@ impl Network {
     /// rules, and whether drones listen before they talk.
     pub fn of(cfg: &Validated, east: f64, radios: Vec<DroneRadio>) -> Self {
         let s = cfg.s();
-        let mut net = Network::new(
-            cfg.sites(east),
-            s.channel.gateway_height,
-            radios,
-            &cfg.adr,
-            cfg.channel,
-            cfg.interference,
-            s.radio.overhead > 0,
-        );
-        net.listen_before_talk = s.access.access == ChannelAccess::Lbt;
-        net
+        let setup = NetworkSetup {
+            sites: cfg.sites(east),
+            default_height: s.channel.gateway_height,
+            adr: cfg.adr,
+            channel: cfg.channel,
+            interference: cfg.interference,
+            lorawan: s.radio.overhead > 0,
+            listen_before_talk: s.access.access == ChannelAccess::Lbt,
+        };
+        Network::new(setup, radios)
     }
 
     /// Replaces drone `drone`'s ADR algorithm (to compare a rule of one's own).
