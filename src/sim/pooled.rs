@@ -2,6 +2,7 @@
 
 use super::caveats::Caveats;
 use super::packet::Transmission;
+use super::radio::Frame;
 use super::report::{Boxplots, DataRateUse, Delivery, Energy, ModelResult, ModelSeries};
 use super::sender::SenderKind;
 use super::station::{StationModel, StationTrack};
@@ -117,18 +118,23 @@ impl Pooled {
         )
     }
 
-    /// The result row; `time_on_air`, `interval` in s (of the starting data rate); `network`
-    /// the gateways' counts and the duplicates of this station's run; `seed` draws the
-    /// intervals' resamples.
+    /// The result row of `model`, whose drone started each flight with `start` (its time on air
+    /// and interval are the row's) and whose filters repaired their covariance
+    /// `filter_recoveries` times; `network` the gateways' counts and the duplicates of this
+    /// station's run; `seed` draws the intervals' resamples.
     pub fn finish(
         mut self,
         model: StationModel,
-        time_on_air: f64,
-        interval: f64,
+        start: &Frame,
         filter_recoveries: u64,
         network: &Delivery,
         seed: u64,
     ) -> ModelResult {
+        let Frame {
+            time_on_air,
+            interval,
+            ..
+        } = *start;
         let energy = self.energy();
         let runs = self.sorted_runs();
         let delivery = Delivery {

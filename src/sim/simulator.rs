@@ -599,11 +599,9 @@ fn pool(
     // Each station's errors sorted and resampled on a core of its own: on one long flight
     // that was a second of one core while the other idled.
     let results = par_map_owned(gathered, |(station, pooled, counted, recoveries)| {
-        let now = station.start.current();
         pooled.finish(
             station.model,
-            now.time_on_air,
-            now.interval,
+            &station.start.current(),
             recoveries,
             &counted,
             s.run.seed,
