@@ -531,53 +531,18 @@ impl Scenario {
         // report clones these settings).
         let mut settings = self.clone();
         let source = settings.flight.take_source()?;
-        let r = &self.radio;
-        opt::SF.check(r.sf as f64)?;
-        opt::BW.check(r.bw)?;
-        opt::CR.check(r.cr as f64)?;
-        opt::OVERHEAD.check(r.overhead as f64)?;
-        opt::DUTY_CYCLE.check(r.duty_cycle)?;
-        opt::TX_POWER.check(r.tx_power)?;
-        let c = &self.channel;
-        opt::DISTANCE.check(c.distance)?;
-        opt::PATH_LOSS_EXPONENT.check(c.path_loss_exponent)?;
-        opt::SHADOWING.check(c.shadowing)?;
-        opt::GATEWAY_HEIGHT.check(c.gateway_height)?;
-        let n = &self.network;
-        validate_sites(&n.gateways)?;
-        let channels = self.channels();
-        opt::CHANNELS.check(f64::from(channels))?;
-        if channels != 1 && channels != self.access.region.channels() {
-            return Err(SimError::Source(format!(
-                "channels must be 1 or {}'s {}, got {channels}",
-                self.access.region.label(),
-                self.access.region.channels()
-            )));
-        }
+        let (r, c, n) = (&self.radio, &self.channel, &self.network);
+        r.validate()?;
+        c.validate()?;
+        let channels = n.validate(self.access.region)?;
         settings.network.channels = Some(channels);
-        opt::ADR_MARGIN.check(n.adr_margin)?;
-        opt::ADR_HISTORY.check(n.adr_history as f64)?;
-        opt::SENSOR_RATE.check(self.drone.sensor_rate)?;
-        opt::Q.check(self.drone.q)?;
-        opt::STEP.check(self.station.step)?;
-        opt::ETA.check(self.station.eta)?;
-        opt::PLAN_TOLERANCE.check(self.station.plan_tolerance)?;
+        self.drone.validate()?;
+        self.station.validate()?;
         let plan = settings.flight.take_plan(&source, &self.station.model)?;
         self.sending.validate()?;
         self.access.validate(r.duty_cycle)?;
-        opt::DRONES.check(self.swarm.drones as f64)?;
-        opt::DURATION.check(self.swarm.duration)?;
-        opt::SEED
-            .check(self.run.seed as f64)
-            .map_err(|_| SimError::Seed(self.run.seed))?;
-        opt::SEEDS.check(f64::from(self.run.seeds))?;
-        // Repeats run seed, seed + 1, …: the last must be a seed too.
-        if self.run.seed + u64::from(self.run.seeds.max(1)) - 1 > MAX_SEED {
-            return Err(SimError::Seeds {
-                first: self.run.seed,
-                count: self.run.seeds,
-            });
-        }
+        self.swarm.validate()?;
+        self.run.validate()?;
         let radio = LoraParams::from_settings(r.sf, r.bw, r.cr)?;
         let adr = AdrParams {
             mode: n.adr,
@@ -669,6 +634,91 @@ impl FlightSettings {
                 }
             },
         )
+    }
+}
+
+// Each section's limits (declared in `options.rs`), in the order `Scenario::validate` checks
+// them: the first problem is the one reported.
+impl RadioSettings {
+    fn validate(&self) -> Result<(), SimError> {
+        opt::SF.check(self.sf as f64)?;
+        opt::BW.check(self.bw)?;
+        opt::CR.check(self.cr as f64)?;
+        opt::OVERHEAD.check(self.overhead as f64)?;
+        opt::DUTY_CYCLE.check(self.duty_cycle)?;
+        opt::TX_POWER.check(self.tx_power)?;
+        Ok(())
+    }
+}
+
+impl ChannelSettings {
+    fn validate(&self) -> Result<(), SimError> {
+        opt::DISTANCE.check(self.distance)?;
+        opt::PATH_LOSS_EXPONENT.check(self.path_loss_exponent)?;
+        opt::SHADOWING.check(self.shadowing)?;
+        opt::GATEWAY_HEIGHT.check(self.gateway_height)?;
+        Ok(())
+    }
+}
+
+impl NetworkSettings {
+    /// The uplink channels under `region`'s plan: 1, or the plan's (the default).
+    fn validate(&self, region: Region) -> Result<u8, SimError> {
+        validate_sites(&self.gateways)?;
+        let channels = self.channels.unwrap_or(region.channels());
+        opt::CHANNELS.check(f64::from(channels))?;
+        if channels != 1 && channels != region.channels() {
+            return Err(SimError::Source(format!(
+                "channels must be 1 or {}'s {}, got {channels}",
+                region.label(),
+                region.channels()
+            )));
+        }
+        opt::ADR_MARGIN.check(self.adr_margin)?;
+        opt::ADR_HISTORY.check(self.adr_history as f64)?;
+        Ok(channels)
+    }
+}
+
+impl DroneSettings {
+    fn validate(&self) -> Result<(), SimError> {
+        opt::SENSOR_RATE.check(self.sensor_rate)?;
+        opt::Q.check(self.q)?;
+        Ok(())
+    }
+}
+
+impl StationSettings {
+    fn validate(&self) -> Result<(), SimError> {
+        opt::STEP.check(self.step)?;
+        opt::ETA.check(self.eta)?;
+        opt::PLAN_TOLERANCE.check(self.plan_tolerance)?;
+        Ok(())
+    }
+}
+
+impl SwarmSettings {
+    fn validate(&self) -> Result<(), SimError> {
+        opt::DRONES.check(self.drones as f64)?;
+        opt::DURATION.check(self.duration)?;
+        Ok(())
+    }
+}
+
+impl RunSettings {
+    fn validate(&self) -> Result<(), SimError> {
+        opt::SEED
+            .check(self.seed as f64)
+            .map_err(|_| SimError::Seed(self.seed))?;
+        opt::SEEDS.check(f64::from(self.seeds))?;
+        // Repeats run seed, seed + 1, …: the last must be a seed too.
+        if self.seed + u64::from(self.seeds.max(1)) - 1 > MAX_SEED {
+            return Err(SimError::Seeds {
+                first: self.seed,
+                count: self.seeds,
+            });
+        }
+        Ok(())
     }
 }
 
