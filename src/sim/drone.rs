@@ -1,6 +1,8 @@
 //! The drone side: noisy sensors and the on-board UKF (reference §4, "Drone side").
 
-use crate::filter::{measurement_noise, process_noise, SigmaParams, Ukf};
+use crate::filter::{
+    measurement_noise, process_noise, SigmaParams, Ukf, PAPER_Q, PAPER_R_DIAGONAL,
+};
 use crate::math::wrap_angle;
 use crate::models::{with_model, ModelKind, MotionModel, ANGLES};
 use crate::rng::Rng;
@@ -11,10 +13,9 @@ use nalgebra::{SMatrix, SVector};
 /// measures, the noise it assumes and meets, and the random streams its sensor noise draws from.
 ///
 /// ```
-/// use loratrack::{run_drone, synthetic_flight, ModelKind, Sensing, PAPER_R_DIAGONAL};
+/// use loratrack::{run_drone, synthetic_flight, ModelKind, Sensing};
 /// let flight = synthetic_flight(1).unwrap();
-/// let sensing = Sensing { rate: 10.0, q: 0.1, r_diagonal: PAPER_R_DIAGONAL, seed: 1, stream: 0 };
-/// let track = run_drone(&flight, ModelKind::Dr, &sensing);
+/// let track = run_drone(&flight, ModelKind::Dr, &Sensing::paper(1, 0));
 /// assert_eq!(track.period, 0.1);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -30,6 +31,21 @@ pub struct Sensing {
     /// Which of the seed's streams: the flight's index in a `simulate` run, the drone's in a
     /// swarm. The noise draws depend on `seed` and `stream` only.
     pub stream: u64,
+}
+
+impl Sensing {
+    /// The paper's drone (Table I): 10 Hz, q = 0.1, the measurement variances of Table I
+    /// ([`PAPER_Q`](crate::PAPER_Q), [`PAPER_R_DIAGONAL`](crate::PAPER_R_DIAGONAL)), drawing
+    /// from stream `stream` of `seed`.
+    pub fn paper(seed: u64, stream: u64) -> Self {
+        Sensing {
+            rate: crate::options::SENSOR_RATE.default,
+            q: PAPER_Q,
+            r_diagonal: PAPER_R_DIAGONAL,
+            seed,
+            stream,
+        }
+    }
 }
 
 /// The drone's own estimates at every sensor step, padded to 9 components (unused ones 0).
@@ -385,20 +401,13 @@ impl<'a> Estimates<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::filter::PAPER_R_DIAGONAL;
     use crate::trajectory::synthetic_flight;
 
     #[test]
     fn models_reading_shared_sensors_track_as_each_would_alone() {
         let flight = synthetic_flight(4).unwrap();
         let models = [ModelKind::Ctra3d, ModelKind::Dr, ModelKind::CtraPlus];
-        let sensing = Sensing {
-            rate: 10.0,
-            q: 0.1,
-            r_diagonal: PAPER_R_DIAGONAL,
-            seed: 7,
-            stream: 3,
-        };
+        let sensing = Sensing::paper(7, 3);
         let together = run_drones(&flight, &models, &sensing);
         assert_eq!(together.len(), 3);
         for (track, &model) in together.iter().zip(&models) {

@@ -347,7 +347,6 @@ impl<'a> Flier<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::filter::{PAPER_Q, PAPER_R_DIAGONAL};
     use crate::lora::{ChannelParams, DutyCycleMode};
     use crate::models::ModelKind;
     use crate::sim::clock::Timing;
@@ -359,14 +358,7 @@ mod tests {
 
     /// A 3D-CTRA drone with a live filter, one packet a second allowed.
     fn flier(flight: &Trajectory, sender: Box<dyn Sender>) -> Flier<'_> {
-        let sensing = Sensing {
-            rate: 10.0,
-            q: PAPER_Q,
-            r_diagonal: PAPER_R_DIAGONAL,
-            seed: 1,
-            stream: 0,
-        };
-        let filter = DroneFilter::new(flight, ModelKind::Ctra3d, &sensing);
+        let filter = DroneFilter::new(flight, ModelKind::Ctra3d, &Sensing::paper(1, 0));
         let rule = DutyCycle::new(DutyCycleMode::PerPacket, 0.01, 0.01, 1, flight.t[0]).unwrap();
         let channel = Channel::new(ChannelParams::default()).unwrap();
         let aboard = Aboard {

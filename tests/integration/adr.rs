@@ -9,7 +9,7 @@ use loratrack::{
     synthetic_set, Aboard, AdrDevice, AdrMode, AdrNetwork, AdrParams, Channel, ChannelParams,
     DataRate, DroneRadio, DutyCycle, DutyCycleMode, Estimates, GatewaySite, InterferenceModel,
     LinkAdrReq, LoraParams, LorawanAdr, ModelKind, Network, NetworkSetup, Periodic, Scenario,
-    Sensing, Simulator, TrackingAdr, Transmission, UplinkReport, PAPER_Q, PAPER_R_DIAGONAL,
+    Sensing, Simulator, TrackingAdr, Transmission, UplinkReport,
 };
 use serde_json::{json, Value};
 
@@ -29,17 +29,7 @@ fn fly(
     seconds: f64,
 ) -> Vec<Transmission> {
     let flight = chain_flights(&synthetic_set(), 0, seconds, 1).unwrap();
-    let drone = run_drone(
-        &flight,
-        ModelKind::Ctra3d,
-        &Sensing {
-            rate: 10.0,
-            q: PAPER_Q,
-            r_diagonal: PAPER_R_DIAGONAL,
-            seed: 1,
-            stream: 0,
-        },
-    );
+    let drone = run_drone(&flight, ModelKind::Ctra3d, &Sensing::paper(1, 0));
     let radio = LoraParams::new(start.sf(), start.bw());
     let params = AdrParams {
         mode,

@@ -82,17 +82,7 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
     for flight_no in [2, 9, 17, 25] {
         let flight = synthetic_flight(flight_no).unwrap();
         for seed in 1..=3 {
-            let drone = run_drone(
-                &flight,
-                ModelKind::Ctra3d,
-                &Sensing {
-                    rate: 10.0,
-                    q: PAPER_Q,
-                    r_diagonal: PAPER_R_DIAGONAL,
-                    seed,
-                    stream: 0,
-                },
-            );
+            let drone = run_drone(&flight, ModelKind::Ctra3d, &Sensing::paper(seed, 0));
             for (mode, burst) in [
                 (DutyCycleMode::PerPacket, 1),
                 (DutyCycleMode::Budget, 10),
