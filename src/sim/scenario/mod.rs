@@ -513,9 +513,7 @@ impl Scenario {
 
     /// Uplink channels: as given, else the regional plan's.
     pub fn channels(&self) -> u8 {
-        self.network
-            .channels
-            .unwrap_or(self.access.region.channels())
+        self.network.channels(self.access.region)
     }
 
     /// Checks every setting before any work: the first problem, naming the field, the value
@@ -662,10 +660,15 @@ impl ChannelSettings {
 }
 
 impl NetworkSettings {
-    /// The uplink channels under `region`'s plan: 1, or the plan's (the default).
+    /// Uplink channels under `region`'s plan: as given, else the plan's.
+    fn channels(&self, region: Region) -> u8 {
+        self.channels.unwrap_or(region.channels())
+    }
+
+    /// The uplink channels under `region`'s plan, checked: 1, or the plan's (the default).
     fn validate(&self, region: Region) -> Result<u8, SimError> {
         validate_sites(&self.gateways)?;
-        let channels = self.channels.unwrap_or(region.channels());
+        let channels = self.channels(region);
         opt::CHANNELS.check(f64::from(channels))?;
         if channels != 1 && channels != region.channels() {
             return Err(SimError::Source(format!(
