@@ -79,79 +79,171 @@ pub fn parse_csv_with_progress(
         return Err(TrajectoryError::TooLarge { bytes: text.len() });
     }
     let text = text.trim_start_matches('\u{feff}');
-    // Classic Mac files end lines with a lone CR.
-    let split: Box<dyn Iterator<Item = &str>> = if !text.contains('\n') && text.contains('\r') {
-        Box::new(text.split('\r'))
-    } else {
-        Box::new(text.lines())
-    };
-    let mut lines = split
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let mut lines = data_lines(text);
     let (header_at, header_line) = lines.next().ok_or(TrajectoryError::Empty)?;
-    let header: Vec<String> = header_line
-        .split(',')
-        .map(|h| h.trim().trim_matches('"').to_ascii_lowercase())
-        .collect();
-    let mut columns = [None; 10];
-    for (k, (_, names)) in ALIASES.iter().enumerate() {
-        columns[k] = find(&header, names);
-    }
-    columns[9] = find(&header, AZ_ALIASES);
-    for (k, (canonical, _)) in ALIASES.iter().take(4).enumerate() {
-        if columns[k].is_none() {
-            return Err(TrajectoryError::MissingColumn {
-                line: header_at,
-                column: canonical,
-                header: header_line.to_string(),
-            });
-        }
-    }
-    let has_vel = columns[4..7].iter().all(Option::is_some);
-    let has_acc = has_vel && columns[7..10].iter().all(Option::is_some);
-
-    // Columns straight from the rows (no table of rows: a 10⁶-row file's would be 80 MB), and
-    // the line of each row only where a derivative's refusal may need to name it.
-    let (mut t, mut pos, mut vel, mut acc) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    let mut line_numbers = Vec::new();
-    let mut fields: Vec<&str> = Vec::with_capacity(header.len());
+    let columns = Columns::from_header(header_at, header_line)?;
+    let mut read = Read::new(&columns);
     let total = text.bytes().filter(|&b| b == b'\n').count().max(1);
     let every = (total / 100).max(1);
     for (line, l) in lines {
         if line % every == 0 {
             progress(line.min(total), total);
         }
-        if t.len() >= MAX_ROWS {
+        if read.t.len() >= MAX_ROWS {
             return Err(TrajectoryError::TooManyRows { max: MAX_ROWS });
         }
+        let row = columns.row(line, l, &mut read.fields)?;
+        read.push(line, row)?;
+    }
+    read.finish(name)
+}
+
+/// The lines that hold data or the header, numbered from 1 and trimmed: blank lines and `#`
+/// comments are skipped.
+fn data_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    // Classic Mac files end lines with a lone CR.
+    let split: Box<dyn Iterator<Item = &str>> = if !text.contains('\n') && text.contains('\r') {
+        Box::new(text.split('\r'))
+    } else {
+        Box::new(text.lines())
+    };
+    split
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim()))
+        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'))
+}
+
+/// Where each quantity is in a row: the header's names, lower-cased and unquoted, and the field
+/// of t, x, y, z, vx, vy, vz, ax, ay, az (the last six optional).
+struct Columns {
+    header: Vec<String>,
+    index: [Option<usize>; 10],
+    /// The row gives velocities.
+    has_vel: bool,
+    /// The row gives velocities and accelerations.
+    has_acc: bool,
+}
+
+impl Columns {
+    /// Reads the header row (line `line`); t, x, y and z must be there.
+    fn from_header(line: usize, header_line: &str) -> Result<Self, TrajectoryError> {
+        let header: Vec<String> = header_line
+            .split(',')
+            .map(|h| h.trim().trim_matches('"').to_ascii_lowercase())
+            .collect();
+        let mut index = [None; 10];
+        for (k, (_, names)) in ALIASES.iter().enumerate() {
+            index[k] = find(&header, names);
+        }
+        index[9] = find(&header, AZ_ALIASES);
+        if let Some((canonical, _)) = ALIASES[..4]
+            .iter()
+            .zip(&index)
+            .find_map(|(a, i)| i.is_none().then_some(a))
+        {
+            return Err(TrajectoryError::MissingColumn {
+                line,
+                column: canonical,
+                header: header_line.to_string(),
+            });
+        }
+        let has_vel = index[4..7].iter().all(Option::is_some);
+        let has_acc = has_vel && index[7..10].iter().all(Option::is_some);
+        Ok(Columns {
+            header,
+            index,
+            has_vel,
+            has_acc,
+        })
+    }
+
+    /// The ten quantities of data line `line` (those the file lacks 0), read with `fields` as
+    /// scratch space.
+    fn row<'a>(
+        &self,
+        line: usize,
+        text: &'a str,
+        fields: &mut Vec<&'a str>,
+    ) -> Result<[f64; 10], TrajectoryError> {
         fields.clear();
-        split_fields(l, &mut fields);
-        if fields.len() != header.len() {
+        split_fields(text, fields);
+        if fields.len() != self.header.len() {
             return Err(TrajectoryError::FieldCount {
                 line,
                 got: fields.len(),
-                expected: header.len(),
+                expected: self.header.len(),
             });
         }
         let mut row = [0.0; 10];
-        for (k, c) in columns.iter().enumerate() {
+        for (k, c) in self.index.iter().enumerate() {
             let Some(c) = *c else { continue };
             let text = unquoted(fields[c]);
             let v: f64 = text.parse().map_err(|_| TrajectoryError::NotANumber {
                 line,
-                column: header[c].clone(),
+                column: self.header[c].clone(),
                 text: text.chars().take(40).collect(),
             })?;
             if !v.is_finite() {
                 return Err(TrajectoryError::NonFinite {
                     line,
-                    column: header[c].clone(),
+                    column: self.header[c].clone(),
                 });
             }
             row[k] = v;
         }
-        if let Some(&prev) = t.last() {
+        Ok(row)
+    }
+}
+
+/// The flight as read so far, column by column (no table of rows: a 10⁶-row file's would be
+/// 80 MB), with the line of each row only where a derivative's refusal may need to name it.
+struct Read<'a> {
+    has_vel: bool,
+    has_acc: bool,
+    t: Vec<f64>,
+    pos: Vec<[f64; 3]>,
+    vel: Vec<[f64; 3]>,
+    acc: Vec<[f64; 3]>,
+    line_numbers: Vec<usize>,
+    /// Scratch space for a row's fields.
+    fields: Vec<&'a str>,
+}
+
+impl Read<'_> {
+    fn new(columns: &Columns) -> Self {
+        Read {
+            has_vel: columns.has_vel,
+            has_acc: columns.has_acc,
+            t: Vec::new(),
+            pos: Vec::new(),
+            vel: Vec::new(),
+            acc: Vec::new(),
+            line_numbers: Vec::new(),
+            fields: Vec::with_capacity(columns.header.len()),
+        }
+    }
+
+    /// Adds data line `line`'s quantities, once they pass [`Read::check`].
+    fn push(&mut self, line: usize, row: [f64; 10]) -> Result<(), TrajectoryError> {
+        self.check(line, &row)?;
+        self.t.push(row[0]);
+        self.pos.push([row[1], row[2], row[3]]);
+        if self.has_vel {
+            self.vel.push([row[4], row[5], row[6]]);
+        }
+        if self.has_acc {
+            self.acc.push([row[7], row[8], row[9]]);
+        } else {
+            self.line_numbers.push(line);
+        }
+        Ok(())
+    }
+
+    /// Refuses a row whose time does not follow the last one's, or whose position, speed or
+    /// acceleration no drone could have (reference §11).
+    fn check(&self, line: usize, row: &[f64; 10]) -> Result<(), TrajectoryError> {
+        let absurd = |what: String| Err(TrajectoryError::Absurd { line, what });
+        if let Some(&prev) = self.t.last() {
             if row[0] <= prev {
                 return Err(TrajectoryError::TimeNotIncreasing { line });
             }
@@ -163,72 +255,68 @@ pub fn parse_csv_with_progress(
             }
         }
         if row[1..4].iter().any(|v| v.abs() > MAX_COORDINATE) {
-            return Err(TrajectoryError::Absurd {
-                line,
-                what: format!("a coordinate beyond {MAX_COORDINATE} m from the origin"),
-            });
+            return absurd(format!(
+                "a coordinate beyond {MAX_COORDINATE} m from the origin"
+            ));
         }
-        if has_vel && (row[4] * row[4] + row[5] * row[5] + row[6] * row[6]).sqrt() > MAX_SPEED {
-            return Err(TrajectoryError::Absurd {
-                line,
-                what: format!("a speed over {MAX_SPEED} m/s"),
-            });
+        if self.has_vel && (row[4] * row[4] + row[5] * row[5] + row[6] * row[6]).sqrt() > MAX_SPEED
+        {
+            return absurd(format!("a speed over {MAX_SPEED} m/s"));
         }
-        if has_acc
+        if self.has_acc
             && (row[7] * row[7] + row[8] * row[8] + row[9] * row[9]).sqrt() > MAX_ACCELERATION
         {
-            return Err(TrajectoryError::Absurd {
-                line,
-                what: format!("an acceleration over {MAX_ACCELERATION} m/s²"),
-            });
+            return absurd(format!("an acceleration over {MAX_ACCELERATION} m/s²"));
         }
-        if let Some(&first) = t.first() {
-            if row[0] - first > MAX_DURATION {
-                return Err(TrajectoryError::Absurd {
-                    line,
-                    what: format!("a flight longer than {MAX_DURATION} s"),
-                });
+        match self.t.first() {
+            Some(&first) if row[0] - first > MAX_DURATION => {
+                absurd(format!("a flight longer than {MAX_DURATION} s"))
             }
-        }
-        t.push(row[0]);
-        pos.push([row[1], row[2], row[3]]);
-        if has_vel {
-            vel.push([row[4], row[5], row[6]]);
-        }
-        if has_acc {
-            acc.push([row[7], row[8], row[9]]);
-        } else {
-            line_numbers.push(line);
+            _ => Ok(()),
         }
     }
-    if t.is_empty() {
-        return Err(TrajectoryError::HeaderOnly);
-    }
-    if t.len() < MIN_ROWS {
-        return Err(TrajectoryError::TooFewRows {
-            rows: t.len(),
-            min: MIN_ROWS,
-        });
-    }
-    if !has_vel {
-        vel = smoothed_derivative(&t, &pos, 0.15);
-        if let Some(i) = vel.iter().position(|v| !within(v, MAX_SPEED)) {
-            return Err(TrajectoryError::Absurd {
-                line: line_numbers[i],
-                what: format!("positions imply a speed over {MAX_SPEED} m/s"),
+
+    /// The flight, with the velocities and accelerations the file lacks derived from it.
+    fn finish(mut self, name: &str) -> Result<Trajectory, TrajectoryError> {
+        if self.t.is_empty() {
+            return Err(TrajectoryError::HeaderOnly);
+        }
+        if self.t.len() < MIN_ROWS {
+            return Err(TrajectoryError::TooFewRows {
+                rows: self.t.len(),
+                min: MIN_ROWS,
             });
         }
+        if !self.has_vel {
+            let refusal = format!("positions imply a speed over {MAX_SPEED} m/s");
+            self.vel = self.derived(&self.pos, 0.15, MAX_SPEED, refusal)?;
+        }
+        if !self.has_acc {
+            let refusal =
+                format!("the motion implies an acceleration over {MAX_ACCELERATION} m/s²");
+            self.acc = self.derived(&self.vel, 0.3, MAX_ACCELERATION, refusal)?;
+        }
+        Trajectory::new(name.to_string(), self.t, self.pos, self.vel, self.acc)
     }
-    if !has_acc {
-        acc = smoothed_derivative(&t, &vel, 0.3);
-        if let Some(i) = acc.iter().position(|a| !within(a, MAX_ACCELERATION)) {
-            return Err(TrajectoryError::Absurd {
-                line: line_numbers[i],
-                what: format!("the motion implies an acceleration over {MAX_ACCELERATION} m/s²"),
-            });
+
+    /// The derivative of `values` over ±`half_window` s ([`smoothed_derivative`]), refused
+    /// with `refusal` at the first sample where its length exceeds `limit`.
+    fn derived(
+        &self,
+        values: &[[f64; 3]],
+        half_window: f64,
+        limit: f64,
+        refusal: String,
+    ) -> Result<Vec<[f64; 3]>, TrajectoryError> {
+        let derivative = smoothed_derivative(&self.t, values, half_window);
+        match derivative.iter().position(|v| !within(v, limit)) {
+            Some(i) => Err(TrajectoryError::Absurd {
+                line: self.line_numbers[i],
+                what: refusal,
+            }),
+            None => Ok(derivative),
         }
     }
-    Trajectory::new(name.to_string(), t, pos, vel, acc)
 }
 
 /// The comma-separated fields of `line`, each trimmed of white space, appended to `out`.
