@@ -4,6 +4,7 @@
 use super::plan::FlightPlan;
 use super::MAX_CSV_BYTES;
 use core::fmt;
+use serde_json::Value;
 
 /// Why a plan could not be read. Line numbers count from 1.
 #[derive(Clone, Debug, PartialEq)]
@@ -148,7 +149,6 @@ const EARTH_RADIUS: f64 = 6_371_000.0;
 /// are relative to home (frame 3) or, in frame 0, above mean sea level less home's. Complex
 /// items (surveys, corridor scans) are refused with their name.
 fn parse_qgc(text: &str) -> Result<FlightPlan, PlanError> {
-    use serde_json::Value;
     let v: Value =
         serde_json::from_str(text).map_err(|e| PlanError::Qgc(format!("not JSON: {e}")))?;
     if v.get("fileType").and_then(Value::as_str) != Some("FlightPlan") {
@@ -157,45 +157,70 @@ fn parse_qgc(text: &str) -> Result<FlightPlan, PlanError> {
     let mission = v
         .get("mission")
         .ok_or_else(|| PlanError::Qgc("no mission".into()))?;
-    let home = mission
-        .get("plannedHomePosition")
-        .and_then(Value::as_array)
-        .and_then(|h| {
-            let n: Vec<f64> = h.iter().filter_map(Value::as_f64).collect();
-            (n.len() == 3).then(|| [n[0], n[1], n[2]])
-        })
-        .ok_or_else(|| PlanError::Qgc("no plannedHomePosition [lat, lon, alt]".into()))?;
-    let multirotor = mission.get("vehicleType").and_then(Value::as_u64) == Some(2);
-    let default_speed = if multirotor {
-        "hoverSpeed"
-    } else {
-        "cruiseSpeed"
-    };
-    let mut speed = mission.get(default_speed).and_then(Value::as_f64);
-    let local = |lat: f64, lon: f64| {
-        let k = core::f64::consts::PI / 180.0 * EARTH_RADIUS;
-        [
-            (lon - home[1]) * k * crate::math::cos(home[0].to_radians()),
-            (lat - home[0]) * k,
-        ]
-    };
+    let mut flown = Flown::new(mission)?;
     let items = mission
         .get("items")
         .and_then(Value::as_array)
         .ok_or_else(|| PlanError::Qgc("mission.items is not a list".into()))?;
-    let mut points = vec![[0.0, 0.0, 0.0]];
-    let mut speeds = Vec::new();
     for (i, item) in items.iter().enumerate() {
-        let at = |what: &str| PlanError::Qgc(format!("item {}: {what}", i + 1));
+        flown
+            .item(item)
+            .map_err(|what| PlanError::Qgc(format!("item {}: {what}", i + 1)))?;
+    }
+    if flown.points.len() < 2 {
+        return Err(PlanError::Empty);
+    }
+    FlightPlan::new(flown.points, flown.speeds)
+}
+
+/// A QGroundControl mission as its items are read in order: the waypoints so far (home first),
+/// the speed of each leg, and the speed the next leg will have.
+struct Flown {
+    /// Home: latitude and longitude, degrees, and altitude above mean sea level, m.
+    home: [f64; 3],
+    speed: Option<f64>,
+    points: Vec<[f64; 3]>,
+    speeds: Vec<Option<f64>>,
+}
+
+impl Flown {
+    /// Starts at the mission's planned home position, at its hover speed (multirotor) or cruise
+    /// speed.
+    fn new(mission: &Value) -> Result<Self, PlanError> {
+        let home = mission
+            .get("plannedHomePosition")
+            .and_then(Value::as_array)
+            .and_then(|h| {
+                let n: Vec<f64> = h.iter().filter_map(Value::as_f64).collect();
+                (n.len() == 3).then(|| [n[0], n[1], n[2]])
+            })
+            .ok_or_else(|| PlanError::Qgc("no plannedHomePosition [lat, lon, alt]".into()))?;
+        let multirotor = mission.get("vehicleType").and_then(Value::as_u64) == Some(2);
+        let default_speed = if multirotor {
+            "hoverSpeed"
+        } else {
+            "cruiseSpeed"
+        };
+        Ok(Flown {
+            home,
+            speed: mission.get(default_speed).and_then(Value::as_f64),
+            points: vec![[0.0, 0.0, 0.0]],
+            speeds: Vec::new(),
+        })
+    }
+
+    /// Reads one mission item: a speed change, a leg to a new waypoint, or nothing that moves
+    /// the vehicle. The refusal says what is wrong with the item.
+    fn item(&mut self, item: &Value) -> Result<(), String> {
         if item.get("type").and_then(Value::as_str) != Some("SimpleItem") {
             let kind = item
                 .get("complexItemType")
                 .and_then(Value::as_str)
                 .unwrap_or("unknown");
-            return Err(at(&format!(
+            return Err(format!(
                 "complex item '{}' is not read; convert it to waypoints in QGroundControl",
                 excerpt(kind)
-            )));
+            ));
         }
         let command = item.get("command").and_then(Value::as_u64).unwrap_or(0);
         let params: Vec<Option<f64>> = item
@@ -204,51 +229,55 @@ fn parse_qgc(text: &str) -> Result<FlightPlan, PlanError> {
             .map(|p| p.iter().map(Value::as_f64).collect())
             .unwrap_or_default();
         let param = |k: usize| params.get(k).copied().flatten();
-        let last = points[points.len() - 1];
+        let last = self.points[self.points.len() - 1];
         let point = match command {
             DO_CHANGE_SPEED => {
-                speed = param(1).filter(|s| *s > 0.0).or(speed);
-                continue;
+                self.speed = param(1).filter(|s| *s > 0.0).or(self.speed);
+                return Ok(());
             }
             NAV_RETURN_TO_LAUNCH => [0.0, 0.0, last[2]],
             NAV_WAYPOINT | NAV_TAKEOFF | NAV_LAND => {
-                let (lat, lon) = match (param(4), param(5)) {
-                    (Some(lat), Some(lon)) if lat != 0.0 || lon != 0.0 => (lat, lon),
+                let [x, y] = match (param(4), param(5)) {
+                    (Some(lat), Some(lon)) if lat != 0.0 || lon != 0.0 => self.local(lat, lon),
                     // Take-off and landing often leave the position to the vehicle: in place.
-                    _ if command != NAV_WAYPOINT => (f64::NAN, f64::NAN),
-                    _ => return Err(at("a waypoint without latitude and longitude")),
+                    _ if command != NAV_WAYPOINT => [last[0], last[1]],
+                    _ => return Err("a waypoint without latitude and longitude".into()),
                 };
                 let alt = if command == NAV_LAND {
                     0.0
                 } else {
-                    let alt = param(6).ok_or_else(|| at("no altitude"))?;
-                    match item.get("frame").and_then(Value::as_u64) {
-                        Some(0) => alt - home[2],
-                        Some(3) | None => alt,
-                        Some(f) => {
-                            return Err(at(&format!(
-                                "altitude frame {f} is not read (use relative altitude, frame 3)"
-                            )))
-                        }
-                    }
-                };
-                let [x, y] = if lat.is_nan() {
-                    [last[0], last[1]]
-                } else {
-                    local(lat, lon)
+                    self.altitude(param(6), item)?
                 };
                 [x, y, alt]
             }
             // Camera, gimbal, delay and other commands do not move the vehicle.
-            _ => continue,
+            _ => return Ok(()),
         };
-        points.push(point);
-        speeds.push(speed);
+        self.points.push(point);
+        self.speeds.push(self.speed);
+        Ok(())
     }
-    if points.len() < 2 {
-        return Err(PlanError::Empty);
+
+    /// East and north of home, m, of a latitude and longitude (degrees).
+    fn local(&self, lat: f64, lon: f64) -> [f64; 2] {
+        let k = core::f64::consts::PI / 180.0 * EARTH_RADIUS;
+        [
+            (lon - self.home[1]) * k * crate::math::cos(self.home[0].to_radians()),
+            (lat - self.home[0]) * k,
+        ]
     }
-    FlightPlan::new(points, speeds)
+
+    /// An item's altitude above home, m, from its altitude parameter in its frame.
+    fn altitude(&self, alt: Option<f64>, item: &Value) -> Result<f64, String> {
+        let alt = alt.ok_or("no altitude")?;
+        match item.get("frame").and_then(Value::as_u64) {
+            Some(0) => Ok(alt - self.home[2]),
+            Some(3) | None => Ok(alt),
+            Some(f) => Err(format!(
+                "altitude frame {f} is not read (use relative altitude, frame 3)"
+            )),
+        }
+    }
 }
 
 #[cfg(test)]
