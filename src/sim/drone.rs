@@ -6,6 +6,7 @@ use crate::filter::{
 use crate::math::wrap_angle;
 use crate::models::{with_model, ModelKind, MotionModel, ANGLES};
 use crate::rng::Rng;
+use crate::sim::streams::DroneStreams;
 use crate::trajectory::Trajectory;
 use nalgebra::{SMatrix, SVector};
 
@@ -26,11 +27,8 @@ pub struct Sensing {
     pub q: f64,
     /// Measurement variances (paper Table I): the sensors' noise and the filter's R.
     pub r_diagonal: [f64; 9],
-    /// The run's seed.
-    pub seed: u64,
-    /// Which of the seed's streams: the flight's index in a `simulate` run, the drone's in a
-    /// swarm. The noise draws depend on `seed` and `stream` only.
-    pub stream: u64,
+    /// The drone's random streams: the noise draws depend on them only.
+    pub streams: DroneStreams,
 }
 
 impl Sensing {
@@ -42,8 +40,7 @@ impl Sensing {
             rate: crate::options::SENSOR_RATE.default,
             q: PAPER_Q,
             r_diagonal: PAPER_R_DIAGONAL,
-            seed,
-            stream,
+            streams: DroneStreams { seed, stream },
         }
     }
 }
@@ -150,7 +147,7 @@ impl<'a> Sensors<'a> {
         Sensors {
             flight,
             sd: core::array::from_fn(|i| sensing.r_diagonal[i].sqrt()),
-            rng: Rng::derive(sensing.seed, sensing.stream),
+            rng: sensing.streams.sensors(),
             hint: 0,
             start: flight.t[0],
             period: 1.0 / sensing.rate,
@@ -425,7 +422,10 @@ mod tests {
             &flight,
             ModelKind::Dr,
             &Sensing {
-                stream: 4,
+                streams: DroneStreams {
+                    stream: 4,
+                    ..sensing.streams
+                },
                 ..sensing
             },
         );

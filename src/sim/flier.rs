@@ -8,7 +8,7 @@ use super::packet::Transmission;
 use super::radio::Frame;
 use super::schedule::Slot;
 use super::sender::Sender;
-use super::streams;
+use super::streams::DroneStreams;
 use crate::codec::{decode, encode};
 use crate::lora::{Channel, DutyCycle, Outcome};
 use crate::rng::Rng;
@@ -35,8 +35,8 @@ pub struct Air<'g> {
     pub gateways: &'g [[f64; 3]],
     /// The link budget all links share.
     pub channel: &'g Channel,
-    /// The run's seed and the drone's stream of it (`sim/streams.rs`).
-    pub streams: (u64, u64),
+    /// The drone's random streams.
+    pub streams: DroneStreams,
     /// The uplink channels it picks among.
     pub channels: u8,
     /// Its data rate's duty-cycle interval, s: its first packet's offset is drawn within it.
@@ -94,8 +94,8 @@ impl<'a> Flier<'a> {
             sender,
             rule,
         } = aboard;
-        let (seed, stream) = air.streams;
-        let mut link_rng = streams::link(seed, stream);
+        let streams = air.streams;
+        let mut link_rng = streams.link();
         let from = flight.t[0] + link_rng.uniform() * air.interval;
         let mut first = Some(link_rng);
         let links = air
@@ -103,9 +103,7 @@ impl<'a> Flier<'a> {
             .iter()
             .enumerate()
             .map(|(g, &at)| {
-                let rng = first
-                    .take()
-                    .unwrap_or_else(|| streams::gateway(seed, g, stream));
+                let rng = first.take().unwrap_or_else(|| streams.gateway(g));
                 Link::new(air.channel, at, rng)
             })
             .collect();
@@ -115,7 +113,7 @@ impl<'a> Flier<'a> {
             Clock::new(
                 air.timing.clock_drift_ppm,
                 air.timing.jitter,
-                streams::clock(seed, stream),
+                streams.clock(),
             )
         };
         let mut f = Flier {
@@ -126,7 +124,7 @@ impl<'a> Flier<'a> {
             // The drone starts sending at `from`: its duty-cycle credit starts there too.
             rule: rule.starting_at(from),
             links,
-            hop: streams::channel(seed, stream),
+            hop: streams.channel(),
             channels: air.channels,
             fixed_channel: None,
             k: 0,
@@ -370,7 +368,7 @@ mod tests {
         let air = Air {
             gateways: &[[1000.0, 0.0, 0.0]],
             channel: &channel,
-            streams: (1, 0),
+            streams: DroneStreams { seed: 1, stream: 0 },
             channels: 1,
             interval: 1.0,
             timing: Timing::EXACT,

@@ -60,5 +60,5 @@ pub use station::{
     StationTrack, Tracker, Upcoming, CALIBRATION_GAIN, MANOEUVRE_SPREAD, OFFSET_TIME, PACE_SIGMA,
     PACE_TIME,
 };
-pub use streams::{channel as channel_stream, gateway as gateway_stream, link as link_stream};
+pub use streams::DroneStreams;
 pub use swarm::{run_swarm, DroneReport, LargestSwarm, SwarmEcho, SwarmReport};

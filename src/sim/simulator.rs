@@ -9,6 +9,7 @@ use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, 
 use super::schedule::Schedule;
 use super::station::{Estimate, FlightChains, Prediction, StationModel, MAX_GRIDS};
 use super::station_run::{FlightRun, StationPlan, StationRun};
+use super::streams::DroneStreams;
 use super::SimError;
 use crate::lora::Channel;
 use crate::math::pow;
@@ -286,7 +287,14 @@ impl Simulator {
             |k| {
                 let ((seed, members), i) = (&seeds[k / n], k % n);
                 let models: Vec<ModelKind> = members.iter().map(|&m| missing[m].model).collect();
-                run_drones(&flights[i], &models, &cfg.sensing(*seed, i as u64))
+                run_drones(
+                    &flights[i],
+                    &models,
+                    &cfg.sensing(DroneStreams {
+                        seed: *seed,
+                        stream: i as u64,
+                    }),
+                )
             },
             &mut |k| seeds[k / n].1.iter().for_each(|_| tick()),
         );

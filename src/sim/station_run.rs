@@ -23,6 +23,7 @@ use super::station::{
     new_tracker, track_station, FlightChains, MissionPlan, Prediction, Scoring, StationModel,
     StationSetup, StationTrack,
 };
+use super::streams::DroneStreams;
 use super::SimError;
 use crate::trajectory::Trajectory;
 use std::sync::Mutex;
@@ -200,16 +201,20 @@ impl StationRun<'_> {
         let now = net.radios[0].current();
         let rule = s.sending.rule(self.plan.duty_cycle, now.time_on_air)?;
         let gateways = net.gateways_at([flight.pos[0][0], flight.pos[0][1]]);
+        // The same streams for every station: stations that send the same payload see the same
+        // packets, so their comparison is paired.
+        let streams = DroneStreams {
+            seed: self.seed,
+            stream: i as u64,
+        };
         let estimates = match self.drones {
             Some(d) => Estimates::Stored(&d[i]),
             None => Estimates::live(DroneFilter::new(
                 flight,
                 model.sent_model(),
-                &self.cfg.sensing(self.seed, i as u64),
+                &self.cfg.sensing(streams),
             )),
         };
-        // The same streams for every station: stations that send the same payload see the same
-        // packets, so their comparison is paired.
         let aboard = Aboard {
             flight,
             estimates,
@@ -219,7 +224,7 @@ impl StationRun<'_> {
         let air = Air {
             gateways: &gateways,
             channel: &net.channel,
-            streams: (self.seed, i as u64),
+            streams,
             channels: self.cfg.channels,
             interval: now.interval,
             timing: s.access.single_timing(),
@@ -280,7 +285,7 @@ mod tests {
         let drones = vec![run_drone(
             &flights[0],
             plan.model.sent_model(),
-            &cfg.sensing(9, 0),
+            &cfg.sensing(DroneStreams { seed: 9, stream: 0 }),
         )];
         let run = StationRun {
             plan: &plan,

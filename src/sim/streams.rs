@@ -16,22 +16,48 @@ pub const CLOCK_STREAM: u64 = 0x434C_4F43; // "CLOC"
 /// The shadowing of every gateway after the first.
 const GATEWAY_STREAM: u64 = 0x4741_5445; // "GATE"
 
-/// Drone `stream`'s link stream.
-pub fn link(seed: u64, stream: u64) -> Rng {
-    Rng::derive(seed ^ LINK_STREAM, stream)
+/// One drone's share of a run's randomness: the run's seed and the drone's stream of it (the
+/// flight's index in a `simulate` run, the drone's in a swarm). Every draw for that drone (its
+/// sensors' noise, its links, its channels, its clock) comes from one of these streams, so a
+/// drone's sensors and its links can never be given different seeds.
+///
+/// ```
+/// use loratrack::DroneStreams;
+/// let a = DroneStreams { seed: 7, stream: 2 };
+/// assert_eq!(a.link().uniform(), a.link().uniform());
+/// assert_ne!(a.link().uniform(), DroneStreams { stream: 3, ..a }.link().uniform());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DroneStreams {
+    /// The run's seed.
+    pub seed: u64,
+    /// Which drone (or flight) of the run.
+    pub stream: u64,
 }
 
-/// The shadowing stream of gateway `g` ≥ 1 for drone `stream`.
-pub fn gateway(seed: u64, g: usize, stream: u64) -> Rng {
-    Rng::derive(seed ^ GATEWAY_STREAM ^ ((g as u64) << 40), stream)
-}
+impl DroneStreams {
+    /// The sensors' noise.
+    pub fn sensors(self) -> Rng {
+        Rng::derive(self.seed, self.stream)
+    }
 
-/// Drone `stream`'s channel-hopping stream.
-pub fn channel(seed: u64, stream: u64) -> Rng {
-    Rng::derive(seed ^ CHANNEL_STREAM, stream)
-}
+    /// The link: the first packet's offset, then the first gateway's shadowing.
+    pub fn link(self) -> Rng {
+        Rng::derive(self.seed ^ LINK_STREAM, self.stream)
+    }
 
-/// Drone `stream`'s clock stream.
-pub fn clock(seed: u64, stream: u64) -> Rng {
-    Rng::derive(seed ^ CLOCK_STREAM, stream)
+    /// The shadowing of gateway `g` ≥ 1.
+    pub fn gateway(self, g: usize) -> Rng {
+        Rng::derive(self.seed ^ GATEWAY_STREAM ^ ((g as u64) << 40), self.stream)
+    }
+
+    /// Each packet's uplink channel.
+    pub fn channel(self) -> Rng {
+        Rng::derive(self.seed ^ CHANNEL_STREAM, self.stream)
+    }
+
+    /// The clock: its drift, then the random delay before each uplink.
+    pub fn clock(self) -> Rng {
+        Rng::derive(self.seed ^ CLOCK_STREAM, self.stream)
+    }
 }

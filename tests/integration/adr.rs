@@ -7,9 +7,9 @@ use loratrack::api::simulate;
 use loratrack::{
     chain_flights, demodulation_floor_db, fly_alone, noise_floor_dbm, run_drone, snr_db,
     synthetic_set, Aboard, AdrDevice, AdrMode, AdrNetwork, AdrParams, Channel, ChannelParams,
-    DataRate, DroneRadio, DutyCycle, DutyCycleMode, Estimates, GatewaySite, InterferenceModel,
-    LinkAdrReq, LoraParams, LorawanAdr, ModelKind, Network, NetworkSetup, Periodic, Scenario,
-    Sensing, Simulator, TrackingAdr, Transmission, UplinkReport,
+    DataRate, DroneRadio, DroneStreams, DutyCycle, DutyCycleMode, Estimates, GatewaySite,
+    InterferenceModel, LinkAdrReq, LoraParams, LorawanAdr, ModelKind, Network, NetworkSetup,
+    Periodic, Scenario, Sensing, Simulator, TrackingAdr, Transmission, UplinkReport,
 };
 use serde_json::{json, Value};
 
@@ -69,7 +69,7 @@ fn fly(
         sender: Box::new(Periodic),
         rule,
     };
-    fly_alone(&mut net, aboard, (7, 0))
+    fly_alone(&mut net, aboard, DroneStreams { seed: 7, stream: 0 })
 }
 
 fn rates(tx: &[Transmission]) -> Vec<u8> {

@@ -5,10 +5,10 @@
 use loratrack::api::simulate;
 use loratrack::{
     fly_alone, min_interval, run_drone, synthetic_flight, time_on_air, Aboard, AdrMode, AdrParams,
-    Bounds, Channel, ChannelParams, DroneRadio, DutyCycle, DutyCycleMode, ErrorTriggered,
-    Estimates, GatewaySite, InterferenceModel, LoraParams, ModelKind, Network, NetworkSetup,
-    Periodic, Prediction, Scenario, Sender, SenderKind, Sensing, Simulator, StationModel,
-    StationSetup, PAPER_Q, PAPER_R_DIAGONAL,
+    Bounds, Channel, ChannelParams, DroneRadio, DroneStreams, DutyCycle, DutyCycleMode,
+    ErrorTriggered, Estimates, GatewaySite, InterferenceModel, LoraParams, ModelKind, Network,
+    NetworkSetup, Periodic, Prediction, Scenario, Sender, SenderKind, Sensing, Simulator,
+    StationModel, StationSetup, PAPER_Q, PAPER_R_DIAGONAL,
 };
 use serde_json::{json, Value};
 
@@ -109,7 +109,7 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
                         sender,
                         rule,
                     };
-                    let tx = fly_alone(&mut network(), aboard, (seed, 99));
+                    let tx = fly_alone(&mut network(), aboard, DroneStreams { seed, stream: 99 });
                     let sends: Vec<f64> = tx.iter().map(|t| t.sent).collect();
                     assert!(sends.len() > 5);
                     assert!(

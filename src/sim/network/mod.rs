@@ -19,13 +19,16 @@ pub use server::{Network, NetworkSetup};
 
 use crate::sim::clock::Timing;
 use crate::sim::flier::{Aboard, Air, Flier};
-use crate::sim::Transmission;
+use crate::sim::{DroneStreams, Transmission};
 
 /// One drone (drone 0 of `net`) flying with `aboard`, alone with the network's gateways, placed
 /// as `simulate` places them (relative to the flight's first point), on one channel: its
-/// uplinks. The random streams are `streams` (the seed, and the flight's stream of it), and the
-/// timing exact, as in `simulate` by default.
-pub fn fly_alone(net: &mut Network, aboard: Aboard<'_>, streams: (u64, u64)) -> Vec<Transmission> {
+/// uplinks. It draws from `streams`, and the timing is exact, as in `simulate` by default.
+pub fn fly_alone(
+    net: &mut Network,
+    aboard: Aboard<'_>,
+    streams: DroneStreams,
+) -> Vec<Transmission> {
     let first = aboard.flight.pos[0];
     let gateways = net.gateways_at([first[0], first[1]]);
     let air = Air {

@@ -24,6 +24,7 @@ use super::sender::{SenderKind, Sending};
 use super::station::{
     Bounds, DroneCovariances, MissionPlan, PlanPace, Prediction, StationModel, StationSetup,
 };
+use super::streams::DroneStreams;
 use super::SimError;
 use crate::filter::PAPER_R_DIAGONAL;
 use crate::lora::{
@@ -767,16 +768,14 @@ impl Validated {
         }
     }
 
-    /// The drone's sensors and filter on flight (`simulate`) or drone (`swarm`) `stream` of a run
-    /// with `seed`.
-    pub fn sensing(&self, seed: u64, stream: u64) -> Sensing {
+    /// The drone's sensors and filter, drawing its noise from `streams`.
+    pub fn sensing(&self, streams: DroneStreams) -> Sensing {
         let s = &self.settings;
         Sensing {
             rate: s.drone.sensor_rate,
             q: s.drone.q,
             r_diagonal: self.r_diagonal,
-            seed,
-            stream,
+            streams,
         }
     }
 

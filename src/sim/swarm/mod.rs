@@ -23,7 +23,7 @@ use super::scenario::{SfPlan, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::{self, aloha_collision_rate, Airtime, Schedule, Slot};
 use super::simulator::load_flights;
 use super::station::{new_tracker, track_station, Scoring, StationModel, StationSetup};
-use super::streams::LAYOUT_STREAM;
+use super::streams::{DroneStreams, LAYOUT_STREAM};
 use super::{SimError, Transmission};
 use crate::lora::{time_on_air, AdrMode, LoraParams, Outcome};
 use crate::math::sin_cos;
@@ -262,7 +262,11 @@ impl<'a> Swarm<'a> {
             ];
             let now = net.radios[i].current();
             let kit = &self.kits[i];
-            let sensing = self.cfg.sensing(s.run.seed, seat.stream);
+            let streams = DroneStreams {
+                seed: s.run.seed,
+                stream: seat.stream,
+            };
+            let sensing = self.cfg.sensing(streams);
             let aboard = Aboard {
                 flight,
                 estimates: Estimates::live(DroneFilter::new(
@@ -276,7 +280,7 @@ impl<'a> Swarm<'a> {
             let air = Air {
                 gateways: &net.gateways_at(centre),
                 channel: &net.channel,
-                streams: (s.run.seed, seat.stream),
+                streams,
                 channels: self.cfg.channels,
                 interval: now.interval,
                 timing: s.access.swarm_timing(),
@@ -402,13 +406,6 @@ impl<'a> Swarm<'a> {
         let count = |o: Outcome| tx.iter().filter(|t| t.outcome == o).count();
         let packets_sent = tx.len();
         let received = count(Outcome::Received);
-        let mut p75s: Vec<f64> = drones
-            .iter()
-            .filter(|d| d.error3d.count > 0)
-            .map(|d| d.error3d.p75)
-            .collect();
-        sort_total(&mut p75s);
-        let nd = drones.len().max(1) as f64;
         Ok(SwarmReport {
             config: SwarmEcho {
                 settings: s.clone(),
@@ -434,17 +431,32 @@ impl<'a> Swarm<'a> {
             airtime: airtime(tx.iter().copied()),
             error3d: Summary::of(&mut errors),
             whole_flight: WholeFlightError::of_sorted(&errors, untracked),
-            median_drone_p75: percentile(&p75s, 50.0),
-            energy: Energy {
-                charge_per_uplink: drones
-                    .iter()
-                    .map(|d| d.energy.charge_per_uplink)
-                    .sum::<f64>()
-                    / nd,
-                charge_per_hour: drones.iter().map(|d| d.energy.charge_per_hour).sum::<f64>() / nd,
-            },
+            median_drone_p75: median_drone_p75(&drones),
+            energy: mean_energy(&drones),
             drones,
         })
+    }
+}
+
+/// The median over the drones of each drone's p75 3D error, m (drones without an error, none
+/// of whose packets arrived, left out).
+fn median_drone_p75(drones: &[DroneReport]) -> f64 {
+    let mut p75s: Vec<f64> = drones
+        .iter()
+        .filter(|d| d.error3d.count > 0)
+        .map(|d| d.error3d.p75)
+        .collect();
+    sort_total(&mut p75s);
+    percentile(&p75s, 50.0)
+}
+
+/// A drone's energy, averaged over the drones.
+fn mean_energy(drones: &[DroneReport]) -> Energy {
+    let n = drones.len().max(1) as f64;
+    let mean = |of: fn(&Energy) -> f64| drones.iter().map(|d| of(&d.energy)).sum::<f64>() / n;
+    Energy {
+        charge_per_uplink: mean(|e| e.charge_per_uplink),
+        charge_per_hour: mean(|e| e.charge_per_hour),
     }
 }
 
