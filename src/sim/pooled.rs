@@ -137,26 +137,13 @@ impl Pooled {
         } = *start;
         let energy = self.energy();
         let runs = self.sorted_runs();
-        let delivery = Delivery {
-            packets_sent: self.sent,
-            packets_received: self.received,
-            delivery_ratio: super::report::ratio(self.received, self.sent),
-            duplicates: network.duplicates,
-            gateways: network.gateways.clone(),
-        };
+        let delivery = self.delivery(network);
+        let model_probability = self.model_probability();
         let data_rate_use: Vec<DataRateUse> = self.rates.into_values().collect();
         let airtime = data_rate_use
             .iter()
             .map(|u| u.packets as f64 * u.time_on_air)
             .sum();
-        let n = self.e3.len().max(1) as f64;
-        let model_probability = self.probability_sum.map(|sum| {
-            ModelKind::ALL
-                .iter()
-                .zip(sum)
-                .map(|(m, s)| (m.name(), s / n))
-                .collect::<BTreeMap<_, _>>()
-        });
         let (s3, sx, sy, sz) = (
             Summary::of(&mut self.e3),
             Summary::of(&mut self.ex),
@@ -191,6 +178,29 @@ impl Pooled {
             energy,
             model_probability,
         }
+    }
+
+    /// This station's packets, with the network's duplicates and gateway counts.
+    fn delivery(&self, network: &Delivery) -> Delivery {
+        Delivery {
+            packets_sent: self.sent,
+            packets_received: self.received,
+            delivery_ratio: super::report::ratio(self.received, self.sent),
+            duplicates: network.duplicates,
+            gateways: network.gateways.clone(),
+        }
+    }
+
+    /// A multiple-model station's mean probability of each model over the evaluation times.
+    fn model_probability(&self) -> Option<BTreeMap<&'static str, f64>> {
+        let n = self.e3.len().max(1) as f64;
+        self.probability_sum.map(|sum| {
+            ModelKind::ALL
+                .iter()
+                .zip(sum)
+                .map(|(m, s)| (m.name(), s / n))
+                .collect()
+        })
     }
 }
 

@@ -127,6 +127,56 @@ fn sensor_groups(missing: &[&DroneKey], n: usize) -> Vec<(u64, Vec<usize>)> {
     }
 }
 
+/// The sensor steps of all `flights` together: what one key's drone runs hold.
+fn sensor_steps(flights: &[Trajectory], cfg: &Validated) -> usize {
+    let rate = cfg.s().drone.sensor_rate;
+    flights
+        .iter()
+        .map(|f| (f.duration() * rate + 1e-9).floor() as usize + 1)
+        .sum()
+}
+
+/// The drone runs of every flight for each of `missing`, in its order and each in flight order,
+/// computed in one parallel batch of [`sensor_groups`]; `tick` is called once per key and flight.
+fn run_missing(
+    missing: &[&DroneKey],
+    flights: &[Trajectory],
+    cfg: &Validated,
+    tick: &mut dyn FnMut(),
+) -> Vec<Vec<DroneTrack>> {
+    let n = flights.len();
+    let seeds = sensor_groups(missing, n);
+    let computed = par_map_costliest_first(
+        seeds.len() * n,
+        |k| {
+            seeds[k / n]
+                .1
+                .iter()
+                .map(|&m| missing[m].model.state_len() as u32)
+                .sum()
+        },
+        |k| {
+            let ((seed, members), i) = (&seeds[k / n], k % n);
+            let models: Vec<ModelKind> = members.iter().map(|&m| missing[m].model).collect();
+            let streams = DroneStreams {
+                seed: *seed,
+                stream: i as u64,
+            };
+            run_drones(&flights[i], &models, &cfg.sensing(streams))
+        },
+        &mut |k| seeds[k / n].1.iter().for_each(|_| tick()),
+    );
+    // Task k is group k / n on flight k % n, its tracks in member order: dealt out in task
+    // order, each key's tracks come in flight order.
+    let mut tracks: Vec<Vec<DroneTrack>> = missing.iter().map(|_| Vec::with_capacity(n)).collect();
+    for (k, task) in computed.into_iter().enumerate() {
+        for (&m, track) in seeds[k / n].1.iter().zip(task) {
+            tracks[m].push(track);
+        }
+    }
+    tracks
+}
+
 impl Simulator {
     /// An empty simulator.
     pub fn new() -> Self {
@@ -247,18 +297,15 @@ impl Simulator {
         tick: &mut dyn FnMut(),
     ) -> Vec<Option<Rc<Vec<DroneTrack>>>> {
         let n = flights.len();
-        let rate = cfg.s().drone.sensor_rate;
-        let steps: usize = flights
-            .iter()
-            .map(|f| (f.duration() * rate + 1e-9).floor() as usize + 1)
-            .sum();
         let mut distinct: Vec<&DroneKey> = Vec::new();
         for key in keys {
             if !distinct.contains(&key) {
                 distinct.push(key);
             }
         }
-        if distinct.len() * steps * DRONE_STEP_BYTES > MAX_CACHE_BYTES / MAX_DRONE_SHARE {
+        if distinct.len() * sensor_steps(flights, cfg) * DRONE_STEP_BYTES
+            > MAX_CACHE_BYTES / MAX_DRONE_SHARE
+        {
             (0..keys.len() * n).for_each(|_| tick());
             self.drone_runs += (keys.len() * n) as u64;
             return vec![None; keys.len()];
@@ -274,42 +321,10 @@ impl Simulator {
                 missing.push(key);
             }
         }
-        let seeds = sensor_groups(&missing, n);
-        let computed = par_map_costliest_first(
-            seeds.len() * n,
-            |k| {
-                seeds[k / n]
-                    .1
-                    .iter()
-                    .map(|&m| missing[m].model.state_len() as u32)
-                    .sum()
-            },
-            |k| {
-                let ((seed, members), i) = (&seeds[k / n], k % n);
-                let models: Vec<ModelKind> = members.iter().map(|&m| missing[m].model).collect();
-                run_drones(
-                    &flights[i],
-                    &models,
-                    &cfg.sensing(DroneStreams {
-                        seed: *seed,
-                        stream: i as u64,
-                    }),
-                )
-            },
-            &mut |k| seeds[k / n].1.iter().for_each(|_| tick()),
-        );
+        let computed = run_missing(&missing, flights, cfg, tick);
         (0..(keys.len() - missing.len()) * n).for_each(|_| tick());
         self.drone_runs += (missing.len() * n) as u64;
-        // Task k is group k / n on flight k % n, its tracks in member order: dealt out in task
-        // order, each key's tracks come in flight order.
-        let mut tracks: Vec<Vec<DroneTrack>> =
-            missing.iter().map(|_| Vec::with_capacity(n)).collect();
-        for (k, task) in computed.into_iter().enumerate() {
-            for (&m, track) in seeds[k / n].1.iter().zip(task) {
-                tracks[m].push(track);
-            }
-        }
-        for (key, tracks) in missing.into_iter().zip(tracks) {
+        for (key, tracks) in missing.into_iter().zip(computed) {
             let tracks = Rc::new(tracks);
             sets.insert(key.clone(), Rc::clone(&tracks));
             self.remember_drones(key.clone(), tracks);
