@@ -44,16 +44,20 @@ export function setUpEmbed(): void {
   }
 }
 
-/** In an embed: the settings behind the numbers, and every notice (the form is not shown). The
- * caption is kept on the full page too, hidden: a printed page shows it instead of the form, with
- * the link's notices from the top of the form, and prints the results' own notes where they stand. */
+/** In an embed: the settings behind the numbers, and every notice (the form is not shown) that the
+ * embed's panels do not show themselves. The caption is kept on the full page too, hidden: a
+ * printed page shows it instead of the form, with the link's notices from the top of the form, and
+ * prints the results' own notes where they stand. */
 export function updateEmbedCaption(): void {
   $('#embed-settings').textContent = `Settings: ${caption(store.reportSettings)}.`;
   const lines = [...store.notices];
-  if (store.embed) {
+  const results = $('[data-panel="results"]');
+  // An embed with the results panel shows its notes and its old or partial label there, once;
+  // an embed of charts alone carries them here.
+  if (store.embed && results.hidden) {
     lines.push(...restingNotes());
-    if ($('[data-panel="results"]').classList.contains('stale')) lines.push('The numbers shown are for the previous settings.');
-    if ($('[data-panel="results"]').classList.contains('partial')) lines.push('The numbers shown are the first flight’s alone; the rest of the set is still running.');
+    if (results.classList.contains('stale')) lines.push('The numbers shown are for the previous settings.');
+    if (results.classList.contains('partial')) lines.push('The numbers shown are the first flight’s alone; the rest of the set is still running.');
   }
   $('#embed-notices').hidden = lines.length === 0;
   $('#embed-notices').textContent = lines.join(' ');

@@ -289,6 +289,13 @@ test('an embed says what it shows and every notice, offers no Pin, and grows its
   assert.match(await page.locator('#embed-settings').textContent(), /Settings: SF12, 125 kHz, 1\.0 km.*seed 1; loratrack \d/);
   assert.match(await page.locator('#embed-notices').textContent(), /Too few packets to compare/);
   assert.equal(await page.locator('#pin').isVisible(), false);
+  // With the results panel the note stands under the table, and the caption does not repeat it.
+  const withTable = await open('?embed=1&panels=results,error&sf=12&bw=125');
+  await idle(withTable.page);
+  assert.match(await withTable.page.locator('#rests-on').textContent(), /Too few packets to compare/);
+  const notices = withTable.page.locator('#embed-notices');
+  assert.ok(!(await notices.isVisible()) || !/Too few packets/.test(await notices.textContent()), await notices.textContent());
+  assert.deepEqual(withTable.problems, []);
   // A host page gets the frame's height.
   const host = await playground.browser.newPage();
   await host.setContent(`<script>addEventListener('message', (e) => (window.frameHeight = e.data && e.data.loratrackHeight));</script><iframe id="f" src="${playground.url}?embed=1&panels=results,error" style="width:600px;height:200px"></iframe>`);
