@@ -27,16 +27,19 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
   const labels = models.map((m) => MODEL_LABELS[m.model]);
   // The station's own 95 % bound on its error, as a faint band under each model's line.
   const bounds = models.flatMap((m) => m.t.map((t, i) => ({ t, b: m.bound95[i], model: MODEL_LABELS[m.model] })));
+  const scale = errorScale(models.map((m) => m.error3d), models.map((m) => m.bound95));
+  const offScale = scale.boundTop > scale.top ? [`95 % bound up to ${scale.boundTop.toFixed(0)} m ↑`] : [];
   return Plot.plot({
     ...chartFrame(180),
     width,
     marginLeft: 50,
     x: { label: 'time (s)' },
-    y: { label: '3D error (m)', grid: true, zero: true },
+    y: { label: '3D error (m)', grid: true, domain: [0, scale.top || 1], nice: true },
     color: { domain: labels, range: models.map((m) => MODEL_COLORS[m.model]), legend: true },
     marks: [
-      Plot.areaY(bounds, { x: 't', y1: 0, y2: 'b', fill: 'model', fillOpacity: 0.08, curve: 'step-after' }),
-      Plot.lineY(bounds, { x: 't', y: 'b', stroke: 'model', strokeOpacity: 0.45, strokeDasharray: '3,3', strokeWidth: 1, curve: 'step-after' }),
+      Plot.areaY(bounds, { x: 't', y1: 0, y2: 'b', fill: 'model', fillOpacity: 0.08, curve: 'step-after', clip: true }),
+      Plot.lineY(bounds, { x: 't', y: 'b', stroke: 'model', strokeOpacity: 0.45, strokeDasharray: '3,3', strokeWidth: 1, curve: 'step-after', clip: true }),
+      Plot.text(offScale, { frameAnchor: 'top-right', lineAnchor: 'bottom', dy: -4, fontSize: chartFont(), fill: '#555' }),
       Plot.lineY(lines, { x: 't', y: 'e', stroke: 'model', strokeWidth: 1.4 }),
       Plot.dot(arrivals, { x: 't', y: 0, fill: 'model', r: 2.5, title: (d) => `${d.model}: packet arrived at ${d.t.toFixed(1)} s${d.dr}` }),
       Plot.dot(lost, { x: 't', y: 0, stroke: 'model', symbol: 'times', r: 4, title: (d) => `${d.model}: packet lost at ${d.t.toFixed(1)} s${d.dr}` }),
@@ -45,4 +48,23 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
       Plot.tip(lines, Plot.pointerX({ x: 't', y: 'e', stroke: 'model' })),
     ],
   });
+}
+
+/**
+ * The error chart's scale: its top, m, and the bound's peak. While packets are lost the station's
+ * bound can grow far past its error (at 3 km to hundreds of metres against tens), and a scale set
+ * by the bound would flatten the error lines: the top holds the bound to twice the largest error,
+ * and above it the band runs off the chart. Without any error the bound sets it.
+ */
+export function errorScale(errors: number[][], bounds: number[][]): { top: number; boundTop: number } {
+  const errorTop = largest(errors);
+  const boundTop = largest(bounds);
+  return { top: errorTop > 0 ? Math.max(errorTop, Math.min(boundTop, 2 * errorTop)) : boundTop, boundTop };
+}
+
+/** The largest finite number in `series`, or 0. */
+function largest(series: number[][]): number {
+  let top = 0;
+  for (const xs of series) for (const x of xs) if (Number.isFinite(x) && x > top) top = x;
+  return top;
 }
