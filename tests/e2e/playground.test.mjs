@@ -282,6 +282,11 @@ test('every screen: no sideways scrolling from a phone to a projector, and chart
     assert.ok(m.texts > 20, `${width}: chart text found`);
     assert.ok(m.smallest >= least, `${width}x${height}: chart text down to ${m.smallest.toFixed(1)} px`);
     console.log(`# ${width}x${height}: document ${m.scrollWidth} px wide, chart text >= ${m.smallest.toFixed(1)} px`);
+    if (width <= 600) {
+      // On a phone the headers stay on one line: no empty band above the columns in view.
+      const [head, row] = await page.evaluate(() => ['thead', 'tbody tr'].map((s) => document.querySelector(`#results-table ${s}`).getBoundingClientRect().height));
+      assert.ok(head <= 1.2 * row, `${width}x${height}: the results table's header is ${head} px tall, a row ${row} px`);
+    }
     assert.deepEqual(await axisLabelOverlaps(page), [], `${width}x${height}: axis labels on other text`);
     // A table wider than the screen scrolls; what its numbers rest on (its caption) stays within
     // the visible width, scrolled or not.
