@@ -302,11 +302,7 @@ pub(crate) fn score_station(
     scoring: Scoring,
     estimate: &mut dyn FnMut(f64, &Received, Option<&Upcoming>) -> Estimate,
 ) -> StationTrack {
-    let Scoring {
-        step,
-        series,
-        calibrate,
-    } = scoring;
+    let step = scoring.step;
     let received = received(transmissions);
     let t0 = flight.t[0];
     let end = flight.t[flight.t.len() - 1];
@@ -320,16 +316,7 @@ pub(crate) fn score_station(
     };
     let j = ((first.packet.arrival - t0) / step - 1e-9).ceil().max(0.0) as usize;
     let spans = spans(&received, t0, step, end, j);
-    let mut hint = 0;
-    let mut calibration = calibrate.then(|| Calibration::new(CALIBRATION_GAIN));
-    let mut out = StationTrack {
-        times: Vec::with_capacity(if series { grid } else { 0 }),
-        estimate: Vec::with_capacity(if series { grid } else { 0 }),
-        error_axes: core::array::from_fn(|_| Vec::with_capacity(grid)),
-        error3d: Vec::with_capacity(grid),
-        untracked: j.min(grid),
-        ..StationTrack::default()
-    };
+    let mut scorer = Scorer::new(flight, grid, j.min(grid), scoring);
     for (s, span) in spans.iter().enumerate() {
         let packet = &received[span.packet];
         for j in span.first..span.first + span.count {
@@ -342,54 +329,75 @@ pub(crate) fn score_station(
                 step,
             });
             let e = estimate(t, packet, upcoming.as_ref());
-            score_one(
-                &mut out,
-                &mut calibration,
-                (t, fresh, packet),
-                e,
-                (flight, &mut hint),
-                series,
-            );
+            scorer.add(t, fresh.then_some(packet), e);
         }
     }
-    out
+    scorer.out
 }
 
-/// Adds the estimate `e` at time `t` (s) to `out`: its error against the flight's truth, its
-/// covariance calibrated (once per packet, as it is applied) and scored, and what a plot shows
-/// when `series`.
-fn score_one(
-    out: &mut StationTrack,
-    calibration: &mut Option<Calibration>,
-    (t, fresh, packet): (f64, bool, &Received),
-    mut e: Estimate,
-    (flight, hint): (&Trajectory, &mut usize),
+/// Scores a station's estimates against the flight's truth, one evaluation time after another.
+struct Scorer<'f> {
+    out: StationTrack,
+    calibration: Option<Calibration>,
+    flight: &'f Trajectory,
+    /// Where the last truth lookup found its time in the flight.
+    hint: usize,
     series: bool,
-) {
-    if let Some(c) = calibration {
-        if fresh {
-            c.packet(packet.packet);
+}
+
+impl<'f> Scorer<'f> {
+    /// For up to `grid` evaluation times of `flight`, the first `untracked` of which had no
+    /// estimate.
+    fn new(flight: &'f Trajectory, grid: usize, untracked: usize, scoring: Scoring) -> Self {
+        let series = scoring.series;
+        Scorer {
+            out: StationTrack {
+                times: Vec::with_capacity(if series { grid } else { 0 }),
+                estimate: Vec::with_capacity(if series { grid } else { 0 }),
+                error_axes: core::array::from_fn(|_| Vec::with_capacity(grid)),
+                error3d: Vec::with_capacity(grid),
+                untracked,
+                ..StationTrack::default()
+            },
+            calibration: scoring
+                .calibrate
+                .then(|| Calibration::new(CALIBRATION_GAIN)),
+            flight,
+            hint: 0,
+            series,
         }
-        e.covariance = c.estimate(t, e.position, e.covariance);
     }
-    let truth = flight.position_at(t, hint);
-    let est = e.position;
-    let d: [f64; 3] = core::array::from_fn(|k| est[k] - truth[k]);
-    for (axis, d) in out.error_axes.iter_mut().zip(d) {
-        axis.push(d.abs());
-    }
-    out.error3d
-        .push((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
-    out.consistency.add(&d, &e.covariance);
-    if series {
-        out.times.push(t);
-        out.estimate.push(est);
-        out.bound95.push(bound_95(&e.covariance));
-    }
-    if let Some(p) = e.probabilities {
-        let sum = out.probability_sum.get_or_insert([0.0; 3]);
-        for k in 0..3 {
-            sum[k] += p[k];
+
+    /// Adds the estimate `e` at time `t` (s): its error against the flight's truth, its
+    /// covariance calibrated (once per packet, as `applied` brings it) and scored, and what a
+    /// plot shows when the scoring keeps series.
+    fn add(&mut self, t: f64, applied: Option<&Received>, mut e: Estimate) {
+        let out = &mut self.out;
+        if let Some(c) = &mut self.calibration {
+            if let Some(packet) = applied {
+                c.packet(packet.packet);
+            }
+            e.covariance = c.estimate(t, e.position, e.covariance);
+        }
+        let truth = self.flight.position_at(t, &mut self.hint);
+        let est = e.position;
+        let d: [f64; 3] = core::array::from_fn(|k| est[k] - truth[k]);
+        for (axis, d) in out.error_axes.iter_mut().zip(d) {
+            axis.push(d.abs());
+        }
+        out.error3d
+            .push((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
+        out.consistency.add(&d, &e.covariance);
+        if self.series {
+            out.times.push(t);
+            out.estimate.push(est);
+            out.bound95.push(bound_95(&e.covariance));
+        }
+        if let Some(p) = e.probabilities {
+            let sum = out.probability_sum.get_or_insert([0.0; 3]);
+            for k in 0..3 {
+                sum[k] += p[k];
+            }
         }
     }
 }
