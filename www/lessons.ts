@@ -76,7 +76,11 @@ export const LESSONS: Lesson[] = [
     settings: { flight: 'all', distance: 3000, model: '3d-ctra', prediction: 'bounded' },
     baseline: { flight: 'all', distance: 3000, model: '3d-ctra', prediction: 'paper' },
     text: 'At 3 km and SF7 a fifth of the packets are lost. The paper’s station keeps accelerating and turning through every gap; the bounded one holds the speed in 0–20 m/s, lets an acceleration fade within seconds (as a multicopter’s does) and a turn once a packet is overdue.',
-    notice: ['The pinned baseline is the paper’s station: the bounded one’s mean and p95 errors are far lower (▼).', 'The delivery column: the same packets arrive for both.'],
+    notice: [
+      'The pinned baseline is the paper’s station: the bounded one’s mean and p95 errors are far lower (▼).',
+      'The delivery column: the same packets arrive for both.',
+      'Error over time: the band is the station’s own 95 % bound. Each lost packet widens it, far past the error itself; where it runs off the chart, its peak is written at the top.',
+    ],
   },
   {
     id: 'swarms-share-the-air',
