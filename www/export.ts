@@ -79,12 +79,23 @@ export function chartSvg(chart: Element): SVGSVGElement | null {
  * square and its label. */
 const isSwatch = (svg: SVGSVGElement) => /-swatch\b/.test(svg.parentElement?.getAttribute('class') ?? '');
 
-/** A legend's entries: colour and label. */
+/** A legend's entries: colour and label, each once (the link budget's two charts share one
+ * legend, which Plot draws above each). */
 function legendOf(chart: Element): { color: string; label: string }[] {
-  return [...chart.querySelectorAll('svg')].filter(isSwatch).map((svg) => ({
+  const entries = [...chart.querySelectorAll('svg')].filter(isSwatch).map((svg) => ({
     color: svg.getAttribute('fill') ?? svg.querySelector('rect')?.getAttribute('fill') ?? '#888',
     label: (svg.parentElement?.textContent ?? '').trim(),
   }));
+  return entries.filter((e, i) => entries.findIndex((f) => f.label === e.label && f.color === e.color) === i);
+}
+
+/** What a slide writes under the chart: its key (`withKey` in `charts/colors.ts`: what the dots,
+ * crosses, bands and whiskers mean) and what the page writes under it (the link budget's ranges,
+ * the swarm's numbers). */
+function notesOf(chart: Element): string[] {
+  const keyed = chart.matches('[data-key]') ? chart : chart.querySelector('[data-key]');
+  const notes = [...chart.querySelectorAll('.note')].map((n) => n.textContent ?? '');
+  return [keyed?.getAttribute('data-key') ?? '', ...notes].map((n) => n.replace(/\s+/g, ' ').trim()).filter(Boolean);
 }
 
 const SVG_NS = 'http://www.w3.org/2000/svg';
@@ -117,12 +128,18 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
   let y = pad + 30;
   const legend = legendOf(chart);
   if (legend.length) {
+    // Entries in rows within the slide's width (about 8 px per character at 14 px).
     let x = pad;
     for (const { color, label } of legend) {
+      const entry = 17 + label.length * 8;
+      if (x > pad && x + entry > width - pad) {
+        x = pad;
+        y += 22;
+      }
       const swatch = document.createElementNS(SVG_NS, 'rect');
       for (const [k, v] of Object.entries({ x: String(x), y: String(y + 3), width: '12', height: '12', fill: color })) swatch.setAttribute(k, v);
       out.append(swatch, text(x + 17, y + 14, label, 14, { fill: '#1b1f24' }));
-      x += 30 + label.length * 8;
+      x += entry + 13;
     }
     y += 26;
   }
@@ -139,8 +156,16 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
     out.append(clone);
     y += h + 8;
   }
-  // The caption wraps at the chart's width (about 6.6 px per character at 12 px).
-  const lines = wrap(slide.caption, Math.max(30, Math.floor((width - 2 * pad) / 6.6)));
+  // The chart's notes, then the caption, wrap at the chart's width (about 6.6 px per character
+  // at 12 px); a gap between them.
+  const columns = Math.max(30, Math.floor((width - 2 * pad) / 6.6));
+  const fits = (t: string) => t.length <= columns;
+  for (const note of notesOf(chart)) {
+    const lines = wrap(note, fits);
+    lines.forEach((line, i) => out.append(text(pad, y + 14 + 16 * i, line, 12, { fill: '#5a6068' })));
+    y += 16 * lines.length + 6;
+  }
+  const lines = wrap(slide.caption, fits);
   lines.forEach((line, i) => out.append(text(pad, y + 14 + 16 * i, line, 12, { fill: '#3a3f45' })));
   const height = y + 14 + 16 * (lines.length - 1) + pad;
   out.setAttribute('width', String(Math.ceil(width)));
@@ -237,15 +262,17 @@ function colourTail(t: SVGTextElement, tail: { text: string; colour: string }): 
   t.replaceChildren(head, coloured);
 }
 
-/** `line` broken at spaces into lines of at most `width` characters (a longer word stands alone). */
-function wrap(line: string, width: number): string[] {
+/** `line` broken at spaces into the longest lines that `fits` (a word that does not fit alone
+ * stands alone): by characters in an SVG, by measured width on a canvas. */
+export function wrap(line: string, fits: (text: string) => boolean): string[] {
   const out: string[] = [];
   let current = '';
   for (const word of line.split(' ')) {
-    if (current && current.length + 1 + word.length > width) {
+    const next = current ? `${current} ${word}` : word;
+    if (current && !fits(next)) {
       out.push(current);
       current = word;
-    } else current = current ? `${current} ${word}` : word;
+    } else current = next;
   }
   return [...out, current];
 }
@@ -282,15 +309,23 @@ export function downloadPng(chart: Element, name: string, slide: SlideText): boo
 }
 
 /** Saves a rendered picture (the 3D view), drawn at `scale` device pixels per CSS pixel, with
- * the slide's title and legend above and its caption below. */
-export function downloadPicturePng(picture: HTMLCanvasElement, scale: number, name: string, slide: SlideText, legend: { color: string; label: string }[]): void {
+ * the slide's title and legend above and its key (`notes`) and caption below, wrapped at the
+ * picture's width. */
+export function downloadPicturePng(picture: HTMLCanvasElement, scale: number, name: string, slide: SlideText, legend: { color: string; label: string }[], notes: string[]): void {
   const px = (v: number) => v * scale;
   const pad = px(16);
   const top = pad + px(30) + (legend.length ? px(26) : 0);
   const canvas = document.createElement('canvas');
-  canvas.width = picture.width + 2 * pad;
-  canvas.height = top + picture.height + px(20) + pad;
   const ctx = canvas.getContext('2d')!;
+  canvas.width = picture.width + 2 * pad;
+  // The lines under the picture, measured in their font before the canvas's height is set (which
+  // resets the context's state).
+  const small = `${px(12)}px ${FONT}`;
+  ctx.font = small;
+  const fitsPicture = (t: string) => ctx.measureText(t).width <= picture.width;
+  const below = [...notes.filter(Boolean).map((n) => ({ lines: wrap(n, fitsPicture), fill: '#5a6068' })), { lines: wrap(slide.caption, fitsPicture), fill: '#3a3f45' }];
+  const lineHeight = px(16);
+  canvas.height = top + picture.height + below.reduce((h, b) => h + b.lines.length * lineHeight + px(6), 0) + pad;
   ctx.fillStyle = 'white';
   ctx.fillRect(0, 0, canvas.width, canvas.height);
   ctx.fillStyle = '#1b1f24';
@@ -306,8 +341,13 @@ export function downloadPicturePng(picture: HTMLCanvasElement, scale: number, na
     x += px(30) + ctx.measureText(label).width;
   }
   ctx.drawImage(picture, pad, top);
-  ctx.fillStyle = '#3a3f45';
-  ctx.font = `${px(12)}px ${FONT}`;
-  ctx.fillText(slide.caption, pad, top + picture.height + px(16));
+  ctx.font = small;
+  let y = top + picture.height;
+  for (const { lines, fill } of below) {
+    ctx.fillStyle = fill;
+    for (const line of lines) ctx.fillText(line, pad, (y += lineHeight));
+    y += px(6);
+  }
   canvas.toBlob((b) => b && save(b, `${name}.png`));
 }
+

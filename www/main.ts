@@ -302,9 +302,12 @@ async function download3d(button: HTMLButtonElement, title: string): Promise<voi
   if (!trajectoryNear && store.report) await render3d(store.report);
   const shot = trajectory3d?.snapshot(MIN_PNG_WIDTH);
   if (!shot) return downloadWhy(button, 'Nothing to save: the 3D view needs WebGL, which this browser does not offer.');
-  downloadPicturePng(shot.canvas, shot.scale, 'loratrack-trajectory', { title, caption: caption(store.reportSettings) }, tracksDrawn(store.report));
+  downloadPicturePng(shot.canvas, shot.scale, 'loratrack-trajectory', { title, caption: caption(store.reportSettings) }, tracksDrawn(store.report), [trajectoryKey]);
   downloadWhy(button, '');
 }
+
+/** What the 3D view's cones and grid mean, as its legend on the page says it. */
+let trajectoryKey = '';
 
 async function draw3d(r: SimReport): Promise<void> {
   if (!trajectory3d) {
@@ -320,7 +323,11 @@ async function draw3d(r: SimReport): Promise<void> {
   const far = drawn.farGateways ? `; orange cone${drawn.farGateways > 1 ? 's' : ''} at the edge: ${drawn.farGateways === gateways ? '' : 'the other '}gateway${drawn.farGateways > 1 ? 's' : ''} beyond the view, with ${drawn.farGateways > 1 ? 'their' : 'its'} distance` : '';
   const near = gateways - drawn.farGateways;
   const tracks = tracksDrawn(r).map((t) => `${swatch(t.color)}${t.label}`).join(', ');
-  $('#trajectory-legend').innerHTML = `${tracks}${near ? `; grey cone${near > 1 ? 's' : ''}: the gateway${near > 1 ? 's' : ''}` : ''}${far}. Grid squares ${drawn.gridStep >= 10 ? drawn.gridStep.toFixed(0) : drawn.gridStep.toFixed(1)} m.`;
+  const cones = `${near ? `; grey cone${near > 1 ? 's' : ''}: the gateway${near > 1 ? 's' : ''}` : ''}${far}`;
+  const grid = `Grid squares ${drawn.gridStep >= 10 ? drawn.gridStep.toFixed(0) : drawn.gridStep.toFixed(1)} m.`;
+  $('#trajectory-legend').innerHTML = `${tracks}${cones}. ${grid}`;
+  // A slide lists the tracks as swatches; the cones and the grid's scale go under the picture.
+  trajectoryKey = `${cones.slice(2).replace(/^./, (c) => c.toUpperCase())}${cones ? '. ' : ''}${grid}`;
 }
 
 async function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): Promise<void> {

@@ -462,6 +462,16 @@ test('every chart and both tables download ready for a slide: title, legend, cap
     assert.match(svg, /SF7, 250 kHz, 1\.0 km.*synthetic flight 1; seed 1; loratrack \d+\.\d+\.\d+/, `${panel}: captioned`);
     if (['error', 'distance', 'axes'].includes(panel)) assert.match(svg, />CTRA\+</, `${panel}: a legend`);
     assert.match(svg, /\((m|ms|km|dBm)[,)]/, `${panel}: axis units`);
+    // What the marks mean, as the page writes it under the chart: the slide says it too.
+    const words = svg.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ');
+    const key = { error: /● packet arrived · ✕ packet lost · dashed band: the station's own 95 % bound/, distance: /whiskers: the furthest errors within 1\.5 box heights/, axes: /whiskers/, link: /Dashed lines: each SF's sensitivity/, airtime: /Black dots: the models' payloads/ }[panel];
+    assert.match(words, key, `${panel}: its key`);
+    // The legend, each entry once (the link budget draws one above each of its two charts), in
+    // rows that stay on the slide.
+    const legend = [...svg.matchAll(/<text x="([\d.]+)"[^>]*font-size="14"[^>]*>([^<]+)</g)].map((m) => ({ x: Number(m[1]), label: m[2] }));
+    assert.ok(legend.length > 1, `${panel}: legend ${JSON.stringify(legend)}`);
+    assert.equal(new Set(legend.map((e) => e.label)).size, legend.length, `${panel}: legend ${legend.map((e) => e.label)}`);
+    for (const e of legend) assert.ok(e.x + 8 * e.label.length <= width, `${panel}: ${e.label} at ${e.x} px on a slide ${width} px wide`);
     const png = await save(page.getByRole('button', { name: new RegExp(`^Download the ${title.toLowerCase()}.* chart as PNG$`) }));
     assert.ok(png.readUInt32BE(16) >= 1600, `${panel}: a PNG ${png.readUInt32BE(16)} px wide`);
   }

@@ -1,6 +1,6 @@
 // Paper Table II (time on air and duty-cycle interval per SF, bandwidth and payload) and time on
 // air versus payload size, computed by the Rust core for the current overhead and coding rate.
-import { chartFrame, SF_COLORS } from './colors';
+import { chartFrame, SF_COLORS, withKey } from './colors';
 import * as Plot from '@observablehq/plot';
 import { PLANS, timeOnAir, type AirtimeParams, type Region } from '../loratrack';
 
@@ -69,7 +69,7 @@ export function airtimeVsPayloadChart(opts: { overhead: number; cr: number; sf: 
     })),
   );
   const ours = PAYLOADS.map((payload) => ({ payload, ms: timeOnAir({ sf: opts.sf, bw: opts.bw, payload, overhead: opts.overhead, cr: opts.cr }).timeOnAir * 1e3 }));
-  return Plot.plot({
+  const chart = Plot.plot({
     ...chartFrame(300),
     width: opts.width,
     marginLeft: 55,
@@ -82,4 +82,5 @@ export function airtimeVsPayloadChart(opts: { overhead: number; cr: number; sf: 
       Plot.tip(data, Plot.pointer({ x: 'payload', y: 'ms', stroke: 'sf' })),
     ],
   });
+  return withKey(chart, `Black dots: the models' payloads (9, 11 and 12 B) at SF${opts.sf}, ${opts.bw} kHz.`);
 }

@@ -3,7 +3,7 @@
 import * as Plot from '@observablehq/plot';
 import type { Boxplot, ModelName } from '../loratrack';
 import { MODEL_LABELS } from '../loratrack';
-import { MODEL_COLORS, chartFrame, chartFont } from './colors';
+import { MODEL_COLORS, chartFrame, chartFont, withKey } from './colors';
 import { plainNumber } from './logAxis';
 
 /** The plot's margins, px: room for the y axis's labels on the left. */
@@ -23,7 +23,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
   const models = [...new Set(data.map((d) => d.label))];
   const groups = [...new Set(rows.map((r) => r.group))];
   const empty = groups.filter((g) => !data.some((d) => d.group === g)).map((group) => ({ group }));
-  return Plot.plot({
+  const chart = Plot.plot({
     ...chartFrame(180),
     width: opts.width,
     marginLeft: MARGIN_LEFT,
@@ -44,6 +44,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
       Plot.tip(data, Plot.pointerX({ fx: 'group', x: 'label', y: 'median', title: (d) => `${d.label}\nmedian ${d.median.toFixed(2)} m\nQ1–Q3 ${d.q1.toFixed(2)}–${d.q3.toFixed(2)} m\nwhiskers ${d.whiskerLow.toFixed(2)}–${d.whiskerHigh.toFixed(2)} m\n${d.outliers} outliers of ${d.count}` })),
     ],
   });
+  return withKey(chart, 'Box: the middle half of the errors (quartiles), thick line the median; whiskers: the furthest errors within 1.5 box heights of the box (any beyond, the outliers, are not drawn).');
 }
 
 /** The width of one group's column in ems of the chart's type, a little inside it: `width` px

@@ -38,3 +38,14 @@ export function chartFrame(height: number): { style: Partial<CSSStyleDeclaration
   const marginBottom = 2 * font + 14;
   return { style: chartStyle(), height: height + marginTop - PLOT_MARGIN_TOP + marginBottom - PLOT_MARGIN_BOTTOM, marginTop, marginBottom };
 }
+
+/**
+ * `chart` with its key: one line saying what its marks mean that its legend (colours) does not,
+ * such as the error chart's dots and crosses. A slide of the chart (`export.ts`) draws it under
+ * the chart; the page says the same in the panel's "What this shows", since a visible line under
+ * each chart would push the second chart below a laptop's screen.
+ */
+export function withKey<T extends SVGSVGElement | HTMLElement>(chart: T, key: string): T {
+  chart.dataset.key = key;
+  return chart;
+}

@@ -2,7 +2,7 @@
 // (dots on the axis) and lost packets (crosses), over the station's own 95 % bound (dashed band).
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type SimReport } from '../loratrack';
-import { MODEL_COLORS, chartFrame, chartFont } from './colors';
+import { MODEL_COLORS, chartFrame, chartFont, withKey } from './colors';
 
 export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElement | HTMLElement {
   const models = report.series?.models ?? [];
@@ -29,7 +29,8 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
   const bounds = models.flatMap((m) => m.t.map((t, i) => ({ t, b: m.bound95[i], model: MODEL_LABELS[m.model] })));
   const scale = errorScale(models.map((m) => m.error3d), models.map((m) => m.bound95));
   const offScale = scale.boundTop > scale.top ? [`95 % bound up to ${scale.boundTop.toFixed(0)} m ↑`] : [];
-  return Plot.plot({
+  const key = `● packet arrived · ✕ packet lost · dashed band: the station's own 95 % bound on its error${changes.length ? ' · DRn: the data rate from that packet on' : ''}.`;
+  const chart = Plot.plot({
     ...chartFrame(180),
     width,
     marginLeft: 50,
@@ -48,6 +49,7 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
       Plot.tip(lines, Plot.pointerX({ x: 't', y: 'e', stroke: 'model' })),
     ],
   });
+  return withKey(chart, key);
 }
 
 /**

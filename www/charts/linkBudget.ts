@@ -49,7 +49,7 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
   const ranges = document.createElement('p');
   ranges.className = 'note';
   const missing = r.sfs.filter((s) => !s.inPlan).map((s) => `SF${s.sf}`);
-  ranges.textContent = `Range (mean power = sensitivity): ${sens.map((s) => `${s.sf} ${s.range.toFixed(1)} km`).join(', ')}. The grey band holds 90 % of packets (shadowing σ ${r.shadowing} dB).${missing.length ? ` ${opts.plan} has no uplink data rate at ${missing.join(', ')} with this bandwidth.` : ''}`;
+  ranges.textContent = `Range (mean power = sensitivity): ${sens.map((s) => `${s.sf} ${s.range.toFixed(1)} km`).join(', ')}. Dashed lines: each SF's sensitivity (the chosen SF's bold); ${opts.distances.length > 1 ? 'red lines: each gateway\'s distance' : 'red line: the gateway\'s distance'}; grey band: 90 % of packets (shadowing σ ${r.shadowing} dB).${missing.length ? ` ${opts.plan} has no uplink data rate at ${missing.join(', ')} with this bandwidth.` : ''}`;
   const box = document.createElement('div');
   box.append(power, delivery, ranges);
   return box;

@@ -61,17 +61,22 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
   const group = new THREE.Group();
   scene.add(group);
   let far: { at: THREE.Vector3; text: string }[] = [];
+  /** The far gateways' labels where the camera sees their markers, px from the view's top left. */
+  const farLabels = () =>
+    far.map(({ at, text }) => {
+      const p = at.clone().project(camera);
+      return { text, left: Math.round(((p.x + 1) / 2) * width()), top: Math.round(((1 - p.y) / 2) * height()), hidden: p.z > 1 };
+    });
   const render = () => {
     renderer.render(scene, camera);
     labels.replaceChildren(
-      ...far.map(({ at, text }) => {
-        const p = at.clone().project(camera);
+      ...farLabels().map(({ text, left, top, hidden }) => {
         const span = document.createElement('span');
         span.className = 'gateway-label';
         span.textContent = text;
-        span.style.left = `${Math.round(((p.x + 1) / 2) * width())}px`;
-        span.style.top = `${Math.round(((1 - p.y) / 2) * height())}px`;
-        span.hidden = p.z > 1;
+        span.style.left = `${left}px`;
+        span.style.top = `${top}px`;
+        span.hidden = hidden;
         return span;
       }),
     );
@@ -178,7 +183,14 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
       const copy = document.createElement('canvas');
       copy.width = renderer.domElement.width;
       copy.height = renderer.domElement.height;
-      copy.getContext('2d')!.drawImage(renderer.domElement, 0, 0);
+      const ctx = copy.getContext('2d')!;
+      ctx.drawImage(renderer.domElement, 0, 0);
+      // The far gateways' labels are HTML over the canvas on the page: drawn in, as `.gateway-label`
+      // places them (centred above the marker), so that the picture gives their distance too.
+      ctx.font = `${13 * scale}px system-ui, sans-serif`;
+      ctx.textAlign = 'center';
+      ctx.fillStyle = '#7a3e00';
+      for (const { text, left, top, hidden } of farLabels()) if (!hidden) ctx.fillText(text, left * scale, top * scale - 8 * scale);
       renderer.setPixelRatio(ratio);
       renderer.setSize(width(), height());
       render();
