@@ -4,10 +4,13 @@
 // data it already has: no request leaves it.
 import type { SimReport } from './loratrack';
 
-/** What a slide needs besides the chart: a title and a one-line caption of what made it. */
+/** What a slide needs besides the chart: a title, a one-line caption of what made it and what
+ * the page writes beside the chart (outside its element) that the picture needs, such as the
+ * spreading factors it could not simulate. */
 export interface SlideText {
   title: string;
   caption: string;
+  notes?: string[];
 }
 
 /** The narrowest PNG a download gives, px: sharp on a 1080p projector at full width. */
@@ -160,7 +163,7 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
   // at 12 px); a gap between them.
   const columns = Math.max(30, Math.floor((width - 2 * pad) / 6.6));
   const fits = (t: string) => t.length <= columns;
-  for (const note of notesOf(chart)) {
+  for (const note of [...notesOf(chart), ...(slide.notes ?? [])]) {
     const lines = wrap(note, fits);
     lines.forEach((line, i) => out.append(text(pad, y + 14 + 16 * i, line, 12, { fill: '#5a6068' })));
     y += 16 * lines.length + 6;

@@ -577,6 +577,13 @@ for (const [id, save] of [
     if (report) save(report);
   });
 }
+/** The notes on show right after `chart` in its panel (the SF chart's SFs not simulated, and
+ * why): a slide of the chart carries them. */
+function notesAfter(chart: Element): string[] {
+  const notes: string[] = [];
+  for (let e = chart.nextElementSibling; e instanceof HTMLElement && e.matches('.note'); e = e.nextElementSibling) if (!e.hidden && e.textContent) notes.push(e.textContent);
+  return notes;
+}
 /** Saves `picture` on a slide in the format `button` names (SVG or PNG); false when it has
  * nothing drawn to save. */
 function saveSlide(button: HTMLButtonElement, picture: Element, name: string, slide: { title: string; caption: string }): boolean {
@@ -614,7 +621,7 @@ for (const button of document.querySelectorAll<HTMLButtonElement>('[data-downloa
   const title = document.getElementById(`${name.replace(/-table$/, '')}-title`)?.textContent ?? name;
   button.setAttribute('aria-label', `Download the ${title.replace(/:.*/, '').toLowerCase()} ${table ? 'table' : 'chart'} as ${button.dataset.format!.toUpperCase()}`);
   button.addEventListener('click', () => {
-    const slide = (c: string) => ({ title, caption: c });
+    const slide = (c: string) => ({ title, caption: c, notes: notesAfter($(`#chart-${name}`)) });
     if (name === 'trajectory') return void download3d(button, title);
     if (name === 'results') return void downloadResultsPicture(button);
     if (name === 'airtime-table') return void downloadAirtimePicture(button);

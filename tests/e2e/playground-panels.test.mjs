@@ -531,6 +531,10 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   const titles = await page.locator('#chart-sf svg title').allTextContents();
   assert.ok(titles.some((t) => t.startsWith('DR, SF7:')), titles.join('; '));
   assert.ok(!titles.some((t) => t.includes('SF12:')), titles.join('; '));
+  // A slide of the chart says so too: its empty SFs are not left unexplained.
+  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: 'Download the error versus spreading factor chart as SVG' }).click()]);
+  const slide = readFileSync(await download.path(), 'utf8').replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ');
+  assert.match(slide, /Not simulated at (SF\d+, )*SF12: maxInterval must be at least the duty-cycle interval/);
   assert.equal(await page.locator('[data-panel="results"].stale').count(), 0);
   assert.doesNotMatch(await page.locator('#status').textContent(), /cannot be simulated/);
   // The heartbeat the note names is a control beside the threshold, with the core's default; at
