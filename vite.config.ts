@@ -1,4 +1,6 @@
 import { defineConfig, type Plugin } from 'vite';
+import { readFileSync, readdirSync } from 'node:fs';
+import { Marked, type Tokens } from 'marked';
 // Every export's caption names the version that made it.
 import packageJson from './package.json' with { type: 'json' };
 
@@ -39,10 +41,97 @@ const preloadWasm: Plugin = {
   },
 };
 
+/** A heading's anchor as GitHub makes it: lower case, punctuation dropped, spaces as hyphens. */
+const slug = (text: string) => text.toLowerCase().replace(/<[^>]+>/g, '').replace(/[^\p{L}\p{N} _-]/gu, '').trim().replace(/ /g, '-');
+
+/** Markdown as the docs are written (GitHub's tables), with their links between each other
+ * pointing at the rendered pages and a link out of `docs/` (the README) left as its text: the
+ * built page has no README to open. */
+const markdown = new Marked({
+  gfm: true,
+  renderer: {
+    link(this: { parser: { parseInline(tokens: Tokens.Generic[]): string } }, token: Tokens.Link) {
+      const text = this.parser.parseInline(token.tokens);
+      const doc = /^([a-z-]+)\.md(#.*)?$/.exec(token.href);
+      if (doc) return `<a href="${doc[1]}.html${doc[2] ?? ''}">${text}</a>`;
+      if (/^https?:/.test(token.href) || /^[\w.-]+\.(svg|png)$/.test(token.href)) return `<a href="${token.href}">${text}</a>`;
+      return text;
+    },
+    heading(this: { parser: { parseInline(tokens: Tokens.Generic[]): string } }, token: Tokens.Heading) {
+      const text = this.parser.parseInline(token.tokens);
+      return `<h${token.depth} id="${slug(text)}">${text}</h${token.depth}>\n`;
+    },
+  },
+});
+
+/** The page's icon (index.html's), so that a doc page asks its server for no favicon. */
+const ICON = /<link rel="icon" href="([^"]+)"/.exec(readFileSync('index.html', 'utf8'))?.[1] ?? 'data:,';
+
+/** Each table in a box that scrolls sideways on a narrow screen, reachable by keyboard (a
+ * focusable region, named by its number). */
+function scrollingTables(html: string): string {
+  let n = 0;
+  return html.replace(/<table>/g, () => `<div class="scroll" tabindex="0" role="region" aria-label="Table ${++n}"><table>`).replace(/<\/table>/g, '</table></div>');
+}
+
+/** `docs/<name>.md` as a page of its own: no script, nothing from another host (its own CSP). */
+function docPage(name: string): string {
+  const source = readFileSync(`docs/${name}.md`, 'utf8');
+  const title = /^# (.+)$/m.exec(source)?.[1] ?? name;
+  return `<!doctype html>
+<html lang="en">
+<head>
+<meta charset="utf-8" />
+<meta http-equiv="Content-Security-Policy" content="default-src 'none'; img-src 'self' data:; style-src 'unsafe-inline'" />
+<link rel="icon" href="${ICON}" />
+<meta name="viewport" content="width=device-width, initial-scale=1" />
+<title>${title.replace(/[<>&]/g, '')} · loratrack</title>
+<style>
+h1 { font-size: 1.6rem; line-height: 1.25; }
+body { font: 16px/1.5 system-ui, -apple-system, "Segoe UI", sans-serif; color: #1b1f24; margin: 0 auto; max-width: 60rem; padding: 1rem; }
+.scroll { overflow-x: auto; }
+table { border-collapse: collapse; font-size: 0.9rem; }
+th, td { border: 1px solid #d8dde3; padding: 0.25rem 0.5rem; vertical-align: top; }
+code { font-size: 0.9em; background: #f6f7f9; }
+pre { overflow-x: auto; background: #f6f7f9; padding: 0.5rem; }
+img { max-width: 100%; }
+a { color: #1a55a0; }
+</style>
+</head>
+<body>
+<nav><a href="../">← the playground</a></nav>
+<main>
+${scrollingTables(markdown.parse(source) as string)}
+</main>
+</body>
+</html>
+`;
+}
+
+const DOCS = readdirSync('docs').filter((f) => f.endsWith('.md')).map((f) => f.slice(0, -3));
+
+// The docs the page cites ("docs/senders.md") as pages beside it, `docs/<name>.html`: written
+// into the build with the SVGs they show, and rendered on request by the dev server.
+const docsPages: Plugin = {
+  name: 'loratrack-docs',
+  configureServer(server) {
+    server.middlewares.use((req, res, next) => {
+      const name = /^\/docs\/([a-z-]+)\.html$/.exec((req.url ?? '').split('?')[0])?.[1];
+      if (!name || !DOCS.includes(name)) return next();
+      res.setHeader('Content-Type', 'text/html; charset=utf-8');
+      res.end(docPage(name));
+    });
+  },
+  generateBundle() {
+    for (const name of DOCS) this.emitFile({ type: 'asset', fileName: `docs/${name}.html`, source: docPage(name) });
+    for (const svg of readdirSync('docs').filter((f) => f.endsWith('.svg'))) this.emitFile({ type: 'asset', fileName: `docs/${svg}`, source: readFileSync(`docs/${svg}`) });
+  },
+};
+
 export default defineConfig({
   // Relative asset paths: dist/ works from any static server and under any sub-path.
   base: './',
-  plugins: [csp, preloadWasm],
+  plugins: [csp, preloadWasm, docsPages],
   define: { __LORATRACK_VERSION__: JSON.stringify(packageJson.version) },
   build: { target: 'es2022', outDir: 'dist', emptyOutDir: true, chunkSizeWarningLimit: 1024 },
   worker: { format: 'es' },

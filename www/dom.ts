@@ -2,3 +2,28 @@
 
 /** The element `selector` names; the page's markup (index.html) has every one they ask for. */
 export const $ = <T extends HTMLElement>(selector: string) => document.querySelector<T>(selector)!;
+
+/**
+ * Makes every mention of a doc in `root`'s text ("docs/senders.md") a link to that doc's page
+ * beside the playground (`docs/senders.html`, which the build renders: vite.config.ts), opened in
+ * a new tab so that the settings on show stay. The texts keep naming the Markdown file, as the
+ * README and the repository do; a slide's caption copies them as plain text.
+ */
+export function linkDocs(root: Element): void {
+  const mention = /(docs\/[a-z-]+\.md)/;
+  const walker = document.createTreeWalker(root, NodeFilter.SHOW_TEXT);
+  const found: Text[] = [];
+  for (let n = walker.nextNode(); n; n = walker.nextNode()) if (mention.test(n.nodeValue ?? '') && !n.parentElement?.closest('a')) found.push(n as Text);
+  for (const text of found) {
+    const parts = (text.nodeValue ?? '').split(mention).map((part, i) => {
+      if (i % 2 === 0) return part;
+      const link = document.createElement('a');
+      link.href = part.replace(/\.md$/, '.html');
+      link.target = '_blank';
+      link.rel = 'noopener';
+      link.textContent = part;
+      return link;
+    });
+    text.replaceWith(...parts);
+  }
+}

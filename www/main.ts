@@ -7,7 +7,7 @@ import { linkBudget, load, MODEL_LABELS, stationsOf, type SimReport, type SwarmP
 import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR, chartFont } from './charts/colors';
 import type { BoxRow } from './charts/plots';
 import type { Trajectory3d } from './charts/trajectory3d';
-import { $ } from './dom';
+import { $, linkDocs } from './dom';
 import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH, tableSvg } from './export';
 import { field, form, markField, onFormChange, readControls, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
@@ -653,6 +653,8 @@ if (lesson) {
     }),
   );
 }
+// The help texts and the lesson name the docs their numbers come from: links to their pages.
+linkDocs(document.body);
 
 // ---- start -------------------------------------------------------------------------------------
 writeControls(store.settings);

@@ -2,7 +2,7 @@
 // is best (only when the intervals say so), the baseline's differences, and the notes under the
 // table. Reads the page's state from the store.
 import { MODEL_LABELS, timeOnAir, type ModelResult, type SimReport } from './loratrack';
-import { $ } from './dom';
+import { $, linkDocs } from './dom';
 import { caption, fmt, names, sending, trackedPercent } from './format';
 import { overheadBytes } from './state';
 import { store } from './store';
@@ -124,6 +124,7 @@ function renderSilenceNote(r: SimReport): void {
   const sent = r.results.reduce((n, m) => n + m.packetsSent, 0);
   const lost = 1 - r.results.reduce((n, m) => n + m.packetsReceived, 0) / sent;
   note.textContent = `${(lost * 100).toFixed(0)} % of the packets sent were lost. An error-triggered drone cannot tell a lost packet from a delivered one: after a loss it stays silent while the station drifts. Where packets are lost it can track worse than periodic sending at the same airtime (at 3 km its p95 up to 1.06× on the synthetic set, on the real flight its p75 up to 3×; docs/senders.md).`;
+  linkDocs(note);
 }
 
 /** p75's 95 % interval, when the run has one. */

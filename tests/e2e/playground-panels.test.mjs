@@ -559,3 +559,30 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   assert.ok(longer.some((t) => t.startsWith('DR, SF12:')), longer.join('; '));
   assert.deepEqual(problems, []);
 });
+
+test('the docs the page cites open as pages beside it, in a new tab: every link resolves, and a doc reads without another host, with its figures and a way back', async () => {
+  const { page, problems } = await open();
+  const links = await page.locator('a[href^="docs/"]').evaluateAll((as) => as.map((a) => ({ href: a.getAttribute('href'), target: a.target, text: a.textContent })));
+  const hrefs = [...new Set(links.map((l) => l.href))];
+  for (const doc of ['mission', 'senders', 'adr']) assert.ok(hrefs.includes(`docs/${doc}.html`), `the page links docs/${doc}: ${hrefs}`);
+  // The text still names the Markdown file, as the README does; the link opens its page aside.
+  for (const l of links) assert.ok(l.target === '_blank' && l.text === l.href.replace(/\.html$/, '.md'), JSON.stringify(l));
+  for (const href of hrefs) {
+    const res = await page.request.get(new URL(href, page.url()).href);
+    assert.equal(res.status(), 200, href);
+    assert.match(await res.text(), /<h1 id="[^"]+">/, `${href}: a rendered doc`);
+  }
+  // A help text's doc, read as a reader reaches it: the mission station's.
+  const playgroundUrl = page.url();
+  await page.goto(new URL(await page.locator('#model-help a').getAttribute('href'), playgroundUrl).href);
+  assert.match(await page.title(), /mission/i);
+  assert.ok((await page.locator('table').count()) > 0, 'its measured tables');
+  assert.deepEqual(await axe(page), []);
+  // The senders doc shows its chart, from beside it.
+  await page.goto(new URL('docs/senders.html', playgroundUrl).href);
+  await page.waitForFunction(() => [...document.images].length > 0 && [...document.images].every((i) => i.complete && i.naturalWidth > 0));
+  await page.getByRole('link', { name: '← the playground' }).click();
+  await page.waitForSelector('#results-table tbody tr');
+  assert.equal(page.url(), playgroundUrl);
+  assert.deepEqual(problems, []);
+});
