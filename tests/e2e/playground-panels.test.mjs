@@ -564,7 +564,7 @@ test('the docs the page cites open as pages beside it, in a new tab: every link 
   const { page, problems } = await open();
   const links = await page.locator('a[href^="docs/"]').evaluateAll((as) => as.map((a) => ({ href: a.getAttribute('href'), target: a.target, text: a.textContent })));
   const hrefs = [...new Set(links.map((l) => l.href))];
-  for (const doc of ['mission', 'senders', 'adr']) assert.ok(hrefs.includes(`docs/${doc}.html`), `the page links docs/${doc}: ${hrefs}`);
+  for (const doc of ['reference', 'paper-reproduction', 'mission', 'senders', 'swarm', 'adr']) assert.ok(hrefs.includes(`docs/${doc}.html`), `the page links docs/${doc}: ${hrefs}`);
   // The text still names the Markdown file, as the README does; the link opens its page aside.
   for (const l of links) assert.ok(l.target === '_blank' && l.text === l.href.replace(/\.html$/, '.md'), JSON.stringify(l));
   for (const href of hrefs) {
