@@ -18,18 +18,23 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
   const arrivals = models.flatMap((m) => m.arrivals.map((t, i) => ({ t, model: MODEL_LABELS[m.model], dr: rate(m.arrivalDr?.[i]) })));
   const lost = models.flatMap((m) => m.lost.map((t, i) => ({ t, model: MODEL_LABELS[m.model], dr: rate(m.lostDr?.[i]) })));
   // With ADR, label each change of data rate above the axis.
-  const changes = models.flatMap((m) =>
-    m.arrivals
-      .map((t, i) => ({ t, dr: m.arrivalDr?.[i], before: i > 0 ? m.arrivalDr?.[i - 1] : undefined, model: MODEL_LABELS[m.model] }))
-      .filter((d) => report.config.adr !== 'off' && d.dr !== d.before && d.dr !== null && d.dr !== undefined)
-      .map((d) => ({ ...d, label: `DR${d.dr}` })),
+  const changes = rateLabels(
+    models.flatMap((m) =>
+      m.arrivals
+        .map((t, i) => ({ t, dr: m.arrivalDr?.[i], before: i > 0 ? m.arrivalDr?.[i - 1] : undefined, model: MODEL_LABELS[m.model] }))
+        .filter((d) => report.config.adr !== 'off' && d.dr !== d.before && d.dr !== null && d.dr !== undefined)
+        .map((d) => ({ t: d.t, model: d.model, label: `DR${d.dr}` })),
+    ),
+    models.length,
+    // A label's width (three characters and a space at ~0.6 em) in seconds of the plot (~width − 70 px).
+    (4 * 0.6 * chartFont() * lines.reduce((end, l) => Math.max(end, l.t), 0)) / Math.max(1, width - 70),
   );
   const labels = models.map((m) => MODEL_LABELS[m.model]);
   // The station's own 95 % bound on its error, as a faint band under each model's line.
   const bounds = models.flatMap((m) => m.t.map((t, i) => ({ t, b: m.bound95[i], model: MODEL_LABELS[m.model] })));
   const scale = errorScale(models.map((m) => m.error3d), models.map((m) => m.bound95));
   const offScale = scale.boundTop > scale.top ? [`95 % bound up to ${scale.boundTop.toFixed(0)} m ↑`] : [];
-  const key = `● packet arrived · ✕ packet lost · dashed band: the station's own 95 % bound on its error${changes.length ? ' · DRn: the data rate from that packet on' : ''}.`;
+  const key = `● packet arrived · ✕ packet lost · dashed band: the station's own 95 % bound on its error${changes.length ? " · DRn: the data rate from that packet on (grey: every station's drone)" : ''}.`;
   const chart = Plot.plot({
     ...chartFrame(180),
     width,
@@ -44,12 +49,60 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
       Plot.lineY(lines, { x: 't', y: 'e', stroke: 'model', strokeWidth: 1.4 }),
       Plot.dot(arrivals, { x: 't', y: 0, fill: 'model', r: 2.5, title: (d) => `${d.model}: packet arrived at ${d.t.toFixed(1)} s${d.dr}` }),
       Plot.dot(lost, { x: 't', y: 0, stroke: 'model', symbol: 'times', r: 4, title: (d) => `${d.model}: packet lost at ${d.t.toFixed(1)} s${d.dr}` }),
-      Plot.text(changes, { x: 't', y: 0, text: 'label', fill: 'model', dy: -10, fontSize: chartFont() }),
+      ...rateMarks(changes),
       Plot.ruleY([0]),
       Plot.tip(lines, Plot.pointerX({ x: 't', y: 'e', stroke: 'model' })),
     ],
   });
   return withKey(chart, key);
+}
+
+/** A change of data rate written above the error chart's axis: its time (s), the rate, the
+ * station it is that station's alone (undefined when every station's drone changed there: one
+ * label in grey), and the row it is lifted to so that it clears the label before it. */
+export interface RateLabel {
+  t: number;
+  label: string;
+  model?: string;
+  row: number;
+}
+
+/**
+ * The labels of `changes` (each station's changes of data rate) as drawn: a change every station
+ * shares written once, and each label lifted a row above a label less than `clearance` s before
+ * it on its row (a label's width on the time axis). With ADR the
+ * stations' drones usually change rate at the same packets: three coloured labels on top of one
+ * another, and a fast change's label on its neighbour's, read as one garbled word.
+ */
+export function rateLabels(changes: { t: number; label: string; model: string }[], stations: number, clearance: number): RateLabel[] {
+  // The stations' drones send different payloads, so the same change reaches each at a
+  // slightly different packet: changes to one rate within a label's width count as one.
+  const groups: { t: number; label: string; at: { t: number; model: string }[] }[] = [];
+  for (const c of [...changes].sort((a, b) => a.t - b.t)) {
+    const group = groups.find((g) => g.label === c.label && c.t - g.t < clearance && !g.at.some((a) => a.model === c.model));
+    if (group) group.at.push(c);
+    else groups.push({ t: c.t, label: c.label, at: [c] });
+  }
+  const labels = groups
+    .flatMap((g) => (g.at.length === stations ? [{ t: g.t, label: g.label }] : g.at.map(({ t, model }) => ({ t, label: g.label, model }))))
+    .sort((a, b) => a.t - b.t);
+  const lastAt: number[] = [];
+  return labels.map((l) => {
+    let row = 0;
+    while (lastAt[row] !== undefined && l.t - lastAt[row] < clearance) row++;
+    lastAt[row] = l.t;
+    return { ...l, row };
+  });
+}
+
+/** The labels' marks: one per row (a row's lift is a constant offset), a shared change in grey
+ * and a station's own in its colour. */
+function rateMarks(labels: RateLabel[]): Plot.Markish[] {
+  return [...new Set(labels.map((l) => l.row))].flatMap((row) => {
+    const inRow = labels.filter((l) => l.row === row);
+    const common = { x: 't', y: 0, text: 'label', dy: -10 - row * (chartFont() + 2), fontSize: chartFont() };
+    return [Plot.text(inRow.filter((l) => !l.model), { ...common, fill: '#5a6068' }), Plot.text(inRow.filter((l) => l.model), { ...common, fill: 'model' })];
+  });
 }
 
 /**
