@@ -3,6 +3,9 @@
 // flight; z is up, as in ENU.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { Line2 } from 'three/addons/lines/Line2.js';
+import { LineGeometry } from 'three/addons/lines/LineGeometry.js';
+import { LineMaterial } from 'three/addons/lines/LineMaterial.js';
 import type { SimReport } from '../loratrack';
 import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './colors';
 
@@ -84,15 +87,23 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
   controls.addEventListener('change', render);
   new ResizeObserver(() => {
     renderer.setSize(width(), height());
+    for (const child of group.children) if (child instanceof Line2) child.material.resolution.set(width(), height());
     camera.aspect = width() / height();
     camera.updateProjectionMatrix();
     render();
   }).observe(container);
 
-  const line = (xs: number[], ys: number[], zs: number[], color: string, centre: THREE.Vector3) => {
-    const points = xs.map((x, i) => new THREE.Vector3(x - centre.x, ys[i] - centre.y, zs[i] - centre.z));
-    const geometry = new THREE.BufferGeometry().setFromPoints(points);
-    return new THREE.Line(geometry, new THREE.LineBasicMaterial({ color }));
+  /** A track as a line 2 CSS px wide (WebGL draws its own lines 1 device pixel wide: a hairline
+   * on a high-density screen, a projector or a slide's PNG); `dash` m long dashes for a plan. */
+  const line = (xs: number[], ys: number[], zs: number[], color: string, centre: THREE.Vector3, dash?: number) => {
+    const geometry = new LineGeometry();
+    geometry.setPositions(xs.flatMap((x, i) => [x - centre.x, ys[i] - centre.y, zs[i] - centre.z]));
+    const material = new LineMaterial({ color, linewidth: 2, dashed: dash !== undefined, dashSize: dash ?? 1, gapSize: (dash ?? 1) * 0.7 });
+    // Line widths are in CSS pixels of this size, at any pixel ratio (a snapshot's too).
+    material.resolution.set(width(), height());
+    const track = new Line2(geometry, material);
+    if (dash !== undefined) track.computeLineDistances();
+    return track;
   };
 
   // The camera is placed for the first flight shown and for each new one; changing a setting
@@ -130,9 +141,12 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
     update(report: SimReport) {
       const s = report.series;
       if (!s) return;
+      // Everything drawn for the last report (tracks, grid, gateways) gives its GPU buffers back.
       for (const child of [...group.children]) {
         group.remove(child);
-        if (child instanceof THREE.Line) child.geometry.dispose();
+        const drawn = child as THREE.Mesh;
+        drawn.geometry?.dispose();
+        for (const material of [drawn.material ?? []].flat()) material.dispose();
       }
       const box = new THREE.Box3().setFromPoints(s.x.map((x, i) => new THREE.Vector3(x, s.y[i], s.z[i])));
       const centre = box.getCenter(new THREE.Vector3());
@@ -140,9 +154,7 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
       group.add(line(s.x, s.y, s.z, TRUTH_COLOR, centre));
       if (s.plan) {
         // The mission's plan: dashed, so it reads as intent rather than a track.
-        const plan = line(s.plan.map((w) => w[0]), s.plan.map((w) => w[1]), s.plan.map((w) => w[2]), PLAN_COLOR, centre);
-        plan.material = new THREE.LineDashedMaterial({ color: PLAN_COLOR, dashSize: size * 0.015, gapSize: size * 0.01 });
-        plan.computeLineDistances();
+        const plan = line(s.plan.map((w) => w[0]), s.plan.map((w) => w[1]), s.plan.map((w) => w[2]), PLAN_COLOR, centre, size * 0.015);
         group.add(plan);
       }
       for (const m of s.models) group.add(line(m.x, m.y, m.z, MODEL_COLORS[m.model], centre));
