@@ -93,9 +93,11 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
     render();
   }).observe(container);
 
-  /** A track as a line 2 CSS px wide (WebGL draws its own lines 1 device pixel wide: a hairline
+  /** Adds a track as a line 2 CSS px wide (WebGL draws its own lines 1 device pixel wide: a hairline
    * on a high-density screen, a projector or a slide's PNG); `dash` m long dashes for a plan. */
-  const line = (xs: number[], ys: number[], zs: number[], color: string, centre: THREE.Vector3, dash?: number) => {
+  const addLine = (xs: number[], ys: number[], zs: number[], color: string, centre: THREE.Vector3, dash?: number): void => {
+    // A station that never received a packet has no track (and Line2 needs a segment).
+    if (xs.length < 2) return;
     const geometry = new LineGeometry();
     geometry.setPositions(xs.flatMap((x, i) => [x - centre.x, ys[i] - centre.y, zs[i] - centre.z]));
     const material = new LineMaterial({ color, linewidth: 2, dashed: dash !== undefined, dashSize: dash ?? 1, gapSize: (dash ?? 1) * 0.7 });
@@ -103,7 +105,7 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
     material.resolution.set(width(), height());
     const track = new Line2(geometry, material);
     if (dash !== undefined) track.computeLineDistances();
-    return track;
+    group.add(track);
   };
 
   // The camera is placed for the first flight shown and for each new one; changing a setting
@@ -151,13 +153,10 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
       const box = new THREE.Box3().setFromPoints(s.x.map((x, i) => new THREE.Vector3(x, s.y[i], s.z[i])));
       const centre = box.getCenter(new THREE.Vector3());
       const size = box.getSize(new THREE.Vector3()).length() || 10;
-      group.add(line(s.x, s.y, s.z, TRUTH_COLOR, centre));
-      if (s.plan) {
-        // The mission's plan: dashed, so it reads as intent rather than a track.
-        const plan = line(s.plan.map((w) => w[0]), s.plan.map((w) => w[1]), s.plan.map((w) => w[2]), PLAN_COLOR, centre, size * 0.015);
-        group.add(plan);
-      }
-      for (const m of s.models) group.add(line(m.x, m.y, m.z, MODEL_COLORS[m.model], centre));
+      addLine(s.x, s.y, s.z, TRUTH_COLOR, centre);
+      // The mission's plan: dashed, so it reads as intent rather than a track.
+      if (s.plan) addLine(s.plan.map((w) => w[0]), s.plan.map((w) => w[1]), s.plan.map((w) => w[2]), PLAN_COLOR, centre, size * 0.015);
+      for (const m of s.models) addLine(m.x, m.y, m.z, MODEL_COLORS[m.model], centre);
       const grid = new THREE.GridHelper(size * 1.2, 12, 0xcccccc, 0xeeeeee);
       grid.rotation.x = Math.PI / 2;
       grid.position.z = box.min.z - centre.z;
