@@ -8,7 +8,7 @@ import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR, chartFont } from './charts/color
 import type { BoxRow } from './charts/plots';
 import type { Trajectory3d } from './charts/trajectory3d';
 import { $, linkDocs } from './dom';
-import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH, tableSvg } from './export';
+import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
 import { field, form, markField, onFormChange, readControls, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
 import { caption } from './format';
@@ -586,7 +586,7 @@ function notesAfter(chart: Element): string[] {
 }
 /** Saves `picture` on a slide in the format `button` names (SVG or PNG); false when it has
  * nothing drawn to save. */
-function saveSlide(button: HTMLButtonElement, picture: Element, name: string, slide: { title: string; caption: string }): boolean {
+function saveSlide(button: HTMLButtonElement, picture: Element, name: string, slide: SlideText): boolean {
   return (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(picture, name, slide);
 }
 /** The results table as drawn, for a slide: its caption (what the numbers are), the settings they
@@ -621,7 +621,7 @@ for (const button of document.querySelectorAll<HTMLButtonElement>('[data-downloa
   const title = document.getElementById(`${name.replace(/-table$/, '')}-title`)?.textContent ?? name;
   button.setAttribute('aria-label', `Download the ${title.replace(/:.*/, '').toLowerCase()} ${table ? 'table' : 'chart'} as ${button.dataset.format!.toUpperCase()}`);
   button.addEventListener('click', () => {
-    const slide = (c: string) => ({ title, caption: c, notes: notesAfter($(`#chart-${name}`)) });
+    const slide = (c: string): SlideText => ({ title, caption: c, notes: notesAfter($(`#chart-${name}`)) });
     if (name === 'trajectory') return void download3d(button, title);
     if (name === 'results') return void downloadResultsPicture(button);
     if (name === 'airtime-table') return void downloadAirtimePicture(button);

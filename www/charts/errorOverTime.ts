@@ -69,10 +69,10 @@ export interface RateLabel {
 
 /**
  * The labels of `changes` (each station's changes of data rate) as drawn: a change every station
- * shares written once, and each label lifted a row above a label less than `clearance` s before
- * it on its row (a label's width on the time axis). With ADR the
- * stations' drones usually change rate at the same packets: three coloured labels on top of one
- * another, and a fast change's label on its neighbour's, read as one garbled word.
+ * makes written once, and each label lifted a row above one less than `clearance` s before it on
+ * its row (a label's width on the time axis). With ADR the stations' drones change rate at
+ * nearby packets: drawn as they came, three coloured labels lay on top of one another, and a
+ * quick second change's label on the first, read as one garbled word.
  */
 export function rateLabels(changes: { t: number; label: string; model: string }[], stations: number, clearance: number): RateLabel[] {
   // The stations' drones send different payloads, so the same change reaches each at a
