@@ -94,13 +94,14 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
   }).observe(container);
 
   /** Adds a track as a line 2 CSS px wide (WebGL draws its own lines 1 device pixel wide: a hairline
-   * on a high-density screen, a projector or a slide's PNG); `dash` m long dashes for a plan. */
+   * on a high-density screen, a projector or a slide's PNG); a plan 5 px wide in `dash` m dashes. */
   const addLine = (xs: number[], ys: number[], zs: number[], color: string, centre: THREE.Vector3, dash?: number): void => {
     // A station that never received a packet has no track (and Line2 needs a segment).
     if (xs.length < 2) return;
     const geometry = new LineGeometry();
     geometry.setPositions(xs.flatMap((x, i) => [x - centre.x, ys[i] - centre.y, zs[i] - centre.z]));
-    const material = new LineMaterial({ color, linewidth: 2, dashed: dash !== undefined, dashSize: dash ?? 1, gapSize: (dash ?? 1) * 0.7 });
+    // The plan is wider, so that where the drone keeps to it its dashes still show beside the tracks on it.
+    const material = new LineMaterial({ color, linewidth: dash === undefined ? 2 : 5, dashed: dash !== undefined, dashSize: dash ?? 1, gapSize: (dash ?? 1) * 0.7 });
     // Line widths are in CSS pixels of this size, at any pixel ratio (a snapshot's too).
     material.resolution.set(width(), height());
     const track = new Line2(geometry, material);
