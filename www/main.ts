@@ -320,14 +320,15 @@ async function draw3d(r: SimReport): Promise<void> {
   // The legend lists what is drawn: the truth, each station, the gateways, and the grid's scale.
   const swatch = (color: string) => `<span class="swatch" style="background:${color}"></span>`;
   const gateways = r.series?.gateways.length ?? 1;
-  const far = drawn.farGateways ? `; orange cone${drawn.farGateways > 1 ? 's' : ''} at the edge: ${drawn.farGateways === gateways ? '' : 'the other '}gateway${drawn.farGateways > 1 ? 's' : ''} beyond the view, with ${drawn.farGateways > 1 ? 'their' : 'its'} distance` : '';
+  const far = drawn.farGateways ? `orange cone${drawn.farGateways > 1 ? 's' : ''} at the edge: ${drawn.farGateways === gateways ? '' : 'the other '}gateway${drawn.farGateways > 1 ? 's' : ''} beyond the view, with ${drawn.farGateways > 1 ? 'their' : 'its'} distance` : '';
   const near = gateways - drawn.farGateways;
   const tracks = tracksDrawn(r).map((t) => `${swatch(t.color)}${t.label}`).join(', ');
-  const cones = `${near ? `; grey cone${near > 1 ? 's' : ''}: the gateway${near > 1 ? 's' : ''}` : ''}${far}`;
+  const cones = [near ? `grey cone${near > 1 ? 's' : ''}: the gateway${near > 1 ? 's' : ''}` : '', far].filter(Boolean);
   const grid = `Grid squares ${drawn.gridStep >= 10 ? drawn.gridStep.toFixed(0) : drawn.gridStep.toFixed(1)} m.`;
-  $('#trajectory-legend').innerHTML = `${tracks}${cones}. ${grid}`;
+  $('#trajectory-legend').innerHTML = `${[tracks, ...cones].join('; ')}. ${grid}`;
   // A slide lists the tracks as swatches; the cones and the grid's scale go under the picture.
-  trajectoryKey = `${cones.slice(2).replace(/^./, (c) => c.toUpperCase())}${cones ? '. ' : ''}${grid}`;
+  const coneKey = cones.join('; ');
+  trajectoryKey = coneKey ? `${coneKey[0].toUpperCase()}${coneKey.slice(1)}. ${grid}` : grid;
 }
 
 async function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): Promise<void> {

@@ -462,7 +462,8 @@ test('every chart and both tables download ready for a slide: title, legend, cap
     assert.match(svg, /SF7, 250 kHz, 1\.0 km.*synthetic flight 1; seed 1; loratrack \d+\.\d+\.\d+/, `${panel}: captioned`);
     if (['error', 'distance', 'axes'].includes(panel)) assert.match(svg, />CTRA\+</, `${panel}: a legend`);
     assert.match(svg, /\((m|ms|km|dBm)[,)]/, `${panel}: axis units`);
-    // What the marks mean, as the page writes it under the chart: the slide says it too.
+    // What the marks mean, which the page says in the panel's "What this shows": the slide, with no
+    // panel beside it, says it under the chart.
     const words = svg.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ');
     const key = { error: /● packet arrived · ✕ packet lost · dashed band: the station's own 95 % bound/, distance: /whiskers: the furthest errors within 1\.5 box heights/, axes: /whiskers/, link: /Dashed lines: each SF's sensitivity/, airtime: /Black dots: the models' payloads/ }[panel];
     assert.match(words, key, `${panel}: its key`);
