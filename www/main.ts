@@ -2,7 +2,7 @@
 // to the panels that draw them. The state lives in ./store, the form in ./form, the results
 // table in ./results, embeds in ./embed, presentation mode in ./present.
 import { pool } from './boot';
-import { spawnWorker } from './pool';
+import { runSwarms, spawnWorker, type SwarmRun } from './pool';
 import { linkBudget, load, MODEL_LABELS, stationsOf, type SimReport, type SwarmParams } from './loratrack';
 import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR, chartFont } from './charts/colors';
 import type { BoxRow } from './charts/plots';
@@ -475,10 +475,9 @@ $('#reset').addEventListener('click', () => {
 $('#reset-view').addEventListener('click', () => trajectory3d?.resetView());
 
 // ---- the swarm panel: its own worker, so a swarm never holds up the single-drone results ----
-let swarmWorker: Worker | undefined;
+let swarmRun: SwarmRun | undefined;
 $('#run-swarm').addEventListener('click', () => {
-  swarmWorker?.terminate();
-  swarmWorker = spawnWorker();
+  swarmRun?.stop();
   const n = Number($<HTMLSelectElement>('#swarmDrones').value);
   const sizes = [...new Set([2, Math.round(n / 8), Math.round(n / 4), Math.round(n / 2), n])].filter((k) => k >= 1);
   // The swarm takes every setting of the single drone; its drones chain synthetic flights around
@@ -500,28 +499,25 @@ $('#run-swarm').addEventListener('click', () => {
   $('#swarm-status').textContent = `Simulating swarms of ${sizes.join(', ')} drones…`;
   swarming = true;
   updateBusy();
-  swarmWorker.onmessage = (e: MessageEvent<Response>) => {
-    const r = e.data;
-    if ('progress' in r) {
-      bar.value = r.progress;
-      return;
-    }
+  const run = (swarmRun = runSwarms(sizes, params, (done) => (bar.value = done)));
+  const end = () => {
     bar.hidden = true;
     swarming = false;
     updateBusy();
-    if ('error' in r) {
-      $('#swarm-status').textContent = r.error;
-      return;
-    }
-    if ('swarms' in r) {
-      const rates = r.swarms.map((w) => `${w.config.drones} drones ${(100 * w.collisionRate).toFixed(1)} %`).join(', ');
-      $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(r.millis / 1000).toFixed(1)} s. Packets collided: ${rates}.`;
-      const swarms = r.swarms;
+  };
+  run.done.then(
+    ({ swarms, millis }) => {
+      end();
+      const rates = swarms.map((w) => `${w.config.drones} drones ${(100 * w.collisionRate).toFixed(1)} %`).join(', ');
+      $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(millis / 1000).toFixed(1)} s. Packets collided: ${rates}.`;
       lastSwarm = async () => place('swarm', (await plots()).swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${swarms[0]?.drones[0]?.channelUse.length ?? params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.schedule}, ${params.duration} s each`);
       later('swarm', lastSwarm);
-    }
-  };
-  swarmWorker.postMessage({ id: 1, swarm: { sizes, params } } satisfies Request);
+    },
+    (e: Error) => {
+      end();
+      $('#swarm-status').textContent = e.message;
+    },
+  );
 });
 
 $('#pin').addEventListener('click', () => {

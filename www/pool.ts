@@ -5,8 +5,8 @@
 // their reports in the request's model order. Every station's numbers depend only on the
 // flight, the seed and its own settings (the link's random streams are derived per flight), so
 // the merged report equals what one worker (or the CLI) computes for all models at once.
-import { compiledModule, poolDelivery, stationsOf, type SimReport } from './loratrack';
-import type { ModuleMessage, Response, SimulateRequest, SweepResult } from './worker';
+import { compiledModule, poolDelivery, stationsOf, type SimReport, type SwarmParams, type SwarmReport } from './loratrack';
+import type { ModuleMessage, Request, Response, SimulateRequest, SweepResult } from './worker';
 
 /** A simulation worker (www/worker.ts), given the page's compiled module once it is ready;
  * messages sent before then wait in the worker until it has instantiated the module. */
@@ -14,6 +14,62 @@ export function spawnWorker(): Worker {
   const worker = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
   void compiledModule().then((module) => worker.postMessage({ module } satisfies ModuleMessage));
   return worker;
+}
+
+/** One worker per core, at most 8. */
+const defaultPoolSize = () => Math.max(1, Math.min(8, navigator.hardwareConcurrency || 2));
+
+/** A swarm run under way on its workers (`runSwarms`). */
+export interface SwarmRun {
+  /** The swarms in the order asked for, and the wall-clock time they took, ms. */
+  done: Promise<{ swarms: SwarmReport[]; millis: number }>;
+  /** Stops every worker of the run; `done` then never settles. */
+  stop(): void;
+}
+
+/**
+ * Swarms of each size in `sizes` (otherwise `params`) on up to `workers` workers at once, each
+ * swarm going, largest first, to the worker with the fewest drones so far (a swarm's work grows
+ * with its drones). Every swarm is independent and its numbers depend only on its settings and
+ * seed, so where it runs changes nothing but the wait: on two cores, swarms of 2 … 200 drones take
+ * about as long as the 200 alone instead of all of them in turn. `progress` gets the share of
+ * drones done, 0…1.
+ */
+export function runSwarms(sizes: number[], params: SwarmParams, progress: (done: number) => void, workers = defaultPoolSize()): SwarmRun {
+  const started = performance.now();
+  const shares: number[][] = Array.from({ length: Math.max(1, Math.min(workers, sizes.length)) }, () => []);
+  const load = (share: number[]) => share.reduce((sum, i) => sum + sizes[i], 0);
+  for (const i of sizes.map((_, i) => i).sort((a, b) => sizes[b] - sizes[a])) {
+    shares.reduce((least, share) => (load(share) < load(least) ? share : least)).push(i);
+  }
+  const total = sizes.reduce((a, b) => a + b, 0);
+  const running = shares.map(() => spawnWorker());
+  const done = new Array<number>(shares.length).fill(0);
+  const swarms = new Array<SwarmReport>(sizes.length);
+  const stop = () => running.forEach((w) => w.terminate());
+  const finished = Promise.all(
+    shares.map(
+      (share, k) =>
+        new Promise<void>((resolve, reject) => {
+          running[k].onmessage = (e: MessageEvent<Response>) => {
+            const r = e.data;
+            if ('progress' in r) {
+              done[k] = r.progress * load(share);
+              progress(done.reduce((a, b) => a + b, 0) / total);
+            } else if ('swarms' in r) {
+              share.forEach((i, j) => (swarms[i] = r.swarms[j]));
+              running[k].terminate();
+              resolve();
+            } else if ('error' in r) {
+              stop();
+              reject(new Error(r.error));
+            }
+          };
+          running[k].postMessage({ id: 1, swarm: { sizes: share.map((i) => sizes[i]), params } } satisfies Request);
+        }),
+    ),
+  );
+  return { done: finished.then(() => ({ swarms, millis: performance.now() - started })), stop };
 }
 
 type Part = { progress: number; partial?: SimReport; report?: SimReport; millis?: number; sweep?: SweepResult[] };
@@ -24,7 +80,7 @@ export class SimulationPool {
   /** A run started before anyone asked for it (`start`), with the answers it has had so far. */
   private early?: { key: string; answers: Response[]; on?: (r: Response) => void };
 
-  constructor(readonly size = Math.max(1, Math.min(8, navigator.hardwareConcurrency || 2))) {
+  constructor(readonly size = defaultPoolSize()) {
     this.restart();
   }
 

@@ -92,6 +92,14 @@ test('the swarm panel runs growing swarms and sets the collision rate against AL
   const note = await page.locator('#chart-swarm .note').textContent();
   assert.match(note, /20 drones, 3 channels.*collided \(ALOHA predicts [\d.]+ %\)/);
   assert.ok((await page.locator('#chart-swarm svg').count()) >= 2);
+  // The swarms run on several workers at once; each is reported in its place, with the CLI's numbers.
+  const status = await page.locator('#swarm-status').textContent();
+  const shown = [...status.matchAll(/(\d+) drones ([\d.]+) %/g)].map((m) => [Number(m[1]), m[2]]);
+  assert.deepEqual(shown.map(([n]) => n), [2, 3, 5, 10, 20], status);
+  for (const [drones, rate] of shown) {
+    const cli = nativeJson(['swarm', '--drones', String(drones), '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra']);
+    assert.equal(rate, (100 * cli.collisionRate).toFixed(1), `${drones} drones`);
+  }
   assert.deepEqual(problems, []);
 });
 
