@@ -320,7 +320,7 @@ async function draw3d(r: SimReport): Promise<void> {
   // The legend lists what is drawn: the truth, each station, the gateways, and the grid's scale.
   const swatch = (color: string) => `<span class="swatch" style="background:${color}"></span>`;
   const gateways = r.series?.gateways.length ?? 1;
-  const far = drawn.farGateways ? `orange cone${drawn.farGateways > 1 ? 's' : ''} at the edge: ${drawn.farGateways === gateways ? '' : 'the other '}gateway${drawn.farGateways > 1 ? 's' : ''} beyond the view, with ${drawn.farGateways > 1 ? 'their' : 'its'} distance` : '';
+  const far = drawn.farGateways ? `grey cone${drawn.farGateways > 1 ? 's' : ''} at the edge: ${drawn.farGateways === gateways ? '' : 'the other '}gateway${drawn.farGateways > 1 ? 's' : ''} beyond the view, with ${drawn.farGateways > 1 ? 'their' : 'its'} distance` : '';
   const near = gateways - drawn.farGateways;
   const tracks = tracksDrawn(r).map((t) => `${swatch(t.color)}${t.label}`).join(', ');
   const cones = [near ? `grey cone${near > 1 ? 's' : ''}: the gateway${near > 1 ? 's' : ''}` : '', far].filter(Boolean);

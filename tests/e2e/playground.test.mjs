@@ -709,7 +709,7 @@ test('the 3D view lets the page scroll past it, zooms once focused, and always s
   assert.equal(state.scrollY, y1, 'a focused view zooms instead of scrolling the page');
   // 3 km away the gateway is off the flight's scale: a marker at the edge says where and how far.
   assert.match(await page.locator('.gateway-label').first().textContent(), /^gateway 3\.0 km →$/);
-  assert.match(await page.locator('#trajectory-legend').textContent(), /orange cone at the edge: gateway beyond the view, with its distance/);
+  assert.match(await page.locator('#trajectory-legend').textContent(), /grey cone at the edge: gateway beyond the view, with its distance/);
   assert.deepEqual(problems, []);
 });
 

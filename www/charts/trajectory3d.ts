@@ -173,8 +173,8 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
           const ground = new THREE.Vector3(at.x, at.y, 0);
           const edge = ground.clone().setLength(size * 0.6);
           edge.z = box.min.z - centre.z;
+          // Grey as every gateway: an orange one stood beside the mission station's orange track.
           gateway.position.copy(edge);
-          (gateway.material as THREE.MeshBasicMaterial).color.set(0xb05a00);
           far.push({ at: edge, text: `${all.length > 1 ? `gateway ${i + 1}` : 'gateway'} ${(ground.length() / 1000).toFixed(1)} km →` });
         } else gateway.position.copy(at);
         group.add(gateway);
@@ -201,7 +201,7 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
       // places them (centred above the marker), so that the picture gives their distance too.
       ctx.font = `${13 * scale}px system-ui, sans-serif`;
       ctx.textAlign = 'center';
-      ctx.fillStyle = '#7a3e00';
+      ctx.fillStyle = '#333';
       for (const { text, left, top, hidden } of farLabels()) if (!hidden) ctx.fillText(text, left * scale, top * scale - 8 * scale);
       renderer.setPixelRatio(ratio);
       renderer.setSize(width(), height());
