@@ -61,4 +61,7 @@ pub use station::{
     PACE_TIME,
 };
 pub use streams::DroneStreams;
-pub use swarm::{run_swarm, DroneReport, LargestSwarm, SwarmEcho, SwarmReport};
+pub use swarm::{
+    run_swarm, run_swarm_sharing, DroneReport, LargestSwarm, SharedDroneRuns, SwarmEcho,
+    SwarmReport,
+};

@@ -6,8 +6,8 @@ use loratrack::options as opt;
 use loratrack::{
     AccessSettings, ChannelSettings, DroneSettings, DutyCycleMode, FlightSettings, LdroMode,
     ModelChoice, ModelKind, ModelResult, NetworkSettings, Prediction, RadioSettings, RunSettings,
-    Scenario, Schedule, SenderKind, Sending, SfPlan, SimReport, Simulator, StationSettings,
-    SwarmReport, SwarmSettings, SyntheticChoice, FEW_PACKETS, MAX_CSV_BYTES,
+    Scenario, Schedule, SenderKind, Sending, SfPlan, SharedDroneRuns, SimReport, Simulator,
+    StationSettings, SwarmReport, SwarmSettings, SyntheticChoice, FEW_PACKETS, MAX_CSV_BYTES,
 };
 use serde::Serialize;
 
@@ -1080,22 +1080,39 @@ fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError
                 ..Scenario::default()
             }
         });
-    let rows = swarms(scenarios.collect())?;
+    let rows = swarms(
+        scenarios.collect(),
+        &SharedDroneRuns::new(SHARED_RUNS_BYTES),
+    )?;
     if a.out.json {
         return Ok(json(&rows));
     }
-    // The crowd comparisons are for the tables only (JSON gives the sweep's own rows).
-    let crowd = crowds(&rows)?;
+    // The crowd comparisons are for the tables only (JSON gives the sweep's own rows). They fly
+    // 72 of the grid's 500 drones again, and seven more seeds' 72: their own runs, so that the
+    // grid's are freed first.
+    let crowd = crowds(&rows, &SharedDroneRuns::new(SHARED_RUNS_BYTES))?;
     Ok(crate::reproduction::swarm_markdown(
         &rows, &crowd, a.markdown,
     ))
 }
 
+/// The most bytes of drone estimates a swarm sweep keeps to share between its swarms: its 112
+/// swarms fly the same 500 drones for 300 s (108 MB), its crowd comparison 72 drones at eight
+/// seeds (124 MB).
+const SHARED_RUNS_BYTES: usize = 256 << 20;
+
 /// Each swarm of `scenarios`, in order; independent, so natively they share the cores (each
-/// swarm alone leaves one idle for most of its loop).
-fn swarms(scenarios: Vec<Scenario>) -> Result<Vec<SwarmReport>, ApiError> {
+/// swarm alone leaves one idle for most of its loop). Drones flown alike share their filter
+/// runs through `shared`.
+fn swarms(
+    scenarios: Vec<Scenario>,
+    shared: &SharedDroneRuns,
+) -> Result<Vec<SwarmReport>, ApiError> {
     use rayon::prelude::*;
-    scenarios.par_iter().map(api::swarm).collect()
+    scenarios
+        .par_iter()
+        .map(|s| api::swarm_sharing(s, shared))
+        .collect()
 }
 
 /// Seeds of the crowd comparison: one seed's swarm says little, since which packets collide
@@ -1131,7 +1148,10 @@ fn crowd_senders() -> Vec<(Schedule, DutyCycleMode, Option<f64>)> {
 /// heartbeat, then each of [`CROWD_THRESHOLDS_M`] with [`CROWD_HEARTBEAT_S`]. Each schedule's periodic
 /// runs serve every setting compared under it. A comparison is left out when `rows` lacks its
 /// setting.
-fn crowds(rows: &[SwarmReport]) -> Result<Vec<crate::reproduction::Crowd>, ApiError> {
+fn crowds(
+    rows: &[SwarmReport],
+    shared: &SharedDroneRuns,
+) -> Result<Vec<crate::reproduction::Crowd>, ApiError> {
     let find = |schedule, sender| {
         rows.iter().find(|r: &&SwarmReport| {
             let c = &r.config.settings;
@@ -1145,7 +1165,7 @@ fn crowds(rows: &[SwarmReport]) -> Result<Vec<crate::reproduction::Crowd>, ApiEr
     let mut periodic: Vec<(Schedule, Vec<SwarmReport>)> = Vec::new();
     for schedule in [Schedule::Aloha, Schedule::Slotted] {
         if let Some(p) = find(schedule, SenderKind::Periodic) {
-            periodic.push((schedule, crowd_runs(p, |_| {})?));
+            periodic.push((schedule, crowd_runs(p, shared, |_| {})?));
         }
     }
     let mut crowd = Vec::new();
@@ -1156,7 +1176,7 @@ fn crowds(rows: &[SwarmReport]) -> Result<Vec<crate::reproduction::Crowd>, ApiEr
         ) else {
             continue;
         };
-        let error = crowd_runs(e, |c| {
+        let error = crowd_runs(e, shared, |c| {
             c.sending.duty_cycle_mode = rule;
             if let Some(m) = threshold {
                 c.sending.threshold = m;
@@ -1177,7 +1197,7 @@ fn crowds(rows: &[SwarmReport]) -> Result<Vec<crate::reproduction::Crowd>, ApiEr
         let seeds = periodic
             .iter()
             .zip(error)
-            .zip(swarms(slowed)?)
+            .zip(swarms(slowed, shared)?)
             .map(|((p, error), equal)| crate::reproduction::CrowdSeed {
                 periodic: p.clone(),
                 error,
@@ -1193,6 +1213,7 @@ fn crowds(rows: &[SwarmReport]) -> Result<Vec<crate::reproduction::Crowd>, ApiEr
 /// batch; `row` itself stands for the first when the change leaves it as it was.
 fn crowd_runs(
     row: &SwarmReport,
+    shared: &SharedDroneRuns,
     change: impl Fn(&mut Scenario),
 ) -> Result<Vec<SwarmReport>, ApiError> {
     let scenarios: Vec<Scenario> = (0..CROWD_SEEDS)
@@ -1204,9 +1225,9 @@ fn crowd_runs(
         })
         .collect();
     if scenarios[0] != row.config.settings {
-        return swarms(scenarios);
+        return swarms(scenarios, shared);
     }
     let mut runs = vec![row.clone()];
-    runs.extend(swarms(scenarios[1..].to_vec())?);
+    runs.extend(swarms(scenarios[1..].to_vec(), shared)?);
     Ok(runs)
 }

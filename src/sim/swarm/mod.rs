@@ -9,8 +9,10 @@
 //! from the centre at bearing 360°·i/N — so one drone flies exactly as `simulate` places it.
 
 mod report;
+mod shared_runs;
 
 pub use report::{DroneReport, LargestSwarm, SwarmEcho, SwarmReport};
+pub use shared_runs::SharedDroneRuns;
 
 use super::drone::{DroneFilter, Estimates};
 use super::flier::{Aboard, Air, Flier};
@@ -148,7 +150,19 @@ pub fn run_swarm(
     cfg: &Validated,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<SwarmReport, SimError> {
-    let (swarm, mut net) = Swarm::new(cfg)?;
+    run_swarm_sharing(cfg, None, progress)
+}
+
+/// [`run_swarm`], its drones' filter runs taken from `shared` (and left there for the next
+/// swarm) where it holds them: the same report, bit for bit, with less work for a family of
+/// swarms over the same drones.
+pub fn run_swarm_sharing(
+    cfg: &Validated,
+    shared: Option<&SharedDroneRuns>,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<SwarmReport, SimError> {
+    let (mut swarm, mut net) = Swarm::new(cfg)?;
+    swarm.shared = shared;
     let episodes = swarm.plan.episodes.len();
     let total = episodes + swarm.kits.len();
     // Per episode, per drone: its transmissions.
@@ -177,6 +191,8 @@ struct Swarm<'a> {
     kits: Vec<Kit>,
     /// A slotted schedule's longest period, s.
     frame_length: Option<f64>,
+    /// Drone filter runs shared with other swarms.
+    shared: Option<&'a SharedDroneRuns>,
 }
 
 /// What the drones' stations made of the packets that reached them.
@@ -237,6 +253,7 @@ impl<'a> Swarm<'a> {
             sfs,
             kits,
             frame_length,
+            shared: None,
         };
         Ok((swarm, Network::of(cfg, 0.0, radios)))
     }
@@ -249,6 +266,21 @@ impl<'a> Swarm<'a> {
         lbt: &mut (usize, usize),
     ) -> Result<Vec<Vec<Transmission>>, SimError> {
         let s = self.cfg.s();
+        let model = self.model.sent_model();
+        let streams = |seat: &Seat| DroneStreams {
+            seed: s.run.seed,
+            stream: seat.stream,
+        };
+        // Each drone's filter run where another swarm has made (or this one may keep) it.
+        let shared: Vec<_> = seats
+            .iter()
+            .map(|seat| {
+                let flight = &self.plan.flights[seat.flight];
+                let sensing = self.cfg.sensing(streams(seat));
+                self.shared
+                    .and_then(|runs| runs.get(flight, model, &sensing))
+            })
+            .collect();
         let mut fliers = Vec::with_capacity(seats.len());
         for (i, seat) in seats.iter().enumerate() {
             let flight: &Trajectory = &self.plan.flights[seat.flight];
@@ -262,18 +294,16 @@ impl<'a> Swarm<'a> {
             ];
             let now = net.radios[i].current();
             let kit = &self.kits[i];
-            let streams = DroneStreams {
-                seed: s.run.seed,
-                stream: seat.stream,
+            let streams = streams(seat);
+            let estimates = match &shared[i] {
+                Some(run) => Estimates::Stored(&run.track),
+                None => {
+                    Estimates::live(DroneFilter::new(flight, model, &self.cfg.sensing(streams)))
+                }
             };
-            let sensing = self.cfg.sensing(streams);
             let aboard = Aboard {
                 flight,
-                estimates: Estimates::live(DroneFilter::new(
-                    flight,
-                    self.model.sent_model(),
-                    &sensing,
-                )),
+                estimates,
                 sender: s.sending.sender(self.model, kit.setup, None),
                 rule: s.sending.rule(kit.duty_cycle, now.time_on_air)?,
             };
