@@ -19,6 +19,17 @@ export function spawnWorker(): Worker {
 /** One worker per core, at most 8. */
 const defaultPoolSize = () => Math.max(1, Math.min(8, navigator.hardwareConcurrency || 2));
 
+/** Which swarms (indices into `sizes`, their drone counts) each of at most `workers` workers
+ * runs: largest first, each to the worker with the fewest drones so far. */
+export function shareOut(sizes: number[], workers: number): number[][] {
+  const shares: number[][] = Array.from({ length: Math.max(1, Math.min(workers, sizes.length)) }, () => []);
+  const load = (share: number[]) => share.reduce((sum, i) => sum + sizes[i], 0);
+  for (const i of sizes.map((_, i) => i).sort((a, b) => sizes[b] - sizes[a])) {
+    shares.reduce((least, share) => (load(share) < load(least) ? share : least)).push(i);
+  }
+  return shares;
+}
+
 /** A swarm run under way on its workers (`runSwarms`). */
 export interface SwarmRun {
   /** The swarms in the order asked for, and the wall-clock time they took, ms. */
@@ -37,11 +48,8 @@ export interface SwarmRun {
  */
 export function runSwarms(sizes: number[], params: SwarmParams, progress: (done: number) => void, workers = defaultPoolSize()): SwarmRun {
   const started = performance.now();
-  const shares: number[][] = Array.from({ length: Math.max(1, Math.min(workers, sizes.length)) }, () => []);
+  const shares = shareOut(sizes, workers);
   const load = (share: number[]) => share.reduce((sum, i) => sum + sizes[i], 0);
-  for (const i of sizes.map((_, i) => i).sort((a, b) => sizes[b] - sizes[a])) {
-    shares.reduce((least, share) => (load(share) < load(least) ? share : least)).push(i);
-  }
   const total = sizes.reduce((a, b) => a + b, 0);
   const running = shares.map(() => spawnWorker());
   const done = new Array<number>(shares.length).fill(0);

@@ -1,7 +1,7 @@
 // The worker pool splits a run by station and merges the reports: the merged report must be what
 // one worker (or the CLI) reports for all stations at once.
 import { expect, test, vi } from 'vitest';
-import { merge, SimulationPool } from '../../www/pool';
+import { merge, runSwarms, shareOut, SimulationPool } from '../../www/pool';
 import type { SimReport } from '../../www/loratrack';
 import type { Response, SimulateRequest } from '../../www/worker';
 
@@ -118,4 +118,39 @@ test('a refusal reaches the page once, with the setting the core named', () => {
     w.onmessage?.({ data: { id, error: 'maxInterval must be at least …', setting: 'maxInterval' } });
   }
   expect(answers).toEqual([{ id: 3, error: 'maxInterval must be at least …', setting: 'maxInterval' }]);
+});
+
+test('swarms are shared out largest first, each to the worker with the fewest drones so far', () => {
+  expect(shareOut([2, 25, 50, 100, 200], 2)).toEqual([[4], [3, 2, 1, 0]]);
+  expect(shareOut([2, 3, 5, 10, 20], 3)).toEqual([[4], [3], [2, 1, 0]]);
+  expect(shareOut([2, 6], 8)).toEqual([[1], [0]]);
+  expect(shareOut([2, 6, 12], 1)).toEqual([[2, 1, 0]]);
+});
+
+test('swarms run on several workers come back in the order asked for, with progress over all their drones', async () => {
+  StandIn.all = [];
+  const progress: number[] = [];
+  const run = runSwarms([2, 25, 50, 100, 200], { model: '3d-ctra' }, (p) => progress.push(p), 2);
+  const [big, rest] = StandIn.all.slice(-2) as unknown as { sent: { swarm: { sizes: number[] } }[]; onmessage: (e: { data: unknown }) => void; terminated: boolean }[];
+  expect(big.sent[0].swarm.sizes).toEqual([200]);
+  expect(rest.sent[0].swarm.sizes).toEqual([100, 50, 25, 2]);
+  big.onmessage({ data: { id: 1, progress: 0.5 } });
+  rest.onmessage({ data: { id: 1, progress: 1 } });
+  // 100 of the 200 drones and all 177 of the rest, of 377.
+  expect(progress.at(-1)).toBeCloseTo(277 / 377);
+  const swarm = (drones: number) => ({ config: { drones } });
+  rest.onmessage({ data: { id: 1, swarms: [100, 50, 25, 2].map(swarm), millis: 1 } });
+  big.onmessage({ data: { id: 1, swarms: [swarm(200)], millis: 1 } });
+  const { swarms } = await run.done;
+  expect(swarms.map((s) => s.config.drones)).toEqual([2, 25, 50, 100, 200]);
+  expect(big.terminated && rest.terminated).toBe(true);
+});
+
+test('a swarm that fails stops every worker of the run and says why', async () => {
+  StandIn.all = [];
+  const run = runSwarms([2, 20], { model: '3d-ctra' }, () => {}, 2);
+  const workers = StandIn.all.slice(-2) as unknown as { onmessage: (e: { data: unknown }) => void; terminated: boolean }[];
+  workers[1].onmessage({ data: { id: 1, error: 'drones: at most 500' } });
+  await expect(run.done).rejects.toThrow('drones: at most 500');
+  expect(workers.every((w) => w.terminated)).toBe(true);
 });
