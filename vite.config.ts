@@ -1,5 +1,6 @@
 import { defineConfig, type Plugin } from 'vite';
 import { readFileSync, readdirSync } from 'node:fs';
+import { posix } from 'node:path';
 import { Marked, type Tokens } from 'marked';
 // Every export's caption names the version that made it.
 import packageJson from './package.json' with { type: 'json' };
@@ -44,25 +45,42 @@ const preloadWasm: Plugin = {
 /** A heading's anchor as GitHub makes it: lower case, punctuation dropped, spaces as hyphens. */
 const slug = (text: string) => text.toLowerCase().replace(/<[^>]+>/g, '').replace(/[^\p{L}\p{N} _-]/gu, '').trim().replace(/ /g, '-');
 
-/** Markdown as the docs are written (GitHub's tables), with their links between each other
- * pointing at the rendered pages and a link out of `docs/` (the README) left as its text: the
- * built page has no README to open. */
-const markdown = new Marked({
-  gfm: true,
-  renderer: {
-    link(this: { parser: { parseInline(tokens: Tokens.Generic[]): string } }, token: Tokens.Link) {
-      const text = this.parser.parseInline(token.tokens);
-      const doc = /^([a-z-]+)\.md(#.*)?$/.exec(token.href);
-      if (doc) return `<a href="${doc[1]}.html${doc[2] ?? ''}">${text}</a>`;
-      if (/^https?:/.test(token.href) || /^[\w.-]+\.(svg|png)$/.test(token.href)) return `<a href="${token.href}">${text}</a>`;
-      return text;
+/**
+ * Markdown as the docs are written (GitHub's tables and heading anchors), for the Markdown file at
+ * `source` (a path in the repository). Each link is resolved from that file's folder, then: a doc
+ * or the README points at its rendered page, an image or SVG in `docs/` at its copy beside the
+ * pages, an anchor or another host stays as written, and anything else (a source file) is left as
+ * its text: the built page has no repository to open.
+ */
+function markdownFor(source: string): Marked {
+  const page = (path: string): string | undefined => {
+    if (path === 'README.md') return 'readme.html';
+    const doc = /^docs\/([a-z-]+)\.md$/.exec(path);
+    if (doc) return `${doc[1]}.html`;
+    const figure = /^docs\/([\w.-]+\.(?:svg|png))$/.exec(path);
+    return figure?.[1];
+  };
+  return new Marked({
+    gfm: true,
+    renderer: {
+      link(this: { parser: { parseInline(tokens: Tokens.Generic[]): string } }, token: Tokens.Link) {
+        const text = this.parser.parseInline(token.tokens);
+        if (/^(https?:|#)/.test(token.href)) return `<a href="${token.href}">${text}</a>`;
+        const [path, anchor = ''] = token.href.split(/(?=#)/);
+        const target = page(posix.normalize(posix.join(posix.dirname(source), path)));
+        return target ? `<a href="${target}${anchor}">${text}</a>` : text;
+      },
+      image(token: Tokens.Image) {
+        const target = page(posix.normalize(posix.join(posix.dirname(source), token.href)));
+        return target ? `<img src="${target}" alt="${token.text.replace(/"/g, '&quot;')}">` : token.text;
+      },
+      heading(this: { parser: { parseInline(tokens: Tokens.Generic[]): string } }, token: Tokens.Heading) {
+        const text = this.parser.parseInline(token.tokens);
+        return `<h${token.depth} id="${slug(text)}">${text}</h${token.depth}>\n`;
+      },
     },
-    heading(this: { parser: { parseInline(tokens: Tokens.Generic[]): string } }, token: Tokens.Heading) {
-      const text = this.parser.parseInline(token.tokens);
-      return `<h${token.depth} id="${slug(text)}">${text}</h${token.depth}>\n`;
-    },
-  },
-});
+  });
+}
 
 /** The page's icon (index.html's), so that a doc page asks its server for no favicon. */
 const ICON = /<link rel="icon" href="([^"]+)"/.exec(readFileSync('index.html', 'utf8'))?.[1] ?? 'data:,';
@@ -74,10 +92,14 @@ function scrollingTables(html: string): string {
   return html.replace(/<table>/g, () => `<div class="scroll" tabindex="0" role="region" aria-label="Table ${++n}"><table>`).replace(/<\/table>/g, '</table></div>');
 }
 
-/** `docs/<name>.md` as a page of its own: no script, nothing from another host (its own CSP). */
+/** The Markdown file of page `name`: `docs/<name>.md`, or the README for `readme`. */
+const sourceOf = (name: string) => (name === 'readme' ? 'README.md' : `docs/${name}.md`);
+
+/** Page `name` (`docs/<name>.md`, or the README) as a page of its own: no script, nothing from
+ * another host (its own CSP). */
 function docPage(name: string): string {
-  const source = readFileSync(`docs/${name}.md`, 'utf8');
-  const title = /^# (.+)$/m.exec(source)?.[1] ?? name;
+  const source = readFileSync(sourceOf(name), 'utf8');
+  const title = name === 'readme' ? 'README' : (/^# (.+)$/m.exec(source)?.[1] ?? name);
   return `<!doctype html>
 <html lang="en">
 <head>
@@ -101,17 +123,18 @@ a { color: #1a55a0; }
 <body>
 <nav><a href="../">← the playground</a></nav>
 <main>
-${scrollingTables(markdown.parse(source) as string)}
+${scrollingTables(markdownFor(sourceOf(name)).parse(source) as string)}
 </main>
 </body>
 </html>
 `;
 }
 
-const DOCS = readdirSync('docs').filter((f) => f.endsWith('.md')).map((f) => f.slice(0, -3));
+const DOCS = [...readdirSync('docs').filter((f) => f.endsWith('.md')).map((f) => f.slice(0, -3)), 'readme'];
 
-// The docs the page cites ("docs/senders.md") as pages beside it, `docs/<name>.html`: written
-// into the build with the SVGs they show, and rendered on request by the dev server.
+// The docs the page cites ("docs/senders.md", "README.md") as pages beside it, `docs/<name>.html`
+// (the README's `docs/readme.html`): written into the build with the figures they show, and
+// rendered on request by the dev server.
 const docsPages: Plugin = {
   name: 'loratrack-docs',
   configureServer(server) {
@@ -124,7 +147,7 @@ const docsPages: Plugin = {
   },
   generateBundle() {
     for (const name of DOCS) this.emitFile({ type: 'asset', fileName: `docs/${name}.html`, source: docPage(name) });
-    for (const svg of readdirSync('docs').filter((f) => f.endsWith('.svg'))) this.emitFile({ type: 'asset', fileName: `docs/${svg}`, source: readFileSync(`docs/${svg}`) });
+    for (const figure of readdirSync('docs').filter((f) => /\.(svg|png)$/.test(f))) this.emitFile({ type: 'asset', fileName: `docs/${figure}`, source: readFileSync(`docs/${figure}`) });
   },
 };
 

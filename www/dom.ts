@@ -10,7 +10,7 @@ export const $ = <T extends HTMLElement>(selector: string) => document.querySele
  * README and the repository do; a slide's caption copies them as plain text.
  */
 export function linkDocs(root: Element): void {
-  const mention = /(docs\/[a-z-]+\.md)/;
+  const mention = /(docs\/[a-z-]+\.md|README\.md)/;
   const walker = document.createTreeWalker(root, NodeFilter.SHOW_TEXT);
   const found: Text[] = [];
   for (let n = walker.nextNode(); n; n = walker.nextNode()) if (mention.test(n.nodeValue ?? '') && !n.parentElement?.closest('a')) found.push(n as Text);
@@ -18,7 +18,7 @@ export function linkDocs(root: Element): void {
     const parts = (text.nodeValue ?? '').split(mention).map((part, i) => {
       if (i % 2 === 0) return part;
       const link = document.createElement('a');
-      link.href = part.replace(/\.md$/, '.html');
+      link.href = docHref(part);
       link.target = '_blank';
       link.rel = 'noopener';
       link.textContent = part;
@@ -27,3 +27,7 @@ export function linkDocs(root: Element): void {
     text.replaceWith(...parts);
   }
 }
+
+/** The rendered page of a doc the page names: `docs/<name>.md` → `docs/<name>.html`, the README →
+ * `docs/readme.html` (vite.config.ts renders them). */
+export const docHref = (mention: string) => (mention === 'README.md' ? 'docs/readme.html' : mention.replace(/\.md$/, '.html'));

@@ -572,9 +572,10 @@ test('the docs the page cites open as pages beside it, in a new tab: every link 
   const { page, problems } = await open();
   const links = await page.locator('a[href^="docs/"]').evaluateAll((as) => as.map((a) => ({ href: a.getAttribute('href'), target: a.target, text: a.textContent })));
   const hrefs = [...new Set(links.map((l) => l.href))];
-  for (const doc of ['reference', 'paper-reproduction', 'mission', 'senders', 'swarm', 'adr']) assert.ok(hrefs.includes(`docs/${doc}.html`), `the page links docs/${doc}: ${hrefs}`);
+  for (const doc of ['reference', 'paper-reproduction', 'mission', 'senders', 'swarm', 'adr', 'readme']) assert.ok(hrefs.includes(`docs/${doc}.html`), `the page links docs/${doc}: ${hrefs}`);
   // The text still names the Markdown file, as the README does; the link opens its page aside.
-  for (const l of links) assert.ok(l.target === '_blank' && l.text === l.href.replace(/\.html$/, '.md'), JSON.stringify(l));
+  const named = (href) => (href === 'docs/readme.html' ? 'README.md' : href.replace(/\.html$/, '.md'));
+  for (const l of links) assert.ok(l.target === '_blank' && l.text === named(l.href), JSON.stringify(l));
   for (const href of hrefs) {
     const res = await page.request.get(new URL(href, page.url()).href);
     assert.equal(res.status(), 200, href);
@@ -589,6 +590,15 @@ test('the docs the page cites open as pages beside it, in a new tab: every link 
   // The senders doc shows its chart, from beside it.
   await page.goto(new URL('docs/senders.html', playgroundUrl).href);
   await page.waitForFunction(() => [...document.images].length > 0 && [...document.images].every((i) => i.complete && i.naturalWidth > 0));
+  // The README, with its screenshot, its links to the docs and within itself; a doc's link to it.
+  await page.goto(new URL('docs/readme.html', playgroundUrl).href);
+  await page.waitForFunction(() => [...document.images].length > 0 && [...document.images].every((i) => i.complete && i.naturalWidth > 0));
+  const readme = await page.locator('main a').evaluateAll((as) => as.map((a) => a.getAttribute('href')));
+  assert.ok(readme.includes('senders.html') && readme.includes('#beyond-the-paper-when-to-send'), readme.join(' '));
+  for (const anchor of readme.filter((h) => h.startsWith('#'))) assert.equal(await page.locator(anchor).count(), 1, `${anchor} names a heading`);
+  await page.goto(new URL('docs/performance.html', playgroundUrl).href);
+  assert.match(await page.locator('a', { hasText: 'benchmark table' }).getAttribute('href'), /^readme\.html#benchmarks/);
+  await page.goto(new URL('docs/senders.html', playgroundUrl).href);
   await page.getByRole('link', { name: '← the playground' }).click();
   await page.waitForSelector('#results-table tbody tr');
   assert.equal(page.url(), playgroundUrl);
