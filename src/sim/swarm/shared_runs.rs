@@ -47,7 +47,8 @@ pub(super) struct SharedRun {
 /// settings), never the network: swarms that differ in size, schedule, channels, SF plan, sender
 /// or duty-cycle rule fly drone i alike, so its estimates are computed once and read by each.
 /// `sweep --swarm` runs 112 swarms of 1 … 500 drones over the same 500 drones, and its crowd
-/// comparison the same 72 drones per seed under eight senders. A run is found by the drone's seed,
+/// comparison flies the same 72 drones per seed under each sender and duty-cycle rule it compares
+/// (16 swarms a seed). A run is found by the drone's seed,
 /// stream, model and flight, and used only when its flight and sensing are exactly the ones asked
 /// for (otherwise the swarm runs that drone's filter live, as without sharing).
 ///
