@@ -497,6 +497,10 @@ $('#run-swarm').addEventListener('click', () => {
   bar.hidden = false;
   bar.value = 0;
   $('#swarm-status').textContent = `Simulating swarms of ${sizes.join(', ')} drones…`;
+  // Before the first swarm's chart, the placeholder says it is on its way, not that none was run.
+  const placeholder = document.querySelector('#chart-swarm > .empty-chart');
+  const idle = placeholder?.textContent ?? '';
+  if (placeholder) placeholder.textContent = 'The swarms are running; their chart appears here when all are done.';
   swarming = true;
   updateBusy();
   const run = (swarmRun = runSwarms(sizes, params, (done) => (bar.value = done)));
@@ -515,6 +519,7 @@ $('#run-swarm').addEventListener('click', () => {
     },
     (e: Error) => {
       end();
+      if (placeholder) placeholder.textContent = idle;
       $('#swarm-status').textContent = e.message;
     },
   );
@@ -624,7 +629,7 @@ for (const button of document.querySelectorAll<HTMLButtonElement>('[data-downloa
     if (name === 'airtime-table') return void downloadAirtimePicture(button);
     const entry = charts[name];
     const saved = entry && saveSlide(button, entry.chart, `loratrack-${name}`, slide(entry.caption));
-    downloadWhy(button, saved ? '' : name === 'swarm' && !entry ? 'Nothing to save yet: run a swarm first.' : 'Nothing to save: this chart has no data at these settings (no packet arrives).');
+    downloadWhy(button, saved ? '' : name === 'swarm' && !entry ? `Nothing to save yet: ${swarming ? 'the swarms are still running' : 'run a swarm first'}.` : 'Nothing to save: this chart has no data at these settings (no packet arrives).');
   });
 }
 
