@@ -474,7 +474,7 @@ $('#reset').addEventListener('click', () => {
 
 $('#reset-view').addEventListener('click', () => trajectory3d?.resetView());
 
-// ---- the swarm panel: its own worker, so a swarm never holds up the single-drone results ----
+// ---- the swarm panel: workers of its own, so a swarm never holds up the single-drone results --
 let swarmRun: SwarmRun | undefined;
 $('#run-swarm').addEventListener('click', () => {
   swarmRun?.stop();
@@ -499,7 +499,7 @@ $('#run-swarm').addEventListener('click', () => {
   $('#swarm-status').textContent = `Simulating swarms of ${sizes.join(', ')} drones…`;
   // Before the first swarm's chart, the placeholder says it is on its way, not that none was run.
   const placeholder = document.querySelector('#chart-swarm > .empty-chart');
-  const idle = placeholder?.textContent ?? '';
+  const unrun = placeholder?.textContent ?? '';
   if (placeholder) placeholder.textContent = 'The swarms are running; their chart appears here when all are done.';
   swarming = true;
   updateBusy();
@@ -519,7 +519,7 @@ $('#run-swarm').addEventListener('click', () => {
     },
     (e: Error) => {
       end();
-      if (placeholder) placeholder.textContent = idle;
+      if (placeholder) placeholder.textContent = unrun;
       $('#swarm-status').textContent = e.message;
     },
   );

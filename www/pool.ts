@@ -19,13 +19,15 @@ export function spawnWorker(): Worker {
 /** One worker per core, at most 8. */
 const defaultPoolSize = () => Math.max(1, Math.min(8, navigator.hardwareConcurrency || 2));
 
+/** The drones of the swarms `share` (indices into `sizes`) together. */
+const dronesIn = (share: number[], sizes: number[]) => share.reduce((sum, i) => sum + sizes[i], 0);
+
 /** Which swarms (indices into `sizes`, their drone counts) each of at most `workers` workers
  * runs: largest first, each to the worker with the fewest drones so far. */
 export function shareOut(sizes: number[], workers: number): number[][] {
   const shares: number[][] = Array.from({ length: Math.max(1, Math.min(workers, sizes.length)) }, () => []);
-  const load = (share: number[]) => share.reduce((sum, i) => sum + sizes[i], 0);
   for (const i of sizes.map((_, i) => i).sort((a, b) => sizes[b] - sizes[a])) {
-    shares.reduce((least, share) => (load(share) < load(least) ? share : least)).push(i);
+    shares.reduce((least, share) => (dronesIn(share, sizes) < dronesIn(least, sizes) ? share : least)).push(i);
   }
   return shares;
 }
@@ -49,7 +51,6 @@ export interface SwarmRun {
 export function runSwarms(sizes: number[], params: SwarmParams, progress: (done: number) => void, workers = defaultPoolSize()): SwarmRun {
   const started = performance.now();
   const shares = shareOut(sizes, workers);
-  const load = (share: number[]) => share.reduce((sum, i) => sum + sizes[i], 0);
   const total = sizes.reduce((a, b) => a + b, 0);
   const running = shares.map(() => spawnWorker());
   const done = new Array<number>(shares.length).fill(0);
@@ -62,7 +63,7 @@ export function runSwarms(sizes: number[], params: SwarmParams, progress: (done:
           running[k].onmessage = (e: MessageEvent<Response>) => {
             const r = e.data;
             if ('progress' in r) {
-              done[k] = r.progress * load(share);
+              done[k] = r.progress * dronesIn(share, sizes);
               progress(done.reduce((a, b) => a + b, 0) / total);
             } else if ('swarms' in r) {
               share.forEach((i, j) => (swarms[i] = r.swarms[j]));
