@@ -162,14 +162,13 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
   // The chart's notes, then the caption, wrap at the chart's width (about 6.6 px per character
   // at 12 px); a gap between them.
   const columns = Math.max(30, Math.floor((width - 2 * pad) / 6.6));
-  const fits = (t: string) => t.length <= columns;
-  for (const note of [...notesOf(chart), ...(slide.notes ?? [])]) {
-    const lines = wrap(note, fits);
-    lines.forEach((line, i) => out.append(text(pad, y + 14 + 16 * i, line, 12, { fill: '#5a6068' })));
+  const below = linesBelow([...notesOf(chart), ...(slide.notes ?? [])], slide.caption, (t) => t.length <= columns);
+  for (const { lines, fill } of below.slice(0, -1)) {
+    lines.forEach((line, i) => out.append(text(pad, y + 14 + 16 * i, line, 12, { fill })));
     y += 16 * lines.length + 6;
   }
-  const lines = wrap(slide.caption, fits);
-  lines.forEach((line, i) => out.append(text(pad, y + 14 + 16 * i, line, 12, { fill: '#3a3f45' })));
+  const { lines, fill } = below[below.length - 1];
+  lines.forEach((line, i) => out.append(text(pad, y + 14 + 16 * i, line, 12, { fill })));
   const height = y + 14 + 16 * (lines.length - 1) + pad;
   out.setAttribute('width', String(Math.ceil(width)));
   out.setAttribute('height', String(Math.ceil(height)));
@@ -265,6 +264,12 @@ function colourTail(t: SVGTextElement, tail: { text: string; colour: string }): 
   t.replaceChildren(head, coloured);
 }
 
+/** What a slide writes under its picture, each block wrapped by `fits` with its colour: the
+ * notes (its key, what the page writes beside it) in grey, then the caption, darker. */
+function linesBelow(notes: string[], caption: string, fits: (text: string) => boolean): { lines: string[]; fill: string }[] {
+  return [...notes.filter(Boolean).map((n) => ({ lines: wrap(n, fits), fill: '#5a6068' })), { lines: wrap(caption, fits), fill: '#3a3f45' }];
+}
+
 /** `line` broken at spaces into the longest lines that `fits` (a word that does not fit alone
  * stands alone): by characters in an SVG, by measured width on a canvas. */
 export function wrap(line: string, fits: (text: string) => boolean): string[] {
@@ -325,8 +330,7 @@ export function downloadPicturePng(picture: HTMLCanvasElement, scale: number, na
   // resets the context's state).
   const small = `${px(12)}px ${FONT}`;
   ctx.font = small;
-  const fitsPicture = (t: string) => ctx.measureText(t).width <= picture.width;
-  const below = [...notes.filter(Boolean).map((n) => ({ lines: wrap(n, fitsPicture), fill: '#5a6068' })), { lines: wrap(slide.caption, fitsPicture), fill: '#3a3f45' }];
+  const below = linesBelow(notes, slide.caption, (t) => ctx.measureText(t).width <= picture.width);
   const lineHeight = px(16);
   canvas.height = top + picture.height + below.reduce((h, b) => h + b.lines.length * lineHeight + px(6), 0) + pad;
   ctx.fillStyle = 'white';
