@@ -30,4 +30,4 @@ export function linkDocs(root: Element): void {
 
 /** The rendered page of a doc the page names: `docs/<name>.md` → `docs/<name>.html`, the README →
  * `docs/readme.html` (vite.config.ts renders them). */
-export const docHref = (mention: string) => (mention === 'README.md' ? 'docs/readme.html' : mention.replace(/\.md$/, '.html'));
+const docHref = (mention: string) => (mention === 'README.md' ? 'docs/readme.html' : mention.replace(/\.md$/, '.html'));

@@ -41,7 +41,7 @@ export type Response =
   /** The core's message, and the setting it refuses where one is at fault (`settingOf`). */
   | { id: number; error: string; setting?: string }
   | { id: number; sweep: SweepResult[] }
-  | { id: number; swarms: SwarmReport[]; millis: number };
+  | { id: number; swarms: SwarmReport[] };
 
 /** CSV texts above this size are read first with their own progress. */
 const LARGE_CSV_BYTES = 1 << 20;
@@ -95,7 +95,6 @@ self.onmessage = async (event: MessageEvent<Request | ModuleMessage>) => {
 
 function runSwarms({ id, swarm: { sizes, params } }: SwarmRequest, post: (r: Response) => void): void {
   try {
-    const t0 = performance.now();
     const total = sizes.reduce((a, b) => a + b, 0);
     let before = 0;
     const swarms = sizes.map((drones) => {
@@ -103,7 +102,7 @@ function runSwarms({ id, swarm: { sizes, params } }: SwarmRequest, post: (r: Res
       before += drones;
       return r;
     });
-    post({ id, swarms, millis: performance.now() - t0 });
+    post({ id, swarms });
   } catch (e) {
     post({ id, error: e instanceof Error ? e.message : String(e) });
   }

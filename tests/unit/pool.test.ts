@@ -139,8 +139,8 @@ test('swarms run on several workers come back in the order asked for, with progr
   // 100 of the 200 drones and all 177 of the rest, of 377.
   expect(progress.at(-1)).toBeCloseTo(277 / 377);
   const swarm = (drones: number) => ({ config: { drones } });
-  rest.onmessage({ data: { id: 1, swarms: [100, 50, 25, 2].map(swarm), millis: 1 } });
-  big.onmessage({ data: { id: 1, swarms: [swarm(200)], millis: 1 } });
+  rest.onmessage({ data: { id: 1, swarms: [100, 50, 25, 2].map(swarm) } });
+  big.onmessage({ data: { id: 1, swarms: [swarm(200)] } });
   const { swarms } = await run.done;
   expect(swarms.map((s) => s.config.drones)).toEqual([2, 25, 50, 100, 200]);
   expect(big.terminated && rest.terminated).toBe(true);
