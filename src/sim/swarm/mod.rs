@@ -14,7 +14,7 @@ mod shared_runs;
 pub use report::{DroneReport, LargestSwarm, SwarmEcho, SwarmReport};
 pub use shared_runs::SharedDroneRuns;
 
-use super::drone::{DroneFilter, Estimates};
+use super::drone::{DroneFilter, Estimates, Sensing};
 use super::flier::{Aboard, Air, Flier};
 use super::network::{run_episode, Network};
 use super::parallel::par_map;
@@ -271,14 +271,18 @@ impl<'a> Swarm<'a> {
             seed: s.run.seed,
             stream: seat.stream,
         };
+        let sensing: Vec<Sensing> = seats
+            .iter()
+            .map(|seat| self.cfg.sensing(streams(seat)))
+            .collect();
         // Each drone's filter run where another swarm has made (or this one may keep) it.
         let shared: Vec<_> = seats
             .iter()
-            .map(|seat| {
+            .zip(&sensing)
+            .map(|(seat, sensing)| {
                 let flight = &self.plan.flights[seat.flight];
-                let sensing = self.cfg.sensing(streams(seat));
                 self.shared
-                    .and_then(|runs| runs.get(flight, model, &sensing))
+                    .and_then(|runs| runs.get(flight, model, sensing))
             })
             .collect();
         let mut fliers = Vec::with_capacity(seats.len());
@@ -297,9 +301,7 @@ impl<'a> Swarm<'a> {
             let streams = streams(seat);
             let estimates = match &shared[i] {
                 Some(run) => Estimates::Stored(&run.track),
-                None => {
-                    Estimates::live(DroneFilter::new(flight, model, &self.cfg.sensing(streams)))
-                }
+                None => Estimates::live(DroneFilter::new(flight, model, &sensing[i])),
             };
             let aboard = Aboard {
                 flight,
