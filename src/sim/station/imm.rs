@@ -381,6 +381,14 @@ impl Tracker for Imm {
         }
     }
 
+    /// The mixture's position is the members' positions weighted by probabilities that the
+    /// packets' forecasts decide, so a member's covariance never reaches it.
+    fn ignore_uncertainty(&mut self) {
+        for m in &mut self.members {
+            m.ignore_uncertainty();
+        }
+    }
+
     fn position(&self) -> [f64; 3] {
         self.mixed_position(&self.member_estimates())
     }

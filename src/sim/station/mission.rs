@@ -196,6 +196,12 @@ impl Tracker for MissionStation {
     fn trust_silence(&mut self, trusted: bool) {
         self.fallback.trust_silence(trusted);
     }
+
+    /// The plan's covariance starts from the fallback's just after a packet, which the packet
+    /// itself sets, so only the fallback's propagation can be skipped.
+    fn ignore_uncertainty(&mut self) {
+        self.fallback.ignore_uncertainty();
+    }
 }
 
 #[cfg(test)]

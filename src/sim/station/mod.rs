@@ -56,6 +56,11 @@ pub trait Tracker {
     /// Whether the link has been delivering well enough for an error-triggered drone's silence
     /// to mean that the forecast holds ([`StationSetup::error_triggered`]; [`silence_trusted`]).
     fn trust_silence(&mut self, _trusted: bool) {}
+    /// Nobody will read the position covariance, only the estimate (a swarm keeps only each
+    /// drone's errors): a station may then stop propagating its covariance wherever its estimate
+    /// no longer depends on it. The estimates stay the same bit for bit;
+    /// [`Tracker::position_covariance`] is then meaningless.
+    fn ignore_uncertainty(&mut self) {}
     /// Sees the flight's transmissions before the flight is scored ([`track_station`]), so that
     /// work which does not depend on the scoring's order is done ahead, on every core: an IMM
     /// forecasts each received packet from the one before under each member. The numbers are
@@ -446,6 +451,67 @@ pub(crate) mod tests {
                 active_s: 0.0,
             })
             .collect()
+    }
+
+    #[test]
+    fn a_station_told_its_uncertainty_is_not_read_estimates_the_same_and_skips_the_covariance() {
+        // A turning, climbing, accelerating drone whose packets are lost in runs, so that every
+        // station goes overdue; under both senders (an error-triggered drone's station follows
+        // its model from the packet on).
+        let mut sent = frames("1100011101000000001101");
+        for (i, t) in sent.iter_mut().enumerate() {
+            let k = i as f64;
+            t.state = [
+                16.0 * k,
+                3.0 * k,
+                40.0 + k,
+                0.3 + 0.1 * k,
+                0.05,
+                8.0,
+                0.5,
+                0.2,
+                0.02,
+            ];
+        }
+        let received: Vec<&Transmission> = sent.iter().filter(|t| t.received).collect();
+        let end = sent.last().map_or(0.0, |t| t.sent) + 10.0;
+        for error_triggered in [false, true] {
+            let setup = StationSetup {
+                prediction: Prediction::Bounded,
+                error_triggered,
+                ..paper_setup()
+            };
+            for model in StationModel::PAPER.into_iter().chain([StationModel::Imm]) {
+                let mut read = new_tracker(model, setup, None);
+                let mut ignored = new_tracker(model, setup, None);
+                ignored.ignore_uncertainty();
+                let (mut next, mut covariance_differs) = (0, false);
+                for j in 0..=(end / 0.1) as usize {
+                    let t = j as f64 * 0.1;
+                    while next < received.len() && received[next].arrival <= t {
+                        let r = Received {
+                            packet: received[next],
+                            silence_trusted: true,
+                        };
+                        start_from(read.as_mut(), &r);
+                        start_from(ignored.as_mut(), &r);
+                        next += 1;
+                    }
+                    if next == 0 {
+                        continue;
+                    }
+                    read.predict_to(t);
+                    ignored.predict_to(t);
+                    assert_eq!(read.position(), ignored.position(), "{model:?} at {t} s");
+                    covariance_differs |=
+                        read.position_covariance() != ignored.position_covariance();
+                }
+                assert!(
+                    covariance_differs,
+                    "{model:?}: the covariance was still propagated"
+                );
+            }
+        }
     }
 
     #[test]

@@ -65,6 +65,8 @@ pub struct StationPredictor<const N: usize, M> {
     /// Whether the link lets it read an error-triggered drone's silence as news
     /// ([`Tracker::trust_silence`]).
     silence_trusted: bool,
+    /// Whether anyone reads the covariance ([`Tracker::ignore_uncertainty`]).
+    uncertainty_read: bool,
 }
 
 /// The station's process noise per second: the drone's q·I for the paper's station; for a
@@ -115,6 +117,7 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
             reset_at: 0.0,
             received: x,
             silence_trusted: true,
+            uncertainty_read: true,
         }
     }
 
@@ -142,12 +145,18 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
                 let grace = self.setup.bounds.grace_intervals * self.setup.interval;
                 let (before, after) = (self.clock - self.reset_at, t - self.reset_at);
                 let own = bounded.propagate(&self.ukf.x, dt);
-                self.ukf.predict(&bounded, dt);
                 // With an error-triggered drone the estimate follows the model from the start:
                 // the unscented mean hedges against turns the station cannot see (its heading
                 // spread shortens a straight line), but that drone reports every drift past its
                 // threshold itself, so the hedge would only cost.
-                if after > grace || self.silence_is_news() {
+                let follows_model = after > grace || self.silence_is_news();
+                // Until the next packet the estimate then no longer depends on the covariance
+                // (a packet replaces both), so where nobody reads the covariance the unscented
+                // transform, 19 propagations and a factorisation, is skipped.
+                if self.uncertainty_read || !follows_model {
+                    self.ukf.predict(&bounded, dt);
+                }
+                if follows_model {
                     self.ukf.x = own;
                 }
                 let b = self.setup.bounds;
@@ -218,6 +227,10 @@ impl<const N: usize, M: MotionModel<N> + Copy> Tracker for StationPredictor<N, M
 
     fn trust_silence(&mut self, trusted: bool) {
         self.silence_trusted = trusted;
+    }
+
+    fn ignore_uncertainty(&mut self) {
+        self.uncertainty_read = false;
     }
 
     fn position(&self) -> [f64; 3] {
