@@ -39,8 +39,11 @@ impl ErrorTriggered {
         threshold: f64,
         max_interval: f64,
     ) -> Self {
+        // The drone compares the mirror's position alone with its own estimate.
+        let mut mirror = new_tracker(model, setup, plan);
+        mirror.ignore_uncertainty();
         ErrorTriggered {
-            mirror: new_tracker(model, setup, plan),
+            mirror,
             step: setup.step,
             clock: 0.0,
             threshold,
