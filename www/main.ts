@@ -90,7 +90,7 @@ function showPartial(partial: boolean): boolean {
   const was = panel.classList.contains('partial');
   panel.classList.toggle('partial', partial);
   // A "still running" note beside the results' buttons is out of date once the set's report is on show.
-  if (was && !partial) for (const note of panel.querySelectorAll('.download-why')) note.textContent = '';
+  if (was && !partial) clearDownloadWhy(panel);
   updateEmbedCaption();
   return was;
 }
@@ -386,7 +386,10 @@ function place(name: string, chart: Element, made: Settings = store.settings, ex
   const main = chartSvg(chart);
   main?.setAttribute('role', 'img');
   main?.setAttribute('aria-label', document.getElementById(`${name}-title`)?.textContent ?? name);
-  $(`#chart-${name}`).replaceChildren(chart);
+  const box = $(`#chart-${name}`);
+  box.replaceChildren(chart);
+  // A note on why a download did nothing spoke of the chart this one replaces.
+  clearDownloadWhy(box.closest('[data-panel]') ?? box);
 }
 
 // ---- events ------------------------------------------------------------------------------------
@@ -508,6 +511,8 @@ $('#run-swarm').addEventListener('click', () => {
     bar.hidden = true;
     swarming = false;
     updateBusy();
+    // "Still running" no longer holds, whether the chart follows or an error.
+    clearDownloadWhy($('[data-panel="swarm"]'));
   };
   run.done.then(
     ({ swarms, millis }) => {
@@ -549,6 +554,11 @@ $('#new-seed').addEventListener('click', () => {
 });
 
 /** Says beside a download's buttons why it could not happen (or clears the message). */
+/** Empties the notes in `panel` that said why a download did nothing. */
+function clearDownloadWhy(panel: Element): void {
+  for (const note of panel.querySelectorAll('.download-why')) note.textContent = '';
+}
+
 function downloadWhy(button: HTMLElement, why: string): void {
   const group = button.closest('.buttons') ?? button.parentElement!;
   let note = group.querySelector<HTMLElement>('.download-why');

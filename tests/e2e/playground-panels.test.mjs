@@ -87,8 +87,18 @@ const swarmStrip = async (page) => {
 test('the swarm panel runs growing swarms and sets the collision rate against ALOHA', async () => {
   const { page, problems } = await open();
   await page.getByLabel('Drones', { exact: true }).selectOption('20');
-  await page.getByRole('button', { name: 'Run swarm' }).click();
+  // While the swarms run, the chart's placeholder and a download's note say so. Read in the click's
+  // own task, before any worker's answer can be handled, so a quick swarm cannot end it first.
+  const running = await page.evaluate(() => {
+    document.querySelector('#run-swarm').click();
+    document.querySelector('[data-panel="swarm"] [data-download][data-format="png"]').click();
+    const text = (selector) => document.querySelector(selector)?.textContent ?? '';
+    return { placeholder: text('#chart-swarm > .empty-chart'), why: text('[data-panel="swarm"] .download-why') };
+  });
+  assert.match(running.placeholder, /The swarms are running/);
+  assert.match(running.why, /Nothing to save yet: the swarms are still running/);
   await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  assert.equal(await page.locator('[data-panel="swarm"] .download-why').textContent(), '', 'the note left once the chart came');
   const note = await page.locator('#chart-swarm .note').textContent();
   assert.match(note, /20 drones, 3 channels.*collided \(ALOHA predicts [\d.]+ %\)/);
   assert.ok((await page.locator('#chart-swarm svg').count()) >= 2);

@@ -516,6 +516,9 @@ test('every chart and both tables download ready for a slide: title, legend, cap
   await idle(far.page);
   await far.page.getByRole('button', { name: 'Download the error over time chart as SVG' }).click();
   await far.page.waitForFunction(() => /no packet arrives/.test(document.querySelector('[data-panel="error"] .download-why')?.textContent ?? ''));
+  // Once packets arrive the chart is drawn again, and the note, which spoke of the empty one, goes.
+  await far.page.getByRole('slider', { name: /Distance/ }).fill('1000');
+  await far.page.waitForFunction(() => document.querySelector('[data-panel="error"] .download-why')?.textContent === '' && document.querySelector('#chart-error svg'));
   assert.deepEqual([...problems, ...far.problems], []);
 });
 
