@@ -247,6 +247,7 @@ impl StationRun<'_> {
             step: s.station.step,
             series: with_series,
             calibrate: setup.prediction == Prediction::Bounded,
+            uncertainty: true,
         };
         let st = match self.chains {
             Some(c) => c[i].lock().unwrap_or_else(|e| e.into_inner()).track(

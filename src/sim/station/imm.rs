@@ -530,6 +530,7 @@ mod tests {
             step: 0.1,
             series: true,
             calibrate: true,
+            uncertainty: true,
         };
         let setup = StationSetup {
             prediction: Prediction::Bounded,
@@ -559,6 +560,7 @@ mod tests {
             step: 0.1,
             series: false,
             calibrate: false,
+            uncertainty: true,
         };
         let mut ahead = Imm::new(&ModelKind::ALL, setup);
         let prepared = track_station(&flight, &mut ahead, &tx, scoring);

@@ -238,6 +238,24 @@ pub struct Scoring {
     /// Whether the station calibrates its covariance against its forecasts of the packets
     /// ([`Calibration`]; a bounded station: the paper's is scored as published).
     pub calibrate: bool,
+    /// Whether the station's uncertainty is scored at all: coverage95 and NEES
+    /// ([`StationTrack::consistency`]), and what `series` and `calibrate` read of it. Without it
+    /// ([`Scoring::errors_only`]) the consistency stays empty and [`track_station`] tells the
+    /// tracker that nobody reads its covariance ([`Tracker::ignore_uncertainty`]).
+    pub uncertainty: bool,
+}
+
+impl Scoring {
+    /// Only the errors, every `step` s: no series, no calibration, no uncertainty (a swarm keeps
+    /// each drone's errors alone).
+    pub fn errors_only(step: f64) -> Self {
+        Scoring {
+            step,
+            series: false,
+            calibrate: false,
+            uncertainty: false,
+        }
+    }
 }
 
 /// Runs a station over the flight.
@@ -252,6 +270,9 @@ pub fn track_station(
     transmissions: &[Transmission],
     scoring: Scoring,
 ) -> StationTrack {
+    if !scoring.uncertainty {
+        tracker.ignore_uncertainty();
+    }
     tracker.prepare(transmissions);
     score_station(
         flight,
@@ -348,13 +369,14 @@ struct Scorer<'f> {
     /// Where the last truth lookup found its time in the flight.
     hint: usize,
     series: bool,
+    uncertainty: bool,
 }
 
 impl<'f> Scorer<'f> {
     /// For up to `grid` evaluation times of `flight`, the first `untracked` of which had no
     /// estimate.
     fn new(flight: &'f Trajectory, grid: usize, untracked: usize, scoring: Scoring) -> Self {
-        let series = scoring.series;
+        let (series, uncertainty) = (scoring.series, scoring.uncertainty);
         Scorer {
             out: StationTrack {
                 times: Vec::with_capacity(if series { grid } else { 0 }),
@@ -370,6 +392,7 @@ impl<'f> Scorer<'f> {
             flight,
             hint: 0,
             series,
+            uncertainty,
         }
     }
 
@@ -392,7 +415,9 @@ impl<'f> Scorer<'f> {
         }
         out.error3d
             .push((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
-        out.consistency.add(&d, &e.covariance);
+        if self.uncertainty {
+            out.consistency.add(&d, &e.covariance);
+        }
         if self.series {
             out.times.push(t);
             out.estimate.push(est);
@@ -510,6 +535,45 @@ pub(crate) mod tests {
                     covariance_differs,
                     "{model:?}: the covariance was still propagated"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn scored_for_its_errors_only_a_station_has_the_same_errors_and_no_consistency() {
+        let flight = crate::trajectory::synthetic_flight(2).unwrap();
+        let t0 = flight.t[0];
+        let mut tx = frames("110111000011111100000001111011");
+        for t in &mut tx {
+            t.sent += t0;
+            t.arrival += t0;
+            let i = flight.t.partition_point(|&s| s < t.sent);
+            t.state = flight.state(i.min(flight.t.len() - 1));
+        }
+        let full = Scoring {
+            uncertainty: true,
+            ..Scoring::errors_only(0.1)
+        };
+        for error_triggered in [false, true] {
+            let setup = StationSetup {
+                prediction: Prediction::Bounded,
+                error_triggered,
+                ..paper_setup()
+            };
+            for model in StationModel::PAPER.into_iter().chain([StationModel::Imm]) {
+                let track = |scoring| {
+                    track_station(
+                        &flight,
+                        new_tracker(model, setup, None).as_mut(),
+                        &tx,
+                        scoring,
+                    )
+                };
+                let (scored, errors_only) = (track(full), track(Scoring::errors_only(0.1)));
+                assert_eq!(scored.error3d, errors_only.error3d, "{model:?}");
+                assert_eq!(scored.error_axes, errors_only.error_axes, "{model:?}");
+                assert_eq!(errors_only.consistency, Consistency::default(), "{model:?}");
+                assert!(scored.consistency.coverage95() > 0.0, "{model:?}");
             }
         }
     }

@@ -371,16 +371,11 @@ impl<'a> Swarm<'a> {
         let (mut e3, mut untracked) = (Vec::new(), 0);
         for (seats, out) in self.plan.episodes.iter().zip(sent) {
             let flight = &self.plan.flights[seats[i].flight];
-            // Only the error is kept: neither the covariance's calibration nor its propagation
-            // where the estimate no longer depends on it (an overdue bounded station, or one
-            // whose error-triggered drone's silence it trusts) would change it.
+            // Only the error is kept: a station need not propagate a covariance its estimate
+            // no longer depends on (an overdue bounded station, or one whose error-triggered
+            // drone's silence it trusts).
             let mut tracker = new_tracker(self.model, self.kits[i].setup, None);
-            tracker.ignore_uncertainty();
-            let scoring = Scoring {
-                step: self.cfg.s().station.step,
-                series: false,
-                calibrate: false,
-            };
+            let scoring = Scoring::errors_only(self.cfg.s().station.step);
             let track = track_station(flight, tracker.as_mut(), &out[i], scoring);
             e3.extend(track.error3d);
             untracked += track.untracked;
