@@ -238,8 +238,8 @@ pub struct Scoring {
     /// Whether the station calibrates its covariance against its forecasts of the packets
     /// ([`Calibration`]; a bounded station: the paper's is scored as published).
     pub calibrate: bool,
-    /// Whether the station's uncertainty is scored at all: coverage95 and NEES
-    /// ([`StationTrack::consistency`]), and what `series` and `calibrate` read of it. Without it
+    /// Whether the station's uncertainty is scored: coverage95 and NEES
+    /// ([`StationTrack::consistency`]); `series` (its bound) and `calibrate` need it. Without it
     /// ([`Scoring::errors_only`]) the consistency stays empty and [`track_station`] tells the
     /// tracker that nobody reads its covariance ([`Tracker::ignore_uncertainty`]).
     pub uncertainty: bool,
