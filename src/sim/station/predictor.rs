@@ -144,19 +144,19 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
                 };
                 let grace = self.setup.bounds.grace_intervals * self.setup.interval;
                 let (before, after) = (self.clock - self.reset_at, t - self.reset_at);
-                let own = bounded.propagate(&self.ukf.x, dt);
                 // With an error-triggered drone the estimate follows the model from the start:
                 // the unscented mean hedges against turns the station cannot see (its heading
                 // spread shortens a straight line), but that drone reports every drift past its
                 // threshold itself, so the hedge would only cost.
                 let follows_model = after > grace || self.silence_is_news();
+                let own = follows_model.then(|| bounded.propagate(&self.ukf.x, dt));
                 // Until the next packet the estimate then no longer depends on the covariance
                 // (a packet replaces both), so where nobody reads the covariance the unscented
                 // transform, 19 propagations and a factorisation, is skipped.
                 if self.uncertainty_read || !follows_model {
                     self.ukf.predict(&bounded, dt);
                 }
-                if follows_model {
+                if let Some(own) = own {
                     self.ukf.x = own;
                 }
                 let b = self.setup.bounds;
