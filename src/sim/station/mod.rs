@@ -478,11 +478,28 @@ pub(crate) mod tests {
             .collect()
     }
 
+    /// Every station model, bounded, under a periodic and under an error-triggered drone (whose
+    /// station follows its model from the packet on).
+    fn bounded_stations() -> Vec<(StationModel, StationSetup)> {
+        let models = StationModel::PAPER.into_iter().chain([StationModel::Imm]);
+        models
+            .flat_map(|model| {
+                [false, true].map(|error_triggered| {
+                    let setup = StationSetup {
+                        prediction: Prediction::Bounded,
+                        error_triggered,
+                        ..paper_setup()
+                    };
+                    (model, setup)
+                })
+            })
+            .collect()
+    }
+
     #[test]
     fn a_station_told_its_uncertainty_is_not_read_estimates_the_same_and_skips_the_covariance() {
         // A turning, climbing, accelerating drone whose packets are lost in runs, so that every
-        // station goes overdue; under both senders (an error-triggered drone's station follows
-        // its model from the packet on).
+        // station goes overdue.
         let mut sent = frames("1100011101000000001101");
         for (i, t) in sent.iter_mut().enumerate() {
             let k = i as f64;
@@ -500,42 +517,34 @@ pub(crate) mod tests {
         }
         let received: Vec<&Transmission> = sent.iter().filter(|t| t.received).collect();
         let end = sent.last().map_or(0.0, |t| t.sent) + 10.0;
-        for error_triggered in [false, true] {
-            let setup = StationSetup {
-                prediction: Prediction::Bounded,
-                error_triggered,
-                ..paper_setup()
-            };
-            for model in StationModel::PAPER.into_iter().chain([StationModel::Imm]) {
-                let mut read = new_tracker(model, setup, None);
-                let mut ignored = new_tracker(model, setup, None);
-                ignored.ignore_uncertainty();
-                let (mut next, mut covariance_differs) = (0, false);
-                for j in 0..=(end / 0.1) as usize {
-                    let t = j as f64 * 0.1;
-                    while next < received.len() && received[next].arrival <= t {
-                        let r = Received {
-                            packet: received[next],
-                            silence_trusted: true,
-                        };
-                        start_from(read.as_mut(), &r);
-                        start_from(ignored.as_mut(), &r);
-                        next += 1;
-                    }
-                    if next == 0 {
-                        continue;
-                    }
-                    read.predict_to(t);
-                    ignored.predict_to(t);
-                    assert_eq!(read.position(), ignored.position(), "{model:?} at {t} s");
-                    covariance_differs |=
-                        read.position_covariance() != ignored.position_covariance();
+        for (model, setup) in bounded_stations() {
+            let mut read = new_tracker(model, setup, None);
+            let mut ignored = new_tracker(model, setup, None);
+            ignored.ignore_uncertainty();
+            let (mut next, mut covariance_differs) = (0, false);
+            for j in 0..=(end / 0.1) as usize {
+                let t = j as f64 * 0.1;
+                while next < received.len() && received[next].arrival <= t {
+                    let r = Received {
+                        packet: received[next],
+                        silence_trusted: true,
+                    };
+                    start_from(read.as_mut(), &r);
+                    start_from(ignored.as_mut(), &r);
+                    next += 1;
                 }
-                assert!(
-                    covariance_differs,
-                    "{model:?}: the covariance was still propagated"
-                );
+                if next == 0 {
+                    continue;
+                }
+                read.predict_to(t);
+                ignored.predict_to(t);
+                assert_eq!(read.position(), ignored.position(), "{model:?} at {t} s");
+                covariance_differs |= read.position_covariance() != ignored.position_covariance();
             }
+            assert!(
+                covariance_differs,
+                "{model:?}: the covariance was still propagated"
+            );
         }
     }
 
@@ -554,27 +563,20 @@ pub(crate) mod tests {
             uncertainty: true,
             ..Scoring::errors_only(0.1)
         };
-        for error_triggered in [false, true] {
-            let setup = StationSetup {
-                prediction: Prediction::Bounded,
-                error_triggered,
-                ..paper_setup()
+        for (model, setup) in bounded_stations() {
+            let track = |scoring| {
+                track_station(
+                    &flight,
+                    new_tracker(model, setup, None).as_mut(),
+                    &tx,
+                    scoring,
+                )
             };
-            for model in StationModel::PAPER.into_iter().chain([StationModel::Imm]) {
-                let track = |scoring| {
-                    track_station(
-                        &flight,
-                        new_tracker(model, setup, None).as_mut(),
-                        &tx,
-                        scoring,
-                    )
-                };
-                let (scored, errors_only) = (track(full), track(Scoring::errors_only(0.1)));
-                assert_eq!(scored.error3d, errors_only.error3d, "{model:?}");
-                assert_eq!(scored.error_axes, errors_only.error_axes, "{model:?}");
-                assert_eq!(errors_only.consistency, Consistency::default(), "{model:?}");
-                assert!(scored.consistency.coverage95() > 0.0, "{model:?}");
-            }
+            let (scored, errors_only) = (track(full), track(Scoring::errors_only(0.1)));
+            assert_eq!(scored.error3d, errors_only.error3d, "{model:?}");
+            assert_eq!(scored.error_axes, errors_only.error_axes, "{model:?}");
+            assert_eq!(errors_only.consistency, Consistency::default(), "{model:?}");
+            assert!(scored.consistency.coverage95() > 0.0, "{model:?}");
         }
     }
 
