@@ -553,12 +553,12 @@ $('#new-seed').addEventListener('click', () => {
   submit();
 });
 
-/** Says beside a download's buttons why it could not happen (or clears the message). */
 /** Empties the notes in `panel` that said why a download did nothing. */
 function clearDownloadWhy(panel: Element): void {
   for (const note of panel.querySelectorAll('.download-why')) note.textContent = '';
 }
 
+/** Says beside a download's buttons why it could not happen (or clears the message). */
 function downloadWhy(button: HTMLElement, why: string): void {
   const group = button.closest('.buttons') ?? button.parentElement!;
   let note = group.querySelector<HTMLElement>('.download-why');
