@@ -3,8 +3,8 @@
 
 use super::SimError;
 use crate::lora::{
-    min_interval, time_on_air, AdrDevice, AdrMode, AdrNetwork, AdrParams, Bandwidth, DataRate,
-    LinkAdrReq, LoraParams, LorawanAdr, SpreadingFactor, TrackingAdr, UplinkFrame,
+    min_interval, time_on_air, AdrDevice, AdrMode, AdrNetwork, AdrParams, Bandwidth, ChannelParams,
+    DataRate, LinkAdrReq, LoraParams, LorawanAdr, SpreadingFactor, TrackingAdr, UplinkFrame,
 };
 
 /// Time on air and duty-cycle interval of one packet size at every EU868 data rate.
@@ -37,14 +37,16 @@ impl RateTable {
         Ok(t)
     }
 
-    /// The network server's ADR algorithm for a device sending these packets.
-    pub fn network(&self, params: &AdrParams, shadowing_db: f64) -> Box<dyn AdrNetwork> {
+    /// The network server's ADR algorithm for a device sending these packets over `channel`
+    /// (its shadowing's spread and decorrelation inform the tracking-aware choice).
+    pub fn network(&self, params: &AdrParams, channel: &ChannelParams) -> Box<dyn AdrNetwork> {
         match params.mode {
             AdrMode::Lorawan => Box::new(LorawanAdr::new(params.margin_db, params.history)),
             _ => Box::new(TrackingAdr::new(
                 self.time_on_air,
                 self.interval,
-                shadowing_db,
+                channel.shadowing_sigma_db,
+                channel.decorrelation_distance,
             )),
         }
     }

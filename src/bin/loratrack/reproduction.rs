@@ -1242,7 +1242,10 @@ pub fn distances_markdown(
          downlink). `tracking` picks the rate with the least expected cost, the time mean of age⁴ of the station's \
          newest packet (error growing with the square of that age), from each rate's interval and its delivery ratio \
          estimated from the last {} frames (received ones' power and, censored, the lost ones' known from the frame \
-         counter); it moves either way, when the best rate costs {:.0} % less than the current one. Commands travel in \
+         counter); that long-run choice changes when the best rate costs {:.0} % less. Within it the network follows \
+         fades: a received frame's shadowing, carried forward by its correlation over the metres the drone flies in \
+         one interval (at the speed its payload reports), forecasts the next frame's delivery at each rate, and the \
+         network asks for the cheapest rate under that forecast, never faster than the long-run choice. Commands travel in \
          a downlink after a received uplink, which the reciprocal channel may lose. The station restarts with each \
          flight, so every flight is untracked until its first packet arrives: `tracked` is the share of the flight \
          time after it, and p50, p75 and p95 are over the whole flight time, a moment without any packet counting as \

@@ -84,6 +84,7 @@ mod tests {
             rssi_dbm: snr - 117.0,
             snr_db: snr,
             adr_ack_req: false,
+            speed_mps: 0.0,
         }
     }
 

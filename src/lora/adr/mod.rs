@@ -5,8 +5,9 @@
 //!   nothing (`ADR_ACK_LIMIT`, `ADR_ACK_DELAY`).
 //! * [`LorawanAdr`]: Semtech's recommended network-server algorithm, as The Things Stack and the
 //!   ns-3 `lorawan` module implement it: margin of the best recent SNR, 3 dB steps.
-//! * [`TrackingAdr`]: ours: the data rate with the smallest expected squared age of the station's
-//!   newest packet, from the delivery ratio it estimates for each rate.
+//! * [`TrackingAdr`]: ours: the data rate with the smallest expected cost in the age of the
+//!   station's newest packet, from the delivery it estimates for each rate over the long run and,
+//!   through a fade, for the next frame.
 
 mod device;
 mod lorawan;
@@ -124,6 +125,9 @@ pub struct UplinkReport {
     pub snr_db: f64,
     /// The frame's `ADRACKReq` bit: the server answers it with a downlink, command or not.
     pub adr_ack_req: bool,
+    /// The drone's speed its payload reports, m/s: the server decodes every uplink, and
+    /// [`TrackingAdr`] reads from it how far the drone flies between frames.
+    pub speed_mps: f64,
 }
 
 /// A `LinkADRReq`: the data rate and power the device should use from its next uplink.

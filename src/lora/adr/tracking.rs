@@ -1,4 +1,5 @@
-//! A tracking-aware ADR: choose the data rate that keeps the station's newest packet youngest.
+//! A tracking-aware ADR: choose the data rate that keeps the station's newest packet youngest,
+//! over the link's long run and, within that, for the next frame through a fade.
 
 use super::{AdrNetwork, LinkAdrReq, UplinkReport, ADR_ACK_DELAY, ADR_ACK_LIMIT};
 use crate::lora::{Channel, DataRate};
@@ -15,6 +16,11 @@ pub const TRACKING_HYSTERESIS: f64 = 0.5;
 /// The least shadowing spread assumed, dB, so that a channel without shadowing still gives a
 /// smooth delivery curve.
 const MIN_SIGMA_DB: f64 = 1.0;
+/// The shortest decorrelation distance assumed, m (the channel accepts 1 m and up).
+const MIN_DECORRELATION_M: f64 = 1.0;
+/// The least spread of the next frame's shadowing given this frame's, dB: a drone that hovers
+/// keeps its shadowing (ρ = 1), and the forecast should still not be a step.
+const MIN_NEXT_SIGMA_DB: f64 = 0.5;
 
 /// How the station's error grows with the age of its newest packet: error ∝ age^g. Between
 /// packets the paper's stations extrapolate a constant acceleration and turn rate, so the
@@ -108,19 +114,33 @@ struct Frame {
 
 /// The tracking-aware network ADR.
 ///
-/// From the last [`TRACKING_WINDOW`] frames, received ones with their RSSI and lost ones known
-/// from gaps in the frame counter (assumed sent at the settings of the frame before), it
-/// estimates the mean full-power received power μ by maximum likelihood of a censored normal
-/// (a lost frame's power lay below its rate's sensitivity; the spread σ is the configured
-/// shadowing, at least 1 dB). Each rate's delivery is then Φ((μ − sensitivity)/σ) and its cost
-/// [`expected_age_cost`] of its own interval; the network asks for the cheapest rate at full
-/// power when it beats the current one by [`TRACKING_HYSTERESIS`]. It may slow the rate as well
-/// as speed it up, through the same downlink as LoRaWAN's ADR.
+/// **The long run.** From the last [`TRACKING_WINDOW`] frames, received ones with their RSSI and
+/// lost ones known from gaps in the frame counter (assumed sent at the settings of the frame
+/// before), it estimates the mean full-power received power μ by maximum likelihood of a
+/// censored normal (a lost frame's power lay below its rate's sensitivity; the spread σ is the
+/// configured shadowing, at least 1 dB). Each rate's delivery is then Φ((μ − sensitivity)/σ) and
+/// its cost [`expected_age_cost`] of its own interval. The cheapest rate becomes the *base* rate
+/// when it beats the base by [`TRACKING_HYSTERESIS`].
+///
+/// **The next frame** (docs/adr.md). Shadowing is correlated along the path (Gudmundson 1991:
+/// ρ = exp(−d / d₀) over d metres, d₀ the channel's decorrelation distance), so a received frame
+/// says where the link is now, not only on average: its shadowing s = RSSI − μ decays toward 0
+/// as ρ = exp(−v T / d₀) over one interval T of a rate at the speed v its payload reports, and
+/// the next frame's delivery at that rate is Φ((μ + ρ s − sensitivity) / (σ √(1 − ρ²))). The
+/// network asks for the rate, no faster than the base, whose [`expected_age_cost`] under that
+/// delivery is least: a weak frame at the base rate (a fade coming) slows the next frames, and a
+/// strong one brings them back to the base. Never faster than the base, because the device
+/// cannot come back from a rate whose frames are lost (no frame heard, no command), and a fade
+/// holds many frames; the forecast treats the frames ahead as one draw each.
+///
+/// Commands go at full power in the downlink after a received uplink, as LoRaWAN's ADR does; it
+/// may slow the rate as well as speed it up.
 #[derive(Clone, Debug)]
 pub struct TrackingAdr {
     time_on_air: [f64; 7],
     interval: [f64; 7],
     sigma_db: f64,
+    decorrelation_m: f64,
     frames: VecDeque<Frame>,
     next_fcnt: u32,
     settings: Option<(DataRate, f64)>,
@@ -131,22 +151,31 @@ pub struct TrackingAdr {
     answered: Option<u32>,
     /// `answered` before the last downlink, restored when a frame shows that downlink was lost.
     answered_before: Option<u32>,
+    /// The long-run choice (from the first frame heard on): the fastest rate a command may ask for.
+    base: Option<DataRate>,
 }
 
 impl TrackingAdr {
     /// For packets of `time_on_air[dr]` s sent every `interval[dr]` s at each data rate, over a
-    /// channel with `sigma_db` of shadowing.
-    pub fn new(time_on_air: [f64; 7], interval: [f64; 7], sigma_db: f64) -> Self {
+    /// channel with `sigma_db` of shadowing that decorrelates over `decorrelation_m` metres flown.
+    pub fn new(
+        time_on_air: [f64; 7],
+        interval: [f64; 7],
+        sigma_db: f64,
+        decorrelation_m: f64,
+    ) -> Self {
         TrackingAdr {
             time_on_air,
             interval,
             sigma_db: sigma_db.max(MIN_SIGMA_DB),
+            decorrelation_m: decorrelation_m.max(MIN_DECORRELATION_M),
             frames: VecDeque::new(),
             next_fcnt: 0,
             settings: None,
             commanded: None,
             answered: None,
             answered_before: None,
+            base: None,
         }
     }
 
@@ -251,9 +280,43 @@ impl TrackingAdr {
 
     /// The estimated delivery ratio of each data rate at full power.
     pub fn delivery(&self) -> [f64; 7] {
-        let mu = self.mean_rssi();
+        self.delivery_around(self.mean_rssi())
+    }
+
+    fn delivery_around(&self, mu: f64) -> [f64; 7] {
         DataRate::ALL
             .map(|dr| normal_cdf((mu - Channel::sensitivity_dbm(dr.sf(), dr.bw())) / self.sigma_db))
+    }
+
+    /// Each rate's delivery for the next frame after `up`, received: its shadowing over the mean
+    /// `mu`, carried forward one interval of that rate at the payload's speed (type docs).
+    pub fn next_delivery(&self, up: &UplinkReport, mu: f64) -> [f64; 7] {
+        let shadow = up.rssi_dbm + up.power_reduction_db - mu;
+        let speed = if up.speed_mps.is_finite() {
+            up.speed_mps.abs()
+        } else {
+            0.0
+        };
+        DataRate::ALL.map(|dr| {
+            let k = usize::from(dr.index());
+            let rho = crate::math::exp(-speed * self.interval[k] / self.decorrelation_m);
+            let spread = (self.sigma_db * (1.0 - rho * rho).sqrt()).max(MIN_NEXT_SIGMA_DB);
+            let margin = mu + rho * shadow - Channel::sensitivity_dbm(dr.sf(), dr.bw());
+            normal_cdf(margin / spread)
+        })
+    }
+
+    /// The long-run choice after this frame: the cheapest rate when it beats the base by the
+    /// hysteresis, else the base (the first frame's rate until then).
+    fn update_base(&mut self, up: &UplinkReport, delivery: &[f64; 7]) -> Option<DataRate> {
+        let base = self.base.unwrap_or(up.dr);
+        let best = DataRate::ALL
+            .into_iter()
+            .min_by(|a, b| self.cost(*a, delivery).total_cmp(&self.cost(*b, delivery)))?;
+        let better =
+            self.cost(best, delivery) < (1.0 - TRACKING_HYSTERESIS) * self.cost(base, delivery);
+        self.base = Some(if better { best } else { base });
+        self.base
     }
 
     fn cost(&self, dr: DataRate, delivery: &[f64; 7]) -> f64 {
@@ -270,13 +333,14 @@ impl AdrNetwork for TrackingAdr {
         // kept a bad choice for as long: pooled over 8 seeds, p75 / best fixed from DR0 at
         // 3 km was 2.39 with the wait and 1.19 without.
         self.record(up);
-        let delivery = self.delivery();
-        let best = DataRate::ALL.into_iter().min_by(|a, b| {
-            self.cost(*a, &delivery)
-                .total_cmp(&self.cost(*b, &delivery))
-        })?;
-        let current = self.cost(up.dr, &delivery);
-        let better = self.cost(best, &delivery) < (1.0 - TRACKING_HYSTERESIS) * current;
+        let mu = self.mean_rssi();
+        let base = self.update_base(up, &self.delivery_around(mu))?;
+        let next = self.next_delivery(up, mu);
+        let best = DataRate::ALL
+            .into_iter()
+            .filter(|dr| *dr <= base)
+            .min_by(|a, b| self.cost(*a, &next).total_cmp(&self.cost(*b, &next)))?;
+        let better = best != up.dr;
         let full_power = up.power_reduction_db == 0.0;
         let command = match (better, full_power) {
             (true, _) => Some(best),
@@ -314,6 +378,7 @@ mod tests {
             rssi_dbm: rssi,
             snr_db: rssi + 114.0,
             adr_ack_req: false,
+            speed_mps: 8.0,
         }
     }
 
@@ -322,7 +387,7 @@ mod tests {
         // At 7 km from DR6 nothing is heard until the device, unanswered, has backed off to DR3:
         // 64 + 32 silent frames, then one rate per 32 more (frame 160 is its first at DR3).
         let (toa, interval) = table();
-        let mut adr = TrackingAdr::new(toa, interval, 4.0);
+        let mut adr = TrackingAdr::new(toa, interval, 4.0, 110.0);
         adr.on_uplink(&up(166, 3, -125.0));
         // The window keeps the last TRACKING_WINDOW frames: lost frames 71..=165 and the one heard.
         assert_eq!(adr.frames.len(), TRACKING_WINDOW);
@@ -332,7 +397,7 @@ mod tests {
         let at = |dr: u8| lost.iter().filter(|&&d| d == dr).count();
         assert_eq!((at(6), at(5), at(4), at(3)), (25, 32, 32, 6), "{lost:?}");
         // A gap at the rate the device already had stays at that rate.
-        let mut steady = TrackingAdr::new(toa, interval, 4.0);
+        let mut steady = TrackingAdr::new(toa, interval, 4.0, 110.0);
         steady.on_uplink(&up(0, 3, -120.0));
         steady.on_uplink(&up(10, 3, -121.0));
         assert!(steady.frames.iter().all(|f| f.dr.index() == 3));
@@ -350,7 +415,7 @@ mod tests {
                 })
                 .expect("a command")
         };
-        let mut adr = TrackingAdr::new(toa, iv, 4.0);
+        let mut adr = TrackingAdr::new(toa, iv, 4.0, 110.0);
         let (fcnt, cmd) = slowed(&mut adr);
         assert!(cmd.dr < DataRate::DR5, "{cmd:?}");
         // The downlink was lost: the device stayed at DR6 until, unanswered for 64 + 32
@@ -368,7 +433,7 @@ mod tests {
         assert!(gap.iter().all(|&d| d == 5 || d == 6), "{gap:?}");
         assert!(gap.contains(&6), "{gap:?}");
         // A device that obeyed is counted at the rate it was asked for.
-        let mut obeyed = TrackingAdr::new(toa, iv, 4.0);
+        let mut obeyed = TrackingAdr::new(toa, iv, 4.0, 110.0);
         let (fcnt, cmd) = slowed(&mut obeyed);
         obeyed.on_uplink(&up(fcnt + 10, cmd.dr.index(), -120.0));
         let gap: Vec<u8> = obeyed
@@ -406,7 +471,7 @@ mod tests {
     #[test]
     fn a_strong_link_keeps_the_fastest_rate() {
         let (toa, iv) = table();
-        let mut adr = TrackingAdr::new(toa, iv, 4.0);
+        let mut adr = TrackingAdr::new(toa, iv, 4.0, 110.0);
         for k in 0..10 {
             assert_eq!(adr.on_uplink(&up(k, 6, -100.0)), None);
         }
@@ -415,7 +480,7 @@ mod tests {
     #[test]
     fn losses_seen_in_the_frame_counter_slow_the_rate() {
         let (toa, iv) = table();
-        let mut adr = TrackingAdr::new(toa, iv, 4.0);
+        let mut adr = TrackingAdr::new(toa, iv, 4.0, 110.0);
         // One frame in ten arrives at DR6, just above the sensitivity (−127 dBm).
         let cmd = (0..4)
             .filter_map(|k| adr.on_uplink(&up(10 * k + 9, 6, -126.0)))
@@ -429,7 +494,7 @@ mod tests {
     #[test]
     fn the_censored_estimate_finds_the_mean_behind_the_losses() {
         let (toa, iv) = table();
-        let mut adr = TrackingAdr::new(toa, iv, 4.0);
+        let mut adr = TrackingAdr::new(toa, iv, 4.0, 110.0);
         // Half the frames lost at DR6 (sensitivity −127): the mean sits near −127, below the
         // received frames' average.
         for k in 0..8 {
@@ -437,5 +502,70 @@ mod tests {
         }
         let mu = adr.mean_rssi();
         assert!(mu < -124.0 && mu > -129.0, "{mu}");
+    }
+
+    /// `up` at `speed` m/s.
+    fn moving(fcnt: u32, dr: u8, rssi: f64, speed: f64) -> UplinkReport {
+        UplinkReport {
+            speed_mps: speed,
+            ..up(fcnt, dr, rssi)
+        }
+    }
+
+    /// A network that has settled on DR5 over a link whose mean lies 4 dB above DR5's
+    /// sensitivity (−130 dBm): forty frames heard around −126 dBm.
+    fn settled_at_dr5() -> TrackingAdr {
+        let (toa, iv) = table();
+        let mut adr = TrackingAdr::new(toa, iv, 4.0, 110.0);
+        for k in 0..40 {
+            let wobble = if k % 2 == 0 { 1.0 } else { -1.0 };
+            adr.on_uplink(&moving(k, 5, -126.0 + wobble, 8.0));
+        }
+        assert_eq!(adr.base, Some(DataRate::DR5), "{:?}", adr.delivery());
+        adr
+    }
+
+    #[test]
+    fn a_weak_frame_on_a_correlated_link_slows_the_next_frames_and_a_strong_one_restores_the_base()
+    {
+        let mut adr = settled_at_dr5();
+        // A frame 0.1 dB above the sensitivity: the fade it sits in outlasts the next interval.
+        let weak = moving(40, 5, -129.9, 8.0);
+        let next = adr.next_delivery(&weak, adr.mean_rssi());
+        let slowed = adr.on_uplink(&weak).expect("a command");
+        assert!(slowed.dr < DataRate::DR5, "{slowed:?}");
+        assert!(
+            next[5] < 0.75 && next[usize::from(slowed.dr.index())] > 0.85,
+            "{next:?}"
+        );
+        // Heard at the slower rate, well above DR5's sensitivity again: back to the base.
+        let back = adr.on_uplink(&moving(41, slowed.dr.index(), -122.0, 8.0));
+        assert_eq!(back.map(|c| c.dr), Some(DataRate::DR5));
+    }
+
+    #[test]
+    fn where_the_drone_stands_still_its_shadowing_holds_and_where_it_flies_far_it_is_forgotten() {
+        let adr = settled_at_dr5();
+        let mu = adr.mean_rssi();
+        let weak = |speed| adr.next_delivery(&moving(40, 5, -129.9, speed), mu)[5];
+        // Hovering, the next frame meets the link where this one did, 0.1 dB above DR5's
+        // sensitivity (within the least spread assumed, 0.5 dB); flying a kilometre between
+        // frames, the forecast is the long-run delivery.
+        assert!(
+            (weak(0.0) - normal_cdf(0.1 / MIN_NEXT_SIGMA_DB)).abs() < 1e-9,
+            "{}",
+            weak(0.0)
+        );
+        assert!((weak(300.0) - adr.delivery()[5]).abs() < 1e-3);
+        assert!(weak(8.0) < weak(300.0));
+    }
+
+    #[test]
+    fn a_strong_frame_never_asks_for_a_rate_faster_than_the_long_run_choice() {
+        let mut adr = settled_at_dr5();
+        // 15 dB above DR6's sensitivity for one frame: DR6 would arrive next time, but a frame
+        // lost there could not bring the drone back (no frame heard, no command).
+        assert_eq!(adr.on_uplink(&moving(40, 5, -112.0, 8.0)), None);
+        assert_eq!(adr.base, Some(DataRate::DR5));
     }
 }

@@ -11,6 +11,7 @@ use crate::lora::{
     Uplink, UplinkActivity, Window, ACK_DOWNLINK_BYTES, ADR_DOWNLINK_BYTES,
 };
 use crate::math::distance;
+use crate::models::V;
 use crate::sim::flier::Flier;
 use crate::sim::link::Reception;
 use crate::sim::parallel::par_each;
@@ -374,7 +375,9 @@ impl Episode {
         let (Some(g), Some(frame)) = (best, air.frame.adr) else {
             return (None, None);
         };
-        let (answers, command) = net.adr_hears(f.drone, &frame, air.receptions[g].rx_dbm);
+        // The payload the server decodes: this uplink's, the last the drone put on air.
+        let speed = f.tx.last().map_or(0.0, |t| t.state[V]);
+        let (answers, command) = net.adr_hears(f.drone, &frame, air.receptions[g].rx_dbm, speed);
         if !answers {
             return (None, command);
         }

@@ -71,10 +71,9 @@ impl Network {
             lorawan,
             listen_before_talk,
         } = setup;
-        let shadowing = channel.params().shadowing_sigma_db;
         let algorithms = radios
             .iter()
-            .map(|r| r.rates().map(|t| t.network(&adr, shadowing)))
+            .map(|r| r.rates().map(|t| t.network(&adr, channel.params())))
             .collect();
         let gateways = sites
             .iter()
@@ -152,14 +151,15 @@ impl Network {
         self.duplicates += copies.saturating_sub(1);
     }
 
-    /// ADR for drone `drone`'s received `frame` at `rssi_dbm` (the best gateway's): whether the
-    /// server answers with a downlink (it must when asked by `ADRACKReq`, and does when it has a
-    /// command), and the command.
+    /// ADR for drone `drone`'s received `frame` at `rssi_dbm` (the best gateway's), whose payload
+    /// reports `speed_mps`: whether the server answers with a downlink (it must when asked by
+    /// `ADRACKReq`, and does when it has a command), and the command.
     pub(crate) fn adr_hears(
         &mut self,
         drone: usize,
         frame: &UplinkFrame,
         rssi_dbm: f64,
+        speed_mps: f64,
     ) -> (bool, Option<LinkAdrReq>) {
         let Some(Some(algorithm)) = self.adr.get_mut(drone) else {
             return (false, None);
@@ -171,6 +171,7 @@ impl Network {
             rssi_dbm,
             snr_db: snr_db(rssi_dbm, frame.dr.bw()),
             adr_ack_req: frame.adr_ack_req,
+            speed_mps,
         });
         (command.is_some() || frame.adr_ack_req, command)
     }
