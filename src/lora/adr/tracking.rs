@@ -290,7 +290,7 @@ impl TrackingAdr {
 
     /// Each rate's delivery for the next frame after `up`, received: its shadowing over the mean
     /// `mu`, carried forward one interval of that rate at the payload's speed (type docs).
-    pub fn next_delivery(&self, up: &UplinkReport, mu: f64) -> [f64; 7] {
+    fn next_delivery(&self, up: &UplinkReport, mu: f64) -> [f64; 7] {
         let shadow = up.rssi_dbm + up.power_reduction_db - mu;
         let speed = if up.speed_mps.is_finite() {
             up.speed_mps.abs()
