@@ -327,8 +327,9 @@ impl TrackingAdr {
 
 impl AdrNetwork for TrackingAdr {
     fn on_uplink(&mut self, up: &UplinkReport) -> Option<LinkAdrReq> {
-        // Judged on every uplink: the window already holds the frames at the old settings
-        // (censored where lost), and the hysteresis stops it flipping. Waiting for four frames
+        // The long-run choice is judged on every uplink: the window already holds the frames at
+        // the old settings (censored where lost), and the hysteresis stops it flipping (the
+        // command below moves with each fade on purpose, only below it). Waiting for four frames
         // at the new settings, as it once did, cost minutes at DR0-DR1 (116 s a frame) and
         // kept a bad choice for as long: pooled over 8 seeds, p75 / best fixed from DR0 at
         // 3 km was 2.39 with the wait and 1.19 without.
