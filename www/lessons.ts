@@ -98,9 +98,9 @@ export const LESSONS: Lesson[] = [
     text: 'With 72 drones on one SF7 channel most packets collide. An error-triggered drone with the default 2 m threshold finds its station that far off at nearly every chance to send, so it sends like a periodic one. With a threshold on the scale of the errors such a crowd allows (20 m, a heartbeat of 60 s and a duty-cycle budget) each drone sends when its station has drifted, the channel clears, and more of what is sent arrives.',
     notice: [
       'The note under the swarm charts: with 72 drones about half the packets are delivered, and the median drone’s p75 is under 40 m.',
-      'Set Sending to Periodic and the duty-cycle rule to Off-time per packet (the paper’s drone) and run the swarm again: every drone sends as often as the duty cycle allows, about a third of the packets are delivered, and the median drone’s p75 is about 50 m.',
-      'Over 8 seeds of 300 s each (docs/swarm.md): 0.80× periodic sending’s p75 on 0.60× the airtime.',
-      'Raise the threshold to 40 m: the drones use about a third of periodic sending’s airtime, their p75 stays below it (0.89×), and against periodic sending slowed to the same airtime the p95 is 0.58× (docs/swarm.md, 8 seeds). The less airtime there is, the more it pays to spend it where the drift is.',
+      'Set Sending to Periodic and the duty-cycle rule to Off-time per packet (the paper’s drone) and run the swarm again: every drone sends as often as the duty cycle allows, about a third of the packets are delivered, and the median drone’s p75 is about 45 m.',
+      'Over 8 seeds of 300 s each (docs/swarm.md): 0.79× periodic sending’s p75 on 0.60× the airtime.',
+      'Raise the threshold to 40 m: the drones use about a third of periodic sending’s airtime, their p75 stays below it (0.85×), and against periodic sending slowed to the same airtime the p95 is 0.81× (docs/swarm.md, 8 seeds): no better than at 20 m, where the p95 is 0.79×.',
     ],
   },
   {

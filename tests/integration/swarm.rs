@@ -338,7 +338,7 @@ fn every_drone_says_how_much_of_its_flight_time_its_errors_cover() {
 /// less": with 72 drones on one SF7 channel most packets collide, and a threshold and heartbeat on
 /// the scale of the crowd's errors (20 m, 60 s) let error-triggered drones under the budget rule
 /// track better than periodic ones while sending less. The lesson's 120 s swarms (the docs fly
-/// 300 s over 8 seeds): median drone p75 38.4 m against 49.9 m on 0.63× the airtime.
+/// 300 s over 8 seeds): median drone p75 31.7 m against 42.1 m on 0.63× the airtime.
 #[test]
 fn in_a_crowd_a_threshold_on_its_scale_tracks_better_than_periodic_sending_with_less_airtime() {
     let crowd = set(

@@ -497,6 +497,37 @@ pub(crate) mod tests {
     }
 
     #[test]
+    fn over_a_long_gap_the_paper_sigma_points_fly_the_mean_backwards_and_the_bounded_ones_do_not() {
+        // Straight and level at 8 m/s, a packet every 30 s: after 30 s (not yet overdue) the
+        // drone is 240 m on. The heading's variance grows by q = 0.1 rad² a second, so the sigma
+        // points fan out over every direction and their mean falls short of the line. With the
+        // paper's negative centre weight the mean lands behind the start, where no point flies;
+        // with the bounded station's non-negative weights it stays between start and line.
+        let advance = |prediction, model| {
+            let setup = StationSetup {
+                prediction,
+                interval: 30.0,
+                ..paper_setup()
+            };
+            let mut station = new_tracker(model, setup, None);
+            station.reset(&[0.0, 0.0, 50.0, 0.0, 0.0, 8.0, 0.0, 0.0, 0.0], 0.0);
+            for j in 1..=300 {
+                station.predict_to(j as f64 * 0.1);
+            }
+            station.position()[0]
+        };
+        for model in StationModel::PAPER {
+            let paper = advance(Prediction::Paper, model);
+            let bounded = advance(Prediction::Bounded, model);
+            assert!(paper < 0.0, "{model:?}: the paper's mean at x = {paper} m");
+            assert!(
+                bounded > 0.0 && bounded < 240.0,
+                "{model:?}: the bounded mean at x = {bounded} m"
+            );
+        }
+    }
+
+    #[test]
     fn a_station_told_its_uncertainty_is_not_read_estimates_the_same_and_skips_the_covariance() {
         // A turning, climbing, accelerating drone whose packets are lost in runs, so that every
         // station goes overdue.

@@ -2,7 +2,7 @@
 
 use super::{Bounded, Bounds, DroneCovariances, Prediction, Tracker};
 use crate::codec::quantization_variance;
-use crate::filter::{measurement_noise, process_noise, SigmaParams, Ukf};
+use crate::filter::{measurement_noise, process_noise, Ukf};
 use crate::math::ln;
 use crate::models::{MotionModel, ANGLES, PHI, THETA, X, Y, Z};
 use nalgebra::{Cholesky, Matrix3, SMatrix, SVector};
@@ -101,11 +101,11 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
             x,
             p0,
             station_process_noise(&setup),
-            SigmaParams::default(),
+            setup.prediction.sigma_params(),
             ANGLES,
         ) {
             Some(u) => u,
-            None => unreachable!("the default sigma parameters are valid for every state size"),
+            None => unreachable!("either prediction's sigma parameters suit every state size"),
         };
         StationPredictor {
             model,
