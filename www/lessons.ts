@@ -66,8 +66,8 @@ export const LESSONS: Lesson[] = [
     text: 'No motion model is best all the time: dead reckoning while the drone flies straight, CTRA+ and 3D-CTRA while it turns or speeds up. The IMM station runs all three between packets and weighs them at every packet, by how well each forecast that packet and by the acceleration and turn rate the packet itself reports.',
     notice: [
       'The results table: at SF8, with a packet about every 5 s, IMM’s p75 and p95 are the lowest of the four stations (it receives 3D-CTRA’s 12-byte packets).',
-      'The tooltip of IMM’s “in 95 % bound” cell: its mean probabilities, DR’s about a half: much of each flight is straight.',
-      'With one seed the p75 intervals overlap; Repeat with 10 seeds and IMM’s lies below the others’.',
+      'The tooltip of IMM’s “in 95 % bound” cell: its mean probabilities, about a third each: straight legs and turns share each flight.',
+      'With one seed the p75 intervals overlap; Repeat with 10 seeds and IMM’s lies below DR’s and reaches only the bottom of CTRA+’s and 3D-CTRA’s.',
     ],
   },
   {
@@ -98,7 +98,7 @@ export const LESSONS: Lesson[] = [
     text: 'With 72 drones on one SF7 channel most packets collide. An error-triggered drone with the default 2 m threshold finds its station that far off at nearly every chance to send, so it sends like a periodic one. With a threshold on the scale of the errors such a crowd allows (20 m, a heartbeat of 60 s and a duty-cycle budget) each drone sends when its station has drifted, the channel clears, and more of what is sent arrives.',
     notice: [
       'The note under the swarm charts: with 72 drones about half the packets are delivered, and the median drone’s p75 is under 40 m.',
-      'Set Sending to Periodic and the duty-cycle rule to Off-time per packet (the paper’s drone) and run the swarm again: every drone sends as often as the duty cycle allows, about a third of the packets are delivered, and the median drone’s p75 is about 45 m.',
+      'Set Sending to Periodic and the duty-cycle rule to Off-time per packet (the paper’s drone) and run the swarm again: every drone sends as often as the duty cycle allows, about a third of the packets are delivered, and the median drone’s p75 is just over 40 m.',
       'Over 8 seeds of 300 s each (docs/swarm.md): 0.79× periodic sending’s p75 on 0.60× the airtime.',
       'Raise the threshold to 40 m: the drones use about a third of periodic sending’s airtime, their p75 stays below it (0.85×), and against periodic sending slowed to the same airtime the p95 is 0.81× (docs/swarm.md, 8 seeds): no better than at 20 m, where the p95 is 0.79×.',
     ],

@@ -391,7 +391,7 @@ test('lesson "Which motion model when": over the whole set DR is clearly worst, 
   assert.deepEqual(problems, []);
 });
 
-test('lesson "Let the packets choose the model": at SF8 the IMM has the lowest p75 and p95, DR about half its weight', async () => {
+test('lesson "Let the packets choose the model": at SF8 the IMM has the lowest p75 and p95, DR about a third of its weight', async () => {
   const { page, problems } = await lesson('Let the packets choose the model', { settled: false });
   const others = ['dr', 'ctra-plus', '3d-ctra'];
   for (const field of ['p75', 'p95']) {
@@ -400,7 +400,7 @@ test('lesson "Let the packets choose the model": at SF8 the IMM has the lowest p
   }
   const tooltip = await page.locator('tr[data-model="imm"] td[data-field="coverage"]').getAttribute('title');
   const dr = Number(/DR ([\d.]+)/.exec(tooltip)[1]);
-  assert.ok(dr > 0.4 && dr < 0.6, tooltip);
+  assert.ok(dr > 0.25 && dr < 0.45, tooltip);
   assert.deepEqual(problems, []);
 });
 
