@@ -276,9 +276,10 @@ scarce (SF10–SF12 / 125 kHz: a dozen or fewer per flight) the IMM was 1.1–1.
 bounded station took the drone filter's sigma points (kappa = 3 − n, a centre weight of −1 to −2): over
 a half-minute gap the heading's spread fans the points out and the negative centre weight pushed the
 mean behind the start, hurting most the richer members, whose turn rate spreads the heading fastest.
-With non-negative weights (kappa = 0) it is within 2 % of the best single model at every rate but
-SF11 / 125 kHz (1.10× DR's, docs/mission.md), where DR's own 9-byte packets go out a sixth more often
-than the IMM's 12-byte ones (every 49.6 s against 57.8 s without the LoRaWAN overhead).
+With non-negative weights (kappa = 0) it is the best or within 2 % of the best single model up to SF9
+and at SF12, and 1.02× and 1.10× DR's at SF10 and SF11 (docs/mission.md, 4 seeds; 1.05× and 1.07× over
+16 seeds), where DR's own 9-byte packets go out a sixth more often than the IMM's 12-byte ones (every
+24.8 and 49.6 s against 28.9 and 57.8 s without the LoRaWAN overhead).
 ";
 
 /// The real flight's section: each model's p75 and p95 per setting, and the worst p95 of a
