@@ -41,7 +41,8 @@ impl Prediction {
     ///   negative (−1 for DR's 6 states, −2 for 3D-CTRA's 9), which is harmless over one 0.1 s
     ///   filter step but not over a whole send interval: once the heading's spread grows, the
     ///   points bend apart and the negatively weighted centre pushes the mean off every one of
-    ///   them (3D-CTRA's p75 at SF10 / 125 kHz, 1 km, was 84.0 m against DR's 47.1 m; docs/mission.md).
+    ///   them (3D-CTRA's p75 at SF10 / 125 kHz, 1 km, was 84.0 m against DR's 47.1 m;
+    ///   docs/mission.md).
     /// - Bounded: kappa = 0 (van der Merwe 2004, §3.2: kappa ≥ 0 keeps every weight
     ///   non-negative), so the predicted mean is a weighted average of where the points fly.
     ///   Where packets come every 2 s this changes the p75 by under 2 %; at SF8–SF12 the richer
