@@ -86,6 +86,19 @@ export function writeControls(s: Settings): void {
   showConditional();
 }
 
+/** A setting as the form words it, its label and what its control shows for `s`: ("Spreading
+ * factor", "12"), ("Sending", "Error-triggered"), ("Distance", "3000 m"). */
+export function settingWords(key: keyof Settings, s: Settings): { label: string; value: string } {
+  if (key === 'gateways') return { label: 'Gateways', value: s.gateways.length ? s.gateways.map((g) => `(${g.east}, ${g.north}) m`).join(', ') : 'none listed' };
+  if (key === 'lorawan') return { label: 'LoRaWAN overhead', value: s.lorawan ? 'on' : 'off' };
+  const el = field(key);
+  // The label's own text, without an <output> showing the value inside it (the distance's).
+  const label = [...(form.querySelector(`label[for="${key}"]`)?.childNodes ?? [])].filter((n) => n.nodeType === Node.TEXT_NODE).map((n) => n.textContent).join('').trim() || key;
+  const value = String(s[key]);
+  const shown = el instanceof HTMLSelectElement ? ([...el.options].find((o) => o.value === value)?.textContent ?? value) : key === 'distance' ? `${value} m` : value;
+  return { label, value: shown };
+}
+
 /** The form's settings, and the fields whose values are not acceptable (marked next to them). */
 export function readControls(): { next: Settings; errors: string[] } {
   const s: Settings = { ...store.settings };

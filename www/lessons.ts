@@ -124,9 +124,31 @@ export const LESSONS: Lesson[] = [
   },
 ];
 
+/** The settings `lesson` opens with: its own over the defaults. */
+export function lessonSettings(lesson: Lesson): Settings {
+  return { ...DEFAULTS, ...lesson.settings };
+}
+
 /** The URL query that opens `lesson`. */
 export function lessonQuery(lesson: Lesson): string {
   const extra: Record<string, string> = { lesson: lesson.id };
   if (lesson.baseline) extra.baseline = toQuery({ ...DEFAULTS, ...lesson.baseline });
-  return toQuery({ ...DEFAULTS, ...lesson.settings }, extra);
+  return toQuery(lessonSettings(lesson), extra);
+}
+
+/** The keys of `to` whose values are not `from`'s, in the settings' order. */
+const changed = (from: Settings, to: Settings) => (Object.keys(DEFAULTS) as (keyof Settings)[]).filter((k) => JSON.stringify(to[k]) !== JSON.stringify(from[k]));
+
+/** The settings in `now` that are not the lesson's, in the form's order: what the page must name
+ * while the lesson's text, which speaks of its own settings, stays on show beside other numbers
+ * (a link typed by hand, or a step the lesson asks for). */
+export function changedFromLesson(lesson: Lesson, now: Settings): (keyof Settings)[] {
+  return changed(lessonSettings(lesson), now);
+}
+
+/** Whether the pinned baseline is the lesson's: true for a lesson without one. `pinned` is the
+ * baseline's settings, undefined when none is pinned. */
+export function baselineIsLessons(lesson: Lesson, pinned: Settings | undefined): boolean {
+  if (!lesson.baseline) return true;
+  return pinned !== undefined && changed({ ...DEFAULTS, ...lesson.baseline }, pinned).length === 0;
 }

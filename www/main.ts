@@ -9,11 +9,11 @@ import type { BoxRow } from './charts/plots';
 import type { Trajectory3d } from './charts/trajectory3d';
 import { $, linkDocs } from './dom';
 import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
-import { field, form, markField, onFormChange, readControls, showConditional, writeControls } from './form';
+import { field, form, markField, onFormChange, readControls, settingWords, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
 import { caption } from './format';
 import { later, drawingLater, onDrawing } from './later';
-import { LESSONS, lessonQuery } from './lessons';
+import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings } from './lessons';
 import { renderBaseline, renderTable, restingNotes } from './results';
 import { setUpPresent } from './present';
 import { DEFAULTS, fromQuery, isNumericKey, overheadBytes, plan, simulateRequest, toParams, type Settings } from './state';
@@ -194,6 +194,7 @@ function onResponse(r: Response): void {
     store.reportSettings.seed = store.report.config.seed;
     field('seed').value = String(store.settings.seed);
     history.replaceState(null, '', `?${pageQuery()}`);
+    renderLessonChanges();
   }
   // Typing may have moved the form on while this ran: the numbers say so.
   markStale(typing !== undefined || JSON.stringify(store.reportSettings) !== JSON.stringify(store.settings));
@@ -404,6 +405,7 @@ function onChange(): void {
   }
   store.settings = next;
   history.replaceState(null, '', `?${pageQuery()}`);
+  renderLessonChanges();
   submit();
   renderSettingsCharts();
 }
@@ -535,6 +537,7 @@ $('#pin').addEventListener('click', () => {
   store.baseline = report && { report, settings: { ...store.reportSettings } };
   renderBaseline();
   history.replaceState(null, '', `?${pageQuery()}`);
+  renderLessonChanges();
   if (store.report) renderResults(store.report);
 });
 
@@ -654,7 +657,9 @@ for (const l of LESSONS) {
 }
 const lesson = store.embed ? undefined : LESSONS.find((l) => l.id === store.query.get('lesson'));
 if (lesson) {
+  store.lesson = lesson.id;
   $('#lesson').hidden = false;
+  $<HTMLAnchorElement>('#lesson-restore').href = `?${lessonQuery(lesson)}`;
   $('#lesson-title').textContent = `Lesson: ${lesson.title}`;
   $('#lesson-text').textContent = lesson.text;
   $('#lesson-notice').replaceChildren(
@@ -664,6 +669,21 @@ if (lesson) {
       return li;
     }),
   );
+}
+/** While the link's baseline is simulated, none is pinned yet: not a change from the lesson's. */
+let baselineLoading = store.query.get('baseline') !== null;
+/** The lesson's text speaks of its own settings: where the form or the pinned baseline has left
+ * them (a step the lesson asks for, a link typed by hand), the panel names what changed. */
+function renderLessonChanges(): void {
+  if (!lesson) return;
+  // A setting whose control the form hides (a threshold while sending periodically) shapes nothing.
+  const words = changedFromLesson(lesson, store.settings).filter((k) => !field(k)?.hidden).map((k) => {
+    const now = settingWords(k, store.settings);
+    return `${now.label}: ${now.value} instead of ${settingWords(k, lessonSettings(lesson)).value}`;
+  });
+  if (!baselineLoading && !baselineIsLessons(lesson, store.baseline?.settings)) words.push(store.baseline ? "a pinned baseline other than the lesson's" : 'no pinned baseline (the lesson pins one)');
+  $('#lesson-changed').hidden = words.length === 0;
+  $('#lesson-changed-text').textContent = `Not the lesson's settings: ${words.join('; ')}. “What to notice” speaks of the lesson's own settings and of the steps it asks for.`;
 }
 // The help texts and the lesson name the docs their numbers come from: links to their pages.
 linkDocs(document.body);
@@ -676,6 +696,7 @@ if (shown.distance !== store.settings.distance) {
   store.notices.push(`The link's distance ${store.settings.distance} m is shown and simulated as ${shown.distance} m, the slider's nearest step.`);
   store.settings = shown;
 }
+renderLessonChanges();
 /** Adds a sentence to the notices at the top of the settings (and of an embed). */
 function showNotice(text: string): void {
   if (text) store.notices.push(text);
@@ -700,7 +721,9 @@ if (pinned !== null) {
     else showNotice(`The link's baseline could not be simulated: ${e.data.error}.`);
     w.terminate();
     drawing--;
+    baselineLoading = false;
     renderBaseline();
+    renderLessonChanges();
     if (store.report) renderResults(store.report);
     updateBusy();
   };

@@ -30,6 +30,8 @@ export interface Store {
   plan?: { text: string; name: string };
   /** Sentences about the link: values replaced, unknown panels, a baseline that failed. */
   notices: string[];
+  /** The id of the lesson on show beside the results, which the page's URL keeps. */
+  lesson?: string;
 }
 
 export const store: Store = {
@@ -41,11 +43,13 @@ export const store: Store = {
   notices: [...parsed.problems],
 };
 
-/** The page's URL query: the settings, the pinned baseline's settings, and the embed choice. */
+/** The page's URL query: the settings, the pinned baseline's settings, the embed choice and the
+ * lesson on show. */
 export function pageQuery(): string {
   const extra: Record<string, string> = store.embed ? { embed: '1', panels: store.panels } : {};
   if (document.body.classList.contains('present')) extra.present = '1';
   if (store.baseline) extra.baseline = toQuery(store.baseline.settings);
+  if (store.lesson) extra.lesson = store.lesson;
   return toQuery(store.settings, extra);
 }
 

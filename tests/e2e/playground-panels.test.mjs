@@ -379,6 +379,27 @@ test('lesson "The duty-cycle wall": the interval is 100 times the time on air fo
     const interval = await cellNumber(page, m, 'interval');
     assert.ok(Math.abs(interval - toaMs / 10) < 0.06, `${m}: ${interval} s against ${toaMs} ms`);
   }
+  // Left, the lesson says so: its text speaks of SF10, the numbers beside it of SF11.
+  assert.equal(await page.locator('#lesson-changed').isHidden(), true);
+  const before = await tableHtml(page);
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('11');
+  await waitForResults(page, before);
+  assert.match(await page.locator('#lesson-changed').textContent(), /^Not the lesson's settings: Spreading factor: SF11 instead of SF10\. /);
+  assert.match(page.url(), /[?&]lesson=duty-cycle-wall/, 'a link shared now opens the lesson with the same note');
+  assert.deepEqual(await axe(page), []);
+  await page.getByRole('link', { name: "Back to the lesson's settings" }).click();
+  await page.waitForURL(/[?&]sf=10/);
+  await waitForResults(page);
+  assert.equal(await page.getByLabel('Spreading factor', { exact: true }).inputValue(), '10');
+  assert.equal(await page.locator('#lesson-changed').isHidden(), true);
+  assert.deepEqual(problems, []);
+});
+
+test('a lesson opened by a hand-typed link over other settings names every setting that is not its own', async () => {
+  const { page, problems } = await open('?lesson=why-not-sf12&sf=9');
+  await waitForResults(page);
+  assert.equal(await page.locator('#lesson-title').textContent(), 'Lesson: Why not always SF12?');
+  assert.equal(await page.locator('#lesson-changed').textContent(), "Not the lesson's settings: Spreading factor: SF9 instead of SF12; Bandwidth: 250 kHz instead of 125 kHz; Trajectory: One synthetic flight instead of Whole synthetic set (30 flights, 44 min). “What to notice” speaks of the lesson's own settings and of the steps it asks for. Back to the lesson's settings");
   assert.deepEqual(problems, []);
 });
 
@@ -456,6 +477,10 @@ test('lesson "ADR chases the link": from SF12 packets move to DR5 or DR6, far mo
     assert.match(await page.locator(`tr[data-model="${m}"] [data-delta="p75"]`).textContent(), /^▼.*better/, m);
     assert.match(await page.locator(`tr[data-model="${m}"] [data-delta="packets"]`).textContent(), /^▲.*better/, m);
   }
+  // The pinned baseline is part of the lesson: cleared, the lesson says its ▼ and ▲ are gone.
+  assert.equal(await page.locator('#lesson-changed').isHidden(), true);
+  await page.getByRole('button', { name: 'Clear baseline' }).click();
+  assert.match(await page.locator('#lesson-changed').textContent(), /^Not the lesson's settings: no pinned baseline \(the lesson pins one\)\. /);
   assert.deepEqual(problems, []);
 });
 

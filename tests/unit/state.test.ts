@@ -3,7 +3,7 @@
 import { describe, expect, test } from 'vitest';
 import { adrCanStart, DEFAULTS, fromQuery, gatewaysFromText, gatewaysToText, invalid, LIMITS, planAllows, toParams, toQuery, type Settings } from '../../www/state';
 import type { Region } from '../../www/loratrack';
-import { LESSONS, lessonQuery } from '../../www/lessons';
+import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings } from '../../www/lessons';
 
 /** A deterministic stream of settings that differ from the defaults in many ways. */
 function* variedSettings(): Generator<Settings> {
@@ -140,6 +140,27 @@ describe('simulate() parameters', () => {
 });
 
 describe('lessons', () => {
+  test('a lesson names the settings the form has left, and nothing while it shows its own', () => {
+    const crowd = LESSONS.find((l) => l.id === 'crowd-sends-less')!;
+    expect(changedFromLesson(crowd, lessonSettings(crowd))).toEqual([]);
+    // The lesson's own second step: the paper's drone.
+    expect(changedFromLesson(crowd, { ...lessonSettings(crowd), sender: 'periodic', dutyCycleMode: 'per-packet' })).toEqual(['sender', 'dutyCycleMode']);
+    // A link typed by hand: ?lesson=crowd-sends-less over the defaults.
+    expect(changedFromLesson(crowd, DEFAULTS)).toEqual(['bw', 'prediction', 'sender', 'threshold', 'maxInterval', 'dutyCycleMode']);
+    expect(changedFromLesson(crowd, { ...lessonSettings(crowd), gateways: [{ east: 500, north: 0 }] })).toEqual(['gateways']);
+  });
+
+  test("a lesson's baseline counts only when the one pinned has the lesson's settings", () => {
+    const adr = LESSONS.find((l) => l.id === 'adr-chases-the-link')!;
+    const own = { ...DEFAULTS, ...adr.baseline };
+    expect(baselineIsLessons(adr, own)).toBe(true);
+    expect(baselineIsLessons(adr, undefined)).toBe(false);
+    expect(baselineIsLessons(adr, { ...own, sf: 11 })).toBe(false);
+    const wall = LESSONS.find((l) => !l.baseline)!;
+    expect(baselineIsLessons(wall, undefined)).toBe(true);
+    expect(baselineIsLessons(wall, DEFAULTS)).toBe(true);
+  });
+
   test('each opens a link the page reads back without a problem, baseline included', () => {
     expect(LESSONS.length).toBeGreaterThanOrEqual(5);
     for (const l of LESSONS) {
