@@ -13,7 +13,7 @@ import { field, form, markField, onFormChange, readControls, settingWords, showC
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
 import { caption } from './format';
 import { later, drawingLater, onDrawing } from './later';
-import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings } from './lessons';
+import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { renderBaseline, renderTable, restingNotes } from './results';
 import { setUpPresent } from './present';
 import { DEFAULTS, fromQuery, isNumericKey, overheadBytes, plan, simulateRequest, toParams, type Settings } from './state';
@@ -660,6 +660,11 @@ if (lesson) {
   store.lesson = lesson.id;
   $('#lesson').hidden = false;
   $<HTMLAnchorElement>('#lesson-restore').href = `?${lessonQuery(lesson)}`;
+  if (lesson.swarm) {
+    $<HTMLSelectElement>('#swarmDrones').value = String(lesson.swarm.drones);
+    $<HTMLSelectElement>('#swarmChannels').value = lesson.swarm.channels === 1 ? '1' : 'plan';
+    $<HTMLSelectElement>('#swarmPlan').value = lesson.swarm.plan;
+  }
   $('#lesson-title').textContent = `Lesson: ${lesson.title}`;
   $('#lesson-text').textContent = lesson.text;
   $('#lesson-notice').replaceChildren(
@@ -681,10 +686,27 @@ function renderLessonChanges(): void {
     const now = settingWords(k, store.settings);
     return `${now.label}: ${now.value} instead of ${settingWords(k, lessonSettings(lesson)).value}`;
   });
+  if (lesson.swarm) words.push(...swarmChanges(lesson.swarm));
   if (!baselineLoading && !baselineIsLessons(lesson, store.baseline?.settings)) words.push(store.baseline ? "a pinned baseline other than the lesson's" : 'no pinned baseline (the lesson pins one)');
   $('#lesson-changed').hidden = words.length === 0;
   $('#lesson-changed-text').textContent = `Not the lesson's settings: ${words.join('; ')}. “What to notice” speaks of the lesson's own settings and of the steps it asks for.`;
 }
+/** The swarm panel's choices that are not the lesson's swarm (ALOHA unless it names a schedule), in
+ * the panel's words. */
+function swarmChanges(own: NonNullable<Lesson['swarm']>): string[] {
+  const wanted: [string, string, string][] = [
+    ['swarmDrones', 'Swarm drones', String(own.drones)],
+    ['swarmChannels', 'Swarm channels', own.channels === 1 ? '1' : 'plan'],
+    ['swarmPlan', 'Swarm SF plan', own.plan],
+    ['swarmSchedule', 'Swarm schedule', 'aloha'],
+  ];
+  return wanted.flatMap(([id, name, value]) => {
+    const select = $<HTMLSelectElement>(`#${id}`);
+    const text = (v: string) => [...select.options].find((o) => o.value === v)?.textContent ?? v;
+    return select.value === value ? [] : [`${name}: ${text(select.value)} instead of ${text(value)}`];
+  });
+}
+for (const id of ['swarmDrones', 'swarmChannels', 'swarmPlan', 'swarmSchedule']) $(`#${id}`).addEventListener('change', () => renderLessonChanges());
 // The help texts and the lesson name the docs their numbers come from: links to their pages.
 linkDocs(document.body);
 
@@ -734,10 +756,5 @@ await load();
 submit();
 if (running) settingsChartsWait = true;
 else renderSettingsCharts();
-if (lesson?.swarm) {
-  // The lesson's swarm runs as if its button were pressed with these choices.
-  $<HTMLSelectElement>('#swarmDrones').value = String(lesson.swarm.drones);
-  $<HTMLSelectElement>('#swarmChannels').value = String(lesson.swarm.channels);
-  $<HTMLSelectElement>('#swarmPlan').value = lesson.swarm.plan;
-  $('#run-swarm').click();
-}
+// The lesson's swarm runs as if its button were pressed with its choices (set with the lesson).
+if (lesson?.swarm) $('#run-swarm').click();

@@ -447,6 +447,7 @@ test('lesson "Swarms share the air": the collision rate climbs as the swarm grow
 
 test('lesson "In a crowd, send less": error-triggered drones on the crowd\'s scale track better than periodic ones, with the CLI\'s numbers', async () => {
   const { page, problems } = await lesson('In a crowd, send less');
+  assert.equal(await page.locator('#lesson-changed').isHidden(), true);
   // Drawn once the swarms are done; `before` is the note of the swarm drawn before, if any.
   const swarmed = (before = null) =>
     page.waitForFunction((old) => /Packets collided/.test(document.querySelector('#swarm-status')?.textContent ?? '') && (document.querySelector('#chart-swarm .note')?.textContent ?? old) !== old, before, { timeout: 90_000 });
@@ -466,6 +467,12 @@ test('lesson "In a crowd, send less": error-triggered drones on the crowd\'s sca
   const periodic = await median();
   assert.equal(periodic.toFixed(2), nativeJson(crowd).medianDroneP75.toFixed(2));
   assert.ok(error < periodic, `error-triggered ${error} m, periodic ${periodic} m`);
+  // The lesson says which of its settings the step changed, the swarm's choices among them.
+  await page.getByLabel('Drones', { exact: true }).selectOption('100');
+  assert.equal(
+    await page.locator('#lesson-changed-text').textContent(),
+    "Not the lesson's settings: Sending: Periodic (as published) instead of Error-triggered; Duty-cycle rule: Off-time per packet instead of Budget (bursts of 10); Swarm drones: 100 instead of 72. “What to notice” speaks of the lesson's own settings and of the steps it asks for.",
+  );
   assert.deepEqual(problems, []);
 });
 
