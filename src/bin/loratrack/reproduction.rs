@@ -688,10 +688,12 @@ fn senders_reading(r: &SenderSweepReport, overview: &[(String, SenderSweepReport
           sigma points shortens a straight line by about 1 m after 2 s at 5 m/s), while at most one of the drone's last \
           ten frames was lost (`src/sim/station/predictor.rs`, docs/reference.md §4). Straight legs, steady turns and hovering then cost no \
           packets, and the airtime goes to turns, climbs and stops. Part of the gain is that station rule, not the timing: \
-          a periodic drone whose station also dropped the hedge does better at SF7 / 250 kHz / 1 km (3D-CTRA p75 1.07 m \
-          against 1.16 m) but worse at SF9–SF10 with DR, so periodic sending keeps the hedge; against that station, measured by \
-          hand on 2026-11-24 (closing note of #24), the error-triggered ratios at SF7 / 1 km were 0.75–0.79 where the \
-          sender uses 40–80 % of the airtime, and 0.92 at 7.5 m: the timing alone is worth about a fifth of the p75.\n";
+          a periodic drone whose station also dropped the hedge does better at SF7–SF8 (3D-CTRA p75 1.06 m against 1.16 m \
+          at SF7 / 250 kHz / 1 km) but worse from SF9 on (3D-CTRA at SF10 66 m against 46 m; `npm run mission`'s set) and on \
+          the real flight (3D-CTRA at SF9 27 m against 17 m), so periodic sending keeps the hedge. Against that station, \
+          measured with a temporary build on 2026-11-28 (closing notes of #24), the error-triggered p75 ratios at SF7 / \
+          250 kHz / 1 km are 0.76–0.81 where the sender uses 41–78 % of the airtime and 0.87–0.89 at 7.5–10 m (31–35 %): \
+          the timing alone is worth about a fifth of the p75.\n";
     s += "- Where packets are lost the silence is ambiguous: the drone cannot tell a lost packet from a delivered one, \
           and without the hedge a station that missed a packet extrapolates further. That is what the 3 km rows' p95 \
           verdicts above show, on the real flight most: there the hedge a periodic station keeps is worth more than the \
