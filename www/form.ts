@@ -87,7 +87,7 @@ export function writeControls(s: Settings): void {
 }
 
 /** A setting as the form words it, its label and what its control shows for `s`: ("Spreading
- * factor", "12"), ("Sending", "Error-triggered"), ("Distance", "3000 m"). */
+ * factor", "SF12"), ("Sending", "Error-triggered"), ("Distance", "3000 m"). */
 export function settingWords(key: keyof Settings, s: Settings): { label: string; value: string } {
   if (key === 'gateways') return { label: 'Gateways', value: s.gateways.length ? s.gateways.map((g) => `(${g.east}, ${g.north}) m`).join(', ') : 'none listed' };
   if (key === 'lorawan') return { label: 'LoRaWAN overhead', value: s.lorawan ? 'on' : 'off' };

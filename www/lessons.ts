@@ -139,7 +139,7 @@ export function lessonQuery(lesson: Lesson): string {
 /** The keys of `to` whose values are not `from`'s, in the settings' order. */
 const changed = (from: Settings, to: Settings) => (Object.keys(DEFAULTS) as (keyof Settings)[]).filter((k) => JSON.stringify(to[k]) !== JSON.stringify(from[k]));
 
-/** The settings in `now` that are not the lesson's, in the form's order: what the page must name
+/** The settings in `now` that are not the lesson's, in the settings' order: what the page must name
  * while the lesson's text, which speaks of its own settings, stays on show beside other numbers
  * (a link typed by hand, or a step the lesson asks for). */
 export function changedFromLesson(lesson: Lesson, now: Settings): (keyof Settings)[] {
