@@ -655,7 +655,9 @@ for (const l of LESSONS) {
   item.append(link);
   $('#lesson-list').append(item);
 }
-const lesson = store.embed ? undefined : LESSONS.find((l) => l.id === store.query.get('lesson'));
+const asked = store.query.get('lesson');
+const lesson = store.embed ? undefined : LESSONS.find((l) => l.id === asked);
+if (asked !== null && !store.embed && !lesson) store.notices.push(`The link's lesson=${asked.slice(0, 40)} is not one of the lessons; the Lessons menu lists them.`);
 if (lesson) {
   store.lesson = lesson.id;
   $('#lesson').hidden = false;

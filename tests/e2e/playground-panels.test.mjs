@@ -400,7 +400,12 @@ test('a lesson opened by a hand-typed link over other settings names every setti
   await waitForResults(page);
   assert.equal(await page.locator('#lesson-title').textContent(), 'Lesson: Why not always SF12?');
   assert.equal(await page.locator('#lesson-changed').textContent(), "Not the lesson's settings: Spreading factor: SF9 instead of SF12; Bandwidth: 250 kHz instead of 125 kHz; Trajectory: One synthetic flight instead of Whole synthetic set (30 flights, 44 min). “What to notice” speaks of the lesson's own settings and of the steps it asks for. Back to the lesson's settings");
-  assert.deepEqual(problems, []);
+  // A lesson the page does not know is said so, beside the link's other problems.
+  const unknown = await open('?lesson=why-not-sf13');
+  await waitForResults(unknown.page);
+  assert.equal(await unknown.page.locator('#lesson').isHidden(), true);
+  assert.match(await unknown.page.locator('#notice').textContent(), /The link's lesson=why-not-sf13 is not one of the lessons/);
+  assert.deepEqual([...problems, ...unknown.problems], []);
 });
 
 test('lesson "Which motion model when": over the whole set DR is clearly worst, CTRA+ and 3D-CTRA overlap', async () => {
