@@ -119,10 +119,7 @@ function fuzzInBackground() {
   console.log(`\n=== ${name}: ${cmd} ${args.join(' ')} (in the background, output in ${log})`);
   const started = Date.now();
   // Not through clippy-driver: cargo-fuzz builds with a minimal nightly toolchain, which has no clippy.
-  // At the lowest priority: the suites in front then run as fast as alone, and the fuzzer takes
-  // what they leave (the WebAssembly build took twice as long beside the fuzz build, 189 s
-  // against 90 s alone, and the fuzz suite still ended three minutes before the browser suite).
-  const child = spawn('nice', ['-n', '19', cmd, ...args], { cwd: root, stdio: ['ignore', out, out] });
+  const child = spawn(cmd, args, { cwd: root, stdio: ['ignore', out, out] });
   closeSync(out);
   return new Promise((resolve) => {
     // Its exit is only seen once the suites in front are done; its last write says when it ended.
