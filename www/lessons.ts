@@ -129,10 +129,16 @@ export function lessonSettings(lesson: Lesson): Settings {
   return { ...DEFAULTS, ...lesson.settings };
 }
 
+/** The settings of the baseline `lesson` pins, its own over the defaults; undefined without one. */
+function lessonBaseline(lesson: Lesson): Settings | undefined {
+  return lesson.baseline && { ...DEFAULTS, ...lesson.baseline };
+}
+
 /** The URL query that opens `lesson`. */
 export function lessonQuery(lesson: Lesson): string {
   const extra: Record<string, string> = { lesson: lesson.id };
-  if (lesson.baseline) extra.baseline = toQuery({ ...DEFAULTS, ...lesson.baseline });
+  const baseline = lessonBaseline(lesson);
+  if (baseline) extra.baseline = toQuery(baseline);
   return toQuery(lessonSettings(lesson), extra);
 }
 
@@ -149,6 +155,7 @@ export function changedFromLesson(lesson: Lesson, now: Settings): (keyof Setting
 /** Whether the pinned baseline is the lesson's: true for a lesson without one. `pinned` is the
  * baseline's settings, undefined when none is pinned. */
 export function baselineIsLessons(lesson: Lesson, pinned: Settings | undefined): boolean {
-  if (!lesson.baseline) return true;
-  return pinned !== undefined && changed({ ...DEFAULTS, ...lesson.baseline }, pinned).length === 0;
+  const own = lessonBaseline(lesson);
+  if (!own) return true;
+  return pinned !== undefined && changed(own, pinned).length === 0;
 }

@@ -662,11 +662,7 @@ if (lesson) {
   store.lesson = lesson.id;
   $('#lesson').hidden = false;
   $<HTMLAnchorElement>('#lesson-restore').href = `?${lessonQuery(lesson)}`;
-  if (lesson.swarm) {
-    $<HTMLSelectElement>('#swarmDrones').value = String(lesson.swarm.drones);
-    $<HTMLSelectElement>('#swarmChannels').value = lesson.swarm.channels === 1 ? '1' : 'plan';
-    $<HTMLSelectElement>('#swarmPlan').value = lesson.swarm.plan;
-  }
+  if (lesson.swarm) for (const [id, , value] of swarmChoices(lesson.swarm)) $<HTMLSelectElement>(`#${id}`).value = value;
   $('#lesson-title').textContent = `Lesson: ${lesson.title}`;
   $('#lesson-text').textContent = lesson.text;
   $('#lesson-notice').replaceChildren(
@@ -693,16 +689,20 @@ function renderLessonChanges(): void {
   $('#lesson-changed').hidden = words.length === 0;
   $('#lesson-changed-text').textContent = `Not the lesson's settings: ${words.join('; ')}. “What to notice” speaks of the lesson's own settings and of the steps it asks for.`;
 }
-/** The swarm panel's choices that are not the lesson's swarm (ALOHA unless it names a schedule), in
- * the panel's words. */
-function swarmChanges(own: NonNullable<Lesson['swarm']>): string[] {
-  const wanted: [string, string, string][] = [
+/** A lesson's swarm as the swarm panel's choices: each select's id, its name in a sentence and the
+ * value the lesson picks (ALOHA unless it names a schedule). The lesson sets them, and names any
+ * the reader has since changed. */
+function swarmChoices(own: NonNullable<Lesson['swarm']>): [string, string, string][] {
+  return [
     ['swarmDrones', 'Swarm drones', String(own.drones)],
     ['swarmChannels', 'Swarm channels', own.channels === 1 ? '1' : 'plan'],
     ['swarmPlan', 'Swarm SF plan', own.plan],
     ['swarmSchedule', 'Swarm schedule', 'aloha'],
   ];
-  return wanted.flatMap(([id, name, value]) => {
+}
+/** The swarm panel's choices that are not the lesson's swarm, in the panel's words. */
+function swarmChanges(own: NonNullable<Lesson['swarm']>): string[] {
+  return swarmChoices(own).flatMap(([id, name, value]) => {
     const select = $<HTMLSelectElement>(`#${id}`);
     const text = (v: string) => [...select.options].find((o) => o.value === v)?.textContent ?? v;
     return select.value === value ? [] : [`${name}: ${text(select.value)} instead of ${text(value)}`];
