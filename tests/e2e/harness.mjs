@@ -105,9 +105,12 @@ export async function launch() {
   });
 }
 
-/** A new page that records problems: console errors, uncaught exceptions, foreign requests. */
+/** A new page that records problems: console errors, uncaught exceptions, foreign requests. In a
+ * `browser`, the page has a context of its own; in a context (`usePlayground`'s), it shares it. */
 export async function openPage(browser, origin, viewport = { width: 1280, height: 900 }) {
-  const page = await browser.newPage({ viewport, acceptDownloads: true });
+  const shared = !('newContext' in browser);
+  const page = shared ? await browser.newPage() : await browser.newPage({ viewport, acceptDownloads: true });
+  if (shared) await page.setViewportSize(viewport);
   const problems = [];
   page.on('console', (msg) => {
     if (msg.type() === 'error') problems.push(`console error: ${msg.text()}`);

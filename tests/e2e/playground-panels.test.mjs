@@ -315,7 +315,7 @@ test('an embed says what it shows and every notice, offers no Pin, and grows its
   assert.ok(!(await notices.isVisible()) || !/Too few packets/.test(await notices.textContent()), await notices.textContent());
   assert.deepEqual(withTable.problems, []);
   // A host page gets the frame's height.
-  const host = await playground.browser.newPage();
+  const host = await playground.context.newPage();
   await host.setContent(`<script>addEventListener('message', (e) => (window.frameHeight = e.data && e.data.loratrackHeight));</script><iframe id="f" src="${playground.url}?embed=1&panels=results,error" style="width:600px;height:200px"></iframe>`);
   await host.waitForFunction(() => window.frameHeight > 300, null, { timeout: 30_000 });
   await host.close();

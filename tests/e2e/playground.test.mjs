@@ -114,7 +114,7 @@ test('one model at a time, and the whole synthetic set', async () => {
 
 test('the whole set shows its first flight at once, marked as that flight alone with the CLI’s numbers, then the whole set', async () => {
   // At 100 Hz the set takes seconds; its first flight is a thirtieth of that.
-  const { page, problems } = await openPage(playground.browser, new URL(playground.url).origin, { width: 1280, height: 800 });
+  const { page, problems } = await openPage(playground.context, new URL(playground.url).origin, { width: 1280, height: 800 });
   await page.goto(`${playground.url}?flight=all&sensorRate=100`);
   await page.waitForSelector('[data-panel="results"].partial #results-table tbody tr', { timeout: 30_000 });
   assert.match(await page.locator('#results-table caption').textContent(), /over 1 flight × 1 seed/);
