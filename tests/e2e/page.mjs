@@ -62,17 +62,28 @@ export async function open(query = '', viewport) {
   return { page, problems };
 }
 
+/** How often the browser suite's waits (`until`) test the page, in ms. Playwright's default tests
+ * it in every animation frame, which keeps the page producing frames (and serialised the results
+ * table, or encoded the 3D view as a PNG, sixty times a second) on the cores the page computes on:
+ * the suite took 212 s and 415 s of CPU so, 189 s and 371 s with its two commonest waits at 100 ms
+ * (193 s and 378 s with every wait at 100 ms). */
+const POLL_MS = 100;
+
+/** `page.waitForFunction(predicate, arg)`, testing the page every POLL_MS (30 s at most unless
+ * `options` say otherwise). */
+export const until = (page, predicate, arg = null, options = {}) => page.waitForFunction(predicate, arg, { timeout: 30_000, polling: POLL_MS, ...options });
+
 /** Waits until the results table has rows other than `previous`, and not a whole set's first
  * flight shown while the rest runs (`.partial`). */
 export async function waitForResults(page, previous) {
-  await page.waitForFunction(
+  await until(
+    page,
     (old) => {
       const t = document.querySelector('#results-table tbody');
       const partial = document.querySelector('[data-panel="results"]')?.classList.contains('partial');
       return t && t.rows.length > 0 && t.innerHTML !== old && !partial;
     },
     previous,
-    { timeout: 30_000 },
   );
 }
 
@@ -134,7 +145,7 @@ export function axisLabelOverlaps(page) {
 }
 
 /** Waits until no simulation or drawing is under way (`<body data-busy>` gone). */
-export const idle = (page) => page.waitForFunction(() => !('busy' in document.body.dataset), null, { timeout: 30_000 });
+export const idle = (page) => until(page, () => !('busy' in document.body.dataset));
 
 /** Scrolls to the 3D view as a reader does (it is drawn once it comes within a screen of the
  * viewport, www/main.ts) and waits for it: its canvas, then nothing left to draw. Returns the canvas. */

@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { nativeJson, scratchDir } from './harness.mjs';
-import { axe, axisLabelOverlaps, cell, cellNumber, idle, lesson, MODELS, number, open, playground, shownP75, tableHtml, usePlayground, view3d, waitForResults } from './page.mjs';
+import { axe, axisLabelOverlaps, cell, cellNumber, idle, lesson, MODELS, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -130,7 +130,7 @@ test('gateways are added, moved and removed in the form; each is reported, kept 
   await page.getByLabel('Gateway 2 north (m)').fill('2500');
   // A typed number runs after a pause: wait for the link to follow, then for the run.
   await page.waitForURL(/gateways=5000%2C0%3B0%2C2500/);
-  await page.waitForFunction(() => !document.body.hasAttribute('data-busy') && !document.querySelector('[data-panel="results"].stale'));
+  await until(page, () => !document.body.hasAttribute('data-busy') && !document.querySelector('[data-panel="results"].stale'));
   const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
   const browserJson = JSON.parse(readFileSync(await download.path(), 'utf8'));
   const cli = nativeJson(['simulate', '--synthetic', '1', '--model', '3d-ctra', '--distance', '5000', '--gateway', '5000,0', '--gateway', '0,2500']);
@@ -139,14 +139,14 @@ test('gateways are added, moved and removed in the form; each is reported, kept 
   assert.deepStrictEqual(strip(browserJson), strip(cli));
   // An impossible coordinate is refused beside the form, and nothing runs.
   await page.getByLabel('Gateway 2 east (m)').fill('200000');
-  await page.waitForFunction(() => /Gateway 2: each coordinate/.test(document.querySelector('#status')?.textContent ?? ''));
+  await until(page, () => /Gateway 2: each coordinate/.test(document.querySelector('#status')?.textContent ?? ''));
   // Removing both brings back the one default gateway.
   await page.getByLabel('Gateway 2 east (m)').fill('0');
   before = await tableHtml(page);
   await page.getByRole('button', { name: 'Remove gateway 2' }).click();
   await page.getByRole('button', { name: 'Remove gateway 1' }).click();
   await waitForResults(page, before);
-  await page.waitForFunction(() => !document.body.hasAttribute('data-busy'));
+  await until(page, () => !document.body.hasAttribute('data-busy'));
   assert.doesNotMatch(page.url(), /gateways=/);
   assert.equal(await page.locator('#network-note').isHidden(), true);
   assert.deepEqual(problems, []);
@@ -203,7 +203,7 @@ test('a slotted swarm collides with none of its own drones and says how many dro
   await page.getByLabel('SF plan').selectOption('spread');
   await page.getByLabel('Schedule').selectOption('slotted');
   await page.getByRole('button', { name: 'Run swarm' }).click();
-  await page.waitForFunction(() => /Packets collided/.test(document.querySelector('#swarm-status')?.textContent ?? ''), null, { timeout: 60_000 });
+  await until(page, () => /Packets collided/.test(document.querySelector('#swarm-status')?.textContent ?? ''), null, { timeout: 60_000 });
   const rates = [...(await page.locator('#swarm-status').textContent()).matchAll(/(\d+) drones ([\d.]+) %/g)].map((m) => Number(m[2]));
   assert.deepEqual(rates, rates.map(() => 0), 'no slotted drone collides');
   // The strip's legend lists the SFs in order (sorting their names put SF10 first).
@@ -231,7 +231,7 @@ test('a large CSV is read with its own progress, then simulated', async () => {
   await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
   await page.locator('#csv').setInputFiles(path);
   await waitForResults(page, before);
-  await page.waitForFunction(() => !document.body.hasAttribute('data-busy'));
+  await until(page, () => !document.body.hasAttribute('data-busy'));
   assert.match(await page.locator('#status').textContent(), /long\.csv: 1 flight, 800 s simulated/);
   assert.ok(number(await cell(page, 'dr', 'delivery')) > 0);
   assert.deepEqual(problems, []);
@@ -247,7 +247,7 @@ test('a number being typed runs once it is whole: -15 dBm never runs as -1', asy
   // At once the numbers on show are marked as no longer matching the form.
   assert.equal(await page.locator('[data-panel="results"].stale').count(), 1);
   await waitForResults(page, before);
-  await page.waitForFunction(() => !document.querySelector('[data-panel="results"].stale'));
+  await until(page, () => !document.querySelector('[data-panel="results"].stale'));
   const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
   const json = JSON.parse(readFileSync(await download.path(), 'utf8'));
   assert.equal(json.settings.txPower, -15);
@@ -317,7 +317,7 @@ test('an embed says what it shows and every notice, offers no Pin, and grows its
   // A host page gets the frame's height.
   const host = await playground.context.newPage();
   await host.setContent(`<script>addEventListener('message', (e) => (window.frameHeight = e.data && e.data.loratrackHeight));</script><iframe id="f" src="${playground.url}?embed=1&panels=results,error" style="width:600px;height:200px"></iframe>`);
-  await host.waitForFunction(() => window.frameHeight > 300, null, { timeout: 30_000 });
+  await until(host, () => window.frameHeight > 300);
   await host.close();
   // The dialog: pick panels, the snippet follows.
   const full = await open();
@@ -436,13 +436,13 @@ test('lesson "Losing packets at range": against the paper station pinned, the bo
   for (const key of ['mean', 'p95']) assert.match(await page.locator(`tr[data-model="3d-ctra"] [data-delta="${key}"]`).textContent(), /^▼.*better/, key);
   assert.match(await page.locator('tr[data-model="3d-ctra"] [data-delta="packets"]').textContent(), /unchanged/);
   // The bounded station's bound outgrows its error where packets are lost, and runs off the chart.
-  await page.waitForFunction(() => /95 % bound up to \d+ m/.test(document.querySelector('#chart-error')?.textContent ?? ''), null, { timeout: 60_000 });
+  await until(page, () => /95 % bound up to \d+ m/.test(document.querySelector('#chart-error')?.textContent ?? ''), null, { timeout: 60_000 });
   assert.deepEqual(problems, []);
 });
 
 test('lesson "Swarms share the air": the collision rate climbs as the swarm grows', async () => {
   const { page, problems } = await lesson('Swarms share the air');
-  await page.waitForFunction(() => /Packets collided/.test(document.querySelector('#swarm-status')?.textContent ?? ''), null, { timeout: 60_000 });
+  await until(page, () => /Packets collided/.test(document.querySelector('#swarm-status')?.textContent ?? ''), null, { timeout: 60_000 });
   const rates = [...(await page.locator('#swarm-status').textContent()).matchAll(/(\d+) drones ([\d.]+) %/g)].map((m) => [Number(m[1]), Number(m[2])]);
   assert.equal(rates[0][0], 2);
   assert.equal(rates.at(-1)[0], 50);
@@ -455,7 +455,7 @@ test('lesson "In a crowd, send less": error-triggered drones on the crowd\'s sca
   assert.equal(await page.locator('#lesson-changed').isHidden(), true);
   // Drawn once the swarms are done; `before` is the note of the swarm drawn before, if any.
   const swarmed = (before = null) =>
-    page.waitForFunction((old) => /Packets collided/.test(document.querySelector('#swarm-status')?.textContent ?? '') && (document.querySelector('#chart-swarm .note')?.textContent ?? old) !== old, before, { timeout: 90_000 });
+    until(page, (old) => /Packets collided/.test(document.querySelector('#swarm-status')?.textContent ?? '') && (document.querySelector('#chart-swarm .note')?.textContent ?? old) !== old, before, { timeout: 90_000 });
   const median = async () => Number((await page.locator('#chart-swarm .note').textContent()).match(/median per-drone p75 ([\d.]+) m/)[1]);
   await swarmed();
   const error = await median();
@@ -513,7 +513,7 @@ test('presentation mode: large type and charts at 1024x768, one panel per screen
   const { page, problems } = await open('', { width: 1024, height: 768 });
   await idle(page);
   await page.getByRole('button', { name: 'Presentation mode' }).click();
-  await page.waitForFunction(() => document.body.classList.contains('present'));
+  await until(page, () => document.body.classList.contains('present'));
   assert.match(page.url(), /present=1/);
   await idle(page);
   const m = await page.evaluate(() => {
@@ -540,15 +540,15 @@ test('presentation mode: large type and charts at 1024x768, one panel per screen
   const first = await page.evaluate(() => [...document.querySelectorAll('.panel')].filter((p) => p.offsetParent !== null).map((p) => p.getBoundingClientRect().height));
   assert.ok(first.every((h) => h >= 768 - 2.5 * 20 - 1), `panel heights ${first.join(', ')}`);
   await page.keyboard.press('ArrowDown');
-  await page.waitForFunction(() => [...document.querySelectorAll('.panel')].some((p) => p.offsetParent !== null && Math.abs(p.getBoundingClientRect().top) < 2));
+  await until(page, () => [...document.querySelectorAll('.panel')].some((p) => p.offsetParent !== null && Math.abs(p.getBoundingClientRect().top) < 2));
   const atTop = () => page.evaluate(() => [...document.querySelectorAll('.panel')].find((p) => p.offsetParent !== null && Math.abs(p.getBoundingClientRect().top) < 2)?.getAttribute('data-panel') ?? '');
   const one = await atTop();
   await page.keyboard.press('ArrowDown');
-  await page.waitForFunction((prev) => [...document.querySelectorAll('.panel')].some((p) => p.offsetParent !== null && Math.abs(p.getBoundingClientRect().top) < 2 && p.getAttribute('data-panel') !== prev), one);
+  await until(page, (prev) => [...document.querySelectorAll('.panel')].some((p) => p.offsetParent !== null && Math.abs(p.getBoundingClientRect().top) < 2 && p.getAttribute('data-panel') !== prev), one);
   assert.notEqual(await atTop(), one);
   assert.deepEqual(await axe(page), []);
   await page.keyboard.press('p');
-  await page.waitForFunction(() => !document.body.classList.contains('present'));
+  await until(page, () => !document.body.classList.contains('present'));
   assert.doesNotMatch(page.url(), /present=1/);
   assert.deepEqual(problems, []);
 });
@@ -561,12 +561,12 @@ test('axe finds no violation in the stale, error, presentation and phone states'
   assert.deepEqual(await axe(stale.page), [], 'stale');
   // The error state: a CSV that cannot be read (once the form is valid again).
   await stale.page.getByLabel('Path-loss exponent').fill('3');
-  await stale.page.waitForFunction(() => !document.querySelector('[data-panel="results"].stale'));
+  await until(stale.page, () => !document.querySelector('[data-panel="results"].stale'));
   const dir = scratchDir();
   writeFileSync(join(dir, 'bad.csv'), 't,x,y\n0,1,2\n');
   await stale.page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
   await stale.page.locator('#csv').setInputFiles(join(dir, 'bad.csv'));
-  await stale.page.waitForFunction(() => !document.querySelector('#csv-error')?.hidden);
+  await until(stale.page, () => !document.querySelector('#csv-error')?.hidden);
   await idle(stale.page);
   assert.deepEqual(await axe(stale.page), [], 'error');
   const present = await open('?present=1', { width: 1024, height: 768 });
@@ -597,14 +597,14 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   const heartbeat = page.getByLabel('Heartbeat (s)');
   assert.equal(await heartbeat.inputValue(), '10');
   await page.getByLabel('Spreading factor', { exact: true }).selectOption('12');
-  await page.waitForFunction(() => /cannot be simulated: maxInterval must be/.test(document.querySelector('#status')?.textContent ?? ''));
+  await until(page, () => /cannot be simulated: maxInterval must be/.test(document.querySelector('#status')?.textContent ?? ''));
   assert.equal(await heartbeat.getAttribute('aria-invalid'), 'true');
   assert.match(await page.locator('#maxInterval-error').textContent(), /SF12 at 250 kHz: [\d.]+ s\), got 10/);
   const before = await page.locator('#chart-sf').innerHTML();
   const table = await tableHtml(page);
   await heartbeat.fill('200');
   await waitForResults(page, table);
-  await page.waitForFunction((html) => document.querySelector('#chart-sf')?.innerHTML !== html && document.querySelector('#chart-sf svg'), before);
+  await until(page, (html) => document.querySelector('#chart-sf')?.innerHTML !== html && document.querySelector('#chart-sf svg'), before);
   await idle(page);
   assert.equal(await heartbeat.getAttribute('aria-invalid'), null);
   assert.equal(await page.locator('#maxInterval-error').count(), 0);
@@ -636,10 +636,10 @@ test('the docs the page cites open as pages beside it, in a new tab: every link 
   assert.deepEqual(await axe(page), []);
   // The senders doc shows its chart, from beside it.
   await page.goto(new URL('docs/senders.html', playgroundUrl).href);
-  await page.waitForFunction(() => [...document.images].length > 0 && [...document.images].every((i) => i.complete && i.naturalWidth > 0));
+  await until(page, () => [...document.images].length > 0 && [...document.images].every((i) => i.complete && i.naturalWidth > 0));
   // The README, with its screenshot, its links to the docs and within itself; a doc's link to it.
   await page.goto(new URL('docs/readme.html', playgroundUrl).href);
-  await page.waitForFunction(() => [...document.images].length > 0 && [...document.images].every((i) => i.complete && i.naturalWidth > 0));
+  await until(page, () => [...document.images].length > 0 && [...document.images].every((i) => i.complete && i.naturalWidth > 0));
   const readme = await page.locator('main a').evaluateAll((as) => as.map((a) => a.getAttribute('href')));
   assert.ok(readme.includes('senders.html') && readme.includes('#beyond-the-paper-when-to-send'), readme.join(' '));
   for (const anchor of readme.filter((h) => h.startsWith('#'))) assert.equal(await page.locator(anchor).count(), 1, `${anchor} names a heading`);

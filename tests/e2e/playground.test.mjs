@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { nativeJson, scratchDir, openPage, screenshot } from './harness.mjs';
-import { axe, axisLabelOverlaps, cell, chartTexts, idle, number, open, playground, shownP75, tableHtml, usePlayground, view3d, waitForResults } from './page.mjs';
+import { axe, axisLabelOverlaps, cell, chartTexts, idle, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -91,7 +91,8 @@ test('one model at a time, and the whole synthetic set', async () => {
   await page.getByLabel('Trajectory', { exact: true }).selectOption('all');
   // The whole set shows its progress while it runs (polled every 10 ms: animation frames are
   // throttled on a busy machine)...
-  await page.waitForFunction(
+  await until(
+    page,
     () => {
       const p = document.querySelector('#progress');
       return p && !p.hidden && p.value > 0;
@@ -203,7 +204,7 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
   assert.equal(await page.locator('#model option[value="3d-ctra,mission"]').isDisabled(), true);
   assert.match(await page.locator('#model-note').textContent(), /upload its plan too/);
   await page.getByLabel(/Flight plan/).setInputFiles(plan);
-  await page.waitForFunction(() => !document.querySelector('#model option[value="3d-ctra,mission"]').disabled);
+  await until(page, () => !document.querySelector('#model option[value="3d-ctra,mission"]').disabled);
   before = await tableHtml(page);
   await page.getByLabel('Model').selectOption('3d-ctra,mission');
   await waitForResults(page, before);
@@ -511,14 +512,14 @@ test('every chart and both tables download ready for a slide: title, legend, cap
   assert.ok(airPng.readUInt32BE(16) >= 1600, `time on air: a PNG ${airPng.readUInt32BE(16)} px wide`);
   // Before any swarm, and where no packet arrives, a download says why instead of doing nothing.
   await page.getByRole('button', { name: 'Download the swarm chart as PNG' }).click();
-  await page.waitForFunction(() => /run a swarm first/.test(document.querySelector('[data-panel="swarm"] .download-why')?.textContent ?? ''));
+  await until(page, () => /run a swarm first/.test(document.querySelector('[data-panel="swarm"] .download-why')?.textContent ?? ''));
   const far = await open('?distance=9000');
   await idle(far.page);
   await far.page.getByRole('button', { name: 'Download the error over time chart as SVG' }).click();
-  await far.page.waitForFunction(() => /no packet arrives/.test(document.querySelector('[data-panel="error"] .download-why')?.textContent ?? ''));
+  await until(far.page, () => /no packet arrives/.test(document.querySelector('[data-panel="error"] .download-why')?.textContent ?? ''));
   // Once packets arrive the chart is drawn again, and the note, which spoke of the empty one, goes.
   await far.page.getByRole('slider', { name: /Distance/ }).fill('1000');
-  await far.page.waitForFunction(() => document.querySelector('[data-panel="error"] .download-why')?.textContent === '' && document.querySelector('#chart-error svg'));
+  await until(far.page, () => document.querySelector('[data-panel="error"] .download-why')?.textContent === '' && document.querySelector('#chart-error svg'));
   assert.deepEqual([...problems, ...far.problems], []);
 });
 
@@ -593,7 +594,7 @@ test('an invalid field is marked beside itself, nothing runs, and the old result
   assert.equal(await page.locator('[data-panel="results"].stale').count(), 1);
   assert.equal(await tableHtml(page), before);
   await page.getByLabel('Path-loss exponent').fill('3');
-  await page.waitForFunction(() => !document.querySelector('[data-panel="results"].stale'));
+  await until(page, () => !document.querySelector('[data-panel="results"].stale'));
   assert.equal(await page.locator('#pathLossExponent[aria-invalid]').count(), 0);
   assert.equal(await page.locator('[data-panel="results"].stale').count(), 0);
   assert.deepEqual(problems, []);
@@ -648,7 +649,7 @@ test('copying a link after a CSV upload says the link cannot carry the file', as
   await waitForResults(page, before);
   await page.getByRole('button', { name: 'Copy link' }).click();
   // The clipboard answers asynchronously: wait for the message, never read right after the click.
-  await page.waitForFunction(() => document.querySelector('#copy-status')?.textContent !== '');
+  await until(page, () => document.querySelector('#copy-status')?.textContent !== '');
   assert.match(await page.locator('#copy-status').textContent(), /cannot carry it/);
   assert.deepEqual(problems, []);
 });
@@ -686,7 +687,7 @@ test('the 3D view lets the page scroll past it, zooms once focused, and always s
   await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
   const [y0, image0] = [await page.evaluate(() => scrollY), await snap()];
   await page.mouse.wheel(0, 200);
-  await page.waitForFunction((y) => scrollY !== y, y0);
+  await until(page, (y) => scrollY !== y, y0);
   assert.equal(await snap(), image0, 'the wheel zoomed a view without focus');
   await canvas.focus();
   // A reader zooming points at the view where it now is (the scroll moved it).
@@ -695,9 +696,10 @@ test('the 3D view lets the page scroll past it, zooms once focused, and always s
   const image1 = await snap();
   const y1 = await page.evaluate(() => scrollY);
   await page.mouse.wheel(0, -200);
-  const zoomed = await page
-    .waitForFunction((before) => document.querySelector('#chart-trajectory canvas').toDataURL() !== before, image1, { timeout: 10_000 })
-    .then(() => true, () => false);
+  const zoomed = await until(page, (before) => document.querySelector('#chart-trajectory canvas').toDataURL() !== before, image1, { timeout: 10_000 }).then(
+    () => true,
+    () => false,
+  );
   // Failed once in CI with nothing to go on: say what the wheel found.
   const state = await page.evaluate(
     ([x, y]) => ({
@@ -783,7 +785,7 @@ test('the link-budget panel shows power, sensitivities and delivery, and follows
   // Each SF is named with its EU868 data rate where it has one (SF7 at 250 kHz is DR6).
   assert.match(before, /SF7 \(DR6\) [\d.]+ km.*SF12 [\d.]+ km/);
   await page.getByLabel('Bandwidth').selectOption('125');
-  await page.waitForFunction((old) => document.querySelector('#chart-link .note')?.textContent !== old, before);
+  await until(page, (old) => document.querySelector('#chart-link .note')?.textContent !== old, before);
   const sf7 = (t) => Number(/SF7(?: \(DR\d\))? ([\d.]+) km/.exec(t)[1]);
   assert.ok(sf7(await page.locator('#chart-link .note').textContent()) > sf7(before), 'a narrower band reaches further');
   assert.deepEqual(problems, []);
