@@ -40,7 +40,7 @@ pub const TTN_FAIR_USE_SECONDS_PER_DAY: f64 = 30.0;
 
 /// A network's fair-use policy on top of the plan's rule (`--fair-use`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[cfg_attr(not(target_arch = "wasm32"), derive(clap::ValueEnum))]
+#[cfg_attr(cli, derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum FairUse {
@@ -98,7 +98,7 @@ pub fn min_interval(time_on_air: f64, duty_cycle: f64) -> Result<f64, LoraError>
 /// stacks enforce it either as an off-time after every packet (LoRaMac-node before 4.5, and the
 /// paper's reading) or as a budget of airtime credits (LoRaMac-node 4.5 and later).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[cfg_attr(not(target_arch = "wasm32"), derive(clap::ValueEnum))]
+#[cfg_attr(cli, derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum DutyCycleMode {

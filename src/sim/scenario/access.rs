@@ -15,12 +15,12 @@ use serde::{Deserialize, Serialize};
 /// paper's exact timing.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
-#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(cli, derive(clap::Args))]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct AccessSettings {
     /// The regional plan.
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(
             long,
             value_enum,
@@ -32,11 +32,11 @@ pub struct AccessSettings {
     /// Where the plan has no duty cycle: seconds between uplink starts.
     #[serde(skip_serializing_if = "Option::is_none")]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, help = opt::INTERVAL.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, help = opt::INTERVAL.cli_help(), allow_negative_numbers = true))]
     pub interval: Option<f64>,
     /// How a drone earns the right to send: the plan's duty cycle, or listen-before-talk.
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(
             long,
             value_enum,
@@ -47,7 +47,7 @@ pub struct AccessSettings {
     pub access: ChannelAccess,
     /// A network's fair-use policy: `off` or `ttn`.
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(
             long,
             value_enum,
@@ -59,16 +59,16 @@ pub struct AccessSettings {
     /// The longest random delay before each uplink, s.
     #[serde(skip_serializing_if = "Option::is_none")]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, help = opt::JITTER.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, help = opt::JITTER.cli_help(), allow_negative_numbers = true))]
     pub jitter: Option<f64>,
     /// The largest clock error, ppm.
     #[serde(skip_serializing_if = "Option::is_none")]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, help = opt::CLOCK_DRIFT.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, help = opt::CLOCK_DRIFT.cli_help(), allow_negative_numbers = true))]
     pub clock_drift: Option<f64>,
     /// How a swarm's drones share the air: `aloha` or `slotted`.
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(
             long,
             value_enum,

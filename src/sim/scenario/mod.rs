@@ -40,7 +40,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-#[cfg(not(target_arch = "wasm32"))]
+#[cfg(cli)]
 fn on_off(text: &str) -> Result<bool, String> {
     match text.trim().to_ascii_lowercase().as_str() {
         "on" | "true" => Ok(true),
@@ -95,13 +95,13 @@ pub struct FlightSettings {
 /// The ground station.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
-#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(cli, derive(clap::Args))]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct StationSettings {
     /// Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`,
     /// `mission`.
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(long, default_value = "all", value_parser = ModelChoice::parse,
             help = "Station model(s): dr, ctra-plus, 3d-ctra, imm (IMM over the three), mission (along the drone's plan: the synthetic flights' own, or --plan), a comma list, or all (the paper's three). A swarm runs one station: all means 3d-ctra.")
     )]
@@ -109,7 +109,7 @@ pub struct StationSettings {
     pub model: ModelChoice,
     /// The station's prediction between packets: `paper` (default) or `bounded`.
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(
             long,
             value_enum,
@@ -119,14 +119,14 @@ pub struct StationSettings {
     )]
     pub prediction: Prediction,
     /// Station prediction step T, s.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::STEP.default, help = opt::STEP.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::STEP.default, help = opt::STEP.cli_help(), allow_negative_numbers = true))]
     pub step: f64,
     /// Tilt-rate decay per station step.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::ETA.default, help = opt::ETA.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::ETA.default, help = opt::ETA.cli_help(), allow_negative_numbers = true))]
     pub eta: f64,
     /// How the mission station paces the drone along its plan.
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(
             long,
             value_enum,
@@ -136,7 +136,7 @@ pub struct StationSettings {
     )]
     pub plan_pace: PlanPace,
     /// The mission station's off-plan distance, m.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::PLAN_TOLERANCE.default, help = opt::PLAN_TOLERANCE.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::PLAN_TOLERANCE.default, help = opt::PLAN_TOLERANCE.cli_help(), allow_negative_numbers = true))]
     pub plan_tolerance: f64,
 }
 
@@ -156,26 +156,26 @@ impl Default for StationSettings {
 /// The drone's radio.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
-#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(cli, derive(clap::Args))]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct RadioSettings {
     /// Spreading factor 7..12 (with ADR: the start).
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::SF.default as i64, help = opt::SF.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::SF.default as i64, help = opt::SF.cli_help(), allow_negative_numbers = true))]
     pub sf: i64,
     /// Bandwidth, kHz.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::BW.default, help = opt::BW.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::BW.default, help = opt::BW.cli_help(), allow_negative_numbers = true))]
     pub bw: f64,
     /// Coding rate index 1..4.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::CR.default as i64, help = opt::CR.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::CR.default as i64, help = opt::CR.cli_help(), allow_negative_numbers = true))]
     pub cr: i64,
     /// MAC overhead, bytes (LoRaWAN 13; the paper's Table II: 0).
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::OVERHEAD.default as usize, help = opt::OVERHEAD.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::OVERHEAD.default as usize, help = opt::OVERHEAD.cli_help(), allow_negative_numbers = true))]
     pub overhead: usize,
     /// Duty-cycle limit, fraction.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::DUTY_CYCLE.default, help = opt::DUTY_CYCLE.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::DUTY_CYCLE.default, help = opt::DUTY_CYCLE.cli_help(), allow_negative_numbers = true))]
     pub duty_cycle: f64,
     /// Transmit power, dBm.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::TX_POWER.default, help = opt::TX_POWER.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::TX_POWER.default, help = opt::TX_POWER.cli_help(), allow_negative_numbers = true))]
     pub tx_power: f64,
 }
 
@@ -195,21 +195,21 @@ impl Default for RadioSettings {
 /// The channel between drones and gateways.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
-#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(cli, derive(clap::Args))]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct ChannelSettings {
     /// simulate: distance from the flight's first point to the default gateway; swarm: every
     /// drone's starting distance from the centre, m.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::DISTANCE.default, help = opt::DISTANCE.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::DISTANCE.default, help = opt::DISTANCE.cli_help(), allow_negative_numbers = true))]
     pub distance: f64,
     /// Path-loss exponent.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::PATH_LOSS_EXPONENT.default, help = opt::PATH_LOSS_EXPONENT.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::PATH_LOSS_EXPONENT.default, help = opt::PATH_LOSS_EXPONENT.cli_help(), allow_negative_numbers = true))]
     pub path_loss_exponent: f64,
     /// Shadowing standard deviation, dB (0: off).
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::SHADOWING.default, help = opt::SHADOWING.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::SHADOWING.default, help = opt::SHADOWING.cli_help(), allow_negative_numbers = true))]
     pub shadowing: f64,
     /// Antenna height of every gateway not given its own, m.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::GATEWAY_HEIGHT.default, help = opt::GATEWAY_HEIGHT.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::GATEWAY_HEIGHT.default, help = opt::GATEWAY_HEIGHT.cli_help(), allow_negative_numbers = true))]
     pub gateway_height: f64,
 }
 
@@ -227,13 +227,13 @@ impl Default for ChannelSettings {
 /// Gateways, channels, reception rules and the network server's ADR.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
-#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(cli, derive(clap::Args))]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct NetworkSettings {
     /// The gateways; empty for the one default gateway (simulate: `distance` m east of the
     /// flight's first point; swarm: at the centre).
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(long = "gateway", value_name = "E,N[,H]", value_parser = GatewaySite::parse, allow_hyphen_values = true,
             help = "A gateway at E metres east and N north of the origin (simulate: the flight's first point; swarm: the centre), antenna H metres high [default: --gateway-height]; repeat for more (1..16, each coordinate within 100 km). Without it: one gateway, simulate at (--distance, 0), swarm at the centre.")
     )]
@@ -241,25 +241,25 @@ pub struct NetworkSettings {
     /// Uplink channels: 1, or the plan's (the default, when unset).
     #[serde(skip_serializing_if = "Option::is_none")]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, help = opt::CHANNELS.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, help = opt::CHANNELS.cli_help(), allow_negative_numbers = true))]
     pub channels: Option<u8>,
     /// Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(long, default_value = "on", value_parser = on_off, value_name = "on|off", action = clap::ArgAction::Set,
             help = "Same-SF capture: the stronger packet survives 6 dB above the others (off: every overlap is fatal).")
     )]
     pub capture: bool,
     /// Inter-SF interference by the rejection matrix (off: SFs are orthogonal).
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(long, default_value = "on", value_parser = on_off, value_name = "on|off", action = clap::ArgAction::Set,
             help = "Inter-SF interference by the rejection matrix of ns-3's lorawan module (off: SFs are orthogonal).")
     )]
     pub inter_sf: bool,
     /// Adaptive data rate: `off`, `lorawan` or `tracking`.
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(
             long,
             value_enum,
@@ -269,10 +269,10 @@ pub struct NetworkSettings {
     )]
     pub adr: AdrMode,
     /// LoRaWAN ADR's device margin, dB.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::ADR_MARGIN.default, help = opt::ADR_MARGIN.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::ADR_MARGIN.default, help = opt::ADR_MARGIN.cli_help(), allow_negative_numbers = true))]
     pub adr_margin: f64,
     /// LoRaWAN ADR's history, uplinks.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::ADR_HISTORY.default as usize, help = opt::ADR_HISTORY.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::ADR_HISTORY.default as usize, help = opt::ADR_HISTORY.cli_help(), allow_negative_numbers = true))]
     pub adr_history: usize,
 }
 
@@ -293,14 +293,14 @@ impl Default for NetworkSettings {
 /// The drone's sensors and filter.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
-#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(cli, derive(clap::Args))]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct DroneSettings {
     /// Sensor and filter rate, Hz.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::SENSOR_RATE.default, help = opt::SENSOR_RATE.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::SENSOR_RATE.default, help = opt::SENSOR_RATE.cli_help(), allow_negative_numbers = true))]
     pub sensor_rate: f64,
     /// Process noise q of Q = q·I (drone and station).
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::Q.default, help = opt::Q.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::Q.default, help = opt::Q.cli_help(), allow_negative_numbers = true))]
     pub q: f64,
 }
 
@@ -316,7 +316,7 @@ impl Default for DroneSettings {
 /// How a swarm is laid out (`swarm` only).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
-#[cfg_attr(not(target_arch = "wasm32"), derive(clap::ValueEnum))]
+#[cfg_attr(cli, derive(clap::ValueEnum))]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum SfPlan {
     /// SF7..SF12 in turn (drone i gets SF 7 + i mod 6), the paper's suggestion for up to 72
@@ -331,18 +331,18 @@ pub enum SfPlan {
 /// The swarm's size and layout (`swarm` only; `simulate` flies one drone).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
-#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(cli, derive(clap::Args))]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct SwarmSettings {
     /// Number of drones.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::DRONES.default as usize, help = opt::DRONES.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::DRONES.default as usize, help = opt::DRONES.cli_help(), allow_negative_numbers = true))]
     pub drones: usize,
     /// Seconds of chained synthetic flight per drone (when no flight is chosen).
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::DURATION.default, help = opt::DURATION.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::DURATION.default, help = opt::DURATION.cli_help(), allow_negative_numbers = true))]
     pub duration: f64,
     /// How SFs are shared out.
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(
             long,
             value_enum,
@@ -366,13 +366,13 @@ impl Default for SwarmSettings {
 /// The seed and what to return.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
-#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(cli, derive(clap::Args))]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct RunSettings {
     /// Seed of every random draw; `"random"` draws one ([`random_seed`]), which the echo gives.
     #[serde(deserialize_with = "seed_or_random")]
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(long, default_value = "1", value_name = "N|random", value_parser = parse_seed,
             help = "Seed of all random draws (sensor noise, layout, channels, shadowing), 0..2^53-1, or random for a fresh one (reported, so the run can be repeated).")
     )]
@@ -380,11 +380,11 @@ pub struct RunSettings {
     pub seed: u64,
     /// How many seeds `simulate` runs (`seed`, `seed + 1`, …), pooled, with 95 % intervals
     /// (`docs/reference.md` §12); a swarm runs one.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = opt::SEEDS.default as u32, help = opt::SEEDS.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::SEEDS.default as u32, help = opt::SEEDS.cli_help(), allow_negative_numbers = true))]
     pub seeds: u32,
     /// Include time series of the first flight (simulate).
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(
             long,
             help = "Include time series of the first flight (error over time, trajectories) in the JSON."

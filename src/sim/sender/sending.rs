@@ -20,12 +20,12 @@ pub const DEFAULT_BURST: u32 = BURST.default as u32;
 /// `maxInterval`, `dutyCycleMode`, `burst`).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
-#[cfg_attr(not(target_arch = "wasm32"), derive(clap::Args))]
+#[cfg_attr(cli, derive(clap::Args))]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct Sending {
     /// The sending policy.
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(
             long,
             value_enum,
@@ -35,14 +35,14 @@ pub struct Sending {
     )]
     pub sender: SenderKind,
     /// Error-triggered threshold, m.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = THRESHOLD.default, help = THRESHOLD.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = THRESHOLD.default, help = THRESHOLD.cli_help(), allow_negative_numbers = true))]
     pub threshold: f64,
     /// Error-triggered heartbeat, s.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = MAX_INTERVAL.default, help = MAX_INTERVAL.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = MAX_INTERVAL.default, help = MAX_INTERVAL.cli_help(), allow_negative_numbers = true))]
     pub max_interval: f64,
     /// The duty-cycle rule.
     #[cfg_attr(
-        not(target_arch = "wasm32"),
+        cli,
         arg(
             long,
             value_enum,
@@ -52,7 +52,7 @@ pub struct Sending {
     )]
     pub duty_cycle_mode: DutyCycleMode,
     /// Budget capacity, packets.
-    #[cfg_attr(not(target_arch = "wasm32"), arg(long, default_value_t = DEFAULT_BURST, help = BURST.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = DEFAULT_BURST, help = BURST.cli_help(), allow_negative_numbers = true))]
     pub burst: u32,
 }
 
