@@ -105,11 +105,12 @@ export async function launch() {
   });
 }
 
-/** A new page that records problems: console errors, uncaught exceptions, foreign requests. In a
- * `browser`, the page has a context of its own; in a context (`usePlayground`'s), it shares it. */
-export async function openPage(browser, origin, viewport = { width: 1280, height: 900 }) {
-  const shared = !('newContext' in browser);
-  const page = shared ? await browser.newPage() : await browser.newPage({ viewport, acceptDownloads: true });
+/** A new page that records problems: console errors, uncaught exceptions, foreign requests.
+ * `opener` is a browser (the page gets a context of its own) or a context (`usePlayground`'s: the
+ * page shares it). */
+export async function openPage(opener, origin, viewport = { width: 1280, height: 900 }) {
+  const shared = !('newContext' in opener);
+  const page = shared ? await opener.newPage() : await opener.newPage({ viewport, acceptDownloads: true });
   if (shared) await page.setViewportSize(viewport);
   const problems = [];
   page.on('console', (msg) => {

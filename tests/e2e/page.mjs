@@ -16,12 +16,14 @@ let keeper;
  * and stops both after the last test.
  *
  * The tests' pages share one browser context, in which a blank page stays open from the first
- * test to the last: Chromium then keeps the site's renderer process, whose WebAssembly engine
- * keeps the compiled module, and each later page skips compiling it again (about 0.9 s of
- * background CPU a load) and the JavaScript too. A page load cost 3.7 core-seconds and 1.9 s in a
- * context of its own, 2.1 and 1.2 s here. The page stores nothing (no cookies, no storage), so a
- * test sees nothing of the ones before it; the permissions a test grants are cleared after it.
- * `npm run bench:page` times cold loads, each in a fresh context. */
+ * test to the last. Measured: a default load cost 3.7 core-seconds and 1.9 s in a context of its
+ * own, 2.1 and 1.2 s here, and 3.4 core-s in a shared context whose last page closed between loads.
+ * The likely reason: with a page open, Chromium hands the next page a renderer process that has
+ * already compiled the page's code, where a fresh one spent ~0.9 s of background CPU compiling the
+ * WebAssembly module's hot functions again (a trace of one cold load), more on the JavaScript, and
+ * its own start. The page stores nothing (no cookies, no storage), so a test sees nothing of the
+ * ones before it; the permissions a test grants are cleared after it. `npm run bench:page` times
+ * cold loads, each in a fresh context. */
 export function usePlayground() {
   before(async () => {
     server = await serveDist();
