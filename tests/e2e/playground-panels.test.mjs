@@ -397,12 +397,10 @@ test('lesson "The duty-cycle wall": the interval is 100 times the time on air fo
 
 test('a lesson opened by a hand-typed link over other settings names every setting that is not its own', async () => {
   const { page, problems } = await open('?lesson=why-not-sf12&sf=9');
-  await waitForResults(page);
   assert.equal(await page.locator('#lesson-title').textContent(), 'Lesson: Why not always SF12?');
   assert.equal(await page.locator('#lesson-changed').textContent(), "Not the lesson's settings: Spreading factor: SF9 instead of SF12; Bandwidth: 250 kHz instead of 125 kHz; Trajectory: One synthetic flight instead of Whole synthetic set (30 flights, 44 min). “What to notice” speaks of the lesson's own settings and of the steps it asks for. Back to the lesson's settings");
   // A lesson the page does not know is said so, beside the link's other problems.
   const unknown = await open('?lesson=why-not-sf13');
-  await waitForResults(unknown.page);
   assert.equal(await unknown.page.locator('#lesson').isHidden(), true);
   assert.match(await unknown.page.locator('#notice').textContent(), /The link's lesson=why-not-sf13 is not one of the lessons/);
   assert.deepEqual([...problems, ...unknown.problems], []);
