@@ -1,6 +1,6 @@
 //! CTRA+: 2D CTRA on a plane tilted by a constant pitch (paper §III-A).
 
-use super::{arc_integral_from, Heading, ModelKind, MotionModel, A, OMEGA, THETA, V, X, Y, Z};
+use super::{arc_integrals, Heading, ModelKind, MotionModel, A, OMEGA, THETA, V, X, Y, Z};
 use crate::math::wrap_angle;
 use nalgebra::SVector;
 
@@ -32,18 +32,54 @@ impl MotionModel<8> for CtraPlus {
         self.propagate_with(s, &Heading::of(s), dt)
     }
 
+    #[inline(always)]
     fn propagate_with(&self, s: &SVector<f64, 8>, heading: &Heading, dt: f64) -> SVector<f64, 8> {
-        let ((st, ct), (sp, cp)) = (heading.theta, heading.phi);
-        let (dx, dy) = arc_integral_from(st, ct, s[OMEGA], s[V], s[A], dt);
-        let along = s[V] * dt + 0.5 * s[A] * dt * dt;
-        let mut out = *s;
-        out[X] += cp * dx;
-        out[Y] += cp * dy;
-        out[Z] += sp * along;
-        out[THETA] = wrap_angle(s[THETA] + s[OMEGA] * dt);
-        out[V] = s[V] + s[A] * dt;
-        out
+        let (st, ct) = heading.theta;
+        let ([dx], [dy]) = arc_integrals([st], [ct], [s[OMEGA]], [s[V]], [s[A]], dt);
+        finish(s, heading, (dx, dy), dt)
     }
+
+    #[inline(always)]
+    fn propagate_pair(
+        &self,
+        states: [&SVector<f64, 8>; 2],
+        headings: [&Heading; 2],
+        dt: f64,
+    ) -> [SVector<f64, 8>; 2] {
+        let ([p, m], [hp, hm]) = (states, headings);
+        let (dx, dy) = arc_integrals(
+            [hp.theta.0, hm.theta.0],
+            [hp.theta.1, hm.theta.1],
+            [p[OMEGA], m[OMEGA]],
+            [p[V], m[V]],
+            [p[A], m[A]],
+            dt,
+        );
+        [
+            finish(p, hp, (dx[0], dy[0]), dt),
+            finish(m, hm, (dx[1], dy[1]), dt),
+        ]
+    }
+}
+
+/// The state after `dt` from the turn's arc integral (`dx`, `dy`): the horizontal part tilted by
+/// the pitch, the climb along it.
+#[inline(always)]
+fn finish(
+    s: &SVector<f64, 8>,
+    heading: &Heading,
+    (dx, dy): (f64, f64),
+    dt: f64,
+) -> SVector<f64, 8> {
+    let (sp, cp) = heading.phi;
+    let along = s[V] * dt + 0.5 * s[A] * dt * dt;
+    let mut out = *s;
+    out[X] += cp * dx;
+    out[Y] += cp * dy;
+    out[Z] += sp * along;
+    out[THETA] = wrap_angle(s[THETA] + s[OMEGA] * dt);
+    out[V] = s[V] + s[A] * dt;
+    out
 }
 
 #[cfg(test)]
@@ -61,6 +97,20 @@ mod tests {
         let mut straight = s;
         straight[OMEGA] = 0.0;
         assert!((CtraPlus.propagate(&straight, 0.5)[X] - 0.625).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_pair_propagates_to_the_bits_of_two_single_points() {
+        let centre = SVector::<f64, 8>::from([3.0, -1.0, 20.0, 2.9, 0.2, 7.0, 0.3, 0.05]);
+        // A short turn for both points (the batched series), then a long one for one of them.
+        for d_omega in [0.01, 3.0] {
+            let d = SVector::<f64, 8>::from([0.5, 0.2, -0.3, 0.4, 0.1, 0.6, 0.2, d_omega]);
+            let (p, m) = (centre + d, centre - d);
+            let (hp, hm) = (Heading::of(&p), Heading::of(&m));
+            let [a, b] = CtraPlus.propagate_pair([&p, &m], [&hp, &hm], 0.1);
+            assert_eq!(a, CtraPlus.propagate_with(&p, &hp, 0.1));
+            assert_eq!(b, CtraPlus.propagate_with(&m, &hm, 0.1));
+        }
     }
 
     #[test]

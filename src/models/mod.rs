@@ -96,7 +96,7 @@ pub trait MotionModel<const N: usize> {
 
     /// [`Self::propagate_with`] for the two points of a sigma pair x̄ ± d, with their headings:
     /// the same results, which a model may compute together (3D-CTRA batches the pair's six arc
-    /// integrals).
+    /// integrals, CTRA+ its two).
     fn propagate_pair(
         &self,
         states: [&SVector<f64, N>; 2],
