@@ -12,7 +12,7 @@ mod heading;
 mod kind;
 
 pub use arc_integral::arc_integral;
-use arc_integral::{arc_integral_from, arc_integrals};
+use arc_integral::arc_integrals;
 pub use ctra3d::Ctra3d;
 pub use ctra_plus::CtraPlus;
 pub use dr::Dr;
