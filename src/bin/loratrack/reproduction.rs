@@ -279,7 +279,11 @@ mean behind the start, hurting most the richer members, whose turn rate spreads 
 With non-negative weights (kappa = 0) it is the best or within 2 % of the best single model up to SF9
 and at SF12, and 1.02× and 1.10× DR's at SF10 and SF11 (docs/mission.md, 4 seeds; 1.05× and 1.07× over
 16 seeds), where DR's own 9-byte packets go out a sixth more often than the IMM's 12-byte ones (every
-24.8 and 49.6 s against 28.9 and 57.8 s without the LoRaWAN overhead).
+24.8 and 49.6 s against 28.9 and 57.8 s without the LoRaWAN overhead). That gap is the packet's
+airtime: DR given packets as long as the IMM's (`--overhead 3`, every 28.9 and 57.8 s) has a p75 of
+50.63 and 97.02 m against the IMM's 47.05 and 91.23 m (bounded, 1 km, 16 seeds, 2026-11-29). Against
+3D-CTRA, the member that sends the IMM's own packets (46.38 and 89.08 m), the IMM is 1.014× at SF10 and
+1.024× at SF11: within 2 % at SF10, just outside it at SF11.
 ";
 
 /// The real flight's section: each model's p75 and p95 per setting, and the worst p95 of a
