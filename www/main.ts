@@ -253,6 +253,10 @@ const nearTrajectory = new IntersectionObserver(
 function watchTrajectory(): void {
   if (!trajectoryNear && store.report) nearTrajectory.observe(trajectoryPanel);
 }
+// A reader who scrolls is watched from then on, busy or not: a whole set's distance and SF charts
+// run it again eight times (seconds), and a reader who scrolled down to the 3D view meanwhile
+// found it blank until they were done. On load, without a scroll, the watch still waits for them.
+addEventListener('scroll', watchTrajectory, { passive: true });
 
 /** On load, the panels that need no simulation wait for the first run's answer: drawn at once
  * they would take the cores the first results need (about 200 ms later on 2 cores). */
