@@ -1127,15 +1127,37 @@ const CROWD_SEEDS: u64 = 8;
 const CROWD_THRESHOLDS_M: [f64; 4] = [20.0, 30.0, 40.0, 60.0];
 const CROWD_HEARTBEAT_S: f64 = 60.0;
 
-/// The error-triggered settings the crowd comparison tries, each under one schedule: the duty-cycle
-/// rule, and the threshold (with [`CROWD_HEARTBEAT_S`]) where it is not the default.
-fn crowd_senders() -> Vec<(Schedule, DutyCycleMode, Option<f64>)> {
-    let mut senders = vec![
-        (Schedule::Aloha, DutyCycleMode::PerPacket, None),
+/// The thresholds (m) of the per-packet groups after the default, with the default heartbeat:
+/// the default's 2 m is passed at nearly every chance to send, so there the sender is periodic in
+/// all but name; these show from where a threshold above the lone drone's scale pays in a crowd.
+const CROWD_PER_PACKET_THRESHOLDS_M: [f64; 2] = [5.0, 10.0];
+
+/// An error-triggered setting of the crowd comparison: its schedule, its duty-cycle rule, and its
+/// threshold (m) and heartbeat (s) where they are not the defaults.
+type CrowdSender = (Schedule, DutyCycleMode, Option<(f64, f64)>);
+
+/// The error-triggered settings the crowd comparison tries.
+fn crowd_senders() -> Vec<CrowdSender> {
+    let heartbeat = opt::MAX_INTERVAL.default;
+    let mut senders = vec![(Schedule::Aloha, DutyCycleMode::PerPacket, None)];
+    senders.extend(CROWD_PER_PACKET_THRESHOLDS_M.map(|m| {
+        (
+            Schedule::Aloha,
+            DutyCycleMode::PerPacket,
+            Some((m, heartbeat)),
+        )
+    }));
+    senders.extend([
         (Schedule::Slotted, DutyCycleMode::PerPacket, None),
         (Schedule::Aloha, DutyCycleMode::Budget, None),
-    ];
-    senders.extend(CROWD_THRESHOLDS_M.map(|m| (Schedule::Aloha, DutyCycleMode::Budget, Some(m))));
+    ]);
+    senders.extend(CROWD_THRESHOLDS_M.map(|m| {
+        (
+            Schedule::Aloha,
+            DutyCycleMode::Budget,
+            Some((m, CROWD_HEARTBEAT_S)),
+        )
+    }));
     senders
 }
 
@@ -1143,8 +1165,9 @@ fn crowd_senders() -> Vec<(Schedule, DutyCycleMode, Option<f64>)> {
 /// sending (per packet, the paper's) with 72 drones on one SF7 channel, ALOHA and slotted,
 /// seed by seed from the sweep's own seed (whose per-packet runs are in `rows`), each with
 /// periodic sending slowed by its duty cycle to the airtime error-triggered sending used: the
-/// fair comparison for a sender that saves airtime. The budget rule under ALOHA only: a slotted
-/// drone sends in its slot whatever credit it holds; under it, the default threshold and
+/// fair comparison for a sender that saves airtime. Under ALOHA the per-packet rule at the default
+/// threshold, then at each of [`CROWD_PER_PACKET_THRESHOLDS_M`]. The budget rule under ALOHA only:
+/// a slotted drone sends in its slot whatever credit it holds; under it, the default threshold and
 /// heartbeat, then each of [`CROWD_THRESHOLDS_M`] with [`CROWD_HEARTBEAT_S`]. Each schedule's periodic
 /// runs serve every setting compared under it. A comparison is left out when `rows` lacks its
 /// setting.
@@ -1169,7 +1192,7 @@ fn crowds(
         }
     }
     let mut crowd = Vec::new();
-    for (schedule, rule, threshold) in crowd_senders() {
+    for (schedule, rule, trigger) in crowd_senders() {
         let (Some((_, periodic)), Some(e)) = (
             periodic.iter().find(|(s, _)| *s == schedule),
             find(schedule, SenderKind::Error),
@@ -1178,9 +1201,9 @@ fn crowds(
         };
         let error = crowd_runs(e, shared, |c| {
             c.sending.duty_cycle_mode = rule;
-            if let Some(m) = threshold {
-                c.sending.threshold = m;
-                c.sending.max_interval = CROWD_HEARTBEAT_S;
+            if let Some((threshold, heartbeat)) = trigger {
+                c.sending.threshold = threshold;
+                c.sending.max_interval = heartbeat;
             }
         })?;
         // Periodic sending slowed by its duty cycle to the airtime error-triggered sending used.
