@@ -254,7 +254,7 @@ function watchTrajectory(): void {
   if (!trajectoryNear && store.report) nearTrajectory.observe(trajectoryPanel);
 }
 // A reader who scrolls is watched from then on, busy or not: a whole set's distance and SF charts
-// run it again eight times (seconds), and a reader who scrolled down to the 3D view meanwhile
+// run it again twelve times (seconds), and a reader who scrolled down to the 3D view meanwhile
 // found it blank until they were done. On load, without a scroll, the watch still waits for them.
 addEventListener('scroll', watchTrajectory, { passive: true });
 
