@@ -498,8 +498,11 @@ test('lesson "ADR chases the link": from SF12 packets move to DR5 or DR6, far mo
 });
 
 test('lesson "The same drone in Europe and in the US": US915 sends every second, and every p75 falls against EU868 pinned', async () => {
-  const { page, problems } = await lesson('The same drone in Europe and in the US');
+  // Not settled: the distance and SF charts (twelve more runs of the whole set, sending every
+  // second) are not what this lesson is about; the table and the time on air are.
+  const { page, problems } = await lesson('The same drone in Europe and in the US', { settled: false });
   await page.waitForSelector('[data-delta="p75"]');
+  await until(page, () => [...document.querySelectorAll('#airtime-table tbody tr')].some((r) => /^SF10125 kHz/.test(r.textContent)));
   for (const m of MODELS) {
     assert.equal(await cellNumber(page, m, 'interval'), 1, m);
     assert.match(await page.locator(`tr[data-model="${m}"] [data-delta="p75"]`).textContent(), /^▼.*better/, m);
