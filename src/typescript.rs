@@ -47,6 +47,7 @@ fn decls() -> Vec<String> {
         Prediction::decl(&c),
         PlanPace::decl(&c),
         SenderKind::decl(&c),
+        ChannelSense::decl(&c),
         DutyCycleMode::decl(&c),
         AdrMode::decl(&c),
         Region::decl(&c),

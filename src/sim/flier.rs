@@ -204,6 +204,12 @@ impl<'a> Flier<'a> {
         self.estimates.start() + k as f64 * self.estimates.period()
     }
 
+    /// Tells the sender whether its channel was `busy` as an uplink started
+    /// ([`Sender::channel_sensed`]).
+    pub fn channel_sensed(&mut self, busy: bool) {
+        self.sender.channel_sensed(busy);
+    }
+
     /// The next uplink at or after `not_before` s that the sender wants: the sensor step whose
     /// estimate it carries and its start time, s; `None` when the flight ends first. Every time
     /// considered is one the duty-cycle rule allows. With an exact clock uplinks start on
@@ -349,7 +355,7 @@ mod tests {
     use crate::models::ModelKind;
     use crate::sim::clock::Timing;
     use crate::sim::drone::{DroneFilter, Sensing};
-    use crate::sim::sender::{ErrorTriggered, Periodic};
+    use crate::sim::sender::{ChannelSense, ErrorTriggered, Periodic};
     use crate::sim::station::tests::paper_setup;
     use crate::sim::station::StationModel;
     use crate::trajectory::synthetic_flight;
@@ -392,8 +398,8 @@ mod tests {
             StationModel::Single(ModelKind::Ctra3d),
             paper_setup(),
             None,
-            1.0,
-            30.0,
+            (1.0, 30.0),
+            ChannelSense::Off,
         );
         let mut triggered = flier(&flight, Box::new(sender));
         let (k, _) = triggered.next_uplink(later).unwrap();

@@ -50,8 +50,8 @@ pub use scenario::{
 };
 pub use schedule::{aloha_collision_rate, Schedule, Slot};
 pub use sender::{
-    ErrorTriggered, Periodic, Sender, SenderKind, Sending, DEFAULT_BURST, DEFAULT_MAX_INTERVAL_S,
-    DEFAULT_THRESHOLD_M,
+    ChannelLoad, ChannelSense, ErrorTriggered, Periodic, Sender, SenderKind, Sending,
+    DEFAULT_BURST, DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M,
 };
 pub use simulator::Simulator;
 pub use station::{

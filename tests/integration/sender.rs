@@ -5,10 +5,10 @@
 use loratrack::api::simulate;
 use loratrack::{
     fly_alone, min_interval, run_drone, synthetic_flight, time_on_air, Aboard, AdrMode, AdrParams,
-    Bounds, Channel, ChannelParams, DroneRadio, DroneStreams, DutyCycle, DutyCycleMode,
-    ErrorTriggered, Estimates, GatewaySite, InterferenceModel, LoraParams, ModelKind, Network,
-    NetworkSetup, Periodic, Prediction, Scenario, Sender, SenderKind, Sensing, Simulator,
-    StationModel, StationSetup, PAPER_Q, PAPER_R_DIAGONAL,
+    Bounds, Channel, ChannelParams, ChannelSense, DroneRadio, DroneStreams, DutyCycle,
+    DutyCycleMode, ErrorTriggered, Estimates, GatewaySite, InterferenceModel, LoraParams,
+    ModelKind, Network, NetworkSetup, Periodic, Prediction, Scenario, Sender, SenderKind, Sensing,
+    Simulator, StationModel, StationSetup, PAPER_Q, PAPER_R_DIAGONAL,
 };
 use serde_json::{json, Value};
 
@@ -98,8 +98,8 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
                                 ..setup
                             },
                             None,
-                            m,
-                            10.0,
+                            (m, 10.0),
+                            ChannelSense::Off,
                         )),
                     };
                     let rule = DutyCycle::new(mode, dc, toa, burst, flight.t[0]).unwrap();

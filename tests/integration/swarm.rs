@@ -365,6 +365,41 @@ fn in_a_crowd_a_threshold_on_its_scale_tracks_better_than_periodic_sending_with_
     );
 }
 
+/// An error-triggered drone that listens to its channel ([`loratrack::ChannelSense::Cad`]) hears
+/// nothing when alone, so its numbers are those of one that does not; in the crowd of 72 on one
+/// SF7 channel it finds its channel busy at many starts, raises its threshold and sends less.
+/// (Whether that tracks better is measured over 8 seeds of 300 s: docs/swarm.md.)
+#[test]
+fn a_drone_listening_to_its_channel_sends_as_before_alone_and_less_in_a_crowd() {
+    let error =
+        json!({"duration": 120.0, "model": "3d-ctra", "prediction": "bounded", "sender": "error"});
+    let listening = json!({"channelSense": "cad"});
+    let alone = set(
+        &set(&Scenario::default(), error.clone()),
+        json!({"drones": 1}),
+    );
+    let (quiet, heard) = (
+        swarm(&alone).unwrap(),
+        swarm(&set(&alone, listening.clone())).unwrap(),
+    );
+    assert_eq!(quiet.drones, heard.drones);
+    assert_eq!(quiet.airtime, heard.airtime);
+    let crowd = set(
+        &alone,
+        json!({"drones": 72, "channels": 1, "sfPlan": "fixed", "sf": 7, "bw": 125}),
+    );
+    let (deaf, listens) = (
+        swarm(&crowd).unwrap(),
+        swarm(&set(&crowd, listening)).unwrap(),
+    );
+    assert!(
+        listens.airtime < deaf.airtime,
+        "airtime {} listening, {} not",
+        listens.airtime,
+        deaf.airtime
+    );
+}
+
 #[test]
 fn swarms_sharing_their_drones_filter_runs_report_what_each_reports_alone() {
     use loratrack::api::swarm_sharing;

@@ -18,6 +18,8 @@ export type PlanPace = "plan" | "packet";
 
 export type SenderKind = "periodic" | "error";
 
+export type ChannelSense = "off" | "cad";
+
 export type DutyCycleMode = "per-packet" | "budget";
 
 export type AdrMode = "off" | "lorawan" | "tracking";
@@ -148,6 +150,11 @@ threshold: number,
  * Error-triggered heartbeat, s.
  */
 maxInterval: number, 
+/**
+ * Error-triggered sending: whether the drone listens to its channel and sends less where
+ * it is crowded ([`ChannelSense`]).
+ */
+channelSense: ChannelSense, 
 /**
  * The duty-cycle rule.
  */
@@ -348,6 +355,11 @@ threshold: number,
  * Error-triggered heartbeat, s.
  */
 maxInterval: number, 
+/**
+ * Error-triggered sending: whether the drone listens to its channel and sends less where
+ * it is crowded ([`ChannelSense`]).
+ */
+channelSense: ChannelSense, 
 /**
  * The duty-cycle rule.
  */
@@ -990,6 +1002,11 @@ threshold: number,
  */
 maxInterval: number, 
 /**
+ * Error-triggered sending: whether the drone listens to its channel and sends less where
+ * it is crowded ([`ChannelSense`]).
+ */
+channelSense: ChannelSense, 
+/**
  * The duty-cycle rule.
  */
 dutyCycleMode: DutyCycleMode, 
@@ -1284,6 +1301,11 @@ threshold: number,
  * Error-triggered heartbeat, s.
  */
 maxInterval: number, 
+/**
+ * Error-triggered sending: whether the drone listens to its channel and sends less where
+ * it is crowded ([`ChannelSense`]).
+ */
+channelSense: ChannelSense, 
 /**
  * The duty-cycle rule.
  */

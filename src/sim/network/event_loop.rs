@@ -140,6 +140,7 @@ impl Episode {
             self.plan(f, e.drone, e.time + wait);
             return;
         };
+        f.channel_sensed(detects_another(net, &self.on_air, at, ch, &frame));
         let Some(receptions) = f.transmit(k, ch, &frame, &net.channel) else {
             self.plan(f, e.drone, e.time);
             return;
@@ -260,6 +261,28 @@ fn channel_for(
         Heard::Free(c) | Heard::Moved(c, _) => Some(c),
         Heard::Busy(_) => None,
     }
+}
+
+/// Whether a drone at `at` (network frame, m) starting `frame` on channel `ch` detects another
+/// packet of its spreading factor on air there (channel activity detection: a preamble above
+/// the SF's sensitivity, by the shared path-loss model drone to drone, without shadowing).
+fn detects_another(
+    net: &Network,
+    on_air: &[Option<OnAir>],
+    at: [f64; 3],
+    ch: u8,
+    frame: &Frame,
+) -> bool {
+    on_air
+        .iter()
+        .flatten()
+        .filter(|a| a.channel == ch && a.frame.sf == frame.sf)
+        .any(|a| {
+            // Two drones at one spot are 1 m apart: the path loss's reference distance.
+            let d = distance(&a.at, &at).max(1.0);
+            let rx = net.channel.mean_rx_power_dbm(d) - a.frame.power_reduction_db;
+            audible(rx, frame.sf, frame.bw)
+        })
 }
 
 /// What a drone listening before talk heard. The flag says whether the busy first channel

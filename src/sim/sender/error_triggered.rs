@@ -2,7 +2,7 @@
 //! when that belief has drifted from its own estimate (the paper's future work, §V; reference
 //! §4, "Station under an error-triggered drone").
 
-use super::Sender;
+use super::{ChannelLoad, ChannelSense, Sender};
 use crate::math::distance;
 use crate::sim::station::{new_tracker, MissionPlan, StationModel, StationSetup, Tracker};
 
@@ -27,17 +27,19 @@ pub struct ErrorTriggered {
     threshold: f64,
     max_interval: f64,
     last: Option<f64>,
+    /// What it has heard of its channel, when it listens ([`ChannelSense::Cad`]).
+    load: Option<ChannelLoad>,
 }
 
 impl ErrorTriggered {
     /// A sender mirroring a station of `model` with `setup`, with `threshold` in m and
-    /// `max_interval` in s.
+    /// `max_interval` in s, listening to its channel as `sense` says.
     pub fn new(
         model: StationModel,
         setup: StationSetup,
         plan: Option<&MissionPlan>,
-        threshold: f64,
-        max_interval: f64,
+        (threshold, max_interval): (f64, f64),
+        sense: ChannelSense,
     ) -> Self {
         // The drone compares the mirror's position alone with its own estimate.
         let mut mirror = new_tracker(model, setup, plan);
@@ -49,6 +51,7 @@ impl ErrorTriggered {
             threshold,
             max_interval,
             last: None,
+            load: (sense == ChannelSense::Cad).then(ChannelLoad::default),
         }
     }
 
@@ -72,7 +75,17 @@ impl Sender for ErrorTriggered {
         if t - last >= self.max_interval - 1e-9 {
             return true;
         }
-        distance(&self.mirror_at(t), &[own[0], own[1], own[2]]) > self.threshold
+        let threshold = match &self.load {
+            Some(load) => load.threshold(self.threshold),
+            None => self.threshold,
+        };
+        distance(&self.mirror_at(t), &[own[0], own[1], own[2]]) > threshold
+    }
+
+    fn channel_sensed(&mut self, busy: bool) {
+        if let Some(load) = &mut self.load {
+            load.sensed(busy);
+        }
     }
 
     fn data_rate_changed(&mut self, interval: f64) {
@@ -110,9 +123,49 @@ mod tests {
             StationModel::Single(ModelKind::Dr),
             setup,
             None,
-            threshold,
-            10.0,
+            (threshold, 10.0),
+            ChannelSense::Off,
         )
+    }
+
+    #[test]
+    fn a_listening_drone_that_hears_a_busy_channel_waits_for_a_larger_drift() {
+        let setup = StationSetup {
+            prediction: Prediction::Paper,
+            bounds: Bounds::default(),
+            step: 0.1,
+            eta: 0.9,
+            q: 1e-4,
+            r_diagonal: PAPER_R_DIAGONAL,
+            interval: 2.0,
+            error_triggered: true,
+            drone_covariance: None,
+        };
+        let still = [0.0, 0.0, 30.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        let moved = [3.0, 0.0, 30.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        for (sense, busy, wants) in [
+            (ChannelSense::Off, true, true),
+            (ChannelSense::Cad, false, true),
+            (ChannelSense::Cad, true, false),
+        ] {
+            let mut s = ErrorTriggered::new(
+                StationModel::Single(ModelKind::Dr),
+                setup,
+                None,
+                (2.0, 60.0),
+                sense,
+            );
+            s.sent(&still, 0.0);
+            for _ in 0..30 {
+                s.channel_sensed(busy);
+            }
+            // 3 m off: past 2 m, short of 2 m / (1 - b)² once most starts were busy.
+            assert_eq!(
+                s.wants_to_send(1.0, &moved),
+                wants,
+                "{sense:?}, busy {busy}"
+            );
+        }
     }
 
     /// With little process noise the DR station predicts a straight line exactly. (With the

@@ -2,10 +2,12 @@
 //! belief has drifted from the drone's own estimate. The duty-cycle rule that bounds both lives in
 //! [`DutyCycle`](crate::lora::DutyCycle); a sender only says whether it *wants* to send.
 
+mod channel_sense;
 mod error_triggered;
 mod periodic;
 mod sending;
 
+pub use channel_sense::{ChannelLoad, ChannelSense, MIN_SUCCESS, SENSE_GAIN};
 pub use error_triggered::ErrorTriggered;
 pub use periodic::Periodic;
 pub use sending::{Sending, DEFAULT_BURST, DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M};
@@ -46,6 +48,9 @@ pub trait Sender {
     fn sent(&mut self, state: &[f64; 9], t: f64);
     /// ADR moved the drone to a data rate whose duty-cycle interval is `interval` s.
     fn data_rate_changed(&mut self, _interval: f64) {}
+    /// An uplink starts on a channel that was `busy` with another packet the drone could detect
+    /// ([`ChannelSense::Cad`]); only a sender that listens uses it.
+    fn channel_sensed(&mut self, _busy: bool) {}
     /// Whether [`Sender::wants_to_send`] looks at the drone's estimate. One that does not lets
     /// the event loop plan an uplink without running the drone's filter up to it, so that a
     /// swarm's filters run ahead on every core rather than in the loop.

@@ -1,6 +1,6 @@
 //! The sending settings, validated in one place for every run.
 
-use super::{ErrorTriggered, Periodic, Sender, SenderKind};
+use super::{ChannelSense, ErrorTriggered, Periodic, Sender, SenderKind};
 use crate::lora::{DutyCycle, DutyCycleMode, LoraError};
 use crate::options::{BURST, MAX_INTERVAL, THRESHOLD};
 use crate::sim::station::{MissionPlan, StationModel, StationSetup};
@@ -17,7 +17,7 @@ pub const DEFAULT_MAX_INTERVAL_S: f64 = MAX_INTERVAL.default;
 pub const DEFAULT_BURST: u32 = BURST.default as u32;
 
 /// When a drone sends and which duty-cycle rule bounds it (flat keys `sender`, `threshold`,
-/// `maxInterval`, `dutyCycleMode`, `burst`).
+/// `maxInterval`, `channelSense`, `dutyCycleMode`, `burst`).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 #[cfg_attr(cli, derive(clap::Args))]
@@ -40,6 +40,18 @@ pub struct Sending {
     /// Error-triggered heartbeat, s.
     #[cfg_attr(cli, arg(long, default_value_t = MAX_INTERVAL.default, help = MAX_INTERVAL.cli_help(), allow_negative_numbers = true))]
     pub max_interval: f64,
+    /// Error-triggered sending: whether the drone listens to its channel and sends less where
+    /// it is crowded ([`ChannelSense`]).
+    #[cfg_attr(
+        cli,
+        arg(
+            long,
+            value_enum,
+            default_value = "off",
+            help = "Error-triggered sending: off, or cad (channel activity detection as each uplink starts: the threshold is divided by (1 - b)^2, b the share of recent starts that found another packet of the drone's SF on its channel)."
+        )
+    )]
+    pub channel_sense: ChannelSense,
     /// The duty-cycle rule.
     #[cfg_attr(
         cli,
@@ -62,6 +74,7 @@ impl Default for Sending {
             sender: SenderKind::Periodic,
             threshold: DEFAULT_THRESHOLD_M,
             max_interval: DEFAULT_MAX_INTERVAL_S,
+            channel_sense: ChannelSense::Off,
             duty_cycle_mode: DutyCycleMode::PerPacket,
             burst: DEFAULT_BURST,
         }
@@ -103,8 +116,8 @@ impl Sending {
                 model,
                 setup,
                 plan,
-                self.threshold,
-                self.max_interval,
+                (self.threshold, self.max_interval),
+                self.channel_sense,
             )),
         }
     }
