@@ -16,8 +16,9 @@ export const names = (list: ModelResult[]) => list.map((m) => MODEL_LABELS[m.mod
 /** The sending policy with what it rests on, and the duty-cycle rule when it is not the paper's
  * off-time per packet: two error-triggered runs with different thresholds must not read alike.
  * Takes the page's settings or a report's own config. */
-export function sending(s: Pick<Settings, 'sender' | 'threshold' | 'maxInterval' | 'dutyCycleMode'>): string {
-  const sender = s.sender === 'error' ? `error-triggered sending (${s.threshold} m, heartbeat ${s.maxInterval} s)` : 'periodic sending';
+export function sending(s: Pick<Settings, 'sender' | 'threshold' | 'maxInterval' | 'dutyCycleMode'> & Partial<Pick<Settings, 'channelSense'>>): string {
+  const listens = s.channelSense === 'cad' ? ', listening to its channel' : '';
+  const sender = s.sender === 'error' ? `error-triggered sending (${s.threshold} m, heartbeat ${s.maxInterval} s${listens})` : 'periodic sending';
   return s.dutyCycleMode === 'budget' ? `${sender}, duty-cycle budget` : sender;
 }
 

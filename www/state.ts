@@ -3,7 +3,7 @@
 // core's one table (src/options.rs, generated into www/generated/types.ts), so the form, the URL
 // checks, the CLI help and the core's validation cannot disagree.
 import type { SimulateRequest, SweepPoint } from './worker';
-import { OPTIONS, PLANS, type AdrMode, type ChannelAccess, type FairUse, type GatewaySite, type ModelChoice, type NumberOption, type Plan, type Prediction, type Region, type SimulateParams } from './loratrack';
+import { OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type ModelChoice, type NumberOption, type Plan, type Prediction, type Region, type SimulateParams } from './loratrack';
 
 export type FlightChoice = 'synthetic' | 'all' | 'canberra' | 'csv';
 
@@ -17,6 +17,8 @@ export interface Settings {
   threshold: number;
   /** Error-triggered sending's heartbeat: the longest silence, s. */
   maxInterval: number;
+  /** Error-triggered sending: whether the drone listens to its channel and sends less where it is crowded. */
+  channelSense: ChannelSense;
   dutyCycleMode: 'per-packet' | 'budget';
   adr: AdrMode;
   /** The LoRaWAN regional plan. */
@@ -60,6 +62,7 @@ export const DEFAULTS: Settings = {
   sender: 'periodic',
   threshold: def('threshold'),
   maxInterval: def('maxInterval'),
+  channelSense: 'off',
   dutyCycleMode: 'per-packet',
   adr: 'off',
   region: 'eu868',
@@ -227,6 +230,7 @@ export function toParams(s: Settings, csv?: { text: string; name: string }, miss
     sender: s.sender,
     threshold: s.threshold,
     maxInterval: s.maxInterval,
+    channelSense: s.channelSense,
     dutyCycleMode: s.dutyCycleMode,
     adr: s.adr,
     region: s.region,
@@ -315,6 +319,7 @@ export function fromQuery(search: string): { settings: Settings; problems: strin
   choice('model', MODEL_CHOICES);
   choice('prediction', ['paper', 'bounded']);
   choice('sender', ['periodic', 'error']);
+  choice('channelSense', ['off', 'cad']);
   choice('dutyCycleMode', ['per-packet', 'budget']);
   choice('adr', ['off', 'lorawan', 'tracking']);
   choice('region', PLANS.map((p) => p.region));

@@ -378,6 +378,13 @@ test('the bounded and IMM stations and error-triggered sending are one control a
   assert.match(await page.locator('#results-table caption').textContent(), /error-triggered sending \(5 m, heartbeat 10 s\)/);
   // At 3 km packets are lost: the results say what the drone's silence rests on.
   assert.equal(await page.locator('#silence-note').isVisible(), true);
+  // A drone alone that listens to its channel never hears another packet: the same numbers, said
+  // to rest on listening, and kept in the link.
+  before = await tableHtml(page);
+  await page.getByLabel('Channel sensing').selectOption('cad');
+  await until(page, () => /heartbeat 10 s, listening to its channel\)/.test(document.querySelector('#results-table caption')?.textContent ?? ''));
+  assert.equal(await tableHtml(page), before);
+  assert.match(page.url(), /channelSense=cad/);
   assert.deepEqual(problems, []);
 });
 
