@@ -4,10 +4,11 @@ use clap::{Args, Subcommand};
 use loratrack::api::{self, ApiError};
 use loratrack::options as opt;
 use loratrack::{
-    AccessSettings, ChannelSettings, DroneSettings, DutyCycleMode, FlightSettings, LdroMode,
-    ModelChoice, ModelKind, ModelResult, NetworkSettings, Prediction, RadioSettings, RunSettings,
-    Scenario, Schedule, SenderKind, Sending, SfPlan, SharedDroneRuns, SimReport, Simulator,
-    StationSettings, SwarmReport, SwarmSettings, SyntheticChoice, FEW_PACKETS, MAX_CSV_BYTES,
+    AccessSettings, ChannelSense, ChannelSettings, DroneSettings, DutyCycleMode, FlightSettings,
+    LdroMode, ModelChoice, ModelKind, ModelResult, NetworkSettings, Prediction, RadioSettings,
+    RunSettings, Scenario, Schedule, SenderKind, Sending, SfPlan, SharedDroneRuns, SimReport,
+    Simulator, StationSettings, SwarmReport, SwarmSettings, SyntheticChoice, FEW_PACKETS,
+    MAX_CSV_BYTES,
 };
 use serde::Serialize;
 
@@ -1132,30 +1133,36 @@ const CROWD_HEARTBEAT_S: f64 = 60.0;
 /// all but name; these show from where a threshold above the lone drone's scale pays in a crowd.
 const CROWD_PER_PACKET_THRESHOLDS_M: [f64; 2] = [5.0, 10.0];
 
-/// An error-triggered setting of the crowd comparison: its schedule, its duty-cycle rule, and its
-/// threshold (m) and heartbeat (s) where they are not the defaults.
-type CrowdSender = (Schedule, DutyCycleMode, Option<(f64, f64)>);
+/// An error-triggered setting of the crowd comparison: its schedule, its duty-cycle rule, its
+/// threshold (m) and heartbeat (s) where they are not the defaults, and whether it listens to its
+/// channel.
+type CrowdSender = (Schedule, DutyCycleMode, Option<(f64, f64)>, ChannelSense);
 
 /// The error-triggered settings the crowd comparison tries.
 fn crowd_senders() -> Vec<CrowdSender> {
+    use ChannelSense::{Cad, Off};
     let heartbeat = opt::MAX_INTERVAL.default;
-    let mut senders = vec![(Schedule::Aloha, DutyCycleMode::PerPacket, None)];
+    let mut senders = vec![(Schedule::Aloha, DutyCycleMode::PerPacket, None, Off)];
     senders.extend(CROWD_PER_PACKET_THRESHOLDS_M.map(|m| {
         (
             Schedule::Aloha,
             DutyCycleMode::PerPacket,
             Some((m, heartbeat)),
+            Off,
         )
     }));
     senders.extend([
-        (Schedule::Slotted, DutyCycleMode::PerPacket, None),
-        (Schedule::Aloha, DutyCycleMode::Budget, None),
+        (Schedule::Aloha, DutyCycleMode::PerPacket, None, Cad),
+        (Schedule::Slotted, DutyCycleMode::PerPacket, None, Off),
+        (Schedule::Aloha, DutyCycleMode::Budget, None, Off),
+        (Schedule::Aloha, DutyCycleMode::Budget, None, Cad),
     ]);
     senders.extend(CROWD_THRESHOLDS_M.map(|m| {
         (
             Schedule::Aloha,
             DutyCycleMode::Budget,
             Some((m, CROWD_HEARTBEAT_S)),
+            Off,
         )
     }));
     senders
@@ -1166,9 +1173,10 @@ fn crowd_senders() -> Vec<CrowdSender> {
 /// seed by seed from the sweep's own seed (whose per-packet runs are in `rows`), each with
 /// periodic sending slowed by its duty cycle to the airtime error-triggered sending used: the
 /// fair comparison for a sender that saves airtime. Under ALOHA the per-packet rule at the default
-/// threshold, then at each of [`CROWD_PER_PACKET_THRESHOLDS_M`]. The budget rule under ALOHA only:
-/// a slotted drone sends in its slot whatever credit it holds; under it, the default threshold and
-/// heartbeat, then each of [`CROWD_THRESHOLDS_M`] with [`CROWD_HEARTBEAT_S`]. Each schedule's periodic
+/// threshold, then at each of [`CROWD_PER_PACKET_THRESHOLDS_M`], then at the default listening to
+/// its channel ([`ChannelSense::Cad`]). The budget rule under ALOHA only: a slotted drone sends in
+/// its slot whatever credit it holds; under it, the default threshold and heartbeat, without and
+/// with listening, then each of [`CROWD_THRESHOLDS_M`] with [`CROWD_HEARTBEAT_S`]. Each schedule's periodic
 /// runs serve every setting compared under it. A comparison is left out when `rows` lacks its
 /// setting.
 fn crowds(
@@ -1192,7 +1200,7 @@ fn crowds(
         }
     }
     let mut crowd = Vec::new();
-    for (schedule, rule, trigger) in crowd_senders() {
+    for (schedule, rule, trigger, sense) in crowd_senders() {
         let (Some((_, periodic)), Some(e)) = (
             periodic.iter().find(|(s, _)| *s == schedule),
             find(schedule, SenderKind::Error),
@@ -1201,6 +1209,7 @@ fn crowds(
         };
         let error = crowd_runs(e, shared, |c| {
             c.sending.duty_cycle_mode = rule;
+            c.sending.channel_sense = sense;
             if let Some((threshold, heartbeat)) = trigger {
                 c.sending.threshold = threshold;
                 c.sending.max_interval = heartbeat;

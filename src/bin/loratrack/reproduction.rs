@@ -1094,6 +1094,10 @@ fn rule_label(s: &loratrack::Sending) -> String {
         loratrack::DutyCycleMode::PerPacket => "per-packet".to_string(),
         loratrack::DutyCycleMode::Budget => format!("budget {}", s.burst),
     };
+    let rule = match s.channel_sense {
+        loratrack::ChannelSense::Off => rule,
+        loratrack::ChannelSense::Cad => format!("{rule}, listening (CAD)"),
+    };
     let d = loratrack::Sending::default();
     if s.threshold == d.threshold && s.max_interval == d.max_interval {
         return rule;
