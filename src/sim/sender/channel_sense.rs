@@ -1,5 +1,5 @@
 //! Channel sensing: an error-triggered drone that hears how crowded its channel is sends less
-//! there (reference §4, "Station under an error-triggered drone": in a crowd).
+//! there (reference §4, "A drone that listens").
 
 use serde::{Deserialize, Serialize};
 
