@@ -204,6 +204,11 @@ impl<'a> Flier<'a> {
         self.estimates.start() + k as f64 * self.estimates.period()
     }
 
+    /// Whether its sender listens to its channel ([`Sender::listens`]).
+    pub fn listens(&self) -> bool {
+        self.sender.listens()
+    }
+
     /// Tells the sender whether its channel was `busy` as an uplink started
     /// ([`Sender::channel_sensed`]).
     pub fn channel_sensed(&mut self, busy: bool) {

@@ -58,6 +58,17 @@ struct OnAir {
     at: [f64; 3],
 }
 
+impl OnAir {
+    /// The power, dBm, at which a drone at `at` (network frame, m) receives this packet: the shared
+    /// path-loss model, drone to drone, without shadowing (listening before talk, and channel
+    /// activity detection).
+    fn rx_dbm_at(&self, net: &Network, at: [f64; 3]) -> f64 {
+        // Two drones at one spot are 1 m apart: the path loss's reference distance.
+        let d = distance(&self.at, &at).max(1.0);
+        net.channel.mean_rx_power_dbm(d) - self.frame.power_reduction_db
+    }
+}
+
 fn packet_id(drone: usize, index: usize) -> u64 {
     ((drone as u64) << 32) | index as u64
 }
@@ -140,7 +151,9 @@ impl Episode {
             self.plan(f, e.drone, e.time + wait);
             return;
         };
-        f.channel_sensed(detects_another(net, &self.on_air, at, ch, &frame));
+        if f.listens() {
+            f.channel_sensed(detects_another(net, &self.on_air, at, ch, &frame));
+        }
         let Some(receptions) = f.transmit(k, ch, &frame, &net.channel) else {
             self.plan(f, e.drone, e.time);
             return;
@@ -265,7 +278,7 @@ fn channel_for(
 
 /// Whether a drone at `at` (network frame, m) starting `frame` on channel `ch` detects another
 /// packet of its spreading factor on air there (channel activity detection: a preamble above
-/// the SF's sensitivity, by the shared path-loss model drone to drone, without shadowing).
+/// the SF's sensitivity, [`OnAir::rx_dbm_at`]).
 fn detects_another(
     net: &Network,
     on_air: &[Option<OnAir>],
@@ -277,12 +290,7 @@ fn detects_another(
         .iter()
         .flatten()
         .filter(|a| a.channel == ch && a.frame.sf == frame.sf)
-        .any(|a| {
-            // Two drones at one spot are 1 m apart: the path loss's reference distance.
-            let d = distance(&a.at, &at).max(1.0);
-            let rx = net.channel.mean_rx_power_dbm(d) - a.frame.power_reduction_db;
-            audible(rx, frame.sf, frame.bw)
-        })
+        .any(|a| audible(a.rx_dbm_at(net, at), frame.sf, frame.bw))
 }
 
 /// What a drone listening before talk heard. The flag says whether the busy first channel
@@ -311,10 +319,7 @@ fn listen(
     let heard_on = |c: u8| -> Option<bool> {
         let mut heard = None;
         for a in on_air.iter().flatten().filter(|a| a.channel == c) {
-            // Two drones at one spot are 1 m apart: the path loss's reference distance.
-            let d = distance(&a.at, &at).max(1.0);
-            let rx = net.channel.mean_rx_power_dbm(d) - a.frame.power_reduction_db;
-            if lbt::busy(rx) {
+            if lbt::busy(a.rx_dbm_at(net, at)) {
                 heard = Some(heard.unwrap_or(false) || a.frame.sf.get() == sf);
             }
         }

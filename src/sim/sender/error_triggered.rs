@@ -82,6 +82,10 @@ impl Sender for ErrorTriggered {
         distance(&self.mirror_at(t), &[own[0], own[1], own[2]]) > threshold
     }
 
+    fn listens(&self) -> bool {
+        self.load.is_some()
+    }
+
     fn channel_sensed(&mut self, busy: bool) {
         if let Some(load) = &mut self.load {
             load.sensed(busy);

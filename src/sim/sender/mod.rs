@@ -48,8 +48,13 @@ pub trait Sender {
     fn sent(&mut self, state: &[f64; 9], t: f64);
     /// ADR moved the drone to a data rate whose duty-cycle interval is `interval` s.
     fn data_rate_changed(&mut self, _interval: f64) {}
-    /// An uplink starts on a channel that was `busy` with another packet the drone could detect
-    /// ([`ChannelSense::Cad`]); only a sender that listens uses it.
+    /// Whether the sender listens to its channel ([`ChannelSense::Cad`]): only then does the
+    /// event loop look for other packets on air as each uplink starts.
+    fn listens(&self) -> bool {
+        false
+    }
+    /// An uplink starts on a channel that was `busy` with another packet the drone could detect;
+    /// told only to a sender that [`Sender::listens`].
     fn channel_sensed(&mut self, _busy: bool) {}
     /// Whether [`Sender::wants_to_send`] looks at the drone's estimate. One that does not lets
     /// the event loop plan an uplink without running the drone's filter up to it, so that a
