@@ -149,6 +149,30 @@ export function axisLabelOverlaps(page) {
 /** Waits until no simulation or drawing is under way (`<body data-busy>` gone). */
 export const idle = (page) => until(page, () => !('busy' in document.body.dataset));
 
+/** Clicks `button` and returns the file it downloads (a Buffer). When none comes within 30 s the
+ * error says what the page showed instead: the note beside the button (why there is nothing to
+ * save), whether the page was still busy, and what lay on top of the button. */
+export async function downloaded(page, button) {
+  const describe = () =>
+    button.evaluate((b) => {
+      const r = b.getBoundingClientRect();
+      const top = document.elementFromPoint(r.x + r.width / 2, r.y + r.height / 2);
+      return {
+        why: (b.closest('.buttons') ?? b.parentElement)?.querySelector('.download-why')?.textContent ?? null,
+        busy: 'busy' in document.body.dataset,
+        onTop: top === b || b.contains(top) ? 'the button' : (top?.outerHTML.slice(0, 160) ?? null),
+      };
+    });
+  const [download] = await Promise.all([
+    page.waitForEvent('download').catch(async (e) => {
+      const seen = await describe().catch((why) => `(not readable: ${why.message})`);
+      throw new Error(`no download: ${e.message.split('\n')[0]}; the page beside the button: ${JSON.stringify(seen)}`);
+    }),
+    button.click(),
+  ]);
+  return readFileSync(await download.path());
+}
+
 /** Scrolls to the 3D view as a reader does (it is drawn once it comes within a screen of the
  * viewport, www/main.ts) and waits for it: its canvas, then nothing left to draw. Returns the canvas. */
 export async function view3d(page) {

@@ -4,10 +4,10 @@
 // HTTP error or a request to any other host.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFileSync, writeFileSync } from 'node:fs';
+import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { nativeJson, scratchDir } from './harness.mjs';
-import { axe, axisLabelOverlaps, cell, cellNumber, idle, lesson, MODELS, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
+import { axe, axisLabelOverlaps, cell, cellNumber, downloaded, idle, lesson, MODELS, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -26,8 +26,8 @@ test('pinning a baseline shows the next settings as differences against it', asy
   const packets = await page.locator('[data-delta="packets"]').textContent();
   assert.match(packets, /▼\u2009−\d+ \(worse than the baseline\)/);
   // The table's picture for a slide keeps each difference, in its colour, and says what it is against.
-  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: 'Download the results table as SVG' }).click()]);
-  const picture = readFileSync(await download.path(), 'utf8');
+  const download = await downloaded(page, page.getByRole('button', { name: 'Download the results table as SVG' }));
+  const picture = download.toString('utf8');
   const shown = p75.replace(/ \(.*\)$/, '');
   assert.ok(picture.includes(`>${shown}</tspan>`), `the p75's difference ${shown} in the picture`);
   const colour = /better/.test(p75) ? '#1b7a2b' : /worse/.test(p75) ? '#b00020' : '#5a6068';
@@ -68,8 +68,8 @@ test('the p75-against-SF chart gives the p75 at each SF as the CLI does, one lin
   const yLabels = await page.evaluate(() => [...document.querySelectorAll('#chart-sf svg g[text-anchor="end"] text')].map((t) => t.textContent).filter((t) => /^[\d.,]+$/.test(t)).map((t) => Number(t.replace(/,/g, ''))));
   assert.ok(lowest < 10 && yLabels.some((y) => y <= lowest * 2.5), `lowest p75 ${lowest}, labels ${yLabels}`);
   assert.ok(yLabels.length >= 4, `labels ${yLabels}`);
-  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: 'Download the error versus spreading factor chart as PNG' }).click()]);
-  assert.ok(readFileSync(await download.path()).readUInt32BE(16) >= 1600);
+  const download = await downloaded(page, page.getByRole('button', { name: 'Download the error versus spreading factor chart as PNG' }));
+  assert.ok(download.readUInt32BE(16) >= 1600);
   assert.deepEqual(problems, []);
 });
 
@@ -131,8 +131,8 @@ test('gateways are added, moved and removed in the form; each is reported, kept 
   // A typed number runs after a pause: wait for the link to follow, then for the run.
   await page.waitForURL(/gateways=5000%2C0%3B0%2C2500/);
   await until(page, () => !document.body.hasAttribute('data-busy') && !document.querySelector('[data-panel="results"].stale'));
-  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
-  const browserJson = JSON.parse(readFileSync(await download.path(), 'utf8'));
+  const download = await downloaded(page, page.getByRole('button', { name: /JSON/ }));
+  const browserJson = JSON.parse(download.toString('utf8'));
   const cli = nativeJson(['simulate', '--synthetic', '1', '--model', '3d-ctra', '--distance', '5000', '--gateway', '5000,0', '--gateway', '0,2500']);
   // Everything but the echo's `series` flag (the page always asks for the plotted series).
   const strip = ({ settings: _a, series: _b, config: { series: _c, ...config }, ...rest }) => ({ config, ...rest });
@@ -188,8 +188,8 @@ test('the regional plan: US915 offers only its data rates, asks for an interval,
   const link = await page.locator('#chart-link .note').textContent();
   assert.match(link, /SF9 \(DR1\) [\d.]+ km/);
   assert.match(link, /US915 has no uplink data rate at SF11, SF12 with this bandwidth/);
-  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
-  const browserJson = JSON.parse(readFileSync(await download.path(), 'utf8'));
+  const download = await downloaded(page, page.getByRole('button', { name: /JSON/ }));
+  const browserJson = JSON.parse(download.toString('utf8'));
   const cli = nativeJson(['simulate', '--synthetic', '1', '--sf', '9', '--bw', '125', '--region', 'us915', '--interval', '1']);
   const strip = ({ settings: _a, series: _b, config: { series: _c, ...config }, ...rest }) => ({ config, ...rest });
   assert.deepStrictEqual(strip(browserJson), strip(cli));
@@ -248,8 +248,8 @@ test('a number being typed runs once it is whole: -15 dBm never runs as -1', asy
   assert.equal(await page.locator('[data-panel="results"].stale').count(), 1);
   await waitForResults(page, before);
   await until(page, () => !document.querySelector('[data-panel="results"].stale'));
-  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
-  const json = JSON.parse(readFileSync(await download.path(), 'utf8'));
+  const download = await downloaded(page, page.getByRole('button', { name: /JSON/ }));
+  const json = JSON.parse(download.toString('utf8'));
   assert.equal(json.settings.txPower, -15);
   assert.equal(json.config.txPower, -15, 'the results are those of the settings shown');
   assert.deepEqual(problems, []);
@@ -591,8 +591,8 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   assert.ok(titles.some((t) => t.startsWith('DR, SF7:')), titles.join('; '));
   assert.ok(!titles.some((t) => t.includes('SF12:')), titles.join('; '));
   // A slide of the chart says so too: its empty SFs are not left unexplained.
-  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: 'Download the error versus spreading factor chart as SVG' }).click()]);
-  const slide = readFileSync(await download.path(), 'utf8').replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ');
+  const download = await downloaded(page, page.getByRole('button', { name: 'Download the error versus spreading factor chart as SVG' }));
+  const slide = download.toString('utf8').replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ');
   assert.match(slide, /Not simulated at (SF\d+, )*SF12: maxInterval must be at least the duty-cycle interval/);
   assert.equal(await page.locator('[data-panel="results"].stale').count(), 0);
   assert.doesNotMatch(await page.locator('#status').textContent(), /cannot be simulated/);

@@ -5,10 +5,10 @@
 // playground-panels.test.mjs; the two files run side by side.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFileSync, writeFileSync } from 'node:fs';
+import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { nativeJson, scratchDir, openPage, screenshot } from './harness.mjs';
-import { axe, axisLabelOverlaps, cell, chartTexts, idle, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
+import { axe, axisLabelOverlaps, cell, chartTexts, downloaded, idle, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -135,9 +135,9 @@ test('the whole set shows its first flight at once, marked as that flight alone 
   assert.match(await page.locator('#results-table caption').textContent(), /over 30 flights × 1 seed/);
   assert.equal(await page.locator('[data-panel="results"].partial').count(), 0);
   assert.equal(await why.textContent(), '');
-  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: 'Results (CSV)' }).click()]);
+  const download = await downloaded(page, page.getByRole('button', { name: 'Results (CSV)' }));
   // The file is the set's report: 30 runs per station, the p75s the table now shows.
-  const [header, ...rows] = readFileSync(await download.path(), 'utf8').trim().split('\n').map((l) => l.split(','));
+  const [header, ...rows] = download.toString('utf8').trim().split('\n').map((l) => l.split(','));
   const final = await shownP75(page);
   for (const row of rows) {
     const col = (name) => row[header.indexOf(name)];
@@ -334,8 +334,8 @@ test('the JSON download equals the native CLI bit for bit, stations split over t
     ['?model=dr%2Cctra-plus%2C3d-ctra%2Cimm&distance=3000&prediction=bounded', ['--synthetic', '1', '--model', 'dr,ctra-plus,3d-ctra,imm', '--distance', '3000', '--prediction', 'bounded']],
   ]) {
     const { page, problems } = await open(query);
-    const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /JSON/ }).click()]);
-    const browserJson = JSON.parse(readFileSync(await download.path(), 'utf8'));
+    const download = await downloaded(page, page.getByRole('button', { name: /JSON/ }));
+    const browserJson = JSON.parse(download.toString('utf8'));
     const cli = nativeJson(['simulate', ...args]);
     assert.deepStrictEqual(browserJson.results, cli.results, query);
     // The totals of the merged report add up every station's run, as the CLI's do.
@@ -404,8 +404,8 @@ test('where packets are lost, an error-triggered run says what its silence rests
   const note = await page.locator('#silence-note').textContent();
   assert.match(note, new RegExp(`^${Math.round(100 * (1 - received / sent))} % of the packets sent were lost\\. An error-triggered drone cannot tell a lost packet from a delivered one`), note);
   // The table on a slide, and an embed without the table, carry the note too.
-  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: 'Download the results table as SVG' }).click()]);
-  const slide = readFileSync(await download.path(), 'utf8').replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ');
+  const download = await downloaded(page, page.getByRole('button', { name: 'Download the results table as SVG' }));
+  const slide = download.toString('utf8').replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ');
   assert.ok(slide.includes(note.split('. ')[0]), `the slide's caption: ${slide.slice(-600)}`);
   const embedded = await open('?embed=1&panels=error&sender=error&distance=3000&prediction=bounded&model=3d-ctra');
   await idle(embedded.page);
@@ -458,10 +458,7 @@ test('axe finds no violation at all, on the full page and embedded', async () =>
 test('every chart and both tables download ready for a slide: title, legend, caption with settings, seed and version; PNGs at least 1600 px wide', async () => {
   const { page, problems } = await open();
   await idle(page);
-  const save = async (locator) => {
-    const [download] = await Promise.all([page.waitForEvent('download'), locator.click()]);
-    return readFileSync(await download.path());
-  };
+  const save = (locator) => downloaded(page, locator);
   for (const [panel, title] of [['error', 'Error over time'], ['distance', 'Error versus distance'], ['axes', 'Error along each axis'], ['link', 'Link budget'], ['airtime', 'Time on air']]) {
     const svg = (await save(page.getByRole('button', { name: new RegExp(`^Download the ${title.toLowerCase()}.* chart as SVG$`) }))).toString('utf8');
     const width = Number(/<svg[^>]*\swidth="(\d+)/.exec(svg)[1]);
@@ -532,8 +529,8 @@ test('every chart and both tables download ready for a slide: title, legend, cap
 
 test('the error-series CSV has every model in its column', async () => {
   const { page, problems } = await open('?distance=3000');
-  const [download] = await Promise.all([page.waitForEvent('download'), page.getByRole('button', { name: /Error series/ }).click()]);
-  const rows = readFileSync(await download.path(), 'utf8').trim().split('\n').map((r) => r.split(','));
+  const download = await downloaded(page, page.getByRole('button', { name: /Error series/ }));
+  const rows = download.toString('utf8').trim().split('\n').map((r) => r.split(','));
   assert.deepEqual(rows[0], ['t_s', 'dr_error3d_m', 'ctra-plus_error3d_m', '3d-ctra_error3d_m']);
   for (let k = 1; k <= 3; k++) assert.ok(rows.slice(1).filter((r) => r[k] !== '').length > 100, `column ${rows[0][k]} is empty`);
   assert.deepEqual(problems, []);
