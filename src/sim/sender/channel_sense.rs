@@ -21,16 +21,6 @@ pub enum ChannelSense {
     Cad,
 }
 
-impl ChannelSense {
-    /// The CLI/JS name: `off` or `cad`.
-    pub fn name(self) -> &'static str {
-        match self {
-            ChannelSense::Off => "off",
-            ChannelSense::Cad => "cad",
-        }
-    }
-}
-
 /// How far each sensed uplink start moves the busy share: about the last ten uplinks count.
 pub const SENSE_GAIN: f64 = 0.1;
 
