@@ -82,6 +82,17 @@ pub struct Bounds {
     /// Singer's model). 5 s: about one manoeuvre of the synthetic flights (4–14 s); on the paper
     /// grid at 3 km it minimises the mean error of every model (3 s and 10 s are within 25 %).
     pub tau_v: f64,
+    /// How long the speed is held before it decays, s, when no packet is overdue yet: 15 s, the
+    /// longest manoeuvre of the synthetic flights (4–14 s), after which the drone has most
+    /// likely braked, turned or climbed. At SF10–SF12 the grace time (1.5 intervals of 27–200 s)
+    /// would otherwise hold a packet's speed for up to 300 s. With it (8 seeds, 1 km) the
+    /// synthetic set's p75 at SF11 fell 7–11 % for every model, at SF12 5–10 %, at SF10 DR's 4 %
+    /// (CTRA+ +1 %); on the real Canberra flight (16 seeds) the richer models' p95 fell from
+    /// 1.18–1.35× DR's to 0.98–1.12× at SF10, from 1.38–1.72× to 1.12–1.21× at SF11 and from
+    /// 4.2–4.8× to 2.0–2.3× at SF12. Held for 10 s the real flight's ratios fell further but the
+    /// synthetic set's SF10 p75 rose 3–5 %; for 20 or 25 s they fell less. Below SF10 the grace
+    /// time is shorter and this changes nothing.
+    pub speed_memory: f64,
     /// How many nominal send intervals may pass after a packet before it counts as overdue.
     /// 1.5: a periodic packet is at most one interval plus a sensor step plus its time on air
     /// late, so the decay starts only after a loss.
@@ -115,6 +126,7 @@ impl Default for Bounds {
             tau_a: 2.0,
             tau_omega: 4.0,
             tau_v: 5.0,
+            speed_memory: 15.0,
             grace_intervals: 1.5,
             sigma_v: 5.0,
             sigma_a: 1.5,
@@ -252,9 +264,13 @@ impl Bounds {
     /// - The acceleration decays from the packet on (tau_a): on a multicopter it is mostly
     ///   short-lived, a speed change of 1–4 s or the noise of a hovering drone, so holding it
     ///   for a whole interval overshoots (reference §4, "Manoeuvres only when significant").
-    /// - The speed and the turn rate decay only once the packet is overdue (tau_v, tau_omega):
-    ///   turns last longer than the interval, and decaying them from the packet on cost the
-    ///   synthetic set at SF9 (3D-CTRA p75 +11 %).
+    /// - The turn rate decays only once the packet is overdue (tau_omega): turns last longer
+    ///   than the interval, and decaying it from the packet on cost the synthetic set at SF9
+    ///   (3D-CTRA p75 +11 %). Decaying it after 8 or 15 s where the grace time is longer (SF10–SF12)
+    ///   cost the real Canberra flight too: a held turn keeps a loitering drone's estimate near
+    ///   where it was.
+    /// - The speed decays once the packet is overdue or older than [`Bounds::speed_memory`],
+    ///   whichever comes first (tau_v).
     /// - Once overdue, the forgotten part's uncertainty is restored on the diagonal
     ///   ((1 − ρ²)σ², [`Bounds::sigma_v`] …). Within the grace time it is not: the position's
     ///   model error ([`Bounds::model_error_variance`]) covers a change within an interval, and
@@ -269,7 +285,7 @@ impl Bounds {
         grace: f64,
     ) {
         let decays = [
-            (V, self.tau_v, self.sigma_v, grace),
+            (V, self.tau_v, self.sigma_v, grace.min(self.speed_memory)),
             (A, self.tau_a, self.sigma_a, 0.0),
             (OMEGA, self.tau_omega, self.sigma_omega, grace),
         ];
@@ -373,6 +389,23 @@ mod tests {
         assert!((p[(A, A)] - restored).abs() < 1e-15);
         assert!((p[(X, A)] - 0.0).abs() < 1e-15 && p[(V, A)] == 0.0);
         assert_eq!(x[THETA], 0.0);
+    }
+
+    #[test]
+    fn at_slow_rates_the_speed_fades_after_its_memory_though_no_packet_is_overdue() {
+        // SF12: a 60 s grace time. The speed is held for speed_memory, then decays; the turn
+        // rate is held until the packet is overdue, and nothing is restored before then.
+        let b = Bounds::default();
+        let grace = 60.0;
+        let mut x = SVector::<f64, 8>::from([0.0, 0.0, 0.0, 0.0, 0.0, 5.0, 0.0, 0.4]);
+        let mut p = SMatrix::<f64, 8, 8>::identity();
+        b.decay_manoeuvre(&mut x, &mut p, 0.0, b.speed_memory, grace);
+        assert_eq!((x[V], p[(V, V)]), (5.0, 1.0));
+        b.decay_manoeuvre(&mut x, &mut p, b.speed_memory, b.speed_memory + 5.0, grace);
+        let rho = exp(-5.0 / b.tau_v);
+        assert!((x[V] - 5.0 * rho).abs() < 1e-15);
+        assert!((p[(V, V)] - rho * rho).abs() < 1e-15);
+        assert_eq!((x[OMEGA], p[(OMEGA, OMEGA)]), (0.4, 1.0));
     }
 
     #[test]
