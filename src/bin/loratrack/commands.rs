@@ -713,7 +713,12 @@ fn sweep(a: SweepArgs) -> Result<String, ApiError> {
     }
     if a.markdown {
         let real = real_flight_runs(a.seed, &predictions, &model)?;
-        return Ok(crate::reproduction::markdown(&r, &real));
+        let rates = if predictions.contains(&Prediction::Bounded) {
+            crate::real_flight_rates::runs(a.seed, &model)?
+        } else {
+            Vec::new()
+        };
+        return Ok(crate::reproduction::markdown(&r, &real, &rates));
     }
     let mut out = format!(
         "paper sweep: synthetic set ({:.0} s), 250 kHz, no LoRaWAN overhead, seed {}\n",

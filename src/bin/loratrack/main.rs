@@ -8,6 +8,8 @@ mod commands;
 #[cfg(not(target_arch = "wasm32"))]
 mod mission_doc;
 #[cfg(not(target_arch = "wasm32"))]
+mod real_flight_rates;
+#[cfg(not(target_arch = "wasm32"))]
 mod reproduction;
 #[cfg(not(target_arch = "wasm32"))]
 mod svg;
