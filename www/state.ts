@@ -87,6 +87,23 @@ export const DEFAULTS: Settings = {
 /** The model choices the page offers (the options of its Model control). */
 export const MODEL_CHOICES: string[] = ['all', 'dr', 'ctra-plus', '3d-ctra', 'imm', 'dr,ctra-plus,3d-ctra,imm', 'mission', '3d-ctra,mission', 'dr,ctra-plus,3d-ctra,imm,mission'];
 
+/** The stations in the order the page lists them, and what `all` stands for (the paper's three). */
+const STATION_ORDER = ['dr', 'ctra-plus', '3d-ctra', 'imm', 'mission'];
+const PAPER_THREE = 'dr,ctra-plus,3d-ctra';
+
+/** The page's choice that runs the same stations as a link's `model` written as the CLI accepts
+ * it (any order or case, `all` beside others: `all,imm`, `IMM,DR,ctra-plus,3d-ctra`), or null
+ * when the page offers no such set. The link is read before the core has loaded, so this follows
+ * the core's spelling (`ModelChoice::parse`, which `stationsOf` calls) rather than calling it. */
+export function modelChoiceOf(raw: string): string | null {
+  const named = raw.toLowerCase().split(',').map((m) => m.trim()).filter((m) => m !== '');
+  const expanded = new Set(named.flatMap((m) => (m === 'all' ? PAPER_THREE.split(',') : [m])));
+  if (named.length === 0 || [...expanded].some((m) => !STATION_ORDER.includes(m))) return null;
+  const joined = STATION_ORDER.filter((m) => expanded.has(m)).join(',');
+  const choice = joined === PAPER_THREE ? 'all' : joined;
+  return MODEL_CHOICES.includes(choice) ? choice : null;
+}
+
 /** Whether the flight's plan is known to the page: the synthetic flights carry theirs, an
  * uploaded flight has one when its plan was uploaded too; the real flight has none here (the
  * CLI's `--plan` and the JS API's `plan` give one). */
@@ -316,7 +333,12 @@ export function fromQuery(search: string): { settings: Settings; problems: strin
     if (allowed.includes(raw)) (s as unknown as Record<string, string>)[key] = raw;
     else problems.push(`The link's ${key}=${raw.slice(0, 20)} was replaced by ${DEFAULTS[key]}: expected one of ${allowed.join(', ')}.`);
   };
-  choice('model', MODEL_CHOICES);
+  const model = q.get('model');
+  if (model !== null) {
+    const chosen = modelChoiceOf(model);
+    if (chosen !== null) s.model = chosen;
+    else problems.push(`The link's model=${model.slice(0, 20)} was replaced by ${DEFAULTS.model}: expected one of ${MODEL_CHOICES.join(', ')}.`);
+  }
   choice('prediction', ['paper', 'bounded']);
   choice('sender', ['periodic', 'error']);
   choice('channelSense', ['off', 'cad']);

@@ -1,7 +1,7 @@
 // The page's settings and its URL: every shareable view must come back exactly as it was, and a
 // link asking for something the core refuses must be explained, never silently used.
 import { describe, expect, test } from 'vitest';
-import { adrCanStart, DEFAULTS, fromQuery, gatewaysFromText, gatewaysToText, invalid, LIMITS, planAllows, toParams, toQuery, type Settings } from '../../www/state';
+import { adrCanStart, DEFAULTS, fromQuery, gatewaysFromText, gatewaysToText, invalid, LIMITS, modelChoiceOf, planAllows, toParams, toQuery, type Settings } from '../../www/state';
 import type { Region } from '../../www/loratrack';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings } from '../../www/lessons';
 
@@ -86,6 +86,21 @@ describe('the URL', () => {
     expect(toParams({ ...DEFAULTS, region: 'us915', sf: 9, bw: 125, interval: 2 })).toMatchObject({ region: 'us915', interval: 2 });
     // The interval is not sent where the plan has a duty cycle (the core would refuse it).
     expect(toParams({ ...DEFAULTS, interval: 2 })).not.toHaveProperty('interval');
+  });
+
+  test('opens a link’s model written as the CLI takes it as the page’s choice of the same stations', () => {
+    expect(modelChoiceOf('all,imm')).toBe('dr,ctra-plus,3d-ctra,imm');
+    expect(modelChoiceOf('IMM, 3d-ctra,DR,ctra-plus')).toBe('dr,ctra-plus,3d-ctra,imm');
+    expect(modelChoiceOf('3d-ctra,ctra-plus,dr')).toBe('all');
+    expect(modelChoiceOf('mission,3d-ctra')).toBe('3d-ctra,mission');
+    // Sets the page does not offer, and names it does not know, are refused.
+    expect(modelChoiceOf('imm,dr')).toBeNull();
+    expect(modelChoiceOf('dr,kalman')).toBeNull();
+    expect(modelChoiceOf(',')).toBeNull();
+    const { settings, problems } = fromQuery('?model=all%2Cimm');
+    expect(settings.model).toBe('dr,ctra-plus,3d-ctra,imm');
+    expect(problems).toEqual([]);
+    expect(fromQuery('?model=imm,dr').problems.join(' ')).toMatch(/model=imm,dr was replaced by all: expected one of/);
   });
 
   test('never opens the mission station without a known plan, and says why', () => {
