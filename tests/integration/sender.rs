@@ -236,6 +236,35 @@ fn the_sender_sweep_compares_3d_ctra_by_default_and_keeps_periodic_as_its_baseli
     }
 }
 
+#[test]
+fn the_trade_off_sweeps_send_the_overhead_they_are_given_and_the_paper_grid_refuses_one() {
+    let cli = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_loratrack"))
+            .args(args)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(0), "{args:?}");
+        serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap()
+    };
+    let on_air = |r: &serde_json::Value| r["periodic"]["timeOnAir"].as_f64().unwrap();
+    let frame = |overhead: &str| {
+        let args = ["airtime", "--sf", "7", "--bw", "250", "--payload", "12"];
+        cli(&[&args[..], &["--overhead", overhead, "--json"]].concat())["timeOnAir"]
+            .as_f64()
+            .unwrap()
+    };
+    // The paper's 12 bytes unless told, then 12 + 13 (the sweep runs SF7 / 250 kHz by default).
+    assert_eq!(on_air(&cli(&["sweep", "--senders", "--json"])), frame("0"));
+    let lorawan = cli(&["sweep", "--senders", "--json", "--overhead", "13"]);
+    assert_eq!(on_air(&lorawan), frame("13"));
+    assert!(frame("13") > frame("0"));
+    let refused = std::process::Command::new(env!("CARGO_BIN_EXE_loratrack"))
+        .args(["sweep", "--paper", "--overhead", "13"])
+        .output()
+        .unwrap();
+    assert_eq!(refused.status.code(), Some(2));
+}
+
 /// #24's aim for the sender: at SF7 / 250 kHz / 1 km on the whole set, with a bounded station,
 /// wherever error-triggered sending uses at most 80 % of the airtime its p75 is at most 0.8×
 /// that of periodic sending slowed to the same airtime.

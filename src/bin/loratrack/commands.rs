@@ -143,13 +143,13 @@ pub struct SweepKind {
     /// Swarms of 1..500 drones: collision rate (beside the ALOHA formula) and median per-drone p75 for both schedules (aloha, slotted), 1 and 3 channels, SF7 for all and spread SFs, periodic and error-triggered sending (300 s per drone, 3D-CTRA, --prediction, the swarm's default clocks and delays).
     #[arg(long)]
     swarm: bool,
-    /// The mission station beside DR, CTRA+, 3D-CTRA and IMM at every EU868 data rate (SF7/250, SF7..SF12/125) at 1 and 3 km, on the whole synthetic set (each flight's own plan), no LoRaWAN overhead.
+    /// The mission station beside DR, CTRA+, 3D-CTRA and IMM at every EU868 data rate (SF7/250, SF7..SF12/125) at 1 and 3 km, on the whole synthetic set (each flight's own plan), --overhead bytes of MAC overhead (0 unless set).
     #[arg(long)]
     mission: bool,
-    /// The airtime / error trade-off of error-triggered sending (thresholds 0.5..10 m, per-packet and budget rules) against periodic sending, on the whole synthetic set at --sf/--bw/--distance, no LoRaWAN overhead, for the first model of --model (3d-ctra when --model is all).
+    /// The airtime / error trade-off of error-triggered sending (thresholds 0.5..10 m, per-packet and budget rules) against periodic sending, on the whole synthetic set at --sf/--bw/--distance, --overhead bytes of MAC overhead (0 unless set), for the first model of --model (3d-ctra when --model is all).
     #[arg(long)]
     senders: bool,
-    /// Fixed data rates DR0..DR6 and both ADR modes (starting at --sf/--bw) at each distance, m, comma-separated (e.g. 1000,3000,5000,7000), on the whole synthetic set, no LoRaWAN overhead, for the first model of --model (3d-ctra when --model is all).
+    /// Fixed data rates DR0..DR6 and both ADR modes (starting at --sf/--bw) at each distance, m, comma-separated (e.g. 1000,3000,5000,7000), on the whole synthetic set, --overhead bytes of MAC overhead (0 unless set), for the first model of --model (3d-ctra when --model is all).
     #[arg(
         long,
         value_delimiter = ',',
@@ -172,6 +172,11 @@ pub struct SweepArgs {
     /// --senders: gateway distance, m; --swarm: the drones' distance from the gateway.
     #[arg(long, default_value_t = opt::DISTANCE.default, allow_negative_numbers = true)]
     distance: f64,
+    /// --senders, --distances, --mission: MAC overhead added to each payload, bytes: 0 as the
+    /// paper sends (these sweeps' default, which their documents use), 13 for LoRaWAN (the
+    /// default of simulate and the page).
+    #[arg(long, default_value_t = 0, conflicts_with_all = ["paper", "swarm"])]
+    overhead: usize,
     /// --senders: the budget rule's capacity in packets.
     #[arg(long, default_value_t = loratrack::DEFAULT_BURST, allow_negative_numbers = true)]
     burst: u32,
@@ -778,7 +783,8 @@ fn one_station(model: ModelChoice) -> ModelChoice {
     }
 }
 
-/// The base of a trade-off sweep: the whole synthetic set, one station, no LoRaWAN overhead.
+/// The base of a trade-off sweep: the whole synthetic set, one station, `--overhead` bytes of MAC
+/// overhead (none unless set, as the paper sends).
 fn trade_off_base(a: &SweepArgs, model: ModelChoice, prediction: Prediction) -> Scenario {
     let mut p = Scenario::default();
     p.flight.synthetic = Some(SyntheticChoice::All);
@@ -786,7 +792,7 @@ fn trade_off_base(a: &SweepArgs, model: ModelChoice, prediction: Prediction) -> 
     p.station.prediction = prediction;
     p.radio.sf = a.sf;
     p.radio.bw = a.bw;
-    p.radio.overhead = 0;
+    p.radio.overhead = a.overhead;
     p.channel.distance = a.distance;
     p.sending.max_interval = a.max_interval;
     p.run.seed = a.seed;
