@@ -72,6 +72,7 @@ fn decls() -> Vec<String> {
         Summary::decl(&c),
         WholeFlightError::decl(&c),
         Caveats::decl(&c),
+        DeliverySpread::decl(&c),
         Intervals::decl(&c),
         Boxplot::decl(&c),
         Boxplots::decl(&c),

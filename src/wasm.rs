@@ -231,6 +231,34 @@ pub fn pool_delivery(params: JsValue) -> Result<JsValue, JsValue> {
     })
 }
 
+/// `deliverySpread({results})` → `{lowest, lowestRatio, highest, highestRatio}` or `null`: the
+/// stations of `simulate` results (each a `model` with its `packetsSent`, `packetsReceived`,
+/// `deliveryRatio`) whose delivery ratios lie more than 5 points apart
+/// ([`DeliverySpread`](crate::DeliverySpread)), so that the page, which pools stations run apart,
+/// says what the CLI says.
+#[wasm_bindgen(js_name = deliverySpread)]
+pub fn delivery_spread(params: JsValue) -> Result<JsValue, JsValue> {
+    #[derive(serde::Deserialize)]
+    struct Station {
+        model: String,
+        #[serde(flatten)]
+        delivery: crate::sim::Delivery,
+    }
+    #[derive(serde::Deserialize)]
+    struct Params {
+        results: Vec<Station>,
+    }
+    call(params, |p: Params| {
+        let stations = p
+            .results
+            .iter()
+            .map(|s| Ok((s.model.parse::<crate::StationModel>()?, &s.delivery)))
+            .collect::<Result<Vec<_>, crate::models::ModelError>>()
+            .map_err(|e| ApiError::Invalid(e.to_string()))?;
+        Ok(crate::DeliverySpread::of(stations))
+    })
+}
+
 /// `loadCsv({trajectory, trajectoryName?}, progress?)` → `{rows}`: reads a CSV flight into the
 /// module's cache, calling `progress(lines read, lines)` about a hundred times, so that the page
 /// can show how far a large file is; a following `simulate` of the same text starts at once.

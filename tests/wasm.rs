@@ -694,3 +694,47 @@ fn pooling_stations_run_apart_gives_the_totals_of_one_run_of_them_all() {
     let e = wasm::pool_delivery(obj(&[("results", 3.into())])).unwrap_err();
     assert!(error_message(e).contains("invalid parameters"));
 }
+
+#[wasm_bindgen_test]
+fn the_delivery_spread_of_results_run_apart_is_the_one_the_core_finds_in_one_run() {
+    // The real flight at 3.3 km, SF7 / 125 kHz, 16 seeds: DR's frames arrive more often than the
+    // richer stations' (docs/paper-reproduction.md).
+    let settings = |model: &str| {
+        obj(&[
+            ("sample", "canberra".into()),
+            ("model", model.into()),
+            ("sf", 7.into()),
+            ("bw", 125.into()),
+            ("distance", 3300.into()),
+            ("seeds", 16.into()),
+            ("prediction", "bounded".into()),
+        ])
+    };
+    let apart = js_sys::Array::new();
+    for model in ["dr", "ctra-plus"] {
+        let one = wasm::simulate(settings(model), JsValue::UNDEFINED).unwrap();
+        apart.push(&js_sys::Array::from(&get(&one, "results")).get(0));
+    }
+    let spread = wasm::delivery_spread(obj(&[("results", apart.clone().into())])).unwrap();
+    assert_eq!(get(&spread, "highest").as_string().as_deref(), Some("dr"));
+    assert_eq!(
+        get(&spread, "lowest").as_string().as_deref(),
+        Some("ctra-plus")
+    );
+    assert!(num(&spread, "highestRatio") - num(&spread, "lowestRatio") > 0.05);
+    // One station alone has nothing to differ from; an unknown station is refused.
+    let alone = js_sys::Array::of1(&apart.get(0));
+    assert!(wasm::delivery_spread(obj(&[("results", alone.into())]))
+        .unwrap()
+        .is_null());
+    let odd = obj(&[
+        ("model", "kalman".into()),
+        ("packetsSent", 1.into()),
+        ("packetsReceived", 1.into()),
+        ("deliveryRatio", 1.into()),
+        ("duplicates", 0.into()),
+        ("gateways", js_sys::Array::new().into()),
+    ]);
+    let e = wasm::delivery_spread(obj(&[("results", js_sys::Array::of1(&odd).into())]));
+    assert!(e.is_err());
+}

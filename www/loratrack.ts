@@ -12,6 +12,7 @@ import type {
   DecodeParams,
   DecodeReport,
   Delivery,
+  DeliverySpread,
   EncodeParams,
   EncodeReport,
   LinkBudgetParams,
@@ -130,6 +131,14 @@ export function limits(): NumberOption[] {
  * counts added up (the core's `Delivery::pooled`). */
 export function poolDelivery(results: Delivery[]): Delivery {
   return wasm.poolDelivery({ results }) as Delivery;
+}
+
+/** The stations of `results` whose packets the link delivered at rates more than 5 points apart
+ * (the core's `DeliverySpread`), or null. */
+export function deliverySpread(results: { model: ModelName; packetsSent: number; packetsReceived: number; deliveryRatio: number }[]): DeliverySpread | null {
+  return wasm.deliverySpread({
+    results: results.map((m) => ({ model: m.model, packetsSent: m.packetsSent, packetsReceived: m.packetsReceived, deliveryRatio: m.deliveryRatio, duplicates: 0, gateways: [] })),
+  }) as DeliverySpread | null;
 }
 
 /** The stations a `model` setting names, in order (`all` is the paper's three). */

@@ -1,7 +1,7 @@
 // The results panel: the table of statistics with their intervals, the verdict on which station
 // is best (only when the intervals say so), the baseline's differences, and the notes under the
 // table. Reads the page's state from the store.
-import { MODEL_LABELS, timeOnAir, type ModelResult, type SimReport } from './loratrack';
+import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type SimReport } from './loratrack';
 import { $, linkDocs } from './dom';
 import { caption, fmt, names, sending, trackedPercent } from './format';
 import { overheadBytes } from './state';
@@ -13,6 +13,7 @@ export function renderTable(r: SimReport): void {
   renderVerdict(r, best);
   renderUntracked(r);
   renderSilenceNote(r);
+  renderSpreadNote(r);
   // The tracking error first, then what the link spent on it: on a phone or in a narrow embed the
   // table scrolls sideways, and the headline p75 must be within the first screen, not after the
   // link's columns (which the time-on-air and link panels show too).
@@ -111,6 +112,7 @@ export function restingNotes(): string[] {
     ['#rests-on', '#rests-on-text'],
     ['#untracked', '#untracked'],
     ['#silence-note', '#silence-note'],
+    ['#spread-note', '#spread-note'],
   ].flatMap(([box, text]) => ($(box).hidden ? [] : [$(text).textContent ?? '']));
 }
 
@@ -124,6 +126,19 @@ function renderSilenceNote(r: SimReport): void {
   const sent = r.results.reduce((n, m) => n + m.packetsSent, 0);
   const lost = 1 - r.results.reduce((n, m) => n + m.packetsReceived, 0) / sent;
   note.textContent = `${(lost * 100).toFixed(0)} % of the packets sent were lost. An error-triggered drone cannot tell a lost packet from a delivered one: after a loss it stays silent while the station drifts. Where packets are lost it can track worse than periodic sending at the same airtime (at 3 km its p95 up to 1.06× on the synthetic set, on the real flight its p75 up to 3×; docs/senders.md).`;
+  linkDocs(note);
+}
+
+/** Where the stations' packets arrived at rates more than 5 points apart (the core's
+ * `DeliverySpread`): stations whose frames differ in length send at other moments and lose other
+ * packets, so part of the difference in their errors is the link's (docs/paper-reproduction.md). */
+function renderSpreadNote(r: SimReport): void {
+  const note = $('#spread-note');
+  const d = r.results.length > 1 ? deliverySpread(r.results) : null;
+  note.hidden = d === null;
+  if (d === null) return;
+  const pct = (x: number) => `${(x * 100).toFixed(0)} %`;
+  note.textContent = `${MODEL_LABELS[d.highest]}’s packets arrived ${pct(d.highestRatio)} of the time, ${MODEL_LABELS[d.lowest]}’s ${pct(d.lowestRatio)}. Stations whose frames differ in length send at other moments, and the link’s fades took other packets from each: part of the difference in their errors is the link’s, not the model’s (docs/paper-reproduction.md).`;
   linkDocs(note);
 }
 

@@ -31,7 +31,7 @@ mod streams;
 pub mod swarm;
 
 pub use cache_budget::MAX_CACHE_BYTES;
-pub use caveats::{Caveats, FEW_PACKETS, SILENCE_LOSS};
+pub use caveats::{Caveats, DeliverySpread, DELIVERY_SPREAD, FEW_PACKETS, SILENCE_LOSS};
 pub use clock::{Clock, Timing};
 pub use drone::{run_drone, run_drones, DroneFilter, DroneTrack, Estimates, Sensing};
 pub use error::SimError;

@@ -274,6 +274,26 @@ test('ADR is offered only where it can start, with the reason, and a link asking
   assert.deepEqual([...problems, ...linked.problems], []);
 });
 
+test('stations whose packets the link delivered unlike say so, with the shares the CLI counts', async () => {
+  // The real flight at 3.3 km, SF7 / 125 kHz: DR's 22-byte frames and the richer stations' 24- and
+  // 25-byte ones go out at other moments, and the correlated fades take other packets.
+  const query = ['--sample', 'canberra', '--sf', '7', '--bw', '125', '--distance', '3300', '--seeds', '16', '--prediction', 'bounded'];
+  const { page, problems } = await open('?flight=canberra&sf=7&bw=125&distance=3300&seeds=16&prediction=bounded');
+  const note = await page.locator('#spread-note').textContent();
+  assert.equal(await page.locator('#spread-note').isVisible(), true);
+  const results = nativeJson(['simulate', ...query]).results;
+  const ratios = results.map((m) => m.deliveryRatio);
+  const [high, low] = [Math.max(...ratios), Math.min(...ratios)];
+  assert.ok(high - low > 0.05, `${high} against ${low}`);
+  const pct = (x) => `${Math.round(100 * x)} %`;
+  assert.match(note, new RegExp(`arrived ${pct(high)} of the time, .*’s ${pct(low)}\\.`), note);
+  assert.match(note, /part of the difference in their errors is the link’s/);
+  // Where every packet arrives (the defaults) there is nothing to say.
+  const plain = await open('');
+  assert.equal(await plain.page.locator('#spread-note').isVisible(), false);
+  assert.deepEqual([...problems, ...plain.problems], []);
+});
+
 test('numbers resting on few packets say so and offer the whole set in one click', async () => {
   const { page, problems } = await open('?sf=12&bw=125');
   assert.equal(await page.locator('#rests-on').isVisible(), true);

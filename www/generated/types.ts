@@ -562,6 +562,24 @@ fewPackets: boolean,
  */
 silenceAfterLoss: boolean, };
 
+export type DeliverySpread = { 
+/**
+ * The station whose packets arrived least often.
+ */
+lowest: ModelName, 
+/**
+ * Its delivery ratio, 0..1.
+ */
+lowestRatio: number, 
+/**
+ * The station whose packets arrived most often.
+ */
+highest: ModelName, 
+/**
+ * Its delivery ratio, 0..1.
+ */
+highestRatio: number, };
+
 export type Intervals = { 
 /**
  * Independent runs resampled (flights × seeds).

@@ -626,7 +626,8 @@ fn results_table(results: &[ModelResult]) -> String {
 }
 
 /// The lines the page shows as notes under its results, for the stations whose `caveats` say so:
-/// too few packets to compare, an error-triggered drone misled by its silence after losses.
+/// too few packets to compare, an error-triggered drone misled by its silence after losses, and
+/// stations whose packets the link delivered unlike ([`loratrack::DeliverySpread`]).
 fn caveat_lines(results: &[ModelResult]) -> String {
     let flagged = |f: fn(&ModelResult) -> bool, each: fn(&ModelResult) -> String| {
         let list: Vec<String> = results.iter().filter(|m| f(m)).map(each).collect();
@@ -650,6 +651,15 @@ fn caveat_lines(results: &[ModelResult]) -> String {
         },
     ) {
         out += &format!("lost: {list} of the packets; an error-triggered drone cannot tell a lost packet from a delivered one, so after a loss its silence misleads the station (docs/senders.md)\n");
+    }
+    if let Some(d) = loratrack::DeliverySpread::of(results.iter().map(|m| (m.model, &m.delivery))) {
+        out += &format!(
+            "delivered: {} {:.0} % of its packets, {} {:.0} %; stations with frames of other lengths send at other moments, and the link's fades took other packets from each, so part of the difference in their errors is the link's, not the model's (docs/paper-reproduction.md, the real flight at every data rate)\n",
+            d.highest.label(),
+            100.0 * d.highest_ratio,
+            d.lowest.label(),
+            100.0 * d.lowest_ratio
+        );
     }
     out
 }
