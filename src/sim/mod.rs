@@ -11,6 +11,7 @@
 mod cache_budget;
 mod caveats;
 mod clock;
+mod delivery_spread;
 mod drone;
 mod error;
 mod flier;
@@ -31,8 +32,9 @@ mod streams;
 pub mod swarm;
 
 pub use cache_budget::MAX_CACHE_BYTES;
-pub use caveats::{Caveats, DeliverySpread, DELIVERY_SPREAD, FEW_PACKETS, SILENCE_LOSS};
+pub use caveats::{Caveats, FEW_PACKETS, SILENCE_LOSS};
 pub use clock::{Clock, Timing};
+pub use delivery_spread::{DeliverySpread, DELIVERY_SPREAD};
 pub use drone::{run_drone, run_drones, DroneFilter, DroneTrack, Estimates, Sensing};
 pub use error::SimError;
 pub use flier::{Aboard, Air, Flier};
