@@ -80,7 +80,7 @@ pub fn markdown(runs: &[RateRun]) -> String {
     let labels: Vec<&str> = first.results.iter().map(|m| m.model.label()).collect();
     let mut s = format!(
         "\n## The real flight at every data rate\n\nThe Canberra flight, bounded stations, \
-         {RATE_SEEDS} seeds pooled, {RATE_DISTANCE:.0} m, the default 13-byte LoRaWAN overhead. \
+         {RATE_SEEDS} seeds pooled, {RATE_DISTANCE:.0} m, the default {}-byte LoRaWAN overhead. \
          Each cell: the p95 of the 3D error (m), its ratio to DR's, and in brackets its ratio to \
          the p95 of DR sending frames as long as this station's (DR's overhead raised by the \
          difference in payload): DR's shorter frames go out at other moments and meet other fades \
@@ -88,6 +88,7 @@ pub fn markdown(runs: &[RateRun]) -> String {
          lose the same packets and the model alone differ. `packets` counts DR's over all seeds: \
          from SF9 on a seed brings eight or fewer, at SF12 about one, so those p95s rest on few \
          forecasts.\n\n| rate | packets | {} |\n| --- | --- |{}\n",
+        Scenario::default().radio.overhead,
         labels.join(" | "),
         " --- |".repeat(labels.len())
     );

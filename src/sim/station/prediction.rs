@@ -84,14 +84,15 @@ pub struct Bounds {
     pub tau_v: f64,
     /// How long the speed is held before it decays, s, when no packet is overdue yet: 15 s, the
     /// longest manoeuvre of the synthetic flights (4–14 s), after which the drone has most
-    /// likely braked, turned or climbed. At SF10–SF12 the grace time (1.5 intervals of 27–200 s)
-    /// would otherwise hold a packet's speed for up to 300 s. With it (16 seeds, 1 km) the
+    /// likely braked, turned or climbed. At SF10–SF12 the grace time (1.5 intervals of 29–148 s)
+    /// would otherwise hold a packet's speed for 44–222 s. With it (16 seeds, 1 km) the
     /// synthetic set's p75 at SF10–SF12 moved −7 % to +0.9 % (3D-CTRA at SF12 with the overhead
     /// 118.0 → 109.5 m); on the real Canberra flight (16 seeds) the richer models' p95 fell from
     /// 1.18–1.35× DR's to 0.98–1.12× at SF10, from 1.38–1.72× to 1.12–1.21× at SF11 and from
     /// 4.2–4.8× to 2.0–2.3× at SF12. Held for 10 s the real flight's ratios fell further but the
     /// synthetic set's SF10 p75 rose 2–5 % (4 seeds); for 20 or 25 s they fell less. Below SF10
-    /// the grace time is shorter and this changes nothing (reference §4).
+    /// a packet is older than 15 s only late in an interval (SF9: its last quarter) or after a
+    /// loss, and the p75 moved by under 0.3 % (reference §4).
     pub speed_memory: f64,
     /// How many nominal send intervals may pass after a packet before it counts as overdue.
     /// 1.5: a periodic packet is at most one interval plus a sensor step plus its time on air
