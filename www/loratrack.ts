@@ -18,6 +18,7 @@ import type {
   LinkBudgetParams,
   LinkBudgetReport,
   ModelName,
+  ModelResult,
   NumberOption,
   PredictParams,
   PredictReport,
@@ -135,10 +136,8 @@ export function poolDelivery(results: Delivery[]): Delivery {
 
 /** The stations of `results` whose packets the link delivered at rates more than 5 points apart
  * (the core's `DeliverySpread`), or null. */
-export function deliverySpread(results: { model: ModelName; packetsSent: number; packetsReceived: number; deliveryRatio: number }[]): DeliverySpread | null {
-  return wasm.deliverySpread({
-    results: results.map((m) => ({ model: m.model, packetsSent: m.packetsSent, packetsReceived: m.packetsReceived, deliveryRatio: m.deliveryRatio, duplicates: 0, gateways: [] })),
-  }) as DeliverySpread | null;
+export function deliverySpread(results: ModelResult[]): DeliverySpread | null {
+  return wasm.deliverySpread({ results }) as DeliverySpread | null;
 }
 
 /** The stations a `model` setting names, in order (`all` is the paper's three). */
