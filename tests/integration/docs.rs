@@ -6,7 +6,6 @@
 //! by running their scripts.
 
 use std::path::Path;
-use std::process::Command;
 
 /// Each `cargo run ... -- ARGS > FILE` of the script `name`: the CLI's arguments and the file.
 fn generators(name: &str) -> Vec<(Vec<String>, String)> {
@@ -35,10 +34,7 @@ fn generators(name: &str) -> Vec<(Vec<String>, String)> {
 fn the_paper_reproduction_document_is_what_npm_run_reproduce_writes() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     for (args, file) in generators("reproduce") {
-        let out = Command::new(env!("CARGO_BIN_EXE_loratrack"))
-            .args(&args)
-            .output()
-            .unwrap();
+        let out = crate::cli(&args.iter().map(String::as_str).collect::<Vec<_>>());
         assert!(
             out.status.success(),
             "{args:?}: {}",

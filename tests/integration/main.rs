@@ -5,6 +5,17 @@
 //! copies of the same generic code on a 2-core machine, most of `cargo test`'s build time.
 #![cfg(not(target_arch = "wasm32"))]
 
+use std::process::{Command, Output, Stdio};
+
+/// The `loratrack` binary run with `args` (no input on stdin): its status and output.
+pub(crate) fn cli(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_loratrack"))
+        .args(args)
+        .stdin(Stdio::null())
+        .output()
+        .expect("the CLI runs")
+}
+
 mod adr;
 mod architecture;
 mod codec;

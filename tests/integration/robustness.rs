@@ -3,16 +3,9 @@
 //! answer or a one-line refusal with exit status 2 (the WebAssembly cases are in `tests/wasm.rs`:
 //! a deeply nested argument, a progress that is not a function, null statistics).
 
+use crate::cli;
 use std::io::Write;
-use std::process::{Command, Output, Stdio};
-
-fn cli(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_loratrack"))
-        .args(args)
-        .stdin(Stdio::null())
-        .output()
-        .expect("the CLI runs")
-}
+use std::process::{Command, Stdio};
 
 /// Exit status 2 and exactly one stderr line `error: ...` containing `expected`.
 fn refused(args: &[&str], expected: &str) {

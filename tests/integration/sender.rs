@@ -215,10 +215,7 @@ fn a_budget_buys_accuracy_where_the_drone_manoeuvres() {
 
 #[test]
 fn the_sender_sweep_compares_3d_ctra_by_default_and_keeps_periodic_as_its_baseline() {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_loratrack"))
-        .args(["sweep", "--senders", "--json"])
-        .output()
-        .unwrap();
+    let out = crate::cli(&["sweep", "--senders", "--json"]);
     assert_eq!(out.status.code(), Some(0));
     let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(r["periodic"]["model"], "3d-ctra");
@@ -239,10 +236,7 @@ fn the_sender_sweep_compares_3d_ctra_by_default_and_keeps_periodic_as_its_baseli
 #[test]
 fn the_trade_off_sweeps_send_the_overhead_they_are_given_and_the_paper_grid_refuses_one() {
     let cli = |args: &[&str]| {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_loratrack"))
-            .args(args)
-            .output()
-            .unwrap();
+        let out = crate::cli(args);
         assert_eq!(out.status.code(), Some(0), "{args:?}");
         serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap()
     };
@@ -258,10 +252,7 @@ fn the_trade_off_sweeps_send_the_overhead_they_are_given_and_the_paper_grid_refu
     let lorawan = cli(&["sweep", "--senders", "--json", "--overhead", "13"]);
     assert_eq!(on_air(&lorawan), frame("13"));
     assert!(frame("13") > frame("0"));
-    let refused = std::process::Command::new(env!("CARGO_BIN_EXE_loratrack"))
-        .args(["sweep", "--paper", "--overhead", "13"])
-        .output()
-        .unwrap();
+    let refused = crate::cli(&["sweep", "--paper", "--overhead", "13"]);
     assert_eq!(refused.status.code(), Some(2));
 }
 
@@ -294,10 +285,7 @@ fn error_triggered_sending_beats_periodic_sending_at_equal_airtime() {
 
 #[test]
 fn the_sender_chart_draws_every_point_of_the_sweep() {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_loratrack"))
-        .args(["sweep", "--senders", "--svg", "--prediction", "bounded"])
-        .output()
-        .unwrap();
+    let out = crate::cli(&["sweep", "--senders", "--svg", "--prediction", "bounded"]);
     assert_eq!(out.status.code(), Some(0));
     let svg = String::from_utf8(out.stdout).unwrap();
     assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));

@@ -413,10 +413,7 @@ fn seeds_are_checked_and_a_swarm_refuses_more_than_one() {
 #[test]
 fn the_cli_says_what_the_numbers_rest_on_for_the_runs_the_page_does() {
     let cli = |args: &[&str]| {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_loratrack"))
-            .args(args)
-            .output()
-            .unwrap();
+        let out = crate::cli(args);
         assert!(out.status.success(), "{args:?}");
         String::from_utf8(out.stdout).unwrap()
     };
