@@ -643,7 +643,7 @@ test('the docs the page cites open as pages beside it, in a new tab: every link 
   const { page, problems } = await open();
   const links = await page.locator('a[href^="docs/"]').evaluateAll((as) => as.map((a) => ({ href: a.getAttribute('href'), target: a.target, text: a.textContent })));
   const hrefs = [...new Set(links.map((l) => l.href))];
-  for (const doc of ['reference', 'paper-reproduction', 'mission', 'senders', 'swarm', 'adr', 'readme']) assert.ok(hrefs.includes(`docs/${doc}.html`), `the page links docs/${doc}: ${hrefs}`);
+  for (const doc of ['reference', 'beyond-the-paper', 'paper-reproduction', 'mission', 'senders', 'swarm', 'adr', 'readme']) assert.ok(hrefs.includes(`docs/${doc}.html`), `the page links docs/${doc}: ${hrefs}`);
   // The text still names the Markdown file, as the README does; the link opens its page aside.
   const named = (href) => (href === 'docs/readme.html' ? 'README.md' : href.replace(/\.html$/, '.md'));
   for (const l of links) assert.ok(l.target === '_blank' && l.text === named(l.href), JSON.stringify(l));
@@ -665,8 +665,14 @@ test('the docs the page cites open as pages beside it, in a new tab: every link 
   await page.goto(new URL('docs/readme.html', playgroundUrl).href);
   await until(page, () => [...document.images].length > 0 && [...document.images].every((i) => i.complete && i.naturalWidth > 0));
   const readme = await page.locator('main a').evaluateAll((as) => as.map((a) => a.getAttribute('href')));
-  assert.ok(readme.includes('senders.html') && readme.includes('#beyond-the-paper-when-to-send'), readme.join(' '));
+  assert.ok(readme.includes('senders.html') && readme.includes('beyond-the-paper.html#when-to-send'), readme.join(' '));
   for (const anchor of readme.filter((h) => h.startsWith('#'))) assert.equal(await page.locator(anchor).count(), 1, `${anchor} names a heading`);
+  // Its links into another doc's section land on a heading there.
+  for (const href of readme.filter((h) => /^[a-z-]+\.html#/.test(h))) {
+    const [doc, anchor] = href.split('#');
+    const html = await (await page.request.get(new URL(doc, page.url()).href)).text();
+    assert.ok(html.includes(` id="${anchor}"`), `${href} names a heading`);
+  }
   await page.goto(new URL('docs/performance.html', playgroundUrl).href);
   assert.match(await page.locator('a', { hasText: 'benchmark table' }).getAttribute('href'), /^readme\.html#benchmarks/);
   await page.goto(new URL('docs/senders.html', playgroundUrl).href);

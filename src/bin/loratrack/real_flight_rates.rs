@@ -1,6 +1,6 @@
 //! The real flight at every EU868 data rate: does a richer bounded station's p95 stay within
 //! 1.1× dead reckoning's on a loitering multicopter, and how much of any excess is the link's?
-//! A section of `docs/paper-reproduction.md` (`npm run reproduce`; README, "beyond the paper").
+//! A section of `docs/paper-reproduction.md` (`npm run reproduce`; docs/beyond-the-paper.md).
 
 use loratrack::api::{self, ApiError, MISSION_RATES};
 use loratrack::{

@@ -721,7 +721,7 @@ fn senders_reading(r: &SenderSweepReport, overview: &[(String, SenderSweepReport
     s += "- Where packets are lost the silence is ambiguous: the drone cannot tell a lost packet from a delivered one, \
           and without the hedge a station that missed a packet extrapolates further. That is what the 3 km rows' p95 \
           verdicts above show, on the real flight most: there the hedge a periodic station keeps is worth more than the \
-          timing. Three senders that allow for loss were tried and not kept (README, \"Beyond the paper: when to \
+          timing. Three senders that allow for loss were tried and not kept (docs/beyond-the-paper.md, \"When to \
           send\"): a mirror weighted by the chance that each recent packet is the newest to have arrived, a repeat of \
           each packet, and acknowledgements in their best case (free, and never lost). Each sent more to repair losses, \
           and periodic sending slowed to that airtime gained as much from it.\n";
@@ -1094,9 +1094,9 @@ fn budget_by_threshold(crowd: &[Crowd]) -> String {
     };
     s += &format!(
         "\nWithin the aim on the means: {}. Not within it: {}. Without feedback a drone cannot tell which of its packets \
-         collided, and hedging against a loss means sending more, which in a crowd is what loses packets (README, \
-         error-triggered sending); what the rule can do is spend its airtime where the drift is, and that pays more the \
-         less airtime there is to spend.\n",
+         collided, and hedging against a loss means sending more, which in a crowd is what loses packets \
+         (docs/beyond-the-paper.md, \"When to send\"); what the rule can do is spend its airtime where the drift \
+         is, and that pays more the less airtime there is to spend.\n",
         list(met),
         list(missed),
     );
