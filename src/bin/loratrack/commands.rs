@@ -833,9 +833,9 @@ fn sweep_distances(
             None => None,
         };
         let held_out = held_out.as_ref().map(|(r, b)| (r, b));
-        return Ok(crate::reproduction::distances_markdown(&r, &base, held_out));
+        return Ok(crate::adr_doc::distances_markdown(&r, &base, held_out));
     }
-    Ok(crate::reproduction::distances_table(&r))
+    Ok(crate::adr_doc::distances_table(&r))
 }
 
 /// `--held-out`'s runs: the next block of as many seeds. Refused before anything runs when that
@@ -880,7 +880,7 @@ fn sweep_senders(
         return Ok(json(&r));
     }
     if a.svg {
-        return Ok(crate::reproduction::senders_svg(&r, &base));
+        return Ok(crate::senders_doc::senders_svg(&r, &base));
     }
     if a.markdown {
         // The whole synthetic set at every setting; the real flight (short: eight seeds pooled)
@@ -906,9 +906,9 @@ fn sweep_senders(
             let r = api::sweep_senders_at(&mut sim, &paper, a.burst, api::SENDER_SETTINGS[0])?;
             overview.push(("synthetic set, paper".to_string(), r));
         }
-        return Ok(crate::reproduction::senders_markdown(&r, &base, &overview));
+        return Ok(crate::senders_doc::senders_markdown(&r, &base, &overview));
     }
-    Ok(crate::reproduction::senders_table(&r))
+    Ok(crate::senders_doc::senders_table(&r))
 }
 
 fn swarm(a: SwarmArgs) -> Result<String, ApiError> {
@@ -1113,9 +1113,7 @@ fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError
     // 72 of the grid's 500 drones again, and seven more seeds' 72: their own runs, so that the
     // grid's are freed first.
     let crowd = crowds(&rows, &SharedDroneRuns::new(SHARED_RUNS_BYTES))?;
-    Ok(crate::reproduction::swarm_markdown(
-        &rows, &crowd, a.markdown,
-    ))
+    Ok(crate::swarm_doc::swarm_markdown(&rows, &crowd, a.markdown))
 }
 
 /// The most bytes of drone estimates a swarm sweep keeps to share between its swarms: its 112
@@ -1203,7 +1201,7 @@ fn crowd_senders() -> Vec<CrowdSender> {
 fn crowds(
     rows: &[SwarmReport],
     shared: &SharedDroneRuns,
-) -> Result<Vec<crate::reproduction::Crowd>, ApiError> {
+) -> Result<Vec<crate::swarm_doc::Crowd>, ApiError> {
     let find = |schedule, sender| {
         rows.iter().find(|r: &&SwarmReport| {
             let c = &r.config.settings;
@@ -1251,13 +1249,13 @@ fn crowds(
             .iter()
             .zip(error)
             .zip(swarms(slowed, shared)?)
-            .map(|((p, error), equal)| crate::reproduction::CrowdSeed {
+            .map(|((p, error), equal)| crate::swarm_doc::CrowdSeed {
                 periodic: p.clone(),
                 error,
                 equal,
             })
             .collect();
-        crowd.push(crate::reproduction::Crowd { schedule, seeds });
+        crowd.push(crate::swarm_doc::Crowd { schedule, seeds });
     }
     Ok(crowd)
 }

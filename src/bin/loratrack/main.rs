@@ -4,7 +4,11 @@
 //! Bad input exits with status 2 and one line `error: ...` on stderr.
 
 #[cfg(not(target_arch = "wasm32"))]
+mod adr_doc;
+#[cfg(not(target_arch = "wasm32"))]
 mod commands;
+#[cfg(not(target_arch = "wasm32"))]
+mod doc_cells;
 #[cfg(not(target_arch = "wasm32"))]
 mod mission_doc;
 #[cfg(not(target_arch = "wasm32"))]
@@ -12,7 +16,11 @@ mod real_flight_rates;
 #[cfg(not(target_arch = "wasm32"))]
 mod reproduction;
 #[cfg(not(target_arch = "wasm32"))]
+mod senders_doc;
+#[cfg(not(target_arch = "wasm32"))]
 mod svg;
+#[cfg(not(target_arch = "wasm32"))]
+mod swarm_doc;
 
 #[cfg(not(target_arch = "wasm32"))]
 use std::io::Write;

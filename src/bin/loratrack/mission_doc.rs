@@ -1,6 +1,6 @@
 //! `loratrack sweep --mission`: the table, and the document docs/mission.md (`--markdown`).
 
-use crate::reproduction::{overhead_arg, overhead_words};
+use crate::doc_cells::{overhead_arg, overhead_words};
 use loratrack::api::{MissionRun, MissionSweepReport, MISSION_MODELS};
 use loratrack::{ModelResult, Scenario, OFFSET_TIME, PACE_SIGMA, PACE_TIME, TRACE_TOLERANCE};
 
@@ -152,9 +152,9 @@ fn senders_section(r: &MissionSweepReport) -> String {
          periodic sending (`per.`) and against periodic sending slowed to the same airtime (`eq.`, the duty cycle times the \
          share):\n\n",
     );
-    s += &crate::reproduction::sender_rows(&r.senders, true);
+    s += &crate::senders_doc::sender_rows(&r.senders, true);
     let worst = |ratio: fn(&loratrack::api::SenderPoint) -> f64| {
-        crate::reproduction::worst_within_80(&r.senders, ratio)
+        crate::senders_doc::worst_within_80(&r.senders, ratio)
             .map(|p| (ratio(p), p.threshold, p.airtime_share))
     };
     if let (Some((p75, t75, a75)), Some((p95, t95, a95))) =
