@@ -21,6 +21,8 @@ mod senders_doc;
 mod svg;
 #[cfg(not(target_arch = "wasm32"))]
 mod swarm_doc;
+#[cfg(not(target_arch = "wasm32"))]
+mod sweep;
 
 #[cfg(not(target_arch = "wasm32"))]
 use std::io::Write;

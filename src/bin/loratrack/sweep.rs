@@ -1,0 +1,538 @@
+//! `loratrack sweep`: runs a grid of scenarios (the paper's, the trade-offs, the swarms) and
+//! hands it to the document that prints it.
+
+use crate::commands::{json, results_table, Output};
+use clap::Args;
+use loratrack::api::{self, ApiError};
+use loratrack::options as opt;
+use loratrack::{
+    AccessSettings, ChannelSense, ChannelSettings, DutyCycleMode, ModelChoice, ModelKind,
+    NetworkSettings, Prediction, RadioSettings, RunSettings, Scenario, Schedule, SenderKind,
+    Sending, SfPlan, SharedDroneRuns, Simulator, StationSettings, SwarmReport, SwarmSettings,
+    SyntheticChoice,
+};
+
+#[derive(Args)]
+#[group(required = true, multiple = false)]
+pub struct SweepKind {
+    /// The paper's grid: SF 7/8, 250 kHz, d = 1/2/3 km, whole synthetic set, no LoRaWAN overhead.
+    #[arg(long)]
+    paper: bool,
+    /// Swarms of 1..500 drones: collision rate (beside the ALOHA formula) and median per-drone p75 for both schedules (aloha, slotted), 1 and 3 channels, SF7 for all and spread SFs, periodic and error-triggered sending (300 s per drone, 3D-CTRA, --prediction, the swarm's default clocks and delays).
+    #[arg(long)]
+    swarm: bool,
+    /// The mission station beside DR, CTRA+, 3D-CTRA and IMM at every EU868 data rate (SF7/250, SF7..SF12/125) at 1 and 3 km, on the whole synthetic set (each flight's own plan), --overhead bytes of MAC overhead (0 unless set).
+    #[arg(long)]
+    mission: bool,
+    /// The airtime / error trade-off of error-triggered sending (thresholds 0.5..10 m, per-packet and budget rules) against periodic sending, on the whole synthetic set at --sf/--bw/--distance, --overhead bytes of MAC overhead (0 unless set), for the first model of --model (3d-ctra when --model is all).
+    #[arg(long)]
+    senders: bool,
+    /// Fixed data rates DR0..DR6 and both ADR modes (starting at --sf/--bw) at each distance, m, comma-separated (e.g. 1000,3000,5000,7000), on the whole synthetic set, --overhead bytes of MAC overhead (0 unless set), for the first model of --model (3d-ctra when --model is all).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "M,M,...",
+        allow_negative_numbers = true
+    )]
+    distances: Option<Vec<f64>>,
+}
+
+#[derive(Args)]
+pub struct SweepArgs {
+    #[command(flatten)]
+    kind: SweepKind,
+    /// --senders: spreading factor; --distances: the one ADR starts at.
+    #[arg(long, default_value_t = opt::SF.default as i64, allow_negative_numbers = true)]
+    sf: i64,
+    /// --senders: bandwidth, kHz; --distances: the one ADR starts at.
+    #[arg(long, default_value_t = opt::BW.default, allow_negative_numbers = true)]
+    bw: f64,
+    /// --senders: gateway distance, m; --swarm: the drones' distance from the gateway.
+    #[arg(long, default_value_t = opt::DISTANCE.default, allow_negative_numbers = true)]
+    distance: f64,
+    /// --senders, --distances, --mission: MAC overhead added to each payload, bytes: 0 as the
+    /// paper sends (these sweeps' default, which their documents use), 13 for LoRaWAN (the
+    /// default of simulate and the page).
+    #[arg(long, default_value_t = 0, conflicts_with_all = ["paper", "swarm"])]
+    overhead: usize,
+    /// --senders: the budget rule's capacity in packets.
+    #[arg(long, default_value_t = loratrack::DEFAULT_BURST, allow_negative_numbers = true)]
+    burst: u32,
+    /// --senders: error-triggered sending's heartbeat, s (at least the duty-cycle interval at --sf/--bw).
+    #[arg(long, default_value_t = opt::MAX_INTERVAL.default, allow_negative_numbers = true)]
+    max_interval: f64,
+    /// Seed of all random draws, 0..2^53-1, or random for a fresh one (reported in the output).
+    #[arg(long, default_value = "1", value_name = "N|random", value_parser = loratrack::parse_seed)]
+    seed: u64,
+    /// --distances, --senders: seeds each run pools (seed, seed + 1, ...), so that a comparison
+    /// rests on more than one draw of the shadowing and noise.
+    #[arg(long, default_value_t = opt::SEEDS.default as u32, allow_negative_numbers = true)]
+    seeds: u32,
+    /// --distances --markdown: run everything again on the next block of as many seeds (seed +
+    /// seeds, ...) and judge the ADR rows there too: a verdict read off one block of seeds is
+    /// checked on seeds it was not read from.
+    #[arg(long, requires = "markdown")]
+    held_out: bool,
+    /// Station model(s): dr, ctra-plus, 3d-ctra, imm, a comma list, or all (the paper's three).
+    #[arg(long, default_value = "all")]
+    model: String,
+    /// Station prediction(s), comma-separated: paper, bounded.
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "paper")]
+    prediction: Vec<Prediction>,
+    /// Print the paper-reproduction document (Markdown) instead of a table.
+    #[arg(long, conflicts_with = "json")]
+    markdown: bool,
+    /// --senders: print the trade-off chart (SVG: p75 and p95 against airtime) instead of a table.
+    #[arg(long, conflicts_with_all = ["json", "markdown"])]
+    svg: bool,
+    #[command(flatten)]
+    out: Output,
+}
+
+pub(crate) fn sweep(a: SweepArgs) -> Result<String, ApiError> {
+    let model = ModelChoice::parse(&a.model).map_err(ApiError::Invalid)?;
+    let predictions: Vec<Prediction> = a.prediction.clone();
+    if a.kind.senders {
+        return sweep_senders(&a, model, predictions[0]);
+    }
+    if a.kind.swarm {
+        return sweep_swarm(&a, predictions[0]);
+    }
+    if a.kind.mission {
+        return sweep_mission(&a, predictions[0]);
+    }
+    if let Some(distances) = &a.kind.distances {
+        return sweep_distances(&a, model, predictions[0], distances);
+    }
+    let r = api::sweep_paper(&mut Simulator::new(), a.seed, &predictions, &model)?;
+    if a.out.json {
+        return Ok(json(&r));
+    }
+    if a.markdown {
+        let real = real_flight_runs(a.seed, &predictions, &model)?;
+        let rates = if predictions.contains(&Prediction::Bounded) {
+            crate::real_flight_rates::runs(a.seed, &model)?
+        } else {
+            Vec::new()
+        };
+        return Ok(crate::reproduction::markdown(&r, &real, &rates));
+    }
+    let mut out = format!(
+        "paper sweep: synthetic set ({:.0} s), 250 kHz, no LoRaWAN overhead, seed {}\n",
+        r.flight_time, r.seed
+    );
+    for run in &r.runs {
+        out += &format!(
+            "\nSF{} d = {} m, {} prediction\n{}\n",
+            run.sf,
+            run.distance,
+            run.prediction.name(),
+            results_table(&run.results)
+        );
+    }
+    Ok(out.trim_end().to_string())
+}
+
+/// The bundled real flight beside the paper's grid: SF7 / 250 kHz at [`REAL_DISTANCES`], without
+/// and with the LoRaWAN overhead, [`REAL_SEEDS`] seeds pooled (one 162 s flight is one draw of the
+/// shadowing), every prediction and model of the sweep.
+fn real_flight_runs(
+    seed: u64,
+    predictions: &[Prediction],
+    model: &ModelChoice,
+) -> Result<Vec<crate::reproduction::RealRun>, ApiError> {
+    let mut sim = Simulator::new();
+    let mut runs = Vec::new();
+    for &prediction in predictions {
+        for overhead in [0, Scenario::default().radio.overhead] {
+            for distance in crate::reproduction::REAL_DISTANCES {
+                let mut p = Scenario::default();
+                p.flight.sample = Some("canberra".into());
+                p.station.model = model.clone();
+                p.station.prediction = prediction;
+                (p.radio.sf, p.radio.bw, p.radio.overhead) = (7, 250.0, overhead);
+                p.channel.distance = distance;
+                (p.run.seed, p.run.seeds) = (seed, crate::reproduction::REAL_SEEDS);
+                let results = api::simulate(&mut sim, &p)?.results;
+                runs.push(crate::reproduction::RealRun {
+                    overhead,
+                    distance,
+                    prediction,
+                    results,
+                });
+            }
+        }
+    }
+    Ok(runs)
+}
+
+/// The one station a trade-off sweep runs: `all` (the default) means the paper's best, 3D-CTRA.
+fn one_station(model: ModelChoice) -> ModelChoice {
+    if model == ModelChoice::all() {
+        ModelChoice::one(ModelKind::Ctra3d)
+    } else {
+        ModelChoice::one(model.models()[0])
+    }
+}
+
+/// The base of a trade-off sweep: the whole synthetic set, one station, `--overhead` bytes of MAC
+/// overhead (none unless set, as the paper sends).
+fn trade_off_base(a: &SweepArgs, model: ModelChoice, prediction: Prediction) -> Scenario {
+    let mut p = Scenario::default();
+    p.flight.synthetic = Some(SyntheticChoice::All);
+    p.station.model = one_station(model);
+    p.station.prediction = prediction;
+    p.radio.sf = a.sf;
+    p.radio.bw = a.bw;
+    p.radio.overhead = a.overhead;
+    p.channel.distance = a.distance;
+    p.sending.max_interval = a.max_interval;
+    p.run.seed = a.seed;
+    p.run.seeds = a.seeds;
+    p
+}
+
+fn sweep_distances(
+    a: &SweepArgs,
+    model: ModelChoice,
+    prediction: Prediction,
+    distances: &[f64],
+) -> Result<String, ApiError> {
+    let base = trade_off_base(a, model, prediction);
+    let next = if a.held_out && a.markdown {
+        Some(held_out_block(&base)?)
+    } else {
+        None
+    };
+    let mut sim = Simulator::new();
+    let r = api::sweep_distances(&mut sim, &base, distances)?;
+    if a.out.json {
+        return Ok(json(&r));
+    }
+    if a.markdown {
+        let held_out = match next {
+            Some(next) => Some((api::sweep_distances(&mut sim, &next, distances)?, next)),
+            None => None,
+        };
+        let held_out = held_out.as_ref().map(|(r, b)| (r, b));
+        return Ok(crate::adr_doc::distances_markdown(&r, &base, held_out));
+    }
+    Ok(crate::adr_doc::distances_table(&r))
+}
+
+/// `--held-out`'s runs: the next block of as many seeds. Refused before anything runs when that
+/// block passes the seed limit, naming the seeds the user did not type.
+fn held_out_block(base: &Scenario) -> Result<Scenario, ApiError> {
+    let count = u64::from(base.run.seeds.max(1));
+    let first = base.run.seed.saturating_add(count);
+    if first.saturating_add(count - 1) <= loratrack::MAX_SEED {
+        let mut next = base.clone();
+        next.run.seed = first;
+        return Ok(next);
+    }
+    Err(ApiError::Invalid(format!(
+        "--held-out runs the next {count} seeds, {first}..{}, past the largest seed, {}; \
+         with --held-out the seed can be at most {}",
+        first.saturating_add(count - 1),
+        loratrack::MAX_SEED,
+        loratrack::MAX_SEED + 1 - 2 * count
+    )))
+}
+
+fn sweep_mission(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError> {
+    let base = trade_off_base(a, ModelChoice::all(), prediction);
+    let r = api::sweep_mission(&mut Simulator::new(), &base)?;
+    if a.out.json {
+        return Ok(json(&r));
+    }
+    if a.markdown {
+        return Ok(crate::mission_doc::mission_markdown(&r, &base));
+    }
+    Ok(crate::mission_doc::mission_table(&r))
+}
+
+fn sweep_senders(
+    a: &SweepArgs,
+    model: ModelChoice,
+    prediction: Prediction,
+) -> Result<String, ApiError> {
+    let base = trade_off_base(a, model, prediction);
+    let r = api::sweep_senders(&mut Simulator::new(), &base, a.burst)?;
+    if a.out.json {
+        return Ok(json(&r));
+    }
+    if a.svg {
+        return Ok(crate::senders_doc::senders_svg(&r, &base));
+    }
+    if a.markdown {
+        // The whole synthetic set at every setting; the real flight (short: eight seeds pooled)
+        // near and far; the paper's station at the first setting.
+        let mut sim = Simulator::new();
+        let mut overview = Vec::new();
+        let station = prediction.name();
+        for at in api::SENDER_SETTINGS {
+            let r = api::sweep_senders_at(&mut sim, &base, a.burst, at)?;
+            overview.push((format!("synthetic set, {station}"), r));
+        }
+        let mut real = base.clone();
+        (real.flight.synthetic, real.flight.sample) = (None, Some("canberra".into()));
+        real.run.seeds = real.run.seeds.max(8);
+        for at in [api::SENDER_SETTINGS[0], api::SENDER_SETTINGS[1]] {
+            let r = api::sweep_senders_at(&mut sim, &real, a.burst, at)?;
+            let label = format!("Canberra (real), {station}, {} seeds", real.run.seeds);
+            overview.push((label, r));
+        }
+        if prediction != Prediction::Paper {
+            let mut paper = base.clone();
+            paper.station.prediction = Prediction::Paper;
+            let r = api::sweep_senders_at(&mut sim, &paper, a.burst, api::SENDER_SETTINGS[0])?;
+            overview.push(("synthetic set, paper".to_string(), r));
+        }
+        return Ok(crate::senders_doc::senders_markdown(&r, &base, &overview));
+    }
+    Ok(crate::senders_doc::senders_table(&r))
+}
+
+/// Drone counts of `sweep --swarm`.
+const SWARM_SIZES: [usize; 7] = [1, 12, 36, 72, 150, 300, 500];
+
+fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError> {
+    // Every combination, in the table's order: schedule, channels, SF plan, sender, size.
+    let mut cases = Vec::new();
+    for schedule in [Schedule::Aloha, Schedule::Slotted] {
+        for channels in [1u8, 3] {
+            for plan in [SfPlan::Fixed, SfPlan::Spread] {
+                for sender in [SenderKind::Periodic, SenderKind::Error] {
+                    cases.extend(SWARM_SIZES.map(|n| (schedule, channels, plan, sender, n)));
+                }
+            }
+        }
+    }
+    let scenarios = cases
+        .into_iter()
+        .map(|(schedule, channels, plan, sender, drones)| {
+            Scenario {
+                access: AccessSettings {
+                    schedule,
+                    ..AccessSettings::default()
+                },
+                swarm: SwarmSettings {
+                    drones,
+                    duration: 300.0,
+                    sf_plan: plan,
+                },
+                network: NetworkSettings {
+                    channels: Some(channels),
+                    ..NetworkSettings::default()
+                },
+                radio: RadioSettings {
+                    sf: 7,
+                    bw: 125.0,
+                    ..RadioSettings::default()
+                },
+                station: StationSettings {
+                    model: ModelChoice::one(ModelKind::Ctra3d),
+                    prediction,
+                    ..StationSettings::default()
+                },
+                sending: Sending {
+                    sender,
+                    // The heartbeat must cover the slowest drone's interval: SF12's with spread SFs.
+                    max_interval: if plan == SfPlan::Spread {
+                        150.0
+                    } else {
+                        opt::MAX_INTERVAL.default
+                    },
+                    ..Sending::default()
+                },
+                channel: ChannelSettings {
+                    distance: a.distance,
+                    ..ChannelSettings::default()
+                },
+                run: RunSettings {
+                    seed: a.seed,
+                    ..RunSettings::default()
+                },
+                ..Scenario::default()
+            }
+        });
+    let rows = swarms(
+        scenarios.collect(),
+        &SharedDroneRuns::new(SHARED_RUNS_BYTES),
+    )?;
+    if a.out.json {
+        return Ok(json(&rows));
+    }
+    // The crowd comparisons are for the tables only (JSON gives the sweep's own rows). They fly
+    // 72 of the grid's 500 drones again, and seven more seeds' 72: their own runs, so that the
+    // grid's are freed first.
+    let crowd = crowds(&rows, &SharedDroneRuns::new(SHARED_RUNS_BYTES))?;
+    Ok(crate::swarm_doc::swarm_markdown(&rows, &crowd, a.markdown))
+}
+
+/// The most bytes of drone estimates a swarm sweep keeps to share between its swarms: its 112
+/// swarms fly the same 500 drones for 300 s (108 MB), its crowd comparison 72 drones at eight
+/// seeds (124 MB).
+const SHARED_RUNS_BYTES: usize = 256 << 20;
+
+/// Each swarm of `scenarios`, in order; independent, so natively they share the cores (each
+/// swarm alone leaves one idle for most of its loop). Drones flown alike share their filter
+/// runs through `shared`.
+fn swarms(
+    scenarios: Vec<Scenario>,
+    shared: &SharedDroneRuns,
+) -> Result<Vec<SwarmReport>, ApiError> {
+    use rayon::prelude::*;
+    scenarios
+        .par_iter()
+        .map(|s| api::swarm_sharing(s, shared))
+        .collect()
+}
+
+/// Seeds of the crowd comparison: one seed's swarm says little, since which packets collide
+/// moves the median drone's p75 by ±5 m from seed to seed at 72 drones on one channel.
+const CROWD_SEEDS: u64 = 8;
+
+/// The thresholds (m) and the heartbeat (s) of the crowd comparison's budget-rule groups after the
+/// defaults: on the scale of the errors a crowd of 72 drones on one channel allows (its median
+/// drone's p75 is ~55 m), where the defaults (2 m, 10 s) are passed at nearly every chance to send.
+/// Several thresholds, since a sender that saves airtime is judged at equal airtime, and how much
+/// it wins there depends on how much it saves: the groups trace that trade-off.
+const CROWD_THRESHOLDS_M: [f64; 4] = [20.0, 30.0, 40.0, 60.0];
+const CROWD_HEARTBEAT_S: f64 = 60.0;
+
+/// The thresholds (m) of the per-packet groups after the default, with the default heartbeat:
+/// the default's 2 m is passed at nearly every chance to send, so there the sender is periodic in
+/// all but name; these show from where a threshold above the lone drone's scale pays in a crowd.
+const CROWD_PER_PACKET_THRESHOLDS_M: [f64; 2] = [5.0, 10.0];
+
+/// An error-triggered setting of the crowd comparison: its schedule, its duty-cycle rule, its
+/// threshold (m) and heartbeat (s) where they are not the defaults, and whether it listens to its
+/// channel.
+type CrowdSender = (Schedule, DutyCycleMode, Option<(f64, f64)>, ChannelSense);
+
+/// The error-triggered settings the crowd comparison tries.
+fn crowd_senders() -> Vec<CrowdSender> {
+    use ChannelSense::{Cad, Off};
+    let heartbeat = opt::MAX_INTERVAL.default;
+    let mut senders = vec![(Schedule::Aloha, DutyCycleMode::PerPacket, None, Off)];
+    senders.extend(CROWD_PER_PACKET_THRESHOLDS_M.map(|m| {
+        (
+            Schedule::Aloha,
+            DutyCycleMode::PerPacket,
+            Some((m, heartbeat)),
+            Off,
+        )
+    }));
+    senders.extend([
+        (Schedule::Aloha, DutyCycleMode::PerPacket, None, Cad),
+        (Schedule::Slotted, DutyCycleMode::PerPacket, None, Off),
+        (Schedule::Aloha, DutyCycleMode::Budget, None, Off),
+        (Schedule::Aloha, DutyCycleMode::Budget, None, Cad),
+    ]);
+    senders.extend(CROWD_THRESHOLDS_M.map(|m| {
+        (
+            Schedule::Aloha,
+            DutyCycleMode::Budget,
+            Some((m, CROWD_HEARTBEAT_S)),
+            Off,
+        )
+    }));
+    senders
+}
+
+/// The crowd comparisons: error-triggered sending under each duty-cycle rule against periodic
+/// sending (per packet, the paper's) with 72 drones on one SF7 channel, ALOHA and slotted,
+/// seed by seed from the sweep's own seed (whose per-packet runs are in `rows`), each with
+/// periodic sending slowed by its duty cycle to the airtime error-triggered sending used: the
+/// fair comparison for a sender that saves airtime. Under ALOHA the per-packet rule at the default
+/// threshold, then at each of [`CROWD_PER_PACKET_THRESHOLDS_M`], then at the default listening to
+/// its channel ([`ChannelSense::Cad`]). The budget rule under ALOHA only: a slotted drone sends in
+/// its slot whatever credit it holds; under it, the default threshold and heartbeat, without and
+/// with listening, then each of [`CROWD_THRESHOLDS_M`] with [`CROWD_HEARTBEAT_S`]. Each schedule's periodic
+/// runs serve every setting compared under it. A comparison is left out when `rows` lacks its
+/// setting.
+fn crowds(
+    rows: &[SwarmReport],
+    shared: &SharedDroneRuns,
+) -> Result<Vec<crate::swarm_doc::Crowd>, ApiError> {
+    let find = |schedule, sender| {
+        rows.iter().find(|r: &&SwarmReport| {
+            let c = &r.config.settings;
+            c.access.schedule == schedule
+                && c.channels() == 1
+                && c.swarm.sf_plan == SfPlan::Fixed
+                && c.sending.sender == sender
+                && c.swarm.drones == 72
+        })
+    };
+    let mut periodic: Vec<(Schedule, Vec<SwarmReport>)> = Vec::new();
+    for schedule in [Schedule::Aloha, Schedule::Slotted] {
+        if let Some(p) = find(schedule, SenderKind::Periodic) {
+            periodic.push((schedule, crowd_runs(p, shared, |_| {})?));
+        }
+    }
+    let mut crowd = Vec::new();
+    for (schedule, rule, trigger, sense) in crowd_senders() {
+        let (Some((_, periodic)), Some(e)) = (
+            periodic.iter().find(|(s, _)| *s == schedule),
+            find(schedule, SenderKind::Error),
+        ) else {
+            continue;
+        };
+        let error = crowd_runs(e, shared, |c| {
+            c.sending.duty_cycle_mode = rule;
+            c.sending.channel_sense = sense;
+            if let Some((threshold, heartbeat)) = trigger {
+                c.sending.threshold = threshold;
+                c.sending.max_interval = heartbeat;
+            }
+        })?;
+        // Periodic sending slowed by its duty cycle to the airtime error-triggered sending used.
+        let slowed: Vec<Scenario> = periodic
+            .iter()
+            .zip(&error)
+            .map(|(p, e)| {
+                let mut c = p.config.settings.clone();
+                c.radio.duty_cycle = (c.radio.duty_cycle * e.airtime / p.airtime)
+                    .clamp(opt::DUTY_CYCLE.min, opt::DUTY_CYCLE.max);
+                c
+            })
+            .collect();
+        let seeds = periodic
+            .iter()
+            .zip(error)
+            .zip(swarms(slowed, shared)?)
+            .map(|((p, error), equal)| crate::swarm_doc::CrowdSeed {
+                periodic: p.clone(),
+                error,
+                equal,
+            })
+            .collect();
+        crowd.push(crate::swarm_doc::Crowd { schedule, seeds });
+    }
+    Ok(crowd)
+}
+
+/// The swarm of `row` with `change` made, at [`CROWD_SEEDS`] seeds from its own, in one
+/// batch; `row` itself stands for the first when the change leaves it as it was.
+fn crowd_runs(
+    row: &SwarmReport,
+    shared: &SharedDroneRuns,
+    change: impl Fn(&mut Scenario),
+) -> Result<Vec<SwarmReport>, ApiError> {
+    let scenarios: Vec<Scenario> = (0..CROWD_SEEDS)
+        .map(|k| {
+            let mut c = row.config.settings.clone();
+            c.run.seed += k;
+            change(&mut c);
+            c
+        })
+        .collect();
+    if scenarios[0] != row.config.settings {
+        return swarms(scenarios, shared);
+    }
+    let mut runs = vec![row.clone()];
+    runs.extend(swarms(scenarios[1..].to_vec(), shared)?);
+    Ok(runs)
+}
