@@ -12,7 +12,7 @@ import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadP
 import { field, form, markField, onFormChange, readControls, settingWords, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
 import { caption } from './format';
-import { later, drawingLater, onDrawing } from './later';
+import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { renderBaseline, renderTable, restingNotes } from './results';
 import { setUpPresent } from './present';
@@ -29,8 +29,10 @@ const planError = $('#plan-error');
 
 let trajectory3d: Trajectory3d | undefined;
 let plotsLoading: Promise<typeof import('./charts/plots')> | undefined;
-/** The Plot charts (./charts/plots), loaded on first use. */
-const plots = () => (plotsLoading ??= import('./charts/plots'));
+/** The Plot charts (./charts/plots), loaded on first use. The first chart is drawn in a task after
+ * the one that evaluates the charts' code (Plot and d3), not at the end of it: two shorter tasks
+ * between which the page answers input, instead of one long one. */
+const plots = () => (plotsLoading ??= import('./charts/plots').then(async (m) => (await nextTask(), m)));
 const charts: Record<string, { chart: Element; caption: string }> = {};
 
 setUpEmbed();
