@@ -29,10 +29,25 @@ const planError = $('#plan-error');
 
 let trajectory3d: Trajectory3d | undefined;
 let plotsLoading: Promise<typeof import('./charts/plots')> | undefined;
-/** The Plot charts (./charts/plots), loaded on first use. The first chart is drawn in a task after
- * the one that evaluates the charts' code (Plot and d3), not at the end of it: two shorter tasks
- * between which the page answers input, instead of one long one. */
-const plots = () => (plotsLoading ??= import('./charts/plots').then(async (m) => (await nextTask(), m)));
+/** The Plot charts (./charts/plots), loaded on first use. The charts' code (Plot and d3) is
+ * evaluated in one task, Plot's first run is paid in a few more (./charts/warmUp), and the first
+ * chart is drawn after them: short tasks between which the page answers input, instead of one
+ * long one (docs/performance.md). Loading them while the first results are computed instead cost
+ * those results 43–132 ms on two cores (three comparisons), so they wait until asked for. */
+const plots = () =>
+  (plotsLoading ??= import('./charts/plots').then(async (m) => {
+    for (const warm of m.warmUps) {
+      await nextTask();
+      try {
+        warm();
+      } catch (e) {
+        // A warm-up only saves time: one that fails costs the first chart that time, nothing else.
+        console.error('warming up the charts:', e);
+      }
+    }
+    await nextTask();
+    return m;
+  }));
 const charts: Record<string, { chart: Element; caption: string }> = {};
 
 setUpEmbed();
@@ -148,6 +163,22 @@ function onResponse(r: Response): void {
     renderPartial(r.partial, running.settings);
     return;
   }
+  if ('report' in r) {
+    // Shown in the next task: the message that brought it (its data copied out of the workers
+    // and merged) and the table are each a task of their own, not one long one
+    // (docs/performance.md). Counted as a drawing, so the page stays busy until it is on show.
+    const made = { ...running.settings };
+    drawing++;
+    void nextTask().then(() => {
+      try {
+        showReport(r.report, made, r.millis);
+      } finally {
+        drawing--;
+        updateBusy();
+      }
+    });
+    return;
+  }
   showPartial(false);
   if ('sweep' in r) {
     renderSweep(r.sweep, { ...(running?.settings ?? store.reportSettings), seeds: 1 });
@@ -183,26 +214,30 @@ function onResponse(r: Response): void {
     sendQueued();
     return;
   }
-  if (!('report' in r)) return;
+}
+
+/** The report of a run of `made` on show: the table, the status line and every chart. */
+function showReport(report: SimReport, made: Settings, millis: number): void {
+  showPartial(false);
   csvError.hidden = true;
   planError.hidden = true;
   progress.hidden = true;
-  store.report = r.report;
-  store.reportSettings = { ...running.settings };
+  store.report = report;
+  store.reportSettings = made;
   if (freshSeed) {
     // The drawn seed becomes the setting: the link and the form repeat this run.
     freshSeed = false;
-    store.settings.seed = store.report.config.seed;
-    store.reportSettings.seed = store.report.config.seed;
+    store.settings.seed = report.config.seed;
+    store.reportSettings.seed = report.config.seed;
     field('seed').value = String(store.settings.seed);
     history.replaceState(null, '', `?${pageQuery()}`);
     renderLessonChanges();
   }
   // Typing may have moved the form on while this ran: the numbers say so.
   markStale(typing !== undefined || JSON.stringify(store.reportSettings) !== JSON.stringify(store.settings));
-  const c = store.report.config;
-  status.textContent = `${c.trajectory}: ${c.flights} flight${c.flights > 1 ? 's' : ''}, ${c.flightTime.toFixed(0)} s simulated in ${r.millis.toFixed(0)} ms. Gateway range (mean power = sensitivity ${c.sensitivityDbm.toFixed(1)} dBm): ${(c.rangeM / 1000).toFixed(2)} km.`;
-  renderResults(store.report);
+  const c = report.config;
+  status.textContent = `${c.trajectory}: ${c.flights} flight${c.flights > 1 ? 's' : ''}, ${c.flightTime.toFixed(0)} s simulated in ${millis.toFixed(0)} ms. Gateway range (mean power = sensitivity ${c.sensitivityDbm.toFixed(1)} dBm): ${(c.rangeM / 1000).toFixed(2)} km.`;
+  renderResults(report);
   if (settingsChartsWait) renderSettingsCharts();
 }
 

@@ -7,3 +7,4 @@ export { errorOverTimeChart } from './errorOverTime';
 export { linkBudgetCharts } from './linkBudget';
 export { p75BySfChart } from './p75BySf';
 export { swarmCharts } from './swarm';
+export { warmUps } from './warmUp';
