@@ -354,7 +354,12 @@ let trajectoryKey = '';
 async function draw3d(r: SimReport): Promise<void> {
   if (!trajectory3d) {
     const { createTrajectory3d } = await import('./charts/trajectory3d');
+    // three.js is evaluated in one task, the WebGL context made in the next and the view drawn in
+    // a third, as the Plot charts' first drawing is (`plots`): a reader scrolling to the view
+    // meets short tasks, not one long one.
+    await nextTask();
     trajectory3d ??= createTrajectory3d($('#chart-trajectory'));
+    await nextTask();
   }
   if (r !== store.report) return;
   const drawn = trajectory3d.update(r);
