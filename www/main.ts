@@ -87,7 +87,11 @@ function submit(): void {
   send(request, { ...store.settings });
 }
 
+/** The id of the request last sent to the pool: the run whose answers the page shows. */
+let lastSent = 0;
+
 function send(request: SimulateRequest, made: Settings): void {
+  lastSent = request.id;
   const long = made.flight === 'all' || made.flight === 'csv' || made.seeds > 1;
   running = { id: request.id, long, started: performance.now(), settings: made };
   updateBusy();
@@ -160,23 +164,13 @@ function onResponse(r: Response): void {
     return;
   }
   if ('partial' in r) {
-    renderPartial(r.partial, running.settings);
+    const made = running.settings;
+    inNextTask(r.id, () => renderPartial(r.partial, made));
     return;
   }
   if ('report' in r) {
-    // Shown in the next task: the message that brought it (its data copied out of the workers
-    // and merged) and the table are each a task of their own, not one long one
-    // (docs/performance.md). Counted as a drawing, so the page stays busy until it is on show.
     const made = { ...running.settings };
-    drawing++;
-    void nextTask().then(() => {
-      try {
-        showReport(r.report, made, r.millis);
-      } finally {
-        drawing--;
-        updateBusy();
-      }
-    });
+    inNextTask(r.id, () => showReport(r.report, made, r.millis));
     return;
   }
   showPartial(false);
@@ -214,6 +208,22 @@ function onResponse(r: Response): void {
     sendQueued();
     return;
   }
+}
+
+/** Calls `show` in the next task, the page busy until it has: the message that brought a report
+ * (its data copied out of the workers and merged) and the table that shows it are each a task of
+ * their own, not one long one (docs/performance.md). Not called if a run other than `id` has been
+ * sent in between: that run has taken over the status line and the progress bar. */
+function inNextTask(id: number, show: () => void): void {
+  drawing++;
+  void nextTask().then(() => {
+    try {
+      if (id === lastSent) show();
+    } finally {
+      drawing--;
+      updateBusy();
+    }
+  });
 }
 
 /** The report of a run of `made` on show: the table, the status line and every chart. */
