@@ -148,6 +148,45 @@ test('the whole set shows its first flight at once, marked as that flight alone 
   assert.deepEqual(problems, []);
 });
 
+test('an answer that arrives as a newer run starts is not shown over it: the status and progress stay the new run\'s', async () => {
+  const { page, problems } = await openPage(playground.context, new URL(playground.url).origin, { width: 1280, height: 800 });
+  // The page shows an answer in the task after the message that brought it. Here SF8 is chosen in
+  // the very task in which the whole set's first flight (at SF7) arrives from the last worker: the
+  // SF7 set stops, an SF8 set starts, and SF7's first flight must not then take over the page.
+  await page.addInitScript(() => {
+    const Base = window.Worker;
+    // One worker per core, at most 8, each with some of the three stations (pool.ts).
+    const workers = Math.min(3, Math.max(1, Math.min(8, navigator.hardwareConcurrency || 2)));
+    let partials = 0;
+    window.Worker = class extends Base {
+      set onmessage(handler) {
+        super.onmessage = (e) => {
+          handler(e);
+          if (!(e.data && 'partial' in e.data) || ++partials !== workers) return;
+          const sf = document.querySelector('#sf');
+          sf.value = '8';
+          sf.dispatchEvent(new Event('input', { bubbles: true }));
+          const seen = () => ({ status: document.querySelector('#status').textContent, progress: !document.querySelector('#progress').hidden, partial: document.querySelector('[data-panel="results"]').classList.contains('partial') });
+          // Read once the page has had its tasks in between (the deferred answer's among them).
+          setTimeout(() => (window.__afterSwitch = seen()), 50);
+        };
+      }
+    };
+  });
+  await page.goto(`${playground.url}?flight=all`);
+  const after = await until(page, () => window.__afterSwitch).then((h) => h.jsonValue());
+  assert.match(after.status, /^Simulating 30 flights/, JSON.stringify(after));
+  assert.equal(after.progress, true);
+  assert.equal(after.partial, false);
+  await waitForResults(page);
+  assert.match(await page.locator('#status').textContent(), /synthetic all: 30 flights/);
+  // The numbers are SF8's: its frames' time on air, as the CLI gives it.
+  const sf8 = nativeJson(['simulate', '--synthetic', '1', '--sf', '8']).results.find((r) => r.model === 'dr');
+  assert.equal(await cell(page, 'dr', 'toa'), `${(sf8.timeOnAir * 1e3).toFixed(1)} ms`);
+  assert.equal(await page.locator('[data-panel="results"].stale').count(), 0);
+  assert.deepEqual(problems, []);
+});
+
 test('a good CSV is simulated and a bad one is refused next to the control', async () => {
   const { page, problems } = await open();
   const dir = scratchDir();
