@@ -26,5 +26,6 @@ run('wasm-bindgen', [
   // Function names are for debuggers; without them the module is 15 KB smaller gzipped.
   '--remove-name-section',
   '--remove-producers-section',
-  join('target', 'wasm32-unknown-unknown', 'release', 'loratrack.wasm'),
+  // `npm test` builds in a target directory of its own (scripts/test.mjs).
+  join(process.env.CARGO_TARGET_DIR ?? 'target', 'wasm32-unknown-unknown', 'release', 'loratrack.wasm'),
 ]);

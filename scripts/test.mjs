@@ -20,7 +20,16 @@ import { fileURLToPath } from 'node:url';
 const root = join(dirname(fileURLToPath(import.meta.url)), '..');
 // Not incremental: the test profile optimises, so an incremental cache saves little on a rebuild
 // and costs its writing on every build (a clean build of the crate's test targets: 109 -> 97 s).
-const env = { ...process.env, RUSTC_WORKSPACE_WRAPPER: join(root, 'scripts', 'clippy-rustc.sh'), CARGO_INCREMENTAL: '0' };
+// Built in a target directory of its own: Cargo compiles this crate again whenever its wrapper
+// changes, so builds with and without clippy-driver sharing `target/` undid each other (`npm start`
+// after `npm test`, then `npm test` again: the WebAssembly module compiled twice, 35-41 s each; a
+// plain `cargo test` in between: every test binary). Each directory now keeps its own.
+const env = {
+  ...process.env,
+  RUSTC_WORKSPACE_WRAPPER: join(root, 'scripts', 'clippy-rustc.sh'),
+  CARGO_INCREMENTAL: '0',
+  CARGO_TARGET_DIR: join(root, 'target', 'clippy'),
+};
 const WASM = ['--target', 'wasm32-unknown-unknown'];
 
 /**
