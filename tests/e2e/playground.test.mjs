@@ -167,8 +167,9 @@ test('an answer that arrives as a newer run starts is not shown over it: the sta
           sf.value = '8';
           sf.dispatchEvent(new Event('input', { bubbles: true }));
           const seen = () => ({ status: document.querySelector('#status').textContent, progress: !document.querySelector('#progress').hidden, partial: document.querySelector('[data-panel="results"]').classList.contains('partial') });
-          // Read once the page has had its tasks in between (the deferred answer's among them).
-          setTimeout(() => (window.__afterSwitch = seen()), 50);
+          // Read once the page has had its next tasks (the deferred answer's among them), well before
+          // the new run's fresh workers can answer.
+          setTimeout(() => (window.__afterSwitch = seen()), 10);
         };
       }
     };
