@@ -104,11 +104,84 @@ fn decls() -> Vec<String> {
     ]
 }
 
+/// The types that flatten others (`#[serde(flatten)]`), each with the ones it flattens, in its
+/// field order.
+const FLATTENED: &[(&str, &[&str])] = &[
+    (
+        "Scenario",
+        &[
+            "FlightSettings",
+            "StationSettings",
+            "Sending",
+            "RadioSettings",
+            "ChannelSettings",
+            "NetworkSettings",
+            "DroneSettings",
+            "AccessSettings",
+            "SwarmSettings",
+            "RunSettings",
+        ],
+    ),
+    ("RunConfig", &["Scenario"]),
+    ("SwarmEcho", &["Scenario"]),
+    ("ModelResult", &["Delivery"]),
+    ("SimReport", &["Delivery"]),
+    ("SwarmReport", &["Delivery"]),
+];
+
+/// A declaration as ts-rs writes a struct, `type Name = { fields };`, split into its name and
+/// its fields (each with its JSDoc, as ts-rs also writes them where the struct is flattened).
+fn name_and_fields(decl: &str) -> (&str, Option<&str>) {
+    let (head, body) = decl.split_once(" = ").unwrap_or((decl, ""));
+    let name = head.trim_start_matches("type ");
+    let fields = body.strip_prefix("{ ").and_then(|b| b.strip_suffix("};"));
+    (name, fields)
+}
+
+/// The declarations with each flattened type's fields replaced by the type itself, as an
+/// intersection (`type RunConfig = Scenario & { trajectory: string, … }`): ts-rs writes a
+/// flattened struct's fields out in full, which wrote every setting four times (its group,
+/// `Scenario`, and the reports' two echoes of it). Panics, failing the test below, when a type
+/// no longer holds the fields of one it is listed as flattening.
+fn intersect_flattened(decls: Vec<String>) -> Vec<String> {
+    let fields: std::collections::BTreeMap<String, String> = decls
+        .iter()
+        .filter_map(|d| match name_and_fields(d) {
+            (name, Some(f)) => Some((name.to_string(), f.to_string())),
+            _ => None,
+        })
+        .collect();
+    decls
+        .into_iter()
+        .map(|decl| {
+            let (name, _) = name_and_fields(&decl);
+            let Some((_, parts)) = FLATTENED.iter().find(|(n, _)| *n == name) else {
+                return decl;
+            };
+            let mut own = fields[name].clone();
+            let mut terms: Vec<String> = Vec::new();
+            for part in *parts {
+                let theirs = &fields[*part];
+                assert!(
+                    own.contains(theirs.as_str()),
+                    "{name} does not hold the fields of {part}: update FLATTENED in src/typescript.rs"
+                );
+                own = own.replacen(theirs.as_str(), "", 1);
+                terms.push(part.to_string());
+            }
+            if !own.trim().is_empty() {
+                terms.push(format!("{{ {own}}}"));
+            }
+            format!("type {name} = {};", terms.join(" & "))
+        })
+        .collect()
+}
+
 /// The whole generated file.
 fn generated() -> String {
     let mut out = String::from(HEADER);
     out.push_str(&model_name());
-    for d in decls() {
+    for d in intersect_flattened(decls()) {
         out.push('\n');
         out.push_str("export ");
         out.push_str(&d);

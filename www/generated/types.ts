@@ -309,196 +309,7 @@ seeds: number,
  */
 series: boolean, };
 
-export type Scenario = { 
-/**
- * Synthetic flight(s): `all` or 1..30.
- */
-synthetic?: number | 'all', 
-/**
- * A bundled real flight: `canberra`.
- */
-sample?: string, 
-/**
- * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`,
- * `mission`.
- */
-model: ModelChoice, 
-/**
- * The station's prediction between packets: `paper` (default) or `bounded`.
- */
-prediction: Prediction, 
-/**
- * Station prediction step T, s.
- */
-step: number, 
-/**
- * Tilt-rate decay per station step.
- */
-eta: number, 
-/**
- * How the mission station paces the drone along its plan.
- */
-planPace: PlanPace, 
-/**
- * The mission station's off-plan distance, m.
- */
-planTolerance: number, 
-/**
- * The sending policy.
- */
-sender: SenderKind, 
-/**
- * Error-triggered threshold, m.
- */
-threshold: number, 
-/**
- * Error-triggered heartbeat, s.
- */
-maxInterval: number, 
-/**
- * Error-triggered sending: whether the drone listens to its channel and sends less where
- * it is crowded ([`ChannelSense`]).
- */
-channelSense: ChannelSense, 
-/**
- * The duty-cycle rule.
- */
-dutyCycleMode: DutyCycleMode, 
-/**
- * Budget capacity, packets.
- */
-burst: number, 
-/**
- * Spreading factor 7..12 (with ADR: the start).
- */
-sf: number, 
-/**
- * Bandwidth, kHz.
- */
-bw: number, 
-/**
- * Coding rate index 1..4.
- */
-cr: number, 
-/**
- * MAC overhead, bytes (LoRaWAN 13; the paper's Table II: 0).
- */
-overhead: number, 
-/**
- * Duty-cycle limit, fraction.
- */
-dutyCycle: number, 
-/**
- * Transmit power, dBm.
- */
-txPower: number, 
-/**
- * simulate: distance from the flight's first point to the default gateway; swarm: every
- * drone's starting distance from the centre, m.
- */
-distance: number, 
-/**
- * Path-loss exponent.
- */
-pathLossExponent: number, 
-/**
- * Shadowing standard deviation, dB (0: off).
- */
-shadowing: number, 
-/**
- * Antenna height of every gateway not given its own, m.
- */
-gatewayHeight: number, 
-/**
- * The gateways; empty for the one default gateway (simulate: `distance` m east of the
- * flight's first point; swarm: at the centre).
- */
-gateways: Array<GatewaySite>, 
-/**
- * Uplink channels: 1, or the plan's (the default, when unset).
- */
-channels?: number, 
-/**
- * Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
- */
-capture: boolean, 
-/**
- * Inter-SF interference by the rejection matrix (off: SFs are orthogonal).
- */
-interSf: boolean, 
-/**
- * Adaptive data rate: `off`, `lorawan` or `tracking`.
- */
-adr: AdrMode, 
-/**
- * LoRaWAN ADR's device margin, dB.
- */
-adrMargin: number, 
-/**
- * LoRaWAN ADR's history, uplinks.
- */
-adrHistory: number, 
-/**
- * Sensor and filter rate, Hz.
- */
-sensorRate: number, 
-/**
- * Process noise q of Q = q·I (drone and station).
- */
-q: number, 
-/**
- * The regional plan.
- */
-region: Region, 
-/**
- * Where the plan has no duty cycle: seconds between uplink starts.
- */
-interval?: number, 
-/**
- * How a drone earns the right to send: the plan's duty cycle, or listen-before-talk.
- */
-access: ChannelAccess, 
-/**
- * A network's fair-use policy: `off` or `ttn`.
- */
-fairUse: FairUse, 
-/**
- * The longest random delay before each uplink, s.
- */
-jitter?: number, 
-/**
- * The largest clock error, ppm.
- */
-clockDrift?: number, 
-/**
- * How a swarm's drones share the air: `aloha` or `slotted`.
- */
-schedule: Schedule, 
-/**
- * Number of drones.
- */
-drones: number, 
-/**
- * Seconds of chained synthetic flight per drone (when no flight is chosen).
- */
-duration: number, 
-/**
- * How SFs are shared out.
- */
-sfPlan: SfPlan, 
-/**
- * Seed of every random draw; `"random"` draws one ([`random_seed`]), which the echo gives.
- */
-seed: number, 
-/**
- * How many seeds `simulate` runs (`seed`, `seed + 1`, …), pooled, with 95 % intervals
- * (`docs/reference.md` §12); a swarm runs one.
- */
-seeds: number, 
-/**
- * Include time series of the first flight (simulate).
- */
-series: boolean, };
+export type Scenario = FlightSettings & StationSettings & Sending & RadioSettings & ChannelSettings & NetworkSettings & DroneSettings & AccessSettings & SwarmSettings & RunSettings;
 
 export type Summary = { 
 /**
@@ -743,7 +554,7 @@ chargePerUplink: number,
  */
 chargePerHour: number, };
 
-export type ModelResult = { 
+export type ModelResult = Delivery & { 
 /**
  * The station: `dr`, `ctra-plus`, `3d-ctra` or `imm`.
  */
@@ -828,27 +639,7 @@ energy: Energy,
 /**
  * IMM only: the mean probability of each member over the evaluated steps.
  */
-modelProbability?: Partial<Record<MotionModelName, number>>, 
-/**
- * Uplinks sent by every drone.
- */
-packetsSent: number, 
-/**
- * Distinct uplinks the network server passed on (each once, however many gateways heard it).
- */
-packetsReceived: number, 
-/**
- * `packetsReceived / packetsSent` (0 when nothing was sent).
- */
-deliveryRatio: number, 
-/**
- * Copies the server removed: receptions beyond the first of each packet.
- */
-duplicates: number, 
-/**
- * Per gateway.
- */
-gateways: Array<GatewayReport>, };
+modelProbability?: Partial<Record<MotionModelName, number>>, };
 
 export type ModelSeries = { 
 /**
@@ -936,7 +727,7 @@ plan?: Array<[number, number, number]>,
  */
 models: Array<ModelSeries>, };
 
-export type RunConfig = { 
+export type RunConfig = Scenario & { 
 /**
  * Flight(s) simulated, by name.
  */
@@ -973,198 +764,9 @@ rangeM: number,
  * The regional plan's data rate at `sf`/`bw` (with ADR: the start), `null` for raw LoRa
  * outside the plan's data rates (EU868 allows it: the paper's SF8 at 250 kHz).
  */
-dataRate: number | null, 
-/**
- * Synthetic flight(s): `all` or 1..30.
- */
-synthetic?: number | 'all', 
-/**
- * A bundled real flight: `canberra`.
- */
-sample?: string, 
-/**
- * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`,
- * `mission`.
- */
-model: ModelChoice, 
-/**
- * The station's prediction between packets: `paper` (default) or `bounded`.
- */
-prediction: Prediction, 
-/**
- * Station prediction step T, s.
- */
-step: number, 
-/**
- * Tilt-rate decay per station step.
- */
-eta: number, 
-/**
- * How the mission station paces the drone along its plan.
- */
-planPace: PlanPace, 
-/**
- * The mission station's off-plan distance, m.
- */
-planTolerance: number, 
-/**
- * The sending policy.
- */
-sender: SenderKind, 
-/**
- * Error-triggered threshold, m.
- */
-threshold: number, 
-/**
- * Error-triggered heartbeat, s.
- */
-maxInterval: number, 
-/**
- * Error-triggered sending: whether the drone listens to its channel and sends less where
- * it is crowded ([`ChannelSense`]).
- */
-channelSense: ChannelSense, 
-/**
- * The duty-cycle rule.
- */
-dutyCycleMode: DutyCycleMode, 
-/**
- * Budget capacity, packets.
- */
-burst: number, 
-/**
- * Spreading factor 7..12 (with ADR: the start).
- */
-sf: number, 
-/**
- * Bandwidth, kHz.
- */
-bw: number, 
-/**
- * Coding rate index 1..4.
- */
-cr: number, 
-/**
- * MAC overhead, bytes (LoRaWAN 13; the paper's Table II: 0).
- */
-overhead: number, 
-/**
- * Duty-cycle limit, fraction.
- */
-dutyCycle: number, 
-/**
- * Transmit power, dBm.
- */
-txPower: number, 
-/**
- * simulate: distance from the flight's first point to the default gateway; swarm: every
- * drone's starting distance from the centre, m.
- */
-distance: number, 
-/**
- * Path-loss exponent.
- */
-pathLossExponent: number, 
-/**
- * Shadowing standard deviation, dB (0: off).
- */
-shadowing: number, 
-/**
- * Antenna height of every gateway not given its own, m.
- */
-gatewayHeight: number, 
-/**
- * The gateways; empty for the one default gateway (simulate: `distance` m east of the
- * flight's first point; swarm: at the centre).
- */
-gateways: Array<GatewaySite>, 
-/**
- * Uplink channels: 1, or the plan's (the default, when unset).
- */
-channels?: number, 
-/**
- * Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
- */
-capture: boolean, 
-/**
- * Inter-SF interference by the rejection matrix (off: SFs are orthogonal).
- */
-interSf: boolean, 
-/**
- * Adaptive data rate: `off`, `lorawan` or `tracking`.
- */
-adr: AdrMode, 
-/**
- * LoRaWAN ADR's device margin, dB.
- */
-adrMargin: number, 
-/**
- * LoRaWAN ADR's history, uplinks.
- */
-adrHistory: number, 
-/**
- * Sensor and filter rate, Hz.
- */
-sensorRate: number, 
-/**
- * Process noise q of Q = q·I (drone and station).
- */
-q: number, 
-/**
- * The regional plan.
- */
-region: Region, 
-/**
- * Where the plan has no duty cycle: seconds between uplink starts.
- */
-interval?: number, 
-/**
- * How a drone earns the right to send: the plan's duty cycle, or listen-before-talk.
- */
-access: ChannelAccess, 
-/**
- * A network's fair-use policy: `off` or `ttn`.
- */
-fairUse: FairUse, 
-/**
- * The longest random delay before each uplink, s.
- */
-jitter?: number, 
-/**
- * The largest clock error, ppm.
- */
-clockDrift?: number, 
-/**
- * How a swarm's drones share the air: `aloha` or `slotted`.
- */
-schedule: Schedule, 
-/**
- * Number of drones.
- */
-drones: number, 
-/**
- * Seconds of chained synthetic flight per drone (when no flight is chosen).
- */
-duration: number, 
-/**
- * How SFs are shared out.
- */
-sfPlan: SfPlan, 
-/**
- * Seed of every random draw; `"random"` draws one ([`random_seed`]), which the echo gives.
- */
-seed: number, 
-/**
- * How many seeds `simulate` runs (`seed`, `seed + 1`, …), pooled, with 95 % intervals
- * (`docs/reference.md` §12); a swarm runs one.
- */
-seeds: number, 
-/**
- * Include time series of the first flight (simulate).
- */
-series: boolean, };
+dataRate: number | null, };
 
-export type SimReport = { 
+export type SimReport = Delivery & { 
 /**
  * Settings and coverage.
  */
@@ -1176,27 +778,7 @@ results: Array<ModelResult>,
 /**
  * Time series of the first flight, when asked for.
  */
-series: Series | null, 
-/**
- * Uplinks sent by every drone.
- */
-packetsSent: number, 
-/**
- * Distinct uplinks the network server passed on (each once, however many gateways heard it).
- */
-packetsReceived: number, 
-/**
- * `packetsReceived / packetsSent` (0 when nothing was sent).
- */
-deliveryRatio: number, 
-/**
- * Copies the server removed: receptions beyond the first of each packet.
- */
-duplicates: number, 
-/**
- * Per gateway.
- */
-gateways: Array<GatewayReport>, };
+series: Series | null, };
 
 export type DroneReport = { 
 /**
@@ -1265,7 +847,7 @@ aloha10: number,
  */
 slotted: number, };
 
-export type SwarmEcho = { 
+export type SwarmEcho = Scenario & { 
 /**
  * The one station every drone's ground station ran.
  */
@@ -1273,198 +855,9 @@ station: ModelName,
 /**
  * Bandwidth, kHz (as `bw`).
  */
-bandwidthKhz: number, 
-/**
- * Synthetic flight(s): `all` or 1..30.
- */
-synthetic?: number | 'all', 
-/**
- * A bundled real flight: `canberra`.
- */
-sample?: string, 
-/**
- * Which station(s): `all`, or a comma list of `dr`, `ctra-plus`, `3d-ctra`, `imm`,
- * `mission`.
- */
-model: ModelChoice, 
-/**
- * The station's prediction between packets: `paper` (default) or `bounded`.
- */
-prediction: Prediction, 
-/**
- * Station prediction step T, s.
- */
-step: number, 
-/**
- * Tilt-rate decay per station step.
- */
-eta: number, 
-/**
- * How the mission station paces the drone along its plan.
- */
-planPace: PlanPace, 
-/**
- * The mission station's off-plan distance, m.
- */
-planTolerance: number, 
-/**
- * The sending policy.
- */
-sender: SenderKind, 
-/**
- * Error-triggered threshold, m.
- */
-threshold: number, 
-/**
- * Error-triggered heartbeat, s.
- */
-maxInterval: number, 
-/**
- * Error-triggered sending: whether the drone listens to its channel and sends less where
- * it is crowded ([`ChannelSense`]).
- */
-channelSense: ChannelSense, 
-/**
- * The duty-cycle rule.
- */
-dutyCycleMode: DutyCycleMode, 
-/**
- * Budget capacity, packets.
- */
-burst: number, 
-/**
- * Spreading factor 7..12 (with ADR: the start).
- */
-sf: number, 
-/**
- * Bandwidth, kHz.
- */
-bw: number, 
-/**
- * Coding rate index 1..4.
- */
-cr: number, 
-/**
- * MAC overhead, bytes (LoRaWAN 13; the paper's Table II: 0).
- */
-overhead: number, 
-/**
- * Duty-cycle limit, fraction.
- */
-dutyCycle: number, 
-/**
- * Transmit power, dBm.
- */
-txPower: number, 
-/**
- * simulate: distance from the flight's first point to the default gateway; swarm: every
- * drone's starting distance from the centre, m.
- */
-distance: number, 
-/**
- * Path-loss exponent.
- */
-pathLossExponent: number, 
-/**
- * Shadowing standard deviation, dB (0: off).
- */
-shadowing: number, 
-/**
- * Antenna height of every gateway not given its own, m.
- */
-gatewayHeight: number, 
-/**
- * The gateways; empty for the one default gateway (simulate: `distance` m east of the
- * flight's first point; swarm: at the centre).
- */
-gateways: Array<GatewaySite>, 
-/**
- * Uplink channels: 1, or the plan's (the default, when unset).
- */
-channels?: number, 
-/**
- * Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
- */
-capture: boolean, 
-/**
- * Inter-SF interference by the rejection matrix (off: SFs are orthogonal).
- */
-interSf: boolean, 
-/**
- * Adaptive data rate: `off`, `lorawan` or `tracking`.
- */
-adr: AdrMode, 
-/**
- * LoRaWAN ADR's device margin, dB.
- */
-adrMargin: number, 
-/**
- * LoRaWAN ADR's history, uplinks.
- */
-adrHistory: number, 
-/**
- * Sensor and filter rate, Hz.
- */
-sensorRate: number, 
-/**
- * Process noise q of Q = q·I (drone and station).
- */
-q: number, 
-/**
- * The regional plan.
- */
-region: Region, 
-/**
- * Where the plan has no duty cycle: seconds between uplink starts.
- */
-interval?: number, 
-/**
- * How a drone earns the right to send: the plan's duty cycle, or listen-before-talk.
- */
-access: ChannelAccess, 
-/**
- * A network's fair-use policy: `off` or `ttn`.
- */
-fairUse: FairUse, 
-/**
- * The longest random delay before each uplink, s.
- */
-jitter?: number, 
-/**
- * The largest clock error, ppm.
- */
-clockDrift?: number, 
-/**
- * How a swarm's drones share the air: `aloha` or `slotted`.
- */
-schedule: Schedule, 
-/**
- * Number of drones.
- */
-drones: number, 
-/**
- * Seconds of chained synthetic flight per drone (when no flight is chosen).
- */
-duration: number, 
-/**
- * How SFs are shared out.
- */
-sfPlan: SfPlan, 
-/**
- * Seed of every random draw; `"random"` draws one ([`random_seed`]), which the echo gives.
- */
-seed: number, 
-/**
- * How many seeds `simulate` runs (`seed`, `seed + 1`, …), pooled, with 95 % intervals
- * (`docs/reference.md` §12); a swarm runs one.
- */
-seeds: number, 
-/**
- * Include time series of the first flight (simulate).
- */
-series: boolean, };
+bandwidthKhz: number, };
 
-export type SwarmReport = { 
+export type SwarmReport = Delivery & { 
 /**
  * The settings.
  */
@@ -1535,27 +928,7 @@ energy: Energy,
 /**
  * Per drone.
  */
-drones: Array<DroneReport>, 
-/**
- * Uplinks sent by every drone.
- */
-packetsSent: number, 
-/**
- * Distinct uplinks the network server passed on (each once, however many gateways heard it).
- */
-packetsReceived: number, 
-/**
- * `packetsReceived / packetsSent` (0 when nothing was sent).
- */
-deliveryRatio: number, 
-/**
- * Copies the server removed: receptions beyond the first of each packet.
- */
-duplicates: number, 
-/**
- * Per gateway.
- */
-gateways: Array<GatewayReport>, };
+drones: Array<DroneReport>, };
 
 export type NumberOption = { 
 /**
