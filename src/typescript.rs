@@ -45,6 +45,7 @@ fn decls() -> Vec<String> {
         ModelKind::decl(&c),
         LdroMode::decl(&c),
         Prediction::decl(&c),
+        HeadingNoise::decl(&c),
         PlanPace::decl(&c),
         SenderKind::decl(&c),
         ChannelSense::decl(&c),

@@ -7,7 +7,7 @@ use super::pooled::{axis_every, series_stride, Pooled};
 use super::report::{Delivery, ModelResult, ModelSeries, RunConfig, Series, SimReport};
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::Schedule;
-use super::station::{Estimate, FlightChains, Prediction, StationModel, MAX_GRIDS};
+use super::station::{Estimate, FlightChains, HeadingNoise, Prediction, StationModel, MAX_GRIDS};
 use super::station_run::{FlightRun, StationPlan, StationRun};
 use super::streams::DroneStreams;
 use super::SimError;
@@ -391,6 +391,11 @@ impl Simulator {
             return None;
         };
         let s = cfg.s();
+        // An adaptive heading noise makes a packet's predictions depend on the packets before
+        // it (the hedge they chose), so they are not the packet's alone to remember.
+        if p.setup.bounds.heading_noise == HeadingNoise::Adaptive {
+            return None;
+        }
         let station = StationKey {
             drone: key.clone(),
             model,

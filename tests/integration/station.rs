@@ -307,6 +307,75 @@ fn on_the_jerkier_real_flight_the_calibrated_region_still_covers_about_95_percen
     }
 }
 
+#[test]
+fn an_adaptive_heading_noise_takes_the_straight_legs_and_leaves_the_loitering_flight_its_hedge() {
+    // The synthetic set flies straight legs between manoeuvres: its packets soon show that a
+    // forecast without the hedge misses least. The real Canberra flight loiters: the choice may
+    // go either way there, but must not cost it.
+    let mut sim = Simulator::new();
+    let run = |sim: &mut Simulator, settings: serde_json::Value, noise: &str| {
+        let mut p = set(&Scenario::default(), settings);
+        p = set(
+            &p,
+            json!({ "model": "3d-ctra", "prediction": "bounded", "headingNoise": noise }),
+        );
+        simulate(sim, &p).unwrap().results[0].error3d
+    };
+    for overhead in [0, 13] {
+        let synthetic = json!({ "synthetic": "all", "sf": 7, "bw": 250.0, "overhead": overhead });
+        let (fixed, adaptive) = (
+            run(&mut sim, synthetic.clone(), "fixed"),
+            run(&mut sim, synthetic, "adaptive"),
+        );
+        assert!(
+            adaptive.p75 < 0.96 * fixed.p75,
+            "overhead {overhead}: p75 {} against {}",
+            adaptive.p75,
+            fixed.p75
+        );
+        assert!(
+            adaptive.p95 < 0.96 * fixed.p95,
+            "overhead {overhead}: p95 {} against {}",
+            adaptive.p95,
+            fixed.p95
+        );
+    }
+    let real = json!({ "sample": "canberra", "seeds": 8 });
+    let (fixed, adaptive) = (
+        run(&mut sim, real.clone(), "fixed"),
+        run(&mut sim, real, "adaptive"),
+    );
+    assert!(
+        adaptive.p95 < 1.05 * fixed.p95,
+        "Canberra p95 {} against {}",
+        adaptive.p95,
+        fixed.p95
+    );
+}
+
+#[test]
+fn an_adaptive_heading_noise_is_refused_for_the_paper_station_and_changes_nothing_where_packets_are_few(
+) {
+    let p = set(&Scenario::default(), json!({ "headingNoise": "adaptive" }));
+    let e = p.validate().unwrap_err().to_string();
+    assert!(e.contains("prediction to bounded"), "{e}");
+    // At SF12 a synthetic flight brings one or two packets: none is chosen from five.
+    let mut sim = Simulator::new();
+    let slow = json!({ "synthetic": "all", "sf": 12, "bw": 125.0, "prediction": "bounded", "model": "dr,3d-ctra" });
+    let fixed = simulate(&mut sim, &set(&Scenario::default(), slow.clone())).unwrap();
+    let adaptive = simulate(
+        &mut sim,
+        &set(
+            &set(&Scenario::default(), slow),
+            json!({ "headingNoise": "adaptive" }),
+        ),
+    )
+    .unwrap();
+    for (f, a) in fixed.results.iter().zip(&adaptive.results) {
+        assert_eq!(f.error3d.p75, a.error3d.p75, "{:?}", f.model);
+    }
+}
+
 /// Root mean square of the speed, acceleration and turn rate, of the acceleration DR leaves
 /// out and the jerk CTRA+/3D-CTRA leave out (per axis), and of the tilt rate, over `flights`
 /// sampled every 0.1 s.

@@ -14,6 +14,8 @@ export type LdroMode = "auto" | "on" | "off";
 
 export type Prediction = "paper" | "bounded";
 
+export type HeadingNoise = "fixed" | "adaptive";
+
 export type PlanPace = "plan" | "packet";
 
 export type SenderKind = "periodic" | "error";
@@ -120,6 +122,10 @@ model: ModelChoice,
  * The station's prediction between packets: `paper` (default) or `bounded`.
  */
 prediction: Prediction, 
+/**
+ * The bounded station's direct noise on heading and pitch: `fixed` (default) or `adaptive`.
+ */
+headingNoise: HeadingNoise, 
 /**
  * Station prediction step T, s.
  */

@@ -22,7 +22,8 @@ use super::drone::Sensing;
 use super::radio::{DroneRadio, Frame};
 use super::sender::{SenderKind, Sending};
 use super::station::{
-    Bounds, DroneCovariances, MissionPlan, PlanPace, Prediction, StationModel, StationSetup,
+    Bounds, DroneCovariances, HeadingNoise, MissionPlan, PlanPace, Prediction, StationModel,
+    StationSetup,
 };
 use super::streams::DroneStreams;
 use super::SimError;
@@ -118,6 +119,17 @@ pub struct StationSettings {
         )
     )]
     pub prediction: Prediction,
+    /// The bounded station's direct noise on heading and pitch: `fixed` (default) or `adaptive`.
+    #[cfg_attr(
+        cli,
+        arg(
+            long,
+            value_enum,
+            default_value = "fixed",
+            help = "Bounded station's noise on heading and pitch, the unscented mean's hedge against unseen turns: fixed (q) or adaptive (0, 1 or 3 x q, whichever forecast the flight's packets best once five are scored). Needs --prediction bounded."
+        )
+    )]
+    pub heading_noise: HeadingNoise,
     /// Station prediction step T, s.
     #[cfg_attr(cli, arg(long, default_value_t = opt::STEP.default, help = opt::STEP.cli_help(), allow_negative_numbers = true))]
     pub step: f64,
@@ -145,6 +157,7 @@ impl Default for StationSettings {
         StationSettings {
             model: ModelChoice::all(),
             prediction: Prediction::Paper,
+            heading_noise: HeadingNoise::Fixed,
             step: opt::STEP.default,
             eta: opt::ETA.default,
             plan_pace: PlanPace::Plan,
@@ -697,6 +710,12 @@ impl StationSettings {
         opt::STEP.check(self.step)?;
         opt::ETA.check(self.eta)?;
         opt::PLAN_TOLERANCE.check(self.plan_tolerance)?;
+        // The paper's station has no hedge to choose (its q is the drone's, on every component).
+        if self.heading_noise == HeadingNoise::Adaptive && self.prediction != Prediction::Bounded {
+            return Err(SimError::Source(
+                "headingNoise adaptive is a bounded station's: set prediction to bounded".into(),
+            ));
+        }
         Ok(())
     }
 }
@@ -813,7 +832,10 @@ impl Validated {
             (s.station.prediction == Prediction::Bounded).then(|| self.drone_covariances());
         StationSetup {
             prediction: s.station.prediction,
-            bounds: Bounds::default(),
+            bounds: Bounds {
+                heading_noise: s.station.heading_noise,
+                ..Bounds::default()
+            },
             step: s.station.step,
             eta: s.station.eta,
             q: s.drone.q,

@@ -11,6 +11,7 @@
 mod calibration;
 mod chains;
 mod drone_covariance;
+mod heading_noise;
 mod imm;
 mod manoeuvre_evidence;
 mod mission;
@@ -21,6 +22,10 @@ mod station_model;
 pub use calibration::{Calibration, CALIBRATION_GAIN};
 pub(crate) use chains::{FlightChains, MAX_GRIDS};
 pub use drone_covariance::{DroneCovariances, NOMINAL_SPEED};
+pub use heading_noise::{
+    HeadingNoise, HedgeChoice, HEDGE_FORECAST_STEP, HEDGE_LEVELS, HEDGE_MEMORY, HEDGE_MIN_SCORED,
+    HEDGE_MISS_CAP,
+};
 pub use imm::{Imm, ImmMember, IMM_STAY};
 pub use manoeuvre_evidence::{ManoeuvreEvidence, MANOEUVRE_SPREAD};
 pub use mission::{MissionPlan, MissionStation, PlanPace, OFFSET_TIME, PACE_SIGMA, PACE_TIME};

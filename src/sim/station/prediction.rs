@@ -1,6 +1,7 @@
 //! How the station extrapolates between packets: the paper's literal prediction, or one bounded by
 //! what a quadcopter can do and by how long a manoeuvre lasts (`--prediction paper|bounded`).
 
+use super::HeadingNoise;
 use crate::filter::SigmaParams;
 use crate::math::exp;
 use crate::models::{Heading, ModelKind, MotionModel, A, OMEGA, PHI, PSI, V};
@@ -117,6 +118,8 @@ pub struct Bounds {
     /// 95 % region covers 93–97 % of the synthetic set at 1 and 3 km (docs/paper-reproduction.md);
     /// the Canberra flight, jerkier (3.4 rms), is covered less (80–85 %).
     pub unmodelled_jerk: f64,
+    /// The direct noise on heading and pitch: q, or chosen per flight ([`HeadingNoise`]).
+    pub heading_noise: HeadingNoise,
 }
 
 impl Default for Bounds {
@@ -134,6 +137,7 @@ impl Default for Bounds {
             sigma_omega: 0.5,
             unmodelled_acceleration: 1.2,
             unmodelled_jerk: 0.1,
+            heading_noise: HeadingNoise::Fixed,
         }
     }
 }

@@ -1,6 +1,9 @@
 //! One motion model's station predictor: replace on receipt, then predict (reference §4).
 
-use super::{Bounded, Bounds, DroneCovariances, Prediction, Tracker};
+use super::{
+    Bounded, Bounds, DroneCovariances, HeadingNoise, HedgeChoice, Prediction, Tracker,
+    HEDGE_FORECAST_STEP, HEDGE_LEVELS,
+};
 use crate::codec::quantization_variance;
 use crate::filter::{measurement_noise, process_noise, Ukf};
 use crate::math::ln;
@@ -67,6 +70,9 @@ pub struct StationPredictor<const N: usize, M> {
     silence_trusted: bool,
     /// Whether anyone reads the covariance ([`Tracker::ignore_uncertainty`]).
     uncertainty_read: bool,
+    /// With [`HeadingNoise::Adaptive`]: the flight's choice of noise on θ and φ, and whether a
+    /// packet has come yet (the first has nothing to be forecast from).
+    hedge: Option<(HedgeChoice, bool)>,
 }
 
 /// The station's process noise per second: the drone's q·I for the paper's station; for a
@@ -118,7 +124,58 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
             received: x,
             silence_trusted: true,
             uncertainty_read: true,
+            hedge: (setup.prediction == Prediction::Bounded
+                && setup.bounds.heading_noise == HeadingNoise::Adaptive)
+                .then(|| (HedgeChoice::default(), false)),
         }
+    }
+
+    /// [`HeadingNoise::Adaptive`], as a packet at `state` sent at `sent` arrives: scores each
+    /// level's forecast of it from the packet before, then sets the noise on θ and φ for the
+    /// prediction from this packet on.
+    fn choose_hedge(&mut self, state: &[f64; 9], sent: f64) {
+        let Some((mut choice, primed)) = self.hedge else {
+            return;
+        };
+        if primed {
+            choice.score(HEDGE_LEVELS.map(|factor| self.forecast_miss(factor, state, sent)));
+        }
+        self.hedge = Some((choice, true));
+        let mut q = station_process_noise::<N>(&self.setup);
+        for i in [THETA, PHI] {
+            q[(i, i)] *= choice.factor();
+        }
+        self.ukf.q = q;
+    }
+
+    /// This predictor run again from the last packet to `t` s, in steps of `step` s: the
+    /// forecast it made of the moment `t`, whatever grid times the station served since.
+    fn replay(mut self, t: f64, step: f64) -> Self {
+        self.ukf.reset(self.received, self.p0);
+        self.clock = self.reset_at;
+        while self.clock < t {
+            let next = (self.clock + step).min(t);
+            self.step_to(next);
+        }
+        self
+    }
+
+    /// How far, squared (m²), the forecast from the last packet with `factor` × q on θ and φ
+    /// puts the drone at `sent` from the position `state` reports.
+    fn forecast_miss(&self, factor: f64, state: &[f64; 9], sent: f64) -> f64 {
+        let mut forecast = self.clone();
+        forecast.hedge = None;
+        forecast.uncertainty_read = true;
+        for i in [THETA, PHI] {
+            forecast.ukf.q[(i, i)] = station_process_noise::<N>(&self.setup)[(i, i)] * factor;
+        }
+        let forecast = forecast.replay(sent, HEDGE_FORECAST_STEP);
+        (0..3)
+            .map(|k| {
+                let d = forecast.ukf.x[k] - state[k];
+                d * d
+            })
+            .sum()
     }
 
     /// Whether the drone sends on error and the link delivers well enough for its silence to
@@ -189,13 +246,7 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
         let mut forecast = self.clone();
         // Only its state is scored, against two sensor fixes' uncertainty.
         forecast.uncertainty_read = false;
-        forecast.ukf.reset(self.received, self.p0);
-        forecast.clock = self.reset_at;
-        while forecast.clock < sent {
-            let t = (forecast.clock + self.setup.step).min(sent);
-            forecast.step_to(t);
-        }
-        let x = forecast.ukf.x;
+        let x = forecast.replay(sent, self.setup.step).ukf.x;
         let s: SMatrix<f64, 6, 6> = self.fix.fixed_view::<6, 6>(0, 0) * 2.0;
         let mut r = SVector::<f64, 6>::from_fn(|i, _| z[i] - x[i]);
         for i in [THETA, PHI] {
@@ -211,6 +262,7 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
 
 impl<const N: usize, M: MotionModel<N> + Copy> Tracker for StationPredictor<N, M> {
     fn reset(&mut self, state: &[f64; 9], sent: f64) {
+        self.choose_hedge(state, sent);
         self.received = SVector::from_fn(|i, _| state[i]);
         self.ukf.reset(self.received, self.p0);
         self.clock = sent;
