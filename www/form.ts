@@ -152,6 +152,7 @@ export function markField(el: HTMLInputElement | HTMLSelectElement, why: string 
 export function showConditional(): void {
   for (const el of document.querySelectorAll<HTMLElement>('[data-when]')) el.hidden = el.dataset.when !== field('flight').value;
   for (const el of document.querySelectorAll<HTMLElement>('[data-when-sender]')) el.hidden = el.dataset.whenSender !== field('sender').value;
+  for (const el of document.querySelectorAll<HTMLElement>('[data-when-prediction]')) el.hidden = el.dataset.whenPrediction !== field('prediction').value;
   const km = `${(Number(field('distance').value) / 1000).toFixed(1)} km`;
   $('#distance-value').textContent = km;
   // Screen readers hear the distance with its unit, not a bare number of metres.

@@ -44,6 +44,11 @@ function link(s: Settings): string {
   return `${s.gateways.length === 1 ? 'gateway' : 'gateways'} at ${sites}`;
 }
 
+/** The station's prediction in words: `bounded prediction, adaptive heading noise`. */
+export function prediction(s: Pick<Settings, 'prediction'> & Partial<Pick<Settings, 'headingNoise'>>): string {
+  return `${s.prediction} prediction${s.prediction === 'bounded' && s.headingNoise === 'adaptive' ? ', adaptive heading noise' : ''}`;
+}
+
 /** The settings behind a number, in one short phrase: the plan's limit whenever it is not the
  * paper's EU868 1 % duty cycle, the sender's threshold and heartbeat, and any advanced setting
  * changed from its default. */
@@ -52,7 +57,7 @@ export function describe(s: Settings): string {
   const limit = p.dutyCycle === null ? `, every ${s.interval} s` : s.access === 'lbt' ? ', listen before talk' : '';
   const region = s.region === 'eu868' && !limit ? '' : `, ${p.label}${limit}`;
   const fair = s.fairUse === 'off' ? '' : `, ${s.fairUse.toUpperCase()} fair use`;
-  return `SF${s.sf}, ${s.bw} kHz${region}${fair}, ${link(s)}, ${s.prediction} prediction, ${sending(s)}${s.adr === 'off' ? '' : `, ${s.adr} ADR`}${advanced(s)}`;
+  return `SF${s.sf}, ${s.bw} kHz${region}${fair}, ${link(s)}, ${prediction(s)}, ${sending(s)}${s.adr === 'off' ? '' : `, ${s.adr} ADR`}${advanced(s)}`;
 }
 
 /** One line for a download's caption: the settings, flight, seed and version behind a chart. */

@@ -3,7 +3,7 @@
 // core's one table (src/options.rs, generated into www/generated/types.ts), so the form, the URL
 // checks, the CLI help and the core's validation cannot disagree.
 import type { SimulateRequest, SweepPoint } from './worker';
-import { OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type ModelChoice, type NumberOption, type Plan, type Prediction, type Region, type SimulateParams } from './loratrack';
+import { OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type HeadingNoise, type ModelChoice, type NumberOption, type Plan, type Prediction, type Region, type SimulateParams } from './loratrack';
 
 export type FlightChoice = 'synthetic' | 'all' | 'canberra' | 'csv';
 
@@ -13,6 +13,8 @@ export interface Settings {
   distance: number;
   model: ModelChoice;
   prediction: Prediction;
+  /** The bounded station's noise on heading and pitch (the paper's station has only `fixed`). */
+  headingNoise: HeadingNoise;
   sender: 'periodic' | 'error';
   threshold: number;
   /** Error-triggered sending's heartbeat: the longest silence, s. */
@@ -59,6 +61,7 @@ export const DEFAULTS: Settings = {
   distance: def('distance'),
   model: 'all',
   prediction: 'paper',
+  headingNoise: 'fixed',
   sender: 'periodic',
   threshold: def('threshold'),
   maxInterval: def('maxInterval'),
@@ -244,6 +247,8 @@ export function toParams(s: Settings, csv?: { text: string; name: string }, miss
     ...flight,
     model: s.model,
     prediction: s.prediction,
+    // Kept in the form while the paper's station is chosen, which has no hedge to choose.
+    headingNoise: s.prediction === 'bounded' ? s.headingNoise : 'fixed',
     sender: s.sender,
     threshold: s.threshold,
     maxInterval: s.maxInterval,
@@ -340,6 +345,7 @@ export function fromQuery(search: string): { settings: Settings; problems: strin
     else problems.push(`The link's model=${model.slice(0, 20)} was replaced by ${DEFAULTS.model}: expected one of ${MODEL_CHOICES.join(', ')}.`);
   }
   choice('prediction', ['paper', 'bounded']);
+  choice('headingNoise', ['fixed', 'adaptive']);
   choice('sender', ['periodic', 'error']);
   choice('channelSense', ['off', 'cad']);
   choice('dutyCycleMode', ['per-packet', 'budget']);

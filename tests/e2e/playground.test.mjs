@@ -432,6 +432,28 @@ test('the bounded and IMM stations and error-triggered sending are one control a
   assert.deepEqual(problems, []);
 });
 
+test('the bounded station offers an adaptive heading noise, with the CLI\'s numbers; the paper station neither offers nor sends it', async () => {
+  const { page, problems } = await open('?prediction=bounded&model=3d-ctra');
+  const noise = page.getByLabel('Heading noise');
+  assert.equal(await noise.isVisible(), true);
+  const before = await tableHtml(page);
+  await noise.selectOption('adaptive');
+  await waitForResults(page, before);
+  assert.match(page.url(), /headingNoise=adaptive/);
+  assert.match(await page.locator('#results-table caption').textContent(), /bounded prediction, adaptive heading noise/);
+  const cli = nativeJson(['simulate', '--synthetic', '1', '--model', '3d-ctra', '--prediction', 'bounded', '--heading-noise', 'adaptive']);
+  assert.equal((await cell(page, '3d-ctra', 'p75')).split(' ')[0], cli.results[0].error3d.p75.toFixed(2));
+  assert.deepEqual(await axe(page), []);
+  // The paper's station has no hedge to choose: the control goes, and the run does not fail.
+  const adaptive = await tableHtml(page);
+  await page.getByLabel('Station prediction').selectOption('paper');
+  await waitForResults(page, adaptive);
+  assert.equal(await noise.isVisible(), false);
+  assert.match(await page.locator('#results-table caption').textContent(), /paper prediction$/);
+  assert.doesNotMatch(await page.locator('#status').textContent(), /headingNoise/);
+  assert.deepEqual(problems, []);
+});
+
 test('where packets are lost, an error-triggered run says what its silence rests on, with the table\'s share of losses', async () => {
   const { page, problems } = await open('?sender=error&distance=3000&prediction=bounded&model=3d-ctra');
   await idle(page);
