@@ -44,9 +44,10 @@ const START_LEVEL: usize = 1;
 /// The weight a level's earlier misses keep at each packet: a flight's last ~10 packets decide.
 pub const HEDGE_MEMORY: f64 = 0.9;
 
-/// Packets scored before the choice leaves q. With fewer, one or two packets a flight (SF9
-/// and slower) decided it: DR's p95 at SF9 rose 13 %, DR's and the IMM's p75 at SF10 8–9 %;
-/// with ten the gains at SF7–SF8 halved (a temporary build, 2026-11-29).
+/// Packets scored before the choice leaves q. Without a minimum, one or two packets a flight
+/// (SF9 and slower) decided it: DR's p95 at SF9 rose 13 %, DR's and the IMM's p75 at SF10
+/// 8–9 %; with ten, SF7/250 kHz kept most of its gain, SF7/125 kHz half to three quarters
+/// and SF8 little (a temporary build, 2026-11-29).
 pub const HEDGE_MIN_SCORED: u32 = 5;
 
 /// The most one packet's squared miss counts, m²: (1 km)², so that one wild forecast (a packet
