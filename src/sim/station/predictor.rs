@@ -141,11 +141,16 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
             choice.score(HEDGE_LEVELS.map(|factor| self.forecast_miss(factor, state, sent)));
         }
         self.hedge = Some((choice, true));
+        self.ukf.q = self.hedged_noise(choice.factor());
+    }
+
+    /// The station's process noise with `factor` × q on θ and φ.
+    fn hedged_noise(&self, factor: f64) -> SMatrix<f64, N, N> {
         let mut q = station_process_noise::<N>(&self.setup);
         for i in [THETA, PHI] {
-            q[(i, i)] *= choice.factor();
+            q[(i, i)] *= factor;
         }
-        self.ukf.q = q;
+        q
     }
 
     /// This predictor run again from the last packet to `t` s, in steps of `step` s: the
@@ -166,9 +171,7 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
         let mut forecast = self.clone();
         forecast.hedge = None;
         forecast.uncertainty_read = true;
-        for i in [THETA, PHI] {
-            forecast.ukf.q[(i, i)] = station_process_noise::<N>(&self.setup)[(i, i)] * factor;
-        }
+        forecast.ukf.q = self.hedged_noise(factor);
         let forecast = forecast.replay(sent, HEDGE_FORECAST_STEP);
         (0..3)
             .map(|k| {
