@@ -24,16 +24,6 @@ pub enum HeadingNoise {
     Adaptive,
 }
 
-impl HeadingNoise {
-    /// The CLI/JS name: `fixed` or `adaptive`.
-    pub fn name(self) -> &'static str {
-        match self {
-            HeadingNoise::Fixed => "fixed",
-            HeadingNoise::Adaptive => "adaptive",
-        }
-    }
-}
-
 /// The factors on q for θ and φ that [`HeadingNoise::Adaptive`] chooses between: none (the
 /// model's own heading, no hedge), q as for [`HeadingNoise::Fixed`], and three times as much.
 pub const HEDGE_LEVELS: [f64; 3] = [0.0, 1.0, 3.0];
@@ -163,8 +153,9 @@ mod tests {
 
     #[test]
     fn the_names_are_the_cli_and_js_names() {
-        assert_eq!(HeadingNoise::Fixed.name(), "fixed");
-        assert_eq!(HeadingNoise::Adaptive.name(), "adaptive");
+        let name = |n: HeadingNoise| serde_json::to_string(&n).unwrap();
+        assert_eq!(name(HeadingNoise::Fixed), "\"fixed\"");
+        assert_eq!(name(HeadingNoise::Adaptive), "\"adaptive\"");
         assert_eq!(HeadingNoise::default(), HeadingNoise::Fixed);
     }
 }
