@@ -192,12 +192,33 @@ fn generated() -> String {
     out.push_str(&format!(
         "\n/** Every numeric setting's default and accepted range, as the core validates them (src/options.rs). */\nexport const OPTIONS: NumberOption[] = {options};\n"
     ));
+    out.push_str(&choice_defaults());
     let plans: Vec<Plan> = Region::ALL.iter().map(|r| r.plan()).collect();
     let plans = serde_json::to_string_pretty(&plans).unwrap_or_default();
     out.push_str(&format!(
         "\n/** Every regional plan's data rates and limits, as the core checks them (src/lora/region.rs). */\nexport const PLANS: Plan[] = {plans};\n"
     ));
     out
+}
+
+/// The default of every setting that is a choice among names (`prediction`, `sender`,
+/// `channelSense`, …): the string-valued keys of [`Scenario::default`], so that the page's form
+/// starts where a call that leaves the key out does.
+fn choice_defaults() -> String {
+    let defaults = serde_json::to_value(Scenario::default()).unwrap_or_default();
+    let choices: serde_json::Map<String, serde_json::Value> = defaults
+        .as_object()
+        .into_iter()
+        .flatten()
+        .filter(|(_, v)| v.is_string())
+        .map(|(k, v)| (k.clone(), v.clone()))
+        .collect();
+    let keys: Vec<String> = choices.keys().map(|k| format!("'{k}'")).collect();
+    let body = serde_json::to_string_pretty(&choices).unwrap_or_default();
+    format!(
+        "\n/** The default of every setting chosen by name, as `Scenario::default` gives it (src/sim/scenario/mod.rs). */\nexport const CHOICE_DEFAULTS: Pick<Scenario, {}> = {body};\n",
+        keys.join(" | ")
+    )
 }
 
 #[test]

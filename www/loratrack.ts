@@ -28,7 +28,7 @@ import type {
 } from './generated/types';
 
 export type * from './generated/types';
-export { OPTIONS, PLANS } from './generated/types';
+export { CHOICE_DEFAULTS, OPTIONS, PLANS } from './generated/types';
 
 let compiled: Promise<WebAssembly.Module> | undefined;
 let ready: Promise<void> | undefined;

@@ -1,9 +1,10 @@
 // The page's settings: defaults (the paper's), conversion to simulate() parameters, and the URL
 // round trip that makes every view shareable. Every numeric default and limit comes from the
-// core's one table (src/options.rs, generated into www/generated/types.ts), so the form, the URL
-// checks, the CLI help and the core's validation cannot disagree.
+// core's one table (src/options.rs), and every named choice's default from `Scenario::default`,
+// both generated into www/generated/types.ts, so the form, the URL checks, the CLI help and the
+// core's validation cannot disagree.
 import type { SimulateRequest, SweepPoint } from './worker';
-import { OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type HeadingNoise, type ModelChoice, type NumberOption, type Plan, type Prediction, type Region, type SimulateParams } from './loratrack';
+import { CHOICE_DEFAULTS, OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type HeadingNoise, type ModelChoice, type NumberOption, type Plan, type Prediction, type Region, type SimulateParams } from './loratrack';
 
 export type FlightChoice = 'synthetic' | 'all' | 'canberra' | 'csv';
 
@@ -59,19 +60,19 @@ export const DEFAULTS: Settings = {
   sf: def('sf'),
   bw: def('bw'),
   distance: def('distance'),
-  model: 'all',
-  prediction: 'paper',
-  headingNoise: 'fixed',
-  sender: 'periodic',
+  model: CHOICE_DEFAULTS.model,
+  prediction: CHOICE_DEFAULTS.prediction,
+  headingNoise: CHOICE_DEFAULTS.headingNoise,
+  sender: CHOICE_DEFAULTS.sender,
   threshold: def('threshold'),
   maxInterval: def('maxInterval'),
-  channelSense: 'off',
-  dutyCycleMode: 'per-packet',
-  adr: 'off',
-  region: 'eu868',
+  channelSense: CHOICE_DEFAULTS.channelSense,
+  dutyCycleMode: CHOICE_DEFAULTS.dutyCycleMode,
+  adr: CHOICE_DEFAULTS.adr,
+  region: CHOICE_DEFAULTS.region,
   interval: def('interval'),
-  access: 'duty-cycle',
-  fairUse: 'off',
+  access: CHOICE_DEFAULTS.access,
+  fairUse: CHOICE_DEFAULTS.fairUse,
   flight: 'synthetic',
   flightNumber: 1,
   lorawan: def('overhead') > 0,

@@ -1607,6 +1607,23 @@ export const OPTIONS: NumberOption[] = [
   }
 ];
 
+/** The default of every setting chosen by name, as `Scenario::default` gives it (src/sim/scenario/mod.rs). */
+export const CHOICE_DEFAULTS: Pick<Scenario, 'access' | 'adr' | 'channelSense' | 'dutyCycleMode' | 'fairUse' | 'headingNoise' | 'model' | 'planPace' | 'prediction' | 'region' | 'schedule' | 'sender' | 'sfPlan'> = {
+  "access": "duty-cycle",
+  "adr": "off",
+  "channelSense": "off",
+  "dutyCycleMode": "per-packet",
+  "fairUse": "off",
+  "headingNoise": "fixed",
+  "model": "all",
+  "planPace": "plan",
+  "prediction": "paper",
+  "region": "eu868",
+  "schedule": "aloha",
+  "sender": "periodic",
+  "sfPlan": "spread"
+};
+
 /** Every regional plan's data rates and limits, as the core checks them (src/lora/region.rs). */
 export const PLANS: Plan[] = [
   {

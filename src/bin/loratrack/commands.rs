@@ -757,3 +757,27 @@ fn schedule_text(r: &SwarmReport) -> String {
         ),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Bare {
+        #[command(flatten)]
+        swarm: SwarmSettings,
+        #[command(flatten)]
+        scenario: ScenarioArgs,
+    }
+
+    /// The CLI's defaults are the core's: an option left out means what a JS caller who leaves
+    /// the key out gets (`Scenario::default`, from `loratrack::options` and each enum's
+    /// `Default`).
+    #[test]
+    fn every_option_left_out_takes_the_cores_default() {
+        let bare = Bare::try_parse_from(["loratrack"]).expect("no option is required");
+        let cli = bare.scenario.scenario(FlightSettings::default(), bare.swarm);
+        assert_eq!(cli, Scenario::default());
+    }
+}

@@ -24,7 +24,7 @@ pub struct AccessSettings {
         arg(
             long,
             value_enum,
-            default_value = "eu868",
+            default_value_t,
             help = "LoRaWAN regional plan (RP002-1.0.4): eu868 (duty cycle; raw LoRa at any SF/bandwidth allowed, as the paper), us915 (DR0-DR4, 400 ms dwell, no duty cycle: --interval), au915 (DR2-DR6, 400 ms dwell, --interval), as923 (DR2-DR6, 400 ms dwell, 1 % duty cycle), in865 (DR0-DR5, --interval)."
         )
     )]
@@ -40,7 +40,7 @@ pub struct AccessSettings {
         arg(
             long,
             value_enum,
-            default_value = "duty-cycle",
+            default_value_t,
             help = "How a drone earns the right to send: duty-cycle (the plan's), or lbt (listen 5 ms before each uplink, send only below -80 dBm, else try another channel or back off; ETSI's 100 s of airtime per hour). Plans with a duty cycle only (eu868, as923)."
         )
     )]
@@ -51,7 +51,7 @@ pub struct AccessSettings {
         arg(
             long,
             value_enum,
-            default_value = "off",
+            default_value_t,
             help = "Fair-use policy on top of the plan: off, or ttn (The Things Network: 30 s of airtime per day, spread evenly)."
         )
     )]
@@ -72,7 +72,7 @@ pub struct AccessSettings {
         arg(
             long,
             value_enum,
-            default_value = "aloha",
+            default_value_t,
             help = "How a swarm's drones share the air: aloha (each sends when its duty cycle allows, after its random delay) or slotted (a slot each in a frame on GPS time; no two drones on one SF and channel overlap). swarm only; not with --adr."
         )
     )]

@@ -114,7 +114,7 @@ pub struct StationSettings {
         arg(
             long,
             value_enum,
-            default_value = "paper",
+            default_value_t,
             help = "Station prediction between packets: paper (constant a and omega, as published) or bounded (speed and pitch limits, the acceleration fades, overdue manoeuvres decay)."
         )
     )]
@@ -125,7 +125,7 @@ pub struct StationSettings {
         arg(
             long,
             value_enum,
-            default_value = "fixed",
+            default_value_t,
             help = "Bounded station's noise on heading and pitch, the unscented mean's hedge against unseen turns: fixed (q) or adaptive (0, 1 or 3 x q, whichever forecast the flight's packets best once five are scored). Needs --prediction bounded."
         )
     )]
@@ -142,7 +142,7 @@ pub struct StationSettings {
         arg(
             long,
             value_enum,
-            default_value = "plan",
+            default_value_t,
             help = "Mission station: pace along the plan by the plan's leg speeds (plan: the packet's speed gives way to them) or by the packet's speed alone (packet: for a drone that does not keep its plan's timing)."
         )
     )]
@@ -276,7 +276,7 @@ pub struct NetworkSettings {
         arg(
             long,
             value_enum,
-            default_value = "off",
+            default_value_t,
             help = "Adaptive data rate: off (fixed --sf/--bw, the paper), lorawan (the network server's ADR from the best SNR across gateways) or tracking (the rate with the least expected squared packet age). ADR starts at --sf/--bw, an EU868 data rate."
         )
     )]
@@ -359,7 +359,7 @@ pub struct SwarmSettings {
         arg(
             long,
             value_enum,
-            default_value = "spread",
+            default_value_t,
             help = "Spreading factors: spread (SF7..SF12 in turn, a sixth of the swarm each; outside EU868, the plan's SFs at --bw) or fixed (everyone at --sf)."
         )
     )]

@@ -29,7 +29,7 @@ pub struct Sending {
         arg(
             long,
             value_enum,
-            default_value = "periodic",
+            default_value_t,
             help = "When the drone sends: periodic (as often as the duty cycle allows, the paper) or error (when the mirrored station drifts past --threshold)."
         )
     )]
@@ -47,7 +47,7 @@ pub struct Sending {
         arg(
             long,
             value_enum,
-            default_value = "off",
+            default_value_t,
             help = "Error-triggered sending: off, or cad (channel activity detection as each uplink starts: the threshold is divided by (1 - b)^2, b the share of recent starts that found another packet of the drone's SF on its channel)."
         )
     )]
@@ -58,7 +58,7 @@ pub struct Sending {
         arg(
             long,
             value_enum,
-            default_value = "per-packet",
+            default_value_t,
             help = "Duty-cycle rule: per-packet (off-time of time-on-air / duty-cycle after each packet) or budget (airtime credit over time, up to --burst packets; ETSI EN 300 220 counts over an hour)."
         )
     )]
@@ -74,7 +74,7 @@ impl Default for Sending {
             sender: SenderKind::Periodic,
             threshold: DEFAULT_THRESHOLD_M,
             max_interval: DEFAULT_MAX_INTERVAL_S,
-            channel_sense: ChannelSense::Off,
+            channel_sense: ChannelSense::default(),
             duty_cycle_mode: DutyCycleMode::PerPacket,
             burst: DEFAULT_BURST,
         }
