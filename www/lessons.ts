@@ -93,9 +93,9 @@ export const LESSONS: Lesson[] = [
   {
     id: 'crowd-sends-less',
     title: 'In a crowd, send less',
-    settings: { bw: 125, prediction: 'bounded', sender: 'error', threshold: 20, maxInterval: 60, dutyCycleMode: 'budget' },
+    settings: { bw: 125, prediction: 'bounded', sender: 'error', threshold: 20, maxInterval: 60, dutyCycleMode: 'budget', channelSense: 'off' },
     swarm: { drones: 72, channels: 1, plan: 'fixed' },
-    text: 'With 72 drones on one SF7 channel most packets collide. An error-triggered drone with the default 2 m threshold finds its station that far off at nearly every chance to send, so it sends like a periodic one. With a threshold on the scale of the errors such a crowd allows (20 m, a heartbeat of 60 s and a duty-cycle budget) each drone sends when its station has drifted, the channel clears, and more of what is sent arrives.',
+    text: 'With 72 drones on one SF7 channel most packets collide. An error-triggered drone with the default 2 m threshold finds its station that far off at nearly every chance to send, so it sends like a periodic one. With a threshold on the scale of the errors such a crowd allows (20 m, a heartbeat of 60 s and a duty-cycle budget) each drone sends when its station has drifted, the channel clears, and more of what is sent arrives. Here the drones do not listen to their channel (Channel sensing off), so the threshold is the one set: listening, the default, raises a small threshold by itself where the channel is busy, and raises one already on the crowd’s scale too far.',
     notice: [
       'The note under the swarm charts: with 72 drones about half the packets are delivered, and the median drone’s p75 is under 40 m.',
       'Set Sending to Periodic and the duty-cycle rule to Off-time per packet (the paper’s drone) and run the swarm again: every drone sends as often as the duty cycle allows, about a third of the packets are delivered, and the median drone’s p75 is just over 40 m.',

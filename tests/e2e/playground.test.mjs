@@ -418,17 +418,18 @@ test('the bounded and IMM stations and error-triggered sending are one control a
   assert.ok(errorSent < periodicSent, `error-triggered sent ${errorSent}, periodic ${periodicSent}`);
   assert.match(page.url(), /sender=error/);
   assert.match(page.url(), /threshold=5/);
-  // The table says what its numbers rest on: the sender and its threshold and heartbeat.
-  assert.match(await page.locator('#results-table caption').textContent(), /error-triggered sending \(5 m, heartbeat 10 s\)/);
+  // The table says what its numbers rest on: the sender, its threshold and heartbeat, and that it
+  // listens to its channel (the default).
+  assert.match(await page.locator('#results-table caption').textContent(), /error-triggered sending \(5 m, heartbeat 10 s, listening to its channel\)/);
   // At 3 km packets are lost: the results say what the drone's silence rests on.
   assert.equal(await page.locator('#silence-note').isVisible(), true);
-  // A drone alone that listens to its channel never hears another packet: the same numbers, said
-  // to rest on listening, and kept in the link.
+  // A drone alone never hears another packet, so one that does not listen sends the same: the
+  // same numbers, said to rest on a drone that does not listen, and kept in the link.
   before = await tableHtml(page);
-  await page.getByLabel('Channel sensing').selectOption('cad');
-  await until(page, () => /heartbeat 10 s, listening to its channel\)/.test(document.querySelector('#results-table caption')?.textContent ?? ''));
+  await page.getByLabel('Channel sensing').selectOption('off');
+  await until(page, () => /\(5 m, heartbeat 10 s\)/.test(document.querySelector('#results-table caption')?.textContent ?? ''));
   assert.equal(await tableHtml(page), before);
-  assert.match(page.url(), /channelSense=cad/);
+  assert.match(page.url(), /channelSense=off/);
   assert.deepEqual(problems, []);
 });
 

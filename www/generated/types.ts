@@ -1611,7 +1611,7 @@ export const OPTIONS: NumberOption[] = [
 export const CHOICE_DEFAULTS: Pick<Scenario, 'access' | 'adr' | 'channelSense' | 'dutyCycleMode' | 'fairUse' | 'headingNoise' | 'model' | 'planPace' | 'prediction' | 'region' | 'schedule' | 'sender' | 'sfPlan'> = {
   "access": "duty-cycle",
   "adr": "off",
-  "channelSense": "off",
+  "channelSense": "cad",
   "dutyCycleMode": "per-packet",
   "fairUse": "off",
   "headingNoise": "fixed",

@@ -26,7 +26,7 @@ pub fn swarm_markdown(rows: &[SwarmReport], crowd: &[Crowd], markdown: bool) -> 
                  interval and, until the channel is full, at most twice it; `frame` is the longest period, s.\n\n\
                  `theory` is the pure-ALOHA collision rate 1 − (1 − 2·DC/C)^(n−1) per SF group (n drones on an SF) at the \
                  duty cycle the group achieved, which capture lowers and inter-SF interference raises. The error-triggered \
-                 sender (2 m threshold; heartbeat 10 s on SF7, 150 s with spread SFs, which must cover SF12's interval) \
+                 sender (2 m threshold; heartbeat 10 s on SF7, 150 s with spread SFs, which must cover SF12's interval{}) \
                  sends only when the station's prediction has drifted; a slotted drone that has nothing to send leaves its \
                  slot empty (no other drone takes it). `p75 (median drone)` is the median over drones of each drone's \
                  75th-percentile 3D error.\n\n",
@@ -40,6 +40,12 @@ pub fn swarm_markdown(rows: &[SwarmReport], crowd: &[Crowd], markdown: bool) -> 
                 c.run.seed,
                 c.access.swarm_timing().jitter,
                 c.access.swarm_timing().clock_drift_ppm,
+                match loratrack::Sending::default().channel_sense {
+                    loratrack::ChannelSense::Cad =>
+                        "; listening to its channel as each uplink starts, the default, it divides its threshold by \
+                         ALOHA's chance of success at the load it hears",
+                    loratrack::ChannelSense::Off => "",
+                },
             );
         }
         s += "| schedule | channels | SFs | sender | N | packets | frame, s | collision rate | theory | delivery | no demodulator | p75 (median drone), m |\n";
@@ -185,7 +191,9 @@ fn crowd_markdown(crowd: &[Crowd]) -> String {
         "{} drones on one SF{} channel, {} seeds from seed {}, the first the table's. Which packets collide moves the median \
          drone's p75 by several metres from seed to seed, so one seed does not decide. `equal airtime`: periodic sending \
          slowed, by its duty cycle, to the airtime error-triggered sending used in the same seed (sped up where it used \
-         more). `rule`: the error-triggered drones' duty-cycle rule; periodic drones keep the paper's per-packet off-time. \
+         more). `rule`: the error-triggered drones' duty-cycle rule, and whether they listen to their channel as each \
+         uplink starts (`listening (CAD)`, the default, or `not listening`, `--channel-sense off`); periodic drones keep \
+         the paper's per-packet off-time. \
          The threshold is {} m and the heartbeat {} s unless the rule names others (threshold m / heartbeat s), \
          chosen on the scale of the errors this crowd allows: the default threshold is passed at nearly every chance to \
          send (see the airtime share). \
@@ -331,7 +339,7 @@ fn rule_label(s: &loratrack::Sending) -> String {
         loratrack::DutyCycleMode::Budget => format!("budget {}", s.burst),
     };
     let rule = match s.channel_sense {
-        loratrack::ChannelSense::Off => rule,
+        loratrack::ChannelSense::Off => format!("{rule}, not listening"),
         loratrack::ChannelSense::Cad => format!("{rule}, listening (CAD)"),
     };
     let d = loratrack::Sending::default();

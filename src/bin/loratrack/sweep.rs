@@ -446,10 +446,11 @@ fn crowd_senders() -> Vec<CrowdSender> {
 /// seed by seed from the sweep's own seed (whose per-packet runs are in `rows`), each with
 /// periodic sending slowed by its duty cycle to the airtime error-triggered sending used: the
 /// fair comparison for a sender that saves airtime. Under ALOHA the per-packet rule at the default
-/// threshold, then at each of [`CROWD_PER_PACKET_THRESHOLDS_M`], then at the default listening to
-/// its channel ([`ChannelSense::Cad`]). The budget rule under ALOHA only: a slotted drone sends in
-/// its slot whatever credit it holds; under it, the default threshold and heartbeat, without and
-/// with listening, then each of [`CROWD_THRESHOLDS_M`] with [`CROWD_HEARTBEAT_S`]. Each schedule's periodic
+/// threshold without listening to its channel, then at each of [`CROWD_PER_PACKET_THRESHOLDS_M`],
+/// then at the default, which listens ([`ChannelSense::Cad`]). The budget rule under ALOHA only: a
+/// slotted drone sends in its slot whatever credit it holds; under it, the default threshold and
+/// heartbeat, without and with listening, then each of [`CROWD_THRESHOLDS_M`] with
+/// [`CROWD_HEARTBEAT_S`], without listening. Each schedule's periodic
 /// runs serve every setting compared under it. A comparison is left out when `rows` lacks its
 /// setting.
 fn crowds(
