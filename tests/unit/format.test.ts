@@ -31,8 +31,12 @@ test('a caption names the settings, the flight, every seed and the version', () 
   expect(describe({ ...DEFAULTS, region: 'us915', sf: 9, bw: 125 })).toBe('SF9, 125 kHz, US915, every 1 s, 1.0 km, paper prediction, periodic sending');
   expect(describe({ ...DEFAULTS, access: 'lbt', fairUse: 'ttn' })).toBe('SF7, 250 kHz, EU868, listen before talk, TTN fair use, 1.0 km, paper prediction, periodic sending');
   expect(describe({ ...DEFAULTS, region: 'as923', sf: 7, bw: 125 })).toMatch(/^SF7, 125 kHz, AS923, 1\.0 km/);
-  // Two error-triggered runs with different thresholds, or different link settings, must not read alike.
+  // Two error-triggered runs with different thresholds, or different link settings, must not read alike;
+  // nor one that listens to its channel (the default) and one that does not.
   expect(describe({ ...DEFAULTS, sender: 'error', threshold: 20, maxInterval: 60, dutyCycleMode: 'budget' })).toBe(
+    'SF7, 250 kHz, 1.0 km, paper prediction, error-triggered sending (20 m, heartbeat 60 s, listening to its channel), duty-cycle budget',
+  );
+  expect(describe({ ...DEFAULTS, sender: 'error', threshold: 20, maxInterval: 60, dutyCycleMode: 'budget', channelSense: 'off' })).toBe(
     'SF7, 250 kHz, 1.0 km, paper prediction, error-triggered sending (20 m, heartbeat 60 s), duty-cycle budget',
   );
   // Gateways placed by hand replace the default gateway's distance.

@@ -161,7 +161,7 @@ describe('lessons', () => {
     // The lesson's own second step: the paper's drone.
     expect(changedFromLesson(crowd, { ...lessonSettings(crowd), sender: 'periodic', dutyCycleMode: 'per-packet' })).toEqual(['sender', 'dutyCycleMode']);
     // A link typed by hand: ?lesson=crowd-sends-less over the defaults.
-    expect(changedFromLesson(crowd, DEFAULTS)).toEqual(['bw', 'prediction', 'sender', 'threshold', 'maxInterval', 'dutyCycleMode']);
+    expect(changedFromLesson(crowd, DEFAULTS)).toEqual(['bw', 'prediction', 'sender', 'threshold', 'maxInterval', 'channelSense', 'dutyCycleMode']);
     expect(changedFromLesson(crowd, { ...lessonSettings(crowd), gateways: [{ east: 500, north: 0 }] })).toEqual(['gateways']);
   });
 
