@@ -777,7 +777,9 @@ mod tests {
     #[test]
     fn every_option_left_out_takes_the_cores_default() {
         let bare = Bare::try_parse_from(["loratrack"]).expect("no option is required");
-        let cli = bare.scenario.scenario(FlightSettings::default(), bare.swarm);
+        let cli = bare
+            .scenario
+            .scenario(FlightSettings::default(), bare.swarm);
         assert_eq!(cli, Scenario::default());
     }
 }
