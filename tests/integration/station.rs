@@ -493,12 +493,14 @@ fn model_lists_are_parsed_and_bad_names_refused() {
     assert!(ModelChoice::parse("").is_err());
 }
 
-/// Under an error-triggered drone a bounded station follows its model from the packet on: on a
-/// straight line it stays on the line, where the unscented mean of a periodic drone's station
-/// falls behind it.
+/// Under an error-triggered drone a bounded station hedges, as a periodic drone's does, until the
+/// drone could have sent again (one 2 s interval here: before then its silence says nothing), and
+/// from then on follows its model: on a straight line it advances along the line at the packet's
+/// speed, where the unscented mean of a periodic drone's station falls further behind.
 #[test]
-fn an_error_triggered_drones_station_holds_a_straight_line() {
+fn an_error_triggered_drones_station_hedges_in_the_off_time_then_holds_a_straight_line() {
     let packet = [0.0, 0.0, 30.0, 0.0, 0.0, 5.0, 0.0, 0.0, 0.0];
+    // Positions at 1.9, 2.0 and 2.9 s, within the 3 s grace (1.5 intervals of 2 s).
     let at = |error_triggered: bool| {
         let s = StationSetup {
             error_triggered,
@@ -506,20 +508,28 @@ fn an_error_triggered_drones_station_holds_a_straight_line() {
         };
         let mut tracker = new_tracker(StationModel::Single(ModelKind::Ctra3d), s, None);
         tracker.reset(&packet, 0.0);
-        // Within the 3 s grace (1.5 intervals of 2 s): nothing decays yet.
+        let mut seen = Vec::new();
         for k in 1..=29 {
             tracker.predict_to(0.1 * k as f64);
+            if [19, 20, 29].contains(&k) {
+                seen.push(tracker.position());
+            }
         }
-        tracker.position()
+        seen
     };
-    let held = at(true);
-    assert!(
-        (held[0] - 14.5).abs() < 1e-6 && held[1].abs() < 1e-6,
-        "{held:?}"
+    let (error, periodic) = (at(true), at(false));
+    assert_eq!(
+        error[..2],
+        periodic[..2],
+        "within the off-time both hedge alike"
     );
-    let hedged = at(false);
+    let advanced = error[2][0] - error[1][0];
     assert!(
-        hedged[0] < 14.5 - 0.05,
-        "the hedge shortens the line: {hedged:?}"
+        (advanced - 4.5).abs() < 1e-6 && error[2][1].abs() < 1e-6,
+        "{error:?}"
+    );
+    assert!(
+        periodic[2][0] - periodic[1][0] < 4.5 - 0.01,
+        "the hedge shortens the line: {periodic:?}"
     );
 }

@@ -484,7 +484,7 @@ pub(crate) mod tests {
     }
 
     /// Every station model, bounded, under a periodic and under an error-triggered drone (whose
-    /// station follows its model from the packet on).
+    /// station follows its model once the drone could have sent again).
     fn bounded_stations() -> Vec<(StationModel, StationSetup)> {
         let models = StationModel::PAPER.into_iter().chain([StationModel::Imm]);
         models
