@@ -293,16 +293,19 @@ fn senders_reading(r: &SenderSweepReport, overview: &[(String, SenderSweepReport
     }
     s += &senders_whole_flight(overview);
     s += "- Why it pays with a bounded station: a drone that sends only when the station's forecast has drifted makes its \
-          silence news, so the station follows its model without the unscented mean's hedge (the heading spread of its \
-          sigma points shortens a straight line by about 1 m after 2 s at 5 m/s), while at most one of the drone's last \
-          ten frames was lost (`src/sim/station/predictor.rs`, docs/reference.md §4). Straight legs, steady turns and hovering then cost no \
+          silence news once its duty cycle would have let it send, so from one duty-cycle interval after each packet the \
+          station follows its model without the unscented mean's hedge (the heading spread of its sigma points shortens \
+          a straight line by about 1 m after 2 s at 5 m/s), while at most one of the drone's last ten frames was lost \
+          (`src/sim/station/predictor.rs`, docs/reference.md §4); within that off-time the silence says nothing and the \
+          station hedges as for a periodic drone. Straight legs, steady turns and hovering then cost no \
           packets, and the airtime goes to turns, climbs and stops. Part of the gain is that station rule, not the timing: \
           a periodic drone whose station also dropped the hedge does better at SF7–SF8 (3D-CTRA p75 1.06 m against 1.16 m \
           at SF7 / 250 kHz / 1 km) but worse from SF9 on (3D-CTRA at SF10 66 m against 46 m; `npm run mission`'s set) and on \
           the real flight (3D-CTRA at SF9 27 m against 17 m), so periodic sending keeps the hedge. Against that station, \
-          measured with a temporary build on 2026-11-28 (closing notes of #24), the error-triggered p75 ratios at SF7 / \
-          250 kHz / 1 km are 0.76–0.81 where the sender uses 41–78 % of the airtime and 0.87–0.89 at 7.5–10 m (31–35 %): \
-          the timing alone is worth about a fifth of the p75.\n";
+          measured with a temporary build on 2026-11-28 (closing notes of #24; the error-triggered station then followed \
+          its model from the packet on), the error-triggered p75 ratios at SF7 / 250 kHz / 1 km were 0.76–0.81 where \
+          the sender used 41–78 % of the airtime and 0.87–0.89 at 7.5–10 m (31–35 %): the timing alone was worth about \
+          a fifth of the p75.\n";
     s += "- Where packets are lost the silence is ambiguous: the drone cannot tell a lost packet from a delivered one, \
           and without the hedge a station that missed a packet extrapolates further. That is what the 3 km rows' p95 \
           verdicts above show, on the real flight most: there the hedge a periodic station keeps is worth more than the \
