@@ -18,10 +18,10 @@ pub enum ChannelSense {
     /// of busy starts ([`ChannelLoad`]) and divides its threshold by the chance that a packet
     /// gets through at that load ([`ChannelLoad::threshold`]). The default: a drone alone
     /// never hears another packet, so its threshold stays the one set, and in a crowd of 72 on
-    /// one SF7 channel the default 2 m threshold then beats periodic sending (0.92× the median
-    /// drone's p75 over 16 seeds, against 1.01× not listening). A threshold already on the
-    /// crowd's scale (10 m there) is raised too far (1.06–1.10× not listening's p75):
-    /// docs/beyond-the-paper.md, "When to send".
+    /// one SF7 channel the default 2 m threshold then beats periodic sending (0.93× the median
+    /// drone's p75 over 16 seeds, against 0.99× not listening). A threshold already on the
+    /// crowd's scale (40 m with a 60 s heartbeat and a budget there) is raised too far (1.10×
+    /// not listening's p75): docs/beyond-the-paper.md, "When to send".
     #[default]
     Cad,
 }
