@@ -450,7 +450,7 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
     }
     let c = &r.config;
     Ok(format!(
-        "{} ({} flight{}, {:.0} s), SF{} / {} kHz ({}), overhead {} B, seed {}\n{}\n{}",
+        "{} ({} flight{}, {:.0} s), SF{} / {} kHz ({}), overhead {} B, seed {}\n{}\n{}\n{}",
         c.trajectory,
         c.flights,
         if c.flights == 1 { "" } else { "s" },
@@ -460,9 +460,47 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
         plan_text(c),
         c.settings.radio.overhead,
         c.settings.run.seed,
+        policy_text(&c.settings),
         results_table(&r.results),
         network_lines(&r)
     ))
+}
+
+/// The station's prediction and the drone's sending in words, the second line of the text
+/// output: two runs that differ only in these must not print alike. `stations: bounded
+/// prediction; error-triggered sending (2 m, heartbeat 10 s, listening to its channel), an
+/// off-time per packet`.
+fn policy_text(s: &loratrack::Scenario) -> String {
+    let (station, send) = (&s.station, &s.sending);
+    let adaptive = station.prediction == loratrack::Prediction::Bounded
+        && station.heading_noise == loratrack::HeadingNoise::Adaptive;
+    let sender = match send.sender {
+        loratrack::SenderKind::Periodic => "periodic sending".to_string(),
+        loratrack::SenderKind::Error => format!(
+            "error-triggered sending ({} m, heartbeat {} s, {})",
+            send.threshold,
+            send.max_interval,
+            match send.channel_sense {
+                loratrack::ChannelSense::Cad => "listening to its channel",
+                loratrack::ChannelSense::Off => "not listening",
+            }
+        ),
+    };
+    let rule = match send.duty_cycle_mode {
+        loratrack::DutyCycleMode::PerPacket => "an off-time per packet".to_string(),
+        loratrack::DutyCycleMode::Budget => {
+            format!("a duty-cycle budget of {} packets", send.burst)
+        }
+    };
+    format!(
+        "stations: {} prediction{}; {sender}, {rule}",
+        station.prediction.name(),
+        if adaptive {
+            ", adaptive heading noise"
+        } else {
+            ""
+        },
+    )
 }
 
 /// The plan in words: `US915 DR1, every 1 s (no duty cycle)`, `EU868 DR5, 1 % duty cycle`,
@@ -659,6 +697,7 @@ fn swarm_text(r: &SwarmReport) -> String {
     };
     format!(
         "{} drone{} {}, at {} m, {} channel{}, {} SFs, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
+         {}\n\
          channel access      {}\n\
          packets sent        {}\n\
          collision rate      {:.4}  (pure-ALOHA formula at the duty cycle achieved: {:.4})\n\
@@ -685,6 +724,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         if c.network.inter_sf { "on" } else { "off" },
         c.network.adr.name(),
         c.run.seed,
+        policy_text(c),
         schedule_text(r),
         d.packets_sent,
         r.collision_rate,
@@ -781,5 +821,36 @@ mod tests {
             .scenario
             .scenario(FlightSettings::default(), bare.swarm);
         assert_eq!(cli, Scenario::default());
+    }
+
+    /// The header names every setting of the station's prediction and the drone's sending, so
+    /// that two runs differing in one of them never print alike.
+    #[test]
+    fn runs_that_differ_in_prediction_or_sending_print_different_headers() {
+        let base = Scenario::default();
+        let mut variants = vec![base.clone()];
+        let mut vary = |f: &dyn Fn(&mut Scenario)| {
+            let mut s = variants.last().cloned().unwrap_or_default();
+            f(&mut s);
+            variants.push(s);
+        };
+        vary(&|s| s.station.prediction = loratrack::Prediction::Bounded);
+        vary(&|s| s.station.heading_noise = loratrack::HeadingNoise::Adaptive);
+        vary(&|s| s.sending.sender = loratrack::SenderKind::Error);
+        vary(&|s| s.sending.threshold = 5.0);
+        vary(&|s| s.sending.max_interval = 30.0);
+        vary(&|s| s.sending.channel_sense = loratrack::ChannelSense::Off);
+        vary(&|s| s.sending.duty_cycle_mode = loratrack::DutyCycleMode::Budget);
+        vary(&|s| s.sending.burst = 4);
+        let headers: Vec<String> = variants.iter().map(policy_text).collect();
+        for (i, a) in headers.iter().enumerate() {
+            for b in &headers[i + 1..] {
+                assert_ne!(a, b, "{headers:#?}");
+            }
+        }
+        // The defaults read as the paper's station and drone.
+        let prediction = format!("{} prediction;", base.station.prediction.name());
+        assert!(headers[0].contains(&prediction), "{}", headers[0]);
+        assert!(headers[0].contains("; periodic sending,"), "{}", headers[0]);
     }
 }
