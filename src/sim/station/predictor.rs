@@ -189,7 +189,9 @@ impl<const N: usize, M: MotionModel<N> + Copy> StationPredictor<N, M> {
     /// periodic drone. Trusted from the packet on, the silence cost where the drift passes any
     /// threshold within one interval (up to 1.37× periodic's p75 with the same packets on the
     /// synthetic set, 2.0× on the real flight, where it cost from 5.7 s intervals on;
-    /// docs/beyond-the-paper.md, "When to send").
+    /// docs/beyond-the-paper.md, "When to send"). Under the budget rule the drone may have had
+    /// credit to send sooner; the station does not track that credit and waits the nominal
+    /// interval either way, since trusting the silence sooner is what cost the real flight.
     fn silence_is_news(&self, age: f64) -> bool {
         self.setup.error_triggered && self.silence_trusted && age > self.setup.interval
     }
