@@ -216,6 +216,25 @@ pub fn stations_of(params: JsValue) -> Result<JsValue, JsValue> {
     })
 }
 
+/// `splitStations({model, workers})` → the stations `model` names, split into at most
+/// `workers` groups (names, each group in `stationsOf`'s order) whose slowest finishes soonest
+/// ([`split_stations`](crate::split_stations)): the page's worker pool gives group g to worker g.
+#[wasm_bindgen(js_name = splitStations)]
+pub fn split_stations(params: JsValue) -> Result<JsValue, JsValue> {
+    #[derive(serde::Deserialize)]
+    struct Params {
+        #[serde(default)]
+        model: crate::sim::ModelChoice,
+        workers: usize,
+    }
+    call(params, |p: Params| {
+        Ok(crate::split_stations(p.model.models(), p.workers)
+            .into_iter()
+            .map(|g| g.into_iter().map(|m| m.name()).collect::<Vec<_>>())
+            .collect::<Vec<_>>())
+    })
+}
+
 /// `poolDelivery({results})` → the network's totals (`packetsSent`, `packetsReceived`,
 /// `deliveryRatio`, `duplicates`, `gateways`) over `simulate` results run apart, as one run of
 /// all their stations reports them ([`Delivery::pooled`](crate::Delivery::pooled)): the page's

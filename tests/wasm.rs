@@ -547,6 +547,22 @@ fn limits_and_stations_come_from_the_core() {
         .unwrap();
     let names: Vec<String> = all.iter().filter_map(|v| v.as_string()).collect();
     assert_eq!(names, ["dr", "ctra-plus", "3d-ctra", "imm"]);
+    // The worker pool's groups: every station once, as the core splits them.
+    let groups: js_sys::Array =
+        wasm::split_stations(obj(&[("model", "all".into()), ("workers", 2.into())]))
+            .unwrap()
+            .dyn_into()
+            .unwrap();
+    let groups: Vec<Vec<String>> = groups
+        .iter()
+        .map(|g| {
+            let g: js_sys::Array = g.dyn_into().unwrap();
+            g.iter().filter_map(|v| v.as_string()).collect()
+        })
+        .collect();
+    assert_eq!(groups, [vec!["dr", "ctra-plus"], vec!["3d-ctra"]]);
+    let e = wasm::split_stations(obj(&[("model", "all".into())])).unwrap_err();
+    assert!(error_message(e).contains("workers"));
     let e = wasm::simulate(
         obj(&[("synthetic", 1.into()), ("spreadingFactor", 9.into())]),
         JsValue::UNDEFINED,

@@ -144,3 +144,10 @@ export function deliverySpread(results: ModelResult[]): DeliverySpread | null {
 export function stationsOf(model: SimulateParams['model']): ModelName[] {
   return wasm.stationsOf({ model }) as ModelName[];
 }
+
+/** The stations `model` names split into at most `workers` groups, each in `stationsOf`'s order,
+ * so that the group with the most work finishes soonest (the core's `split_stations`: stations
+ * that receive the same payload share its drone run). The same list always splits alike. */
+export function splitStations(model: SimulateParams['model'], workers: number): ModelName[][] {
+  return wasm.splitStations({ model, workers }) as ModelName[][];
+}

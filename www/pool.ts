@@ -5,7 +5,7 @@
 // their reports in the request's model order. Every station's numbers depend only on the
 // flight, the seed and its own settings (the link's random streams are derived per flight), so
 // the merged report equals what one worker (or the CLI) computes for all models at once.
-import { compiledModule, poolDelivery, stationsOf, type SimReport, type SwarmParams, type SwarmReport } from './loratrack';
+import { compiledModule, poolDelivery, splitStations, stationsOf, type SimReport, type SwarmParams, type SwarmReport } from './loratrack';
 import type { ModuleMessage, Request, Response, SimulateRequest, SweepResult } from './worker';
 
 /** A simulation worker (www/worker.ts), given the page's compiled module once it is ready;
@@ -127,8 +127,10 @@ export class SimulationPool {
     if (early) this.restart();
     // The core reads the model setting (the page has loaded the module before any run).
     const models: string[] = stationsOf(request.params.model);
-    // Station k always goes to worker k mod size, so each worker's caches keep serving it.
-    const groups = this.workers.map((_, w) => models.filter((_, k) => k % this.workers.length === w)).filter((g) => g.length > 0);
+    // Group g goes to worker g. The core splits the stations by their work (DR with CTRA+ and
+    // 3D-CTRA alone, not DR with 3D-CTRA: the whole set's runs wait less for the busier worker),
+    // and the same list always alike, so each worker's caches keep serving its stations.
+    const groups = splitStations(request.params.model, this.workers.length);
     const parts: Part[] = groups.map(() => ({ progress: 0 }));
     let failed = false;
     const forget = () => groups.forEach((_, k) => this.handlers.delete(request.id * 16 + k));

@@ -7,7 +7,9 @@ use super::pooled::{axis_every, series_stride, Pooled};
 use super::report::{Delivery, ModelResult, ModelSeries, RunConfig, Series, SimReport};
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::Schedule;
-use super::station::{Estimate, FlightChains, HeadingNoise, Prediction, StationModel, MAX_GRIDS};
+use super::station::{
+    station_work, Estimate, FlightChains, HeadingNoise, Prediction, StationModel, MAX_GRIDS,
+};
 use super::station_run::{FlightRun, StationPlan, StationRun};
 use super::streams::DroneStreams;
 use super::SimError;
@@ -660,9 +662,8 @@ fn fly_all(
         .flat_map(|g| (0..flights).map(move |i| (g, i)))
         .collect();
     let cost = |g: &[usize]| {
-        g.iter()
-            .map(|&r| runs[r].plan.model.relative_cost())
-            .sum::<u32>()
+        let stations: Vec<StationModel> = g.iter().map(|&r| runs[r].plan.model).collect();
+        station_work(&stations)
     };
     let flown = par_map_costliest_first(
         jobs.len(),

@@ -14,6 +14,13 @@ const TOTALS = { packetsSent: 7, packetsReceived: 5, deliveryRatio: 5 / 7, dupli
 vi.mock('../../www/loratrack', () => ({
   compiledModule: () => new Promise(() => {}),
   stationsOf: (model: string) => model.split(','),
+  // The core's split (its own tests: split_stations) stands in as the one it makes for the
+  // paper's three on two workers, and round robin otherwise.
+  splitStations: (model: string, workers: number) => {
+    if (model === 'dr,ctra-plus,3d-ctra' && workers === 2) return [['dr', 'ctra-plus'], ['3d-ctra']];
+    const stations = model.split(',');
+    return Array.from({ length: Math.min(workers, stations.length) }, (_, w) => stations.filter((_, k) => k % workers === w));
+  },
   poolDelivery: (results: unknown[]) => (core.pooled.push(results), TOTALS),
 }));
 class StandIn {
@@ -68,6 +75,19 @@ test('the mission plan is kept whichever worker ran the mission station', () => 
 });
 
 const request = (id: number, distance: number): SimulateRequest => ({ id, params: { model: 'dr,ctra-plus', distance } });
+
+test('each worker is sent the group of stations the core split for it, and the merged report keeps the request order', () => {
+  StandIn.all = [];
+  const pool = new SimulationPool(2);
+  const answers: Response[] = [];
+  pool.run({ id: 4, params: { model: 'dr,ctra-plus,3d-ctra', distance: 1000 } }, (r) => answers.push(r));
+  expect(StandIn.all.map((w) => w.sent.map((m) => m.params.model))).toEqual([['dr,ctra-plus'], ['3d-ctra']]);
+  // The lone 3D-CTRA answers first: the report waits for both.
+  StandIn.all[1].answer();
+  expect(answers).toEqual([]);
+  StandIn.all[0].answer();
+  expect(answers.map((r) => 'report' in r && r.report.results.map((m) => m.model))).toEqual([['dr', 'ctra-plus', '3d-ctra']]);
+});
 
 test('a run asked for with the settings of the run started early takes it over, answers so far included', () => {
   StandIn.all = [];

@@ -18,6 +18,7 @@ mod mission;
 mod prediction;
 mod predictor;
 mod station_model;
+mod workload;
 
 pub use calibration::{Calibration, CALIBRATION_GAIN};
 pub(crate) use chains::{FlightChains, MAX_GRIDS};
@@ -32,6 +33,7 @@ pub use mission::{MissionPlan, MissionStation, PlanPace, OFFSET_TIME, PACE_SIGMA
 pub use prediction::{Bounded, Bounds, Prediction};
 pub use predictor::{StationPredictor, StationSetup};
 pub use station_model::StationModel;
+pub use workload::{split_stations, station_work};
 
 use super::packet::Transmission;
 use crate::metrics::{bound_95, Consistency};

@@ -34,18 +34,6 @@ impl StationModel {
         }
     }
 
-    /// How costly the station's prediction is, relative to the others: its state's size; an
-    /// IMM runs every member and re-forecasts each at every packet, twice their sum. The
-    /// simulator starts the costliest first.
-    pub fn relative_cost(self) -> u32 {
-        let len = |m: ModelKind| m.state_len() as u32;
-        match self {
-            StationModel::Single(m) => len(m),
-            StationModel::Mission => len(ModelKind::Ctra3d) + 1,
-            StationModel::Imm => 2 * ModelKind::ALL.into_iter().map(len).sum::<u32>(),
-        }
-    }
-
     /// Payload bytes per packet (9, 11 or 12).
     pub fn payload_bytes(self) -> usize {
         self.sent_model().payload_bytes()
