@@ -5,6 +5,8 @@
 // - final results: until the results are the settings' own (no first flight standing in);
 // - all drawn: until nothing is being computed or drawn (`<body data-busy>` gone): every panel but
 //   the 3D view, which is drawn once it comes near the viewport (2.5 screens down at 1280×800);
+// - a setting change once all is drawn (the SF, to SF8): until its results, and until all is
+//   drawn again;
 // - the 3D view: from scrolling to it, after all the rest is drawn, until it is drawn;
 // - long tasks: main-thread tasks over 50 ms until then (count, longest, sum);
 // - each panel's drawing time (the page's `draw <panel>` performance measures, www/later.ts).
@@ -56,6 +58,28 @@ async function load(server) {
     ...window.__timing,
     draws: Object.fromEntries(performance.getEntriesByType('measure').filter((m) => m.name.startsWith('draw ')).map((m) => [m.name.slice(5), m.duration])),
   }));
+  // A setting changed once all is drawn, as a reader does next (the SF, to SF8; the drone runs
+  // stay cached): until the results are the new settings' own, and until all is drawn again.
+  const change = await page.evaluate(
+    () =>
+      new Promise((resolve) => {
+        const table = () => document.querySelector('#results-table tbody')?.innerHTML;
+        const before = table();
+        const start = performance.now();
+        let results;
+        const observer = new MutationObserver(() => {
+          const partial = document.querySelector('[data-panel="results"]').classList.contains('partial');
+          results ??= table() !== before && !partial ? performance.now() - start : undefined;
+          if (results === undefined || 'busy' in document.body.dataset) return;
+          observer.disconnect();
+          resolve({ results, idle: performance.now() - start });
+        });
+        observer.observe(document.body, { subtree: true, childList: true, attributes: true, characterData: true });
+        const sf = document.querySelector('#sf');
+        sf.value = '8';
+        for (const type of ['input', 'change']) sf.dispatchEvent(new Event(type, { bubbles: true }));
+      }),
+  );
   // The 3D view is drawn once it comes near the viewport: the time from scrolling to it until it is drawn.
   const view3d = await page.evaluate(
     () =>
@@ -74,7 +98,7 @@ async function load(server) {
       }),
   );
   await context.close();
-  return { ...run, view3d };
+  return { ...run, change, view3d };
 }
 
 // runs[b]: build b's loads; the builds take turns, in alternating order.
@@ -97,6 +121,8 @@ console.log(`| measure | ${heads} |\n|---|${builds.map(() => '---:|---:|').join(
 console.log(row('first results', (r) => r.first));
 console.log(row('final results', (r) => r.final));
 console.log(row('every panel drawn', (r) => r.idle));
+console.log(row('after SF → 8 once all is drawn: results', (r) => r.change.results));
+console.log(row('after SF → 8: every panel drawn again', (r) => r.change.idle));
 console.log(row('3D view drawn, from scrolling to it', (r) => r.view3d));
 console.log(row('long tasks (> 50 ms), count', (r) => r.long.length));
 console.log(row('longest task', (r) => Math.max(0, ...r.long)));
