@@ -8,7 +8,8 @@ use super::report::{Delivery, ModelResult, ModelSeries, RunConfig, Series, SimRe
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::Schedule;
 use super::station::{
-    station_work, Estimate, FlightChains, HeadingNoise, Prediction, StationModel, MAX_GRIDS,
+    drone_run_work, station_work, Estimate, FlightChains, HeadingNoise, Prediction, StationModel,
+    MAX_GRIDS,
 };
 use super::station_run::{FlightRun, StationPlan, StationRun};
 use super::streams::DroneStreams;
@@ -154,7 +155,7 @@ fn run_missing(
             seeds[k / n]
                 .1
                 .iter()
-                .map(|&m| missing[m].model.state_len() as u32)
+                .map(|&m| drone_run_work(missing[m].model))
                 .sum()
         },
         |k| {

@@ -33,6 +33,7 @@ pub use mission::{MissionPlan, MissionStation, PlanPace, OFFSET_TIME, PACE_SIGMA
 pub use prediction::{Bounded, Bounds, Prediction};
 pub use predictor::{StationPredictor, StationSetup};
 pub use station_model::StationModel;
+pub(crate) use workload::drone_run_work;
 pub use workload::{split_stations, station_work};
 
 use super::packet::Transmission;

@@ -13,7 +13,7 @@ use crate::models::ModelKind;
 /// payload, in milliseconds over the whole synthetic set in WebAssembly (Node 20, one thread,
 /// 2026-11-30: each station run with a new seed, less the same run again with its drone run
 /// cached; rounded, ±30 % between runs on this 2-core machine). Only the ratios matter.
-fn drone_run_work(kind: ModelKind) -> u32 {
+pub(crate) fn drone_run_work(kind: ModelKind) -> u32 {
     match kind {
         ModelKind::Dr => 70,
         ModelKind::CtraPlus => 130,
