@@ -22,8 +22,8 @@ pub(crate) fn drone_run_work(kind: ModelKind) -> u32 {
 }
 
 /// The work of a station's own prediction over the same set and measured alike, between the
-/// paper's station and the bounded one (the IMM's bounded members cost it twice its paper
-/// members: 610 against 340 ms).
+/// paper's station and the bounded one (the IMM's bounded members cost it nearly twice its
+/// paper members: 610 against 340 ms).
 fn prediction_work(station: StationModel) -> u32 {
     match station {
         StationModel::Single(ModelKind::Dr) => 65,
@@ -64,8 +64,8 @@ const SEARCHED_UP_TO: usize = 8;
 /// that ran a station before runs it again and its caches serve it.
 ///
 /// The paper's three on two workers go as DR with CTRA+ and 3D-CTRA alone (365 against 340),
-/// not DR with 3D-CTRA (475 against 230), which had the page's whole-set runs wait about a
-/// fifth longer for the busier worker.
+/// not DR with 3D-CTRA (475 against 230): on the page, every panel of the whole set was drawn
+/// again 1365 ms after an SF change instead of 1742 ms (docs/performance.md, 2026-11-30).
 ///
 /// ```
 /// use loratrack::{split_stations, ModelKind, StationModel};
@@ -100,8 +100,8 @@ fn members(stations: &[StationModel], labels: &[usize], g: usize) -> Vec<Station
         .collect()
 }
 
-/// The group of each station under a split's score: (most work in a group, work in all,
-/// groups), least first.
+/// A split's score, the least the best: the most work in a group, then the work in all, then
+/// the number of groups.
 fn score(stations: &[StationModel], labels: &[usize]) -> (u32, u32, usize) {
     let groups = group_count(labels);
     let work: Vec<u32> = (0..groups)
