@@ -68,7 +68,7 @@ const SEARCHED_UP_TO: usize = 8;
 /// again 1365 ms after an SF change instead of 1742 ms (docs/performance.md, 2026-11-30).
 ///
 /// ```
-/// use loratrack::{split_stations, ModelKind, StationModel};
+/// use loratrack::{split_stations, StationModel};
 /// let [dr, ctra_plus, ctra3d] = StationModel::PAPER;
 /// assert_eq!(split_stations(&StationModel::PAPER, 2), vec![vec![dr, ctra_plus], vec![ctra3d]]);
 /// assert_eq!(split_stations(&StationModel::PAPER, 1), vec![vec![dr, ctra_plus, ctra3d]]);
