@@ -25,7 +25,7 @@ thread_local! {
 ///   call;
 /// * out, `serde_json` then `JSON.parse`, so a statistic of an empty sample is `null` exactly as
 ///   in `--json` (a direct conversion would give `NaN`). The one exception is simulate's time
-///   series, whose numbers are all finite: they are converted directly ([`report_value`]).
+///   series, whose lists of numbers become `Float64Array`s ([`report_value`]).
 fn call<P: DeserializeOwned, R: Serialize>(
     params: JsValue,
     op: impl FnOnce(P) -> Result<R, ApiError>,
@@ -96,27 +96,105 @@ fn json_value<R: Serialize>(value: &R) -> Result<JsValue, JsValue> {
 }
 
 /// simulate's report: JSON text like every report, but its time series, most of its numbers
-/// (25 000 for one synthetic flight, 450 KB of text), go straight into JS arrays. Written and
-/// parsed as text they were half of a warm run of that flight (14 against 7 ms in Node; the
-/// float formatting's 128-bit products are library calls in WebAssembly). The values
-/// are the same f64s either way, and serde-wasm-bindgen's JSON-compatible mode writes `None` as
-/// `null` and maps as objects as `serde_json` does; a series holding a non-finite number, which
-/// JSON writes as `null`, goes the JSON way.
+/// (25 000 for one synthetic flight, 450 KB of text), go straight into `Float64Array`s
+/// ([`series_value`]).
 fn report_value(mut report: crate::sim::SimReport) -> Result<JsValue, JsValue> {
     let series = report.series.take();
     let value = json_value(&report)?;
     if let Some(series) = series {
-        let arrays = if series.is_finite() {
-            series
-                .serialize(&serde_wasm_bindgen::Serializer::json_compatible())
-                .map_err(|e| js_error(&e.to_string()))?
-        } else {
-            json_value(&series)?
-        };
-        js_sys::Reflect::set(&value, &JsValue::from_str("series"), &arrays)
-            .map_err(|_| js_error("could not build the result"))?;
+        set(&value, "series", series_value(&series)?)?;
     }
     Ok(value)
+}
+
+/// A series with each list of numbers copied into a `Float64Array`, the rest as JSON would give
+/// it (`serde-wasm-bindgen` in its JSON-compatible mode: `None` as `null`).
+///
+/// Why typed arrays: one copy of the numbers out of the module's memory, where a JS array is
+/// built number by number (a warm run of one synthetic flight with the paper's three stations:
+/// 8–10 ms with arrays, 5–6.5 ms with typed arrays, 1.5–2 ms without any series; Node); and a typed
+/// array crosses from the page's worker to the page as one block, where an array's numbers
+/// become one heap object each on the page's thread (a cold load's first report: a 12 ms
+/// message and a 17 ms garbage collection before the results could be shown, docs/performance.md).
+/// A number that is not finite stays what it is (JSON writes it `null`, as does
+/// `JSON.stringify` once the arrays are turned into plain ones).
+fn series_value(series: &crate::sim::Series) -> Result<JsValue, JsValue> {
+    // Destructured in full, so that a field added to either struct is placed here too.
+    let crate::sim::Series {
+        flight,
+        t,
+        x,
+        y,
+        z,
+        gateway,
+        gateways,
+        plan,
+        models,
+    } = series;
+    let out = JsValue::from(js_sys::Object::new());
+    set(&out, "flight", JsValue::from_str(flight))?;
+    for (key, numbers) in [("t", t), ("x", x), ("y", y), ("z", z)] {
+        set(&out, key, numbers_value(numbers))?;
+    }
+    set(&out, "gateway", plain_value(gateway)?)?;
+    set(&out, "gateways", plain_value(gateways)?)?;
+    if let Some(plan) = plan {
+        set(&out, "plan", plain_value(plan)?)?;
+    }
+    let list = js_sys::Array::new();
+    for m in models {
+        let crate::sim::ModelSeries {
+            model,
+            t,
+            error3d,
+            bound95,
+            x,
+            y,
+            z,
+            arrivals,
+            lost,
+            arrival_dr,
+            lost_dr,
+        } = m;
+        let one = JsValue::from(js_sys::Object::new());
+        set(&one, "model", JsValue::from_str(model.name()))?;
+        for (key, numbers) in [
+            ("t", t),
+            ("error3d", error3d),
+            ("bound95", bound95),
+            ("x", x),
+            ("y", y),
+            ("z", z),
+            ("arrivals", arrivals),
+            ("lost", lost),
+        ] {
+            set(&one, key, numbers_value(numbers))?;
+        }
+        set(&one, "arrivalDr", plain_value(arrival_dr)?)?;
+        set(&one, "lostDr", plain_value(lost_dr)?)?;
+        list.push(&one);
+    }
+    set(&out, "models", list.into())?;
+    Ok(out)
+}
+
+/// `numbers` as a `Float64Array` (a copy: the module's memory may move as it grows).
+fn numbers_value(numbers: &[f64]) -> JsValue {
+    js_sys::Float64Array::from(numbers).into()
+}
+
+/// A small value as JSON would give it.
+fn plain_value<T: Serialize + ?Sized>(value: &T) -> Result<JsValue, JsValue> {
+    value
+        .serialize(&serde_wasm_bindgen::Serializer::json_compatible())
+        .map_err(|e| js_error(&e.to_string()))
+}
+
+/// Sets `object[key] = value`.
+fn set(object: &JsValue, key: &str, value: JsValue) -> Result<(), JsValue> {
+    js_sys::Reflect::set(object, &JsValue::from_str(key), &value)
+        .map(|_| ())
+        .map_err(|_| js_error("could not build the result"))
 }
 
 /// `linkBudget({bw?, txPower?, pathLossExponent?, shadowing?, gatewayHeight?, distances?})`

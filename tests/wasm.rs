@@ -754,3 +754,62 @@ fn the_delivery_spread_of_results_run_apart_is_the_one_the_core_finds_in_one_run
     let e = wasm::delivery_spread(obj(&[("results", js_sys::Array::of1(&odd).into())]));
     assert!(e.is_err());
 }
+
+#[wasm_bindgen_test]
+fn the_series_arrive_as_float64_arrays_holding_the_cores_numbers() {
+    let settings = serde_json::json!({"synthetic": 2, "model": "dr,3d-ctra", "series": true});
+    let r = wasm::simulate(
+        js_sys::JSON::parse(&settings.to_string()).unwrap(),
+        JsValue::UNDEFINED,
+    )
+    .unwrap();
+    let scenario: loratrack::Scenario = serde_json::from_value(settings).unwrap();
+    let core = loratrack::api::simulate(&mut loratrack::Simulator::new(), &scenario)
+        .unwrap()
+        .series
+        .unwrap();
+    let numbers = |v: &JsValue, key: &str| {
+        get(v, key)
+            .dyn_into::<js_sys::Float64Array>()
+            .unwrap_or_else(|_| panic!("{key} is not a Float64Array"))
+            .to_vec()
+    };
+    let series = get(&r, "series");
+    assert_eq!(get(&series, "flight").as_string(), Some(core.flight));
+    assert_eq!(
+        [
+            numbers(&series, "t"),
+            numbers(&series, "x"),
+            numbers(&series, "y"),
+            numbers(&series, "z")
+        ],
+        [core.t, core.x, core.y, core.z]
+    );
+    let models = js_sys::Array::from(&get(&series, "models"));
+    assert_eq!(models.length() as usize, core.models.len());
+    for (m, c) in models.iter().zip(&core.models) {
+        assert_eq!(
+            get(&m, "model").as_string().as_deref(),
+            Some(c.model.name())
+        );
+        for (key, expected) in [
+            ("t", &c.t),
+            ("error3d", &c.error3d),
+            ("bound95", &c.bound95),
+            ("x", &c.x),
+            ("y", &c.y),
+            ("z", &c.z),
+            ("arrivals", &c.arrivals),
+            ("lost", &c.lost),
+        ] {
+            assert_eq!(&numbers(&m, key), expected, "{key}");
+        }
+        // The data rates, which may be null, stay a plain array.
+        let rates = get(&m, "arrivalDr");
+        assert!(js_sys::Array::is_array(&rates));
+        assert_eq!(
+            js_sys::Array::from(&rates).length() as usize,
+            c.arrival_dr.len()
+        );
+    }
+}

@@ -129,19 +129,35 @@ function renderPartial(r: SimReport, made: Settings): void {
 
 /** What the error chart on show was drawn from: a whole set's report draws the chart its first
  * flight already drew (the series is always the first flight's), so that second draw is skipped. */
-let errorChartDrawn: { key: string; chart: Element } | undefined;
+let errorChartDrawn: { key: string; series: SimReport['series']; chart: Element } | undefined;
 
 function drawErrorChart(r: SimReport, made: Settings): void {
   later('error', async () => {
     const { errorOverTimeChart } = await plots();
     const width = chartWidth('error');
-    const key = JSON.stringify([width, chartFont(), made, r.config.adr, r.series]);
+    const key = JSON.stringify([width, chartFont(), made, r.config.adr]);
     const onShow = $('#chart-error').firstElementChild;
-    if (errorChartDrawn?.key === key && onShow === errorChartDrawn.chart) return;
+    if (errorChartDrawn?.key === key && onShow === errorChartDrawn.chart && sameData(errorChartDrawn.series, r.series)) return;
     const chart = errorOverTimeChart(r, width);
     place('error', chart, made);
-    errorChartDrawn = { key, chart };
+    errorChartDrawn = { key, series: r.series, chart };
   });
+}
+
+/** Whether `a` and `b` hold the same data: plain values, arrays and objects compared in depth, and
+ * the series' Float64Arrays number by number (JSON.stringify would write each as an object keyed
+ * by index). */
+function sameData(a: unknown, b: unknown): boolean {
+  if (a === b) return true;
+  if (typeof a !== 'object' || typeof b !== 'object' || a === null || b === null) return false;
+  if (ArrayBuffer.isView(a) || ArrayBuffer.isView(b) || Array.isArray(a) || Array.isArray(b)) {
+    const [xs, ys] = [a as ArrayLike<unknown>, b as ArrayLike<unknown>];
+    if (Array.isArray(a) !== Array.isArray(b) || xs.length !== ys.length) return false;
+    for (let i = 0; i < xs.length; i++) if (!sameData(xs[i], ys[i])) return false;
+    return true;
+  }
+  const keys = Object.keys(a);
+  return keys.length === Object.keys(b).length && keys.every((k) => sameData((a as Record<string, unknown>)[k], (b as Record<string, unknown>)[k]));
 }
 
 /** The results on show belong to other settings (or to none yet). */

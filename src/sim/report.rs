@@ -250,7 +250,8 @@ pub struct ModelResult {
     pub model_probability: Option<BTreeMap<&'static str, f64>>,
 }
 
-/// One model's time series over the first flight (for plots).
+/// One model's time series over the first flight (for plots). In JavaScript every list of
+/// numbers here is a `Float64Array` (`src/wasm.rs`); in the CLI's JSON, an array.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
@@ -259,21 +260,29 @@ pub struct ModelSeries {
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "ModelName"))]
     pub model: StationModel,
     /// Evaluation times, s.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub t: Vec<f64>,
     /// 3D error at each time, m.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub error3d: Vec<f64>,
     /// The station's own 95 % bound on that error at each time (the longest semi-axis of its
     /// 95 % position ellipsoid), m.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub bound95: Vec<f64>,
     /// Estimated x, y, z at each time, m.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub x: Vec<f64>,
     /// See `x`.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub y: Vec<f64>,
     /// See `x`.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub z: Vec<f64>,
     /// Arrival times of received packets, s.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub arrivals: Vec<f64>,
     /// Send times of lost packets, s.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub lost: Vec<f64>,
     /// The EU868 data rate of each received packet (`null` for an SF/bandwidth that is none).
     pub arrival_dr: Vec<Option<u8>>,
@@ -300,7 +309,8 @@ pub struct DataRateUse {
     pub time_on_air: f64,
 }
 
-/// Ground truth and every model's estimates over the first flight.
+/// Ground truth and every model's estimates over the first flight. In JavaScript `t`, `x`, `y`
+/// and `z` (and each model's series) are `Float64Array`s; in the CLI's JSON, arrays.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
@@ -308,12 +318,16 @@ pub struct Series {
     /// The flight.
     pub flight: String,
     /// Truth sample times, s (decimated to at most a few thousand points).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub t: Vec<f64>,
     /// True x, m.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub x: Vec<f64>,
     /// True y, m.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub y: Vec<f64>,
     /// True z, m.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub z: Vec<f64>,
     /// The first gateway's position x, y, z, m (the flight's frame).
     pub gateway: [f64; 3],
@@ -326,49 +340,6 @@ pub struct Series {
     pub plan: Option<Vec<[f64; 3]>>,
     /// Per model.
     pub models: Vec<ModelSeries>,
-}
-
-impl Series {
-    /// Whether every number in the series is finite, so that it reads the same in JSON (which
-    /// writes a non-finite number as `null`) and in any other encoding. The WebAssembly binding
-    /// checks this before it hands the series over as JS arrays (`src/wasm.rs`).
-    pub fn is_finite(&self) -> bool {
-        // Destructured in full, so a field added to either struct must be considered here.
-        let Series {
-            flight: _,
-            t,
-            x,
-            y,
-            z,
-            gateway,
-            gateways,
-            plan,
-            models,
-        } = self;
-        let finite = |v: &[f64]| v.iter().all(|n| n.is_finite());
-        [t, x, y, z].iter().all(|v| finite(v))
-            && finite(gateway)
-            && finite(gateways.as_flattened())
-            && plan.as_ref().is_none_or(|p| finite(p.as_flattened()))
-            && models.iter().all(|m| {
-                let ModelSeries {
-                    model: _,
-                    t,
-                    error3d,
-                    bound95,
-                    x,
-                    y,
-                    z,
-                    arrivals,
-                    lost,
-                    arrival_dr: _,
-                    lost_dr: _,
-                } = m;
-                [t, error3d, bound95, x, y, z, arrivals, lost]
-                    .iter()
-                    .all(|v| finite(v))
-            })
-    }
 }
 
 /// The output of `simulate`.
@@ -386,33 +357,4 @@ pub struct SimReport {
     /// Time series of the first flight, when asked for.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub series: Option<Series>,
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::sim::Simulator;
-
-    fn series_of(changes: serde_json::Value) -> Series {
-        let s = Scenario::default().with(&changes).unwrap();
-        crate::api::simulate(&mut Simulator::new(), &s)
-            .unwrap()
-            .series
-            .unwrap()
-    }
-
-    #[test]
-    fn a_series_with_a_non_finite_number_anywhere_is_not_finite() {
-        let series = series_of(serde_json::json!({"synthetic": 1, "series": true}));
-        assert!(series.is_finite());
-        let mut lost_bound = series.clone();
-        lost_bound.models[2].bound95[7] = f64::NAN;
-        assert!(!lost_bound.is_finite());
-        let mut far_gateway = series.clone();
-        far_gateway.gateways[0][1] = f64::INFINITY;
-        assert!(!far_gateway.is_finite());
-        let mut bad_plan = series;
-        bad_plan.plan = Some(vec![[0.0, f64::NEG_INFINITY, 10.0]]);
-        assert!(!bad_plan.is_finite());
-    }
 }

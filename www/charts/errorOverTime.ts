@@ -13,15 +13,16 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
     note.textContent = `No packet arrives at this distance on ${report.series?.flight ?? 'this flight'}: the station never has an estimate, so there is no error to plot. Move the gateway closer or raise the spreading factor.`;
     return note;
   }
-  const lines = models.flatMap((m) => m.t.map((t, i) => ({ t, e: m.error3d[i], model: MODEL_LABELS[m.model] })));
+  // The series are Float64Arrays: rows for the marks come from Array.from, since a typed array's
+  // own map can only return numbers.
+  const lines = models.flatMap((m) => Array.from(m.t, (t, i) => ({ t, e: m.error3d[i], model: MODEL_LABELS[m.model] })));
   const rate = (dr: number | null | undefined) => (dr === null || dr === undefined ? '' : ` at DR${dr}`);
-  const arrivals = models.flatMap((m) => m.arrivals.map((t, i) => ({ t, model: MODEL_LABELS[m.model], dr: rate(m.arrivalDr?.[i]) })));
-  const lost = models.flatMap((m) => m.lost.map((t, i) => ({ t, model: MODEL_LABELS[m.model], dr: rate(m.lostDr?.[i]) })));
+  const arrivals = models.flatMap((m) => Array.from(m.arrivals, (t, i) => ({ t, model: MODEL_LABELS[m.model], dr: rate(m.arrivalDr?.[i]) })));
+  const lost = models.flatMap((m) => Array.from(m.lost, (t, i) => ({ t, model: MODEL_LABELS[m.model], dr: rate(m.lostDr?.[i]) })));
   // With ADR, label each change of data rate above the axis.
   const changes = rateLabels(
     models.flatMap((m) =>
-      m.arrivals
-        .map((t, i) => ({ t, dr: m.arrivalDr?.[i], before: i > 0 ? m.arrivalDr?.[i - 1] : undefined, model: MODEL_LABELS[m.model] }))
+      Array.from(m.arrivals, (t, i) => ({ t, dr: m.arrivalDr?.[i], before: i > 0 ? m.arrivalDr?.[i - 1] : undefined, model: MODEL_LABELS[m.model] }))
         .filter((d) => report.config.adr !== 'off' && d.dr !== d.before && d.dr !== null && d.dr !== undefined)
         .map((d) => ({ t: d.t, model: d.model, label: `DR${d.dr}` })),
     ),
@@ -31,7 +32,7 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
   );
   const labels = models.map((m) => MODEL_LABELS[m.model]);
   // The station's own 95 % bound on its error, as a faint band under each model's line.
-  const bounds = models.flatMap((m) => m.t.map((t, i) => ({ t, b: m.bound95[i], model: MODEL_LABELS[m.model] })));
+  const bounds = models.flatMap((m) => Array.from(m.t, (t, i) => ({ t, b: m.bound95[i], model: MODEL_LABELS[m.model] })));
   const scale = errorScale(models.map((m) => m.error3d), models.map((m) => m.bound95));
   const offScale = scale.boundTop > scale.top ? [`95 % bound up to ${scale.boundTop.toFixed(0)} m ↑`] : [];
   const key = `● packet arrived · ✕ packet lost · dashed band: the station's own 95 % bound on its error${changes.length ? " · DRn: the data rate from that packet on (grey: every station's drone)" : ''}.`;
@@ -111,15 +112,15 @@ function rateMarks(labels: RateLabel[]): Plot.Markish[] {
  * by the bound would flatten the error lines: the top holds the bound to twice the largest error,
  * and above it the band runs off the chart. Without any error the bound sets it.
  */
-export function errorScale(errors: number[][], bounds: number[][]): { top: number; boundTop: number } {
+export function errorScale(errors: ArrayLike<number>[], bounds: ArrayLike<number>[]): { top: number; boundTop: number } {
   const errorTop = largest(errors);
   const boundTop = largest(bounds);
   return { top: errorTop > 0 ? Math.max(errorTop, Math.min(boundTop, 2 * errorTop)) : boundTop, boundTop };
 }
 
 /** The largest finite number in `series`, or 0. */
-function largest(series: number[][]): number {
+function largest(series: ArrayLike<number>[]): number {
   let top = 0;
-  for (const xs of series) for (const x of xs) if (Number.isFinite(x) && x > top) top = x;
+  for (const xs of series) for (let i = 0; i < xs.length; i++) if (Number.isFinite(xs[i]) && xs[i] > top) top = xs[i];
   return top;
 }

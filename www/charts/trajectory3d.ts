@@ -95,11 +95,13 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
 
   /** Adds a track as a line 2 CSS px wide (WebGL draws its own lines 1 device pixel wide: a hairline
    * on a high-density screen, a projector or a slide's PNG); a plan 5 px wide in `dash` m dashes. */
-  const addLine = (xs: number[], ys: number[], zs: number[], color: string, centre: THREE.Vector3, dash?: number): void => {
+  const addLine = (xs: ArrayLike<number>, ys: ArrayLike<number>, zs: ArrayLike<number>, color: string, centre: THREE.Vector3, dash?: number): void => {
     // A station that never received a packet has no track (and Line2 needs a segment).
     if (xs.length < 2) return;
     const geometry = new LineGeometry();
-    geometry.setPositions(xs.flatMap((x, i) => [x - centre.x, ys[i] - centre.y, zs[i] - centre.z]));
+    const positions = new Float32Array(xs.length * 3);
+    for (let i = 0; i < xs.length; i++) positions.set([xs[i] - centre.x, ys[i] - centre.y, zs[i] - centre.z], 3 * i);
+    geometry.setPositions(positions);
     // The plan is wider, so that where the drone keeps to it its dashes still show beside the tracks on it.
     const material = new LineMaterial({ color, linewidth: dash === undefined ? 2 : 5, dashed: dash !== undefined, dashSize: dash ?? 1, gapSize: (dash ?? 1) * 0.7 });
     // Line widths are in CSS pixels of this size, at any pixel ratio (a snapshot's too).
@@ -151,7 +153,7 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
         drawn.geometry?.dispose();
         for (const material of [drawn.material ?? []].flat()) material.dispose();
       }
-      const box = new THREE.Box3().setFromPoints(s.x.map((x, i) => new THREE.Vector3(x, s.y[i], s.z[i])));
+      const box = new THREE.Box3().setFromPoints(Array.from(s.x, (x, i) => new THREE.Vector3(x, s.y[i], s.z[i])));
       const centre = box.getCenter(new THREE.Vector3());
       const size = box.getSize(new THREE.Vector3()).length() || 10;
       addLine(s.x, s.y, s.z, TRUTH_COLOR, centre);

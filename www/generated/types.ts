@@ -655,36 +655,36 @@ model: ModelName,
 /**
  * Evaluation times, s.
  */
-t: Array<number>, 
+t: Float64Array, 
 /**
  * 3D error at each time, m.
  */
-error3d: Array<number>, 
+error3d: Float64Array, 
 /**
  * The station's own 95 % bound on that error at each time (the longest semi-axis of its
  * 95 % position ellipsoid), m.
  */
-bound95: Array<number>, 
+bound95: Float64Array, 
 /**
  * Estimated x, y, z at each time, m.
  */
-x: Array<number>, 
+x: Float64Array, 
 /**
  * See `x`.
  */
-y: Array<number>, 
+y: Float64Array, 
 /**
  * See `x`.
  */
-z: Array<number>, 
+z: Float64Array, 
 /**
  * Arrival times of received packets, s.
  */
-arrivals: Array<number>, 
+arrivals: Float64Array, 
 /**
  * Send times of lost packets, s.
  */
-lost: Array<number>, 
+lost: Float64Array, 
 /**
  * The EU868 data rate of each received packet (`null` for an SF/bandwidth that is none).
  */
@@ -702,19 +702,19 @@ flight: string,
 /**
  * Truth sample times, s (decimated to at most a few thousand points).
  */
-t: Array<number>, 
+t: Float64Array, 
 /**
  * True x, m.
  */
-x: Array<number>, 
+x: Float64Array, 
 /**
  * True y, m.
  */
-y: Array<number>, 
+y: Float64Array, 
 /**
  * True z, m.
  */
-z: Array<number>, 
+z: Float64Array, 
 /**
  * The first gateway's position x, y, z, m (the flight's frame).
  */
