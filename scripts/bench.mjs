@@ -34,6 +34,8 @@ for (const [model, n] of [['dr', 6], ['ctra-plus', 8], ['3d-ctra', 9]]) {
 add('simulate one flight (~90 s), 3 models, cold', time(() => pkg.benchSimulateCold({ synthetic: 1 }), { rounds: 9 }), 'target ≤ 30 ms');
 pkg.simulate({ synthetic: 1 });
 add('simulate one flight, link change (cached drone)', time(() => pkg.simulate({ synthetic: 1, distance: 2000 + Math.random() })), 'what a slider drag costs');
+// As the page asks: with the plotted series, which cross to JS as Float64Arrays (src/wasm.rs).
+add('simulate one flight, link change, with its series', time(() => pkg.simulate({ synthetic: 1, series: true, distance: 2000 + Math.random() })), 'what the page pays per run');
 add('simulate whole set (44 min), 3 models, cold', time(() => pkg.benchSimulateCold({ synthetic: 'all' }), { rounds: 3 }), 'target ≤ 2× native');
 pkg.simulate({ synthetic: 'all' });
 add('simulate whole set, link change (cached drone)', time(() => pkg.simulate({ synthetic: 'all', distance: 2000 + Math.random() }), { rounds: 5 }), 'target ≤ 100 ms');
