@@ -114,8 +114,9 @@ fn report_value(mut report: crate::sim::SimReport) -> Result<JsValue, JsValue> {
 /// built number by number (a warm run of one synthetic flight with the paper's three stations:
 /// 8–10 ms with arrays, 5–6.5 ms with typed arrays, 1.5–2 ms without any series; Node); and a typed
 /// array crosses from the page's worker to the page as one block, where an array's numbers
-/// become one heap object each on the page's thread (a cold load's first report: a 12 ms
-/// message and a 17 ms garbage collection before the results could be shown, docs/performance.md).
+/// become one heap object each on the page's thread (a cold load's first report: a task of
+/// 48–56 ms with 9–20 ms of garbage collection before the results could be shown, 18–22 ms as
+/// typed arrays; docs/performance.md).
 /// A number that is not finite stays what it is (JSON writes it `null`, as does
 /// `JSON.stringify` once the arrays are turned into plain ones).
 fn series_value(series: &crate::sim::Series) -> Result<JsValue, JsValue> {

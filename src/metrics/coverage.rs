@@ -122,7 +122,8 @@ pub fn bound_95(p: &Matrix3<f64>) -> f64 {
 /// (P − qI)/s scaled to unit spread, the eigenvalues are q + 2s cos(acos(det B / 2)/3 + 2πk/3),
 /// the largest at k = 0. An iterative solver (nalgebra's) took its many square roots from libm,
 /// in software in WebAssembly: most of a warm run's time once the page asks for the series.
-/// Agrees with it to 1e-12 relative (tested; 2e-15 at worst over 2000 covariances). NaN for a matrix that is not finite.
+/// Agrees with it to 1e-12 relative (tested; 2e-15 at worst over 2000 covariances). NaN for a
+/// matrix that is not finite.
 fn largest_eigenvalue(p: &Matrix3<f64>) -> f64 {
     if !p.iter().all(|v| v.is_finite()) {
         return f64::NAN;
