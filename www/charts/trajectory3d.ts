@@ -100,7 +100,11 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
     if (xs.length < 2) return;
     const geometry = new LineGeometry();
     const positions = new Float32Array(xs.length * 3);
-    for (let i = 0; i < xs.length; i++) positions.set([xs[i] - centre.x, ys[i] - centre.y, zs[i] - centre.z], 3 * i);
+    for (let i = 0; i < xs.length; i++) {
+      positions[3 * i] = xs[i] - centre.x;
+      positions[3 * i + 1] = ys[i] - centre.y;
+      positions[3 * i + 2] = zs[i] - centre.z;
+    }
     geometry.setPositions(positions);
     // The plan is wider, so that where the drone keeps to it its dashes still show beside the tracks on it.
     const material = new LineMaterial({ color, linewidth: dash === undefined ? 2 : 5, dashed: dash !== undefined, dashSize: dash ?? 1, gapSize: (dash ?? 1) * 0.7 });
