@@ -80,11 +80,7 @@ fn error_naming(message: &str, setting: Option<&str>) -> JsValue {
     let error = js_sys::Error::new(message);
     if let Some(key) = setting {
         // Defining a property on a fresh Error cannot fail.
-        let _ = js_sys::Reflect::set(
-            &error,
-            &JsValue::from_str("setting"),
-            &JsValue::from_str(key),
-        );
+        let _ = set(&error, "setting", JsValue::from_str(key));
     }
     error.into()
 }
@@ -112,7 +108,8 @@ fn report_value(mut report: crate::sim::SimReport) -> Result<JsValue, JsValue> {
 ///
 /// Why typed arrays: one copy of the numbers out of the module's memory, where a JS array is
 /// built number by number (a warm run of one synthetic flight with the paper's three stations:
-/// 8–10 ms with arrays, 5–6.5 ms with typed arrays, 1.5–2 ms without any series; Node); and a typed
+/// 8–10 ms with arrays, 5–6.5 ms with typed arrays, 1.5–2 ms without any series; Node; 2–3 ms
+/// since the station's bound stopped taking libm's software square roots); and a typed
 /// array crosses from the page's worker to the page as one block, where an array's numbers
 /// become one heap object each on the page's thread (a cold load's first report: a task of
 /// 48–56 ms with 9–20 ms of garbage collection before the results could be shown, 18–22 ms as
@@ -134,9 +131,7 @@ fn series_value(series: &crate::sim::Series) -> Result<JsValue, JsValue> {
     } = series;
     let out = JsValue::from(js_sys::Object::new());
     set(&out, "flight", JsValue::from_str(flight))?;
-    for (key, numbers) in [("t", t), ("x", x), ("y", y), ("z", z)] {
-        set(&out, key, numbers_value(numbers))?;
-    }
+    set_numbers(&out, [("t", t), ("x", x), ("y", y), ("z", z)])?;
     set(&out, "gateway", plain_value(gateway)?)?;
     set(&out, "gateways", plain_value(gateways)?)?;
     if let Some(plan) = plan {
@@ -159,18 +154,19 @@ fn series_value(series: &crate::sim::Series) -> Result<JsValue, JsValue> {
         } = m;
         let one = JsValue::from(js_sys::Object::new());
         set(&one, "model", JsValue::from_str(model.name()))?;
-        for (key, numbers) in [
-            ("t", t),
-            ("error3d", error3d),
-            ("bound95", bound95),
-            ("x", x),
-            ("y", y),
-            ("z", z),
-            ("arrivals", arrivals),
-            ("lost", lost),
-        ] {
-            set(&one, key, numbers_value(numbers))?;
-        }
+        set_numbers(
+            &one,
+            [
+                ("t", t),
+                ("error3d", error3d),
+                ("bound95", bound95),
+                ("x", x),
+                ("y", y),
+                ("z", z),
+                ("arrivals", arrivals),
+                ("lost", lost),
+            ],
+        )?;
         set(&one, "arrivalDr", plain_value(arrival_dr)?)?;
         set(&one, "lostDr", plain_value(lost_dr)?)?;
         list.push(&one);
@@ -179,9 +175,16 @@ fn series_value(series: &crate::sim::Series) -> Result<JsValue, JsValue> {
     Ok(out)
 }
 
-/// `numbers` as a `Float64Array` (a copy: the module's memory may move as it grows).
-fn numbers_value(numbers: &[f64]) -> JsValue {
-    js_sys::Float64Array::from(numbers).into()
+/// Sets each `object[key]` to its list of numbers as a `Float64Array` (a copy: the module's
+/// memory may move as it grows).
+fn set_numbers<const N: usize>(
+    object: &JsValue,
+    lists: [(&str, &Vec<f64>); N],
+) -> Result<(), JsValue> {
+    for (key, numbers) in lists {
+        set(object, key, js_sys::Float64Array::from(&numbers[..]).into())?;
+    }
+    Ok(())
 }
 
 /// A small value as JSON would give it.
