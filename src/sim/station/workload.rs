@@ -80,8 +80,13 @@ pub fn split_stations(stations: &[StationModel], workers: usize) -> Vec<Vec<Stat
     } else {
         greedy(stations, workers)
     };
-    (0..group_count(&labels))
-        .map(|g| members(stations, &labels, g))
+    groups(stations, &labels)
+}
+
+/// The groups `labels` name, each its stations in `stations`' order.
+fn groups(stations: &[StationModel], labels: &[usize]) -> Vec<Vec<StationModel>> {
+    (0..group_count(labels))
+        .map(|g| members(stations, labels, g))
         .collect()
 }
 
@@ -103,12 +108,12 @@ fn members(stations: &[StationModel], labels: &[usize], g: usize) -> Vec<Station
 /// A split's score, the least the best: the most work in a group, then the work in all, then
 /// the number of groups.
 fn score(stations: &[StationModel], labels: &[usize]) -> (u32, u32, usize) {
-    let groups = group_count(labels);
-    let work: Vec<u32> = (0..groups)
-        .map(|g| station_work(&members(stations, labels, g)))
+    let work: Vec<u32> = groups(stations, labels)
+        .iter()
+        .map(|g| station_work(g))
         .collect();
     let most = work.iter().copied().max().unwrap_or(0);
-    (most, work.iter().sum(), groups)
+    (most, work.iter().sum(), work.len())
 }
 
 /// A split's score ([`score`]) and the group of each station.
@@ -238,10 +243,7 @@ mod tests {
             for workers in 2..=4 {
                 let stations = &ALL[..n];
                 let best = most_work(&split_stations(stations, workers));
-                let labels = greedy(stations, workers);
-                let greedy_split: Vec<Vec<StationModel>> = (0..group_count(&labels))
-                    .map(|g| members(stations, &labels, g))
-                    .collect();
+                let greedy_split = groups(stations, &greedy(stations, workers));
                 assert!(best <= most_work(&greedy_split));
                 let round_robin: Vec<Vec<StationModel>> = (0..workers.min(n))
                     .map(|w| (w..n).step_by(workers).map(|i| stations[i]).collect())
