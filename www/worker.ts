@@ -46,6 +46,21 @@ export type Response =
 /** CSV texts above this size are read first with their own progress. */
 const LARGE_CSV_BYTES = 1 << 20;
 
+let icuWarmed = false;
+/**
+ * Builds the page's first `Intl.NumberFormat`, once, here instead of on the main thread. Plot's
+ * chunk builds one when it is evaluated (its default tick format), and the first in a page loads
+ * ICU's number data: 20–33 ms of a cold load's main thread, most of that chunk's evaluating task.
+ * ICU keeps that data for the whole renderer process, so built once in a worker it costs the main
+ * thread 0.3 ms. Done just after the first report (or the whole set's first flight) is posted,
+ * while the page handles it and before it asks for the charts' code (docs/performance.md).
+ */
+function warmNumberFormat(): void {
+  if (icuWarmed) return;
+  icuWarmed = true;
+  new Intl.NumberFormat('en-US').format(1.5);
+}
+
 let give: (module: WebAssembly.Module) => void;
 const ready = load(new Promise((resolve) => (give = resolve)));
 
@@ -70,10 +85,14 @@ self.onmessage = async (event: MessageEvent<Request | ModuleMessage>) => {
     const large = (params.trajectory?.length ?? 0) > LARGE_CSV_BYTES;
     // The whole set takes 30 flights' time; its first flight alone, about a thirtieth of it, gives
     // the page numbers to show (marked as one flight) while the rest runs.
-    if (params.synthetic === 'all') post({ id, partial: simulate({ ...params, synthetic: 1, series: true }) });
+    if (params.synthetic === 'all') {
+      post({ id, partial: simulate({ ...params, synthetic: 1, series: true }) });
+      warmNumberFormat();
+    }
     if (large && params.trajectory) loadCsv({ trajectory: params.trajectory, trajectoryName: params.trajectoryName }, report_(0, 0.5));
     const report = simulate({ ...params, series: true }, large ? report_(0.5, 0.5) : report_(0, 1));
     post({ id, report, millis: performance.now() - t0 });
+    warmNumberFormat();
     if (points?.length) {
       // Only the link changes between these runs: the drone filters come from the cache. One
       // seed each (the charts show the spread across the sweep, not across seeds). A distance
