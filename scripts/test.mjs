@@ -11,6 +11,9 @@
 //   which mostly wait on one core, Node or Chromium; its output goes to test-results/fuzz.log and is
 //   summarised at the end. Like the Rust suites it is skipped when nothing it reads changed since
 //   it last passed here, so a change to the page alone does not share the cores with a fuzz build.
+// - The type check and the TypeScript unit tests run beside the WebAssembly tests, whose build
+//   ends in one long single-threaded link (LTO): they need the package the production build has
+//   just generated, and nothing else from the suites around them.
 import { spawn, spawnSync } from 'node:child_process';
 import { createHash } from 'node:crypto';
 import { closeSync, existsSync, mkdirSync, openSync, readFileSync, readdirSync, statSync, writeFileSync } from 'node:fs';
@@ -57,16 +60,21 @@ const suites = [
   ],
   ['build (wasm + page)', [['npm', ['run', 'build']]]],
   ['clippy + wasm-bindgen-test (Node)', [['cargo', ['test', '--release', ...WASM, '--test', 'wasm']]], RUST_INPUTS],
-  ['type check', [['npm', ['run', 'typecheck']]]],
-  ['TypeScript unit tests (vitest)', [['npm', ['run', 'test:unit']]]],
   ['end-to-end (headless Chromium)', [['npm', ['run', 'test:e2e']]]],
 ];
 /**
- * Started in the background just before this suite, once the native build has had both cores:
- * what follows links with LTO on one core and waits on Node and Chromium. Waited for at the end.
+ * Suites started in the background just before the suite they are keyed by, their output written
+ * to test-results/<log>, and waited for at the end: [name, command, arguments, log, inputs].
+ * Fuzzing starts once the native build has had both cores: what follows links with LTO on one
+ * core and waits on Node and Chromium.
  */
-const BESIDE = 'build (wasm + page)';
-const FUZZ = ['fuzz (nightly, 20 s per target)', 'node', ['scripts/fuzz.mjs', '20']];
+const BESIDE = {
+  'build (wasm + page)': [['fuzz (nightly, 20 s per target)', 'node', ['scripts/fuzz.mjs', '20'], 'fuzz.log', FUZZ_INPUTS]],
+  'clippy + wasm-bindgen-test (Node)': [
+    ['type check', 'npm', ['run', 'typecheck'], 'typecheck.log'],
+    ['TypeScript unit tests (vitest)', 'npm', ['run', 'test:unit'], 'vitest.log'],
+  ],
+};
 
 /** A digest of the files under `paths` (and of the toolchain), or null when `paths` is not given. */
 function digest(paths) {
@@ -114,27 +122,28 @@ function runSuite(commands) {
 }
 
 /**
- * Runs the fuzz suite with its output written straight to a log file; resolves to its result. The
- * suites in front run with spawnSync, which blocks this process: output piped through it would
- * fill the pipe and stall the fuzzer until they end.
+ * Runs a suite in the background with its output written straight to test-results/`log`;
+ * resolves to its result. The suites in front run with spawnSync, which blocks this process:
+ * output piped through it would fill the pipe and stall the suite until they end.
  */
-function fuzzInBackground() {
-  const [name, cmd, args] = FUZZ;
-  const before = digest(FUZZ_INPUTS);
+function inBackground([name, cmd, args, logName, inputs]) {
+  const before = digest(inputs);
   if (passedOn(name, before)) return Promise.resolve({ name, ...UNCHANGED });
   mkdirSync(join(root, 'test-results'), { recursive: true });
-  const log = join(root, 'test-results', 'fuzz.log');
+  const log = join(root, 'test-results', logName);
   const out = openSync(log, 'w');
   console.log(`\n=== ${name}: ${cmd} ${args.join(' ')} (in the background, output in ${log})`);
   const started = Date.now();
-  // Not through clippy-driver: cargo-fuzz builds with a minimal nightly toolchain, which has no clippy.
-  const child = spawn(cmd, args, { cwd: root, stdio: ['ignore', out, out] });
+  // Without the suites' environment (clippy-driver): cargo-fuzz builds with a minimal nightly
+  // toolchain, which has no clippy, and the TypeScript suites build nothing with Cargo.
+  // Its exit is only seen once the suites in front are done, so its log's last write says when it
+  // ended: a line of its own, since a suite that passes may print nothing at its end (tsc).
+  const child = spawn('sh', ['-c', '"$@"; status=$?; echo "(exit status $status)"; exit $status', 'sh', cmd, ...args], { cwd: root, stdio: ['ignore', out, out] });
   closeSync(out);
   return new Promise((resolve) => {
-    // Its exit is only seen once the suites in front are done; its last write says when it ended.
     child.on('close', (code) => {
       const ok = code === 0;
-      if (ok) recordPass(name, FUZZ_INPUTS, before);
+      if (ok) recordPass(name, inputs, before);
       resolve({ name, ok, seconds: (statSync(log).mtimeMs - started) / 1000, log });
     });
   });
@@ -142,9 +151,9 @@ function fuzzInBackground() {
 
 const results = [];
 const began = Date.now();
-let fuzz = null;
+const background = [];
 for (const [name, commands, inputs] of suites) {
-  if (name === BESIDE) fuzz = fuzzInBackground();
+  for (const suite of BESIDE[name] ?? []) background.push(inBackground(suite));
   const started = Date.now();
   const before = digest(inputs);
   if (passedOn(name, before)) {
@@ -157,17 +166,16 @@ for (const [name, commands, inputs] of suites) {
   // Without the set-up nothing else can run.
   if (!ok && name === 'set-up') break;
 }
-if (fuzz) {
-  const r = await fuzz;
+for (const r of await Promise.all(background)) {
   if (r.log) {
     const lines = readFileSync(r.log, 'utf8').trimEnd().split('\n');
-    // A failure shows the fuzzer's report; a pass only its last words.
+    // A failure shows the suite's report; a pass only its last words.
     console.log(`\n=== ${r.name}: the last lines of ${r.log}\n${lines.slice(r.ok ? -4 : -150).join('\n')}`);
   }
   results.push(r);
 }
 
-const expected = suites.length + 1;
+const expected = suites.length + Object.values(BESIDE).flat().length;
 console.log('\n=== summary');
 for (const r of results) console.log(`${r.ok ? 'PASS' : 'FAIL'}  ${r.name} (${r.note ?? `${r.seconds.toFixed(1)} s`})`);
 const failed = results.filter((r) => !r.ok).length;
