@@ -125,6 +125,7 @@ function renderPartial(r: SimReport, made: Settings): void {
   updateEmbedCaption();
   drawErrorChart(r, made);
   status.textContent = 'Flight 1 of the 30 shown, its numbers alone; simulating the rest of the set… change any setting to interrupt.';
+  if (settingsChartsWait) renderSettingsCharts();
 }
 
 /** What the error chart on show was drawn from: a whole set's report draws the chart its first
@@ -321,8 +322,9 @@ function watchTrajectory(): void {
 // found it blank until they were done. On load, without a scroll, the watch still waits for them.
 addEventListener('scroll', watchTrajectory, { passive: true });
 
-/** On load, the panels that need no simulation wait for the first run's answer: drawn at once
- * they would take the cores the first results need (about 200 ms later on 2 cores). */
+/** The panels that need no simulation wait for a run's first answer (a whole set's first flight
+ * included), on load and after a change: drawn at once they would take the cores the first results
+ * need (about 200 ms later on 2 cores), and after a change the main thread the answer waits for. */
 let settingsChartsWait = false;
 
 /** The panels that follow the settings alone (time on air, link budget), drawn after the run is asked for. */
@@ -479,7 +481,11 @@ function onChange(): void {
   history.replaceState(null, '', `?${pageQuery()}`);
   renderLessonChanges();
   submit();
-  renderSettingsCharts();
+  // As on load, the charts of the settings alone wait for the run's first numbers: drawn at
+  // once, the airtime and link charts (~60 and ~30 ms on two cores) held back the report that
+  // came in meanwhile, and a changed SF's results by ~100 ms (docs/performance.md).
+  if (running) settingsChartsWait = true;
+  else renderSettingsCharts();
 }
 
 /** A pending run of a number being typed (a half-typed −1 of −15 must not run). */

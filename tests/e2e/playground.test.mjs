@@ -49,12 +49,31 @@ test('opens with the paper defaults and names no best model from one flight and 
   assert.deepEqual(problems, []);
 });
 
-test('SF12 shows the SF12 interval, the same number as the time-on-air table', async () => {
+test('SF12 shows the SF12 interval, the same number as the time-on-air table, and the results before that table is redrawn', async () => {
   const { page, problems } = await open();
+  await idle(page);
   const before = await tableHtml(page);
+  // When the results change, and when each panel's drawing starts (the page's `draw <panel>` measures).
+  const changed = await page.evaluate(() => {
+    const rows = () => document.querySelector('#results-table tbody')?.innerHTML;
+    const old = rows();
+    new MutationObserver((_, observer) => {
+      if (rows() === old) return;
+      window.__resultsAt = performance.now();
+      observer.disconnect();
+    }).observe(document.body, { childList: true, subtree: true, characterData: true });
+    return performance.now();
+  });
   await page.getByLabel('Spreading factor', { exact: true }).selectOption('12');
   await waitForResults(page, before);
+  await idle(page);
   const interval = number(await cell(page, '3d-ctra', 'interval'));
+  const { resultsAt, airtimeAt } = await page.evaluate((since) => ({
+    resultsAt: window.__resultsAt,
+    airtimeAt: performance.getEntriesByName('draw airtime').find((m) => m.startTime > since)?.startTime,
+  }), changed);
+  // The settings' own charts wait for the run's answer instead of holding it back.
+  assert.ok(airtimeAt !== undefined && airtimeAt >= resultsAt, `airtime drawn from ${airtimeAt} ms, results at ${resultsAt} ms`);
   // The highlighted row of the airtime table is SF12 / 250 kHz; its last column is 12 B.
   const tableCell = await page.locator('.airtime-table tr.current td').last().textContent();
   assert.ok(Math.abs(number(tableCell.split('·')[1]) - interval) < 0.006, `${interval} vs ${tableCell}`);
