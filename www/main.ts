@@ -327,7 +327,7 @@ addEventListener('scroll', watchTrajectory, { passive: true });
  * need (about 200 ms later on 2 cores), and after a change the main thread the answer waits for. */
 let settingsChartsWait = false;
 
-/** The panels that follow the settings alone (time on air, link budget), drawn after the run is asked for. */
+/** The panels that follow the settings alone (time on air, link budget), drawn at once or, while a run is under way, after its first answer (`settingsChartsWait`). */
 function renderSettingsCharts(): void {
   settingsChartsWait = false;
   later('airtime', renderAirtime);
@@ -481,9 +481,8 @@ function onChange(): void {
   history.replaceState(null, '', `?${pageQuery()}`);
   renderLessonChanges();
   submit();
-  // As on load, the charts of the settings alone wait for the run's first numbers: drawn at
-  // once, the airtime and link charts (~60 and ~30 ms on two cores) held back the report that
-  // came in meanwhile, and a changed SF's results by ~100 ms (docs/performance.md).
+  // The run's numbers first: drawn ahead of them, the airtime and link charts (~60 and ~30 ms
+  // on two cores) held a changed SF's results back by ~100 ms (docs/performance.md).
   if (running) settingsChartsWait = true;
   else renderSettingsCharts();
 }
