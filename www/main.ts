@@ -323,8 +323,8 @@ function watchTrajectory(): void {
 addEventListener('scroll', watchTrajectory, { passive: true });
 
 /** The panels that need no simulation wait for a run's first answer (a whole set's first flight
- * included), on load and after a change: drawn at once they would take the cores the first results
- * need (about 200 ms later on 2 cores), and after a change the main thread the answer waits for. */
+ * included): on load, since drawn at once they would take the cores the first results need (about
+ * 200 ms later on 2 cores), and after a change to a quick run, whose answer would wait for them. */
 let settingsChartsWait = false;
 
 /** The panels that follow the settings alone (time on air, link budget), drawn at once or, while a run is under way, after its first answer (`settingsChartsWait`). */
@@ -481,9 +481,10 @@ function onChange(): void {
   history.replaceState(null, '', `?${pageQuery()}`);
   renderLessonChanges();
   submit();
-  // The run's numbers first: drawn ahead of them, the airtime and link charts (~60 and ~30 ms
-  // on two cores) held a changed SF's results back by ~100 ms (docs/performance.md).
-  if (running) settingsChartsWait = true;
+  // A quick run's numbers first: drawn ahead of them, the airtime and link charts (~60 and ~30
+  // ms on two cores) held a changed SF's results back by ~100 ms (docs/performance.md). A long
+  // run (the whole set, a CSV, several seeds) would leave them showing the old settings for seconds.
+  if (running && !running.long) settingsChartsWait = true;
   else renderSettingsCharts();
 }
 
