@@ -149,6 +149,27 @@ export function axisLabelOverlaps(page) {
 /** Waits until no simulation or drawing is under way (`<body data-busy>` gone). */
 export const idle = (page) => until(page, () => !('busy' in document.body.dataset));
 
+/** The page's layout shifts so far that no input caused (Chromium's Layout Instability API, the
+ * entries it buffers from the load on): their sum, which is the cumulative layout shift while it
+ * fits one session window (the page's first seconds), and what moved in the largest, as
+ * "element top→top" lines. */
+export function layoutShifts(page) {
+  return page.evaluate(
+    () =>
+      new Promise((resolve) => {
+        new PerformanceObserver((list, observer) => {
+          observer.disconnect();
+          const shifts = list.getEntries().filter((e) => !e.hadRecentInput);
+          const largest = shifts.reduce((a, b) => (b.value > (a?.value ?? 0) ? b : a), undefined);
+          const moved = (largest?.sources ?? []).map((s) => `${s.node?.id || s.node?.className || s.node?.nodeName} ${Math.round(s.previousRect.top)}→${Math.round(s.currentRect.top)}`);
+          resolve({ total: shifts.reduce((sum, e) => sum + e.value, 0), moved });
+        }).observe({ type: 'layout-shift', buffered: true });
+        // No shift at all: the observer is never called.
+        setTimeout(() => resolve({ total: 0, moved: [] }), 500);
+      }),
+  );
+}
+
 /** Clicks `button` and returns the file it downloads (a Buffer). When none comes within 30 s the
  * error says what the page showed instead: the note beside the button (why there is nothing to
  * save), whether the page was still busy, and what lay on top of the button. */
