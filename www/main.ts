@@ -426,26 +426,60 @@ function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made
   $('#sf-note').textContent = refused.length ? `Not simulated at ${refused.map((x) => ('sf' in x.point ? `SF${x.point.sf}` : '')).join(', ')}: ${refused[0].error}.` : '';
 }
 
+/** What the panels that may be asked to draw what they show were last drawn from (`drawnFromKey`). */
+const drawnFrom: Record<string, string> = {};
+
+/** A panel's inputs as one key, with the page's type size (presentation mode draws larger). */
+const drawnFromKey = (inputs: unknown): string => JSON.stringify([inputs, document.body.classList.contains('present')]);
+
+/**
+ * Whether panel `name` is on show drawn from `from`, so that drawing it again would change
+ * nothing: a change of distance, model or station leaves the time-on-air panel as it was (drawn
+ * again, 54–64 ms of the page's thread on two cores), a change of model the link budget, and a
+ * change of distance the error-versus-distance chart. Its download's caption, which names every
+ * setting, follows the settings (`made`) all the same.
+ */
+function onShow(name: string, from: string, made: Settings = store.settings): boolean {
+  const drawn = charts[name];
+  if (!drawn || drawnFrom[name] !== from) return false;
+  drawn.caption = caption(made);
+  return true;
+}
+
 async function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): Promise<void> {
-  const { boxplotChart } = await plots();
   const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d })));
-  place('distance', boxplotChart(rows, { log: true, groupLabel: `gateway distance (SF${made.sf}, ${made.bw} kHz)`, width: chartWidth('distance') }), made);
+  const opts = { log: true, groupLabel: `gateway distance (SF${made.sf}, ${made.bw} kHz)`, width: chartWidth('distance') };
+  // Its points do not move with the distance setting: a change of distance alone draws the same.
+  const from = drawnFromKey([rows, opts]);
+  if (onShow('distance', from, made)) return;
+  const { boxplotChart } = await plots();
+  place('distance', boxplotChart(rows, opts), made);
+  drawnFrom.distance = from;
 }
 
 async function renderLink(): Promise<void> {
-  const { linkBudgetCharts } = await plots();
-  const r = linkBudget({ bw: store.settings.bw, txPower: store.settings.txPower, pathLossExponent: store.settings.pathLossExponent, shadowing: store.settings.shadowing, region: store.settings.region });
+  const s = store.settings;
+  const params = { bw: s.bw, txPower: s.txPower, pathLossExponent: s.pathLossExponent, shadowing: s.shadowing, region: s.region };
   // Each gateway's distance from the flight's start (the default one: the distance setting).
-  const distances = store.settings.gateways.length ? store.settings.gateways.map((g) => Math.hypot(g.east, g.north)) : [store.settings.distance];
-  place('link', linkBudgetCharts(r, { width: chartWidth('link'), distances, sf: store.settings.sf, plan: plan(store.settings.region).label }));
+  const distances = s.gateways.length ? s.gateways.map((g) => Math.hypot(g.east, g.north)) : [s.distance];
+  const opts = { width: chartWidth('link'), distances, sf: s.sf, plan: plan(s.region).label };
+  const from = drawnFromKey([params, opts]);
+  if (onShow('link', from)) return;
+  const { linkBudgetCharts } = await plots();
+  place('link', linkBudgetCharts(linkBudget(params), opts));
+  drawnFrom.link = from;
 }
 
 async function renderAirtime(): Promise<void> {
-  const { airtimeTable, airtimeVsPayloadChart } = await plots();
   const s = store.settings;
   const opts = { overhead: overheadBytes(s), cr: s.cr, sf: s.sf, bw: s.bw, region: s.region, access: s.access, fairUse: s.fairUse, ...(plan(s.region).dutyCycle === null ? { interval: s.interval } : {}) };
+  const width = chartWidth('airtime');
+  const from = drawnFromKey([opts, width]);
+  if (onShow('airtime', from)) return;
+  const { airtimeTable, airtimeVsPayloadChart } = await plots();
   $('#airtime-table').replaceChildren(airtimeTable(opts));
-  place('airtime', airtimeVsPayloadChart({ ...opts, width: chartWidth('airtime') }));
+  place('airtime', airtimeVsPayloadChart({ ...opts, width }));
+  drawnFrom.airtime = from;
 }
 
 /** A chart's drawing width, px: its box's, at least 300 (600 before the box is laid out). */

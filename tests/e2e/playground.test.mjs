@@ -619,6 +619,35 @@ test('every chart and both tables download ready for a slide: title, legend, cap
   assert.deepEqual([...problems, ...far.problems], []);
 });
 
+test('a change of distance leaves the charts it cannot change as drawn, their downloads naming the new distance; a change of SF draws them again', async () => {
+  const { page, problems } = await open();
+  await idle(page);
+  // Each chart on show is marked: a chart drawn again is a new element, without the mark.
+  const panels = ['airtime', 'distance', 'link', 'error'];
+  const mark = () => page.evaluate((names) => names.forEach((n) => (document.querySelector(`#chart-${n}`).firstElementChild.dataset.seen = n)), panels);
+  const kept = () => page.evaluate((names) => names.filter((n) => document.querySelector(`#chart-${n}`).firstElementChild.dataset.seen === n), panels);
+  await mark();
+  const before = await tableHtml(page);
+  // Far enough to lose packets: within the range every packet arrives and the numbers stay the same.
+  await page.locator('#distance').fill('3500');
+  await waitForResults(page, before);
+  await idle(page);
+  // Time on air and the distance sweep do not depend on the distance; the link budget's red line and the error do.
+  assert.deepEqual(await kept(), ['airtime', 'distance']);
+  for (const title of ['time on air', 'error versus distance']) {
+    const svg = (await downloaded(page, page.getByRole('button', { name: new RegExp(`^Download the ${title}.* chart as SVG$`) }))).toString('utf8');
+    assert.match(svg, /SF7, 250 kHz, 3\.5 km/, `${title}: captioned with the distance now set`);
+  }
+  await mark();
+  const far = await tableHtml(page);
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('8');
+  await waitForResults(page, far);
+  await idle(page);
+  assert.deepEqual(await kept(), []);
+  assert.equal(await page.locator('.airtime-table tr.current th').first().textContent(), 'SF8');
+  assert.deepEqual(problems, []);
+});
+
 test('the error-series CSV has every model in its column', async () => {
   const { page, problems } = await open('?distance=3000');
   const download = await downloaded(page, page.getByRole('button', { name: /Error series/ }));
