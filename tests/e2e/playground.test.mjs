@@ -865,7 +865,11 @@ test('printed, the page shows the numbers and charts with the settings they rest
   assert.equal(await page.locator('[data-panel="swarm"]').isVisible(), false);
   const why = await page.locator('#chart-trajectory').evaluate((el) => getComputedStyle(el, '::before').content);
   assert.match(why, /Not drawn: .*scroll there before printing/);
+  // On paper the note alone, not the room the view keeps on screen until it is drawn.
+  const blank = (await page.locator('#chart-trajectory').boundingBox()).height;
+  assert.ok(blank < 100, `the undrawn 3D view takes ${blank} px on paper`);
   await page.emulateMedia({ media: 'screen' });
+  assert.ok((await page.locator('#chart-trajectory').boundingBox()).height > 150, 'the undrawn 3D view keeps no room on screen');
   assert.equal(await page.locator('#controls').isVisible(), true);
   assert.equal(await page.locator('#embed-settings').isVisible(), false, 'the settings line shows on screen');
   assert.deepEqual(problems, []);
