@@ -9,6 +9,7 @@
 //   drawn again;
 // - the 3D view: from scrolling to it, after all the rest is drawn, until it is drawn;
 // - long tasks: main-thread tasks over 50 ms until then (count, longest, sum);
+// - layout shift: the Layout Instability API's shifts until then, summed (its CLS while loading);
 // - each panel's drawing time (the page's `draw <panel>` performance measures, www/later.ts).
 // Reports, never asserts: wall-clock time on a shared machine is a measurement, not a test.
 //   npm run bench:page [-- loads [query]]      e.g. -- 5 '?flight=all' (builds dist/ first)
@@ -29,10 +30,13 @@ const browser = await launch();
 
 /** Runs in the page before its scripts: records long tasks and when results and idleness arrive. */
 function observe() {
-  const t = (window.__timing = { long: [] });
+  const t = (window.__timing = { long: [], shift: 0 });
   new PerformanceObserver((list) => {
     for (const e of list.getEntries()) t.long.push(e.duration);
   }).observe({ type: 'longtask', buffered: true });
+  new PerformanceObserver((list) => {
+    for (const e of list.getEntries()) if (t.idle === undefined && !e.hadRecentInput) t.shift += e.value;
+  }).observe({ type: 'layout-shift', buffered: true });
   const check = () => {
     const rows = document.querySelector('#results-table tbody')?.rows.length ?? 0;
     t.first ??= rows > 0 ? performance.now() : undefined;
@@ -127,4 +131,5 @@ console.log(row('3D view drawn, from scrolling to it', (r) => r.view3d));
 console.log(row('long tasks (> 50 ms), count', (r) => r.long.length));
 console.log(row('longest task', (r) => Math.max(0, ...r.long)));
 console.log(row('long tasks, sum', (r) => r.long.reduce((a, b) => a + b, 0)));
+console.log(row('layout shift while loading, × 1000', (r) => 1000 * r.shift));
 for (const panel of Object.keys(runs[0][0].draws)) console.log(row(`draw ${panel}`, (r) => r.draws[panel] ?? 0));
