@@ -4,7 +4,7 @@
 import { pool } from './boot';
 import { runSwarms, spawnWorker, type SwarmRun } from './pool';
 import { linkBudget, load, MODEL_LABELS, stationsOf, type SimReport, type SwarmParams } from './loratrack';
-import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR, chartFont } from './charts/colors';
+import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './charts/colors';
 import type { BoxRow } from './charts/plots';
 import type { Trajectory3d } from './charts/trajectory3d';
 import { $, linkDocs } from './dom';
@@ -128,20 +128,13 @@ function renderPartial(r: SimReport, made: Settings): void {
   if (settingsChartsWait) renderSettingsCharts();
 }
 
-/** What the error chart on show was drawn from: a whole set's report draws the chart its first
- * flight already drew (the series is always the first flight's), so that second draw is skipped. */
-let errorChartDrawn: { key: string; series: SimReport['series']; chart: Element } | undefined;
-
+/** The error chart, in a later task. A whole set's report draws the chart its first flight
+ * already drew (the series is always the first flight's), so that second drawing is skipped. */
 function drawErrorChart(r: SimReport, made: Settings): void {
-  later('error', async () => {
-    const { errorOverTimeChart } = await plots();
+  later('error', () => {
     const width = chartWidth('error');
-    const key = JSON.stringify([width, chartFont(), made, r.config.adr]);
-    const onShow = $('#chart-error').firstElementChild;
-    if (errorChartDrawn?.key === key && onShow === errorChartDrawn.chart && sameData(errorChartDrawn.series, r.series)) return;
-    const chart = errorOverTimeChart(r, width);
-    place('error', chart, made);
-    errorChartDrawn = { key, series: r.series, chart };
+    // What the chart reads: the stations' series, not where the gateway stood.
+    return drawPanel('error', [width, r.series?.flight, r.series?.models, r.config.adr], (p) => p.errorOverTimeChart(r, width), made);
   });
 }
 
@@ -276,14 +269,14 @@ function renderResults(r: SimReport): void {
   updateEmbedCaption();
   const made = store.reportSettings;
   drawErrorChart(r, made);
-  later('axes', async () => {
-    const { boxplotChart } = await plots();
+  later('axes', () => {
     const axisRows: BoxRow[] = r.results.flatMap((m) => [
       { group: 'x', model: m.model, box: m.boxplot.errorX },
       { group: 'y', model: m.model, box: m.boxplot.errorY },
       { group: 'z', model: m.model, box: m.boxplot.errorZ },
     ]);
-    place('axes', boxplotChart(axisRows, { groupLabel: 'axis', width: chartWidth('axes') }), made);
+    const opts = { groupLabel: 'axis', width: chartWidth('axes') };
+    return drawPanel('axes', [axisRows, opts], (p) => p.boxplotChart(axisRows, opts), made);
   });
   if (!trajectoryPanel.hidden && trajectoryNear) later('trajectory', () => render3d(r));
 }
@@ -407,9 +400,9 @@ async function draw3d(r: SimReport): Promise<void> {
 }
 
 async function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): Promise<void> {
-  const { p75BySfChart } = await plots();
   const rows = sweep.flatMap(({ sf, report: r }) => r.results.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived, wholeFlight: m.wholeFlight })));
-  place('sf', p75BySfChart(rows, { bw: made.bw, distance: made.distance, width: chartWidth('sf') }), made);
+  const opts = { bw: made.bw, distance: made.distance, width: chartWidth('sf') };
+  await drawPanel('sf', [rows, opts], (p) => p.p75BySfChart(rows, opts), made);
 }
 
 /** The last sweep and swarms drawn, to draw again at another size (presentation mode). */
@@ -426,35 +419,34 @@ function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made
   $('#sf-note').textContent = refused.length ? `Not simulated at ${refused.map((x) => ('sf' in x.point ? `SF${x.point.sf}` : '')).join(', ')}: ${refused[0].error}.` : '';
 }
 
-/** What the panels that may be asked to draw what they show were last drawn from (`drawnFromKey`). */
-const drawnFrom: Record<string, string> = {};
-
-/** A panel's inputs as one key, with the page's type size (presentation mode draws larger). */
-const drawnFromKey = (inputs: unknown): string => JSON.stringify([inputs, document.body.classList.contains('present')]);
+/** What each panel drawn by `drawPanel` was last drawn from, with the page's type size then. */
+const drawnFrom: Record<string, unknown> = {};
 
 /**
- * Whether panel `name` is on show drawn from `from`, so that drawing it again would change
- * nothing: a change of distance, model or station leaves the time-on-air panel as it was (drawn
- * again, 54–64 ms of the page's thread on two cores), a change of model the link budget, and a
- * change of distance the error-versus-distance chart. Its download's caption, which names every
- * setting, follows the settings (`made`) all the same.
+ * Draws panel `name` with `draw` (given the Plot charts) from `inputs`, everything the drawing
+ * reads, unless it is on show drawn from the same data (`sameData`): a change of distance, model
+ * or station leaves the time-on-air panel as it was (drawn again, 54–64 ms of the page's thread on
+ * two cores), a change of model the link budget, a change of distance the error-versus-distance
+ * chart (whose points do not move with it), and a change that leaves the numbers as they were (a
+ * distance within the link's reach, where every packet arrives) the charts of those numbers.
+ * Either way its download's caption names the settings (`made`) now on show.
  */
-function onShow(name: string, from: string, made: Settings = store.settings): boolean {
+async function drawPanel(name: string, inputs: unknown, draw: (p: Awaited<ReturnType<typeof plots>>) => Element, made: Settings = store.settings): Promise<void> {
+  // Presentation mode draws the same inputs larger.
+  const from = [inputs, document.body.classList.contains('present')];
   const drawn = charts[name];
-  if (!drawn || drawnFrom[name] !== from) return false;
-  drawn.caption = caption(made);
-  return true;
+  if (drawn && sameData(drawnFrom[name], from)) {
+    drawn.caption = caption(made);
+    return;
+  }
+  place(name, draw(await plots()), made);
+  drawnFrom[name] = from;
 }
 
 async function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): Promise<void> {
   const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d })));
   const opts = { log: true, groupLabel: `gateway distance (SF${made.sf}, ${made.bw} kHz)`, width: chartWidth('distance') };
-  // Its points do not move with the distance setting: a change of distance alone draws the same.
-  const from = drawnFromKey([rows, opts]);
-  if (onShow('distance', from, made)) return;
-  const { boxplotChart } = await plots();
-  place('distance', boxplotChart(rows, opts), made);
-  drawnFrom.distance = from;
+  await drawPanel('distance', [rows, opts], (p) => p.boxplotChart(rows, opts), made);
 }
 
 async function renderLink(): Promise<void> {
@@ -463,23 +455,17 @@ async function renderLink(): Promise<void> {
   // Each gateway's distance from the flight's start (the default one: the distance setting).
   const distances = s.gateways.length ? s.gateways.map((g) => Math.hypot(g.east, g.north)) : [s.distance];
   const opts = { width: chartWidth('link'), distances, sf: s.sf, plan: plan(s.region).label };
-  const from = drawnFromKey([params, opts]);
-  if (onShow('link', from)) return;
-  const { linkBudgetCharts } = await plots();
-  place('link', linkBudgetCharts(linkBudget(params), opts));
-  drawnFrom.link = from;
+  await drawPanel('link', [params, opts], (p) => p.linkBudgetCharts(linkBudget(params), opts));
 }
 
 async function renderAirtime(): Promise<void> {
   const s = store.settings;
   const opts = { overhead: overheadBytes(s), cr: s.cr, sf: s.sf, bw: s.bw, region: s.region, access: s.access, fairUse: s.fairUse, ...(plan(s.region).dutyCycle === null ? { interval: s.interval } : {}) };
   const width = chartWidth('airtime');
-  const from = drawnFromKey([opts, width]);
-  if (onShow('airtime', from)) return;
-  const { airtimeTable, airtimeVsPayloadChart } = await plots();
-  $('#airtime-table').replaceChildren(airtimeTable(opts));
-  place('airtime', airtimeVsPayloadChart({ ...opts, width }));
-  drawnFrom.airtime = from;
+  await drawPanel('airtime', [opts, width], (p) => {
+    $('#airtime-table').replaceChildren(p.airtimeTable(opts));
+    return p.airtimeVsPayloadChart({ ...opts, width });
+  });
 }
 
 /** A chart's drawing width, px: its box's, at least 300 (600 before the box is laid out). */
