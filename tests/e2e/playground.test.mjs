@@ -629,8 +629,10 @@ test('a change leaves the charts it cannot change as drawn, their downloads nami
   await mark();
   // Well within SF7's reach every packet still arrives: the same numbers (the CLI's at 1 and 1.5
   // km), so only the link budget's red line moves.
+  const at1km = await tableHtml(page);
   await page.locator('#distance').fill('1500');
   await idle(page);
+  assert.equal(await tableHtml(page), at1km);
   assert.deepEqual(await kept(), ['airtime', 'distance', 'error', 'axes']);
   const before = await tableHtml(page);
   // Far enough to lose packets: new numbers, but time on air and the distance sweep do not depend on the distance.
