@@ -154,6 +154,8 @@ const docsPages: Plugin = {
 export default defineConfig({
   // Relative asset paths: dist/ works from any static server and under any sub-path.
   base: './',
+  // Copied as they are: the one classic script, which must run before the first paint (present-mode.js).
+  publicDir: 'www/public',
   plugins: [csp, preloadWasm, docsPages],
   define: { __LORATRACK_VERSION__: JSON.stringify(packageJson.version) },
   build: { target: 'es2022', outDir: 'dist', emptyOutDir: true, chunkSizeWarningLimit: 1024 },
