@@ -1,7 +1,7 @@
 // Presentation mode (`?present=1`, the button, key P): large type, high contrast, one panel per
 // screen, the arrow keys step between panels; the charts are drawn again at the larger size.
 import { $ } from './dom';
-import { pageQuery, store } from './store';
+import { pageQuery } from './store';
 
 /** Wires the button and the keys; `redraw` draws every chart again at the current size. */
 export function setUpPresent(redraw: () => void): void {
@@ -30,8 +30,9 @@ export function setUpPresent(redraw: () => void): void {
     const next = step > 0 ? shown.find((p) => p.getBoundingClientRect().top > 5) : [...shown].reverse().find((p) => p.getBoundingClientRect().top < -5);
     next?.scrollIntoView({ block: 'start' });
   });
-  if (store.query.get('present') === '1') {
-    document.documentElement.classList.add('present');
+  // The link's `?present=1` is read once, before the first paint (public/present-mode.js, which
+  // marks <html>); the body and the button follow it.
+  if (document.documentElement.classList.contains('present')) {
     document.body.classList.add('present');
     $('#present-toggle').setAttribute('aria-pressed', 'true');
   }
