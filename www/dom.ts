@@ -4,6 +4,13 @@
 export const $ = <T extends HTMLElement>(selector: string) => document.querySelector<T>(selector)!;
 
 /**
+ * Whether the page is in presentation mode: the class `present` on `<html>`, which the stylesheet
+ * keys on. A `?present=1` link sets it before the first paint (public/present-mode.js), the
+ * button and key P toggle it (present.ts); everything else reads it here.
+ */
+export const presenting = (): boolean => document.documentElement.classList.contains('present');
+
+/**
  * Makes every mention of a doc in `root`'s text ("docs/senders.md") a link to that doc's page
  * beside the playground (`docs/senders.html`, which the build renders: vite.config.ts), opened in
  * a new tab so that the settings on show stay. The texts keep naming the Markdown file, as the

@@ -7,7 +7,7 @@ import { linkBudget, load, MODEL_LABELS, stationsOf, type SimReport, type SwarmP
 import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './charts/colors';
 import type { BoxRow } from './charts/plots';
 import type { Trajectory3d } from './charts/trajectory3d';
-import { $, linkDocs } from './dom';
+import { $, linkDocs, presenting } from './dom';
 import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
 import { field, form, markField, onFormChange, readControls, settingWords, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
@@ -433,7 +433,7 @@ const drawnFrom: Record<string, unknown> = {};
  */
 async function drawPanel(name: string, inputs: unknown, draw: (p: Awaited<ReturnType<typeof plots>>) => Element, made: Settings = store.settings): Promise<void> {
   // Presentation mode draws the same inputs larger.
-  const from = [inputs, document.body.classList.contains('present')];
+  const from = [inputs, presenting()];
   const drawn = charts[name];
   if (drawn && sameData(drawnFrom[name], from)) {
     drawn.caption = caption(made);

@@ -1,6 +1,7 @@
 // The page's one state store: what the form says, what the numbers on show were made from, what
 // came with the link. Every module of the page reads and changes that state here and nowhere
 // else, so "which settings made these numbers?" has one answer.
+import { presenting } from './dom';
 import type { SimReport } from './loratrack';
 import { fromQuery, toQuery, type Settings } from './state';
 
@@ -47,7 +48,7 @@ export const store: Store = {
  * lesson on show. */
 export function pageQuery(): string {
   const extra: Record<string, string> = store.embed ? { embed: '1', panels: store.panels } : {};
-  if (document.body.classList.contains('present')) extra.present = '1';
+  if (presenting()) extra.present = '1';
   if (store.baseline) extra.baseline = toQuery(store.baseline.settings);
   if (store.lesson) extra.lesson = store.lesson;
   return toQuery(store.settings, extra);

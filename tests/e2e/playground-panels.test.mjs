@@ -537,7 +537,7 @@ test('presentation mode: large type and charts at 1024x768, one panel per screen
   const { page, problems } = await open('', { width: 1024, height: 768 });
   await idle(page);
   await page.getByRole('button', { name: 'Presentation mode' }).click();
-  await until(page, () => document.body.classList.contains('present'));
+  await until(page, () => document.documentElement.classList.contains('present'));
   assert.match(page.url(), /present=1/);
   await idle(page);
   const m = await page.evaluate(() => {
@@ -572,7 +572,7 @@ test('presentation mode: large type and charts at 1024x768, one panel per screen
   assert.notEqual(await atTop(), one);
   assert.deepEqual(await axe(page), []);
   await page.keyboard.press('p');
-  await until(page, () => !document.body.classList.contains('present'));
+  await until(page, () => !document.documentElement.classList.contains('present'));
   assert.doesNotMatch(page.url(), /present=1/);
   // Opened from a link, the page is a presentation from its first paint (www/public/present-mode.js),
   // not laid out as usual and then again (a layout shift of 0.39 here when the page's own code did it).

@@ -1,3 +1,4 @@
+import { presenting } from '../dom';
 import type { ModelName } from '../loratrack';
 
 /** One colour per model everywhere on the page (colour-blind-safe Tableau hues). */
@@ -11,9 +12,9 @@ export const PLAN_COLOR = '#9c755f';
 
 /** Chart text, CSS px: 13 (Plot's default is 10), legible at 1280 px and on a phone, where the
  * charts are drawn at their box's width and never scaled down much; 18 in presentation mode
- * (`<body class="present">`), for the back of a lecture room. */
+ * (`<html class="present">`), for the back of a lecture room. */
 export function chartFont(): number {
-  return document.body.classList.contains('present') ? 18 : 13;
+  return presenting() ? 18 : 13;
 }
 
 /** Plot's style for every chart, at [`chartFont`] ([`chartFrame`] gives it with the margins). */
