@@ -143,10 +143,10 @@ impl core::fmt::Display for OutOfRange {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         write!(
             f,
-            "{} must be {}, got {:?}",
+            "{} must be {}, got {}",
             self.option.key,
             self.option.range_text(),
-            self.value
+            as_given(self.value)
         )
     }
 }
@@ -543,6 +543,25 @@ pub fn option(key: &str) -> Option<&'static NumberOption> {
     OPTIONS.iter().copied().find(|o| o.key == key)
 }
 
+/// A refused value as its error message writes it: a whole number as one (`got 300`, where the
+/// user typed 300, not `got 300.0`), anything else as Rust reads it back (`0.5`, `1e300`, `NaN`).
+///
+/// ```
+/// use loratrack::options::as_given;
+/// assert_eq!(as_given(300.0), "300");
+/// assert_eq!(as_given(-5.0), "-5");
+/// assert_eq!(as_given(0.25), "0.25");
+/// assert_eq!(as_given(1e300), "1e300");
+/// ```
+pub fn as_given(value: f64) -> String {
+    // Below 2^53 every whole f64 is an exact integer; above it Debug's exponent form is shorter.
+    if value.fract() == 0.0 && value.abs() < 9_007_199_254_740_992.0 {
+        format!("{}", value as i64)
+    } else {
+        format!("{value:?}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -570,11 +589,11 @@ mod tests {
         assert!(DISTANCE.check(f64::NAN).is_err());
         assert_eq!(
             BW.check(300.0).unwrap_err().to_string(),
-            "bw must be 125, 250 or 500 kHz, got 300.0"
+            "bw must be 125, 250 or 500 kHz, got 300"
         );
         assert_eq!(
             SF.check(13.0).unwrap_err().to_string(),
-            "sf must be 7..12, a whole number, got 13.0"
+            "sf must be 7..12, a whole number, got 13"
         );
     }
 }

@@ -49,12 +49,17 @@ impl fmt::Display for LoraError {
             LoraError::DutyCycle(d) => {
                 write!(
                     f,
-                    "dutyCycle must be a fraction in 0.0001..1 (0.01 %..100 %), got {d:?}"
+                    "dutyCycle must be a fraction in 0.0001..1 (0.01 %..100 %), got {}",
+                    crate::options::as_given(*d)
                 )
             }
             LoraError::OutOfRange(e) => e.fmt(f),
             LoraError::Parameter(name, v, allowed) => {
-                write!(f, "{name} must be {allowed}, got {v:?}")
+                write!(
+                    f,
+                    "{name} must be {allowed}, got {}",
+                    crate::options::as_given(*v)
+                )
             }
         }
     }

@@ -132,11 +132,16 @@ impl fmt::Display for ModelError {
                 let (name, lo, hi, unit) = STATE_RANGES[*index];
                 write!(
                     f,
-                    "state component {index} ({name}) must be {lo}..{hi} {unit}, got {value:?}"
+                    "state component {index} ({name}) must be {lo}..{hi} {unit}, got {}",
+                    crate::options::as_given(*value)
                 )
             }
             ModelError::TimeStep(dt) => {
-                write!(f, "dt must be 0..{MAX_DT} s (a day), got {dt:?}")
+                write!(
+                    f,
+                    "dt must be 0..{MAX_DT} s (a day), got {}",
+                    crate::options::as_given(*dt)
+                )
             }
             ModelError::Eta(e) => write!(f, "eta must be in [0, 1], got {e}"),
         }

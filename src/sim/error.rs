@@ -1,5 +1,5 @@
 use crate::lora::LoraError;
-use crate::options::{OutOfRange, MAX_FILTER_STEPS, SEED};
+use crate::options::{as_given, OutOfRange, MAX_FILTER_STEPS, SEED};
 use crate::trajectory::{PlanError, TrajectoryError};
 use core::fmt;
 
@@ -57,7 +57,9 @@ impl fmt::Display for SimError {
             SimError::Plan(e) => e.fmt(f),
             SimError::Lora(e) => e.fmt(f),
             SimError::OutOfRange(e) => e.fmt(f),
-            SimError::Parameter(name, v, allowed) => write!(f, "{name} must be {allowed}, got {v:?}"),
+            SimError::Parameter(name, v, allowed) => {
+                write!(f, "{name} must be {allowed}, got {}", as_given(*v))
+            }
             SimError::Heartbeat {
                 max_interval,
                 sf,
@@ -65,7 +67,8 @@ impl fmt::Display for SimError {
                 interval,
             } => write!(
                 f,
-                "maxInterval must be at least the duty-cycle interval of every drone's data rate (SF{sf} at {bw_khz} kHz: {interval:.1} s), got {max_interval:?}"
+                "maxInterval must be at least the duty-cycle interval of every drone's data rate (SF{sf} at {bw_khz} kHz: {interval:.1} s), got {}",
+                as_given(*max_interval)
             ),
             SimError::Source(msg) => f.write_str(msg),
             SimError::Seed(seed) => write!(

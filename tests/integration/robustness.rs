@@ -471,7 +471,7 @@ fn negative_numbers_are_numbers_and_refused_by_their_own_field() {
 fn swept_distances_are_checked_and_bounded_before_any_run() {
     refused(
         &["sweep", "--distances", "1000,-5"],
-        "distance must be 0..100000 m, got -5.0",
+        "distance must be 0..100000 m, got -5",
     );
     let many: Vec<String> = (1..=101).map(|k| (k * 10).to_string()).collect();
     refused(

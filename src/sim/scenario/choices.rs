@@ -54,7 +54,8 @@ impl SyntheticChoice {
             Ok(SyntheticChoice::One(n as usize))
         } else {
             Err(format!(
-                "synthetic must be 'all' or a flight number 1..30, got {n:?}"
+                "synthetic must be 'all' or a flight number 1..30, got {}",
+                crate::options::as_given(n)
             ))
         }
     }
