@@ -1,6 +1,6 @@
 // The error chart's scale follows the errors, not a bound that lost packets let run away.
 import { expect, test } from 'vitest';
-import { errorScale, rateLabels } from '../../www/charts/errorOverTime';
+import { errorScale, packetMarks, rateLabels } from '../../www/charts/errorOverTime';
 
 test('a bound far past the errors is held to twice the largest error and reported', () => {
   expect(errorScale([[1, 10], [4]], [[30, 700], [12]])).toEqual({ top: 20, boundTop: 700 });
@@ -29,4 +29,24 @@ test("a change of data rate every station makes within a label's width is labell
   expect(rateLabels(changes, 3, 0.4).map((l) => [l.label, l.model, l.row])).toEqual([
     ['DR5', 'DR', 0], ['DR5', 'CTRA+', 0], ['DR5', '3D-CTRA', 0], ['DR3', 'DR', 0], ['DR3', '3D-CTRA', 0], ['DR3', 'CTRA+', 0], ['DR4', 'DR', 0],
   ]);
+});
+
+test('packets seconds apart are a mark each; packets within one pixel of the time axis are one mark, with their count, span and rates', () => {
+  // A synthetic flight's packets, 2-3 s apart on a chart of 0.15 s a pixel: one mark each, at its own time.
+  const sparse = packetMarks(Float64Array.from([2.1, 4.2, 7.3]), [6, null, 5], 0.15);
+  expect(sparse).toEqual([
+    { t: 2.1, to: 2.1, count: 1, drs: [6] },
+    { t: 4.2, to: 4.2, count: 1, drs: [null] },
+    { t: 7.3, to: 7.3, count: 1, drs: [5] },
+  ]);
+  // A 40 000 s flight on ~600 px: 66 s a pixel, a packet every 3 s: about 22 packets a mark.
+  const times = Float64Array.from({ length: 13_000 }, (_, i) => 3 * i);
+  const dense = packetMarks(times, undefined, 66);
+  expect(dense.length).toBeLessThan(700);
+  expect(dense.reduce((n, m) => n + m.count, 0)).toBe(13_000);
+  expect(dense[0]).toEqual({ t: 0, to: 63, count: 22, drs: [null] });
+  // Every mark starts at or after a pixel from the one before, so marks never pile up.
+  expect(dense.every((m, i) => i === 0 || m.t - dense[i - 1].t >= 66)).toBe(true);
+  // A mark that spans a change of data rate names both.
+  expect(packetMarks([10, 10.05, 10.1], [5, 5, 4], 1)[0].drs).toEqual([5, 4]);
 });

@@ -16,9 +16,12 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
   // The series are Float64Arrays: rows for the marks come from Array.from, since a typed array's
   // own map can only return numbers.
   const lines = models.flatMap((m) => Array.from(m.t, (t, i) => ({ t, e: m.error3d[i], model: MODEL_LABELS[m.model] })));
-  const rate = (dr: number | null | undefined) => (dr === null || dr === undefined ? '' : ` at DR${dr}`);
-  const arrivals = models.flatMap((m) => Array.from(m.arrivals, (t, i) => ({ t, model: MODEL_LABELS[m.model], dr: rate(m.arrivalDr?.[i]) })));
-  const lost = models.flatMap((m) => Array.from(m.lost, (t, i) => ({ t, model: MODEL_LABELS[m.model], dr: rate(m.lostDr?.[i]) })));
+  // A pixel of the time axis, s: packets closer than that draw as one mark (a long flight's
+  // tens of thousands would otherwise be as many SVG elements, one on top of another).
+  const span = lines.reduce((last, l) => Math.max(last, l.t), 0) - lines.reduce((first, l) => Math.min(first, l.t), Infinity);
+  const pixel = span / Math.max(1, width - 70);
+  const arrivals = models.flatMap((m) => packetMarks(m.arrivals, m.arrivalDr, pixel).map((p) => ({ ...p, model: MODEL_LABELS[m.model] })));
+  const lost = models.flatMap((m) => packetMarks(m.lost, m.lostDr, pixel).map((p) => ({ ...p, model: MODEL_LABELS[m.model] })));
   // With ADR, label each change of data rate above the axis.
   const changes = rateLabels(
     models.flatMap((m) =>
@@ -28,7 +31,7 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
     ),
     models.length,
     // A label's width (three characters and a space at ~0.6 em) in seconds of the plot (~width − 70 px).
-    (4 * 0.6 * chartFont() * lines.reduce((end, l) => Math.max(end, l.t), 0)) / Math.max(1, width - 70),
+    4 * 0.6 * chartFont() * pixel,
   );
   const labels = models.map((m) => MODEL_LABELS[m.model]);
   // The station's own 95 % bound on its error, as a faint band under each model's line.
@@ -48,14 +51,56 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
       Plot.lineY(bounds, { x: 't', y: 'b', stroke: 'model', strokeOpacity: 0.45, strokeDasharray: '3,3', strokeWidth: 1, curve: 'step-after', clip: true }),
       Plot.text(offScale, { frameAnchor: 'top-right', lineAnchor: 'bottom', dy: -4, fontSize: chartFont(), fill: '#555' }),
       Plot.lineY(lines, { x: 't', y: 'e', stroke: 'model', strokeWidth: 1.4 }),
-      Plot.dot(arrivals, { x: 't', y: 0, fill: 'model', r: 2.5, title: (d) => `${d.model}: packet arrived at ${d.t.toFixed(1)} s${d.dr}` }),
-      Plot.dot(lost, { x: 't', y: 0, stroke: 'model', symbol: 'times', r: 4, title: (d) => `${d.model}: packet lost at ${d.t.toFixed(1)} s${d.dr}` }),
+      Plot.dot(arrivals, { x: 't', y: 0, fill: 'model', r: 2.5, title: (d) => `${d.model}: ${packetsAt(d, 'arrived')}` }),
+      Plot.dot(lost, { x: 't', y: 0, stroke: 'model', symbol: 'times', r: 4, title: (d) => `${d.model}: ${packetsAt(d, 'lost')}` }),
       ...rateMarks(changes),
       Plot.ruleY([0]),
       Plot.tip(lines, Plot.pointerX({ x: 't', y: 'e', stroke: 'model' })),
     ],
   });
   return withKey(chart, key);
+}
+
+/** One mark of packets on the error chart's axis: the packets of one station within one pixel of
+ * the time axis (nearly always one packet), at the first one's time `t` (s), with the last's time
+ * `to` and each one's data rate where the run has them (`null`: an SF and bandwidth that form none). */
+export interface PacketMark {
+  t: number;
+  to: number;
+  count: number;
+  drs: (number | null)[];
+}
+
+/**
+ * The marks for packet times `times` (s, in order) with their data rates `drs`: one per packet,
+ * except that packets less than `pixel` s after the first of a mark join it. A synthetic flight's
+ * packets are seconds apart, one mark each; a long uploaded flight's (40 000 s, 13 000 packets a
+ * station) would be tens of thousands of SVG elements drawn on one another, and their drawing a
+ * 2 s pause of the page.
+ */
+export function packetMarks(times: ArrayLike<number>, drs: ArrayLike<number | null | undefined> | undefined, pixel: number): PacketMark[] {
+  const marks: PacketMark[] = [];
+  for (let i = 0; i < times.length; i++) {
+    const t = times[i];
+    const dr = drs?.[i] ?? null;
+    const last = marks[marks.length - 1];
+    if (last && t - last.t < pixel) {
+      last.to = t;
+      last.count += 1;
+      if (!last.drs.includes(dr)) last.drs.push(dr);
+    } else {
+      marks.push({ t, to: t, count: 1, drs: [dr] });
+    }
+  }
+  return marks;
+}
+
+/** A mark's title: "packet arrived at 12.3 s at DR5", or for several "37 packets arrived in
+ * 1234.5–1290.2 s at DR3". */
+function packetsAt(m: PacketMark, what: 'arrived' | 'lost'): string {
+  const rates = m.drs.filter((dr) => dr !== null);
+  const at = rates.length ? ` at ${rates.map((dr) => `DR${dr}`).join(', ')}` : '';
+  return m.count === 1 ? `packet ${what} at ${m.t.toFixed(1)} s${at}` : `${m.count} packets ${what} in ${m.t.toFixed(1)}–${m.to.toFixed(1)} s${at}`;
 }
 
 /** A change of data rate written above the error chart's axis: its time (s), the rate, the
