@@ -237,16 +237,55 @@ fn append(pool: &mut Vec<f64>, run: Vec<f64>) {
     }
 }
 
-/// The plotted series of one station on one flight, decimated to at most
-/// [`MAX_SERIES_POINTS`] points.
+/// The samples of a station's error series that its plot keeps: every one up to
+/// [`MAX_SERIES_POINTS`]; beyond, the flight is cut into `MAX_SERIES_POINTS / 2` runs of
+/// consecutive samples and each keeps its lowest and its highest error, in time order (min-max
+/// decimation, as plotting libraries thin a line to its envelope). Keeping every k-th sample
+/// instead showed a long flight's saw-tooth error, which falls at each packet a few seconds
+/// apart, at arbitrary points of its teeth: an hour at SF7 was sampled every 1.2 s, 10⁶ rows
+/// every 13 s, and the peaks a reader looks for were mostly not among them.
+pub(crate) fn series_picks(errors: &[f64]) -> Vec<usize> {
+    if errors.len() <= MAX_SERIES_POINTS {
+        return (0..errors.len()).collect();
+    }
+    let run = errors.len().div_ceil(MAX_SERIES_POINTS / 2);
+    let mut picks = Vec::with_capacity(MAX_SERIES_POINTS);
+    for (r, chunk) in errors.chunks(run).enumerate() {
+        let by_error = |a: &(usize, &f64), b: &(usize, &f64)| a.1.total_cmp(b.1);
+        let low = chunk
+            .iter()
+            .enumerate()
+            .min_by(by_error)
+            .map_or(0, |(i, _)| i);
+        let high = chunk
+            .iter()
+            .enumerate()
+            .max_by(by_error)
+            .map_or(0, |(i, _)| i);
+        let (first, second) = (low.min(high), low.max(high));
+        picks.push(r * run + first);
+        if second != first {
+            picks.push(r * run + second);
+        }
+    }
+    picks
+}
+
+/// The plotted series of one station on one flight, at most [`MAX_SERIES_POINTS`] points of it
+/// ([`series_picks`]).
 pub(crate) fn model_series(
     model: StationModel,
     st: &StationTrack,
     tx: &[Transmission],
 ) -> ModelSeries {
-    let every = series_stride(st.times.len());
-    let pick = |v: &[f64]| v.iter().step_by(every).copied().collect::<Vec<f64>>();
-    let axis = |k: usize| axis_every(&st.estimate, k, every);
+    let picks = series_picks(&st.error3d);
+    let pick = |v: &[f64]| picks.iter().map(|&i| v[i]).collect::<Vec<f64>>();
+    let axis = |k: usize| {
+        picks
+            .iter()
+            .map(|&i| st.estimate[i][k])
+            .collect::<Vec<f64>>()
+    };
     ModelSeries {
         model,
         t: pick(&st.times),
@@ -268,4 +307,49 @@ pub(crate) fn model_series(
 
 fn dr_of<'a>(tx: impl Iterator<Item = &'a Transmission>) -> Vec<Option<u8>> {
     tx.map(|t| t.data_rate().map(DataRate::index)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_short_series_is_plotted_whole() {
+        let errors: Vec<f64> = (0..MAX_SERIES_POINTS).map(|i| (i % 31) as f64).collect();
+        assert_eq!(
+            series_picks(&errors),
+            (0..MAX_SERIES_POINTS).collect::<Vec<_>>()
+        );
+    }
+
+    #[test]
+    fn a_long_saw_tooth_keeps_every_run_s_lowest_and_highest_error_in_time_order() {
+        // An hour at 10 Hz of an error that grows for 3.1 s and falls at each packet, its peaks
+        // rising slowly: every 12th sample (the stride that fits) would land on the teeth anywhere.
+        let errors: Vec<f64> = (0..36_000)
+            .map(|i| (i % 31) as f64 * 0.1 + i as f64 * 1e-4)
+            .collect();
+        let picks = series_picks(&errors);
+        assert!(picks.len() <= MAX_SERIES_POINTS, "{}", picks.len());
+        assert!(picks.windows(2).all(|w| w[0] < w[1]), "in time order");
+        let run = errors.len().div_ceil(MAX_SERIES_POINTS / 2);
+        for (r, chunk) in errors.chunks(run).enumerate() {
+            let kept: Vec<f64> = picks
+                .iter()
+                .filter(|&&i| i / run == r)
+                .map(|&i| errors[i])
+                .collect();
+            let high = chunk.iter().copied().fold(f64::MIN, f64::max);
+            let low = chunk.iter().copied().fold(f64::MAX, f64::min);
+            assert!(
+                kept.contains(&high) && kept.contains(&low),
+                "run {r}: {kept:?}"
+            );
+        }
+        let top = errors.iter().copied().fold(f64::MIN, f64::max);
+        assert!(
+            picks.iter().any(|&i| errors[i] == top),
+            "the largest error is plotted"
+        );
+    }
 }

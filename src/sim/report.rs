@@ -251,7 +251,9 @@ pub struct ModelResult {
 }
 
 /// One model's time series over the first flight (for plots). In JavaScript every list of
-/// numbers here is a `Float64Array` (`src/wasm.rs`); in the CLI's JSON, an array.
+/// numbers here is a `Float64Array` (`src/wasm.rs`); in the CLI's JSON, an array. At most 3000
+/// evaluation times: a longer flight is cut into 1500 runs of them and each keeps its lowest and
+/// highest error (min-max decimation), so that a plot of the series shows the error's envelope.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
