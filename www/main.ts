@@ -181,9 +181,13 @@ function onResponse(r: Response): void {
   if ('report' in r) {
     const made = { ...running.settings };
     inNextTask(r.id, () => showReport(r.report, made, r.millis));
+    // The sweep follows the report (the pool merges the workers' reports before their sweeps).
+    clearTimeout(sweepWait);
+    sweepWait = setTimeout(() => sweepPending(true), SWEEP_PATIENCE_MS);
     return;
   }
   showPartial(false);
+  sweepPending(false);
   if ('sweep' in r) {
     renderSweep(r.sweep, { ...(running?.settings ?? store.reportSettings), seeds: 1 });
     running = undefined;
@@ -259,6 +263,21 @@ function showReport(report: SimReport, made: Settings, millis: number): void {
   status.textContent = `${c.trajectory}: ${c.flights} flight${c.flights > 1 ? 's' : ''}, ${c.flightTime.toFixed(0)} s simulated in ${millis.toFixed(0)} ms. Gateway range (mean power = sensitivity ${c.sensitivityDbm.toFixed(1)} dBm): ${(c.rangeM / 1000).toFixed(2)} km.`;
   renderResults(report);
   if (settingsChartsWait) renderSettingsCharts();
+}
+
+/** How long the sweep that follows a report (the distance and SF charts: 12 more runs of the
+ * flight) may take before those panels say that they still show the previous settings, ms. Most
+ * sweeps come within it, so the charts do not flicker as a slider moves; a long uploaded flight's
+ * took 90 s, its old charts on show all along. */
+const SWEEP_PATIENCE_MS = 600;
+let sweepWait: ReturnType<typeof setTimeout> | undefined;
+
+/** Marks the distance and SF panels as waiting for the sweep of the numbers on show (`on`), or
+ * not: the chart dimmed, a note over it. */
+function sweepPending(on: boolean): void {
+  clearTimeout(sweepWait);
+  sweepWait = undefined;
+  for (const name of ['distance', 'sf']) $(`[data-panel="${name}"]`).classList.toggle('pending', on);
 }
 
 // ---- rendering ---------------------------------------------------------------------------------

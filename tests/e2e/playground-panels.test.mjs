@@ -237,6 +237,32 @@ test('a large CSV is read with its own progress, then simulated', async () => {
   assert.deepEqual(problems, []);
 });
 
+test('while the distance and SF charts wait for their runs, they say they show the previous settings, and then do not', async () => {
+  // The IMM's predictions are not remembered between runs, so its whole-set sweep (12 runs) takes
+  // seconds, as a long uploaded flight's did for every station (90 s for 10⁶ rows).
+  const { page, problems } = await open('?flight=all&model=imm');
+  await idle(page);
+  const pending = () => page.evaluate(() => ['distance', 'sf'].map((p) => document.querySelector(`[data-panel="${p}"]`).classList.contains('pending')));
+  assert.deepEqual(await pending(), [false, false], 'drawn for the settings on show');
+  const before = await tableHtml(page);
+  // Beyond SF7's reach at 3.5 km: the numbers change, and the SF chart with them.
+  await page.locator('#distance').fill('3500');
+  await waitForResults(page, before);
+  await until(page, () => document.querySelector('[data-panel="sf"]').classList.contains('pending'));
+  const shown = await page.evaluate(() => {
+    const panel = document.querySelector('[data-panel="sf"]');
+    const note = panel.querySelector('.pending-note');
+    return { note: note.offsetParent !== null ? note.textContent : '', opacity: Number(getComputedStyle(panel.querySelector('.chart svg')).opacity) };
+  });
+  assert.match(shown.note, /Computing this chart for the current settings; until then it shows the previous ones/);
+  assert.ok(shown.opacity < 0.5, `the old chart is dimmed (opacity ${shown.opacity})`);
+  assert.deepEqual(await axe(page), []);
+  await idle(page);
+  assert.deepEqual(await pending(), [false, false], 'drawn for the settings on show again');
+  assert.equal(await page.locator('[data-panel="sf"] .pending-note').isVisible(), false);
+  assert.deepEqual(problems, []);
+});
+
 test('a number being typed runs once it is whole: -15 dBm never runs as -1', async () => {
   const { page, problems } = await open();
   await page.locator('#advanced summary').click();
