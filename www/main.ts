@@ -273,11 +273,16 @@ const SWEEP_PATIENCE_MS = 600;
 let sweepWait: ReturnType<typeof setTimeout> | undefined;
 
 /** Marks the distance and SF panels as waiting for the sweep of the numbers on show (`on`), or
- * not: the chart dimmed, a note over it. */
+ * not: the chart dimmed, a note over it (on a page still without them, the note alone). */
 function sweepPending(on: boolean): void {
   clearTimeout(sweepWait);
   sweepWait = undefined;
-  for (const name of ['distance', 'sf']) $(`[data-panel="${name}"]`).classList.toggle('pending', on);
+  for (const name of ['distance', 'sf']) {
+    const panel = $(`[data-panel="${name}"]`);
+    panel.classList.toggle('pending', on);
+    const drawn = panel.querySelector('.chart')!.childElementCount > 0;
+    if (on) panel.querySelector('.pending-note')!.textContent = `Computing this chart for the current settings${drawn ? '; until then it shows the previous ones.' : '…'}`;
+  }
 }
 
 // ---- rendering ---------------------------------------------------------------------------------

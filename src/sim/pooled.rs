@@ -249,9 +249,9 @@ pub(crate) fn series_picks(errors: &[f64]) -> Vec<usize> {
         return (0..errors.len()).collect();
     }
     let run = errors.len().div_ceil(MAX_SERIES_POINTS / 2);
+    let by_error = |a: &(usize, &f64), b: &(usize, &f64)| a.1.total_cmp(b.1);
     let mut picks = Vec::with_capacity(MAX_SERIES_POINTS);
     for (r, chunk) in errors.chunks(run).enumerate() {
-        let by_error = |a: &(usize, &f64), b: &(usize, &f64)| a.1.total_cmp(b.1);
         let low = chunk
             .iter()
             .enumerate()
