@@ -1,6 +1,6 @@
 // The error chart's scale follows the errors, not a bound that lost packets let run away.
 import { expect, test } from 'vitest';
-import { errorScale, packetMarks, rateLabels } from '../../www/charts/errorOverTime';
+import { errorScale, packetMarks, pixelPicks, rateLabels } from '../../www/charts/errorOverTime';
 
 test('a bound far past the errors is held to twice the largest error and reported', () => {
   expect(errorScale([[1, 10], [4]], [[30, 700], [12]])).toEqual({ top: 20, boundTop: 700 });
@@ -49,4 +49,31 @@ test('packets seconds apart are a mark each; packets within one pixel of the tim
   expect(dense.every((m, i) => i === 0 || m.t - dense[i - 1].t >= 66)).toBe(true);
   // A mark that spans a change of data rate names both.
   expect(packetMarks([10, 10.05, 10.1], [5, 5, 4], 1)[0].drs).toEqual([5, 4]);
+});
+
+test("a series of at most four samples a pixel is drawn whole; a denser one keeps each pixel's lowest and highest error, in time order", () => {
+  // A synthetic flight's 875 samples at 10 Hz on a phone's 290 px of axis: every one.
+  const t = Float64Array.from({ length: 875 }, (_, i) => i / 10);
+  const saw = Float64Array.from(t, (s) => 1 + (s % 3));
+  expect(pixelPicks(t, saw, 0, 87.4 / 290)).toEqual([...t.keys()]);
+  // Five a pixel: thinned to at most two.
+  expect(pixelPicks(t, saw, 0, 87.4 / 174).length).toBeLessThanOrEqual(2 * 175);
+  // An hour at 10 Hz on the same axis: 6.8 s a pixel, a saw-tooth of 3 s teeth.
+  const hour = Float64Array.from({ length: 36_000 }, (_, i) => i / 10);
+  const teeth = Float64Array.from(hour, (s, i) => (s % 3) + (i === 20_000 ? 50 : 0));
+  const pixel = 3599.9 / 530;
+  const picks = pixelPicks(hour, teeth, 0, pixel);
+  expect(picks.length).toBeLessThanOrEqual(2 * 531);
+  expect(picks.every((p, k) => k === 0 || p > picks[k - 1])).toBe(true);
+  // The one spike, and every pixel's trough and crest, survive.
+  expect(picks).toContain(20_000);
+  const range = (indices: Iterable<number>) => {
+    const byPixel = new Map<number, [number, number]>();
+    for (const i of indices) {
+      const [lo, hi] = byPixel.get(Math.floor(hour[i] / pixel)) ?? [Infinity, -Infinity];
+      byPixel.set(Math.floor(hour[i] / pixel), [Math.min(lo, teeth[i]), Math.max(hi, teeth[i])]);
+    }
+    return byPixel;
+  };
+  expect(range(picks)).toEqual(range(hour.keys()));
 });
