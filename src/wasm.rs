@@ -142,6 +142,7 @@ fn series_value(series: &crate::sim::Series) -> Result<JsValue, JsValue> {
         let crate::sim::ModelSeries {
             model,
             t,
+            samples,
             error3d,
             bound95,
             x,
@@ -154,6 +155,7 @@ fn series_value(series: &crate::sim::Series) -> Result<JsValue, JsValue> {
         } = m;
         let one = JsValue::from(js_sys::Object::new());
         set(&one, "model", JsValue::from_str(model.name()))?;
+        set(&one, "samples", plain_value(samples)?)?;
         set_numbers(
             &one,
             [

@@ -29,7 +29,9 @@ function save(blob: Blob, name: string): void {
 const csvCell = (v: string) => (/[",\n]/.test(v) ? `"${v.replace(/"/g, '""')}"` : v);
 const csvText = (rows: string[][]) => rows.map((r) => r.map(csvCell).join(',')).join('\n') + '\n';
 
-/** The first flight's error series: one row per evaluation time, one column per model. */
+/** The first flight's error series: one row per evaluation time, one column per model. A flight
+ * of more than 3000 evaluation times comes as each station's envelope (`ModelSeries.samples`), its
+ * stations' samples at their own times: the file's name then says `thinned`. */
 export function downloadErrorCsv(report: SimReport): void {
   const models = report.series?.models ?? [];
   const header = ['t_s', ...models.map((m) => `${m.model}_error3d_m`)];
@@ -43,7 +45,8 @@ export function downloadErrorCsv(report: SimReport): void {
     }),
   );
   const rows = [...byTime.entries()].sort((a, b) => a[0] - b[0]).map(([t, cells]) => [t.toFixed(2), ...cells]);
-  save(new Blob([csvText([header, ...rows])], { type: 'text/csv' }), 'loratrack-error-series.csv');
+  const thinned = models.some((m) => m.samples > m.t.length);
+  save(new Blob([csvText([header, ...rows])], { type: 'text/csv' }), `loratrack-error-series${thinned ? '-thinned' : ''}.csv`);
 }
 
 /** One row per station: the numbers of the results table, unrounded, with the 95 % intervals. */

@@ -289,6 +289,7 @@ pub(crate) fn model_series(
     ModelSeries {
         model,
         t: pick(&st.times),
+        samples: st.error3d.len(),
         error3d: pick(&st.error3d),
         bound95: pick(&st.bound95),
         x: axis(0),

@@ -264,6 +264,9 @@ pub struct ModelSeries {
     /// Evaluation times, s.
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub t: Vec<f64>,
+    /// The station's evaluation times on this flight, all of them: more than `t` holds when the
+    /// series was thinned to its envelope (a flight of more than 3000).
+    pub samples: usize,
     /// 3D error at each time, m.
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub error3d: Vec<f64>,

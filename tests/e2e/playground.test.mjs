@@ -5,7 +5,7 @@
 // playground-panels.test.mjs; the two files run side by side.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { writeFileSync } from 'node:fs';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { nativeJson, scratchDir, openPage, screenshot } from './harness.mjs';
 import { axe, axisLabelOverlaps, cell, chartTexts, downloaded, idle, layoutShifts, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
@@ -240,6 +240,48 @@ test('a good CSV is simulated and a bad one is refused next to the control', asy
   await page.getByLabel('Spreading factor', { exact: true }).selectOption('8');
   await waitForResults(page, before);
   assert.deepEqual(problems, []);
+});
+
+test("a long uploaded flight's error chart and error series CSV say they are its envelope, with the CLI's series", async () => {
+  // Ten minutes at 10 Hz: 6000 evaluation times a station, more than the 3000 a series keeps.
+  const dir = scratchDir();
+  const path = join(dir, 'long.csv');
+  const rows = ['t,x,y,z'];
+  for (let i = 0; i <= 6000; i++) {
+    const t = i / 10;
+    rows.push(`${t.toFixed(1)},${(300 * Math.cos(t / 60)).toFixed(3)},${(300 * Math.sin(t / 60)).toFixed(3)},${(40 + 10 * Math.sin(t / 90)).toFixed(3)}`);
+  }
+  writeFileSync(path, rows.join('\n'));
+  const { page, problems } = await open();
+  const before = await tableHtml(page);
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
+  await page.locator('#csv').setInputFiles(path);
+  await waitForResults(page, before);
+  // Not every panel: the distance and SF charts run the flight 12 times more.
+  await page.waitForSelector('#chart-error .note');
+  const cli = nativeJson(['simulate', '--trajectory', path, '--series']).series.models;
+  assert.ok(cli.every((m) => m.samples > m.t.length), `the CLI's series: ${cli.map((m) => `${m.t.length} of ${m.samples}`)}`);
+  const note = await page.locator('#chart-error .note').textContent();
+  assert.match(note, new RegExp(`${Math.max(...cli.map((m) => m.samples)).toLocaleString('en')} samples a station are drawn as their envelope`));
+  // The chart draws at most four points a pixel of its axis for each station's line.
+  const [axis, points] = await page.evaluate(() => {
+    const svg = [...document.querySelectorAll('#chart-error svg')].find((s) => Number(s.getAttribute('width')) > 100);
+    const lines = [...svg.querySelectorAll('path')].filter((p) => p.getAttribute('stroke-width') === '1.4' || p.parentElement?.getAttribute('stroke-width') === '1.4');
+    return [Number(svg.getAttribute('width')), lines.map((p) => (p.getAttribute('d').match(/L/g) ?? []).length + 1)];
+  });
+  assert.equal(points.length, cli.length, 'one line a station');
+  assert.ok(points.every((n) => n <= 2 * axis), `points a line: ${points} on ${axis} px`);
+  // The CSV names itself thinned and gives each station's kept samples, as the CLI's series.
+  const [download] = await Promise.all([page.waitForEvent('download'), page.locator('#download-csv').click()]);
+  assert.equal(download.suggestedFilename(), 'loratrack-error-series-thinned.csv');
+  const [header, ...body] = readFileSync(await download.path(), 'utf8').trim().split('\n').map((r) => r.split(','));
+  cli.forEach((m, k) => {
+    assert.equal(header[k + 1], `${m.model}_error3d_m`);
+    const cells = body.filter((r) => r[k + 1] !== '');
+    assert.deepEqual(cells.map((r) => [r[0], r[k + 1]]), m.t.map((t, i) => [t.toFixed(2), m.error3d[i].toFixed(4)]), m.model);
+  });
+  assert.deepEqual(problems, []);
+  await page.close();
 });
 
 test('an uploaded flight with its uploaded plan runs the mission station, with the CLI\'s numbers; a bad plan is refused next to its control', async () => {

@@ -1,6 +1,6 @@
 // The error chart's scale follows the errors, not a bound that lost packets let run away.
 import { expect, test } from 'vitest';
-import { errorScale, packetMarks, pixelPicks, rateLabels } from '../../www/charts/errorOverTime';
+import { errorScale, packetMarks, pixelPicks, rateLabels, thinnedNote } from '../../www/charts/errorOverTime';
 
 test('a bound far past the errors is held to twice the largest error and reported', () => {
   expect(errorScale([[1, 10], [4]], [[30, 700], [12]])).toEqual({ top: 20, boundTop: 700 });
@@ -76,4 +76,11 @@ test("a series of at most four samples a pixel is drawn whole; a denser one keep
     return byPixel;
   };
   expect(range(picks)).toEqual(range(hour.keys()));
+});
+
+test('a thinned series says so under the chart, with how many samples it rests on; a whole one adds nothing', () => {
+  const whole = { t: new Float64Array(800), samples: 800 };
+  expect(thinnedNote([whole, whole])).toBe('');
+  const hour = { t: new Float64Array(2998), samples: 36_000 };
+  expect(thinnedNote([whole, hour])).toMatch(/36,000 samples a station are drawn as their envelope.*2,998 kept.*CSV/);
 });

@@ -61,7 +61,24 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
       Plot.tip(lines, Plot.pointerX({ x: 't', y: 'e', stroke: 'model' })),
     ],
   });
-  return withKey(chart, key);
+  const thinned = thinnedNote(models);
+  if (!thinned) return withKey(chart, key);
+  // Under the chart, so that the page and a slide both say what a long flight's line rests on.
+  const note = document.createElement('p');
+  note.className = 'note';
+  note.textContent = thinned;
+  const box = document.createElement('div');
+  box.append(withKey(chart, key), note);
+  return box;
+}
+
+/** What a thinned series rests on (`ModelSeries.samples`): empty when every station's series is
+ * whole, as on every synthetic flight. */
+export function thinnedNote(models: { t: ArrayLike<number>; samples: number }[]): string {
+  const thinned = models.filter((m) => m.samples > m.t.length);
+  if (!thinned.length) return '';
+  const [samples, kept] = [Math.max(...thinned.map((m) => m.samples)), Math.max(...thinned.map((m) => m.t.length))];
+  return `This flight's ${samples.toLocaleString('en')} samples a station are drawn as their envelope: each stretch's lowest and highest error, ${kept.toLocaleString('en')} kept, as the error series CSV gives them.`;
 }
 
 /**

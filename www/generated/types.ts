@@ -657,6 +657,11 @@ model: ModelName,
  */
 t: Float64Array, 
 /**
+ * The station's evaluation times on this flight, all of them: more than `t` holds when the
+ * series was thinned to its envelope (a flight of more than 3000).
+ */
+samples: number, 
+/**
  * 3D error at each time, m.
  */
 error3d: Float64Array, 
