@@ -263,7 +263,7 @@ test("a long uploaded flight's error chart and error series CSV say they are its
   assert.ok(cli.every((m) => m.samples > m.t.length), `the CLI's series: ${cli.map((m) => `${m.t.length} of ${m.samples}`)}`);
   const note = await page.locator('#chart-error .note').textContent();
   assert.match(note, new RegExp(`${Math.max(...cli.map((m) => m.samples)).toLocaleString('en')} samples a station are drawn as their envelope`));
-  // The chart draws at most four points a pixel of its axis for each station's line.
+  // Each station's line is thinned to at most two points a pixel of its axis (narrower than the SVG).
   const [axis, points] = await page.evaluate(() => {
     const svg = [...document.querySelectorAll('#chart-error svg')].find((s) => Number(s.getAttribute('width')) > 100);
     const lines = [...svg.querySelectorAll('path')].filter((p) => p.getAttribute('stroke-width') === '1.4' || p.parentElement?.getAttribute('stroke-width') === '1.4');
