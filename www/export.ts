@@ -2,7 +2,7 @@
 // PNG ready for a slide (title, legend, axis labels, a caption with the settings, seed and
 // version; PNGs at least 1600 px wide), and tables as CSV. Everything is made in the page from
 // data it already has: no request leaves it.
-import type { SimReport } from './loratrack';
+import { isThinned, type SimReport } from './loratrack';
 
 /** What a slide needs besides the chart: a title, a one-line caption of what made it and what
  * the page writes beside the chart (outside its element) that the picture needs, such as the
@@ -45,7 +45,7 @@ export function downloadErrorCsv(report: SimReport): void {
     }),
   );
   const rows = [...byTime.entries()].sort((a, b) => a[0] - b[0]).map(([t, cells]) => [t.toFixed(2), ...cells]);
-  const thinned = models.some((m) => m.samples > m.t.length);
+  const thinned = models.some(isThinned);
   save(new Blob([csvText([header, ...rows])], { type: 'text/csv' }), `loratrack-error-series${thinned ? '-thinned' : ''}.csv`);
 }
 

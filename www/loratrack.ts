@@ -19,6 +19,7 @@ import type {
   LinkBudgetReport,
   ModelName,
   ModelResult,
+  ModelSeries,
   NumberOption,
   PredictParams,
   PredictReport,
@@ -50,6 +51,10 @@ export function load(module?: Promise<WebAssembly.Module>): Promise<void> {
 }
 
 export const MODEL_LABELS: Record<ModelName, string> = { dr: 'DR', 'ctra-plus': 'CTRA+', '3d-ctra': '3D-CTRA', imm: 'IMM', mission: 'Mission' };
+
+/** Whether a station's series was thinned to its envelope (`ModelSeries.samples`: a flight of more
+ * than 3000 evaluation times), which the error chart and its CSV then say. */
+export const isThinned = (m: Pick<ModelSeries, 't' | 'samples'>): boolean => m.samples > m.t.length;
 
 /** Input of simulate and swarm: any of the Scenario's settings (the rest take their defaults);
  * `seed: 'random'` draws one from Web Crypto (reported in `config.seed`). */

@@ -1,7 +1,7 @@
 // Paper Fig. "error over time": the station's 3D error on the first flight, with packet arrivals
 // (dots on the axis) and lost packets (crosses), over the station's own 95 % bound (dashed band).
 import * as Plot from '@observablehq/plot';
-import { MODEL_LABELS, type SimReport } from '../loratrack';
+import { isThinned, MODEL_LABELS, type ModelSeries, type SimReport } from '../loratrack';
 import { MODEL_COLORS, chartFrame, chartFont, withKey } from './colors';
 
 export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElement | HTMLElement {
@@ -74,8 +74,8 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
 
 /** What a thinned series rests on (`ModelSeries.samples`): empty when every station's series is
  * whole, as on every synthetic flight. */
-export function thinnedNote(models: { t: ArrayLike<number>; samples: number }[]): string {
-  const thinned = models.filter((m) => m.samples > m.t.length);
+export function thinnedNote(models: Pick<ModelSeries, 't' | 'samples'>[]): string {
+  const thinned = models.filter(isThinned);
   if (!thinned.length) return '';
   const [samples, kept] = [Math.max(...thinned.map((m) => m.samples)), Math.max(...thinned.map((m) => m.t.length))];
   return `This flight's ${samples.toLocaleString('en')} samples a station are drawn as their envelope: each stretch's lowest and highest error, ${kept.toLocaleString('en')} kept, as the error series CSV gives them.`;
