@@ -58,8 +58,9 @@ export function scratchDir() {
 }
 
 /** A static file server for dist/ (or another build's directory, `dir`) mounted at SUB_PATH,
- * like a documentation site would host it. */
-export async function serveDist(dir = dist) {
+ * like a documentation site would host it. With `stall`, the page's HTML arrives as a slow network
+ * or a busy device would parse it: up to `stall.after`, then the rest `stall.ms` later. */
+export async function serveDist(dir = dist, stall) {
   const server = createServer((req, res) => {
     const url = new URL(req.url, 'http://x');
     if (!url.pathname.startsWith(SUB_PATH)) {
@@ -78,7 +79,15 @@ export async function serveDist(dir = dist) {
     try {
       if (!statSync(file).isFile()) throw new Error('not a file');
       res.writeHead(200, { 'content-type': TYPES[extname(file)] ?? 'application/octet-stream' });
-      res.end(readFileSync(file));
+      const body = readFileSync(file);
+      const at = stall && rel === 'index.html' ? body.indexOf(stall.after) : -1;
+      if (at >= 0) {
+        const cut = at + stall.after.length;
+        res.write(body.subarray(0, cut));
+        setTimeout(() => res.end(body.subarray(cut)), stall.ms);
+      } else {
+        res.end(body);
+      }
     } catch {
       res.writeHead(404).end();
     }

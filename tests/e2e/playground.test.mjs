@@ -7,7 +7,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { nativeJson, scratchDir, openPage, screenshot } from './harness.mjs';
+import { nativeJson, scratchDir, openPage, screenshot, serveDist } from './harness.mjs';
 import { axe, axisLabelOverlaps, cell, chartTexts, downloaded, idle, layoutShifts, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
@@ -436,6 +436,25 @@ test('every screen: the page does not jump as its results come, no sideways scro
     assert.ok(last.x >= 0 && last.x + last.width <= width, `${width}: New seed at ${last.x}`);
     assert.deepEqual(problems, []);
     await page.close();
+  }
+});
+
+test('a page whose HTML arrives slowly does not move when the rest of it comes', async () => {
+  // The settings form first, the results panel (which a narrow screen shows above it) 0.4 s later,
+  // as a slow network or a busy device delivers it: painted in between, the form moved down by the
+  // panel's height (0.29 at 1024x768 on a busy machine).
+  const slow = await serveDist(undefined, { after: '</form>', ms: 400 });
+  try {
+    for (const [width, height] of [[390, 844], [1024, 768]]) {
+      const { page, problems } = await openPage(playground.context, slow.origin, { width, height });
+      await page.goto(slow.url);
+      await waitForResults(page);
+      const shift = await layoutShifts(page);
+      assert.ok(shift.total <= 0.03, `${width}x${height}: layout shift ${shift.total.toFixed(3)} (${shift.moved.join(', ')})`);
+      assert.deepEqual(problems, []);
+    }
+  } finally {
+    slow.close();
   }
 });
 
