@@ -155,6 +155,24 @@ impl<const N: usize> SigmaPoints<N> {
         }
     }
 
+    /// Whether `model`'s [linear tail](MotionModel::LINEAR_TAIL) holds over `dt` at the centre
+    /// and at every point around it (placed as [`Self::new`] places them): where it does,
+    /// [`Self::kinematic_moments`] may replace the general sums. Free for a model that declares
+    /// its tail outright; a bounded station's points are checked one by one.
+    pub fn tail_holds<M: MotionModel<N>>(
+        model: &M,
+        mean: &SVector<f64, N>,
+        l: &SMatrix<f64, N, N>,
+        gamma: f64,
+        dt: f64,
+    ) -> bool {
+        model.tail_holds(mean, dt)
+            && (0..N).all(|i| {
+                let offset = l.column(i) * gamma;
+                model.tail_holds(&(mean + offset), dt) && model.tail_holds(&(mean - offset), dt)
+            })
+    }
+
     /// Applies `f` (a motion model, a measurement of the full state) to every point.
     pub fn map(&self, mut f: impl FnMut(&SVector<f64, N>) -> SVector<f64, N>) -> Self {
         let mut out = *self;

@@ -81,9 +81,10 @@ impl<const N: usize> Ukf<N> {
     /// recombines them and adds Q·dt.
     pub fn predict<M: MotionModel<N>>(&mut self, model: &M, dt: f64) {
         let (l, exact) = self.factor_covariance();
-        let points = SigmaPoints::propagated(model, &self.x, &l, self.weights.gamma, dt);
+        let gamma = self.weights.gamma;
+        let points = SigmaPoints::propagated(model, &self.x, &l, gamma, dt);
         let closed_form = match M::LINEAR_TAIL {
-            Some(rates) if exact => {
+            Some(rates) if exact && SigmaPoints::tail_holds(model, &self.x, &l, gamma, dt) => {
                 points.kinematic_moments(&self.p, &l, rates, dt, &self.weights, self.angles)
             }
             _ => None,

@@ -80,6 +80,14 @@ pub trait MotionModel<const N: usize> {
     /// [`Self::propagate`] by a test.
     const LINEAR_TAIL: Option<&'static [(usize, usize)]> = None;
 
+    /// Whether [`Self::LINEAR_TAIL`] describes how `state` moves over `dt`. Always, for a model
+    /// that declares one outright (the default); a model whose tail is linear only in part of the
+    /// state space (a [bounded station](crate::Bounded), whose speed and pitch stop at their
+    /// limits) says where. The filter takes the closed form only where every sigma point holds it.
+    fn tail_holds(&self, _state: &SVector<f64, N>, _dt: f64) -> bool {
+        true
+    }
+
     /// The state after `dt` seconds (`dt` may be any finite value; the station uses dt ≥ 0).
     fn propagate(&self, state: &SVector<f64, N>, dt: f64) -> SVector<f64, N>;
 

@@ -161,44 +161,62 @@ pub struct Bounded<M> {
 }
 
 impl<M> Bounded<M> {
-    /// The earliest limit reached within `left` seconds, and when.
+    /// The earliest limit reached within `left` seconds, and when (on a tie the speed's).
     fn next_limit<const N: usize>(&self, x: &SVector<f64, N>, left: f64) -> Option<(f64, Limit)> {
         let b = &self.bounds;
         let hit = |value: f64, rate: f64, lo: f64, hi: f64| -> Option<(f64, f64)> {
-            if rate < 0.0 && value > lo {
-                Some(((lo - value) / rate, lo))
+            let (t, bound) = if rate < 0.0 && value > lo {
+                ((lo - value) / rate, lo)
             } else if rate > 0.0 && value < hi {
-                Some(((hi - value) / rate, hi))
+                ((hi - value) / rate, hi)
             } else {
-                None
-            }
+                return None;
+            };
+            (t < left).then_some((t, bound))
         };
-        let speed = (N > A)
-            .then(|| hit(x[V], x[A], 0.0, b.v_max))
-            .flatten()
-            .map(|(t, v)| (t, Limit::Speed(v)));
-        let pitch = (N > PSI)
-            .then(|| hit(x[PHI], x[PSI], -b.phi_max, b.phi_max))
-            .flatten()
-            .map(|(t, p)| (t, Limit::Pitch(p)));
-        [speed, pitch]
-            .into_iter()
-            .flatten()
-            .filter(|(t, _)| *t < left)
-            .min_by(|a, b| a.0.total_cmp(&b.0))
+        // Written out rather than as a chain of options: every sigma point of every bounded
+        // station step asks, twice (`tail_holds`, then the propagation).
+        let speed = if N > A {
+            hit(x[V], x[A], 0.0, b.v_max).map(|(t, v)| (t, Limit::Speed(v)))
+        } else {
+            None
+        };
+        let pitch = if N > PSI {
+            hit(x[PHI], x[PSI], -b.phi_max, b.phi_max).map(|(t, p)| (t, Limit::Pitch(p)))
+        } else {
+            None
+        };
+        match (speed, pitch) {
+            (Some(s), Some(p)) => Some(if p.0 < s.0 { p } else { s }),
+            (s, p) => s.or(p),
+        }
+    }
+
+    /// Whether the speed of `x` is at or past a limit with the acceleration pushing further.
+    fn speed_held<const N: usize>(&self, x: &SVector<f64, N>) -> bool {
+        N > A && ((x[V] <= 0.0 && x[A] < 0.0) || (x[V] >= self.bounds.v_max && x[A] > 0.0))
+    }
+
+    /// Whether the pitch of `x` is at or past a limit with the tilt rate pushing further.
+    fn pitch_held<const N: usize>(&self, x: &SVector<f64, N>) -> bool {
+        let max = self.bounds.phi_max;
+        N > PSI && ((x[PHI] <= -max && x[PSI] < 0.0) || (x[PHI] >= max && x[PSI] > 0.0))
+    }
+
+    /// Whether `x` moves over `dt` exactly as the unbounded model moves it: no rate held, no limit
+    /// reached.
+    fn free<const N: usize>(&self, x: &SVector<f64, N>, dt: f64) -> bool {
+        !self.speed_held(x) && !self.pitch_held(x) && self.next_limit(x, dt).is_none()
     }
 
     /// Stops the rates that would push a state further past a limit it is already at or beyond.
     /// The values themselves are left alone: a sigma point with a negative speed describes the
     /// same motion as the opposite course, and clamping it would bias a hovering drone's mean.
     fn hold<const N: usize>(&self, mut x: SVector<f64, N>) -> SVector<f64, N> {
-        let b = &self.bounds;
-        if N > A && ((x[V] <= 0.0 && x[A] < 0.0) || (x[V] >= b.v_max && x[A] > 0.0)) {
+        if self.speed_held(&x) {
             x[A] = 0.0;
         }
-        if N > PSI
-            && ((x[PHI] <= -b.phi_max && x[PSI] < 0.0) || (x[PHI] >= b.phi_max && x[PSI] > 0.0))
-        {
+        if self.pitch_held(&x) {
             x[PSI] = 0.0;
         }
         x
@@ -228,6 +246,10 @@ impl<const N: usize, M: MotionModel<N>> MotionModel<N> for Bounded<M> {
 
     const SHARES_HEADING: bool = M::SHARES_HEADING;
 
+    /// The model's own tail, where it holds: for a state that moves freely over `dt`
+    /// ([`Self::tail_holds`]).
+    const LINEAR_TAIL: Option<&'static [(usize, usize)]> = M::LINEAR_TAIL;
+
     /// [`Self::propagate`], passing the heading on where no limit is reached within `dt` (the
     /// common case), so that a bounded station's sigma points share headings as the model's do.
     fn propagate_with(&self, s: &SVector<f64, N>, heading: &Heading, dt: f64) -> SVector<f64, N> {
@@ -236,6 +258,28 @@ impl<const N: usize, M: MotionModel<N>> MotionModel<N> for Bounded<M> {
             None => self.model.propagate_with(&x, heading, dt),
             Some(_) => self.propagate(s, dt),
         }
+    }
+
+    /// The model's batched pair where both points move freely (3D-CTRA computes the pair's six
+    /// arc integrals together), each point alone where either is held or reaches a limit.
+    fn propagate_pair(
+        &self,
+        states: [&SVector<f64, N>; 2],
+        headings: [&Heading; 2],
+        dt: f64,
+    ) -> [SVector<f64, N>; 2] {
+        if states.iter().all(|s| self.free(s, dt)) {
+            return self.model.propagate_pair(states, headings, dt);
+        }
+        [
+            self.propagate_with(states[0], headings[0], dt),
+            self.propagate_with(states[1], headings[1], dt),
+        ]
+    }
+
+    /// Where no rate is held and no limit reached within `dt`, the step is the model's.
+    fn tail_holds(&self, state: &SVector<f64, N>, dt: f64) -> bool {
+        self.free(state, dt) && self.model.tail_holds(state, dt)
     }
 
     fn decay_tilt_rate(&self, state: &mut SVector<f64, N>, eta: f64) {
@@ -435,5 +479,110 @@ mod tests {
         assert!((dr(4.0) / dr(2.0) - 4.0).abs() < 1e-12);
         assert!((ct(4.0) / ct(2.0) - 8.0).abs() < 1e-12);
         assert_eq!(b.model_error_variance(ModelKind::CtraPlus, 0.0), 0.0);
+    }
+}
+
+#[cfg(test)]
+mod closed_form_tests {
+    use super::*;
+    use crate::filter::{SigmaPoints, Ukf};
+    use crate::models::{Ctra3d, CtraPlus, Dr, ANGLES};
+
+    /// A model's propagation without its linear tail: the filter takes the general sums.
+    struct General<M>(M);
+    impl<const N: usize, M: MotionModel<N>> MotionModel<N> for General<M> {
+        const KIND: ModelKind = M::KIND;
+        const SHARES_HEADING: bool = M::SHARES_HEADING;
+        fn propagate(&self, s: &SVector<f64, N>, dt: f64) -> SVector<f64, N> {
+            self.0.propagate(s, dt)
+        }
+        fn propagate_with(&self, s: &SVector<f64, N>, h: &Heading, dt: f64) -> SVector<f64, N> {
+            self.0.propagate_with(s, h, dt)
+        }
+    }
+
+    /// A bounded station's filter at `state` with a covariance of about `spread`² per
+    /// component, and whether the model's linear tail holds at every sigma point over `dt`.
+    fn filter<const N: usize, M: MotionModel<N> + Copy>(
+        model: M,
+        state: [f64; 9],
+        spread: f64,
+        dt: f64,
+    ) -> (Ukf<N>, bool) {
+        let x = SVector::<f64, N>::from_fn(|i, _| state[i]);
+        let p = SMatrix::<f64, N, N>::from_fn(|i, j| {
+            let s2 = spread * spread;
+            if i == j {
+                s2 * (1.0 + 0.1 * i as f64)
+            } else {
+                0.1 * s2 / (1.0 + (i + j) as f64)
+            }
+        });
+        let q = SMatrix::<f64, N, N>::identity() * 0.01;
+        let ukf = Ukf::new(x, p, q, Prediction::Bounded.sigma_params(), ANGLES).unwrap();
+        let gamma = (N as f64).sqrt(); // kappa = 0
+        let l = nalgebra::Cholesky::new(p).unwrap().l();
+        let holds = SigmaPoints::tail_holds(&bounded(model), &x, &l, gamma, dt);
+        (ukf, holds)
+    }
+
+    fn bounded<M>(model: M) -> Bounded<M> {
+        Bounded {
+            model,
+            bounds: Bounds::default(),
+        }
+    }
+
+    /// Predicts `ukf` over `dt` through the bounded model, in closed form where it holds and
+    /// through the general sums, and checks that both agree.
+    fn closed_equals_general<const N: usize, M: MotionModel<N> + Copy>(
+        model: M,
+        ukf: &Ukf<N>,
+        dt: f64,
+    ) {
+        let (mut closed, mut general) = (ukf.clone(), ukf.clone());
+        closed.predict(&bounded(model), dt);
+        general.predict(&General(bounded(model)), dt);
+        assert!(
+            (closed.x - general.x).norm() < 1e-9,
+            "{:?}: {} vs {}",
+            M::KIND,
+            closed.x,
+            general.x
+        );
+        assert!((closed.p - general.p).norm() < 1e-9, "{:?}", M::KIND);
+    }
+
+    #[test]
+    fn a_freely_moving_bounded_station_predicts_as_the_general_sums_do() {
+        let cruising = [10.0, -5.0, 40.0, 3.0, 0.1, 8.0, 0.3, 0.2, 0.05];
+        for dt in [0.1, 1.0] {
+            let (ukf, holds) = filter::<6, _>(Dr, cruising, 0.7, dt);
+            assert!(holds);
+            closed_equals_general(Dr, &ukf, dt);
+            let (ukf, holds) = filter::<8, _>(CtraPlus, cruising, 0.3, dt);
+            assert!(holds);
+            closed_equals_general(CtraPlus, &ukf, dt);
+            let (ukf, holds) = filter::<9, _>(Ctra3d, cruising, 0.3, dt);
+            assert!(holds);
+            closed_equals_general(Ctra3d, &ukf, dt);
+        }
+    }
+
+    #[test]
+    fn where_a_sigma_point_reaches_a_limit_the_tail_does_not_hold() {
+        // Braking at 1 m/s² from 0.5 m/s: the centre stops within 1 s; climbing at 0.3 rad/s
+        // from 1.5 rad, the pitch reaches the vertical within 0.3 s.
+        let braking = [0.0, 0.0, 10.0, 0.0, 0.0, 0.5, -1.0, 0.0, 0.0];
+        let (ukf, holds) = filter::<8, _>(CtraPlus, braking, 0.05, 1.0);
+        assert!(!holds);
+        closed_equals_general(CtraPlus, &ukf, 1.0);
+        let climbing = [0.0, 0.0, 10.0, 0.0, 1.5, 5.0, 0.0, 0.0, 0.3];
+        let (ukf, holds) = filter::<9, _>(Ctra3d, climbing, 0.01, 1.0);
+        assert!(!holds);
+        closed_equals_general(Ctra3d, &ukf, 1.0);
+        // The same states over a step too short to reach either limit.
+        assert!(filter::<8, _>(CtraPlus, braking, 0.05, 0.1).1);
+        assert!(filter::<9, _>(Ctra3d, climbing, 0.01, 0.1).1);
     }
 }
