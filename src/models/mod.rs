@@ -111,10 +111,7 @@ pub trait MotionModel<const N: usize> {
         headings: [&Heading; 2],
         dt: f64,
     ) -> [SVector<f64, N>; 2] {
-        [
-            self.propagate_with(states[0], headings[0], dt),
-            self.propagate_with(states[1], headings[1], dt),
-        ]
+        each_of_pair(self, states, headings, dt)
     }
 
     /// Applies the station's tilt-rate decay after one prediction step: psi ← eta·psi
@@ -125,6 +122,20 @@ pub trait MotionModel<const N: usize> {
     /// that the uncertainty of the tilt rate dies out with the tilt rate itself (a bounded
     /// station; the paper decays the state only). Models without psi leave it unchanged.
     fn decay_tilt_rate_covariance(&self, _p: &mut SMatrix<f64, N, N>, _eta: f64) {}
+}
+
+/// A sigma pair's two points through [`MotionModel::propagate_with`] one at a time: the default
+/// [`MotionModel::propagate_pair`], and the way out of a batched one that cannot batch.
+pub(crate) fn each_of_pair<const N: usize, M: MotionModel<N> + ?Sized>(
+    model: &M,
+    states: [&SVector<f64, N>; 2],
+    headings: [&Heading; 2],
+    dt: f64,
+) -> [SVector<f64, N>; 2] {
+    [
+        model.propagate_with(states[0], headings[0], dt),
+        model.propagate_with(states[1], headings[1], dt),
+    ]
 }
 
 #[cfg(test)]

@@ -4,7 +4,7 @@
 use super::HeadingNoise;
 use crate::filter::SigmaParams;
 use crate::math::exp;
-use crate::models::{Heading, ModelKind, MotionModel, A, OMEGA, PHI, PSI, V};
+use crate::models::{each_of_pair, Heading, ModelKind, MotionModel, A, OMEGA, PHI, PSI, V};
 use core::f64::consts::FRAC_PI_2;
 use nalgebra::{SMatrix, SVector};
 use serde::{Deserialize, Serialize};
@@ -269,12 +269,10 @@ impl<const N: usize, M: MotionModel<N>> MotionModel<N> for Bounded<M> {
         dt: f64,
     ) -> [SVector<f64, N>; 2] {
         if states.iter().all(|s| self.free(s, dt)) {
-            return self.model.propagate_pair(states, headings, dt);
+            self.model.propagate_pair(states, headings, dt)
+        } else {
+            each_of_pair(self, states, headings, dt)
         }
-        [
-            self.propagate_with(states[0], headings[0], dt),
-            self.propagate_with(states[1], headings[1], dt),
-        ]
     }
 
     /// Where no rate is held and no limit reached within `dt`, the step is the model's.
