@@ -358,7 +358,8 @@ impl Bounds {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::models::{Ctra3d, CtraPlus, Dr, THETA, X, Z};
+    use crate::filter::{SigmaPoints, Ukf};
+    use crate::models::{Ctra3d, CtraPlus, Dr, ANGLES, THETA, X, Z};
 
     fn bounded<M>(model: M) -> Bounded<M> {
         Bounded {
@@ -478,13 +479,6 @@ mod tests {
         assert!((ct(4.0) / ct(2.0) - 8.0).abs() < 1e-12);
         assert_eq!(b.model_error_variance(ModelKind::CtraPlus, 0.0), 0.0);
     }
-}
-
-#[cfg(test)]
-mod closed_form_tests {
-    use super::*;
-    use crate::filter::{SigmaPoints, Ukf};
-    use crate::models::{Ctra3d, CtraPlus, Dr, ANGLES};
 
     /// A model's propagation without its linear tail: the filter takes the general sums.
     struct General<M>(M);
@@ -522,13 +516,6 @@ mod closed_form_tests {
         let l = nalgebra::Cholesky::new(p).unwrap().l();
         let holds = SigmaPoints::tail_holds(&bounded(model), &x, &l, gamma, dt);
         (ukf, holds)
-    }
-
-    fn bounded<M>(model: M) -> Bounded<M> {
-        Bounded {
-            model,
-            bounds: Bounds::default(),
-        }
     }
 
     /// Predicts `ukf` over `dt` through the bounded model, in closed form where it holds and
