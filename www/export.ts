@@ -2,7 +2,7 @@
 // PNG ready for a slide (title, legend, axis labels, a caption with the settings, seed and
 // version; PNGs at least 1600 px wide), and tables as CSV. Everything is made in the page from
 // data it already has: no request leaves it.
-import { isThinned, type SimReport } from './loratrack';
+import { isThinned, type ModelSeries, type SimReport } from './loratrack';
 
 /** What a slide needs besides the chart: a title, a one-line caption of what made it and what
  * the page writes beside the chart (outside its element) that the picture needs, such as the
@@ -29,11 +29,12 @@ function save(blob: Blob, name: string): void {
 const csvCell = (v: string) => (/[",\n]/.test(v) ? `"${v.replace(/"/g, '""')}"` : v);
 const csvText = (rows: string[][]) => rows.map((r) => r.map(csvCell).join(',')).join('\n') + '\n';
 
-/** The first flight's error series: one row per evaluation time, one column per model. A flight
- * of more than 3000 evaluation times comes as each station's envelope (`ModelSeries.samples`), its
- * stations' samples at their own times: the file's name then says `thinned`. */
-export function downloadErrorCsv(report: SimReport): void {
-  const models = report.series?.models ?? [];
+type Series = Pick<ModelSeries, 'model' | 't' | 'error3d' | 'samples'>;
+
+/** The first flight's error series as CSV rows, header first, and the file's name: one row per
+ * evaluation time, one column per model. */
+export function errorCsv(models: Series[]): { rows: string[][]; name: string } {
+  if (models.some(isThinned)) return { rows: envelopeRows(models), name: 'loratrack-error-envelope.csv' };
   const header = ['t_s', ...models.map((m) => `${m.model}_error3d_m`)];
   // Each station starts at its own first packet: join the series on time, empty before it.
   const byTime = new Map<number, string[]>();
@@ -45,8 +46,51 @@ export function downloadErrorCsv(report: SimReport): void {
     }),
   );
   const rows = [...byTime.entries()].sort((a, b) => a[0] - b[0]).map(([t, cells]) => [t.toFixed(2), ...cells]);
-  const thinned = models.some(isThinned);
-  save(new Blob([csvText([header, ...rows])], { type: 'text/csv' }), `loratrack-error-series${thinned ? '-thinned' : ''}.csv`);
+  return { rows: [header, ...rows], name: 'loratrack-error-series.csv' };
+}
+
+/**
+ * A flight of more than 3000 evaluation times comes as each station's envelope
+ * (`ModelSeries.samples`: the lowest and highest error of each of its runs, at their own times,
+ * which differ from station to station). Joined on time, nearly every row would hold one
+ * station's cell; instead the flight is cut into stretches of equal time, as many as the runs
+ * (half the kept samples), and each row gives a stretch's first and last kept evaluation time and
+ * each station's lowest and highest kept error in it: the same envelope, at that stretch's
+ * resolution, with a cell for every station that has started.
+ */
+function envelopeRows(models: Series[]): string[][] {
+  const header = ['t_from_s', 't_to_s', ...models.flatMap((m) => [`${m.model}_min_error3d_m`, `${m.model}_max_error3d_m`])];
+  const times = models.flatMap((m) => (m.t.length ? [m.t[0], m.t[m.t.length - 1]] : []));
+  const [from, to] = [Math.min(...times), Math.max(...times)];
+  const count = Math.max(1, Math.ceil(Math.max(...models.map((m) => m.t.length)) / 2));
+  const width = (to - from) / count || 1;
+  const stretch = (t: number) => Math.min(count - 1, Math.floor((t - from) / width));
+  // Per stretch: its first and last kept time, and each station's lowest and highest error.
+  const first = new Array<number>(count).fill(Infinity);
+  const last = new Array<number>(count).fill(-Infinity);
+  const lows = models.map(() => new Array<number>(count).fill(Infinity));
+  const highs = models.map(() => new Array<number>(count).fill(-Infinity));
+  models.forEach((m, k) =>
+    m.t.forEach((t, i) => {
+      const s = stretch(t);
+      [first[s], last[s]] = [Math.min(first[s], t), Math.max(last[s], t)];
+      lows[k][s] = Math.min(lows[k][s], m.error3d[i]);
+      highs[k][s] = Math.max(highs[k][s], m.error3d[i]);
+    }),
+  );
+  const rows: string[][] = [];
+  for (let s = 0; s < count; s++) {
+    if (first[s] > last[s]) continue;
+    const cells = models.flatMap((_, k) => (lows[k][s] <= highs[k][s] ? [lows[k][s].toFixed(4), highs[k][s].toFixed(4)] : ['', '']));
+    rows.push([first[s].toFixed(2), last[s].toFixed(2), ...cells]);
+  }
+  return [header, ...rows];
+}
+
+/** Saves the first flight's error series ({@link errorCsv}). */
+export function downloadErrorCsv(report: SimReport): void {
+  const { rows, name } = errorCsv(report.series?.models ?? []);
+  save(new Blob([csvText(rows)], { type: 'text/csv' }), name);
 }
 
 /** One row per station: the numbers of the results table, unrounded, with the 95 % intervals. */

@@ -271,14 +271,28 @@ test("a long uploaded flight's error chart and error series CSV say they are its
   });
   assert.equal(points.length, cli.length, 'one line a station');
   assert.ok(points.every((n) => n <= 2 * axis), `points a line: ${points} on ${axis} px`);
-  // The CSV names itself thinned and gives each station's kept samples, as the CLI's series.
+  // The CSV names itself an envelope: per stretch of time, each station's lowest and highest of
+  // the samples the CLI's series keeps there.
   const [download] = await Promise.all([page.waitForEvent('download'), page.locator('#download-csv').click()]);
-  assert.equal(download.suggestedFilename(), 'loratrack-error-series-thinned.csv');
+  assert.equal(download.suggestedFilename(), 'loratrack-error-envelope.csv');
   const [header, ...body] = readFileSync(await download.path(), 'utf8').trim().split('\n').map((r) => r.split(','));
+  assert.deepEqual(header, ['t_from_s', 't_to_s', ...cli.flatMap((m) => [`${m.model}_min_error3d_m`, `${m.model}_max_error3d_m`])]);
+  // Each row's times are the first and last kept evaluation time in its stretch, as printed.
+  const within = (t, r) => Number(r[0]) <= Number(t.toFixed(2)) && Number(t.toFixed(2)) <= Number(r[1]);
   cli.forEach((m, k) => {
-    assert.equal(header[k + 1], `${m.model}_error3d_m`);
-    const cells = body.filter((r) => r[k + 1] !== '');
-    assert.deepEqual(cells.map((r) => [r[0], r[k + 1]]), m.t.map((t, i) => [t.toFixed(2), m.error3d[i].toFixed(4)]), m.model);
+    const [lo, hi] = [2 + 2 * k, 3 + 2 * k];
+    const filled = body.filter((r) => r[lo] !== '');
+    assert.ok(filled.length >= m.t.length / 4, `${m.model}: ${filled.length} stretches for ${m.t.length} samples`);
+    for (const r of filled) {
+      const kept = m.error3d.filter((_, i) => within(m.t[i], r)).map((e) => e.toFixed(4));
+      assert.ok(kept.includes(r[lo]) && kept.includes(r[hi]), `${m.model} ${r.slice(0, 2)}: ${r[lo]}, ${r[hi]} of ${kept}`);
+    }
+    // A sample on the printed edge of two stretches lies in one of them.
+    m.t.forEach((t, i) => {
+      const e = Number(m.error3d[i].toFixed(4));
+      assert.ok(filled.some((r) => within(t, r) && Number(r[lo]) <= e && e <= Number(r[hi])), `${m.model} at ${t} s: ${e}`);
+    });
+    assert.equal(Math.max(...filled.map((r) => Number(r[hi]))).toFixed(4), Math.max(...m.error3d).toFixed(4), `${m.model}: the peak`);
   });
   assert.deepEqual(problems, []);
   await page.close();

@@ -78,7 +78,7 @@ export function thinnedNote(models: Pick<ModelSeries, 't' | 'samples'>[]): strin
   const thinned = models.filter(isThinned);
   if (!thinned.length) return '';
   const [samples, kept] = [Math.max(...thinned.map((m) => m.samples)), Math.max(...thinned.map((m) => m.t.length))];
-  return `This flight's ${samples.toLocaleString('en')} samples a station are drawn as their envelope: each stretch's lowest and highest error, ${kept.toLocaleString('en')} kept, as the error series CSV gives them.`;
+  return `This flight's ${samples.toLocaleString('en')} samples a station are drawn as their envelope: each stretch's lowest and highest error, ${kept.toLocaleString('en')} kept; the error series CSV gives that envelope stretch by stretch.`;
 }
 
 /**
