@@ -32,7 +32,8 @@ const csvText = (rows: string[][]) => rows.map((r) => r.map(csvCell).join(',')).
 type Series = Pick<ModelSeries, 'model' | 't' | 'error3d' | 'samples'>;
 
 /** The first flight's error series as CSV rows, header first, and the file's name: one row per
- * evaluation time, one column per model. */
+ * evaluation time, one column per model; a flight thinned to its envelope, that envelope stretch
+ * by stretch ({@link envelopeRows}). */
 export function errorCsv(models: Series[]): { rows: string[][]; name: string } {
   if (models.some(isThinned)) return { rows: envelopeRows(models), name: 'loratrack-error-envelope.csv' };
   const header = ['t_s', ...models.map((m) => `${m.model}_error3d_m`)];
@@ -52,11 +53,11 @@ export function errorCsv(models: Series[]): { rows: string[][]; name: string } {
 /**
  * A flight of more than 3000 evaluation times comes as each station's envelope
  * (`ModelSeries.samples`: the lowest and highest error of each of its runs, at their own times,
- * which differ from station to station). Joined on time, nearly every row would hold one
- * station's cell; instead the flight is cut into stretches of equal time, as many as the runs
- * (half the kept samples), and each row gives a stretch's first and last kept evaluation time and
- * each station's lowest and highest kept error in it: the same envelope, at that stretch's
- * resolution, with a cell for every station that has started.
+ * which differ from station to station). Joined on time, many rows would miss a station's cell
+ * (a third of the cells on a 600 s flight); instead the flight is cut into stretches of equal
+ * time, as many as the runs (half the kept samples), and each row gives a stretch's first and last
+ * kept evaluation time and each station's lowest and highest kept error in it: the same envelope,
+ * at that stretch's resolution, with a cell for every station that has started.
  */
 function envelopeRows(models: Series[]): string[][] {
   const header = ['t_from_s', 't_to_s', ...models.flatMap((m) => [`${m.model}_min_error3d_m`, `${m.model}_max_error3d_m`])];
