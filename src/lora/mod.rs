@@ -20,10 +20,11 @@ mod shadowing;
 mod snr;
 
 pub use adr::{
-    expected_age_cost, AdrDevice, AdrMode, AdrNetwork, AdrParams, LinkAdrReq, LorawanAdr,
-    TrackingAdr, UplinkFrame, UplinkReport, ADR_ACK_DELAY, ADR_ACK_LIMIT, DEFAULT_ADR_HISTORY,
-    DEFAULT_ADR_MARGIN_DB, ERROR_GROWTH, GATEWAY_TX_POWER_DBM, MAX_POWER_REDUCTION_DB,
-    RECEIVE_DELAY1_S, TRACKING_HYSTERESIS, TRACKING_WINDOW, TX_POWER_STEP_DB,
+    expected_age_cost, tracking_ack_limits, AckLimits, AdrDevice, AdrMode, AdrNetwork, AdrParams,
+    LinkAdrReq, LorawanAdr, TrackingAdr, UplinkFrame, UplinkReport, ADR_ACK_DELAY, ADR_ACK_LIMIT,
+    DEFAULT_ADR_HISTORY, DEFAULT_ADR_MARGIN_DB, ERROR_GROWTH, GATEWAY_TX_POWER_DBM,
+    MAX_POWER_REDUCTION_DB, RECEIVE_DELAY1_S, TRACKING_HYSTERESIS, TRACKING_WINDOW,
+    TX_POWER_STEP_DB,
 };
 pub use airtime::{
     time_on_air, Airtime, Bandwidth, CodingRate, LdroMode, LoraParams, SpreadingFactor,

@@ -3,8 +3,9 @@
 
 use super::SimError;
 use crate::lora::{
-    min_interval, time_on_air, AdrDevice, AdrMode, AdrNetwork, AdrParams, Bandwidth, ChannelParams,
-    DataRate, LinkAdrReq, LoraParams, LorawanAdr, SpreadingFactor, TrackingAdr, UplinkFrame,
+    min_interval, time_on_air, AckLimits, AdrDevice, AdrMode, AdrNetwork, AdrParams, Bandwidth,
+    ChannelParams, DataRate, LinkAdrReq, LoraParams, LorawanAdr, SpreadingFactor, TrackingAdr,
+    UplinkFrame,
 };
 
 /// Time on air and duty-cycle interval of one packet size at every EU868 data rate.
@@ -38,16 +39,25 @@ impl RateTable {
     }
 
     /// The network server's ADR algorithm for a device sending these packets over `channel`
-    /// (its shadowing's spread and decorrelation inform the tracking-aware choice).
-    pub fn network(&self, params: &AdrParams, channel: &ChannelParams) -> Box<dyn AdrNetwork> {
+    /// (its shadowing's spread and decorrelation inform the tracking-aware choice), whose
+    /// back-off the server set to `limits`.
+    pub fn network(
+        &self,
+        params: &AdrParams,
+        channel: &ChannelParams,
+        limits: AckLimits,
+    ) -> Box<dyn AdrNetwork> {
         match params.mode {
             AdrMode::Lorawan => Box::new(LorawanAdr::new(params.margin_db, params.history)),
-            _ => Box::new(TrackingAdr::new(
-                self.time_on_air,
-                self.interval,
-                channel.shadowing_sigma_db,
-                channel.decorrelation_distance,
-            )),
+            _ => Box::new(
+                TrackingAdr::new(
+                    self.time_on_air,
+                    self.interval,
+                    channel.shadowing_sigma_db,
+                    channel.decorrelation_distance,
+                )
+                .with_ack_limits(limits),
+            ),
         }
     }
 }
@@ -111,6 +121,14 @@ impl DroneRadio {
     /// Whether an ADR device drives the data rate.
     pub fn adaptive(&self) -> bool {
         self.device.is_some()
+    }
+
+    /// The network set the ADR device's back-off (LoRaWAN 1.1 `ADRParamSetupReq`); no-op for a
+    /// fixed rate.
+    pub fn set_ack_limits(&mut self, limits: AckLimits) {
+        if let Some((d, _)) = &mut self.device {
+            d.set_limits(limits);
+        }
     }
 
     /// The rates table (ADR only).

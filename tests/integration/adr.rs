@@ -243,7 +243,11 @@ fn where_a_naive_rule_flips_with_the_shadowing_tracking_only_steps_down_through_
     let tracking = fly(AdrMode::Tracking, None, DataRate::DR6, 3000.0, 4.0, 1800.0);
     let (n, t) = (changes(&naive), changes(&tracking));
     assert!(n >= 20, "naive changed only {n} times");
-    assert!(t * 2 <= n, "tracking changed {t} times, naive {n}");
+    // A lone drone backs off after four silent uplinks (`tracking_ack_limits`), so a fade takes
+    // it a rate down and the network brings it back: it changes too, but less often than the
+    // naive rule, and only below its long-run rate (with the regional 64 + 32 it changed less
+    // than half as often, and waited out every fade at the fast rate).
+    assert!(t < n, "tracking changed {t} times, naive {n}");
     // Its long-run rate is the one it keeps most; a fade takes it slower for a while, never
     // faster (a frame lost at a faster rate could not bring it back).
     let r = rates(&tracking);

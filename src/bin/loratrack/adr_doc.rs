@@ -4,8 +4,8 @@
 use crate::doc_cells::{overhead_arg, overhead_words};
 use loratrack::api::{DistanceRun, DistanceSweepReport};
 use loratrack::{
-    AdrMode, Scenario, ADR_ACK_DELAY, ADR_ACK_LIMIT, DEFAULT_ADR_HISTORY, DEFAULT_ADR_MARGIN_DB,
-    TRACKING_HYSTERESIS, TRACKING_WINDOW,
+    tracking_ack_limits, AdrMode, Scenario, ADR_ACK_DELAY, ADR_ACK_LIMIT, DEFAULT_ADR_HISTORY,
+    DEFAULT_ADR_MARGIN_DB, TRACKING_HYSTERESIS, TRACKING_WINDOW,
 };
 
 fn distance_label(run: &DistanceRun) -> String {
@@ -129,6 +129,7 @@ pub fn distances_markdown(
         .map(|x| format!("{x:.0}"))
         .collect();
     let model = base.station.model.models()[0];
+    let lone = tracking_ack_limits(1, 1);
     let mut s = String::from(
         "# Adaptive data rate: fixed data rates against LoRaWAN's ADR and a tracking-aware one\n\n",
     );
@@ -154,7 +155,10 @@ pub fn distances_markdown(
          counter); that long-run choice changes when the best rate costs {:.0} % less. Within it the network follows \
          fades: a received frame's shadowing, carried forward by its correlation over the metres the drone flies in \
          one interval (at the speed its payload reports), forecasts the next frame's delivery at each rate, and the \
-         network asks for the cheapest rate under that forecast, never faster than the long-run choice. Commands travel in \
+         network asks for the cheapest rate under that forecast, never faster than the long-run choice. The network \
+         sets a lone tracking drone's back-off to {} + {} uplinks without a downlink (LoRaWAN 1.1 `ADRParamSetupReq`; \
+         in a swarm twice the drones per gateway, up to the regional 64 + 32, so that the gateway can answer), so it \
+         finds a lost link within seconds, not minutes. Commands travel in \
          a downlink after a received uplink, which the reciprocal channel may lose. The station restarts with each \
          flight, so every flight is untracked until its first packet arrives: `tracked` is the share of the flight \
          time after it, and p50, p75 and p95 are over the whole flight time, a moment without any packet counting as \
@@ -172,7 +176,9 @@ pub fn distances_markdown(
         ADR_ACK_LIMIT,
         ADR_ACK_DELAY,
         TRACKING_WINDOW,
-        100.0 * TRACKING_HYSTERESIS
+        100.0 * TRACKING_HYSTERESIS,
+        lone.limit,
+        lone.delay
     );
     s += &distance_rows(r, true);
     s += &adr_findings(r, base);
@@ -238,6 +244,7 @@ fn seeds_range(base: &Scenario) -> String {
 /// What `docs/adr.md`'s table shows: each ADR row judged against the tracking ADR's aim, and
 /// LoRaWAN ADR's figure explained with its own numbers.
 fn adr_findings(r: &DistanceSweepReport, base: &Scenario) -> String {
+    let lone = tracking_ack_limits(1, 1);
     format!(
         "\n## What the table shows\n\n{}\nThe tracking ADR aims to stay within 5 % of the best fixed rate at every \
          distance, since it may always choose that rate. Where the list above says otherwise it does not reach that \
@@ -250,8 +257,11 @@ fn adr_findings(r: &DistanceSweepReport, base: &Scenario) -> String {
          between neighbouring rates, holds it there until the window has forgotten those frames; at the slowest \
          rates each frame, and so each chance to move again, is minutes apart. Starting from DR0 costs the first frame's long interval, in which the first flight goes untracked; starting \
          too fast for the link, as at SF7 at 5 and 7 km, costs the device's back-off before the network hears it \
-         at all.\n\n{}",
+         at all ({} silent uplinks a rate). A back-off that short also steps the drone down when two requests in \
+         a row go unanswered on a link that still delivers most frames (at 5 km, DR3's two in three): the \
+         network brings it back with the next frame it hears, one slow interval later.\n\n{}",
         adr_verdicts(r),
+        lone.limit + lone.delay,
         lorawan_explained(r, base)
     )
 }

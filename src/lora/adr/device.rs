@@ -10,6 +10,37 @@ pub const ADR_ACK_LIMIT: u32 = 64;
 /// then its data rate down, once per this many (RP002-1.0.3 EU868 default).
 pub const ADR_ACK_DELAY: u32 = 32;
 
+/// When a device that hears no downlink asks for one and then backs off on its own, in uplinks
+/// (LoRaWAN 1.1 `ADR_ACK_LIMIT`, `ADR_ACK_DELAY`; the network may set both, as powers of two, with
+/// `ADRParamSetupReq`, §5.12).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AckLimits {
+    /// Silent uplinks after which the device sets `ADRACKReq`.
+    pub limit: u32,
+    /// Further silent uplinks after which it regains the link: full power, then one data rate
+    /// slower, once per this many.
+    pub delay: u32,
+}
+
+impl AckLimits {
+    /// The regional defaults, 64 and 32 (RP002-1.0.3 EU868): what [`LorawanAdr`] devices use.
+    ///
+    /// [`LorawanAdr`]: super::LorawanAdr
+    pub const LORAWAN: AckLimits = AckLimits {
+        limit: ADR_ACK_LIMIT,
+        delay: ADR_ACK_DELAY,
+    };
+
+    /// How many data rates a device has backed off on its own after `silent` uplinks without a
+    /// downlink (power first, so the first step counts as one here too).
+    pub fn steps(self, silent: u32) -> u32 {
+        match silent.checked_sub(self.limit) {
+            Some(past) if past >= self.delay => past / self.delay,
+            _ => 0,
+        }
+    }
+}
+
 /// The data rate, power and counters of an ADR-enabled device.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AdrDevice {
@@ -17,6 +48,7 @@ pub struct AdrDevice {
     power_reduction_db: f64,
     fcnt: u32,
     ack_cnt: u32,
+    limits: AckLimits,
 }
 
 /// What the device puts on air for one uplink.
@@ -33,14 +65,21 @@ pub struct UplinkFrame {
 }
 
 impl AdrDevice {
-    /// A device starting at `dr` with full power.
+    /// A device starting at `dr` with full power and the regional back-off
+    /// ([`AckLimits::LORAWAN`]).
     pub fn new(dr: DataRate) -> Self {
         AdrDevice {
             dr,
             power_reduction_db: 0.0,
             fcnt: 0,
             ack_cnt: 0,
+            limits: AckLimits::LORAWAN,
         }
+    }
+
+    /// The network set the back-off (LoRaWAN 1.1 `ADRParamSetupReq`).
+    pub fn set_limits(&mut self, limits: AckLimits) {
+        self.limits = limits;
     }
 
     /// The current data rate.
@@ -59,7 +98,7 @@ impl AdrDevice {
             fcnt: self.fcnt,
             dr: self.dr,
             power_reduction_db: self.power_reduction_db,
-            adr_ack_req: self.ack_cnt >= ADR_ACK_LIMIT,
+            adr_ack_req: self.ack_cnt >= self.limits.limit,
         };
         self.fcnt = self.fcnt.wrapping_add(1);
         self.ack_cnt = self.ack_cnt.saturating_add(1);
@@ -76,14 +115,12 @@ impl AdrDevice {
         }
     }
 
-    /// No downlink arrived after the last uplink: past `ADR_ACK_LIMIT + ADR_ACK_DELAY` silent
-    /// uplinks, and every `ADR_ACK_DELAY` after, regain the link: full power first, then one data
+    /// No downlink arrived after the last uplink: past `limit + delay` silent uplinks
+    /// ([`AckLimits`]), and every `delay` after, regain the link: full power first, then one data
     /// rate slower.
     pub fn no_downlink(&mut self) {
-        let Some(past) = self.ack_cnt.checked_sub(ADR_ACK_LIMIT) else {
-            return;
-        };
-        if past == 0 || past % ADR_ACK_DELAY != 0 {
+        let silent = self.ack_cnt;
+        if silent == 0 || self.limits.steps(silent) == self.limits.steps(silent - 1) {
             return;
         }
         if self.power_reduction_db > 0.0 {
@@ -116,6 +153,26 @@ mod tests {
             vec![first, first + ADR_ACK_DELAY, first + 2 * ADR_ACK_DELAY]
         );
         assert_eq!(d.dr().index(), 3);
+    }
+
+    #[test]
+    fn limits_the_network_set_shorten_the_back_off() {
+        let mut d = AdrDevice::new(DataRate::DR6);
+        d.set_limits(AckLimits { limit: 2, delay: 2 });
+        let mut changes = Vec::new();
+        for k in 1..=8 {
+            let before = d.dr();
+            let frame = d.uplink();
+            assert_eq!(frame.adr_ack_req, k > 2, "uplink {k}");
+            d.no_downlink();
+            if d.dr() != before {
+                changes.push(k);
+            }
+        }
+        assert_eq!(changes, vec![4, 6, 8]);
+        assert_eq!(AckLimits::LORAWAN.steps(95), 0);
+        assert_eq!(AckLimits::LORAWAN.steps(96), 1);
+        assert_eq!(AckLimits { limit: 2, delay: 2 }.steps(8), 3);
     }
 
     #[test]

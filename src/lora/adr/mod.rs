@@ -13,10 +13,11 @@ mod device;
 mod lorawan;
 mod tracking;
 
-pub use device::{AdrDevice, UplinkFrame, ADR_ACK_DELAY, ADR_ACK_LIMIT};
+pub use device::{AckLimits, AdrDevice, UplinkFrame, ADR_ACK_DELAY, ADR_ACK_LIMIT};
 pub use lorawan::LorawanAdr;
 pub use tracking::{
-    expected_age_cost, TrackingAdr, ERROR_GROWTH, TRACKING_HYSTERESIS, TRACKING_WINDOW,
+    expected_age_cost, tracking_ack_limits, TrackingAdr, ERROR_GROWTH, TRACKING_HYSTERESIS,
+    TRACKING_WINDOW,
 };
 
 use super::{DataRate, LoraError};

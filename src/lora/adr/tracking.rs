@@ -1,7 +1,7 @@
 //! A tracking-aware ADR: choose the data rate that keeps the station's newest packet youngest,
 //! over the link's long run and, within that, for the next frame through a fade.
 
-use super::{AdrNetwork, LinkAdrReq, UplinkReport, ADR_ACK_DELAY, ADR_ACK_LIMIT};
+use super::{AckLimits, AdrNetwork, LinkAdrReq, UplinkReport};
 use crate::lora::{Channel, DataRate};
 use crate::math::normal_cdf;
 use std::collections::VecDeque;
@@ -153,6 +153,34 @@ pub struct TrackingAdr {
     answered_before: Option<u32>,
     /// The long-run choice (from the first frame heard on): the fastest rate a command may ask for.
     base: Option<DataRate>,
+    /// The device's back-off, which the network set ([`tracking_ack_limits`]).
+    limits: AckLimits,
+}
+
+/// The back-off a tracking network sets its devices to, when `devices` share `gateways`
+/// (LoRaWAN 1.1 `ADRParamSetupReq`, §5.12: both limits as powers of two): `ADR_ACK_LIMIT` and
+/// `ADR_ACK_DELAY` both the least power of two ≥ 2 × the devices per gateway, at least 2 and never
+/// past the regional 64 and 32.
+///
+/// A drone that hears nothing cannot tell a lost uplink from a quiet network, so it learns its
+/// link is gone only by asking (`ADRACKReq`) and backing off unanswered. With the regional
+/// defaults that takes 96 uplinks, over three minutes at SF7 / 250 kHz: at 5 km from DR6 a
+/// tenth of the synthetic set's flight time went by before the network heard the drone at all,
+/// and in every fade deep enough to lose the commands the drone waited as long (docs/adr.md).
+/// Each request costs the gateway a downlink, though, and a gateway may answer only within its
+/// own duty cycle: a device on a good link forces one answer per `limit + 1` uplinks, a
+/// downlink about as long as its uplink (RX1 at the uplink's rate) once per `limit + 1` duty-cycle
+/// intervals, so n devices per gateway with limits ≥ 2n take under half of the gateway's 1 %
+/// in RX1. Smaller limits in a swarm starve the gateway's answers, and drones that hear none
+/// back off to rates where they collide and wait (72 drones at 3 km with 2 and 2: median
+/// drone's p75 43 m → 7.8 km), so a shared gateway keeps the regional back-off.
+pub fn tracking_ack_limits(devices: usize, gateways: usize) -> AckLimits {
+    let per_gateway = devices.div_ceil(gateways.max(1)).max(1);
+    let power = (2 * per_gateway).next_power_of_two() as u32;
+    AckLimits {
+        limit: power.min(AckLimits::LORAWAN.limit),
+        delay: power.min(AckLimits::LORAWAN.delay),
+    }
 }
 
 impl TrackingAdr {
@@ -176,7 +204,15 @@ impl TrackingAdr {
             answered: None,
             answered_before: None,
             base: None,
+            limits: AckLimits::LORAWAN,
         }
+    }
+
+    /// The same network, with its devices set to back off after `limits`
+    /// ([`tracking_ack_limits`]): it counts a gap's lost frames by their back-off.
+    pub fn with_ack_limits(mut self, limits: AckLimits) -> Self {
+        self.limits = limits;
+        self
     }
 
     fn record(&mut self, up: &UplinkReport) {
@@ -237,13 +273,7 @@ impl TrackingAdr {
     /// [`AdrDevice::no_downlink`]: super::AdrDevice::no_downlink
     fn backed_off(&self, start: DataRate, up: &UplinkReport, fcnt: u32) -> DataRate {
         let reset = self.answered.map_or(0, |a| a.wrapping_add(1));
-        let steps = |f: u32| {
-            let silent = f.wrapping_sub(reset);
-            match silent.checked_sub(ADR_ACK_LIMIT) {
-                Some(past) if past >= ADR_ACK_DELAY => past / ADR_ACK_DELAY,
-                _ => 0,
-            }
-        };
+        let steps = |f: u32| self.limits.steps(f.wrapping_sub(reset));
         let faster_by = steps(up.fcnt).saturating_sub(steps(fcnt));
         let index = (u32::from(up.dr.index()) + faster_by).min(u32::from(start.index()));
         DataRate::ALL[index as usize]
@@ -381,6 +411,32 @@ mod tests {
             adr_ack_req: false,
             speed_mps: 8.0,
         }
+    }
+
+    #[test]
+    fn a_lone_drone_backs_off_after_four_silent_uplinks_and_a_crowd_as_lorawan_does() {
+        let limits = |d, g| {
+            let l = tracking_ack_limits(d, g);
+            (l.limit, l.delay)
+        };
+        assert_eq!(limits(1, 1), (2, 2));
+        assert_eq!(limits(1, 3), (2, 2));
+        assert_eq!(limits(6, 1), (16, 16));
+        assert_eq!(limits(6, 3), (4, 4));
+        assert_eq!(limits(16, 1), (32, 32));
+        assert_eq!(limits(17, 1), (64, 32));
+        assert_eq!(tracking_ack_limits(500, 1), AckLimits::LORAWAN);
+    }
+
+    #[test]
+    fn a_gap_after_a_short_back_off_is_counted_at_the_rates_the_device_passed() {
+        // With 2 + 2: frames 4, 6 and 8 of a silence step DR6 down to DR3.
+        let (toa, interval) = table();
+        let mut adr = TrackingAdr::new(toa, interval, 4.0, 110.0)
+            .with_ack_limits(AckLimits { limit: 2, delay: 2 });
+        adr.on_uplink(&up(9, 3, -125.0));
+        let lost: Vec<u8> = adr.frames.iter().take(9).map(|f| f.dr.index()).collect();
+        assert_eq!(lost, vec![6, 6, 6, 6, 5, 5, 4, 4, 3]);
     }
 
     #[test]

@@ -6,8 +6,8 @@
 
 use super::gateway::GatewayReport;
 use crate::lora::{
-    snr_db, AdrNetwork, AdrParams, Channel, ChannelAccess, InterferenceModel, LinkAdrReq,
-    UplinkFrame, UplinkReport,
+    snr_db, tracking_ack_limits, AckLimits, AdrMode, AdrNetwork, AdrParams, Channel, ChannelAccess,
+    InterferenceModel, LinkAdrReq, UplinkFrame, UplinkReport,
 };
 use crate::sim::radio::DroneRadio;
 use crate::sim::scenario::{GatewaySite, Validated};
@@ -61,7 +61,7 @@ pub struct Network {
 impl Network {
     /// The network `setup` describes, for drones with `radios`; for each drone whose radio
     /// adapts, the server runs ADR (the channel's shadowing informs the tracking-aware choice).
-    pub fn new(setup: NetworkSetup, radios: Vec<DroneRadio>) -> Self {
+    pub fn new(setup: NetworkSetup, mut radios: Vec<DroneRadio>) -> Self {
         let NetworkSetup {
             sites,
             default_height,
@@ -71,9 +71,16 @@ impl Network {
             lorawan,
             listen_before_talk,
         } = setup;
+        let limits = match adr.mode {
+            AdrMode::Tracking => tracking_ack_limits(radios.len(), sites.len()),
+            _ => AckLimits::LORAWAN,
+        };
+        for r in &mut radios {
+            r.set_ack_limits(limits);
+        }
         let algorithms = radios
             .iter()
-            .map(|r| r.rates().map(|t| t.network(&adr, channel.params())))
+            .map(|r| r.rates().map(|t| t.network(&adr, channel.params(), limits)))
             .collect();
         let gateways = sites
             .iter()
