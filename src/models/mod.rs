@@ -82,7 +82,7 @@ pub trait MotionModel<const N: usize> {
 
     /// Whether [`Self::LINEAR_TAIL`] describes how `state` moves over `dt`. Always, for a model
     /// that declares one outright (the default); a model whose tail is linear only in part of the
-    /// state space (a [bounded station](crate::Bounded), whose speed and pitch stop at their
+    /// state space (a [bounded station](crate::sim::station::Bounded), whose speed and pitch stop at their
     /// limits) says where. The filter takes the closed form only where every sigma point holds it.
     fn tail_holds(&self, _state: &SVector<f64, N>, _dt: f64) -> bool {
         true

@@ -34,8 +34,9 @@ fn prediction_work(station: StationModel) -> u32 {
     }
 }
 
-/// The work of running `stations` together, in the units of [`drone_run_work`]: each distinct
-/// drone run once and every station's prediction.
+/// The work of running `stations` together, in the units of a drone filter run's cost
+/// (milliseconds over the whole set in WebAssembly): each distinct drone run once and every
+/// station's prediction.
 ///
 /// ```
 /// use loratrack::{station_work, ModelKind, StationModel};
