@@ -100,7 +100,7 @@ function send(request: SimulateRequest, made: Settings): void {
   const repeats = made.seeds > 1 ? `, ${made.seeds} seeds each` : '';
   if (made.flight === 'all') status.textContent = `Simulating 30 flights (44 min of flight${repeats})… change any setting to interrupt.`;
   else if (made.seeds > 1) status.textContent = `Simulating ${made.seeds} seeds… change any setting to interrupt.`;
-  else if (made.flight === 'csv' && store.csv) status.textContent = `Simulating ${store.csv.name} (${(store.csv.text.length / 1024).toFixed(0)} KB)… change any setting to interrupt.`;
+  else if (made.flight === 'csv' && store.csv) status.textContent = `Simulating ${store.csv.name} (${(store.csv.file.size / 1024).toFixed(0)} KB)… change any setting to interrupt.`;
   pool.run(request, onResponse);
 }
 
@@ -562,9 +562,9 @@ form.addEventListener('submit', (e) => e.preventDefault());
 // Adding or removing a gateway changes the settings as typing does.
 onFormChange(onChange);
 
-/** Reads the file chosen in `input` into `keep` and runs; a file over the core's 64 MiB is
- * refused in `error` before it is read into memory. */
-function onUpload(input: string, error: HTMLElement, keep: (file: { text: string; name: string }) => void): void {
+/** Gives the file chosen in `input` to `keep` and runs; a file over the core's 64 MiB is
+ * refused in `error` before it is read. */
+function onUpload(input: string, error: HTMLElement, keep: (file: File) => void | Promise<void>): void {
   $<HTMLInputElement>(input).addEventListener('change', async (e) => {
     const file = (e.target as HTMLInputElement).files?.[0];
     if (!file) return;
@@ -573,13 +573,17 @@ function onUpload(input: string, error: HTMLElement, keep: (file: { text: string
       error.hidden = false;
       return;
     }
-    keep({ text: await file.text(), name: file.name });
+    await keep(file);
     error.hidden = true;
     onChange();
   });
 }
-onUpload('#csv', csvError, (f) => (store.csv = f));
-onUpload('#plan-file', planError, (f) => (store.plan = f));
+onUpload('#csv', csvError, (f) => {
+  store.csv = { file: f, name: f.name };
+});
+onUpload('#plan-file', planError, async (f) => {
+  store.plan = { text: await f.text(), name: f.name };
+});
 
 $('#copy-link').addEventListener('click', async () => {
   const url = location.href;

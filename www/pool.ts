@@ -118,8 +118,8 @@ export class SimulationPool {
   run(request: SimulateRequest, on: (r: Response) => void): void {
     const early = this.early;
     this.early = undefined;
-    // Only when a run was started early: the key writes the whole request out, an uploaded
-    // flight's text included (31 MB for 10⁶ rows: 80 ms of the page's thread for nothing).
+    // Only when a run was started early: the key writes the whole request out (an early run is
+    // never an upload's: a link cannot carry the file).
     if (early && early.key === sameRun(request)) {
       early.on = (r) => on({ ...r, id: request.id });
       for (const r of early.answers) early.on(r);

@@ -228,21 +228,23 @@ export function overheadBytes(s: Settings): number {
  * show: only the link changes between them, so they reuse the run's drone filters. */
 const SWEEP: SweepPoint[] = [...[500, 1000, 2000, 3000, 4000, 5000].map((distance) => ({ distance })), ...[7, 8, 9, 10, 11, 12].map((sf) => ({ sf }))];
 
-/** What the page asks its workers for these settings: the run and the charts' sweep. */
-export function simulateRequest(id: number, s: Settings, csv?: { text: string; name: string }, missionPlan?: { text: string }): SimulateRequest {
-  return { id, params: toParams(s, csv, missionPlan), sweep: SWEEP };
+/** What the page asks its workers for these settings: the run and the charts' sweep, and an
+ * uploaded flight's file, whose text the workers read (`trajectory`). */
+export function simulateRequest(id: number, s: Settings, csv?: { file: Blob; name: string }, missionPlan?: { text: string }): SimulateRequest {
+  const file = s.flight === 'csv' && csv ? { trajectoryFile: csv.file } : {};
+  return { id, params: toParams(s, csv, missionPlan), sweep: SWEEP, ...file };
 }
 
-/** simulate() parameters for these settings; `csv` supplies the uploaded text and `missionPlan`
- * its mission plan. */
-export function toParams(s: Settings, csv?: { text: string; name: string }, missionPlan?: { text: string }): SimulateParams {
+/** simulate() parameters for these settings; `csv` names the uploaded flight, whose text the
+ * worker adds as `trajectory` from the request's file, and `missionPlan` is its mission plan. */
+export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { text: string }): SimulateParams {
   const flight: SimulateParams =
     s.flight === 'all'
       ? { synthetic: 'all' }
       : s.flight === 'canberra'
         ? { sample: 'canberra' }
         : s.flight === 'csv' && csv
-          ? { trajectory: csv.text, trajectoryName: csv.name, ...(missionPlan ? { plan: missionPlan.text } : {}) }
+          ? { trajectoryName: csv.name, ...(missionPlan ? { plan: missionPlan.text } : {}) }
           : { synthetic: s.flightNumber };
   return {
     ...flight,

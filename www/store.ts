@@ -25,8 +25,9 @@ export interface Store {
   report?: SimReport;
   /** The pinned baseline and the settings that made it. */
   baseline?: { report: SimReport; settings: Settings };
-  /** An uploaded CSV flight (never in the URL). */
-  csv?: { text: string; name: string };
+  /** An uploaded CSV flight (never in the URL), kept as the file: the workers read its text, so
+   * that neither reading 31 MB nor copying it to each worker holds up the page. */
+  csv?: { file: Blob; name: string };
   /** The uploaded flight's mission plan (never in the URL): what the mission station flies. */
   plan?: { text: string; name: string };
   /** Sentences about the link: values replaced, unknown panels, a baseline that failed. */

@@ -1,7 +1,7 @@
 // The page's settings and its URL: every shareable view must come back exactly as it was, and a
 // link asking for something the core refuses must be explained, never silently used.
 import { describe, expect, test } from 'vitest';
-import { adrCanStart, DEFAULTS, fromQuery, gatewaysFromText, gatewaysToText, invalid, LIMITS, modelChoiceOf, planAllows, toParams, toQuery, type Settings } from '../../www/state';
+import { adrCanStart, DEFAULTS, fromQuery, gatewaysFromText, gatewaysToText, invalid, LIMITS, modelChoiceOf, planAllows, simulateRequest, toParams, toQuery, type Settings } from '../../www/state';
 import type { Region } from '../../www/loratrack';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings } from '../../www/lessons';
 
@@ -147,9 +147,15 @@ describe('simulate() parameters', () => {
   test('name the flight once and carry the repeats', () => {
     expect(toParams({ ...DEFAULTS, flight: 'all', seeds: 10 })).toMatchObject({ synthetic: 'all', seeds: 10 });
     expect(toParams({ ...DEFAULTS, flight: 'canberra' })).toMatchObject({ sample: 'canberra' });
-    const csv = toParams({ ...DEFAULTS, flight: 'csv' }, { text: 't,x,y,z', name: 'mine.csv' });
-    expect(csv).toMatchObject({ trajectory: 't,x,y,z', trajectoryName: 'mine.csv' });
+    const csv = toParams({ ...DEFAULTS, flight: 'csv' }, { name: 'mine.csv' });
+    expect(csv).toMatchObject({ trajectoryName: 'mine.csv' });
     expect(csv).not.toHaveProperty('synthetic');
+    // The text comes to the worker as the file itself, read there.
+    const file = new Blob(['t,x,y,z']);
+    const request = simulateRequest(1, { ...DEFAULTS, flight: 'csv' }, { file, name: 'mine.csv' });
+    expect(request.trajectoryFile).toBe(file);
+    expect(request.params).not.toHaveProperty('trajectory');
+    expect(simulateRequest(1, DEFAULTS, { file, name: 'mine.csv' })).not.toHaveProperty('trajectoryFile');
     expect(toParams({ ...DEFAULTS, lorawan: false }).overhead).toBe(0);
   });
 });
