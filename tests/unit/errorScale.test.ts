@@ -1,6 +1,6 @@
 // The error chart's scale follows the errors, not a bound that lost packets let run away.
 import { expect, test } from 'vitest';
-import { errorScale, packetMarks, pixelPicks, rateLabels, thinnedNote } from '../../www/charts/errorOverTime';
+import { errorScale, packetMarks, pixelPicks, rateChanges, rateLabels, thinnedNote } from '../../www/charts/errorOverTime';
 
 test('a bound far past the errors is held to twice the largest error and reported', () => {
   expect(errorScale([[1, 10], [4]], [[30, 700], [12]])).toEqual({ top: 20, boundTop: 700 });
@@ -83,4 +83,14 @@ test('a thinned series says so under the chart, with how many samples it rests o
   expect(thinnedNote([whole, whole])).toBe('');
   const hour = { t: new Float64Array(2998), samples: 36_000 };
   expect(thinnedNote([whole, hour])).toMatch(/36,000 samples a station are drawn as their envelope.*2,998 kept.*CSV/);
+});
+
+test("a station's changes of data rate are the arrivals whose rate differs from the one before", () => {
+  const changes = rateChanges(Float64Array.from([1, 2, 3, 4, 5]), [6, 6, 5, null, 5], 'DR');
+  expect(changes.map((c) => [c.t, c.label])).toEqual([
+    [1, 'DR6'],
+    [3, 'DR5'],
+    [5, 'DR5'],
+  ]);
+  expect(rateChanges([1, 2], undefined, 'DR')).toEqual([]);
 });
