@@ -7,10 +7,10 @@
 use loratrack::api::simulate;
 use loratrack::{
     chain_flights, demodulation_floor_db, fly_alone, noise_floor_dbm, run_drone, snr_db,
-    synthetic_set, Aboard, AdrDevice, AdrMode, AdrNetwork, AdrParams, Channel, ChannelParams,
-    DataRate, DroneRadio, DroneStreams, DutyCycle, DutyCycleMode, Estimates, GatewaySite,
-    InterferenceModel, LinkAdrReq, LoraParams, LorawanAdr, ModelKind, Network, NetworkSetup,
-    Periodic, Scenario, Sensing, Simulator, TrackingAdr, Transmission, UplinkReport,
+    synthetic_set, tracking_ack_limits, Aboard, AdrDevice, AdrMode, AdrNetwork, AdrParams, Channel,
+    ChannelParams, DataRate, DroneRadio, DroneStreams, DutyCycle, DutyCycleMode, Estimates,
+    GatewaySite, InterferenceModel, LinkAdrReq, LoraParams, LorawanAdr, ModelKind, Network,
+    NetworkSetup, Periodic, Scenario, Sensing, Simulator, TrackingAdr, Transmission, UplinkReport,
 };
 use serde_json::{json, Value};
 
@@ -305,4 +305,23 @@ fn tracking_adr_matches_the_best_fixed_rate_where_one_rate_serves_the_whole_set(
     let tracking0 = p75(&|x| x.adr == AdrMode::Tracking && x.start == Some(0));
     let lorawan0 = p75(&|x| x.adr == AdrMode::Lorawan && x.start == Some(0));
     assert!(tracking0 < 0.1 * lorawan0, "{tracking0} vs {lorawan0}");
+}
+
+#[test]
+fn a_lone_tracking_drone_out_of_reach_backs_off_within_seconds_where_lorawans_waits_minutes() {
+    // 7 km from SF7/250 kHz: DR6 delivers ~0.3 % of frames, so the network hears the drone only
+    // once it has backed off on its own (`tracking_ack_limits`: 2 + 2 for one drone, against the
+    // regional 64 + 32).
+    let first_heard = |mode| {
+        let tx = fly(mode, None, DataRate::DR6, 7000.0, 4.0, 900.0);
+        tx.iter().position(|t| t.received)
+    };
+    let tracking = first_heard(AdrMode::Tracking).expect("tracking heard");
+    assert!(tracking < 30, "tracking first heard at uplink {tracking}");
+    let lorawan = first_heard(AdrMode::Lorawan).map_or(usize::MAX, |i| i);
+    assert!(lorawan >= 90, "LoRaWAN first heard at uplink {lorawan}");
+    assert_eq!(
+        tracking_ack_limits(1, 1),
+        loratrack::AckLimits { limit: 2, delay: 2 }
+    );
 }
