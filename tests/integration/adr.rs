@@ -2,7 +2,7 @@
 //! LoRaWAN network settles where its margin says and never slows the rate itself, a lost downlink
 //! delays a change by exactly one uplink, a constant channel never makes ADR oscillate, and where
 //! a naive rule flips with the shadowing the tracking-aware one only steps down through fades and
-//! back to its long-run rate.
+//! back to its long-run rate, and a lone tracking drone out of reach backs off within seconds.
 
 use loratrack::api::simulate;
 use loratrack::{
