@@ -578,8 +578,10 @@ function onUpload(input: string, error: HTMLElement, keep: (file: File) => void 
     onChange();
   });
 }
-onUpload('#csv', csvError, (f) => {
-  store.csv = { file: f, name: f.name };
+// Its bytes, held in memory: a File is read from disk at each use, and a file edited or removed
+// after its upload would then fail the next run.
+onUpload('#csv', csvError, async (f) => {
+  store.csv = { file: new Blob([await f.arrayBuffer()]), name: f.name };
 });
 onUpload('#plan-file', planError, async (f) => {
   store.plan = { text: await f.text(), name: f.name };

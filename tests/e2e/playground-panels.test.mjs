@@ -234,6 +234,14 @@ test('a large CSV is read with its own progress, then simulated', async () => {
   await until(page, () => !document.body.hasAttribute('data-busy'));
   assert.match(await page.locator('#status').textContent(), /long\.csv: 1 flight, 800 s simulated/);
   assert.ok(number(await cell(page, 'dr', 'delivery')) > 0);
+  // The upload is what runs from then on, even once the file on disk has changed (a File is
+  // read from disk at each use; the page keeps the bytes it was given).
+  writeFileSync(path, 't,x,y,z\n0,0,0,0\n');
+  const uploaded = await tableHtml(page);
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('9');
+  await waitForResults(page, uploaded);
+  await until(page, () => !document.body.hasAttribute('data-busy'));
+  assert.match(await page.locator('#status').textContent(), /long\.csv: 1 flight, 800 s simulated/);
   assert.deepEqual(problems, []);
 });
 
