@@ -25,8 +25,8 @@ export interface Store {
   report?: SimReport;
   /** The pinned baseline and the settings that made it. */
   baseline?: { report: SimReport; settings: Settings };
-  /** An uploaded CSV flight (never in the URL), kept as the file: the workers read its text, so
-   * that neither reading 31 MB nor copying it to each worker holds up the page. */
+  /** An uploaded CSV flight (never in the URL), kept as its bytes in a Blob: the workers read its
+   * text, so that neither decoding 31 MB nor copying it to each worker holds up the page. */
   csv?: { file: Blob; name: string };
   /** The uploaded flight's mission plan (never in the URL): what the mission station flies. */
   plan?: { text: string; name: string };

@@ -150,7 +150,7 @@ describe('simulate() parameters', () => {
     const csv = toParams({ ...DEFAULTS, flight: 'csv' }, { name: 'mine.csv' });
     expect(csv).toMatchObject({ trajectoryName: 'mine.csv' });
     expect(csv).not.toHaveProperty('synthetic');
-    // The text comes to the worker as the file itself, read there.
+    // The text comes to the worker as the upload's Blob, read there.
     const file = new Blob(['t,x,y,z']);
     const request = simulateRequest(1, { ...DEFAULTS, flight: 'csv' }, { file, name: 'mine.csv' });
     expect(request.trajectoryFile).toBe(file);

@@ -264,8 +264,8 @@ impl TrackingAdr {
 
     /// The data rate lost frame `fcnt` most likely went at when the device arrives slower than
     /// `start` without being told to: it backed off on its own ([`AdrDevice::no_downlink`]), one
-    /// rate per `ADR_ACK_DELAY` frames once `ADR_ACK_LIMIT + ADR_ACK_DELAY` went unanswered since
-    /// the last downlink the network sent. Counting back from `up` puts the frames just before it
+    /// rate per `delay` frames once `limit + delay` went unanswered since the last downlink the
+    /// network sent (the [`AckLimits`] it set). Counting back from `up` puts the frames just before it
     /// at its rate and earlier ones faster, never faster than `start`. Without this the whole gap
     /// counted as lost at the slow rate it ended on (at 7 km from DR6, 166 frames "lost at DR3"
     /// for one heard), and the estimate sank ~8 dB below the link.
