@@ -133,12 +133,14 @@ test('one model at a time, and the whole synthetic set', async () => {
 });
 
 test('the whole set shows its first flight at once, marked as that flight alone with the CLI’s numbers, then the whole set', async () => {
-  // At 100 Hz the set takes seconds; its first flight is a thirtieth of that. The first flight's
-  // own numbers come from the CLI before the page opens: run in the page's partial state, the CLI
-  // took a second of the few the test has before the set ends (on a fast machine, it had ended).
-  const cli = nativeJson(['simulate', '--synthetic', '1', '--sensor-rate', '100']);
+  // At 300 Hz the set takes several seconds; its first flight is a thirtieth of that. The first
+  // flight's own numbers come from the CLI before the page opens: run in the page's partial
+  // state, the CLI took a second of the few the test has before the set ends. At 100 Hz, on this
+  // 2-core machine with the fuzzers running beside the suite, the set once ended while the test
+  // was still reading the partial table.
+  const cli = nativeJson(['simulate', '--synthetic', '1', '--sensor-rate', '300']);
   const { page, problems } = await openPage(playground.context, new URL(playground.url).origin, { width: 1280, height: 800 });
-  await page.goto(`${playground.url}?flight=all&sensorRate=100`);
+  await page.goto(`${playground.url}?flight=all&sensorRate=300`);
   await page.waitForSelector('[data-panel="results"].partial #results-table tbody tr', { timeout: 30_000 });
   assert.match(await page.locator('#results-table caption').textContent(), /over 1 flight × 1 seed/);
   assert.match(await page.locator('#status').textContent(), /Flight 1 of the 30 shown, its numbers alone/);
