@@ -171,6 +171,12 @@ impl<'a> Flier<'a> {
         ]
     }
 
+    /// The channels it hops over at random (ALOHA), or `None` when it keeps a slot of a
+    /// schedule (its own time and channel, which no other drone's frame meets).
+    pub fn aloha_channels(&self) -> Option<u8> {
+        self.fixed_channel.is_none().then_some(self.channels)
+    }
+
     /// The channel its next packet would take (its schedule's, or a random one), and how many
     /// channels it may use (1 with a schedule).
     pub fn pick_channel(&mut self) -> (u8, u8) {

@@ -39,7 +39,7 @@ pub use drone::{run_drone, run_drones, DroneFilter, DroneTrack, Estimates, Sensi
 pub use error::SimError;
 pub use flier::{Aboard, Air, Flier};
 pub use link::{Link, Reception};
-pub use network::{fly_alone, run_episode, GatewayReport, Network, NetworkSetup};
+pub use network::{fly_alone, run_episode, CrowdLoad, GatewayReport, Network, NetworkSetup};
 pub use packet::Transmission;
 pub use radio::{DroneRadio, Frame, RateTable};
 pub use report::{

@@ -132,6 +132,7 @@ fn a_lost_downlink_delays_the_change_by_exactly_one_uplink() {
             snr_db: snr_db(-100.0, f.dr.bw()),
             adr_ack_req: f.adr_ack_req,
             speed_mps: 0.0,
+            crowd_loss: [0.0; 7],
         }
     };
     let first_change = |lost: &[usize]| {
@@ -177,6 +178,7 @@ fn constant_channel(mut network: Box<dyn AdrNetwork>, rssi: f64) -> Vec<DataRate
                 snr_db: snr_db(rx, f.dr.bw()),
                 adr_ack_req: f.adr_ack_req,
                 speed_mps: 0.0,
+                crowd_loss: [0.0; 7],
             });
             if command.is_some() || f.adr_ack_req {
                 device.downlink(command);

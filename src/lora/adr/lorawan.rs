@@ -85,6 +85,7 @@ mod tests {
             snr_db: snr,
             adr_ack_req: false,
             speed_mps: 0.0,
+            crowd_loss: [0.0; 7],
         }
     }
 

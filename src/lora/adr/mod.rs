@@ -129,6 +129,11 @@ pub struct UplinkReport {
     /// The drone's speed its payload reports, m/s: the server decodes every uplink, and
     /// [`TrackingAdr`] reads from it how far the drone flies between frames.
     pub speed_mps: f64,
+    /// Per EU868 data rate (index = DR), the chance that a frame of this device at that rate
+    /// overlaps another device's frame at its SF, from the traffic the server hears (pure
+    /// ALOHA; 0 for a lone device). [`TrackingAdr`] reads a lost frame as either lost in this
+    /// crowd or below the sensitivity.
+    pub crowd_loss: [f64; 7],
 }
 
 /// A `LinkADRReq`: the data rate and power the device should use from its next uplink.

@@ -5,7 +5,7 @@
 //! the drone plans its next uplink once any downlink it heard has arrived).
 
 use super::gateway::Gateway;
-use super::server::Network;
+use super::server::{AdrUplink, Network};
 use crate::lora::{
     audible, downlink_time_on_air, empty_window_s, lbt, Bandwidth, DataRate, LinkAdrReq, Outcome,
     Uplink, UplinkActivity, Window, ACK_DOWNLINK_BYTES, ADR_DOWNLINK_BYTES,
@@ -405,7 +405,14 @@ impl Episode {
         };
         // The payload the server decodes: this uplink's, the last the drone put on air.
         let speed = f.tx.last().map_or(0.0, |t| t.state[V]);
-        let (answers, command) = net.adr_hears(f.drone, &frame, air.receptions[g].rx_dbm, speed);
+        let uplink = AdrUplink {
+            frame: &frame,
+            rssi_dbm: air.receptions[g].rx_dbm,
+            speed_mps: speed,
+            time: *end,
+            channels: f.aloha_channels(),
+        };
+        let (answers, command) = net.adr_hears(f.drone, &uplink);
         if !answers {
             return (None, command);
         }

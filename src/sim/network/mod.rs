@@ -4,14 +4,18 @@
 //! * `gateway`: one gateway's receiver and downlink duty cycle, and what it counted.
 //! * `server`: the network server: first copy of each packet, ADR from the best SNR, which
 //!   gateway answers in which receive window.
+//! * `crowd`: what the server knows of the other devices' traffic, and so of a frame's chance to
+//!   collide at each data rate (tracking ADR reads losses through it).
 //! * `event_loop`: [`run_episode`], the loop itself: N ≥ 1 drones, M ≥ 1 gateways, one time axis.
 //!
 //! `simulate` is this loop with one drone; `swarm` is the same loop with many.
 
+mod crowd;
 mod event_loop;
 mod gateway;
 mod server;
 
+pub use crowd::CrowdLoad;
 pub use event_loop::run_episode;
 
 pub use gateway::GatewayReport;

@@ -5,6 +5,7 @@
 //! Things Stack and ChirpStack pick the downlink gateway by uplink SNR the same way).
 
 use super::gateway::GatewayReport;
+use super::CrowdLoad;
 use crate::lora::{
     snr_db, tracking_ack_limits, AckLimits, AdrMode, AdrNetwork, AdrParams, Channel, ChannelAccess,
     InterferenceModel, LinkAdrReq, UplinkFrame, UplinkReport,
@@ -56,6 +57,8 @@ pub struct Network {
     pub duplicates: usize,
     /// Whether the drones listen before they talk (reference §15).
     pub listen_before_talk: bool,
+    /// The other devices' traffic, as the server hears it (ADR).
+    crowd: CrowdLoad,
 }
 
 impl Network {
@@ -82,6 +85,7 @@ impl Network {
             .iter()
             .map(|r| r.rates().map(|t| t.network(&adr, channel.params(), limits)))
             .collect();
+        let drones = radios.len();
         let gateways = sites
             .iter()
             .map(|s| {
@@ -105,6 +109,7 @@ impl Network {
             lorawan,
             duplicates: 0,
             listen_before_talk,
+            crowd: CrowdLoad::new(drones),
         }
     }
 
@@ -158,28 +163,138 @@ impl Network {
         self.duplicates += copies.saturating_sub(1);
     }
 
-    /// ADR for drone `drone`'s received `frame` at `rssi_dbm` (the best gateway's), whose payload
-    /// reports `speed_mps`: whether the server answers with a downlink (it must when asked by
-    /// `ADRACKReq`, and does when it has a command), and the command.
+    /// ADR for drone `drone`'s received uplink: whether the server answers with a downlink (it
+    /// must when asked by `ADRACKReq`, and does when it has a command), and the command. The
+    /// server first counts the frame toward the crowd ([`CrowdLoad`]).
     pub(crate) fn adr_hears(
         &mut self,
         drone: usize,
-        frame: &UplinkFrame,
-        rssi_dbm: f64,
-        speed_mps: f64,
+        up: &AdrUplink<'_>,
     ) -> (bool, Option<LinkAdrReq>) {
         let Some(Some(algorithm)) = self.adr.get_mut(drone) else {
             return (false, None);
         };
+        let frame = up.frame;
+        let toa = self.radios[drone]
+            .rates()
+            .map_or([0.0; 7], |t| t.time_on_air);
+        self.crowd.heard(
+            drone,
+            frame.fcnt,
+            frame.dr,
+            toa[usize::from(frame.dr.index())],
+            up.time,
+        );
+        let crowd_loss = up
+            .channels
+            .map_or([0.0; 7], |c| self.crowd.loss(drone, &toa, c));
         let command = algorithm.on_uplink(&UplinkReport {
             fcnt: frame.fcnt,
             dr: frame.dr,
             power_reduction_db: frame.power_reduction_db,
-            rssi_dbm,
-            snr_db: snr_db(rssi_dbm, frame.dr.bw()),
+            rssi_dbm: up.rssi_dbm,
+            snr_db: snr_db(up.rssi_dbm, frame.dr.bw()),
             adr_ack_req: frame.adr_ack_req,
-            speed_mps,
+            speed_mps: up.speed_mps,
+            crowd_loss,
         });
         (command.is_some() || frame.adr_ack_req, command)
+    }
+}
+
+/// One received ADR uplink, as the server learns of it.
+pub(crate) struct AdrUplink<'a> {
+    /// The frame's ADR fields.
+    pub frame: &'a UplinkFrame,
+    /// Received power at the gateway that heard it best, dBm.
+    pub rssi_dbm: f64,
+    /// The speed its payload reports, m/s.
+    pub speed_mps: f64,
+    /// When it ended, s (the episode's time axis).
+    pub time: f64,
+    /// The channels the drone hops over at random (ALOHA), or `None` for a drone keeping a
+    /// slot of a schedule, which meets no other frame.
+    pub channels: Option<u8>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lora::{ChannelParams, DataRate, LoraParams};
+    use std::sync::{Arc, Mutex};
+
+    /// An ADR network that only writes down each report's crowd loss at the frame's rate.
+    struct Recorder(Arc<Mutex<Vec<f64>>>);
+    impl AdrNetwork for Recorder {
+        fn on_uplink(&mut self, up: &UplinkReport) -> Option<LinkAdrReq> {
+            let loss = up.crowd_loss[usize::from(up.dr.index())];
+            self.0.lock().unwrap().push(loss);
+            None
+        }
+    }
+
+    fn network(drones: usize) -> Network {
+        let radio = LoraParams::new(DataRate::DR6.sf(), DataRate::DR6.bw());
+        let radios = (0..drones)
+            .map(|_| DroneRadio::new(&radio, 12, 0.01, AdrMode::Tracking).unwrap())
+            .collect();
+        let setup = NetworkSetup {
+            sites: vec![GatewaySite {
+                east: 1000.0,
+                north: 0.0,
+                height: None,
+            }],
+            default_height: 15.0,
+            adr: AdrParams {
+                mode: AdrMode::Tracking,
+                ..AdrParams::default()
+            },
+            channel: Channel::new(ChannelParams::default()).unwrap(),
+            interference: InterferenceModel {
+                capture: true,
+                inter_sf: true,
+            },
+            lorawan: false,
+            listen_before_talk: false,
+        };
+        Network::new(setup, radios)
+    }
+
+    /// Every drone of `net` heard `rounds` times, one frame each every 2 s, on `channels`;
+    /// what drone 0's network was told.
+    fn hear_all(net: &mut Network, rounds: u32, channels: Option<u8>) -> Vec<f64> {
+        let seen = Arc::new(Mutex::new(Vec::new()));
+        net.set_adr_network(0, Box::new(Recorder(Arc::clone(&seen))));
+        for k in 0..rounds {
+            for drone in 0..net.radios.len() {
+                let frame = net.radios[drone].uplink().adr.unwrap();
+                let up = AdrUplink {
+                    frame: &frame,
+                    rssi_dbm: -100.0,
+                    speed_mps: 5.0,
+                    time: 2.0 * f64::from(k) + 0.01 * drone as f64,
+                    channels,
+                };
+                net.adr_hears(drone, &up);
+            }
+        }
+        seen.lock().map(|v| v.clone()).unwrap()
+    }
+
+    #[test]
+    fn the_server_tells_adr_the_crowds_collision_chance_and_a_lone_drone_none() {
+        let alone = hear_all(&mut network(1), 10, Some(1));
+        assert!(alone.iter().all(|&c| c == 0.0), "{alone:?}");
+        let crowd = hear_all(&mut network(20), 10, Some(1));
+        // Once the others' rates are known: 19 drones on air 1 % of the time each (0.0205 s
+        // every 2 s here, a little more), one channel: about 1 − e^(−0.38).
+        let last = *crowd.last().unwrap();
+        assert!(crowd[0] == 0.0 && last > 0.25 && last < 0.4, "{crowd:?}");
+        // Three channels share the same load three ways.
+        let three = *hear_all(&mut network(20), 10, Some(3)).last().unwrap();
+        assert!((three - (1.0 - (1.0 - last).powf(1.0 / 3.0))).abs() < 1e-9);
+        // Drones keeping slots of a schedule meet no one.
+        let slotted = hear_all(&mut network(20), 10, None);
+        assert!(slotted.iter().all(|&c| c == 0.0));
     }
 }
