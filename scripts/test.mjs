@@ -51,10 +51,12 @@ const suites = [
   ['set-up', [['node', ['scripts/setup.mjs', '--browser']]]],
   ['format', [['cargo', ['fmt', '--all', '--check']]]],
   [
-    'clippy + cargo test (native)',
+    'clippy + cargo test + API docs (native)',
     [
       ['cargo', ['test', '--all-targets', '--no-run']],
       ['cargo', ['test']],
+      // The API docs, their links checked: a link that no longer resolves is an error.
+      ['cargo', ['doc', '--no-deps', '--lib'], { RUSTDOCFLAGS: '-D warnings' }],
     ],
     RUST_INPUTS,
   ],
@@ -114,9 +116,9 @@ function recordPass(name, inputs, before) {
 }
 
 function runSuite(commands) {
-  for (const [cmd, args] of commands) {
-    console.log(`\n=== ${cmd} ${args.join(' ')}`);
-    if (spawnSync(cmd, args, { cwd: root, stdio: 'inherit', env }).status !== 0) return false;
+  for (const [cmd, args, extra = {}] of commands) {
+    console.log(`\n=== ${Object.entries(extra).map(([k, v]) => `${k}='${v}' `).join('')}${cmd} ${args.join(' ')}`);
+    if (spawnSync(cmd, args, { cwd: root, stdio: 'inherit', env: { ...env, ...extra } }).status !== 0) return false;
   }
   return true;
 }
