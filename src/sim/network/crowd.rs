@@ -1,6 +1,6 @@
 //! What the network server knows of the crowd on its channels: how often each device sends, at
 //! which spreading factor, and so how likely a frame at each data rate is to meet another
-//! device's frame (docs/reference.md §6, "The crowd").
+//! device's frame (docs/reference.md §6.5, "The crowd").
 
 use crate::lora::DataRate;
 use crate::math::exp;
