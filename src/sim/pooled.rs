@@ -36,8 +36,35 @@ pub(crate) struct Pooled {
     charge_mc: f64,
     active_s: f64,
     flight_time: f64,
-    /// Packets and receptions per data rate, slowest first (higher SF, then narrower band).
-    rates: BTreeMap<(u8, u64), DataRateUse>,
+    /// Packets and receptions per data rate, slowest first.
+    rates: RateTally,
+}
+
+/// Packets and receptions per data rate, slowest first (higher SF, then narrower band): a
+/// result's `dataRateUse`, a station's or a swarm drone's.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct RateTally(BTreeMap<(u8, u64), DataRateUse>);
+
+impl RateTally {
+    /// Counts one transmission at its rate.
+    pub fn add(&mut self, t: &Transmission) {
+        let key = (12 - t.sf.get(), t.bw.khz() as u64);
+        let e = self.0.entry(key).or_insert_with(|| DataRateUse {
+            dr: t.data_rate().map(DataRate::index),
+            sf: t.sf.get(),
+            bw: t.bw.khz(),
+            packets: 0,
+            received: 0,
+            time_on_air: t.time_on_air,
+        });
+        e.packets += 1;
+        e.received += usize::from(t.received);
+    }
+
+    /// The rates used, slowest first.
+    pub fn into_vec(self) -> Vec<DataRateUse> {
+        self.0.into_values().collect()
+    }
 }
 
 impl Pooled {
@@ -57,17 +84,7 @@ impl Pooled {
         for t in tx {
             self.charge_mc += t.charge_mc;
             self.active_s += t.active_s;
-            let key = (12 - t.sf.get(), t.bw.khz() as u64);
-            let e = self.rates.entry(key).or_insert_with(|| DataRateUse {
-                dr: t.data_rate().map(DataRate::index),
-                sf: t.sf.get(),
-                bw: t.bw.khz(),
-                packets: 0,
-                received: 0,
-                time_on_air: t.time_on_air,
-            });
-            e.packets += 1;
-            e.received += usize::from(t.received);
+            self.rates.add(t);
         }
         let [ex, ey, ez] = st.error_axes;
         for (pool, run) in [
@@ -139,7 +156,7 @@ impl Pooled {
         let runs = self.sorted_runs();
         let delivery = self.delivery(network);
         let model_probability = self.model_probability();
-        let data_rate_use: Vec<DataRateUse> = self.rates.into_values().collect();
+        let data_rate_use = self.rates.into_vec();
         let airtime = data_rate_use
             .iter()
             .map(|u| u.packets as f64 * u.time_on_air)

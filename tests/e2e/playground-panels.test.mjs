@@ -152,15 +152,23 @@ test('gateways are added, moved and removed in the form; each is reported, kept 
   assert.deepEqual(problems, []);
 });
 
-test('the swarm panel takes the single drone settings, ADR included, and reports downlinks and energy', async () => {
-  const { page, problems } = await open('?sf=9&bw=125&adr=lorawan');
+test('the swarm panel takes the single drone settings, ADR included, and reports where ADR sent the packets, downlinks and energy', async () => {
+  const { page, problems } = await open('?sf=9&bw=125&adr=tracking');
   await page.getByLabel('Drones', { exact: true }).selectOption('20');
   await page.getByLabel('SF plan').selectOption('fixed');
   await page.getByRole('button', { name: 'Run swarm' }).click();
   await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
   const note = await page.locator('#chart-swarm .note').textContent();
-  assert.match(note, /all on SF9/);
+  // The drones start on SF9 and the network moves them: the note says where their packets went,
+  // as the CLI counts them for the same swarm.
+  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sf', '9', '--bw', '125', '--adr', 'tracking']);
+  const sent = [0, 1, 2, 3, 4, 5].map((k) => cli.drones.flatMap((d) => d.dataRateUse).reduce((a, u) => a + (u.sf === 7 + k ? u.packets : 0), 0));
+  const total = sent.reduce((a, b) => a + b, 0);
+  const shares = sent.flatMap((n, k) => (n > 0 ? [`SF${k + 7} ${(100 * n) / total < 0.5 ? '<1' : ((100 * n) / total).toFixed(0)} %`] : [])).join(', ');
+  assert.ok(sent[2] < total, `ADR moved no packet off SF9: ${sent}`);
+  assert.ok(note.includes(`all starting on SF9, ADR sent their packets at ${shares}:`), `${note} / CLI: ${shares}`);
   assert.match(note, /\d+ ADR downlinks sent, \d+ dropped; radio [\d.]+ mC per uplink/);
+  assert.match(await page.locator('#chart-swarm').textContent(), /from SF9/);
   // One SF, p75s within a decade: its axis still has numbers (powers of ten alone left none).
   const { numbers } = await swarmStrip(page);
   assert.ok(numbers.length >= 2, `p75 axis numbers: ${numbers}`);

@@ -168,6 +168,17 @@ fn a_tracking_network_reads_a_crowds_collisions_as_collisions_and_keeps_its_dron
         .unwrap()
     };
     let (fixed, tracking) = (crowd("off"), crowd("tracking"));
+    // Every packet is counted at the SF it went at: all at SF7 without ADR, some elsewhere with.
+    let at_sf7 = |d: &loratrack::DroneReport| -> usize {
+        let at = d.data_rate_use.iter().filter(|u| u.sf == 7);
+        at.map(|u| u.packets).sum()
+    };
+    for d in fixed.drones.iter().chain(&tracking.drones) {
+        let counted: usize = d.data_rate_use.iter().map(|u| u.packets).sum();
+        assert_eq!(counted, d.packets_sent);
+    }
+    assert!(fixed.drones.iter().all(|d| at_sf7(d) == d.packets_sent));
+    assert!(tracking.drones.iter().any(|d| at_sf7(d) < d.packets_sent));
     let sent = tracking.delivery.packets_sent as f64 / fixed.delivery.packets_sent as f64;
     assert!(sent > 0.84, "{sent}");
     assert!(

@@ -12,6 +12,19 @@ function untracked(r: SwarmReport): string {
   return r.wholeFlight.partlyTracked ? ` (errors over ${trackedPercent(r.wholeFlight.tracked)} % of the flight time: before an episode's first packet a station has no estimate)` : '';
 }
 
+/** Where a swarm's packets went, by SF: "SF7 61 %, SF8 30 %, SF9 9 %, SF10 <1 %" (SFs with none
+ * left out). */
+export function sfShares(r: Pick<SwarmReport, 'drones'>): string {
+  const sent = [0, 0, 0, 0, 0, 0];
+  for (const u of r.drones.flatMap((d) => d.dataRateUse)) sent[u.sf - 7] += u.packets;
+  const total = sent.reduce((a, b) => a + b, 0);
+  return sent
+    .map((n, k) => ({ n, sf: k + 7 }))
+    .filter(({ n }) => n > 0)
+    .map(({ n, sf }) => `SF${sf} ${(100 * n) / total < 0.5 ? '<1' : ((100 * n) / total).toFixed(0)} %`)
+    .join(', ');
+}
+
 export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   const rates = swarms.map((r) => ({ n: r.config.drones, measured: 100 * r.collisionRate, theory: 100 * r.collisionRateTheory }));
   const collisions = Plot.plot({
@@ -27,7 +40,10 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
     ],
   });
   const largest = swarms[swarms.length - 1];
-  const drones = largest.drones.filter((d) => d.error3d.p75 !== null).map((d) => ({ p75: d.error3d.p75 as number, sf: `SF${d.sf}` }));
+  // With ADR a drone's SF is where it started: the network moves it (`dataRateUse` says where to).
+  const adr = largest.config.adr !== 'off';
+  const sfName = (sf: number) => (adr ? `from SF${sf}` : `SF${sf}`);
+  const drones = largest.drones.filter((d) => d.error3d.p75 !== null).map((d) => ({ p75: d.error3d.p75 as number, sf: sfName(d.sf) }));
   // SF7 first (not SF10, as sorting the names put it), in the SFs' page-wide colours.
   const sfs = [...new Set(largest.drones.map((d) => d.sf))].sort((a, b) => a - b);
   const errors = Plot.plot({
@@ -38,14 +54,14 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
     // 2–7 m) without a single number on its axis.
     x: { label: `p75 error of each of ${largest.config.drones} drones (m, log scale)`, type: 'log', ...logAxis(drones.map((d) => d.p75)), tickFormat: plainNumber },
     y: { axis: null },
-    color: { legend: true, domain: sfs.map((sf) => `SF${sf}`), range: sfs.map((sf) => SF_COLORS[sf - 7]) },
+    color: { legend: true, domain: sfs.map(sfName), range: sfs.map((sf) => SF_COLORS[sf - 7]) },
     marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: 'sf', r: 3, title: (d: { p75: number; sf: string }) => `${d.sf}: p75 ${d.p75.toFixed(2)} m` }))],
   });
   const note = document.createElement('p');
   note.className = 'note';
-  note.textContent = `${largest.config.drones} drones, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${largest.config.sfPlan === 'spread' ? 'SFs spread by distance' : `all on SF${largest.config.sf}`}: ${(100 * largest.collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %), median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${untracked(largest)}; ${(100 * largest.deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${largest.config.adr === 'off' ? '' : `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped`}; radio ${largest.energy.chargePerUplink.toFixed(2)} mC per uplink.${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
+  note.textContent = `${largest.config.drones} drones, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${largest.config.sfPlan === 'spread' ? `SFs spread by distance${adr ? ' at the start' : ''}` : `all ${adr ? 'starting ' : ''}on SF${largest.config.sf}`}${adr ? `, ADR sent their packets at ${sfShares(largest)}` : ''}: ${(100 * largest.collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %), median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${untracked(largest)}; ${(100 * largest.deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${largest.config.adr === 'off' ? '' : `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped`}; radio ${largest.energy.chargePerUplink.toFixed(2)} mC per uplink.${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
   const l = largest.largestSwarm;
-  note.textContent += ` Largest swarm one gateway serves at these settings, every drone sending as often as its duty cycle allows: ${l.aloha1} drones at ≤ 1 % collisions and ${l.aloha10} at ≤ 10 % with ALOHA (by its formula), ${l.slotted} slotted with none.`;
+  note.textContent += ` Largest swarm one gateway serves at these settings${adr ? ' (at the starting SFs)' : ''}, every drone sending as often as its duty cycle allows: ${l.aloha1} drones at ≤ 1 % collisions and ${l.aloha10} at ≤ 10 % with ALOHA (by its formula), ${l.slotted} slotted with none.`;
   const box = document.createElement('div');
   box.append(collisions, errors, note);
   return box;

@@ -797,7 +797,8 @@ export type DroneReport = {
  */
 id: number, 
 /**
- * Its spreading factor.
+ * Its spreading factor (with ADR, the one it starts at: `dataRateUse` says where its
+ * packets went).
  */
 sf: number, 
 /**
@@ -808,6 +809,11 @@ bearingDeg: number,
  * Packets it sent on each channel.
  */
 channelUse: Array<number>, 
+/**
+ * The packets it sent at each data rate, slowest first, as a station's result counts them:
+ * one entry without ADR, each rate the network moved it to with.
+ */
+dataRateUse: Array<DataRateUse>, 
 /**
  * Packets sent.
  */
@@ -880,7 +886,8 @@ collisionRate: number,
 /**
  * Pure ALOHA's collision rate (`aloha_collision_rate`) per SF group at the group's mean
  * achieved duty cycle, weighted by the packets each group sent: what the formula predicts
- * for senders at random phases without capture or inter-SF effects (one gateway).
+ * for senders at random phases without capture or inter-SF effects (one gateway). With ADR
+ * a group is every drone that sent at that SF, at the share of its time it was on air there.
  */
 collisionRateTheory: number, 
 /**

@@ -699,7 +699,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         "{} drone{} {}, at {} m, {} channel{}, {} SFs, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
          {}\n\
          channel access      {}\n\
-         packets sent        {}\n\
+         packets sent        {}{}\n\
          collision rate      {:.4}  (pure-ALOHA formula at the duty cycle achieved: {:.4})\n\
          largest swarm       {} drones at <= 1 % collisions, {} at <= 10 % (ALOHA formula); {} slotted, with none\n\
          delivery ratio      {:.4}  ({} distinct packets, {} duplicate{} removed)\n\
@@ -727,6 +727,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         policy_text(c),
         schedule_text(r),
         d.packets_sent,
+        sf_shares(r),
         r.collision_rate,
         r.collision_rate_theory,
         r.largest_swarm.aloha1,
@@ -749,6 +750,28 @@ fn swarm_text(r: &SwarmReport) -> String {
         silent,
         gateway_lines(&d.gateways)
     )
+}
+
+/// With ADR, where the swarm's packets went: "  (ADR sent them at SF7 61 %, SF8 39 %)"; empty
+/// without (every drone stays at its SF).
+fn sf_shares(r: &SwarmReport) -> String {
+    if r.config.settings.network.adr == loratrack::AdrMode::Off {
+        return String::new();
+    }
+    let mut sent = [0usize; 6];
+    for u in r.drones.iter().flat_map(|d| &d.data_rate_use) {
+        sent[usize::from(u.sf - 7)] += u.packets;
+    }
+    let total = sent.iter().sum::<usize>().max(1) as f64;
+    let shares: Vec<String> = (7..)
+        .zip(sent)
+        .filter(|&(_, n)| n > 0)
+        .map(|(sf, n)| match 100.0 * n as f64 / total {
+            share if share < 0.5 => format!("SF{sf} <1 %"),
+            share => format!("SF{sf} {share:.0} %"),
+        })
+        .collect();
+    format!("  (ADR sent them at {})", shares.join(", "))
 }
 
 /// A share as "78.2 %", or a dash.

@@ -18,7 +18,7 @@ use super::drone::{DroneFilter, Estimates, Sensing};
 use super::flier::{Aboard, Air, Flier};
 use super::network::{run_episode, Network};
 use super::parallel::par_map;
-use super::pooled::airtime;
+use super::pooled::{airtime, RateTally};
 use super::radio::DroneRadio;
 use super::report::{ratio, Delivery, Energy};
 use super::scenario::{SfPlan, SyntheticChoice, TrajectorySource, Validated};
@@ -392,8 +392,10 @@ impl<'a> Swarm<'a> {
         whole_flight: WholeFlightError,
     ) -> DroneReport {
         let mut channel_use = vec![0; usize::from(self.cfg.channels)];
+        let mut rates = RateTally::default();
         for t in mine {
             channel_use[usize::from(t.channel)] += 1;
+            rates.add(t);
         }
         let plan = &self.plan;
         let time: f64 = plan
@@ -401,11 +403,19 @@ impl<'a> Swarm<'a> {
             .iter()
             .map(|ep| plan.flights[ep[i].flight].duration())
             .sum();
+        // Summed in the packets' order, as the whole duty cycle is: a drone at one SF has the
+        // same number at it.
+        let duty_cycle_by_sf = core::array::from_fn(|k| {
+            let at = mine.iter().filter(|t| usize::from(t.sf.get() - 7) == k);
+            at.map(|t| t.time_on_air).sum::<f64>() / time
+        });
         DroneReport {
             id: i,
             sf: sf_of(&self.sfs, i) as u8,
             bearing_deg: plan.episodes[0][i].bearing.to_degrees(),
             channel_use,
+            data_rate_use: rates.into_vec(),
+            duty_cycle_by_sf,
             packets_sent: mine.len(),
             packets_received: mine.iter().filter(|t| t.received).count(),
             packets_collided: mine
@@ -491,16 +501,26 @@ fn mean_energy(drones: &[DroneReport]) -> Energy {
 }
 
 /// Pure ALOHA's collision rate for `drones` on `channels` channels: per SF group at the duty
-/// cycle the group achieved, weighted by the packets each group sent (reference §10).
+/// cycle the group achieved, weighted by the packets each group sent (reference §10). A group
+/// is the drones at that SF and, with ADR, every drone that sent there, each at the share of
+/// its time on air at that SF.
 fn collision_theory(drones: &[DroneReport], channels: u8) -> f64 {
     let mut theory = 0.0;
     for sf in 7..=12u8 {
-        let group: Vec<&DroneReport> = drones.iter().filter(|d| d.sf == sf).collect();
+        let k = usize::from(sf - 7);
+        let at_sf = |d: &DroneReport| -> usize {
+            let at = d.data_rate_use.iter().filter(|u| u.sf == sf);
+            at.map(|u| u.packets).sum()
+        };
+        let group: Vec<&DroneReport> = drones
+            .iter()
+            .filter(|d| d.sf == sf || at_sf(d) > 0)
+            .collect();
         if group.is_empty() {
             continue;
         }
-        let packets: usize = group.iter().map(|d| d.packets_sent).sum();
-        let used = group.iter().map(|d| d.duty_cycle_used).sum::<f64>() / group.len() as f64;
+        let packets: usize = group.iter().map(|d| at_sf(d)).sum();
+        let used = group.iter().map(|d| d.duty_cycle_by_sf[k]).sum::<f64>() / group.len() as f64;
         theory += packets as f64 * aloha_collision_rate(used, channels, group.len());
     }
     let sent: usize = drones.iter().map(|d| d.packets_sent).sum();
@@ -592,14 +612,19 @@ fn slots(cfg: &Validated, radios: &[DroneRadio]) -> Result<Option<Vec<Slot>>, Si
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sim::report::DataRateUse;
 
     /// A drone on `sf` that sent `packets_sent` packets, on air `duty_cycle_used` of the time.
     fn drone(sf: u8, packets_sent: usize, duty_cycle_used: f64) -> DroneReport {
+        let mut duty_cycle_by_sf = [0.0; 6];
+        duty_cycle_by_sf[usize::from(sf - 7)] = duty_cycle_used;
         DroneReport {
             id: 0,
             sf,
             bearing_deg: 0.0,
             channel_use: vec![packets_sent],
+            data_rate_use: vec![use_at(sf, packets_sent)],
+            duty_cycle_by_sf,
             packets_sent,
             packets_received: packets_sent,
             packets_collided: 0,
@@ -608,6 +633,18 @@ mod tests {
             frame_length: None,
             error3d: Summary::of(&mut Vec::new()),
             whole_flight: WholeFlightError::of_sorted(&[], 0),
+        }
+    }
+
+    /// `packets` sent at `sf` (125 kHz).
+    fn use_at(sf: u8, packets: usize) -> DataRateUse {
+        DataRateUse {
+            dr: None,
+            sf,
+            bw: 125.0,
+            packets,
+            received: packets,
+            time_on_air: 0.1,
         }
     }
 
@@ -628,5 +665,22 @@ mod tests {
         // More channels, fewer collisions; no packets, no rate.
         assert!(collision_theory(&one, 3) < collision_theory(&one, 1));
         assert_eq!(collision_theory(&[drone(7, 0, 0.0)], 1), 0.0);
+    }
+
+    #[test]
+    fn with_adr_the_collision_theory_groups_drones_by_where_their_packets_went() {
+        // Two drones started on SF7; ADR moved one to SF8 for half its packets (and half its
+        // time on air there). SF7's group: both, the moved one at its remaining share.
+        let stayed = drone(7, 20, 0.02);
+        let mut moved = drone(7, 20, 0.02);
+        moved.data_rate_use = vec![use_at(8, 10), use_at(7, 10)];
+        moved.duty_cycle_by_sf = [0.01, 0.01, 0.0, 0.0, 0.0, 0.0];
+        let sf7 = aloha_collision_rate(0.015, 1, 2);
+        // On SF8 it is alone: no collision there.
+        let expected = 30.0 * sf7 / 40.0;
+        let theory = collision_theory(&[stayed.clone(), moved], 1);
+        assert!((theory - expected).abs() < 1e-15, "{theory} vs {expected}");
+        // Counted by the SF they started at, both would share SF7 at 2 %: a higher rate.
+        assert!(theory < collision_theory(&[stayed.clone(), stayed], 1));
     }
 }

@@ -1,7 +1,7 @@
 //! The output of `swarm`.
 
 use crate::metrics::{Summary, WholeFlightError};
-use crate::sim::report::{Delivery, Energy};
+use crate::sim::report::{DataRateUse, Delivery, Energy};
 use crate::sim::scenario::Scenario;
 use crate::sim::station::StationModel;
 use serde::Serialize;
@@ -13,12 +13,20 @@ use serde::Serialize;
 pub struct DroneReport {
     /// 0-based index.
     pub id: usize,
-    /// Its spreading factor.
+    /// Its spreading factor (with ADR, the one it starts at: `dataRateUse` says where its
+    /// packets went).
     pub sf: u8,
     /// Direction from its starting point to the centre, degrees counter-clockwise from east.
     pub bearing_deg: f64,
     /// Packets it sent on each channel.
     pub channel_use: Vec<usize>,
+    /// The packets it sent at each data rate, slowest first, as a station's result counts them:
+    /// one entry without ADR, each rate the network moved it to with.
+    pub data_rate_use: Vec<DataRateUse>,
+    /// The fraction of its flight time it was on air at each spreading factor, SF7 first:
+    /// what the ALOHA formula groups it by ([`SwarmReport::collision_rate_theory`]).
+    #[serde(skip)]
+    pub(crate) duty_cycle_by_sf: [f64; 6],
     /// Packets sent.
     pub packets_sent: usize,
     /// Packets the gateway received.
@@ -52,7 +60,8 @@ pub struct SwarmReport {
     pub collision_rate: f64,
     /// Pure ALOHA's collision rate (`aloha_collision_rate`) per SF group at the group's mean
     /// achieved duty cycle, weighted by the packets each group sent: what the formula predicts
-    /// for senders at random phases without capture or inter-SF effects (one gateway).
+    /// for senders at random phases without capture or inter-SF effects (one gateway). With ADR
+    /// a group is every drone that sent at that SF, at the share of its time it was on air there.
     pub collision_rate_theory: f64,
     /// The schedule's longest frame, s: the slowest drone's sending interval (`null` for
     /// ALOHA).
