@@ -220,7 +220,8 @@ pub(crate) struct AdrUplink<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lora::{ChannelParams, DataRate, LoraParams};
+    use crate::lora::{DataRate, LoraParams};
+    use crate::sim::scenario::Scenario;
     use std::sync::{Arc, Mutex};
 
     /// An ADR network that only writes down each report's crowd loss at the frame's rate.
@@ -233,31 +234,20 @@ mod tests {
         }
     }
 
+    /// `drones` drones at SF7 / 250 kHz with tracking ADR, one gateway 1 km east (the scenario's
+    /// network, as `simulate` and `swarm` build it).
     fn network(drones: usize) -> Network {
+        let settings = serde_json::json!({"adr": "tracking", "sf": 7, "bw": 250});
+        let cfg = Scenario::default()
+            .with(&settings)
+            .unwrap()
+            .validate()
+            .unwrap();
         let radio = LoraParams::new(DataRate::DR6.sf(), DataRate::DR6.bw());
         let radios = (0..drones)
             .map(|_| DroneRadio::new(&radio, 12, 0.01, AdrMode::Tracking).unwrap())
             .collect();
-        let setup = NetworkSetup {
-            sites: vec![GatewaySite {
-                east: 1000.0,
-                north: 0.0,
-                height: None,
-            }],
-            default_height: 15.0,
-            adr: AdrParams {
-                mode: AdrMode::Tracking,
-                ..AdrParams::default()
-            },
-            channel: Channel::new(ChannelParams::default()).unwrap(),
-            interference: InterferenceModel {
-                capture: true,
-                inter_sf: true,
-            },
-            lorawan: false,
-            listen_before_talk: false,
-        };
-        Network::new(setup, radios)
+        Network::of(&cfg, 1000.0, radios)
     }
 
     /// Every drone of `net` heard `rounds` times, one frame each every 2 s, on `channels`;
