@@ -701,7 +701,7 @@ fn swarm_text(r: &SwarmReport) -> String {
          channel access      {}\n\
          packets sent        {}{}\n\
          collision rate      {:.4}  (pure-ALOHA formula at the duty cycle achieved: {:.4})\n\
-         largest swarm       {} drones at <= 1 % collisions, {} at <= 10 % (ALOHA formula); {} slotted, with none\n\
+         largest swarm       {} drone{} at <= 1 % collisions, {} at <= 10 % (ALOHA formula); {} slotted, with none\n\
          delivery ratio      {:.4}  ({} distinct packets, {} duplicate{} removed)\n\
          below sensitivity   {}\n\
          no demodulator      {}\n\
@@ -731,6 +731,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         r.collision_rate,
         r.collision_rate_theory,
         r.largest_swarm.aloha1,
+        if r.largest_swarm.aloha1 == 1 { "" } else { "s" },
         r.largest_swarm.aloha10,
         r.largest_swarm.slotted,
         d.delivery_ratio,
