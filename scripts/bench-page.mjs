@@ -10,9 +10,15 @@
 // - the 3D view: from scrolling to it, after all the rest is drawn, until it is drawn;
 // - long tasks: main-thread tasks over 50 ms until then (count, longest, sum);
 // - layout shift: the Layout Instability API's shifts until then, summed (its CLS while loading);
-// - each panel's drawing time (the page's `draw <panel>` performance measures, www/later.ts).
+// - each panel's drawing time (the page's `draw <panel>` performance measures, www/later.ts);
+// - with `--upload FILE`, then a flight uploaded as a user does (Trajectory → CSV file): from the
+//   file's choice until its results, until its error chart is drawn, and the long tasks between
+//   (the distance and SF charts, which simulate the flight again at every distance and SF, come
+//   later and are not waited for). `cargo bench --bench core -- long_flight` writes the 10⁶-row
+//   flights to target/tmp/long-flight-25hz.csv and -10khz.csv.
 // Reports, never asserts: wall-clock time on a shared machine is a measurement, not a test.
 //   npm run bench:page [-- loads [query]]      e.g. -- 5 '?flight=all' (builds dist/ first)
+//   node scripts/bench-page.mjs --upload target/tmp/long-flight-25hz.csv 5 '?model=all'
 //   node scripts/bench-page.mjs --compare DIR_A DIR_B [loads [query]]
 // compares two builds (copies of dist/): one load of each in turn, so that the machine's drift,
 // which on this 2-core machine moves the first results by more than most changes do, falls on
@@ -20,8 +26,11 @@
 import { resolve } from 'node:path';
 import { launch, serveDist } from '../tests/e2e/harness.mjs';
 
-const compare = process.argv[2] === '--compare' ? process.argv.slice(3, 5).map((d) => resolve(d)) : null;
-const args = compare ? process.argv.slice(5) : process.argv.slice(2);
+const argv = process.argv.slice(2);
+const uploadAt = argv.indexOf('--upload');
+const upload = uploadAt >= 0 ? resolve(argv.splice(uploadAt, 2)[1]) : null;
+const compare = argv[0] === '--compare' ? argv.slice(1, 3).map((d) => resolve(d)) : null;
+const args = compare ? argv.slice(3) : argv;
 const loads = Number(args[0] ?? (compare ? 8 : 7));
 const query = args[1] ?? '';
 const builds = compare ?? [undefined];
@@ -101,8 +110,36 @@ async function load(server) {
         document.querySelector('[data-panel="trajectory"]').scrollIntoView();
       }),
   );
+  const uploaded = upload ? await uploadFlight(page) : undefined;
   await context.close();
-  return { ...run, change, view3d };
+  return { ...run, change, view3d, uploaded };
+}
+
+/** Uploads `upload` on a page that has drawn everything: until its results (the table is
+ * the new flight's, `1 flight` in the status), until its error chart is drawn, and the long
+ * tasks in between. */
+async function uploadFlight(page) {
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
+  await page.evaluate(() => {
+    const table = () => document.querySelector('#results-table tbody')?.innerHTML;
+    const u = (window.__timing.upload = { start: performance.now(), long: [] });
+    const before = table();
+    new MutationObserver((_, observer) => {
+      if (table() === before || document.querySelector('[data-panel="results"]').classList.contains('partial')) return;
+      u.results = performance.now() - u.start;
+      observer.disconnect();
+    }).observe(document.body, { subtree: true, childList: true, characterData: true });
+    new PerformanceObserver((list) => {
+      for (const e of list.getEntries()) if (e.startTime >= u.start) u.long.push(e.duration);
+    }).observe({ type: 'longtask' });
+  });
+  await page.locator('#csv').setInputFiles(upload);
+  await page.waitForFunction(() => window.__timing.upload.results !== undefined && performance.getEntriesByName('draw error').some((m) => m.startTime > window.__timing.upload.start), null, { timeout: 300_000, polling: 100 });
+  return page.evaluate(() => {
+    const { start, results, long } = window.__timing.upload;
+    const drawn = performance.getEntriesByName('draw error').find((m) => m.startTime > start);
+    return { results, chart: drawn.startTime + drawn.duration - start, long: [...long] };
+  });
 }
 
 // runs[b]: build b's loads; the builds take turns, in alternating order.
@@ -133,3 +170,9 @@ console.log(row('longest task', (r) => Math.max(0, ...r.long)));
 console.log(row('long tasks, sum', (r) => r.long.reduce((a, b) => a + b, 0)));
 console.log(row('layout shift while loading, × 1000', (r) => 1000 * r.shift));
 for (const panel of Object.keys(runs[0][0].draws)) console.log(row(`draw ${panel}`, (r) => r.draws[panel] ?? 0));
+if (upload) {
+  console.log(row(`${upload.split('/').pop()} uploaded: results`, (r) => r.uploaded.results));
+  console.log(row('uploaded: its error chart drawn', (r) => r.uploaded.chart));
+  console.log(row('uploaded: long tasks (> 50 ms) until then, count', (r) => r.uploaded.long.length));
+  console.log(row('uploaded: longest task', (r) => Math.max(0, ...r.uploaded.long)));
+}

@@ -133,8 +133,13 @@ function renderPartial(r: SimReport, made: Settings): void {
 function drawErrorChart(r: SimReport, made: Settings): void {
   later('error', () => {
     const width = chartWidth('error');
-    // What the chart reads: the stations' series, not where the gateway stood.
-    return drawPanel('error', [width, r.series?.flight, r.series?.models, r.config.adr], (p) => p.errorOverTimeChart(r, width), made);
+    // What the chart reads: the stations' series, not where the gateway stood. Its numbers and
+    // Plot's drawing of them each take a task: on a long flight each is tens of milliseconds.
+    return drawPanel('error', [width, r.series?.flight, r.series?.models, r.config.adr], async (p) => {
+      const data = p.errorChartData(r, width);
+      await nextTask();
+      return p.errorChart(data);
+    }, made);
   });
 }
 
@@ -455,7 +460,7 @@ const drawnFrom: Record<string, unknown> = {};
  * distance within the link's reach, where every packet arrives) the charts of those numbers.
  * Either way its download's caption names the settings (`made`) now on show.
  */
-async function drawPanel(name: string, inputs: unknown, draw: (p: Awaited<ReturnType<typeof plots>>) => Element, made: Settings = store.settings): Promise<void> {
+async function drawPanel(name: string, inputs: unknown, draw: (p: Awaited<ReturnType<typeof plots>>) => Element | Promise<Element>, made: Settings = store.settings): Promise<void> {
   // Presentation mode draws the same inputs larger.
   const from = [inputs, presenting()];
   const drawn = charts[name];
@@ -463,7 +468,7 @@ async function drawPanel(name: string, inputs: unknown, draw: (p: Awaited<Return
     drawn.caption = caption(made);
     return;
   }
-  place(name, draw(await plots()), made);
+  place(name, await draw(await plots()), made);
   drawnFrom[name] = from;
 }
 

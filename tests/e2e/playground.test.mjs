@@ -268,14 +268,18 @@ test("a long uploaded flight's error chart and error series CSV say they are its
   assert.ok(cli.every((m) => m.samples > m.t.length), `the CLI's series: ${cli.map((m) => `${m.t.length} of ${m.samples}`)}`);
   const note = await page.locator('#chart-error .note').textContent();
   assert.match(note, new RegExp(`${Math.max(...cli.map((m) => m.samples)).toLocaleString('en')} samples a station are drawn as their envelope`));
-  // Each station's line is thinned to at most two points a pixel of its axis (narrower than the SVG).
-  const [axis, points] = await page.evaluate(() => {
+  // Each station's line is thinned to at most two points a pixel of its axis (narrower than the
+  // SVG), and its band's dashed edge to one, a step (two segments) each.
+  const [axis, points, edges] = await page.evaluate(() => {
     const svg = [...document.querySelectorAll('#chart-error svg')].find((s) => Number(s.getAttribute('width')) > 100);
-    const lines = [...svg.querySelectorAll('path')].filter((p) => p.getAttribute('stroke-width') === '1.4' || p.parentElement?.getAttribute('stroke-width') === '1.4');
-    return [Number(svg.getAttribute('width')), lines.map((p) => (p.getAttribute('d').match(/L/g) ?? []).length + 1)];
+    const drawn = (attribute, value) => [...svg.querySelectorAll('path')].filter((p) => p.getAttribute(attribute) === value || p.parentElement?.getAttribute(attribute) === value);
+    const vertices = (p) => (p.getAttribute('d').match(/L/g) ?? []).length + 1;
+    return [Number(svg.getAttribute('width')), drawn('stroke-width', '1.4').map(vertices), drawn('stroke-dasharray', '3,3').map(vertices)];
   });
   assert.equal(points.length, cli.length, 'one line a station');
   assert.ok(points.every((n) => n <= 2 * axis), `points a line: ${points} on ${axis} px`);
+  assert.equal(edges.length, cli.length, 'one band a station');
+  assert.ok(edges.every((n) => n <= 2 * axis), `vertices a band's edge: ${edges} on ${axis} px`);
   // The CSV names itself an envelope: per stretch of time, each station's lowest and highest of
   // the samples the CLI's series keeps there.
   const [download] = await Promise.all([page.waitForEvent('download'), page.locator('#download-csv').click()]);

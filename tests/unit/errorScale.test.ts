@@ -1,6 +1,6 @@
 // The error chart's scale follows the errors, not a bound that lost packets let run away.
 import { expect, test } from 'vitest';
-import { errorScale, packetMarks, pixelPicks, rateChanges, rateLabels, thinnedNote } from '../../www/charts/errorOverTime';
+import { errorScale, packetMarks, pickedColumns, pixelPicks, pixelTops, rateChanges, rateLabels, thinnedNote } from '../../www/charts/errorOverTime';
 
 test('a bound far past the errors is held to twice the largest error and reported', () => {
   expect(errorScale([[1, 10], [4]], [[30, 700], [12]])).toEqual({ top: 20, boundTop: 700 });
@@ -76,6 +76,43 @@ test("a series of at most four samples a pixel is drawn whole; a denser one keep
     return byPixel;
   };
   expect(range(picks)).toEqual(range(hour.keys()));
+});
+
+test("the band is drawn through every bound where there is at most one a pixel, otherwise through each pixel's highest", () => {
+  const t = Float64Array.from({ length: 875 }, (_, i) => i / 10);
+  // A saw-tooth bound, as between packets: 5 m after each, 20 m before the next, 3 s apart.
+  const bound = Float64Array.from(t, (s) => 5 + 5 * (s % 3));
+  expect(pixelTops(t, bound, 0, 87.4 / 1000)).toEqual([...t.keys()]);
+  const pixel = 87.4 / 40;
+  const tops = pixelTops(t, bound, 0, pixel);
+  expect(tops.length).toBe(41);
+  expect(tops.every((p, k) => k === 0 || p > tops[k - 1])).toBe(true);
+  const highest = new Map<number, number>();
+  t.forEach((s, i) => highest.set(Math.floor(s / pixel), Math.max(highest.get(Math.floor(s / pixel)) ?? -Infinity, bound[i])));
+  expect(tops.map((i) => bound[i])).toEqual([...highest.values()]);
+  // A bound the station could not give (NaN) yields to a number in its pixel; an unbounded one shows.
+  expect(pixelTops([0, 1, 2, 3], [Number.NaN, 4, 2, 1], 0, 2)).toEqual([1, 2]);
+  expect(pixelTops([0, 1, 2, 3], [4, Number.POSITIVE_INFINITY, 2, 1], 0, 2)).toEqual([1, 2]);
+});
+
+test("the picked samples become one set of columns, station after station, labelled for the tip, and keep the series' largest error and bound", () => {
+  const station = (model: 'dr' | '3d-ctra', shift: number) => ({
+    model,
+    t: Float64Array.from({ length: 600 }, (_, i) => i / 10),
+    error3d: Float64Array.from({ length: 600 }, (_, i) => shift + (i % 37) / 3),
+    bound95: Float64Array.from({ length: 600 }, (_, i) => 2 * shift + (i % 41)),
+  });
+  const models = [station('dr', 1), station('3d-ctra', 2)];
+  const pixel = 59.9 / 100;
+  const lines = pickedColumns(models, models.map((m) => pixelPicks(m.t, m.error3d, 0, pixel)));
+  const band = pickedColumns(models, models.map((m) => pixelTops(m.t, m.bound95, 0, pixel)));
+  expect(lines.rows.length).toBe(lines.t.length);
+  expect(new Set(lines.model.value)).toEqual(new Set(['DR', '3D-CTRA']));
+  expect(lines.model.label).toBe('model');
+  const firstOf3d = lines.model.value.indexOf('3D-CTRA');
+  expect(lines.model.value.slice(firstOf3d).every((m) => m === '3D-CTRA')).toBe(true);
+  expect(lines.e[firstOf3d]).toBe(models[1].error3d[pixelPicks(models[1].t, models[1].error3d, 0, pixel)[0]]);
+  expect(errorScale([lines.e], [band.b])).toEqual(errorScale(models.map((m) => m.error3d), models.map((m) => m.bound95)));
 });
 
 test('a thinned series says so under the chart, with how many samples it rests on; a whole one adds nothing', () => {

@@ -4,14 +4,33 @@ import * as Plot from '@observablehq/plot';
 import { isThinned, MODEL_LABELS, type ModelSeries, type SimReport } from '../loratrack';
 import { MODEL_COLORS, chartFrame, chartFont, withKey } from './colors';
 
-export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElement | HTMLElement {
+/** What the error chart draws, computed from a report for a chart `width` px wide: the picked
+ * samples, the packet marks and rate labels, the scale and the words around it. The page computes
+ * it a task before Plot draws it ([`errorChart`]): on a long uploaded flight each half is tens of
+ * milliseconds, and together they held the page's thread past 50 ms. `note` alone, with nothing
+ * to draw, when no packet arrived. */
+export type ErrorChartData =
+  | { note: string }
+  | {
+      width: number;
+      labels: string[];
+      colors: string[];
+      lines: PickedColumns;
+      band: PickedColumns;
+      arrivals: (PacketMark & { model: string })[];
+      lost: (PacketMark & { model: string })[];
+      changes: RateLabel[];
+      top: number;
+      offScale: string[];
+      key: string;
+      thinned: string;
+    };
+
+export function errorChartData(report: SimReport, width: number): ErrorChartData {
   const models = report.series?.models ?? [];
   if (!models.some((m) => m.t.length > 0)) {
     // Nothing arrived on this flight: the station never had an estimate, so there is no error to draw.
-    const note = document.createElement('p');
-    note.className = 'empty-chart';
-    note.textContent = `No packet arrives at this distance on ${report.series?.flight ?? 'this flight'}: the station never has an estimate, so there is no error to plot. Move the gateway closer or raise the spreading factor.`;
-    return note;
+    return { note: `No packet arrives at this distance on ${report.series?.flight ?? 'this flight'}: the station never has an estimate, so there is no error to plot. Move the gateway closer or raise the spreading factor.` };
   }
   // A pixel of the time axis, s: packets less than a dot's width apart draw as one mark (a long
   // flight's tens of thousands would otherwise be as many SVG elements, one on top of another),
@@ -19,10 +38,9 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
   const first = Math.min(...models.map((m) => m.t[0] ?? Infinity));
   const span = Math.max(...models.map((m) => m.t[m.t.length - 1] ?? -Infinity)) - first;
   const pixel = span / Math.max(1, width - 70);
-  const picks = models.map((m) => pixelPicks(m.t, m.error3d, first, pixel));
-  // The series are Float64Arrays: rows for the marks come from picks' map, since a typed
-  // array's own map can only return numbers.
-  const lines = models.flatMap((m, k) => picks[k].map((i) => ({ t: m.t[i], e: m.error3d[i], model: MODEL_LABELS[m.model] })));
+  const lines = pickedColumns(models, models.map((m) => pixelPicks(m.t, m.error3d, first, pixel)));
+  // The station's own 95 % bound on its error, as a faint band under each model's line.
+  const band = pickedColumns(models, models.map((m) => pixelTops(m.t, m.bound95, first, pixel)));
   const dot = DOT_PX * pixel;
   const arrivals = models.flatMap((m) => packetMarks(m.arrivals, m.arrivalDr, dot).map((p) => ({ ...p, model: MODEL_LABELS[m.model] })));
   const lost = models.flatMap((m) => packetMarks(m.lost, m.lostDr, dot).map((p) => ({ ...p, model: MODEL_LABELS[m.model] })));
@@ -33,39 +51,59 @@ export function errorOverTimeChart(report: SimReport, width: number): SVGSVGElem
     // A label's width (three characters and a space at ~0.6 em) in seconds of the plot (~width − 70 px).
     4 * 0.6 * chartFont() * pixel,
   );
-  const labels = models.map((m) => MODEL_LABELS[m.model]);
-  // The station's own 95 % bound on its error, as a faint band under each model's line.
-  const bounds = models.flatMap((m, k) => picks[k].map((i) => ({ t: m.t[i], b: m.bound95[i], model: MODEL_LABELS[m.model] })));
-  const scale = errorScale(models.map((m) => m.error3d), models.map((m) => m.bound95));
-  const offScale = scale.boundTop > scale.top ? [`95 % bound up to ${scale.boundTop.toFixed(0)} m ↑`] : [];
-  const key = `● packet arrived · ✕ packet lost · dashed band: the station's own 95 % bound on its error${changes.length ? " · DRn: the data rate from that packet on (grey: every station's drone)" : ''}.`;
+  // The picks hold each pixel's largest error and bound, so their tops are the series' own.
+  const scale = errorScale([lines.e], [band.b]);
+  return {
+    width,
+    labels: models.map((m) => MODEL_LABELS[m.model]),
+    colors: models.map((m) => MODEL_COLORS[m.model]),
+    lines,
+    band,
+    arrivals,
+    lost,
+    changes,
+    top: scale.top,
+    offScale: scale.boundTop > scale.top ? [`95 % bound up to ${scale.boundTop.toFixed(0)} m ↑`] : [],
+    key: `● packet arrived · ✕ packet lost · dashed band: the station's own 95 % bound on its error${changes.length ? " · DRn: the data rate from that packet on (grey: every station's drone)" : ''}.`,
+    thinned: thinnedNote(models),
+  };
+}
+
+/** Paper Fig. "error over time" from [`errorChartData`]'s numbers. */
+export function errorChart(data: ErrorChartData): SVGSVGElement | HTMLElement {
+  if ('note' in data) {
+    const note = document.createElement('p');
+    note.className = 'empty-chart';
+    note.textContent = data.note;
+    return note;
+  }
+  const { lines, band } = data;
   const chart = Plot.plot({
     ...chartFrame(180),
-    width,
+    width: data.width,
     marginLeft: 50,
     x: { label: 'time (s)' },
-    y: { label: '3D error (m)', grid: true, domain: [0, scale.top || 1], nice: true },
-    color: { domain: labels, range: models.map((m) => MODEL_COLORS[m.model]), legend: true },
+    y: { label: '3D error (m)', grid: true, domain: [0, data.top || 1], nice: true },
+    color: { domain: data.labels, range: data.colors, legend: true },
     marks: [
-      Plot.areaY(bounds, { x: 't', y1: 0, y2: 'b', fill: 'model', fillOpacity: 0.08, curve: 'step-after', clip: true }),
-      Plot.lineY(bounds, { x: 't', y: 'b', stroke: 'model', strokeOpacity: 0.45, strokeDasharray: '3,3', strokeWidth: 1, curve: 'step-after', clip: true }),
-      Plot.text(offScale, { frameAnchor: 'top-right', lineAnchor: 'bottom', dy: -4, fontSize: chartFont(), fill: '#555' }),
-      Plot.lineY(lines, { x: 't', y: 'e', stroke: 'model', strokeWidth: 1.4 }),
-      Plot.dot(arrivals, { x: 't', y: 0, fill: 'model', r: 2.5, title: (d) => `${d.model}: ${packetsAt(d, 'arrived')}` }),
-      Plot.dot(lost, { x: 't', y: 0, stroke: 'model', symbol: 'times', r: 4, title: (d) => `${d.model}: ${packetsAt(d, 'lost')}` }),
-      ...rateMarks(changes),
+      Plot.areaY(band.rows, { x: band.t, y1: 0, y2: band.b, fill: band.model, fillOpacity: 0.08, curve: 'step-after', clip: true }),
+      Plot.lineY(band.rows, { x: band.t, y: band.b, stroke: band.model, strokeOpacity: 0.45, strokeDasharray: '3,3', strokeWidth: 1, curve: 'step-after', clip: true }),
+      Plot.text(data.offScale, { frameAnchor: 'top-right', lineAnchor: 'bottom', dy: -4, fontSize: chartFont(), fill: '#555' }),
+      Plot.lineY(lines.rows, { x: lines.t, y: lines.e, stroke: lines.model, strokeWidth: 1.4 }),
+      Plot.dot(data.arrivals, { x: 't', y: 0, fill: 'model', r: 2.5, title: (d) => `${d.model}: ${packetsAt(d, 'arrived')}` }),
+      Plot.dot(data.lost, { x: 't', y: 0, stroke: 'model', symbol: 'times', r: 4, title: (d) => `${d.model}: ${packetsAt(d, 'lost')}` }),
+      ...rateMarks(data.changes),
       Plot.ruleY([0]),
-      Plot.tip(lines, Plot.pointerX({ x: 't', y: 'e', stroke: 'model' })),
+      Plot.tip(lines.rows, Plot.pointerX({ x: lines.t, y: lines.e, stroke: lines.model })),
     ],
   });
-  const thinned = thinnedNote(models);
-  if (!thinned) return withKey(chart, key);
+  if (!data.thinned) return withKey(chart, data.key);
   // Under the chart, so that the page and a slide both say what a long flight's line rests on.
   const note = document.createElement('p');
   note.className = 'note';
-  note.textContent = thinned;
+  note.textContent = data.thinned;
   const box = document.createElement('div');
-  box.append(withKey(chart, key), note);
+  box.append(withKey(chart, data.key), note);
   return box;
 }
 
@@ -124,6 +162,59 @@ export function pixelPicks(t: ArrayLike<number>, e: ArrayLike<number>, start: nu
   }
   if (t.length > 0) close(low, high);
   return picks;
+}
+
+/** The picked samples of every station (`picks[k]`: indices into `models[k]`'s series), as the
+ * columns the chart's marks read: times `t` (s), errors `e` and bounds `b` (m), and the station's
+ * label, with `rows` their count. Plot reads a column given as an array as it stands, instead of
+ * building one row object per sample; the column of labels carries its name for the tip. */
+export interface PickedColumns {
+  rows: { length: number };
+  t: Float64Array;
+  e: Float64Array;
+  b: Float64Array;
+  model: { value: string[]; label: string };
+}
+
+export function pickedColumns(models: Pick<ModelSeries, 'model' | 't' | 'error3d' | 'bound95'>[], picks: number[][]): PickedColumns {
+  const rows = picks.reduce((n, p) => n + p.length, 0);
+  const [t, e, b] = [new Float64Array(rows), new Float64Array(rows), new Float64Array(rows)];
+  const labels: string[] = new Array(rows);
+  let row = 0;
+  models.forEach((m, k) => {
+    const label = MODEL_LABELS[m.model];
+    for (const i of picks[k]) {
+      t[row] = m.t[i];
+      e[row] = m.error3d[i];
+      b[row] = m.bound95[i];
+      labels[row++] = label;
+    }
+  });
+  return { rows: { length: rows }, t, e, b, model: { value: labels, label: 'model' } };
+}
+
+/**
+ * The samples of one station's 95 % bound (times `t`, s, in order; bounds `b`, m) its band is
+ * drawn through when a pixel of the time axis, starting at `start`, spans `pixel` s: every one
+ * where there is at most one a pixel on average, otherwise the highest bound of each pixel. The
+ * band is filled from zero with steps after each sample, so within a pixel only its top shows;
+ * the line's picks ([`pixelPicks`]) took its area and dashed edge through twice the points.
+ */
+export function pixelTops(t: ArrayLike<number>, b: ArrayLike<number>, start: number, pixel: number): number[] {
+  if (!(pixel > 0) || t.length <= (t[t.length - 1] - start) / pixel + 1) return Array.from({ length: t.length }, (_, i) => i);
+  const tops: number[] = [];
+  let column = Math.floor((t[0] - start) / pixel);
+  let top = 0;
+  for (let i = 1; i < t.length; i++) {
+    const c = Math.floor((t[i] - start) / pixel);
+    if (c !== column) {
+      tops.push(top);
+      column = c;
+      top = i;
+    } else if (b[i] > b[top] || Number.isNaN(b[top])) top = i;
+  }
+  if (t.length > 0) tops.push(top);
+  return tops;
 }
 
 /** One mark of packets on the error chart's axis: the packets of one station within one pixel of

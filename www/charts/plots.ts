@@ -3,7 +3,7 @@
 // numbers need none of them.
 export { airtimeTable, airtimeVsPayloadChart } from './airtime';
 export { boxplotChart, type BoxRow } from './boxplot';
-export { errorOverTimeChart } from './errorOverTime';
+export { errorChart, errorChartData } from './errorOverTime';
 export { linkBudgetCharts } from './linkBudget';
 export { p75BySfChart } from './p75BySf';
 export { swarmCharts } from './swarm';
