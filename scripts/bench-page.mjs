@@ -12,9 +12,9 @@
 // - layout shift: the Layout Instability API's shifts until then, summed (its CLS while loading);
 // - each panel's drawing time (the page's `draw <panel>` performance measures, www/later.ts);
 // - with `--upload FILE`, then a flight uploaded as a user does (Trajectory → CSV file): from the
-//   file's choice until its results, until its error chart is drawn, and the long tasks between
-//   (the distance and SF charts, which simulate the flight again at every distance and SF, come
-//   later and are not waited for). `cargo bench --bench core -- long_flight` writes the 10⁶-row
+//   file's choice until its results, until its error chart and 3D view are drawn, and the long
+//   tasks between (the distance and SF charts, which simulate the flight again at every distance
+//   and SF, come later and are not waited for). `cargo bench --bench core -- long_flight` writes the 10⁶-row
 //   flights to target/tmp/long-flight-25hz.csv and -10khz.csv.
 // Reports, never asserts: wall-clock time on a shared machine is a measurement, not a test.
 //   npm run bench:page [-- loads [query]]      e.g. -- 5 '?flight=all' (builds dist/ first)
@@ -115,9 +115,8 @@ async function load(server) {
   return { ...run, change, view3d, uploaded };
 }
 
-/** Uploads `upload` on a page that has drawn everything: until its results (the table is
- * the new flight's, `1 flight` in the status), until its error chart is drawn, and the long
- * tasks in between. */
+/** Uploads `upload` on a page that has drawn everything: until its results (the table is the
+ * new flight's), until its error chart and 3D view are drawn, and the long tasks until then. */
 async function uploadFlight(page) {
   await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
   await page.evaluate(() => {
@@ -134,11 +133,20 @@ async function uploadFlight(page) {
     }).observe({ type: 'longtask' });
   });
   await page.locator('#csv').setInputFiles(upload);
-  await page.waitForFunction(() => window.__timing.upload.results !== undefined && performance.getEntriesByName('draw error').some((m) => m.startTime > window.__timing.upload.start), null, { timeout: 300_000, polling: 100 });
+  // The 3D view, once shown, draws each new flight too.
+  await page.waitForFunction(
+    () => {
+      const { start, results } = window.__timing.upload;
+      const since = (name) => performance.getEntriesByName(name).some((m) => m.startTime > start);
+      return results !== undefined && since('draw error') && (since('draw trajectory') || !performance.getEntriesByName('draw trajectory').length);
+    },
+    null,
+    { timeout: 300_000, polling: 100 },
+  );
   return page.evaluate(() => {
     const { start, results, long } = window.__timing.upload;
-    const drawn = performance.getEntriesByName('draw error').find((m) => m.startTime > start);
-    return { results, chart: drawn.startTime + drawn.duration - start, long: [...long] };
+    const end = (name) => performance.getEntriesByName(name).filter((m) => m.startTime > start).map((m) => m.startTime + m.duration - start)[0] ?? Number.NaN;
+    return { results, chart: end('draw error'), view3d: end('draw trajectory'), long: [...long] };
   });
 }
 
@@ -173,6 +181,7 @@ for (const panel of Object.keys(runs[0][0].draws)) console.log(row(`draw ${panel
 if (upload) {
   console.log(row(`${upload.split('/').pop()} uploaded: results`, (r) => r.uploaded.results));
   console.log(row('uploaded: its error chart drawn', (r) => r.uploaded.chart));
-  console.log(row('uploaded: long tasks (> 50 ms) until then, count', (r) => r.uploaded.long.length));
+  console.log(row('uploaded: its 3D view drawn', (r) => r.uploaded.view3d));
+  console.log(row('uploaded: long tasks (> 50 ms) until both are drawn, count', (r) => r.uploaded.long.length));
   console.log(row('uploaded: longest task', (r) => Math.max(0, ...r.uploaded.long)));
 }

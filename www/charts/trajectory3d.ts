@@ -150,13 +150,11 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
     update(report: SimReport) {
       const s = report.series;
       if (!s) return;
-      // Everything drawn for the last report (tracks, grid, gateways) gives its GPU buffers back.
-      for (const child of [...group.children]) {
-        group.remove(child);
-        const drawn = child as THREE.Mesh;
-        drawn.geometry?.dispose();
-        for (const material of [drawn.material ?? []].flat()) material.dispose();
-      }
+      // Everything drawn for the last report (tracks, grid, gateways) leaves the scene now and gives
+      // its GPU buffers back once the new drawing is rendered: disposed before it, its materials
+      // took their compiled shaders with them, and every redraw compiled and linked them again.
+      const last = [...group.children];
+      group.remove(...last);
       const box = new THREE.Box3().setFromPoints(Array.from(s.x, (x, i) => new THREE.Vector3(x, s.y[i], s.z[i])));
       const centre = box.getCenter(new THREE.Vector3());
       const size = box.getSize(new THREE.Vector3()).length() || 10;
@@ -190,6 +188,11 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
         placedFor = s.flight;
         place();
       } else render();
+      for (const child of last) {
+        const drawn = child as THREE.Mesh;
+        drawn.geometry?.dispose();
+        for (const material of [drawn.material ?? []].flat()) material.dispose();
+      }
       return { gridStep: (size * 1.2) / 12, farGateways: far.length };
     },
     snapshot(minWidth: number) {
