@@ -66,3 +66,8 @@ export function caption(s: Settings, extra = ''): string {
   const seeds = s.seeds > 1 ? ` to ${s.seed + s.seeds - 1}` : '';
   return `${describe(s)}, ${s.lorawan ? '13 B' : 'no'} LoRaWAN overhead; ${flight}; seed ${s.seed}${seeds}${extra}; loratrack ${__LORATRACK_VERSION__}`;
 }
+
+/** A flight time as a sentence says it: "2 minutes", "1 minute", "90 s". */
+export function flightTime(seconds: number): string {
+  return seconds % 60 === 0 ? `${seconds / 60} minute${seconds === 60 ? '' : 's'}` : `${seconds} s`;
+}

@@ -624,7 +624,7 @@ $('#run-swarm').addEventListener('click', () => {
   const params: SwarmParams = {
     ...shared,
     model: stationsOf(store.settings.model).length === 1 ? store.settings.model : 'all',
-    duration: 120,
+    duration: Number($<HTMLSelectElement>('#swarmDuration').value),
     // One channel, or all the plan's (its default).
     ...($<HTMLSelectElement>('#swarmChannels').value === '1' ? { channels: 1 } : {}),
     sfPlan: $<HTMLSelectElement>('#swarmPlan').value as 'fixed' | 'spread',
@@ -823,14 +823,15 @@ function renderLessonChanges(): void {
   $('#lesson-changed-text').textContent = `Not the lesson's settings: ${words.join('; ')}. “What to notice” speaks of the lesson's own settings and of the steps it asks for.`;
 }
 /** A lesson's swarm as the swarm panel's choices: each select's id, its name in a sentence and the
- * value the lesson picks (ALOHA unless it names a schedule). The lesson sets them, and names any
- * the reader has since changed. */
+ * value the lesson picks (ALOHA and 2-minute flights, the panel's own). The lesson sets them, and
+ * names any the reader has since changed. */
 function swarmChoices(own: NonNullable<Lesson['swarm']>): [string, string, string][] {
   return [
     ['swarmDrones', 'Swarm drones', String(own.drones)],
     ['swarmChannels', 'Swarm channels', own.channels === 1 ? '1' : 'plan'],
     ['swarmPlan', 'Swarm SF plan', own.plan],
     ['swarmSchedule', 'Swarm schedule', 'aloha'],
+    ['swarmDuration', 'Swarm flights', '120'],
   ];
 }
 /** The swarm panel's choices that are not the lesson's swarm, in the panel's words. */
@@ -841,7 +842,7 @@ function swarmChanges(own: NonNullable<Lesson['swarm']>): string[] {
     return select.value === value ? [] : [`${name}: ${text(select.value)} instead of ${text(value)}`];
   });
 }
-for (const id of ['swarmDrones', 'swarmChannels', 'swarmPlan', 'swarmSchedule']) $(`#${id}`).addEventListener('change', () => renderLessonChanges());
+for (const id of ['swarmDrones', 'swarmChannels', 'swarmPlan', 'swarmSchedule', 'swarmDuration']) $(`#${id}`).addEventListener('change', () => renderLessonChanges());
 // The help texts and the lesson name the docs their numbers come from: links to their pages.
 linkDocs(document.body);
 

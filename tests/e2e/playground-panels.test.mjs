@@ -100,7 +100,7 @@ test('the swarm panel runs growing swarms and sets the collision rate against AL
   await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
   assert.equal(await page.locator('[data-panel="swarm"] .download-why').textContent(), '', 'the note left once the chart came');
   const note = await page.locator('#chart-swarm .note').textContent();
-  assert.match(note, /20 drones, 3 channels.*collided \(ALOHA predicts [\d.]+ %\)/);
+  assert.match(note, /20 drones flying 2 minutes each, 3 channels.*collided \(ALOHA predicts [\d.]+ %\)/);
   assert.ok((await page.locator('#chart-swarm svg').count()) >= 2);
   // The swarms run on several workers at once; each is reported in its place, with the CLI's numbers.
   const status = await page.locator('#swarm-status').textContent();
@@ -156,17 +156,20 @@ test('the swarm panel takes the single drone settings, ADR included, and reports
   const { page, problems } = await open('?sf=9&bw=125&adr=tracking');
   await page.getByLabel('Drones', { exact: true }).selectOption('20');
   await page.getByLabel('SF plan').selectOption('fixed');
+  // Flights long enough for the network to move the drones (the panel's own are 2 minutes).
+  await page.getByLabel('Flights').selectOption('300');
   await page.getByRole('button', { name: 'Run swarm' }).click();
   await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
   const note = await page.locator('#chart-swarm .note').textContent();
   // The drones start on SF9 and the network moves them: the note says where their packets went,
   // as the CLI counts them for the same swarm.
-  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sf', '9', '--bw', '125', '--adr', 'tracking']);
+  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '300', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sf', '9', '--bw', '125', '--adr', 'tracking']);
   const sent = [0, 1, 2, 3, 4, 5].map((k) => cli.drones.flatMap((d) => d.dataRateUse).reduce((a, u) => a + (u.sf === 7 + k ? u.packets : 0), 0));
   const total = sent.reduce((a, b) => a + b, 0);
   const shares = sent.flatMap((n, k) => (n > 0 ? [`SF${k + 7} ${(100 * n) / total < 0.5 ? '<1' : ((100 * n) / total).toFixed(0)} %`] : [])).join(', ');
   assert.ok(sent[2] < total, `ADR moved no packet off SF9: ${sent}`);
   assert.ok(note.includes(`all starting on SF9, ADR sent their packets at ${shares}:`), `${note} / CLI: ${shares}`);
+  assert.match(note, /^20 drones flying 5 minutes each, /);
   assert.match(note, /\d+ ADR downlinks sent, \d+ dropped; radio [\d.]+ mC per uplink/);
   assert.match(await page.locator('#chart-swarm').textContent(), /from SF9/);
   // One SF, p75s within a decade: its axis still has numbers (powers of ten alone left none).
@@ -221,7 +224,9 @@ test('a slotted swarm collides with none of its own drones and says how many dro
   assert.deepEqual(order, [...order].sort((a, b) => a - b), `legend ${legend}`);
   const notes = await page.locator('#chart-swarm .note').allTextContents();
   assert.match(notes.join(' '), /Slotted: longest frame [\d.]+ s/);
-  assert.match(notes.join(' '), /Largest swarm one gateway serves at these settings.*: \d+ drones at ≤ 1 % collisions and \d+ at ≤ 10 % with ALOHA \(by its formula\), \d+ slotted with none/);
+  const serves = notes.join(' ').match(/Largest swarm one gateway serves at these settings.*: (\d+) (drones?) at ≤ 1 % collisions and \d+ at ≤ 10 % with ALOHA \(by its formula\), \d+ slotted with none/);
+  assert.ok(serves, notes.join(' '));
+  assert.equal(serves[2], serves[1] === '1' ? 'drone' : 'drones', serves[0]);
   assert.deepEqual(problems, []);
 });
 

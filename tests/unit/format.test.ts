@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { caption, describe, fmt, names, trackedPercent } from '../../www/format';
+import { caption, describe, flightTime, fmt, names, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -46,4 +46,11 @@ test('a caption names the settings, the flight, every seed and the version', () 
   expect(describe({ ...DEFAULTS, shadowing: 8, cr: 4, sensorRate: 5 })).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending, coding rate 4/8, shadowing sigma 8 dB, sensor rate 5 Hz');
   expect(caption(DEFAULTS)).toMatch(/^SF7, 250 kHz, 1\.0 km, paper prediction, periodic sending, 13 B LoRaWAN overhead; synthetic flight 1; seed 1; loratrack \d+\.\d+\.\d+$/);
   expect(caption({ ...DEFAULTS, flight: 'all', seed: 5, seeds: 10, lorawan: false })).toMatch(/no LoRaWAN overhead; whole synthetic set; seed 5 to 14;/);
+});
+
+test('a flight time reads in whole minutes where it is one, else in seconds', () => {
+  expect(flightTime(120)).toBe('2 minutes');
+  expect(flightTime(1200)).toBe('20 minutes');
+  expect(flightTime(60)).toBe('1 minute');
+  expect(flightTime(90)).toBe('90 s');
 });
