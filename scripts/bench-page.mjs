@@ -14,8 +14,8 @@
 // - with `--upload FILE`, then a flight uploaded as a user does (Trajectory → CSV file): from the
 //   file's choice until its results, until its error chart and 3D view are drawn, and the long
 //   tasks between (the distance and SF charts, which simulate the flight again at every distance
-//   and SF, come later and are not waited for). `cargo bench --bench core -- long_flight` writes the 10⁶-row
-//   flights to target/tmp/long-flight-25hz.csv and -10khz.csv.
+//   and SF, come later and are not waited for). `cargo bench --bench core -- long_flight` writes
+//   the 10⁶-row flights to target/tmp/long-flight-25hz.csv and -10khz.csv.
 // Reports, never asserts: wall-clock time on a shared machine is a measurement, not a test.
 //   npm run bench:page [-- loads [query]]      e.g. -- 5 '?flight=all' (builds dist/ first)
 //   node scripts/bench-page.mjs --upload target/tmp/long-flight-25hz.csv 5 '?model=all'
