@@ -842,7 +842,8 @@ function swarmChanges(own: NonNullable<Lesson['swarm']>): string[] {
     return select.value === value ? [] : [`${name}: ${text(select.value)} instead of ${text(value)}`];
   });
 }
-for (const id of ['swarmDrones', 'swarmChannels', 'swarmPlan', 'swarmSchedule', 'swarmDuration']) $(`#${id}`).addEventListener('change', () => renderLessonChanges());
+// Every choice of the swarm panel, as the panel has them: a new one cannot be left out.
+for (const select of document.querySelectorAll('.swarm-controls select')) select.addEventListener('change', () => renderLessonChanges());
 // The help texts and the lesson name the docs their numbers come from: links to their pages.
 linkDocs(document.body);
 
