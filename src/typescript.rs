@@ -50,6 +50,7 @@ fn decls() -> Vec<String> {
         SenderKind::decl(&c),
         ChannelSense::decl(&c),
         DutyCycleMode::decl(&c),
+        PayloadChoice::decl(&c),
         AdrMode::decl(&c),
         Region::decl(&c),
         PlanRate::decl(&c),

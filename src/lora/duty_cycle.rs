@@ -232,7 +232,15 @@ impl DutyCycle {
     /// Records a packet that starts at `t` (s): its time on air is taken from the credit. The
     /// caller sends only at or after [`earliest`](Self::earliest).
     pub fn spend(&mut self, t: f64) {
-        self.credit = self.credit_at(t) - self.time_on_air;
+        self.spend_airtime(t, self.time_on_air);
+    }
+
+    /// Records a packet that starts at `t` (s) and takes `time_on_air` s, shorter than the
+    /// rule's packets (a [lean payload](crate::LeanPayload)): only its own airtime is taken, so
+    /// the off-time follows the packet sent, while later packets are planned at the rule's
+    /// length (the drone chooses a packet's payload when it sends it).
+    pub fn spend_airtime(&mut self, t: f64, time_on_air: f64) {
+        self.credit = self.credit_at(t) - time_on_air;
         self.at = t;
     }
 }
@@ -240,6 +248,17 @@ impl DutyCycle {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_shorter_packet_imposes_its_own_off_time() {
+        let (full, short) = (0.04, 0.03);
+        let mut rule = DutyCycle::new(DutyCycleMode::PerPacket, 0.01, full, 1, 0.0).unwrap();
+        rule.spend_airtime(5.0, short);
+        let next = rule.earliest(5.0);
+        assert!((next - (5.0 + short / 0.01)).abs() < 1e-9);
+        rule.spend(next);
+        assert!((rule.earliest(next) - (next + full / 0.01)).abs() < 1e-9);
+    }
 
     #[test]
     fn one_packet_budget_is_the_per_packet_off_time() {

@@ -5,9 +5,9 @@ use super::clock::{Clock, Timing};
 use super::drone::Estimates;
 use super::link::{Link, Reception};
 use super::packet::Transmission;
-use super::radio::Frame;
+use super::radio::{DroneRadio, Frame};
 use super::schedule::Slot;
-use super::sender::Sender;
+use super::sender::{LeanPayload, Sender};
 use super::streams::DroneStreams;
 use crate::codec::{decode, encode};
 use crate::lora::{Channel, DutyCycle, Outcome};
@@ -26,6 +26,8 @@ pub struct Aboard<'a> {
     /// The duty-cycle rule, from time 0 ([`Sending::rule`](super::sender::Sending::rule)); the
     /// flier starts it when its drone first may send.
     pub rule: DutyCycle,
+    /// Which payload each packet takes: `None`, the model's own (the paper).
+    pub payload: Option<LeanPayload>,
 }
 
 /// How a drone meets the network in an episode.
@@ -55,6 +57,7 @@ pub struct Flier<'a> {
     pub estimates: Estimates<'a>,
     sender: Box<dyn Sender>,
     rule: DutyCycle,
+    payload: Option<LeanPayload>,
     /// One link per gateway, in the network's gateway order.
     pub links: Vec<Link>,
     hop: Rng,
@@ -93,6 +96,7 @@ impl<'a> Flier<'a> {
             estimates,
             sender,
             rule,
+            payload,
         } = aboard;
         let streams = air.streams;
         let mut link_rng = streams.link();
@@ -123,6 +127,7 @@ impl<'a> Flier<'a> {
             sender,
             // The drone starts sending at `from`: its duty-cycle credit starts there too.
             rule: rule.starting_at(from),
+            payload,
             links,
             hop: streams.channel(),
             channels: air.channels,
@@ -271,6 +276,26 @@ impl<'a> Flier<'a> {
         }
     }
 
+    /// `frame` with the payload step `k`'s packet takes ([`LeanPayload`]): unchanged for a
+    /// drone that sends its model's own.
+    pub fn with_payload(&mut self, k: usize, frame: Frame, radio: &DroneRadio) -> Frame {
+        let Some(lean) = self.payload else {
+            return frame;
+        };
+        let Some(estimate) = self.estimates.get(k) else {
+            return frame;
+        };
+        let own = self.estimates.model();
+        let framed = |kind| radio.with_payload(&frame, own, kind).ok();
+        let kind = lean.choose(&estimate, |kind| {
+            framed(kind).map_or(f64::INFINITY, |f| f.time_on_air)
+        });
+        match kind == own {
+            true => frame,
+            false => framed(kind).unwrap_or(frame),
+        }
+    }
+
     /// Puts the estimate of step `k` on air at `sent` s with `frame` on channel `ch`: spends the
     /// duty cycle, tells the sender, draws each gateway's received power. `None` when the
     /// estimate cannot be encoded (the filter keeps it finite, so this does not happen; the
@@ -282,7 +307,8 @@ impl<'a> Flier<'a> {
         frame: &Frame,
         channel: &Channel,
     ) -> Option<Vec<Reception>> {
-        let model = self.estimates.model();
+        // A lean payload is the shorter model's: the fields it leaves out decode as 0.
+        let model = frame.payload.unwrap_or(self.estimates.model());
         let n = model.state_len();
         let origin = self.flight.pos[0];
         let estimate = self.estimates.get(k)?;
@@ -295,7 +321,11 @@ impl<'a> Flier<'a> {
         };
         let mut state = [0.0; 9];
         state[..n].copy_from_slice(&decoded);
-        self.rule.spend(sent);
+        match frame.payload {
+            // The off-time follows the packet sent.
+            Some(_) => self.rule.spend_airtime(sent, frame.time_on_air),
+            None => self.rule.spend(sent),
+        }
         if frame.adr.is_some() {
             self.sender.data_rate_changed(frame.interval);
         }
@@ -326,6 +356,7 @@ impl<'a> Flier<'a> {
             channel: ch,
             time_on_air: frame.time_on_air,
             interval: frame.interval,
+            payload: frame.payload,
             charge_mc: 0.0,
             active_s: 0.0,
         });
@@ -381,6 +412,7 @@ mod tests {
             estimates: Estimates::live(filter),
             sender,
             rule,
+            payload: None,
         };
         let air = Air {
             gateways: &[[1000.0, 0.0, 0.0]],

@@ -52,8 +52,9 @@ pub use scenario::{
 };
 pub use schedule::{aloha_collision_rate, Schedule, Slot};
 pub use sender::{
-    ChannelLoad, ChannelSense, ErrorTriggered, Periodic, Sender, SenderKind, Sending,
-    DEFAULT_BURST, DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M,
+    ChannelLoad, ChannelSense, ErrorTriggered, LeanPayload, PayloadChoice, Periodic, Sender,
+    SenderKind, Sending, DEFAULT_BURST, DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M,
+    LEAN_SIGNIFICANCE,
 };
 pub use simulator::Simulator;
 pub use station::{

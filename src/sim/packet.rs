@@ -1,6 +1,7 @@
 //! One uplink of a drone's state, as the network saw it.
 
 use crate::lora::{Bandwidth, DataRate, Outcome, SpreadingFactor};
+use crate::models::ModelKind;
 
 /// One transmission of the drone's state.
 #[derive(Clone, Debug, PartialEq)]
@@ -33,6 +34,11 @@ pub struct Transmission {
     pub time_on_air: f64,
     /// The duty-cycle interval at that data rate, s (what the station expects until the next).
     pub interval: f64,
+    /// The smaller payload it carried instead of the model's own ([`LeanPayload`]); `None`:
+    /// its own.
+    ///
+    /// [`LeanPayload`]: crate::LeanPayload
+    pub payload: Option<ModelKind>,
     /// The radio's charge for this uplink and its receive windows, mC.
     pub charge_mc: f64,
     /// Seconds the radio was awake for it (on air and listening).

@@ -32,6 +32,8 @@ pub(crate) struct Pooled {
     probability_sum: Option<[f64; 3]>,
     sent: usize,
     received: usize,
+    /// Of `sent`, those with a smaller payload than the model's own.
+    lean: usize,
     /// Charge and awake time summed over every uplink, and seconds flown.
     charge_mc: f64,
     active_s: f64,
@@ -43,13 +45,17 @@ pub(crate) struct Pooled {
 /// Packets and receptions per data rate, slowest first (higher SF, then narrower band): a
 /// result's `dataRateUse`, a station's or a swarm drone's.
 #[derive(Clone, Debug, Default)]
-pub(crate) struct RateTally(BTreeMap<(u8, u64), DataRateUse>);
+pub(crate) struct RateTally {
+    rates: BTreeMap<(u8, u64), DataRateUse>,
+    frames: FrameTally,
+}
 
 impl RateTally {
     /// Counts one transmission at its rate.
     pub fn add(&mut self, t: &Transmission) {
+        self.frames.add(t);
         let key = (12 - t.sf.get(), t.bw.khz() as u64);
-        let e = self.0.entry(key).or_insert_with(|| DataRateUse {
+        let e = self.rates.entry(key).or_insert_with(|| DataRateUse {
             dr: t.data_rate().map(DataRate::index),
             sf: t.sf.get(),
             bw: t.bw.khz(),
@@ -59,11 +65,37 @@ impl RateTally {
         });
         e.packets += 1;
         e.received += usize::from(t.received);
+        // A lean payload's frame is shorter: the rate's own is the longest.
+        e.time_on_air = e.time_on_air.max(t.time_on_air);
+    }
+
+    /// The time on air of every transmission counted, s.
+    pub fn airtime(&self) -> f64 {
+        self.frames.airtime()
     }
 
     /// The rates used, slowest first.
     pub fn into_vec(self) -> Vec<DataRateUse> {
-        self.0.into_values().collect()
+        self.rates.into_values().collect()
+    }
+}
+
+/// Transmissions by rate and frame length, for their time on air: a count times each length,
+/// where a sum of as many equal lengths would round differently from run to run.
+#[derive(Clone, Debug, Default)]
+struct FrameTally(BTreeMap<(u8, u64, u64), usize>);
+
+impl FrameTally {
+    fn add(&mut self, t: &Transmission) {
+        let key = (12 - t.sf.get(), t.bw.khz() as u64, t.time_on_air.to_bits());
+        *self.0.entry(key).or_insert(0) += 1;
+    }
+
+    fn airtime(&self) -> f64 {
+        self.0
+            .iter()
+            .map(|(&(_, _, bits), &n)| n as f64 * f64::from_bits(bits))
+            .sum()
     }
 }
 
@@ -80,6 +112,7 @@ impl Pooled {
     pub fn add(&mut self, tx: &[Transmission], st: StationTrack, flight_time: f64) {
         self.sent += tx.len();
         self.received += tx.iter().filter(|t| t.received).count();
+        self.lean += tx.iter().filter(|t| t.payload.is_some()).count();
         self.flight_time += flight_time;
         for t in tx {
             self.charge_mc += t.charge_mc;
@@ -156,11 +189,8 @@ impl Pooled {
         let runs = self.sorted_runs();
         let delivery = self.delivery(network);
         let model_probability = self.model_probability();
+        let airtime = self.rates.airtime();
         let data_rate_use = self.rates.into_vec();
-        let airtime = data_rate_use
-            .iter()
-            .map(|u| u.packets as f64 * u.time_on_air)
-            .sum();
         let (s3, sx, sy, sz) = (
             Summary::of(&mut self.e3),
             Summary::of(&mut self.ex),
@@ -175,6 +205,7 @@ impl Pooled {
         ModelResult {
             model,
             payload_bytes: model.payload_bytes(),
+            lean_packets: self.lean,
             time_on_air,
             interval,
             airtime,
@@ -224,14 +255,9 @@ impl Pooled {
 /// Seconds on air of `tx`, summed per data rate (packets × time on air, slowest rate first), as
 /// a station's result counts it.
 pub(crate) fn airtime<'a>(tx: impl Iterator<Item = &'a Transmission>) -> f64 {
-    let mut rates: BTreeMap<(u8, u64), (usize, f64)> = BTreeMap::new();
-    for t in tx {
-        let e = rates
-            .entry((12 - t.sf.get(), t.bw.khz() as u64))
-            .or_insert((0, t.time_on_air));
-        e.0 += 1;
-    }
-    rates.values().map(|&(n, toa)| n as f64 * toa).sum()
+    let mut frames = FrameTally::default();
+    tx.for_each(|t| frames.add(t));
+    frames.airtime()
 }
 
 /// Keep every this many samples of `len` so that at most [`MAX_SERIES_POINTS`] remain.

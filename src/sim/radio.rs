@@ -7,6 +7,7 @@ use crate::lora::{
     ChannelParams, DataRate, LinkAdrReq, LoraParams, LorawanAdr, SpreadingFactor, TrackingAdr,
     UplinkFrame,
 };
+use crate::models::ModelKind;
 
 /// Time on air and duty-cycle interval of one packet size at every EU868 data rate.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -77,6 +78,10 @@ pub struct Frame {
     pub power_reduction_db: f64,
     /// The ADR frame (counter, `ADRACKReq`), when ADR is on.
     pub adr: Option<UplinkFrame>,
+    /// A smaller payload than the drone's model sends ([`LeanPayload`]); `None`: its own.
+    ///
+    /// [`LeanPayload`]: crate::LeanPayload
+    pub payload: Option<ModelKind>,
 }
 
 /// A drone's radio: kept across the flights (episodes) of a run, as a drone that stays joined.
@@ -84,6 +89,10 @@ pub struct Frame {
 pub struct DroneRadio {
     fixed: Frame,
     device: Option<(AdrDevice, RateTable)>,
+    /// Coding rate and header settings, bytes per frame and duty cycle, for a shorter frame.
+    params: LoraParams,
+    bytes: usize,
+    duty_cycle: f64,
 }
 
 impl DroneRadio {
@@ -103,6 +112,7 @@ impl DroneRadio {
             interval: min_interval(toa, duty_cycle)?,
             power_reduction_db: 0.0,
             adr: None,
+            payload: None,
         };
         let device = match adr {
             AdrMode::Off => None,
@@ -115,7 +125,36 @@ impl DroneRadio {
                 ))
             }
         };
-        Ok(DroneRadio { fixed, device })
+        Ok(DroneRadio {
+            fixed,
+            device,
+            params: *radio,
+            bytes,
+            duty_cycle,
+        })
+    }
+
+    /// `frame` carrying `payload` instead of `own`'s payload: its time on air and duty-cycle
+    /// interval at the frame's data rate with that many fewer bytes.
+    pub fn with_payload(
+        &self,
+        frame: &Frame,
+        own: ModelKind,
+        payload: ModelKind,
+    ) -> Result<Frame, SimError> {
+        let at = LoraParams {
+            sf: frame.sf,
+            bw: frame.bw,
+            ..self.params
+        };
+        let bytes = self.bytes + payload.payload_bytes() - own.payload_bytes();
+        let time_on_air = time_on_air(&at, bytes)?.time_on_air;
+        Ok(Frame {
+            time_on_air,
+            interval: min_interval(time_on_air, self.duty_cycle)?,
+            payload: (payload != own).then_some(payload),
+            ..*frame
+        })
     }
 
     /// Whether an ADR device drives the data rate.
@@ -149,6 +188,7 @@ impl DroneRadio {
                     interval: t.interval[k],
                     power_reduction_db: d.power_reduction_db(),
                     adr: None,
+                    payload: None,
                 }
             }
         }

@@ -193,6 +193,9 @@ pub struct ModelResult {
     pub model: StationModel,
     /// Payload, bytes.
     pub payload_bytes: usize,
+    /// Packets that left out the manoeuvre fields within their significance and went with
+    /// DR's or CTRA+'s smaller payload (`--payload lean`, reference §5); 0 with the full payload.
+    pub lean_packets: usize,
     /// Time on air of one packet (payload + overhead), s (with ADR: at the starting data rate).
     pub time_on_air: f64,
     /// Interval between transmissions under the duty cycle, s (with ADR: at the starting data
@@ -310,7 +313,7 @@ pub struct DataRateUse {
     pub packets: usize,
     /// Of those, received.
     pub received: usize,
-    /// Time on air of one packet at it, s.
+    /// Time on air of one packet at it, s: its longest (with `--payload lean` some are shorter).
     pub time_on_air: f64,
 }
 

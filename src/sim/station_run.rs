@@ -220,6 +220,7 @@ impl StationRun<'_> {
             estimates,
             sender: s.sending.sender(model, setup, plan),
             rule,
+            payload: self.cfg.lean_payload(model.sent_model()),
         };
         let air = Air {
             gateways: &gateways,

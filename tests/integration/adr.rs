@@ -69,6 +69,7 @@ fn fly(
         estimates: Estimates::Stored(&drone),
         sender: Box::new(Periodic),
         rule,
+        payload: None,
     };
     fly_alone(&mut net, aboard, DroneStreams { seed: 7, stream: 0 })
 }

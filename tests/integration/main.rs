@@ -25,6 +25,7 @@ mod lora;
 mod mission;
 mod models;
 mod network;
+mod payload;
 mod region;
 mod robustness;
 mod schedule;

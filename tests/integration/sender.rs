@@ -108,6 +108,7 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
                         estimates: Estimates::Stored(&drone),
                         sender,
                         rule,
+                        payload: None,
                     };
                     let tx = fly_alone(&mut network(), aboard, DroneStreams { seed, stream: 99 });
                     let sends: Vec<f64> = tx.iter().map(|t| t.sent).collect();

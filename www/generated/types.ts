@@ -24,6 +24,8 @@ export type ChannelSense = "off" | "cad";
 
 export type DutyCycleMode = "per-packet" | "budget";
 
+export type PayloadChoice = "full" | "lean";
+
 export type AdrMode = "off" | "lorawan" | "tracking";
 
 export type Region = "eu868" | "us915" | "au915" | "as923" | "in865";
@@ -165,6 +167,10 @@ channelSense: ChannelSense,
  * The duty-cycle rule.
  */
 dutyCycleMode: DutyCycleMode, 
+/**
+ * Which payload each packet takes: `full` (the model's own, the paper) or `lean`.
+ */
+payload: PayloadChoice, 
 /**
  * Budget capacity, packets.
  */
@@ -493,7 +499,7 @@ packets: number,
  */
 received: number, 
 /**
- * Time on air of one packet at it, s.
+ * Time on air of one packet at it, s: its longest (with `--payload lean` some are shorter).
  */
 timeOnAir: number, };
 
@@ -569,6 +575,11 @@ model: ModelName,
  * Payload, bytes.
  */
 payloadBytes: number, 
+/**
+ * Packets that left out the manoeuvre fields within their significance and went with
+ * DR's or CTRA+'s smaller payload (`--payload lean`, reference §5); 0 with the full payload.
+ */
+leanPackets: number, 
 /**
  * Time on air of one packet (payload + overhead), s (with ADR: at the starting data rate).
  */
@@ -1620,7 +1631,7 @@ export const OPTIONS: NumberOption[] = [
 ];
 
 /** The default of every setting chosen by name, as `Scenario::default` gives it (src/sim/scenario/mod.rs). */
-export const CHOICE_DEFAULTS: Pick<Scenario, 'access' | 'adr' | 'channelSense' | 'dutyCycleMode' | 'fairUse' | 'headingNoise' | 'model' | 'planPace' | 'prediction' | 'region' | 'schedule' | 'sender' | 'sfPlan'> = {
+export const CHOICE_DEFAULTS: Pick<Scenario, 'access' | 'adr' | 'channelSense' | 'dutyCycleMode' | 'fairUse' | 'headingNoise' | 'model' | 'payload' | 'planPace' | 'prediction' | 'region' | 'schedule' | 'sender' | 'sfPlan'> = {
   "access": "duty-cycle",
   "adr": "off",
   "channelSense": "cad",
@@ -1628,6 +1639,7 @@ export const CHOICE_DEFAULTS: Pick<Scenario, 'access' | 'adr' | 'channelSense' |
   "fairUse": "off",
   "headingNoise": "fixed",
   "model": "all",
+  "payload": "full",
   "planPace": "plan",
   "prediction": "paper",
   "region": "eu868",

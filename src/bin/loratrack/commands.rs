@@ -492,8 +492,12 @@ fn policy_text(s: &loratrack::Scenario) -> String {
             format!("a duty-cycle budget of {} packets", send.burst)
         }
     };
+    let payload = match send.payload {
+        loratrack::PayloadChoice::Full => "",
+        loratrack::PayloadChoice::Lean => ", lean payloads",
+    };
     format!(
-        "stations: {} prediction{}; {sender}, {rule}",
+        "stations: {} prediction{}; {sender}, {rule}{payload}",
         station.prediction.name(),
         if adaptive {
             ", adaptive heading noise"
@@ -563,6 +567,12 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
         if let Some(p) = &m.model_probability {
             let parts: Vec<String> = p.iter().map(|(k, v)| format!("{k} {v:.2}")).collect();
             out += &format!("          mean model probability: {}\n", parts.join(", "));
+        }
+        if m.lean_packets > 0 {
+            out += &format!(
+                "          lean payload: {} of {} packets left out a, omega or psi\n",
+                m.lean_packets, m.delivery.packets_sent
+            );
         }
     }
     let intervals: Vec<String> = results
@@ -866,6 +876,7 @@ mod tests {
         vary(&|s| s.sending.channel_sense = loratrack::ChannelSense::Off);
         vary(&|s| s.sending.duty_cycle_mode = loratrack::DutyCycleMode::Budget);
         vary(&|s| s.sending.burst = 4);
+        vary(&|s| s.sending.payload = loratrack::PayloadChoice::Lean);
         let headers: Vec<String> = variants.iter().map(policy_text).collect();
         for (i, a) in headers.iter().enumerate() {
             for b in &headers[i + 1..] {

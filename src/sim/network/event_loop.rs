@@ -145,6 +145,7 @@ impl Episode {
             return;
         };
         let frame = net.radios[f.drone].uplink();
+        let frame = f.with_payload(k.0, frame, &net.radios[f.drone]);
         let at = f.network_position(e.time);
         let Some(ch) = channel_for(net, &self.on_air, f, at, frame.sf.get()) else {
             let wait = f.backoff(lbt::max_backoff(frame.time_on_air));
@@ -180,8 +181,9 @@ impl Episode {
             drone: e.drone,
         });
         if !net.radios[f.drone].adaptive() {
-            // No downlink can change anything: the next uplink is planned at once.
-            f.after_packet(k, frame.time_on_air);
+            // No downlink can change anything: the next uplink is planned at once, at the
+            // radio's own frame (this one may have been lean).
+            f.after_packet(k, net.radios[f.drone].current().time_on_air);
             self.plan(f, e.drone, arrival + off_time(net));
         }
         self.on_air[e.drone] = Some(OnAir {

@@ -20,7 +20,7 @@ pub use gateways::{validate_sites, GatewaySite};
 
 use super::drone::Sensing;
 use super::radio::{DroneRadio, Frame};
-use super::sender::{SenderKind, Sending};
+use super::sender::{LeanPayload, PayloadChoice, SenderKind, Sending};
 use super::station::{
     Bounds, DroneCovariances, HeadingNoise, MissionPlan, PlanPace, Prediction, StationModel,
     StationSetup,
@@ -796,6 +796,19 @@ impl Validated {
             r_diagonal: self.r_diagonal,
             streams,
         }
+    }
+
+    /// The payload rule of a drone filtering with `model`: `None` sends its own payload (the
+    /// paper, or a DR drone, which has no field to leave out).
+    pub fn lean_payload(&self, model: ModelKind) -> Option<LeanPayload> {
+        if self.settings.sending.payload == PayloadChoice::Full || model == ModelKind::Dr {
+            return None;
+        }
+        let p = self.drone_covariances().of::<9>(model);
+        Some(LeanPayload::new(
+            model,
+            core::array::from_fn(|i| p[(6 + i, 6 + i)].sqrt()),
+        ))
     }
 
     fn drone_covariances(&self) -> DroneCovariances {

@@ -4,11 +4,13 @@
 
 mod channel_sense;
 mod error_triggered;
+mod payload;
 mod periodic;
 mod sending;
 
 pub use channel_sense::{ChannelLoad, ChannelSense, MIN_SUCCESS, SENSE_GAIN};
 pub use error_triggered::ErrorTriggered;
+pub use payload::{LeanPayload, PayloadChoice, LEAN_SIGNIFICANCE};
 pub use periodic::Periodic;
 pub use sending::{Sending, DEFAULT_BURST, DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESHOLD_M};
 

@@ -1,6 +1,6 @@
 //! The sending settings, validated in one place for every run.
 
-use super::{ChannelSense, ErrorTriggered, Periodic, Sender, SenderKind};
+use super::{ChannelSense, ErrorTriggered, PayloadChoice, Periodic, Sender, SenderKind};
 use crate::lora::{DutyCycle, DutyCycleMode, LoraError};
 use crate::options::{BURST, MAX_INTERVAL, THRESHOLD};
 use crate::sim::station::{MissionPlan, StationModel, StationSetup};
@@ -17,7 +17,7 @@ pub const DEFAULT_MAX_INTERVAL_S: f64 = MAX_INTERVAL.default;
 pub const DEFAULT_BURST: u32 = BURST.default as u32;
 
 /// When a drone sends and which duty-cycle rule bounds it (flat keys `sender`, `threshold`,
-/// `maxInterval`, `channelSense`, `dutyCycleMode`, `burst`).
+/// `maxInterval`, `channelSense`, `dutyCycleMode`, `payload`, `burst`).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 #[cfg_attr(cli, derive(clap::Args))]
@@ -63,6 +63,17 @@ pub struct Sending {
         )
     )]
     pub duty_cycle_mode: DutyCycleMode,
+    /// Which payload each packet takes: `full` (the model's own, the paper) or `lean`.
+    #[cfg_attr(
+        cli,
+        arg(
+            long,
+            value_enum,
+            default_value_t,
+            help = "Payload: full (the model's own 9, 11 or 12 bytes, the paper) or lean (the smallest of the three that carries every manoeuvre field over 10 standard deviations of the drone's estimate, where its frame is shorter on air: the next packet then comes sooner)."
+        )
+    )]
+    pub payload: PayloadChoice,
     /// Budget capacity, packets.
     #[cfg_attr(cli, arg(long, default_value_t = DEFAULT_BURST, help = BURST.cli_help(), allow_negative_numbers = true))]
     pub burst: u32,
@@ -76,6 +87,7 @@ impl Default for Sending {
             max_interval: DEFAULT_MAX_INTERVAL_S,
             channel_sense: ChannelSense::default(),
             duty_cycle_mode: DutyCycleMode::PerPacket,
+            payload: PayloadChoice::Full,
             burst: DEFAULT_BURST,
         }
     }

@@ -109,6 +109,7 @@ mod tests {
             channel: 0,
             time_on_air: 0.05,
             interval: 2.0,
+            payload: None,
             charge_mc: 0.0,
             active_s: 0.0,
         }

@@ -480,6 +480,7 @@ pub(crate) mod tests {
                 channel: 0,
                 time_on_air: 0.02,
                 interval: 2.0,
+                payload: None,
                 charge_mc: 0.0,
                 active_s: 0.0,
             })

@@ -308,6 +308,7 @@ impl<'a> Swarm<'a> {
                 estimates,
                 sender: s.sending.sender(self.model, kit.setup, None),
                 rule: s.sending.rule(kit.duty_cycle, now.time_on_air)?,
+                payload: self.cfg.lean_payload(model),
             };
             let air = Air {
                 gateways: &net.gateways_at(centre),

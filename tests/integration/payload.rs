@@ -1,0 +1,129 @@
+//! Lean payloads (`--payload lean`): a packet leaves out only manoeuvre fields near zero, its
+//! shorter frame imposes its own off-time, and where no frame would shorten nothing changes.
+
+use loratrack::api::simulate;
+use loratrack::{
+    fly_alone, run_drone, synthetic_flight, time_on_air, Aboard, AdrMode, AdrParams, Channel,
+    ChannelParams, DroneRadio, DroneStreams, DutyCycle, DutyCycleMode, Estimates, GatewaySite,
+    InterferenceModel, LeanPayload, LoraParams, ModelKind, Network, NetworkSetup, Periodic,
+    Scenario, Sensing, Simulator, LEAN_SIGNIFICANCE,
+};
+use serde_json::json;
+
+/// The drone filter's settled standard deviations of a, ω and ψ with the paper's noise (the
+/// scenario computes them; any similar values serve here).
+const SD: [f64; 3] = [0.18, 0.017, 0.017];
+
+fn network(radio: &LoraParams, dc: f64) -> Network {
+    let setup = NetworkSetup {
+        sites: vec![GatewaySite {
+            east: 1000.0,
+            north: 0.0,
+            height: None,
+        }],
+        default_height: 15.0,
+        adr: AdrParams::default(),
+        channel: Channel::new(ChannelParams::default()).unwrap(),
+        interference: InterferenceModel {
+            capture: true,
+            inter_sf: true,
+        },
+        lorawan: false,
+        listen_before_talk: false,
+    };
+    Network::new(
+        setup,
+        vec![DroneRadio::new(radio, 12, dc, AdrMode::Off).unwrap()],
+    )
+}
+
+#[test]
+fn a_lean_packet_leaves_out_only_small_fields_and_the_next_comes_after_its_own_off_time() {
+    let radio = LoraParams::from_settings(8, 125.0, 1).unwrap();
+    let dc = 0.01;
+    let full = time_on_air(&radio, 12).unwrap().time_on_air;
+    let (mut lean, mut kept, mut sooner) = (0, 0, 0);
+    for flight_no in 1..=6 {
+        let flight = synthetic_flight(flight_no).unwrap();
+        let drone = run_drone(&flight, ModelKind::Ctra3d, &Sensing::paper(3, 0));
+        let aboard = Aboard {
+            flight: &flight,
+            estimates: Estimates::Stored(&drone),
+            sender: Box::new(Periodic),
+            rule: DutyCycle::new(DutyCycleMode::PerPacket, dc, full, 1, flight.t[0]).unwrap(),
+            payload: Some(LeanPayload::new(ModelKind::Ctra3d, SD)),
+        };
+        let streams = DroneStreams { seed: 3, stream: 0 };
+        let tx = fly_alone(&mut network(&radio, dc), aboard, streams);
+        for t in &tx {
+            match t.payload {
+                Some(kind) => {
+                    lean += 1;
+                    assert!(t.time_on_air < full);
+                    // What it left out decodes as 0.
+                    assert!((kind.state_len()..9).all(|i| t.state[i] == 0.0));
+                }
+                None => {
+                    kept += 1;
+                    assert_eq!(t.time_on_air, full);
+                    let large = |i: usize| t.state[i].abs() >= 0.9 * LEAN_SIGNIFICANCE * SD[i - 6];
+                    assert!((6..9).any(large), "every manoeuvre small: {:?}", t.state);
+                }
+            }
+        }
+        // The off-time follows the packet sent: never shorter, and after a lean one shorter
+        // than a full packet's.
+        for w in tx.windows(2) {
+            let gap = w[1].sent - w[0].sent;
+            assert!(gap + 1e-9 >= w[0].time_on_air / dc);
+            sooner += usize::from(gap < full / dc - 0.5);
+        }
+    }
+    assert!(
+        lean > 0 && kept > 0 && sooner > 0,
+        "{lean} lean, {kept} full, {sooner} sooner"
+    );
+}
+
+#[test]
+fn where_no_frame_shortens_a_lean_payload_changes_nothing() {
+    // At SF7 / 250 kHz without overhead 9, 11 and 12 bytes take the same four blocks.
+    let mut sim = Simulator::new();
+    let base = Scenario::default()
+        .with(&json!({"synthetic": 4, "model": "all,imm", "overhead": 0, "prediction": "bounded"}))
+        .unwrap();
+    let lean = base.with(&json!({"payload": "lean"})).unwrap();
+    let (a, b) = (
+        simulate(&mut sim, &base).unwrap(),
+        simulate(&mut sim, &lean).unwrap(),
+    );
+    for (x, y) in a.results.iter().zip(&b.results) {
+        assert_eq!(y.lean_packets, 0);
+        assert_eq!(x.error3d, y.error3d);
+        assert_eq!(x.delivery.packets_sent, y.delivery.packets_sent);
+    }
+}
+
+#[test]
+fn at_sf10_lean_payloads_send_more_packets_for_less_airtime_each() {
+    let mut sim = Simulator::new();
+    let base = Scenario::default()
+        .with(&json!({"synthetic": "all", "model": "dr,3d-ctra", "sf": 10, "bw": 125}))
+        .unwrap();
+    let lean = base.with(&json!({"payload": "lean"})).unwrap();
+    let (a, b) = (
+        simulate(&mut sim, &base).unwrap(),
+        simulate(&mut sim, &lean).unwrap(),
+    );
+    // DR has nothing to leave out.
+    assert_eq!(
+        a.results[0].delivery.packets_sent,
+        b.results[0].delivery.packets_sent
+    );
+    assert_eq!(b.results[0].lean_packets, 0);
+    let (full, thin) = (&a.results[1], &b.results[1]);
+    assert!(thin.lean_packets > 0);
+    assert!(thin.delivery.packets_sent > full.delivery.packets_sent);
+    let per_packet = |r: &loratrack::ModelResult| r.airtime / r.delivery.packets_sent as f64;
+    assert!(per_packet(thin) < per_packet(full));
+}
