@@ -13,14 +13,21 @@ export const trackedPercent = (tracked: number | null) => Math.round(100 * (trac
 /** Station names as a list: "DR", "DR and CTRA+", "DR, CTRA+, 3D-CTRA". */
 export const names = (list: ModelResult[]) => list.map((m) => MODEL_LABELS[m.model]).join(list.length === 2 ? ' and ' : ', ');
 
-/** The sending policy with what it rests on, and the duty-cycle rule when it is not the paper's
- * off-time per packet: two error-triggered runs with different thresholds must not read alike.
- * Takes the page's settings or a report's own config. */
-export function sending(s: Pick<Settings, 'sender' | 'threshold' | 'maxInterval' | 'dutyCycleMode'> & Partial<Pick<Settings, 'channelSense'>>): string {
+/** The sending policy with what it rests on, the duty-cycle rule when it is not the paper's
+ * off-time per packet and the payload when it is not the model's own: two error-triggered runs
+ * with different thresholds must not read alike. Takes the page's settings or a report's own
+ * config. */
+export function sending(s: Pick<Settings, 'sender' | 'threshold' | 'maxInterval' | 'dutyCycleMode'> & Partial<Pick<Settings, 'channelSense' | 'payload'>>): string {
   const listens = s.channelSense === 'cad' ? ', listening to its channel' : '';
   const sender = s.sender === 'error' ? `error-triggered sending (${s.threshold} m, heartbeat ${s.maxInterval} s${listens})` : 'periodic sending';
-  return s.dutyCycleMode === 'budget' ? `${sender}, duty-cycle budget` : sender;
+  const lean = s.payload === 'lean' ? ', lean payloads' : '';
+  return `${sender}${s.dutyCycleMode === 'budget' ? ', duty-cycle budget' : ''}${lean}`;
 }
+
+/** Whether the drone sends as the paper's does: every packet the duty cycle allows, each with the
+ * model's own payload. */
+export const sendsAsPublished = (s: Pick<Settings, 'sender' | 'dutyCycleMode'> & Partial<Pick<Settings, 'payload'>>) =>
+  s.sender === 'periodic' && s.dutyCycleMode === 'per-packet' && s.payload !== 'lean';
 
 /** The form's advanced settings (link and filter), named where they differ from the paper's
  * defaults, in the core table's words: "shadowing sigma 8 dB". */

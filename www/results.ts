@@ -3,7 +3,7 @@
 // table. Reads the page's state from the store.
 import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type SimReport } from './loratrack';
 import { $, linkDocs } from './dom';
-import { caption, fmt, names, prediction, sending, trackedPercent } from './format';
+import { caption, fmt, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { overheadBytes } from './state';
 import { store } from './store';
 
@@ -27,12 +27,12 @@ export function renderTable(r: SimReport): void {
         <td data-field="p95">${fmt(m.error3d.p95)}${delta(m, 'p95')}</td><td data-field="max">${fmt(m.error3d.max, 1)}${delta(m, 'max')}</td>
         <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td>
         <td data-field="delivery">${(ratio * 100).toFixed(0)} %</td><td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}${delta(m, 'packets')}</td>
-        <td data-field="interval">${m.interval.toFixed(2)} s</td><td data-field="toa">${(m.timeOnAir * 1e3).toFixed(1)} ms</td><td>${m.payloadBytes} B</td>
+        <td data-field="interval"${leanTitle(m)}>${m.interval.toFixed(2)} s</td><td data-field="toa"${leanTitle(m)}>${(m.timeOnAir * 1e3).toFixed(1)} ms</td><td data-field="payload"${leanTitle(m)}>${m.payloadBytes} B${m.leanPackets ? `, ${m.leanPackets} lean` : ''}</td>
         <td data-field="energy" title="${m.energy.chargePerHour.toFixed(3)} mAh per hour of tracking">${m.energy.chargePerUplink.toFixed(2)}</td></tr>`;
     })
     .join('');
   $('#results-table').innerHTML = `<div class="table-wrap" tabindex="0" role="region" aria-label="Results table"><table class="results">
-    <caption>3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet, over ${r.config.flights} flight${r.config.flights === 1 ? '' : 's'} × ${r.config.seeds} seed${r.config.seeds === 1 ? '' : 's'}; overhead ${r.config.overhead} B; ${prediction(r.config)}${r.config.sender === 'periodic' && r.config.dutyCycleMode === 'per-packet' ? '' : `; ${sending(r.config)}`}</caption>
+    <caption>3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet, over ${r.config.flights} flight${r.config.flights === 1 ? '' : 's'} × ${r.config.seeds} seed${r.config.seeds === 1 ? '' : 's'}; overhead ${r.config.overhead} B; ${prediction(r.config)}${sendsAsPublished(r.config) ? '' : `; ${sending(r.config)}`}</caption>
     <thead><tr><th scope="col">model</th><th scope="col" title="Mean 3D distance between the station's estimate and the truth">mean</th><th scope="col" title="Half the time the error is below this">median</th><th scope="col" title="75th percentile: 3 times in 4 the error is below this (the paper's headline statistic)">p75</th><th scope="col" title="95th percentile: the bad moments, typically long gaps">p95</th><th scope="col">max</th><th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th>
     <th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th><th scope="col" title="Time between packets: time on air divided by the 1 % duty cycle">interval</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th></tr></thead>
     <tbody>${rows}</tbody></table></div>`;
@@ -45,6 +45,13 @@ export function renderTable(r: SimReport): void {
   $('#network-note').textContent = networkShown ? networkNote(first, r.results.length > 1) : '';
 
   renderRateUse(r);
+}
+
+/** With lean payloads, what the interval, time on air and payload cells rest on: a full packet's,
+ * while the lean ones were shorter and came sooner. */
+function leanTitle(m: ModelResult): string {
+  if (!m.leanPackets) return '';
+  return ` title="A full packet's; ${m.leanPackets} of ${m.packetsSent} packets left out small manoeuvre fields (DR's 9 or CTRA+'s 11 bytes), took less time on air and let the next come sooner"`;
 }
 
 /** The station with the lowest p75 among `list` (undefined for none). */

@@ -4,7 +4,7 @@
 // both generated into www/generated/types.ts, so the form, the URL checks, the CLI help and the
 // core's validation cannot disagree.
 import type { SimulateRequest, SweepPoint } from './worker';
-import { CHOICE_DEFAULTS, OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type HeadingNoise, type ModelChoice, type NumberOption, type Plan, type Prediction, type Region, type SimulateParams } from './loratrack';
+import { CHOICE_DEFAULTS, OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type HeadingNoise, type ModelChoice, type NumberOption, type PayloadChoice, type Plan, type Prediction, type Region, type SimulateParams } from './loratrack';
 
 export type FlightChoice = 'synthetic' | 'all' | 'canberra' | 'csv';
 
@@ -23,6 +23,8 @@ export interface Settings {
   /** Error-triggered sending: whether the drone listens to its channel and sends less where it is crowded. */
   channelSense: ChannelSense;
   dutyCycleMode: 'per-packet' | 'budget';
+  /** The model's own payload, or the smallest that carries every manoeuvre field worth its bytes. */
+  payload: PayloadChoice;
   adr: AdrMode;
   /** The LoRaWAN regional plan. */
   region: Region;
@@ -68,6 +70,7 @@ export const DEFAULTS: Settings = {
   maxInterval: def('maxInterval'),
   channelSense: CHOICE_DEFAULTS.channelSense,
   dutyCycleMode: CHOICE_DEFAULTS.dutyCycleMode,
+  payload: CHOICE_DEFAULTS.payload,
   adr: CHOICE_DEFAULTS.adr,
   region: CHOICE_DEFAULTS.region,
   interval: def('interval'),
@@ -257,6 +260,7 @@ export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { te
     maxInterval: s.maxInterval,
     channelSense: s.channelSense,
     dutyCycleMode: s.dutyCycleMode,
+    payload: s.payload,
     adr: s.adr,
     region: s.region,
     // The interval applies only where the plan has no duty cycle (the core refuses it elsewhere).
@@ -352,6 +356,7 @@ export function fromQuery(search: string): { settings: Settings; problems: strin
   choice('sender', ['periodic', 'error']);
   choice('channelSense', ['off', 'cad']);
   choice('dutyCycleMode', ['per-packet', 'budget']);
+  choice('payload', ['full', 'lean']);
   choice('adr', ['off', 'lorawan', 'tracking']);
   choice('region', PLANS.map((p) => p.region));
   choice('access', ['duty-cycle', 'lbt']);

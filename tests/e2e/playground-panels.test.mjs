@@ -498,6 +498,26 @@ test('lesson "Let the packets choose the model": at SF8 the IMM has the lowest p
   assert.deepEqual(problems, []);
 });
 
+test('lesson "Three bytes at SF10": lean payloads send more packets and lower the richer stations\' p75 against the pinned full payloads, as the CLI computes them', async () => {
+  const { page, problems } = await lesson('Three bytes at SF10', { settled: false });
+  await page.waitForSelector('[data-delta="p75"]');
+  for (const model of ['3d-ctra', 'imm']) {
+    assert.match(await page.locator(`tr[data-model="${model}"] [data-delta="p75"]`).textContent(), /^▼.*better/, model);
+    assert.match(await page.locator(`tr[data-model="${model}"] [data-delta="packets"]`).textContent(), /^▲/, model);
+  }
+  for (const model of ['dr', 'ctra-plus']) assert.match(await page.locator(`tr[data-model="${model}"] [data-delta="p75"]`).textContent(), /unchanged/, model);
+  const cli = nativeJson(['simulate', '--synthetic', 'all', '--sf', '10', '--bw', '125', '--model', 'dr,ctra-plus,3d-ctra,imm', '--prediction', 'bounded', '--payload', 'lean']);
+  for (const m of cli.results) {
+    assert.equal(await cellNumber(page, m.model, 'p75'), Number(m.error3d.p75.toFixed(2)), m.model);
+    const payload = await cell(page, m.model, 'payload');
+    assert.equal(payload, m.leanPackets ? `${m.payloadBytes} B, ${m.leanPackets} lean` : `${m.payloadBytes} B`);
+  }
+  assert.ok(cli.results.find((m) => m.model === 'imm').leanPackets > 0);
+  assert.match(await page.locator('tr[data-model="imm"] td[data-field="interval"]').getAttribute('title'), /^A full packet's; \d+ of \d+ packets left out/);
+  assert.match(await page.locator('#results-table caption').textContent(), /periodic sending, lean payloads$/);
+  assert.deepEqual(problems, []);
+});
+
 test('lesson "Losing packets at range": against the paper station pinned, the bounded one lowers mean and p95 with the same packets, and its bound outgrows its error', async () => {
   const { page, problems } = await lesson('Losing packets at range', { settled: false });
   await page.waitForSelector('[data-delta="mean"]');

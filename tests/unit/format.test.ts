@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { caption, describe, flightTime, fmt, names, trackedPercent } from '../../www/format';
+import { caption, describe, flightTime, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -27,6 +27,9 @@ test('station lists read as a sentence', () => {
 test('a caption names the settings, the flight, every seed and the version', () => {
   expect(describe(DEFAULTS)).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending');
   expect(describe({ ...DEFAULTS, adr: 'tracking', sf: 12, bw: 125 })).toBe('SF12, 125 kHz, 1.0 km, paper prediction, periodic sending, tracking ADR');
+  expect(describe({ ...DEFAULTS, payload: 'lean', dutyCycleMode: 'budget' })).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending, duty-cycle budget, lean payloads');
+  expect(sendsAsPublished(DEFAULTS)).toBe(true);
+  expect(sendsAsPublished({ ...DEFAULTS, payload: 'lean' })).toBe(false);
   // The plan is named whenever its limit is not the paper's 1 % duty cycle.
   expect(describe({ ...DEFAULTS, region: 'us915', sf: 9, bw: 125 })).toBe('SF9, 125 kHz, US915, every 1 s, 1.0 km, paper prediction, periodic sending');
   expect(describe({ ...DEFAULTS, access: 'lbt', fairUse: 'ttn' })).toBe('SF7, 250 kHz, EU868, listen before talk, TTN fair use, 1.0 km, paper prediction, periodic sending');
