@@ -22,6 +22,8 @@ test('simulate in WASM under Node equals the native CLI bit for bit', async () =
     [['--synthetic', 'all', '--model', '3d-ctra,imm', '--prediction', 'bounded'], { synthetic: 'all', model: '3d-ctra,imm', prediction: 'bounded' }],
     // The mission station follows each synthetic flight's own plan.
     [['--synthetic', 'all', '--model', '3d-ctra,mission', '--sf', '10', '--bw', '125'], { synthetic: 'all', model: '3d-ctra,mission', sf: 10, bw: 125 }],
+    // Lean payloads: each packet's payload is chosen from the drone's estimate as it goes.
+    [['--synthetic', 'all', '--model', 'all,imm', '--prediction', 'bounded', '--sf', '10', '--bw', '125', '--payload', 'lean'], { synthetic: 'all', model: 'all,imm', prediction: 'bounded', sf: 10, bw: 125, payload: 'lean' }],
     // With ADR the flights run in order everywhere (the data rate carries over).
     [['--synthetic', 'all', '--model', '3d-ctra', '--adr', 'tracking', '--distance', '5000'], { synthetic: 'all', model: '3d-ctra', adr: 'tracking', distance: 5000 }],
   ]) {
