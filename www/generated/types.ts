@@ -935,6 +935,10 @@ packetsBelowSensitivity: number,
  */
 packetsNoDemodulator: number, 
 /**
+ * Packets sent with a smaller payload than the station's model sends (`--payload lean`).
+ */
+leanPackets: number, 
+/**
  * Seconds on air, all drones.
  */
 airtime: number, 

@@ -709,7 +709,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         "{} drone{} {}, at {} m, {} channel{}, {} SFs, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
          {}\n\
          channel access      {}\n\
-         packets sent        {}{}\n\
+         packets sent        {}{}{}\n\
          collision rate      {:.4}  (pure-ALOHA formula at the duty cycle achieved: {:.4})\n\
          largest swarm       {} drone{} at <= 1 % collisions, {} at <= 10 % (ALOHA formula); {} slotted, with none\n\
          delivery ratio      {:.4}  ({} distinct packets, {} duplicate{} removed)\n\
@@ -738,6 +738,11 @@ fn swarm_text(r: &SwarmReport) -> String {
         schedule_text(r),
         d.packets_sent,
         sf_shares(r),
+        if r.lean_packets > 0 {
+            format!("  ({} with lean payloads)", r.lean_packets)
+        } else {
+            String::new()
+        },
         r.collision_rate,
         r.collision_rate_theory,
         r.largest_swarm.aloha1,

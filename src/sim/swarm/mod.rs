@@ -469,6 +469,7 @@ impl<'a> Swarm<'a> {
             packets_collided: count(Outcome::Collided),
             packets_below_sensitivity: count(Outcome::BelowSensitivity),
             packets_no_demodulator: count(Outcome::NoDemodulator),
+            lean_packets: tx.iter().filter(|t| t.payload.is_some()).count(),
             airtime: airtime(tx.iter().copied()),
             error3d: Summary::of(&mut errors),
             whole_flight: WholeFlightError::of_sorted(&errors, untracked),

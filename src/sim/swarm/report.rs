@@ -89,6 +89,8 @@ pub struct SwarmReport {
     pub packets_below_sensitivity: usize,
     /// Packets audible somewhere but finding no free demodulation path where they were.
     pub packets_no_demodulator: usize,
+    /// Packets sent with a smaller payload than the station's model sends (`--payload lean`).
+    pub lean_packets: usize,
     /// Seconds on air, all drones.
     pub airtime: f64,
     /// Every drone's errors pooled, m (after each episode's first packet).
