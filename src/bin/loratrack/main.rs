@@ -11,6 +11,7 @@ mod commands;
 mod doc_cells;
 #[cfg(not(target_arch = "wasm32"))]
 mod mission_doc;
+#[cfg(not(target_arch = "wasm32"))]
 mod payloads_doc;
 #[cfg(not(target_arch = "wasm32"))]
 mod real_flight_rates;
