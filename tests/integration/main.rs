@@ -16,6 +16,38 @@ pub(crate) fn cli(args: &[&str]) -> Output {
         .expect("the CLI runs")
 }
 
+/// The network of one drone sending `bytes`-byte frames at `radio` under `duty_cycle`, without
+/// ADR: one gateway 1 km east of the flight's first point, the default channel, capture and
+/// inter-SF interference on.
+pub(crate) fn one_gateway(
+    radio: &loratrack::LoraParams,
+    bytes: usize,
+    duty_cycle: f64,
+) -> loratrack::Network {
+    use loratrack::{
+        AdrMode, AdrParams, Channel, ChannelParams, DroneRadio, GatewaySite, InterferenceModel,
+        Network, NetworkSetup,
+    };
+    let setup = NetworkSetup {
+        sites: vec![GatewaySite {
+            east: 1000.0,
+            north: 0.0,
+            height: None,
+        }],
+        default_height: 15.0,
+        adr: AdrParams::default(),
+        channel: Channel::new(ChannelParams::default()).unwrap(),
+        interference: InterferenceModel {
+            capture: true,
+            inter_sf: true,
+        },
+        lorawan: false,
+        listen_before_talk: false,
+    };
+    let drone = DroneRadio::new(radio, bytes, duty_cycle, AdrMode::Off).unwrap();
+    Network::new(setup, vec![drone])
+}
+
 mod adr;
 mod architecture;
 mod codec;

@@ -3,39 +3,15 @@
 
 use loratrack::api::simulate;
 use loratrack::{
-    fly_alone, run_drone, synthetic_flight, time_on_air, Aboard, AdrMode, AdrParams, Channel,
-    ChannelParams, DroneRadio, DroneStreams, DutyCycle, DutyCycleMode, Estimates, GatewaySite,
-    InterferenceModel, LeanPayload, LoraParams, ModelKind, Network, NetworkSetup, Periodic,
-    Scenario, Sensing, Simulator, LEAN_SIGNIFICANCE,
+    fly_alone, run_drone, synthetic_flight, time_on_air, Aboard, DroneStreams, DutyCycle,
+    DutyCycleMode, Estimates, LeanPayload, LoraParams, ModelKind, Periodic, Scenario, Sensing,
+    Simulator, LEAN_SIGNIFICANCE,
 };
 use serde_json::json;
 
 /// The drone filter's settled standard deviations of a, ω and ψ with the paper's noise (the
 /// scenario computes them; any similar values serve here).
 const SD: [f64; 3] = [0.18, 0.017, 0.017];
-
-fn network(radio: &LoraParams, dc: f64) -> Network {
-    let setup = NetworkSetup {
-        sites: vec![GatewaySite {
-            east: 1000.0,
-            north: 0.0,
-            height: None,
-        }],
-        default_height: 15.0,
-        adr: AdrParams::default(),
-        channel: Channel::new(ChannelParams::default()).unwrap(),
-        interference: InterferenceModel {
-            capture: true,
-            inter_sf: true,
-        },
-        lorawan: false,
-        listen_before_talk: false,
-    };
-    Network::new(
-        setup,
-        vec![DroneRadio::new(radio, 12, dc, AdrMode::Off).unwrap()],
-    )
-}
 
 #[test]
 fn a_lean_packet_leaves_out_only_small_fields_and_the_next_comes_after_its_own_off_time() {
@@ -54,7 +30,7 @@ fn a_lean_packet_leaves_out_only_small_fields_and_the_next_comes_after_its_own_o
             payload: Some(LeanPayload::new(ModelKind::Ctra3d, SD)),
         };
         let streams = DroneStreams { seed: 3, stream: 0 };
-        let tx = fly_alone(&mut network(&radio, dc), aboard, streams);
+        let tx = fly_alone(&mut crate::one_gateway(&radio, 12, dc), aboard, streams);
         for t in &tx {
             match t.payload {
                 Some(kind) => {

@@ -4,11 +4,10 @@
 
 use loratrack::api::simulate;
 use loratrack::{
-    fly_alone, min_interval, run_drone, synthetic_flight, time_on_air, Aboard, AdrMode, AdrParams,
-    Bounds, Channel, ChannelParams, ChannelSense, DroneRadio, DroneStreams, DutyCycle,
-    DutyCycleMode, ErrorTriggered, Estimates, GatewaySite, InterferenceModel, LoraParams,
-    ModelKind, Network, NetworkSetup, Periodic, Prediction, Scenario, Sender, SenderKind, Sensing,
-    Simulator, StationModel, StationSetup, PAPER_Q, PAPER_R_DIAGONAL,
+    fly_alone, min_interval, run_drone, synthetic_flight, time_on_air, Aboard, Bounds,
+    ChannelSense, DroneStreams, DutyCycle, DutyCycleMode, ErrorTriggered, Estimates, LoraParams,
+    ModelKind, Periodic, Prediction, Scenario, Sender, SenderKind, Sensing, Simulator,
+    StationModel, StationSetup, PAPER_Q, PAPER_R_DIAGONAL,
 };
 use serde_json::{json, Value};
 
@@ -58,26 +57,7 @@ fn no_schedule_ever_breaks_its_duty_cycle_rule() {
         error_triggered: false,
         drone_covariance: None,
     };
-    let network = || {
-        let r = DroneRadio::new(&radio, 12, dc, AdrMode::Off).unwrap();
-        let setup = NetworkSetup {
-            sites: vec![GatewaySite {
-                east: 1000.0,
-                north: 0.0,
-                height: None,
-            }],
-            default_height: 15.0,
-            adr: AdrParams::default(),
-            channel: Channel::new(ChannelParams::default()).unwrap(),
-            interference: InterferenceModel {
-                capture: true,
-                inter_sf: true,
-            },
-            lorawan: false,
-            listen_before_talk: false,
-        };
-        Network::new(setup, vec![r])
-    };
+    let network = || crate::one_gateway(&radio, 12, dc);
     let mut checked = 0;
     for flight_no in [2, 9, 17, 25] {
         let flight = synthetic_flight(flight_no).unwrap();
