@@ -290,9 +290,10 @@ impl<'a> Flier<'a> {
         let kind = lean.choose(&estimate, |kind| {
             framed(kind).map_or(f64::INFINITY, |f| f.time_on_air)
         });
-        match kind == own {
-            true => frame,
-            false => framed(kind).unwrap_or(frame),
+        if kind == own {
+            frame
+        } else {
+            framed(kind).unwrap_or(frame)
         }
     }
 

@@ -252,8 +252,8 @@ impl Pooled {
     }
 }
 
-/// Seconds on air of `tx`, summed per data rate (packets × time on air, slowest rate first), as
-/// a station's result counts it.
+/// Seconds on air of `tx`, summed per data rate and frame length (packets × time on air, slowest
+/// rate first), as a station's result counts it.
 pub(crate) fn airtime<'a>(tx: impl Iterator<Item = &'a Transmission>) -> f64 {
     let mut frames = FrameTally::default();
     tx.for_each(|t| frames.add(t));

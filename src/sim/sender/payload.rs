@@ -60,8 +60,8 @@ impl PayloadChoice {
 /// let lean = LeanPayload::new(ModelKind::Ctra3d, [0.18, 0.017, 0.017]);
 /// let straight = [0.0, 0.0, 50.0, 1.0, 0.0, 8.0, 0.1, 0.01, 0.0];
 /// let turning = [0.0, 0.0, 50.0, 1.0, 0.0, 8.0, 0.1, 0.3, 0.0];
-/// // Frames of 9, 11 and 12 bytes taking 3, 3 and 4 blocks: DR's payload for a straight leg,
-/// // CTRA+'s (the richer of the two shortest) for a turn.
+/// // Where 9 and 11 bytes take 3 blocks and 12 bytes 4, both go with CTRA+'s payload (the
+/// // richer of the two shortest); where each byte counts, the straight leg goes with DR's.
 /// let blocks = |kind: ModelKind| if kind == ModelKind::Ctra3d { 4.0 } else { 3.0 };
 /// assert_eq!(lean.choose(&straight, blocks), ModelKind::CtraPlus);
 /// assert_eq!(lean.choose(&turning, blocks), ModelKind::CtraPlus);
