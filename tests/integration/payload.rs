@@ -103,3 +103,20 @@ fn at_sf10_lean_payloads_send_more_packets_for_less_airtime_each() {
     let per_packet = |r: &loratrack::ModelResult| r.airtime / r.delivery.packets_sent as f64;
     assert!(per_packet(thin) < per_packet(full));
 }
+
+#[test]
+fn the_payloads_sweep_refuses_settings_its_fixed_grid_would_ignore() {
+    for extra in [
+        ["--overhead", "13"],
+        ["--prediction", "paper"],
+        ["--distance", "3000"],
+    ] {
+        let out = crate::cli(&["sweep", "--payloads", extra[0], extra[1]]);
+        assert_eq!(out.status.code(), Some(2), "{extra:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.starts_with("error: ") && err.contains("--payloads"),
+            "{err}"
+        );
+    }
+}

@@ -27,8 +27,8 @@ pub struct SweepKind {
     /// The airtime / error trade-off of error-triggered sending (thresholds 0.5..10 m, per-packet and budget rules) against periodic sending, on the whole synthetic set at --sf/--bw/--distance, --overhead bytes of MAC overhead (0 unless set), for the first model of --model (3d-ctra when --model is all).
     #[arg(long)]
     senders: bool,
-    /// Full against lean payloads (--payload lean) at every EU868 data rate, bounded stations DR, CTRA+, 3D-CTRA and IMM: the whole synthetic set at 1 km without and with LoRaWAN's overhead (--seeds), the real Canberra flight at 1 and 3.3 km (64 seeds); printed as Markdown (docs/payloads.md).
-    #[arg(long)]
+    /// Full against lean payloads (--payload lean) at every EU868 data rate, bounded stations DR, CTRA+, 3D-CTRA and IMM: the whole synthetic set at 1 km without and with LoRaWAN's overhead (--seeds), the real Canberra flight at 1 and 3.3 km (64 seeds); printed as Markdown (docs/payloads.md). Its grid is fixed: it takes only --seed and --seeds.
+    #[arg(long, conflicts_with_all = ["sf", "bw", "distance", "overhead", "model", "prediction", "held_out", "svg", "json"])]
     payloads: bool,
     /// Fixed data rates DR0..DR6 and both ADR modes (starting at --sf/--bw) at each distance, m, comma-separated (e.g. 1000,3000,5000,7000), on the whole synthetic set, --overhead bytes of MAC overhead (0 unless set), for the first model of --model (3d-ctra when --model is all).
     #[arg(
