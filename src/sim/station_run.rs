@@ -18,7 +18,7 @@ use super::pooled::model_series;
 use super::radio::DroneRadio;
 use super::report::{Delivery, ModelSeries};
 use super::scenario::Validated;
-use super::sender::SenderKind;
+use super::sender::{LeanPayload, SenderKind};
 use super::station::{
     new_tracker, track_station, FlightChains, MissionPlan, Prediction, Scoring, StationModel,
     StationSetup, StationTrack,
@@ -54,6 +54,8 @@ pub(crate) struct StationPlan {
     pub setup: StationSetup,
     /// Each flight's plan (a mission station's only; `None` otherwise).
     pub plans: Vec<Option<MissionPlan>>,
+    /// Which payload each packet takes.
+    pub payload: Option<LeanPayload>,
 }
 
 impl StationPlan {
@@ -80,6 +82,7 @@ impl StationPlan {
             duty_cycle,
             setup,
             plans: flights.iter().map(|f| cfg.mission_plan(model, f)).collect(),
+            payload: cfg.lean_payload(model.sent_model()),
         })
     }
 }
@@ -220,7 +223,7 @@ impl StationRun<'_> {
             estimates,
             sender: s.sending.sender(model, setup, plan),
             rule,
-            payload: self.cfg.lean_payload(model.sent_model()),
+            payload: self.plan.payload,
         };
         let air = Air {
             gateways: &gateways,

@@ -5,7 +5,7 @@
 use loratrack::api::{self, ApiError, MISSION_RATES};
 use loratrack::{
     ModelChoice, ModelKind, ModelResult, PayloadChoice, Prediction, Scenario, Simulator,
-    StationModel, SyntheticChoice,
+    StationModel, SyntheticChoice, LEAN_SIGNIFICANCE,
 };
 
 /// The stations compared: the three motion models and the IMM over them.
@@ -38,11 +38,17 @@ pub struct PayloadRun {
 }
 
 impl PayloadRun {
+    /// `kind`'s result among `results`.
+    fn of(results: &[ModelResult], kind: StationModel) -> Option<&ModelResult> {
+        results.iter().find(|m| m.model == kind)
+    }
+
     fn p75(results: &[ModelResult], kind: StationModel) -> f64 {
-        results
-            .iter()
-            .find(|m| m.model == kind)
-            .map_or(f64::NAN, |m| m.error3d.p75)
+        Self::of(results, kind).map_or(f64::NAN, |m| m.error3d.p75)
+    }
+
+    fn p95(results: &[ModelResult], kind: StationModel) -> f64 {
+        Self::of(results, kind).map_or(f64::NAN, |m| m.error3d.p95)
     }
 
     /// The IMM's p75 over the best single model's.
@@ -58,10 +64,7 @@ impl PayloadRun {
     /// The richer stations' largest p95 over DR's.
     fn worst_p95_ratio(results: &[ModelResult]) -> f64 {
         let dr = StationModel::Single(ModelKind::Dr);
-        let dr_p95 = results
-            .iter()
-            .find(|m| m.model == dr)
-            .map_or(f64::NAN, |m| m.error3d.p95);
+        let dr_p95 = Self::p95(results, dr);
         results
             .iter()
             .filter(|m| m.model != dr)
@@ -70,8 +73,7 @@ impl PayloadRun {
     }
 
     fn lean_share(&self) -> String {
-        let imm = self.lean.iter().find(|m| m.model == StationModel::Imm);
-        imm.map_or("—".into(), |m| {
+        Self::of(&self.lean, StationModel::Imm).map_or("—".into(), |m| {
             format!("{}/{}", m.lean_packets, m.delivery.packets_sent)
         })
     }
@@ -178,7 +180,7 @@ pub fn markdown(seed: u64, seeds: u32) -> Result<String, ApiError> {
         "Setting: bounded stations ({MODELS}), periodic sending at the 1 % duty cycle, shadowing 4 dB. \
          `full` sends each model's own payload (9, 11 or 12 bytes, the paper's Table II); `lean` \
          (`--payload lean`, reference §5) sends DR's or CTRA+'s smaller payload where every \
-         manoeuvre field it leaves out lies within 10 standard deviations of zero and its frame is \
+         manoeuvre field it leaves out lies within {LEAN_SIGNIFICANCE} standard deviations of zero and its frame is \
          shorter on air. The synthetic set: 30 flights, 44 min, {SYNTHETIC_DISTANCE:.0} m, seeds \
          {seed}–{last} pooled, without and with LoRaWAN's 13-byte overhead. Each station cell: the \
          p75 of the 3D error (m), full → lean. `IMM / best`: the IMM's p75 over the best single \
@@ -241,11 +243,7 @@ pub fn markdown(seed: u64, seeds: u32) -> Result<String, ApiError> {
             "| {:.0} m | {} | {} | {} | {} | {} | {} |\n",
             r.distance,
             r.rate(),
-            num(r
-                .full
-                .iter()
-                .find(|m| m.model == dr)
-                .map_or(f64::NAN, |m| m.error3d.p95)),
+            num(PayloadRun::p95(&r.full, dr)),
             change(
                 PayloadRun::worst_p95_ratio(&r.full),
                 PayloadRun::worst_p95_ratio(&r.lean)

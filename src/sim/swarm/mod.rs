@@ -23,6 +23,7 @@ use super::radio::DroneRadio;
 use super::report::{ratio, Delivery, Energy};
 use super::scenario::{SfPlan, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::{self, aloha_collision_rate, Airtime, Schedule, Slot};
+use super::sender::LeanPayload;
 use super::simulator::load_flights;
 use super::station::{new_tracker, track_station, Scoring, StationModel, StationSetup};
 use super::streams::{DroneStreams, LAYOUT_STREAM};
@@ -191,6 +192,8 @@ struct Swarm<'a> {
     kits: Vec<Kit>,
     /// A slotted schedule's longest period, s.
     frame_length: Option<f64>,
+    /// Which payload each packet takes, the same for every drone and episode.
+    payload: Option<LeanPayload>,
     /// Drone filter runs shared with other swarms.
     shared: Option<&'a SharedDroneRuns>,
 }
@@ -253,6 +256,7 @@ impl<'a> Swarm<'a> {
             sfs,
             kits,
             frame_length,
+            payload: cfg.lean_payload(model.sent_model()),
             shared: None,
         };
         Ok((swarm, Network::of(cfg, 0.0, radios)))
@@ -308,7 +312,7 @@ impl<'a> Swarm<'a> {
                 estimates,
                 sender: s.sending.sender(self.model, kit.setup, None),
                 rule: s.sending.rule(kit.duty_cycle, now.time_on_air)?,
-                payload: self.cfg.lean_payload(model),
+                payload: self.payload,
             };
             let air = Air {
                 gateways: &net.gateways_at(centre),
