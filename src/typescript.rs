@@ -79,6 +79,7 @@ fn decls() -> Vec<String> {
         Boxplot::decl(&c),
         Boxplots::decl(&c),
         DataRateUse::decl(&c),
+        FrameTiming::decl(&c),
         GatewayReport::decl(&c),
         Delivery::decl(&c),
         Energy::decl(&c),

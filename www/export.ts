@@ -96,9 +96,9 @@ export function downloadErrorCsv(report: SimReport): void {
 
 /** One row per station: the numbers of the results table, unrounded, with the 95 % intervals. */
 export function downloadResultsCsv(report: SimReport): void {
-  const header = ['model', 'payload_bytes', 'time_on_air_s', 'interval_s', 'packets_sent', 'packets_received', 'delivery_ratio', 'mean_m', 'p50_m', 'p75_m', 'p75_lo_m', 'p75_hi_m', 'p95_m', 'max_m', 'samples', 'tracked_share', 'runs', 'coverage95', 'nees', 'charge_per_uplink_mC', 'lean_packets'];
+  const header = ['model', 'payload_bytes', 'time_on_air_s', 'interval_s', 'packets_sent', 'packets_received', 'delivery_ratio', 'mean_m', 'p50_m', 'p75_m', 'p75_lo_m', 'p75_hi_m', 'p95_m', 'max_m', 'samples', 'tracked_share', 'runs', 'coverage95', 'nees', 'charge_per_uplink_mC', 'lean_packets', 'lean_time_on_air_s', 'lean_interval_s'];
   const n = (v: number | null | undefined) => (v === null || v === undefined ? '' : String(v));
-  const rows = report.results.map((m) => [m.model, n(m.payloadBytes), n(m.timeOnAir), n(m.interval), n(m.packetsSent), n(m.packetsReceived), n(m.deliveryRatio), n(m.error3d.mean), n(m.error3d.p50), n(m.error3d.p75), n(m.ci95?.p75[0]), n(m.ci95?.p75[1]), n(m.error3d.p95), n(m.error3d.max), n(m.error3d.count), n(m.wholeFlight.tracked), n(m.ci95?.runs ?? 1), n(m.coverage95), n(m.nees), n(m.energy.chargePerUplink), n(m.leanPackets)]);
+  const rows = report.results.map((m) => [m.model, n(m.payloadBytes), n(m.timeOnAir), n(m.interval), n(m.packetsSent), n(m.packetsReceived), n(m.deliveryRatio), n(m.error3d.mean), n(m.error3d.p50), n(m.error3d.p75), n(m.ci95?.p75[0]), n(m.ci95?.p75[1]), n(m.error3d.p95), n(m.error3d.max), n(m.error3d.count), n(m.wholeFlight.tracked), n(m.ci95?.runs ?? 1), n(m.coverage95), n(m.nees), n(m.energy.chargePerUplink), n(m.leanPackets), n(m.leanFrame?.timeOnAir), n(m.leanFrame?.interval)]);
   save(new Blob([csvText([header, ...rows])], { type: 'text/csv' }), 'loratrack-results.csv');
 }
 

@@ -27,7 +27,7 @@ export function renderTable(r: SimReport): void {
         <td data-field="p95">${fmt(m.error3d.p95)}${delta(m, 'p95')}</td><td data-field="max">${fmt(m.error3d.max, 1)}${delta(m, 'max')}</td>
         <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td>
         <td data-field="delivery">${(ratio * 100).toFixed(0)} %</td><td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}${delta(m, 'packets')}</td>
-        <td data-field="interval"${leanTitle(m)}>${m.interval.toFixed(2)} s</td><td data-field="toa"${leanTitle(m)}>${(m.timeOnAir * 1e3).toFixed(1)} ms</td><td data-field="payload"${leanTitle(m)}>${m.payloadBytes} B${m.leanPackets ? `, ${m.leanPackets} lean` : ''}</td>
+        <td data-field="interval"${leanTitle(m)}>${m.interval.toFixed(2)} s${lean(m.leanFrame && `lean ${m.leanFrame.interval.toFixed(2)} s`)}</td><td data-field="toa"${leanTitle(m)}>${(m.timeOnAir * 1e3).toFixed(1)} ms${lean(m.leanFrame && `lean ${(m.leanFrame.timeOnAir * 1e3).toFixed(1)} ms`)}</td><td data-field="payload"${leanTitle(m)}>${m.payloadBytes} B${lean(m.leanPackets > 0 && `${m.leanPackets} lean`)}</td>
         <td data-field="energy" title="${m.energy.chargePerHour.toFixed(3)} mAh per hour of tracking">${m.energy.chargePerUplink.toFixed(2)}</td></tr>`;
     })
     .join('');
@@ -47,11 +47,19 @@ export function renderTable(r: SimReport): void {
   renderRateUse(r);
 }
 
-/** With lean payloads, what the interval, time on air and payload cells rest on: a full packet's,
- * while the lean ones were shorter and came sooner. */
+/** A cell's second line, under a full packet's number, for what lean packets did (as the p75's
+ * interval sits under it): nothing without them. */
+function lean(text: string | false | null): string {
+  return text ? ` <span class="sub" data-lean>${text}</span>` : '';
+}
+
+/** With lean payloads, what the interval, time on air and payload cells rest on: the shortest
+ * lean frame and the full one. */
 function leanTitle(m: ModelResult): string {
   if (!m.leanPackets) return '';
-  return ` title="A full packet's; ${m.leanPackets} of ${m.packetsSent} packets left out small manoeuvre fields (DR's 9 or CTRA+'s 11 bytes), took less time on air and let the next come sooner"`;
+  const lean = m.leanFrame;
+  const shortest = lean ? `, as short as ${(lean.timeOnAir * 1e3).toFixed(1)} ms on air with the next allowed ${lean.interval.toFixed(2)} s later` : '';
+  return ` title="${m.leanPackets} of ${m.packetsSent} packets left out small manoeuvre fields (DR's 9 or CTRA+'s 11 bytes)${shortest}; a full packet: ${(m.timeOnAir * 1e3).toFixed(1)} ms, ${m.interval.toFixed(2)} s"`;
 }
 
 /** The station with the lowest p75 among `list` (undefined for none). */

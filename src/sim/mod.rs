@@ -43,7 +43,8 @@ pub use network::{fly_alone, run_episode, CrowdLoad, GatewayReport, Network, Net
 pub use packet::Transmission;
 pub use radio::{DroneRadio, Frame, RateTable};
 pub use report::{
-    Boxplots, DataRateUse, Delivery, Energy, ModelResult, ModelSeries, RunConfig, Series, SimReport,
+    Boxplots, DataRateUse, Delivery, Energy, FrameTiming, ModelResult, ModelSeries, RunConfig,
+    Series, SimReport,
 };
 pub use scenario::{
     parse_seed, random_seed, AccessSettings, ChannelSettings, DroneSettings, FlightSettings,

@@ -3,7 +3,9 @@
 use super::caveats::Caveats;
 use super::packet::Transmission;
 use super::radio::Frame;
-use super::report::{Boxplots, DataRateUse, Delivery, Energy, ModelResult, ModelSeries};
+use super::report::{
+    Boxplots, DataRateUse, Delivery, Energy, FrameTiming, ModelResult, ModelSeries,
+};
 use super::sender::SenderKind;
 use super::station::{StationModel, StationTrack};
 use crate::lora::DataRate;
@@ -34,6 +36,8 @@ pub(crate) struct Pooled {
     received: usize,
     /// Of `sent`, those with a smaller payload than the model's own.
     lean: usize,
+    /// The shortest lean frame at each data rate (spreading factor, bandwidth in kHz).
+    lean_frames: BTreeMap<(u8, u64), FrameTiming>,
     /// Charge and awake time summed over every uplink, and seconds flown.
     charge_mc: f64,
     active_s: f64,
@@ -118,6 +122,9 @@ impl Pooled {
             self.charge_mc += t.charge_mc;
             self.active_s += t.active_s;
             self.rates.add(t);
+            if t.payload.is_some() {
+                self.add_lean_frame(t);
+            }
         }
         let [ex, ey, ez] = st.error_axes;
         for (pool, run) in [
@@ -168,6 +175,19 @@ impl Pooled {
         )
     }
 
+    /// Keeps `t`'s frame when it is the shortest lean one at its rate so far.
+    fn add_lean_frame(&mut self, t: &Transmission) {
+        let timing = FrameTiming {
+            time_on_air: t.time_on_air,
+            interval: t.interval,
+        };
+        let key = (t.sf.get(), t.bw.khz() as u64);
+        let shortest = self.lean_frames.entry(key).or_insert(timing);
+        if timing.time_on_air < shortest.time_on_air {
+            *shortest = timing;
+        }
+    }
+
     /// The result row of `model`, whose drone started each flight with `start` (its time on air
     /// and interval are the row's) and whose filters repaired their covariance
     /// `filter_recoveries` times; `network` the gateways' counts and the duplicates of this
@@ -185,6 +205,10 @@ impl Pooled {
             interval,
             ..
         } = *start;
+        let lean_frame = self
+            .lean_frames
+            .get(&(start.sf.get(), start.bw.khz() as u64))
+            .copied();
         let energy = self.energy();
         let runs = self.sorted_runs();
         let delivery = self.delivery(network);
@@ -208,6 +232,7 @@ impl Pooled {
             lean_packets: self.lean,
             time_on_air,
             interval,
+            lean_frame,
             airtime,
             error3d: s3,
             whole_flight: WholeFlightError::of_sorted(&self.e3, self.untracked),

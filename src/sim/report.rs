@@ -197,10 +197,14 @@ pub struct ModelResult {
     /// DR's or CTRA+'s smaller payload (`--payload lean`, reference §5); 0 with the full payload.
     pub lean_packets: usize,
     /// Time on air of one packet (payload + overhead), s (with ADR: at the starting data rate).
+    /// With lean payloads a full packet's; the shortest lean one is the next field's.
     pub time_on_air: f64,
     /// Interval between transmissions under the duty cycle, s (with ADR: at the starting data
-    /// rate).
+    /// rate). With lean payloads a full packet's; the shortest lean one is the next field's.
     pub interval: f64,
+    /// With `--payload lean`, the shortest frame a lean packet took at the starting data rate
+    /// (reference §5); `null` when no lean packet went there.
+    pub lean_frame: Option<FrameTiming>,
     /// Total time on air of the packets sent over all flights, s.
     pub airtime: f64,
     /// 3D error, m, at the evaluation times after each flight's first packet arrived.
@@ -315,6 +319,18 @@ pub struct DataRateUse {
     pub received: usize,
     /// Time on air of one packet at it, s: its longest (with `--payload lean` some are shorter).
     pub time_on_air: f64,
+}
+
+/// One frame length's cost on air: how long the packet occupies the channel and the duty-cycle
+/// interval it imposes before the next (reference §2).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
+pub struct FrameTiming {
+    /// Time on air, s.
+    pub time_on_air: f64,
+    /// The shortest interval the duty cycle allows after it, s.
+    pub interval: f64,
 }
 
 /// Ground truth and every model's estimates over the first flight. In JavaScript `t`, `x`, `y`

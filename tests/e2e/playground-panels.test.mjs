@@ -507,13 +507,32 @@ test('lesson "Three bytes at SF10": lean payloads send more packets and lower th
   }
   for (const model of ['dr', 'ctra-plus']) assert.match(await page.locator(`tr[data-model="${model}"] [data-delta="p75"]`).textContent(), /unchanged/, model);
   const cli = nativeJson(['simulate', '--synthetic', 'all', '--sf', '10', '--bw', '125', '--model', 'dr,ctra-plus,3d-ctra,imm', '--prediction', 'bounded', '--payload', 'lean']);
+  // The download is this report's: read beside the table.
+  const [header, ...rows] = (await downloaded(page, page.getByRole('button', { name: 'Results (CSV)' }))).toString('utf8').trim().split('\n').map((l) => l.split(','));
   for (const m of cli.results) {
     assert.equal(await cellNumber(page, m.model, 'p75'), Number(m.error3d.p75.toFixed(2)), m.model);
-    const payload = await cell(page, m.model, 'payload');
-    assert.equal(payload, m.leanPackets ? `${m.payloadBytes} B, ${m.leanPackets} lean` : `${m.payloadBytes} B`);
+    // Under a full packet's interval, time on air and payload, a second line for the lean ones: the
+    // shortest frame they took, and how many went.
+    const lean = m.leanFrame;
+    assert.equal(!!lean, m.leanPackets > 0, m.model);
+    const under = (field) => page.locator(`#results-table tr[data-model="${m.model}"] td[data-field="${field}"] [data-lean]`);
+    for (const [field, full, second] of [
+      ['interval', `${m.interval.toFixed(2)} s`, lean && `lean ${lean.interval.toFixed(2)} s`],
+      ['toa', `${(m.timeOnAir * 1e3).toFixed(1)} ms`, lean && `lean ${(lean.timeOnAir * 1e3).toFixed(1)} ms`],
+      ['payload', `${m.payloadBytes} B`, lean && `${m.leanPackets} lean`],
+    ]) {
+      assert.equal((await cell(page, m.model, field)).trim(), second ? `${full} ${second}` : full, `${m.model} ${field}`);
+      assert.equal(await under(field).count(), second ? 1 : 0, `${m.model} ${field}`);
+    }
+    if (lean) assert.ok(lean.timeOnAir < m.timeOnAir && lean.interval < m.interval, m.model);
+    const row = rows.find((r) => r[0] === m.model);
+    const col = (name) => row[header.indexOf(name)];
+    assert.equal(col('lean_packets'), String(m.leanPackets), m.model);
+    assert.equal(col('lean_time_on_air_s'), lean ? String(lean.timeOnAir) : '', m.model);
+    assert.equal(col('lean_interval_s'), lean ? String(lean.interval) : '', m.model);
   }
   assert.ok(cli.results.find((m) => m.model === 'imm').leanPackets > 0);
-  assert.match(await page.locator('tr[data-model="imm"] td[data-field="interval"]').getAttribute('title'), /^A full packet's; \d+ of \d+ packets left out/);
+  assert.match(await page.locator('tr[data-model="imm"] td[data-field="interval"]').getAttribute('title'), /^\d+ of \d+ packets left out small manoeuvre fields .*, as short as [\d.]+ ms on air with the next allowed [\d.]+ s later; a full packet: [\d.]+ ms, [\d.]+ s$/);
   assert.match(await page.locator('#results-table caption').textContent(), /periodic sending, lean payloads$/);
   assert.deepEqual(problems, []);
 });

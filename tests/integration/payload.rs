@@ -120,3 +120,23 @@ fn the_payloads_sweep_refuses_settings_its_fixed_grid_would_ignore() {
         );
     }
 }
+
+#[test]
+fn a_result_names_the_shortest_lean_frame_beside_the_full_one() {
+    let mut sim = Simulator::new();
+    let base = Scenario::default()
+        .with(&json!({"synthetic": "all", "model": "dr,3d-ctra", "sf": 10, "bw": 125}))
+        .unwrap();
+    let full = simulate(&mut sim, &base).unwrap();
+    assert!(full.results.iter().all(|m| m.lean_frame.is_none()));
+    let lean = simulate(&mut sim, &base.with(&json!({"payload": "lean"})).unwrap()).unwrap();
+    // DR sends nothing lean; 3D-CTRA's shortest lean frame is DR's 9 bytes at SF10 (13 B overhead).
+    assert_eq!(lean.results[0].lean_frame, None);
+    let m = &lean.results[1];
+    let frame = m.lean_frame.expect("3D-CTRA sent lean packets at SF10");
+    let radio = LoraParams::from_settings(10, 125.0, 1).unwrap();
+    let dr = time_on_air(&radio, 9 + 13).unwrap().time_on_air;
+    assert_eq!(frame.time_on_air, dr);
+    assert_eq!(frame.interval, dr / 0.01);
+    assert!(frame.time_on_air < m.time_on_air && frame.interval < m.interval);
+}

@@ -503,6 +503,16 @@ received: number,
  */
 timeOnAir: number, };
 
+export type FrameTiming = { 
+/**
+ * Time on air, s.
+ */
+timeOnAir: number, 
+/**
+ * The shortest interval the duty cycle allows after it, s.
+ */
+interval: number, };
+
 export type GatewayReport = { 
 /**
  * Metres east of the scenario's origin.
@@ -582,13 +592,19 @@ payloadBytes: number,
 leanPackets: number, 
 /**
  * Time on air of one packet (payload + overhead), s (with ADR: at the starting data rate).
+ * With lean payloads a full packet's; the shortest lean one is the next field's.
  */
 timeOnAir: number, 
 /**
  * Interval between transmissions under the duty cycle, s (with ADR: at the starting data
- * rate).
+ * rate). With lean payloads a full packet's; the shortest lean one is the next field's.
  */
 interval: number, 
+/**
+ * With `--payload lean`, the shortest frame a lean packet took at the starting data rate
+ * (reference §5); `null` when no lean packet went there.
+ */
+leanFrame: FrameTiming | null, 
 /**
  * Total time on air of the packets sent over all flights, s.
  */

@@ -570,8 +570,14 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
         }
         if m.lean_packets > 0 {
             out += &format!(
-                "          lean payload: {} of {} packets left out a, omega or psi\n",
-                m.lean_packets, m.delivery.packets_sent
+                "          lean payload: {} of {} packets left out a, omega or psi{}\n",
+                m.lean_packets,
+                m.delivery.packets_sent,
+                m.lean_frame.map_or(String::new(), |f| format!(
+                    " (shortest {:.1} ms on air, {:.2} s interval)",
+                    f.time_on_air * 1e3,
+                    f.interval
+                ))
             );
         }
     }
