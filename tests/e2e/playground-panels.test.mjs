@@ -178,6 +178,20 @@ test('the swarm panel takes the single drone settings, ADR included, and reports
   assert.deepEqual(problems, []);
 });
 
+test('a swarm of lean drones says how many of its packets went lean, as the CLI counts them', async () => {
+  const { page, problems } = await open('?sf=10&bw=125&payload=lean&prediction=bounded');
+  await page.getByLabel('Drones', { exact: true }).selectOption('20');
+  await page.getByLabel('SF plan').selectOption('fixed');
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  const note = await page.locator('#chart-swarm .note').textContent();
+  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sf', '10', '--bw', '125', '--payload', 'lean', '--prediction', 'bounded']);
+  assert.ok(cli.leanPackets > 0 && cli.leanPackets < cli.packetsSent, `${cli.leanPackets} of ${cli.packetsSent}`);
+  assert.ok(note.includes(`, ${cli.leanPackets} of ${cli.packetsSent} packets with lean payloads, median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`), note);
+  assert.match(note, /^20 drones flying 2 minutes each, /);
+  assert.deepEqual(problems, []);
+});
+
 test('the regional plan: US915 offers only its data rates, asks for an interval, and its numbers are the CLI\'s', async () => {
   const { page, problems } = await open('?sf=9&bw=125');
   const before = await tableHtml(page);
