@@ -1,7 +1,7 @@
 //! Generated documents stay what their commands generate: a checked-in table that the code no
 //! longer produces would be a claim nobody can reproduce. The commands are read from
 //! `package.json`'s scripts (`cargo run --release --quiet -- ARGS > FILE`), so the test runs
-//! exactly what `npm run NAME` runs. Only the quick one is checked here (`reproduce`, ~5 s); the
+//! exactly what `npm run NAME` runs. Only the quickest one is checked here (`reproduce`, ~30 s); the
 //! sweeps that take from 20 s to minutes (`adr`, `senders`, `mission`, `payloads`, `swarm`) are regenerated
 //! by running their scripts.
 

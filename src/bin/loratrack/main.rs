@@ -16,6 +16,8 @@ mod payloads_doc;
 #[cfg(not(target_arch = "wasm32"))]
 mod real_flight_rates;
 #[cfg(not(target_arch = "wasm32"))]
+mod real_flight_variants;
+#[cfg(not(target_arch = "wasm32"))]
 mod reproduction;
 #[cfg(not(target_arch = "wasm32"))]
 mod senders_doc;

@@ -11,7 +11,8 @@ use loratrack::{
 /// each p95 rests on few forecasts, and the largest of three stations' ratios then overstates
 /// them (at SF9 the worst ratio was 1.02× over eight seeds, 1.11× over sixteen, 1.02× over
 /// sixty-four; at SF12, with about one packet a seed, 2.28× over sixteen and 1.63× over
-/// sixty-four). `npm run reproduce` takes ~15 s with 64 instead of ~6 s with 16.
+/// sixty-four). This section takes ~15 s with 64 instead of ~6 s with 16, and so does
+/// `real_flight_variants`, which pools as many.
 pub const RATE_SEEDS: u32 = 64;
 
 /// Gateway distance, m: near enough that nearly every packet arrives at every rate.

@@ -116,12 +116,15 @@ pub(crate) fn sweep(a: SweepArgs) -> Result<String, ApiError> {
     }
     if a.markdown {
         let real = real_flight_runs(a.seed, &predictions, &model)?;
-        let rates = if predictions.contains(&Prediction::Bounded) {
-            crate::real_flight_rates::runs(a.seed, &model)?
+        let (rates, variants) = if predictions.contains(&Prediction::Bounded) {
+            (
+                crate::real_flight_rates::runs(a.seed, &model)?,
+                crate::real_flight_variants::runs(a.seed, &model)?,
+            )
         } else {
-            Vec::new()
+            (Vec::new(), Vec::new())
         };
-        return Ok(crate::reproduction::markdown(&r, &real, &rates));
+        return Ok(crate::reproduction::markdown(&r, &real, &rates, &variants));
     }
     let mut out = format!(
         "paper sweep: synthetic set ({:.0} s), 250 kHz, no LoRaWAN overhead, seed {}\n",
