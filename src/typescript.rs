@@ -200,6 +200,10 @@ fn generated() -> String {
     out.push_str(&format!(
         "\n/** Every regional plan's data rates and limits, as the core checks them (src/lora/region.rs). */\nexport const PLANS: Plan[] = {plans};\n"
     ));
+    out.push_str(&format!(
+        "\n/** How many of the drone filter's settled standard deviations a manoeuvre field (a, ω, ψ) may reach and still be left out of a lean payload (src/sim/sender/payload.rs). */\nexport const LEAN_SIGNIFICANCE = {};\n",
+        crate::sim::LEAN_SIGNIFICANCE
+    ));
     out
 }
 

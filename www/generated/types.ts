@@ -1918,3 +1918,6 @@ export const PLANS: Plan[] = [
     "rawLora": false
   }
 ];
+
+/** How many of the drone filter's settled standard deviations a manoeuvre field (a, ω, ψ) may reach and still be left out of a lean payload (src/sim/sender/payload.rs). */
+export const LEAN_SIGNIFICANCE = 10;
