@@ -223,8 +223,13 @@ impl Read<'_> {
         }
     }
 
-    /// Adds data line `line`'s quantities, once they pass [`Read::check`].
+    /// Adds data line `line`'s quantities, once they pass [`Read::check`]. A row that repeats
+    /// the one before it exactly, time and all (a logger that wrote a sample twice), is the same
+    /// sample and is passed over; a repeated time with other values stays refused.
     fn push(&mut self, line: usize, row: [f64; 10]) -> Result<(), TrajectoryError> {
+        if self.repeats_last(&row) {
+            return Ok(());
+        }
         self.check(line, &row)?;
         self.t.push(row[0]);
         self.pos.push([row[1], row[2], row[3]]);
@@ -237,6 +242,18 @@ impl Read<'_> {
             self.line_numbers.push(line);
         }
         Ok(())
+    }
+
+    /// Whether `row` holds exactly the values of the row read last.
+    fn repeats_last(&self, row: &[f64; 10]) -> bool {
+        let (Some(&t), Some(pos)) = (self.t.last(), self.pos.last()) else {
+            return false;
+        };
+        let same = |a: &[f64], b: &[f64]| a == b;
+        t == row[0]
+            && same(pos, &row[1..4])
+            && (!self.has_vel || self.vel.last().is_some_and(|v| same(v, &row[4..7])))
+            && (!self.has_acc || self.acc.last().is_some_and(|a| same(a, &row[7..10])))
     }
 
     /// Refuses a row whose time does not follow the last one's, or whose position, speed or
@@ -548,6 +565,25 @@ mod tests {
         assert!((tr.vel[i][1] - tr.t[i]).abs() < 1e-9);
         assert!((tr.acc[i][1] - 1.0).abs() < 1e-6);
         assert!((0..tr.len()).all(|i| tr.state(i).iter().all(|v| v.is_finite())));
+    }
+
+    #[test]
+    fn a_row_written_twice_is_read_once_and_a_repeated_time_with_other_values_refused() {
+        let text = csv(20);
+        let lines: Vec<&str> = text.lines().collect();
+        let mut twice = lines.clone();
+        twice.insert(8, lines[7]);
+        let read = parse_csv(&(twice.join("\n") + "\n"), "twice").unwrap();
+        let once = parse_csv(&text, "once").unwrap();
+        assert_eq!(
+            (read.t.clone(), read.pos.clone()),
+            (once.t.clone(), once.pos.clone())
+        );
+        let mut other = lines.clone();
+        let moved = format!("{},99", lines[7].rsplit_once(',').unwrap().0);
+        other.insert(8, &moved);
+        let err = parse_csv(&(other.join("\n") + "\n"), "other").unwrap_err();
+        assert_eq!(err.to_string(), "line 9: time is not strictly increasing");
     }
 
     #[test]
