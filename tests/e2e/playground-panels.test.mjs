@@ -189,6 +189,8 @@ test('a swarm of lean drones says how many of its packets went lean, as the CLI 
   assert.ok(cli.leanPackets > 0 && cli.leanPackets < cli.packetsSent, `${cli.leanPackets} of ${cli.packetsSent}`);
   assert.ok(note.includes(`, ${cli.leanPackets} of ${cli.packetsSent} packets with lean payloads, median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`), note);
   assert.match(note, /^20 drones flying 2 minutes each, /);
+  // The largest swarm is counted with full frames, and says so.
+  assert.ok(note.includes(`Largest swarm one gateway serves at these settings (with full frames: the lean ones, shorter, leave room for more), every drone sending as often as its duty cycle allows: ${cli.largestSwarm.aloha1} drone`), note);
   assert.deepEqual(problems, []);
 });
 
