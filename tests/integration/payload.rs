@@ -140,3 +140,57 @@ fn a_result_names_the_shortest_lean_frame_beside_the_full_one() {
     assert_eq!(frame.interval, dr / 0.01);
     assert!(frame.time_on_air < m.time_on_air && frame.interval < m.interval);
 }
+
+#[test]
+fn the_cli_says_what_lean_packets_took_and_what_the_largest_swarm_counts() {
+    let text = |out: std::process::Output| {
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let one = text(crate::cli(&[
+        "simulate",
+        "--synthetic",
+        "all",
+        "--sf",
+        "10",
+        "--bw",
+        "125",
+        "--model",
+        "3d-ctra",
+        "--payload",
+        "lean",
+    ]));
+    let line = one
+        .lines()
+        .find(|l| l.contains("lean payload:"))
+        .expect(&one);
+    assert!(
+        line.ends_with("(shortest 370.7 ms on air, 37.07 s interval)"),
+        "{line}"
+    );
+    let swarm = [
+        "swarm",
+        "--drones",
+        "6",
+        "--duration",
+        "120",
+        "--sf",
+        "10",
+        "--bw",
+        "125",
+    ];
+    let lean = text(crate::cli(&[&swarm[..], &["--payload", "lean"]].concat()));
+    let full = text(crate::cli(&swarm));
+    let largest = |t: &str| {
+        t.lines()
+            .find(|l| l.starts_with("largest swarm"))
+            .unwrap()
+            .to_string()
+    };
+    assert!(largest(&lean).ends_with("(full frames; the lean ones leave room for more)"));
+    assert!(!largest(&full).contains("lean"));
+}

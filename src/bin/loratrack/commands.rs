@@ -717,7 +717,7 @@ fn swarm_text(r: &SwarmReport) -> String {
          channel access      {}\n\
          packets sent        {}{}{}\n\
          collision rate      {:.4}  (pure-ALOHA formula at the duty cycle achieved: {:.4})\n\
-         largest swarm       {} drone{} at <= 1 % collisions, {} at <= 10 % (ALOHA formula); {} slotted, with none\n\
+         largest swarm       {} drone{} at <= 1 % collisions, {} at <= 10 % (ALOHA formula); {} slotted, with none{}\n\
          delivery ratio      {:.4}  ({} distinct packets, {} duplicate{} removed)\n\
          below sensitivity   {}\n\
          no demodulator      {}\n\
@@ -755,6 +755,11 @@ fn swarm_text(r: &SwarmReport) -> String {
         if r.largest_swarm.aloha1 == 1 { "" } else { "s" },
         r.largest_swarm.aloha10,
         r.largest_swarm.slotted,
+        if r.lean_packets > 0 {
+            " (full frames; the lean ones leave room for more)"
+        } else {
+            ""
+        },
         d.delivery_ratio,
         d.packets_received,
         d.duplicates,
