@@ -33,6 +33,20 @@ pub struct RateRun {
     pub dr_equal: Vec<Option<f64>>,
 }
 
+/// The real flight's comparison: the Canberra flight, bounded stations of `model`, at spreading
+/// factor and bandwidth (kHz) `rate`, the gateway `distance` m away, [`RATE_SEEDS`] seeds from
+/// `seed`.
+pub fn scenario(model: &ModelChoice, (sf, bw): (i64, f64), distance: f64, seed: u64) -> Scenario {
+    let mut p = Scenario::default();
+    p.flight.sample = Some("canberra".into());
+    p.station.model = model.clone();
+    p.station.prediction = Prediction::Bounded;
+    (p.radio.sf, p.radio.bw) = (sf, bw);
+    p.channel.distance = distance;
+    (p.run.seed, p.run.seeds) = (seed, RATE_SEEDS);
+    p
+}
+
 /// The bounded stations of `model` on the Canberra flight at each of [`MISSION_RATES`], 1 km,
 /// [`RATE_SEEDS`] seeds from `seed`; and DR again at each richer station's frame length.
 pub fn runs(seed: u64, model: &ModelChoice) -> Result<Vec<RateRun>, ApiError> {
@@ -40,13 +54,7 @@ pub fn runs(seed: u64, model: &ModelChoice) -> Result<Vec<RateRun>, ApiError> {
     let dr = StationModel::Single(ModelKind::Dr);
     let mut out = Vec::new();
     for &(sf, bw) in &MISSION_RATES {
-        let mut p = Scenario::default();
-        p.flight.sample = Some("canberra".into());
-        p.station.model = model.clone();
-        p.station.prediction = Prediction::Bounded;
-        (p.radio.sf, p.radio.bw) = (sf, bw);
-        p.channel.distance = RATE_DISTANCE;
-        (p.run.seed, p.run.seeds) = (seed, RATE_SEEDS);
+        let p = scenario(model, (sf, bw), RATE_DISTANCE, seed);
         let results = api::simulate(&mut sim, &p)?.results;
         // DR again at each richer station's frame length, from the same settings. 3D-CTRA and the
         // IMM send the same 12 bytes, so one length is asked for twice; the simulator keeps the

@@ -6,9 +6,7 @@
 
 use crate::real_flight_rates::{RATE_DISTANCE, RATE_SEEDS};
 use loratrack::api::{self, ApiError};
-use loratrack::{
-    canberra_flight, ModelChoice, ModelKind, Prediction, Scenario, Simulator, StationModel,
-};
+use loratrack::{canberra_flight, ModelChoice, ModelKind, Scenario, Simulator, StationModel};
 use std::sync::Arc;
 
 /// The rates and gateway distances (SF, bandwidth kHz, m) of the section: the page's default,
@@ -109,19 +107,12 @@ pub fn runs(seed: u64, model: &ModelChoice) -> Result<Vec<VariantRun>, ApiError>
     for (name, text) in flights {
         let mut worst = Vec::new();
         for &(sf, bw, distance) in &CASES {
-            let mut p = Scenario::default();
-            match &text {
-                None => p.flight.sample = Some("canberra".into()),
-                Some(text) => {
-                    p.flight.trajectory = Some(text.clone());
-                    p.flight.trajectory_name = Some(format!("canberra, {name}"));
-                }
+            let mut p = crate::real_flight_rates::scenario(model, (sf, bw), distance, seed);
+            if let Some(text) = &text {
+                p.flight.sample = None;
+                p.flight.trajectory = Some(text.clone());
+                p.flight.trajectory_name = Some(format!("canberra, {name}"));
             }
-            p.station.model = model.clone();
-            p.station.prediction = Prediction::Bounded;
-            (p.radio.sf, p.radio.bw) = (sf, bw);
-            p.channel.distance = distance;
-            (p.run.seed, p.run.seeds) = (seed, RATE_SEEDS);
             let results = api::simulate(&mut sim, &p)?.results;
             let dr = StationModel::Single(ModelKind::Dr);
             let dr_p95 = results
