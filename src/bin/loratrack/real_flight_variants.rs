@@ -10,8 +10,9 @@ use loratrack::{canberra_flight, ModelChoice, ModelKind, Scenario, Simulator, St
 use std::sync::Arc;
 
 /// The rates and gateway distances (SF, bandwidth kHz, m) of the section: the page's default,
-/// the same across the flight's 3.3 km, and the slower rates at which a packet is 6–21 s old
-/// at most (SF9 is the slowest whose ratio holds on the flight as flown, docs/paper-reproduction.md).
+/// the same at 3.3 km, and the slower rates up to SF9, whose packets come 6–21 s apart (from
+/// SF10 on a seed of this 162 s flight brings four packets or fewer, and one flight's ratios
+/// there rest on too few forecasts to tell flights apart).
 const CASES: [(i64, f64, f64); 5] = [
     (7, 250.0, RATE_DISTANCE),
     (7, 250.0, 3300.0),
@@ -31,8 +32,9 @@ struct Variant {
 }
 
 /// The flights made from the Canberra flight: played backwards (every velocity reversed, each
-/// turn the other way), mirrored east–west, turned 90° about its origin (the gateway, east of the
-/// start, then lies across the flight's long north–south axis), and three parts of it.
+/// turn the other way), mirrored east–west, turned 90° about its origin (its long north–south
+/// axis then runs east–west, toward the gateway, which lies east of the start), and three parts
+/// of it.
 fn variants() -> Vec<Variant> {
     let f = canberra_flight();
     let rows: Vec<(f64, [f64; 3], [f64; 3])> =
@@ -146,8 +148,8 @@ pub fn markdown(runs: &[VariantRun]) -> String {
         "\n## The real flight, transformed\n\nThe Canberra flight is one flight: a station tuned \
          to it could pass on it and fail on the next. So the comparison above runs again on \
          flights made from it, on which no setting was chosen: played backwards (every velocity \
-         reversed, each turn the other way), mirrored east–west, turned 90° about its origin (the \
-         gateway, east of the start, then lies across the flight's long north–south axis), its \
+         reversed, each turn the other way), mirrored east–west, turned 90° about its origin (its \
+         long north–south axis then runs east–west, toward the gateway), its \
          first 100 s (loitering only), from 60 s on, and without the manual ACRO end (from \
          {ACRO_FROM_S} s). Bounded stations, {RATE_SEEDS} seeds pooled, the default {}-byte \
          LoRaWAN overhead. Each cell: the largest p95 of a richer station (CTRA+, 3D-CTRA, IMM) \
