@@ -57,8 +57,8 @@ function lean(text: string | false | null): string {
  * lean frame and the full one. */
 function leanTitle(m: ModelResult): string {
   if (!m.leanPackets) return '';
-  const lean = m.leanFrame;
-  const shortest = lean ? `, as short as ${(lean.timeOnAir * 1e3).toFixed(1)} ms on air with the next allowed ${lean.interval.toFixed(2)} s later` : '';
+  const frame = m.leanFrame;
+  const shortest = frame ? `, as short as ${(frame.timeOnAir * 1e3).toFixed(1)} ms on air with the next allowed ${frame.interval.toFixed(2)} s later` : '';
   return ` title="${m.leanPackets} of ${m.packetsSent} packets left out small manoeuvre fields (DR's 9 or CTRA+'s 11 bytes)${shortest}; a full packet: ${(m.timeOnAir * 1e3).toFixed(1)} ms, ${m.interval.toFixed(2)} s"`;
 }
 

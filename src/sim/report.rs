@@ -322,7 +322,7 @@ pub struct DataRateUse {
 }
 
 /// One frame length's cost on air: how long the packet occupies the channel and the duty-cycle
-/// interval it imposes before the next (reference §2).
+/// interval it imposes before the next (reference §6.1).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
