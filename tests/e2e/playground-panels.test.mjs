@@ -548,6 +548,11 @@ test('lesson "Three bytes at SF10": lean payloads send more packets and lower th
     assert.equal(col('lean_interval_s'), lean ? String(lean.interval) : '', m.model);
   }
   assert.ok(cli.results.find((m) => m.model === 'imm').leanPackets > 0);
+  // The table's picture for a slide keeps the second lines.
+  const picture = (await downloaded(page, page.getByRole('button', { name: 'Download the results table as SVG' }))).toString('utf8');
+  for (const m of cli.results.filter((r) => r.leanFrame)) {
+    for (const line of [`lean ${m.leanFrame.interval.toFixed(2)} s`, `lean ${(m.leanFrame.timeOnAir * 1e3).toFixed(1)} ms`, `${m.leanPackets} lean`]) assert.ok(picture.includes(`>${line}<`), `${m.model}: "${line}" in the picture`);
+  }
   assert.match(await page.locator('tr[data-model="imm"] td[data-field="interval"]').getAttribute('title'), /^\d+ of \d+ packets left out small manoeuvre fields .*, as short as [\d.]+ ms on air with the next allowed [\d.]+ s later; a full packet: [\d.]+ ms, [\d.]+ s$/);
   assert.match(await page.locator('#results-table caption').textContent(), /periodic sending, lean payloads$/);
   assert.deepEqual(problems, []);
