@@ -11,6 +11,7 @@ use super::sender::{LeanPayload, Sender};
 use super::streams::DroneStreams;
 use crate::codec::{decode, encode};
 use crate::lora::{Channel, DutyCycle, Outcome};
+use crate::models::ModelKind;
 use crate::rng::Rng;
 use crate::trajectory::Trajectory;
 
@@ -286,14 +287,26 @@ impl<'a> Flier<'a> {
             return frame;
         };
         let own = self.estimates.model();
-        let framed = |kind| radio.with_payload(&frame, own, kind).ok();
+        // Each smaller payload's frame (DR's, CTRA+'s) is built once, to be weighed and, if
+        // chosen, sent; the drone's own is `frame`.
+        let slot = |kind: ModelKind| usize::from(kind == ModelKind::CtraPlus);
+        let mut smaller: [Option<Frame>; 2] = [None; 2];
         let kind = lean.choose(&estimate, |kind| {
-            framed(kind).map_or(f64::INFINITY, |f| f.time_on_air)
+            if kind == own {
+                return frame.time_on_air;
+            }
+            match radio.with_payload(&frame, own, kind) {
+                Ok(f) => {
+                    smaller[slot(kind)] = Some(f);
+                    f.time_on_air
+                }
+                Err(_) => f64::INFINITY,
+            }
         });
         if kind == own {
             frame
         } else {
-            framed(kind).unwrap_or(frame)
+            smaller[slot(kind)].unwrap_or(frame)
         }
     }
 

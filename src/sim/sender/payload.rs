@@ -90,7 +90,11 @@ impl LeanPayload {
 
     /// The payload for a packet carrying `estimate` (9 components, a ω ψ at 6–8), of those
     /// whose frame `time_on_air` (s) is least.
-    pub fn choose(&self, estimate: &[f64; 9], time_on_air: impl Fn(ModelKind) -> f64) -> ModelKind {
+    pub fn choose(
+        &self,
+        estimate: &[f64; 9],
+        mut time_on_air: impl FnMut(ModelKind) -> f64,
+    ) -> ModelKind {
         let own = self.model.state_len();
         let negligible = |kind: ModelKind| {
             (kind.state_len()..own)
