@@ -1,5 +1,7 @@
 //! Cells and phrases more than one generated document prints (docs/senders.md, docs/swarm.md,
-//! docs/adr.md, docs/mission.md).
+//! docs/adr.md, docs/mission.md, docs/payloads.md, docs/paper-reproduction.md).
+
+use loratrack::{ModelKind, ModelResult, StationModel};
 
 /// The MAC overhead of a trade-off sweep in words: none, as the paper sends, or LoRaWAN's.
 pub(crate) fn overhead_words(bytes: usize) -> String {
@@ -32,4 +34,27 @@ pub(crate) fn text_row(cells: &[String], widths: &[isize]) -> String {
         })
         .collect();
     padded.join(" ") + "\n"
+}
+
+/// The largest p95 of a richer station (every one but DR) over DR's among `results`, and that
+/// station's label: the real flight's test of "no richer station's p95 over 1.1× DR's". Not a
+/// number when DR is missing, or a richer station has no p95, so that a check of it fails.
+pub(crate) fn worst_p95_over_dr(results: &[ModelResult]) -> (f64, &'static str) {
+    let dr = StationModel::Single(ModelKind::Dr);
+    let dr_p95 = results
+        .iter()
+        .find(|m| m.model == dr)
+        .map_or(f64::NAN, |m| m.error3d.p95);
+    results
+        .iter()
+        .filter(|m| m.model != dr)
+        .map(|m| (m.error3d.p95 / dr_p95, m.model.label()))
+        .fold((f64::NEG_INFINITY, "—"), |worst, r| {
+            // A ratio that is not a number stays; of equals the first does.
+            if worst.0.is_nan() || r.0 <= worst.0 {
+                worst
+            } else {
+                r
+            }
+        })
 }

@@ -2,6 +2,7 @@
 //! data rate, on the whole synthetic set and on the real flight; the document docs/payloads.md
 //! (`--markdown`, `npm run payloads`; docs/beyond-the-paper.md, "Lean payloads").
 
+use crate::doc_cells::worst_p95_over_dr;
 use loratrack::api::{self, ApiError, MISSION_RATES};
 use loratrack::{
     ModelChoice, ModelKind, ModelResult, PayloadChoice, Prediction, Scenario, Simulator,
@@ -59,17 +60,6 @@ impl PayloadRun {
             .map(|m| m.error3d.p75)
             .fold(f64::INFINITY, f64::min);
         Self::p75(results, StationModel::Imm) / best
-    }
-
-    /// The richer stations' largest p95 over DR's.
-    fn worst_p95_ratio(results: &[ModelResult]) -> f64 {
-        let dr = StationModel::Single(ModelKind::Dr);
-        let dr_p95 = Self::p95(results, dr);
-        results
-            .iter()
-            .filter(|m| m.model != dr)
-            .map(|m| m.error3d.p95 / dr_p95)
-            .fold(f64::NEG_INFINITY, f64::max)
     }
 
     fn lean_share(&self) -> String {
@@ -244,10 +234,7 @@ pub fn markdown(seed: u64, seeds: u32) -> Result<String, ApiError> {
             r.distance,
             r.rate(),
             num(PayloadRun::p95(&r.full, dr)),
-            change(
-                PayloadRun::worst_p95_ratio(&r.full),
-                PayloadRun::worst_p95_ratio(&r.lean)
-            ),
+            change(worst_p95_over_dr(&r.full).0, worst_p95_over_dr(&r.lean).0),
             change(PayloadRun::p75(&r.full, c3), PayloadRun::p75(&r.lean, c3)),
             change(
                 PayloadRun::p75(&r.full, StationModel::Imm),
@@ -259,7 +246,7 @@ pub fn markdown(seed: u64, seeds: u32) -> Result<String, ApiError> {
     let within = |lean: bool| -> String {
         let over: Vec<String> = real
             .iter()
-            .filter(|r| PayloadRun::worst_p95_ratio(if lean { &r.lean } else { &r.full }) > 1.1)
+            .filter(|r| worst_p95_over_dr(if lean { &r.lean } else { &r.full }).0 > 1.1)
             .map(|r| format!("{} at {:.0} m", r.rate(), r.distance))
             .collect();
         if over.is_empty() {

@@ -4,9 +4,10 @@
 //! it and fail on the next. A section of `docs/paper-reproduction.md` (`npm run reproduce`;
 //! docs/beyond-the-paper.md).
 
+use crate::doc_cells::worst_p95_over_dr;
 use crate::real_flight_rates::{RATE_DISTANCE, RATE_SEEDS};
 use loratrack::api::{self, ApiError};
-use loratrack::{canberra_flight, ModelChoice, ModelKind, Scenario, Simulator, StationModel};
+use loratrack::{canberra_flight, ModelChoice, Scenario, Simulator};
 use std::sync::Arc;
 
 /// The rates and gateway distances (SF, bandwidth kHz, m) of the section: the page's default,
@@ -116,18 +117,7 @@ pub fn runs(seed: u64, model: &ModelChoice) -> Result<Vec<VariantRun>, ApiError>
                 p.flight.trajectory_name = Some(format!("canberra, {name}"));
             }
             let results = api::simulate(&mut sim, &p)?.results;
-            let dr = StationModel::Single(ModelKind::Dr);
-            let dr_p95 = results
-                .iter()
-                .find(|m| m.model == dr)
-                .map_or(f64::NAN, |m| m.error3d.p95);
-            worst.push(
-                results
-                    .iter()
-                    .filter(|m| m.model != dr)
-                    .map(|m| (m.error3d.p95 / dr_p95, m.model.label()))
-                    .fold((f64::NAN, "—"), |a, b| if a.0 >= b.0 { a } else { b }),
-            );
+            worst.push(worst_p95_over_dr(&results));
         }
         out.push(VariantRun { name, worst });
     }
