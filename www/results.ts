@@ -36,6 +36,7 @@ export function renderTable(r: SimReport): void {
     <thead><tr><th scope="col">model</th><th scope="col" title="Mean 3D distance between the station's estimate and the truth">mean</th><th scope="col" title="Half the time the error is below this">median</th><th scope="col" title="75th percentile: 3 times in 4 the error is below this (the paper's headline statistic)">p75</th><th scope="col" title="95th percentile: the bad moments, typically long gaps">p95</th><th scope="col">max</th><th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th>
     <th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th><th scope="col" title="Time between packets: time on air divided by the 1 % duty cycle">interval</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th></tr></thead>
     <tbody>${rows}</tbody></table></div>`;
+  fitIntervals();
   $('#ttn').innerHTML = ttnNote(r);
   // One gateway and no downlink: the table's delivery column already says it all. Each station's
   // run is its own (the drone sends that station's payload): the note tells the first station's.
@@ -45,6 +46,36 @@ export function renderTable(r: SimReport): void {
   $('#network-note').textContent = networkShown ? networkNote(first, r.results.length > 1) : '';
 
   renderRateUse(r);
+}
+
+/**
+ * Lets the p75's interval break after its dash (`.tight`) where the table would otherwise scroll
+ * sideways: a wide interval (ADR at 5 km over eight seeds, "(76.52–408.85)") pushed the charge per
+ * uplink out of a 1280 px window. Only then: were it always allowed, the table's layout would
+ * narrow every column that can wrap and stack short intervals on two lines where the headers
+ * alone make room (the default table at 1024 px). Checked again when the table's box changes width.
+ */
+function fitIntervals(): void {
+  watchWidth();
+  const wrap = document.querySelector<HTMLElement>('#results-table .table-wrap');
+  if (!wrap) return;
+  wrap.classList.remove('tight');
+  if (wrap.scrollWidth > wrap.clientWidth + 1) wrap.classList.add('tight');
+}
+
+let widthWatched = false;
+let fittedWidth = -1;
+/** Fits the table again when its box changes width (a phone turned, a window resized); not when
+ * its height changes, which `.tight` does, so the observer cannot feed itself. */
+function watchWidth(): void {
+  if (widthWatched) return;
+  widthWatched = true;
+  new ResizeObserver(([entry]) => {
+    const width = Math.round(entry.contentRect.width);
+    if (width === fittedWidth) return;
+    fittedWidth = width;
+    fitIntervals();
+  }).observe($('#results-table'));
 }
 
 /** A cell's second line, under a full packet's number, for what lean packets did (as the p75's

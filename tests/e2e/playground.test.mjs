@@ -828,6 +828,34 @@ test('with Advanced open the page scrolls, not the settings, and the results tab
   assert.deepEqual(problems, []);
 });
 
+test('a wide p75 interval breaks after its dash at 1280 px instead of pushing the table sideways, and stays one line on the slide', async () => {
+  // ADR at 5 km over eight seeds: p75 200 m, its interval 77–409 m, the widest cell of the row.
+  const { page, problems } = await open('?adr=tracking&distance=5000&model=3d-ctra&seeds=8', { width: 1280, height: 800 });
+  await idle(page);
+  const cli = nativeJson(['simulate', '--synthetic', '1', '--adr', 'tracking', '--distance', '5000', '--model', '3d-ctra', '--seeds', '8']);
+  const [shown] = await shownP75(page, ['3d-ctra']);
+  assert.deepEqual(shown.ci, cli.results[0].ci95.p75.map((v) => Number(v.toFixed(2))));
+  const box = await page.locator('#results-table .table-wrap').evaluate((el) => ({ scroll: el.scrollWidth, client: el.clientWidth }));
+  assert.ok(box.scroll <= box.client + 1, `the table is ${box.scroll} px wide in a ${box.client} px box`);
+  // The last column, the charge per uplink, is on screen without scrolling.
+  const mc = await page.locator('#results-table tr[data-model="3d-ctra"] td:last-child').boundingBox();
+  const wrap = await page.locator('#results-table .table-wrap').boundingBox();
+  assert.ok(mc.x + mc.width <= wrap.x + wrap.width + 1, `the last cell ends at ${mc.x + mc.width}, the box at ${wrap.x + wrap.width}`);
+  const picture = (await downloaded(page, page.getByRole('button', { name: 'Download the results table as SVG' }))).toString('utf8');
+  const interval = `(${shown.ci[0].toFixed(2)}–${shown.ci[1].toFixed(2)})`;
+  assert.ok(picture.includes(`>${interval}<`), `"${interval}" on one line of the picture`);
+  // On a wider screen the interval has room again and stays on one line; back at 1280 px it breaks.
+  const height = () => page.locator('#results-table tr[data-model="3d-ctra"] .ci').evaluate((el) => el.getBoundingClientRect().height);
+  const breaks = (on) => until(page, (tight) => !!document.querySelector('#results-table .table-wrap.tight') === tight, on);
+  const twoLines = await height();
+  await page.setViewportSize({ width: 1920, height: 1080 });
+  await breaks(false);
+  assert.ok((await height()) < 0.7 * twoLines, `the interval ${await height()} px high on one line, ${twoLines} px on two`);
+  await page.setViewportSize({ width: 1280, height: 800 });
+  await breaks(true);
+  assert.deepEqual(problems, []);
+});
+
 test('the progress bar goes when the results come, and busy is cleared when all is drawn', async () => {
   const { page, problems } = await open();
   const before = await tableHtml(page);
