@@ -35,6 +35,17 @@ pub enum PayloadChoice {
 }
 
 impl PayloadChoice {
+    /// `--payload`'s help, with the significance the rule uses ([`LEAN_SIGNIFICANCE`]).
+    #[cfg(cli)]
+    pub fn cli_help() -> String {
+        format!(
+            "Payload: full (the model's own 9, 11 or 12 bytes, the paper) or lean (the smallest \
+             of the three that carries every manoeuvre field over {LEAN_SIGNIFICANCE} standard \
+             deviations of the drone's estimate, where its frame is shorter on air: the next \
+             packet then comes sooner)."
+        )
+    }
+
     /// The CLI/JS name.
     pub fn name(self) -> &'static str {
         match self {

@@ -70,7 +70,7 @@ pub struct Sending {
             long,
             value_enum,
             default_value_t,
-            help = "Payload: full (the model's own 9, 11 or 12 bytes, the paper) or lean (the smallest of the three that carries every manoeuvre field over 10 standard deviations of the drone's estimate, where its frame is shorter on air: the next packet then comes sooner)."
+            help = PayloadChoice::cli_help()
         )
     )]
     pub payload: PayloadChoice,
