@@ -40,6 +40,17 @@ impl Shadowing {
         self.last = Some(s);
         s
     }
+
+    /// The shadowing (dB) `moved_m` metres past the previous sample, drawn from `rng` as
+    /// [`Self::next`] draws it, but left out of the process: the next sample follows the
+    /// previous one as if this one had not been drawn. A side path's draw (the downlink a gateway
+    /// sends between two uplinks: it sees the reciprocal channel of the uplink before it) then
+    /// leaves every later uplink's shadowing as it was, so runs with and without downlinks meet
+    /// the same fades (common random numbers). Its correlation with the uplinks after it is lost,
+    /// a fraction ρ of it where the side path lies within a decorrelation distance of them.
+    pub fn aside(&self, moved_m: f64, rng: &mut Rng) -> f64 {
+        self.clone().next(moved_m, rng)
+    }
 }
 
 #[cfg(test)]
@@ -68,6 +79,23 @@ mod tests {
         let lag1 = xs.windows(2).map(|w| w[0] * w[1]).sum::<f64>() / (n - 1.0) / var;
         let expected = (-5.0f64 / 110.0).exp();
         assert!((lag1 - expected).abs() < 0.02, "lag-1 {lag1} vs {expected}");
+    }
+
+    #[test]
+    fn a_draw_aside_leaves_the_process_as_it_was_and_follows_the_last_sample() {
+        let (mut with, mut without) = (Shadowing::new(4.0, 110.0), Shadowing::new(4.0, 110.0));
+        let (mut a, mut b) = (Rng::new(3), Rng::new(3));
+        let mut side = Rng::new(4);
+        let mut pairs = Vec::new();
+        for _ in 0..20_000 {
+            let up = with.next(20.0, &mut a);
+            assert_eq!(up, without.next(20.0, &mut b));
+            pairs.push((up, with.aside(1.0, &mut side)));
+        }
+        // One metre on, the side draw is the uplink's to within ρ = e^(-1/110).
+        let n = pairs.len() as f64;
+        let corr = pairs.iter().map(|(u, d)| u * d).sum::<f64>() / n / 16.0;
+        assert!(corr > 0.97, "correlation {corr}");
     }
 
     #[test]

@@ -109,7 +109,7 @@ impl<'a> Flier<'a> {
             .enumerate()
             .map(|(g, &at)| {
                 let rng = first.take().unwrap_or_else(|| streams.gateway(g));
-                Link::new(air.channel, at, rng)
+                Link::new(air.channel, at, rng, streams.downlink(g))
             })
             .collect();
         let clock = if air.timing.is_exact() {

@@ -14,6 +14,8 @@ pub struct Link {
     /// Where the drone was at the last shadowing draw.
     last_pos: Option<[f64; 3]>,
     rng: Rng,
+    /// The downlinks' own draws ([`Shadowing::aside`]).
+    downlink_rng: Rng,
 }
 
 /// A received power and the 3D distance it was received over.
@@ -26,14 +28,16 @@ pub struct Reception {
 }
 
 impl Link {
-    /// A link to a gateway at `gateway` (flight frame, m) whose shadowing draws from `rng`.
-    pub fn new(channel: &Channel, gateway: [f64; 3], rng: Rng) -> Self {
+    /// A link to a gateway at `gateway` (flight frame, m) whose uplinks' shadowing draws from
+    /// `rng` and its downlinks' from `downlink_rng`.
+    pub fn new(channel: &Channel, gateway: [f64; 3], rng: Rng, downlink_rng: Rng) -> Self {
         let p = channel.params();
         Link {
             gateway,
             shadowing: Shadowing::new(p.shadowing_sigma_db, p.decorrelation_distance),
             last_pos: None,
             rng,
+            downlink_rng,
         }
     }
 
@@ -55,10 +59,15 @@ impl Link {
         }
     }
 
-    /// A downlink at the gateway's power to the drone at `pos`.
+    /// A downlink at the gateway's power to the drone at `pos`: the reciprocal channel of the
+    /// uplink before it, its shadowing continued over the metres flown since, drawn aside
+    /// ([`Shadowing::aside`]) so that the uplinks after it meet the fades they would meet without
+    /// it. A run whose network answers (ADR) and one whose network is silent (a fixed rate) are
+    /// then paired frame by frame wherever their uplinks go at the same moments.
     pub fn downlink(&mut self, channel: &Channel, pos: [f64; 3]) -> Reception {
         let d = distance(&pos, &self.gateway);
-        let s = self.shadow_at(pos);
+        let moved = self.last_pos.map_or(0.0, |q| distance(&pos, &q));
+        let s = self.shadowing.aside(moved, &mut self.downlink_rng);
         Reception {
             distance: d,
             rx_dbm: GATEWAY_TX_POWER_DBM - channel.path_loss_db(d) + s,

@@ -15,6 +15,8 @@ pub const LAYOUT_STREAM: u64 = 0x4C41_594F; // "LAYO"
 pub const CLOCK_STREAM: u64 = 0x434C_4F43; // "CLOC"
 /// The shadowing of every gateway after the first.
 const GATEWAY_STREAM: u64 = 0x4741_5445; // "GATE"
+/// The shadowing each gateway's downlinks meet, apart from the uplinks'.
+const DOWNLINK_STREAM: u64 = 0x444F_574E; // "DOWN"
 
 /// One drone's share of a run's randomness: the run's seed and the drone's stream of it (the
 /// flight's index in a `simulate` run, the drone's in a swarm). Every draw for that drone (its
@@ -49,6 +51,14 @@ impl DroneStreams {
     /// The shadowing of gateway `g` ≥ 1.
     pub fn gateway(self, g: usize) -> Rng {
         Rng::derive(self.seed ^ GATEWAY_STREAM ^ ((g as u64) << 40), self.stream)
+    }
+
+    /// The shadowing of gateway `g`'s downlinks (`g` = 0 for the first).
+    pub fn downlink(self, g: usize) -> Rng {
+        Rng::derive(
+            self.seed ^ DOWNLINK_STREAM ^ ((g as u64) << 40),
+            self.stream,
+        )
     }
 
     /// Each packet's uplink channel.
