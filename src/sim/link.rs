@@ -74,3 +74,37 @@ impl Link {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lora::ChannelParams;
+
+    #[test]
+    fn downlinks_leave_the_uplinks_fades_as_they_were() {
+        let channel = Channel::new(ChannelParams::default()).unwrap();
+        let gateway = [3000.0, 0.0, 0.0];
+        let link = |downlinks| Link::new(&channel, gateway, Rng::new(5), downlinks);
+        let (mut answered, mut silent) = (link(Rng::new(6)), link(Rng::new(7)));
+        let mut downlinks = Vec::new();
+        for k in 0..200 {
+            let pos = [k as f64 * 8.0, 0.0, 50.0];
+            let up = answered.uplink(&channel, pos, 0.0);
+            assert_eq!(up, silent.uplink(&channel, pos, 0.0), "uplink {k}");
+            if k % 3 == 0 {
+                // One second later, 8 m on: the reciprocal channel, nearly the uplink's fade.
+                let next = [pos[0] + 8.0, 0.0, 50.0];
+                let down = answered.downlink(&channel, next);
+                let fade =
+                    |r: Reception, tx: f64| r.rx_dbm - (tx - channel.path_loss_db(r.distance));
+                downlinks.push((
+                    fade(up, channel.params().tx_power_dbm),
+                    fade(down, GATEWAY_TX_POWER_DBM),
+                ));
+            }
+        }
+        let n = downlinks.len() as f64;
+        let corr = downlinks.iter().map(|(u, d)| u * d).sum::<f64>() / n / 16.0;
+        assert!(corr > 0.8, "uplink–downlink fade correlation {corr}");
+    }
+}
