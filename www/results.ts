@@ -1,10 +1,10 @@
 // The results panel: the table of statistics with their intervals, the verdict on which station
 // is best (only when the intervals say so), the baseline's differences, and the notes under the
 // table. Reads the page's state from the store.
-import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type SimReport } from './loratrack';
+import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, linkDocs } from './dom';
 import { caption, fmt, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
-import { overheadBytes } from './state';
+import { DEFAULTS, overheadBytes, plan } from './state';
 import { store } from './store';
 
 /** The results table, the verdict on it, and the notes under it (network, data rates, TTN). */
@@ -34,7 +34,7 @@ export function renderTable(r: SimReport): void {
   $('#results-table').innerHTML = `<div class="table-wrap" tabindex="0" role="region" aria-label="Results table"><table class="results">
     <caption>3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet, over ${r.config.flights} flight${r.config.flights === 1 ? '' : 's'} × ${r.config.seeds} seed${r.config.seeds === 1 ? '' : 's'}; overhead ${r.config.overhead} B; ${prediction(r.config)}${sendsAsPublished(r.config) ? '' : `; ${sending(r.config)}`}</caption>
     <thead><tr><th scope="col">model</th><th scope="col" title="Mean 3D distance between the station's estimate and the truth">mean</th><th scope="col" title="Half the time the error is below this">median</th><th scope="col" title="75th percentile: 3 times in 4 the error is below this (the paper's headline statistic)">p75</th><th scope="col" title="95th percentile: the bad moments, typically long gaps">p95</th><th scope="col">max</th><th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th>
-    <th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th><th scope="col" title="Time between packets: time on air divided by the 1 % duty cycle">interval</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th></tr></thead>
+    <th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th><th scope="col" title="${intervalRule(r.config)}">interval</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th></tr></thead>
     <tbody>${rows}</tbody></table></div>`;
   fitIntervals();
   $('#ttn').innerHTML = ttnNote(r);
@@ -76,6 +76,23 @@ function watchWidth(): void {
     fittedWidth = width;
     fitIntervals();
   }).observe($('#results-table'));
+}
+
+/** What the interval column rests on under the run's plan and sending (its header's tooltip): the
+ * duty cycle set, listen before talk's airtime, or the interval set where the plan has none; never
+ * less than fair use leaves (the core's `AccessSettings::duty_cycle_for`). */
+export function intervalRule(c: Pick<RunConfig, 'region' | 'access' | 'fairUse' | 'interval' | 'dutyCycle' | 'sender' | 'dutyCycleMode'>): string {
+  const p = plan(c.region);
+  const fair = c.fairUse === 'off' ? '' : `, or longer where ${c.fairUse.toUpperCase()} fair use leaves less airtime`;
+  const rule =
+    p.dutyCycle === null
+      ? `the ${c.interval ?? DEFAULTS.interval} s set (${p.label} has no duty cycle)`
+      : c.access === 'lbt'
+        ? "time on air divided by listen before talk's share of the air (100 s per hour)"
+        : `time on air divided by the ${+(c.dutyCycle * 100).toPrecision(3)} % duty cycle`;
+  const error = c.sender === 'error' ? '. The shortest: error-triggered sending waits longer while the station’s forecast holds' : '';
+  const budget = c.dutyCycleMode === 'budget' ? '. On average: the budget rule lets saved airtime go sooner, in a burst' : '';
+  return `Time between packets: ${rule}${fair}${error}${budget}`;
 }
 
 /** A cell's second line, under a full packet's number, for what lean packets did (as the p75's
