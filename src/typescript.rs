@@ -6,6 +6,7 @@
 use crate::api::*;
 use crate::lora::{
     AdrMode, ChannelAccess, DutyCycleMode, FairUse, LdroMode, Plan, PlanRate, Region,
+    ShadowingModel,
 };
 use crate::metrics::{Boxplot, Intervals, Summary, WholeFlightError};
 use crate::models::ModelKind;
@@ -56,6 +57,7 @@ fn decls() -> Vec<String> {
         PlanRate::decl(&c),
         Plan::decl(&c),
         FairUse::decl(&c),
+        ShadowingModel::decl(&c),
         ChannelAccess::decl(&c),
         SfPlan::decl(&c),
         Schedule::decl(&c),

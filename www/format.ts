@@ -34,13 +34,14 @@ export const sendsAsPublished = (s: Pick<Settings, 'sender' | 'dutyCycleMode'> &
 const ADVANCED = ['cr', 'txPower', 'pathLossExponent', 'shadowing', 'sensorRate', 'step', 'eta'] as const;
 
 function advanced(s: Settings): string {
-  return ADVANCED.filter((k) => s[k] !== DEFAULTS[k])
+  const named = ADVANCED.filter((k) => s[k] !== DEFAULTS[k])
     .map((k) => {
       if (k === 'cr') return `, coding rate 4/${4 + s.cr}`;
       const { label, unit } = LIMITS[k];
       return `, ${label.charAt(0).toLowerCase()}${label.slice(1)} ${s[k]}${unit ? ` ${unit}` : ''}`;
     })
     .join('');
+  return `${named}${s.shadowingModel === 'field' ? ', shadowing fixed in space' : ''}`;
 }
 
 /** Where the gateways stand: the default gateway's distance, or the sites given (the distance

@@ -4,7 +4,7 @@
 // both generated into www/generated/types.ts, so the form, the URL checks, the CLI help and the
 // core's validation cannot disagree.
 import type { SimulateRequest, SweepPoint } from './worker';
-import { CHOICE_DEFAULTS, OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type HeadingNoise, type ModelChoice, type NumberOption, type PayloadChoice, type Plan, type Prediction, type Region, type SimulateParams } from './loratrack';
+import { CHOICE_DEFAULTS, OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type HeadingNoise, type ModelChoice, type NumberOption, type PayloadChoice, type Plan, type Prediction, type Region, type ShadowingModel, type SimulateParams } from './loratrack';
 
 export type FlightChoice = 'synthetic' | 'all' | 'canberra' | 'csv';
 
@@ -40,6 +40,8 @@ export interface Settings {
   txPower: number;
   pathLossExponent: number;
   shadowing: number;
+  /** Shadowing along the drone's path (the default) or fixed in space. */
+  shadowingModel: ShadowingModel;
   sensorRate: number;
   step: number;
   eta: number;
@@ -83,6 +85,7 @@ export const DEFAULTS: Settings = {
   txPower: def('txPower'),
   pathLossExponent: def('pathLossExponent'),
   shadowing: def('shadowing'),
+  shadowingModel: CHOICE_DEFAULTS.shadowingModel,
   sensorRate: def('sensorRate'),
   step: def('step'),
   eta: def('eta'),
@@ -277,6 +280,7 @@ export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { te
     txPower: s.txPower,
     pathLossExponent: s.pathLossExponent,
     shadowing: s.shadowing,
+    shadowingModel: s.shadowingModel,
     sensorRate: s.sensorRate,
     step: s.step,
     eta: s.eta,
@@ -361,6 +365,7 @@ export function fromQuery(search: string): { settings: Settings; problems: strin
   choice('region', PLANS.map((p) => p.region));
   choice('access', ['duty-cycle', 'lbt']);
   choice('fairUse', ['off', 'ttn']);
+  choice('shadowingModel', ['path', 'field']);
   // An uploaded CSV cannot travel in a URL; such links open the default flight.
   choice('flight', ['synthetic', 'all', 'canberra']);
   if (q.get('lorawan') === 'false') s.lorawan = false;

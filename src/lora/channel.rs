@@ -1,6 +1,6 @@
 //! Link budget: log-distance path loss and gateway sensitivity (reference §6, ns-3 `lorawan` defaults).
 
-use super::{Bandwidth, LoraError, SpreadingFactor};
+use super::{Bandwidth, LoraError, ShadowingModel, SpreadingFactor};
 use crate::math;
 use serde::{Deserialize, Serialize};
 
@@ -20,6 +20,8 @@ pub struct ChannelParams {
     pub shadowing_sigma_db: f64,
     /// Decorrelation distance of shadowing along the flight path, m (Gudmundson 1991; ns-3 uses 110 m).
     pub decorrelation_distance: f64,
+    /// Whether shadowing varies along the path or is fixed in space.
+    pub shadowing_model: ShadowingModel,
     /// Gateway antenna height above ground (z = 0), m.
     pub gateway_height: f64,
 }
@@ -33,6 +35,7 @@ impl Default for ChannelParams {
             path_loss_exponent: opt::PATH_LOSS_EXPONENT.default,
             shadowing_sigma_db: opt::SHADOWING.default,
             decorrelation_distance: 110.0,
+            shadowing_model: ShadowingModel::Path,
             gateway_height: opt::GATEWAY_HEIGHT.default,
         }
     }

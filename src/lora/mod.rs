@@ -17,6 +17,7 @@ pub mod lbt;
 mod reception;
 mod region;
 mod shadowing;
+mod shadowing_field;
 mod snr;
 
 pub use adr::{
@@ -52,4 +53,5 @@ pub use lbt::ChannelAccess;
 pub use reception::{audible, decide, resolve, Outcome, Receiver, Uplink, SX1301_DEMODULATORS};
 pub use region::{Plan, PlanRate, Region, RegionError};
 pub use shadowing::Shadowing;
+pub use shadowing_field::{ShadowingField, ShadowingModel, FIELD_FEATURES};
 pub use snr::{demodulation_floor_db, noise_floor_dbm, snr_db, NOISE_FIGURE_DB};

@@ -1,7 +1,7 @@
-//! One drone–gateway link: log-distance path loss and shadowing correlated along the drone's
-//! path, used in both directions (the downlink sees the reciprocal channel).
+//! One drone–gateway link: log-distance path loss and shadowing, used in both directions (the
+//! downlink sees the reciprocal channel).
 
-use crate::lora::{Channel, Shadowing, GATEWAY_TX_POWER_DBM};
+use crate::lora::{Channel, Shadowing, ShadowingField, ShadowingModel, GATEWAY_TX_POWER_DBM};
 use crate::math::distance;
 use crate::rng::Rng;
 
@@ -10,12 +10,23 @@ use crate::rng::Rng;
 pub struct Link {
     /// The gateway's antenna in the drone's flight frame, m.
     pub gateway: [f64; 3],
-    shadowing: Shadowing,
-    /// Where the drone was at the last shadowing draw.
-    last_pos: Option<[f64; 3]>,
-    rng: Rng,
-    /// The downlinks' own draws ([`Shadowing::aside`]).
-    downlink_rng: Rng,
+    fades: Fades,
+}
+
+/// Where a link's shadowing comes from ([`ShadowingModel`]).
+#[derive(Clone, Debug)]
+enum Fades {
+    /// Continued frame by frame along the path.
+    Path {
+        shadowing: Shadowing,
+        /// Where the drone was at the last shadowing draw.
+        last_pos: Option<[f64; 3]>,
+        rng: Rng,
+        /// The downlinks' own draws ([`Shadowing::aside`]).
+        downlink_rng: Rng,
+    },
+    /// Fixed in space.
+    Field(ShadowingField),
 }
 
 /// A received power and the 3D distance it was received over.
@@ -29,45 +40,78 @@ pub struct Reception {
 
 impl Link {
     /// A link to a gateway at `gateway` (flight frame, m) whose uplinks' shadowing draws from
-    /// `rng` and its downlinks' from `downlink_rng`.
-    pub fn new(channel: &Channel, gateway: [f64; 3], rng: Rng, downlink_rng: Rng) -> Self {
+    /// `rng` and its downlinks' from `downlink_rng`; with shadowing fixed in space the field is
+    /// drawn from `rng` and the downlinks need no draws of their own.
+    pub fn new(channel: &Channel, gateway: [f64; 3], mut rng: Rng, downlink_rng: Rng) -> Self {
         let p = channel.params();
-        Link {
-            gateway,
-            shadowing: Shadowing::new(p.shadowing_sigma_db, p.decorrelation_distance),
-            last_pos: None,
-            rng,
-            downlink_rng,
+        let fades = match p.shadowing_model {
+            ShadowingModel::Path => Fades::Path {
+                shadowing: Shadowing::new(p.shadowing_sigma_db, p.decorrelation_distance),
+                last_pos: None,
+                rng,
+                downlink_rng,
+            },
+            ShadowingModel::Field => Fades::Field(ShadowingField::new(
+                p.shadowing_sigma_db,
+                p.decorrelation_distance,
+                &mut rng,
+            )),
+        };
+        Link { gateway, fades }
+    }
+
+    /// The shadowing of an uplink from `pos`, dB: the field's there, or the path's process
+    /// continued over the distance moved since the last draw.
+    fn uplink_fade(&mut self, pos: [f64; 3]) -> f64 {
+        match &mut self.fades {
+            Fades::Field(field) => field.at(pos),
+            Fades::Path {
+                shadowing,
+                last_pos,
+                rng,
+                ..
+            } => {
+                let moved = last_pos.map_or(0.0, |q| distance(&pos, &q));
+                *last_pos = Some(pos);
+                shadowing.next(moved, rng)
+            }
         }
     }
 
-    /// The shadowing at `pos`, continuing the process over the distance moved since the last
-    /// draw, dB.
-    fn shadow_at(&mut self, pos: [f64; 3]) -> f64 {
-        let moved = self.last_pos.map_or(0.0, |q| distance(&pos, &q));
-        self.last_pos = Some(pos);
-        self.shadowing.next(moved, &mut self.rng)
+    /// The shadowing of a downlink to `pos`, dB: the reciprocal channel. The field's there, or the
+    /// uplink before it continued over the metres flown since, drawn aside
+    /// ([`Shadowing::aside`]) so that the uplinks after it meet the fades they would meet without
+    /// it: a run whose network answers (ADR) and one whose network is silent are then paired
+    /// frame by frame wherever their uplinks go at the same moments.
+    fn downlink_fade(&mut self, pos: [f64; 3]) -> f64 {
+        match &mut self.fades {
+            Fades::Field(field) => field.at(pos),
+            Fades::Path {
+                shadowing,
+                last_pos,
+                downlink_rng,
+                ..
+            } => {
+                let moved = last_pos.map_or(0.0, |q| distance(&pos, &q));
+                shadowing.aside(moved, downlink_rng)
+            }
+        }
     }
 
     /// An uplink from `pos` sent `reduction_db` below the channel's transmit power.
     pub fn uplink(&mut self, channel: &Channel, pos: [f64; 3], reduction_db: f64) -> Reception {
         let d = distance(&pos, &self.gateway);
-        let s = self.shadow_at(pos);
+        let s = self.uplink_fade(pos);
         Reception {
             distance: d,
             rx_dbm: channel.mean_rx_power_dbm(d) + s - reduction_db,
         }
     }
 
-    /// A downlink at the gateway's power to the drone at `pos`: the reciprocal channel of the
-    /// uplink before it, its shadowing continued over the metres flown since, drawn aside
-    /// ([`Shadowing::aside`]) so that the uplinks after it meet the fades they would meet without
-    /// it. A run whose network answers (ADR) and one whose network is silent (a fixed rate) are
-    /// then paired frame by frame wherever their uplinks go at the same moments.
+    /// A downlink at the gateway's power to the drone at `pos`.
     pub fn downlink(&mut self, channel: &Channel, pos: [f64; 3]) -> Reception {
         let d = distance(&pos, &self.gateway);
-        let moved = self.last_pos.map_or(0.0, |q| distance(&pos, &q));
-        let s = self.shadowing.aside(moved, &mut self.downlink_rng);
+        let s = self.downlink_fade(pos);
         Reception {
             distance: d,
             rx_dbm: GATEWAY_TX_POWER_DBM - channel.path_loss_db(d) + s,
@@ -79,6 +123,25 @@ impl Link {
 mod tests {
     use super::*;
     use crate::lora::ChannelParams;
+
+    #[test]
+    fn in_a_field_a_place_keeps_its_fade_for_every_frame_either_way() {
+        let channel = Channel::new(ChannelParams {
+            shadowing_model: ShadowingModel::Field,
+            ..ChannelParams::default()
+        })
+        .unwrap();
+        let mut link = Link::new(&channel, [3000.0, 0.0, 0.0], Rng::new(5), Rng::new(6));
+        let here = [120.0, -40.0, 60.0];
+        let first = link.uplink(&channel, here, 0.0);
+        link.uplink(&channel, [900.0, 300.0, 60.0], 0.0);
+        assert_eq!(link.uplink(&channel, here, 0.0), first);
+        // The downlink's fade is the uplink's at the same place: the power differs only by the
+        // transmitters' powers.
+        let down = link.downlink(&channel, here);
+        let tx = channel.params().tx_power_dbm;
+        assert!((down.rx_dbm - (first.rx_dbm - tx + GATEWAY_TX_POWER_DBM)).abs() < 1e-9);
+    }
 
     #[test]
     fn downlinks_leave_the_uplinks_fades_as_they_were() {

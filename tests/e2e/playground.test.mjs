@@ -856,6 +856,25 @@ test('a wide p75 interval breaks after its dash at 1280 px instead of pushing th
   assert.deepEqual(problems, []);
 });
 
+test('shadowing fixed in space is one Advanced control away, travels in the link, and its numbers are the CLI\'s', async () => {
+  const { page, problems } = await open('?distance=3000');
+  const before = await tableHtml(page);
+  await page.locator('#advanced summary').click();
+  await page.getByLabel('Shadowing varies').selectOption('field');
+  await waitForResults(page, before);
+  await idle(page);
+  assert.match(page.url(), /shadowingModel=field/);
+  const download = JSON.parse((await downloaded(page, page.getByRole('button', { name: /JSON/ }))).toString('utf8'));
+  const cli = nativeJson(['simulate', '--synthetic', '1', '--distance', '3000', '--shadowing-model', 'field']);
+  const strip = ({ settings: _a, series: _b, config: { series: _c, ...config }, ...rest }) => ({ config, ...rest });
+  assert.deepStrictEqual(strip(download), strip(cli));
+  // Other fades than along the path: the same settings without it lose other packets.
+  const path = nativeJson(['simulate', '--synthetic', '1', '--distance', '3000']);
+  assert.notDeepStrictEqual(cli.results.map((m) => m.packetsReceived), path.results.map((m) => m.packetsReceived));
+  assert.deepEqual(await axe(page), []);
+  assert.deepEqual(problems, []);
+});
+
 test('the progress bar goes when the results come, and busy is cleared when all is drawn', async () => {
   const { page, problems } = await open();
   const before = await tableHtml(page);

@@ -62,6 +62,7 @@ mod region;
 mod robustness;
 mod schedule;
 mod sender;
+mod shadowing;
 mod sim;
 mod station;
 mod swarm;

@@ -34,6 +34,8 @@ test('a caption names the settings, the flight, every seed and the version', () 
   expect(describe({ ...DEFAULTS, region: 'us915', sf: 9, bw: 125 })).toBe('SF9, 125 kHz, US915, every 1 s, 1.0 km, paper prediction, periodic sending');
   expect(describe({ ...DEFAULTS, access: 'lbt', fairUse: 'ttn' })).toBe('SF7, 250 kHz, EU868, listen before talk, TTN fair use, 1.0 km, paper prediction, periodic sending');
   expect(describe({ ...DEFAULTS, region: 'as923', sf: 7, bw: 125 })).toMatch(/^SF7, 125 kHz, AS923, 1\.0 km/);
+  // Fades fixed in space are other fades: a caption says so.
+  expect(describe({ ...DEFAULTS, shadowingModel: 'field' })).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending, shadowing fixed in space');
   // Two error-triggered runs with different thresholds, or different link settings, must not read alike;
   // nor one that listens to its channel (the default) and one that does not.
   expect(describe({ ...DEFAULTS, sender: 'error', threshold: 20, maxInterval: 60, dutyCycleMode: 'budget' })).toBe(

@@ -42,6 +42,7 @@ function* variedSettings(): Generator<Settings> {
       lorawan: rand() < 0.5,
       cr: pick([1, 2, 3, 4]),
       txPower: pick([-10, 0, 14, 20]),
+      shadowingModel: pick(['path', 'field'] as const),
       seed: Math.floor(rand() * 1e9),
       seeds: pick([1, 10, 100]),
       gateways: rand() < 0.5 ? [] : [{ east: 5000, north: -250 }, { east: 0, north: 0, height: 30 }],

@@ -84,6 +84,8 @@ rawLora: boolean, };
 
 export type FairUse = "off" | "ttn";
 
+export type ShadowingModel = "path" | "field";
+
 export type ChannelAccess = "duty-cycle" | "lbt";
 
 export type SfPlan = "spread" | "fixed";
@@ -216,6 +218,10 @@ pathLossExponent: number,
  * Shadowing standard deviation, dB (0: off).
  */
 shadowing: number, 
+/**
+ * Whether shadowing varies along the drone's path (the default) or is fixed in space.
+ */
+shadowingModel: ShadowingModel, 
 /**
  * Antenna height of every gateway not given its own, m.
  */
@@ -1651,7 +1657,7 @@ export const OPTIONS: NumberOption[] = [
 ];
 
 /** The default of every setting chosen by name, as `Scenario::default` gives it (src/sim/scenario/mod.rs). */
-export const CHOICE_DEFAULTS: Pick<Scenario, 'access' | 'adr' | 'channelSense' | 'dutyCycleMode' | 'fairUse' | 'headingNoise' | 'model' | 'payload' | 'planPace' | 'prediction' | 'region' | 'schedule' | 'sender' | 'sfPlan'> = {
+export const CHOICE_DEFAULTS: Pick<Scenario, 'access' | 'adr' | 'channelSense' | 'dutyCycleMode' | 'fairUse' | 'headingNoise' | 'model' | 'payload' | 'planPace' | 'prediction' | 'region' | 'schedule' | 'sender' | 'sfPlan' | 'shadowingModel'> = {
   "access": "duty-cycle",
   "adr": "off",
   "channelSense": "cad",
@@ -1665,7 +1671,8 @@ export const CHOICE_DEFAULTS: Pick<Scenario, 'access' | 'adr' | 'channelSense' |
   "region": "eu868",
   "schedule": "aloha",
   "sender": "periodic",
-  "sfPlan": "spread"
+  "sfPlan": "spread",
+  "shadowingModel": "path"
 };
 
 /** Every regional plan's data rates and limits, as the core checks them (src/lora/region.rs). */

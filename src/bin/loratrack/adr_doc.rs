@@ -1,7 +1,7 @@
 //! `loratrack sweep --distances`: fixed data rates against ADR by distance, as a table or
 //! docs/adr.md.
 
-use crate::doc_cells::{overhead_arg, overhead_words};
+use crate::doc_cells::{link_args, link_words};
 use loratrack::api::{DistanceRun, DistanceSweepReport};
 use loratrack::{
     tracking_ack_limits, AdrMode, Scenario, ADR_ACK_DELAY, ADR_ACK_LIMIT, DEFAULT_ADR_HISTORY,
@@ -141,7 +141,7 @@ pub fn distances_markdown(
         model.name(),
         base.radio.sf,
         base.radio.bw,
-        overhead_arg(base.radio.overhead)
+        link_args(base)
     );
     s += &format!(
         "Setting: the whole synthetic set (30 flights, 44 min, flown one after another by one drone that stays joined, \
@@ -167,7 +167,7 @@ pub fn distances_markdown(
          fixed` compares with the fixed rate of lowest p75 at that distance.\n\n",
         model.label(),
         base.station.prediction.name(),
-        overhead_words(base.radio.overhead),
+        link_words(base),
         seeds_phrase(base),
         base.radio.sf,
         base.radio.bw,

@@ -1,22 +1,32 @@
 //! Cells and phrases more than one generated document prints (docs/senders.md, docs/swarm.md,
 //! docs/adr.md, docs/mission.md, docs/payloads.md, docs/paper-reproduction.md).
 
-use loratrack::{ModelKind, ModelResult, StationModel};
+use loratrack::{ModelKind, ModelResult, Scenario, ShadowingModel, StationModel};
 
-/// The MAC overhead of a trade-off sweep in words: none, as the paper sends, or LoRaWAN's.
-pub(crate) fn overhead_words(bytes: usize) -> String {
-    match bytes {
+/// The MAC overhead and shadowing of a trade-off sweep in words: no overhead, as the paper
+/// sends, or LoRaWAN's; shadowing along the path unless fixed in space.
+pub(crate) fn link_words(base: &Scenario) -> String {
+    let overhead = match base.radio.overhead {
         0 => "no LoRaWAN overhead".into(),
         n => format!("{n} bytes of MAC overhead per packet"),
+    };
+    match base.channel.shadowing_model {
+        ShadowingModel::Path => overhead,
+        ShadowingModel::Field => format!("{overhead}, shadowing fixed in space"),
     }
 }
 
-/// The `--overhead` argument that reproduces a trade-off sweep: none for the default 0.
-pub(crate) fn overhead_arg(bytes: usize) -> String {
-    match bytes {
+/// The arguments beyond a trade-off sweep's own that reproduce it: `--overhead` and
+/// `--shadowing-model` where they are not the defaults.
+pub(crate) fn link_args(base: &Scenario) -> String {
+    let mut args = match base.radio.overhead {
         0 => String::new(),
         n => format!(" --overhead {n}"),
+    };
+    if base.channel.shadowing_model != ShadowingModel::Path {
+        args += &format!(" --shadowing-model {}", base.channel.shadowing_model.name());
     }
+    args
 }
 
 /// One line of a plain-text table: each cell padded to its width, left-aligned where the width

@@ -1,7 +1,7 @@
 //! `loratrack sweep --senders`: the sender trade-off as a table, docs/senders.md, and its chart
 //! docs/senders.svg.
 
-use crate::doc_cells::{overhead_arg, overhead_words, text_row};
+use crate::doc_cells::{link_args, link_words, text_row};
 use crate::svg;
 use loratrack::api::{SenderPoint, SenderSweepReport, SENDER_THRESHOLDS};
 use loratrack::{DutyCycleMode, ModelResult, Scenario};
@@ -91,7 +91,7 @@ pub fn senders_markdown(
         base.radio.bw,
         base.channel.distance,
         base.station.prediction.name(),
-        overhead_arg(base.radio.overhead),
+        link_args(base),
         sender_setting(r, base),
         base.sending.max_interval,
     );
@@ -181,7 +181,7 @@ fn sender_setting(r: &SenderSweepReport, base: &Scenario) -> String {
         base.radio.sf,
         base.radio.bw,
         base.channel.distance,
-        overhead_words(base.radio.overhead),
+        link_words(base),
         base.run.seed
     )
 }

@@ -8,8 +8,8 @@ use loratrack::options as opt;
 use loratrack::{
     AccessSettings, ChannelSense, ChannelSettings, DutyCycleMode, ModelChoice, ModelKind,
     NetworkSettings, Prediction, RadioSettings, RunSettings, Scenario, Schedule, SenderKind,
-    Sending, SfPlan, SharedDroneRuns, Simulator, StationSettings, SwarmReport, SwarmSettings,
-    SyntheticChoice,
+    Sending, SfPlan, ShadowingModel, SharedDroneRuns, Simulator, StationSettings, SwarmReport,
+    SwarmSettings, SyntheticChoice,
 };
 
 #[derive(Args)]
@@ -58,6 +58,10 @@ pub struct SweepArgs {
     /// default of simulate and the page).
     #[arg(long, default_value_t = 0, conflicts_with_all = ["paper", "swarm"])]
     overhead: usize,
+    /// --senders, --distances, --mission: shadowing along the path (the default) or fixed in
+    /// space, so that every run of the sweep meets the same fades at the same places.
+    #[arg(long, value_enum, default_value_t, conflicts_with_all = ["paper", "swarm", "payloads"])]
+    shadowing_model: ShadowingModel,
     /// --senders: the budget rule's capacity in packets.
     #[arg(long, default_value_t = loratrack::DEFAULT_BURST, allow_negative_numbers = true)]
     burst: u32,
@@ -195,6 +199,7 @@ fn trade_off_base(a: &SweepArgs, model: ModelChoice, prediction: Prediction) -> 
     p.radio.bw = a.bw;
     p.radio.overhead = a.overhead;
     p.channel.distance = a.distance;
+    p.channel.shadowing_model = a.shadowing_model;
     p.sending.max_interval = a.max_interval;
     p.run.seed = a.seed;
     p.run.seeds = a.seeds;

@@ -30,7 +30,7 @@ use super::SimError;
 use crate::filter::PAPER_R_DIAGONAL;
 use crate::lora::{
     time_on_air, AdrMode, AdrParams, Channel, ChannelParams, DataRate, InterferenceModel,
-    LoraParams, Region, RegionError,
+    LoraParams, Region, RegionError, ShadowingModel,
 };
 use crate::models::ModelKind;
 use crate::options as opt;
@@ -221,6 +221,17 @@ pub struct ChannelSettings {
     /// Shadowing standard deviation, dB (0: off).
     #[cfg_attr(cli, arg(long, default_value_t = opt::SHADOWING.default, help = opt::SHADOWING.cli_help(), allow_negative_numbers = true))]
     pub shadowing: f64,
+    /// Whether shadowing varies along the drone's path (the default) or is fixed in space.
+    #[cfg_attr(
+        cli,
+        arg(
+            long,
+            value_enum,
+            default_value_t,
+            help = "Shadowing: path (each frame continues the last over the metres flown, with a fresh draw) or field (fixed in space: runs that differ only in when they send meet the same fades)."
+        )
+    )]
+    pub shadowing_model: ShadowingModel,
     /// Antenna height of every gateway not given its own, m.
     #[cfg_attr(cli, arg(long, default_value_t = opt::GATEWAY_HEIGHT.default, help = opt::GATEWAY_HEIGHT.cli_help(), allow_negative_numbers = true))]
     pub gateway_height: f64,
@@ -232,6 +243,7 @@ impl Default for ChannelSettings {
             distance: opt::DISTANCE.default,
             path_loss_exponent: opt::PATH_LOSS_EXPONENT.default,
             shadowing: opt::SHADOWING.default,
+            shadowing_model: ShadowingModel::Path,
             gateway_height: opt::GATEWAY_HEIGHT.default,
         }
     }
@@ -574,6 +586,7 @@ impl Scenario {
             tx_power_dbm: r.tx_power,
             path_loss_exponent: c.path_loss_exponent,
             shadowing_sigma_db: c.shadowing,
+            shadowing_model: c.shadowing_model,
             gateway_height: c.gateway_height,
             ..ChannelParams::default()
         })?;
