@@ -46,8 +46,9 @@ impl Shadowing {
     /// previous one as if this one had not been drawn. A side path's draw (the downlink a gateway
     /// sends between two uplinks: it sees the reciprocal channel of the uplink before it) then
     /// leaves every later uplink's shadowing as it was, so runs with and without downlinks meet
-    /// the same fades (common random numbers). Its correlation with the uplinks after it is lost,
-    /// a fraction ρ of it where the side path lies within a decorrelation distance of them.
+    /// the same fades (common random numbers). What it gives up: the samples after it are no
+    /// longer conditioned on it, though in the process they would correlate with it as
+    /// ρ = e^(−d / d₀) over the d metres between.
     pub fn aside(&self, moved_m: f64, rng: &mut Rng) -> f64 {
         self.clone().next(moved_m, rng)
     }
