@@ -68,3 +68,23 @@ pub(crate) fn worst_p95_over_dr(results: &[ModelResult]) -> (f64, &'static str) 
             }
         })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_documents_command_and_setting_name_the_overhead_and_fades_fixed_in_space() {
+        let mut base = Scenario::default();
+        base.radio.overhead = 0;
+        assert_eq!(link_args(&base), "");
+        assert_eq!(link_words(&base), "no LoRaWAN overhead");
+        base.radio.overhead = 13;
+        base.channel.shadowing_model = ShadowingModel::Field;
+        assert_eq!(link_args(&base), " --overhead 13 --shadowing-model field");
+        assert_eq!(
+            link_words(&base),
+            "13 bytes of MAC overhead per packet, shadowing fixed in space"
+        );
+    }
+}
