@@ -296,6 +296,7 @@ impl<const N: usize> SigmaPoints<N> {
     }
 
     /// Residual of one point from `mean`, with angles wrapped to (−pi, pi].
+    #[inline(always)]
     pub fn residual(
         point: &SVector<f64, N>,
         mean: &SVector<f64, N>,
