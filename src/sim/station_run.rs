@@ -234,7 +234,7 @@ impl StationRun<'_> {
             timing: s.access.single_timing(),
         };
         let mut flier = Flier::new(0, aboard, &air);
-        run_episode(net, core::slice::from_mut(&mut flier));
+        run_episode(net, core::slice::from_mut(&mut flier), &mut |_| {});
         // A live filter runs to the flight's end, as a stored run did: the same repair count.
         flier.estimates.prefetch(flier.estimates.len());
         Ok((flier.tx, flier.estimates.recoveries()))

@@ -434,3 +434,23 @@ fn swarms_sharing_their_drones_filter_runs_report_what_each_reports_alone() {
         shared.bytes()
     );
 }
+
+/// The progress a swarm reports (the page's bar, the CLI's line) moves while its drones fly,
+/// not only as their stations are scored after the loop: the loop is half a swarm's work.
+#[test]
+fn a_swarm_reports_progress_while_its_drones_fly() {
+    let mut calls: Vec<(usize, usize)> = Vec::new();
+    let p = set(&aloha(20, 1, 1), json!({"duration": 240.0}));
+    loratrack::api::swarm_with_progress(&p, &mut |done, total| calls.push((done, total))).unwrap();
+    let total = calls[0].1;
+    assert!(calls.iter().all(|&(_, t)| t == total), "{calls:?}");
+    assert!(calls.windows(2).all(|w| w[0].0 <= w[1].0), "{calls:?}");
+    assert_eq!(calls.last().unwrap().0, total);
+    // The 240 s loop reports as its clock passes each 30 s stretch computed ahead.
+    let flying: Vec<usize> = calls
+        .iter()
+        .map(|c| c.0)
+        .filter(|&d| 0 < d && d < total / 2)
+        .collect();
+    assert!(flying.len() >= 4, "{calls:?}");
+}

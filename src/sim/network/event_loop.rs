@@ -81,19 +81,42 @@ const LOOKAHEAD_S: f64 = 30.0;
 /// `net` (at most 32: `heard_by` is a bit set; settings allow 16), filling each flier's `tx`.
 /// The network's radios, ADR state and gateway counts carry over to the next episode; the
 /// gateways' receivers and duty cycles start afresh (each flight has its own time axis).
-pub fn run_episode(net: &mut Network, fliers: &mut [Flier<'_>]) {
+///
+/// With several fliers, `progress(share)` is called as the loop's clock passes each stretch of
+/// the drones' estimates computed ahead: the share (0..=1) of the episode's time span behind it.
+pub fn run_episode(net: &mut Network, fliers: &mut [Flier<'_>], progress: &mut dyn FnMut(f64)) {
     let mut episode = Episode::new(net, fliers.len());
+    let span = time_span(fliers);
     for (d, f) in fliers.iter_mut().enumerate() {
         episode.plan(f, d, f64::NEG_INFINITY);
     }
     while let Some(e) = episode.queue.pop() {
-        episode.look_ahead(fliers, e.time);
+        if episode.look_ahead(fliers, e.time) {
+            progress(((e.time - span.0) / (span.1 - span.0)).clamp(0.0, 1.0));
+        }
         let f = &mut fliers[e.drone];
         if e.start {
             episode.start(net, f, e);
         } else {
             episode.end(net, f, e);
         }
+    }
+}
+
+/// The first and last sample times of the fliers' flights, s (a span of at least 1 s).
+fn time_span(fliers: &[Flier<'_>]) -> (f64, f64) {
+    let first = fliers
+        .iter()
+        .filter_map(|f| f.flight.t.first())
+        .fold(f64::INFINITY, |a, &b| a.min(b));
+    let last = fliers
+        .iter()
+        .filter_map(|f| f.flight.t.last())
+        .fold(f64::NEG_INFINITY, |a, &b| a.max(b));
+    if first.is_finite() && last.is_finite() {
+        (first, last.max(first + 1.0))
+    } else {
+        (0.0, 1.0)
     }
 }
 
@@ -124,10 +147,10 @@ impl Episode {
     }
 
     /// Several drones: once the loop reaches `time`, their estimates for the next
-    /// [`LOOKAHEAD_S`] seconds are computed on every core.
-    fn look_ahead(&mut self, fliers: &mut [Flier<'_>], time: f64) {
+    /// [`LOOKAHEAD_S`] seconds are computed on every core. Whether it did.
+    fn look_ahead(&mut self, fliers: &mut [Flier<'_>], time: f64) -> bool {
         if time < self.computed_to || fliers.len() < 2 {
-            return;
+            return false;
         }
         self.computed_to = time + LOOKAHEAD_S;
         let mut ahead: Vec<_> = fliers
@@ -135,6 +158,7 @@ impl Episode {
             .map(|f| f.estimates_until(self.computed_to))
             .collect();
         par_each(&mut ahead, |(est, upto)| est.prefetch(*upto));
+        true
     }
 
     /// Drone `e.drone`'s planned uplink starts: it takes a channel (or, listening before talk,

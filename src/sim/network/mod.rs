@@ -44,6 +44,6 @@ pub fn fly_alone(
         timing: Timing::EXACT,
     };
     let mut flier = Flier::new(0, aboard, &air);
-    run_episode(net, core::slice::from_mut(&mut flier));
+    run_episode(net, core::slice::from_mut(&mut flier), &mut |_| {});
     flier.tx
 }

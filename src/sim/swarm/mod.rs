@@ -145,8 +145,10 @@ fn sf_of(sfs: &[i64], i: usize) -> i64 {
     sfs[i % sfs.len()]
 }
 
-/// Runs the swarm, calling `progress(done, total)` as episodes run and stations complete
-/// (total = episodes + drones).
+/// Runs the swarm, calling `progress(done, total)` as episodes run and stations complete. The
+/// two halves weigh alike (each is about half a swarm's work: the drones' filters in the loop,
+/// their stations after it): each episode counts `drones` units, by its clock, and each drone's
+/// station `episodes` units (total = 2 · episodes · drones).
 pub fn run_swarm(
     cfg: &Validated,
     progress: &mut dyn FnMut(usize, usize),
@@ -164,17 +166,21 @@ pub fn run_swarm_sharing(
 ) -> Result<SwarmReport, SimError> {
     let (mut swarm, mut net) = Swarm::new(cfg)?;
     swarm.shared = shared;
-    let episodes = swarm.plan.episodes.len();
-    let total = episodes + swarm.kits.len();
+    let (episodes, n) = (swarm.plan.episodes.len(), swarm.kits.len());
+    let total = 2 * episodes * n;
     // Per episode, per drone: its transmissions.
     let mut sent: Vec<Vec<Vec<Transmission>>> = Vec::with_capacity(episodes);
     // Listen-before-talk: deferrals, and collisions avoided.
     let mut lbt = (0, 0);
     for seats in &swarm.plan.episodes {
-        sent.push(swarm.fly(&mut net, seats, &mut lbt)?);
-        progress(sent.len(), total);
+        let before = sent.len() * n;
+        let mut clock = |share: f64| progress(before + (share * n as f64) as usize, total);
+        sent.push(swarm.fly(&mut net, seats, &mut lbt, &mut clock)?);
+        progress(sent.len() * n, total);
     }
-    let scored = swarm.score(&sent, &mut |drones| progress(episodes + drones, total));
+    let scored = swarm.score(&sent, &mut |drones| {
+        progress(episodes * n + drones * episodes, total)
+    });
     let mut r = swarm.report(&net, scored)?;
     if net.listen_before_talk {
         (r.lbt_deferrals, r.lbt_collisions_avoided) = (Some(lbt.0), Some(lbt.1));
@@ -262,12 +268,14 @@ impl<'a> Swarm<'a> {
         Ok((swarm, Network::of(cfg, 0.0, radios)))
     }
 
-    /// One episode: every drone's filter, sender and links through the event loop.
+    /// One episode: every drone's filter, sender and links through the event loop, calling
+    /// `progress(share)` as its clock passes each stretch of its time span ([`run_episode`]).
     fn fly(
         &self,
         net: &mut Network,
         seats: &[Seat],
         lbt: &mut (usize, usize),
+        progress: &mut dyn FnMut(f64),
     ) -> Result<Vec<Vec<Transmission>>, SimError> {
         let s = self.cfg.s();
         let model = self.model.sent_model();
@@ -328,7 +336,7 @@ impl<'a> Swarm<'a> {
                 None => flier,
             });
         }
-        run_episode(net, &mut fliers);
+        run_episode(net, &mut fliers, progress);
         for f in &fliers {
             lbt.0 += f.lbt_deferrals;
             lbt.1 += f.lbt_avoided;
