@@ -653,3 +653,35 @@ fn a_swarm_header_says_what_each_drone_flies() {
         "{text}"
     );
 }
+
+/// A run long enough to show its progress does so on a terminal (`script` gives it one, where
+/// the machine has util-linux) and erases it at the end; with stderr piped, as scripts and
+/// these tests read it, it writes nothing there.
+#[test]
+fn progress_shows_on_a_terminal_only() {
+    let args = ["swarm", "--drones", "60", "--duration", "1200", "--json"];
+    let piped = crate::cli(&args);
+    assert!(piped.status.success());
+    assert_eq!(String::from_utf8_lossy(&piped.stderr), "");
+    let command = format!(
+        "{} {} > /dev/null",
+        env!("CARGO_BIN_EXE_loratrack"),
+        args.join(" ")
+    );
+    let started = std::time::Instant::now();
+    let Ok(tty) = Command::new("script")
+        .args(["-qec", &command, "/dev/null"])
+        .stdin(Stdio::null())
+        .output()
+    else {
+        return;
+    };
+    assert!(tty.status.success());
+    let shown = String::from_utf8_lossy(&tty.stdout);
+    // A quick run shows nothing (the line waits half a second); this one takes ~1.2 s here.
+    if started.elapsed() >= std::time::Duration::from_secs(1) {
+        assert!(shown.contains("\rloratrack swarm: "), "{shown:?}");
+        assert!(shown.ends_with("\r\x1b[K"), "{shown:?}");
+    }
+    assert!(!shown.contains("error"), "{shown:?}");
+}

@@ -1,6 +1,7 @@
 //! One function per command: parse options into the API's parameter struct, run, format (`sweep`,
 //! which runs grids of them for the generated documents, in sweep.rs).
 
+use crate::progress::Progress;
 use clap::{Args, Subcommand};
 use loratrack::api::{self, ApiError};
 use loratrack::options as opt;
@@ -444,7 +445,11 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
     if a.paper {
         params.radio.overhead = 0;
     }
-    let r = api::simulate(&mut Simulator::new(), &params)?;
+    let mut progress = Progress::on_stderr("simulate");
+    let r = api::simulate_with_progress(&mut Simulator::new(), &params, &mut |done, total| {
+        progress.update(done, total)
+    })?;
+    drop(progress);
     if a.out.json {
         return Ok(json(&r));
     }
@@ -686,7 +691,9 @@ fn gateway_lines(gateways: &[loratrack::GatewayReport]) -> String {
 
 fn swarm(a: SwarmArgs) -> Result<String, ApiError> {
     let params = a.scenario.scenario(a.flight.settings()?, a.swarm);
-    let r = api::swarm(&params)?;
+    let mut progress = Progress::on_stderr("swarm");
+    let r = api::swarm_with_progress(&params, &mut |done, total| progress.update(done, total))?;
+    drop(progress);
     if a.out.json {
         return Ok(json(&r));
     }

@@ -1,7 +1,8 @@
 //! `loratrack`: the command-line skin over [`loratrack::api`] (reference §9).
 //!
 //! Every command prints a human summary, or with `--json` exactly one JSON object on stdout.
-//! Bad input exits with status 2 and one line `error: ...` on stderr.
+//! Bad input exits with status 2 and one line `error: ...` on stderr. On a terminal, `simulate`
+//! and `swarm` show their progress on stderr while they run (erased when they end).
 
 #[cfg(not(target_arch = "wasm32"))]
 mod adr_doc;
@@ -13,6 +14,8 @@ mod doc_cells;
 mod mission_doc;
 #[cfg(not(target_arch = "wasm32"))]
 mod payloads_doc;
+#[cfg(not(target_arch = "wasm32"))]
+mod progress;
 #[cfg(not(target_arch = "wasm32"))]
 mod real_flight_rates;
 #[cfg(not(target_arch = "wasm32"))]
