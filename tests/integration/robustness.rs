@@ -664,7 +664,7 @@ fn progress_shows_on_a_terminal_only() {
     assert!(piped.status.success());
     assert_eq!(String::from_utf8_lossy(&piped.stderr), "");
     let command = format!(
-        "{} {} > /dev/null",
+        "'{}' {} > /dev/null",
         env!("CARGO_BIN_EXE_loratrack"),
         args.join(" ")
     );
