@@ -103,6 +103,8 @@ pub struct Simulator {
     stations: HashMap<StationKey, Rc<Vec<Mutex<FlightChains>>>>,
     drone_runs: u64,
     ledger: Ledger<Entry>,
+    /// Told as each run ends, whoever started it ([`Simulator::on_each_run`]).
+    run_done: Option<Box<dyn FnMut()>>,
 }
 
 /// The drone runs to compute, `missing`, grouped into the tasks that compute them over each of
@@ -196,6 +198,13 @@ impl Simulator {
     /// run is over.
     pub fn cached_bytes(&self) -> usize {
         self.ledger.total()
+    }
+
+    /// Calls `done` each time a run of this simulator ends, successful or not, including the
+    /// runs a sweep makes on it (`api::sweep_paper` and the like), so that the CLI can count a
+    /// sweep's runs while the person who started it waits.
+    pub fn on_each_run(&mut self, done: impl FnMut() + 'static) {
+        self.run_done = Some(Box::new(done));
     }
 
     /// Records `entry` at `bytes`, then forgets the least recently used entries (never `entry`)
@@ -421,6 +430,19 @@ impl Simulator {
     /// each flight's drone filter and each flight's station (total = 2 × flights × models ×
     /// seeds), so a long run can show how far it is.
     pub fn run_with_progress(
+        &mut self,
+        cfg: &Validated,
+        progress: &mut dyn FnMut(usize, usize),
+    ) -> Result<SimReport, SimError> {
+        let report = self.run_flights(cfg, progress);
+        if let Some(done) = &mut self.run_done {
+            done();
+        }
+        report
+    }
+
+    /// [`Simulator::run_with_progress`]'s run.
+    fn run_flights(
         &mut self,
         cfg: &Validated,
         progress: &mut dyn FnMut(usize, usize),
@@ -761,5 +783,22 @@ mod tests {
             sensor_groups(&missing, 1),
             vec![(1, vec![0]), (1, vec![1]), (2, vec![2]), (1, vec![3])]
         );
+    }
+
+    #[test]
+    fn each_run_is_told_as_it_ends_failed_runs_too() {
+        use std::cell::Cell;
+        let ended = Rc::new(Cell::new(0));
+        let mut sim = Simulator::new();
+        let counter = Rc::clone(&ended);
+        sim.on_each_run(move || counter.set(counter.get() + 1));
+        let mut p = crate::sim::Scenario::default();
+        p.flight.synthetic = Some(SyntheticChoice::One(1));
+        sim.run(&p.validate().unwrap()).unwrap();
+        sim.run(&p.validate().unwrap()).unwrap();
+        assert_eq!(ended.get(), 2, "a second run, from the caches, ends too");
+        p.swarm.drones = 2;
+        assert!(sim.run(&p.validate().unwrap()).is_err());
+        assert_eq!(ended.get(), 3);
     }
 }

@@ -659,29 +659,51 @@ fn a_swarm_header_says_what_each_drone_flies() {
 /// these tests read it, it writes nothing there.
 #[test]
 fn progress_shows_on_a_terminal_only() {
-    let args = ["swarm", "--drones", "60", "--duration", "1200", "--json"];
-    let piped = crate::cli(&args);
-    assert!(piped.status.success());
-    assert_eq!(String::from_utf8_lossy(&piped.stderr), "");
-    let command = format!(
-        "'{}' {} > /dev/null",
-        env!("CARGO_BIN_EXE_loratrack"),
-        args.join(" ")
-    );
-    let started = std::time::Instant::now();
-    let Ok(tty) = Command::new("script")
-        .args(["-qec", &command, "/dev/null"])
-        .stdin(Stdio::null())
-        .output()
-    else {
-        return;
-    };
-    assert!(tty.status.success());
-    let shown = String::from_utf8_lossy(&tty.stdout);
-    // A quick run shows nothing (the line waits half a second); this one takes ~1.2 s here.
-    if started.elapsed() >= std::time::Duration::from_secs(1) {
-        assert!(shown.contains("\rloratrack swarm: "), "{shown:?}");
-        assert!(shown.ends_with("\r\x1b[K"), "{shown:?}");
+    // A swarm shows its percentage; a sweep, whose number of runs is not known in advance,
+    // counts them.
+    let runs: [(&[&str], &str); 2] = [
+        (
+            &["swarm", "--drones", "60", "--duration", "1200", "--json"],
+            "\rloratrack swarm: ",
+        ),
+        (
+            &[
+                "sweep",
+                "--distances",
+                "1000,3000",
+                "--model",
+                "3d-ctra",
+                "--seeds",
+                "2",
+                "--json",
+            ],
+            "\rloratrack sweep: ",
+        ),
+    ];
+    for (args, line) in runs {
+        let piped = crate::cli(args);
+        assert!(piped.status.success());
+        assert_eq!(String::from_utf8_lossy(&piped.stderr), "", "{args:?}");
+        let command = format!(
+            "'{}' {} > /dev/null",
+            env!("CARGO_BIN_EXE_loratrack"),
+            args.join(" ")
+        );
+        let started = std::time::Instant::now();
+        let Ok(tty) = Command::new("script")
+            .args(["-qec", &command, "/dev/null"])
+            .stdin(Stdio::null())
+            .output()
+        else {
+            return;
+        };
+        assert!(tty.status.success());
+        let shown = String::from_utf8_lossy(&tty.stdout);
+        // A quick run shows nothing (the line waits half a second); these take ~1.2 s here.
+        if started.elapsed() >= std::time::Duration::from_secs(1) {
+            assert!(shown.contains(line), "{shown:?}");
+            assert!(shown.ends_with("\r\x1b[K"), "{shown:?}");
+        }
+        assert!(!shown.contains("error"), "{shown:?}");
     }
-    assert!(!shown.contains("error"), "{shown:?}");
 }

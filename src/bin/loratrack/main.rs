@@ -2,7 +2,8 @@
 //!
 //! Every command prints a human summary, or with `--json` exactly one JSON object on stdout.
 //! Bad input exits with status 2 and one line `error: ...` on stderr. On a terminal, `simulate`
-//! and `swarm` show their progress on stderr while they run (erased when they end).
+//! and `swarm` show their progress on stderr while they run, and `sweep` counts its runs (erased
+//! when they end).
 
 #[cfg(not(target_arch = "wasm32"))]
 mod adr_doc;

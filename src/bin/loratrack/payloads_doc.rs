@@ -85,9 +85,12 @@ fn both(sim: &mut Simulator, p: &Scenario) -> Result<[Vec<ModelResult>; 2], ApiE
 
 /// Every setting of the document: the synthetic set at 1 km at each of [`OVERHEADS`] and
 /// [`MISSION_RATES`] (`seeds` seeds from `seed`), and the Canberra flight at [`REAL_DISTANCES`]
-/// with the default overhead ([`REAL_SEEDS`] seeds); bounded stations throughout.
-pub fn runs(seed: u64, seeds: u32) -> Result<(Vec<PayloadRun>, Vec<PayloadRun>), ApiError> {
-    let mut sim = Simulator::new();
+/// with the default overhead ([`REAL_SEEDS`] seeds); bounded stations throughout; on `sim`.
+pub fn runs(
+    sim: &mut Simulator,
+    seed: u64,
+    seeds: u32,
+) -> Result<(Vec<PayloadRun>, Vec<PayloadRun>), ApiError> {
     let mut base = Scenario::default();
     base.station.model = ModelChoice::parse(MODELS).map_err(ApiError::Invalid)?;
     base.station.prediction = Prediction::Bounded;
@@ -95,7 +98,7 @@ pub fn runs(seed: u64, seeds: u32) -> Result<(Vec<PayloadRun>, Vec<PayloadRun>),
     let mut at = |p: &Scenario, (sf, bw): (i64, f64)| -> Result<PayloadRun, ApiError> {
         let mut q = p.clone();
         (q.radio.sf, q.radio.bw) = (sf, bw);
-        let [full, lean] = both(&mut sim, &q)?;
+        let [full, lean] = both(sim, &q)?;
         Ok(PayloadRun {
             overhead: q.radio.overhead,
             distance: q.channel.distance,
@@ -158,9 +161,9 @@ fn beyond_two_percent(runs: &[PayloadRun], lean: bool) -> String {
     }
 }
 
-/// docs/payloads.md.
-pub fn markdown(seed: u64, seeds: u32) -> Result<String, ApiError> {
-    let (synthetic, real) = runs(seed, seeds)?;
+/// docs/payloads.md, its runs on `sim`.
+pub fn markdown(sim: &mut Simulator, seed: u64, seeds: u32) -> Result<String, ApiError> {
+    let (synthetic, real) = runs(sim, seed, seeds)?;
     let last = seed.saturating_add(u64::from(seeds) - 1);
     let mut s = String::from("# Lean payloads: the model's own payload against the smallest that carries its manoeuvres\n\n");
     s += &format!(

@@ -48,14 +48,14 @@ pub fn scenario(model: &ModelChoice, (sf, bw): (i64, f64), distance: f64, seed: 
 }
 
 /// The bounded stations of `model` on the Canberra flight at each of [`MISSION_RATES`], 1 km,
-/// [`RATE_SEEDS`] seeds from `seed`; and DR again at each richer station's frame length.
-pub fn runs(seed: u64, model: &ModelChoice) -> Result<Vec<RateRun>, ApiError> {
-    let mut sim = Simulator::new();
+/// [`RATE_SEEDS`] seeds from `seed`; and DR again at each richer station's frame length; on
+/// `sim`.
+pub fn runs(sim: &mut Simulator, seed: u64, model: &ModelChoice) -> Result<Vec<RateRun>, ApiError> {
     let dr = StationModel::Single(ModelKind::Dr);
     let mut out = Vec::new();
     for &(sf, bw) in &MISSION_RATES {
         let p = scenario(model, (sf, bw), RATE_DISTANCE, seed);
-        let results = api::simulate(&mut sim, &p)?.results;
+        let results = api::simulate(sim, &p)?.results;
         // DR again at each richer station's frame length, from the same settings. 3D-CTRA and the
         // IMM send the same 12 bytes, so one length is asked for twice; the simulator keeps the
         // first one's runs (`npm run reproduce` took 6.3 s with and without a lookup of its own).
@@ -68,7 +68,7 @@ pub fn runs(seed: u64, model: &ModelChoice) -> Result<Vec<RateRun>, ApiError> {
             let mut q = p.clone();
             q.station.model = ModelChoice::one(ModelKind::Dr);
             q.radio.overhead = p.radio.overhead + m.payload_bytes - ModelKind::Dr.payload_bytes();
-            let at_length = api::simulate(&mut sim, &q)?.results;
+            let at_length = api::simulate(sim, &q)?.results;
             dr_equal.push(at_length.first().map(|d| d.error3d.p95));
         }
         out.push(RateRun {

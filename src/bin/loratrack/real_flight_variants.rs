@@ -97,9 +97,12 @@ pub struct VariantRun {
 }
 
 /// The flight as flown and each variant, bounded stations of `model`, [`RATE_SEEDS`] seeds from
-/// `seed`, at each of [`CASES`].
-pub fn runs(seed: u64, model: &ModelChoice) -> Result<Vec<VariantRun>, ApiError> {
-    let mut sim = Simulator::new();
+/// `seed`, at each of [`CASES`], on `sim`.
+pub fn runs(
+    sim: &mut Simulator,
+    seed: u64,
+    model: &ModelChoice,
+) -> Result<Vec<VariantRun>, ApiError> {
     let mut flights = vec![("as flown", None)];
     flights.extend(
         variants()
@@ -116,7 +119,7 @@ pub fn runs(seed: u64, model: &ModelChoice) -> Result<Vec<VariantRun>, ApiError>
                 p.flight.trajectory = Some(text.clone());
                 p.flight.trajectory_name = Some(format!("canberra, {name}"));
             }
-            let results = api::simulate(&mut sim, &p)?.results;
+            let results = api::simulate(sim, &p)?.results;
             worst.push(worst_p95_over_dr(&results));
         }
         out.push(VariantRun { name, worst });

@@ -2,14 +2,15 @@
 //! hands it to the document that prints it.
 
 use crate::commands::{json, results_table, Output};
+use crate::progress::RunCount;
 use clap::Args;
 use loratrack::api::{self, ApiError};
 use loratrack::options as opt;
 use loratrack::{
     AccessSettings, ChannelSense, ChannelSettings, DutyCycleMode, ModelChoice, ModelKind,
     NetworkSettings, Prediction, RadioSettings, RunSettings, Scenario, Schedule, SenderKind,
-    Sending, SfPlan, ShadowingModel, SharedDroneRuns, Simulator, StationSettings, SwarmReport,
-    SwarmSettings, SyntheticChoice,
+    Sending, SfPlan, ShadowingModel, SharedDroneRuns, StationSettings, SwarmReport, SwarmSettings,
+    SyntheticChoice,
 };
 
 #[derive(Args)]
@@ -96,34 +97,37 @@ pub struct SweepArgs {
     out: Output,
 }
 
+/// Runs the sweep `a` asks for, counting its runs on a terminal's progress line
+/// ([`RunCount`]) until it returns.
 pub(crate) fn sweep(a: SweepArgs) -> Result<String, ApiError> {
+    let count = RunCount::on_stderr("sweep");
     let model = ModelChoice::parse(&a.model).map_err(ApiError::Invalid)?;
     let predictions: Vec<Prediction> = a.prediction.clone();
     if a.kind.senders {
-        return sweep_senders(&a, model, predictions[0]);
+        return sweep_senders(&a, model, predictions[0], &count);
     }
     if a.kind.swarm {
-        return sweep_swarm(&a, predictions[0]);
+        return sweep_swarm(&a, predictions[0], &count);
     }
     if a.kind.mission {
-        return sweep_mission(&a, predictions[0]);
+        return sweep_mission(&a, predictions[0], &count);
     }
     if a.kind.payloads {
-        return crate::payloads_doc::markdown(a.seed, a.seeds);
+        return crate::payloads_doc::markdown(&mut count.simulator(), a.seed, a.seeds);
     }
     if let Some(distances) = &a.kind.distances {
-        return sweep_distances(&a, model, predictions[0], distances);
+        return sweep_distances(&a, model, predictions[0], distances, &count);
     }
-    let r = api::sweep_paper(&mut Simulator::new(), a.seed, &predictions, &model)?;
+    let r = api::sweep_paper(&mut count.simulator(), a.seed, &predictions, &model)?;
     if a.out.json {
         return Ok(json(&r));
     }
     if a.markdown {
-        let real = real_flight_runs(a.seed, &predictions, &model)?;
+        let real = real_flight_runs(a.seed, &predictions, &model, &count)?;
         let (rates, variants) = if predictions.contains(&Prediction::Bounded) {
             (
-                crate::real_flight_rates::runs(a.seed, &model)?,
-                crate::real_flight_variants::runs(a.seed, &model)?,
+                crate::real_flight_rates::runs(&mut count.simulator(), a.seed, &model)?,
+                crate::real_flight_variants::runs(&mut count.simulator(), a.seed, &model)?,
             )
         } else {
             (Vec::new(), Vec::new())
@@ -153,8 +157,9 @@ fn real_flight_runs(
     seed: u64,
     predictions: &[Prediction],
     model: &ModelChoice,
+    count: &RunCount,
 ) -> Result<Vec<crate::reproduction::RealRun>, ApiError> {
-    let mut sim = Simulator::new();
+    let mut sim = count.simulator();
     let mut runs = Vec::new();
     for &prediction in predictions {
         for overhead in [0, Scenario::default().radio.overhead] {
@@ -211,6 +216,7 @@ fn sweep_distances(
     model: ModelChoice,
     prediction: Prediction,
     distances: &[f64],
+    count: &RunCount,
 ) -> Result<String, ApiError> {
     let base = trade_off_base(a, model, prediction);
     let next = if a.held_out && a.markdown {
@@ -218,7 +224,7 @@ fn sweep_distances(
     } else {
         None
     };
-    let mut sim = Simulator::new();
+    let mut sim = count.simulator();
     let r = api::sweep_distances(&mut sim, &base, distances)?;
     if a.out.json {
         return Ok(json(&r));
@@ -253,9 +259,13 @@ fn held_out_block(base: &Scenario) -> Result<Scenario, ApiError> {
     )))
 }
 
-fn sweep_mission(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError> {
+fn sweep_mission(
+    a: &SweepArgs,
+    prediction: Prediction,
+    count: &RunCount,
+) -> Result<String, ApiError> {
     let base = trade_off_base(a, ModelChoice::all(), prediction);
-    let r = api::sweep_mission(&mut Simulator::new(), &base)?;
+    let r = api::sweep_mission(&mut count.simulator(), &base)?;
     if a.out.json {
         return Ok(json(&r));
     }
@@ -269,9 +279,10 @@ fn sweep_senders(
     a: &SweepArgs,
     model: ModelChoice,
     prediction: Prediction,
+    count: &RunCount,
 ) -> Result<String, ApiError> {
     let base = trade_off_base(a, model, prediction);
-    let r = api::sweep_senders(&mut Simulator::new(), &base, a.burst)?;
+    let r = api::sweep_senders(&mut count.simulator(), &base, a.burst)?;
     if a.out.json {
         return Ok(json(&r));
     }
@@ -281,7 +292,7 @@ fn sweep_senders(
     if a.markdown {
         // The whole synthetic set at every setting; the real flight (short: eight seeds pooled)
         // near and far; the paper's station at the first setting.
-        let mut sim = Simulator::new();
+        let mut sim = count.simulator();
         let mut overview = Vec::new();
         let station = prediction.name();
         for at in api::SENDER_SETTINGS {
@@ -310,7 +321,11 @@ fn sweep_senders(
 /// Drone counts of `sweep --swarm`.
 const SWARM_SIZES: [usize; 7] = [1, 12, 36, 72, 150, 300, 500];
 
-fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError> {
+fn sweep_swarm(
+    a: &SweepArgs,
+    prediction: Prediction,
+    count: &RunCount,
+) -> Result<String, ApiError> {
     // Every combination, in the table's order: schedule, channels, SF plan, sender, size.
     let mut cases = Vec::new();
     for schedule in [Schedule::Aloha, Schedule::Slotted] {
@@ -373,6 +388,7 @@ fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError
     let rows = swarms(
         scenarios.collect(),
         &SharedDroneRuns::new(SHARED_RUNS_BYTES),
+        count,
     )?;
     if a.out.json {
         return Ok(json(&rows));
@@ -380,7 +396,7 @@ fn sweep_swarm(a: &SweepArgs, prediction: Prediction) -> Result<String, ApiError
     // The crowd comparisons are for the tables only (JSON gives the sweep's own rows). They fly
     // 72 of the grid's 500 drones again, and seven more seeds' 72: their own runs, so that the
     // grid's are freed first.
-    let crowd = crowds(&rows, &SharedDroneRuns::new(SHARED_RUNS_BYTES))?;
+    let crowd = crowds(&rows, &SharedDroneRuns::new(SHARED_RUNS_BYTES), count)?;
     Ok(crate::swarm_doc::swarm_markdown(&rows, &crowd, a.markdown))
 }
 
@@ -391,15 +407,20 @@ const SHARED_RUNS_BYTES: usize = 256 << 20;
 
 /// Each swarm of `scenarios`, in order; independent, so natively they share the cores (each
 /// swarm alone leaves one idle for most of its loop). Drones flown alike share their filter
-/// runs through `shared`.
+/// runs through `shared`; each swarm counts as a run on `count` as it ends.
 fn swarms(
     scenarios: Vec<Scenario>,
     shared: &SharedDroneRuns,
+    count: &RunCount,
 ) -> Result<Vec<SwarmReport>, ApiError> {
     use rayon::prelude::*;
     scenarios
         .par_iter()
-        .map(|s| api::swarm_sharing(s, shared))
+        .map(|s| {
+            let report = api::swarm_sharing(s, shared);
+            count.done();
+            report
+        })
         .collect()
 }
 
@@ -470,6 +491,7 @@ fn crowd_senders() -> Vec<CrowdSender> {
 fn crowds(
     rows: &[SwarmReport],
     shared: &SharedDroneRuns,
+    count: &RunCount,
 ) -> Result<Vec<crate::swarm_doc::Crowd>, ApiError> {
     let find = |schedule, sender| {
         rows.iter().find(|r: &&SwarmReport| {
@@ -484,7 +506,7 @@ fn crowds(
     let mut periodic: Vec<(Schedule, Vec<SwarmReport>)> = Vec::new();
     for schedule in [Schedule::Aloha, Schedule::Slotted] {
         if let Some(p) = find(schedule, SenderKind::Periodic) {
-            periodic.push((schedule, crowd_runs(p, shared, |_| {})?));
+            periodic.push((schedule, crowd_runs(p, shared, count, |_| {})?));
         }
     }
     let mut crowd = Vec::new();
@@ -495,7 +517,7 @@ fn crowds(
         ) else {
             continue;
         };
-        let error = crowd_runs(e, shared, |c| {
+        let error = crowd_runs(e, shared, count, |c| {
             c.sending.duty_cycle_mode = rule;
             c.sending.channel_sense = sense;
             if let Some((threshold, heartbeat)) = trigger {
@@ -517,7 +539,7 @@ fn crowds(
         let seeds = periodic
             .iter()
             .zip(error)
-            .zip(swarms(slowed, shared)?)
+            .zip(swarms(slowed, shared, count)?)
             .map(|((p, error), equal)| crate::swarm_doc::CrowdSeed {
                 periodic: p.clone(),
                 error,
@@ -534,6 +556,7 @@ fn crowds(
 fn crowd_runs(
     row: &SwarmReport,
     shared: &SharedDroneRuns,
+    count: &RunCount,
     change: impl Fn(&mut Scenario),
 ) -> Result<Vec<SwarmReport>, ApiError> {
     let scenarios: Vec<Scenario> = (0..CROWD_SEEDS)
@@ -545,9 +568,9 @@ fn crowd_runs(
         })
         .collect();
     if scenarios[0] != row.config.settings {
-        return swarms(scenarios, shared);
+        return swarms(scenarios, shared, count);
     }
     let mut runs = vec![row.clone()];
-    runs.extend(swarms(scenarios[1..].to_vec(), shared)?);
+    runs.extend(swarms(scenarios[1..].to_vec(), shared, count)?);
     Ok(runs)
 }
