@@ -26,6 +26,7 @@ pub mod math;
 pub mod metrics;
 pub mod models;
 pub mod options;
+mod parallel;
 pub mod rng;
 pub mod sim;
 pub mod trajectory;

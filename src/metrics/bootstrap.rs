@@ -70,34 +70,34 @@ pub(crate) fn bootstrap_sorted(runs: &[&[f64]], all: &[f64], seed: u64) -> Optio
     debug_assert_eq!(all.len(), runs.iter().map(|r| r.len()).sum::<usize>());
     let sums: Vec<f64> = runs.iter().map(|r| r.iter().sum()).collect();
     let ranks = Ranks::of(&runs, all);
+    // The draws' weights come from one stream, in order; the draws are then independent, and
+    // natively run on every core (a sweep's single station scored them on one).
     let mut rng = Rng::derive(seed, 0xb00_757a);
-    let mut stats: [Vec<f64>; 5] = Default::default();
-    let mut weights = vec![0u32; runs.len()];
-    for _ in 0..RESAMPLES {
-        weights.iter_mut().for_each(|w| *w = 0);
-        for _ in 0..runs.len() {
-            let pick = (rng.uniform() * runs.len() as f64) as usize;
-            weights[pick.min(runs.len() - 1)] += 1;
-        }
-        let draw = Draw {
+    let draws: Vec<Vec<u32>> = (0..RESAMPLES)
+        .map(|_| {
+            let mut weights = vec![0u32; runs.len()];
+            for _ in 0..runs.len() {
+                let pick = (rng.uniform() * runs.len() as f64) as usize;
+                weights[pick.min(runs.len() - 1)] += 1;
+            }
+            weights
+        })
+        .collect();
+    let ranks = ranks.as_ref();
+    let per_draw = crate::parallel::par_map_owned(draws, |weights| {
+        Draw {
             runs: &runs,
             weights: &weights,
             all,
-            ranks: ranks.as_ref(),
-        };
-        let n = draw.count_at_most(f64::INFINITY);
-        let sum: f64 = weights.iter().zip(&sums).map(|(&w, s)| w as f64 * s).sum();
-        let max = runs
-            .iter()
-            .zip(&weights)
-            .filter(|&(_, &w)| w > 0)
-            .map(|(r, _)| r[r.len() - 1])
-            .fold(f64::NEG_INFINITY, f64::max);
-        stats[0].push(sum / n as f64);
-        stats[1].push(draw.percentile(n, 50.0));
-        stats[2].push(draw.percentile(n, 75.0));
-        stats[3].push(draw.percentile(n, 95.0));
-        stats[4].push(max);
+            ranks,
+        }
+        .statistics(&sums)
+    });
+    let mut stats: [Vec<f64>; 5] = Default::default();
+    for draw in per_draw {
+        for (s, v) in stats.iter_mut().zip(draw) {
+            s.push(v);
+        }
     }
     let [mean, p50, p75, p95, max] = stats.map(|mut s| {
         sort_total(&mut s);
@@ -211,6 +211,31 @@ struct Draw<'a> {
 }
 
 impl Draw<'_> {
+    /// The draw's mean, p50, p75, p95 and maximum; `sums` holds each run's sum.
+    fn statistics(&self, sums: &[f64]) -> [f64; 5] {
+        let n = self.count_at_most(f64::INFINITY);
+        let sum: f64 = self
+            .weights
+            .iter()
+            .zip(sums)
+            .map(|(&w, s)| w as f64 * s)
+            .sum();
+        let max = self
+            .runs
+            .iter()
+            .zip(self.weights)
+            .filter(|&(_, &w)| w > 0)
+            .map(|(r, _)| r[r.len() - 1])
+            .fold(f64::NEG_INFINITY, f64::max);
+        [
+            sum / n as f64,
+            self.percentile(n, 50.0),
+            self.percentile(n, 75.0),
+            self.percentile(n, 95.0),
+            max,
+        ]
+    }
+
     /// How many samples of the draw are at most `v`.
     fn count_at_most(&self, v: f64) -> u64 {
         self.runs

@@ -18,7 +18,6 @@ mod flier;
 mod link;
 pub mod network;
 mod packet;
-mod parallel;
 mod pooled;
 mod radio;
 mod report;

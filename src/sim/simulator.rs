@@ -2,7 +2,6 @@
 
 use super::cache_budget::{Ledger, MAX_CACHE_BYTES};
 use super::drone::{run_drones, DroneTrack};
-use super::parallel::{enough_tasks, par_map, par_map_costliest_first, par_map_owned};
 use super::pooled::{axis_every, series_stride, Pooled};
 use super::report::{Delivery, ModelResult, ModelSeries, RunConfig, Series, SimReport};
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
@@ -18,6 +17,9 @@ use crate::lora::Channel;
 use crate::math::pow;
 use crate::models::ModelKind;
 use crate::options::MAX_FILTER_STEPS;
+use crate::parallel::{
+    enough_tasks, par_map, par_map_costliest_first, par_map_owned, par_map_progressing,
+};
 use crate::trajectory::{
     canberra_flight, parse_csv, parse_csv_with_progress, synthetic_flight, Trajectory,
     TrajectoryError, SYNTHETIC_FLIGHTS,
@@ -664,7 +666,7 @@ fn pool(
 }
 
 /// Every run's flights: the runs whose drones adapt their data rate fly theirs in order
-/// ([`StationRun::fly_in_order`]); every other run joins the first run whose drone sends the same
+/// ([`StationRun::fly_in_order`]), side by side; every other run joins the first run whose drone sends the same
 /// transmissions ([`StationRun::sends_as`]), and each such group's flights are one parallel batch,
 /// the costliest groups first. One list of flights per run, in flight order; `tick` once per run
 /// and flight.
@@ -707,10 +709,15 @@ fn fly_all(
             per_run[r].push(run);
         }
     }
-    for (r, run) in runs.iter().enumerate() {
-        if run.adaptive() {
-            per_run[r] = run.fly_in_order(tick);
-        }
+    // Each seed's adaptive drone is a run of its own: natively they fly side by side.
+    let adaptive: Vec<usize> = (0..runs.len()).filter(|&r| runs[r].adaptive()).collect();
+    let in_order = par_map_progressing(
+        0..adaptive.len(),
+        |k, tick| runs[adaptive[k]].fly_in_order(tick),
+        tick,
+    );
+    for (r, flown) in adaptive.into_iter().zip(in_order) {
+        per_run[r] = flown;
     }
     per_run
 }

@@ -13,7 +13,6 @@ use super::drone::{DroneFilter, DroneTrack, Estimates};
 use super::flier::{Aboard, Air, Flier};
 use super::network::{run_episode, Network};
 use super::packet::Transmission;
-use super::parallel::par_map;
 use super::pooled::model_series;
 use super::radio::DroneRadio;
 use super::report::{Delivery, ModelSeries};
@@ -25,6 +24,7 @@ use super::station::{
 };
 use super::streams::DroneStreams;
 use super::SimError;
+use crate::parallel::par_map;
 use crate::trajectory::Trajectory;
 use std::sync::Mutex;
 

@@ -12,9 +12,9 @@ use crate::lora::{
 };
 use crate::math::distance;
 use crate::models::V;
+use crate::parallel::par_each;
 use crate::sim::flier::Flier;
 use crate::sim::link::Reception;
-use crate::sim::parallel::par_each;
 use crate::sim::radio::Frame;
 use core::cmp::Ordering;
 use std::collections::BinaryHeap;

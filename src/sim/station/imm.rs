@@ -7,8 +7,8 @@ use super::{
 };
 use crate::math::exp;
 use crate::models::{with_model, ModelKind, MotionModel};
+use crate::parallel::{par_map, par_map_owned};
 use crate::sim::packet::Transmission;
-use crate::sim::parallel::{par_map, par_map_owned};
 use nalgebra::{Matrix3, Vector3};
 
 /// Probability that the drone keeps flying the manoeuvre one model describes from one packet to

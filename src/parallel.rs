@@ -102,6 +102,36 @@ pub(crate) fn par_map_costliest_first<T: Send>(
     slots.into_iter().flatten().collect()
 }
 
+/// `f(i, tick)` for every `i` in `range`, in order, where `f` calls `tick` as its item
+/// progresses (a run's flights flown in order): in WebAssembly the items run in turn and each
+/// tick is passed on as it comes; natively they run side by side, each item's ticks are counted,
+/// and as many are passed on once all are done, as [`par_map_ticking`] does.
+pub(crate) fn par_map_progressing<T: Send>(
+    range: core::ops::Range<usize>,
+    f: impl Fn(usize, &mut dyn FnMut()) -> T + Sync + Send,
+    tick: &mut dyn FnMut(),
+) -> Vec<T> {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        let counted = par_map(range, |i| {
+            let mut ticks = 0usize;
+            let r = f(i, &mut || ticks += 1);
+            (r, ticks)
+        });
+        counted
+            .into_iter()
+            .map(|(r, ticks)| {
+                (0..ticks).for_each(|_| tick());
+                r
+            })
+            .collect()
+    }
+    #[cfg(target_arch = "wasm32")]
+    {
+        range.map(|i| f(i, tick)).collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -112,6 +142,21 @@ mod tests {
         let out = par_map_ticking(0..100, |i| i * i, &mut |i| ticked.push(i));
         assert_eq!(out, (0..100).map(|i| i * i).collect::<Vec<_>>());
         assert_eq!(ticked, (0..100).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn progressing_items_pass_on_every_tick_and_keep_index_order() {
+        let mut ticks = 0;
+        let out = par_map_progressing(
+            0..8,
+            |i, tick| {
+                (0..i).for_each(|_| tick());
+                i * 2
+            },
+            &mut || ticks += 1,
+        );
+        assert_eq!(out, (0..8).map(|i| i * 2).collect::<Vec<_>>());
+        assert_eq!(ticks, (0..8).sum::<usize>());
     }
 
     #[test]
