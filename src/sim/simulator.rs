@@ -102,6 +102,9 @@ pub struct Simulator {
     csv_texts: Vec<(u64, Arc<str>, u64)>,
     next_csv_id: u64,
     drones: HashMap<DroneKey, Rc<Vec<DroneTrack>>>,
+    /// Keys whose drone runs a run streamed because not all of its keys fitted
+    /// ([`Simulator::drone_sets`]): asked for again, they are remembered.
+    streamed: Vec<DroneKey>,
     stations: HashMap<StationKey, Rc<Vec<Mutex<FlightChains>>>>,
     drone_runs: u64,
     ledger: Ledger<Entry>,
@@ -132,6 +135,25 @@ fn sensor_groups(missing: &[&DroneKey], n: usize) -> Vec<(u64, Vec<usize>)> {
             .map(|(m, key)| (key.seed, vec![m]))
             .collect()
     }
+}
+
+/// The distinct keys of `keys` whose drone runs (`steps` estimates each) may be remembered: as
+/// many as fit in [`MAX_DRONE_SHARE`] of the budget together, the costliest filters first, since
+/// they are what a later run with other link settings saves most by finding (a 10⁶-row flight at
+/// 25 Hz, 29 MB per model: 3D-CTRA's and CTRA+'s, not DR's); and every distinct key.
+fn remembered_keys(keys: &[DroneKey], steps: usize) -> (Vec<&DroneKey>, Vec<&DroneKey>) {
+    let mut distinct: Vec<&DroneKey> = Vec::new();
+    for key in keys {
+        if !distinct.contains(&key) {
+            distinct.push(key);
+        }
+    }
+    let mut fit = distinct.clone();
+    // Stable: keys of equal cost keep their order.
+    fit.sort_by_key(|k| core::cmp::Reverse(drone_run_work(k.model)));
+    let room = MAX_CACHE_BYTES / MAX_DRONE_SHARE;
+    fit.truncate(room / steps.saturating_mul(DRONE_STEP_BYTES).max(1));
+    (fit, distinct)
 }
 
 /// The sensor steps of all `flights` together: what one key's drone runs hold.
@@ -299,10 +321,14 @@ impl Simulator {
 
     /// The drone runs of every flight for each of `keys` (in their order; a key may repeat),
     /// from the cache or computed, every missing (key, flight) pair in one parallel batch;
-    /// `tick` is called once per key and flight. `None` for all when they would take more
-    /// than [`MAX_DRONE_SHARE`] of the budget together: each station's event loop then runs
-    /// the drone's filter as it reads it ([`Estimates::Live`](super::Estimates)), holding only
-    /// a few estimates.
+    /// `tick` is called once per key and flight. Where they fit in [`MAX_DRONE_SHARE`] of the
+    /// budget together, every key is remembered. Where they do not (a 10⁶-row flight at 25 Hz:
+    /// 29 MB per model), a run streams them (`None`: each station's event loop runs that drone's
+    /// filter as it reads it, [`Estimates::Live`](super::Estimates), holding only a few
+    /// estimates), so that a single run, the CLI's, holds no more than it needs; a key asked for
+    /// again is remembered if it is among the costliest that fit ([`remembered_keys`]), since
+    /// a second run on the same drones (the page's distance and SF charts) will likely not be
+    /// the last.
     fn drone_sets(
         &mut self,
         keys: &[DroneKey],
@@ -311,23 +337,22 @@ impl Simulator {
         tick: &mut dyn FnMut(),
     ) -> Vec<Option<Rc<Vec<DroneTrack>>>> {
         let n = flights.len();
-        let mut distinct: Vec<&DroneKey> = Vec::new();
-        for key in keys {
-            if !distinct.contains(&key) {
-                distinct.push(key);
-            }
-        }
-        if distinct.len() * sensor_steps(flights, cfg) * DRONE_STEP_BYTES
-            > MAX_CACHE_BYTES / MAX_DRONE_SHARE
-        {
-            (0..keys.len() * n).for_each(|_| tick());
-            self.drone_runs += (keys.len() * n) as u64;
-            return vec![None; keys.len()];
-        }
+        let (fit, all) = remembered_keys(keys, sensor_steps(flights, cfg));
+        let kept: Vec<&DroneKey> = if fit.len() == all.len() {
+            fit
+        } else {
+            let kept = fit
+                .into_iter()
+                .filter(|k| self.drones.contains_key(k) || self.streamed.contains(k))
+                .collect();
+            self.note_streamed(&all);
+            kept
+        };
         // The cached ones are held here first: remembering the new ones may evict them.
         let mut sets: HashMap<DroneKey, Rc<Vec<DroneTrack>>> = HashMap::new();
         let mut missing: Vec<&DroneKey> = Vec::new();
-        for key in distinct {
+        for key in kept {
+            self.streamed.retain(|k| k != key);
             if let Some(d) = self.drones.get(key) {
                 sets.insert(key.clone(), Rc::clone(d));
                 self.ledger.touch(&Entry::Drones(key.clone()));
@@ -337,13 +362,28 @@ impl Simulator {
         }
         let computed = run_missing(&missing, flights, cfg, tick);
         (0..(keys.len() - missing.len()) * n).for_each(|_| tick());
-        self.drone_runs += (missing.len() * n) as u64;
+        let live = keys
+            .iter()
+            .filter(|k| !sets.contains_key(k) && !missing.contains(k));
+        self.drone_runs += ((missing.len() + live.count()) * n) as u64;
         for (key, tracks) in missing.into_iter().zip(computed) {
             let tracks = Rc::new(tracks);
             sets.insert(key.clone(), Rc::clone(&tracks));
             self.remember_drones(key.clone(), tracks);
         }
-        keys.iter().map(|key| Some(Rc::clone(&sets[key]))).collect()
+        keys.iter().map(|key| sets.get(key).cloned()).collect()
+    }
+
+    /// Notes `keys` as streamed by a run, so that a run asking for them again remembers them;
+    /// at most [`MAX_CACHED_DRONE_RUNS`] notes, the oldest dropped first.
+    fn note_streamed(&mut self, keys: &[&DroneKey]) {
+        for &key in keys {
+            if !self.drones.contains_key(key) && !self.streamed.contains(key) {
+                self.streamed.push(key.clone());
+            }
+        }
+        let over = self.streamed.len().saturating_sub(MAX_CACHED_DRONE_RUNS);
+        self.streamed.drain(..over);
     }
 
     /// Keeps one key's drone runs in the cache.
@@ -807,5 +847,28 @@ mod tests {
         p.swarm.drones = 2;
         assert!(sim.run(&p.validate().unwrap()).is_err());
         assert_eq!(ended.get(), 3);
+    }
+
+    #[test]
+    fn the_costliest_drone_runs_that_fit_are_the_ones_remembered() {
+        let key = |model, seed| DroneKey {
+            flights: FlightKey::Sample("canberra".into()),
+            model,
+            sensor_rate: 10f64.to_bits(),
+            q: 0.1f64.to_bits(),
+            seed,
+        };
+        let keys = [
+            key(ModelKind::Dr, 1),
+            key(ModelKind::CtraPlus, 1),
+            key(ModelKind::Ctra3d, 1),
+            key(ModelKind::Dr, 1),
+        ];
+        let two = MAX_CACHE_BYTES / MAX_DRONE_SHARE / DRONE_STEP_BYTES / 2;
+        let (fit, all) = remembered_keys(&keys, two);
+        assert_eq!(all, vec![&keys[0], &keys[1], &keys[2]]);
+        assert_eq!(fit, vec![&keys[2], &keys[1]]);
+        assert_eq!(remembered_keys(&keys, 10).0.len(), 3);
+        assert!(remembered_keys(&keys, 4 * two).0.is_empty());
     }
 }

@@ -340,6 +340,43 @@ fn a_station_too_long_for_a_quarter_of_the_budget_is_not_remembered() {
 }
 
 #[test]
+fn drones_too_many_to_remember_are_streamed_once_then_the_costliest_are_remembered() {
+    // 35 000 s sensed at 10 Hz: each model's drone run holds 3.5·10⁵ estimates (25 MB), so two
+    // fit in the drone runs' quarter of the budget (64 MB) and three do not.
+    let csv: String = std::iter::once("t,x,y,z\n".to_string())
+        .chain((0..=3500).map(|i| {
+            let t = i as f64 * 10.0;
+            format!(
+                "{t},{},{},40\n",
+                200.0 * (t / 400.0).sin(),
+                150.0 * (t / 300.0).cos()
+            )
+        }))
+        .collect();
+    let long = set(&Scenario::default(), json!({"trajectory": csv}));
+    let one_drone = 350_001 * core::mem::size_of::<[f64; 9]>();
+    let mut sim = Simulator::new();
+    let first = simulate(&mut sim, &long).unwrap();
+    let flight_only = sim.cached_bytes();
+    assert!(
+        flight_only < one_drone,
+        "a single run streams its drones: {flight_only} bytes cached"
+    );
+    let far = set(&long, json!({"distance": 2500}));
+    let second = simulate(&mut sim, &far).unwrap();
+    let remembered = sim.cached_bytes() - flight_only;
+    assert!(
+        (2 * one_drone..3 * one_drone).contains(&remembered),
+        "asked for again, two of the three drones are remembered: {remembered} bytes"
+    );
+    // A third run finds them, and every run gives the numbers a fresh simulator would.
+    let third = simulate(&mut sim, &long).unwrap();
+    assert_eq!(third.results, first.results);
+    let fresh = simulate(&mut Simulator::new(), &far).unwrap();
+    assert_eq!(second.results, fresh.results);
+}
+
+#[test]
 fn seeds_pool_their_runs_and_give_each_statistic_an_interval() {
     let flight = set(&one_flight(3), json!({"model": "dr,3d-ctra"}));
     let mut sim = Simulator::new();
