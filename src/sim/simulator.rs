@@ -341,9 +341,11 @@ impl Simulator {
         let kept: Vec<&DroneKey> = if fit.len() == all.len() {
             fit
         } else {
+            // No more than the cache holds by count: past it, remembering one clears the rest.
             let kept = fit
                 .into_iter()
                 .filter(|k| self.drones.contains_key(k) || self.streamed.contains(k))
+                .take(MAX_CACHED_DRONE_RUNS)
                 .collect();
             self.note_streamed(&all);
             kept
