@@ -708,10 +708,10 @@ fn pool(
 }
 
 /// Every run's flights: the runs whose drones adapt their data rate fly theirs in order
-/// ([`StationRun::fly_in_order`]), side by side; every other run joins the first run whose drone sends the same
-/// transmissions ([`StationRun::sends_as`]), and each such group's flights are one parallel batch,
-/// the costliest groups first. One list of flights per run, in flight order; `tick` once per run
-/// and flight.
+/// ([`StationRun::fly_in_order`]), those runs side by side; every other run joins the first run
+/// whose drone sends the same transmissions ([`StationRun::sends_as`]), and each such group's
+/// flights are one parallel batch, the costliest groups first. One list of flights per run, in
+/// flight order; `tick` once per run and flight.
 fn fly_all(
     runs: &[StationRun],
     flights: usize,
