@@ -792,6 +792,17 @@ pub(crate) fn load_flights(source: &TrajectorySource) -> Result<Vec<Trajectory>,
 mod tests {
     use super::*;
 
+    /// A drone key of the Canberra flight for `model` and `seed`.
+    fn key(model: ModelKind, seed: u64) -> DroneKey {
+        DroneKey {
+            flights: FlightKey::Sample("canberra".into()),
+            model,
+            sensor_rate: 10f64.to_bits(),
+            q: 0.1f64.to_bits(),
+            seed,
+        }
+    }
+
     #[test]
     fn csv_texts_that_share_a_hash_never_share_a_key() {
         let mut sim = Simulator::new();
@@ -810,13 +821,6 @@ mod tests {
 
     #[test]
     fn many_flights_read_each_seeds_sensors_once_and_one_flight_keeps_a_task_per_model() {
-        let key = |model, seed| DroneKey {
-            flights: FlightKey::Sample("canberra".into()),
-            model,
-            sensor_rate: 10f64.to_bits(),
-            q: 0.1f64.to_bits(),
-            seed,
-        };
         let keys = [
             key(ModelKind::Dr, 1),
             key(ModelKind::Ctra3d, 1),
@@ -853,13 +857,6 @@ mod tests {
 
     #[test]
     fn the_costliest_drone_runs_that_fit_are_the_ones_remembered() {
-        let key = |model, seed| DroneKey {
-            flights: FlightKey::Sample("canberra".into()),
-            model,
-            sensor_rate: 10f64.to_bits(),
-            q: 0.1f64.to_bits(),
-            seed,
-        };
         let keys = [
             key(ModelKind::Dr, 1),
             key(ModelKind::CtraPlus, 1),
