@@ -342,19 +342,16 @@ impl Simulator {
             fit
         } else {
             // No more than the cache holds by count: past it, remembering one clears the rest.
-            let kept = fit
-                .into_iter()
+            fit.into_iter()
                 .filter(|k| self.drones.contains_key(k) || self.streamed.contains(k))
                 .take(MAX_CACHED_DRONE_RUNS)
-                .collect();
-            self.note_streamed(&all);
-            kept
+                .collect()
         };
+        self.note_streamed(&all, &kept);
         // The cached ones are held here first: remembering the new ones may evict them.
         let mut sets: HashMap<DroneKey, Rc<Vec<DroneTrack>>> = HashMap::new();
         let mut missing: Vec<&DroneKey> = Vec::new();
         for key in kept {
-            self.streamed.retain(|k| k != key);
             if let Some(d) = self.drones.get(key) {
                 sets.insert(key.clone(), Rc::clone(d));
                 self.ledger.touch(&Entry::Drones(key.clone()));
@@ -376,11 +373,16 @@ impl Simulator {
         keys.iter().map(|key| sets.get(key).cloned()).collect()
     }
 
-    /// Notes `keys` as streamed by a run, so that a run asking for them again remembers them;
-    /// at most [`MAX_CACHED_DRONE_RUNS`] notes, the oldest dropped first.
-    fn note_streamed(&mut self, keys: &[&DroneKey]) {
-        for &key in keys {
-            if !self.drones.contains_key(key) && !self.streamed.contains(key) {
+    /// Notes the keys of `all` that a run streams (neither `kept` nor cached), so that a run
+    /// asking for them again remembers them, and forgets the notes of `kept`; at most
+    /// [`MAX_CACHED_DRONE_RUNS`] notes, the oldest dropped first.
+    fn note_streamed(&mut self, all: &[&DroneKey], kept: &[&DroneKey]) {
+        self.streamed.retain(|k| !kept.contains(&k));
+        for &key in all {
+            if !kept.contains(&key)
+                && !self.drones.contains_key(key)
+                && !self.streamed.contains(key)
+            {
                 self.streamed.push(key.clone());
             }
         }
