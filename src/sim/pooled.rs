@@ -66,11 +66,13 @@ impl RateTally {
             packets: 0,
             received: 0,
             time_on_air: t.time_on_air,
+            interval: t.interval,
         });
         e.packets += 1;
         e.received += usize::from(t.received);
         // A lean payload's frame is shorter: the rate's own is the longest.
         e.time_on_air = e.time_on_air.max(t.time_on_air);
+        e.interval = e.interval.max(t.interval);
     }
 
     /// The time on air of every transmission counted, s.

@@ -319,6 +319,9 @@ pub struct DataRateUse {
     pub received: usize,
     /// Time on air of one packet at it, s: its longest (with `--payload lean` some are shorter).
     pub time_on_air: f64,
+    /// The duty-cycle interval after that longest packet, s (reference §6.1): with ADR each
+    /// rate's own, where the result's `interval` is the starting rate's.
+    pub interval: f64,
 }
 
 /// One frame length's cost on air: how long the packet occupies the channel and the duty-cycle

@@ -328,3 +328,59 @@ fn a_lone_tracking_drone_out_of_reach_backs_off_within_seconds_where_lorawans_wa
         loratrack::AckLimits { limit: 2, delay: 2 }
     );
 }
+
+#[test]
+fn simulate_with_adr_lists_each_rates_packets_and_interval_under_its_row() {
+    // 3 km from SF7/250 kHz: the tracking network moves the drone down through the fades.
+    let args = [
+        "simulate",
+        "--synthetic",
+        "all",
+        "--model",
+        "3d-ctra",
+        "--adr",
+        "tracking",
+        "--distance",
+        "3000",
+    ];
+    let out = crate::cli(&args);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let json: Value =
+        serde_json::from_slice(&crate::cli(&[&args[..], &["--json"]].concat()).stdout).unwrap();
+    let rates = json["results"][0]["dataRateUse"].as_array().unwrap();
+    assert!(rates.len() > 1, "ADR moved the rate at 3 km: {rates:?}");
+    // Fastest first, as received / sent, each with the duty-cycle interval of its own frame: 12
+    // bytes of 3D-CTRA state and the 13-byte overhead at 1 %.
+    let parts: Vec<String> = rates
+        .iter()
+        .rev()
+        .map(|u| {
+            let dr = DataRate::ALL[u["dr"].as_u64().unwrap() as usize];
+            let radio = LoraParams::new(dr.sf(), dr.bw());
+            let toa = loratrack::time_on_air(&radio, 12 + 13).unwrap().time_on_air;
+            let interval = loratrack::min_interval(toa, 0.01).unwrap();
+            assert!(
+                (u["interval"].as_f64().unwrap() - interval).abs() < 1e-9,
+                "{u}"
+            );
+            format!(
+                "DR{} {}/{} every {interval:.2} s",
+                u["dr"], u["received"], u["packets"]
+            )
+        })
+        .collect();
+    let line = format!(
+        "ADR: {}; the interval column is the starting rate's",
+        parts.join(", ")
+    );
+    assert!(text.lines().any(|l| l.trim() == line), "{text}\n/ {line}");
+    // A fixed rate has one, which the interval column already shows.
+    let fixed = crate::cli(&args[..5]);
+    assert!(fixed.status.success());
+    let fixed = String::from_utf8(fixed.stdout).unwrap();
+    assert!(
+        fixed.contains("3D-CTRA") && !fixed.contains("ADR:"),
+        "{fixed}"
+    );
+}

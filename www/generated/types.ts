@@ -507,7 +507,12 @@ received: number,
 /**
  * Time on air of one packet at it, s: its longest (with `--payload lean` some are shorter).
  */
-timeOnAir: number, };
+timeOnAir: number, 
+/**
+ * The duty-cycle interval after that longest packet, s (reference §6.1): with ADR each
+ * rate's own, where the result's `interval` is the starting rate's.
+ */
+interval: number, };
 
 export type FrameTiming = { 
 /**

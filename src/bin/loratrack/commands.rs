@@ -573,6 +573,9 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
             let parts: Vec<String> = p.iter().map(|(k, v)| format!("{k} {v:.2}")).collect();
             out += &format!("          mean model probability: {}\n", parts.join(", "));
         }
+        if m.data_rate_use.len() > 1 {
+            out += &format!("          {}\n", rates_line(&m.data_rate_use));
+        }
         if m.lean_packets > 0 {
             out += &format!(
                 "          lean payload: {} of {} packets left out a, omega or psi{}\n",
@@ -605,6 +608,30 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
     }
     out += &caveat_lines(results);
     out.trim_end().to_string()
+}
+
+/// Where ADR sent a station's packets, fastest rate first, received / sent and each rate's
+/// duty-cycle interval: `ADR: DR6 0/4 every 3.08 s, DR3 78/112 every 20.58 s; the interval
+/// column is the starting rate's` (the page's interval cell spans them).
+fn rates_line(rates: &[loratrack::DataRateUse]) -> String {
+    let parts: Vec<String> = rates
+        .iter()
+        .rev()
+        .map(|u| {
+            let rate = match u.dr {
+                Some(dr) => format!("DR{dr}"),
+                None => format!("SF{}/{}", u.sf, u.bw),
+            };
+            format!(
+                "{rate} {}/{} every {:.2} s",
+                u.received, u.packets, u.interval
+            )
+        })
+        .collect();
+    format!(
+        "ADR: {}; the interval column is the starting rate's",
+        parts.join(", ")
+    )
 }
 
 /// The lines the page shows as notes under its results, for the stations whose `caveats` say so:

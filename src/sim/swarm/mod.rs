@@ -659,6 +659,7 @@ mod tests {
             packets,
             received: packets,
             time_on_air: 0.1,
+            interval: 10.0,
         }
     }
 
