@@ -27,7 +27,7 @@ export function renderTable(r: SimReport): void {
         <td data-field="p95">${fmt(m.error3d.p95)}${delta(m, 'p95')}</td><td data-field="max">${fmt(m.error3d.max, 1)}${delta(m, 'max')}</td>
         <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td>
         <td data-field="delivery">${(ratio * 100).toFixed(0)} %</td><td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}${delta(m, 'packets')}</td>
-        <td data-field="interval"${leanTitle(m)}>${m.interval.toFixed(2)} s${lean(m.leanFrame && `lean ${m.leanFrame.interval.toFixed(2)} s`)}</td><td data-field="toa"${leanTitle(m)}>${(m.timeOnAir * 1e3).toFixed(1)} ms${lean(m.leanFrame && `lean ${(m.leanFrame.timeOnAir * 1e3).toFixed(1)} ms`)}</td><td data-field="payload"${leanTitle(m)}>${m.payloadBytes} B${lean(m.leanPackets > 0 && `${m.leanPackets} lean`)}</td>
+        ${frameCells(m)}<td data-field="payload"${leanTitle(m)}>${m.payloadBytes} B${lean(m.leanPackets > 0 && `${m.leanPackets} lean`)}</td>
         <td data-field="energy" title="${m.energy.chargePerHour.toFixed(3)} mAh per hour of tracking">${m.energy.chargePerUplink.toFixed(2)}</td></tr>`;
     })
     .join('');
@@ -49,8 +49,8 @@ export function renderTable(r: SimReport): void {
 }
 
 /**
- * Lets the p75's interval break after its dash (`.tight`) where the table would otherwise scroll
- * sideways: a wide interval (ADR at 5 km over eight seeds, "(76.52–408.85)") pushed the charge per
+ * Lets the p75's interval, and an ADR run's spans (`frameCells`), break after their dash
+ * (`.tight`) where the table would otherwise scroll sideways: a wide interval (ADR at 5 km over eight seeds, "(76.52–408.85)") pushed the charge per
  * uplink out of a 1280 px window. Only then: were it always allowed, the table's layout would
  * narrow every column that can wrap and stack short intervals on two lines where the headers
  * alone make room (the default table at 1024 px). Checked again when the table's box changes width.
@@ -93,6 +93,25 @@ export function intervalRule(c: Pick<RunConfig, 'region' | 'access' | 'fairUse' 
   const error = c.sender === 'error' ? '. The shortest: error-triggered sending waits longer while the station’s forecast holds' : '';
   const budget = c.dutyCycleMode === 'budget' ? '. On average: the budget rule lets saved airtime go sooner, in a burst' : '';
   return `Time between packets: ${rule}${fair}${error}${budget}`;
+}
+
+/** The interval and time on air cells: one packet's at the run's rate, or with ADR that moved the
+ * rate, the span over the rates it sent at (the starting rate's alone would say 3 s where most
+ * packets waited minutes), each rate's in the title. */
+function frameCells(m: ModelResult): string {
+  const used = [...m.dataRateUse].reverse();
+  if (used.length > 1) {
+    const title = ` title="ADR sent at ${used.length} data rates: ${used.map((u) => `${u.dr === null ? `SF${u.sf}/${u.bw}` : `DR${u.dr}`} ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`).join('; ')}"`;
+    // Two pieces, so that where the table is tight (fitIntervals) the span may break after its dash.
+    const span = (values: number[], unit: string) => `<span>${short(Math.min(...values))}–</span><span>${short(Math.max(...values))} ${unit}</span>`;
+    return `<td data-field="interval" data-span${title}>${span(used.map((u) => u.interval), 's')}</td><td data-field="toa" data-span${title}>${span(used.map((u) => u.timeOnAir * 1e3), 'ms')}</td>`;
+  }
+  return `<td data-field="interval"${leanTitle(m)}>${m.interval.toFixed(2)} s${lean(m.leanFrame && `lean ${m.leanFrame.interval.toFixed(2)} s`)}</td><td data-field="toa"${leanTitle(m)}>${(m.timeOnAir * 1e3).toFixed(1)} ms${lean(m.leanFrame && `lean ${(m.leanFrame.timeOnAir * 1e3).toFixed(1)} ms`)}</td>`;
+}
+
+/** Three significant figures, at most two decimals: 3.08, 41.2, 148. */
+function short(v: number): string {
+  return v.toFixed(v < 10 ? 2 : v < 100 ? 1 : 0);
 }
 
 /** A cell's second line, under a full packet's number, for what lean packets did (as the p75's
@@ -243,7 +262,7 @@ function renderRateUse(r: SimReport): void {
   if (note.hidden) return;
   const rate = (u: ModelResult['dataRateUse'][number]) => `${u.dr === null ? `SF${u.sf}/${u.bw}` : `DR${u.dr} (SF${u.sf}/${u.bw})`} ${u.received}/${u.packets}`;
   const lines = r.results.map((m) => `${MODEL_LABELS[m.model]}: ${[...m.dataRateUse].reverse().map(rate).join(', ')}`);
-  note.textContent = `Packets received / sent per data rate (${r.config.adr === 'lorawan' ? 'LoRaWAN' : 'tracking-aware'} ADR, interval and time on air above are the starting rate's) — ${lines.join('; ')}.`;
+  note.textContent = `Packets received / sent per data rate (${r.config.adr === 'lorawan' ? 'LoRaWAN' : 'tracking-aware'} ADR; the interval and time on air above span the rates used) — ${lines.join('; ')}.`;
 }
 
 /** What each gateway heard, and the copies the network server removed. */

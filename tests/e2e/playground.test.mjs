@@ -856,6 +856,26 @@ test('a wide p75 interval breaks after its dash at 1280 px instead of pushing th
   assert.deepEqual(problems, []);
 });
 
+test('with ADR the interval and time on air span the rates it sent at, as the CLI counts them, each rate in the tooltip', async () => {
+  const { page, problems } = await open('?adr=tracking&distance=3000&model=3d-ctra&flight=all');
+  await idle(page);
+  const cli = nativeJson(['simulate', '--synthetic', 'all', '--adr', 'tracking', '--distance', '3000', '--model', '3d-ctra']);
+  const used = cli.results[0].dataRateUse;
+  assert.ok(used.length > 1, 'ADR moved the rate at 3 km');
+  // As the page rounds: three significant figures, at most two decimals.
+  const short = (v) => v.toFixed(v < 10 ? 2 : v < 100 ? 1 : 0);
+  const span = (values) => `${short(Math.min(...values))}–${short(Math.max(...values))}`;
+  assert.equal(await cell(page, '3d-ctra', 'interval'), `${span(used.map((u) => u.interval))} s`);
+  assert.equal(await cell(page, '3d-ctra', 'toa'), `${span(used.map((u) => u.timeOnAir * 1e3))} ms`);
+  // The starting rate alone would say one packet every few seconds.
+  assert.ok(Math.max(...used.map((u) => u.interval)) > 2 * cli.results[0].interval);
+  const title = await page.locator('#results-table tr[data-model="3d-ctra"] td[data-field="interval"]').getAttribute('title');
+  for (const u of used) assert.ok(title.includes(`DR${u.dr} ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`), `${title} / DR${u.dr}`);
+  assert.match(await page.locator('#rate-use').textContent(), /the interval and time on air above span the rates used/);
+  assert.deepEqual(await axe(page), []);
+  assert.deepEqual(problems, []);
+});
+
 test('shadowing fixed in space is one Advanced control away, travels in the link, and its numbers are the CLI\'s', async () => {
   const { page, problems } = await open('?distance=3000');
   const before = await tableHtml(page);
