@@ -474,7 +474,9 @@ async function drawPanel(name: string, inputs: unknown, draw: (p: Awaited<Return
 
 async function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): Promise<void> {
   const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d })));
-  const opts = { log: true, groupLabel: `gateway distance (SF${made.sf}, ${made.bw} kHz)`, width: chartWidth('distance') };
+  // With ADR the runs start at the chosen rate and the network moves them (the SF chart's do not).
+  const adr = made.adr === 'off' ? '' : ` and ${made.adr === 'lorawan' ? 'LoRaWAN' : 'tracking'} ADR`;
+  const opts = { log: true, groupLabel: `gateway distance (SF${made.sf}, ${made.bw} kHz${adr})`, width: chartWidth('distance') };
   await drawPanel('distance', [rows, opts], (p) => p.boxplotChart(rows, opts), made);
 }
 

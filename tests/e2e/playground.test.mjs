@@ -856,7 +856,7 @@ test('a wide p75 interval breaks after its dash at 1280 px instead of pushing th
   assert.deepEqual(problems, []);
 });
 
-test('with ADR the interval and time on air span the rates it sent at, as the CLI counts them, each rate in the tooltip', async () => {
+test('with ADR the interval and time on air span the rates it sent at, as the CLI counts them, and the distance chart says ADR moved its runs too', async () => {
   const { page, problems } = await open('?adr=tracking&distance=3000&model=3d-ctra&flight=all');
   await idle(page);
   const cli = nativeJson(['simulate', '--synthetic', 'all', '--adr', 'tracking', '--distance', '3000', '--model', '3d-ctra']);
@@ -872,6 +872,9 @@ test('with ADR the interval and time on air span the rates it sent at, as the CL
   const title = await page.locator('#results-table tr[data-model="3d-ctra"] td[data-field="interval"]').getAttribute('title');
   for (const u of used) assert.ok(title.includes(`DR${u.dr} ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`), `${title} / DR${u.dr}`);
   assert.match(await page.locator('#rate-use').textContent(), /the interval and time on air above span the rates used/);
+  // The distance chart's runs move their rate too, and its axis says so.
+  await page.waitForSelector('#chart-distance svg', { timeout: 30_000 });
+  assert.ok((await chartTexts(page, '#chart-distance')).some((t) => t.includes('gateway distance (SF7, 250 kHz and tracking ADR)')));
   assert.deepEqual(await axe(page), []);
   assert.deepEqual(problems, []);
 });
