@@ -707,3 +707,67 @@ fn progress_shows_on_a_terminal_only() {
         assert!(!shown.contains("error"), "{shown:?}");
     }
 }
+
+#[test]
+fn a_second_prediction_adds_its_own_verdicts_to_the_adr_document_and_other_sweeps_refuse_it() {
+    let markdown = |args: &[&str]| {
+        let out = cli(args);
+        assert_eq!(out.status.code(), Some(0), "{args:?}");
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    let sweep = ["sweep", "--distances", "2000", "--seeds", "2", "--markdown"];
+    let both = markdown(&[&sweep[..], &["--held-out", "--prediction", "paper,bounded"]].concat());
+    let paper = markdown(&[&sweep[..], &["--held-out"]].concat());
+    let (first, bounded) = both
+        .split_once("\n## The same runs with the bounded station\n")
+        .expect(&both);
+    // The paper station's document is as before but for the command it names.
+    assert_eq!(
+        first.replace(" --prediction paper,bounded", "").trim_end(),
+        paper.trim_end(),
+        "{both}"
+    );
+    assert!(
+        first.contains("--bw 250 --prediction paper,bounded`"),
+        "{first}"
+    );
+    // Each block's verdicts are what the bounded station alone reports on it.
+    let verdicts = |text: &str| -> Vec<String> {
+        text.lines()
+            .take_while(|l| !l.starts_with("LoRaWAN's ADR"))
+            .filter(|l| l.starts_with("- `"))
+            .map(str::to_string)
+            .collect()
+    };
+    let (one, two) = bounded.split_once("On seeds 3–4").expect(bounded);
+    let alone = |seed: &str| {
+        let md = markdown(&[&sweep[..], &["--seed", seed, "--prediction", "bounded"]].concat());
+        verdicts(md.split_once("## What the table shows").unwrap().1)
+    };
+    assert_eq!(verdicts(one), alone("1"));
+    assert_eq!(verdicts(two), alone("3"));
+    assert_ne!(
+        verdicts(one),
+        verdicts(paper.split_once("## What the table shows").unwrap().1)
+    );
+    // A table or JSON is one prediction's, as is every other one-station sweep: a second is refused,
+    // not dropped.
+    for args in [
+        &[
+            "sweep",
+            "--distances",
+            "2000",
+            "--prediction",
+            "paper,bounded",
+        ][..],
+        &["sweep", "--senders", "--prediction", "paper,bounded"],
+    ] {
+        let out = cli(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("takes one --prediction, not paper,bounded"),
+            "{err}"
+        );
+    }
+}

@@ -84,7 +84,8 @@ pub struct SweepArgs {
     /// Station model(s): dr, ctra-plus, 3d-ctra, imm, a comma list, or all (the paper's three).
     #[arg(long, default_value = "all")]
     model: String,
-    /// Station prediction(s), comma-separated: paper, bounded.
+    /// Station prediction(s), comma-separated: paper, bounded. Several only with --paper, and with
+    /// --distances --markdown (each after the first adds the ADR verdicts with that station).
     #[arg(long, value_enum, value_delimiter = ',', default_value = "paper")]
     prediction: Vec<Prediction>,
     /// Print the paper-reproduction document (Markdown) instead of a table.
@@ -103,6 +104,16 @@ pub(crate) fn sweep(a: SweepArgs) -> Result<String, ApiError> {
     let count = RunCount::on_stderr("sweep");
     let model = ModelChoice::parse(&a.model).map_err(ApiError::Invalid)?;
     let predictions: Vec<Prediction> = a.prediction.clone();
+    // Only the paper's grid and the ADR document have room for several; elsewhere a second
+    // would be dropped without a word.
+    let several = a.kind.paper || (a.kind.distances.is_some() && a.markdown);
+    if predictions.len() > 1 && !several {
+        let names: Vec<&str> = predictions.iter().map(|p| p.name()).collect();
+        return Err(ApiError::Invalid(format!(
+            "this sweep takes one --prediction, not {} (--paper and --distances --markdown take several)",
+            names.join(",")
+        )));
+    }
     if a.kind.senders {
         return sweep_senders(&a, model, predictions[0], &count);
     }
@@ -116,7 +127,7 @@ pub(crate) fn sweep(a: SweepArgs) -> Result<String, ApiError> {
         return crate::payloads_doc::markdown(&mut count.simulator(), a.seed, a.seeds);
     }
     if let Some(distances) = &a.kind.distances {
-        return sweep_distances(&a, model, predictions[0], distances, &count);
+        return sweep_distances(&a, model, &predictions, distances, &count);
     }
     let r = api::sweep_paper(&mut count.simulator(), a.seed, &predictions, &model)?;
     if a.out.json {
@@ -211,33 +222,47 @@ fn trade_off_base(a: &SweepArgs, model: ModelChoice, prediction: Prediction) -> 
     p
 }
 
+/// `sweep --distances`: the table or JSON at one prediction; docs/adr.md at the first, with the
+/// same runs at each further one (`--prediction paper,bounded`) in a section of their own.
 fn sweep_distances(
     a: &SweepArgs,
     model: ModelChoice,
-    prediction: Prediction,
+    predictions: &[Prediction],
     distances: &[f64],
     count: &RunCount,
 ) -> Result<String, ApiError> {
-    let base = trade_off_base(a, model, prediction);
-    let next = if a.held_out && a.markdown {
-        Some(held_out_block(&base)?)
-    } else {
-        None
+    let blocks = |prediction| -> Result<Vec<Scenario>, ApiError> {
+        let base = trade_off_base(a, model.clone(), prediction);
+        Ok(match a.held_out && a.markdown {
+            true => vec![held_out_block(&base)?, base]
+                .into_iter()
+                .rev()
+                .collect(),
+            false => vec![base],
+        })
     };
+    // Every block checked before anything runs.
+    let plans = predictions
+        .iter()
+        .map(|&p| blocks(p))
+        .collect::<Result<Vec<_>, _>>()?;
     let mut sim = count.simulator();
-    let r = api::sweep_distances(&mut sim, &base, distances)?;
+    let mut runs = Vec::new();
+    for plan in plans {
+        let mut block = Vec::new();
+        for base in plan {
+            block.push((api::sweep_distances(&mut sim, &base, distances)?, base));
+        }
+        runs.push(block);
+    }
+    let r = &runs[0][0].0;
     if a.out.json {
-        return Ok(json(&r));
+        return Ok(json(r));
     }
     if a.markdown {
-        let held_out = match next {
-            Some(next) => Some((api::sweep_distances(&mut sim, &next, distances)?, next)),
-            None => None,
-        };
-        let held_out = held_out.as_ref().map(|(r, b)| (r, b));
-        return Ok(crate::adr_doc::distances_markdown(&r, &base, held_out));
+        return Ok(crate::adr_doc::distances_markdown(&runs));
     }
-    Ok(crate::adr_doc::distances_table(&r))
+    Ok(crate::adr_doc::distances_table(r))
 }
 
 /// `--held-out`'s runs: the next block of as many seeds. Refused before anything runs when that
