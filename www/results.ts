@@ -50,8 +50,9 @@ export function renderTable(r: SimReport): void {
 
 /**
  * Lets the p75's interval, and an ADR run's spans (`frameCells`), break after their dash
- * (`.tight`) where the table would otherwise scroll sideways: a wide interval (ADR at 5 km over eight seeds, "(76.52–408.85)") pushed the charge per
- * uplink out of a 1280 px window. Only then: were it always allowed, the table's layout would
+ * (`.tight`) where the table would otherwise scroll sideways: a wide interval (ADR at 5 km over
+ * eight seeds, "(76.52–408.85)") pushed the charge per uplink out of a 1280 px window. Only then:
+ * were it always allowed, the table's layout would
  * narrow every column that can wrap and stack short intervals on two lines where the headers
  * alone make room (the default table at 1024 px). Checked again when the table's box changes width.
  */
@@ -101,12 +102,17 @@ export function intervalRule(c: Pick<RunConfig, 'region' | 'access' | 'fairUse' 
 function frameCells(m: ModelResult): string {
   const used = [...m.dataRateUse].reverse();
   if (used.length > 1) {
-    const title = ` title="ADR sent at ${used.length} data rates: ${used.map((u) => `${u.dr === null ? `SF${u.sf}/${u.bw}` : `DR${u.dr}`} ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`).join('; ')}"`;
+    const title = ` title="ADR sent at ${used.length} data rates: ${used.map((u) => `${rateName(u)} ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`).join('; ')}"`;
     // Two pieces, so that where the table is tight (fitIntervals) the span may break after its dash.
     const span = (values: number[], unit: string) => `<span>${short(Math.min(...values))}–</span><span>${short(Math.max(...values))} ${unit}</span>`;
     return `<td data-field="interval" data-span${title}>${span(used.map((u) => u.interval), 's')}</td><td data-field="toa" data-span${title}>${span(used.map((u) => u.timeOnAir * 1e3), 'ms')}</td>`;
   }
   return `<td data-field="interval"${leanTitle(m)}>${m.interval.toFixed(2)} s${lean(m.leanFrame && `lean ${m.leanFrame.interval.toFixed(2)} s`)}</td><td data-field="toa"${leanTitle(m)}>${(m.timeOnAir * 1e3).toFixed(1)} ms${lean(m.leanFrame && `lean ${(m.leanFrame.timeOnAir * 1e3).toFixed(1)} ms`)}</td>`;
+}
+
+/** A data rate by its EU868 name, `DR3`, or `SF8/500` where it has none. */
+function rateName(u: ModelResult['dataRateUse'][number]): string {
+  return u.dr === null ? `SF${u.sf}/${u.bw}` : `DR${u.dr}`;
 }
 
 /** Three significant figures, at most two decimals: 3.08, 41.2, 148. */
@@ -260,7 +266,7 @@ function renderRateUse(r: SimReport): void {
   const note = $('#rate-use');
   note.hidden = r.config.adr === 'off';
   if (note.hidden) return;
-  const rate = (u: ModelResult['dataRateUse'][number]) => `${u.dr === null ? `SF${u.sf}/${u.bw}` : `DR${u.dr} (SF${u.sf}/${u.bw})`} ${u.received}/${u.packets}`;
+  const rate = (u: ModelResult['dataRateUse'][number]) => `${rateName(u)}${u.dr === null ? '' : ` (SF${u.sf}/${u.bw})`} ${u.received}/${u.packets}`;
   const lines = r.results.map((m) => `${MODEL_LABELS[m.model]}: ${[...m.dataRateUse].reverse().map(rate).join(', ')}`);
   note.textContent = `Packets received / sent per data rate (${r.config.adr === 'lorawan' ? 'LoRaWAN' : 'tracking-aware'} ADR; the interval and time on air above span the rates used) — ${lines.join('; ')}.`;
 }
