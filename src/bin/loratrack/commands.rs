@@ -501,8 +501,20 @@ fn policy_text(s: &loratrack::Scenario) -> String {
         loratrack::PayloadChoice::Full => "",
         loratrack::PayloadChoice::Lean => ", lean payloads",
     };
+    // The first line names the rate a run starts at; with ADR the network moves it from there.
+    let net = &s.network;
+    let adr = match net.adr {
+        loratrack::AdrMode::Off => String::new(),
+        loratrack::AdrMode::Tracking => {
+            format!("; tracking ADR from SF{} / {} kHz", s.radio.sf, s.radio.bw)
+        }
+        loratrack::AdrMode::Lorawan => format!(
+            "; LoRaWAN ADR from SF{} / {} kHz (margin {} dB, {} uplinks)",
+            s.radio.sf, s.radio.bw, net.adr_margin, net.adr_history
+        ),
+    };
     format!(
-        "stations: {} prediction{}; {sender}, {rule}{payload}",
+        "stations: {} prediction{}; {sender}, {rule}{payload}{adr}",
         station.prediction.name(),
         if adaptive {
             ", adaptive heading noise"
@@ -907,10 +919,10 @@ mod tests {
         assert_eq!(cli, Scenario::default());
     }
 
-    /// The header names every setting of the station's prediction and the drone's sending, so
-    /// that two runs differing in one of them never print alike.
+    /// The header names every setting of the station's prediction, the drone's sending and the
+    /// network's ADR, so that two runs differing in one of them never print alike.
     #[test]
-    fn runs_that_differ_in_prediction_or_sending_print_different_headers() {
+    fn runs_that_differ_in_prediction_sending_or_adr_print_different_headers() {
         let base = Scenario::default();
         let mut variants = vec![base.clone()];
         let mut vary = |f: &dyn Fn(&mut Scenario)| {
@@ -927,6 +939,11 @@ mod tests {
         vary(&|s| s.sending.duty_cycle_mode = loratrack::DutyCycleMode::Budget);
         vary(&|s| s.sending.burst = 4);
         vary(&|s| s.sending.payload = loratrack::PayloadChoice::Lean);
+        vary(&|s| s.network.adr = loratrack::AdrMode::Tracking);
+        vary(&|s| s.radio.bw = 125.0);
+        vary(&|s| s.network.adr = loratrack::AdrMode::Lorawan);
+        vary(&|s| s.network.adr_margin = 15.0);
+        vary(&|s| s.network.adr_history = 10);
         let headers: Vec<String> = variants.iter().map(policy_text).collect();
         for (i, a) in headers.iter().enumerate() {
             for b in &headers[i + 1..] {
@@ -937,5 +954,6 @@ mod tests {
         let prediction = format!("{} prediction;", base.station.prediction.name());
         assert!(headers[0].contains(&prediction), "{}", headers[0]);
         assert!(headers[0].contains("; periodic sending,"), "{}", headers[0]);
+        assert!(!headers[0].contains("ADR"), "{}", headers[0]);
     }
 }

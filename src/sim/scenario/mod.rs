@@ -289,7 +289,7 @@ pub struct NetworkSettings {
             long,
             value_enum,
             default_value_t,
-            help = "Adaptive data rate: off (fixed --sf/--bw, the paper), lorawan (the network server's ADR from the best SNR across gateways) or tracking (the rate with the least expected squared packet age). ADR starts at --sf/--bw, an EU868 data rate."
+            help = "Adaptive data rate: off (fixed --sf/--bw, the paper), lorawan (the network server's ADR from the best SNR across gateways) or tracking (the rate with the least expected squared error: the time mean of the newest packet's age⁴). ADR starts at --sf/--bw, an EU868 data rate."
         )
     )]
     pub adr: AdrMode,
