@@ -872,6 +872,14 @@ test('with ADR the interval and time on air span the rates it sent at, as the CL
   const title = await page.locator('#results-table tr[data-model="3d-ctra"] td[data-field="interval"]').getAttribute('title');
   for (const u of used) assert.ok(title.includes(`DR${u.dr} ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`), `${title} / DR${u.dr}`);
   assert.match(await page.locator('#rate-use').textContent(), /the interval and time on air above span the rates used/);
+  // The Results CSV spans them too, unrounded, beside the starting rate's.
+  const [header, row] = (await downloaded(page, page.getByRole('button', { name: 'Results (CSV)' }))).toString('utf8').trim().split('\n').map((l) => l.split(','));
+  const col = (name) => Number(row[header.indexOf(name)]);
+  assert.equal(col('interval_s'), cli.results[0].interval);
+  assert.equal(col('interval_min_s'), Math.min(...used.map((u) => u.interval)));
+  assert.equal(col('interval_max_s'), Math.max(...used.map((u) => u.interval)));
+  assert.equal(col('time_on_air_min_s'), Math.min(...used.map((u) => u.timeOnAir)));
+  assert.equal(col('time_on_air_max_s'), Math.max(...used.map((u) => u.timeOnAir)));
   // The distance chart's runs move their rate too, and its axis says so.
   await page.waitForSelector('#chart-distance svg', { timeout: 30_000 });
   assert.ok((await chartTexts(page, '#chart-distance')).some((t) => t.includes('gateway distance (SF7, 250 kHz and tracking ADR)')));
