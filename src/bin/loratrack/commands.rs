@@ -455,7 +455,7 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
     }
     let c = &r.config;
     Ok(format!(
-        "{} ({} flight{}, {:.0} s), SF{} / {} kHz ({}), overhead {} B, seed {}\n{}\n{}\n{}",
+        "{} ({} flight{}, {:.0} s), SF{} / {} kHz ({}){}, overhead {} B, seed {}\n{}\n{}\n{}",
         c.trajectory,
         c.flights,
         if c.flights == 1 { "" } else { "s" },
@@ -463,6 +463,7 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
         c.settings.radio.sf,
         c.bandwidth_khz,
         plan_text(c),
+        adr_text(&c.settings.network),
         c.settings.radio.overhead,
         c.settings.run.seed,
         policy_text(&c.settings),
@@ -501,20 +502,8 @@ fn policy_text(s: &loratrack::Scenario) -> String {
         loratrack::PayloadChoice::Full => "",
         loratrack::PayloadChoice::Lean => ", lean payloads",
     };
-    // The first line names the rate a run starts at; with ADR the network moves it from there.
-    let net = &s.network;
-    let adr = match net.adr {
-        loratrack::AdrMode::Off => String::new(),
-        loratrack::AdrMode::Tracking => {
-            format!("; tracking ADR from SF{} / {} kHz", s.radio.sf, s.radio.bw)
-        }
-        loratrack::AdrMode::Lorawan => format!(
-            "; LoRaWAN ADR from SF{} / {} kHz (margin {} dB, {} uplinks)",
-            s.radio.sf, s.radio.bw, net.adr_margin, net.adr_history
-        ),
-    };
     format!(
-        "stations: {} prediction{}; {sender}, {rule}{payload}{adr}",
+        "stations: {} prediction{}; {sender}, {rule}{payload}",
         station.prediction.name(),
         if adaptive {
             ", adaptive heading noise"
@@ -522,6 +511,20 @@ fn policy_text(s: &loratrack::Scenario) -> String {
             ""
         },
     )
+}
+
+/// After `simulate`'s data rate, the ADR that moves the run from it: `, tracking ADR from this
+/// rate`, LoRaWAN's with its margin and history; nothing for a fixed rate. (A swarm's header
+/// names its ADR beside its SF plan.)
+fn adr_text(net: &loratrack::NetworkSettings) -> String {
+    match net.adr {
+        loratrack::AdrMode::Off => String::new(),
+        loratrack::AdrMode::Tracking => ", tracking ADR from this rate".to_string(),
+        loratrack::AdrMode::Lorawan => format!(
+            ", LoRaWAN ADR from this rate (margin {} dB, {} uplinks)",
+            net.adr_margin, net.adr_history
+        ),
+    }
 }
 
 /// The plan in words: `US915 DR1, every 1 s (no duty cycle)`, `EU868 DR5, 1 % duty cycle`,
@@ -919,10 +922,10 @@ mod tests {
         assert_eq!(cli, Scenario::default());
     }
 
-    /// The header names every setting of the station's prediction, the drone's sending and the
-    /// network's ADR, so that two runs differing in one of them never print alike.
+    /// The header names every setting of the station's prediction and the drone's sending, so
+    /// that two runs differing in one of them never print alike.
     #[test]
-    fn runs_that_differ_in_prediction_sending_or_adr_print_different_headers() {
+    fn runs_that_differ_in_prediction_or_sending_print_different_headers() {
         let base = Scenario::default();
         let mut variants = vec![base.clone()];
         let mut vary = |f: &dyn Fn(&mut Scenario)| {
@@ -939,11 +942,6 @@ mod tests {
         vary(&|s| s.sending.duty_cycle_mode = loratrack::DutyCycleMode::Budget);
         vary(&|s| s.sending.burst = 4);
         vary(&|s| s.sending.payload = loratrack::PayloadChoice::Lean);
-        vary(&|s| s.network.adr = loratrack::AdrMode::Tracking);
-        vary(&|s| s.radio.bw = 125.0);
-        vary(&|s| s.network.adr = loratrack::AdrMode::Lorawan);
-        vary(&|s| s.network.adr_margin = 15.0);
-        vary(&|s| s.network.adr_history = 10);
         let headers: Vec<String> = variants.iter().map(policy_text).collect();
         for (i, a) in headers.iter().enumerate() {
             for b in &headers[i + 1..] {
@@ -954,6 +952,24 @@ mod tests {
         let prediction = format!("{} prediction;", base.station.prediction.name());
         assert!(headers[0].contains(&prediction), "{}", headers[0]);
         assert!(headers[0].contains("; periodic sending,"), "{}", headers[0]);
-        assert!(!headers[0].contains("ADR"), "{}", headers[0]);
+    }
+
+    /// `simulate`'s first line names the ADR that moves the rate it states, with LoRaWAN's
+    /// settings; a fixed rate's says nothing more.
+    #[test]
+    fn simulates_header_names_the_adr_that_moves_its_rate() {
+        let mut net = Scenario::default().network;
+        assert_eq!(adr_text(&net), "");
+        net.adr = loratrack::AdrMode::Tracking;
+        assert_eq!(adr_text(&net), ", tracking ADR from this rate");
+        net.adr = loratrack::AdrMode::Lorawan;
+        let lorawan = adr_text(&net);
+        net.adr_margin = 15.0;
+        assert_ne!(adr_text(&net), lorawan);
+        net.adr_history = 10;
+        assert_eq!(
+            adr_text(&net),
+            ", LoRaWAN ADR from this rate (margin 15 dB, 10 uplinks)"
+        );
     }
 }
