@@ -50,9 +50,8 @@ export function renderTable(r: SimReport): void {
 
 /**
  * Lets the p75's interval, and an ADR run's spans (`frameCells`), break after their dash
- * (`.tight`) where the table would otherwise scroll sideways: a wide interval (ADR at 5 km over
- * eight seeds, "(76.52–408.85)") pushed the charge per uplink out of a 1280 px window. Only then:
- * were it always allowed, the table's layout would
+ * (`.tight`) where the table would otherwise scroll sideways: a wide interval (ADR at 5 km over eight seeds, "(76.52–408.85)") pushed the charge per
+ * uplink out of a 1280 px window. Only then: were it always allowed, the table's layout would
  * narrow every column that can wrap and stack short intervals on two lines where the headers
  * alone make room (the default table at 1024 px). Checked again when the table's box changes width.
  */
@@ -97,15 +96,18 @@ export function intervalRule(c: Pick<RunConfig, 'region' | 'access' | 'fairUse' 
 }
 
 /** The interval and time on air cells: one packet's at the run's rate, or with ADR that moved the
- * rate, the span over the rates it sent at (the starting rate's alone would say 3 s where most
- * packets waited minutes), each rate's in the title. */
+ * rate, their mean over the packets sent (the starting rate's alone said 148 s for a drone that
+ * sent every 3 s after its first packet, or 3 s for one whose packets waited minutes) and, on a
+ * second line, their span over the rates used, each rate's in the title. */
 function frameCells(m: ModelResult): string {
   const used = [...m.dataRateUse].reverse();
   if (used.length > 1) {
-    const title = ` title="ADR sent at ${used.length} data rates: ${used.map((u) => `${rateName(u)} ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`).join('; ')}"`;
-    // Two pieces, so that where the table is tight (fitIntervals) the span may break after its dash.
-    const span = (values: number[], unit: string) => `<span>${short(Math.min(...values))}–</span><span>${short(Math.max(...values))} ${unit}</span>`;
-    return `<td data-field="interval" data-span${title}>${span(used.map((u) => u.interval), 's')}</td><td data-field="toa" data-span${title}>${span(used.map((u) => u.timeOnAir * 1e3), 'ms')}</td>`;
+    const title = ` title="Mean over the ${m.packetsSent} packets sent; ADR sent at ${used.length} data rates: ${used.map((u) => `${rateName(u)} ${u.packets} packets, ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`).join('; ')}"`;
+    // Where the table is tight (fitIntervals) the span may break after its dash, not before its unit.
+    const span = (values: number[], unit: string) => ` <span class="sub" data-span>${short(Math.min(...values))}–${short(Math.max(...values))}\u00a0${unit}</span>`;
+    // The means to three figures, as the spans: an average over rates claims no more.
+    const mean = (v: number | null, scale: number, unit: string) => (v === null ? '—' : `${short(v * scale)} ${unit}`);
+    return `<td data-field="interval"${title}>${mean(m.meanInterval, 1, 's')}${span(used.map((u) => u.interval), 's')}</td><td data-field="toa"${title}>${mean(m.meanTimeOnAir, 1e3, 'ms')}${span(used.map((u) => u.timeOnAir * 1e3), 'ms')}</td>`;
   }
   return `<td data-field="interval"${leanTitle(m)}>${m.interval.toFixed(2)} s${lean(m.leanFrame && `lean ${m.leanFrame.interval.toFixed(2)} s`)}</td><td data-field="toa"${leanTitle(m)}>${(m.timeOnAir * 1e3).toFixed(1)} ms${lean(m.leanFrame && `lean ${(m.leanFrame.timeOnAir * 1e3).toFixed(1)} ms`)}</td>`;
 }
@@ -268,7 +270,7 @@ function renderRateUse(r: SimReport): void {
   if (note.hidden) return;
   const rate = (u: ModelResult['dataRateUse'][number]) => `${rateName(u)}${u.dr === null ? '' : ` (SF${u.sf}/${u.bw})`} ${u.received}/${u.packets}`;
   const lines = r.results.map((m) => `${MODEL_LABELS[m.model]}: ${[...m.dataRateUse].reverse().map(rate).join(', ')}`);
-  note.textContent = `Packets received / sent per data rate (${r.config.adr === 'lorawan' ? 'LoRaWAN' : 'tracking-aware'} ADR; the interval and time on air above span the rates used) — ${lines.join('; ')}.`;
+  note.textContent = `Packets received / sent per data rate (${r.config.adr === 'lorawan' ? 'LoRaWAN' : 'tracking-aware'} ADR; the interval and time on air above are the mean over the packets sent, their span beneath) — ${lines.join('; ')}.`;
 }
 
 /** What each gateway heard, and the copies the network server removed. */

@@ -4,7 +4,7 @@ use super::caveats::Caveats;
 use super::packet::Transmission;
 use super::radio::Frame;
 use super::report::{
-    Boxplots, DataRateUse, Delivery, Energy, FrameTiming, ModelResult, ModelSeries,
+    packet_mean, Boxplots, DataRateUse, Delivery, Energy, FrameTiming, ModelResult, ModelSeries,
 };
 use super::sender::SenderKind;
 use super::station::{StationModel, StationTrack};
@@ -234,6 +234,8 @@ impl Pooled {
             lean_packets: self.lean,
             time_on_air,
             interval,
+            mean_interval: packet_mean(&data_rate_use, |u| u.interval),
+            mean_time_on_air: packet_mean(&data_rate_use, |u| u.time_on_air),
             lean_frame,
             airtime,
             error3d: s3,

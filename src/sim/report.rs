@@ -202,6 +202,15 @@ pub struct ModelResult {
     /// Interval between transmissions under the duty cycle, s (with ADR: at the starting data
     /// rate). With lean payloads a full packet's; the shortest lean one is the next field's.
     pub interval: f64,
+    /// The duty-cycle interval over the packets sent, s: the mean of `dataRateUse`'s intervals,
+    /// each rate's weighted by its packets. With ADR it says how often the drone could send
+    /// where `interval` is the starting rate's; at a fixed rate it is `interval`. `null` when no
+    /// packet was sent.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
+    pub mean_interval: f64,
+    /// The time on air over the packets sent, s, weighted alike (`null` when none was sent).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
+    pub mean_time_on_air: f64,
     /// With `--payload lean`, the shortest frame a lean packet took at the starting data rate
     /// (reference §5); `null` when no lean packet went there.
     pub lean_frame: Option<FrameTiming>,
@@ -324,6 +333,18 @@ pub struct DataRateUse {
     pub interval: f64,
 }
 
+/// The mean of `field` over `rates`' packets, each rate weighted by the packets sent at it; NaN
+/// (JSON `null`) when none was sent.
+pub(crate) fn packet_mean(rates: &[DataRateUse], field: impl Fn(&DataRateUse) -> f64) -> f64 {
+    // One rate: its own value, bit for bit (n·x / n need not be x).
+    if let [one] = rates {
+        return field(one);
+    }
+    let sent: usize = rates.iter().map(|u| u.packets).sum();
+    let total: f64 = rates.iter().map(|u| u.packets as f64 * field(u)).sum();
+    total / sent as f64
+}
+
 /// One frame length's cost on air: how long the packet occupies the channel and the duty-cycle
 /// interval it imposes before the next (reference §6.1).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -384,4 +405,32 @@ pub struct SimReport {
     /// Time series of the first flight, when asked for.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub series: Option<Series>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rate(dr: u8, packets: usize, interval: f64) -> DataRateUse {
+        DataRateUse {
+            dr: Some(dr),
+            sf: 12 - dr,
+            bw: 125.0,
+            packets,
+            received: packets,
+            time_on_air: interval / 100.0,
+            interval,
+        }
+    }
+
+    #[test]
+    fn the_packet_mean_weighs_each_rate_by_its_packets_and_keeps_a_lone_rate_bit_for_bit() {
+        let used = [rate(0, 1, 148.28), rate(5, 9, 3.08)];
+        let mean = packet_mean(&used, |u| u.interval);
+        assert!((mean - (148.28 + 9.0 * 3.08) / 10.0).abs() < 1e-12);
+        // 3 × 0.1 / 3 is not 0.1 in floating point; one rate is returned as it is.
+        let one = [rate(6, 3, 0.1)];
+        assert_eq!(packet_mean(&one, |u| u.interval).to_bits(), 0.1f64.to_bits());
+        assert!(packet_mean(&[], |u| u.interval).is_nan());
+    }
 }

@@ -856,7 +856,7 @@ test('a wide p75 interval breaks after its dash at 1280 px instead of pushing th
   assert.deepEqual(problems, []);
 });
 
-test('with ADR the interval and time on air span the rates it sent at, as the CLI counts them, and the distance chart says ADR moved its runs too', async () => {
+test('with ADR the interval and time on air are the mean over its packets and span the rates it sent at, as the CLI counts them, and the distance chart says ADR moved its runs too', async () => {
   const { page, problems } = await open('?adr=tracking&distance=3000&model=3d-ctra&flight=all');
   await idle(page);
   const cli = nativeJson(['simulate', '--synthetic', 'all', '--adr', 'tracking', '--distance', '3000', '--model', '3d-ctra']);
@@ -864,18 +864,23 @@ test('with ADR the interval and time on air span the rates it sent at, as the CL
   assert.ok(used.length > 1, 'ADR moved the rate at 3 km');
   // As the page rounds: three significant figures, at most two decimals.
   const short = (v) => v.toFixed(v < 10 ? 2 : v < 100 ? 1 : 0);
-  const span = (values) => `${short(Math.min(...values))}–${short(Math.max(...values))}`;
-  assert.equal(await cell(page, '3d-ctra', 'interval'), `${span(used.map((u) => u.interval))} s`);
-  assert.equal(await cell(page, '3d-ctra', 'toa'), `${span(used.map((u) => u.timeOnAir * 1e3))} ms`);
-  // The starting rate alone would say one packet every few seconds.
-  assert.ok(Math.max(...used.map((u) => u.interval)) > 2 * cli.results[0].interval);
+  const span = (values, unit) => `${short(Math.min(...values))}–${short(Math.max(...values))}\u00a0${unit}`;
+  // The mean over the packets sent, each rate weighted by its packets, the span beneath.
+  const sent = used.reduce((a, u) => a + u.packets, 0);
+  const mean = (f) => used.reduce((a, u) => a + u.packets * f(u), 0) / sent;
+  assert.equal(await cell(page, '3d-ctra', 'interval'), `${short(mean((u) => u.interval))} s ${span(used.map((u) => u.interval), 's')}`);
+  assert.equal(await cell(page, '3d-ctra', 'toa'), `${short(mean((u) => u.timeOnAir) * 1e3)} ms ${span(used.map((u) => u.timeOnAir * 1e3), 'ms')}`);
+  // Not the starting rate's: the slower rates' packets waited longer.
+  assert.ok(mean((u) => u.interval) > cli.results[0].interval);
   const title = await page.locator('#results-table tr[data-model="3d-ctra"] td[data-field="interval"]').getAttribute('title');
-  for (const u of used) assert.ok(title.includes(`DR${u.dr} ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`), `${title} / DR${u.dr}`);
-  assert.match(await page.locator('#rate-use').textContent(), /the interval and time on air above span the rates used/);
+  for (const u of used) assert.ok(title.includes(`DR${u.dr} ${u.packets} packets, ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`), `${title} / DR${u.dr}`);
+  assert.match(await page.locator('#rate-use').textContent(), /the interval and time on air above are the mean over the packets sent, their span beneath/);
   // The Results CSV spans them too, unrounded, beside the starting rate's.
   const [header, row] = (await downloaded(page, page.getByRole('button', { name: 'Results (CSV)' }))).toString('utf8').trim().split('\n').map((l) => l.split(','));
   const col = (name) => Number(row[header.indexOf(name)]);
   assert.equal(col('interval_s'), cli.results[0].interval);
+  assert.equal(col('interval_mean_s'), cli.results[0].meanInterval);
+  assert.equal(col('time_on_air_mean_s'), cli.results[0].meanTimeOnAir);
   assert.equal(col('interval_min_s'), Math.min(...used.map((u) => u.interval)));
   assert.equal(col('interval_max_s'), Math.max(...used.map((u) => u.interval)));
   assert.equal(col('time_on_air_min_s'), Math.min(...used.map((u) => u.timeOnAir)));

@@ -371,10 +371,22 @@ fn simulate_with_adr_lists_each_rates_packets_and_interval_under_its_row() {
         })
         .collect();
     let line = format!(
-        "ADR: {}; the interval column is the starting rate's",
+        "ADR: {}; the interval column is their mean over the packets sent",
         parts.join(", ")
     );
     assert!(text.lines().any(|l| l.trim() == line), "{text}\n/ {line}");
+    // That mean weighs each rate by its packets, and is not the starting rate's interval.
+    let sent: f64 = rates.iter().map(|u| u["packets"].as_f64().unwrap()).sum();
+    let mean = rates
+        .iter()
+        .map(|u| u["packets"].as_f64().unwrap() * u["interval"].as_f64().unwrap())
+        .sum::<f64>()
+        / sent;
+    let result = &json["results"][0];
+    assert!((result["meanInterval"].as_f64().unwrap() - mean).abs() < 1e-9);
+    assert!(mean > result["interval"].as_f64().unwrap());
+    let row = text.lines().find(|l| l.starts_with("3D-CTRA")).unwrap();
+    assert!(row.contains(&format!(" {mean:.2}s ")), "{row} / {mean:.2}");
     // A fixed rate has one, which the interval column already shows.
     let fixed = crate::cli(&args[..5]);
     assert!(fixed.status.success());

@@ -612,6 +612,17 @@ timeOnAir: number,
  */
 interval: number, 
 /**
+ * The duty-cycle interval over the packets sent, s: the mean of `dataRateUse`'s intervals,
+ * each rate's weighted by its packets. With ADR it says how often the drone could send
+ * where `interval` is the starting rate's; at a fixed rate it is `interval`. `null` when no
+ * packet was sent.
+ */
+meanInterval: number | null, 
+/**
+ * The time on air over the packets sent, s, weighted alike (`null` when none was sent).
+ */
+meanTimeOnAir: number | null, 
+/**
  * With `--payload lean`, the shortest frame a lean packet took at the starting data rate
  * (reference §5); `null` when no lean packet went there.
  */

@@ -571,7 +571,8 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
         out += &format!(
             "{:<9} {:>7.2}s {:>5}/{:<5} {:>6}% {} {} {} {} {} {} {} {:>10.2}\n",
             m.model.label(),
-            m.interval,
+            // With ADR the mean over the packets, as the page shows; the rates are listed below.
+            m.mean_interval,
             m.delivery.packets_received,
             m.delivery.packets_sent,
             num(100.0 * m.whole_flight.tracked, 6, 1),
@@ -627,7 +628,7 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
 
 /// Where ADR sent a station's packets, fastest rate first, received / sent and each rate's
 /// duty-cycle interval: `ADR: DR6 0/4 every 3.08 s, DR3 78/112 every 20.58 s; the interval
-/// column is the starting rate's` (the page's interval cell spans them).
+/// column is their mean over the packets sent` (the page's interval cell too, its span below).
 fn rates_line(rates: &[loratrack::DataRateUse]) -> String {
     let parts: Vec<String> = rates
         .iter()
@@ -644,7 +645,7 @@ fn rates_line(rates: &[loratrack::DataRateUse]) -> String {
         })
         .collect();
     format!(
-        "ADR: {}; the interval column is the starting rate's",
+        "ADR: {}; the interval column is their mean over the packets sent",
         parts.join(", ")
     )
 }
