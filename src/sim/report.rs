@@ -430,7 +430,10 @@ mod tests {
         assert!((mean - (148.28 + 9.0 * 3.08) / 10.0).abs() < 1e-12);
         // 3 × 0.1 / 3 is not 0.1 in floating point; one rate is returned as it is.
         let one = [rate(6, 3, 0.1)];
-        assert_eq!(packet_mean(&one, |u| u.interval).to_bits(), 0.1f64.to_bits());
+        assert_eq!(
+            packet_mean(&one, |u| u.interval).to_bits(),
+            0.1f64.to_bits()
+        );
         assert!(packet_mean(&[], |u| u.interval).is_nan());
     }
 }
