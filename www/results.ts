@@ -50,10 +50,11 @@ export function renderTable(r: SimReport): void {
 
 /**
  * Lets the p75's interval, and an ADR run's spans (`frameCells`), break after their dash
- * (`.tight`) where the table would otherwise scroll sideways: a wide interval (ADR at 5 km over eight seeds, "(76.52–408.85)") pushed the charge per
- * uplink out of a 1280 px window. Only then: were it always allowed, the table's layout would
- * narrow every column that can wrap and stack short intervals on two lines where the headers
- * alone make room (the default table at 1024 px). Checked again when the table's box changes width.
+ * (`.tight`) where the table would otherwise scroll sideways: a wide interval (ADR at 5 km over
+ * eight seeds, "(76.52–408.85)") pushed the charge per uplink out of a 1280 px window. Only then:
+ * were it always allowed, the table's layout would narrow every column that can wrap and stack
+ * short intervals on two lines where the headers alone make room (the default table at 1024 px).
+ * Checked again when the table's box changes width.
  */
 function fitIntervals(): void {
   watchWidth();
