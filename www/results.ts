@@ -291,17 +291,19 @@ function probabilities(m: ModelResult): string {
   return `Mean IMM probability: DR ${fmt(p.dr ?? null)}, CTRA+ ${fmt(p['ctra-plus'] ?? null)}, 3D-CTRA ${fmt(p['3d-ctra'] ?? null)}${nees}`;
 }
 
-/** The Things Network's fair-use limit: what it sets when chosen, otherwise what it would. */
+/** The Things Network's fair-use limit: what it sets when chosen, otherwise what it would. "Sent
+ * here" is the mean interval over the packets sent: with ADR the starting rate's would miscount it. */
 function ttnNote(r: SimReport): string {
   const m = r.results[r.results.length - 1];
+  const interval = m.meanInterval ?? m.interval;
   // The settings that made these results, not the form's (which may have moved on).
   const made = store.reportSettings;
   const who = `${m.payloadBytes} B (${MODEL_LABELS[m.model]})`;
   if (made.fairUse === 'ttn') {
-    return `<p class="note" id="ttn-note">The Things Network's fair use (30 s of airtime a day, spread evenly) sets the interval here: one packet of ${who} every ${m.interval.toFixed(0)} s.</p>`;
+    return `<p class="note" id="ttn-note">The Things Network's fair use (30 s of airtime a day, spread evenly) sets the interval here: one packet of ${who} every ${interval.toFixed(0)} s.</p>`;
   }
   const a = timeOnAir({ sf: made.sf, bw: made.bw, payload: m.payloadBytes, overhead: overheadBytes(made), cr: made.cr });
-  const perDay = 86400 / m.interval;
+  const perDay = 86400 / interval;
   return `<p class="note" id="ttn-note">On The Things Network, fair use allows 30 s of airtime a day: ${a.ttnPacketsPerDay} packets of ${who}
     at this setting, one every ${(86400 / Math.max(1, a.ttnPacketsPerDay)).toFixed(0)} s — ${(perDay / Math.max(1, a.ttnPacketsPerDay)).toFixed(0)}× fewer than sent here. Not applied (choose it under Fair use).</p>`;
 }

@@ -885,6 +885,9 @@ test('with ADR the interval and time on air are the mean over its packets and sp
   assert.equal(col('interval_max_s'), Math.max(...used.map((u) => u.interval)));
   assert.equal(col('time_on_air_min_s'), Math.min(...used.map((u) => u.timeOnAir)));
   assert.equal(col('time_on_air_max_s'), Math.max(...used.map((u) => u.timeOnAir)));
+  // The Things Network's note counts what was sent by that mean, not by the starting rate.
+  const ttn = nativeJson(['airtime', '--sf', '7', '--bw', '250', '--payload', '12']).ttnPacketsPerDay;
+  assert.match(await page.locator('#ttn-note').textContent(), new RegExp(`— ${(86400 / cli.results[0].meanInterval / ttn).toFixed(0)}× fewer than sent here`));
   // The distance chart's runs move their rate too, and its axis says so.
   await page.waitForSelector('#chart-distance svg', { timeout: 30_000 });
   assert.ok((await chartTexts(page, '#chart-distance')).some((t) => t.includes('gateway distance (SF7, 250 kHz and tracking ADR)')));
