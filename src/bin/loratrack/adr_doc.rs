@@ -1,7 +1,7 @@
 //! `loratrack sweep --distances`: fixed data rates against ADR by distance, as a table or
 //! docs/adr.md.
 
-use crate::doc_cells::{link_args, link_words};
+use crate::doc_cells::{link_args, link_words, rate_name};
 use loratrack::api::{DistanceRun, DistanceSweepReport};
 use loratrack::{
     tracking_ack_limits, AdrMode, Scenario, ADR_ACK_DELAY, ADR_ACK_LIMIT, DEFAULT_ADR_HISTORY,
@@ -25,10 +25,7 @@ fn rate_use(run: &DistanceRun) -> String {
         .data_rate_use
         .iter()
         .rev()
-        .map(|u| match u.dr {
-            Some(dr) => format!("DR{dr} {}", u.packets),
-            None => format!("SF{}/{} {}", u.sf, u.bw, u.packets),
-        })
+        .map(|u| format!("{} {}", rate_name(u), u.packets))
         .collect();
     parts.join(", ")
 }
@@ -118,28 +115,24 @@ pub fn distances_table(r: &DistanceSweepReport) -> String {
 }
 
 /// One prediction's sweeps for docs/adr.md: its block of seeds, then with `--held-out` the next.
-pub type Blocks = [(DistanceSweepReport, Scenario)];
+pub type Blocks = Vec<(DistanceSweepReport, Scenario)>;
 
 /// `sweep --distances --markdown`: docs/adr.md from `runs`, one entry per `--prediction`: the
 /// first prediction's table and findings, with `--held-out` the ADR verdicts on the next block
 /// of seeds, then for each further prediction the same verdicts on every block.
-pub fn distances_markdown(runs: &[Vec<(DistanceSweepReport, Scenario)>]) -> String {
-    let (r, base) = &runs[0][0];
-    let held_out = runs[0].get(1).map(|(r, b)| (r, b));
-    let mut s = first_prediction(r, base, held_out, runs);
+pub fn distances_markdown(runs: &[Blocks]) -> String {
+    let mut s = first_prediction(runs);
     for blocks in &runs[1..] {
         s += &other_prediction(blocks);
     }
     s
 }
 
-/// The table, what it shows and the held-out block, at the first prediction.
-fn first_prediction(
-    r: &DistanceSweepReport,
-    base: &Scenario,
-    held_out: Option<(&DistanceSweepReport, &Scenario)>,
-    runs: &[Vec<(DistanceSweepReport, Scenario)>],
-) -> String {
+/// The table, what it shows and the held-out block, at the first prediction; the command line
+/// names every prediction of `runs`.
+fn first_prediction(runs: &[Blocks]) -> String {
+    let (r, base) = &runs[0][0];
+    let held_out = runs[0].get(1).map(|(r, b)| (r, b));
     let distances: Vec<String> = sweep_distances(r)
         .iter()
         .map(|x| format!("{x:.0}"))
@@ -236,15 +229,12 @@ fn held_out_findings(r: &DistanceSweepReport, base: &Scenario) -> String {
 /// verdicts. The station changes what a lost packet costs, not which packets arrive: `tracked`
 /// and the packets per data rate are the first table's.
 fn other_prediction(blocks: &Blocks) -> String {
-    let (_, base) = &blocks[0];
+    let name = blocks[0].1.station.prediction.name();
     let mut s = format!(
-        "\n## The same runs with the {} station\n\nThe network and the link are the table's; only the station's \
-         forecast between packets differs ({} prediction, docs/beyond-the-paper.md), so every packet arrives as \
+        "\n## The same runs with the {name} station\n\nThe network and the link are the table's; only the station's \
+         forecast between packets differs ({name} prediction, docs/beyond-the-paper.md), so every packet arrives as \
          above and the tracked share is the same, while the errors, and with them the best fixed rate's p75 and \
-         each ratio, are the {} station's.\n",
-        base.station.prediction.name(),
-        base.station.prediction.name(),
-        base.station.prediction.name()
+         each ratio, are the {name} station's.\n"
     );
     for (r, b) in blocks {
         let lead = format!("On {}, the best fixed rate", seeds_range(b));

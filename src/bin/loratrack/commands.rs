@@ -634,13 +634,12 @@ fn rates_line(rates: &[loratrack::DataRateUse]) -> String {
         .iter()
         .rev()
         .map(|u| {
-            let rate = match u.dr {
-                Some(dr) => format!("DR{dr}"),
-                None => format!("SF{}/{}", u.sf, u.bw),
-            };
             format!(
-                "{rate} {}/{} every {:.2} s",
-                u.received, u.packets, u.interval
+                "{} {}/{} every {:.2} s",
+                crate::doc_cells::rate_name(u),
+                u.received,
+                u.packets,
+                u.interval
             )
         })
         .collect();

@@ -1,7 +1,16 @@
 //! Cells and phrases more than one generated document prints (docs/senders.md, docs/swarm.md,
-//! docs/adr.md, docs/mission.md, docs/payloads.md, docs/paper-reproduction.md).
+//! docs/adr.md, docs/mission.md, docs/payloads.md, docs/paper-reproduction.md), or a document
+//! and the CLI's own tables.
 
-use loratrack::{ModelKind, ModelResult, Scenario, ShadowingModel, StationModel};
+use loratrack::{DataRateUse, ModelKind, ModelResult, Scenario, ShadowingModel, StationModel};
+
+/// A data rate a drone sent at, by its EU868 name (`DR3`), or `SF8/500` where it has none.
+pub(crate) fn rate_name(u: &DataRateUse) -> String {
+    match u.dr {
+        Some(dr) => format!("DR{dr}"),
+        None => format!("SF{}/{}", u.sf, u.bw),
+    }
+}
 
 /// The MAC overhead and shadowing of a trade-off sweep in words: no overhead, as the paper
 /// sends, or LoRaWAN's; shadowing along the path unless fixed in space.

@@ -233,13 +233,11 @@ fn sweep_distances(
 ) -> Result<String, ApiError> {
     let blocks = |prediction| -> Result<Vec<Scenario>, ApiError> {
         let base = trade_off_base(a, model.clone(), prediction);
-        Ok(match a.held_out && a.markdown {
-            true => vec![held_out_block(&base)?, base]
-                .into_iter()
-                .rev()
-                .collect(),
-            false => vec![base],
-        })
+        if !(a.held_out && a.markdown) {
+            return Ok(vec![base]);
+        }
+        let next = held_out_block(&base)?;
+        Ok(vec![base, next])
     };
     // Every block checked before anything runs.
     let plans = predictions
