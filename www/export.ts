@@ -235,12 +235,39 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
  * and the numbers right-aligned, the highlighted row shaded as on the page (the lowest p75 green,
  * the current data rate yellow), a refused cell red. Its `<caption>` is left to the slide's
  * caption. Column widths follow the longest line at about 7.4 px per character of its 13 px type.
+ * Where the page shows a table in parts, one under another (the results' tracking error and its
+ * link where one table would not fit), so does the slide: each later part under its caption.
  */
-export function tableSvg(table: HTMLTableElement): SVGSVGElement {
-  const SIZE = 13;
+export function tableSvg(...tables: HTMLTableElement[]): SVGSVGElement {
+  const out = document.createElementNS(SVG_NS, 'svg');
+  out.setAttribute('xmlns', SVG_NS);
+  let [width, y] = [0, 0];
+  tables.forEach((table, i) => {
+    if (i > 0) {
+      y += TABLE_LINE;
+      out.append(text(TABLE_PAD, y + TABLE_LINE - 4, table.caption?.textContent?.trim() ?? '', TABLE_SIZE - 1, { fill: '#3a3f45' }));
+      y += TABLE_LINE + TABLE_PAD / 2;
+    }
+    const drawn = drawTable(table, out, y);
+    width = Math.max(width, drawn.width);
+    y = drawn.bottom;
+  });
+  out.setAttribute('width', String(Math.ceil(width)));
+  out.setAttribute('height', String(Math.ceil(y + 1)));
+  return out;
+}
+
+const TABLE_SIZE = 13;
+const TABLE_LINE = 17;
+const TABLE_PAD = 8;
+
+/** Draws `table`'s header and rows into `out` from `top` down ([`tableSvg`]); its width and the
+ * bottom of its last rule. */
+function drawTable(table: HTMLTableElement, out: SVGSVGElement, top: number): { width: number; bottom: number } {
+  const SIZE = TABLE_SIZE;
   const CHAR = 7.4;
-  const LINE = 17;
-  const PAD = 8;
+  const LINE = TABLE_LINE;
+  const PAD = TABLE_PAD;
   // As read on the page: innerText keeps a block's line break (the p75's interval); what is there
   // for screen readers alone ("lower than the baseline") is left out.
   const linesOf = (cell: Element) =>
@@ -273,9 +300,7 @@ export function tableSvg(table: HTMLTableElement): SVGSVGElement {
   // A bold column's characters run about a fifth wider.
   const widths = Array.from({ length: columns }, (_, c) => PAD * 2 + CHAR * (named[c] ? 1.2 : 1) * Math.max(1, ...rows.flatMap((r) => (r.cells[c] ?? []).map((l) => l.length))));
   const width = widths.reduce((a, b) => a + b, 0);
-  const out = document.createElementNS(SVG_NS, 'svg');
-  out.setAttribute('xmlns', SVG_NS);
-  let y = 0;
+  let y = top;
   for (const row of rows) {
     const height = PAD + LINE * Math.max(1, ...row.cells.map((c) => c.length));
     if (row.shade) {
@@ -300,9 +325,7 @@ export function tableSvg(table: HTMLTableElement): SVGSVGElement {
     for (const [k, v] of Object.entries({ x1: '0', x2: String(width), y1: String(y), y2: String(y), stroke: '#d8dde3' })) rule.setAttribute(k, v);
     out.append(rule);
   }
-  out.setAttribute('width', String(Math.ceil(width)));
-  out.setAttribute('height', String(Math.ceil(y + 1)));
-  return out;
+  return { width, bottom: y };
 }
 
 /** Splits `t`'s text so that its last `tail.text` is a tspan of its own, in `tail.colour`. */

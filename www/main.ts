@@ -739,17 +739,17 @@ function notesAfter(chart: Element): string[] {
 function saveSlide(button: HTMLButtonElement, picture: Element, name: string, slide: SlideText): boolean {
   return (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(picture, name, slide);
 }
-/** The results table as drawn, for a slide: its caption (what the numbers are), the settings they
+/** The results table as drawn (in two parts where the page splits it), for a slide: its caption (what the numbers are), the settings they
  * rest on and, with a baseline pinned, what the differences are against. None while a whole set's
  * first flight stands in for the set. */
 function downloadResultsPicture(button: HTMLButtonElement): void {
-  const table = document.querySelector<HTMLTableElement>('#results-table table');
+  const [table, ...rest] = document.querySelectorAll<HTMLTableElement>('#results-table table');
   if (!shownReport(button) || !table) return;
   const what = table.caption?.textContent?.trim() ?? '';
   const against = $('#baseline-note').hidden ? '' : ` ${$('#baseline-note').textContent ?? ''}`;
   const notes = restingNotes().map((n) => `${n} `).join('');
   const slide = { title: 'Results', caption: `${what ? `${what}. ` : ''}${notes}${caption(store.reportSettings)}.${against}` };
-  saveSlide(button, tableSvg(table), 'loratrack-results', slide);
+  saveSlide(button, tableSvg(table, ...rest), 'loratrack-results', slide);
 }
 /** The time-on-air table as drawn, for a slide: its caption (what the numbers are and what the plan
  * refuses) and the settings it follows (the overhead and coding rate among them). */

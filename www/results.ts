@@ -14,29 +14,28 @@ export function renderTable(r: SimReport): void {
   renderUntracked(r);
   renderSilenceNote(r);
   renderSpreadNote(r);
-  // The tracking error first, then what the link spent on it: on a phone or in a narrow embed the
-  // table scrolls sideways, and the headline p75 must be within the first screen, not after the
-  // link's columns (which the time-on-air and link panels show too).
-  const rows = r.results
-    .map((m) => {
+  // The tracking error first, then what the link spent on it: on a phone the table scrolls
+  // sideways, and the headline p75 must be within the first screen, not after the link's columns
+  // (which the time-on-air and link panels show too); a little wider, the link's half goes under
+  // it (fitTable).
+  shown = {
+    caption: `3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet, over ${r.config.flights} flight${r.config.flights === 1 ? '' : 's'} × ${r.config.seeds} seed${r.config.seeds === 1 ? '' : 's'}; overhead ${r.config.overhead} B; ${prediction(r.config)}${sendsAsPublished(r.config) ? '' : `; ${sending(r.config)}`}`,
+    linkHead: `<th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th><th scope="col" title="${intervalRule(r.config)}">interval</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th>`,
+    rows: r.results.map((m) => {
       const ratio = m.packetsSent ? m.packetsReceived / m.packetsSent : 0;
-      const isBest = m === best;
-      return `<tr class="${isBest ? 'best' : ''}" data-model="${m.model}">
-        <th scope="row">${MODEL_LABELS[m.model]}${isBest ? ' <span class="badge">lowest p75</span>' : ''}</th>
-        <td data-field="mean">${fmt(m.error3d.mean)}${delta(m, 'mean')}</td><td data-field="p50">${fmt(m.error3d.p50)}${delta(m, 'p50')}</td><td data-field="p75">${fmt(m.error3d.p75)}${interval(m)}${delta(m, 'p75')}</td>
+      return {
+        model: m.model,
+        best: m === best,
+        errors: `<td data-field="mean">${fmt(m.error3d.mean)}${delta(m, 'mean')}</td><td data-field="p50">${fmt(m.error3d.p50)}${delta(m, 'p50')}</td><td data-field="p75">${fmt(m.error3d.p75)}${interval(m)}${delta(m, 'p75')}</td>
         <td data-field="p95">${fmt(m.error3d.p95)}${delta(m, 'p95')}</td><td data-field="max">${fmt(m.error3d.max, 1)}${delta(m, 'max')}</td>
-        <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td>
-        <td data-field="delivery">${(ratio * 100).toFixed(0)} %</td><td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}${delta(m, 'packets')}</td>
+        <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td>`,
+        link: `<td data-field="delivery">${(ratio * 100).toFixed(0)} %</td><td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}${delta(m, 'packets')}</td>
         ${frameCells(m)}<td data-field="payload"${leanTitle(m)}>${m.payloadBytes} B${lean(m.leanPackets > 0 && `${m.leanPackets} lean`)}</td>
-        <td data-field="energy" title="${m.energy.chargePerHour.toFixed(3)} mAh per hour of tracking">${m.energy.chargePerUplink.toFixed(2)}</td></tr>`;
-    })
-    .join('');
-  $('#results-table').innerHTML = `<div class="table-wrap" tabindex="0" role="region" aria-label="Results table"><table class="results">
-    <caption>3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet, over ${r.config.flights} flight${r.config.flights === 1 ? '' : 's'} × ${r.config.seeds} seed${r.config.seeds === 1 ? '' : 's'}; overhead ${r.config.overhead} B; ${prediction(r.config)}${sendsAsPublished(r.config) ? '' : `; ${sending(r.config)}`}</caption>
-    <thead><tr><th scope="col">model</th><th scope="col" title="Mean 3D distance between the station's estimate and the truth">mean</th><th scope="col" title="Half the time the error is below this">median</th><th scope="col" title="75th percentile: 3 times in 4 the error is below this (the paper's headline statistic)">p75</th><th scope="col" title="95th percentile: the bad moments, typically long gaps">p95</th><th scope="col">max</th><th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th>
-    <th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th><th scope="col" title="${intervalRule(r.config)}">interval</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th></tr></thead>
-    <tbody>${rows}</tbody></table></div>`;
-  fitIntervals();
+        <td data-field="energy" title="${m.energy.chargePerHour.toFixed(3)} mAh per hour of tracking">${m.energy.chargePerUplink.toFixed(2)}</td>`,
+      };
+    }),
+  };
+  fitTable();
   $('#ttn').innerHTML = ttnNote(r);
   // One gateway and no downlink: the table's delivery column already says it all. Each station's
   // run is its own (the drone sends that station's payload): the note tells the first station's.
@@ -48,20 +47,70 @@ export function renderTable(r: SimReport): void {
   renderRateUse(r);
 }
 
+/** The results on show, as the table's pieces: laid out as one table or two by `fitTable`. */
+let shown: {
+  caption: string;
+  linkHead: string;
+  rows: { model: ModelResult['model']; best: boolean; errors: string; link: string }[];
+} | null = null;
+
+const ERROR_HEAD = `<th scope="col" title="Mean 3D distance between the station's estimate and the truth">mean</th><th scope="col" title="Half the time the error is below this">median</th><th scope="col" title="75th percentile: 3 times in 4 the error is below this (the paper's headline statistic)">p75</th><th scope="col" title="95th percentile: the bad moments, typically long gaps">p95</th><th scope="col">max</th><th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th>`;
+
+/** The results as one table, or split in two (`split`): the tracking error, and below it what the
+ * link spent on it, each row named by its station. */
+function layoutTable(split: boolean): void {
+  if (!shown) return;
+  const { caption, linkHead, rows } = shown;
+  const table = (label: string, what: string, head: string, cells: (row: (typeof rows)[number]) => string, badge: boolean) =>
+    `<div class="table-wrap" tabindex="0" role="region" aria-label="${label}"><table class="results">
+    <caption>${what}</caption>
+    <thead><tr><th scope="col">model</th>${head}</tr></thead>
+    <tbody>${rows
+      .map(
+        (row) => `<tr class="${row.best ? 'best' : ''}" data-model="${row.model}">
+        <th scope="row">${MODEL_LABELS[row.model]}${row.best && badge ? ' <span class="badge">lowest p75</span>' : ''}</th>${cells(row)}</tr>`,
+      )
+      .join('')}</tbody></table></div>`;
+  $('#results-table').innerHTML = split
+    ? table('Results table: tracking error', caption, ERROR_HEAD, (row) => row.errors, true) +
+      table('Results table: the link', 'What the link spent on those errors, for each station', linkHead, (row) => row.link, false)
+    : table('Results table', caption, `${ERROR_HEAD}\n    ${linkHead}`, (row) => `${row.errors}\n        ${row.link}`, true);
+  $('#results-table').classList.toggle('split', split);
+}
+
 /**
- * Lets the p75's interval, and an ADR run's spans (`frameCells`), break after their dash
- * (`.tight`) where the table would otherwise scroll sideways: a wide interval (ADR at 5 km over
- * eight seeds, "(76.52–408.85)") pushed the charge per uplink out of a 1280 px window. Only then:
- * were it always allowed, the table's layout would narrow every column that can wrap and stack
- * short intervals on two lines where the headers alone make room (the default table at 1024 px).
- * Checked again when the table's box changes width.
+ * Lays the results out so that nothing scrolls sideways where that can be helped. First as one
+ * table; where it is too wide, the p75's interval and an ADR run's spans (`frameCells`) may break
+ * after their dash (`.tight`): a wide interval (ADR at 5 km over eight seeds, "(76.52–408.85)")
+ * pushed the charge per uplink out of a 1280 px window. Only then: were it always allowed, the
+ * table's layout would narrow every column that can wrap and stack short intervals on two lines
+ * where the headers alone make room (the default table at 1024 px). Where it is still too wide but
+ * its two halves each fit (presentation mode at 1024×768: 1186 px in 940, the time on air cut off
+ * on a projector; a tablet at 768 px), the link's half goes under the tracking error's. On a phone
+ * neither half fits, and the one table scrolls with its station names in view. Done again when
+ * the table's box changes width.
  */
-function fitIntervals(): void {
+function fitTable(): void {
   watchWidth();
-  const wrap = document.querySelector<HTMLElement>('#results-table .table-wrap');
-  if (!wrap) return;
-  wrap.classList.remove('tight');
-  if (wrap.scrollWidth > wrap.clientWidth + 1) wrap.classList.add('tight');
+  layoutTable(false);
+  if (tighten()) return;
+  layoutTable(true);
+  if (tighten()) return;
+  layoutTable(false);
+  tighten();
+}
+
+/** Marks each of the results' tables `.tight` where it is too wide as it is; whether they all
+ * fit then. */
+function tighten(): boolean {
+  let fits = true;
+  for (const wrap of document.querySelectorAll<HTMLElement>('#results-table .table-wrap')) {
+    wrap.classList.remove('tight');
+    if (wrap.scrollWidth <= wrap.clientWidth + 1) continue;
+    wrap.classList.add('tight');
+    fits &&= wrap.scrollWidth <= wrap.clientWidth + 1;
+  }
+  return fits;
 }
 
 let widthWatched = false;
@@ -75,7 +124,7 @@ function watchWidth(): void {
     const width = Math.round(entry.contentRect.width);
     if (width === fittedWidth) return;
     fittedWidth = width;
-    fitIntervals();
+    fitTable();
   }).observe($('#results-table'));
 }
 
@@ -104,7 +153,7 @@ function frameCells(m: ModelResult): string {
   const used = [...m.dataRateUse].reverse();
   if (used.length > 1) {
     const title = ` title="Mean over the ${m.packetsSent} packets sent; ADR sent at ${used.length} data rates: ${used.map((u) => `${rateName(u)} ${u.packets} packets, ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`).join('; ')}"`;
-    // Where the table is tight (fitIntervals) the span may break after its dash, not before its unit.
+    // Where the table is tight (fitTable) the span may break after its dash, not before its unit.
     const span = (values: number[], unit: string) => ` <span class="sub" data-span>${short(Math.min(...values))}–${short(Math.max(...values))}\u00a0${unit}</span>`;
     // The means to three figures, as the spans: an average over rates claims no more.
     const mean = (v: number | null, scale: number, unit: string) => (v === null ? '—' : `${short(v * scale)} ${unit}`);

@@ -81,15 +81,16 @@ export async function waitForResults(page, previous) {
   await until(
     page,
     (old) => {
-      const t = document.querySelector('#results-table tbody');
+      // The table's rows, in one table or the two it is split into where one would not fit.
+      const bodies = [...document.querySelectorAll('#results-table tbody')];
       const partial = document.querySelector('[data-panel="results"]')?.classList.contains('partial');
-      return t && t.rows.length > 0 && t.innerHTML !== old && !partial;
+      return bodies.length > 0 && bodies[0].rows.length > 0 && bodies.map((t) => t.innerHTML).join('') !== old && !partial;
     },
     previous,
   );
 }
 
-export const tableHtml = (page) => page.locator('#results-table tbody').innerHTML();
+export const tableHtml = (page) => page.locator('#results-table tbody').evaluateAll((bodies) => bodies.map((t) => t.innerHTML).join(''));
 export const cell = (page, model, fieldName) => page.locator(`#results-table tr[data-model="${model}"] td[data-field="${fieldName}"]`).textContent();
 export const number = (text) => Number.parseFloat(text);
 export const cellNumber = async (page, model, field) => number(await cell(page, model, field));
