@@ -304,7 +304,7 @@ function renderResults(r: SimReport): void {
       { group: 'y', model: m.model, box: m.boxplot.errorY },
       { group: 'z', model: m.model, box: m.boxplot.errorZ },
     ]);
-    const opts = { groupLabel: 'axis', width: chartWidth('axes') };
+    const opts = { groupLabel: ['axis'], width: chartWidth('axes') };
     return drawPanel('axes', [axisRows, opts], (p) => p.boxplotChart(axisRows, opts), made);
   });
   if (!trajectoryPanel.hidden && trajectoryNear) later('trajectory', () => render3d(r));
@@ -476,7 +476,8 @@ async function renderDistance(sweep: { distance: number; report: SimReport }[], 
   const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d })));
   // With ADR the runs start at the chosen rate and the network moves them (the SF chart's do not).
   const adr = made.adr === 'off' ? '' : ` and ${made.adr === 'lorawan' ? 'LoRaWAN' : 'tracking'} ADR`;
-  const opts = { log: true, groupLabel: `gateway distance (SF${made.sf}, ${made.bw} kHz${adr})`, width: chartWidth('distance') };
+  const rate = `SF${made.sf}, ${made.bw} kHz${adr}`;
+  const opts = { log: true, groupLabel: [`gateway distance (${rate})`, `distance (${rate})`, `distance (${rate.replace(' and ', ', ')})`], width: chartWidth('distance') };
   await drawPanel('distance', [rows, opts], (p) => p.boxplotChart(rows, opts), made);
 }
 

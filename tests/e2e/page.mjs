@@ -147,6 +147,21 @@ export function axisLabelOverlaps(page) {
   });
 }
 
+/** Every chart text that runs past the box its chart is drawn in (which scrolls sideways and cuts
+ * off what lies outside it), as "panel: text" lines: in presentation mode "1,000" and "−140" ran
+ * past the left edge and the x axis's label 2 px past the bottom. */
+export function chartTextsCut(page) {
+  return page.evaluate(() =>
+    [...document.querySelectorAll('.chart svg text')]
+      .filter((t) => t.textContent.trim() && t.getBoundingClientRect().height > 0 && !t.ownerSVGElement.parentElement.closest('svg'))
+      .flatMap((t) => {
+        const [box, r] = [t.closest('.chart').getBoundingClientRect(), t.getBoundingClientRect()];
+        const cut = r.left < box.left - 1 || r.right > box.right + 1 || r.top < box.top - 1 || r.bottom > box.bottom + 1;
+        return cut ? [`${t.closest('[data-panel]')?.dataset.panel}: "${t.textContent}" at ${Math.round(r.left - box.left)},${Math.round(r.top - box.top)}..${Math.round(r.right - box.left)},${Math.round(r.bottom - box.top)} in ${Math.round(box.width)}×${Math.round(box.height)}`] : [];
+      }),
+  );
+}
+
 /** Waits until no simulation or drawing is under way (`<body data-busy>` gone). */
 export const idle = (page) => until(page, () => !('busy' in document.body.dataset));
 

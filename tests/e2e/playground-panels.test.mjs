@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { nativeJson, scratchDir } from './harness.mjs';
-import { axe, axisLabelOverlaps, cell, cellNumber, downloaded, idle, layoutShifts, lesson, MODELS, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
+import { axe, axisLabelOverlaps, cell, chartTextsCut, cellNumber, downloaded, idle, layoutShifts, lesson, MODELS, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -691,6 +691,11 @@ test('presentation mode: large type and charts at 1024x768, one panel per screen
   for (const text of split.flatMap((t) => t.cells)) assert.ok(slide.includes(`>${text}<`), `the slide lacks "${text}"`);
   assert.match(slide, />What the link spent on those errors, for each station</);
   assert.deepEqual(await axisLabelOverlaps(page), [], 'presentation: axis labels on other text');
+  assert.deepEqual(await chartTextsCut(page), [], 'presentation: chart text cut off');
+  // A chart alone in its panel takes the room its screen gives it: the error chart was 212 px of
+  // a 718 px panel.
+  const error = await page.locator('#chart-error svg[role="img"]').boundingBox();
+  assert.ok(error.height >= 0.5 * 768, `presentation: the error chart ${error.height} px high`);
   // Each panel fills the screen; the arrow keys step from one to the next.
   const first = await page.evaluate(() => [...document.querySelectorAll('.panel')].filter((p) => p.offsetParent !== null).map((p) => p.getBoundingClientRect().height));
   assert.ok(first.every((h) => h >= 768 - 2.5 * 20 - 1), `panel heights ${first.join(', ')}`);

@@ -3,10 +3,10 @@
 import * as Plot from '@observablehq/plot';
 import type { Boxplot, ModelName } from '../loratrack';
 import { MODEL_LABELS } from '../loratrack';
-import { MODEL_COLORS, chartFrame, chartFont, withKey } from './colors';
+import { MODEL_COLORS, chartFrame, chartFont, fitLabel, withKey, leftMargin } from './colors';
 import { plainNumber } from './logAxis';
 
-/** The plot's margins, px: room for the y axis's labels on the left. */
+/** The plot's left margin at the page's type size, px: room for the y axis's labels. */
 const MARGIN_LEFT = 50;
 const MARGIN_RIGHT = 20;
 
@@ -16,7 +16,7 @@ export interface BoxRow {
   box: Boxplot;
 }
 
-export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: number; yLabel?: string; log?: boolean }): SVGSVGElement | HTMLElement {
+export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width: number; yLabel?: string; log?: boolean }): SVGSVGElement | HTMLElement {
   const data = rows
     .filter((r) => r.box.count > 0 && (!opts.log || (r.box.whiskerLow ?? 0) > 0))
     .map((r) => ({ group: r.group, label: MODEL_LABELS[r.model], model: r.model, ...r.box }));
@@ -26,9 +26,9 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
   const chart = Plot.plot({
     ...chartFrame(180),
     width: opts.width,
-    marginLeft: MARGIN_LEFT,
+    marginLeft: leftMargin(MARGIN_LEFT),
     marginRight: MARGIN_RIGHT,
-    fx: { label: opts.groupLabel, domain: groups },
+    fx: { label: fitLabel(opts.width, ...opts.groupLabel), domain: groups },
     x: { axis: null, domain: models, paddingInner: 0.25 },
     // A log scale keeps the boxes near the gateway readable beside the metres-to-kilometres ones beyond its range.
     // Plain numbers at the powers of ten ("0.1", not "100m", which reads as 100 metres).
@@ -50,7 +50,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string; width: 
 /** The width of one group's column in ems of the chart's type, a little inside it: `width` px
  * less the plot's margins, shared by `groups`. */
 function groupEms(width: number, groups: number): number {
-  return (0.95 * (width - MARGIN_LEFT - MARGIN_RIGHT)) / Math.max(1, groups) / chartFont();
+  return (0.95 * (width - leftMargin(MARGIN_LEFT) - MARGIN_RIGHT)) / Math.max(1, groups) / chartFont();
 }
 
 /** Labels only the powers of ten of a log axis, as plain numbers. */

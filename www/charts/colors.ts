@@ -31,13 +31,43 @@ const PLOT_MARGIN_BOTTOM = 30;
  * tick labels and, under it, the x axis's label; above it the y axis's label clear of the top
  * tick label. Plot's default margins, made for 10 px, put both axis labels on tick labels at 13
  * and 18 px (`tests/e2e` checks that no axis label overlaps other text). The margins grow the
- * chart, not shrink its plot area: `height` is what the frame and Plot's default margins take.
+ * chart, not shrink its plot area: `height` is what the frame and Plot's default margins take,
+ * and `panelPlots` what the plot heights of all the charts in its panel add up to (the chart's own
+ * where it is alone), for presentation mode ([`presentedScale`]).
  */
-export function chartFrame(height: number): { style: Partial<CSSStyleDeclaration>; height: number; marginTop: number; marginBottom: number } {
+export function chartFrame(height: number, panelPlots = height): { style: Partial<CSSStyleDeclaration>; height: number; marginTop: number; marginBottom: number } {
   const font = chartFont();
   const marginTop = font + 14;
   const marginBottom = 2 * font + 14;
-  return { style: chartStyle(), height: height + marginTop - PLOT_MARGIN_TOP + marginBottom - PLOT_MARGIN_BOTTOM, marginTop, marginBottom };
+  const plot = height * presentedScale(panelPlots);
+  return { style: chartStyle(), height: Math.round(plot + marginTop - PLOT_MARGIN_TOP + marginBottom - PLOT_MARGIN_BOTTOM), marginTop, marginBottom };
+}
+
+/** The first of `labels` (longest first) that fits on one line of a chart `width` px wide at
+ * [`chartFont`], at about 0.55 em a character (the page's sans-serif averages 0.49), or the last:
+ * an axis label wider than its chart runs off both its ends ("spreading factor (250 kHz, gateway
+ * at 1.0 km)" on a 360 px phone). Plot adds the axis's arrow, one character more. */
+export function fitLabel(width: number, ...labels: string[]): string {
+  return labels.find((l) => (l.length + 2) * 0.55 * chartFont() <= width - 8) ?? labels[labels.length - 1];
+}
+
+/** The room for a y axis's tick labels, px: `px` at the page's 13 px type, grown with the type (at
+ * presentation mode's 18 px, "1,000" and "−140" ran past the chart's left edge in 50 px). */
+export function leftMargin(px: number): number {
+  return Math.round((px * chartFont()) / 13);
+}
+
+/**
+ * How much taller a chart is drawn in presentation mode, where each panel has a screen to itself:
+ * its panel's charts (`panelPlots`, their heights at the page's size, px) together take up to 55 %
+ * of the window's height, at most three times their size. At 1024×768 the error chart was 212 px
+ * of a 718 px panel, at 1920×1080 of a 1030 px one; the rest of the panel (title, legend, buttons,
+ * notes) keeps its room. Drawn at the window's height when drawn: a window made taller afterwards
+ * scales the chart with its width only.
+ */
+function presentedScale(panelPlots: number): number {
+  if (!presenting()) return 1;
+  return Math.min(3, Math.max(1, (0.55 * innerHeight) / panelPlots));
 }
 
 /**

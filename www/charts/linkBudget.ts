@@ -2,7 +2,7 @@
 // shadowing band, each SF's sensitivity as a line, each gateway's distance from the flight's start
 // marked; and each SF's
 // delivery ratio against distance. The numbers come from the core's linkBudget().
-import { chartFrame, chartFont, SF_COLORS } from './colors';
+import { chartFrame, chartFont, SF_COLORS, leftMargin } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { LinkBudgetReport } from '../loratrack';
 
@@ -18,9 +18,9 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
   const sens = shown.map((s) => ({ sf: name(s), dbm: s.sensitivityDbm, range: km(s.rangeM) }));
   const color = { domain: sens.map((s) => s.sf), range: shown.map((s) => SF_COLORS[s.sf - 7]), legend: true };
   const power = Plot.plot({
-    ...chartFrame(240),
+    ...chartFrame(240, 440),
     width: opts.width,
-    marginLeft: 50,
+    marginLeft: leftMargin(50),
     x: { label: 'distance (km)' },
     y: { label: 'received power (dBm)', grid: true },
     color,
@@ -34,9 +34,9 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
   });
   const curves = shown.flatMap((s) => s.delivery.map((p, i) => ({ d: km(r.distances[i]), p: 100 * p, sf: name(s) })));
   const delivery = Plot.plot({
-    ...chartFrame(200),
+    ...chartFrame(200, 440),
     width: opts.width,
-    marginLeft: 50,
+    marginLeft: leftMargin(50),
     x: { label: 'distance (km)' },
     y: { label: 'packets delivered (%)', domain: [0, 100], grid: true },
     color,

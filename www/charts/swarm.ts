@@ -1,6 +1,6 @@
 // Swarms sharing one gateway: the measured collision rate as the swarm grows, beside the pure
 // ALOHA formula; and each drone's tracking error (p75) in the largest swarm.
-import { chartFrame, chartFont, SF_COLORS } from './colors';
+import { chartFrame, chartFont, fitLabel, SF_COLORS, leftMargin } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
 import { flightTime, trackedPercent } from '../format';
@@ -28,9 +28,9 @@ export function sfShares(r: Pick<SwarmReport, 'drones'>): string {
 export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   const rates = swarms.map((r) => ({ n: r.config.drones, measured: 100 * r.collisionRate, theory: 100 * r.collisionRateTheory }));
   const collisions = Plot.plot({
-    ...chartFrame(220),
+    ...chartFrame(220, 360),
     width,
-    marginLeft: 50,
+    marginLeft: leftMargin(50),
     x: { label: 'drones sharing the gateway', type: 'log', ...logAxis(rates.map((r) => r.n)), tickFormat: plainNumber },
     y: { label: 'packets collided (%)', grid: true, zero: true },
     marks: [
@@ -47,12 +47,12 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   // SF7 first (not SF10, as sorting the names put it), in the SFs' page-wide colours.
   const sfs = [...new Set(largest.drones.map((d) => d.sf))].sort((a, b) => a - b);
   const errors = Plot.plot({
-    ...chartFrame(140),
+    ...chartFrame(140, 360),
     width,
-    marginLeft: 50,
+    marginLeft: leftMargin(50),
     // Labelling only the powers of ten left a swarm whose p75s lie within one decade (all on SF7:
     // 2–7 m) without a single number on its axis.
-    x: { label: `p75 error of each of ${largest.config.drones} drones (m, log scale)`, type: 'log', ...logAxis(drones.map((d) => d.p75)), tickFormat: plainNumber },
+    x: { label: fitLabel(width, `p75 error of each of ${largest.config.drones} drones (m, log scale)`, `p75 of each of ${largest.config.drones} drones (m, log)`, 'p75 per drone (m, log)'), type: 'log', ...logAxis(drones.map((d) => d.p75)), tickFormat: plainNumber },
     y: { axis: null },
     color: { legend: true, domain: sfs.map(sfName), range: sfs.map((sf) => SF_COLORS[sf - 7]) },
     marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: 'sf', r: 3, title: (d: { p75: number; sf: string }) => `${d.sf}: p75 ${d.p75.toFixed(2)} m` }))],
