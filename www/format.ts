@@ -79,3 +79,19 @@ export function caption(s: Settings, extra = ''): string {
 export function flightTime(seconds: number): string {
   return seconds % 60 === 0 ? `${seconds / 60} minute${seconds === 60 ? '' : 's'}` : `${seconds} s`;
 }
+
+/** Under a sweep's chart, what its `marks` for thin numbers stand for: the points at which a
+ * station received too few packets to compare (the core's `caveats.fewPackets`, the results
+ * table's "Too few packets to compare"), by where they stand, with their packets; '' for none.
+ * One flight at SF12 sees a packet or two, and a p75 over them is mostly where they fell. */
+export function fewPacketsNote(points: { at: string; received: number; few: boolean }[], marks: string): string {
+  const at = [...new Set(points.filter((p) => p.few).map((p) => p.at))];
+  if (!at.length) return '';
+  const counts = at.map((a) => {
+    const received = points.filter((p) => p.at === a && p.few).map((p) => p.received);
+    const [lo, hi] = [Math.min(...received), Math.max(...received)];
+    return `${a} (${lo === hi ? lo : `${lo}–${hi}`})`;
+  });
+  const unit = at.length === 1 && counts[0].endsWith('(1)') ? 'packet' : 'packets';
+  return `${marks} rest on too few received packets to tell the stations apart: ${counts.join(', ')} ${unit}. More flights or seeds give them more.`;
+}

@@ -60,8 +60,20 @@ test('the p75-against-SF chart gives the p75 at each SF as the CLI does, one lin
       const shown = titles.find((t) => t.startsWith(`${label}, SF${sf}:`));
       assert.ok(shown, `${label} SF${sf}`);
       assert.equal(Number(/p75 ([\d.]+) m/.exec(shown)[1]).toFixed(2), r.error3d.p75.toFixed(2), `${label} SF${sf}`);
+      // A point over too few packets to compare (the core's flag) is drawn hollow and says so.
+      assert.equal(/too few to compare/.test(shown), r.caveats.fewPackets, `${label} SF${sf}: ${shown}`);
+      const fill = await page.evaluate((t) => getComputedStyle([...document.querySelectorAll('#chart-sf svg circle')].find((c) => c.querySelector('title')?.textContent === t)).fill, shown);
+      assert.equal(fill === 'rgb(255, 255, 255)', r.caveats.fewPackets, `${label} SF${sf}: filled ${fill}`);
     }
+    // The note under the chart names the SFs whose points are hollow, with their packets.
+    const few = cli.results.filter((r) => r.caveats.fewPackets).map((r) => r.packetsReceived);
+    const note = (await page.locator('#sf-few').isVisible()) ? await page.locator('#sf-few').textContent() : '';
+    const counts = [Math.min(...few), Math.max(...few)];
+    if (few.length) assert.match(note, new RegExp(`SF${sf} \\(${counts[0] === counts[1] ? counts[0] : counts.join('–')}\\)`), `SF${sf}: ${note}`);
+    else assert.doesNotMatch(note, new RegExp(`SF${sf} \\(`), note);
   }
+  const slide = (await downloaded(page, page.getByRole('button', { name: 'Download the error versus spreading factor chart as SVG' }))).toString('utf8').replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ');
+  assert.match(slide, /Hollow points rest on too few received packets/, 'the slide carries the note');
   // Its log axis has a number below the lowest line's decade's top: SF7's p75 of about 2 m can
   // be read off it (Plot's default labelled 10, 20 and 100 only).
   const lowest = Math.min(...titles.map((t) => Number(/p75 ([\d.]+) m/.exec(t)[1])));
@@ -70,6 +82,27 @@ test('the p75-against-SF chart gives the p75 at each SF as the CLI does, one lin
   assert.ok(yLabels.length >= 4, `labels ${yLabels}`);
   const download = await downloaded(page, page.getByRole('button', { name: 'Download the error versus spreading factor chart as PNG' }));
   assert.ok(download.readUInt32BE(16) >= 1600);
+  assert.deepEqual(problems, []);
+});
+
+test('the error-versus-distance chart draws the boxes over too few packets dashed, and its note names them, as the CLI flags them', async () => {
+  // SF9 sends every 8 s or so: one 81 s flight gives about ten packets near the gateway, fewer beyond.
+  const { page, problems } = await open('?sf=9');
+  await idle(page);
+  await page.waitForSelector('#chart-distance svg');
+  const groups = await page.evaluate(() => [...document.querySelectorAll('#chart-distance svg text')].map((t) => t.textContent).filter((t) => /^[\d.]+ km$/.test(t)));
+  const dashed = await page.evaluate(() => [...document.querySelectorAll('#chart-distance svg [stroke-dasharray] rect')].length);
+  const note = (await page.locator('#distance-few').isVisible()) ? await page.locator('#distance-few').textContent() : '';
+  let few = 0;
+  for (const group of groups) {
+    const cli = nativeJson(['simulate', '--synthetic', '1', '--sf', '9', '--distance', String(Number.parseFloat(group) * 1000)]);
+    const thin = cli.results.filter((r) => r.caveats.fewPackets && r.error3d.count > 0);
+    few += thin.length;
+    assert.equal(note.includes(`${group} (`), thin.length > 0, `${group}: ${note}`);
+  }
+  assert.ok(few > 0, 'some distance rests on too few packets at SF9');
+  assert.equal(dashed, few, `${dashed} dashed boxes, ${few} thin runs`);
+  assert.match(note, /^Dashed boxes rest on too few received packets/);
   assert.deepEqual(problems, []);
 });
 

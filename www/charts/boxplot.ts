@@ -14,12 +14,15 @@ export interface BoxRow {
   group: string;
   model: ModelName;
   box: Boxplot;
+  /** Too few packets received to compare the stations (the core's `caveats.fewPackets`): a
+   * dashed, paler box, which the note under the chart explains (`fewPacketsNote`). */
+  few?: boolean;
 }
 
 export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width: number; yLabel?: string; log?: boolean }): SVGSVGElement | HTMLElement {
   const data = rows
     .filter((r) => r.box.count > 0 && (!opts.log || (r.box.whiskerLow ?? 0) > 0))
-    .map((r) => ({ group: r.group, label: MODEL_LABELS[r.model], model: r.model, ...r.box }));
+    .map((r) => ({ group: r.group, label: MODEL_LABELS[r.model], model: r.model, few: r.few ?? false, ...r.box }));
   const models = [...new Set(data.map((d) => d.label))];
   const groups = [...new Set(rows.map((r) => r.group))];
   const empty = groups.filter((g) => !data.some((d) => d.group === g)).map((group) => ({ group }));
@@ -39,9 +42,10 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
       // column (on a phone a column is ~45 px, and one line ran over the boxes beside it).
       Plot.text(empty, { fx: 'group', text: () => 'no packet arrives', lineWidth: groupEms(opts.width, groups.length), frameAnchor: 'middle', fill: '#5a6068', fontSize: chartFont() }),
       Plot.ruleX(data, { fx: 'group', x: 'label', y1: 'whiskerLow', y2: 'whiskerHigh', stroke: 'label' }),
-      Plot.barY(data, { fx: 'group', x: 'label', y1: 'q1', y2: 'q3', fill: 'label', fillOpacity: 0.35, stroke: 'label' }),
+      Plot.barY(data.filter((d) => !d.few), { fx: 'group', x: 'label', y1: 'q1', y2: 'q3', fill: 'label', fillOpacity: 0.35, stroke: 'label' }),
+      Plot.barY(data.filter((d) => d.few), { fx: 'group', x: 'label', y1: 'q1', y2: 'q3', fill: 'label', fillOpacity: 0.12, stroke: 'label', strokeDasharray: '4,3' }),
       Plot.tickY(data, { fx: 'group', x: 'label', y: 'median', stroke: 'label', strokeWidth: 2.5 }),
-      Plot.tip(data, Plot.pointerX({ fx: 'group', x: 'label', y: 'median', title: (d) => `${d.label}\nmedian ${d.median.toFixed(2)} m\nQ1–Q3 ${d.q1.toFixed(2)}–${d.q3.toFixed(2)} m\nwhiskers ${d.whiskerLow.toFixed(2)}–${d.whiskerHigh.toFixed(2)} m\n${d.outliers} outliers of ${d.count}` })),
+      Plot.tip(data, Plot.pointerX({ fx: 'group', x: 'label', y: 'median', title: (d) => `${d.label}\nmedian ${d.median.toFixed(2)} m\nQ1–Q3 ${d.q1.toFixed(2)}–${d.q3.toFixed(2)} m\nwhiskers ${d.whiskerLow.toFixed(2)}–${d.whiskerHigh.toFixed(2)} m\n${d.outliers} outliers of ${d.count}${d.few ? '\ntoo few packets to compare' : ''}` })),
     ],
   });
   return withKey(chart, 'Box: the middle half of the errors (quartiles), thick line the median; whiskers: the furthest errors within 1.5 box heights of the box (any beyond, the outliers, are not drawn).');

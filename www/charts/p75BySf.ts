@@ -13,6 +13,9 @@ export interface SfRow {
   /** null where no packet arrived (no error to measure). */
   p75: number | null;
   received: number;
+  /** Too few packets received to compare the stations (the core's `caveats.fewPackets`): drawn
+   * hollow, and the note under the chart says so (`fewPacketsNote`). */
+  few: boolean;
   /** The share of the flight time after each flight's first packet (all the p75 covers), and
    * whether that is worth saying. */
   wholeFlight: Pick<WholeFlightError, 'tracked' | 'partlyTracked'>;
@@ -35,6 +38,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
   const models = [...new Set(data.map((d) => d.label))];
   const silent = [...new Set(rows.filter((r) => r.p75 === null).map((r) => r.sf))];
   const km = (opts.distance / 1000).toFixed(1);
+  const title = (d: (typeof data)[number]) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${d.received} packets${d.few ? ', too few to compare' : ''}, ${covered(d.wholeFlight)}`;
   return Plot.plot({
     ...chartFrame(220),
     width: opts.width,
@@ -44,7 +48,8 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
     color: { domain: models, range: models.map((m) => MODEL_COLORS[data.find((d) => d.label === m)!.model]), legend: true },
     marks: [
       Plot.line(data, { x: 'sf', y: 'p75', stroke: 'label', z: 'label' }),
-      Plot.dot(data, { x: 'sf', y: 'p75', fill: 'label', r: 3.5, title: (d) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${d.received} packets, ${covered(d.wholeFlight)}` }),
+      Plot.dot(data.filter((d) => !d.few), { x: 'sf', y: 'p75', fill: 'label', r: 3.5, title }),
+      Plot.dot(data.filter((d) => d.few), { x: 'sf', y: 'p75', fill: 'white', stroke: 'label', strokeWidth: 1.5, r: 3.5, title }),
       Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: () => 'none\narrives', fill: '#5a6068', fontSize: chartFont() }),
     ],
   });
