@@ -278,6 +278,16 @@ test('a slotted swarm collides with none of its own drones and says how many dro
   const serves = notes.join(' ').match(/Largest swarm one gateway serves at these settings.*: (\d+) (drones?) at ≤ 1 % collisions and \d+ at ≤ 10 % with ALOHA \(by its formula\), \d+ slotted with none/);
   assert.ok(serves, notes.join(' '));
   assert.equal(serves[2], serves[1] === '1' ? 'drone' : 'drones', serves[0]);
+  // Two minutes at SF11–SF12 see a packet or two: those drones' points are hollow (fewer than
+  // 10 received, the core's caveats.fewPackets), and the note counts them.
+  const dots = await page.evaluate(() =>
+    [...[...document.querySelectorAll('#chart-swarm figure')].at(-1).querySelectorAll(':scope > svg circle')].map((c) => ({ received: Number(/over (\d+) packets/.exec(c.querySelector('title').textContent)[1]), hollow: getComputedStyle(c).fill === 'rgb(255, 255, 255)' })),
+  );
+  const hollow = dots.filter((d) => d.hollow);
+  assert.ok(hollow.length > 0 && hollow.length < dots.length, `${hollow.length} of ${dots.length} hollow`);
+  assert.deepEqual(dots.filter((d) => d.hollow !== d.received < 10), []);
+  assert.match(notes.join(' '), new RegExp(`; ${hollow.length} of ${dots.length} drones \\(hollow\\) received too few packets`));
+  assert.deepEqual(await chartTextsCut(page), [], 'swarm: chart text cut off');
   assert.deepEqual(problems, []);
 });
 

@@ -3,7 +3,7 @@
 //! drone's error reported.
 
 use loratrack::api::swarm;
-use loratrack::{Scenario, SwarmReport};
+use loratrack::{Scenario, SwarmReport, FEW_PACKETS};
 use serde_json::{json, Value};
 
 /// `base` with the flat JSON settings of `changes` applied.
@@ -96,7 +96,21 @@ fn every_drone_is_reported_and_the_counts_add_up() {
         assert_eq!(d.channel_use.iter().sum::<usize>(), d.packets_sent);
         assert_eq!(d.channel_use.len(), 3);
         assert_eq!(usize::from(d.sf - 7), d.id % 6, "spread plan");
+        // What its p75 rests on, as a station's result says it.
+        assert_eq!(
+            d.caveats.few_packets,
+            d.packets_received < FEW_PACKETS,
+            "{d:?}"
+        );
     }
+    // Two minutes at SF12 see a packet or two, at SF7 dozens.
+    let few = |sf| {
+        r.drones
+            .iter()
+            .filter(|d| d.sf == sf)
+            .all(|d| d.caveats.few_packets)
+    };
+    assert!(few(12) && !few(7));
     let lost = r.packets_collided + r.packets_below_sensitivity + r.packets_no_demodulator;
     assert_eq!(r.delivery.packets_received + lost, r.delivery.packets_sent);
 }
@@ -453,4 +467,29 @@ fn a_swarm_reports_progress_while_its_drones_fly() {
         .filter(|&d| 0 < d && d < total / 2)
         .collect();
     assert!(flying.len() >= 4, "{calls:?}");
+}
+
+/// The CLI's text counts the drones whose own p75 rests on too few packets, as its JSON flags
+/// them (the page draws them hollow and its note counts them).
+#[test]
+fn the_swarm_text_counts_the_drones_on_too_few_packets_as_the_json_flags_them() {
+    let args = ["swarm", "--drones", "24", "--duration", "120"];
+    let text = String::from_utf8(crate::cli(&args).stdout).unwrap();
+    let out = crate::cli(&[&args[..], &["--json"]].concat());
+    let json: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let thin = json["drones"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|d| d["caveats"]["fewPackets"] == true && d["error3d"]["count"] != 0)
+        .count();
+    assert!(
+        thin > 0,
+        "spread SFs over two minutes: SF12 drones see a packet or two"
+    );
+    let line = format!(
+        "too few packets for their own p75 to compare (1 to {}): {thin}\n",
+        FEW_PACKETS - 1
+    );
+    assert!(text.contains(&line), "{text}");
 }

@@ -25,6 +25,9 @@ export function sfShares(r: Pick<SwarmReport, 'drones'>): string {
     .join(', ');
 }
 
+/** One drone's point on the strip of p75s. */
+type Drone = { p75: number; sf: string; colour: string; received: number; few: boolean };
+
 export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   const rates = swarms.map((r) => ({ n: r.config.drones, measured: 100 * r.collisionRate, theory: 100 * r.collisionRateTheory }));
   const collisions = Plot.plot({
@@ -43,23 +46,28 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   // With ADR a drone's SF is where it started: the network moves it (`dataRateUse` says where to).
   const adr = largest.config.adr !== 'off';
   const sfName = (sf: number) => (adr ? `from SF${sf}` : `SF${sf}`);
-  const drones = largest.drones.filter((d) => d.error3d.p75 !== null).map((d) => ({ p75: d.error3d.p75 as number, sf: sfName(d.sf) }));
+  const drones = largest.drones.filter((d) => d.error3d.p75 !== null).map((d) => ({ p75: d.error3d.p75 as number, sf: sfName(d.sf), colour: SF_COLORS[d.sf - 7], received: d.packetsReceived, few: d.caveats.fewPackets }));
+  // A drone whose p75 rests on too few packets (an SF12 drone's two minutes see one or two) is
+  // drawn hollow, as the SF chart's points are, and the note counts them.
+  const thin = drones.filter((d) => d.few).length;
   // SF7 first (not SF10, as sorting the names put it), in the SFs' page-wide colours.
   const sfs = [...new Set(largest.drones.map((d) => d.sf))].sort((a, b) => a - b);
   const errors = Plot.plot({
     ...chartFrame(140, 360),
     width,
     marginLeft: leftMargin(50),
+    // Room for half the last tick label ("10,000" ran past the right edge).
+    marginRight: leftMargin(24),
     // Labelling only the powers of ten left a swarm whose p75s lie within one decade (all on SF7:
     // 2–7 m) without a single number on its axis.
     x: { label: fitLabel(width, `p75 error of each of ${largest.config.drones} drones (m, log scale)`, `p75 of each of ${largest.config.drones} drones (m, log)`, 'p75 per drone (m, log)'), type: 'log', ...logAxis(drones.map((d) => d.p75)), tickFormat: plainNumber },
     y: { axis: null },
     color: { legend: true, domain: sfs.map(sfName), range: sfs.map((sf) => SF_COLORS[sf - 7]) },
-    marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: 'sf', r: 3, title: (d: { p75: number; sf: string }) => `${d.sf}: p75 ${d.p75.toFixed(2)} m` }))],
+    marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: { value: (d: Drone) => (d.few ? 'white' : d.colour), scale: null }, stroke: 'sf', strokeWidth: 1.2, r: 3, title: (d: Drone) => `${d.sf}: p75 ${d.p75.toFixed(2)} m over ${d.received} packets${d.few ? ', too few to compare' : ''}` }))],
   });
   const note = document.createElement('p');
   note.className = 'note';
-  note.textContent = `${largest.config.drones} drones flying ${flightTime(largest.config.duration)} each, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${largest.config.sfPlan === 'spread' ? `SFs spread by distance${adr ? ' at the start' : ''}` : `all ${adr ? 'starting ' : ''}on SF${largest.config.sf}`}${adr ? `, ADR sent their packets at ${sfShares(largest)}` : ''}: ${(100 * largest.collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %)${largest.leanPackets > 0 ? `, ${largest.leanPackets} of ${largest.packetsSent} packets with lean payloads` : ''}, median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${untracked(largest)}; ${(100 * largest.deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${adr ? `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped` : ''}; radio ${largest.energy.chargePerUplink.toFixed(2)} mC per uplink.${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
+  note.textContent = `${largest.config.drones} drones flying ${flightTime(largest.config.duration)} each, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${largest.config.sfPlan === 'spread' ? `SFs spread by distance${adr ? ' at the start' : ''}` : `all ${adr ? 'starting ' : ''}on SF${largest.config.sf}`}${adr ? `, ADR sent their packets at ${sfShares(largest)}` : ''}: ${(100 * largest.collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %)${largest.leanPackets > 0 ? `, ${largest.leanPackets} of ${largest.packetsSent} packets with lean payloads` : ''}, median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${untracked(largest)}${thin ? `; ${thin} of ${drones.length} drones (hollow) received too few packets for their own p75 to compare` : ''}; ${(100 * largest.deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${adr ? `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped` : ''}; radio ${largest.energy.chargePerUplink.toFixed(2)} mC per uplink.${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
   const l = largest.largestSwarm;
   note.textContent += ` Largest swarm one gateway serves at these settings${adr ? ' (at the starting SFs)' : ''}${largest.leanPackets > 0 ? ' (with full frames: the lean ones, shorter, leave room for more)' : ''}, every drone sending as often as its duty cycle allows: ${l.aloha1} drone${l.aloha1 === 1 ? '' : 's'} at ≤ 1 % collisions and ${l.aloha10} at ≤ 10 % with ALOHA (by its formula), ${l.slotted} slotted with none.`;
   const box = document.createElement('div');

@@ -897,7 +897,12 @@ error3d: Summary,
  * The share of its flight time after each episode's first packet, and its error's
  * percentiles over the whole flight time ([`WholeFlightError`]).
  */
-wholeFlight: WholeFlightError, };
+wholeFlight: WholeFlightError, 
+/**
+ * What its numbers rest on, as a station's result says it ([`Caveats::of`]): in a swarm of
+ * two-minute flights an SF12 drone's p75 rests on a packet or two.
+ */
+caveats: Caveats, };
 
 export type LargestSwarm = { 
 /**

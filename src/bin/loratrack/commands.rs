@@ -745,6 +745,12 @@ fn swarm(a: SwarmArgs) -> Result<String, ApiError> {
 fn swarm_text(r: &SwarmReport) -> String {
     let c = &r.config.settings;
     let silent = r.drones.iter().filter(|d| d.error3d.count == 0).count();
+    // Those with packets, but too few for their own p75 to compare (the page draws them hollow).
+    let thin = r
+        .drones
+        .iter()
+        .filter(|d| d.caveats.few_packets && d.error3d.count > 0)
+        .count();
     let d = &r.delivery;
     // With a flight chosen every drone flies it (the duration is for chained synthetic flights).
     let flown = match (
@@ -773,7 +779,7 @@ fn swarm_text(r: &SwarmReport) -> String {
          3D error (pooled)   mean {}  p75 {}  p95 {} m; median drone p75 {} m\n\
          tracked             {}  (the share of the flight time after each flight's first packet, all the errors cover){}\n\
          energy              {:.2} mC per uplink, {:.3} mAh per hour (mean drone, SX1276 radio only)\n\
-         drones that received nothing: {}{}",
+         drones that received nothing: {}; too few packets for their own p75 to compare (1 to {}): {}{}",
         c.swarm.drones,
         if c.swarm.drones == 1 { "" } else { "s" },
         flown,
@@ -824,6 +830,8 @@ fn swarm_text(r: &SwarmReport) -> String {
         r.energy.charge_per_uplink,
         r.energy.charge_per_hour,
         silent,
+        loratrack::FEW_PACKETS - 1,
+        thin,
         gateway_lines(&d.gateways)
     )
 }

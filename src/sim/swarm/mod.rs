@@ -26,7 +26,7 @@ use super::sender::LeanPayload;
 use super::simulator::load_flights;
 use super::station::{new_tracker, track_station, Scoring, StationModel, StationSetup};
 use super::streams::{DroneStreams, LAYOUT_STREAM};
-use super::{SimError, Transmission};
+use super::{Caveats, SimError, Transmission};
 use crate::lora::{time_on_air, AdrMode, LoraParams, Outcome};
 use crate::math::sin_cos;
 use crate::metrics::{percentile, sort_total, Summary, WholeFlightError};
@@ -422,6 +422,7 @@ impl<'a> Swarm<'a> {
             let at = mine.iter().filter(|t| usize::from(t.sf.get() - 7) == k);
             at.map(|t| t.time_on_air).sum::<f64>() / time
         });
+        let received = mine.iter().filter(|t| t.received).count();
         DroneReport {
             id: i,
             sf: sf_of(&self.sfs, i) as u8,
@@ -430,7 +431,7 @@ impl<'a> Swarm<'a> {
             data_rate_use: rates.into_vec(),
             duty_cycle_by_sf,
             packets_sent: mine.len(),
-            packets_received: mine.iter().filter(|t| t.received).count(),
+            packets_received: received,
             packets_collided: mine
                 .iter()
                 .filter(|t| t.outcome == Outcome::Collided)
@@ -440,6 +441,7 @@ impl<'a> Swarm<'a> {
             frame_length: self.kits[i].slot.map(|s| s.frame),
             error3d,
             whole_flight,
+            caveats: Caveats::of(received, mine.len(), self.cfg.s().sending.sender),
         }
     }
 
@@ -627,6 +629,7 @@ fn slots(cfg: &Validated, radios: &[DroneRadio]) -> Result<Option<Vec<Slot>>, Si
 mod tests {
     use super::*;
     use crate::sim::report::DataRateUse;
+    use crate::sim::sender::SenderKind;
 
     /// A drone on `sf` that sent `packets_sent` packets, on air `duty_cycle_used` of the time.
     fn drone(sf: u8, packets_sent: usize, duty_cycle_used: f64) -> DroneReport {
@@ -647,6 +650,7 @@ mod tests {
             frame_length: None,
             error3d: Summary::of(&mut Vec::new()),
             whole_flight: WholeFlightError::of_sorted(&[], 0),
+            caveats: Caveats::of(packets_sent, packets_sent, SenderKind::Periodic),
         }
     }
 

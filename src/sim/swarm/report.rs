@@ -1,6 +1,7 @@
 //! The output of `swarm`.
 
 use crate::metrics::{Summary, WholeFlightError};
+use crate::sim::caveats::Caveats;
 use crate::sim::report::{DataRateUse, Delivery, Energy};
 use crate::sim::scenario::Scenario;
 use crate::sim::station::StationModel;
@@ -47,6 +48,9 @@ pub struct DroneReport {
     /// The share of its flight time after each episode's first packet, and its error's
     /// percentiles over the whole flight time ([`WholeFlightError`]).
     pub whole_flight: WholeFlightError,
+    /// What its numbers rest on, as a station's result says it ([`Caveats::of`]): in a swarm of
+    /// two-minute flights an SF12 drone's p75 rests on a packet or two.
+    pub caveats: Caveats,
 }
 
 /// The output of `swarm`.
