@@ -93,5 +93,12 @@ export function fewPacketsNote(points: { at: string; received: number; few: bool
     return `${a} (${lo === hi ? lo : `${lo}–${hi}`})`;
   });
   const unit = at.length === 1 && counts[0].endsWith('(1)') ? 'packet' : 'packets';
-  return `${marks} rest on too few received packets to tell the stations apart: ${counts.join(', ')} ${unit}. More flights or seeds give them more.`;
+  return `${marks} rest on too few received packets to tell the stations apart: ${counts.join(', ')} ${unit}. More flight time gives them more.`;
+}
+
+/** Under a sweep's chart, which runs one seed whatever the table pools (the page's sweep charts
+ * each run 6 settings more): says so where the table on show pools `tableSeeds` seeds, whose
+ * numbers the chart's point at the same setting would otherwise seem to contradict; '' for one. */
+export function oneSeedNote(tableSeeds: number, seed: number): string {
+  return tableSeeds > 1 ? `This chart runs seed ${seed} alone; the table above pools ${tableSeeds} seeds.` : '';
 }

@@ -11,7 +11,7 @@ import { $, linkDocs, presenting } from './dom';
 import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
 import { field, form, markField, onFormChange, readControls, settingWords, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
-import { caption, fewPacketsNote } from './format';
+import { caption, fewPacketsNote, oneSeedNote } from './format';
 import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { renderBaseline, renderTable, restingNotes } from './results';
@@ -428,11 +428,17 @@ async function draw3d(r: SimReport): Promise<void> {
   trajectoryKey = coneKey ? `${coneKey[0].toUpperCase()}${coneKey.slice(1)}. ${grid}` : grid;
 }
 
+/** The note under sweep chart `name` on what its points rest on: those over too few packets
+ * (`few`), and its one seed where the table pools more. A slide of the chart carries it. */
+function restsOn(name: 'sf' | 'distance', few: string, made: Settings): void {
+  const text = [few, oneSeedNote(store.reportSettings.seeds, made.seed)].filter(Boolean).join(' ');
+  $(`#${name}-rests-on`).hidden = !text;
+  $(`#${name}-rests-on`).textContent = text;
+}
+
 async function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): Promise<void> {
   const rows = sweep.flatMap(({ sf, report: r }) => r.results.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived, few: m.caveats.fewPackets, wholeFlight: m.wholeFlight })));
-  const few = fewPacketsNote(rows.filter((r) => r.p75 !== null).map((r) => ({ at: `SF${r.sf}`, received: r.received, few: r.few })), 'Hollow points');
-  $('#sf-few').hidden = !few;
-  $('#sf-few').textContent = few;
+  restsOn('sf', fewPacketsNote(rows.filter((r) => r.p75 !== null).map((r) => ({ at: `SF${r.sf}`, received: r.received, few: r.few })), 'Hollow points'), made);
   const opts = { bw: made.bw, distance: made.distance, width: chartWidth('sf') };
   await drawPanel('sf', [rows, opts], (p) => p.p75BySfChart(rows, opts), made);
 }
@@ -478,9 +484,7 @@ async function drawPanel(name: string, inputs: unknown, draw: (p: Awaited<Return
 async function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): Promise<void> {
   const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d, few: m.caveats.fewPackets })));
   const received = sweep.flatMap(({ distance, report: r }) => r.results.filter((m) => m.error3d.count > 0).map((m) => ({ at: `${distance / 1000} km`, received: m.packetsReceived, few: m.caveats.fewPackets })));
-  const few = fewPacketsNote(received, 'Dashed boxes');
-  $('#distance-few').hidden = !few;
-  $('#distance-few').textContent = few;
+  restsOn('distance', fewPacketsNote(received, 'Dashed boxes'), made);
   // With ADR the runs start at the chosen rate and the network moves them (the SF chart's do not).
   const adr = made.adr === 'off' ? '' : ` and ${made.adr === 'lorawan' ? 'LoRaWAN' : 'tracking'} ADR`;
   const rate = `SF${made.sf}, ${made.bw} kHz${adr}`;

@@ -67,7 +67,7 @@ test('the p75-against-SF chart gives the p75 at each SF as the CLI does, one lin
     }
     // The note under the chart names the SFs whose points are hollow, with their packets.
     const few = cli.results.filter((r) => r.caveats.fewPackets).map((r) => r.packetsReceived);
-    const note = (await page.locator('#sf-few').isVisible()) ? await page.locator('#sf-few').textContent() : '';
+    const note = (await page.locator('#sf-rests-on').isVisible()) ? await page.locator('#sf-rests-on').textContent() : '';
     const counts = [Math.min(...few), Math.max(...few)];
     if (few.length) assert.match(note, new RegExp(`SF${sf} \\(${counts[0] === counts[1] ? counts[0] : counts.join('–')}\\)`), `SF${sf}: ${note}`);
     else assert.doesNotMatch(note, new RegExp(`SF${sf} \\(`), note);
@@ -92,7 +92,7 @@ test('the error-versus-distance chart draws the boxes over too few packets dashe
   await page.waitForSelector('#chart-distance svg');
   const groups = await page.evaluate(() => [...document.querySelectorAll('#chart-distance svg text')].map((t) => t.textContent).filter((t) => /^[\d.]+ km$/.test(t)));
   const dashed = await page.evaluate(() => [...document.querySelectorAll('#chart-distance svg [stroke-dasharray] rect')].length);
-  const note = (await page.locator('#distance-few').isVisible()) ? await page.locator('#distance-few').textContent() : '';
+  const note = (await page.locator('#distance-rests-on').isVisible()) ? await page.locator('#distance-rests-on').textContent() : '';
   let few = 0;
   for (const group of groups) {
     const cli = nativeJson(['simulate', '--synthetic', '1', '--sf', '9', '--distance', String(Number.parseFloat(group) * 1000)]);

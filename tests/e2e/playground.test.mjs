@@ -45,6 +45,11 @@ test('opens with the paper defaults and names no best model from one flight and 
   await page.waitForSelector('#chart-axes svg');
   await page.waitForSelector('#chart-distance svg', { timeout: 30_000 });
   await page.waitForSelector('#chart-airtime svg');
+  // The sweep charts run one seed: beside a table of ten, each says so (its SF7 point is not the
+  // table's p75).
+  for (const name of ['sf', 'distance']) {
+    await until(page, (n) => /This chart runs seed 1 alone; the table above pools 10 seeds\./.test(document.querySelector(`#${n}-rests-on`)?.textContent ?? ''), name);
+  }
   await screenshot(page, 'playground');
   assert.deepEqual(problems, []);
 });

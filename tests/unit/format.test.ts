@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { caption, describe, fewPacketsNote, flightTime, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
+import { caption, describe, fewPacketsNote, flightTime, oneSeedNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -65,7 +65,12 @@ test('a sweep chart says which of its points rest on too few packets, with their
   const p = (at: string, received: number) => ({ at, received, few: received < 10 });
   expect(fewPacketsNote([p('SF7', 28), p('SF7', 26)], 'Hollow points')).toBe('');
   expect(fewPacketsNote([p('SF8', 15), p('SF9', 8), p('SF9', 7), p('SF9', 12), p('SF12', 1)], 'Hollow points')).toBe(
-    'Hollow points rest on too few received packets to tell the stations apart: SF9 (7–8), SF12 (1) packets. More flights or seeds give them more.',
+    'Hollow points rest on too few received packets to tell the stations apart: SF9 (7–8), SF12 (1) packets. More flight time gives them more.',
   );
   expect(fewPacketsNote([p('4 km', 1)], 'Dashed boxes')).toMatch(/^Dashed boxes rest on .*: 4 km \(1\) packet\./);
+});
+
+test('a sweep chart of one seed says so where the table pools more', () => {
+  expect(oneSeedNote(1, 1)).toBe('');
+  expect(oneSeedNote(10, 3)).toBe('This chart runs seed 3 alone; the table above pools 10 seeds.');
 });
