@@ -100,5 +100,14 @@ export function fewPacketsNote(points: { at: string; received: number; few: bool
  * each run 6 settings more): says so where the table on show pools `tableSeeds` seeds, whose
  * numbers the chart's point at the same setting would otherwise seem to contradict; '' for one. */
 export function oneSeedNote(tableSeeds: number, seed: number): string {
-  return tableSeeds > 1 ? `This chart runs seed ${seed} alone; the table above pools ${tableSeeds} seeds.` : '';
+  return tableSeeds > 1 ? `This chart runs seed ${seed} alone; the results table pools ${tableSeeds} seeds.` : '';
+}
+
+/** Under the error-over-time chart, which draws one flight with one seed (the series of a run is
+ * its first flight's): says which, where the table on show pools more, whose p75 a reader would
+ * otherwise look for in it; '' where the run is that one flight. */
+export function seriesNote(c: { flights: number; seeds: number; seed: number }, flight: string): string {
+  if (c.flights <= 1 && c.seeds <= 1) return '';
+  const pooled = `${c.flights} flight${c.flights === 1 ? '' : 's'} × ${c.seeds} seed${c.seeds === 1 ? '' : 's'}`;
+  return `This chart is ${flight} with seed ${c.seed} alone; the results table pools ${pooled}.`;
 }

@@ -11,7 +11,7 @@ import { $, linkDocs, presenting } from './dom';
 import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
 import { field, form, markField, onFormChange, readControls, settingWords, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
-import { caption, fewPacketsNote, oneSeedNote } from './format';
+import { caption, fewPacketsNote, oneSeedNote, seriesNote } from './format';
 import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { renderBaseline, renderTable, restingNotes } from './results';
@@ -131,6 +131,9 @@ function renderPartial(r: SimReport, made: Settings): void {
 /** The error chart, in a later task. A whole set's report draws the chart its first flight
  * already drew (the series is always the first flight's), so that second drawing is skipped. */
 function drawErrorChart(r: SimReport, made: Settings): void {
+  const note = r.series ? seriesNote(r.config, r.series.flight) : '';
+  $('#error-rests-on').hidden = !note;
+  $('#error-rests-on').textContent = note;
   later('error', () => {
     const width = chartWidth('error');
     // What the chart reads: the stations' series, not where the gateway stood. Its numbers and

@@ -48,8 +48,10 @@ test('opens with the paper defaults and names no best model from one flight and 
   // The sweep charts run one seed: beside a table of ten, each says so (its SF7 point is not the
   // table's p75).
   for (const name of ['sf', 'distance']) {
-    await until(page, (n) => /This chart runs seed 1 alone; the table above pools 10 seeds\./.test(document.querySelector(`#${n}-rests-on`)?.textContent ?? ''), name);
+    await until(page, (n) => /This chart runs seed 1 alone; the results table pools 10 seeds\./.test(document.querySelector(`#${n}-rests-on`)?.textContent ?? ''), name);
   }
+  // So does the error-over-time chart, which draws the first flight's first seed.
+  assert.equal(await page.locator('#error-rests-on').textContent(), 'This chart is synthetic 1 with seed 1 alone; the results table pools 1 flight × 10 seeds.');
   await screenshot(page, 'playground');
   assert.deepEqual(problems, []);
 });

@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { caption, describe, fewPacketsNote, flightTime, oneSeedNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
+import { caption, describe, fewPacketsNote, flightTime, oneSeedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -72,5 +72,11 @@ test('a sweep chart says which of its points rest on too few packets, with their
 
 test('a sweep chart of one seed says so where the table pools more', () => {
   expect(oneSeedNote(1, 1)).toBe('');
-  expect(oneSeedNote(10, 3)).toBe('This chart runs seed 3 alone; the table above pools 10 seeds.');
+  expect(oneSeedNote(10, 3)).toBe('This chart runs seed 3 alone; the results table pools 10 seeds.');
+});
+
+test('the error chart says which flight and seed it draws where the table pools more', () => {
+  expect(seriesNote({ flights: 1, seeds: 1, seed: 4 }, 'synthetic 3')).toBe('');
+  expect(seriesNote({ flights: 30, seeds: 1, seed: 1 }, 'synthetic 1')).toBe('This chart is synthetic 1 with seed 1 alone; the results table pools 30 flights × 1 seed.');
+  expect(seriesNote({ flights: 1, seeds: 10, seed: 2 }, 'canberra')).toBe('This chart is canberra with seed 2 alone; the results table pools 1 flight × 10 seeds.');
 });
