@@ -1,6 +1,6 @@
 // Paper Table II (time on air and duty-cycle interval per SF, bandwidth and payload) and time on
 // air versus payload size, computed by the Rust core for the current overhead and coding rate.
-import { chartFrame, SF_COLORS, withKey, leftMargin } from './colors';
+import { chartFrame, SF_COLORS, withKey, labelRoom } from './colors';
 import * as Plot from '@observablehq/plot';
 import { PLANS, timeOnAir, type AirtimeParams, type Region } from '../loratrack';
 
@@ -73,7 +73,7 @@ export function airtimeVsPayloadChart(opts: { overhead: number; cr: number; sf: 
     // Below the time-on-air table, which fills its presentation screen already: never taller.
     ...chartFrame(300, Infinity),
     width: opts.width,
-    marginLeft: leftMargin(55),
+    marginLeft: labelRoom(55),
     x: { label: 'application payload (bytes)' },
     y: { label: 'time on air (ms)', type: 'log', grid: true },
     color: { legend: true, domain: SFS.map((sf) => `SF${sf}`), range: SFS.map((sf) => SF_COLORS[sf - 7]) },

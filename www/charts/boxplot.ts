@@ -3,7 +3,7 @@
 import * as Plot from '@observablehq/plot';
 import type { Boxplot, ModelName } from '../loratrack';
 import { MODEL_LABELS } from '../loratrack';
-import { MODEL_COLORS, chartFrame, chartFont, fitLabel, withKey, leftMargin } from './colors';
+import { MODEL_COLORS, chartFrame, chartFont, fitLabel, withKey, labelRoom } from './colors';
 import { plainNumber } from './logAxis';
 
 /** The plot's left margin at the page's type size, px: room for the y axis's labels. */
@@ -29,7 +29,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
   const chart = Plot.plot({
     ...chartFrame(180),
     width: opts.width,
-    marginLeft: leftMargin(MARGIN_LEFT),
+    marginLeft: labelRoom(MARGIN_LEFT),
     marginRight: MARGIN_RIGHT,
     fx: { label: fitLabel(opts.width, ...opts.groupLabel), domain: groups },
     x: { axis: null, domain: models, paddingInner: 0.25 },
@@ -54,7 +54,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
 /** The width of one group's column in ems of the chart's type, a little inside it: `width` px
  * less the plot's margins, shared by `groups`. */
 function groupEms(width: number, groups: number): number {
-  return (0.95 * (width - leftMargin(MARGIN_LEFT) - MARGIN_RIGHT)) / Math.max(1, groups) / chartFont();
+  return (0.95 * (width - labelRoom(MARGIN_LEFT) - MARGIN_RIGHT)) / Math.max(1, groups) / chartFont();
 }
 
 /** Labels only the powers of ten of a log axis, as plain numbers. */

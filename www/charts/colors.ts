@@ -51,9 +51,9 @@ export function fitLabel(width: number, ...labels: string[]): string {
   return labels.find((l) => (l.length + 2) * 0.55 * chartFont() <= width - 8) ?? labels[labels.length - 1];
 }
 
-/** The room for a y axis's tick labels, px: `px` at the page's 13 px type, grown with the type (at
+/** A margin that holds tick labels, px: `px` at the page's 13 px type, grown with the type (at
  * presentation mode's 18 px, "1,000" and "−140" ran past the chart's left edge in 50 px). */
-export function leftMargin(px: number): number {
+export function labelRoom(px: number): number {
   return Math.round((px * chartFont()) / 13);
 }
 

@@ -2,7 +2,7 @@
 // (dots on the axis) and lost packets (crosses), over the station's own 95 % bound (dashed band).
 import * as Plot from '@observablehq/plot';
 import { isThinned, MODEL_LABELS, type ModelSeries, type SimReport } from '../loratrack';
-import { MODEL_COLORS, chartFrame, chartFont, withKey, leftMargin } from './colors';
+import { MODEL_COLORS, chartFrame, chartFont, withKey, labelRoom } from './colors';
 
 /** What the error chart draws, computed from a report for a chart `width` px wide: the picked
  * samples, the packet marks and rate labels, the scale and the words around it. The page computes
@@ -81,7 +81,7 @@ export function errorChart(data: ErrorChartData): SVGSVGElement | HTMLElement {
   const chart = Plot.plot({
     ...chartFrame(180),
     width: data.width,
-    marginLeft: leftMargin(50),
+    marginLeft: labelRoom(50),
     x: { label: 'time (s)' },
     y: { label: '3D error (m)', grid: true, domain: [0, data.top || 1], nice: true },
     color: { domain: data.labels, range: data.colors, legend: true },

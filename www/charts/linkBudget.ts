@@ -2,7 +2,7 @@
 // shadowing band, each SF's sensitivity as a line, each gateway's distance from the flight's start
 // marked; and each SF's
 // delivery ratio against distance. The numbers come from the core's linkBudget().
-import { chartFrame, chartFont, SF_COLORS, leftMargin } from './colors';
+import { chartFrame, chartFont, SF_COLORS, labelRoom } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { LinkBudgetReport } from '../loratrack';
 
@@ -20,7 +20,7 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
   const power = Plot.plot({
     ...chartFrame(240, 440),
     width: opts.width,
-    marginLeft: leftMargin(50),
+    marginLeft: labelRoom(50),
     x: { label: 'distance (km)' },
     y: { label: 'received power (dBm)', grid: true },
     color,
@@ -36,7 +36,7 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
   const delivery = Plot.plot({
     ...chartFrame(200, 440),
     width: opts.width,
-    marginLeft: leftMargin(50),
+    marginLeft: labelRoom(50),
     x: { label: 'distance (km)' },
     y: { label: 'packets delivered (%)', domain: [0, 100], grid: true },
     color,

@@ -3,7 +3,7 @@
 // often: at short range the error grows with SF, beyond SF7's range a higher SF is what arrives.
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type ModelName, type WholeFlightError } from '../loratrack';
-import { chartFrame, chartFont, fitLabel, MODEL_COLORS, leftMargin } from './colors';
+import { chartFrame, chartFont, fitLabel, MODEL_COLORS, labelRoom } from './colors';
 import { trackedPercent } from '../format';
 import { logAxis, plainNumber } from './logAxis';
 
@@ -42,7 +42,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
   return Plot.plot({
     ...chartFrame(220),
     width: opts.width,
-    marginLeft: leftMargin(56),
+    marginLeft: labelRoom(56),
     x: { label: fitLabel(opts.width, `spreading factor (${opts.bw} kHz, gateway at ${km} km)`, `spreading factor (${opts.bw} kHz, ${km} km)`, `SF (${opts.bw} kHz, ${km} km)`), domain: [6.5, 12.5], ticks: [7, 8, 9, 10, 11, 12], tickFormat: (d: number) => `SF${d}` },
     y: { label: 'p75 3D error (m, log scale)', type: 'log', grid: true, ...logAxis(data.map((d) => d.p75!)), tickFormat: plainNumber },
     color: { domain: models, range: models.map((m) => MODEL_COLORS[data.find((d) => d.label === m)!.model]), legend: true },

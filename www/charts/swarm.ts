@@ -1,6 +1,6 @@
 // Swarms sharing one gateway: the measured collision rate as the swarm grows, beside the pure
 // ALOHA formula; and each drone's tracking error (p75) in the largest swarm.
-import { chartFrame, chartFont, fitLabel, SF_COLORS, leftMargin } from './colors';
+import { chartFrame, chartFont, fitLabel, SF_COLORS, labelRoom } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
 import { flightTime, trackedPercent } from '../format';
@@ -33,7 +33,7 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   const collisions = Plot.plot({
     ...chartFrame(220, 360),
     width,
-    marginLeft: leftMargin(50),
+    marginLeft: labelRoom(50),
     x: { label: 'drones sharing the gateway', type: 'log', ...logAxis(rates.map((r) => r.n)), tickFormat: plainNumber },
     y: { label: 'packets collided (%)', grid: true, zero: true },
     marks: [
@@ -55,9 +55,9 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   const errors = Plot.plot({
     ...chartFrame(140, 360),
     width,
-    marginLeft: leftMargin(50),
+    marginLeft: labelRoom(50),
     // Room for half the last tick label ("10,000" ran past the right edge).
-    marginRight: leftMargin(24),
+    marginRight: labelRoom(24),
     // Labelling only the powers of ten left a swarm whose p75s lie within one decade (all on SF7:
     // 2–7 m) without a single number on its axis.
     x: { label: fitLabel(width, `p75 error of each of ${largest.config.drones} drones (m, log scale)`, `p75 of each of ${largest.config.drones} drones (m, log)`, 'p75 per drone (m, log)'), type: 'log', ...logAxis(drones.map((d) => d.p75)), tickFormat: plainNumber },
