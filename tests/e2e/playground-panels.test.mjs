@@ -416,11 +416,18 @@ test('numbers resting on few packets say so and offer the whole set in one click
     assert.ok(pct < 95, `${m.model}: ${pct} %`);
     assert.match(untracked, new RegExp(`cover .*\\b${pct} %`), `${m.model} ${pct} %: ${untracked}`);
   }
+  // The Results CSV carries the note as a column, as the core flags each station.
+  const csv = async () => {
+    const [header, ...rows] = (await downloaded(page, page.getByRole('button', { name: 'Results (CSV)' }))).toString('utf8').trim().split('\n').map((l) => l.split(','));
+    return rows.map((row) => [row[header.indexOf('model')], row[header.indexOf('too_few_packets')]]);
+  };
+  assert.deepEqual(await csv(), MODELS.map((m) => [m, 'true']));
   const before = await tableHtml(page);
   await page.getByRole('button', { name: 'Simulate the whole synthetic set' }).click();
   await waitForResults(page, before);
   assert.equal(await page.getByLabel('Trajectory', { exact: true }).inputValue(), 'all');
   assert.equal(await page.locator('#rests-on').isVisible(), false);
+  assert.deepEqual(await csv(), MODELS.map((m) => [m, 'false']));
   // More flights give more packets, not an earlier first one in each.
   assert.match(await page.locator('#untracked').textContent(), /These errors cover \d+ %.* of the flight time/);
   assert.match(await page.locator('#results-table caption').first().textContent(), /over 30 flights × 1 seed/);
