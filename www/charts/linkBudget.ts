@@ -17,6 +17,8 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
   const current = chosen ? name(chosen) : '';
   const sens = shown.map((s) => ({ sf: name(s), dbm: s.sensitivityDbm, range: km(s.rangeM) }));
   const color = { domain: sens.map((s) => s.sf), range: shown.map((s) => SF_COLORS[s.sf - 7]), legend: true };
+  const far = km(Math.max(...r.distances));
+  const gateways = opts.distances.map((d, i) => ({ d: km(d), label: opts.distances.length > 1 ? `gateway ${i + 1}` : 'gateway distance' }));
   const power = Plot.plot({
     ...chartFrame(240, 440),
     width: opts.width,
@@ -29,7 +31,14 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
       Plot.lineY(band, { x: 'd', y: 'mean', stroke: '#222', strokeWidth: 1.6 }),
       Plot.ruleY(sens, { y: 'dbm', stroke: 'sf', strokeDasharray: '4,3', strokeWidth: (s) => (s.sf === current ? 2.2 : 1) }),
       Plot.ruleX(opts.distances.map(km), { stroke: '#b00020', strokeWidth: 1.5 }),
-      Plot.text(opts.distances.map(km), { x: (d) => d, frameAnchor: 'top', dy: 6, text: (_d, i) => (opts.distances.length > 1 ? `gateway ${i + 1}` : 'gateway distance'), fill: '#b00020', fontSize: chartFont() }),
+      // Each label beside its line, on the side away from the curve's steep start (centred on a
+      // gateway at 1 km it lay on the curve), and inward near the chart's right end.
+      ...(['start', 'end'] as const).map((side) =>
+        Plot.text(
+          gateways.filter((g) => (g.d < 0.6 * far) === (side === 'start')),
+          { x: 'd', text: 'label', frameAnchor: 'top', dy: 6, dx: side === 'start' ? 4 : -4, textAnchor: side, fill: '#b00020', fontSize: chartFont() },
+        ),
+      ),
     ],
   });
   const curves = shown.flatMap((s) => s.delivery.map((p, i) => ({ d: km(r.distances[i]), p: 100 * p, sf: name(s) })));
