@@ -103,11 +103,11 @@ export function oneSeedNote(tableSeeds: number, seed: number): string {
   return tableSeeds > 1 ? `This chart runs seed ${seed} alone; the results table pools ${tableSeeds} seeds.` : '';
 }
 
-/** Under the error-over-time chart, which draws one flight with one seed (the series of a run is
- * its first flight's): says which, where the table on show pools more, whose p75 a reader would
+/** Under the error-over-time chart and the 3D view (`what`), which draw one flight with one seed
+ * (the series of a run is its first flight's): says which, where the table on show pools more, whose p75 a reader would
  * otherwise look for in it; '' where the run is that one flight. */
-export function seriesNote(c: { flights: number; seeds: number; seed: number }, flight: string): string {
+export function seriesNote(c: { flights: number; seeds: number; seed: number }, flight: string, what = 'chart'): string {
   if (c.flights <= 1 && c.seeds <= 1) return '';
   const pooled = `${c.flights} flight${c.flights === 1 ? '' : 's'} × ${c.seeds} seed${c.seeds === 1 ? '' : 's'}`;
-  return `This chart is ${flight} with seed ${c.seed} alone; the results table pools ${pooled}.`;
+  return `This ${what} is ${flight} with seed ${c.seed} alone; the results table pools ${pooled}.`;
 }

@@ -425,10 +425,12 @@ async function draw3d(r: SimReport): Promise<void> {
   const tracks = tracksDrawn(r).map((t) => `${swatch(t.color)}${t.label}`).join(', ');
   const cones = [near ? `grey cone${near > 1 ? 's' : ''}: the gateway${near > 1 ? 's' : ''}` : '', far].filter(Boolean);
   const grid = `Grid squares ${drawn.gridStep >= 10 ? drawn.gridStep.toFixed(0) : drawn.gridStep.toFixed(1)} m.`;
-  $('#trajectory-legend').innerHTML = `${[tracks, ...cones].join('; ')}. ${grid}`;
-  // A slide lists the tracks as swatches; the cones and the grid's scale go under the picture.
+  // Which flight and seed, where the results pool more.
+  const which = r.series ? seriesNote(r.config, r.series.flight, 'view') : '';
+  $('#trajectory-legend').innerHTML = `${[tracks, ...cones].join('; ')}. ${grid}${which ? ` ${which}` : ''}`;
+  // A slide lists the tracks as swatches; the cones, the grid's scale and the flight go under the picture.
   const coneKey = cones.join('; ');
-  trajectoryKey = coneKey ? `${coneKey[0].toUpperCase()}${coneKey.slice(1)}. ${grid}` : grid;
+  trajectoryKey = `${coneKey ? `${coneKey[0].toUpperCase()}${coneKey.slice(1)}. ${grid}` : grid}${which ? ` ${which}` : ''}`;
 }
 
 /** The note under sweep chart `name` on what its points rest on: those over too few packets

@@ -989,7 +989,16 @@ test('the 3D view is drawn as the reader comes near it, keeps its camera across 
   await idle(page);
   const after = await snap();
   assert.notEqual(after, initial, 'a settings change reset the camera');
-  assert.match(await page.locator('[data-panel="trajectory"] .legend').textContent(), /true flight, DR, CTRA\+, 3D-CTRA; grey cone: the gateway\. Grid squares [\d.]+ m\./);
+  const legend = () => page.locator('[data-panel="trajectory"] .legend').textContent();
+  assert.match(await legend(), /true flight, DR, CTRA\+, 3D-CTRA; grey cone: the gateway\. Grid squares [\d.]+ m\.$/);
+  // With two seeds the view draws the first: its legend says so.
+  const one = await tableHtml(page);
+  await page.locator('#advanced summary').click();
+  await page.getByLabel('Seeds (repeats)').fill('2');
+  await page.getByLabel('Seeds (repeats)').blur();
+  await waitForResults(page, one);
+  await idle(page);
+  await until(page, () => /This view is synthetic 1 with seed 1 alone; the results table pools 1 flight × 2 seeds\.$/.test(document.querySelector('[data-panel="trajectory"] .legend')?.textContent ?? ''));
   await page.getByRole('button', { name: 'Reset view' }).click();
   assert.deepEqual(problems, []);
 });

@@ -79,4 +79,5 @@ test('the error chart says which flight and seed it draws where the table pools 
   expect(seriesNote({ flights: 1, seeds: 1, seed: 4 }, 'synthetic 3')).toBe('');
   expect(seriesNote({ flights: 30, seeds: 1, seed: 1 }, 'synthetic 1')).toBe('This chart is synthetic 1 with seed 1 alone; the results table pools 30 flights × 1 seed.');
   expect(seriesNote({ flights: 1, seeds: 10, seed: 2 }, 'canberra')).toBe('This chart is canberra with seed 2 alone; the results table pools 1 flight × 10 seeds.');
+  expect(seriesNote({ flights: 30, seeds: 2, seed: 1 }, 'synthetic 1', 'view')).toMatch(/^This view is synthetic 1 with seed 1 alone/);
 });
