@@ -131,9 +131,7 @@ function renderPartial(r: SimReport, made: Settings): void {
 /** The error chart, in a later task. A whole set's report draws the chart its first flight
  * already drew (the series is always the first flight's), so that second drawing is skipped. */
 function drawErrorChart(r: SimReport, made: Settings): void {
-  const note = r.series ? seriesNote(r.config, r.series.flight) : '';
-  $('#error-rests-on').hidden = !note;
-  $('#error-rests-on').textContent = note;
+  restsOn('error', r.series ? seriesNote(r.config, r.series.flight) : '');
   later('error', () => {
     const width = chartWidth('error');
     // What the chart reads: the stations' series, not where the gateway stood. Its numbers and
@@ -433,17 +431,24 @@ async function draw3d(r: SimReport): Promise<void> {
   trajectoryKey = `${coneKey ? `${coneKey[0].toUpperCase()}${coneKey.slice(1)}. ${grid}` : grid}${which ? ` ${which}` : ''}`;
 }
 
-/** The note under sweep chart `name` on what its points rest on: those over too few packets
- * (`few`), and its one seed where the table pools more. A slide of the chart carries it. */
-function restsOn(name: 'sf' | 'distance', few: string, made: Settings): void {
-  const text = [few, oneSeedNote(store.reportSettings.seeds, made.seed)].filter(Boolean).join(' ');
+/** The note under chart `name` on what it rests on, from its `parts` (hidden where all are
+ * empty): the error chart's one flight and seed; a sweep chart's points over too few packets and
+ * its one seed ([`sweepRestsOn`]). A slide of the chart carries it. */
+function restsOn(name: 'error' | 'sf' | 'distance', ...parts: string[]): void {
+  const text = parts.filter(Boolean).join(' ');
   $(`#${name}-rests-on`).hidden = !text;
   $(`#${name}-rests-on`).textContent = text;
 }
 
+/** A sweep chart's note: its points over too few packets (`few`), and its one seed where the
+ * table pools more. */
+function sweepRestsOn(name: 'sf' | 'distance', few: string, made: Settings): void {
+  restsOn(name, few, oneSeedNote(store.reportSettings.seeds, made.seed));
+}
+
 async function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): Promise<void> {
   const rows = sweep.flatMap(({ sf, report: r }) => r.results.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived, few: m.caveats.fewPackets, wholeFlight: m.wholeFlight })));
-  restsOn('sf', fewPacketsNote(rows.filter((r) => r.p75 !== null).map((r) => ({ at: `SF${r.sf}`, received: r.received, few: r.few })), 'Hollow points'), made);
+  sweepRestsOn('sf', fewPacketsNote(rows.filter((r) => r.p75 !== null).map((r) => ({ at: `SF${r.sf}`, received: r.received, few: r.few })), 'Hollow points'), made);
   const opts = { bw: made.bw, distance: made.distance, width: chartWidth('sf') };
   await drawPanel('sf', [rows, opts], (p) => p.p75BySfChart(rows, opts), made);
 }
@@ -489,7 +494,7 @@ async function drawPanel(name: string, inputs: unknown, draw: (p: Awaited<Return
 async function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): Promise<void> {
   const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d, few: m.caveats.fewPackets })));
   const received = sweep.flatMap(({ distance, report: r }) => r.results.filter((m) => m.error3d.count > 0).map((m) => ({ at: `${distance / 1000} km`, received: m.packetsReceived, few: m.caveats.fewPackets })));
-  restsOn('distance', fewPacketsNote(received, 'Dashed boxes'), made);
+  sweepRestsOn('distance', fewPacketsNote(received, 'Dashed boxes'), made);
   // With ADR the runs start at the chosen rate and the network moves them (the SF chart's do not).
   const adr = made.adr === 'off' ? '' : ` and ${made.adr === 'lorawan' ? 'LoRaWAN' : 'tracking'} ADR`;
   const rate = `SF${made.sf}, ${made.bw} kHz${adr}`;
