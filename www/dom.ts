@@ -1,4 +1,4 @@
-// The one DOM helper the page's modules share.
+// The DOM helpers the page's modules share.
 
 /** The element `selector` names; the page's markup (index.html) has every one they ask for. */
 export const $ = <T extends HTMLElement>(selector: string) => document.querySelector<T>(selector)!;
@@ -38,3 +38,34 @@ export function linkDocs(root: Element): void {
 /** The rendered page of a doc the page names: `docs/<name>.md` → `docs/<name>.html`, the README →
  * `docs/readme.html` (vite.config.ts renders them). */
 const docHref = (mention: string) => (mention === 'README.md' ? 'docs/readme.html' : mention.replace(/\.md$/, '.html'));
+
+/**
+ * Marks each of `wraps` (`.table-wrap` boxes) `.tight` where its table is too wide for it as it
+ * is; the stylesheet then lets some of its cells break where they may (a p75's interval after its
+ * dash, a time on air before its interval). Only then: were breaking always allowed, the table's
+ * layout would narrow every column that can wrap where the headers alone make room. Returns
+ * whether they all fit.
+ */
+export function tighten(wraps: Iterable<HTMLElement>): boolean {
+  let fits = true;
+  for (const wrap of wraps) {
+    wrap.classList.remove('tight');
+    if (wrap.scrollWidth <= wrap.clientWidth + 1) continue;
+    wrap.classList.add('tight');
+    fits &&= wrap.scrollWidth <= wrap.clientWidth + 1;
+  }
+  return fits;
+}
+
+/** Calls `fit` whenever `box` changes width (a phone turned, a window resized, presentation mode
+ * toggled); not when only its height changes, which fitting does, so the observer cannot feed
+ * itself. */
+export function refitOnWidth(box: HTMLElement, fit: () => void): void {
+  let fitted = -1;
+  new ResizeObserver(([entry]) => {
+    const width = Math.round(entry.contentRect.width);
+    if (width === fitted) return;
+    fitted = width;
+    fit();
+  }).observe(box);
+}

@@ -7,7 +7,7 @@ import { linkBudget, load, MODEL_LABELS, stationsOf, type SimReport, type SwarmP
 import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './charts/colors';
 import type { BoxRow } from './charts/plots';
 import type { Trajectory3d } from './charts/trajectory3d';
-import { $, linkDocs, presenting } from './dom';
+import { $, linkDocs, presenting, refitOnWidth, tighten } from './dom';
 import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
 import { field, form, markField, onFormChange, readControls, settingWords, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
@@ -517,9 +517,27 @@ async function renderAirtime(): Promise<void> {
   const width = chartWidth('airtime');
   await drawPanel('airtime', [opts, width], (p) => {
     $('#airtime-table').replaceChildren(p.airtimeTable(opts));
+    fitAirtimeTable();
     return p.airtimeVsPayloadChart({ ...opts, width });
   });
 }
+
+/**
+ * Lets the time-on-air table's intervals go under their times where it is too wide for its box,
+ * if that makes it fit with a few rows on two lines (presentation mode at 1024×768 cut off
+ * 3D-CTRA's column, and now breaks one row; a tablet at 768 px scrolled); again whenever the box
+ * changes width. Where it would not fit, or only with most rows on two lines (601–700 px: 1023 px
+ * tall against 621), the table stays one line a row and scrolls sideways with its rows' names in
+ * view.
+ */
+function fitAirtimeTable(): void {
+  const box = $('#airtime-table');
+  box.classList.remove('tight');
+  const oneLine = box.offsetHeight;
+  if (tighten([box]) && box.offsetHeight <= 1.25 * oneLine) return;
+  box.classList.remove('tight');
+}
+refitOnWidth($('#airtime-table'), fitAirtimeTable);
 
 /** A chart's drawing width, px: its box's, at least 300 (600 before the box is laid out). */
 function chartWidth(name: string): number {

@@ -2,7 +2,7 @@
 // is best (only when the intervals say so), the baseline's differences, and the notes under the
 // table. Reads the page's state from the store.
 import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
-import { $, linkDocs } from './dom';
+import { $, linkDocs, refitOnWidth, tighten } from './dom';
 import { caption, fmt, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan } from './state';
 import { store } from './store';
@@ -81,52 +81,35 @@ function layoutTable(split: boolean): void {
 /**
  * Lays the results out so that nothing scrolls sideways where that can be helped. First as one
  * table; where it is too wide, the p75's interval and an ADR run's spans (`frameCells`) may break
- * after their dash (`.tight`): a wide interval (ADR at 5 km over eight seeds, "(76.52–408.85)")
- * pushed the charge per uplink out of a 1280 px window. Only then: were it always allowed, the
- * table's layout would narrow every column that can wrap and stack short intervals on two lines
- * where the headers alone make room (the default table at 1024 px). Where it is still too wide but
- * its two halves each fit (presentation mode at 1024×768: 1186 px in 940, the time on air cut off
- * on a projector; a tablet at 768 px), the link's half goes under the tracking error's. On a phone
+ * after their dash (`tighten`): a wide interval (ADR at 5 km over eight seeds, "(76.52–408.85)")
+ * pushed the charge per uplink out of a 1280 px window (always allowed, the breaks stacked short
+ * intervals on two lines where the headers alone made room: the default table at 1024 px). Where
+ * it is still too wide but its two halves each fit (presentation mode at 1024×768: 1186 px in
+ * 940, the time on air cut off on a projector; a tablet at 768 px), the link's half goes under
+ * the tracking error's. On a phone
  * neither half fits, and the one table scrolls with its station names in view. Done again when
  * the table's box changes width.
  */
 function fitTable(): void {
   watchWidth();
   layoutTable(false);
-  if (tighten()) return;
+  if (tightenResults()) return;
   layoutTable(true);
-  if (tighten()) return;
+  if (tightenResults()) return;
   layoutTable(false);
-  tighten();
-}
-
-/** Marks each of the results' tables `.tight` where it is too wide as it is; whether they all
- * fit then. */
-function tighten(): boolean {
-  let fits = true;
-  for (const wrap of document.querySelectorAll<HTMLElement>('#results-table .table-wrap')) {
-    wrap.classList.remove('tight');
-    if (wrap.scrollWidth <= wrap.clientWidth + 1) continue;
-    wrap.classList.add('tight');
-    fits &&= wrap.scrollWidth <= wrap.clientWidth + 1;
-  }
-  return fits;
+  tightenResults();
 }
 
 let widthWatched = false;
-let fittedWidth = -1;
-/** Fits the table again when its box changes width (a phone turned, a window resized); not when
- * its height changes, which `.tight` does, so the observer cannot feed itself. */
+/** Fits the table again when its box changes width. */
 function watchWidth(): void {
   if (widthWatched) return;
   widthWatched = true;
-  new ResizeObserver(([entry]) => {
-    const width = Math.round(entry.contentRect.width);
-    if (width === fittedWidth) return;
-    fittedWidth = width;
-    fitTable();
-  }).observe($('#results-table'));
+  refitOnWidth($('#results-table'), fitTable);
 }
+
+/** Tightens the results' tables where they are too wide; whether they all fit then. */
+const tightenResults = () => tighten(document.querySelectorAll<HTMLElement>('#results-table .table-wrap'));
 
 /** What the interval column rests on under the run's plan and sending (its header's tooltip): the
  * duty cycle set, listen before talk's airtime, or the interval set where the plan has none; never
