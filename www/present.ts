@@ -25,11 +25,45 @@ export function setUpPresent(redraw: () => void): void {
     const step = { ArrowDown: 1, ArrowRight: 1, PageDown: 1, ArrowUp: -1, ArrowLeft: -1, PageUp: -1 }[e.key];
     if (!step || !presenting()) return;
     e.preventDefault();
-    const shown = [...document.querySelectorAll<HTMLElement>('.panel')].filter((p) => p.offsetParent !== null).sort((a, b) => a.getBoundingClientRect().top - b.getBoundingClientRect().top);
-    const next = step > 0 ? shown.find((p) => p.getBoundingClientRect().top > 5) : [...shown].reverse().find((p) => p.getBoundingClientRect().top < -5);
-    next?.scrollIntoView({ block: 'start' });
+    stepScreen(step);
   });
   // The link's `?present=1` is read once, before the first paint (public/present-mode.js, which
   // marks <html>); the button follows it.
   if (presenting()) $('#present-toggle').setAttribute('aria-pressed', 'true');
+}
+
+/** How far (px) a panel's edge may lie from the window's top and still count as at it. */
+const AT_TOP = 5;
+/** What one step within a tall panel keeps of the screen before it, px: a line or two, so that
+ * the reader sees where the new screen goes on from. */
+const OVERLAP = 60;
+
+/**
+ * One step of the arrow keys: to the next (`step` 1) or the previous (−1) panel's top, but first,
+ * where the panel in view is taller than the window, a screen at a time through it. A panel
+ * longer than its screen (at 1024×768 the time-on-air table filled the screen and hid the chart
+ * under it; the link budget's buttons lay 118 px below the fold) was otherwise never shown whole:
+ * the next step went to the next panel's top, and from the last panel nowhere.
+ */
+function stepScreen(step: number): void {
+  const shown = [...document.querySelectorAll<HTMLElement>('.panel')]
+    .filter((p) => p.offsetParent !== null)
+    .map((p) => ({ p, box: p.getBoundingClientRect() }))
+    .sort((a, b) => a.box.top - b.box.top);
+  // The panel in view: the last whose top is at or above the window's.
+  const current = shown.filter((s) => s.box.top <= AT_TOP).at(-1)?.box;
+  if (step > 0) {
+    const below = current ? current.bottom - innerHeight : 0;
+    if (below > AT_TOP) {
+      scrollBy({ top: Math.min(below + AT_TOP, innerHeight - OVERLAP) });
+      return;
+    }
+    shown.find((s) => s.box.top > AT_TOP)?.p.scrollIntoView({ block: 'start' });
+    return;
+  }
+  if (current && current.top < -AT_TOP && current.bottom > 0) {
+    scrollBy({ top: -Math.min(-current.top, innerHeight - OVERLAP) });
+    return;
+  }
+  [...shown].reverse().find((s) => s.box.top < -AT_TOP)?.p.scrollIntoView({ block: 'start' });
 }

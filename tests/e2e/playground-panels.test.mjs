@@ -756,6 +756,26 @@ test('presentation mode: large type and charts at 1024x768, one panel per screen
   await page.keyboard.press('ArrowDown');
   await until(page, (prev) => [...document.querySelectorAll('.panel')].some((p) => p.offsetParent !== null && Math.abs(p.getBoundingClientRect().top) < 2 && p.getAttribute('data-panel') !== prev), one);
   assert.notEqual(await atTop(), one);
+  // Stepped on to the end, no screen skips anything, and the last panel is seen whole: the time-on-air
+  // table filled the screen and hid the chart under it, and the link budget's buttons lay below the
+  // fold, where no step went.
+  const screens = [await page.evaluate(() => scrollY)];
+  for (let i = 0; i < 40; i++) {
+    await page.keyboard.press('ArrowDown');
+    await page.waitForTimeout(100);
+    const y = await page.evaluate(() => scrollY);
+    if (y === screens.at(-1)) break;
+    screens.push(y);
+  }
+  // What lies between one screen's bottom and the next one's top is only the gap between panels.
+  const panels = await page.evaluate(() => [...document.querySelectorAll('.panel')].filter((p) => p.offsetParent !== null).map((p) => [p.getBoundingClientRect().top + scrollY, p.getBoundingClientRect().bottom + scrollY]));
+  const skipped = screens.slice(1).flatMap((y, i) => panels.filter(([top, bottom]) => y > screens[i] + 768 && top < y - 1 && bottom > screens[i] + 768 + 1).map(([top, bottom]) => `${screens[i]} → ${y}: ${top}–${bottom}`));
+  assert.ok(screens.length >= 11, `presentation: ${screens.length} screens`);
+  assert.deepEqual(skipped, [], 'presentation: a step skipped part of a panel');
+  const end = await page.evaluate(() => ({ bottom: Math.round(document.querySelector('[data-panel="airtime"]').getBoundingClientRect().bottom), over: document.querySelector('#airtime-table').scrollWidth - document.querySelector('#airtime-table').clientWidth }));
+  assert.ok(end.bottom <= 768, `presentation: the time-on-air panel ends at ${end.bottom} px, below the screen`);
+  assert.ok(end.over <= 1, `presentation: the time-on-air table scrolls sideways by ${end.over} px`);
+  assert.ok(await page.getByRole('button', { name: 'Download the time on air chart as SVG' }).isVisible());
   assert.deepEqual(await axe(page), []);
   await page.keyboard.press('p');
   await until(page, () => !document.documentElement.classList.contains('present'));
