@@ -7,7 +7,7 @@ import { linkBudget, load, MODEL_LABELS, stationsOf, type SimReport, type SwarmP
 import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './charts/colors';
 import type { BoxRow } from './charts/plots';
 import type { Trajectory3d } from './charts/trajectory3d';
-import { $, linkDocs, presenting, refitOnWidth, tighten } from './dom';
+import { $, fitOnWidth, linkDocs, presenting, tighten } from './dom';
 import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
 import { field, form, markField, onFormChange, readControls, settingWords, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
@@ -530,14 +530,13 @@ async function renderAirtime(): Promise<void> {
  * tall against 621), the table stays one line a row and scrolls sideways with its rows' names in
  * view.
  */
-function fitAirtimeTable(): void {
+const fitAirtimeTable = fitOnWidth($('#airtime-table'), () => {
   const box = $('#airtime-table');
   box.classList.remove('tight');
   const oneLine = box.offsetHeight;
   if (tighten([box]) && box.offsetHeight <= 1.25 * oneLine) return;
   box.classList.remove('tight');
-}
-refitOnWidth($('#airtime-table'), fitAirtimeTable);
+});
 
 /** A chart's drawing width, px: its box's, at least 300 (600 before the box is laid out). */
 function chartWidth(name: string): number {

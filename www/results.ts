@@ -2,7 +2,7 @@
 // is best (only when the intervals say so), the baseline's differences, and the notes under the
 // table. Reads the page's state from the store.
 import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
-import { $, linkDocs, refitOnWidth, tighten } from './dom';
+import { $, fitOnWidth, linkDocs, tighten } from './dom';
 import { caption, fmt, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan } from './state';
 import { store } from './store';
@@ -78,6 +78,13 @@ function layoutTable(split: boolean): void {
   $('#results-table').classList.toggle('split', split);
 }
 
+/** Lays the results out to fit their box ([`layOutToFit`]), now and whenever the box changes width. */
+function fitTable(): void {
+  fitResults ??= fitOnWidth($('#results-table'), layOutToFit);
+  fitResults();
+}
+let fitResults: (() => void) | undefined;
+
 /**
  * Lays the results out so that nothing scrolls sideways where that can be helped. First as one
  * table; where it is too wide, the p75's interval and an ADR run's spans (`frameCells`) may break
@@ -86,26 +93,16 @@ function layoutTable(split: boolean): void {
  * intervals on two lines where the headers alone made room: the default table at 1024 px). Where
  * it is still too wide but its two halves each fit (presentation mode at 1024×768: 1186 px in
  * 940, the time on air cut off on a projector; a tablet at 768 px), the link's half goes under
- * the tracking error's. On a phone
- * neither half fits, and the one table scrolls with its station names in view. Done again when
- * the table's box changes width.
+ * the tracking error's. On a phone neither half fits, and the one table scrolls with its station
+ * names in view.
  */
-function fitTable(): void {
-  watchWidth();
+function layOutToFit(): void {
   layoutTable(false);
   if (tightenResults()) return;
   layoutTable(true);
   if (tightenResults()) return;
   layoutTable(false);
   tightenResults();
-}
-
-let widthWatched = false;
-/** Fits the table again when its box changes width. */
-function watchWidth(): void {
-  if (widthWatched) return;
-  widthWatched = true;
-  refitOnWidth($('#results-table'), fitTable);
 }
 
 /** Tightens the results' tables where they are too wide; whether they all fit then. */
