@@ -135,8 +135,8 @@ export function chartSvg(chart: Element): SVGSVGElement | null {
  * square and its label. */
 const isSwatch = (svg: SVGSVGElement) => /-swatch\b/.test(svg.parentElement?.getAttribute('class') ?? '');
 
-/** A legend's entries: colour and label, each once (the link budget's two charts share one
- * legend, which Plot draws above each). */
+/** A legend's entries: colour and label, each once (were two charts in a panel to draw the same
+ * legend, the slide would draw it once). */
 function legendOf(chart: Element): { color: string; label: string }[] {
   const entries = [...chart.querySelectorAll('svg')].filter(isSwatch).map((svg) => ({
     color: svg.getAttribute('fill') ?? svg.querySelector('rect')?.getAttribute('fill') ?? '#888',

@@ -48,7 +48,9 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
     marginLeft: labelRoom(50),
     x: { label: 'distance (km)' },
     y: { label: 'packets delivered (%)', domain: [0, 100], grid: true },
-    color,
+    // The chart above shows the SFs' colours; a second legend, the same, only pushed this chart
+    // and the ranges under it down (in presentation mode at 1024×768, past the screen).
+    color: { ...color, legend: false },
     marks: [
       Plot.lineY(curves, { x: 'd', y: 'p', stroke: 'sf', strokeWidth: (c) => (c.sf === current ? 2.4 : 1.2) }),
       Plot.ruleX(opts.distances.map(km), { stroke: '#b00020', strokeWidth: 1.5 }),
