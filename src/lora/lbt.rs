@@ -11,7 +11,8 @@
 
 use serde::{Deserialize, Serialize};
 
-/// How a device earns the right to transmit (`--access`).
+/// How a device earns the right to transmit (`--access`). Listening lasts [`LISTEN_S`] and
+/// hears a channel busy above [`THRESHOLD_DBM`]; the variants' docs are `--access`'s help.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(cli, derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
@@ -20,8 +21,8 @@ pub enum ChannelAccess {
     /// The plan's duty cycle (the paper).
     #[default]
     DutyCycle,
-    /// Listen before each uplink ([`LISTEN_S`] at [`THRESHOLD_DBM`]), and keep ETSI's
-    /// 100 s per hour.
+    /// Listen before each uplink (5 ms; busy above −80 dBm), and keep ETSI's 100 s of airtime
+    /// per hour.
     Lbt,
 }
 
@@ -70,6 +71,16 @@ pub fn busy(rx_dbm: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `--access lbt`'s help is the variant's doc, written with the numbers for a CLI user.
+    #[cfg(cli)]
+    #[test]
+    fn the_cli_help_states_the_listening_the_code_does() {
+        let value = clap::ValueEnum::to_possible_value(&ChannelAccess::Lbt).unwrap();
+        let help = value.get_help().unwrap().to_string();
+        let said = format!("{} ms; busy above −{} dBm", LISTEN_S * 1e3, -THRESHOLD_DBM);
+        assert!(help.contains(&said), "{help}");
+    }
 
     #[test]
     fn lbt_allows_almost_three_times_the_airtime_of_eu868s_one_percent() {

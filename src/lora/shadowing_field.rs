@@ -5,18 +5,19 @@ use crate::math;
 use crate::rng::Rng;
 use serde::{Deserialize, Serialize};
 
-/// How shadowing varies (`--shadowing-model`, JS `shadowingModel`; reference §6.2).
+/// How shadowing varies (`--shadowing-model`, JS `shadowingModel`; reference §6.2): along the
+/// path as [`crate::Shadowing`] draws it, or fixed in space as [`ShadowingField`] holds it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(cli, derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum ShadowingModel {
-    /// Along the drone's path, frame by frame ([`crate::Shadowing`]): each frame continues the
-    /// last over the metres flown, with a fresh draw. Two runs that send at other moments meet
+    /// Along the drone's path, frame by frame: each frame continues the last over the metres
+    /// flown, with a fresh draw. Two runs that send at other moments meet
     /// other fades.
     #[default]
     Path,
-    /// Fixed in space ([`ShadowingField`]): every frame, uplink or downlink, meets the fade of
+    /// Fixed in space: every frame, uplink or downlink, meets the fade of
     /// the place it is sent from, so runs that differ only in when they send (another sender,
     /// data rate, payload or ADR) meet the same fades (common random numbers), and a drone that
     /// comes back meets the fade it left.

@@ -771,3 +771,20 @@ fn a_second_prediction_adds_its_own_verdicts_to_the_adr_document_and_other_sweep
         );
     }
 }
+
+/// The option types' docs are both the API documentation and `--help`: a link written for
+/// rustdoc ("[`TrackingAdr`]", "([`LISTEN_S`] at [`THRESHOLD_DBM`])") meant nothing to a CLI
+/// user, who now reads words and numbers in its place.
+#[test]
+fn no_help_shows_rustdoc_link_syntax() {
+    for command in [
+        "airtime", "predict", "encode", "decode", "simulate", "sweep", "swarm",
+    ] {
+        let out = crate::cli(&[command, "--help"]);
+        assert!(out.status.success(), "{command}");
+        let help = String::from_utf8(out.stdout).unwrap();
+        for syntax in ["[`", "`]", "](", "crate::", "super::"] {
+            assert!(!help.contains(syntax), "{command} --help shows {syntax:?}");
+        }
+    }
+}

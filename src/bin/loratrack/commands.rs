@@ -25,7 +25,8 @@ pub enum Command {
     Decode(DecodeArgs),
     /// Simulate tracking over LoRa: drone UKF, duty-cycled packets, channel, station predictor.
     Simulate(Box<SimulateArgs>),
-    /// The paper's grid: SF 7/8, 250 kHz, d = 1/2/3 km, all models, whole synthetic set.
+    /// The grids the docs are made from: the paper's (--paper), swarms (--swarm), senders, payloads,
+    /// data rates and ADR by distance (--distances), the mission station.
     Sweep(crate::sweep::SweepArgs),
     /// Many drones, one gateway: collisions (capture, inter-SF, 8 demodulators) and every drone's tracking error.
     Swarm(Box<SwarmArgs>),

@@ -23,7 +23,8 @@ pub use tracking::{
 use super::{DataRate, LoraError};
 use serde::{Deserialize, Serialize};
 
-/// Which network-side ADR runs (`--adr`).
+/// Which network-side ADR runs (`--adr`): [`LorawanAdr`] or [`TrackingAdr`]. The variants' docs
+/// are `--adr`'s help, in a CLI user's words.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(cli, derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
@@ -32,9 +33,14 @@ pub enum AdrMode {
     /// The data rate stays where `--sf`/`--bw` put it (the paper).
     #[default]
     Off,
-    /// [`LorawanAdr`].
+    /// LoRaWAN's network-server ADR (Semtech's algorithm, as The Things Stack and ns-3 run it):
+    /// once --adr-history uplinks have arrived, each whole 3 dB of margin over --adr-margin raises
+    /// the data rate, then lowers the power; only the device's own back-off slows it. Built for
+    /// delivery and battery, not tracking.
     Lorawan,
-    /// [`TrackingAdr`].
+    /// Ours: the network picks the data rate whose packets keep the station's newest packet
+    /// youngest, from each rate's delivery estimated on the received frames, and slows it
+    /// through a fade it sees coming (docs/beyond-the-paper.md, "Adaptive data rate").
     Tracking,
 }
 

@@ -16,7 +16,7 @@ pub use sending::{Sending, DEFAULT_BURST, DEFAULT_MAX_INTERVAL_S, DEFAULT_THRESH
 
 use serde::{Deserialize, Serialize};
 
-/// The sending policy (`--sender`).
+/// The sending policy (`--sender`; `error` is [`ErrorTriggered`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(cli, derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
@@ -25,8 +25,8 @@ pub enum SenderKind {
     /// As often as the duty cycle allows (the paper).
     #[default]
     Periodic,
-    /// When the mirrored station's position is more than a threshold from the drone's own
-    /// estimate, or when a heartbeat is due ([`ErrorTriggered`]).
+    /// When the mirrored station's position is more than a threshold (--threshold) from the
+    /// drone's own estimate, or when the heartbeat (--max-interval) is due.
     Error,
 }
 

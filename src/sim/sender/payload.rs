@@ -19,7 +19,8 @@ use serde::{Deserialize, Serialize};
 /// shortens, 2.65 m (docs/beyond-the-paper.md, "Lean payloads").
 pub const LEAN_SIGNIFICANCE: f64 = 10.0;
 
-/// The payload rule (`--payload`).
+/// The payload rule (`--payload`; the lean rule's significance: [`LEAN_SIGNIFICANCE`], its
+/// frames: [`LeanPayload`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(cli, derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
@@ -29,8 +30,8 @@ pub enum PayloadChoice {
     #[default]
     Full,
     /// Each packet carries the smallest of the paper's payloads (DR's 9 bytes, CTRA+'s 11)
-    /// that leaves out only manoeuvre fields within [`LEAN_SIGNIFICANCE`] of zero, where its
-    /// frame takes less time on air ([`LeanPayload`]).
+    /// that leaves out only manoeuvre fields within 10 standard deviations of zero, where its
+    /// frame takes less time on air.
     Lean,
 }
 
@@ -129,6 +130,16 @@ impl LeanPayload {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `--payload lean`'s help is the variant's doc, written with the significance.
+    #[cfg(cli)]
+    #[test]
+    fn the_cli_help_states_the_lean_significance() {
+        let value = clap::ValueEnum::to_possible_value(&PayloadChoice::Lean).unwrap();
+        let help = value.get_help().unwrap().to_string();
+        let said = format!("within {LEAN_SIGNIFICANCE} standard deviations of zero");
+        assert!(help.contains(&said), "{help}");
+    }
 
     const SD: [f64; 3] = [0.2, 0.02, 0.02];
 

@@ -4,7 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
-/// The station's direct process noise on heading θ and pitch φ (`--heading-noise`).
+/// The station's direct process noise on heading θ and pitch φ (`--heading-noise`; the adaptive
+/// choice: [`HedgeChoice`]).
 ///
 /// That noise does more than widen the 95 % region: the unscented mean of cos θ over a heading
 /// spread σ² is about cos θ̄·e^(−σ²/2), so it shrinks the extrapolated velocity as a packet
@@ -19,8 +20,8 @@ pub enum HeadingNoise {
     /// q per second on θ and φ, as on every other component (the drone's q): the default.
     #[default]
     Fixed,
-    /// 0, 1 or 3 × q on θ and φ, whichever has forecast the flight's packets best so far
-    /// ([`HedgeChoice`]); bounded prediction only.
+    /// 0, 1 or 3 × q on θ and φ, whichever has forecast the flight's packets best so far;
+    /// bounded prediction only.
     Adaptive,
 }
 

@@ -9,14 +9,15 @@ use crate::trajectory::FlightPlan;
 use nalgebra::Matrix3;
 use serde::{Deserialize, Serialize};
 
-/// How the mission station paces the drone along its plan (`--plan-pace`).
+/// How the mission station paces the drone along its plan (`--plan-pace`; the pace's time
+/// constant: [`PACE_TIME`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(cli, derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum PlanPace {
-    /// The packet's speed, giving way to each leg's planned speed ([`PACE_TIME`]) where the plan
-    /// gives one: for a drone that keeps its plan's timing.
+    /// The packet's speed, giving way to each leg's planned speed over 2 s where the plan gives
+    /// one: for a drone that keeps its plan's timing.
     #[default]
     Plan,
     /// The packet's speed throughout, ignoring the plan's speeds: for a plan whose timing the
@@ -207,6 +208,15 @@ impl Tracker for MissionStation {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `--plan-pace plan`'s help is the variant's doc, written with the pace's time.
+    #[cfg(cli)]
+    #[test]
+    fn the_cli_help_states_the_pace_time() {
+        let value = clap::ValueEnum::to_possible_value(&PlanPace::Plan).unwrap();
+        let help = value.get_help().unwrap().to_string();
+        assert!(help.contains(&format!("over {PACE_TIME} s")), "{help}");
+    }
 
     fn setup() -> StationSetup {
         StationSetup {

@@ -9,7 +9,9 @@ use core::f64::consts::FRAC_PI_2;
 use nalgebra::{SMatrix, SVector};
 use serde::{Deserialize, Serialize};
 
-/// The station's prediction rule (`--prediction`).
+/// The station's prediction rule (`--prediction`). The bounded one's limits are [`Bounds`], its
+/// estimate once a packet is overdue [`StationPredictor`](super::StationPredictor)'s; the
+/// variants' docs are `--prediction`'s help.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(cli, derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
@@ -19,11 +21,11 @@ pub enum Prediction {
     /// comes, only psi decaying by eta per step. Reproduces the paper's numbers; the default.
     #[default]
     Paper,
-    /// The same equations, with the speed held in [0, v_max] and the pitch in ±phi_max (exactly:
+    /// The same equations, with the speed held in [0, 20 m/s] and the pitch within ±90° (exactly:
     /// a step that reaches a limit is split there and the rate that drives past it set to 0), the
-    /// acceleration fading from the packet on, and, once a packet is overdue, the speed and turn
-    /// rate decaying toward 0 too ([`Bounds`]) and the estimate following the model from its own
-    /// last value (see [`StationPredictor`](super::StationPredictor)).
+    /// acceleration fading from the packet on (time constant 2 s), and, once a packet is overdue,
+    /// the speed and turn rate decaying toward 0 too and the estimate following the model from
+    /// its own last value.
     Bounded,
 }
 
@@ -358,6 +360,22 @@ impl Bounds {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `--prediction bounded`'s help is the variant's doc, written with the numbers.
+    #[cfg(cli)]
+    #[test]
+    fn the_cli_help_states_the_default_bounds() {
+        let value = clap::ValueEnum::to_possible_value(&Prediction::Bounded).unwrap();
+        let help = value.get_help().unwrap().to_string();
+        let b = Bounds::default();
+        for said in [
+            format!("[0, {} m/s]", b.v_max),
+            format!("±{}°", b.phi_max.to_degrees().round()),
+            format!("time constant {} s", b.tau_a),
+        ] {
+            assert!(help.contains(&said), "{said}: {help}");
+        }
+    }
     use crate::filter::{SigmaPoints, Ukf};
     use crate::models::{Ctra3d, CtraPlus, Dr, ANGLES, THETA, X, Z};
 
