@@ -65,5 +65,8 @@ function stepScreen(step: number): void {
     scrollBy({ top: -Math.min(-current.top, innerHeight - OVERLAP) });
     return;
   }
-  [...shown].reverse().find((s) => s.box.top < -AT_TOP)?.p.scrollIntoView({ block: 'start' });
+  const previous = [...shown].reverse().find((s) => s.box.top < -AT_TOP);
+  // Before the first panel: the page's top, with its title (and a lesson's steps).
+  if (previous) previous.p.scrollIntoView({ block: 'start' });
+  else scrollTo({ top: 0 });
 }

@@ -776,6 +776,16 @@ test('presentation mode: large type and charts at 1024x768, one panel per screen
   assert.ok(end.bottom <= 768, `presentation: the time-on-air panel ends at ${end.bottom} px, below the screen`);
   assert.ok(end.over <= 1, `presentation: the time-on-air table scrolls sideways by ${end.over} px`);
   assert.ok(await page.getByRole('button', { name: 'Download the time on air chart as SVG' }).isVisible());
+  // And back up, step by step, to the page's title above the first panel.
+  let back = 0;
+  for (let y = screens.at(-1); back < 40; back++) {
+    await page.keyboard.press('ArrowUp');
+    await page.waitForTimeout(100);
+    const now = await page.evaluate(() => scrollY);
+    if (now === y) break;
+    y = now;
+  }
+  assert.equal(await page.evaluate(() => scrollY), 0, `presentation: ${back} steps back did not reach the page's top`);
   assert.deepEqual(await axe(page), []);
   await page.keyboard.press('p');
   await until(page, () => !document.documentElement.classList.contains('present'));
