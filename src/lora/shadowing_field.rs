@@ -13,14 +13,13 @@ use serde::{Deserialize, Serialize};
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum ShadowingModel {
     /// Along the drone's path, frame by frame: each frame continues the last over the metres
-    /// flown, with a fresh draw. Two runs that send at other moments meet
-    /// other fades.
+    /// flown, with a fresh draw. Two runs that send at other moments meet other fades.
     #[default]
     Path,
-    /// Fixed in space: every frame, uplink or downlink, meets the fade of
-    /// the place it is sent from, so runs that differ only in when they send (another sender,
-    /// data rate, payload or ADR) meet the same fades (common random numbers), and a drone that
-    /// comes back meets the fade it left.
+    /// Fixed in space: every frame, uplink or downlink, meets the fade of the place it is sent
+    /// from, so runs that differ only in when they send (another sender, data rate, payload or
+    /// ADR) meet the same fades (common random numbers), and a drone that comes back meets the
+    /// fade it left.
     Field,
 }
 

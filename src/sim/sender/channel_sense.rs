@@ -17,12 +17,12 @@ pub enum ChannelSense {
     /// symbols: as each uplink starts the drone learns whether another packet of its spreading
     /// factor is on air on its channel and loud enough for it to detect, keeps a running share
     /// of busy starts and divides its threshold by the chance that a packet gets through at
-    /// that load. The default: a drone alone
-    /// never hears another packet, so its threshold stays the one set, and in a crowd of 72 on
-    /// one SF7 channel the default 2 m threshold then beats periodic sending (0.93× the median
-    /// drone's p75 over 16 seeds, against 0.99× not listening). A threshold already on the
-    /// crowd's scale (40 m with a 60 s heartbeat and a budget there) is raised too far (1.10×
-    /// not listening's p75): docs/beyond-the-paper.md, "When to send".
+    /// that load. The default: a drone alone never hears another packet, so its threshold stays
+    /// the one set, and in a crowd of 72 on one SF7 channel the default 2 m threshold then beats
+    /// periodic sending (0.93× the median drone's p75 over 16 seeds, against 0.99× not
+    /// listening). A threshold already on the crowd's scale (40 m with a 60 s heartbeat and a
+    /// budget there) is raised too far (1.10× not listening's p75): docs/beyond-the-paper.md,
+    /// "When to send".
     #[default]
     Cad,
 }

@@ -360,6 +360,8 @@ impl Bounds {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::filter::{SigmaPoints, Ukf};
+    use crate::models::{Ctra3d, CtraPlus, Dr, ANGLES, THETA, X, Z};
 
     /// `--prediction bounded`'s help is the variant's doc, written with the numbers.
     #[cfg(cli)]
@@ -376,8 +378,6 @@ mod tests {
             assert!(help.contains(&said), "{said}: {help}");
         }
     }
-    use crate::filter::{SigmaPoints, Ukf};
-    use crate::models::{Ctra3d, CtraPlus, Dr, ANGLES, THETA, X, Z};
 
     fn bounded<M>(model: M) -> Bounded<M> {
         Bounded {
