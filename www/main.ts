@@ -524,18 +524,14 @@ async function renderAirtime(): Promise<void> {
 
 /**
  * Lets the time-on-air table's intervals go under their times where it is too wide for its box,
- * if that makes it fit with a few rows on two lines (presentation mode at 1024×768 cut off
- * 3D-CTRA's column, and now breaks one row; a tablet at 768 px scrolled); again whenever the box
- * changes width. Where it would not fit, or only with most rows on two lines (601–700 px: 1023 px
- * tall against 621), the table stays one line a row and scrolls sideways with its rows' names in
- * view.
+ * if that makes it fit: presentation mode at 1024×768 cut off 3D-CTRA's column (now one row
+ * breaks), and a tablet or an embed in a documentation column (601–767 px) hid it behind a
+ * sideways scroll (now most rows break: 1023 px tall at 650 px against 660, every column in
+ * view). Again whenever the box changes width. On a phone, where it would not fit either way, the
+ * table stays one line a row and scrolls sideways with its rows' names in view.
  */
 const fitAirtimeTable = fitOnWidth($('#airtime-table'), () => {
-  const box = $('#airtime-table');
-  box.classList.remove('tight');
-  const oneLine = box.offsetHeight;
-  if (tighten([box]) && box.offsetHeight <= 1.25 * oneLine) return;
-  box.classList.remove('tight');
+  if (!tighten([$('#airtime-table')])) $('#airtime-table').classList.remove('tight');
 });
 
 /** A chart's drawing width, px: its box's, at least 300 (600 before the box is laid out). */

@@ -692,6 +692,29 @@ test('lesson "The same drone in Europe and in the US": US915 sends every second,
   assert.deepEqual(problems, []);
 });
 
+test('the time-on-air table shows every column in a 650 px embed, its intervals under their times; on a phone it scrolls, one line a row', async () => {
+  const table = (page) =>
+    page.evaluate(() => {
+      const wrap = document.querySelector('#airtime-table');
+      const last = wrap.querySelector('thead th:last-child').getBoundingClientRect();
+      const cell = wrap.querySelector('tbody tr:first-child td:last-child');
+      return { over: wrap.scrollWidth - wrap.clientWidth, lastRight: last.right - wrap.getBoundingClientRect().right, text: cell.textContent };
+    });
+  // A documentation column: 3D-CTRA's column, the default model's, lay behind a sideways scroll.
+  const embed = await open('?embed=1&panels=airtime', { width: 650, height: 700 });
+  await embed.page.waitForSelector('#airtime-table tbody tr');
+  const wide = await table(embed.page);
+  assert.ok(wide.over <= 1 && wide.lastRight <= 1, `650 px: the table scrolls by ${wide.over} px, its last column ends ${wide.lastRight} px past its box`);
+  assert.match(wide.text, /^\d+\.\d ms · \d+\.\d\d s$/, 'the cell reads as one line of text (its CSV and slide)');
+  // A phone: neither way fits, so rows stay one line and the table scrolls with their names in view.
+  const phone = await open('?embed=1&panels=airtime', { width: 390, height: 844 });
+  await phone.page.waitForSelector('#airtime-table tbody tr');
+  const narrow = await table(phone.page);
+  assert.ok(narrow.over > 0, 'a phone scrolls the table');
+  assert.equal(await phone.page.locator('#airtime-table').evaluate((w) => w.classList.contains('tight')), false);
+  assert.deepEqual([...embed.problems, ...phone.problems], []);
+});
+
 test('presentation mode: large type and charts at 1024x768, one panel per screen stepped by the arrow keys, toggled by P', async () => {
   const { page, problems } = await open('', { width: 1024, height: 768 });
   await idle(page);
