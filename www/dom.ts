@@ -62,7 +62,7 @@ export function tighten(wraps: Iterable<HTMLElement>): boolean {
  * changes width (a phone turned, a window resized, presentation mode toggled), but not when only
  * the box's height changes, which fitting does, so the observer cannot feed itself; nor when the
  * observer first reports the box at the width it was just fitted at (the results table was laid
- * out twice on every load, 7–15 ms more at 1280 and 390 px).
+ * out twice on every load: 15–30 ms more at 390 px, 2–7 ms at 1280 px).
  */
 export function fitOnWidth(box: HTMLElement, fit: () => void): () => void {
   let fitted = -1;

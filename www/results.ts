@@ -83,6 +83,8 @@ function fitTable(): void {
   fitResults ??= fitOnWidth($('#results-table'), layOutToFit);
   fitResults();
 }
+// Made on first use, not when the module loads: tests/unit imports this module where there is no
+// page to observe.
 let fitResults: (() => void) | undefined;
 
 /**
