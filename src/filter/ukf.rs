@@ -156,7 +156,7 @@ impl<const N: usize> Ukf<N> {
                 self.p[(j, i)] = v;
             }
         }
-        self.stabilise();
+        self.stabilise(true);
     }
 
     /// The update through sigma points, for spreads wide enough that angles wrap.
@@ -180,7 +180,7 @@ impl<const N: usize> Ukf<N> {
             self.x[i] = wrap_angle(self.x[i]);
         }
         self.p -= k * pzz * k.transpose();
-        self.stabilise();
+        self.stabilise(false);
     }
 
     fn sigma_points(&mut self) -> SigmaPoints<N> {
@@ -228,10 +228,20 @@ impl<const N: usize> Ukf<N> {
         }
     }
 
-    /// Keeps P symmetric and positive definite after an update, and keeps its factor for the
-    /// prediction that follows.
-    fn stabilise(&mut self) {
-        self.defer_check();
+    /// Keeps P symmetric, finite and positive definite after an update, and keeps its factor for
+    /// the prediction that follows. `symmetric`: the update made P symmetric by construction (the
+    /// Kalman form mirrors its lower triangle), so only finiteness is checked rather than each
+    /// pair averaged with itself.
+    fn stabilise(&mut self, symmetric: bool) {
+        self.factor = None;
+        let finite = if symmetric {
+            self.p.as_slice().iter().all(|v| v.is_finite())
+        } else {
+            symmetrise(&mut self.p)
+        };
+        if !finite {
+            self.repair();
+        }
         match cholesky_lower(&self.p) {
             Some(l) => self.factor = Some((self.p, l)),
             None => self.repair(),
