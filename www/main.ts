@@ -774,7 +774,7 @@ function notesAfter(chart: Element): string[] {
 function saveSlide(button: HTMLButtonElement, picture: Element, name: string, slide: SlideText): boolean {
   return (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(picture, name, slide);
 }
-/** The results table as drawn (in two parts where the page splits it), for a slide: its caption (what the numbers are), the settings they
+/** The results table as drawn (in the pieces the page splits it into), for a slide: its caption (what the numbers are), the settings they
  * rest on and, with a baseline pinned, what the differences are against. None while a whole set's
  * first flight stands in for the set. */
 function downloadResultsPicture(button: HTMLButtonElement): void {

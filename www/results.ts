@@ -20,7 +20,8 @@ export function renderTable(r: SimReport): void {
   // it (fitTable).
   shown = {
     caption: `3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet, over ${r.config.flights} flight${r.config.flights === 1 ? '' : 's'} × ${r.config.seeds} seed${r.config.seeds === 1 ? '' : 's'}; overhead ${r.config.overhead} B; ${prediction(r.config)}${sendsAsPublished(r.config) ? '' : `; ${sending(r.config)}`}`,
-    linkHead: `<th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th><th scope="col" title="${intervalRule(r.config)}">interval</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th>`,
+    packetsHead: `<th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th>`,
+    framesHead: `<th scope="col" title="${intervalRule(r.config)}">interval</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th>`,
     rows: r.results.map((m) => {
       const ratio = m.packetsSent ? m.packetsReceived / m.packetsSent : 0;
       return {
@@ -29,8 +30,8 @@ export function renderTable(r: SimReport): void {
         errors: `<td data-field="mean">${fmt(m.error3d.mean)}${delta(m, 'mean')}</td><td data-field="p50">${fmt(m.error3d.p50)}${delta(m, 'p50')}</td><td data-field="p75">${fmt(m.error3d.p75)}${interval(m)}${delta(m, 'p75')}</td>
         <td data-field="p95">${fmt(m.error3d.p95)}${delta(m, 'p95')}</td><td data-field="max">${fmt(m.error3d.max, 1)}${delta(m, 'max')}</td>
         <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td>`,
-        link: `<td data-field="delivery">${(ratio * 100).toFixed(0)} %</td><td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}${delta(m, 'packets')}</td>
-        ${frameCells(m)}<td data-field="payload"${leanTitle(m)}>${m.payloadBytes} B${lean(m.leanPackets > 0 && `${m.leanPackets} lean`)}</td>
+        packets: `<td data-field="delivery">${(ratio * 100).toFixed(0)} %</td><td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}${delta(m, 'packets')}</td>`,
+        frames: `${frameCells(m)}<td data-field="payload"${leanTitle(m)}>${m.payloadBytes} B${lean(m.leanPackets > 0 && `${m.leanPackets} lean`)}</td>
         <td data-field="energy" title="${m.energy.chargePerHour.toFixed(3)} mAh per hour of tracking">${m.energy.chargePerUplink.toFixed(2)}</td>`,
       };
     }),
@@ -47,20 +48,25 @@ export function renderTable(r: SimReport): void {
   renderRateUse(r);
 }
 
-/** The results on show, as the table's pieces: laid out as one table or two by `fitTable`. */
+/** The results on show, as the table's pieces: laid out as one table, two or three by `fitTable`. */
 let shown: {
   caption: string;
-  linkHead: string;
-  rows: { model: ModelResult['model']; best: boolean; errors: string; link: string }[];
+  /** The link's columns in two groups: what arrived, and what each packet cost. */
+  packetsHead: string;
+  framesHead: string;
+  rows: { model: ModelResult['model']; best: boolean; errors: string; packets: string; frames: string }[];
 } | null = null;
 
 const ERROR_HEAD = `<th scope="col" title="Mean 3D distance between the station's estimate and the truth">mean</th><th scope="col" title="Half the time the error is below this">median</th><th scope="col" title="75th percentile: 3 times in 4 the error is below this (the paper's headline statistic)">p75</th><th scope="col" title="95th percentile: the bad moments, typically long gaps">p95</th><th scope="col">max</th><th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th>`;
 
-/** The results as one table, or split in two (`split`): the tracking error, and below it what the
- * link spent on it, each row named by its station. */
-function layoutTable(split: boolean): void {
+/** How many tables the results are laid out in: one; the tracking error, and under it what the
+ * link spent on it; or that link half in two, what arrived and what each packet cost. */
+type Parts = 1 | 2 | 3;
+
+/** The results as `parts` tables, each row named by its station. */
+function layoutTable(parts: Parts): void {
   if (!shown) return;
-  const { caption, linkHead, rows } = shown;
+  const { caption, packetsHead, framesHead, rows } = shown;
   const table = (label: string, what: string, head: string, cells: (row: (typeof rows)[number]) => string, badge: boolean) =>
     `<div class="table-wrap" tabindex="0" role="region" aria-label="${label}"><table class="results">
     <caption>${what}</caption>
@@ -71,11 +77,17 @@ function layoutTable(split: boolean): void {
         <th scope="row">${MODEL_LABELS[row.model]}${row.best && badge ? ' <span class="badge">lowest p75</span>' : ''}</th>${cells(row)}</tr>`,
       )
       .join('')}</tbody></table></div>`;
-  $('#results-table').innerHTML = split
-    ? table('Results table: tracking error', caption, ERROR_HEAD, (row) => row.errors, true) +
-      table('Results table: the link', 'What the link spent on those errors, for each station', linkHead, (row) => row.link, false)
-    : table('Results table', caption, `${ERROR_HEAD}\n    ${linkHead}`, (row) => `${row.errors}\n        ${row.link}`, true);
-  $('#results-table').classList.toggle('split', split);
+  const spent = 'What the link spent on those errors, for each station';
+  const error = () => table('Results table: tracking error', caption, ERROR_HEAD, (row) => row.errors, true);
+  $('#results-table').innerHTML =
+    parts === 1
+      ? table('Results table', caption, `${ERROR_HEAD}\n    ${packetsHead}${framesHead}`, (row) => `${row.errors}\n        ${row.packets}${row.frames}`, true)
+      : parts === 2
+        ? error() + table('Results table: the link', spent, packetsHead + framesHead, (row) => row.packets + row.frames, false)
+        : error() +
+          table('Results table: the packets', `${spent}: the packets`, packetsHead, (row) => row.packets, false) +
+          table('Results table: each packet', `${spent}: each packet`, framesHead, (row) => row.frames, false);
+  $('#results-table').classList.toggle('split', parts > 1);
 }
 
 /** Lays the results out to fit their box ([`layOutToFit`]), now and whenever the box changes width. */
@@ -93,17 +105,21 @@ let fitResults: (() => void) | undefined;
  * after their dash (`tighten`): a wide interval (ADR at 5 km over eight seeds, "(76.52–408.85)")
  * pushed the charge per uplink out of a 1280 px window (always allowed, the breaks stacked short
  * intervals on two lines where the headers alone made room: the default table at 1024 px). Where
- * it is still too wide but its two halves each fit (presentation mode at 1024×768: 1186 px in
- * 940, the time on air cut off on a projector; a tablet at 768 px), the link's half goes under
- * the tracking error's. On a phone neither half fits, and the one table scrolls with its station
- * names in view.
+ * it is still too wide, the link's half goes under the tracking error's (presentation mode at
+ * 1024×768: 1186 px in 940, the time on air cut off on a projector; a tablet at 768 px), and where
+ * that half is too wide too, it goes in two (presenting on a tablet held upright, 768×1024, with
+ * p75 intervals: 1193 px in 684, everything after the delivery out of sight). On a phone not even
+ * the tracking error's table fits, and the one table scrolls with its station names in view.
  */
 function layOutToFit(): void {
-  layoutTable(false);
-  if (tightenResults()) return;
-  layoutTable(true);
-  if (tightenResults()) return;
-  layoutTable(false);
+  for (const parts of [1, 2, 3] as const) {
+    layoutTable(parts);
+    if (tightenResults()) return;
+    // Where the tracking error's own table is too wide, splitting the link's further cannot help.
+    const error = document.querySelector<HTMLElement>('#results-table .table-wrap');
+    if (parts > 1 && error && error.scrollWidth > error.clientWidth + 1) break;
+  }
+  layoutTable(1);
   tightenResults();
 }
 
