@@ -146,6 +146,25 @@ test('the swarm panel runs growing swarms and sets the collision rate against AL
   assert.deepEqual(problems, []);
 });
 
+test('on a phone the swarm strip is as tall as its pile of 200 drones, every dot within the chart', async () => {
+  // At a fixed height the pile ran 41 px past the strip's top, over the legend and out of its
+  // download, while 50 drones at 1280 px left an empty band as tall as their pile.
+  const { page, problems } = await open('', { width: 390, height: 844 });
+  await page.getByLabel('Drones', { exact: true }).selectOption('200');
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await page.waitForSelector('#chart-swarm .note', { timeout: 120_000 });
+  const strip = await page.evaluate(() => {
+    const svg = [...document.querySelectorAll('#chart-swarm svg')].filter((s) => s.querySelector('circle')).pop();
+    const box = svg.getBoundingClientRect();
+    const dots = [...svg.querySelectorAll('circle')].map((c) => c.getBoundingClientRect());
+    return { dots: dots.length, above: box.top - Math.min(...dots.map((d) => d.top)), below: Math.max(...dots.map((d) => d.bottom)) - box.bottom, room: Math.min(...dots.map((d) => d.top)) - box.top, r: dots[0].height / 2 };
+  });
+  assert.ok(strip.dots > 100, `${strip.dots} dots`);
+  assert.ok(strip.above <= 0.5 && strip.below <= 0.5, `dots past the strip: ${strip.above} px above, ${strip.below} px below`);
+  assert.ok(strip.room <= 3 * strip.r + 2, `${strip.room} px of empty strip above the pile`);
+  assert.deepEqual(problems, []);
+});
+
 test('gateways are added, moved and removed in the form; each is reported, kept in the link, and the numbers equal the CLI', async () => {
   const { page, problems } = await open('?distance=5000&model=3d-ctra');
   const alone = number(await cell(page, '3d-ctra', 'delivery'));

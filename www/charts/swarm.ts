@@ -52,19 +52,33 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   const thin = drones.filter((d) => d.few).length;
   // SF7 first (not SF10, as sorting the names put it), in the SFs' page-wide colours.
   const sfs = [...new Set(largest.drones.map((d) => d.sf))].sort((a, b) => a - b);
-  const errors = Plot.plot({
-    ...chartFrame(140, 360),
-    width,
-    marginLeft: labelRoom(50),
-    // Room for half the last tick label ("10,000" ran past the right edge).
-    marginRight: labelRoom(24),
-    // Labelling only the powers of ten left a swarm whose p75s lie within one decade (all on SF7:
-    // 2–7 m) without a single number on its axis.
-    x: { label: fitLabel(width, `p75 error of each of ${largest.config.drones} drones (m, log scale)`, `p75 of each of ${largest.config.drones} drones (m, log)`, 'p75 per drone (m, log)'), type: 'log', ...logAxis(drones.map((d) => d.p75)), tickFormat: plainNumber },
-    y: { axis: null },
-    color: { legend: true, domain: sfs.map(sfName), range: sfs.map((sf) => SF_COLORS[sf - 7]) },
-    marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: { value: (d: Drone) => (d.few ? 'white' : d.colour), scale: null }, stroke: 'sf', strokeWidth: 1.2, r: 3, title: (d: Drone) => `${d.sf}: p75 ${d.p75.toFixed(2)} m over ${d.received} packets${d.few ? ', too few to compare' : ''}` }))],
-  });
+  // Each drone a dot piled up from the axis as far as the spread of their p75s needs (dodgeY):
+  // the strip is drawn once, then again at the height of its pile. At a fixed height 200 drones
+  // on a phone piled 41 px past its top, over the legend (and out of the SVG download), while 50
+  // at 1280 px left an empty band as tall as their pile.
+  const frame = chartFrame(140, 360);
+  const r = (3 * chartFont()) / 13;
+  // No axis or label above the dots: the legend is the strip's top edge.
+  const marginTop = Math.round(2 * r);
+  const strip = (height: number) =>
+    Plot.plot({
+      ...frame,
+      marginTop,
+      height,
+      width,
+      marginLeft: labelRoom(50),
+      // Room for half the last tick label ("10,000" ran past the right edge).
+      marginRight: labelRoom(24),
+      // Labelling only the powers of ten left a swarm whose p75s lie within one decade (all on SF7:
+      // 2–7 m) without a single number on its axis.
+      x: { label: fitLabel(width, `p75 error of each of ${largest.config.drones} drones (m, log scale)`, `p75 of each of ${largest.config.drones} drones (m, log)`, 'p75 per drone (m, log)'), type: 'log', ...logAxis(drones.map((d) => d.p75)), tickFormat: plainNumber },
+      y: { axis: null },
+      color: { legend: true, domain: sfs.map(sfName), range: sfs.map((sf) => SF_COLORS[sf - 7]) },
+      marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: { value: (d: Drone) => (d.few ? 'white' : d.colour), scale: null }, stroke: 'sf', strokeWidth: 1.2, r, title: (d: Drone) => `${d.sf}: p75 ${d.p75.toFixed(2)} m over ${d.received} packets${d.few ? ', too few to compare' : ''}` }))],
+    });
+  const first = strip(frame.height);
+  const fitted = marginTop + pileHeight(first, frame.height - frame.marginBottom, 2 * r) + frame.marginBottom;
+  const errors = Math.abs(fitted - frame.height) > 2 ? strip(Math.round(fitted)) : first;
   const note = document.createElement('p');
   note.className = 'note';
   note.textContent = `${largest.config.drones} drones flying ${flightTime(largest.config.duration)} each, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${largest.config.sfPlan === 'spread' ? `SFs spread by distance${adr ? ' at the start' : ''}` : `all ${adr ? 'starting ' : ''}on SF${largest.config.sf}`}${adr ? `, ADR sent their packets at ${sfShares(largest)}` : ''}: ${(100 * largest.collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %)${largest.leanPackets > 0 ? `, ${largest.leanPackets} of ${largest.packetsSent} packets with lean payloads` : ''}, median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${untracked(largest)}${thin ? `; ${thin} of ${drones.length} drones (hollow) received too few packets for their own p75 to compare` : ''}; ${(100 * largest.deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${adr ? `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped` : ''}; radio ${largest.energy.chargePerUplink.toFixed(2)} mC per uplink.${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
@@ -73,4 +87,12 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   const box = document.createElement('div');
   box.append(collisions, errors, note);
   return box;
+}
+
+/** How far above `base` (the plot's bottom, px from the SVG's top) the highest dot of `chart`
+ * reaches, its radius included, and at least `least` (a strip with no drone on it): dodgeY piles
+ * dots up from the bottom, so their places do not depend on the plot's height. */
+function pileHeight(chart: Element, base: number, least: number): number {
+  const tops = [...chart.querySelectorAll('circle')].map((c) => Number(c.getAttribute('cy')) - Number(c.getAttribute('r')));
+  return Math.max(least, ...tops.filter(Number.isFinite).map((top) => base - top));
 }
