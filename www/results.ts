@@ -112,15 +112,25 @@ let fitResults: (() => void) | undefined;
  * the tracking error's table fits, and the one table scrolls with its station names in view.
  */
 function layOutToFit(): void {
-  for (const parts of [1, 2, 3] as const) {
+  layoutTable(1);
+  if (tightenResults() || !errorColumnsFit()) return;
+  for (const parts of [2, 3] as const) {
     layoutTable(parts);
     if (tightenResults()) return;
-    // Where the tracking error's own table is too wide, splitting the link's further cannot help.
-    const error = document.querySelector<HTMLElement>('#results-table .table-wrap');
-    if (parts > 1 && error && error.scrollWidth > error.clientWidth + 1) break;
   }
   layoutTable(1);
   tightenResults();
+}
+
+/** Whether the one table's tracking-error columns (station to bound) fit its box: where the table
+ * overflows, every column is at its narrowest, so these are as wide as the error's table alone
+ * would be, and where they do not fit (a phone) no split can help. Read from the layout just made:
+ * on a phone the results were laid out three times per result, now once. */
+function errorColumnsFit(): boolean {
+  const wrap = document.querySelector<HTMLElement>('#results-table .table-wrap');
+  const last = wrap?.querySelector('tbody td[data-field="coverage"]');
+  if (!wrap || !last) return true;
+  return last.getBoundingClientRect().right - wrap.getBoundingClientRect().left + wrap.scrollLeft <= wrap.clientWidth + 1;
 }
 
 /** Tightens the results' tables where they are too wide; whether they all fit then. */
