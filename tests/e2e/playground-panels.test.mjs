@@ -106,6 +106,29 @@ test('the error-versus-distance chart draws the boxes over too few packets dashe
   assert.deepEqual(problems, []);
 });
 
+test('the error-versus-distance axis stops at 1 cm where the mission station forecasts a kept plan, every label whole', async () => {
+  // Its lowest whisker at 5 km lies at micrometres: the axis ran down to 0.000001, six decades that
+  // squashed every box, and its lowest labels were cut off at the chart's left edge.
+  const cli = nativeJson(['simulate', '--synthetic', 'all', '--model', 'mission', '--distance', '5000']);
+  assert.ok(cli.results[0].boxplot.error3d.whiskerLow < 0.01, 'the mission station reaches below 1 cm at 5 km');
+  const { page, problems } = await open('?flight=all&model=3d-ctra,mission');
+  await idle(page);
+  await page.waitForSelector('#chart-distance svg');
+  const axis = await page.evaluate(() => {
+    const svg = document.querySelector('#chart-distance svg[role="img"]');
+    const box = svg.getBoundingClientRect();
+    // The y axis's labels are its only bare numbers (the groups read "0.5 km").
+    const labels = [...svg.querySelectorAll('text')].filter((t) => /^[\d.,]+$/.test(t.textContent)).map((t) => ({ text: t.textContent, cut: box.left - t.getBoundingClientRect().left }));
+    return { labels, key: svg.closest('[data-key]')?.dataset.key ?? svg.dataset.key };
+  });
+  const values = axis.labels.map((l) => Number(l.text.replace(/,/g, ''))).filter((v) => v > 0);
+  assert.ok(values.length >= 3, JSON.stringify(axis.labels));
+  assert.equal(Math.min(...values), 0.01, `lowest label ${Math.min(...values)}`);
+  assert.deepEqual(axis.labels.filter((l) => l.cut > 0.5), [], 'labels cut off at the left edge');
+  assert.match(axis.key, /Whiskers that reach below 0\.01 m end at the axis's bottom edge/);
+  assert.deepEqual(problems, []);
+});
+
 /** The swarm panel's strip of each drone's p75: the numbers on its axis and its legend's SFs. */
 const swarmStrip = async (page) => {
   await page.waitForSelector('#chart-swarm figure svg');

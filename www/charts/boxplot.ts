@@ -26,6 +26,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
   const models = [...new Set(data.map((d) => d.label))];
   const groups = [...new Set(rows.map((r) => r.group))];
   const empty = groups.filter((g) => !data.some((d) => d.group === g)).map((group) => ({ group }));
+  const floor = opts.log ? logFloor(data) : {};
   const chart = Plot.plot({
     ...chartFrame(180),
     width: opts.width,
@@ -35,7 +36,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
     x: { axis: null, domain: models, paddingInner: 0.25 },
     // A log scale keeps the boxes near the gateway readable beside the metres-to-kilometres ones beyond its range.
     // Plain numbers at the powers of ten ("0.1", not "100m", which reads as 100 metres).
-    y: opts.log ? { label: opts.yLabel ?? 'error (m, log scale)', grid: true, type: 'log', tickFormat: decade } : { label: opts.yLabel ?? 'error (m)', grid: true, zero: true },
+    y: opts.log ? { label: opts.yLabel ?? 'error (m, log scale)', grid: true, type: 'log', tickFormat: decade, ...floor } : { label: opts.yLabel ?? 'error (m)', grid: true, zero: true },
     color: { domain: models, range: models.map((m) => MODEL_COLORS[data.find((d) => d.label === m)!.model]), legend: true },
     marks: [
       // A group where nothing arrived says so instead of staying blank, wrapped within its own
@@ -48,13 +49,31 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
       Plot.tip(data, Plot.pointerX({ fx: 'group', x: 'label', y: 'median', title: (d) => `${d.label}\nmedian ${d.median.toFixed(2)} m\nQ1–Q3 ${d.q1.toFixed(2)}–${d.q3.toFixed(2)} m\nwhiskers ${d.whiskerLow.toFixed(2)}–${d.whiskerHigh.toFixed(2)} m\n${d.outliers} outliers of ${d.count}${d.few ? '\ntoo few packets to compare' : ''}` })),
     ],
   });
-  return withKey(chart, 'Box: the middle half of the errors (quartiles), thick line the median; whiskers: the furthest errors within 1.5 box heights of the box (any beyond, the outliers, are not drawn).');
+  const clamped = floor.domain ? ` Whiskers that reach below ${plainNumber(floor.domain[0])} m end at the axis's bottom edge.` : '';
+  return withKey(chart, `Box: the middle half of the errors (quartiles), thick line the median; whiskers: the furthest errors within 1.5 box heights of the box (any beyond, the outliers, are not drawn).${clamped}`);
 }
 
 /** The width of one group's column in ems of the chart's type, a little inside it: `width` px
  * less the plot's margins, shared by `groups`. */
 function groupEms(width: number, groups: number): number {
   return (0.95 * (width - labelRoom(MARGIN_LEFT) - MARGIN_RIGHT)) / Math.max(1, groups) / chartFont();
+}
+
+/** The smallest error a log axis shows, m: a centimetre, below the sensors' noise and the
+ * tables' two decimals. Without it the mission station's whiskers at 4–5 km on the whole set (a
+ * flight that keeps its plan, forecast along it to a micrometre) took the axis down to 0.000001,
+ * six decades that squashed every box, with labels cut off at the chart's edge. */
+const LOG_FLOOR = 0.01;
+
+/** Where a whisker reaches below [`LOG_FLOOR`], a log axis from the floor (a decade below the
+ * highest whisker, where every error lies under it) to the highest whisker, lower whiskers clamped
+ * to its bottom edge (their tooltips keep the numbers); otherwise the data's own extent. */
+function logFloor(data: { whiskerLow: number | null; whiskerHigh: number | null }[]): { domain?: [number, number]; clamp?: boolean } {
+  const lows = data.map((d) => d.whiskerLow ?? NaN).filter((v) => v > 0);
+  const high = Math.max(...data.map((d) => d.whiskerHigh ?? NaN).filter((v) => v > 0));
+  const floor = Math.min(LOG_FLOOR, high / 10);
+  if (!lows.length || !(high > 0) || Math.min(...lows) >= floor) return {};
+  return { domain: [floor, high], clamp: true };
 }
 
 /** Labels only the powers of ten of a log axis, as plain numbers. */
