@@ -797,6 +797,7 @@ test('presenting on a tablet held upright, results with p75 intervals show every
   const slide = await resultsSlide(page);
   assert.match(slide, /What the link spent on those errors, for each station: the packets/);
   assert.match(slide, /What the link spent on those errors, for each station: each packet/);
+  assert.deepEqual(await axe(page), [], 'the results in three tables');
   // A phone: not even the tracking error's table fits, so the one table scrolls, names in view.
   await page.setViewportSize({ width: 390, height: 844 });
   await until(page, () => document.querySelectorAll('#results-table .table-wrap').length === 1);
@@ -824,6 +825,7 @@ test('presenting at 1024x768 with a baseline pinned, each difference goes under 
     }),
   );
   assert.ok(under.length > 0 && under.every(Boolean), `p95 differences under their numbers: ${under}`);
+  assert.deepEqual(await axe(page), [], 'presenting with a baseline');
   assert.deepEqual(problems, []);
 });
 
