@@ -758,7 +758,7 @@ test('the time-on-air table shows every column in a 650 px embed, its intervals 
 });
 
 /** The results' tables as laid out (one, or the pieces `fitTable` splits them into): how far
- * each scrolls sideways, its rows' stations, its first row's fields and every cell's first line. */
+ * each scrolls sideways, its rows' stations, its first row's fields and every cell's own number. */
 const resultTables = (page) =>
   page.evaluate(() =>
     [...document.querySelectorAll('#results-table .table-wrap')].map((w) => ({
