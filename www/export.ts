@@ -168,6 +168,22 @@ function text(x: number, y: number, content: string, size: number, attrs: Record
   return t;
 }
 
+/** Where a slide's legend entries go, left to right in rows from `left` to `right`: each entry
+ * `widths[i]` wide (its swatch and label), `gap` after it; an entry that would pass `right` starts
+ * the next row (unless it is a row's first: one too wide for any row stands alone). */
+export function legendPlaces(widths: number[], left: number, right: number, gap: number): { x: number; row: number }[] {
+  let [x, row] = [left, 0];
+  return widths.map((width) => {
+    if (x > left && x + width > right) [x, row] = [left, row + 1];
+    const place = { x, row };
+    x += width + gap;
+    return place;
+  });
+}
+
+/** The distance between two lines of a slide's title, px (its type is 20 px). */
+const TITLE_LINE = 24;
+
 /** One standalone SVG for a slide: title, legend, the chart(s) stacked, and the caption. */
 export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null {
   const parts = chartSvgs(chart);
@@ -180,24 +196,28 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
   background.setAttribute('width', '100%');
   background.setAttribute('height', '100%');
   background.setAttribute('fill', 'white');
-  out.append(background, text(pad, pad + 18, slide.title, 20, { 'font-weight': '600', fill: '#1b1f24' }));
-  let y = pad + 30;
+  out.append(background);
+  // The title wraps at the slide's width too (about 12 px per character of its 20 px bold type): a
+  // phone's swarm chart, 358 px wide, cut "Swarm: many drones, one gateway" off after "gate".
+  const title = wrap(slide.title, (t) => t.length <= Math.max(12, Math.floor((width - 2 * pad) / 12)));
+  title.forEach((line, i) => out.append(text(pad, pad + 18 + TITLE_LINE * i, line, 20, { 'font-weight': '600', fill: '#1b1f24' })));
+  let y = pad + 30 + TITLE_LINE * (title.length - 1);
   const legend = legendOf(chart);
   if (legend.length) {
     // Entries in rows within the slide's width (about 8 px per character at 14 px).
-    let x = pad;
-    for (const { color, label } of legend) {
-      const entry = 17 + label.length * 8;
-      if (x > pad && x + entry > width - pad) {
-        x = pad;
-        y += 22;
-      }
+    const places = legendPlaces(
+      legend.map(({ label }) => 17 + label.length * 8),
+      pad,
+      width - pad,
+      13,
+    );
+    legend.forEach(({ color, label }, i) => {
+      const { x, row } = places[i];
       const swatch = document.createElementNS(SVG_NS, 'rect');
-      for (const [k, v] of Object.entries({ x: String(x), y: String(y + 3), width: '12', height: '12', fill: color })) swatch.setAttribute(k, v);
-      out.append(swatch, text(x + 17, y + 14, label, 14, { fill: '#1b1f24' }));
-      x += entry + 13;
-    }
-    y += 26;
+      for (const [k, v] of Object.entries({ x: String(x), y: String(y + 22 * row + 3), width: '12', height: '12', fill: color })) swatch.setAttribute(k, v);
+      out.append(swatch, text(x + 17, y + 22 * row + 14, label, 14, { fill: '#1b1f24' }));
+    });
+    y += 22 * places[places.length - 1].row + 26;
   }
   for (const part of parts) {
     const clone = part.cloneNode(true) as SVGSVGElement;
@@ -398,12 +418,26 @@ export function downloadPng(chart: Element, name: string, slide: SlideText): boo
 export function downloadPicturePng(picture: HTMLCanvasElement, scale: number, name: string, slide: SlideText, legend: { color: string; label: string }[], notes: string[]): void {
   const px = (v: number) => v * scale;
   const pad = px(16);
-  const top = pad + px(30) + (legend.length ? px(26) : 0);
   const canvas = document.createElement('canvas');
   const ctx = canvas.getContext('2d')!;
   canvas.width = picture.width + 2 * pad;
-  // The lines under the picture, measured in their font before the canvas's height is set (which
-  // resets the context's state).
+  // The title's lines and those under the picture, measured in their fonts before the canvas's
+  // height is set (which resets the context's state).
+  const bold = `600 ${px(20)}px ${FONT}`;
+  ctx.font = bold;
+  const title = wrap(slide.title, (t) => ctx.measureText(t).width <= picture.width);
+  // The legend's entries in rows within the picture's width, as a chart's slide places them (on a
+  // phone the 3D view's seven entries ran off the picture's right edge in one row after "DR").
+  const legendFont = `${px(14)}px ${FONT}`;
+  ctx.font = legendFont;
+  const places = legendPlaces(
+    legend.map(({ label }) => px(17) + ctx.measureText(label).width),
+    pad,
+    pad + picture.width,
+    px(13),
+  );
+  const rows = places.length ? places[places.length - 1].row + 1 : 0;
+  const top = pad + px(30) + px(TITLE_LINE) * (title.length - 1) + (rows ? px(26) + px(22) * (rows - 1) : 0);
   const small = `${px(12)}px ${FONT}`;
   ctx.font = small;
   const below = linesBelow(notes, slide.caption, (t) => ctx.measureText(t).width <= picture.width);
@@ -412,16 +446,17 @@ export function downloadPicturePng(picture: HTMLCanvasElement, scale: number, na
   ctx.fillStyle = 'white';
   ctx.fillRect(0, 0, canvas.width, canvas.height);
   ctx.fillStyle = '#1b1f24';
-  ctx.font = `600 ${px(20)}px ${FONT}`;
-  ctx.fillText(slide.title, pad, pad + px(18));
-  let x = pad;
-  ctx.font = `${px(14)}px ${FONT}`;
-  for (const { color, label } of legend) {
+  ctx.font = bold;
+  title.forEach((line, i) => ctx.fillText(line, pad, pad + px(18) + px(TITLE_LINE) * i));
+  const legendTop = pad + px(TITLE_LINE) * (title.length - 1);
+  ctx.font = legendFont;
+  for (const [i, { color, label }] of legend.entries()) {
+    const { x, row } = places[i];
+    const y = legendTop + px(22) * row;
     ctx.fillStyle = color;
-    ctx.fillRect(x, pad + px(33), px(12), px(12));
+    ctx.fillRect(x, y + px(33), px(12), px(12));
     ctx.fillStyle = '#1b1f24';
-    ctx.fillText(label, x + px(17), pad + px(44));
-    x += px(30) + ctx.measureText(label).width;
+    ctx.fillText(label, x + px(17), y + px(44));
   }
   ctx.drawImage(picture, pad, top);
   ctx.font = small;

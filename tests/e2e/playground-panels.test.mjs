@@ -188,6 +188,30 @@ test('on a phone the swarm strip is as tall as its pile of 200 drones, every dot
   assert.deepEqual(problems, []);
 });
 
+test('on a phone every slide keeps its title, legend and text within the picture', async () => {
+  // A slide is as wide as its chart, 356 px here: "Link budget: why packets stop arriving" and
+  // "Swarm: many drones, one gateway" ran 102 and 57 px past its right edge, as one line.
+  const { page, problems } = await open('?model=dr,ctra-plus,3d-ctra,imm,mission', { width: 390, height: 844 });
+  await idle(page);
+  await page.getByLabel('Drones', { exact: true }).selectOption('20');
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await page.waitForSelector('#chart-swarm .note', { timeout: 120_000 });
+  const viewer = await page.context().newPage();
+  for (const name of ['results', 'error', 'distance', 'sf', 'link', 'swarm', 'axes', 'airtime', 'airtime-table']) {
+    const slide = (await downloaded(page, page.locator(`[data-download="${name}"][data-format="svg"]`))).toString('utf8');
+    await viewer.setContent(`<body style="margin:0">${slide}</body>`);
+    const past = await viewer.evaluate(() => {
+      const svg = document.querySelector('svg');
+      const width = Number(svg.getAttribute('width'));
+      const left = svg.getBoundingClientRect().left;
+      return [...svg.querySelectorAll('text')].map((t) => ({ text: t.textContent.slice(0, 40), right: t.getBoundingClientRect().right - left })).filter((t) => t.right > width + 1).map((t) => `${t.text} (${Math.round(t.right)} px of ${width})`);
+    });
+    assert.deepEqual(past, [], `the ${name} slide's text past its right edge`);
+  }
+  await viewer.close();
+  assert.deepEqual(problems, []);
+});
+
 test('gateways are added, moved and removed in the form; each is reported, kept in the link, and the numbers equal the CLI', async () => {
   const { page, problems } = await open('?distance=5000&model=3d-ctra');
   const alone = number(await cell(page, '3d-ctra', 'delivery'));
