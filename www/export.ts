@@ -198,7 +198,7 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
   background.setAttribute('fill', 'white');
   out.append(background);
   // The title wraps at the slide's width too (about 12 px per character of its 20 px bold type): a
-  // phone's swarm chart, 358 px wide, cut "Swarm: many drones, one gateway" off after "gate".
+  // phone's swarm slide, 356 px wide, cut "Swarm: many drones, one gateway" off after "gate".
   const title = wrap(slide.title, (t) => t.length <= Math.max(12, Math.floor((width - 2 * pad) / 12)));
   title.forEach((line, i) => out.append(text(pad, pad + 18 + TITLE_LINE * i, line, 20, { 'font-weight': '600', fill: '#1b1f24' })));
   let y = pad + 30 + TITLE_LINE * (title.length - 1);

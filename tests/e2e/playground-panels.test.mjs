@@ -189,7 +189,7 @@ test('on a phone the swarm strip is as tall as its pile of 200 drones, every dot
 });
 
 test('on a phone every slide keeps its title, legend and text within the picture', async () => {
-  // A slide is as wide as its chart, 356 px here: "Link budget: why packets stop arriving" and
+  // A slide is its chart's width and a margin, 356 px here: "Link budget: why packets stop arriving" and
   // "Swarm: many drones, one gateway" ran 102 and 57 px past its right edge, as one line.
   const { page, problems } = await open('?model=dr,ctra-plus,3d-ctra,imm,mission', { width: 390, height: 844 });
   await idle(page);
