@@ -168,6 +168,18 @@ function text(x: number, y: number, content: string, size: number, attrs: Record
   return t;
 }
 
+/** The width of `content` in the slides' font at `size` px (`weight` as CSS's), px, as the page's
+ * canvas measures it: estimated at 8 px a character of 14 px type, a legend's "CTRA+" was 49 px
+ * wide, not 40, and left 4 px before the next swatch instead of 13. Where there is no canvas (a
+ * unit test), about 0.57 em a character. */
+function textWidth(content: string, size: number, weight = 'normal'): number {
+  measurer ??= typeof document === 'undefined' ? null : document.createElement('canvas').getContext('2d');
+  if (!measurer) return content.length * size * 0.57;
+  measurer.font = `${weight} ${size}px ${FONT}`;
+  return measurer.measureText(content).width;
+}
+let measurer: CanvasRenderingContext2D | null | undefined;
+
 /** Where a slide's legend entries go, left to right in rows from `left` to `right`: each entry
  * `widths[i]` wide (its swatch and label), `gap` after it; an entry that would pass `right` starts
  * the next row (unless it is a row's first: one too wide for any row stands alone). */
@@ -197,16 +209,17 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
   background.setAttribute('height', '100%');
   background.setAttribute('fill', 'white');
   out.append(background);
-  // The title wraps at the slide's width too (about 12 px per character of its 20 px bold type): a
-  // phone's swarm slide, 356 px wide, cut "Swarm: many drones, one gateway" off after "gate".
-  const title = wrap(slide.title, (t) => t.length <= Math.max(12, Math.floor((width - 2 * pad) / 12)));
+  // The title wraps at the slide's width too: a phone's swarm slide, 356 px wide, cut "Swarm:
+  // many drones, one gateway" off after "gate".
+  const fits = (size: number, weight?: string) => (t: string) => textWidth(t, size, weight) <= width - 2 * pad;
+  const title = wrap(slide.title, fits(20, '600'));
   title.forEach((line, i) => out.append(text(pad, pad + 18 + TITLE_LINE * i, line, 20, { 'font-weight': '600', fill: '#1b1f24' })));
   let y = pad + 30 + TITLE_LINE * (title.length - 1);
   const legend = legendOf(chart);
   if (legend.length) {
-    // Entries in rows within the slide's width (about 8 px per character at 14 px).
+    // Entries in rows within the slide's width.
     const places = legendPlaces(
-      legend.map(({ label }) => 17 + label.length * 8),
+      legend.map(({ label }) => 17 + textWidth(label, 14)),
       pad,
       width - pad,
       13,
@@ -232,10 +245,8 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
     out.append(clone);
     y += h + 8;
   }
-  // The chart's notes, then the caption, wrap at the chart's width (about 6.6 px per character
-  // at 12 px); a gap between them.
-  const columns = Math.max(30, Math.floor((width - 2 * pad) / 6.6));
-  const below = linesBelow([...notesOf(chart), ...(slide.notes ?? [])], slide.caption, (t) => t.length <= columns);
+  // The chart's notes, then the caption, wrap at the chart's width; a gap between them.
+  const below = linesBelow([...notesOf(chart), ...(slide.notes ?? [])], slide.caption, fits(12));
   for (const { lines, fill } of below.slice(0, -1)) {
     lines.forEach((line, i) => out.append(text(pad, y + 14 + 16 * i, line, 12, { fill })));
     y += 16 * lines.length + 6;

@@ -188,7 +188,7 @@ test('on a phone the swarm strip is as tall as its pile of 200 drones, every dot
   assert.deepEqual(problems, []);
 });
 
-test('on a phone every slide keeps its title, legend and text within the picture', async () => {
+test('on a phone every slide keeps its title, legend and text within the picture, its legend entries apart', async () => {
   // A slide is its chart's width and a margin, 356 px here: "Link budget: why packets stop arriving" and
   // "Swarm: many drones, one gateway" ran 102 and 57 px past its right edge, as one line.
   const { page, problems } = await open('?model=dr,ctra-plus,3d-ctra,imm,mission', { width: 390, height: 844 });
@@ -204,9 +204,18 @@ test('on a phone every slide keeps its title, legend and text within the picture
       const svg = document.querySelector('svg');
       const width = Number(svg.getAttribute('width'));
       const left = svg.getBoundingClientRect().left;
-      return [...svg.querySelectorAll('text')].map((t) => ({ text: t.textContent.slice(0, 40), right: t.getBoundingClientRect().right - left })).filter((t) => t.right > width + 1).map((t) => `${t.text} (${Math.round(t.right)} px of ${width})`);
+      const past = [...svg.querySelectorAll('text')].map((t) => ({ text: t.textContent.slice(0, 40), right: t.getBoundingClientRect().right - left })).filter((t) => t.right > width + 1).map((t) => `${t.text} (${Math.round(t.right)} px of ${width})`);
+      // The legend's swatches (the slide's own 12 px squares), each followed by its label: a label
+      // runs into the next swatch of its row where its width was guessed (4 px after "CTRA+").
+      const swatches = [...svg.children].filter((e) => e.tagName === 'rect' && e.getAttribute('width') === '12');
+      const crowded = swatches.slice(0, -1).flatMap((swatch, i) => {
+        const next = swatches[i + 1];
+        const gap = Number(next.getAttribute('x')) - (swatch.nextElementSibling.getBoundingClientRect().right - left);
+        return next.getAttribute('y') === swatch.getAttribute('y') && gap < 8 ? [`${swatch.nextElementSibling.textContent}: ${gap.toFixed(1)} px`] : [];
+      });
+      return [...past, ...crowded];
     });
-    assert.deepEqual(past, [], `the ${name} slide's text past its right edge`);
+    assert.deepEqual(past, [], `the ${name} slide's text past its right edge or its legend crowded`);
   }
   await viewer.close();
   assert.deepEqual(problems, []);
