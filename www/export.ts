@@ -266,7 +266,7 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
  * of row headers (the results' model; the time on air's SF and bandwidth) bold and left-aligned
  * and the numbers right-aligned, the highlighted row shaded as on the page (the lowest p75 green,
  * the current data rate yellow), a refused cell red. Its `<caption>` is left to the slide's
- * caption. Column widths follow the longest line at about 7.4 px per character of its 13 px type.
+ * caption. Column widths follow the longest line, measured in the type it is drawn in.
  * Where the page shows a table in parts, one under another (the results' tracking error and its
  * link where one table would not fit), so does the slide: each later part under its caption.
  */
@@ -297,7 +297,6 @@ const TABLE_PAD = 8;
  * bottom of its last rule. */
 function drawTable(table: HTMLTableElement, out: SVGSVGElement, top: number): { width: number; bottom: number } {
   const SIZE = TABLE_SIZE;
-  const CHAR = 7.4;
   const LINE = TABLE_LINE;
   const PAD = TABLE_PAD;
   // As read on the page: innerText keeps a block's line break (the p75's interval); what is there
@@ -329,8 +328,9 @@ function drawTable(table: HTMLTableElement, out: SVGSVGElement, top: number): { 
   const columns = Math.max(...rows.map((r) => r.cells.length));
   // Columns of row headers, as the first row of the body has them.
   const named = [...(table.tBodies[0]?.rows[0]?.cells ?? [])].map((c) => c.tagName === 'TH');
-  // A bold column's characters run about a fifth wider.
-  const widths = Array.from({ length: columns }, (_, c) => PAD * 2 + CHAR * (named[c] ? 1.2 : 1) * Math.max(1, ...rows.flatMap((r) => (r.cells[c] ?? []).map((l) => l.length))));
+  // Each column as wide as its widest line, measured in the type it is drawn in (a header's and a
+  // row header's bold, a second line's smaller).
+  const widths = Array.from({ length: columns }, (_, c) => PAD * 2 + Math.max(1, ...rows.flatMap((r) => (r.cells[c] ?? []).map((l, i) => textWidth(l, i > 0 ? SIZE - 2 : SIZE, r.head || named[c] ? '600' : 'normal')))));
   const width = widths.reduce((a, b) => a + b, 0);
   let y = top;
   for (const row of rows) {
