@@ -233,14 +233,13 @@ impl<const N: usize> Ukf<N> {
     /// Kalman form mirrors its lower triangle), so only finiteness is checked rather than each
     /// pair averaged with itself.
     fn stabilise(&mut self, symmetric: bool) {
-        self.factor = None;
-        let finite = if symmetric {
-            self.p.as_slice().iter().all(|v| v.is_finite())
+        if !symmetric {
+            self.defer_check();
         } else {
-            symmetrise(&mut self.p)
-        };
-        if !finite {
-            self.repair();
+            self.factor = None;
+            if !self.p.as_slice().iter().all(|v| v.is_finite()) {
+                self.repair();
+            }
         }
         match cholesky_lower(&self.p) {
             Some(l) => self.factor = Some((self.p, l)),
