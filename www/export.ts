@@ -180,6 +180,12 @@ function textWidth(content: string, size: number, weight = 'normal'): number {
 }
 let measurer: CanvasRenderingContext2D | null | undefined;
 
+/** Whether a line fits in `width` px at `size` px (`weight`): a test for [`wrap`]. */
+const fitsIn =
+  (width: number, size: number, weight?: string) =>
+  (line: string): boolean =>
+    textWidth(line, size, weight) <= width;
+
 /** Where a slide's legend entries go, left to right in rows from `left` to `right`: each entry
  * `widths[i]` wide (its swatch and label), `gap` after it; an entry that would pass `right` starts
  * the next row (unless it is a row's first: one too wide for any row stands alone). */
@@ -211,8 +217,7 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
   out.append(background);
   // The title wraps at the slide's width too: a phone's swarm slide, 356 px wide, cut "Swarm:
   // many drones, one gateway" off after "gate".
-  const fits = (size: number, weight?: string) => (t: string) => textWidth(t, size, weight) <= width - 2 * pad;
-  const title = wrap(slide.title, fits(20, '600'));
+  const title = wrap(slide.title, fitsIn(width - 2 * pad, 20, '600'));
   title.forEach((line, i) => out.append(text(pad, pad + 18 + TITLE_LINE * i, line, 20, { 'font-weight': '600', fill: '#1b1f24' })));
   let y = pad + 30 + TITLE_LINE * (title.length - 1);
   const legend = legendOf(chart);
@@ -246,7 +251,7 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
     y += h + 8;
   }
   // The chart's notes, then the caption, wrap at the chart's width; a gap between them.
-  const below = linesBelow([...notesOf(chart), ...(slide.notes ?? [])], slide.caption, fits(12));
+  const below = linesBelow([...notesOf(chart), ...(slide.notes ?? [])], slide.caption, fitsIn(width - 2 * pad, 12));
   for (const { lines, fill } of below.slice(0, -1)) {
     lines.forEach((line, i) => out.append(text(pad, y + 14 + 16 * i, line, 12, { fill })));
     y += 16 * lines.length + 6;
@@ -432,35 +437,27 @@ export function downloadPicturePng(picture: HTMLCanvasElement, scale: number, na
   const canvas = document.createElement('canvas');
   const ctx = canvas.getContext('2d')!;
   canvas.width = picture.width + 2 * pad;
-  // The title's lines and those under the picture, measured in their fonts before the canvas's
-  // height is set (which resets the context's state).
-  const bold = `600 ${px(20)}px ${FONT}`;
-  ctx.font = bold;
-  const title = wrap(slide.title, (t) => ctx.measureText(t).width <= picture.width);
+  const title = wrap(slide.title, fitsIn(picture.width, px(20), '600'));
   // The legend's entries in rows within the picture's width, as a chart's slide places them (on a
   // phone the 3D view's seven entries ran off the picture's right edge in one row after "DR").
-  const legendFont = `${px(14)}px ${FONT}`;
-  ctx.font = legendFont;
   const places = legendPlaces(
-    legend.map(({ label }) => px(17) + ctx.measureText(label).width),
+    legend.map(({ label }) => px(17) + textWidth(label, px(14))),
     pad,
     pad + picture.width,
     px(13),
   );
   const rows = places.length ? places[places.length - 1].row + 1 : 0;
   const top = pad + px(30) + px(TITLE_LINE) * (title.length - 1) + (rows ? px(26) + px(22) * (rows - 1) : 0);
-  const small = `${px(12)}px ${FONT}`;
-  ctx.font = small;
-  const below = linesBelow(notes, slide.caption, (t) => ctx.measureText(t).width <= picture.width);
+  const below = linesBelow(notes, slide.caption, fitsIn(picture.width, px(12)));
   const lineHeight = px(16);
   canvas.height = top + picture.height + below.reduce((h, b) => h + b.lines.length * lineHeight + px(6), 0) + pad;
   ctx.fillStyle = 'white';
   ctx.fillRect(0, 0, canvas.width, canvas.height);
   ctx.fillStyle = '#1b1f24';
-  ctx.font = bold;
+  ctx.font = `600 ${px(20)}px ${FONT}`;
   title.forEach((line, i) => ctx.fillText(line, pad, pad + px(18) + px(TITLE_LINE) * i));
   const legendTop = pad + px(TITLE_LINE) * (title.length - 1);
-  ctx.font = legendFont;
+  ctx.font = `${px(14)}px ${FONT}`;
   for (const [i, { color, label }] of legend.entries()) {
     const { x, row } = places[i];
     const y = legendTop + px(22) * row;
@@ -470,7 +467,7 @@ export function downloadPicturePng(picture: HTMLCanvasElement, scale: number, na
     ctx.fillText(label, x + px(17), y + px(44));
   }
   ctx.drawImage(picture, pad, top);
-  ctx.font = small;
+  ctx.font = `${px(12)}px ${FONT}`;
   let y = top + picture.height;
   for (const { lines, fill } of below) {
     ctx.fillStyle = fill;
