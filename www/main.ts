@@ -207,17 +207,17 @@ function onResponse(r: Response): void {
     running = undefined;
     progress.hidden = true;
     updateBusy();
-    markStale(true);
+    markStale(store.report !== undefined);
     if (r.setting === 'plan') {
       planError.textContent = r.error;
       planError.hidden = false;
-      status.textContent = 'The flight plan could not be read; the results below are for the previous settings.';
+      status.textContent = `The flight plan could not be read${store.report ? '; the results below are for the previous settings.' : '.'}`;
     } else if (failed.flight === 'csv') {
       csvError.textContent = r.error;
       csvError.hidden = false;
-      status.textContent = 'The CSV could not be simulated; the results below are for the previous settings.';
+      status.textContent = `The CSV could not be simulated${store.report ? '; the results below are for the previous settings.' : '.'}`;
     } else {
-      status.textContent = `These settings cannot be simulated: ${r.error}. Change a setting; the results below are for the previous settings.`;
+      status.textContent = `These settings cannot be simulated: ${r.error}. ${store.report ? 'Change a setting; the results below are for the previous settings.' : 'Change a setting to see results.'}`;
       // The core names the setting it refuses (`maxInterval` shorter than the data rate's
       // interval, a limit the form cannot check alone): mark that control as the form marks its
       // own (the next change of any setting checks every control afresh and clears it).
@@ -254,6 +254,9 @@ function showReport(report: SimReport, made: Settings, millis: number): void {
   progress.hidden = true;
   store.report = report;
   store.reportSettings = made;
+  // A note that there were no results yet, beside the buttons of panels that draw no Plot chart
+  // (the others' go as their chart is placed), is out of date.
+  for (const panel of ['results', 'trajectory']) clearDownloadWhy($(`[data-panel="${panel}"]`));
   if (freshSeed) {
     // The drawn seed becomes the setting: the link and the form repeat this run.
     freshSeed = false;
@@ -392,7 +395,8 @@ function tracksDrawn(r: SimReport | undefined): { color: string; label: string }
  * kept up to date (its button reached without scrolling there): it is drawn from the results on
  * show first. */
 async function download3d(button: HTMLButtonElement, title: string): Promise<void> {
-  if (!trajectoryNear && store.report) await render3d(store.report);
+  if (!store.report) return downloadWhy(button, noResults());
+  if (!trajectoryNear) await render3d(store.report);
   const shot = trajectory3d?.snapshot(MIN_PNG_WIDTH);
   if (!shot) return downloadWhy(button, 'Nothing to save: the 3D view needs WebGL, which this browser does not offer.');
   downloadPicturePng(shot.canvas, shot.scale, 'loratrack-trajectory', { title, caption: caption(store.reportSettings) }, tracksDrawn(store.report), [trajectoryKey]);
@@ -559,8 +563,8 @@ function onChange(): void {
   showConditional();
   if (errors.length) {
     // Nothing runs on a value the core would refuse; the numbers on show are marked as old.
-    markStale(true);
-    status.textContent = `Not simulated: ${errors.join(' ')} The results below are for the previous settings.`;
+    markStale(store.report !== undefined);
+    status.textContent = `Not simulated: ${errors.join(' ')}${store.report ? ' The results below are for the previous settings.' : ''}`;
     return;
   }
   store.settings = next;
@@ -748,8 +752,14 @@ function downloadWhy(button: HTMLElement, why: string): void {
  * flight stands in for it (the table is not that report), which is said beside `button`. */
 function shownReport(button: HTMLElement): SimReport | undefined {
   const waiting = $('[data-panel="results"]').classList.contains('partial');
-  downloadWhy(button, waiting ? 'The whole set is still running: its results can be saved or pinned when it ends.' : '');
+  downloadWhy(button, waiting ? 'The whole set is still running: its results can be saved or pinned when it ends.' : (store.report ? '' : noResults()));
   return waiting ? undefined : store.report;
+}
+
+/** Why a download or Pin finds no results at all: the first run has not ended, or the page has
+ * none to show (a link whose settings the core refuses: the status says why). */
+function noResults(): string {
+  return running ? 'No results yet: the first run is still under way.' : 'No results yet: nothing has been simulated at these settings (the status above the results says why).';
 }
 
 for (const [id, save] of [
@@ -812,7 +822,7 @@ for (const button of document.querySelectorAll<HTMLButtonElement>('[data-downloa
     if (name === 'airtime-table') return void downloadAirtimePicture(button);
     const entry = charts[name];
     const saved = entry && saveSlide(button, entry.chart, `loratrack-${name}`, slide(entry.caption));
-    downloadWhy(button, saved ? '' : name === 'swarm' && !entry ? `Nothing to save yet: ${swarming ? 'the swarms are still running' : 'run a swarm first'}.` : 'Nothing to save: this chart has no data at these settings (no packet arrives).');
+    downloadWhy(button, saved ? '' : name === 'swarm' && !entry ? `Nothing to save yet: ${swarming ? 'the swarms are still running' : 'run a swarm first'}.` : !entry ? noResults() : 'Nothing to save: this chart has no data at these settings (no packet arrives).');
   });
 }
 

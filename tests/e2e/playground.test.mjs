@@ -822,10 +822,45 @@ test('an invalid field is marked beside itself, nothing runs, and the old result
   assert.match(await page.locator('#status').textContent(), /Not simulated/);
   assert.equal(await page.locator('[data-panel="results"].stale').count(), 1);
   assert.equal(await tableHtml(page), before);
+  // The dashed frame of old results is drawn outside the table's box: clear of the status's last line.
+  const gap = await page.evaluate(() => {
+    const table = document.querySelector('#results-table');
+    const { outlineWidth, outlineOffset } = getComputedStyle(table);
+    return table.getBoundingClientRect().top - parseFloat(outlineWidth) - parseFloat(outlineOffset) - document.querySelector('#status').getBoundingClientRect().bottom;
+  });
+  assert.ok(gap >= 0, `the frame crosses the status by ${-gap} px`);
   await page.getByLabel('Path-loss exponent').fill('3');
   await until(page, () => !document.querySelector('[data-panel="results"].stale'));
   assert.equal(await page.locator('#pathLossExponent[aria-invalid]').count(), 0);
   assert.equal(await page.locator('[data-panel="results"].stale').count(), 0);
+  assert.deepEqual(problems, []);
+});
+
+test('a link whose settings the core refuses says why, shows no old results, and every download says there are none yet', async () => {
+  // US915's DR0 (SF10/125 kHz) cannot carry 3D-CTRA's 25-byte frame within the 400 ms dwell time:
+  // a link the form accepts (a user who picked SF10 there has it in the address bar), the core refuses.
+  const { page, problems } = await openPage(playground.context, new URL(playground.url).origin);
+  await page.goto(`${playground.url}?region=us915&sf=10&bw=125`);
+  await until(page, () => /cannot be simulated/.test(document.querySelector('#status')?.textContent ?? ''));
+  const text = await page.locator('#status').textContent();
+  assert.match(text, /400 ms dwell time.*Change a setting to see results\.$/);
+  assert.doesNotMatch(text, /previous settings/);
+  assert.equal(await page.locator('[data-panel="results"].stale').count(), 0, 'no frame of old results around nothing');
+  assert.equal(await page.locator('#results-table tbody tr').count(), 0);
+  await idle(page);
+  const why = (panel) => page.locator(`[data-panel="${panel}"] .download-why`).first();
+  await page.getByRole('button', { name: 'Results (CSV)' }).click();
+  assert.match(await why('results').textContent(), /^No results yet: nothing has been simulated at these settings/);
+  // Not "no packet arrives" (the error chart) nor "needs WebGL" (the 3D view): there is no run.
+  await page.getByRole('button', { name: 'Download the error over time chart as SVG' }).click();
+  assert.match(await why('error').textContent(), /^No results yet/);
+  await page.getByRole('button', { name: 'Download the 3d trajectory chart as PNG' }).click();
+  assert.match(await why('trajectory').textContent(), /^No results yet/);
+  // A setting the core accepts brings results, and the notes that there were none go.
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('9');
+  await waitForResults(page);
+  await until(page, () => document.querySelector('#chart-error svg'));
+  for (const panel of ['results', 'error', 'trajectory']) assert.equal(await why(panel).textContent(), '', panel);
   assert.deepEqual(problems, []);
 });
 
