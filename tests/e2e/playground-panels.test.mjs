@@ -85,6 +85,30 @@ test('the p75-against-SF chart gives the p75 at each SF as the CLI does, one lin
   assert.deepEqual(problems, []);
 });
 
+test('a station none of whose packets arrived where another\'s did says "none" in its place on the distance and SF charts, as the CLI counts them', async () => {
+  // The real flight (162 s) at 5 km, SF7 / 250 kHz: each station sends its own packets at its own
+  // times, and one of them may have none arrive where the others had one.
+  const { page, problems } = await open('?flight=canberra&distance=5000');
+  await idle(page);
+  await page.waitForSelector('#chart-sf svg');
+  await page.waitForSelector('#chart-distance svg');
+  const cli = nativeJson(['simulate', '--sample', 'canberra', '--distance', '5000']);
+  const label = { dr: 'DR', 'ctra-plus': 'CTRA+', '3d-ctra': '3D-CTRA' };
+  const silent = cli.results.filter((r) => r.packetsReceived === 0).map((r) => label[r.model]);
+  assert.ok(silent.length > 0 && silent.length < cli.results.length, `a case with some stations silent: ${silent}`);
+  const nones = (chart) => page.locator(`#chart-${chart} svg text`).evaluateAll((ts) => ts.filter((t) => t.firstChild?.textContent === 'none').map((t) => t.querySelector('title')?.textContent));
+  assert.deepEqual((await nones('sf')).sort(), silent.map((m) => `${m}, SF7: no packet arrived`).sort());
+  assert.deepEqual((await nones('distance')).sort(), silent.map((m) => `${m}, 5 km: no packet arrived`).sort());
+  // Not "none arrives" under SF7, where another station's packet did.
+  assert.equal(await page.locator('#chart-sf svg text', { hasText: 'arrives' }).count(), 0);
+  // Every station keeps its colour and its place in the legend, the stations' order.
+  for (const chart of ['sf', 'distance']) {
+    const legend = await page.locator(`#chart-${chart} [class$="-swatch"]`).allTextContents();
+    assert.deepEqual(legend, cli.results.map((r) => label[r.model]), chart);
+  }
+  assert.deepEqual(problems, []);
+});
+
 test('the error-versus-distance chart draws the boxes over too few packets dashed, and its note names them, as the CLI flags them', async () => {
   // SF9 sends every 8 s or so: one 81 s flight gives about ten packets near the gateway, fewer beyond.
   const { page, problems } = await open('?sf=9');

@@ -23,9 +23,18 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
   const data = rows
     .filter((r) => r.box.count > 0 && (!opts.log || (r.box.whiskerLow ?? 0) > 0))
     .map((r) => ({ group: r.group, label: MODEL_LABELS[r.model], model: r.model, few: r.few ?? false, ...r.box }));
-  const models = [...new Set(data.map((d) => d.label))];
+  // Every station keeps its place and colour, in the order of the rows (the stations' order), even
+  // where none of its packets arrived.
+  const stations = [...new Set(rows.map((r) => r.model))];
+  const models = stations.map((m) => MODEL_LABELS[m]);
   const groups = [...new Set(rows.map((r) => r.group))];
   const empty = groups.filter((g) => !data.some((d) => d.group === g)).map((group) => ({ group }));
+  // A station none of whose packets arrived where others' did: "none" in its place, not a gap
+  // that reads as a station left out (the real flight at 5 km: one CTRA+ and one 3D-CTRA packet,
+  // no DR packet).
+  const none = rows
+    .filter((r) => r.box.count === 0 && data.some((d) => d.group === r.group))
+    .map((r) => ({ group: r.group, label: MODEL_LABELS[r.model] }));
   const floor = opts.log ? logFloor(data) : {};
   const chart = Plot.plot({
     ...chartFrame(180),
@@ -37,11 +46,13 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
     // A log scale keeps the boxes near the gateway readable beside the metres-to-kilometres ones beyond its range.
     // Plain numbers at the powers of ten ("0.1", not "100m", which reads as 100 metres).
     y: opts.log ? { label: opts.yLabel ?? 'error (m, log scale)', grid: true, type: 'log', tickFormat: decade, ...floor } : { label: opts.yLabel ?? 'error (m)', grid: true, zero: true },
-    color: { domain: models, range: models.map((m) => MODEL_COLORS[data.find((d) => d.label === m)!.model]), legend: true },
+    color: { domain: models, range: stations.map((m) => MODEL_COLORS[m]), legend: true },
     marks: [
       // A group where nothing arrived says so instead of staying blank, wrapped within its own
       // column (on a phone a column is ~45 px, and one line ran over the boxes beside it).
       Plot.text(empty, { fx: 'group', text: () => 'no packet arrives', lineWidth: groupEms(opts.width, groups.length), frameAnchor: 'middle', fill: '#5a6068', fontSize: chartFont() }),
+      // Upright from the axis, in the station's colour: a slot is about a third of a group's column.
+      Plot.text(none, { fx: 'group', x: 'label', text: () => 'none', rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: 'label', fontSize: chartFont(), title: (d: { group: string; label: string }) => `${d.label}, ${d.group}: no packet arrived` }),
       Plot.ruleX(data, { fx: 'group', x: 'label', y1: 'whiskerLow', y2: 'whiskerHigh', stroke: 'label' }),
       Plot.barY(data.filter((d) => !d.few), { fx: 'group', x: 'label', y1: 'q1', y2: 'q3', fill: 'label', fillOpacity: 0.35, stroke: 'label' }),
       Plot.barY(data.filter((d) => d.few), { fx: 'group', x: 'label', y1: 'q1', y2: 'q3', fill: 'label', fillOpacity: 0.12, stroke: 'label', strokeDasharray: '4,3' }),
@@ -50,7 +61,8 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
     ],
   });
   const clamped = floor.domain ? ` Whiskers that reach below ${plainNumber(floor.domain[0])} m end at the axis's bottom edge.` : '';
-  return withKey(chart, `Box: the middle half of the errors (quartiles), thick line the median; whiskers: the furthest errors within 1.5 box heights of the box (any beyond, the outliers, are not drawn).${clamped}`);
+  const silent = none.length ? ' "none" in a station\'s place: none of its packets arrived there.' : '';
+  return withKey(chart, `Box: the middle half of the errors (quartiles), thick line the median; whiskers: the furthest errors within 1.5 box heights of the box (any beyond, the outliers, are not drawn).${clamped}${silent}`);
 }
 
 /** The width of one group's column in ems of the chart's type, a little inside it: `width` px

@@ -35,8 +35,16 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
     note.textContent = `No packet arrives at ${(opts.distance / 1000).toFixed(1)} km at any SF with ${opts.bw} kHz: move the gateway closer.`;
     return note;
   }
-  const models = [...new Set(data.map((d) => d.label))];
-  const silent = [...new Set(rows.filter((r) => r.p75 === null).map((r) => r.sf))];
+  // The stations in the rows' order (their order everywhere on the page), each with its colour,
+  // also where none of its packets arrived at some SF.
+  const stations = [...new Set(rows.map((r) => r.model))];
+  const models = stations.map((m) => MODEL_LABELS[m]);
+  const sfs = [...new Set(rows.map((r) => r.sf))];
+  // An SF where no station's packet arrived says so once; where only some stations' did, each
+  // silent one says "none" in its colour, upright from the axis, side by side.
+  const silent = sfs.filter((sf) => !data.some((d) => d.sf === sf));
+  const none = rows.filter((r) => r.p75 === null && !silent.includes(r.sf)).map((r) => ({ sf: r.sf, label: MODEL_LABELS[r.model] }));
+  const step = chartFont() * 1.1;
   const km = (opts.distance / 1000).toFixed(1);
   const title = (d: (typeof data)[number]) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${d.received} packets${d.few ? ', too few to compare' : ''}, ${covered(d.wholeFlight)}`;
   return Plot.plot({
@@ -45,12 +53,18 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
     marginLeft: labelRoom(56),
     x: { label: fitLabel(opts.width, `spreading factor (${opts.bw} kHz, gateway at ${km} km)`, `spreading factor (${opts.bw} kHz, ${km} km)`, `SF (${opts.bw} kHz, ${km} km)`), domain: [6.5, 12.5], ticks: [7, 8, 9, 10, 11, 12], tickFormat: (d: number) => `SF${d}` },
     y: { label: 'p75 3D error (m, log scale)', type: 'log', grid: true, ...logAxis(data.map((d) => d.p75!)), tickFormat: plainNumber },
-    color: { domain: models, range: models.map((m) => MODEL_COLORS[data.find((d) => d.label === m)!.model]), legend: true },
+    color: { domain: models, range: stations.map((m) => MODEL_COLORS[m]), legend: true },
     marks: [
       Plot.line(data, { x: 'sf', y: 'p75', stroke: 'label', z: 'label' }),
       Plot.dot(data.filter((d) => !d.few), { x: 'sf', y: 'p75', fill: 'label', r: 3.5, title }),
       Plot.dot(data.filter((d) => d.few), { x: 'sf', y: 'p75', fill: 'white', stroke: 'label', strokeWidth: 1.5, r: 3.5, title }),
       Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: () => 'none\narrives', fill: '#5a6068', fontSize: chartFont() }),
+      ...models.map((label, i) =>
+        Plot.text(
+          none.filter((d) => d.label === label),
+          { x: 'sf', text: () => 'none', rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, dx: (i - (models.length - 1) / 2) * step, fill: 'label', fontSize: chartFont(), title: (d: { sf: number; label: string }) => `${d.label}, SF${d.sf}: no packet arrived` },
+        ),
+      ),
     ],
   });
 }
