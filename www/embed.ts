@@ -55,6 +55,7 @@ export function updateEmbedCaption(): void {
   // An embed with the results panel shows its notes and its old or partial label there, once;
   // an embed of charts alone carries them here.
   if (store.embed && results.hidden) {
+    if (store.refused) lines.push(store.refused);
     lines.push(...restingNotes());
     if (results.classList.contains('stale')) lines.push('The numbers shown are for the previous settings.');
     if (results.classList.contains('partial')) lines.push('The numbers shown are the first flight’s alone; the rest of the set is still running.');

@@ -217,12 +217,18 @@ function onResponse(r: Response): void {
       csvError.hidden = false;
       status.textContent = `The CSV could not be simulated${store.report ? '; the results below are for the previous settings.' : '.'}`;
     } else {
-      status.textContent = `These settings cannot be simulated: ${r.error}. ${store.report ? 'Change a setting; the results below are for the previous settings.' : 'Change a setting to see results.'}`;
+      // An embed has no settings to change: its author chose them.
+      const next = store.report ? ' Change a setting; the results below are for the previous settings.' : store.embed ? '' : ' Change a setting to see results.';
+      status.textContent = `These settings cannot be simulated: ${r.error}.${next}`;
       // The core names the setting it refuses (`maxInterval` shorter than the data rate's
       // interval, a limit the form cannot check alone): mark that control as the form marks its
       // own (the next change of any setting checks every control afresh and clears it).
       const control = r.setting && isNumericKey(r.setting) ? field(r.setting) : null;
       if (control) markField(control, `${r.error}.`);
+    }
+    if (!store.report) {
+      store.refused = status.textContent ?? '';
+      updateEmbedCaption();
     }
     if (settingsChartsWait) renderSettingsCharts();
     sendQueued();
@@ -254,6 +260,7 @@ function showReport(report: SimReport, made: Settings, millis: number): void {
   progress.hidden = true;
   store.report = report;
   store.reportSettings = made;
+  store.refused = undefined;
   // A note that there were no results yet, beside the buttons of panels that draw no Plot chart
   // (the others' go as their chart is placed), is out of date.
   for (const panel of ['results', 'trajectory']) clearDownloadWhy($(`[data-panel="${panel}"]`));
@@ -759,7 +766,8 @@ function shownReport(button: HTMLElement): SimReport | undefined {
 /** Why a download or Pin finds no results at all: the first run has not ended, or the page has
  * none to show (a link whose settings the core refuses: the status says why). */
 function noResults(): string {
-  return running ? 'No results yet: the first run is still under way.' : 'No results yet: nothing has been simulated at these settings (the status above the results says why).';
+  const where = store.embed && $('[data-panel="results"]').hidden ? 'the caption at the top' : 'the status above the results';
+  return running ? 'No results yet: the first run is still under way.' : `No results yet: nothing has been simulated at these settings (${where} says why).`;
 }
 
 for (const [id, save] of [

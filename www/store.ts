@@ -34,6 +34,9 @@ export interface Store {
   notices: string[];
   /** The id of the lesson on show beside the results, which the page's URL keeps. */
   lesson?: string;
+  /** While no results are on show because the core refused the settings: the status line's
+   * words, which an embed of charts alone (without the status) carries in its caption. */
+  refused?: string;
 }
 
 export const store: Store = {

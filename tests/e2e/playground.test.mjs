@@ -861,7 +861,15 @@ test('a link whose settings the core refuses says why, shows no old results, and
   await waitForResults(page);
   await until(page, () => document.querySelector('#chart-error svg'));
   for (const panel of ['results', 'error', 'trajectory']) assert.equal(await why(panel).textContent(), '', panel);
-  assert.deepEqual(problems, []);
+  // An embed of a chart alone has no status line and no settings to change: its caption says why.
+  const embed = await openPage(playground.context, new URL(playground.url).origin);
+  await embed.page.goto(`${playground.url}?embed=1&panels=error&region=us915&sf=10&bw=125`);
+  await until(embed.page, () => /cannot be simulated/.test(document.querySelector('#embed-notices')?.textContent ?? ''));
+  assert.doesNotMatch(await embed.page.locator('#embed-notices').textContent(), /Change a setting|previous settings/);
+  await idle(embed.page);
+  await embed.page.getByRole('button', { name: 'Download the error over time chart as SVG' }).click();
+  assert.match(await embed.page.locator('[data-panel="error"] .download-why').textContent(), /^No results yet: .*the caption at the top says why/);
+  assert.deepEqual([...problems, ...embed.problems], []);
 });
 
 test('with Advanced open the page scrolls, not the settings, and the results table fits its box', async () => {
