@@ -57,6 +57,13 @@ export function prediction(s: Pick<Settings, 'prediction'> & Partial<Pick<Settin
   return `${s.prediction} prediction${s.prediction === 'bounded' && s.headingNoise === 'adaptive' ? ', adaptive heading noise' : ''}`;
 }
 
+/** The data rate's adaptation in words, for a caption that names the station and the sending:
+ * `; tracking ADR from SF12, 125 kHz` (the rate the network moves the drone from), or nothing
+ * without ADR. */
+export function adrFrom(s: Pick<Settings, 'adr' | 'sf' | 'bw'>): string {
+  return s.adr === 'off' ? '' : `; ${s.adr === 'lorawan' ? 'LoRaWAN' : 'tracking'} ADR from SF${s.sf}, ${s.bw} kHz`;
+}
+
 /** The settings behind a number, in one short phrase: the plan's limit whenever it is not the
  * paper's EU868 1 % duty cycle, the sender's threshold and heartbeat, and any advanced setting
  * changed from its default. */

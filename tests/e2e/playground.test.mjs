@@ -625,6 +625,10 @@ test('adaptive data rate is one control away: from SF12 it speeds up and says wh
   assert.match(note, /DR6 \(SF7\/250\) \d+/, note);
   const adaptiveReceived = number(await cell(page, '3d-ctra', 'packets'));
   assert.ok(adaptiveReceived >= fixedReceived, `ADR received ${adaptiveReceived}, SF7 ${fixedReceived}`);
+  // The table's caption names the adaptation its numbers rest on, and the status's range is the
+  // starting rate's, not the one most packets went at.
+  assert.match(await page.locator('#results-table caption').first().textContent(), /; tracking ADR from SF12, 125 kHz$/);
+  assert.match(await page.locator('#status').textContent(), /Gateway range at SF12, 125 kHz, where ADR starts \(/);
   assert.deepEqual(problems, []);
 });
 

@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { caption, describe, fewPacketsNote, flightTime, oneSeedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
+import { adrFrom, caption, describe, fewPacketsNote, flightTime, oneSeedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -22,6 +22,12 @@ test('station lists read as a sentence', () => {
   expect(names([m('dr')])).toBe('DR');
   expect(names([m('dr'), m('ctra-plus')])).toBe('DR and CTRA+');
   expect(names([m('dr'), m('ctra-plus'), m('3d-ctra')])).toBe('DR, CTRA+, 3D-CTRA');
+});
+
+test('a results caption names the rate ADR moves the drone from, and nothing without ADR', () => {
+  expect(adrFrom(DEFAULTS)).toBe('');
+  expect(adrFrom({ ...DEFAULTS, adr: 'tracking', sf: 12, bw: 125 })).toBe('; tracking ADR from SF12, 125 kHz');
+  expect(adrFrom({ ...DEFAULTS, adr: 'lorawan' })).toBe('; LoRaWAN ADR from SF7, 250 kHz');
 });
 
 test('a caption names the settings, the flight, every seed and the version', () => {
