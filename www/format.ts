@@ -110,6 +110,13 @@ export function oneSeedNote(tableSeeds: number, seed: number): string {
   return tableSeeds > 1 ? `This chart runs seed ${seed} alone; the results table pools ${tableSeeds} seeds.` : '';
 }
 
+/** Under the error-versus-distance chart where gateways are listed: its runs place one gateway at
+ * each distance instead (a distance to several sites has no one meaning), which the reader of a
+ * table resting on the listed sites must be told; '' without listed gateways. */
+export function oneGatewayNote(listed: number): string {
+  return listed > 0 ? `This chart places one gateway at each distance; the results table rests on the ${listed} gateway${listed === 1 ? '' : 's'} listed under Settings.` : '';
+}
+
 /** Under the error-over-time chart and the 3D view (`what`), which draw one flight with one seed
  * (the series of a run is its first flight's): says which, where the table on show pools more, whose p75 a reader would
  * otherwise look for in it; '' where the run is that one flight. */

@@ -269,6 +269,8 @@ test('gateways are added, moved and removed in the form; each is reported, kept 
   // Everything but the echo's `series` flag (the page always asks for the plotted series).
   const strip = ({ settings: _a, series: _b, config: { series: _c, ...config }, ...rest }) => ({ config, ...rest });
   assert.deepStrictEqual(strip(browserJson), strip(cli));
+  // The distance chart places one gateway at each distance, not the two listed: it says so.
+  await until(page, () => /one gateway at each distance; the results table rests on the 2 gateways listed/.test(document.querySelector('#distance-rests-on')?.textContent ?? ''));
   // An impossible coordinate is refused beside the form, and nothing runs.
   await page.getByLabel('Gateway 2 east (m)').fill('200000');
   await until(page, () => /Gateway 2: each coordinate/.test(document.querySelector('#status')?.textContent ?? ''));
@@ -281,6 +283,7 @@ test('gateways are added, moved and removed in the form; each is reported, kept 
   await until(page, () => !document.body.hasAttribute('data-busy'));
   assert.doesNotMatch(page.url(), /gateways=/);
   assert.equal(await page.locator('#network-note').isHidden(), true);
+  await until(page, () => !/gateways listed/.test(document.querySelector('#distance-rests-on')?.textContent ?? ''));
   assert.deepEqual(problems, []);
 });
 

@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { adrFrom, caption, describe, fewPacketsNote, flightTime, oneSeedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
+import { adrFrom, caption, describe, fewPacketsNote, flightTime, oneGatewayNote, oneSeedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -22,6 +22,12 @@ test('station lists read as a sentence', () => {
   expect(names([m('dr')])).toBe('DR');
   expect(names([m('dr'), m('ctra-plus')])).toBe('DR and CTRA+');
   expect(names([m('dr'), m('ctra-plus'), m('3d-ctra')])).toBe('DR, CTRA+, 3D-CTRA');
+});
+
+test('the distance chart says it places one gateway where the table rests on listed ones', () => {
+  expect(oneGatewayNote(0)).toBe('');
+  expect(oneGatewayNote(1)).toBe('This chart places one gateway at each distance; the results table rests on the 1 gateway listed under Settings.');
+  expect(oneGatewayNote(3)).toMatch(/rests on the 3 gateways listed/);
 });
 
 test('a results caption names the rate ADR moves the drone from, and nothing without ADR', () => {
