@@ -117,6 +117,12 @@ export function oneGatewayNote(listed: number): string {
   return listed > 0 ? `This chart places one gateway at each distance; the results table rests on the ${listed} gateway${listed === 1 ? '' : 's'} listed under Settings.` : '';
 }
 
+/** Under the error-versus-SF chart with ADR on: its runs keep each SF fixed (a point per data
+ * rate is the chart's point), while the results table's network moves the rate; '' without ADR. */
+export function fixedRateNote(adr: Settings['adr']): string {
+  return adr === 'off' ? '' : `Each point keeps its SF fixed; the results table's ${adr === 'lorawan' ? 'LoRaWAN' : 'tracking'} ADR moves the rate from the chosen SF.`;
+}
+
 /** Under the error-over-time chart and the 3D view (`what`), which draw one flight with one seed
  * (the series of a run is its first flight's): says which, where the table on show pools more, whose p75 a reader would
  * otherwise look for in it; '' where the run is that one flight. */

@@ -11,7 +11,7 @@ import { $, fitOnWidth, linkDocs, presenting, tighten } from './dom';
 import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
 import { field, form, markField, onFormChange, readControls, settingWords, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
-import { caption, fewPacketsNote, oneGatewayNote, oneSeedNote, seriesNote } from './format';
+import { caption, fewPacketsNote, fixedRateNote, oneGatewayNote, oneSeedNote, seriesNote } from './format';
 import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { renderBaseline, renderTable, restingNotes } from './results';
@@ -454,7 +454,7 @@ function restsOn(name: 'error' | 'sf' | 'distance', ...parts: string[]): void {
 /** A sweep chart's note: its points over too few packets (`few`), and its one seed where the
  * table pools more. */
 function sweepRestsOn(name: 'sf' | 'distance', few: string, made: Settings): void {
-  restsOn(name, few, oneSeedNote(store.reportSettings.seeds, made.seed), name === 'distance' ? oneGatewayNote(made.gateways.length) : '');
+  restsOn(name, few, oneSeedNote(store.reportSettings.seeds, made.seed), name === 'distance' ? oneGatewayNote(made.gateways.length) : fixedRateNote(made.adr));
 }
 
 async function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): Promise<void> {

@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { adrFrom, caption, describe, fewPacketsNote, flightTime, oneGatewayNote, oneSeedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
+import { adrFrom, caption, describe, fewPacketsNote, fixedRateNote, flightTime, oneGatewayNote, oneSeedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -28,6 +28,12 @@ test('the distance chart says it places one gateway where the table rests on lis
   expect(oneGatewayNote(0)).toBe('');
   expect(oneGatewayNote(1)).toBe('This chart places one gateway at each distance; the results table rests on the 1 gateway listed under Settings.');
   expect(oneGatewayNote(3)).toMatch(/rests on the 3 gateways listed/);
+});
+
+test('the SF chart says its points keep their SF where the table\'s ADR moves the rate', () => {
+  expect(fixedRateNote('off')).toBe('');
+  expect(fixedRateNote('tracking')).toBe('Each point keeps its SF fixed; the results table\'s tracking ADR moves the rate from the chosen SF.');
+  expect(fixedRateNote('lorawan')).toMatch(/LoRaWAN ADR/);
 });
 
 test('a results caption names the rate ADR moves the drone from, and nothing without ADR', () => {
