@@ -9,6 +9,7 @@ import { store } from './store';
 
 /** The results table, the verdict on it, and the notes under it (network, data rates, TTN). */
 export function renderTable(r: SimReport): void {
+  renderBaseline(r);
   const best = clearlyLowest(r);
   renderVerdict(r, best);
   renderUntracked(r);
@@ -314,11 +315,18 @@ function delta(m: ModelResult, key: 'mean' | 'p50' | 'p75' | 'p95' | 'max' | 'pa
   return ` <span class="delta ${cls}" data-delta="${key}" title="against the baseline (${b.toFixed(digits)}${key === 'packets' ? ' packets' : ' m'})">${arrow}\u2009${d >= 0 ? '+' : '−'}${Math.abs(d).toFixed(digits)}<span class="visually-hidden"> (${word} than the baseline)</span></span>`;
 }
 
-export function renderBaseline(): void {
+/** The baseline's note under the table and Pin's label: what the differences are against, and
+ * which stations of `shown` (the report in the table) the baseline did not run. */
+export function renderBaseline(shown: SimReport | undefined = store.report): void {
   const note = $('#baseline-note');
   note.hidden = !store.baseline;
   $('#pin').textContent = store.baseline ? 'Clear baseline' : 'Pin as baseline';
-  if (store.baseline) note.textContent = `Differences are against the pinned baseline: ${caption(store.baseline.settings)}. ▼ lower, ▲ higher; lower error and more packets received are better (green).`;
+  if (!store.baseline) return;
+  // A station the baseline did not run has no differences: its row must not read as unchanged.
+  const pinned = store.baseline.report.results.map((m) => m.model);
+  const unpinned = (shown?.results ?? []).filter((m) => !pinned.includes(m.model));
+  const alone = unpinned.length ? ` ${names(unpinned)} ${unpinned.length === 1 ? 'was' : 'were'} not in the baseline: no differences in ${unpinned.length === 1 ? 'its row' : 'their rows'}.` : '';
+  note.textContent = `Differences are against the pinned baseline: ${caption(store.baseline.settings)}. ▼ lower, ▲ higher; lower error and more packets received are better (green).${alone}`;
 }
 
 /** With ADR: how many packets each model sent at each data rate. */

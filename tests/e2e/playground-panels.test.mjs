@@ -41,6 +41,14 @@ test('pinning a baseline shows the next settings as differences against it', asy
   await shared.page.waitForSelector('[data-delta="p75"]');
   assert.equal(await shared.page.locator('[data-delta="p75"]').textContent(), p75);
   assert.match(await shared.page.locator('#baseline-note').textContent(), /SF7, 250 kHz, 1.0 km/);
+  assert.doesNotMatch(await shared.page.locator('#baseline-note').textContent(), /not in the baseline/);
+  // Stations the baseline did not run have no differences, and the note names them.
+  const one = await tableHtml(page);
+  await page.getByLabel('Model', { exact: true }).selectOption('all');
+  await waitForResults(page, one);
+  assert.equal(await page.locator('#results-table tr[data-model="dr"] .delta').count(), 0);
+  assert.equal(await page.locator('#results-table tr[data-model="3d-ctra"] [data-delta="p75"]').count(), 1);
+  assert.match(await page.locator('#baseline-note').textContent(), /DR and CTRA\+ were not in the baseline: no differences in their rows\.$/);
   await page.getByRole('button', { name: 'Clear baseline' }).click();
   assert.equal(await page.locator('#results-table .delta').count(), 0);
   assert.doesNotMatch(page.url(), /baseline=/);
