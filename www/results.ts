@@ -326,7 +326,10 @@ export function renderBaseline(shown: SimReport | undefined = store.report): voi
   const pinned = store.baseline.report.results.map((m) => m.model);
   const unpinned = (shown?.results ?? []).filter((m) => !pinned.includes(m.model));
   const alone = unpinned.length ? ` ${names(unpinned)} ${unpinned.length === 1 ? 'was' : 'were'} not in the baseline: no differences in ${unpinned.length === 1 ? 'its row' : 'their rows'}.` : '';
-  note.textContent = `Differences are against the pinned baseline: ${caption(store.baseline.settings)}. ▼ lower, ▲ higher; lower error and more packets received are better (green).${alone}`;
+  // Nor has a station whose packets all failed to arrive in the baseline any error to differ from.
+  const silent = (shown?.results ?? []).filter((m) => store.baseline!.report.results.some((b) => b.model === m.model && b.error3d.p75 === null) && m.error3d.p75 !== null);
+  const unmeasured = silent.length ? ` ${names(silent)} received no packet in the baseline: no differences in ${silent.length === 1 ? 'its errors' : 'their errors'}.` : '';
+  note.textContent = `Differences are against the pinned baseline: ${caption(store.baseline.settings)}. ▼ lower, ▲ higher; lower error and more packets received are better (green).${alone}${unmeasured}`;
 }
 
 /** With ADR: how many packets each model sent at each data rate. */

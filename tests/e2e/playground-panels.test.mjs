@@ -52,7 +52,16 @@ test('pinning a baseline shows the next settings as differences against it', asy
   await page.getByRole('button', { name: 'Clear baseline' }).click();
   assert.equal(await page.locator('#results-table .delta').count(), 0);
   assert.doesNotMatch(page.url(), /baseline=/);
-  assert.deepEqual([...problems, ...shared.problems], []);
+  // Pinned where no packet arrives, the errors have nothing to differ from: the note says so.
+  const far = await open('?model=3d-ctra&distance=9000');
+  await far.page.getByRole('button', { name: 'Pin as baseline' }).click();
+  const none = await tableHtml(far.page);
+  await far.page.locator('#distance').fill('1000');
+  await waitForResults(far.page, none);
+  assert.equal(await far.page.locator('[data-delta="p75"]').count(), 0);
+  assert.equal(await far.page.locator('[data-delta="packets"]').count(), 1);
+  assert.match(await far.page.locator('#baseline-note').textContent(), /3D-CTRA received no packet in the baseline: no differences in its errors\.$/);
+  assert.deepEqual([...problems, ...shared.problems, ...far.problems], []);
 });
 
 test('the p75-against-SF chart gives the p75 at each SF as the CLI does, one line per model, with its download', async () => {
