@@ -316,7 +316,8 @@ function delta(m: ModelResult, key: 'mean' | 'p50' | 'p75' | 'p95' | 'max' | 'pa
 }
 
 /** The baseline's note under the table and Pin's label: what the differences are against, and
- * which stations of `shown` (the report in the table) the baseline did not run. */
+ * the stations of `shown` (the report in the table) that have none: not run in the baseline, or
+ * without a packet received there. */
 export function renderBaseline(shown: SimReport | undefined = store.report): void {
   const note = $('#baseline-note');
   note.hidden = !store.baseline;
