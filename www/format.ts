@@ -1,5 +1,5 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
-import { MODEL_LABELS, type ModelResult } from './loratrack';
+import { MODEL_LABELS, type ModelResult, type ModelSeries } from './loratrack';
 import { DEFAULTS, LIMITS, plan, type Settings } from './state';
 import { store } from './store';
 
@@ -11,7 +11,7 @@ export const fmt = (v: number | null, digits = 2) => (v === null || v === undefi
 export const trackedPercent = (tracked: number | null) => Math.round(100 * (tracked ?? 0));
 
 /** Station names as a list: "DR", "DR and CTRA+", "DR, CTRA+, 3D-CTRA". */
-export const names = (list: ModelResult[]) => list.map((m) => MODEL_LABELS[m.model]).join(list.length === 2 ? ' and ' : ', ');
+export const names = (list: Pick<ModelResult, 'model'>[]) => list.map((m) => MODEL_LABELS[m.model]).join(list.length === 2 ? ' and ' : ', ');
 
 /** The sending policy with what it rests on, the duty-cycle rule when it is not the paper's
  * off-time per packet and the payload when it is not the model's own: two error-triggered runs
@@ -121,6 +121,15 @@ export function oneGatewayNote(listed: number): string {
  * rate is the chart's point), while the results table's network moves the rate; '' without ADR. */
 export function fixedRateNote(adr: Settings['adr']): string {
   return adr === 'off' ? '' : `Each point keeps its SF fixed; the results table's ${adr === 'lorawan' ? 'LoRaWAN' : 'tracking'} ADR moves the rate from the chosen SF.`;
+}
+
+/** Under the error-over-time chart, which draws one flight: the stations none of whose packets
+ * arrived on it (where another's did), which have no line there, only the ✕ of their lost
+ * packets; '' where every station or none has a line (the chart then says so itself). */
+export function noLineNote(models: Pick<ModelSeries, 'model' | 't'>[], flight: string): string {
+  const silent = models.filter((m) => m.t.length === 0);
+  if (silent.length === 0 || silent.length === models.length) return '';
+  return `${names(silent)} received no packet on ${flight}: no line, only the ✕ of ${silent.length === 1 ? 'its' : 'their'} lost packets.`;
 }
 
 /** Under the error-over-time chart and the 3D view (`what`), which draw one flight with one seed

@@ -118,6 +118,8 @@ test('a station none of whose packets arrived where another\'s did says "none" i
   assert.deepEqual((await nones('distance')).sort(), silent.map((m) => `${m}, 5 km: no packet arrived`).sort());
   // Not "none arrives" under SF7, where another station's packet did.
   assert.equal(await page.locator('#chart-sf svg text', { hasText: 'arrives' }).count(), 0);
+  // The error chart draws no line for such a station, and its note says why.
+  assert.match(await page.locator('#error-rests-on').textContent(), new RegExp(`^${silent.join(' and ')} received no packet on .+: no line, only the ✕ of`));
   // Every station keeps its colour and its place in the legend, the stations' order.
   for (const chart of ['sf', 'distance']) {
     const legend = await page.locator(`#chart-${chart} [class$="-swatch"]`).allTextContents();

@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { adrFrom, caption, describe, fewPacketsNote, fixedRateNote, flightTime, oneGatewayNote, oneSeedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
+import { adrFrom, caption, describe, fewPacketsNote, fixedRateNote, flightTime, noLineNote, oneGatewayNote, oneSeedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -22,6 +22,14 @@ test('station lists read as a sentence', () => {
   expect(names([m('dr')])).toBe('DR');
   expect(names([m('dr'), m('ctra-plus')])).toBe('DR and CTRA+');
   expect(names([m('dr'), m('ctra-plus'), m('3d-ctra')])).toBe('DR, CTRA+, 3D-CTRA');
+});
+
+test('the error chart names the stations with no line on its flight, only where others have one', () => {
+  const series = (model: string, samples: number) => ({ model, t: new Float64Array(samples) }) as Parameters<typeof noLineNote>[0][number];
+  expect(noLineNote([series('dr', 10), series('ctra-plus', 5)], 'canberra')).toBe('');
+  expect(noLineNote([series('dr', 0), series('ctra-plus', 0)], 'canberra')).toBe('');
+  expect(noLineNote([series('dr', 0), series('ctra-plus', 5), series('3d-ctra', 5)], 'canberra')).toBe('DR received no packet on canberra: no line, only the ✕ of its lost packets.');
+  expect(noLineNote([series('dr', 0), series('ctra-plus', 0), series('3d-ctra', 5)], 'canberra')).toMatch(/^DR and CTRA\+ received no packet on canberra: .* their lost packets\.$/);
 });
 
 test('the distance chart says it places one gateway where the table rests on listed ones', () => {
