@@ -123,13 +123,15 @@ export function fixedRateNote(adr: Settings['adr']): string {
   return adr === 'off' ? '' : `Each point keeps its SF fixed; the results table's ${adr === 'lorawan' ? 'LoRaWAN' : 'tracking'} ADR moves the rate from the chosen SF.`;
 }
 
-/** Under the error-over-time chart, which draws one flight: the stations none of whose packets
- * arrived on it (where another's did), which have no line there, only the ✕ of their lost
- * packets; '' where every station or none has a line (the chart then says so itself). */
-export function noLineNote(models: Pick<ModelSeries, 'model' | 't'>[], flight: string): string {
+/** Under the error-over-time chart (`what`: the 3D view), which draw one flight: the stations
+ * none of whose packets arrived on it (where another's did), which have no line there (in the
+ * chart, only the ✕ of their lost packets); '' where every station or none has a line (the chart
+ * then says so itself). */
+export function noLineNote(models: Pick<ModelSeries, 'model' | 't'>[], flight: string, what: 'chart' | 'view' = 'chart'): string {
   const silent = models.filter((m) => m.t.length === 0);
   if (silent.length === 0 || silent.length === models.length) return '';
-  return `${names(silent)} received no packet on ${flight}: no line, only the ✕ of ${silent.length === 1 ? 'its' : 'their'} lost packets.`;
+  const drawn = what === 'chart' ? `no line, only the ✕ of ${silent.length === 1 ? 'its' : 'their'} lost packets` : `no track`;
+  return `${names(silent)} received no packet on ${flight}: ${drawn}.`;
 }
 
 /** Under the error-over-time chart and the 3D view (`what`), which draw one flight with one seed

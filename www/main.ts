@@ -435,7 +435,7 @@ async function draw3d(r: SimReport): Promise<void> {
   const cones = [near ? `grey cone${near > 1 ? 's' : ''}: the gateway${near > 1 ? 's' : ''}` : '', far].filter(Boolean);
   const grid = `Grid squares ${drawn.gridStep >= 10 ? drawn.gridStep.toFixed(0) : drawn.gridStep.toFixed(1)} m.`;
   // Which flight and seed, where the results pool more.
-  const which = r.series ? seriesNote(r.config, r.series.flight, 'view') : '';
+  const which = r.series ? [seriesNote(r.config, r.series.flight, 'view'), noLineNote(r.series.models, r.series.flight, 'view')].filter(Boolean).join(' ') : '';
   $('#trajectory-legend').innerHTML = `${[tracks, ...cones].join('; ')}. ${grid}${which ? ` ${which}` : ''}`;
   // A slide lists the tracks as swatches; the cones, the grid's scale and the flight go under the picture.
   const coneKey = cones.join('; ');

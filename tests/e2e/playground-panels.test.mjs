@@ -120,6 +120,9 @@ test('a station none of whose packets arrived where another\'s did says "none" i
   assert.equal(await page.locator('#chart-sf svg text', { hasText: 'arrives' }).count(), 0);
   // The error chart draws no line for such a station, and its note says why.
   assert.match(await page.locator('#error-rests-on').textContent(), new RegExp(`^${silent.join(' and ')} received no packet on .+: no line, only the ✕ of`));
+  // Nor a track in the 3D view, whose legend says so.
+  await view3d(page);
+  assert.match(await page.locator('#trajectory-legend').textContent(), new RegExp(`${silent.join(' and ')} received no packet on .+: no track\\.`));
   // Every station keeps its colour and its place in the legend, the stations' order.
   for (const chart of ['sf', 'distance']) {
     const legend = await page.locator(`#chart-${chart} [class$="-swatch"]`).allTextContents();

@@ -30,6 +30,7 @@ test('the error chart names the stations with no line on its flight, only where 
   expect(noLineNote([series('dr', 0), series('ctra-plus', 0)], 'canberra')).toBe('');
   expect(noLineNote([series('dr', 0), series('ctra-plus', 5), series('3d-ctra', 5)], 'canberra')).toBe('DR received no packet on canberra: no line, only the ✕ of its lost packets.');
   expect(noLineNote([series('dr', 0), series('ctra-plus', 0), series('3d-ctra', 5)], 'canberra')).toMatch(/^DR and CTRA\+ received no packet on canberra: .* their lost packets\.$/);
+  expect(noLineNote([series('dr', 0), series('ctra-plus', 5)], 'canberra', 'view')).toBe('DR received no packet on canberra: no track.');
 });
 
 test('the distance chart says it places one gateway where the table rests on listed ones', () => {
