@@ -1,5 +1,5 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
-import { MODEL_LABELS, type ModelResult, type ModelSeries } from './loratrack';
+import { MODEL_LABELS, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
 import { DEFAULTS, LIMITS, plan, type Settings } from './state';
 import { store } from './store';
 
@@ -55,6 +55,12 @@ function link(s: Settings): string {
 /** The station's prediction in words: `bounded prediction, adaptive heading noise`. */
 export function prediction(s: Pick<Settings, 'prediction'> & Partial<Pick<Settings, 'headingNoise'>>): string {
   return `${s.prediction} prediction${s.prediction === 'bounded' && s.headingNoise === 'adaptive' ? ', adaptive heading noise' : ''}`;
+}
+
+/** The one station a swarm's drones report to, with its prediction and (where not the paper's)
+ * the sending: `3D-CTRA station (bounded prediction, error-triggered sending (2 m, …))`. */
+export function stationPhrase(station: ModelName, s: Parameters<typeof prediction>[0] & Parameters<typeof sending>[0] & Parameters<typeof sendsAsPublished>[0]): string {
+  return `${MODEL_LABELS[station]} station (${prediction(s)}${sendsAsPublished(s) ? '' : `, ${sending(s)}`})`;
 }
 
 /** The data rate's adaptation in words, for a caption that names the station and the sending:

@@ -202,7 +202,7 @@ test('the swarm panel runs growing swarms and sets the collision rate against AL
   await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
   assert.equal(await page.locator('[data-panel="swarm"] .download-why').textContent(), '', 'the note left once the chart came');
   const note = await page.locator('#chart-swarm .note').textContent();
-  assert.match(note, /20 drones flying 2 minutes each, 3 channels.*collided \(ALOHA predicts [\d.]+ %\)/);
+  assert.match(note, /20 drones flying 2 minutes each to a 3D-CTRA station \(paper prediction\), 3 channels.*collided \(ALOHA predicts [\d.]+ %\)/);
   assert.ok((await page.locator('#chart-swarm svg').count()) >= 2);
   // The swarms run on several workers at once; each is reported in its place, with the CLI's numbers.
   const status = await page.locator('#swarm-status').textContent();
@@ -326,7 +326,7 @@ test('the swarm panel takes the single drone settings, ADR included, and reports
   const shares = sent.flatMap((n, k) => (n > 0 ? [`SF${k + 7} ${(100 * n) / total < 0.5 ? '<1' : ((100 * n) / total).toFixed(0)} %`] : [])).join(', ');
   assert.ok(sent[2] < total, `ADR moved no packet off SF9: ${sent}`);
   assert.ok(note.includes(`all starting on SF9, ADR sent their packets at ${shares}:`), `${note} / CLI: ${shares}`);
-  assert.match(note, /^20 drones flying 5 minutes each, /);
+  assert.match(note, /^20 drones flying 5 minutes each to a 3D-CTRA station \(paper prediction\), /);
   assert.match(note, /\d+ ADR downlinks sent, \d+ dropped; radio [\d.]+ mC per uplink/);
   assert.match(await page.locator('#chart-swarm').textContent(), /from SF9/);
   // One SF, p75s within a decade: its axis still has numbers (powers of ten alone left none).
@@ -344,8 +344,10 @@ test('a swarm of lean drones says how many of its packets went lean, as the CLI 
   const note = await page.locator('#chart-swarm .note').textContent();
   const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sf', '10', '--bw', '125', '--payload', 'lean', '--prediction', 'bounded']);
   assert.ok(cli.leanPackets > 0 && cli.leanPackets < cli.packetsSent, `${cli.leanPackets} of ${cli.packetsSent}`);
+  // The p75 names the one station it rests on (the page's three stations run 3D-CTRA, as the CLI's `all` does).
   assert.ok(note.includes(`, ${cli.leanPackets} of ${cli.packetsSent} packets with lean payloads, median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`), note);
-  assert.match(note, /^20 drones flying 2 minutes each, /);
+  assert.ok(note.startsWith('20 drones flying 2 minutes each to a 3D-CTRA station (bounded prediction, periodic sending, lean payloads), '), note);
+  assert.match(note, /^20 drones flying 2 minutes each to a /);
   // The largest swarm is counted with full frames, and says so.
   assert.ok(note.includes(`Largest swarm one gateway serves at these settings (with full frames: the lean ones, shorter, leave room for more), every drone sending as often as its duty cycle allows: ${cli.largestSwarm.aloha1} drone`), note);
   assert.deepEqual(problems, []);

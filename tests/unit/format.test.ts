@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { adrFrom, caption, describe, fewPacketsNote, fixedRateNote, flightTime, noLineNote, oneGatewayNote, oneSeedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
+import { adrFrom, caption, describe, stationPhrase, fewPacketsNote, fixedRateNote, flightTime, noLineNote, oneGatewayNote, oneSeedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -31,6 +31,11 @@ test('the error chart names the stations with no line on its flight, only where 
   expect(noLineNote([series('dr', 0), series('ctra-plus', 5), series('3d-ctra', 5)], 'canberra')).toBe('DR received no packet on canberra: no line, only the ✕ of its lost packets.');
   expect(noLineNote([series('dr', 0), series('ctra-plus', 0), series('3d-ctra', 5)], 'canberra')).toMatch(/^DR and CTRA\+ received no packet on canberra: .* their lost packets\.$/);
   expect(noLineNote([series('dr', 0), series('ctra-plus', 5)], 'canberra', 'view')).toBe('DR received no packet on canberra: no track.');
+});
+
+test('a swarm names the one station its drones report to, its prediction and any sending not the paper\'s', () => {
+  expect(stationPhrase('3d-ctra', DEFAULTS)).toBe('3D-CTRA station (paper prediction)');
+  expect(stationPhrase('dr', { ...DEFAULTS, prediction: 'bounded', sender: 'error' })).toBe('DR station (bounded prediction, error-triggered sending (2 m, heartbeat 10 s, listening to its channel))');
 });
 
 test('the distance chart says it places one gateway where the table rests on listed ones', () => {
