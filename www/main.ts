@@ -70,7 +70,9 @@ function submit(): void {
   const request = simulateRequest(++nextId, store.settings, store.csv, store.plan);
   if (freshSeed) request.params.seed = 'random';
   if (store.settings.flight === 'csv' && !store.csv) {
-    status.textContent = 'Choose a CSV file to simulate it.';
+    // Nothing runs until a file is chosen: the numbers on show are the previous flight's.
+    markStale(store.report !== undefined);
+    status.textContent = `Choose a CSV file to simulate it${store.report ? '; the results below are for the previous settings.' : '.'}`;
     return;
   }
   if (running?.long) {

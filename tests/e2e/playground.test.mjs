@@ -238,9 +238,13 @@ test('a good CSV is simulated and a bad one is refused next to the control', asy
 
   let before = await tableHtml(page);
   await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
+  // Until a file is chosen nothing runs, and the synthetic flight's numbers say they are old.
+  await until(page, () => /^Choose a CSV file to simulate it; the results below are for the previous settings\.$/.test(document.querySelector('#status')?.textContent ?? ''));
+  assert.equal(await page.locator('[data-panel="results"].stale').count(), 1);
   await page.getByLabel('CSV file').setInputFiles(good);
   await waitForResults(page, before);
   assert.match(await page.locator('#status').textContent(), /circle\.csv/);
+  assert.equal(await page.locator('[data-panel="results"].stale').count(), 0);
 
   await page.getByLabel('CSV file').setInputFiles(bad);
   await page.waitForSelector('#csv-error:not([hidden])');
