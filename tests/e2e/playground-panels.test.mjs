@@ -919,6 +919,25 @@ test('presenting at 1024x768 with a baseline pinned, each difference goes under 
   assert.deepEqual(problems, []);
 });
 
+test('presenting on a tablet held upright with a baseline pinned, only the error\'s table scrolls, by a little, and the link\'s fit under it', async () => {
+  // The differences under each number make the error's columns 702 px wide in 684: no layout fits,
+  // and the one table scrolled 1312 px in 684, the whole link out of sight.
+  const { page, problems } = await open('?present=1', { width: 768, height: 1024 });
+  await idle(page);
+  await page.getByRole('button', { name: 'Pin as baseline' }).click();
+  const before = await tableHtml(page);
+  await page.locator('#distance').fill('3500');
+  await waitForResults(page, before);
+  await idle(page);
+  const tables = await resultTables(page);
+  assert.ok(tables.length > 1, 'the link under the error');
+  assert.ok(tables.slice(1).every((t) => t.over <= 1), `the link's tables scroll by ${tables.map((t) => t.over)} px`);
+  const width = await page.locator('#results-table .table-wrap').first().evaluate((w) => w.clientWidth);
+  assert.ok(tables[0].over < 0.15 * width, `the error's table scrolls by ${tables[0].over} px of ${width}`);
+  assert.deepEqual(await axe(page), [], 'presenting upright with a baseline');
+  assert.deepEqual(problems, []);
+});
+
 test('presentation mode: large type and charts at 1024x768, one panel per screen stepped by the arrow keys, toggled by P', async () => {
   const { page, problems } = await open('', { width: 1024, height: 768 });
   await idle(page);
