@@ -633,6 +633,8 @@ test('adaptive data rate is one control away: from SF12 it speeds up and says wh
   // starting rate's, not the one most packets went at.
   assert.match(await page.locator('#results-table caption').first().textContent(), /; tracking ADR from SF12, 125 kHz$/);
   assert.match(await page.locator('#status').textContent(), /Gateway range at SF12, 125 kHz, where ADR starts \(/);
+  // The link budget's bold sensitivity is only where ADR starts the drone.
+  await until(page, () => /the chosen SF's bold: where ADR starts the drone/.test(document.querySelector('#chart-link .note')?.textContent ?? ''));
   // The SF chart's points keep their SF: its note says so beside the table's ADR.
   await until(page, () => /Each point keeps its SF fixed; the results table's tracking ADR moves the rate/.test(document.querySelector('#sf-rests-on')?.textContent ?? ''));
   assert.deepEqual(problems, []);
