@@ -113,9 +113,12 @@ test('a station none of whose packets arrived where another\'s did says "none" i
   const label = { dr: 'DR', 'ctra-plus': 'CTRA+', '3d-ctra': '3D-CTRA' };
   const silent = cli.results.filter((r) => r.packetsReceived === 0).map((r) => label[r.model]);
   assert.ok(silent.length > 0 && silent.length < cli.results.length, `a case with some stations silent: ${silent}`);
-  const nones = (chart) => page.locator(`#chart-${chart} svg text`).evaluateAll((ts) => ts.filter((t) => t.firstChild?.textContent === 'none').map((t) => t.querySelector('title')?.textContent));
-  assert.deepEqual((await nones('sf')).sort(), silent.map((m) => `${m}, SF7: no packet arrived`).sort());
-  assert.deepEqual((await nones('distance')).sort(), silent.map((m) => `${m}, 5 km: no packet arrived`).sort());
+  const nones = (chart) => page.locator(`#chart-${chart} svg text`).evaluateAll((ts) => ts.filter((t) => / none$/.test(t.firstChild?.textContent ?? '')).map((t) => `${t.firstChild.textContent} | ${t.querySelector('title')?.textContent}`));
+  // Each says which station, by name, in the notes' grey (a station's colour is small text at 3:1).
+  assert.deepEqual((await nones('sf')).sort(), silent.map((m) => `${m}: none | ${m}, SF7: no packet arrived`).sort());
+  assert.deepEqual((await nones('distance')).sort(), silent.map((m) => `${m}: none | ${m}, 5 km: no packet arrived`).sort());
+  const fills = await page.locator('#chart-sf svg text, #chart-distance svg text').evaluateAll((ts) => ts.filter((t) => / none$/.test(t.firstChild?.textContent ?? '')).map((t) => getComputedStyle(t).fill));
+  assert.ok(fills.length > 0 && fills.every((f) => f === 'rgb(90, 96, 104)'), fills.join());
   // Not "none arrives" under SF7, where another station's packet did.
   assert.equal(await page.locator('#chart-sf svg text', { hasText: 'arrives' }).count(), 0);
   // The error chart draws no line for such a station, and its note says why.

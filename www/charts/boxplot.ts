@@ -3,7 +3,7 @@
 import * as Plot from '@observablehq/plot';
 import type { Boxplot, ModelName } from '../loratrack';
 import { MODEL_LABELS } from '../loratrack';
-import { MODEL_COLORS, chartFrame, chartFont, fitLabel, withKey, labelRoom } from './colors';
+import { MODEL_COLORS, chartFrame, chartFont, NOTE_GREY, fitLabel, withKey, labelRoom } from './colors';
 import { plainNumber } from './logAxis';
 
 /** The plot's left margin at the page's type size, px: room for the y axis's labels. */
@@ -50,9 +50,10 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
     marks: [
       // A group where nothing arrived says so instead of staying blank, wrapped within its own
       // column (on a phone a column is ~45 px, and one line ran over the boxes beside it).
-      Plot.text(empty, { fx: 'group', text: () => 'no packet arrives', lineWidth: groupEms(opts.width, groups.length), frameAnchor: 'middle', fill: '#5a6068', fontSize: chartFont() }),
-      // Upright from the axis, in the station's colour: a slot is about a third of a group's column.
-      Plot.text(none, { fx: 'group', x: 'label', text: () => 'none', rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: 'label', fontSize: chartFont(), title: (d: { group: string; label: string }) => `${d.label}, ${d.group}: no packet arrived` }),
+      Plot.text(empty, { fx: 'group', text: () => 'no packet arrives', lineWidth: groupEms(opts.width, groups.length), frameAnchor: 'middle', fill: NOTE_GREY, fontSize: chartFont() }),
+      // Upright from the axis (a slot is about a third of a group's column), the station named and
+      // in the notes' grey: its colour would be small text at 3:1 contrast for DR and 3D-CTRA.
+      Plot.text(none, { fx: 'group', x: 'label', text: (d: { label: string }) => `${d.label}: none`, rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: NOTE_GREY, fontSize: chartFont(), title: (d: { group: string; label: string }) => `${d.label}, ${d.group}: no packet arrived` }),
       Plot.ruleX(data, { fx: 'group', x: 'label', y1: 'whiskerLow', y2: 'whiskerHigh', stroke: 'label' }),
       Plot.barY(data.filter((d) => !d.few), { fx: 'group', x: 'label', y1: 'q1', y2: 'q3', fill: 'label', fillOpacity: 0.35, stroke: 'label' }),
       Plot.barY(data.filter((d) => d.few), { fx: 'group', x: 'label', y1: 'q1', y2: 'q3', fill: 'label', fillOpacity: 0.12, stroke: 'label', strokeDasharray: '4,3' }),
@@ -61,7 +62,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
     ],
   });
   const clamped = floor.domain ? ` Whiskers that reach below ${plainNumber(floor.domain[0])} m end at the axis's bottom edge.` : '';
-  const silent = none.length ? ' "none" in a station\'s place: none of its packets arrived there.' : '';
+  const silent = none.length ? ' "DR: none" (or another station) in its place: none of its packets arrived there.' : '';
   return withKey(chart, `Box: the middle half of the errors (quartiles), thick line the median; whiskers: the furthest errors within 1.5 box heights of the box (any beyond, the outliers, are not drawn).${clamped}${silent}`);
 }
 

@@ -1,6 +1,10 @@
 import { presenting } from '../dom';
 import type { ModelName } from '../loratrack';
 
+/** Text a chart writes beside its marks ("no packet arrives", "DR: none"): the page's hint grey, 6.4:1
+ * on white, where a station's colour would be small text at 3:1. */
+export const NOTE_GREY = '#5a6068';
+
 /** One colour per model everywhere on the page (colour-blind-safe Tableau hues). */
 export const MODEL_COLORS: Record<ModelName, string> = { dr: '#e15759', 'ctra-plus': '#4e79a7', '3d-ctra': '#59a14f', imm: '#b07aa1', mission: '#f28e2b' };
 export const TRUTH_COLOR = '#222222';

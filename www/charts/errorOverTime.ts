@@ -2,7 +2,7 @@
 // (dots on the axis) and lost packets (crosses), over the station's own 95 % bound (dashed band).
 import * as Plot from '@observablehq/plot';
 import { isThinned, MODEL_LABELS, type ModelSeries, type SimReport } from '../loratrack';
-import { MODEL_COLORS, chartFrame, chartFont, withKey, labelRoom } from './colors';
+import { MODEL_COLORS, NOTE_GREY, chartFrame, chartFont, withKey, labelRoom } from './colors';
 
 /** What the error chart draws, computed from a report for a chart `width` px wide: the picked
  * samples, the packet marks and rate labels, the scale and the words around it. The page computes
@@ -303,7 +303,7 @@ function rateMarks(labels: RateLabel[]): Plot.Markish[] {
   return [...new Set(labels.map((l) => l.row))].flatMap((row) => {
     const inRow = labels.filter((l) => l.row === row);
     const common = { x: 't', y: 0, text: 'label', dy: -10 - row * (chartFont() + 2), fontSize: chartFont() };
-    return [Plot.text(inRow.filter((l) => !l.model), { ...common, fill: '#5a6068' }), Plot.text(inRow.filter((l) => l.model), { ...common, fill: 'model' })];
+    return [Plot.text(inRow.filter((l) => !l.model), { ...common, fill: NOTE_GREY }), Plot.text(inRow.filter((l) => l.model), { ...common, fill: 'model' })];
   });
 }
 

@@ -3,7 +3,7 @@
 // often: at short range the error grows with SF, beyond SF7's range a higher SF is what arrives.
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type ModelName, type WholeFlightError } from '../loratrack';
-import { chartFrame, chartFont, fitLabel, MODEL_COLORS, labelRoom } from './colors';
+import { chartFrame, chartFont, NOTE_GREY, fitLabel, MODEL_COLORS, labelRoom } from './colors';
 import { trackedPercent } from '../format';
 import { logAxis, plainNumber } from './logAxis';
 
@@ -41,7 +41,8 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
   const models = stations.map((m) => MODEL_LABELS[m]);
   const sfs = [...new Set(rows.map((r) => r.sf))];
   // An SF where no station's packet arrived says so once; where only some stations' did, each
-  // silent one says "none" in its colour, upright from the axis, side by side.
+  // silent one says so by name ("DR: none"), upright from the axis, side by side in the stations'
+  // order, in the notes' grey (a station's colour would be small text at 3:1 contrast).
   const silent = sfs.filter((sf) => !data.some((d) => d.sf === sf));
   const none = rows.filter((r) => r.p75 === null && !silent.includes(r.sf)).map((r) => ({ sf: r.sf, label: MODEL_LABELS[r.model] }));
   const step = chartFont() * 1.1;
@@ -58,11 +59,11 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
       Plot.line(data, { x: 'sf', y: 'p75', stroke: 'label', z: 'label' }),
       Plot.dot(data.filter((d) => !d.few), { x: 'sf', y: 'p75', fill: 'label', r: 3.5, title }),
       Plot.dot(data.filter((d) => d.few), { x: 'sf', y: 'p75', fill: 'white', stroke: 'label', strokeWidth: 1.5, r: 3.5, title }),
-      Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: () => 'none\narrives', fill: '#5a6068', fontSize: chartFont() }),
+      Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: () => 'none\narrives', fill: NOTE_GREY, fontSize: chartFont() }),
       ...models.map((label, i) =>
         Plot.text(
           none.filter((d) => d.label === label),
-          { x: 'sf', text: () => 'none', rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, dx: (i - (models.length - 1) / 2) * step, fill: 'label', fontSize: chartFont(), title: (d: { sf: number; label: string }) => `${d.label}, SF${d.sf}: no packet arrived` },
+          { x: 'sf', text: () => `${label}: none`, rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, dx: (i - (models.length - 1) / 2) * step, fill: NOTE_GREY, fontSize: chartFont(), title: (d: { sf: number; label: string }) => `${d.label}, SF${d.sf}: no packet arrived` },
         ),
       ),
     ],
