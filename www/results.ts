@@ -120,7 +120,7 @@ function layOutToFit(): void {
   for (const parts of [2, 3] as const) {
     layoutTable(parts);
     // Where the error's columns nearly fit (a baseline's differences under each number, presenting
-    // on a tablet held upright: 720 px in 684), the link's parts fitting is enough: only the
+    // on a tablet held upright: 702 px in 684), the link's parts fitting is enough: only the
     // error's table then scrolls, by a few columns' edge, not the whole link (1312 px in 684).
     if (tightenResults() || (overflow > 0 && linkPartsFit())) return;
   }
