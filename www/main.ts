@@ -209,7 +209,6 @@ function onResponse(r: Response): void {
     running = undefined;
     progress.hidden = true;
     updateBusy();
-    markStale(store.report !== undefined);
     if (r.setting === 'plan') {
       planError.textContent = r.error;
       planError.hidden = false;
@@ -228,10 +227,10 @@ function onResponse(r: Response): void {
       const control = r.setting && isNumericKey(r.setting) ? field(r.setting) : null;
       if (control) markField(control, `${r.error}.`);
     }
-    if (!store.report) {
-      store.refused = status.textContent ?? '';
-      updateEmbedCaption();
-    }
+    // Without results on show the refusal stands for them (an embed of charts alone shows it in
+    // its caption, which markStale brings up to date).
+    if (!store.report) store.refused = status.textContent ?? '';
+    markStale(store.report !== undefined);
     if (settingsChartsWait) renderSettingsCharts();
     sendQueued();
     return;
@@ -453,15 +452,15 @@ function restsOn(name: 'error' | 'sf' | 'distance', ...parts: string[]): void {
   $(`#${name}-rests-on`).textContent = text;
 }
 
-/** A sweep chart's note: its points over too few packets (`few`), and its one seed where the
- * table pools more. */
-function sweepRestsOn(name: 'sf' | 'distance', few: string, made: Settings): void {
-  restsOn(name, few, oneSeedNote(store.reportSettings.seeds, made.seed), name === 'distance' ? oneGatewayNote(made.gateways.length) : fixedRateNote(made.adr));
+/** A sweep chart's note: its points over too few packets (`few`), its one seed where the table
+ * pools more, and what else its runs fix that the table's do not (`fixed`: one gateway, one SF). */
+function sweepRestsOn(name: 'sf' | 'distance', few: string, made: Settings, fixed: string): void {
+  restsOn(name, few, oneSeedNote(store.reportSettings.seeds, made.seed), fixed);
 }
 
 async function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): Promise<void> {
   const rows = sweep.flatMap(({ sf, report: r }) => r.results.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived, few: m.caveats.fewPackets, wholeFlight: m.wholeFlight })));
-  sweepRestsOn('sf', fewPacketsNote(rows.filter((r) => r.p75 !== null).map((r) => ({ at: `SF${r.sf}`, received: r.received, few: r.few })), 'Hollow points'), made);
+  sweepRestsOn('sf', fewPacketsNote(rows.filter((r) => r.p75 !== null).map((r) => ({ at: `SF${r.sf}`, received: r.received, few: r.few })), 'Hollow points'), made, fixedRateNote(made.adr));
   const opts = { bw: made.bw, distance: made.distance, width: chartWidth('sf') };
   await drawPanel('sf', [rows, opts], (p) => p.p75BySfChart(rows, opts), made);
 }
@@ -507,7 +506,7 @@ async function drawPanel(name: string, inputs: unknown, draw: (p: Awaited<Return
 async function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): Promise<void> {
   const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d, few: m.caveats.fewPackets })));
   const received = sweep.flatMap(({ distance, report: r }) => r.results.filter((m) => m.error3d.count > 0).map((m) => ({ at: `${distance / 1000} km`, received: m.packetsReceived, few: m.caveats.fewPackets })));
-  sweepRestsOn('distance', fewPacketsNote(received, 'Dashed boxes'), made);
+  sweepRestsOn('distance', fewPacketsNote(received, 'Dashed boxes'), made, oneGatewayNote(made.gateways.length));
   // With ADR the runs start at the chosen rate and the network moves them (the SF chart's do not).
   const adr = made.adr === 'off' ? '' : ` and ${made.adr === 'lorawan' ? 'LoRaWAN' : 'tracking'} ADR`;
   const rate = `SF${made.sf}, ${made.bw} kHz${adr}`;
@@ -718,10 +717,11 @@ $('#run-swarm').addEventListener('click', () => {
 $('#pin').addEventListener('click', () => {
   const report = store.baseline ? undefined : shownReport($('#pin'));
   store.baseline = report && { report, settings: { ...store.reportSettings } };
-  renderBaseline();
   history.replaceState(null, '', `?${pageQuery()}`);
   renderLessonChanges();
+  // The table draws the baseline's note with its differences; without one, the note alone.
   if (store.report) renderResults(store.report);
+  else renderBaseline();
 });
 
 $('#repeat-seeds').addEventListener('click', () => {
@@ -938,9 +938,9 @@ if (pinned !== null) {
     w.terminate();
     drawing--;
     baselineLoading = false;
-    renderBaseline();
     renderLessonChanges();
     if (store.report) renderResults(store.report);
+    else renderBaseline();
     updateBusy();
   };
   w.postMessage({ id: 1, params: toParams(b.settings) } satisfies Request);
