@@ -202,6 +202,16 @@ fn generated() -> String {
     out.push_str(&format!(
         "\n/** Every regional plan's data rates and limits, as the core checks them (src/lora/region.rs). */\nexport const PLANS: Plan[] = {plans};\n"
     ));
+    let stations = StationModel::PAPER
+        .into_iter()
+        .chain([StationModel::Imm, StationModel::Mission]);
+    let bytes: Vec<String> = stations
+        .map(|m| format!("  '{}': {}", m.name(), m.payload_bytes()))
+        .collect();
+    out.push_str(&format!(
+        "\n/** Each station's payload, bytes: the model whose state its drone sends (src/sim/station/station_model.rs). */\nexport const PAYLOAD_BYTES: Record<ModelName, number> = {{\n{}\n}};\n",
+        bytes.join(",\n")
+    ));
     out.push_str(&format!(
         "\n/** How many of the drone filter's settled standard deviations a manoeuvre field (a, ω, ψ) may reach and still be left out of a lean payload (src/sim/sender/payload.rs). */\nexport const LEAN_SIGNIFICANCE = {};\n",
         crate::sim::LEAN_SIGNIFICANCE

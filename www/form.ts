@@ -1,9 +1,9 @@
 // The settings form: written from the settings, read back with each field checked against the
 // core's limits (the problem shown beside the field), the gateway rows, and the choices offered
 // (settings the core would refuse are disabled, with the reason).
-import type { GatewaySite, Region } from './loratrack';
+import { isLoaded, MODEL_LABELS, PAYLOAD_BYTES, stationsOf, timeOnAir, type GatewaySite, type Region } from './loratrack';
 import { $ } from './dom';
-import { ADR_START_REASON, adrCanStart, DEFAULTS, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, MISSION_REASON, plan, planAllows, planKnown, planReason, runsMission, type FlightChoice, type Settings } from './state';
+import { ADR_START_REASON, adrCanStart, DEFAULTS, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, MISSION_REASON, packetPlan, plan, planAllows, planKnown, planReason, runsMission, type FlightChoice, type Settings } from './state';
 import { store } from './store';
 
 export const form = $<HTMLFormElement>('#controls');
@@ -162,42 +162,85 @@ export function showConditional(): void {
   showPlanChoices();
 }
 
-/** Settings the core would refuse are not offered: a plan's missing SF/bandwidth pairs; ADR
+/** Settings the core would refuse are not offered: a plan's missing SF/bandwidth pairs; a data
+ * rate that cannot carry a station's frame (over the plan's dwell time or payload limit); ADR
  * outside EU868 or away from an EU868 data rate; listen-before-talk where the plan has no duty
  * cycle. Each disabled choice says why. */
 function showPlanChoices(): void {
   const sf = Number(field('sf').value);
   const bw = Number(field('bw').value);
   const region = field('region').value as Region;
+  const model = field('model').value;
   const adrOn = field('adr').value !== 'off';
-  const allowed = (s: number, b: number) => planAllows(region, s, b) && (!adrOn || adrCanStart(s, b));
-  const offer = (name: string, ok: (o: HTMLOptionElement) => boolean, why: string) => {
-    let any = false;
+  const rateWhy = (s: number, b: number) =>
+    !planAllows(region, s, b) ? planReason(region) : adrOn && !adrCanStart(s, b) ? ADR_START_REASON : frameRefusal(model, s, b, region);
+  // Disables the choices `whyNot` gives a reason for, and returns the distinct reasons.
+  const offer = (name: string, whyNot: (o: HTMLOptionElement) => string | null) => {
+    const reasons = new Set<string>();
     for (const o of (field(name) as HTMLSelectElement).options) {
-      o.disabled = !ok(o);
-      o.title = o.disabled ? why : '';
-      any ||= o.disabled;
+      const why = whyNot(o);
+      o.disabled = why !== null;
+      o.title = why ?? '';
+      if (why) reasons.add(why);
     }
-    return any;
+    return [...reasons];
   };
   const adrWhy = region === 'eu868' ? ADR_START_REASON : `ADR runs EU868's data rates; ${plan(region).label} has its own.`;
-  const adrBlocked = offer('adr', (o) => o.value === 'off' || (region === 'eu868' && adrCanStart(sf, bw)), adrWhy);
+  const adrBlocked = offer('adr', (o) => (o.value === 'off' || (region === 'eu868' && adrCanStart(sf, bw)) ? null : adrWhy));
   // Every list is updated (no short-circuit).
-  const sfBlocked = offer('sf', (o) => allowed(Number(o.value), bw), adrOn ? ADR_START_REASON : planReason(region));
-  const bwBlocked = offer('bw', (o) => allowed(sf, Number(o.value)), adrOn ? ADR_START_REASON : planReason(region));
-  offer('region', (o) => planAllows(o.value as Region, sf, bw) && (!adrOn || o.value === 'eu868'), `Not at SF${sf} / ${bw} kHz${adrOn ? ' with ADR on' : ''}.`);
-  offer('access', (o) => o.value === 'duty-cycle' || plan(region).dutyCycle !== null, `Listen-before-talk replaces a duty cycle; ${plan(region).label} has none.`);
-  const missionBlocked = offer('model', (o) => planKnown(field('flight').value as FlightChoice, Boolean(store.plan)) || !runsMission(o.value), MISSION_REASON);
-  const modelNote = $('#model-note');
-  modelNote.hidden = !missionBlocked;
-  modelNote.textContent = missionBlocked ? MISSION_REASON : '';
-  const rateBlocked = sfBlocked || bwBlocked;
-  const note = $('#adr-note');
-  note.hidden = !adrBlocked || region !== 'eu868';
-  note.textContent = note.hidden ? '' : `ADR is not offered at SF${sf} / ${bw} kHz. ${ADR_START_REASON}`;
-  const planNote = $('#region-note');
-  planNote.hidden = !rateBlocked;
-  planNote.textContent = !rateBlocked ? '' : adrOn ? `With ADR on, only EU868 data rates can be chosen. ${ADR_START_REASON}` : `Some SF and bandwidth pairs are not offered: ${planReason(region)}`;
+  const rateReasons = new Set([...offer('sf', (o) => rateWhy(Number(o.value), bw)), ...offer('bw', (o) => rateWhy(sf, Number(o.value)))]);
+  offer('region', (o) =>
+    !planAllows(o.value as Region, sf, bw) || (adrOn && o.value !== 'eu868') ? `Not at SF${sf} / ${bw} kHz${adrOn ? ' with ADR on' : ''}.` : frameRefusal(model, sf, bw, o.value as Region),
+  );
+  offer('access', (o) => (o.value === 'duty-cycle' || plan(region).dutyCycle !== null ? null : `Listen-before-talk replaces a duty cycle; ${plan(region).label} has none.`));
+  const known = planKnown(field('flight').value as FlightChoice, Boolean(store.plan));
+  offer('model', (o) => (!known && runsMission(o.value) ? MISSION_REASON : frameRefusal(o.value, sf, bw, region)));
+  // Every station the list offers, with the plan's reasons for those it cannot carry.
+  const everyStation = [...(field('model') as HTMLSelectElement).options].map((o) => o.value).join(',');
+  const stationsRefused = frameRefusal(everyStation, sf, bw, region);
+  const modelNote = [known ? '' : MISSION_REASON, stationsRefused ? `Not offered at SF${sf} / ${bw} kHz: ${stationsRefused}` : ''].filter(Boolean).join(' ');
+  show($('#model-note'), modelNote || null);
+  show($('#adr-note'), adrBlocked.length && region === 'eu868' ? `ADR is not offered at SF${sf} / ${bw} kHz. ${ADR_START_REASON}` : null);
+  const rateNote = adrOn ? `With ADR on, only EU868 data rates can be chosen. ${ADR_START_REASON}` : `Some SF and bandwidth pairs are not offered: ${[...rateReasons].join(' ')}`;
+  show($('#region-note'), rateReasons.size ? rateNote : null);
+}
+
+/** A form note: shown with `text`, hidden and emptied without. */
+function show(note: HTMLElement, text: string | null): void {
+  note.hidden = text === null;
+  note.textContent = text ?? '';
+}
+
+/** Why the plan cannot carry the frames of the stations `model` runs at `sf` / `bw` kHz in
+ * `region` (over its dwell time or payload limit, or longer on air than the interval where it has
+ * no duty cycle), as the core decides it for the time-on-air table and for a run: the stations
+ * refused for one reason named together, e.g. "3D-CTRA and IMM (25-byte frame): the frame takes
+ * 411.6 ms on air at US915 DR0 (SF10/125 kHz): over the 400 ms dwell time."; `null` where every
+ * frame fits, and until the WebAssembly module is loaded (main.ts then asks again). */
+function frameRefusal(model: string, sf: number, bw: number, region: Region): string | null {
+  if (!isLoaded() || !planAllows(region, sf, bw)) return null;
+  const interval = Number(field('interval').value);
+  const link = packetPlan({
+    region,
+    lorawan: (field('lorawan') as HTMLInputElement).checked,
+    cr: Number(field('cr').value),
+    access: field('access').value as Settings['access'],
+    fairUse: field('fairUse').value as Settings['fairUse'],
+    interval: invalid('interval', interval) ? store.settings.interval : interval,
+  });
+  const refused = new Map<string, { names: string[]; bytes: number }>();
+  try {
+    for (const station of stationsOf(model)) {
+      const bytes = PAYLOAD_BYTES[station] + link.overhead;
+      const why = timeOnAir({ sf, bw, payload: PAYLOAD_BYTES[station], ...link }).refused;
+      if (why) refused.set(why, { names: [...(refused.get(why)?.names ?? []), MODEL_LABELS[station]], bytes });
+    }
+  } catch {
+    // A setting the form marks beside its field; the core says the rest when the run is asked for.
+    return null;
+  }
+  const named = (names: string[]) => (names.length < 2 ? names.join('') : `${names.slice(0, -1).join(', ')} and ${names[names.length - 1]}`);
+  return refused.size ? [...refused].map(([why, r]) => `${named(r.names)} (${r.bytes}-byte frame): ${why}.`).join(' ') : null;
 }
 
 /** The form's min and max come from the core's table, as the URL's checks do; the distance

@@ -46,7 +46,7 @@ export const LESSONS: Lesson[] = [
     notice: [
       'The interval column: 1 s here, against about 21 s in the pinned EU868 baseline.',
       'Every model’s p75 falls far below the baseline’s (▼): the station rarely has to predict for long.',
-      'The time-on-air table speaks US915: SF11 and SF12 are not in it, and SF10’s 12-byte frame is refused (over 400 ms on air).',
+      'The time-on-air table speaks US915: SF11 and SF12 are not in it, and SF10’s 12-byte frame is refused (over 400 ms on air), so the form offers SF10 to DR and CTRA+ alone.',
     ],
   },
   {

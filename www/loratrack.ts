@@ -29,7 +29,7 @@ import type {
 } from './generated/types';
 
 export type * from './generated/types';
-export { CHOICE_DEFAULTS, OPTIONS, PLANS } from './generated/types';
+export { CHOICE_DEFAULTS, OPTIONS, PAYLOAD_BYTES, PLANS } from './generated/types';
 
 let compiled: Promise<WebAssembly.Module> | undefined;
 let ready: Promise<void> | undefined;
@@ -46,9 +46,17 @@ export function compiledModule(): Promise<WebAssembly.Module> {
 /** Instantiates the module once (from `module`, a worker's copy of the page's compilation, or
  * else `compiledModule()`); later calls return the same promise. */
 export function load(module?: Promise<WebAssembly.Module>): Promise<void> {
-  ready ??= (module ?? compiledModule()).then((m) => init({ module_or_path: m })).then(() => undefined);
+  ready ??= (module ?? compiledModule())
+    .then((m) => init({ module_or_path: m }))
+    .then(() => {
+      loaded = true;
+    });
   return ready;
 }
+
+let loaded = false;
+/** Whether `load` has finished: the functions below may be called. */
+export const isLoaded = (): boolean => loaded;
 
 export const MODEL_LABELS: Record<ModelName, string> = { dr: 'DR', 'ctra-plus': 'CTRA+', '3d-ctra': '3D-CTRA', imm: 'IMM', mission: 'Mission' };
 

@@ -16,7 +16,7 @@ import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { renderBaseline, renderTable, restingNotes } from './results';
 import { setUpPresent } from './present';
-import { DEFAULTS, fromQuery, isNumericKey, overheadBytes, plan, simulateRequest, toParams, type Settings } from './state';
+import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, simulateRequest, toParams, type Settings } from './state';
 import { pageQuery, store } from './store';
 import type { Request, Response, SimulateRequest } from './worker';
 
@@ -525,7 +525,7 @@ async function renderLink(): Promise<void> {
 
 async function renderAirtime(): Promise<void> {
   const s = store.settings;
-  const opts = { overhead: overheadBytes(s), cr: s.cr, sf: s.sf, bw: s.bw, region: s.region, access: s.access, fairUse: s.fairUse, ...(plan(s.region).dutyCycle === null ? { interval: s.interval } : {}) };
+  const opts = { sf: s.sf, bw: s.bw, ...packetPlan(s) };
   const width = chartWidth('airtime');
   await drawPanel('airtime', [opts, width], (p) => {
     $('#airtime-table').replaceChildren(p.airtimeTable(opts));
@@ -948,6 +948,8 @@ if (pinned !== null) {
 onDrawing(updateBusy);
 await load();
 submit();
+// The choices whose frames the plan cannot carry are known now (form.ts `frameRefusal`).
+showConditional();
 if (running) settingsChartsWait = true;
 else renderSettingsCharts();
 // The lesson's swarm runs as if its button were pressed with its choices (set with the lesson).

@@ -226,8 +226,15 @@ export function isNumericKey(key: string): key is NumericKey {
   return key in LIMITS;
 }
 
-export function overheadBytes(s: Settings): number {
+export function overheadBytes(s: Pick<Settings, 'lorawan'>): number {
   return s.lorawan ? 13 : 0;
+}
+
+/** What a packet's time on air and the plan's verdict on it depend on besides its SF, bandwidth
+ * and payload: the overhead, coding rate and plan settings (the interval where the plan has no
+ * duty cycle), as `timeOnAir` takes them. */
+export function packetPlan(s: Pick<Settings, 'lorawan' | 'cr' | 'region' | 'access' | 'fairUse' | 'interval'>) {
+  return { overhead: overheadBytes(s), cr: s.cr, region: s.region, access: s.access, fairUse: s.fairUse, ...(plan(s.region).dutyCycle === null ? { interval: s.interval } : {}) };
 }
 
 /** Beside every run, the gateway distances (m) and spreading factors the distance and SF charts

@@ -375,6 +375,23 @@ test('the regional plan: US915 offers only its data rates, asks for an interval,
   assert.ok(rows.some((r) => /^SF9125 kHzDR1/.test(r)), rows.join('|'));
   assert.ok(rows.some((r) => /^SF12125 kHznot in US915/.test(r)), rows.join('|'));
   assert.match(rows.find((r) => /^SF10125 kHz/.test(r)), /411\.6 ms · refused$/);
+  // The form does not offer what the table refuses: SF10 for the stations sending 12 bytes, with
+  // the core's reason, the table cell's; with DR alone (a 22-byte frame) SF10 is offered.
+  const refusedCell = await page.locator('#airtime-table tbody tr', { hasText: /^SF10125 kHz/ }).evaluate((row) => row.cells[5].title);
+  assert.match(refusedCell, /400 ms dwell time/);
+  const sf10 = page.locator('#sf option[value="10"]');
+  assert.equal(await sf10.isDisabled(), true);
+  assert.equal(await sf10.getAttribute('title'), `3D-CTRA (25-byte frame): ${refusedCell}.`);
+  assert.match(await page.locator('#region-note').textContent(), /not offered: 3D-CTRA \(25-byte frame\): the frame takes 411\.6 ms/);
+  await page.getByLabel('Model', { exact: true }).selectOption('dr');
+  await until(page, () => !document.querySelector('#sf option[value="10"]').disabled);
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('10');
+  for (const m of ['all', '3d-ctra', 'imm']) assert.equal(await page.locator(`#model option[value="${m}"]`).isDisabled(), true, m);
+  assert.match(await page.locator('#model-note').textContent(), /^Not offered at SF10 \/ 125 kHz: 3D-CTRA, IMM and Mission \(25-byte frame\): the frame takes 411\.6 ms/);
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('9');
+  await page.getByLabel('Model', { exact: true }).selectOption('all');
+  await waitForResults(page);
+  await idle(page);
   // So does the link budget: US915's SFs with their data rates, and the ones it lacks.
   const link = await page.locator('#chart-link .note').textContent();
   assert.match(link, /SF9 \(DR1\) [\d.]+ km/);

@@ -850,7 +850,7 @@ test('an invalid field is marked beside itself, nothing runs, and the old result
 
 test('a link whose settings the core refuses says why, shows no old results, and every download says there are none yet', async () => {
   // US915's DR0 (SF10/125 kHz) cannot carry 3D-CTRA's 25-byte frame within the 400 ms dwell time:
-  // a link the form accepts (a user who picked SF10 there has it in the address bar), the core refuses.
+  // the form no longer offers it, but a link from before, or written by hand, still carries it.
   const { page, problems } = await openPage(playground.context, new URL(playground.url).origin);
   await page.goto(`${playground.url}?region=us915&sf=10&bw=125`);
   await until(page, () => /cannot be simulated/.test(document.querySelector('#status')?.textContent ?? ''));
@@ -860,6 +860,9 @@ test('a link whose settings the core refuses says why, shows no old results, and
   assert.equal(await page.locator('[data-panel="results"].stale').count(), 0, 'no frame of old results around nothing');
   assert.equal(await page.locator('#results-table tbody tr').count(), 0);
   await idle(page);
+  // The form shows the link's choices, and that it would not offer them.
+  assert.equal(await page.locator('#sf option[value="10"]:checked:disabled').count(), 1);
+  assert.equal(await page.locator('#model option[value="all"]:checked:disabled').count(), 1);
   const why = (panel) => page.locator(`[data-panel="${panel}"] .download-why`).first();
   await page.getByRole('button', { name: 'Results (CSV)' }).click();
   assert.match(await why('results').textContent(), /^No results yet: nothing has been simulated at these settings/);

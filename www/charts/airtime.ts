@@ -2,11 +2,13 @@
 // air versus payload size, computed by the Rust core for the current overhead and coding rate.
 import { chartFrame, SF_COLORS, withKey, labelRoom } from './colors';
 import * as Plot from '@observablehq/plot';
-import { PLANS, timeOnAir, type AirtimeParams, type Region } from '../loratrack';
+import { MODEL_LABELS, PAYLOAD_BYTES, PLANS, timeOnAir, type AirtimeParams, type Region } from '../loratrack';
 
 const SFS = [7, 8, 9, 10, 11, 12];
 const BWS = [125, 250, 500];
-const PAYLOADS = [9, 11, 12];
+/** The paper's three stations and their payloads, bytes (9, 11, 12). */
+const PAPER_STATIONS = ['dr', 'ctra-plus', '3d-ctra'] as const;
+const PAYLOADS = PAPER_STATIONS.map((m) => PAYLOAD_BYTES[m]);
 
 const inPlan = (region: Region, sf: number, bw: number) => PLANS.some((p) => p.region === region && p.rates.some((r) => r.sf === sf && r.bw === bw));
 const rawLora = (region: Region) => PLANS.some((p) => p.region === region && p.rawLora);
@@ -25,7 +27,7 @@ export function airtimeTable(opts: { overhead: number; cr: number; sf: number; b
   const label = opts.region.toUpperCase();
   caption.textContent = `${label}: time on air · shortest interval between packets; refused where the plan does not carry the packet.`;
   const head = table.createTHead().insertRow();
-  for (const h of ['SF', 'bandwidth', 'data rate', '9 B (DR)', '11 B (CTRA+)', '12 B (3D-CTRA)']) {
+  for (const h of ['SF', 'bandwidth', 'data rate', ...PAPER_STATIONS.map((m) => `${PAYLOAD_BYTES[m]} B (${MODEL_LABELS[m]})`)]) {
     const th = document.createElement('th');
     th.textContent = h;
     head.appendChild(th);

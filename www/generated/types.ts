@@ -1947,5 +1947,14 @@ export const PLANS: Plan[] = [
   }
 ];
 
+/** Each station's payload, bytes: the model whose state its drone sends (src/sim/station/station_model.rs). */
+export const PAYLOAD_BYTES: Record<ModelName, number> = {
+  'dr': 9,
+  'ctra-plus': 11,
+  '3d-ctra': 12,
+  'imm': 12,
+  'mission': 12
+};
+
 /** How many of the drone filter's settled standard deviations a manoeuvre field (a, ω, ψ) may reach and still be left out of a lean payload (src/sim/sender/payload.rs). */
 export const LEAN_SIGNIFICANCE = 10;
