@@ -140,3 +140,29 @@ fn a_swarm_hops_over_its_plans_channels() {
         "a drone hops over more than EU868's three channels"
     );
 }
+
+#[test]
+fn a_spread_swarm_gets_the_data_rates_that_carry_its_frame() {
+    let sfs = |settings: Value| -> Result<Vec<u8>, String> {
+        let s = Scenario::default().with(&settings).unwrap();
+        let r = swarm(&s).map_err(|e| e.to_string())?;
+        let mut sfs: Vec<u8> = r.drones.iter().map(|d| d.sf).collect();
+        sfs.sort_unstable();
+        sfs.dedup();
+        Ok(sfs)
+    };
+    let us915 = json!({"drones": 8, "duration": 30, "region": "us915", "sf": 9, "bw": 125, "interval": 5, "sfPlan": "spread"});
+    // DR's 22-byte frame fits US915's DR0 (SF10) within the dwell time; 3D-CTRA's 25 bytes do not,
+    // so its swarm spreads over SF7..SF9 where a fixed SF10 is refused with the reason.
+    let mut dr = us915.clone();
+    dr["model"] = json!("dr");
+    assert_eq!(sfs(dr).unwrap(), [7, 8, 9, 10]);
+    assert_eq!(sfs(us915.clone()).unwrap(), [7, 8, 9]);
+    let mut fixed = us915;
+    fixed["sfPlan"] = json!("fixed");
+    fixed["sf"] = json!(10);
+    assert!(sfs(fixed).unwrap_err().contains("400 ms dwell time"));
+    // EU868 carries every frame at every SF.
+    let eu = json!({"drones": 6, "duration": 30, "sfPlan": "spread"});
+    assert_eq!(sfs(eu).unwrap(), [7, 8, 9, 10, 11, 12]);
+}

@@ -345,8 +345,9 @@ impl Default for DroneSettings {
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum SfPlan {
     /// SF7..SF12 in turn (drone i gets SF 7 + i mod 6), the paper's suggestion for up to 72
-    /// drones; in a plan without raw LoRa, the SFs it has uplink data rates for at the
-    /// bandwidth (US915 at 125 kHz: SF7..SF10).
+    /// drones; of these, those at which the plan carries the station's frame at the bandwidth
+    /// (a data rate, its payload limit, the dwell time: US915 at 125 kHz SF7..SF10 for DR's
+    /// 9-byte payload, SF7..SF9 for the 12-byte one).
     #[default]
     Spread,
     /// Every drone at `sf`.
@@ -372,7 +373,7 @@ pub struct SwarmSettings {
             long,
             value_enum,
             default_value_t,
-            help = "Spreading factors: spread (SF7..SF12 in turn, a sixth of the swarm each; outside EU868, the plan's SFs at --bw) or fixed (everyone at --sf)."
+            help = "Spreading factors: spread (SF7..SF12 in turn, a sixth of the swarm each; outside EU868, those whose data rate at --bw carries the station's frame) or fixed (everyone at --sf)."
         )
     )]
     pub sf_plan: SfPlan,

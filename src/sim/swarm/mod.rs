@@ -116,21 +116,18 @@ fn plan(cfg: &Validated) -> Result<Plan, SimError> {
 }
 
 /// The spreading factors the swarm deals out in turn, drone i taking entry i mod its length:
-/// `fixed`, `sf` alone; `spread`, SF7..SF12, or those the plan has uplink data rates for at the
-/// swarm's bandwidth (US915 at 125 kHz: SF7..SF10). A plan with none at that bandwidth gets `sf`,
-/// which the plan then refuses with its reason.
-fn swarm_sfs(cfg: &Validated) -> Vec<i64> {
+/// `fixed`, `sf` alone; `spread`, those of SF7..SF12 at which the plan carries `model`'s frame at
+/// the swarm's bandwidth, as a network server would assign them ([`Validated::drone_radio`]: in
+/// EU868 all six; US915 at 125 kHz SF7..SF9 for the 12-byte payload, SF10's frame being over the
+/// dwell time). Where none does, `sf`, which the plan then refuses with its reason.
+fn swarm_sfs(cfg: &Validated, model: StationModel) -> Vec<i64> {
     let s = cfg.s();
-    let region = s.access.region;
+    let carried = |sf: i64| {
+        LoraParams::from_settings(sf, s.radio.bw, s.radio.cr)
+            .is_ok_and(|radio| cfg.drone_radio(&radio, model).is_ok())
+    };
     let spread: Vec<i64> = match s.swarm.sf_plan {
-        SfPlan::Spread => (7..=12)
-            .filter(|&sf| {
-                region.allows_raw_lora()
-                    || region
-                        .rate(sf as u8, cfg.radio.bw)
-                        .is_some_and(|r| r.max_payload.is_some())
-            })
-            .collect(),
+        SfPlan::Spread => (7..=12).filter(|&sf| carried(sf)).collect(),
         SfPlan::Fixed => Vec::new(),
     };
     if spread.is_empty() {
@@ -230,7 +227,7 @@ impl<'a> Swarm<'a> {
         let model = cfg.swarm_station()?;
         let plan = plan(cfg)?;
         check_length(cfg, &plan)?;
-        let sfs = swarm_sfs(cfg);
+        let sfs = swarm_sfs(cfg, model);
         let mut radios = Vec::with_capacity(s.swarm.drones);
         let mut duty_cycles = Vec::with_capacity(s.swarm.drones);
         for i in 0..s.swarm.drones {
