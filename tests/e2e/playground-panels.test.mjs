@@ -405,6 +405,24 @@ test('the regional plan: US915 offers only its data rates, asks for an interval,
   assert.deepEqual(problems, []);
 });
 
+test('a US915 swarm spread by distance takes the data rates that carry its frame and sends at the interval set, as the CLI runs it', async () => {
+  const { page, problems } = await open('?region=us915&sf=9&bw=125&interval=5');
+  await page.getByLabel('Drones', { exact: true }).selectOption('20');
+  await page.getByLabel('SF plan').selectOption('spread');
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  // 3D-CTRA's 25-byte frame is over the dwell time at SF10 (DR0): the drones take SF7..SF9.
+  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'spread', '--model', '3d-ctra', '--sf', '9', '--bw', '125', '--region', 'us915', '--interval', '5']);
+  assert.deepEqual([...new Set(cli.drones.map((d) => d.sf))].sort(), [7, 8, 9]);
+  assert.deepEqual((await swarmStrip(page)).legend, ['SF7', 'SF8', 'SF9']);
+  const note = await page.locator('#chart-swarm .note').textContent();
+  assert.ok(note.includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`), note);
+  // The largest swarm is counted at the interval set, not at a duty cycle US915 does not have.
+  const l = cli.largestSwarm;
+  assert.ok(note.includes(`every drone sending every 5 s (the interval set: US915 has no duty cycle): ${l.aloha1} drone`), note);
+  assert.deepEqual(problems, []);
+});
+
 test('a slotted swarm collides with none of its own drones and says how many drones a gateway serves', async () => {
   const { page, problems } = await open();
   await page.getByLabel('Drones', { exact: true }).selectOption('50');

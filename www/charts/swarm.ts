@@ -4,6 +4,7 @@ import { chartFrame, chartFont, fitLabel, SF_COLORS, labelRoom } from './colors'
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
 import { flightTime, stationPhrase, trackedPercent } from '../format';
+import { DEFAULTS, plan } from '../state';
 import { logAxis, plainNumber } from './logAxis';
 
 /** " (errors over 88 % of the flight time: ...)": said when a swarm's stations spend enough of it
@@ -83,7 +84,7 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   note.className = 'note';
   note.textContent = `${largest.config.drones} drones flying ${flightTime(largest.config.duration)} each to a ${stationPhrase(largest.config.station, largest.config)}, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${largest.config.sfPlan === 'spread' ? `SFs spread by distance${adr ? ' at the start' : ''}` : `all ${adr ? 'starting ' : ''}on SF${largest.config.sf}`}${adr ? `, ADR sent their packets at ${sfShares(largest)}` : ''}: ${(100 * largest.collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %)${largest.leanPackets > 0 ? `, ${largest.leanPackets} of ${largest.packetsSent} packets with lean payloads` : ''}, median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${untracked(largest)}${thin ? `; ${thin} of ${drones.length} drones (hollow) received too few packets for their own p75 to compare` : ''}; ${(100 * largest.deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${adr ? `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped` : ''}; radio ${largest.energy.chargePerUplink.toFixed(2)} mC per uplink.${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
   const l = largest.largestSwarm;
-  note.textContent += ` Largest swarm one gateway serves at these settings${adr ? ' (at the starting SFs)' : ''}${largest.leanPackets > 0 ? ' (with full frames: the lean ones, shorter, leave room for more)' : ''}, every drone sending as often as its duty cycle allows: ${l.aloha1} drone${l.aloha1 === 1 ? '' : 's'} at ≤ 1 % collisions and ${l.aloha10} at ≤ 10 % with ALOHA (by its formula), ${l.slotted} slotted with none.`;
+  note.textContent += ` Largest swarm one gateway serves at these settings${adr ? ' (at the starting SFs)' : ''}${largest.leanPackets > 0 ? ' (with full frames: the lean ones, shorter, leave room for more)' : ''}, every drone sending ${pace(largest.config)}: ${l.aloha1} drone${l.aloha1 === 1 ? '' : 's'} at ≤ 1 % collisions and ${l.aloha10} at ≤ 10 % with ALOHA (by its formula), ${l.slotted} slotted with none.`;
   const box = document.createElement('div');
   box.append(collisions, errors, note);
   return box;
@@ -95,4 +96,13 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
 function pileHeight(chart: Element, base: number, least: number): number {
   const tops = [...chart.querySelectorAll('circle')].map((c) => Number(c.getAttribute('cy')) - Number(c.getAttribute('r')));
   return Math.max(least, ...tops.filter(Number.isFinite).map((top) => base - top));
+}
+
+/** How often each drone of the largest-swarm estimate sends (the core's `LargestSwarm`): as often
+ * as its duty cycle allows, or where the plan has none, at the interval set; never more than fair
+ * use leaves. */
+function pace(c: SwarmReport['config']): string {
+  const p = plan(c.region);
+  const rule = p.dutyCycle === null ? `every ${c.interval ?? DEFAULTS.interval} s (the interval set: ${p.label} has no duty cycle)` : 'as often as its duty cycle allows';
+  return c.fairUse === 'off' ? rule : `${rule}, or less often where ${c.fairUse.toUpperCase()} fair use leaves less airtime`;
 }
