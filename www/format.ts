@@ -109,6 +109,40 @@ export function fewPacketsNote(points: { at: string; received: number; few: bool
   return `${marks} rest on too few received packets to tell the stations apart: ${counts.join(', ')} ${unit}. More flight time gives them more.`;
 }
 
+/** Under a sweep's chart, what the core refused and why, one reason at a time: a whole point
+ * ("Not simulated at SF11: US915 has no uplink data rate at SF11/125 kHz.") or the stations of it
+ * that did not run ("3D-CTRA not simulated at SF10: …"). Points refused alike are named together,
+ * with the numbers in which their reasons differ side by side ("(SF9/10 at 250 kHz: 10.3/18.5
+ * s)"); '' where nothing was refused. `asked` are the stations the run names, `ran` those of each
+ * point's report. */
+export function refusedNote(points: { at: string; asked: ModelName[]; ran: ModelName[]; error?: string }[]): string {
+  const groups = new Map<string, { who: string; at: string[]; errors: string[] }>();
+  for (const p of points) {
+    if (!p.error) continue;
+    const missing = p.asked.filter((m) => !p.ran.includes(m));
+    const who = p.ran.length ? `${names(missing.map((model) => ({ model })))} not simulated` : 'Not simulated';
+    const error = p.error.replace(/\.$/, '');
+    const key = `${who}\n${error.replace(NUMBER, '#')}`;
+    const g = groups.get(key) ?? { who, at: [], errors: [] };
+    groups.set(key, { who, at: [...g.at, p.at], errors: [...g.errors, error] });
+  }
+  return [...groups.values()].map((g) => `${g.who} at ${g.at.join(', ')}: ${sideBySide(g.errors)}.`).join(' ');
+}
+
+const NUMBER = /\d+(?:\.\d+)?/g;
+
+/** Messages alike but for their numbers as one, each number that differs given as all of them in
+ * turn: "SF9 at 250 kHz: 10.3 s" and "SF10 at 250 kHz: 18.5 s" make "SF9/10 at 250 kHz: 10.3/18.5 s". */
+function sideBySide(messages: string[]): string {
+  const numbers = messages.map((m) => m.match(NUMBER) ?? []);
+  let k = 0;
+  return messages[0].replace(NUMBER, () => {
+    const all = [...new Set(numbers.map((n) => n[k]))];
+    k++;
+    return all.join('/');
+  });
+}
+
 /** Under a sweep's chart, which runs one seed whatever the table pools (the page's sweep charts
  * each run 6 settings more): says so where the table on show pools `tableSeeds` seeds, whose
  * numbers the chart's point at the same setting would otherwise seem to contradict; '' for one. */

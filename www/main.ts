@@ -11,12 +11,12 @@ import { $, fitOnWidth, linkDocs, presenting, tighten } from './dom';
 import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
 import { field, form, markField, onFormChange, readControls, settingWords, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
-import { caption, fewPacketsNote, fixedRateNote, noLineNote, oneGatewayNote, oneSeedNote, seriesNote } from './format';
+import { caption, fewPacketsNote, fixedRateNote, noLineNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote } from './format';
 import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { renderBaseline, renderTable, restingNotes } from './results';
 import { setUpPresent } from './present';
-import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, simulateRequest, toParams, type Settings } from './state';
+import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, simulateRequest, toParams, type Settings } from './state';
 import { pageQuery, store } from './store';
 import type { Request, Response, SimulateRequest } from './worker';
 
@@ -473,10 +473,14 @@ function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made
   lastSweep = sweep;
   later('distance', () => renderDistance(sweep.flatMap(({ point, report: rep }) => ('distance' in point && rep ? [{ distance: point.distance, report: rep }] : [])), made));
   later('sf', () => renderSfs(sweep.flatMap(({ point, report: rep }) => ('sf' in point && rep ? [{ sf: point.sf, report: rep }] : [])), made));
-  // An SF the core refuses at these settings is left out of the chart, and the note says why.
-  const refused = sweep.filter((x) => 'sf' in x.point && !x.report);
-  $('#sf-note').hidden = refused.length === 0;
-  $('#sf-note').textContent = refused.length ? `Not simulated at ${refused.map((x) => ('sf' in x.point ? `SF${x.point.sf}` : '')).join(', ')}: ${refused[0].error}.` : '';
+  // An SF, or a station at an SF, the core refuses at these settings is left out of the chart,
+  // and the note says why.
+  // SFs the plan lacks share one reason (the core names each SF in its own).
+  const asked = stationsOf(made.model);
+  const why = (sf: number, error?: string) => (error && !planAllows(made.region, sf, made.bw) ? planReason(made.region) : error);
+  const note = refusedNote(sweep.flatMap(({ point, report: rep, error }) => ('sf' in point ? [{ at: `SF${point.sf}`, asked, ran: rep?.results.map((r) => r.model) ?? [], error: why(point.sf, error) }] : [])));
+  $('#sf-note').hidden = !note;
+  $('#sf-note').textContent = note;
 }
 
 /** What each panel drawn by `drawPanel` was last drawn from, with the page's type size then. */

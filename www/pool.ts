@@ -5,7 +5,8 @@
 // their reports in the request's model order. Every station's numbers depend only on the
 // flight, the seed and its own settings (the link's random streams are derived per flight), so
 // the merged report equals what one worker (or the CLI) computes for all models at once.
-import { compiledModule, poolDelivery, splitStations, stationsOf, type SimReport, type SwarmParams, type SwarmReport } from './loratrack';
+import { compiledModule, splitStations, stationsOf, type SimReport, type SwarmParams, type SwarmReport } from './loratrack';
+import { merge, mergeSweepPoint } from './merge';
 import type { ModuleMessage, Request, Response, SimulateRequest, SweepResult } from './worker';
 
 /** A simulation worker (www/worker.ts), given the page's compiled module once it is ready;
@@ -159,12 +160,7 @@ export class SimulationPool {
           on({ id: request.id, report: merge(parts.map((p) => p.report!), models, request.params.model ?? 'all'), millis: Math.max(...parts.map((p) => p.millis ?? 0)) });
         }
         if ('sweep' in r && parts.every((p) => p.sweep)) {
-          // A point is merged when every worker ran it; otherwise it carries the first refusal.
-          const sweep = parts[0].sweep!.map(({ point }, i): SweepResult => {
-            const runs = parts.map((p) => p.sweep![i]);
-            const refused = runs.find((x) => !x.report);
-            return refused ? { point, error: refused.error } : { point, report: merge(runs.map((x) => x.report!), models, request.params.model ?? 'all') };
-          });
+          const sweep = parts[0].sweep!.map(({ point }, i) => mergeSweepPoint(point, parts.map((p) => p.sweep![i]), models, request.params.model ?? 'all'));
           forget();
           on({ id: request.id, sweep });
         }
@@ -184,19 +180,3 @@ function sameRun(request: SimulateRequest): string {
   return JSON.stringify({ ...request, id: 0 });
 }
 
-/** The reports of disjoint groups of stations as one report, stations in `models` order, with the
- * network totals the core pools from every station's run (`poolDelivery`). */
-export function merge(reports: SimReport[], models: string[], model: SimReport['config']['model']): SimReport {
-  const results = models.map((m) => reports.flatMap((r) => r.results).find((x) => x.model === m)!);
-  const base = reports[0];
-  // The mission's plan comes with whichever group ran the mission station.
-  const plan = reports.map((r) => r.series?.plan).find((p) => p !== undefined);
-  const series = base.series && { ...base.series, ...(plan ? { plan } : {}), models: models.map((m) => reports.flatMap((r) => r.series?.models ?? []).find((s) => s.model === m)!) };
-  return {
-    ...base,
-    config: { ...base.config, model, models: results.map((r) => r.model) },
-    ...poolDelivery(results),
-    results,
-    ...(series ? { series } : {}),
-  };
-}

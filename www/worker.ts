@@ -1,13 +1,15 @@
 // Runs simulations off the main thread so the page never freezes. One message in, one out:
 //   { id, params, sweep? }  →  [{ id, partial }] { id, progress }* then { id, report } | { id, error }
-//                               then, with sweep points, { id, sweep: [{ point, report | error }] }
-import { load, loadCsv, settingOf, simulate, swarm, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
+//                               then, with sweep points, { id, sweep: [{ point, report?, error? }] }
+import { load, loadCsv, settingOf, simulate, stationsOf, swarm, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
+import { merge } from './merge';
 
 /** One point of a sweep beside the main run: the gateway at another distance, or another SF. */
 export type SweepPoint = { distance: number } | { sf: number };
 
-/** One sweep point's run: its report, or why the core refused it (e.g. an error-triggered
- * heartbeat shorter than SF12's interval); the main run stands either way. */
+/** One sweep point's run: its report, and why the core refused it (e.g. an error-triggered
+ * heartbeat shorter than SF12's interval) where it refused any station: the report then has the
+ * stations that ran, if any. The main run stands either way. */
 export interface SweepResult {
   point: SweepPoint;
   report?: SimReport;
@@ -103,19 +105,32 @@ self.onmessage = async (event: MessageEvent<Request | ModuleMessage>) => {
       // seed each (the charts show the spread across the sweep, not across seeds). A distance
       // moves the one default gateway, so listed gateways are left out; another SF is a fixed
       // data rate (ADR would move it).
-      const sweep = points.map((point): SweepResult => {
-        try {
-          return { point, report: simulate({ ...params, ...('distance' in point ? { gateways: [] } : { adr: 'off' }), ...point, seeds: 1, series: false }) };
-        } catch (e) {
-          return { point, error: e instanceof Error ? e.message : String(e) };
-        }
-      });
+      const sweep = points.map((point) => sweepPoint({ ...params, ...('distance' in point ? { gateways: [] } : { adr: 'off' }), ...point, seeds: 1, series: false }, point));
       post({ id, sweep });
     }
   } catch (e) {
     post({ id, error: e instanceof Error ? e.message : String(e), setting: settingOf(e) });
   }
 };
+
+/** A sweep point's run. Where the core refuses it, each station is tried alone: a data rate may
+ * carry DR's and CTRA+'s frames but not the 12-byte one (US915's SF10), or an error-triggered
+ * heartbeat fit the shorter frames' intervals; those that run are kept, with the refusal. */
+function sweepPoint(params: SimulateParams, point: SweepPoint): SweepResult {
+  const run = (p: SimulateParams): SweepResult => {
+    try {
+      return { point, report: simulate(p) };
+    } catch (e) {
+      return { point, error: e instanceof Error ? e.message : String(e) };
+    }
+  };
+  const all = run(params);
+  const stations = stationsOf(params.model);
+  if (all.report || stations.length < 2) return all;
+  const alone = stations.map((m) => run({ ...params, model: m }));
+  const ran = alone.flatMap((x) => (x.report ? [x.report] : []));
+  return ran.length ? { point, report: merge(ran, stations, params.model ?? 'all'), error: alone.find((x) => x.error)!.error } : all;
+}
 
 function runSwarms({ id, swarm: { sizes, params } }: SwarmRequest, post: (r: Response) => void): void {
   try {

@@ -392,6 +392,19 @@ test('the regional plan: US915 offers only its data rates, asks for an interval,
   await page.getByLabel('Model', { exact: true }).selectOption('all');
   await waitForResults(page);
   await idle(page);
+  // The SF chart draws the stations SF10 carries, with the CLI's numbers, and says which it does
+  // not and why; SF11 and SF12 under one reason.
+  await page.waitForSelector('#chart-sf svg');
+  const sfTitles = await page.locator('#chart-sf svg title').allTextContents();
+  const atSf10 = nativeJson(['simulate', '--synthetic', '1', '--sf', '10', '--bw', '125', '--region', 'us915', '--interval', '1', '--model', 'dr,ctra-plus']);
+  for (const r of atSf10.results) {
+    const shown = sfTitles.find((t) => t.startsWith(`${{ dr: 'DR', 'ctra-plus': 'CTRA+' }[r.model]}, SF10:`));
+    assert.equal(Number(/p75 ([\d.]+) m/.exec(shown)[1]).toFixed(2), r.error3d.p75.toFixed(2), shown);
+  }
+  assert.ok(!sfTitles.some((t) => /^3D-CTRA, SF1[0-2]:/.test(t)), sfTitles.join('; '));
+  const sfNote = await page.locator('#sf-note').textContent();
+  assert.match(sfNote, /^3D-CTRA not simulated at SF10: 3D-CTRA sends 12 bytes \(\+13 overhead\): the frame takes 411\.6 ms/);
+  assert.match(sfNote, /Not simulated at SF11, SF12: US915 offers only DR0 SF10\/125/);
   // So does the link budget: US915's SFs with their data rates, and the ones it lacks.
   const link = await page.locator('#chart-link .note').textContent();
   assert.match(link, /SF9 \(DR1\) [\d.]+ km/);

@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { adrFrom, caption, describe, stationPhrase, fewPacketsNote, fixedRateNote, flightTime, noLineNote, oneGatewayNote, oneSeedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
+import { adrFrom, caption, describe, stationPhrase, fewPacketsNote, fixedRateNote, flightTime, noLineNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -112,4 +112,23 @@ test('the error chart says which flight and seed it draws where the table pools 
   expect(seriesNote({ flights: 30, seeds: 1, seed: 1 }, 'synthetic 1')).toBe('This chart is synthetic 1 with seed 1 alone; the results table pools 30 flights × 1 seed.');
   expect(seriesNote({ flights: 1, seeds: 10, seed: 2 }, 'canberra')).toBe('This chart is canberra with seed 2 alone; the results table pools 1 flight × 10 seeds.');
   expect(seriesNote({ flights: 30, seeds: 2, seed: 1 }, 'synthetic 1', 'view')).toMatch(/^This view is synthetic 1 with seed 1 alone/);
+});
+
+test('the refused note names whole points and the stations of a point that did not run, one reason at a time', () => {
+  const asked = ['dr', 'ctra-plus', '3d-ctra'] as const;
+  const note = refusedNote([
+    { at: 'SF9', asked: [...asked], ran: [...asked] },
+    { at: 'SF10', asked: [...asked], ran: ['dr', 'ctra-plus'], error: 'over the dwell time' },
+    { at: 'SF11', asked: [...asked], ran: [], error: 'no such data rate.' },
+    { at: 'SF12', asked: [...asked], ran: [], error: 'no such data rate.' },
+  ]);
+  expect(note).toBe('3D-CTRA not simulated at SF10: over the dwell time. Not simulated at SF11, SF12: no such data rate.');
+  expect(refusedNote([{ at: 'SF7', asked: [...asked], ran: [...asked] }])).toBe('');
+});
+
+test('points refused alike but for their numbers share one sentence, the numbers side by side', () => {
+  const asked = ['dr'] as const;
+  const why = (sf: number, s: number) => `maxInterval must be at least the interval (SF${sf} at 250 kHz: ${s} s), got 10`;
+  const note = refusedNote([9, 10, 11].map((sf, i) => ({ at: `SF${sf}`, asked: [...asked], ran: [], error: why(sf, [10.3, 18.5, 33][i]) })));
+  expect(note).toBe('Not simulated at SF9, SF10, SF11: maxInterval must be at least the interval (SF9/10/11 at 250 kHz: 10.3/18.5/33 s), got 10.');
 });

@@ -1,7 +1,8 @@
 // The worker pool splits a run by station and merges the reports: the merged report must be what
 // one worker (or the CLI) reports for all stations at once.
 import { expect, test, vi } from 'vitest';
-import { merge, runSwarms, shareOut, SimulationPool } from '../../www/pool';
+import { merge, mergeSweepPoint } from '../../www/merge';
+import { runSwarms, shareOut, SimulationPool } from '../../www/pool';
 import type { SimReport } from '../../www/loratrack';
 import type { Response, SimulateRequest } from '../../www/worker';
 
@@ -173,4 +174,16 @@ test('a swarm that fails stops every worker of the run and says why', async () =
   workers[1].onmessage({ data: { id: 1, error: 'drones: at most 500' } });
   await expect(run.done).rejects.toThrow('drones: at most 500');
   expect(workers.every((w) => w.terminated)).toBe(true);
+});
+
+test('a sweep point some of whose stations the core refused keeps those that ran, in order, with the refusal', () => {
+  const a = report([result('dr', 28, 28)]);
+  const point = { sf: 10 };
+  const m = mergeSweepPoint(point, [{ point, report: a, error: 'over the dwell time' }, { point, error: 'over the dwell time' }], ['dr', 'ctra-plus', '3d-ctra'], 'all');
+  expect(m.report?.results.map((r) => r.model)).toEqual(['dr']);
+  expect(m.report?.config.models).toEqual(['dr']);
+  expect(m.error).toBe('over the dwell time');
+  // None ran: the refusal alone; all ran: the report alone.
+  expect(mergeSweepPoint(point, [{ point, error: 'no data rate' }], ['dr'], 'dr')).toEqual({ point, error: 'no data rate' });
+  expect(mergeSweepPoint(point, [{ point, report: a }], ['dr'], 'dr').error).toBeUndefined();
 });

@@ -1,0 +1,31 @@
+// Reports of some of a run's stations made one: the pool's workers each run a group of stations,
+// and a sweep point some stations of which the core refuses runs the others alone (worker.ts).
+import { poolDelivery, type SimReport } from './loratrack';
+import type { SweepPoint, SweepResult } from './worker';
+
+/** The reports of disjoint groups of stations as one report, stations in `models` order (those
+ * that ran: a sweep point may lack some), with the network totals the core pools from every
+ * station's run (`poolDelivery`). */
+export function merge(reports: SimReport[], models: string[], model: SimReport['config']['model']): SimReport {
+  const results = models.flatMap((m) => reports.flatMap((r) => r.results).filter((x) => x.model === m).slice(0, 1));
+  const base = reports[0];
+  // The mission's plan comes with whichever group ran the mission station.
+  const plan = reports.map((r) => r.series?.plan).find((p) => p !== undefined);
+  const series = base.series && { ...base.series, ...(plan ? { plan } : {}), models: models.flatMap((m) => reports.flatMap((r) => r.series?.models ?? []).filter((s) => s.model === m).slice(0, 1)) };
+  return {
+    ...base,
+    config: { ...base.config, model, models: results.map((r) => r.model) },
+    ...poolDelivery(results),
+    results,
+    ...(series ? { series } : {}),
+  };
+}
+
+/** One sweep point as the groups of stations ran it: the stations that ran, merged, and the
+ * first refusal where the core refused any (`report` without `error`: all ran; `error` alone:
+ * none did). */
+export function mergeSweepPoint(point: SweepPoint, runs: SweepResult[], models: string[], model: SimReport['config']['model']): SweepResult {
+  const reports = runs.flatMap((x) => (x.report ? [x.report] : []));
+  const error = runs.find((x) => x.error)?.error;
+  return { point, ...(reports.length ? { report: merge(reports, models, model) } : {}), ...(error ? { error } : {}) };
+}
