@@ -228,19 +228,23 @@ function frameRefusal(model: string, sf: number, bw: number, region: Region): st
     fairUse: field('fairUse').value as Settings['fairUse'],
     interval: invalid('interval', interval) ? store.settings.interval : interval,
   });
-  const refused = new Map<string, { names: string[]; bytes: number }>();
+  // Each reason with the stations refused for it by their frames' length in bytes.
+  const refused = new Map<string, Map<number, string[]>>();
   try {
     for (const station of stationsOf(model)) {
-      const bytes = PAYLOAD_BYTES[station] + link.overhead;
       const why = timeOnAir({ sf, bw, payload: PAYLOAD_BYTES[station], ...link }).refused;
-      if (why) refused.set(why, { names: [...(refused.get(why)?.names ?? []), MODEL_LABELS[station]], bytes });
+      if (!why) continue;
+      const bytes = PAYLOAD_BYTES[station] + link.overhead;
+      const byBytes = refused.get(why) ?? new Map<number, string[]>();
+      refused.set(why, byBytes.set(bytes, [...(byBytes.get(bytes) ?? []), MODEL_LABELS[station]]));
     }
   } catch {
     // A setting the form marks beside its field; the core says the rest when the run is asked for.
     return null;
   }
   const named = (names: string[]) => (names.length < 2 ? names.join('') : `${names.slice(0, -1).join(', ')} and ${names[names.length - 1]}`);
-  return refused.size ? [...refused].map(([why, r]) => `${named(r.names)} (${r.bytes}-byte frame): ${why}.`).join(' ') : null;
+  const stations = (byBytes: Map<number, string[]>) => [...byBytes].map(([bytes, labels]) => `${named(labels)} (${bytes}-byte frame)`);
+  return refused.size ? [...refused].map(([why, byBytes]) => `${named(stations(byBytes))}: ${why}.`).join(' ') : null;
 }
 
 /** The form's min and max come from the core's table, as the URL's checks do; the distance
