@@ -94,16 +94,18 @@ export function downloadErrorCsv(report: SimReport): void {
   save(new Blob([csvText(rows)], { type: 'text/csv' }), name);
 }
 
-/** One row per station: the numbers of the results table, unrounded, with the 95 % intervals.
+/** One row per station: the numbers of the results table, unrounded, with the 95 % intervals,
+ * and what made them: the settings in words (the charts' caption) and a link that opens the page
+ * at them, in each row so that rows pasted beside another run's keep theirs.
  * `time_on_air_s` and `interval_s` are the starting rate's; the `_mean_s` columns average over the
  * packets sent and the `_min_s` / `_max_s` ones span the data rates used, as the table's cells
  * show them where ADR moved the rate. `too_few_packets` and `silence_after_loss` are the notes
  * under the table (the core's caveats), true or false: a spreadsheet sorted by p75 keeps them. */
-export function downloadResultsCsv(report: SimReport): void {
-  const header = ['model', 'payload_bytes', 'time_on_air_s', 'interval_s', 'packets_sent', 'packets_received', 'delivery_ratio', 'mean_m', 'p50_m', 'p75_m', 'p75_lo_m', 'p75_hi_m', 'p95_m', 'max_m', 'samples', 'tracked_share', 'runs', 'coverage95', 'nees', 'charge_per_uplink_mC', 'lean_packets', 'lean_time_on_air_s', 'lean_interval_s', 'time_on_air_mean_s', 'time_on_air_min_s', 'time_on_air_max_s', 'interval_mean_s', 'interval_min_s', 'interval_max_s', 'too_few_packets', 'silence_after_loss'];
+export function downloadResultsCsv(report: SimReport, made: { settings: string; link: string }): void {
+  const header = ['model', 'payload_bytes', 'time_on_air_s', 'interval_s', 'packets_sent', 'packets_received', 'delivery_ratio', 'mean_m', 'p50_m', 'p75_m', 'p75_lo_m', 'p75_hi_m', 'p95_m', 'max_m', 'samples', 'tracked_share', 'runs', 'coverage95', 'nees', 'charge_per_uplink_mC', 'lean_packets', 'lean_time_on_air_s', 'lean_interval_s', 'time_on_air_mean_s', 'time_on_air_min_s', 'time_on_air_max_s', 'interval_mean_s', 'interval_min_s', 'interval_max_s', 'too_few_packets', 'silence_after_loss', 'settings', 'link'];
   const n = (v: number | null | undefined) => (v === null || v === undefined ? '' : String(v));
   const span = (values: number[]) => (values.length ? [n(Math.min(...values)), n(Math.max(...values))] : ['', '']);
-  const rows = report.results.map((m) => [m.model, n(m.payloadBytes), n(m.timeOnAir), n(m.interval), n(m.packetsSent), n(m.packetsReceived), n(m.deliveryRatio), n(m.error3d.mean), n(m.error3d.p50), n(m.error3d.p75), n(m.ci95?.p75[0]), n(m.ci95?.p75[1]), n(m.error3d.p95), n(m.error3d.max), n(m.error3d.count), n(m.wholeFlight.tracked), n(m.ci95?.runs ?? 1), n(m.coverage95), n(m.nees), n(m.energy.chargePerUplink), n(m.leanPackets), n(m.leanFrame?.timeOnAir), n(m.leanFrame?.interval), n(m.meanTimeOnAir), ...span(m.dataRateUse.map((u) => u.timeOnAir)), n(m.meanInterval), ...span(m.dataRateUse.map((u) => u.interval)), String(m.caveats.fewPackets), String(m.caveats.silenceAfterLoss)]);
+  const rows = report.results.map((m) => [m.model, n(m.payloadBytes), n(m.timeOnAir), n(m.interval), n(m.packetsSent), n(m.packetsReceived), n(m.deliveryRatio), n(m.error3d.mean), n(m.error3d.p50), n(m.error3d.p75), n(m.ci95?.p75[0]), n(m.ci95?.p75[1]), n(m.error3d.p95), n(m.error3d.max), n(m.error3d.count), n(m.wholeFlight.tracked), n(m.ci95?.runs ?? 1), n(m.coverage95), n(m.nees), n(m.energy.chargePerUplink), n(m.leanPackets), n(m.leanFrame?.timeOnAir), n(m.leanFrame?.interval), n(m.meanTimeOnAir), ...span(m.dataRateUse.map((u) => u.timeOnAir)), n(m.meanInterval), ...span(m.dataRateUse.map((u) => u.interval)), String(m.caveats.fewPackets), String(m.caveats.silenceAfterLoss), made.settings, made.link]);
   save(new Blob([csvText([header, ...rows])], { type: 'text/csv' }), 'loratrack-results.csv');
 }
 

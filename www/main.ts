@@ -16,7 +16,7 @@ import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { renderBaseline, renderTable, restingNotes } from './results';
 import { setUpPresent } from './present';
-import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, simulateRequest, toParams, type Settings } from './state';
+import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, simulateRequest, toParams, toQuery, type Settings } from './state';
 import { pageQuery, store } from './store';
 import type { Request, Response, SimulateRequest } from './worker';
 
@@ -779,7 +779,8 @@ function noResults(): string {
 for (const [id, save] of [
   ['download-csv', (r: SimReport) => downloadErrorCsv(r)],
   ['download-json', (r: SimReport) => downloadJson(r, store.reportSettings)],
-  ['download-results-csv', (r: SimReport) => downloadResultsCsv(r)],
+  // An uploaded flight never leaves this computer: no link opens it.
+  ['download-results-csv', (r: SimReport) => downloadResultsCsv(r, { settings: caption(store.reportSettings), link: store.reportSettings.flight === 'csv' ? '' : `${location.origin}${location.pathname}?${toQuery(store.reportSettings)}` })],
 ] as const) {
   $(`#${id}`).addEventListener('click', () => {
     const report = shownReport($(`#${id}`));
