@@ -129,7 +129,7 @@ function sweepPoint(params: SimulateParams, point: SweepPoint): SweepResult {
   if (all.report || stations.length < 2) return all;
   const alone = stations.map((m) => run({ ...params, model: m }));
   const ran = alone.flatMap((x) => (x.report ? [x.report] : []));
-  return ran.length ? { point, report: merge(ran, stations, params.model ?? 'all'), error: alone.find((x) => x.error)!.error } : all;
+  return ran.length ? { point, report: merge(ran, stations, params.model ?? 'all'), error: alone.find((x) => x.error)?.error ?? all.error } : all;
 }
 
 function runSwarms({ id, swarm: { sizes, params } }: SwarmRequest, post: (r: Response) => void): void {
