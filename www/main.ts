@@ -582,6 +582,7 @@ function onChange(): void {
   store.settings = next;
   history.replaceState(null, '', `?${pageQuery()}`);
   renderLessonChanges();
+  markSwarmStale();
   submit();
   // A quick run's numbers first: drawn ahead of them, the airtime and link charts (~60 and ~30
   // ms on two cores) held a changed SF's results back by ~100 ms (docs/performance.md). A long
@@ -667,13 +668,16 @@ $('#reset-view').addEventListener('click', () => trajectory3d?.resetView());
 
 // ---- the swarm panel: workers of its own, so a swarm never holds up the single-drone results --
 let swarmRun: SwarmRun | undefined;
-$('#run-swarm').addEventListener('click', () => {
-  swarmRun?.stop();
+
+/** The swarms the panel would run now: growing sizes up to its drones, each with the single
+ * drone's settings and the panel's choices. */
+function swarmRequest(): { sizes: number[]; params: SwarmParams } {
   const n = Number($<HTMLSelectElement>('#swarmDrones').value);
   const sizes = [...new Set([2, Math.round(n / 8), Math.round(n / 4), Math.round(n / 2), n])].filter((k) => k >= 1);
   // The swarm takes every setting of the single drone; its drones chain synthetic flights around
-  // the centre, and run one station (a list of models runs 3D-CTRA, as `all` does).
-  const { synthetic: _s, sample: _m, trajectory: _t, trajectoryName: _n, plan: _p, ...shared } = toParams(store.settings, store.csv);
+  // the centre, and run one station (a list of models runs 3D-CTRA, as `all` does) and one seed
+  // (its drones give its spread; the core refuses more).
+  const { synthetic: _s, sample: _m, trajectory: _t, trajectoryName: _n, plan: _p, seeds: _r, ...shared } = toParams(store.settings, store.csv);
   const params: SwarmParams = {
     ...shared,
     model: stationsOf(store.settings.model).length === 1 ? store.settings.model : 'all',
@@ -683,7 +687,24 @@ $('#run-swarm').addEventListener('click', () => {
     sfPlan: $<HTMLSelectElement>('#swarmPlan').value as 'fixed' | 'spread',
     schedule: $<HTMLSelectElement>('#swarmSchedule').value as 'aloha' | 'slotted',
   };
-  const made = { ...store.settings };
+  return { sizes, params };
+}
+
+/** The request of the swarms on show, to tell when the settings have moved on from them. */
+let swarmShown: string | undefined;
+
+/** Marks the swarms on show as old where the panel would now run other swarms (a setting of the
+ * drone or a choice of the panel changed since): they run only when asked, so nothing else would
+ * say that their numbers are not the settings' on show. */
+function markSwarmStale(): void {
+  const stale = swarmShown !== undefined && JSON.stringify(swarmRequest()) !== swarmShown;
+  $('[data-panel="swarm"]').classList.toggle('stale', stale);
+}
+
+$('#run-swarm').addEventListener('click', () => {
+  swarmRun?.stop();
+  const { sizes, params } = swarmRequest();
+  const made = { ...store.settings, seeds: 1 };
   const bar = $<HTMLProgressElement>('#swarm-progress');
   bar.hidden = false;
   bar.value = 0;
@@ -707,6 +728,8 @@ $('#run-swarm').addEventListener('click', () => {
       end();
       const rates = swarms.map((w) => `${w.config.drones} drones ${(100 * w.collisionRate).toFixed(1)} %`).join(', ');
       $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(millis / 1000).toFixed(1)} s. Packets collided: ${rates}.`;
+      swarmShown = JSON.stringify({ sizes, params });
+      markSwarmStale();
       lastSwarm = async () => place('swarm', (await plots()).swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${swarms[0]?.drones[0]?.channelUse.length ?? params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.schedule}, ${params.duration} s each`);
       later('swarm', lastSwarm);
     },
@@ -905,7 +928,11 @@ function swarmChanges(own: NonNullable<Lesson['swarm']>): string[] {
   });
 }
 // Every choice of the swarm panel, as the panel has them: a new one cannot be left out.
-for (const select of document.querySelectorAll('.swarm-controls select')) select.addEventListener('change', () => renderLessonChanges());
+for (const select of document.querySelectorAll('.swarm-controls select'))
+  select.addEventListener('change', () => {
+    renderLessonChanges();
+    markSwarmStale();
+  });
 // The help texts and the lesson name the docs their numbers come from: links to their pages.
 linkDocs(document.body);
 

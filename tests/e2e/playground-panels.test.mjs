@@ -436,6 +436,40 @@ test('a US915 swarm spread by distance takes the data rates that carry its frame
   assert.deepEqual(problems, []);
 });
 
+test('swarms run one seed whatever the table pools, and are marked old once a setting they rest on changes', async () => {
+  const { page, problems } = await open('?sf=9&bw=125&seeds=10');
+  await page.getByLabel('Drones', { exact: true }).selectOption('20');
+  await page.getByLabel('SF plan').selectOption('fixed');
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  // Ten seeds pooled in the table: the swarm still runs (the core refuses seeds for a swarm), one seed.
+  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sf', '9', '--bw', '125']);
+  assert.ok((await page.locator('#chart-swarm .note').textContent()).includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`));
+  const slide = (await downloaded(page, page.getByRole('button', { name: 'Download the swarm chart as SVG' }))).toString('utf8').replace(/<[^>]+>/g, ' ');
+  assert.match(slide, /seed 1;/);
+  const panel = page.locator('[data-panel="swarm"]');
+  const old = () => panel.evaluate((p) => p.classList.contains('stale') && getComputedStyle(p.querySelector('#chart-swarm'), '::before').content);
+  assert.equal(await old(), false);
+  // The seeds are not the swarm's: pooling fewer leaves it as it is.
+  await page.locator('#advanced summary').click();
+  const table = await tableHtml(page);
+  await page.getByLabel('Seeds (repeats)').fill('3');
+  await page.getByLabel('Seeds (repeats)').blur();
+  await waitForResults(page, table);
+  assert.equal(await old(), false);
+  // A setting of the drone, or a choice of the panel, the swarms rest on: they are old.
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('8');
+  assert.match(await old(), /Old swarms: these ran at the previous settings/);
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('9');
+  assert.equal(await old(), false);
+  await page.getByLabel('Schedule').selectOption('slotted');
+  assert.match(await old(), /Old swarms/);
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await until(page, () => !document.querySelector('[data-panel="swarm"]').classList.contains('stale'), null, { timeout: 60_000 });
+  assert.deepEqual(await axe(page), []);
+  assert.deepEqual(problems, []);
+});
+
 test('a slotted swarm collides with none of its own drones and says how many drones a gateway serves', async () => {
   const { page, problems } = await open();
   await page.getByLabel('Drones', { exact: true }).selectOption('50');
