@@ -6,6 +6,7 @@ import { caption, describe } from './format';
 import { restingNotes } from './results';
 import { toQuery } from './state';
 import { store } from './store';
+import { swarmQuery } from './swarmChoices';
 
 /** Every panel an embed can show, by its `data-panel` name. */
 export const PANELS = ['controls', 'results', 'trajectory', 'error', 'axes', 'distance', 'sf', 'link', 'swarm', 'airtime'];
@@ -80,7 +81,7 @@ export function setUpEmbedDialog(): void {
   function embedSnippet(): string {
     const chosen = [...document.querySelectorAll<HTMLInputElement>('#embed-panels input:checked')].map((b) => b.value);
     const url = new URL(location.href);
-    url.search = `?${toQuery(store.settings, { embed: '1', panels: (chosen.length ? chosen : ['results']).join(',') })}`;
+    url.search = `?${toQuery(store.settings, { ...(chosen.includes('swarm') ? swarmQuery() : {}), embed: '1', panels: (chosen.length ? chosen : ['results']).join(',') })}`;
     return `<iframe id="loratrack" src="${url.toString().replace(/&/g, '&amp;')}" title="loratrack: LoRa tracking playground (${describe(store.settings)})" style="width: 100%; border: 0" height="600" loading="lazy"></iframe>
 <script>
   // The frame posts its content height; grow it to fit.

@@ -18,6 +18,7 @@ import { renderBaseline, renderTable, restingNotes } from './results';
 import { setUpPresent } from './present';
 import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, simulateRequest, toParams, toQuery, type Settings } from './state';
 import { pageQuery, store } from './store';
+import { readSwarmQuery, swarmSelects } from './swarmChoices';
 import type { Request, Response, SimulateRequest } from './worker';
 
 /** The largest CSV the core reads (MAX_CSV_BYTES in src/trajectory/csv.rs). */
@@ -873,6 +874,8 @@ for (const l of LESSONS) {
   item.append(link);
   $('#lesson-list').append(item);
 }
+// The link's swarm choices first: a lesson with a swarm sets its own over them.
+store.notices.push(...readSwarmQuery(store.query));
 const asked = store.query.get('lesson');
 const lesson = store.embed ? undefined : LESSONS.find((l) => l.id === asked);
 if (asked !== null && !store.embed && !lesson) store.notices.push(`The link's lesson=${asked.slice(0, 40)} is not one of the lessons; the Lessons menu lists them.`);
@@ -928,8 +931,9 @@ function swarmChanges(own: NonNullable<Lesson['swarm']>): string[] {
   });
 }
 // Every choice of the swarm panel, as the panel has them: a new one cannot be left out.
-for (const select of document.querySelectorAll('.swarm-controls select'))
+for (const select of swarmSelects())
   select.addEventListener('change', () => {
+    history.replaceState(null, '', `?${pageQuery()}`);
     renderLessonChanges();
     markSwarmStale();
   });
@@ -984,5 +988,6 @@ submit();
 showConditional();
 if (running) settingsChartsWait = true;
 else renderSettingsCharts();
-// The lesson's swarm runs as if its button were pressed with its choices (set with the lesson).
-if (lesson?.swarm) $('#run-swarm').click();
+// The lesson's swarm runs as if its button were pressed with its choices (set with the lesson),
+// and so does an embed's: its reader came for the chart its author chose.
+if (lesson?.swarm || (store.embed && store.panels.split(',').includes('swarm'))) $('#run-swarm').click();

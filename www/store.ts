@@ -4,6 +4,7 @@
 import { presenting } from './dom';
 import type { SimReport } from './loratrack';
 import { fromQuery, toQuery, type Settings } from './state';
+import { swarmQuery } from './swarmChoices';
 
 // Outside a page (the unit tests) there is no link: the defaults.
 const search = typeof location === 'undefined' ? '' : location.search;
@@ -48,10 +49,10 @@ export const store: Store = {
   notices: [...parsed.problems],
 };
 
-/** The page's URL query: the settings, the pinned baseline's settings, the embed choice and the
- * lesson on show. */
+/** The page's URL query: the settings, the swarm panel's choices, the pinned baseline's settings,
+ * the embed choice and the lesson on show. */
 export function pageQuery(): string {
-  const extra: Record<string, string> = store.embed ? { embed: '1', panels: store.panels } : {};
+  const extra: Record<string, string> = { ...swarmQuery(), ...(store.embed ? { embed: '1', panels: store.panels } : {}) };
   if (presenting()) extra.present = '1';
   if (store.baseline) extra.baseline = toQuery(store.baseline.settings);
   if (store.lesson) extra.lesson = store.lesson;

@@ -6,7 +6,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { nativeJson, scratchDir } from './harness.mjs';
+import { nativeJson, openPage, scratchDir } from './harness.mjs';
 import { axe, axisLabelOverlaps, cell, chartTextsCut, cellNumber, downloaded, idle, layoutShifts, lesson, MODELS, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
@@ -468,6 +468,34 @@ test('swarms run one seed whatever the table pools, and are marked old once a se
   await until(page, () => !document.querySelector('[data-panel="swarm"]').classList.contains('stale'), null, { timeout: 60_000 });
   assert.deepEqual(await axe(page), []);
   assert.deepEqual(problems, []);
+});
+
+test('the swarm panel\'s choices travel in the link and the embed snippet, and an embed of the panel runs its swarm', async () => {
+  const { page, problems } = await open('?sf=9&bw=125');
+  await page.getByLabel('Drones', { exact: true }).selectOption('20');
+  await page.getByLabel('SF plan').selectOption('spread');
+  const link = new URL(page.url());
+  assert.equal(link.searchParams.get('swarmDrones'), '20');
+  assert.equal(link.searchParams.get('swarmPlan'), 'spread');
+  assert.equal(link.searchParams.get('swarmSchedule'), null, 'a default is left out');
+  await page.getByRole('button', { name: 'Embed…' }).click();
+  await page.getByRole('checkbox', { name: 'swarm' }).check();
+  const snippet = await page.getByLabel('HTML to paste').inputValue();
+  const src = new URL(/src="([^"]+)"/.exec(snippet)[1].replace(/&amp;/g, '&'));
+  assert.equal(src.searchParams.get('swarmDrones'), '20');
+  await page.getByRole('button', { name: 'Close' }).click();
+  // The embed opens the panel as it was and runs its swarm, as the CLI runs it; a value that is
+  // not one of the panel's choices is named and left at the default.
+  src.searchParams.set('swarmSchedule', 'bogus');
+  const embed = await openPage(playground.context, new URL(playground.url).origin);
+  await embed.page.goto(src.href);
+  await embed.page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  assert.equal(await embed.page.locator('#swarmDrones').inputValue(), '20');
+  assert.equal(await embed.page.locator('#swarmPlan').inputValue(), 'spread');
+  assert.match(await embed.page.locator('#embed-notices').textContent(), /The link's swarmSchedule=bogus is not one of the swarm panel's choices \(aloha, slotted\); it keeps aloha\./);
+  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'spread', '--model', '3d-ctra', '--sf', '9', '--bw', '125']);
+  assert.ok((await embed.page.locator('#chart-swarm .note').textContent()).includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`));
+  assert.deepEqual([...problems, ...embed.problems], []);
 });
 
 test('a slotted swarm collides with none of its own drones and says how many drones a gateway serves', async () => {
