@@ -16,7 +16,7 @@ import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { renderBaseline, renderTable, restingNotes } from './results';
 import { setUpPresent } from './present';
-import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, simulateRequest, toParams, toQuery, type Settings } from './state';
+import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, runsMission, simulateRequest, toParams, toQuery, type Settings } from './state';
 import { pageQuery, store } from './store';
 import { readSwarmQuery, swarmSelects } from './swarmChoices';
 import type { Request, Response, SimulateRequest } from './worker';
@@ -676,12 +676,13 @@ function swarmRequest(): { sizes: number[]; params: SwarmParams } {
   const n = Number($<HTMLSelectElement>('#swarmDrones').value);
   const sizes = [...new Set([2, Math.round(n / 8), Math.round(n / 4), Math.round(n / 2), n])].filter((k) => k >= 1);
   // The swarm takes every setting of the single drone; its drones chain synthetic flights around
-  // the centre, and run one station (a list of models runs 3D-CTRA, as `all` does) and one seed
-  // (its drones give its spread; the core refuses more).
+  // the centre, and run one station (a list of models runs 3D-CTRA, as `all` does, and so does the
+  // mission station, which would need each drone's own plan) and one seed (its drones give its
+  // spread; the core refuses more).
   const { synthetic: _s, sample: _m, trajectory: _t, trajectoryName: _n, plan: _p, seeds: _r, ...shared } = toParams(store.settings, store.csv);
   const params: SwarmParams = {
     ...shared,
-    model: stationsOf(store.settings.model).length === 1 ? store.settings.model : 'all',
+    model: stationsOf(store.settings.model).length === 1 && !runsMission(store.settings.model) ? store.settings.model : 'all',
     duration: Number($<HTMLSelectElement>('#swarmDuration').value),
     // One channel, or all the plan's (its default).
     ...($<HTMLSelectElement>('#swarmChannels').value === '1' ? { channels: 1 } : {}),

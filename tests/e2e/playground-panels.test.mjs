@@ -498,6 +498,19 @@ test('the swarm panel\'s choices travel in the link and the embed snippet, and a
   assert.deepEqual([...problems, ...embed.problems], []);
 });
 
+test('with the mission station chosen the swarm runs 3D-CTRA, as it does for several stations, and says so', async () => {
+  const { page, problems } = await open('?model=mission');
+  await page.getByLabel('Drones', { exact: true }).selectOption('20');
+  await page.getByLabel('SF plan').selectOption('fixed');
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  const note = await page.locator('#chart-swarm .note').textContent();
+  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra']);
+  assert.match(note, /^20 drones flying 2 minutes each to a 3D-CTRA station/);
+  assert.ok(note.includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`), note);
+  assert.deepEqual(problems, []);
+});
+
 test('a slotted swarm collides with none of its own drones and says how many drones a gateway serves', async () => {
   const { page, problems } = await open();
   await page.getByLabel('Drones', { exact: true }).selectOption('50');
