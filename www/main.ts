@@ -3,7 +3,7 @@
 // table in ./results, embeds in ./embed, presentation mode in ./present.
 import { pool } from './boot';
 import { runSwarms, spawnWorker, type SwarmRun } from './pool';
-import { linkBudget, load, MODEL_LABELS, stationsOf, type SimReport, type SwarmParams } from './loratrack';
+import { linkBudget, load, MODEL_LABELS, settingOf, stationsOf, type SimReport, type SwarmParams } from './loratrack';
 import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './charts/colors';
 import type { BoxRow } from './charts/plots';
 import type { Trajectory3d } from './charts/trajectory3d';
@@ -738,7 +738,11 @@ $('#run-swarm').addEventListener('click', () => {
     (e: Error) => {
       end();
       if (placeholder) placeholder.textContent = unrun;
-      $('#swarm-status').textContent = e.message;
+      // The core names the setting by its key (`maxInterval`); the form, by its label.
+      const key = settingOf(e);
+      const control = key && isNumericKey(key) ? field(key) : null;
+      const label = control?.labels?.[0]?.textContent?.trim();
+      $('#swarm-status').textContent = `These swarms cannot be simulated: ${e.message}.${label ? ` The setting it names is ${label}.` : ''}`;
     },
   );
 });

@@ -72,7 +72,8 @@ export function runSwarms(sizes: number[], params: SwarmParams, progress: (done:
               resolve();
             } else if ('error' in r) {
               stop();
-              reject(new Error(r.error));
+              // With the setting the core names, as a thrown error carries it (`settingOf`).
+              reject(Object.assign(new Error(r.error), { setting: r.setting }));
             }
           };
           running[k].postMessage({ id: 1, swarm: { sizes: share.map((i) => sizes[i]), params } } satisfies Request);

@@ -143,6 +143,6 @@ function runSwarms({ id, swarm: { sizes, params } }: SwarmRequest, post: (r: Res
     });
     post({ id, swarms });
   } catch (e) {
-    post({ id, error: e instanceof Error ? e.message : String(e) });
+    post({ id, error: e instanceof Error ? e.message : String(e), setting: settingOf(e) });
   }
 }

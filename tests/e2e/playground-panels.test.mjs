@@ -511,6 +511,18 @@ test('with the mission station chosen the swarm runs 3D-CTRA, as it does for sev
   assert.deepEqual(problems, []);
 });
 
+test('a swarm the core refuses says why and names the setting as the form labels it', async () => {
+  // Error-triggered sending's 10 s heartbeat is shorter than SF9's interval at 250 kHz: the single
+  // drone at SF7 runs, a swarm spread over SF7..SF12 cannot.
+  const { page, problems } = await open('?sender=error');
+  await page.getByLabel('SF plan').selectOption('spread');
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await until(page, () => /cannot be simulated/.test(document.querySelector('#swarm-status')?.textContent ?? ''), null, { timeout: 60_000 });
+  assert.match(await page.locator('#swarm-status').textContent(), /^These swarms cannot be simulated: maxInterval must be at least .*\(SF9 at 250 kHz: 10\.3 s\), got 10\. The setting it names is Heartbeat \(s\)\.$/);
+  assert.match(await page.locator('#chart-swarm').textContent(), /No swarm run yet/);
+  assert.deepEqual(problems, []);
+});
+
 test('a slotted swarm collides with none of its own drones and says how many drones a gateway serves', async () => {
   const { page, problems } = await open();
   await page.getByLabel('Drones', { exact: true }).selectOption('50');
