@@ -221,11 +221,11 @@ function onResponse(r: Response): void {
     } else {
       // An embed has no settings to change: its author chose them.
       const next = store.report ? ' Change a setting; the results below are for the previous settings.' : store.embed ? '' : ' Change a setting to see results.';
-      status.textContent = `These settings cannot be simulated: ${r.error}.${next}`;
+      status.textContent = `These settings cannot be simulated: ${r.error}.${namesSetting(r.setting)}${next}`;
       // The core names the setting it refuses (`maxInterval` shorter than the data rate's
       // interval, a limit the form cannot check alone): mark that control as the form marks its
       // own (the next change of any setting checks every control afresh and clears it).
-      const control = r.setting && isNumericKey(r.setting) ? field(r.setting) : null;
+      const control = numericControl(r.setting);
       if (control) markField(control, `${r.error}.`);
     }
     // Without results on show the refusal stands for them (an embed of charts alone shows it in
@@ -236,6 +236,16 @@ function onResponse(r: Response): void {
     sendQueued();
     return;
   }
+}
+
+/** The form's control of the numeric setting the core names by its key (`maxInterval`), if any. */
+const numericControl = (key?: string) => (key && isNumericKey(key) ? field(key) : null);
+
+/** The core names a setting it refuses by its key (`maxInterval`), the form by its label:
+ * " The setting it names is Heartbeat (s)." for a status line, or '' where it names none. */
+function namesSetting(key?: string): string {
+  const label = numericControl(key)?.labels?.[0]?.textContent?.trim();
+  return label ? ` The setting it names is ${label}.` : '';
 }
 
 /** Calls `show` in the next task, the page busy until it has: the message that brought a report
@@ -738,11 +748,7 @@ $('#run-swarm').addEventListener('click', () => {
     (e: Error) => {
       end();
       if (placeholder) placeholder.textContent = unrun;
-      // The core names the setting by its key (`maxInterval`); the form, by its label.
-      const key = settingOf(e);
-      const control = key && isNumericKey(key) ? field(key) : null;
-      const label = control?.labels?.[0]?.textContent?.trim();
-      $('#swarm-status').textContent = `These swarms cannot be simulated: ${e.message}.${label ? ` The setting it names is ${label}.` : ''}`;
+      $('#swarm-status').textContent = `These swarms cannot be simulated: ${e.message}.${namesSetting(settingOf(e))}`;
     },
   );
 });

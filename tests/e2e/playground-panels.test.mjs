@@ -1215,6 +1215,7 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   assert.equal(await heartbeat.inputValue(), '10');
   await page.getByLabel('Spreading factor', { exact: true }).selectOption('12');
   await until(page, () => /cannot be simulated: maxInterval must be/.test(document.querySelector('#status')?.textContent ?? ''));
+  assert.match(await page.locator('#status').textContent(), /got 10\. The setting it names is Heartbeat \(s\)\. Change a setting/);
   assert.equal(await heartbeat.getAttribute('aria-invalid'), 'true');
   assert.match(await page.locator('#maxInterval-error').textContent(), /SF12 at 250 kHz: [\d.]+ s\), got 10/);
   const before = await page.locator('#chart-sf').innerHTML();
