@@ -485,8 +485,7 @@ function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made
   later('distance', () => renderDistance(sweep.flatMap(({ point, report: rep }) => ('distance' in point && rep ? [{ distance: point.distance, report: rep }] : [])), made));
   later('sf', () => renderSfs(sweep.flatMap(({ point, report: rep }) => ('sf' in point && rep ? [{ sf: point.sf, report: rep }] : [])), made));
   // An SF, or a station at an SF, the core refuses at these settings is left out of the chart,
-  // and the note says why.
-  // SFs the plan lacks share one reason (the core names each SF in its own).
+  // and the note says why; the SFs the plan lacks under one reason (the core names each SF).
   const asked = stationsOf(made.model);
   const why = (sf: number, error?: string) => (error && !planAllows(made.region, sf, made.bw) ? planReason(made.region) : error);
   const note = refusedNote(sweep.flatMap(({ point, report: rep, error }) => ('sf' in point ? [{ at: `SF${point.sf}`, asked, ran: rep?.results.map((r) => r.model) ?? [], error: why(point.sf, error) }] : [])));
