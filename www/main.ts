@@ -684,11 +684,12 @@ let swarmRun: SwarmRun | undefined;
 function swarmRequest(): { sizes: number[]; params: SwarmParams } {
   const n = Number($<HTMLSelectElement>('#swarmDrones').value);
   const sizes = [...new Set([2, Math.round(n / 8), Math.round(n / 4), Math.round(n / 2), n])].filter((k) => k >= 1);
-  // The swarm takes every setting of the single drone; its drones chain synthetic flights around
+  // The swarm takes every setting of the single drone; its drones chain the real flight where it is
+  // chosen and the synthetic set otherwise (an uploaded flight stays with the single drone) around
   // the centre, and run one station (a list of models runs 3D-CTRA, as `all` does, and so does the
   // mission station, which would need each drone's own plan) and one seed (its drones give its
   // spread; the core refuses more).
-  const { synthetic: _s, sample: _m, trajectory: _t, trajectoryName: _n, plan: _p, seeds: _r, ...shared } = toParams(store.settings, store.csv);
+  const { synthetic: _s, trajectory: _t, trajectoryName: _n, plan: _p, seeds: _r, ...shared } = toParams(store.settings, store.csv);
   const params: SwarmParams = {
     ...shared,
     model: stationsOf(store.settings.model).length === 1 && !runsMission(store.settings.model) ? store.settings.model : 'all',
@@ -715,7 +716,8 @@ function markSwarmStale(): void {
 $('#run-swarm').addEventListener('click', () => {
   swarmRun?.stop();
   const { sizes, params } = swarmRequest();
-  const made = { ...store.settings, seeds: 1 };
+  // The settings its slides' captions give: one seed, and the flights it chains.
+  const made: Settings = { ...store.settings, seeds: 1, flight: params.sample ? 'canberra' : 'all' };
   const bar = $<HTMLProgressElement>('#swarm-progress');
   bar.hidden = false;
   bar.value = 0;

@@ -205,7 +205,7 @@ test('the swarm panel runs growing swarms and sets the collision rate against AL
   await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
   assert.equal(await page.locator('[data-panel="swarm"] .download-why').textContent(), '', 'the note left once the chart came');
   const note = await page.locator('#chart-swarm .note').textContent();
-  assert.match(note, /20 drones flying 2 minutes each to a 3D-CTRA station \(paper prediction\), 3 channels.*collided \(ALOHA predicts [\d.]+ %\)/);
+  assert.match(note, /20 drones flying 2 minutes of the synthetic set each to a 3D-CTRA station \(paper prediction\), 3 channels.*collided \(ALOHA predicts [\d.]+ %\)/);
   assert.ok((await page.locator('#chart-swarm svg').count()) >= 2);
   // The swarms run on several workers at once; each is reported in its place, with the CLI's numbers.
   const status = await page.locator('#swarm-status').textContent();
@@ -329,7 +329,7 @@ test('the swarm panel takes the single drone settings, ADR included, and reports
   const shares = sent.flatMap((n, k) => (n > 0 ? [`SF${k + 7} ${(100 * n) / total < 0.5 ? '<1' : ((100 * n) / total).toFixed(0)} %`] : [])).join(', ');
   assert.ok(sent[2] < total, `ADR moved no packet off SF9: ${sent}`);
   assert.ok(note.includes(`all starting on SF9, ADR sent their packets at ${shares}:`), `${note} / CLI: ${shares}`);
-  assert.match(note, /^20 drones flying 5 minutes each to a 3D-CTRA station \(paper prediction\), /);
+  assert.match(note, /^20 drones flying 5 minutes of the synthetic set each to a 3D-CTRA station \(paper prediction\), /);
   assert.match(note, /\d+ ADR downlinks sent, \d+ dropped; radio [\d.]+ mC per uplink/);
   assert.match(await page.locator('#chart-swarm').textContent(), /from SF9/);
   // One SF, p75s within a decade: its axis still has numbers (powers of ten alone left none).
@@ -349,8 +349,8 @@ test('a swarm of lean drones says how many of its packets went lean, as the CLI 
   assert.ok(cli.leanPackets > 0 && cli.leanPackets < cli.packetsSent, `${cli.leanPackets} of ${cli.packetsSent}`);
   // The p75 names the one station it rests on (the page's three stations run 3D-CTRA, as the CLI's `all` does).
   assert.ok(note.includes(`, ${cli.leanPackets} of ${cli.packetsSent} packets with lean payloads, median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`), note);
-  assert.ok(note.startsWith('20 drones flying 2 minutes each to a 3D-CTRA station (bounded prediction, periodic sending, lean payloads), '), note);
-  assert.match(note, /^20 drones flying 2 minutes each to a /);
+  assert.ok(note.startsWith('20 drones flying 2 minutes of the synthetic set each to a 3D-CTRA station (bounded prediction, periodic sending, lean payloads), '), note);
+  assert.match(note, /^20 drones flying 2 minutes of the synthetic set each to a /);
   // The largest swarm is counted with full frames, and says so.
   assert.ok(note.includes(`Largest swarm one gateway serves at these settings (with full frames: the lean ones, shorter, leave room for more), every drone sending as often as its duty cycle allows: ${cli.largestSwarm.aloha1} drone`), note);
   assert.deepEqual(problems, []);
@@ -446,7 +446,7 @@ test('swarms run one seed whatever the table pools, and are marked old once a se
   const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sf', '9', '--bw', '125']);
   assert.ok((await page.locator('#chart-swarm .note').textContent()).includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`));
   const slide = (await downloaded(page, page.getByRole('button', { name: 'Download the swarm chart as SVG' }))).toString('utf8').replace(/<[^>]+>/g, ' ');
-  assert.match(slide, /seed 1;/);
+  assert.match(slide, /whole synthetic set; seed 1;/);
   const panel = page.locator('[data-panel="swarm"]');
   const old = () => panel.evaluate((p) => p.classList.contains('stale') && getComputedStyle(p.querySelector('#chart-swarm'), '::before').content);
   assert.equal(await old(), false);
@@ -506,7 +506,7 @@ test('with the mission station chosen the swarm runs 3D-CTRA, as it does for sev
   await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
   const note = await page.locator('#chart-swarm .note').textContent();
   const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra']);
-  assert.match(note, /^20 drones flying 2 minutes each to a 3D-CTRA station/);
+  assert.match(note, /^20 drones flying 2 minutes of the synthetic set each to a 3D-CTRA station/);
   assert.ok(note.includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`), note);
   assert.deepEqual(problems, []);
 });
@@ -520,6 +520,24 @@ test('a swarm the core refuses says why and names the setting as the form labels
   await until(page, () => /cannot be simulated/.test(document.querySelector('#swarm-status')?.textContent ?? ''), null, { timeout: 60_000 });
   assert.match(await page.locator('#swarm-status').textContent(), /^These swarms cannot be simulated: maxInterval must be at least .*\(SF9 at 250 kHz: 10\.3 s\), got 10\. The setting it names is Heartbeat \(s\)\.$/);
   assert.match(await page.locator('#chart-swarm').textContent(), /No swarm run yet/);
+  assert.deepEqual(problems, []);
+});
+
+test('with the real flight chosen the swarm flies it, as the CLI\'s --sample does, and its note and slide say so', async () => {
+  const { page, problems } = await open('?flight=canberra');
+  await page.getByLabel('Drones', { exact: true }).selectOption('20');
+  await page.getByLabel('SF plan').selectOption('fixed');
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sample', 'canberra']);
+  const note = await page.locator('#chart-swarm .note').textContent();
+  assert.match(note, /^20 drones flying 2 minutes of the real flight each to a 3D-CTRA station/);
+  assert.ok(note.includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`), note);
+  const slide = (await downloaded(page, page.getByRole('button', { name: 'Download the swarm chart as SVG' }))).toString('utf8').replace(/<[^>]+>/g, ' ');
+  assert.match(slide, /real flight \(Canberra\); seed 1;/);
+  // Another trajectory is another swarm: the one on show is old.
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('synthetic');
+  assert.equal(await page.locator('[data-panel="swarm"].stale').count(), 1);
   assert.deepEqual(problems, []);
 });
 
