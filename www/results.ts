@@ -228,13 +228,25 @@ function clearlyLowest(r: SimReport): ModelResult | undefined {
 
 /** Why no station is named best: the stations whose p75 intervals overlap the lowest one's, and
  * those clearly above them. */
-function noClearLowest(r: SimReport, runs: number): string {
+function noClearLowest(r: SimReport, runs: string): string {
   const withData = r.results.filter((m) => m.ci95 !== null);
   const top = lowestP75(withData)!.ci95!.p75[1];
   const tied = withData.filter((m) => m.ci95!.p75[0] <= top);
   const above = withData.filter((m) => !tied.includes(m));
   const rest = above.length ? `; ${names(above)}'s ${above.length === 1 ? 'lies' : 'lie'} clearly above` : '';
-  return `No clear lowest p75: the 95 % intervals of ${names(tied)} overlap${rest} (${runs} runs). More seeds or flights narrow them.`;
+  return `No clear lowest p75: the 95 % intervals of ${names(tied)} overlap${rest} (${runs}). More seeds or flights narrow them.`;
+}
+
+/** How many runs (flights × seeds) the stations' p75 intervals rest on: "30 runs", or where a run
+ * in which no packet arrived gives some station no errors (a flight shorter than the wait for its
+ * first packet), "27–29 of 30 runs" and why; '' for none. */
+export function runsWords(r: Pick<SimReport, 'results' | 'config'>): string {
+  const counts = r.results.flatMap((m) => (m.ci95 ? [m.ci95.runs] : []));
+  if (!counts.length) return '';
+  const [lo, hi] = [Math.min(...counts), Math.max(...counts)];
+  const total = r.config.flights * r.config.seeds;
+  const span = lo === hi ? `${lo}` : `${lo}–${hi}`;
+  return lo === total && hi === total ? `${total} runs` : `${span} of ${total} runs: a run in which no packet arrived has no errors`;
 }
 
 /** How many packets and runs the numbers rest on, and whether the models differ clearly. */
@@ -247,10 +259,10 @@ function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
   }
   const text = $('#verdict-text');
   const repeat = $<HTMLButtonElement>('#repeat-seeds');
-  const runs = r.results.find((m) => m.ci95)?.ci95?.runs;
+  const runs = runsWords(r);
   repeat.hidden = store.reportSettings.seeds >= 10 || r.results.length < 2;
-  if (r.results.length < 2) text.textContent = runs ? `p75's 95 % interval rests on ${runs} runs (flights × seeds).` : '';
-  else if (best) text.textContent = `${MODEL_LABELS[best.model]} has the lowest p75, clearly: its 95 % interval lies below every other model's (${runs} runs).`;
+  if (r.results.length < 2) text.textContent = runs ? `p75's 95 % interval rests on ${runs} (flights × seeds).` : '';
+  else if (best) text.textContent = `${MODEL_LABELS[best.model]} has the lowest p75, clearly: its 95 % interval lies below every other model's (${runs}).`;
   else if (!runs) text.textContent = 'One flight with one seed cannot tell whether these differences are larger than chance: no model is named best.';
   else text.textContent = noClearLowest(r, runs);
 }
