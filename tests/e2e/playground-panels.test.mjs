@@ -436,6 +436,19 @@ test('a US915 swarm spread by distance takes the data rates that carry its frame
   assert.deepEqual(problems, []);
 });
 
+test('an AS923 swarm that listens before it talks is counted at listen before talk\'s airtime, as the CLI runs it', async () => {
+  const { page, problems } = await open('?region=as923&sf=9&bw=125&access=lbt');
+  await page.getByLabel('Drones', { exact: true }).selectOption('20');
+  await page.getByLabel('SF plan').selectOption('fixed');
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sf', '9', '--bw', '125', '--region', 'as923', '--access', 'lbt']);
+  const note = await page.locator('#chart-swarm .note').textContent();
+  assert.ok(note.includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`), note);
+  assert.ok(note.includes(`every drone sending as often as listen before talk's airtime (100 s per hour) allows: ${cli.largestSwarm.aloha1} drone`), note);
+  assert.deepEqual(problems, []);
+});
+
 test('swarms run one seed whatever the table pools, and are marked old once a setting they rest on changes', async () => {
   const { page, problems } = await open('?sf=9&bw=125&seeds=10');
   await page.getByLabel('Drones', { exact: true }).selectOption('20');

@@ -99,10 +99,16 @@ function pileHeight(chart: Element, base: number, least: number): number {
 }
 
 /** How often each drone of the largest-swarm estimate sends (the core's `LargestSwarm`): as often
- * as its duty cycle allows, or where the plan has none, at the interval set; never more than fair
- * use leaves. */
+ * as its duty cycle (or listen before talk's share of the air) allows, or where the plan has no
+ * duty cycle, at the interval set; never more than fair use leaves (as `intervalRule` says of the
+ * results' interval). */
 function pace(c: SwarmReport['config']): string {
   const p = plan(c.region);
-  const rule = p.dutyCycle === null ? `every ${c.interval ?? DEFAULTS.interval} s (the interval set: ${p.label} has no duty cycle)` : 'as often as its duty cycle allows';
+  const rule =
+    p.dutyCycle === null
+      ? `every ${c.interval ?? DEFAULTS.interval} s (the interval set: ${p.label} has no duty cycle)`
+      : c.access === 'lbt'
+        ? "as often as listen before talk's airtime (100 s per hour) allows"
+        : 'as often as its duty cycle allows';
   return c.fairUse === 'off' ? rule : `${rule}, or less often where ${c.fairUse.toUpperCase()} fair use leaves less airtime`;
 }
