@@ -493,9 +493,18 @@ fn policy_text(s: &loratrack::Scenario) -> String {
             }
         ),
     };
-    let rule = match send.duty_cycle_mode {
-        loratrack::DutyCycleMode::PerPacket => "an off-time per packet".to_string(),
-        loratrack::DutyCycleMode::Budget => {
+    let region = s.access.region;
+    let rule = match (send.duty_cycle_mode, region.duty_cycle()) {
+        // Where the plan has no duty cycle the off-time is the interval set.
+        (loratrack::DutyCycleMode::PerPacket, None) => format!(
+            "every {} s (the interval set; {} has no duty cycle)",
+            s.access
+                .interval
+                .unwrap_or(loratrack::options::INTERVAL.default),
+            region.label()
+        ),
+        (loratrack::DutyCycleMode::PerPacket, Some(_)) => "an off-time per packet".to_string(),
+        (loratrack::DutyCycleMode::Budget, _) => {
             format!("a duty-cycle budget of {} packets", send.burst)
         }
     };
@@ -961,6 +970,22 @@ mod tests {
         let prediction = format!("{} prediction;", base.station.prediction.name());
         assert!(headers[0].contains(&prediction), "{}", headers[0]);
         assert!(headers[0].contains("; periodic sending,"), "{}", headers[0]);
+    }
+
+    /// Where the plan has no duty cycle the drone sends at the interval set, and the policy line
+    /// says so instead of an off-time.
+    #[test]
+    fn the_policy_line_names_the_interval_where_the_plan_has_no_duty_cycle() {
+        let mut s = Scenario::default();
+        assert!(policy_text(&s).ends_with(", an off-time per packet"));
+        s.access.region = loratrack::Region::Us915;
+        assert!(
+            policy_text(&s).ends_with(", every 1 s (the interval set; US915 has no duty cycle)")
+        );
+        s.access.interval = Some(5.0);
+        assert!(
+            policy_text(&s).ends_with(", every 5 s (the interval set; US915 has no duty cycle)")
+        );
     }
 
     /// `simulate`'s first line names the ADR that moves the rate it states, with LoRaWAN's
