@@ -6,6 +6,7 @@ import { runSwarms, spawnWorker, type SwarmRun } from './pool';
 import { linkBudget, load, MODEL_LABELS, settingOf, stationsOf, type SimReport, type SwarmParams } from './loratrack';
 import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './charts/colors';
 import type { BoxRow } from './charts/plots';
+import type { SfRow } from './charts/p75BySf';
 import type { Trajectory3d } from './charts/trajectory3d';
 import { $, fitOnWidth, linkDocs, presenting, tighten } from './dom';
 import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
@@ -469,8 +470,18 @@ function sweepRestsOn(name: 'sf' | 'distance', few: string, made: Settings, fixe
   restsOn(name, few, oneSeedNote(store.reportSettings.seeds, made.seed), fixed);
 }
 
-async function renderSfs(sweep: { sf: number; report: SimReport }[], made: Settings): Promise<void> {
-  const rows = sweep.flatMap(({ sf, report: r }) => r.results.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived, few: m.caveats.fewPackets, wholeFlight: m.wholeFlight })));
+/** The SF chart from the sweep's SF points: each station's p75 where it ran, and where the core
+ * refused it (the note under the chart says why) a row that says so. */
+async function renderSfs(sweep: { sf: number; report?: SimReport }[], made: Settings): Promise<void> {
+  const asked = stationsOf(made.model);
+  const rows: SfRow[] = sweep.flatMap(({ sf, report: r }) => {
+    const ran = r?.results ?? [];
+    const refused = asked.filter((model) => !ran.some((m) => m.model === model));
+    return [
+      ...ran.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived, few: m.caveats.fewPackets, wholeFlight: m.wholeFlight })),
+      ...refused.map((model) => ({ sf, model, p75: null, received: 0, few: false, wholeFlight: { tracked: 0, partlyTracked: false }, refused: true })),
+    ];
+  });
   sweepRestsOn('sf', fewPacketsNote(rows.filter((r) => r.p75 !== null).map((r) => ({ at: `SF${r.sf}`, received: r.received, few: r.few })), 'Hollow points'), made, fixedRateNote(made.adr));
   const opts = { bw: made.bw, distance: made.distance, width: chartWidth('sf') };
   await drawPanel('sf', [rows, opts], (p) => p.p75BySfChart(rows, opts), made);
@@ -483,7 +494,7 @@ let lastSwarm: (() => Promise<void>) | undefined;
 function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made: Settings): void {
   lastSweep = sweep;
   later('distance', () => renderDistance(sweep.flatMap(({ point, report: rep }) => ('distance' in point && rep ? [{ distance: point.distance, report: rep }] : [])), made));
-  later('sf', () => renderSfs(sweep.flatMap(({ point, report: rep }) => ('sf' in point && rep ? [{ sf: point.sf, report: rep }] : [])), made));
+  later('sf', () => renderSfs(sweep.flatMap(({ point, report: rep }) => ('sf' in point ? [{ sf: point.sf, report: rep }] : [])), made));
   // An SF, or a station at an SF, the core refuses at these settings is left out of the chart,
   // and the note says why; the SFs the plan lacks under one reason (the core names each SF).
   const asked = stationsOf(made.model);

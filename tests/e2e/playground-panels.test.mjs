@@ -401,7 +401,17 @@ test('the regional plan: US915 offers only its data rates, asks for an interval,
     const shown = sfTitles.find((t) => t.startsWith(`${{ dr: 'DR', 'ctra-plus': 'CTRA+' }[r.model]}, SF10:`));
     assert.equal(Number(/p75 ([\d.]+) m/.exec(shown)[1]).toFixed(2), r.error3d.p75.toFixed(2), shown);
   }
-  assert.ok(!sfTitles.some((t) => /^3D-CTRA, SF1[0-2]:/.test(t)), sfTitles.join('; '));
+  assert.ok(!sfTitles.some((t) => /^3D-CTRA, SF1[0-2]: p75/.test(t)), sfTitles.join('; '));
+  // In their places the chart says what was not simulated: 3D-CTRA at SF10, SF11 and SF12 whole.
+  const marks = await page.locator('#chart-sf svg text').evaluateAll((ts) => ts.filter((t) => /refused$|^not simulated$/.test(t.firstChild?.textContent ?? '')).map((t) => `${t.firstChild.textContent} | ${t.querySelector('title')?.textContent}`));
+  assert.deepEqual(marks, ['not simulated | SF11: not simulated: the note under the chart says why', 'not simulated | SF12: not simulated: the note under the chart says why', '3D-CTRA: refused | 3D-CTRA, SF10: not simulated: the note under the chart says why']);
+  // Beside SF10's dots, not across them.
+  const crossed = await page.locator('#chart-sf svg[role="img"]').evaluate((svg) => {
+    const boxes = (sel) => [...svg.querySelectorAll(sel)].map((e) => e.getBoundingClientRect());
+    const label = [...svg.querySelectorAll('text')].find((t) => t.firstChild?.textContent === '3D-CTRA: refused').getBoundingClientRect();
+    return boxes('circle').filter((c) => c.right > label.left && c.left < label.right && c.bottom > label.top && c.top < label.bottom).length;
+  });
+  assert.equal(crossed, 0);
   const sfNote = await page.locator('#sf-note').textContent();
   assert.match(sfNote, /^3D-CTRA not simulated at SF10: 3D-CTRA sends 12 bytes \(\+13 overhead\): the frame takes 411\.6 ms/);
   assert.match(sfNote, /Not simulated at SF11, SF12: US915 offers only DR0 SF10\/125/);
@@ -1235,9 +1245,13 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   await idle(page);
   await page.waitForSelector('#chart-sf svg');
   assert.match(await page.locator('#sf-note').textContent(), /^Not simulated at (SF\d+, )*SF12: maxInterval must be at least the duty-cycle interval/);
-  const titles = await page.locator('#chart-sf svg title').allTextContents();
+  const titles = await page.locator('#chart-sf svg circle title').allTextContents();
   assert.ok(titles.some((t) => t.startsWith('DR, SF7:')), titles.join('; '));
   assert.ok(!titles.some((t) => t.includes('SF12:')), titles.join('; '));
+  // Each SF left out says so in its place.
+  const refused = [...(await page.locator('#sf-note').textContent()).matchAll(/SF(\d+)[,:]/g)].map((m) => `SF${m[1]}`);
+  const marks = await page.locator('#chart-sf svg text').evaluateAll((ts) => ts.filter((t) => t.firstChild?.textContent === 'not simulated').map((t) => t.querySelector('title')?.textContent.split(':')[0]));
+  assert.deepEqual(marks, refused);
   // A slide of the chart says so too: its empty SFs are not left unexplained.
   const download = await downloaded(page, page.getByRole('button', { name: 'Download the error versus spreading factor chart as SVG' }));
   const slide = download.toString('utf8').replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ');

@@ -19,6 +19,9 @@ export interface SfRow {
   /** The share of the flight time after each flight's first packet (all the p75 covers), and
    * whether that is worth saying. */
   wholeFlight: Pick<WholeFlightError, 'tracked' | 'partlyTracked'>;
+  /** Not simulated: the core refused this station at this SF (its frame over the plan's dwell
+   * time, a heartbeat shorter than the interval, …); the note under the chart says why. */
+  refused?: boolean;
 }
 
 /** "errors over 62 % of the flight time (before a flight's first packet there is none)". */
@@ -27,8 +30,11 @@ function covered({ tracked, partlyTracked }: SfRow['wholeFlight']): string {
   return `errors over ${trackedPercent(tracked)} % of the flight time${why}`;
 }
 
+/** The dots' radius, px. */
+const DOT_R = 3.5;
+
 export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number; width: number }): SVGSVGElement | HTMLElement {
-  const data = rows.filter((r) => r.p75 !== null).map((r) => ({ ...r, label: MODEL_LABELS[r.model] }));
+  const data = rows.filter((r) => r.p75 !== null && !r.refused).map((r) => ({ ...r, label: MODEL_LABELS[r.model] }));
   if (!data.length) {
     const note = document.createElement('p');
     note.className = 'empty-chart';
@@ -40,32 +46,49 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
   const stations = [...new Set(rows.map((r) => r.model))];
   const models = stations.map((m) => MODEL_LABELS[m]);
   const sfs = [...new Set(rows.map((r) => r.sf))];
-  // An SF where no station's packet arrived says so once; where only some stations' did, each
-  // silent one says so by name ("DR: none"), upright from the axis, side by side in the stations'
-  // order, in the notes' grey (a station's colour would be small text at 3:1 contrast).
-  const silent = sfs.filter((sf) => !data.some((d) => d.sf === sf));
-  const none = rows.filter((r) => r.p75 === null && !silent.includes(r.sf)).map((r) => ({ sf: r.sf, label: MODEL_LABELS[r.model] }));
+  // An SF where no station's packet arrived says so once, as does one the core refused for every
+  // station; where only some stations' packets arrived, or the core refused only some stations,
+  // each of the others says so by name ("DR: none", "3D-CTRA: refused"), upright from the axis,
+  // in the notes' grey (a station's colour would be small text at 3:1 contrast).
+  const refusedAt = sfs.filter((sf) => rows.every((r) => r.sf !== sf || r.refused));
+  const silent = sfs.filter((sf) => !refusedAt.includes(sf) && !data.some((d) => d.sf === sf));
+  const marked = [...refusedAt, ...silent];
+  const none = rows
+    .filter((r) => r.p75 === null && !marked.includes(r.sf))
+    .map((r) => ({ sf: r.sf, label: MODEL_LABELS[r.model], text: `${MODEL_LABELS[r.model]}: ${r.refused ? 'refused' : 'none'}`, why: r.refused ? 'not simulated: the note under the chart says why' : 'no packet arrived' }));
+  // The named ones stand beside their SF's dots, not across them (a label centred on the SF ran
+  // through a low dot): from just clear of a dot to the right, in the stations' order, and at
+  // SF12, the chart's right edge, to the left.
+  const [marginLeft, marginRight] = [labelRoom(56), 20];
+  const pxPerSf = (opts.width - marginLeft - marginRight) / 6;
   const step = chartFont() * 1.1;
+  // A rotated label's box is about 1.25 em across, and Plot's centring of its line moves it 0.32 em
+  // to the left, toward the dots it stands right of: 2 px between box and dot.
+  const clear = DOT_R + chartFont() * 0.95 + 2;
+  const named = none.map((d) => {
+    const here = none.filter((e) => e.sf === d.sf);
+    const j = here.indexOf(d);
+    const px = d.sf === 12 ? -(clear + (here.length - 1 - j) * step) : clear + j * step;
+    return { ...d, x: d.sf + px / pxPerSf };
+  });
   const km = (opts.distance / 1000).toFixed(1);
   const title = (d: (typeof data)[number]) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${d.received} packets${d.few ? ', too few to compare' : ''}, ${covered(d.wholeFlight)}`;
   return Plot.plot({
     ...chartFrame(220),
     width: opts.width,
-    marginLeft: labelRoom(56),
+    marginLeft,
+    marginRight,
     x: { label: fitLabel(opts.width, `spreading factor (${opts.bw} kHz, gateway at ${km} km)`, `spreading factor (${opts.bw} kHz, ${km} km)`, `SF (${opts.bw} kHz, ${km} km)`), domain: [6.5, 12.5], ticks: [7, 8, 9, 10, 11, 12], tickFormat: (d: number) => `SF${d}` },
     y: { label: 'p75 3D error (m, log scale)', type: 'log', grid: true, ...logAxis(data.map((d) => d.p75!)), tickFormat: plainNumber },
     color: { domain: models, range: stations.map((m) => MODEL_COLORS[m]), legend: true },
     marks: [
       Plot.line(data, { x: 'sf', y: 'p75', stroke: 'label', z: 'label' }),
-      Plot.dot(data.filter((d) => !d.few), { x: 'sf', y: 'p75', fill: 'label', r: 3.5, title }),
-      Plot.dot(data.filter((d) => d.few), { x: 'sf', y: 'p75', fill: 'white', stroke: 'label', strokeWidth: 1.5, r: 3.5, title }),
+      Plot.dot(data.filter((d) => !d.few), { x: 'sf', y: 'p75', fill: 'label', r: DOT_R, title }),
+      Plot.dot(data.filter((d) => d.few), { x: 'sf', y: 'p75', fill: 'white', stroke: 'label', strokeWidth: 1.5, r: DOT_R, title }),
       Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: () => 'none\narrives', fill: NOTE_GREY, fontSize: chartFont() }),
-      ...models.map((label, i) =>
-        Plot.text(
-          none.filter((d) => d.label === label),
-          { x: 'sf', text: () => `${label}: none`, rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, dx: (i - (models.length - 1) / 2) * step, fill: NOTE_GREY, fontSize: chartFont(), title: (d: { sf: number; label: string }) => `${d.label}, SF${d.sf}: no packet arrived` },
-        ),
-      ),
+      // Upright: side by side, two SFs' "not simulated" ran into each other on a phone.
+      Plot.text(refusedAt, { x: (d: number) => d, text: () => 'not simulated', rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: NOTE_GREY, fontSize: chartFont(), title: (d: number) => `SF${d}: not simulated: the note under the chart says why` }),
+      Plot.text(named, { x: 'x', text: 'text', rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: NOTE_GREY, fontSize: chartFont(), title: (d: (typeof named)[number]) => `${d.label}, SF${d.sf}: ${d.why}` }),
     ],
   });
 }
