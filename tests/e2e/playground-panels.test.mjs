@@ -428,6 +428,25 @@ test('the regional plan: US915 offers only its data rates, asks for an interval,
   assert.deepEqual(problems, []);
 });
 
+test('on a phone, three stations refused at one SF are counted in one mark, and no mark of the SF chart crosses another or a dot', async () => {
+  const { page, problems } = await open('?region=us915&sf=9&bw=125&model=dr,ctra-plus,3d-ctra,imm,mission', { width: 360, height: 800 });
+  await idle(page);
+  await page.waitForSelector('#chart-sf svg[role="img"]');
+  const { marks, crossings } = await page.locator('#chart-sf svg[role="img"]').evaluate((svg) => {
+    const texts = [...svg.querySelectorAll('text')].filter((t) => /refused$|^not simulated$/.test(t.firstChild?.textContent ?? ''));
+    // Each mark against the other marks and every dot (dots of stations with equal p75s overlap).
+    const marksBoxes = texts.map((t) => t.getBoundingClientRect());
+    const dots = [...svg.querySelectorAll('circle')].map((c) => c.getBoundingClientRect());
+    const cross = (a, b) => a.right > b.left && a.left < b.right && a.bottom > b.top && a.top < b.bottom;
+    let crossings = 0;
+    marksBoxes.forEach((a, i) => [...marksBoxes.slice(i + 1), ...dots].forEach((b) => (crossings += cross(a, b) ? 1 : 0)));
+    return { marks: texts.map((t) => `${t.firstChild.textContent} | ${t.querySelector('title')?.textContent}`), crossings };
+  });
+  assert.deepEqual(marks.filter((m) => m.includes('refused')), ['3 refused | 3D-CTRA, IMM, Mission, SF10: not simulated: the note under the chart says why']);
+  assert.equal(crossings, 0, marks.join('; '));
+  assert.deepEqual(problems, []);
+});
+
 test('a US915 swarm spread by distance takes the data rates that carry its frame and sends at the interval set, as the CLI runs it', async () => {
   const { page, problems } = await open('?region=us915&sf=9&bw=125&interval=5');
   await page.getByLabel('Drones', { exact: true }).selectOption('20');

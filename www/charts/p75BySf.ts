@@ -55,21 +55,29 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
   const marked = [...refusedAt, ...silent];
   const none = rows
     .filter((r) => r.p75 === null && !marked.includes(r.sf))
-    .map((r) => ({ sf: r.sf, label: MODEL_LABELS[r.model], text: `${MODEL_LABELS[r.model]}: ${r.refused ? 'refused' : 'none'}`, why: r.refused ? 'not simulated: the note under the chart says why' : 'no packet arrived' }));
+    .map((r) => ({ sf: r.sf, label: MODEL_LABELS[r.model], kind: r.refused ? 'refused' : 'none', why: r.refused ? 'not simulated: the note under the chart says why' : 'no packet arrived' }));
   // The named ones stand beside their SF's dots, not across them (a label centred on the SF ran
   // through a low dot): from just clear of a dot to the right, in the stations' order, and at
-  // SF12, the chart's right edge, to the left.
+  // SF12, the chart's right edge, to the left. Where an SF's labels would reach the next SF's
+  // marks (a phone, three stations refused), those of one kind are counted in one: "3 refused".
   const [marginLeft, marginRight] = [labelRoom(56), 20];
   const pxPerSf = (opts.width - marginLeft - marginRight) / 6;
-  const step = chartFont() * 1.1;
   // A rotated label's box is about 1.25 em across, and Plot's centring of its line moves it 0.32 em
   // to the left, toward the dots it stands right of: 2 px between box and dot.
   const clear = DOT_R + chartFont() * 0.95 + 2;
-  const named = none.map((d) => {
-    const here = none.filter((e) => e.sf === d.sf);
-    const j = here.indexOf(d);
-    const px = d.sf === 12 ? -(clear + (here.length - 1 - j) * step) : clear + j * step;
-    return { ...d, x: d.sf + px / pxPerSf };
+  const step = chartFont() * 1.35;
+  const room = pxPerSf - clear - chartFont() * 1.25;
+  const named = sfs.flatMap((sf) => {
+    const here = none.filter((d) => d.sf === sf);
+    const labels =
+      (here.length - 1) * step <= room
+        ? here.map((d) => ({ sf, text: `${d.label}: ${d.kind}`, title: `${d.label}, SF${sf}: ${d.why}` }))
+        : (['none', 'refused'] as const).flatMap((kind) => {
+            const of = here.filter((d) => d.kind === kind);
+            const text = of.length === 1 ? `${of[0].label}: ${kind}` : `${of.length} ${kind}`;
+            return of.length ? [{ sf, text, title: `${of.map((d) => d.label).join(', ')}, SF${sf}: ${of[0].why}` }] : [];
+          });
+    return labels.map((l, j) => ({ ...l, x: sf + (sf === 12 ? -(clear + (labels.length - 1 - j) * step) : clear + j * step) / pxPerSf }));
   });
   const km = (opts.distance / 1000).toFixed(1);
   const title = (d: (typeof data)[number]) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${d.received} packets${d.few ? ', too few to compare' : ''}, ${covered(d.wholeFlight)}`;
@@ -88,7 +96,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
       Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: () => 'none\narrives', fill: NOTE_GREY, fontSize: chartFont() }),
       // Upright: side by side, two SFs' "not simulated" ran into each other on a phone.
       Plot.text(refusedAt, { x: (d: number) => d, text: () => 'not simulated', rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: NOTE_GREY, fontSize: chartFont(), title: (d: number) => `SF${d}: not simulated: the note under the chart says why` }),
-      Plot.text(named, { x: 'x', text: 'text', rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: NOTE_GREY, fontSize: chartFont(), title: (d: (typeof named)[number]) => `${d.label}, SF${d.sf}: ${d.why}` }),
+      Plot.text(named, { x: 'x', text: 'text', rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: NOTE_GREY, fontSize: chartFont(), title: 'title' }),
     ],
   });
 }
