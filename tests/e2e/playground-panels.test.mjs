@@ -442,7 +442,7 @@ test('on a phone, three stations refused at one SF are counted in one mark, and 
     marksBoxes.forEach((a, i) => [...marksBoxes.slice(i + 1), ...dots].forEach((b) => (crossings += cross(a, b) ? 1 : 0)));
     return { marks: texts.map((t) => `${t.firstChild.textContent} | ${t.querySelector('title')?.textContent}`), crossings };
   });
-  assert.deepEqual(marks.filter((m) => m.includes('refused')), ['3 refused | 3D-CTRA, IMM, Mission, SF10: not simulated: the note under the chart says why']);
+  assert.deepEqual(marks.filter((m) => m.includes('refused')), ['3 stations: refused | 3D-CTRA, IMM, Mission, SF10: not simulated: the note under the chart says why']);
   assert.equal(crossings, 0, marks.join('; '));
   assert.deepEqual(problems, []);
 });

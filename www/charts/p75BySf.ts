@@ -59,7 +59,8 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
   // The named ones stand beside their SF's dots, not across them (a label centred on the SF ran
   // through a low dot): from just clear of a dot to the right, in the stations' order, and at
   // SF12, the chart's right edge, to the left. Where an SF's labels would reach the next SF's
-  // marks (a phone, three stations refused), those of one kind are counted in one: "3 refused".
+  // marks (a phone, three stations refused), those of one kind are counted in one: "3 stations:
+  // refused".
   const [marginLeft, marginRight] = [labelRoom(56), 20];
   const pxPerSf = (opts.width - marginLeft - marginRight) / 6;
   // A rotated label's box is about 1.25 em across, and Plot's centring of its line moves it 0.32 em
@@ -74,7 +75,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
         ? here.map((d) => ({ sf, text: `${d.label}: ${d.kind}`, title: `${d.label}, SF${sf}: ${d.why}` }))
         : (['none', 'refused'] as const).flatMap((kind) => {
             const of = here.filter((d) => d.kind === kind);
-            const text = of.length === 1 ? `${of[0].label}: ${kind}` : `${of.length} ${kind}`;
+            const text = of.length === 1 ? `${of[0].label}: ${kind}` : `${of.length} stations: ${kind}`;
             return of.length ? [{ sf, text, title: `${of.map((d) => d.label).join(', ')}, SF${sf}: ${of[0].why}` }] : [];
           });
     return labels.map((l, j) => ({ ...l, x: sf + (sf === 12 ? -(clear + (labels.length - 1 - j) * step) : clear + j * step) / pxPerSf }));
