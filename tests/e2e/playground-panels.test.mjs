@@ -178,6 +178,15 @@ test('the error-versus-distance axis stops at 1 cm where the mission station for
   assert.deepEqual(problems, []);
 });
 
+/** Runs the swarm panel's swarms up to `drones` with SF plan `plan` (its other choices as they
+ * are) and waits for their chart. */
+async function runSwarm(page, drones, plan) {
+  await page.getByLabel('Drones', { exact: true }).selectOption(drones);
+  await page.getByLabel('SF plan').selectOption(plan);
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+}
+
 /** The swarm panel's strip of each drone's p75: the numbers on its axis and its legend's SFs. */
 const swarmStrip = async (page) => {
   await page.waitForSelector('#chart-swarm figure svg');
@@ -340,10 +349,7 @@ test('the swarm panel takes the single drone settings, ADR included, and reports
 
 test('a swarm of lean drones says how many of its packets went lean, as the CLI counts them', async () => {
   const { page, problems } = await open('?sf=10&bw=125&payload=lean&prediction=bounded');
-  await page.getByLabel('Drones', { exact: true }).selectOption('20');
-  await page.getByLabel('SF plan').selectOption('fixed');
-  await page.getByRole('button', { name: 'Run swarm' }).click();
-  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  await runSwarm(page, '20', 'fixed');
   const note = await page.locator('#chart-swarm .note').textContent();
   const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sf', '10', '--bw', '125', '--payload', 'lean', '--prediction', 'bounded']);
   assert.ok(cli.leanPackets > 0 && cli.leanPackets < cli.packetsSent, `${cli.leanPackets} of ${cli.packetsSent}`);
@@ -449,10 +455,7 @@ test('on a phone, three stations refused at one SF are counted in one mark, and 
 
 test('a US915 swarm spread by distance takes the data rates that carry its frame and sends at the interval set, as the CLI runs it', async () => {
   const { page, problems } = await open('?region=us915&sf=9&bw=125&interval=5');
-  await page.getByLabel('Drones', { exact: true }).selectOption('20');
-  await page.getByLabel('SF plan').selectOption('spread');
-  await page.getByRole('button', { name: 'Run swarm' }).click();
-  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  await runSwarm(page, '20', 'spread');
   // 3D-CTRA's 25-byte frame is over the dwell time at SF10 (DR0): the drones take SF7..SF9.
   const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'spread', '--model', '3d-ctra', '--sf', '9', '--bw', '125', '--region', 'us915', '--interval', '5']);
   assert.deepEqual([...new Set(cli.drones.map((d) => d.sf))].sort(), [7, 8, 9]);
@@ -467,10 +470,7 @@ test('a US915 swarm spread by distance takes the data rates that carry its frame
 
 test('an AS923 swarm that listens before it talks is counted at listen before talk\'s airtime, as the CLI runs it', async () => {
   const { page, problems } = await open('?region=as923&sf=9&bw=125&access=lbt');
-  await page.getByLabel('Drones', { exact: true }).selectOption('20');
-  await page.getByLabel('SF plan').selectOption('fixed');
-  await page.getByRole('button', { name: 'Run swarm' }).click();
-  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  await runSwarm(page, '20', 'fixed');
   const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sf', '9', '--bw', '125', '--region', 'as923', '--access', 'lbt']);
   const note = await page.locator('#chart-swarm .note').textContent();
   assert.ok(note.includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`), note);
@@ -480,10 +480,7 @@ test('an AS923 swarm that listens before it talks is counted at listen before ta
 
 test('swarms run one seed whatever the table pools, and are marked old once a setting they rest on changes', async () => {
   const { page, problems } = await open('?sf=9&bw=125&seeds=10');
-  await page.getByLabel('Drones', { exact: true }).selectOption('20');
-  await page.getByLabel('SF plan').selectOption('fixed');
-  await page.getByRole('button', { name: 'Run swarm' }).click();
-  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  await runSwarm(page, '20', 'fixed');
   // Ten seeds pooled in the table: the swarm still runs (the core refuses seeds for a swarm), one seed.
   const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sf', '9', '--bw', '125']);
   assert.ok((await page.locator('#chart-swarm .note').textContent()).includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`));
@@ -542,10 +539,7 @@ test('the swarm panel\'s choices travel in the link and the embed snippet, and a
 
 test('with the mission station chosen the swarm runs 3D-CTRA, as it does for several stations, and says so', async () => {
   const { page, problems } = await open('?model=mission');
-  await page.getByLabel('Drones', { exact: true }).selectOption('20');
-  await page.getByLabel('SF plan').selectOption('fixed');
-  await page.getByRole('button', { name: 'Run swarm' }).click();
-  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  await runSwarm(page, '20', 'fixed');
   const note = await page.locator('#chart-swarm .note').textContent();
   const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra']);
   assert.match(note, /^20 drones flying 2 minutes of the synthetic set each to a 3D-CTRA station/);
@@ -567,10 +561,7 @@ test('a swarm the core refuses says why and names the setting as the form labels
 
 test('with the real flight chosen the swarm flies it, as the CLI\'s --sample does, and its note and slide say so', async () => {
   const { page, problems } = await open('?flight=canberra');
-  await page.getByLabel('Drones', { exact: true }).selectOption('20');
-  await page.getByLabel('SF plan').selectOption('fixed');
-  await page.getByRole('button', { name: 'Run swarm' }).click();
-  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  await runSwarm(page, '20', 'fixed');
   const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sample', 'canberra']);
   const note = await page.locator('#chart-swarm .note').textContent();
   assert.match(note, /^20 drones flying 2 minutes of the real flight each to a 3D-CTRA station/);
