@@ -4,12 +4,15 @@
 import { $ } from './dom';
 import { caption, describe } from './format';
 import { restingNotes } from './results';
-import { toQuery } from './state';
+import { swarmSettings, toQuery } from './state';
 import { store } from './store';
 import { swarmQuery } from './swarmChoices';
 
 /** Every panel an embed can show, by its `data-panel` name. */
 export const PANELS = ['controls', 'results', 'trajectory', 'error', 'axes', 'distance', 'sf', 'link', 'swarm', 'airtime'];
+
+/** The panels that show the single drone's run (its flight and seeds). */
+const SINGLE_DRONE_PANELS = ['results', 'trajectory', 'error', 'axes', 'distance', 'sf'];
 
 /** Hides every panel but the chosen ones, explains unknown names, and starts posting the height. */
 export function setUpEmbed(): void {
@@ -50,7 +53,11 @@ export function setUpEmbed(): void {
  * printed page shows it instead of the form, with the link's notices from the top of the form, and
  * prints the results' own notes where they stand. */
 export function updateEmbedCaption(): void {
-  $('#embed-settings').textContent = `Settings: ${caption(store.reportSettings)}.`;
+  // An embed of the swarm panel without the single drone's results or charts is captioned with
+  // what its swarms rest on (the flights they chain, one seed), not the single drone's flight.
+  const shown = store.panels.split(',');
+  const swarmAlone = store.embed && shown.includes('swarm') && !shown.some((p) => SINGLE_DRONE_PANELS.includes(p));
+  $('#embed-settings').textContent = `Settings: ${caption(swarmAlone ? swarmSettings(store.reportSettings) : store.reportSettings)}.`;
   const lines = [...store.notices];
   const results = $('[data-panel="results"]');
   // An embed with the results panel shows its notes and its old or partial label there, once;

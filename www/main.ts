@@ -17,7 +17,7 @@ import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { renderBaseline, renderTable, restingNotes } from './results';
 import { setUpPresent } from './present';
-import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, runsMission, simulateRequest, toParams, toQuery, type Settings } from './state';
+import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, runsMission, simulateRequest, swarmSettings, toParams, toQuery, type Settings } from './state';
 import { pageQuery, store } from './store';
 import { readSwarmQuery, swarmSelects } from './swarmChoices';
 import type { Request, Response, SimulateRequest } from './worker';
@@ -727,8 +727,7 @@ function markSwarmStale(): void {
 $('#run-swarm').addEventListener('click', () => {
   swarmRun?.stop();
   const { sizes, params } = swarmRequest();
-  // The settings its slides' captions give: one seed, and the flights it chains.
-  const made: Settings = { ...store.settings, seeds: 1, flight: params.sample ? 'canberra' : 'all' };
+  const made = swarmSettings(store.settings);
   const bar = $<HTMLProgressElement>('#swarm-progress');
   bar.hidden = false;
   bar.value = 0;

@@ -237,6 +237,13 @@ export function packetPlan(s: Pick<Settings, 'lorawan' | 'cr' | 'region' | 'acce
   return { overhead: overheadBytes(s), cr: s.cr, region: s.region, access: s.access, fairUse: s.fairUse, ...(plan(s.region).dutyCycle === null ? { interval: s.interval } : {}) };
 }
 
+/** The settings a swarm of the swarm panel rests on, as its captions give them: one seed (its
+ * drones give its spread), and the flights its drones chain: the real flight where it is chosen,
+ * the synthetic set otherwise (an uploaded flight stays with the single drone). */
+export function swarmSettings(s: Settings): Settings {
+  return { ...s, seeds: 1, flight: s.flight === 'canberra' ? 'canberra' : 'all' };
+}
+
 /** Beside every run, the gateway distances (m) and spreading factors the distance and SF charts
  * show: only the link changes between them, so they reuse the run's drone filters. */
 const SWEEP: SweepPoint[] = [...[500, 1000, 2000, 3000, 4000, 5000].map((distance) => ({ distance })), ...[7, 8, 9, 10, 11, 12].map((sf) => ({ sf }))];

@@ -526,12 +526,16 @@ test('the swarm panel\'s choices travel in the link and the embed snippet, and a
   // The embed opens the panel as it was and runs its swarm, as the CLI runs it; a value that is
   // not one of the panel's choices is named and left at the default.
   src.searchParams.set('swarmSchedule', 'bogus');
+  src.searchParams.set('panels', 'swarm');
   const embed = await openPage(playground.context, new URL(playground.url).origin);
   await embed.page.goto(src.href);
   await embed.page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
   assert.equal(await embed.page.locator('#swarmDrones').inputValue(), '20');
   assert.equal(await embed.page.locator('#swarmPlan').inputValue(), 'spread');
   assert.match(await embed.page.locator('#embed-notices').textContent(), /The link's swarmSchedule=bogus is not one of the swarm panel's choices \(aloha, slotted\); it keeps aloha\./);
+  // The swarm panel alone: its caption gives what the swarms rest on, the flights they chain, not
+  // the single drone's one.
+  assert.match(await embed.page.locator('#embed-settings').textContent(), /; whole synthetic set; seed 1; loratrack /);
   const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'spread', '--model', '3d-ctra', '--sf', '9', '--bw', '125']);
   assert.ok((await embed.page.locator('#chart-swarm .note').textContent()).includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`));
   assert.deepEqual([...problems, ...embed.problems], []);
