@@ -3,7 +3,7 @@
 // table in ./results, embeds in ./embed, presentation mode in ./present.
 import { pool } from './boot';
 import { runSwarms, spawnWorker, type SwarmRun } from './pool';
-import { linkBudget, load, MODEL_LABELS, settingOf, stationsOf, type SimReport, type SwarmParams } from './loratrack';
+import { linkBudget, load, MODEL_LABELS, settingOf, stationsOf, type ModelName, type SimReport, type SwarmParams } from './loratrack';
 import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './charts/colors';
 import type { BoxRow } from './charts/plots';
 import type { SfRow } from './charts/p75BySf';
@@ -472,8 +472,7 @@ function sweepRestsOn(name: 'sf' | 'distance', few: string, made: Settings, fixe
 
 /** The SF chart from the sweep's SF points: each station's p75 where it ran, and where the core
  * refused it (the note under the chart says why) a row that says so. */
-async function renderSfs(sweep: { sf: number; report?: SimReport }[], made: Settings): Promise<void> {
-  const asked = stationsOf(made.model);
+async function renderSfs(sweep: { sf: number; report?: SimReport }[], asked: ModelName[], made: Settings): Promise<void> {
   const rows: SfRow[] = sweep.flatMap(({ sf, report: r }) => {
     const ran = r?.results ?? [];
     const refused = asked.filter((model) => !ran.some((m) => m.model === model));
@@ -494,12 +493,13 @@ let lastSwarm: (() => Promise<void>) | undefined;
 function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made: Settings): void {
   lastSweep = sweep;
   later('distance', () => renderDistance(sweep.flatMap(({ point, report: rep }) => ('distance' in point && rep ? [{ distance: point.distance, report: rep }] : [])), made));
-  later('sf', () => renderSfs(sweep.flatMap(({ point, report: rep }) => ('sf' in point ? [{ sf: point.sf, report: rep }] : [])), made));
-  // An SF, or a station at an SF, the core refuses at these settings is left out of the chart,
-  // and the note says why; the SFs the plan lacks under one reason (the core names each SF).
+  // An SF, or a station at an SF, the core refuses at these settings is marked in the chart, and
+  // the note says why; the SFs the plan lacks under one reason (the core names each SF).
   const asked = stationsOf(made.model);
+  const sfs = sweep.flatMap(({ point, report: rep, error }) => ('sf' in point ? [{ sf: point.sf, report: rep, error }] : []));
+  later('sf', () => renderSfs(sfs, asked, made));
   const why = (sf: number, error?: string) => (error && !planAllows(made.region, sf, made.bw) ? planReason(made.region) : error);
-  const note = refusedNote(sweep.flatMap(({ point, report: rep, error }) => ('sf' in point ? [{ at: `SF${point.sf}`, asked, ran: rep?.results.map((r) => r.model) ?? [], error: why(point.sf, error) }] : [])));
+  const note = refusedNote(sfs.map(({ sf, report: rep, error }) => ({ at: `SF${sf}`, asked, ran: rep?.results.map((r) => r.model) ?? [], error: why(sf, error) })));
   $('#sf-note').hidden = !note;
   $('#sf-note').textContent = note;
 }
@@ -695,12 +695,12 @@ let swarmRun: SwarmRun | undefined;
 function swarmRequest(): { sizes: number[]; params: SwarmParams } {
   const n = Number($<HTMLSelectElement>('#swarmDrones').value);
   const sizes = [...new Set([2, Math.round(n / 8), Math.round(n / 4), Math.round(n / 2), n])].filter((k) => k >= 1);
-  // The swarm takes every setting of the single drone; its drones chain the real flight where it is
-  // chosen and the synthetic set otherwise (an uploaded flight stays with the single drone) around
-  // the centre, and run one station (a list of models runs 3D-CTRA, as `all` does, and so does the
-  // mission station, which would need each drone's own plan) and one seed (its drones give its
-  // spread; the core refuses more).
-  const { synthetic: _s, trajectory: _t, trajectoryName: _n, plan: _p, seeds: _r, ...shared } = toParams(store.settings, store.csv);
+  // The swarm takes every setting of the single drone, as a swarm rests on them (`swarmSettings`:
+  // its flights, one seed); its drones chain those flights around the centre (the synthetic set,
+  // the swarm's own default, where no `synthetic` is given) and run one station (a list of models
+  // runs 3D-CTRA, as `all` does, and so does the mission station, which would need each drone's
+  // own plan).
+  const { synthetic: _s, ...shared } = toParams(swarmSettings(store.settings));
   const params: SwarmParams = {
     ...shared,
     model: stationsOf(store.settings.model).length === 1 && !runsMission(store.settings.model) ? store.settings.model : 'all',
