@@ -19,7 +19,7 @@ import { renderBaseline, renderTable, restingNotes } from './results';
 import { setUpPresent } from './present';
 import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, runsMission, simulateRequest, swarmSettings, toParams, toQuery, type Settings } from './state';
 import { pageQuery, store } from './store';
-import { readSwarmQuery, swarmSelects } from './swarmChoices';
+import { readSwarmQuery, resetSwarmChoices, swarmSelects } from './swarmChoices';
 import type { Request, Response, SimulateRequest } from './worker';
 
 /** The largest CSV the core reads (MAX_CSV_BYTES in src/trajectory/csv.rs). */
@@ -679,9 +679,12 @@ $('#copy-link').addEventListener('click', async () => {
   }
 });
 
+// Every setting of the link, the swarm panel's choices too: after Reset, Copy link opens the page
+// as a first visit does (a pinned baseline stays: Clear baseline is its own button).
 $('#reset').addEventListener('click', () => {
   store.settings = { ...DEFAULTS };
   writeControls(store.settings);
+  resetSwarmChoices();
   onChange();
 });
 

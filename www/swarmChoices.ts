@@ -13,6 +13,11 @@ export function swarmQuery(): Record<string, string> {
   return Object.fromEntries(swarmSelects().flatMap((s) => (s.value === defaultOf(s) ? [] : [[s.id, s.value]])));
 }
 
+/** Puts every choice of the panel back to its default (the page's Reset). */
+export function resetSwarmChoices(): void {
+  for (const s of swarmSelects()) s.value = defaultOf(s);
+}
+
 /** Sets the panel from the link's keys; returns a sentence for each value that is not one of its
  * select's options (that select keeps its default). */
 export function readSwarmQuery(q: URLSearchParams): string[] {

@@ -1166,6 +1166,24 @@ test('New seed draws a fresh seed, shows it and puts it in the link', async () =
   assert.deepEqual(problems, []);
 });
 
+test('Reset puts every setting and the swarm panel\'s choices back: the link is a first visit\'s and the numbers the CLI\'s defaults', async () => {
+  const { page, problems } = await open('?sf=9&distance=3000&model=dr&swarmDrones=100&swarmPlan=spread');
+  await idle(page);
+  assert.equal(await page.locator('#results-table tbody tr').count(), 1);
+  const before = await tableHtml(page);
+  await page.getByRole('button', { name: 'Reset', exact: true }).click();
+  await waitForResults(page, before);
+  await idle(page);
+  assert.equal(await page.getByLabel('Spreading factor', { exact: true }).inputValue(), '7');
+  assert.equal(await page.locator('#swarmDrones').inputValue(), '50');
+  assert.equal(await page.locator('#swarmPlan').inputValue(), 'fixed');
+  // Copy link after Reset opens the page as a first visit does.
+  assert.equal(new URL(page.url()).search.replace(/^\?$/, ''), '');
+  const cli = nativeJson(['simulate', '--synthetic', '1']);
+  for (const s of await shownP75(page)) assert.equal(s.p75.toFixed(2), cli.results.find((r) => r.model === s.model).error3d.p75.toFixed(2), s.model);
+  assert.deepEqual(problems, []);
+});
+
 test('a laptop screen shows the results and two charts at once; a phone shows the numbers first', async () => {
   const started = Date.now();
   const { page, problems } = await open('', { width: 1280, height: 800 });
