@@ -90,6 +90,15 @@ fn us915_refuses_sf11_and_sf12_and_a_frame_over_the_dwell_time_with_the_reason()
     assert!(e.contains("3D-CTRA sends 12 bytes"), "{e}");
     assert!(e.contains("411.6 ms"), "{e}");
     assert!(e.contains("400 ms dwell time"), "{e}");
+    // Its remedies name the smaller payloads as the page and the CLI both show them.
+    assert!(
+        e.contains("or a station with a smaller payload (DR: 9 bytes, CTRA+: 11)"),
+        "{e}"
+    );
+    // DR's own frame, too long with a larger overhead, has no smaller payload to suggest.
+    let e = run(json!({"synthetic": 1, "region": "us915", "sf": 10, "bw": 125, "model": "dr", "overhead": 30})).unwrap_err();
+    assert!(e.contains("DR sends 9 bytes (+30 overhead)"), "{e}");
+    assert!(e.ends_with("choose a faster data rate"), "{e}");
     // DR's and CTRA+'s frames fit at DR0.
     let ok = run(
         json!({"synthetic": 1, "region": "us915", "sf": 10, "bw": 125, "model": "dr,ctra-plus"}),

@@ -913,9 +913,10 @@ impl Validated {
                 SimError::Source(match e {
                     RegionError::NoDataRate { .. } | RegionError::Barred { .. } => e.to_string(),
                     _ => format!(
-                        "{} sends {payload} bytes (+{} overhead): {e}; choose a faster data rate or a station with a smaller payload (dr 9 bytes, ctra-plus 11)",
+                        "{} sends {payload} bytes (+{} overhead): {e}; choose a faster data rate{}",
                         model.label(),
                         s.radio.overhead,
+                        smaller_payloads(payload),
                     ),
                 })
             })?;
@@ -938,5 +939,27 @@ impl Validated {
             });
         }
         Ok(())
+    }
+}
+
+/// The stations whose payload is smaller than `bytes`, as a refusal's second remedy: ", or a
+/// station with a smaller payload (DR: 9 bytes, CTRA+: 11)"; empty where none is (DR's).
+fn smaller_payloads(bytes: usize) -> String {
+    let smaller: Vec<String> = ModelKind::ALL
+        .iter()
+        .filter(|m| m.payload_bytes() < bytes)
+        .enumerate()
+        .map(|(i, m)| match i {
+            0 => format!("{}: {} bytes", m.label(), m.payload_bytes()),
+            _ => format!("{}: {}", m.label(), m.payload_bytes()),
+        })
+        .collect();
+    if smaller.is_empty() {
+        String::new()
+    } else {
+        format!(
+            " or a station with a smaller payload ({})",
+            smaller.join(", ")
+        )
     }
 }
