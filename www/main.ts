@@ -496,10 +496,12 @@ function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made
   // An SF, or a station at an SF, the core refuses at these settings is marked in the chart, and
   // the note says why; the SFs the plan lacks under one reason (the core names each SF).
   const asked = stationsOf(made.model);
-  const sfs = sweep.flatMap(({ point, report: rep, error }) => ('sf' in point ? [{ sf: point.sf, report: rep, error }] : []));
+  const sfs = sweep.flatMap(({ point, report: rep, error, setting }) => ('sf' in point ? [{ sf: point.sf, report: rep, error, setting }] : []));
   later('sf', () => renderSfs(sfs, asked, made));
-  const why = (sf: number, error?: string) => (error && !planAllows(made.region, sf, made.bw) ? planReason(made.region) : error);
-  const note = refusedNote(sfs.map(({ sf, report: rep, error }) => ({ at: `SF${sf}`, asked, ran: rep?.results.map((r) => r.model) ?? [], error: why(sf, error) })));
+  // Each refusal with the label of the setting it names, as the status line gives it.
+  const why = (sf: number, error?: string, setting?: string) =>
+    error && (!planAllows(made.region, sf, made.bw) ? planReason(made.region) : `${error.replace(/\.$/, '')}.${namesSetting(setting)}`);
+  const note = refusedNote(sfs.map(({ sf, report: rep, error, setting }) => ({ at: `SF${sf}`, asked, ran: rep?.results.map((r) => r.model) ?? [], error: why(sf, error, setting) })));
   $('#sf-note').hidden = !note;
   $('#sf-note').textContent = note;
 }

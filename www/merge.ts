@@ -26,6 +26,6 @@ export function merge(reports: SimReport[], models: string[], model: SimReport['
  * none did). */
 export function mergeSweepPoint(point: SweepPoint, runs: SweepResult[], models: string[], model: SimReport['config']['model']): SweepResult {
   const reports = runs.flatMap((x) => (x.report ? [x.report] : []));
-  const error = runs.find((x) => x.error)?.error;
-  return { point, ...(reports.length ? { report: merge(reports, models, model) } : {}), ...(error ? { error } : {}) };
+  const refused = runs.find((x) => x.error);
+  return { point, ...(reports.length ? { report: merge(reports, models, model) } : {}), ...(refused ? { error: refused.error, setting: refused.setting } : {}) };
 }

@@ -14,6 +14,8 @@ export interface SweepResult {
   point: SweepPoint;
   report?: SimReport;
   error?: string;
+  /** The setting the error names (`settingOf`), for the page to give its label. */
+  setting?: string;
 }
 
 export interface SimulateRequest {
@@ -121,7 +123,7 @@ function sweepPoint(params: SimulateParams, point: SweepPoint): SweepResult {
     try {
       return { point, report: simulate(p) };
     } catch (e) {
-      return { point, error: e instanceof Error ? e.message : String(e) };
+      return { point, error: e instanceof Error ? e.message : String(e), setting: settingOf(e) };
     }
   };
   const all = run(params);
@@ -129,7 +131,8 @@ function sweepPoint(params: SimulateParams, point: SweepPoint): SweepResult {
   if (all.report || stations.length < 2) return all;
   const alone = stations.map((m) => run({ ...params, model: m }));
   const ran = alone.flatMap((x) => (x.report ? [x.report] : []));
-  return ran.length ? { point, report: merge(ran, stations, params.model ?? 'all'), error: alone.find((x) => x.error)?.error ?? all.error } : all;
+  const refused = alone.find((x) => x.error) ?? all;
+  return ran.length ? { point, report: merge(ran, stations, params.model ?? 'all'), error: refused.error, setting: refused.setting } : all;
 }
 
 function runSwarms({ id, swarm: { sizes, params } }: SwarmRequest, post: (r: Response) => void): void {

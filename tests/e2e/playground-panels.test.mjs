@@ -1259,6 +1259,9 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   await idle(page);
   await page.waitForSelector('#chart-sf svg');
   assert.match(await page.locator('#sf-note').textContent(), /^Not simulated at (SF\d+, )*SF12: maxInterval must be at least the duty-cycle interval/);
+  // It names the control, as the status line does a refusal of the run.
+  const label = (await page.locator('label[for="maxInterval"]').textContent()).trim();
+  assert.ok((await page.locator('#sf-note').textContent()).endsWith(`. The setting it names is ${label}.`), label);
   const titles = await page.locator('#chart-sf svg circle title').allTextContents();
   assert.ok(titles.some((t) => t.startsWith('DR, SF7:')), titles.join('; '));
   assert.ok(!titles.some((t) => t.includes('SF12:')), titles.join('; '));

@@ -186,4 +186,6 @@ test('a sweep point some of whose stations the core refused keeps those that ran
   // None ran: the refusal alone; all ran: the report alone.
   expect(mergeSweepPoint(point, [{ point, error: 'no data rate' }], ['dr'], 'dr')).toEqual({ point, error: 'no data rate' });
   expect(mergeSweepPoint(point, [{ point, report: a }], ['dr'], 'dr').error).toBeUndefined();
+  // The setting a refusal names comes with it, for the page to give its label.
+  expect(mergeSweepPoint(point, [{ point, report: a }, { point, error: 'heartbeat too short', setting: 'maxInterval' }], ['dr', '3d-ctra'], 'all').setting).toBe('maxInterval');
 });
