@@ -3,6 +3,7 @@
 // (settings the core would refuse are disabled, with the reason).
 import { isLoaded, MODEL_LABELS, PAYLOAD_BYTES, stationsOf, timeOnAir, type GatewaySite, type Region } from './loratrack';
 import { $ } from './dom';
+import { listed } from './format';
 import { ADR_START_REASON, adrCanStart, DEFAULTS, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, MISSION_REASON, packetPlan, plan, planAllows, planKnown, planReason, runsMission, type FlightChoice, type Settings } from './state';
 import { store } from './store';
 
@@ -242,9 +243,8 @@ function frameRefusal(model: string, sf: number, bw: number, region: Region): st
     // A setting the form marks beside its field; the core says the rest when the run is asked for.
     return null;
   }
-  const named = (names: string[]) => (names.length < 2 ? names.join('') : `${names.slice(0, -1).join(', ')} and ${names[names.length - 1]}`);
-  const stations = (byBytes: Map<number, string[]>) => [...byBytes].map(([bytes, labels]) => `${named(labels)} (${bytes}-byte frame)`);
-  return refused.size ? [...refused].map(([why, byBytes]) => `${named(stations(byBytes))}: ${why}.`).join(' ') : null;
+  const stations = (byBytes: Map<number, string[]>) => [...byBytes].map(([bytes, labels]) => `${listed(labels)} (${bytes}-byte frame)`);
+  return refused.size ? [...refused].map(([why, byBytes]) => `${listed(stations(byBytes))}: ${why}.`).join(' ') : null;
 }
 
 /** The form's min and max come from the core's table, as the URL's checks do; the distance

@@ -10,8 +10,11 @@ export const fmt = (v: number | null, digits = 2) => (v === null || v === undefi
  * flight's first packet there is no estimate), in whole percent. */
 export const trackedPercent = (tracked: number | null) => Math.round(100 * (tracked ?? 0));
 
-/** Station names as a list: "DR", "DR and CTRA+", "DR, CTRA+, 3D-CTRA". */
-export const names = (list: Pick<ModelResult, 'model'>[]) => list.map((m) => MODEL_LABELS[m.model]).join(list.length === 2 ? ' and ' : ', ');
+/** Words as a list in a sentence: "a", "a and b", "a, b and c". */
+export const listed = (words: string[]): string => (words.length < 2 ? words.join('') : `${words.slice(0, -1).join(', ')} and ${words[words.length - 1]}`);
+
+/** Station names as a list: "DR", "DR and CTRA+", "DR, CTRA+ and 3D-CTRA". */
+export const names = (list: Pick<ModelResult, 'model'>[]) => listed(list.map((m) => MODEL_LABELS[m.model]));
 
 /** The sending policy with what it rests on, the duty-cycle rule when it is not the paper's
  * off-time per packet and the payload when it is not the model's own: two error-triggered runs

@@ -21,7 +21,7 @@ test('station lists read as a sentence', () => {
   const m = (model: string) => ({ model }) as ModelResult;
   expect(names([m('dr')])).toBe('DR');
   expect(names([m('dr'), m('ctra-plus')])).toBe('DR and CTRA+');
-  expect(names([m('dr'), m('ctra-plus'), m('3d-ctra')])).toBe('DR, CTRA+, 3D-CTRA');
+  expect(names([m('dr'), m('ctra-plus'), m('3d-ctra')])).toBe('DR, CTRA+ and 3D-CTRA');
 });
 
 test('the error chart names the stations with no line on its flight, only where others have one', () => {
