@@ -3,7 +3,7 @@
 // table. Reads the page's state from the store.
 import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
-import { adrFrom, caption, fmt, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
+import { adrFrom, caption, fmt, listed, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan } from './state';
 import { store } from './store';
 
@@ -255,7 +255,9 @@ function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
   $('#rests-on').hidden = few.length === 0;
   $('#use-whole-set').hidden = store.reportSettings.flight === 'all';
   if (few.length) {
-    $('#rests-on-text').textContent = `Too few packets to compare: ${names(few)} ${few.length === 1 ? 'rests' : 'rest'} on ${few.map((m) => m.packetsReceived).join(few.length === 2 ? ' and ' : ', ')} received packet${few.every((m) => m.packetsReceived === 1) ? '' : 's'}.`;
+    const counts = [...new Set(few.map((m) => m.packetsReceived))];
+    const packets = `${counts.length === 1 ? counts[0] : listed(few.map((m) => String(m.packetsReceived)))} received packet${counts.length === 1 && counts[0] === 1 ? '' : 's'}${counts.length === 1 && few.length > 1 ? ' each' : ''}`;
+    $('#rests-on-text').textContent = `Too few packets to compare: ${names(few)} ${few.length === 1 ? 'rests' : 'rest'} on ${packets}.`;
   }
   const text = $('#verdict-text');
   const repeat = $<HTMLButtonElement>('#repeat-seeds');

@@ -727,6 +727,9 @@ test('numbers resting on few packets say so and offer the whole set in one click
   assert.match(await page.locator('#rests-on-text').textContent(), /Too few packets to compare: .* on \d/);
   const received = number((await cell(page, 'dr', 'packets')).split('/')[0]);
   assert.ok(received < 10, `${received} packets`);
+  // One count said once where every station has it, in words a reader can say aloud.
+  for (const model of ['ctra-plus', '3d-ctra']) assert.equal(number((await cell(page, model, 'packets')).split('/')[0]), received, model);
+  assert.equal(await page.locator('#rests-on-text').textContent(), `Too few packets to compare: DR, CTRA+ and 3D-CTRA rest on ${received} received packet${received === 1 ? '' : 's'} each.`);
   // Packets 148 s apart on an 81 s flight: the note says how little of it the errors cover, as
   // the CLI counts it.
   const untracked = await page.locator('#untracked').textContent();
