@@ -148,7 +148,11 @@ impl ModelChoice {
                 StationModel::PAPER.to_vec()
             } else {
                 vec![name.trim().parse::<StationModel>().map_err(|_| {
-                    format!("unknown model '{}' (expected dr, ctra-plus, 3d-ctra, imm, a comma list of them, or all)", name.trim().chars().take(40).collect::<String>())
+                    format!(
+                        "unknown model '{}' (expected {}, a comma list of them, or all)",
+                        name.trim().chars().take(40).collect::<String>(),
+                        StationModel::names()
+                    )
                 })?]
             };
             for m in named {
@@ -158,7 +162,10 @@ impl ModelChoice {
             }
         }
         if models.is_empty() {
-            return Err("model: name at least one of dr, ctra-plus, 3d-ctra, imm, or all".into());
+            return Err(format!(
+                "model: name at least one of {}, or all",
+                StationModel::names()
+            ));
         }
         Ok(ModelChoice(models))
     }

@@ -26,6 +26,20 @@ impl StationModel {
         StationModel::Single(ModelKind::Ctra3d),
     ];
 
+    /// Every station, in the order the CLI's help lists them.
+    pub const ALL: [StationModel; 5] = [
+        StationModel::Single(ModelKind::Dr),
+        StationModel::Single(ModelKind::CtraPlus),
+        StationModel::Single(ModelKind::Ctra3d),
+        StationModel::Imm,
+        StationModel::Mission,
+    ];
+
+    /// Every station's CLI/JS name, as a refusal lists them: "dr, ctra-plus, 3d-ctra, imm, mission".
+    pub fn names() -> String {
+        Self::ALL.map(Self::name).join(", ")
+    }
+
     /// The model whose state the drone filters and sends.
     pub fn sent_model(self) -> ModelKind {
         match self {
@@ -39,7 +53,7 @@ impl StationModel {
         self.sent_model().payload_bytes()
     }
 
-    /// The CLI/JS name: `dr`, `ctra-plus`, `3d-ctra`, `imm`.
+    /// The CLI/JS name: `dr`, `ctra-plus`, `3d-ctra`, `imm`, `mission`.
     pub fn name(self) -> &'static str {
         match self {
             StationModel::Single(m) => m.name(),
@@ -48,7 +62,7 @@ impl StationModel {
         }
     }
 
-    /// The display name: DR, CTRA+, 3D-CTRA, IMM.
+    /// The display name: DR, CTRA+, 3D-CTRA, IMM, Mission.
     pub fn label(self) -> &'static str {
         match self {
             StationModel::Single(m) => m.label(),
@@ -92,6 +106,17 @@ impl FromStr for StationModel {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_station_parses_from_its_name() {
+        for m in StationModel::ALL {
+            assert_eq!(m.name().parse::<StationModel>().unwrap(), m);
+        }
+        assert_eq!(
+            StationModel::names(),
+            "dr, ctra-plus, 3d-ctra, imm, mission"
+        );
+    }
 
     #[test]
     fn imm_sends_the_3d_ctra_payload() {
