@@ -72,16 +72,23 @@ export function updateEmbedCaption(): void {
   $('#embed-notices').textContent = lines.join(' ');
 }
 
+/** A panel's title as the page shows it: its heading. */
+const panelTitle = (panel: HTMLElement): string => panel.querySelector('h2')?.textContent?.trim() ?? panel.dataset.panel!;
+
 /** The Embed dialog: pick panels, copy a snippet that sizes its frame. */
 export function setUpEmbedDialog(): void {
   const embedDialog = $<HTMLDialogElement>('#embed-dialog');
-  for (const name of PANELS) {
+  // Each panel by the title the reader sees over it, in the page's order (the link's name, which
+  // the snippet writes, in its tooltip).
+  for (const panel of document.querySelectorAll<HTMLElement>('[data-panel]')) {
+    const name = panel.dataset.panel!;
     const label = document.createElement('label');
     const box = document.createElement('input');
     box.type = 'checkbox';
     box.value = name;
     box.checked = ['results', 'error'].includes(name);
-    label.append(box, ` ${name}`);
+    label.title = `panels=${name} in the link`;
+    label.append(box, ` ${panelTitle(panel)}`);
     $('#embed-panels').append(label);
   }
 

@@ -518,7 +518,7 @@ test('the swarm panel\'s choices travel in the link and the embed snippet, and a
   assert.equal(link.searchParams.get('swarmPlan'), 'spread');
   assert.equal(link.searchParams.get('swarmSchedule'), null, 'a default is left out');
   await page.getByRole('button', { name: 'Embed…' }).click();
-  await page.getByRole('checkbox', { name: 'swarm' }).check();
+  await page.getByRole('checkbox', { name: 'Swarm: many drones sharing the air' }).check();
   const snippet = await page.getByLabel('HTML to paste').inputValue();
   const src = new URL(/src="([^"]+)"/.exec(snippet)[1].replace(/&amp;/g, '&'));
   assert.equal(src.searchParams.get('swarmDrones'), '20');
@@ -779,7 +779,11 @@ test('an embed says what it shows and every notice, offers no Pin, and grows its
   // The dialog: pick panels, the snippet follows.
   const full = await open();
   await full.page.getByRole('button', { name: 'Embed…' }).click();
-  await full.page.getByRole('checkbox', { name: 'distance' }).check();
+  // Each panel by the title over it, in the page's order.
+  const titles = await full.page.locator('[data-panel] h2').evaluateAll((hs) => hs.map((h) => h.textContent.trim()));
+  assert.deepEqual(await full.page.locator('#embed-panels label').allTextContents().then((ls) => ls.map((l) => l.trim())), titles);
+  assert.equal(titles.length, 10);
+  await full.page.getByRole('checkbox', { name: 'Error versus distance' }).check();
   const snippet = await full.page.getByLabel('HTML to paste').inputValue();
   assert.match(snippet, /embed=1&amp;panels=results%2Cerror%2Cdistance|embed=1&amp;panels=results,error,distance/);
   assert.match(snippet, /loratrackHeight/);
