@@ -15,7 +15,7 @@ import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
 import { caption, fewPacketsNote, fixedRateNote, noLineNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote } from './format';
 import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
-import { renderBaseline, renderTable, restingNotes } from './results';
+import { clearTable, renderBaseline, renderTable, restingNotes } from './results';
 import { setUpPresent } from './present';
 import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, runsMission, simulateRequest, swarmSettings, toParams, toQuery, type Settings } from './state';
 import { pageQuery, store } from './store';
@@ -120,6 +120,27 @@ function showPartial(partial: boolean): boolean {
   return was;
 }
 
+/** The run whose whole set the core refused: its first flight's numbers, if not yet shown, are not. */
+let refusedRun: number | undefined;
+
+/** A whole set refused after its first flight was shown (more seeds than the core's step limit
+ * takes): that flight's numbers stand for neither these settings nor the previous ones, so the
+ * table and the error chart go back to the previous results, or to none. */
+function unshowPartial(): void {
+  if (store.report) {
+    renderTable(store.report);
+    drawErrorChart(store.report, store.reportSettings);
+    return;
+  }
+  clearTable();
+  restsOn('error');
+  later('error', () => {
+    $('#chart-error').replaceChildren();
+    delete charts.error;
+    delete drawnFrom.error;
+  });
+}
+
 /** The whole set's first flight while the other flights run: its table (whose caption says one
  * flight) and its error chart, which is the one the whole set's report draws too. */
 function renderPartial(r: SimReport, made: Settings): void {
@@ -185,7 +206,10 @@ function onResponse(r: Response): void {
   }
   if ('partial' in r) {
     const made = running.settings;
-    inNextTask(r.id, () => renderPartial(r.partial, made));
+    const id = r.id;
+    // Not once the core has refused the whole set (its first flight is quick to accept and the
+    // set quick to refuse, so the refusal may come before this task).
+    inNextTask(id, () => refusedRun !== id && renderPartial(r.partial, made));
     return;
   }
   if ('report' in r) {
@@ -196,7 +220,7 @@ function onResponse(r: Response): void {
     sweepWait = setTimeout(() => sweepPending(true), SWEEP_PATIENCE_MS);
     return;
   }
-  showPartial(false);
+  const hadPartial = showPartial(false);
   sweepPending(false);
   if ('sweep' in r) {
     renderSweep(r.sweep, { ...(running?.settings ?? store.reportSettings), seeds: 1 });
@@ -208,6 +232,8 @@ function onResponse(r: Response): void {
   }
   if ('error' in r) {
     const failed = running.settings;
+    refusedRun = r.id;
+    if (hadPartial) unshowPartial();
     running = undefined;
     progress.hidden = true;
     updateBusy();

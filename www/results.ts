@@ -58,6 +58,17 @@ let shown: {
   rows: { model: ModelResult['model']; best: boolean; errors: string; packets: string; frames: string }[];
 } | null = null;
 
+/** No results on show, as before the first run: the table and every note it wrote emptied (a
+ * whole set refused after its first flight's numbers were shown, and no earlier run to go back to). */
+export function clearTable(): void {
+  shown = null;
+  $('#results-table').replaceChildren();
+  for (const id of ['rests-on', 'untracked', 'silence-note', 'spread-note', 'network-note', 'rate-use']) $(`#${id}`).hidden = true;
+  $('#verdict-text').textContent = '';
+  $('#repeat-seeds').hidden = true;
+  renderBaseline(undefined);
+}
+
 const ERROR_HEAD = `<th scope="col" title="Mean 3D distance between the station's estimate and the truth">mean</th><th scope="col" title="Half the time the error is below this">median</th><th scope="col" title="75th percentile: 3 times in 4 the error is below this (the paper's headline statistic)">p75</th><th scope="col" title="95th percentile: the bad moments, typically long gaps">p95</th><th scope="col">max</th><th scope="col" title="Share of the time the true position lay inside the station's own 95 % ellipsoid: about 95 % when the station's uncertainty is honest, more when it is too cautious, less when it is overconfident">in 95 % bound</th>`;
 
 /** How many tables the results are laid out in: one; the tracking error, and under it what the

@@ -910,6 +910,37 @@ test('a link whose settings the core refuses says why, shows no old results, and
   assert.deepEqual([...problems, ...embed.problems], []);
 });
 
+test('a whole set the core refuses after its first flight shows neither that flight nor old results as its own', async () => {
+  // 20 seeds of the 44-minute set take more filter steps than one run may: the first flight alone
+  // is accepted (and quick), the set is not.
+  const { page, problems } = await openPage(playground.context, new URL(playground.url).origin);
+  await page.goto(`${playground.url}?flight=all&seeds=20`);
+  await until(page, () => /cannot be simulated: the run is too long/.test(document.querySelector('#status')?.textContent ?? ''));
+  await idle(page);
+  assert.match(await page.locator('#status').textContent(), /Change a setting to see results\.$/);
+  assert.equal(await page.locator('#results-table tbody tr').count(), 0, "the first flight's numbers do not stand for the set");
+  assert.equal(await page.locator('#chart-error svg').count(), 0);
+  assert.equal(await page.locator('[data-panel="results"].partial').count(), 0);
+  await page.getByRole('button', { name: 'Results (CSV)' }).click();
+  assert.match(await page.locator('[data-panel="results"] .download-why').first().textContent(), /^No results yet: nothing has been simulated at these settings/);
+  // From a run on show, the same refusal leaves that run's numbers, marked as the previous settings'.
+  await page.locator('#advanced summary').click();
+  await page.getByLabel('Seeds (repeats)').fill('2');
+  await page.getByLabel('Seeds (repeats)').press('Tab');
+  await waitForResults(page);
+  await idle(page);
+  const before = await tableHtml(page);
+  await page.getByLabel('Seeds (repeats)').fill('20');
+  await page.getByLabel('Seeds (repeats)').press('Tab');
+  await until(page, () => /cannot be simulated: the run is too long/.test(document.querySelector('#status')?.textContent ?? ''));
+  await idle(page);
+  assert.match(await page.locator('#status').textContent(), /the results below are for the previous settings\.$/);
+  assert.equal(await tableHtml(page), before);
+  assert.match(await page.locator('#results-table caption').first().textContent(), /over 30 flights × 2 seeds/);
+  assert.equal(await page.locator('[data-panel="results"].stale').count(), 1);
+  assert.deepEqual(problems, []);
+});
+
 test('with Advanced open the page scrolls, not the settings, and the results table fits its box', async () => {
   const { page, problems } = await open('', { width: 1280, height: 800 });
   await page.locator('#advanced summary').click();
