@@ -1,5 +1,5 @@
 use crate::lora::LoraError;
-use crate::options::{as_given, OutOfRange, MAX_FILTER_STEPS, SEED};
+use crate::options::{as_given, OutOfRange, MAX_FILTER_STEPS, MAX_SWARM_FILTER_STEPS, SEED};
 use crate::trajectory::{PlanError, TrajectoryError};
 use core::fmt;
 
@@ -43,10 +43,12 @@ pub enum SimError {
     },
     /// More filter steps than one run may take (flight time × (sensor rate + 1 / T)).
     TooLong {
-        /// Seconds of flight.
+        /// Seconds of flight, every seed's or every drone's.
         flight_time: f64,
-        /// Filter steps per model it would take.
+        /// Filter steps it would take: per model for `simulate`, over every drone for a swarm.
         steps: f64,
+        /// Which run, with what its remedy names.
+        run: LongRun,
     },
 }
 
@@ -87,14 +89,46 @@ impl fmt::Display for SimError {
                 f,
                 "adr starts at an EU868 data rate (SF7..12 at 125 kHz or SF7 at 250 kHz), got SF{sf} at {bw} kHz"
             ),
-            SimError::TooLong { flight_time, steps } => write!(
+            SimError::TooLong {
+                flight_time,
+                steps,
+                run: LongRun::Simulate { seeds },
+            } => {
+                write!(
+                    f,
+                    "the run is too long: {flight_time:.0} s of flight at these rates is {steps:.0} filter steps per model; \
+                     the limit is {MAX_FILTER_STEPS} ("
+                )?;
+                // The seeds the flight leaves room for, where fewer would do.
+                let room = (MAX_FILTER_STEPS as f64 / (steps / *seeds as f64)).floor();
+                if *seeds > 1 && room >= 1.0 {
+                    write!(f, "at most {room:.0} seeds, or ")?;
+                }
+                f.write_str("shorten the flight, lower the sensor rate or lengthen the step T)")
+            }
+            SimError::TooLong {
+                flight_time,
+                steps,
+                run: LongRun::Swarm,
+            } => write!(
                 f,
-                "the run is too long: {flight_time:.0} s of flight at these rates is {steps:.0} filter steps per model; \
-                 the limit is {} (shorten the flight, use fewer seeds, lower the sensor rate or lengthen the step T)",
-                MAX_FILTER_STEPS
+                "the swarm is too long: its drones fly {flight_time:.0} s in all, {steps:.0} filter steps at these rates; \
+                 the limit is {MAX_SWARM_FILTER_STEPS} (fewer drones, shorter flights, a lower sensor rate or a longer step T)"
             ),
         }
     }
+}
+
+/// The run [`SimError::TooLong`] refuses, for its remedy.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LongRun {
+    /// `simulate`: one drone over its flights, once per seed.
+    Simulate {
+        /// The seeds each flight is flown with.
+        seeds: u64,
+    },
+    /// `swarm`: every drone's flights.
+    Swarm,
 }
 
 impl std::error::Error for SimError {}

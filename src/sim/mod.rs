@@ -35,7 +35,7 @@ pub use caveats::{Caveats, FEW_PACKETS, SILENCE_LOSS};
 pub use clock::{Clock, Timing};
 pub use delivery_spread::{DeliverySpread, DELIVERY_SPREAD};
 pub use drone::{run_drone, run_drones, DroneFilter, DroneTrack, Estimates, Sensing};
-pub use error::SimError;
+pub use error::{LongRun, SimError};
 pub use flier::{Aboard, Air, Flier};
 pub use link::{Link, Reception};
 pub use network::{fly_alone, run_episode, CrowdLoad, GatewayReport, Network, NetworkSetup};

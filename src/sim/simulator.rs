@@ -12,7 +12,7 @@ use super::station::{
 };
 use super::station_run::{FlightRun, StationPlan, StationRun};
 use super::streams::DroneStreams;
-use super::SimError;
+use super::{LongRun, SimError};
 use crate::lora::Channel;
 use crate::math::pow;
 use crate::models::ModelKind;
@@ -598,6 +598,7 @@ fn check_steps(cfg: &Validated, flight_time: f64, seeds: u64) -> Result<(), SimE
         return Err(SimError::TooLong {
             flight_time: flight_time * seeds as f64,
             steps,
+            run: LongRun::Simulate { seeds },
         });
     }
     Ok(())

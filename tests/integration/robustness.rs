@@ -412,6 +412,24 @@ fn runs_beyond_the_work_limit_are_refused_quickly() {
         ],
         "the limit is 1000000",
     );
+    // Several seeds of a flight: the refusal says how many fit, and that many run.
+    refused(
+        &["simulate", "--synthetic", "all", "--seeds", "20"],
+        "(at most 18 seeds, or shorten the flight",
+    );
+    // A swarm is refused at its own limit, with a swarm's remedies.
+    refused(
+        &[
+            "swarm",
+            "--drones",
+            "500",
+            "--duration",
+            "3600",
+            "--sensor-rate",
+            "20",
+        ],
+        "the swarm is too long: its drones fly 1800000 s in all, 54000000 filter steps at these rates; the limit is 36000000 (fewer drones",
+    );
     assert!(
         started.elapsed().as_secs_f64() < 5.0,
         "refused in {:?}",
@@ -434,6 +452,17 @@ fn runs_beyond_the_work_limit_are_refused_quickly() {
         "--json",
     ]);
     assert!(r["results"][0]["error3d"]["count"].as_u64().unwrap() > 0);
+    let r = json(&[
+        "simulate",
+        "--synthetic",
+        "all",
+        "--seeds",
+        "18",
+        "--model",
+        "dr",
+        "--json",
+    ]);
+    assert_eq!(r["config"]["seeds"].as_u64(), Some(18));
 }
 
 #[test]

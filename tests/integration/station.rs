@@ -491,7 +491,10 @@ fn model_lists_are_parsed_and_bad_names_refused() {
     let e = ModelChoice::parse("dr,kalman").unwrap_err();
     assert!(e.contains("unknown model 'kalman'"), "{e}");
     // It lists every station the parser takes, the mission station too.
-    assert!(e.contains("expected dr, ctra-plus, 3d-ctra, imm, mission,"), "{e}");
+    assert!(
+        e.contains("expected dr, ctra-plus, 3d-ctra, imm, mission,"),
+        "{e}"
+    );
     assert!(ModelChoice::parse("").is_err());
 }
 

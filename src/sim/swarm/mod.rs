@@ -26,7 +26,7 @@ use super::sender::LeanPayload;
 use super::simulator::load_flights;
 use super::station::{new_tracker, track_station, Scoring, StationModel, StationSetup};
 use super::streams::{DroneStreams, LAYOUT_STREAM};
-use super::{Caveats, SimError, Transmission};
+use super::{Caveats, LongRun, SimError, Transmission};
 use crate::lora::{time_on_air, AdrMode, LoraParams, Outcome};
 use crate::math::sin_cos;
 use crate::metrics::{percentile, sort_total, Summary, WholeFlightError};
@@ -561,6 +561,7 @@ fn check_length(cfg: &Validated, plan: &Plan) -> Result<(), SimError> {
         return Err(SimError::TooLong {
             flight_time: flown,
             steps,
+            run: LongRun::Swarm,
         });
     }
     Ok(())
