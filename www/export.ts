@@ -2,6 +2,7 @@
 // PNG ready for a slide (title, legend, axis labels, a caption with the settings, seed and
 // version; PNGs at least 1600 px wide), and tables as CSV. Everything is made in the page from
 // data it already has: no request leaves it.
+import type { AirtimeRow } from './airtime';
 import { isThinned, type ModelSeries, type SimReport } from './loratrack';
 
 /** What a slide needs besides the chart: a title, a one-line caption of what made it and what
@@ -109,10 +110,13 @@ export function downloadResultsCsv(report: SimReport, made: { settings: string; 
   save(new Blob([csvText([header, ...rows])], { type: 'text/csv' }), 'loratrack-results.csv');
 }
 
-/** An HTML table as CSV: its header row and body rows, cell text as shown. */
-export function downloadTableCsv(table: HTMLTableElement, name: string): void {
-  const rows = [...table.rows].map((r) => [...r.cells].map((c) => (c.textContent ?? '').trim()));
-  save(new Blob([csvText(rows)], { type: 'text/csv' }), `${name}.csv`);
+/** The time-on-air table as CSV, one row per SF, bandwidth and payload, its numbers in seconds as
+ * the core gives them (the table rounds them): `interval_s` empty and `refused` the plan's reason
+ * where the plan does not carry the packet; `settings` the ones the table follows, in words. */
+export function downloadAirtimeCsv(rows: AirtimeRow[], settings: string): void {
+  const header = ['sf', 'bandwidth_khz', 'data_rate', 'payload_bytes', 'model', 'time_on_air_s', 'interval_s', 'refused', 'settings'];
+  const body = rows.flatMap((r) => r.cells.map((c) => [String(r.sf), String(r.bw), r.dataRate, String(c.payload), c.station, String(c.timeOnAir), c.interval === null ? '' : String(c.interval), c.refused ?? '', settings]));
+  save(new Blob([csvText([header, ...body])], { type: 'text/csv' }), 'loratrack-time-on-air.csv');
 }
 
 /** Configuration and results, without the bulky series. */

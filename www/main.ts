@@ -9,7 +9,8 @@ import type { BoxRow } from './charts/plots';
 import type { SfRow } from './charts/p75BySf';
 import type { Trajectory3d } from './charts/trajectory3d';
 import { $, fitOnWidth, linkDocs, presenting, tighten } from './dom';
-import { chartSvg, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, downloadTableCsv, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
+import { airtimeRows } from './airtime';
+import { chartSvg, downloadAirtimeCsv, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
 import { field, form, markField, onFormChange, readControls, settingWords, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
 import { caption, fewPacketsNote, fixedRateNote, noLineNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote } from './format';
@@ -576,12 +577,16 @@ async function renderLink(): Promise<void> {
   await drawPanel('link', [params, opts], (p) => p.linkBudgetCharts(linkBudget(params), opts));
 }
 
+/** What the time-on-air table on show was drawn from: its CSV gives the same rows. */
+let airtimeDrawn: { opts: ReturnType<typeof packetPlan> & { sf: number; bw: number }; settings: Settings } | undefined;
+
 async function renderAirtime(): Promise<void> {
   const s = store.settings;
   const opts = { sf: s.sf, bw: s.bw, ...packetPlan(s) };
   const width = chartWidth('airtime');
   await drawPanel('airtime', [opts, width], (p) => {
     $('#airtime-table').replaceChildren(p.airtimeTable(opts));
+    airtimeDrawn = { opts, settings: { ...s } };
     fitAirtimeTable();
     return p.airtimeVsPayloadChart({ ...opts, width });
   });
@@ -898,8 +903,7 @@ function downloadAirtimePicture(button: HTMLButtonElement): void {
   saveSlide(button, tableSvg(table), 'loratrack-time-on-air', slide);
 }
 $('#download-airtime-csv').addEventListener('click', () => {
-  const table = document.querySelector<HTMLTableElement>('#airtime-table table');
-  if (table) downloadTableCsv(table, 'loratrack-time-on-air');
+  if (airtimeDrawn) downloadAirtimeCsv(airtimeRows(airtimeDrawn.opts), caption(airtimeDrawn.settings));
 });
 for (const button of document.querySelectorAll<HTMLButtonElement>('[data-download]')) {
   const name = button.dataset.download!;

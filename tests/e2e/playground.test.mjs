@@ -725,9 +725,18 @@ test('every chart and both tables download ready for a slide: title, legend, cap
   // What the errors rest on: the share of the flight time after its first packet (SF7: most of it).
   const tracked = Number(results[1].split(',')[results[0].split(',').indexOf('tracked_share')]);
   assert.ok(tracked > 0.95 && tracked < 1, `tracked share ${tracked}`);
-  const airtime = (await save(page.getByRole('button', { name: 'Time-on-air table (CSV)' }))).toString('utf8');
-  assert.match(airtime.split('\n')[0], /SF,bandwidth,data rate,9 B/);
-  assert.match(airtime, /^SF7,250 kHz,DR6,/m, 'the plan names each pair\'s data rate');
+  // The time-on-air table as numbers a spreadsheet reads: one row per SF, bandwidth and payload,
+  // in seconds, each the table's cell before it is rounded.
+  const [airHead, ...airRows] = (await save(page.getByRole('button', { name: 'Time-on-air table (CSV)' }))).toString('utf8').trim().split('\n').map((l) => l.split(','));
+  assert.deepEqual(airHead, ['sf', 'bandwidth_khz', 'data_rate', 'payload_bytes', 'model', 'time_on_air_s', 'interval_s', 'refused', 'settings']);
+  assert.equal(airRows.length, 6 * 3 * 3);
+  assert.deepEqual(airRows.find((r) => r[0] === '7' && r[1] === '250' && r[3] === '12').slice(0, 5), ['7', '250', 'DR6', '12', '3d-ctra'], "the plan names each pair's data rate");
+  const tableRows = await page.locator('.airtime-table tbody tr').evaluateAll((rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
+  for (const [sf, bw, rate, ...cells] of tableRows) {
+    const csv = airRows.filter((r) => `SF${r[0]}` === sf && `${r[1]} kHz` === bw);
+    assert.deepEqual(csv.map((r) => r[2]), [rate, rate, rate], `${sf} ${bw}`);
+    assert.deepEqual(csv.map((r) => `${(Number(r[5]) * 1e3).toFixed(1)} ms · ${Number(r[6]).toFixed(2)} s`), cells, `${sf} ${bw}`);
+  }
   // The time-on-air table as a picture (Table II on a slide): each row as the page shows it, the
   // current data rate shaded, captioned with what the numbers are and the settings they follow.
   const airSvg = (await save(page.getByRole('button', { name: 'Download the time on air table as SVG' }))).toString('utf8');

@@ -2,20 +2,8 @@
 // air versus payload size, computed by the Rust core for the current overhead and coding rate.
 import { chartFrame, SF_COLORS, withKey, labelRoom } from './colors';
 import * as Plot from '@observablehq/plot';
-import { MODEL_LABELS, PAYLOAD_BYTES, PLANS, timeOnAir, type AirtimeParams, type Region } from '../loratrack';
-
-const SFS = [7, 8, 9, 10, 11, 12];
-const BWS = [125, 250, 500];
-/** The paper's three stations and their payloads, bytes (9, 11, 12). */
-const PAPER_STATIONS = ['dr', 'ctra-plus', '3d-ctra'] as const;
-const PAYLOADS = PAPER_STATIONS.map((m) => PAYLOAD_BYTES[m]);
-
-const inPlan = (region: Region, sf: number, bw: number) => PLANS.some((p) => p.region === region && p.rates.some((r) => r.sf === sf && r.bw === bw));
-const rawLora = (region: Region) => PLANS.some((p) => p.region === region && p.rawLora);
-
-/** The plan's settings the table speaks: region, interval where it has no duty cycle, access,
- * fair use. */
-export type PlanOpts = Pick<AirtimeParams, 'region' | 'interval' | 'access' | 'fairUse'>;
+import { MODEL_LABELS, PAYLOAD_BYTES, timeOnAir } from '../loratrack';
+import { airtimeRows, PAPER_STATIONS, SFS, type PlanOpts } from '../airtime';
 
 /** SF × bandwidth × payload table in the plan's words: each pair's data rate (or that the plan
  * lacks it), and for each payload its time on air and interval, or why the plan refuses it (the
@@ -33,35 +21,30 @@ export function airtimeTable(opts: { overhead: number; cr: number; sf: number; b
     head.appendChild(th);
   }
   const body = table.createTBody();
-  for (const sf of SFS) {
-    for (const bw of BWS) {
-      const row = body.insertRow();
-      if (sf === opts.sf && bw === opts.bw) row.className = 'current';
-      // SF and bandwidth name the row (row headers, kept in view as the table scrolls sideways).
-      for (const name of [`SF${sf}`, `${bw} kHz`]) {
-        const th = document.createElement('th');
-        th.scope = 'row';
-        th.textContent = name;
-        row.appendChild(th);
-      }
-      const rate = row.insertCell();
-      const plan = { region: opts.region, interval: opts.interval, access: opts.access, fairUse: opts.fairUse };
-      for (const [i, payload] of PAYLOADS.entries()) {
-        const r = timeOnAir({ sf, bw, payload, overhead: opts.overhead, cr: opts.cr, ...plan });
-        if (i === 0) rate.textContent = r.dataRate !== null ? `DR${r.dataRate}` : inPlan(opts.region, sf, bw) || rawLora(opts.region) ? 'raw LoRa' : `not in ${label}`;
-        const cell = row.insertCell();
-        // Two pieces, so that where the table is too wide (`tighten`) the interval goes under the
-        // time on air rather than out of sight: presentation mode at 1024×768 cut off 3D-CTRA's.
-        const [air, interval] = [`${(r.timeOnAir * 1e3).toFixed(1)} ms ·`, r.refused ? 'refused' : `${r.minInterval.toFixed(2)} s`].map((text) => {
-          const piece = document.createElement('span');
-          piece.textContent = text;
-          return piece;
-        });
-        cell.append(air, ' ', interval);
-        if (r.refused) {
-          cell.className = 'refused';
-          cell.title = r.refused;
-        }
+  for (const { sf, bw, dataRate, cells } of airtimeRows(opts)) {
+    const row = body.insertRow();
+    if (sf === opts.sf && bw === opts.bw) row.className = 'current';
+    // SF and bandwidth name the row (row headers, kept in view as the table scrolls sideways).
+    for (const name of [`SF${sf}`, `${bw} kHz`]) {
+      const th = document.createElement('th');
+      th.scope = 'row';
+      th.textContent = name;
+      row.appendChild(th);
+    }
+    row.insertCell().textContent = dataRate;
+    for (const c of cells) {
+      const cell = row.insertCell();
+      // Two pieces, so that where the table is too wide (`tighten`) the interval goes under the
+      // time on air rather than out of sight: presentation mode at 1024×768 cut off 3D-CTRA's.
+      const [air, interval] = [`${(c.timeOnAir * 1e3).toFixed(1)} ms ·`, c.interval === null ? 'refused' : `${c.interval.toFixed(2)} s`].map((text) => {
+        const piece = document.createElement('span');
+        piece.textContent = text;
+        return piece;
+      });
+      cell.append(air, ' ', interval);
+      if (c.refused) {
+        cell.className = 'refused';
+        cell.title = c.refused;
       }
     }
   }
@@ -77,7 +60,7 @@ export function airtimeVsPayloadChart(opts: { overhead: number; cr: number; sf: 
       ms: timeOnAir({ sf, bw: opts.bw, payload, overhead: opts.overhead, cr: opts.cr }).timeOnAir * 1e3,
     })),
   );
-  const ours = PAYLOADS.map((payload) => ({ payload, ms: timeOnAir({ sf: opts.sf, bw: opts.bw, payload, overhead: opts.overhead, cr: opts.cr }).timeOnAir * 1e3 }));
+  const ours = PAPER_STATIONS.map((m) => PAYLOAD_BYTES[m]).map((payload) => ({ payload, ms: timeOnAir({ sf: opts.sf, bw: opts.bw, payload, overhead: opts.overhead, cr: opts.cr }).timeOnAir * 1e3 }));
   const chart = Plot.plot({
     // Below the time-on-air table, which fills its presentation screen already: never taller.
     ...chartFrame(300, Infinity),
