@@ -1,5 +1,5 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
-import { MODEL_LABELS, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
+import { MODEL_LABELS, PAYLOAD_BYTES, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
 import { DEFAULTS, LIMITS, plan, type Settings } from './state';
 import { store } from './store';
 
@@ -124,12 +124,21 @@ export function refusedNote(points: { at: string; asked: ModelName[]; ran: Model
     if (!p.error) continue;
     const missing = p.asked.filter((m) => !p.ran.includes(m));
     const who = p.ran.length ? `${names(missing.map((model) => ({ model })))} not simulated` : 'Not simulated';
-    const error = p.error.replace(/\.$/, '');
+    const error = forEach(missing, p.error.replace(/\.$/, ''));
     const key = `${who}\n${error.replace(NUMBER, '#')}`;
     const g = groups.get(key) ?? { who, at: [], errors: [] };
     groups.set(key, { who, at: [...g.at, p.at], errors: [...g.errors, error] });
   }
   return [...groups.values()].map((g) => `${g.who} at ${g.at.join(', ')}: ${sideBySide(g.errors)}.`).join(' ');
+}
+
+/** A refusal the core gave for one of `missing` ("3D-CTRA sends 12 bytes …", the first station
+ * that was tried) as the reason of them all where they send the same payload ("each sends 12
+ * bytes …", under "3D-CTRA and IMM not simulated"). */
+function forEach(missing: ModelName[], error: string): string {
+  if (missing.length < 2 || new Set(missing.map((m) => PAYLOAD_BYTES[m])).size > 1) return error;
+  const first = missing.find((m) => error.startsWith(`${MODEL_LABELS[m]} sends `));
+  return first ? `each sends ${error.slice(`${MODEL_LABELS[first]} sends `.length)}` : error;
 }
 
 const NUMBER = /\d+(?:\.\d+)?/g;

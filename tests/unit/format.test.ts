@@ -124,6 +124,13 @@ test('the refused note names whole points and the stations of a point that did n
   ]);
   expect(note).toBe('3D-CTRA not simulated at SF10: over the dwell time. Not simulated at SF11, SF12: no such data rate.');
   expect(refusedNote([{ at: 'SF7', asked: [...asked], ran: [...asked] }])).toBe('');
+  // Stations refused for one frame length: the core's reason, given for the first, speaks for each.
+  const frame = '3D-CTRA sends 12 bytes (+13 overhead): the frame takes 411.6 ms on air';
+  const both = refusedNote([{ at: 'SF10', asked: ['dr', '3d-ctra', 'imm'], ran: ['dr'], error: frame }]);
+  expect(both).toBe('3D-CTRA and IMM not simulated at SF10: each sends 12 bytes (+13 overhead): the frame takes 411.6 ms on air.');
+  // Not where their payloads differ (CTRA+'s 11 bytes beside 3D-CTRA's 12): the first's reason stays its own.
+  const apart = refusedNote([{ at: 'SF10', asked: ['dr', 'ctra-plus', '3d-ctra'], ran: ['dr'], error: frame }]);
+  expect(apart).toBe(`CTRA+ and 3D-CTRA not simulated at SF10: ${frame}.`);
 });
 
 test('points refused alike but for their numbers share one sentence, the numbers side by side', () => {
