@@ -427,7 +427,10 @@ fn the_whole_set_gives_intervals_over_its_flights_and_seeds_multiply_the_work_li
     let p75 = r.results[0].error3d.p75;
     assert!(ci.p75[0] < p75 && p75 < ci.p75[1], "{ci:?} around {p75}");
     let too_many = simulate(&mut Simulator::new(), &set(&all, json!({"seeds": 30})));
-    assert!(too_many.unwrap_err().to_string().contains("fewer seeds"));
+    assert!(too_many
+        .unwrap_err()
+        .to_string()
+        .contains("(at most 18 seeds, or shorten the flight"));
 }
 
 #[test]
