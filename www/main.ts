@@ -577,16 +577,17 @@ async function renderLink(): Promise<void> {
   await drawPanel('link', [params, opts], (p) => p.linkBudgetCharts(linkBudget(params), opts));
 }
 
-/** What the time-on-air table on show was drawn from: its CSV gives the same rows. */
+/** What the time-on-air table on show follows: its CSV gives the same rows, with these settings
+ * (set also where the table is left as drawn, its numbers the same: a new distance). */
 let airtimeDrawn: { opts: ReturnType<typeof packetPlan> & { sf: number; bw: number }; settings: Settings } | undefined;
 
 async function renderAirtime(): Promise<void> {
   const s = store.settings;
   const opts = { sf: s.sf, bw: s.bw, ...packetPlan(s) };
   const width = chartWidth('airtime');
+  airtimeDrawn = { opts, settings: { ...s } };
   await drawPanel('airtime', [opts, width], (p) => {
     $('#airtime-table').replaceChildren(p.airtimeTable(opts));
-    airtimeDrawn = { opts, settings: { ...s } };
     fitAirtimeTable();
     return p.airtimeVsPayloadChart({ ...opts, width });
   });
@@ -899,7 +900,7 @@ function downloadAirtimePicture(button: HTMLButtonElement): void {
   const table = document.querySelector<HTMLTableElement>('#airtime-table table');
   if (!table) return;
   const what = table.caption?.textContent?.trim() ?? '';
-  const slide = { title: 'Time on air', caption: `${what} ${caption(store.settings)}.` };
+  const slide = { title: 'Time on air', caption: `${what} ${caption(airtimeDrawn?.settings ?? store.settings)}.` };
   saveSlide(button, tableSvg(table), 'loratrack-time-on-air', slide);
 }
 $('#download-airtime-csv').addEventListener('click', () => {

@@ -786,6 +786,11 @@ test('a change leaves the charts it cannot change as drawn, their downloads nami
     const svg = (await downloaded(page, page.getByRole('button', { name: new RegExp(`^Download the ${title}.* chart as SVG$`) }))).toString('utf8');
     assert.match(svg, /SF7, 250 kHz, 3\.5 km/, `${title}: captioned with the distance now set`);
   }
+  // So do the time-on-air table's picture and CSV, whose numbers the distance leaves as they were.
+  const tableSvg = (await downloaded(page, page.getByRole('button', { name: 'Download the time on air table as SVG' }))).toString('utf8');
+  assert.match(tableSvg.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' '), /SF7, 250 kHz, 3\.5 km/, 'time-on-air table: captioned with the distance now set');
+  const tableCsv = (await downloaded(page, page.getByRole('button', { name: 'Time-on-air table (CSV)' }))).toString('utf8');
+  assert.match(tableCsv.split('\n')[1], /"SF7, 250 kHz, 3\.5 km/, 'time-on-air CSV: its settings the ones now set');
   await mark();
   const far = await tableHtml(page);
   await page.getByLabel('Spreading factor', { exact: true }).selectOption('8');
