@@ -92,17 +92,15 @@ impl fmt::Display for SimError {
             SimError::TooLong {
                 flight_time,
                 steps,
-                run: LongRun::Simulate { seeds },
+                run: LongRun::Simulate { .. },
             } => {
                 write!(
                     f,
                     "the run is too long: {flight_time:.0} s of flight at these rates is {steps:.0} filter steps per model; \
                      the limit is {MAX_FILTER_STEPS} ("
                 )?;
-                // The seeds the flight leaves room for, where fewer would do.
-                let room = (MAX_FILTER_STEPS as f64 / (steps / *seeds as f64)).floor();
-                if *seeds > 1 && room >= 1.0 {
-                    write!(f, "at most {room:.0} seeds, or ")?;
+                if let Some(room) = self.seeds_that_fit() {
+                    write!(f, "at most {room} seeds, or ")?;
                 }
                 f.write_str("shorten the flight, lower the sensor rate or lengthen the step T)")
             }
@@ -134,9 +132,27 @@ pub enum LongRun {
 impl std::error::Error for SimError {}
 
 impl SimError {
+    /// For a `simulate` run too long only for its several seeds, how many would fit (the whole
+    /// synthetic set at the default rates: 18); `None` for any other error, or where one seed is
+    /// already too long.
+    pub fn seeds_that_fit(&self) -> Option<u64> {
+        match self {
+            SimError::TooLong {
+                steps,
+                run: LongRun::Simulate { seeds },
+                ..
+            } if *seeds > 1 => {
+                let room = (MAX_FILTER_STEPS as f64 / (steps / *seeds as f64)).floor() as u64;
+                (room >= 1).then_some(room)
+            }
+            _ => None,
+        }
+    }
+
     /// The setting this error refuses, by its key in the JS API and the page's form (as
     /// [`LoraError::setting`]); `None` where no one setting is at fault (a choice of flight that
-    /// conflicts with another setting, a run too long for its several settings together).
+    /// conflicts with another setting, a run too long for its several settings together; one
+    /// too long only for its seeds names `seeds`).
     pub fn setting(&self) -> Option<&'static str> {
         match self {
             SimError::Trajectory(e) => Some(e.setting()),
@@ -148,6 +164,7 @@ impl SimError {
             SimError::Seed(_) => Some("seed"),
             SimError::Seeds { .. } => Some("seeds"),
             SimError::AdrStart(..) => Some("adr"),
+            SimError::TooLong { .. } if self.seeds_that_fit().is_some() => Some("seeds"),
             SimError::Source(_) | SimError::TooLong { .. } => None,
         }
     }

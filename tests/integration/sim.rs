@@ -426,11 +426,17 @@ fn the_whole_set_gives_intervals_over_its_flights_and_seeds_multiply_the_work_li
     assert_eq!(ci.runs, 30);
     let p75 = r.results[0].error3d.p75;
     assert!(ci.p75[0] < p75 && p75 < ci.p75[1], "{ci:?} around {p75}");
-    let too_many = simulate(&mut Simulator::new(), &set(&all, json!({"seeds": 30})));
+    let too_many = simulate(&mut Simulator::new(), &set(&all, json!({"seeds": 30}))).unwrap_err();
     assert!(too_many
-        .unwrap_err()
         .to_string()
         .contains("(at most 18 seeds, or shorten the flight"));
+    // Fewer seeds would do: the seeds are the setting to change (the page marks its field).
+    assert_eq!(too_many.setting(), Some("seeds"));
+    // Where one seed is already too long, no one setting is at fault.
+    let fast = set(&all, json!({"seeds": 2, "sensorRate": 400}));
+    let e = simulate(&mut Simulator::new(), &fast).unwrap_err();
+    assert!(e.to_string().contains("the run is too long"), "{e}");
+    assert_eq!(e.setting(), None);
 }
 
 #[test]
