@@ -140,6 +140,10 @@ export function markField(el: HTMLInputElement | HTMLSelectElement, why: string 
     return;
   }
   el.setAttribute('aria-invalid', 'true');
+  // A field under a closed section (Advanced: the core refused a link's seeds) is brought into
+  // view: its mark is the answer to "what do I change?".
+  const section = el.closest('details');
+  if (section && !section.open) section.open = true;
   if (!message) {
     message = document.createElement('p');
     message.id = id;

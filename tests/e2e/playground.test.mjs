@@ -931,14 +931,17 @@ test('a whole set the core refuses after its first flight shows neither that fli
   await page.goto(`${playground.url}?flight=all&seeds=20`);
   await until(page, () => /cannot be simulated: the run is too long/.test(document.querySelector('#status')?.textContent ?? ''));
   await idle(page);
-  assert.match(await page.locator('#status').textContent(), /Change a setting to see results\.$/);
+  assert.match(await page.locator('#status').textContent(), /\(at most 18 seeds, or shorten the flight.*\)\. The setting it names is Seeds \(repeats\)\. Change a setting to see results\.$/);
+  // The field to change is marked beside itself, Advanced opened to show it.
+  assert.equal(await page.getByLabel('Seeds (repeats)').getAttribute('aria-invalid'), 'true');
+  assert.match(await page.locator('#seeds-error').textContent(), /at most 18 seeds/);
+  assert.ok(await page.locator('#seeds-error').isVisible());
   assert.equal(await page.locator('#results-table tbody tr').count(), 0, "the first flight's numbers do not stand for the set");
   assert.equal(await page.locator('#chart-error svg').count(), 0);
   assert.equal(await page.locator('[data-panel="results"].partial').count(), 0);
   await page.getByRole('button', { name: 'Results (CSV)' }).click();
   assert.match(await page.locator('[data-panel="results"] .download-why').first().textContent(), /^No results yet: nothing has been simulated at these settings/);
   // From a run on show, the same refusal leaves that run's numbers, marked as the previous settings'.
-  await page.locator('#advanced summary').click();
   await page.getByLabel('Seeds (repeats)').fill('2');
   await page.getByLabel('Seeds (repeats)').press('Tab');
   await waitForResults(page);
