@@ -124,7 +124,7 @@ export function refusedNote(points: { at: string; asked: ModelName[]; ran: Model
     if (!p.error) continue;
     const missing = p.asked.filter((m) => !p.ran.includes(m));
     const who = p.ran.length ? `${names(missing.map((model) => ({ model })))} not simulated` : 'Not simulated';
-    const error = forEach(missing, p.error.replace(/\.$/, ''));
+    const error = p.ran.length ? forEach(missing, p.error.replace(/\.$/, '')) : p.error.replace(/\.$/, '');
     const key = `${who}\n${error.replace(NUMBER, '#')}`;
     const g = groups.get(key) ?? { who, at: [], errors: [] };
     groups.set(key, { who, at: [...g.at, p.at], errors: [...g.errors, error] });

@@ -131,6 +131,9 @@ test('the refused note names whole points and the stations of a point that did n
   // Not where their payloads differ (CTRA+'s 11 bytes beside 3D-CTRA's 12): the first's reason stays its own.
   const apart = refusedNote([{ at: 'SF10', asked: ['dr', 'ctra-plus', '3d-ctra'], ran: ['dr'], error: frame }]);
   expect(apart).toBe(`CTRA+ and 3D-CTRA not simulated at SF10: ${frame}.`);
+  // Nor where no station ran: the sentence names none for "each" to speak of.
+  const none = refusedNote([{ at: 'SF10', asked: ['3d-ctra', 'mission'], ran: [], error: frame }]);
+  expect(none).toBe(`Not simulated at SF10: ${frame}.`);
 });
 
 test('points refused alike but for their numbers share one sentence, the numbers side by side', () => {
