@@ -495,7 +495,12 @@ fn model_lists_are_parsed_and_bad_names_refused() {
         e.contains("expected dr, ctra-plus, 3d-ctra, imm, mission,"),
         "{e}"
     );
-    assert!(ModelChoice::parse("").is_err());
+    assert!(ModelChoice::parse(" ")
+        .unwrap_err()
+        .starts_with("model: name at least one of"));
+    // An empty name (a doubled comma) is named as such, not as an unknown model ''.
+    let e = ModelChoice::parse("dr,,imm").unwrap_err();
+    assert!(e.starts_with("model: an empty name in the list"), "{e}");
 }
 
 /// Under an error-triggered drone a bounded station hedges, as a periodic drone's does, until the

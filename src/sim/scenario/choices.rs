@@ -134,6 +134,9 @@ impl ModelChoice {
 
     /// Parses `all` or a comma list.
     pub fn parse(text: &str) -> Result<Self, String> {
+        if text.trim().is_empty() {
+            return Self::from_names([]);
+        }
         if text.trim().eq_ignore_ascii_case("all") {
             return Ok(Self::all());
         }
@@ -144,6 +147,12 @@ impl ModelChoice {
         let mut models = Vec::new();
         for name in names {
             // `all` inside a list stands for the paper's three (`all,imm`).
+            if name.trim().is_empty() {
+                return Err(format!(
+                    "model: an empty name in the list (name {}, a comma list of them, or all)",
+                    StationModel::names()
+                ));
+            }
             let named: Vec<StationModel> = if name.trim().eq_ignore_ascii_case("all") {
                 StationModel::PAPER.to_vec()
             } else {
