@@ -494,6 +494,11 @@ fn negative_numbers_are_numbers_and_refused_by_their_own_field() {
         &["simulate", "--synthetic", "1", "--q", "-1"],
         "q must be in (0, 1000]",
     );
+    // The seed too: not "unexpected argument '-1'".
+    refused(
+        &["simulate", "--synthetic", "1", "--seed", "-1"],
+        "seed must be a whole number 0..2^53-1 or 'random', got '-1'",
+    );
 }
 
 #[test]
@@ -506,6 +511,11 @@ fn swept_distances_are_checked_and_bounded_before_any_run() {
     refused(
         &["sweep", "--distances", &many.join(",")],
         "give 1..100 distances, got 101",
+    );
+    // An empty value (a doubled comma) or text is named as a distance, not as a float.
+    refused(
+        &["sweep", "--distances", "1000,,3000"],
+        "each distance must be a number of metres, got ''",
     );
 }
 

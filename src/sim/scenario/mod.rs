@@ -399,7 +399,7 @@ pub struct RunSettings {
     #[serde(deserialize_with = "seed_or_random")]
     #[cfg_attr(
         cli,
-        arg(long, default_value = "1", value_name = "N|random", value_parser = parse_seed,
+        arg(long, default_value = "1", value_name = "N|random", value_parser = parse_seed, allow_negative_numbers = true,
             help = "Seed of all random draws (sensor noise, layout, channels, shadowing), 0..2^53-1, or random for a fresh one (reported, so the run can be repeated).")
     )]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number"))]
