@@ -562,9 +562,73 @@ pub fn as_given(value: f64) -> String {
     }
 }
 
+/// A command-line parser for the whole-number setting `key`: any number is read, so that `7.5`,
+/// `-1` or text are refused in the words the core uses for a value out of range (the option's
+/// range where it is one of [`OPTIONS`]), not as the integer type's parse error ("invalid digit
+/// found in string"). Values the type holds pass on to be checked with every other setting.
+#[cfg(cli)]
+pub fn whole<T>(
+    key: &'static str,
+) -> impl Fn(&str) -> Result<T, String> + Clone + Send + Sync + 'static
+where
+    T: TryFrom<i64> + Clone + Send + Sync + 'static,
+{
+    move |text: &str| {
+        let v: f64 = text.trim().parse().map_err(|_| {
+            let quoted: String = text.chars().take(20).collect();
+            format!("{key} must be a number, got '{}'", quoted.escape_debug())
+        })?;
+        let exact = v.fract() == 0.0 && v.abs() < 9_007_199_254_740_992.0;
+        let held = exact.then(|| T::try_from(v as i64).ok()).flatten();
+        held.ok_or_else(|| match option(key) {
+            Some(o) => OutOfRange {
+                option: o,
+                value: v,
+            }
+            .to_string(),
+            None if v < 0.0 => format!(
+                "{key} must be a whole number, not negative, got {}",
+                as_given(v)
+            ),
+            None => format!("{key} must be a whole number, got {}", as_given(v)),
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[cfg(cli)]
+    #[test]
+    fn whole_number_options_refuse_fractions_negatives_and_text_in_their_own_words() {
+        assert_eq!(whole::<i64>("sf")("9"), Ok(9));
+        assert_eq!(
+            whole::<i64>("sf")("7.5"),
+            Err("sf must be 7..12, a whole number, got 7.5".into())
+        );
+        assert_eq!(
+            whole::<usize>("overhead")("-1").unwrap_err(),
+            OutOfRange {
+                option: &OVERHEAD,
+                value: -1.0
+            }
+            .to_string()
+        );
+        assert_eq!(
+            whole::<u32>("seeds")("many"),
+            Err("seeds must be a number, got 'many'".into())
+        );
+        // A setting outside the options table (the airtime command's payload) says what it wants.
+        assert_eq!(
+            whole::<usize>("payload")("-3"),
+            Err("payload must be a whole number, not negative, got -3".into())
+        );
+        assert_eq!(
+            whole::<usize>("payload")("2.5"),
+            Err("payload must be a whole number, got 2.5".into())
+        );
+    }
 
     #[test]
     fn every_default_is_accepted_and_keys_are_unique() {

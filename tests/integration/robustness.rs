@@ -494,6 +494,16 @@ fn negative_numbers_are_numbers_and_refused_by_their_own_field() {
         &["simulate", "--synthetic", "1", "--q", "-1"],
         "q must be in (0, 1000]",
     );
+    // Whole-number settings given a fraction or text answer in the range's words, as the JS API
+    // does, not with the integer type's "invalid digit found in string".
+    refused(
+        &["simulate", "--synthetic", "1", "--sf", "7.5"],
+        "sf must be 7..12, a whole number, got 7.5",
+    );
+    refused(
+        &["airtime", "--sf", "7", "--bw", "125", "--payload", "nine"],
+        "payload must be a number, got 'nine'",
+    );
     // The seed too: not "unexpected argument '-1'".
     refused(
         &["simulate", "--synthetic", "1", "--seed", "-1"],

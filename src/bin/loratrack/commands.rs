@@ -232,22 +232,22 @@ pub struct Output {
 #[derive(Args)]
 pub struct AirtimeArgs {
     /// Spreading factor, 7..12.
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_parser = opt::whole::<i64>("sf"))]
     sf: i64,
     /// Bandwidth in kHz: 125, 250 or 500.
     #[arg(long)]
     bw: f64,
     /// Application payload in bytes (loratrack's payloads: 9 DR, 11 CTRA+, 12 3D-CTRA).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_parser = opt::whole::<usize>("payload"))]
     payload: usize,
     /// MAC overhead in bytes added to the payload: 13 for LoRaWAN, 0 for raw LoRa (the paper's Table II).
-    #[arg(long, default_value_t = opt::OVERHEAD.default as usize, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = opt::OVERHEAD.default as usize, allow_negative_numbers = true, value_parser = opt::whole::<usize>("overhead"))]
     overhead: usize,
     /// Coding rate n of 4/(4+n): 1..4.
-    #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = opt::whole::<i64>("cr"))]
     cr: i64,
     /// Preamble length in symbols.
-    #[arg(long, default_value_t = 8, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 8, allow_negative_numbers = true, value_parser = opt::whole::<i64>("preamble"))]
     preamble: i64,
     /// Implicit header mode (no PHY header; LoRaWAN uplinks use explicit).
     #[arg(long)]

@@ -58,7 +58,7 @@ pub struct SweepArgs {
     #[command(flatten)]
     kind: SweepKind,
     /// --senders: spreading factor; --distances: the one ADR starts at.
-    #[arg(long, default_value_t = opt::SF.default as i64, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = opt::SF.default as i64, allow_negative_numbers = true, value_parser = opt::whole::<i64>("sf"))]
     sf: i64,
     /// --senders: bandwidth, kHz; --distances: the one ADR starts at.
     #[arg(long, default_value_t = opt::BW.default, allow_negative_numbers = true)]
@@ -69,14 +69,14 @@ pub struct SweepArgs {
     /// --senders, --distances, --mission: MAC overhead added to each payload, bytes: 0 as the
     /// paper sends (these sweeps' default, which their documents use), 13 for LoRaWAN (the
     /// default of simulate and the page).
-    #[arg(long, default_value_t = 0, conflicts_with_all = ["paper", "swarm"])]
+    #[arg(long, default_value_t = 0, conflicts_with_all = ["paper", "swarm"], allow_negative_numbers = true, value_parser = opt::whole::<usize>("overhead"))]
     overhead: usize,
     /// --senders, --distances, --mission: shadowing along the path (the default) or fixed in
     /// space, so that every run of the sweep meets the same fades at the same places.
     #[arg(long, value_enum, default_value_t, conflicts_with_all = ["paper", "swarm", "payloads"])]
     shadowing_model: ShadowingModel,
     /// --senders: the budget rule's capacity in packets.
-    #[arg(long, default_value_t = loratrack::DEFAULT_BURST, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = loratrack::DEFAULT_BURST, allow_negative_numbers = true, value_parser = opt::whole::<u32>("burst"))]
     burst: u32,
     /// --senders: error-triggered sending's heartbeat, s (at least the duty-cycle interval at --sf/--bw).
     #[arg(long, default_value_t = opt::MAX_INTERVAL.default, allow_negative_numbers = true)]
@@ -86,7 +86,7 @@ pub struct SweepArgs {
     seed: u64,
     /// --distances, --senders: seeds each run pools (seed, seed + 1, ...), so that a comparison
     /// rests on more than one draw of the shadowing and noise.
-    #[arg(long, default_value_t = opt::SEEDS.default as u32, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = opt::SEEDS.default as u32, allow_negative_numbers = true, value_parser = opt::whole::<u32>("seeds"))]
     seeds: u32,
     /// --distances --markdown: run everything again on the next block of as many seeds (seed +
     /// seeds, ...) and judge the ADR rows there too: a verdict read off one block of seeds is

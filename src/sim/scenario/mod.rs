@@ -173,16 +173,16 @@ impl Default for StationSettings {
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct RadioSettings {
     /// Spreading factor 7..12 (with ADR: the start).
-    #[cfg_attr(cli, arg(long, default_value_t = opt::SF.default as i64, help = opt::SF.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::SF.default as i64, help = opt::SF.cli_help(), allow_negative_numbers = true, value_parser = opt::whole::<i64>("sf")))]
     pub sf: i64,
     /// Bandwidth, kHz.
     #[cfg_attr(cli, arg(long, default_value_t = opt::BW.default, help = opt::BW.cli_help(), allow_negative_numbers = true))]
     pub bw: f64,
     /// Coding rate index 1..4.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::CR.default as i64, help = opt::CR.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::CR.default as i64, help = opt::CR.cli_help(), allow_negative_numbers = true, value_parser = opt::whole::<i64>("cr")))]
     pub cr: i64,
     /// MAC overhead, bytes (LoRaWAN 13; the paper's Table II: 0).
-    #[cfg_attr(cli, arg(long, default_value_t = opt::OVERHEAD.default as usize, help = opt::OVERHEAD.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::OVERHEAD.default as usize, help = opt::OVERHEAD.cli_help(), allow_negative_numbers = true, value_parser = opt::whole::<usize>("overhead")))]
     pub overhead: usize,
     /// Duty-cycle limit, fraction.
     #[cfg_attr(cli, arg(long, default_value_t = opt::DUTY_CYCLE.default, help = opt::DUTY_CYCLE.cli_help(), allow_negative_numbers = true))]
@@ -266,7 +266,7 @@ pub struct NetworkSettings {
     /// Uplink channels: 1, or the plan's (the default, when unset).
     #[serde(skip_serializing_if = "Option::is_none")]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
-    #[cfg_attr(cli, arg(long, help = opt::CHANNELS.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, help = opt::CHANNELS.cli_help(), allow_negative_numbers = true, value_parser = opt::whole::<u8>("channels")))]
     pub channels: Option<u8>,
     /// Same-SF capture at 6 dB (off: every same-SF overlap is fatal).
     #[cfg_attr(
@@ -297,7 +297,7 @@ pub struct NetworkSettings {
     #[cfg_attr(cli, arg(long, default_value_t = opt::ADR_MARGIN.default, help = opt::ADR_MARGIN.cli_help(), allow_negative_numbers = true))]
     pub adr_margin: f64,
     /// LoRaWAN ADR's history, uplinks.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::ADR_HISTORY.default as usize, help = opt::ADR_HISTORY.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::ADR_HISTORY.default as usize, help = opt::ADR_HISTORY.cli_help(), allow_negative_numbers = true, value_parser = opt::whole::<usize>("adrHistory")))]
     pub adr_history: usize,
 }
 
@@ -361,7 +361,7 @@ pub enum SfPlan {
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct SwarmSettings {
     /// Number of drones.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::DRONES.default as usize, help = opt::DRONES.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::DRONES.default as usize, help = opt::DRONES.cli_help(), allow_negative_numbers = true, value_parser = opt::whole::<usize>("drones")))]
     pub drones: usize,
     /// Seconds of chained synthetic flight per drone (when no flight is chosen).
     #[cfg_attr(cli, arg(long, default_value_t = opt::DURATION.default, help = opt::DURATION.cli_help(), allow_negative_numbers = true))]
@@ -406,7 +406,7 @@ pub struct RunSettings {
     pub seed: u64,
     /// How many seeds `simulate` runs (`seed`, `seed + 1`, …), pooled, with 95 % intervals
     /// (`docs/reference.md` §12); a swarm runs one.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::SEEDS.default as u32, help = opt::SEEDS.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::SEEDS.default as u32, help = opt::SEEDS.cli_help(), allow_negative_numbers = true, value_parser = opt::whole::<u32>("seeds")))]
     pub seeds: u32,
     /// Include time series of the first flight (simulate).
     #[cfg_attr(

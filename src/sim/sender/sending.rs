@@ -75,7 +75,7 @@ pub struct Sending {
     )]
     pub payload: PayloadChoice,
     /// Budget capacity, packets.
-    #[cfg_attr(cli, arg(long, default_value_t = DEFAULT_BURST, help = BURST.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = DEFAULT_BURST, help = BURST.cli_help(), allow_negative_numbers = true, value_parser = crate::options::whole::<u32>("burst")))]
     pub burst: u32,
 }
 
