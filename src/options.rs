@@ -595,9 +595,42 @@ where
     }
 }
 
+/// A command-line parser for the setting `key` in any number form Rust reads (`1e3`, `-5`, `0.25`):
+/// text is refused with the setting's name and range ("distance must be a number (0..100000 m),
+/// got '1km'"), not as a float parse error; the range itself is checked with every other setting.
+#[cfg(cli)]
+pub fn number(
+    key: &'static str,
+) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync + 'static {
+    move |text: &str| {
+        text.trim().parse().map_err(|_| {
+            let quoted: String = text.chars().take(20).collect();
+            let range = option(key).map_or(String::new(), |o| format!(" ({})", o.range_text()));
+            format!(
+                "{key} must be a number{range}, got '{}'",
+                quoted.escape_debug()
+            )
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[cfg(cli)]
+    #[test]
+    fn number_options_refuse_text_with_their_name_and_range() {
+        assert_eq!(number("distance")("1e3"), Ok(1000.0));
+        assert_eq!(
+            number("distance")("1km"),
+            Err("distance must be a number (0..100000 m), got '1km'".into())
+        );
+        assert_eq!(
+            number("dt")("x"),
+            Err("dt must be a number, got 'x'".into())
+        );
+    }
 
     #[cfg(cli)]
     #[test]

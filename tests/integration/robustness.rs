@@ -504,6 +504,11 @@ fn negative_numbers_are_numbers_and_refused_by_their_own_field() {
         &["airtime", "--sf", "7", "--bw", "125", "--payload", "nine"],
         "payload must be a number, got 'nine'",
     );
+    // A number given with its unit is named with the setting's range, not as a float literal.
+    refused(
+        &["simulate", "--synthetic", "1", "--distance", "1km"],
+        "distance must be a number (0..100000 m), got '1km'",
+    );
     // The seed too: not "unexpected argument '-1'".
     refused(
         &["simulate", "--synthetic", "1", "--seed", "-1"],

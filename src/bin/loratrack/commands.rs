@@ -178,13 +178,13 @@ pub struct PredictArgs {
     #[command(flatten)]
     input: ModelState,
     /// Time to propagate over, seconds (0..86400).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = opt::number("dt"))]
     dt: f64,
     /// Propagate in steps of this many seconds, multiplying psi by eta after each (the station's predictor).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = opt::number("step"))]
     step: Option<f64>,
     /// Tilt-rate decay per step, 0..1 (paper: 0.9); needs --step.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = opt::number("eta"))]
     eta: Option<f64>,
     #[command(flatten)]
     out: Output,
@@ -259,12 +259,12 @@ pub struct AirtimeArgs {
     #[arg(long, value_enum, default_value = "auto")]
     ldro: Ldro,
     /// Duty-cycle limit as a fraction, 0.0001..1 (EU868 868.0–868.6 MHz: 0.01).
-    #[arg(long, default_value_t = opt::DUTY_CYCLE.default, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = opt::DUTY_CYCLE.default, allow_negative_numbers = true, value_parser = opt::number("dutyCycle"))]
     duty_cycle: f64,
     /// Regional plan: its data rate for this SF and bandwidth, and whether it carries the packet.
     #[arg(long, value_enum, default_value = "eu868")]
     region: loratrack::Region,
-    #[arg(long, help = opt::INTERVAL.cli_help(), allow_negative_numbers = true)]
+    #[arg(long, help = opt::INTERVAL.cli_help(), allow_negative_numbers = true, value_parser = opt::number("interval"))]
     interval: Option<f64>,
     /// duty-cycle, or lbt (ETSI's 100 s of airtime per hour).
     #[arg(long, value_enum, default_value = "duty-cycle")]

@@ -61,10 +61,10 @@ pub struct SweepArgs {
     #[arg(long, default_value_t = opt::SF.default as i64, allow_negative_numbers = true, value_parser = opt::whole::<i64>("sf"))]
     sf: i64,
     /// --senders: bandwidth, kHz; --distances: the one ADR starts at.
-    #[arg(long, default_value_t = opt::BW.default, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = opt::BW.default, allow_negative_numbers = true, value_parser = opt::number("bw"))]
     bw: f64,
     /// --senders: gateway distance, m; --swarm: the drones' distance from the gateway.
-    #[arg(long, default_value_t = opt::DISTANCE.default, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = opt::DISTANCE.default, allow_negative_numbers = true, value_parser = opt::number("distance"))]
     distance: f64,
     /// --senders, --distances, --mission: MAC overhead added to each payload, bytes: 0 as the
     /// paper sends (these sweeps' default, which their documents use), 13 for LoRaWAN (the
@@ -79,7 +79,7 @@ pub struct SweepArgs {
     #[arg(long, default_value_t = loratrack::DEFAULT_BURST, allow_negative_numbers = true, value_parser = opt::whole::<u32>("burst"))]
     burst: u32,
     /// --senders: error-triggered sending's heartbeat, s (at least the duty-cycle interval at --sf/--bw).
-    #[arg(long, default_value_t = opt::MAX_INTERVAL.default, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = opt::MAX_INTERVAL.default, allow_negative_numbers = true, value_parser = opt::number("maxInterval"))]
     max_interval: f64,
     /// Seed of all random draws, 0..2^53-1, or random for a fresh one (reported in the output).
     #[arg(long, default_value = "1", value_name = "N|random", value_parser = loratrack::parse_seed)]

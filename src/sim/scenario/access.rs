@@ -32,7 +32,7 @@ pub struct AccessSettings {
     /// Where the plan has no duty cycle: seconds between uplink starts.
     #[serde(skip_serializing_if = "Option::is_none")]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
-    #[cfg_attr(cli, arg(long, help = opt::INTERVAL.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, help = opt::INTERVAL.cli_help(), allow_negative_numbers = true, value_parser = opt::number("interval")))]
     pub interval: Option<f64>,
     /// How a drone earns the right to send: the plan's duty cycle, or listen-before-talk.
     #[cfg_attr(
@@ -59,12 +59,12 @@ pub struct AccessSettings {
     /// The longest random delay before each uplink, s.
     #[serde(skip_serializing_if = "Option::is_none")]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
-    #[cfg_attr(cli, arg(long, help = opt::JITTER.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, help = opt::JITTER.cli_help(), allow_negative_numbers = true, value_parser = opt::number("jitter")))]
     pub jitter: Option<f64>,
     /// The largest clock error, ppm.
     #[serde(skip_serializing_if = "Option::is_none")]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
-    #[cfg_attr(cli, arg(long, help = opt::CLOCK_DRIFT.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, help = opt::CLOCK_DRIFT.cli_help(), allow_negative_numbers = true, value_parser = opt::number("clockDrift")))]
     pub clock_drift: Option<f64>,
     /// How a swarm's drones share the air: `aloha` or `slotted`.
     #[cfg_attr(

@@ -131,10 +131,10 @@ pub struct StationSettings {
     )]
     pub heading_noise: HeadingNoise,
     /// Station prediction step T, s.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::STEP.default, help = opt::STEP.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::STEP.default, help = opt::STEP.cli_help(), allow_negative_numbers = true, value_parser = opt::number("step")))]
     pub step: f64,
     /// Tilt-rate decay per station step.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::ETA.default, help = opt::ETA.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::ETA.default, help = opt::ETA.cli_help(), allow_negative_numbers = true, value_parser = opt::number("eta")))]
     pub eta: f64,
     /// How the mission station paces the drone along its plan.
     #[cfg_attr(
@@ -148,7 +148,7 @@ pub struct StationSettings {
     )]
     pub plan_pace: PlanPace,
     /// The mission station's off-plan distance, m.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::PLAN_TOLERANCE.default, help = opt::PLAN_TOLERANCE.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::PLAN_TOLERANCE.default, help = opt::PLAN_TOLERANCE.cli_help(), allow_negative_numbers = true, value_parser = opt::number("planTolerance")))]
     pub plan_tolerance: f64,
 }
 
@@ -176,7 +176,7 @@ pub struct RadioSettings {
     #[cfg_attr(cli, arg(long, default_value_t = opt::SF.default as i64, help = opt::SF.cli_help(), allow_negative_numbers = true, value_parser = opt::whole::<i64>("sf")))]
     pub sf: i64,
     /// Bandwidth, kHz.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::BW.default, help = opt::BW.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::BW.default, help = opt::BW.cli_help(), allow_negative_numbers = true, value_parser = opt::number("bw")))]
     pub bw: f64,
     /// Coding rate index 1..4.
     #[cfg_attr(cli, arg(long, default_value_t = opt::CR.default as i64, help = opt::CR.cli_help(), allow_negative_numbers = true, value_parser = opt::whole::<i64>("cr")))]
@@ -185,10 +185,10 @@ pub struct RadioSettings {
     #[cfg_attr(cli, arg(long, default_value_t = opt::OVERHEAD.default as usize, help = opt::OVERHEAD.cli_help(), allow_negative_numbers = true, value_parser = opt::whole::<usize>("overhead")))]
     pub overhead: usize,
     /// Duty-cycle limit, fraction.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::DUTY_CYCLE.default, help = opt::DUTY_CYCLE.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::DUTY_CYCLE.default, help = opt::DUTY_CYCLE.cli_help(), allow_negative_numbers = true, value_parser = opt::number("dutyCycle")))]
     pub duty_cycle: f64,
     /// Transmit power, dBm.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::TX_POWER.default, help = opt::TX_POWER.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::TX_POWER.default, help = opt::TX_POWER.cli_help(), allow_negative_numbers = true, value_parser = opt::number("txPower")))]
     pub tx_power: f64,
 }
 
@@ -213,13 +213,13 @@ impl Default for RadioSettings {
 pub struct ChannelSettings {
     /// simulate: distance from the flight's first point to the default gateway; swarm: every
     /// drone's starting distance from the centre, m.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::DISTANCE.default, help = opt::DISTANCE.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::DISTANCE.default, help = opt::DISTANCE.cli_help(), allow_negative_numbers = true, value_parser = opt::number("distance")))]
     pub distance: f64,
     /// Path-loss exponent.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::PATH_LOSS_EXPONENT.default, help = opt::PATH_LOSS_EXPONENT.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::PATH_LOSS_EXPONENT.default, help = opt::PATH_LOSS_EXPONENT.cli_help(), allow_negative_numbers = true, value_parser = opt::number("pathLossExponent")))]
     pub path_loss_exponent: f64,
     /// Shadowing standard deviation, dB (0: off).
-    #[cfg_attr(cli, arg(long, default_value_t = opt::SHADOWING.default, help = opt::SHADOWING.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::SHADOWING.default, help = opt::SHADOWING.cli_help(), allow_negative_numbers = true, value_parser = opt::number("shadowing")))]
     pub shadowing: f64,
     /// Whether shadowing varies along the drone's path (the default) or is fixed in space.
     #[cfg_attr(
@@ -233,7 +233,7 @@ pub struct ChannelSettings {
     )]
     pub shadowing_model: ShadowingModel,
     /// Antenna height of every gateway not given its own, m.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::GATEWAY_HEIGHT.default, help = opt::GATEWAY_HEIGHT.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::GATEWAY_HEIGHT.default, help = opt::GATEWAY_HEIGHT.cli_help(), allow_negative_numbers = true, value_parser = opt::number("gatewayHeight")))]
     pub gateway_height: f64,
 }
 
@@ -294,7 +294,7 @@ pub struct NetworkSettings {
     )]
     pub adr: AdrMode,
     /// LoRaWAN ADR's device margin, dB.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::ADR_MARGIN.default, help = opt::ADR_MARGIN.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::ADR_MARGIN.default, help = opt::ADR_MARGIN.cli_help(), allow_negative_numbers = true, value_parser = opt::number("adrMargin")))]
     pub adr_margin: f64,
     /// LoRaWAN ADR's history, uplinks.
     #[cfg_attr(cli, arg(long, default_value_t = opt::ADR_HISTORY.default as usize, help = opt::ADR_HISTORY.cli_help(), allow_negative_numbers = true, value_parser = opt::whole::<usize>("adrHistory")))]
@@ -322,10 +322,10 @@ impl Default for NetworkSettings {
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct DroneSettings {
     /// Sensor and filter rate, Hz.
-    #[cfg_attr(cli, arg(long, default_value_t = opt::SENSOR_RATE.default, help = opt::SENSOR_RATE.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::SENSOR_RATE.default, help = opt::SENSOR_RATE.cli_help(), allow_negative_numbers = true, value_parser = opt::number("sensorRate")))]
     pub sensor_rate: f64,
     /// Process noise q of Q = q·I (drone and station).
-    #[cfg_attr(cli, arg(long, default_value_t = opt::Q.default, help = opt::Q.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::Q.default, help = opt::Q.cli_help(), allow_negative_numbers = true, value_parser = opt::number("q")))]
     pub q: f64,
 }
 
@@ -364,7 +364,7 @@ pub struct SwarmSettings {
     #[cfg_attr(cli, arg(long, default_value_t = opt::DRONES.default as usize, help = opt::DRONES.cli_help(), allow_negative_numbers = true, value_parser = opt::whole::<usize>("drones")))]
     pub drones: usize,
     /// Seconds of chained synthetic flight per drone (when no flight is chosen).
-    #[cfg_attr(cli, arg(long, default_value_t = opt::DURATION.default, help = opt::DURATION.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = opt::DURATION.default, help = opt::DURATION.cli_help(), allow_negative_numbers = true, value_parser = opt::number("duration")))]
     pub duration: f64,
     /// How SFs are shared out.
     #[cfg_attr(

@@ -35,10 +35,10 @@ pub struct Sending {
     )]
     pub sender: SenderKind,
     /// Error-triggered threshold, m.
-    #[cfg_attr(cli, arg(long, default_value_t = THRESHOLD.default, help = THRESHOLD.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = THRESHOLD.default, help = THRESHOLD.cli_help(), allow_negative_numbers = true, value_parser = crate::options::number("threshold")))]
     pub threshold: f64,
     /// Error-triggered heartbeat, s.
-    #[cfg_attr(cli, arg(long, default_value_t = MAX_INTERVAL.default, help = MAX_INTERVAL.cli_help(), allow_negative_numbers = true))]
+    #[cfg_attr(cli, arg(long, default_value_t = MAX_INTERVAL.default, help = MAX_INTERVAL.cli_help(), allow_negative_numbers = true, value_parser = crate::options::number("maxInterval")))]
     pub max_interval: f64,
     /// Error-triggered sending: whether the drone listens to its channel and sends less where
     /// it is crowded ([`ChannelSense`]).
