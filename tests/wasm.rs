@@ -121,6 +121,14 @@ fn a_refused_setting_is_named_on_the_thrown_error() {
     )
     .unwrap_err();
     assert_eq!(setting(&e).as_deref(), Some("sf"), "{}", error_message(e));
+    // And a negative count, which serde refuses as no usize: named, in the range's words.
+    let e = wasm::simulate(
+        obj(&[("synthetic", 1.into()), ("overhead", (-1).into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    assert_eq!(setting(&e).as_deref(), Some("overhead"));
+    assert!(error_message(e).ends_with("overhead must be 0..255 bytes, a whole number, got -1"));
     // A misspelt key is no setting the core knows: the message says so, and names none.
     let e = wasm::simulate(obj(&[("bogus", 1.into())]), JsValue::UNDEFINED).unwrap_err();
     assert_eq!(setting(&e), None);

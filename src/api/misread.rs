@@ -6,7 +6,7 @@
 //! column 9"). This reads the object again and names the first setting whose value could not be
 //! read, so that the thrown `Error` carries its `setting` as the core's own refusals do.
 
-use crate::options::option;
+use crate::options::{option, OutOfRange};
 use serde_json::Value;
 
 /// A setting named in `json` whose value serde could not read, as a message and, when the key is a
@@ -39,6 +39,12 @@ pub fn misread_setting(json: &str) -> Option<(String, Option<&'static str>)> {
                     format!("{key} must be a whole number, not {n}"),
                     Some(o.key),
                 ));
+            }
+            // A negative whole number where the setting's type holds none (`overhead`, `drones`,
+            // `seeds`, …: serde's "expected usize"): refused in the range's words.
+            Value::Number(n) if o.integer && n.as_i64().is_some_and(|x| x < 0) && o.min >= 0.0 => {
+                let value = n.as_f64().unwrap_or(f64::NAN);
+                return Some((OutOfRange { option: o, value }.to_string(), Some(o.key)));
             }
             Value::Number(_) => return None,
             Value::String(s) => format!("the text {}", Value::String(s.clone())),
@@ -88,6 +94,20 @@ mod tests {
             ("sf must be a whole number, not 7.5", Some("sf"))
         );
         assert_eq!(misread_setting(r#"{"distance":1000.5}"#), None);
+    }
+
+    #[test]
+    fn a_negative_whole_number_where_none_is_held_is_refused_in_the_range_words() {
+        let (m, key) = misread_setting(r#"{"synthetic":1,"overhead":-1}"#).unwrap();
+        assert_eq!(
+            (m.as_str(), key),
+            (
+                "overhead must be 0..255 bytes, a whole number, got -1",
+                Some("overhead")
+            )
+        );
+        // Where the type holds it, the core's range check says it, with every other setting.
+        assert_eq!(misread_setting(r#"{"txPower":-5}"#), None);
     }
 
     #[test]
