@@ -57,7 +57,7 @@ fn call_with<P: DeserializeOwned, R>(
         Some((message, setting)) if !e.to_string().starts_with("unknown field") => {
             invalid(&message, setting)
         }
-        _ => invalid(&e, None),
+        _ => invalid(&api::explain_serde_error(&text, &e.to_string()), None),
     })?;
     let report = op(p).map_err(|e| api_error(&e))?;
     to_js(report)

@@ -129,6 +129,18 @@ fn a_refused_setting_is_named_on_the_thrown_error() {
     .unwrap_err();
     assert_eq!(setting(&e).as_deref(), Some("overhead"));
     assert!(error_message(e).ends_with("overhead must be 0..255 bytes, a whole number, got -1"));
+    // An unknown choice names its key, and no message points into JSON text the caller never wrote.
+    let e = wasm::simulate(
+        obj(&[("synthetic", 1.into()), ("region", "xx".into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    let message = error_message(e);
+    assert!(
+        message.contains("region: unknown variant `xx`"),
+        "{message}"
+    );
+    assert!(!message.contains("line 1"), "{message}");
     // A misspelt key is no setting the core knows: the message says so, and names none.
     let e = wasm::simulate(obj(&[("bogus", 1.into())]), JsValue::UNDEFINED).unwrap_err();
     assert_eq!(setting(&e), None);

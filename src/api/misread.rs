@@ -6,7 +6,7 @@
 //! column 9"). This reads the object again and names the first setting whose value could not be
 //! read, so that the thrown `Error` carries its `setting` as the core's own refusals do.
 
-use crate::options::{option, OutOfRange};
+use crate::options::{option, OutOfRange, GATEWAYS};
 use serde_json::Value;
 
 /// A setting named in `json` whose value serde could not read, as a message and, when the key is a
@@ -33,6 +33,10 @@ pub fn misread_setting(json: &str) -> Option<(String, Option<&'static str>)> {
     }
     map.iter().find_map(|(key, value)| {
         let o = option(key)?;
+        // The gateways are a list (the option is their count): each site's coordinates are read.
+        if o.key == GATEWAYS.key {
+            return misread_gateway(value).map(|m| (m, Some(o.key)));
+        }
         let found = match value {
             Value::Number(n) if o.integer && n.as_f64().is_some_and(|x| x.fract() != 0.0) => {
                 return Some((
@@ -47,14 +51,78 @@ pub fn misread_setting(json: &str) -> Option<(String, Option<&'static str>)> {
                 return Some((OutOfRange { option: o, value }.to_string(), Some(o.key)));
             }
             Value::Number(_) => return None,
-            Value::String(s) => format!("the text {}", Value::String(s.clone())),
-            Value::Bool(b) => format!("{b}"),
-            Value::Array(_) => "a list".to_owned(),
-            Value::Object(_) => "an object".to_owned(),
-            Value::Null => unreachable!("nulls are named above"),
+            other => what(other),
         };
         Some((format!("{key} must be a number, not {found}"), Some(o.key)))
     })
+}
+
+/// The first site of a `gateways` list whose `east`, `north` or `height` is not a number, as a
+/// message ("gateways: gateway 1's east must be a number, not the text \"a\""); `None` where
+/// each is one (serde's own message then says what else is wrong, such as a missing `north`).
+fn misread_gateway(value: &Value) -> Option<String> {
+    let sites = value.as_array()?;
+    sites.iter().enumerate().find_map(|(i, site)| {
+        ["east", "north", "height"].iter().find_map(|field| {
+            let found = match site.get(field)? {
+                Value::Number(_) => return None,
+                other => what(other),
+            };
+            Some(format!(
+                "gateways: gateway {}'s {field} must be a number, not {found}",
+                i + 1
+            ))
+        })
+    })
+}
+
+/// A JSON value that is not a number, in words.
+fn what(value: &Value) -> String {
+    match value {
+        Value::String(s) => format!("the text {}", Value::String(s.clone())),
+        Value::Bool(b) => format!("{b}"),
+        Value::Array(_) => "a list".to_owned(),
+        Value::Object(_) => "an object".to_owned(),
+        Value::Null => "null".to_owned(),
+        Value::Number(n) => format!("{n}"),
+    }
+}
+
+/// serde's refusal of the parameter object `json` (`message`) as a JS caller can use it: without
+/// its position in the JSON text, which the caller never wrote ("at line 1 column 29"), and an
+/// unknown choice with the key it was given for ("region: unknown variant `xx`, expected one of
+/// `eu868`, …"), which a flattened setting's message lacks.
+///
+/// ```
+/// use loratrack::api::explain_serde_error;
+/// let json = r#"{"synthetic":1,"region":"xx"}"#;
+/// let message = "unknown variant `xx`, expected one of `eu868`, `us915` at line 1 column 29";
+/// assert_eq!(explain_serde_error(json, message), "region: unknown variant `xx`, expected one of `eu868`, `us915`");
+/// ```
+pub fn explain_serde_error(json: &str, message: &str) -> String {
+    let plain = match message.rfind(" at line ") {
+        Some(i) if message[i..].contains(" column ") => &message[..i],
+        _ => message,
+    };
+    let map: serde_json::Map<String, Value> = serde_json::from_str(json).unwrap_or_default();
+    let variant = plain
+        .strip_prefix("unknown variant `")
+        .and_then(|rest| rest.split('`').next());
+    let key = match variant {
+        Some(v) => map
+            .iter()
+            .find(|(_, value)| value.as_str() == Some(v))
+            .map(|(key, _)| key.as_str()),
+        // Only a gateway site has these fields.
+        None if ["missing field `east`", "missing field `north`"].contains(&plain) => {
+            map.contains_key(GATEWAYS.key).then_some(GATEWAYS.key)
+        }
+        None => None,
+    };
+    match key {
+        Some(key) => format!("{key}: {plain}"),
+        None => plain.to_owned(),
+    }
 }
 
 #[cfg(test)]
@@ -108,6 +176,43 @@ mod tests {
         );
         // Where the type holds it, the core's range check says it, with every other setting.
         assert_eq!(misread_setting(r#"{"txPower":-5}"#), None);
+    }
+
+    #[test]
+    fn a_gateway_site_is_read_field_by_field_not_as_a_number() {
+        let (m, key) = misread_setting(
+            r#"{"synthetic":1,"gateways":[{"east":0,"north":0},{"east":"a","north":0}]}"#,
+        )
+        .unwrap();
+        assert_eq!(
+            (m.as_str(), key),
+            (
+                "gateways: gateway 2's east must be a number, not the text \"a\"",
+                Some("gateways")
+            )
+        );
+        // A site missing a field is serde's to say: nothing here claims the list should be a number.
+        assert_eq!(misread_setting(r#"{"gateways":[{"east":1}]}"#), None);
+    }
+
+    #[test]
+    fn serde_messages_lose_their_json_position_and_an_unknown_choice_names_its_key() {
+        let json = r#"{"synthetic":1,"adr":"yes"}"#;
+        assert_eq!(
+            explain_serde_error(json, "unknown variant `yes`, expected one of `off`, `lorawan`, `tracking` at line 1 column 27"),
+            "adr: unknown variant `yes`, expected one of `off`, `lorawan`, `tracking`"
+        );
+        assert_eq!(
+            explain_serde_error(
+                r#"{"gateways":[{"east":1}]}"#,
+                "missing field `north` at line 1 column 24"
+            ),
+            "gateways: missing field `north`"
+        );
+        assert_eq!(
+            explain_serde_error("{}", "missing field `x` at line 1 column 2"),
+            "missing field `x`"
+        );
     }
 
     #[test]

@@ -21,7 +21,7 @@ pub use airtime::{airtime, AirtimeParams, AirtimeReport};
 pub use distances::{sweep_distances, DistanceRun, DistanceSweepReport, ADR_DISTANCES};
 pub use error::{clean_message, ApiError, MAX_ECHO_CHARS};
 pub use link_budget::{link_budget, LinkBudgetParams, LinkBudgetReport, SfBudget};
-pub use misread::misread_setting;
+pub use misread::{explain_serde_error, misread_setting};
 pub use mission::{
     sweep_mission, MissionRun, MissionSweepReport, MISSION_DISTANCES, MISSION_MODELS, MISSION_RATES,
 };
