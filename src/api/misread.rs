@@ -105,19 +105,40 @@ pub fn explain_serde_error(json: &str, message: &str) -> String {
         _ => message,
     };
     let map: serde_json::Map<String, Value> = serde_json::from_str(json).unwrap_or_default();
-    let variant = plain
-        .strip_prefix("unknown variant `")
-        .and_then(|rest| rest.split('`').next());
-    let key = match variant {
-        Some(v) => map
-            .iter()
-            .find(|(_, value)| value.as_str() == Some(v))
-            .map(|(key, _)| key.as_str()),
-        // Only a gateway site has these fields.
-        None if ["missing field `east`", "missing field `north`"].contains(&plain) => {
-            map.contains_key(GATEWAYS.key).then_some(GATEWAYS.key)
+    let key_of = |wanted: &dyn Fn(&Value) -> bool| {
+        map.iter()
+            .find(|(_, value)| wanted(value))
+            .map(|(key, _)| key.clone())
+    };
+    // A negative count (`payload: -1`): serde expects an unsigned type, which it names in Rust's words.
+    if let Some((n, expected)) = plain
+        .strip_prefix("invalid value: integer `")
+        .and_then(|rest| rest.split_once("`, expected "))
+    {
+        let unsigned = ["usize", "u8", "u16", "u32", "u64"].contains(&expected);
+        let given = n.parse::<i64>().ok();
+        if let Some(key) =
+            key_of(&|v| v.as_i64().is_some() && v.as_i64() == given).filter(|_| unsigned)
+        {
+            return format!("{key} must be a whole number, not negative, got {n}");
         }
-        None => None,
+    }
+    let quoted = |prefix: &str, close: char| {
+        plain
+            .strip_prefix(prefix)
+            .and_then(|rest| rest.split(close).next())
+            .map(str::to_owned)
+    };
+    let key = if let Some(v) = quoted("unknown variant `", '`') {
+        key_of(&|value| value.as_str() == Some(v.as_str()))
+    } else if let Some(v) = quoted("invalid type: string \"", '"') {
+        key_of(&|value| value.as_str() == Some(v.as_str()))
+    } else if ["missing field `east`", "missing field `north`"].contains(&plain) {
+        // Only a gateway site has these fields.
+        map.contains_key(GATEWAYS.key)
+            .then(|| GATEWAYS.key.to_owned())
+    } else {
+        None
     };
     match key {
         Some(key) => format!("{key}: {plain}"),
@@ -212,6 +233,21 @@ mod tests {
         assert_eq!(
             explain_serde_error("{}", "missing field `x` at line 1 column 2"),
             "missing field `x`"
+        );
+        // A negative count and a text where a list is asked name their keys, in words.
+        assert_eq!(
+            explain_serde_error(
+                r#"{"sf":7,"payload":-1}"#,
+                "invalid value: integer `-1`, expected usize at line 1 column 20"
+            ),
+            "payload must be a whole number, not negative, got -1"
+        );
+        assert_eq!(
+            explain_serde_error(
+                r#"{"model":"dr","state":"a"}"#,
+                "invalid type: string \"a\", expected a sequence at line 1 column 25"
+            ),
+            "state: invalid type: string \"a\", expected a sequence"
         );
     }
 
