@@ -98,9 +98,10 @@ export function flightTime(seconds: number): string {
 
 /** Under a sweep's chart, what its `marks` for thin numbers stand for: the points at which a
  * station received too few packets to compare (the core's `caveats.fewPackets`, the results
- * table's "Too few packets to compare"), by where they stand, with their packets; '' for none.
+ * table's "Too few packets to compare"), by where they stand, with their packets, and what
+ * would give them more for the `flight` flown (the whole set has what it has); '' for none.
  * One flight at SF12 sees a packet or two, and a p75 over them is mostly where they fell. */
-export function fewPacketsNote(points: { at: string; received: number; few: boolean }[], marks: string): string {
+export function fewPacketsNote(points: { at: string; received: number; few: boolean }[], marks: string, flight: Settings['flight']): string {
   const at = [...new Set(points.filter((p) => p.few).map((p) => p.at))];
   if (!at.length) return '';
   const counts = at.map((a) => {
@@ -109,7 +110,8 @@ export function fewPacketsNote(points: { at: string; received: number; few: bool
     return `${a} (${lo === hi ? lo : `${lo}–${hi}`})`;
   });
   const unit = at.length === 1 && counts[0].endsWith('(1)') ? 'packet' : 'packets';
-  return `${marks} rest on too few received packets to tell the stations apart: ${counts.join(', ')} ${unit}. More flight time gives them more.`;
+  const more = flight === 'all' ? '' : flight === 'csv' ? ' A longer flight gives them more.' : ' More flight time gives them more: the whole synthetic set (Trajectory) flies 44 minutes.';
+  return `${marks} rest on too few received packets to tell the stations apart: ${counts.join(', ')} ${unit}.${more}`;
 }
 
 /** Under a sweep's chart, what the core refused and why, one reason at a time: a whole point

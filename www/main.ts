@@ -508,7 +508,7 @@ async function renderSfs(sweep: { sf: number; report?: SimReport }[], asked: Mod
       ...refused.map((model) => ({ sf, model, p75: null, received: 0, few: false, wholeFlight: { tracked: 0, partlyTracked: false }, refused: true })),
     ];
   });
-  sweepRestsOn('sf', fewPacketsNote(rows.filter((r) => r.p75 !== null).map((r) => ({ at: `SF${r.sf}`, received: r.received, few: r.few })), 'Hollow points'), made, fixedRateNote(made.adr));
+  sweepRestsOn('sf', fewPacketsNote(rows.filter((r) => r.p75 !== null).map((r) => ({ at: `SF${r.sf}`, received: r.received, few: r.few })), 'Hollow points', made.flight), made, fixedRateNote(made.adr));
   const opts = { bw: made.bw, distance: made.distance, width: chartWidth('sf') };
   await drawPanel('sf', [rows, opts], (p) => p.p75BySfChart(rows, opts), made);
 }
@@ -560,7 +560,7 @@ async function drawPanel(name: string, inputs: unknown, draw: (p: Awaited<Return
 async function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): Promise<void> {
   const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d, few: m.caveats.fewPackets })));
   const received = sweep.flatMap(({ distance, report: r }) => r.results.filter((m) => m.error3d.count > 0).map((m) => ({ at: `${distance / 1000} km`, received: m.packetsReceived, few: m.caveats.fewPackets })));
-  sweepRestsOn('distance', fewPacketsNote(received, 'Dashed boxes'), made, oneGatewayNote(made.gateways.length));
+  sweepRestsOn('distance', fewPacketsNote(received, 'Dashed boxes', made.flight), made, oneGatewayNote(made.gateways.length));
   // With ADR the runs start at the chosen rate and the network moves them (the SF chart's do not).
   const adr = made.adr === 'off' ? '' : ` and ${made.adr === 'lorawan' ? 'LoRaWAN' : 'tracking'} ADR`;
   const rate = `SF${made.sf}, ${made.bw} kHz${adr}`;

@@ -95,11 +95,15 @@ test('a flight time reads in whole minutes where it is one, else in seconds', ()
 // Whether a point is thin is the core's `caveats.fewPackets` (src/sim/caveats.rs).
 test('a sweep chart says which of its points rest on too few packets, with their packets', () => {
   const p = (at: string, received: number) => ({ at, received, few: received < 10 });
-  expect(fewPacketsNote([p('SF7', 28), p('SF7', 26)], 'Hollow points')).toBe('');
-  expect(fewPacketsNote([p('SF8', 15), p('SF9', 8), p('SF9', 7), p('SF9', 12), p('SF12', 1)], 'Hollow points')).toBe(
-    'Hollow points rest on too few received packets to tell the stations apart: SF9 (7–8), SF12 (1) packets. More flight time gives them more.',
+  expect(fewPacketsNote([p('SF7', 28), p('SF7', 26)], 'Hollow points', 'synthetic')).toBe('');
+  expect(fewPacketsNote([p('SF8', 15), p('SF9', 8), p('SF9', 7), p('SF9', 12), p('SF12', 1)], 'Hollow points', 'synthetic')).toBe(
+    'Hollow points rest on too few received packets to tell the stations apart: SF9 (7–8), SF12 (1) packets. More flight time gives them more: the whole synthetic set (Trajectory) flies 44 minutes.',
   );
-  expect(fewPacketsNote([p('4 km', 1)], 'Dashed boxes')).toMatch(/^Dashed boxes rest on .*: 4 km \(1\) packet\./);
+  expect(fewPacketsNote([p('4 km', 1)], 'Dashed boxes', 'synthetic')).toMatch(/^Dashed boxes rest on .*: 4 km \(1\) packet\./);
+  // What gives more follows the flight: the real flight's length is fixed, the whole set has what it has.
+  expect(fewPacketsNote([p('SF12', 1)], 'Hollow points', 'canberra')).toMatch(/packet\. More flight time gives them more: the whole synthetic set/);
+  expect(fewPacketsNote([p('SF12', 1)], 'Hollow points', 'csv')).toMatch(/packet\. A longer flight gives them more\.$/);
+  expect(fewPacketsNote([p('SF12', 3)], 'Hollow points', 'all')).toMatch(/SF12 \(3\) packets\.$/);
 });
 
 test('a sweep chart of one seed says so where the table pools more', () => {
