@@ -812,7 +812,7 @@ $('#pin').addEventListener('click', () => {
 });
 
 $('#repeat-seeds').addEventListener('click', () => {
-  field('seeds').value = '10';
+  field('seeds').value = $('#repeat-seeds').dataset.seeds ?? '10';
   onChange();
 });
 

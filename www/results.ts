@@ -260,6 +260,9 @@ export function runsWords(r: Pick<SimReport, 'results' | 'config'>): string {
   return lo === total && hi === total ? `${total} runs` : `${span} of ${total} runs: a run in which no packet arrived has no errors`;
 }
 
+/** The seeds "Repeat with … seeds" asks for: enough for an interval that can tell models apart. */
+const REPEAT_SEEDS = 10;
+
 /** How many packets and runs the numbers rest on, and whether the models differ clearly. */
 function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
   const few = r.results.filter((m) => m.caveats.fewPackets);
@@ -273,7 +276,11 @@ function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
   const text = $('#verdict-text');
   const repeat = $<HTMLButtonElement>('#repeat-seeds');
   const runs = runsWords(r);
-  repeat.hidden = store.reportSettings.seeds >= 10 || r.results.length < 2;
+  // Ten seeds, or as many as the core takes for these flights at these rates (`maxSeeds`).
+  const seeds = Math.min(REPEAT_SEEDS, r.config.maxSeeds);
+  repeat.hidden = store.reportSettings.seeds >= seeds || r.results.length < 2;
+  repeat.dataset.seeds = String(seeds);
+  repeat.textContent = `Repeat with ${seeds} seeds`;
   if (r.results.length < 2) text.textContent = runs ? `p75's 95 % interval rests on ${runs} (flights × seeds).` : '';
   else if (best) text.textContent = `${MODEL_LABELS[best.model]} has the lowest p75, clearly: its 95 % interval lies below every other model's (${runs}).`;
   else if (!runs) text.textContent = 'One flight with one seed cannot tell whether these differences are larger than chance: no model is named best.';

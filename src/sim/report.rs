@@ -40,6 +40,10 @@ pub struct RunConfig {
     /// outside the plan's data rates (EU868 allows it: the paper's SF8 at 250 kHz).
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub data_rate: Option<u8>,
+    /// The most seeds these flights take at these sensor and station rates within the work
+    /// limit (`MAX_FILTER_STEPS`), at most the seeds setting's 100: how far `seeds` may be raised
+    /// (the whole synthetic set at the defaults: 18).
+    pub max_seeds: u32,
 }
 
 /// The drone radio's charge (SX1276 currents; `docs/reference.md` §7).

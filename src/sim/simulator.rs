@@ -16,7 +16,7 @@ use super::{LongRun, SimError};
 use crate::lora::Channel;
 use crate::math::pow;
 use crate::models::ModelKind;
-use crate::options::MAX_FILTER_STEPS;
+use crate::options::{MAX_FILTER_STEPS, SEEDS};
 use crate::parallel::{
     enough_tasks, par_map, par_map_costliest_first, par_map_owned, par_map_progressing,
 };
@@ -592,8 +592,7 @@ fn simulated_source(cfg: &Validated) -> Result<&TrajectorySource, SimError> {
 /// Refuses a run whose flights (`flight_time` s, flown once per seed of `seeds`) would take
 /// more than [`MAX_FILTER_STEPS`] filter steps, the drone's and the station's.
 fn check_steps(cfg: &Validated, flight_time: f64, seeds: u64) -> Result<(), SimError> {
-    let s = cfg.s();
-    let steps = flight_time * (s.drone.sensor_rate + 1.0 / s.station.step) * seeds as f64;
+    let steps = steps_per_seed(cfg, flight_time) * seeds as f64;
     if steps > MAX_FILTER_STEPS as f64 {
         return Err(SimError::TooLong {
             flight_time: flight_time * seeds as f64,
@@ -602,6 +601,12 @@ fn check_steps(cfg: &Validated, flight_time: f64, seeds: u64) -> Result<(), SimE
         });
     }
     Ok(())
+}
+
+/// The drone's and the station's filter steps per model in one seed of `flight_time` s.
+fn steps_per_seed(cfg: &Validated, flight_time: f64) -> f64 {
+    let s = cfg.s();
+    flight_time * (s.drone.sensor_rate + 1.0 / s.station.step)
 }
 
 /// What a `simulate` run flew (JSON `config`): the settings, with one drone on its SF for the
@@ -630,6 +635,9 @@ fn run_config(cfg: &Validated, source: &TrajectorySource, flights: &[Trajectory]
         sensitivity_dbm: Channel::sensitivity_dbm(sf, bw),
         range_m: cfg.channel.range_m(sf, bw),
         data_rate: s.access.region.rate(sf.get(), bw).map(|r| r.dr),
+        max_seeds: (MAX_FILTER_STEPS as f64 / steps_per_seed(cfg, flight_time))
+            .floor()
+            .min(SEEDS.max) as u32,
     }
 }
 

@@ -958,6 +958,23 @@ test('a whole set the core refuses after its first flight shows neither that fli
   assert.deepEqual(problems, []);
 });
 
+test('Repeat with … seeds asks for no more seeds than the core takes at these rates, and the run it starts is accepted', async () => {
+  // 1000 Hz sensors and a 1 ms station step: one 81 s flight is 162 000 filter steps, six fit.
+  const { page, problems } = await open('?sensorRate=1000&step=0.001');
+  const max = nativeJson(['simulate', '--synthetic', '1', '--sensor-rate', '1000', '--step', '0.001']).config.maxSeeds;
+  assert.ok(max > 1 && max < 10, `maxSeeds ${max}`);
+  const before = await tableHtml(page);
+  await page.getByRole('button', { name: `Repeat with ${max} seeds` }).click();
+  await waitForResults(page, before);
+  await idle(page);
+  assert.equal(await page.getByLabel('Seeds (repeats)').inputValue(), String(max));
+  assert.match(await page.locator('#results-table caption').first().textContent(), new RegExp(`over 1 flight × ${max} seeds`));
+  assert.doesNotMatch(await page.locator('#status').textContent(), /cannot be simulated/);
+  // At the most seeds the flights take, it is not offered again.
+  assert.equal(await page.locator('#repeat-seeds').isVisible(), false);
+  assert.deepEqual(problems, []);
+});
+
 test('with Advanced open the page scrolls, not the settings, and the results table fits its box', async () => {
   const { page, problems } = await open('', { width: 1280, height: 800 });
   await page.locator('#advanced summary').click();

@@ -426,6 +426,13 @@ fn the_whole_set_gives_intervals_over_its_flights_and_seeds_multiply_the_work_li
     assert_eq!(ci.runs, 30);
     let p75 = r.results[0].error3d.p75;
     assert!(ci.p75[0] < p75 && p75 < ci.p75[1], "{ci:?} around {p75}");
+    // The report says how far the seeds may go: as many as the refusal below names.
+    assert_eq!(r.config.max_seeds, 18);
+    let one = simulate(&mut Simulator::new(), &set(&all, json!({"synthetic": 1}))).unwrap();
+    assert_eq!(
+        one.config.max_seeds, 100,
+        "one flight: the seeds setting's own limit"
+    );
     let too_many = simulate(&mut Simulator::new(), &set(&all, json!({"seeds": 30}))).unwrap_err();
     assert!(too_many
         .to_string()

@@ -824,7 +824,13 @@ rangeM: number,
  * The regional plan's data rate at `sf`/`bw` (with ADR: the start), `null` for raw LoRa
  * outside the plan's data rates (EU868 allows it: the paper's SF8 at 250 kHz).
  */
-dataRate: number | null, };
+dataRate: number | null, 
+/**
+ * The most seeds these flights take at these sensor and station rates within the work
+ * limit (`MAX_FILTER_STEPS`), at most the seeds setting's 100: how far `seeds` may be raised
+ * (the whole synthetic set at the defaults: 18).
+ */
+maxSeeds: number, };
 
 export type SimReport = Delivery & { 
 /**
