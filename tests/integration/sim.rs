@@ -456,7 +456,14 @@ fn seeds_are_checked_and_a_swarm_refuses_more_than_one() {
         assert!(e.unwrap_err().to_string().contains("seeds must be 1..100"));
     }
     let swarm = set(&Scenario::default(), json!({"drones": 2, "seeds": 2}));
-    let e = loratrack::api::swarm(&swarm).unwrap_err().to_string();
+    let e = loratrack::api::swarm(&swarm).unwrap_err();
+    assert_eq!(
+        e.setting(),
+        Some("seeds"),
+        "the page and the JS API name it"
+    );
+    let e = e.to_string();
+    assert!(e.starts_with("seeds must be 1 in a swarm"), "{e}");
     assert!(e.contains("a swarm runs one seed"), "{e}");
 }
 

@@ -219,10 +219,11 @@ impl<'a> Swarm<'a> {
     fn new(cfg: &'a Validated) -> Result<(Self, Network), SimError> {
         let s = cfg.s();
         if s.run.seeds != 1 {
-            return Err(SimError::Source(format!(
-                "seeds repeats a simulate run; a swarm runs one seed (its drones already give its spread), got {}",
-                s.run.seeds
-            )));
+            return Err(SimError::Parameter(
+                "seeds",
+                f64::from(s.run.seeds),
+                "1 in a swarm (a swarm runs one seed: its drones already give its spread)",
+            ));
         }
         let model = cfg.swarm_station()?;
         let plan = plan(cfg)?;
