@@ -573,25 +573,27 @@ pub fn whole<T>(
 where
     T: TryFrom<i64> + Clone + Send + Sync + 'static,
 {
+    let read = number(key);
     move |text: &str| {
-        let v: f64 = text.trim().parse().map_err(|_| {
-            let quoted: String = text.chars().take(20).collect();
-            format!("{key} must be a number, got '{}'", quoted.escape_debug())
-        })?;
+        let v = read(text)?;
         let exact = v.fract() == 0.0 && v.abs() < 9_007_199_254_740_992.0;
         let held = exact.then(|| T::try_from(v as i64).ok()).flatten();
-        held.ok_or_else(|| match option(key) {
-            Some(o) => OutOfRange {
-                option: o,
-                value: v,
-            }
-            .to_string(),
-            None if v < 0.0 => format!(
-                "{key} must be a whole number, not negative, got {}",
-                as_given(v)
-            ),
-            None => format!("{key} must be a whole number, got {}", as_given(v)),
-        })
+        held.ok_or_else(|| whole_refusal(key, v))
+    }
+}
+
+/// How the whole-number setting `key` refuses `value`, a number its type cannot hold (a fraction,
+/// a negative count): in its range's words where it is one of [`OPTIONS`] (as [`OutOfRange`]),
+/// otherwise what it takes. The CLI's parsers and the JS API's reading of a parameter object both
+/// word it so.
+pub fn whole_refusal(key: &str, value: f64) -> String {
+    match option(key) {
+        Some(option) => OutOfRange { option, value }.to_string(),
+        None if value < 0.0 => format!(
+            "{key} must be a whole number, not negative, got {}",
+            as_given(value)
+        ),
+        None => format!("{key} must be a whole number, got {}", as_given(value)),
     }
 }
 
@@ -650,7 +652,7 @@ mod tests {
         );
         assert_eq!(
             whole::<u32>("seeds")("many"),
-            Err("seeds must be a number, got 'many'".into())
+            Err("seeds must be a number (1..100, a whole number), got 'many'".into())
         );
         // A setting outside the options table (the airtime command's payload) says what it wants.
         assert_eq!(

@@ -6,7 +6,7 @@
 //! column 9"). This reads the object again and names the first setting whose value could not be
 //! read, so that the thrown `Error` carries its `setting` as the core's own refusals do.
 
-use crate::options::{option, OutOfRange, GATEWAYS};
+use crate::options::{option, whole_refusal, GATEWAYS};
 use serde_json::Value;
 
 /// A setting named in `json` whose value serde could not read, as a message and, when the key is a
@@ -48,7 +48,7 @@ pub fn misread_setting(json: &str) -> Option<(String, Option<&'static str>)> {
             // `seeds`, …: serde's "expected usize"): refused in the range's words.
             Value::Number(n) if o.integer && n.as_i64().is_some_and(|x| x < 0) && o.min >= 0.0 => {
                 let value = n.as_f64().unwrap_or(f64::NAN);
-                return Some((OutOfRange { option: o, value }.to_string(), Some(o.key)));
+                return Some((whole_refusal(o.key, value), Some(o.key)));
             }
             Value::Number(_) => return None,
             other => what(other),
@@ -116,11 +116,10 @@ pub fn explain_serde_error(json: &str, message: &str) -> String {
         .and_then(|rest| rest.split_once("`, expected "))
     {
         let unsigned = ["usize", "u8", "u16", "u32", "u64"].contains(&expected);
-        let given = n.parse::<i64>().ok();
-        if let Some(key) =
-            key_of(&|v| v.as_i64().is_some() && v.as_i64() == given).filter(|_| unsigned)
-        {
-            return format!("{key} must be a whole number, not negative, got {n}");
+        if let (Some(given), true) = (n.parse::<i64>().ok(), unsigned) {
+            if let Some(key) = key_of(&|v| v.as_i64() == Some(given)) {
+                return whole_refusal(&key, given as f64);
+            }
         }
     }
     let quoted = |prefix: &str, close: char| {
