@@ -530,7 +530,7 @@ fn swept_distances_are_checked_and_bounded_before_any_run() {
     // An empty value (a doubled comma) or text is named as a distance, not as a float.
     refused(
         &["sweep", "--distances", "1000,,3000"],
-        "each distance must be a number of metres, got ''",
+        "distance must be a number (0..100000 m), got ''",
     );
 }
 

@@ -37,20 +37,9 @@ pub struct SweepKind {
         value_delimiter = ',',
         value_name = "M,M,...",
         allow_negative_numbers = true,
-        value_parser = parse_distance
+        value_parser = opt::number("distance")
     )]
     distances: Option<Vec<f64>>,
-}
-
-/// One of `--distances`, m: a number (its range is checked with the other settings); an empty
-/// one (a doubled comma) or text is named as such.
-fn parse_distance(text: &str) -> Result<f64, String> {
-    text.trim().parse::<f64>().map_err(|_| {
-        format!(
-            "each distance must be a number of metres, got '{}'",
-            text.chars().take(20).collect::<String>()
-        )
-    })
 }
 
 #[derive(Args)]
