@@ -124,6 +124,8 @@ pub enum LongRun {
     Simulate {
         /// The seeds each flight is flown with.
         seeds: u64,
+        /// How many of them fit at these rates (the report's `maxSeeds`).
+        fit: u32,
     },
     /// `swarm`: every drone's flights.
     Swarm,
@@ -135,16 +137,12 @@ impl SimError {
     /// For a `simulate` run too long only for its several seeds, how many would fit (the whole
     /// synthetic set at the default rates: 18); `None` for any other error, or where one seed is
     /// already too long.
-    pub fn seeds_that_fit(&self) -> Option<u64> {
+    pub fn seeds_that_fit(&self) -> Option<u32> {
         match self {
             SimError::TooLong {
-                steps,
-                run: LongRun::Simulate { seeds },
+                run: LongRun::Simulate { seeds, fit },
                 ..
-            } if *seeds > 1 => {
-                let room = (MAX_FILTER_STEPS as f64 / (steps / *seeds as f64)).floor() as u64;
-                (room >= 1).then_some(room)
-            }
+            } if *seeds > 1 && *fit >= 1 => Some(*fit),
             _ => None,
         }
     }

@@ -597,7 +597,10 @@ fn check_steps(cfg: &Validated, flight_time: f64, seeds: u64) -> Result<(), SimE
         return Err(SimError::TooLong {
             flight_time: flight_time * seeds as f64,
             steps,
-            run: LongRun::Simulate { seeds },
+            run: LongRun::Simulate {
+                seeds,
+                fit: seeds_that_fit(cfg, flight_time),
+            },
         });
     }
     Ok(())
@@ -607,6 +610,14 @@ fn check_steps(cfg: &Validated, flight_time: f64, seeds: u64) -> Result<(), SimE
 fn steps_per_seed(cfg: &Validated, flight_time: f64) -> f64 {
     let s = cfg.s();
     flight_time * (s.drone.sensor_rate + 1.0 / s.station.step)
+}
+
+/// The most seeds of `flight_time` s that fit within [`MAX_FILTER_STEPS`] at `cfg`'s rates, at
+/// most the seeds setting's own limit: the report's `maxSeeds` and a refusal's "at most N seeds".
+fn seeds_that_fit(cfg: &Validated, flight_time: f64) -> u32 {
+    (MAX_FILTER_STEPS as f64 / steps_per_seed(cfg, flight_time))
+        .floor()
+        .min(SEEDS.max) as u32
 }
 
 /// What a `simulate` run flew (JSON `config`): the settings, with one drone on its SF for the
@@ -635,9 +646,7 @@ fn run_config(cfg: &Validated, source: &TrajectorySource, flights: &[Trajectory]
         sensitivity_dbm: Channel::sensitivity_dbm(sf, bw),
         range_m: cfg.channel.range_m(sf, bw),
         data_rate: s.access.region.rate(sf.get(), bw).map(|r| r.dr),
-        max_seeds: (MAX_FILTER_STEPS as f64 / steps_per_seed(cfg, flight_time))
-            .floor()
-            .min(SEEDS.max) as u32,
+        max_seeds: seeds_that_fit(cfg, flight_time),
     }
 }
 
