@@ -26,6 +26,11 @@ export function merge(reports: SimReport[], models: string[], model: SimReport['
  * none did). */
 export function mergeSweepPoint(point: SweepPoint, runs: SweepResult[], models: string[], model: SimReport['config']['model']): SweepResult {
   const reports = runs.flatMap((x) => (x.report ? [x.report] : []));
+  return { point, ...(reports.length ? { report: merge(reports, models, model) } : {}), ...firstRefusal(runs) };
+}
+
+/** The first of `runs` the core refused, as its error and the setting it names; `{}` where none was. */
+export function firstRefusal(runs: SweepResult[]): Pick<SweepResult, 'error' | 'setting'> {
   const refused = runs.find((x) => x.error);
-  return { point, ...(reports.length ? { report: merge(reports, models, model) } : {}), ...(refused ? { error: refused.error, setting: refused.setting } : {}) };
+  return refused ? { error: refused.error, setting: refused.setting } : {};
 }

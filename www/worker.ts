@@ -2,7 +2,7 @@
 //   { id, params, sweep? }  →  [{ id, partial }] { id, progress }* then { id, report } | { id, error }
 //                               then, with sweep points, { id, sweep: [{ point, report?, error? }] }
 import { load, loadCsv, settingOf, simulate, stationsOf, swarm, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
-import { merge } from './merge';
+import { firstRefusal, merge } from './merge';
 
 /** One point of a sweep beside the main run: the gateway at another distance, or another SF. */
 export type SweepPoint = { distance: number } | { sf: number };
@@ -131,8 +131,7 @@ function sweepPoint(params: SimulateParams, point: SweepPoint): SweepResult {
   if (all.report || stations.length < 2) return all;
   const alone = stations.map((m) => run({ ...params, model: m }));
   const ran = alone.flatMap((x) => (x.report ? [x.report] : []));
-  const refused = alone.find((x) => x.error) ?? all;
-  return ran.length ? { point, report: merge(ran, stations, params.model ?? 'all'), error: refused.error, setting: refused.setting } : all;
+  return ran.length ? { point, report: merge(ran, stations, params.model ?? 'all'), ...firstRefusal([...alone, all]) } : all;
 }
 
 function runSwarms({ id, swarm: { sizes, params } }: SwarmRequest, post: (r: Response) => void): void {
