@@ -46,9 +46,10 @@ pub use report::{
     Series, SimReport,
 };
 pub use scenario::{
-    parse_seed, random_seed, AccessSettings, ChannelSettings, DroneSettings, FlightSettings,
-    GatewaySite, ModelChoice, NetworkSettings, RadioSettings, RunSettings, Scenario, SfPlan,
-    StationSettings, SwarmSettings, SyntheticChoice, TrajectorySource, Validated, MAX_SEED,
+    parse_seed, random_seed, AccessSettings, ChannelSettings, CliCommand, DroneSettings,
+    FlightSettings, GatewaySite, ModelChoice, NetworkSettings, RadioSettings, RunSettings,
+    Scenario, SfPlan, StationSettings, SwarmSettings, SyntheticChoice, TrajectorySource, Validated,
+    MAX_SEED,
 };
 pub use schedule::{aloha_collision_rate, Schedule, Slot};
 pub use sender::{

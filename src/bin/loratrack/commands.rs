@@ -67,6 +67,7 @@ impl FlightArgs {
                 .transpose()?,
             sample: self.sample.clone(),
             plan: self.plan.as_deref().map(read_flight).transpose()?,
+            plan_name: self.plan.as_ref().map(|p| p.display().to_string()),
         })
     }
 }
@@ -938,6 +939,83 @@ mod tests {
             .scenario
             .scenario(FlightSettings::default(), bare.swarm);
         assert_eq!(cli, Scenario::default());
+    }
+
+    /// Every option a command line may hold, for reading one back.
+    #[derive(Parser)]
+    struct Whole {
+        #[command(flatten)]
+        flight: FlightArgs,
+        #[command(flatten)]
+        swarm: SwarmSettings,
+        #[command(flatten)]
+        scenario: ScenarioArgs,
+    }
+
+    /// Each setting away from its default, written as `Scenario::cli_args` writes it, reads back
+    /// through the CLI's own options into the same settings; every setting the wire knows is
+    /// among them, so a setting the command line cannot carry fails here.
+    #[test]
+    fn every_setting_survives_its_command_line() {
+        let dir = std::env::temp_dir().join(format!("loratrack-cli-args-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (flight_file, plan_file) = (dir.join("a flight.csv"), dir.join("plan.csv"));
+        std::fs::write(&flight_file, "t,x,y,z\n0,0,0,10\n1,1,0,10\n").unwrap();
+        std::fs::write(&plan_file, "0,0,10\n100,0,10\n").unwrap();
+        let changes = serde_json::json!([
+            {"synthetic": "all"}, {"synthetic": 7}, {"sample": "canberra"},
+            {"model": "dr,imm", "prediction": "bounded", "headingNoise": "adaptive", "step": 0.2,
+             "eta": 0.8, "planPace": "packet", "planTolerance": 25.5},
+            {"sender": "error", "threshold": 3.5, "maxInterval": 30, "channelSense": "off",
+             "dutyCycleMode": "budget", "payload": "lean", "burst": 4},
+            {"sf": 9, "bw": 125, "cr": 2, "overhead": 0, "dutyCycle": 0.001, "txPower": -3.5},
+            {"distance": 2500.25, "pathLossExponent": 3.1, "shadowing": 0, "shadowingModel": "field",
+             "gatewayHeight": 30},
+            {"gateways": [{"east": -500, "north": 0}, {"east": 10, "north": 20.5, "height": 30}],
+             "channels": 1, "capture": false, "interSf": false, "adr": "tracking", "adrMargin": 15,
+             "adrHistory": 10},
+            {"sensorRate": 50, "q": 0.07},
+            {"region": "us915", "interval": 5, "fairUse": "ttn", "jitter": 0.5, "clockDrift": 10,
+             "schedule": "slotted"},
+            {"access": "lbt"},
+            {"drones": 50, "duration": 120, "sfPlan": "fixed"},
+            {"seed": 9007199254740991u64, "seeds": 3, "series": true},
+        ]);
+        let mut covered = std::collections::BTreeSet::new();
+        let mut runs: Vec<Scenario> = changes
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| {
+                covered.extend(c.as_object().unwrap().keys().cloned());
+                Scenario::default().with(c).unwrap()
+            })
+            .collect();
+        let mut csv = Scenario::default();
+        csv.flight.trajectory = Some(std::fs::read_to_string(&flight_file).unwrap().into());
+        csv.flight.trajectory_name = Some(flight_file.display().to_string());
+        csv.flight.plan = Some(std::fs::read_to_string(&plan_file).unwrap());
+        csv.flight.plan_name = Some(plan_file.display().to_string());
+        runs.push(csv);
+        let every = serde_json::to_value(Scenario::default()).unwrap();
+        let missing: Vec<&String> = every
+            .as_object()
+            .unwrap()
+            .keys()
+            .filter(|k| !covered.contains(*k))
+            .collect();
+        assert!(missing.is_empty(), "settings no case changes: {missing:?}");
+        for original in runs {
+            let args = original.cli_args(loratrack::CliCommand::Swarm);
+            let whole =
+                Whole::try_parse_from(std::iter::once("loratrack".to_string()).chain(args.clone()))
+                    .unwrap_or_else(|e| panic!("{args:?}: {e}"));
+            let back = whole
+                .scenario
+                .scenario(whole.flight.settings().unwrap(), whole.swarm);
+            assert_eq!(back, original, "{args:?}");
+        }
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     /// The header names every setting of the station's prediction and the drone's sending, so

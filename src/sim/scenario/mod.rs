@@ -9,9 +9,11 @@
 
 mod access;
 mod choices;
+mod command_line;
 mod gateways;
 
 pub use access::AccessSettings;
+pub use command_line::{CliCommand, FLIGHT_FILE, PLAN_FILE};
 
 pub use choices::{
     parse_seed, random_seed, ModelChoice, SyntheticChoice, TrajectorySource, MAX_SEED,
@@ -91,6 +93,11 @@ pub struct FlightSettings {
     #[serde(default, skip_serializing)]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(skip))]
     pub plan: Option<String>,
+    /// The plan's file name, for the command line that reruns these settings
+    /// ([`Scenario::command_line`]); input only.
+    #[serde(default, skip_serializing)]
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(skip))]
+    pub plan_name: Option<String>,
 }
 
 /// The ground station.
@@ -534,6 +541,7 @@ impl Scenario {
         }
         if changes.get("plan").is_none() {
             out.flight.plan = self.flight.plan.clone();
+            out.flight.plan_name = self.flight.plan_name.clone();
         }
         Ok(out)
     }
@@ -543,15 +551,21 @@ impl Scenario {
         self.network.channels(self.access.region)
     }
 
+    /// Refuses a key no setting has (a misspelt one), which would otherwise be ignored.
+    fn known_keys(&self) -> Result<(), SimError> {
+        match self.unknown.keys().next() {
+            Some(key) => Err(SimError::Source(format!(
+                "unknown setting '{}' (see `loratrack simulate --help` or limits())",
+                key.chars().take(40).collect::<String>()
+            ))),
+            None => Ok(()),
+        }
+    }
+
     /// Checks every setting before any work: the first problem, naming the field, the value
     /// and what is accepted.
     pub fn validate(&self) -> Result<Validated, SimError> {
-        if let Some(key) = self.unknown.keys().next() {
-            return Err(SimError::Source(format!(
-                "unknown setting '{}' (see `loratrack simulate --help` or limits())",
-                key.chars().take(40).collect::<String>()
-            )));
-        }
+        self.known_keys()?;
         // The settings kept with the run give their CSV text to the source (the echo in every
         // report clones these settings).
         let mut settings = self.clone();
