@@ -38,9 +38,9 @@ pub const FLIGHT_FILE: &str = "flight.csv";
 pub const PLAN_FILE: &str = "plan.csv";
 
 impl Scenario {
-    /// The arguments after `loratrack <command>` that run these settings: the flight, then each
-    /// setting that differs from its default, grouped as the settings are (station, sending,
-    /// radio, channel, network, drone, access, swarm, run) and by name within a group.
+    /// The arguments after `loratrack <command>` that run these settings: a CSV flight and
+    /// plan, then each setting that differs from its default, in the order the settings are
+    /// written (flight, station, sending, radio, channel, network, drone, access, swarm, run).
     ///
     /// A CSV flight or plan, which the settings hold as text, is named by its file name
     /// (`trajectoryName`, `planName`), or [`FLIGHT_FILE`] and [`PLAN_FILE`]: the command runs
@@ -52,26 +52,18 @@ impl Scenario {
     /// assert_eq!(s.cli_args(CliCommand::Simulate), ["--synthetic", "3", "--prediction", "bounded", "--sf", "9"]);
     /// ```
     pub fn cli_args(&self, command: CliCommand) -> Vec<String> {
-        let mut args = self.flight_args();
-        let default = Scenario::default();
-        let mut groups = vec![
-            (wire(&self.station), wire(&default.station)),
-            (wire(&self.sending), wire(&default.sending)),
-            (wire(&self.radio), wire(&default.radio)),
-            (wire(&self.channel), wire(&default.channel)),
-            (wire(&self.network), wire(&default.network)),
-            (wire(&self.drone), wire(&default.drone)),
-            (wire(&self.access), wire(&default.access)),
-        ];
-        if command == CliCommand::Swarm {
-            groups.push((wire(&self.swarm), wire(&default.swarm)));
-        }
-        groups.push((wire(&self.run), wire(&default.run)));
-        for (settings, defaults) in groups {
-            for (key, value) in &settings {
-                if defaults.get(key) != Some(value) {
-                    args.extend(option(key, value));
+        let mut args = self.file_args();
+        let (values, defaults) = (wire(self), wire(&Scenario::default()));
+        let swarm_only = wire(&self.swarm);
+        for key in key_order(self) {
+            if command == CliCommand::Simulate && swarm_only.contains_key(&key) {
+                continue;
+            }
+            match values.get(&key) {
+                Some(value) if defaults.get(&key) != Some(value) => {
+                    args.extend(option(&key, value));
                 }
+                _ => {}
             }
         }
         args
@@ -93,8 +85,9 @@ impl Scenario {
         Ok(words.join(" "))
     }
 
-    /// `--trajectory`, `--synthetic` or `--sample`, and `--plan`.
-    fn flight_args(&self) -> Vec<String> {
+    /// `--trajectory` and `--plan`: the files the settings hold as text, which their wire form
+    /// leaves out.
+    fn file_args(&self) -> Vec<String> {
         let f = &self.flight;
         let file = |name: &Option<String>, fallback: &str| match name.as_deref() {
             Some(n) if !n.trim().is_empty() && n != DEFAULT_CSV_NAME => n.to_string(),
@@ -104,12 +97,6 @@ impl Scenario {
         if f.trajectory.is_some() || f.trajectory_name.is_some() {
             args.extend(["--trajectory".into(), file(&f.trajectory_name, FLIGHT_FILE)]);
         }
-        if let Some(s) = &f.synthetic {
-            args.extend(["--synthetic".into(), text(&wire_value(s))]);
-        }
-        if let Some(sample) = &f.sample {
-            args.extend(["--sample".into(), sample.clone()]);
-        }
         if f.plan.is_some() || f.plan_name.is_some() {
             args.extend(["--plan".into(), file(&f.plan_name, PLAN_FILE)]);
         }
@@ -117,7 +104,39 @@ impl Scenario {
     }
 }
 
-/// A sub-struct's keys and values as the wire has them.
+/// The keys of `settings`' wire form in the order it writes them (a JSON map sorts them: its
+/// values are read there, exactly, and the order here, from the text).
+fn key_order<T: Serialize>(settings: &T) -> Vec<String> {
+    struct Keys(Vec<String>);
+    impl<'de> serde::Deserialize<'de> for Keys {
+        fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+            struct InOrder;
+            impl<'de> serde::de::Visitor<'de> for InOrder {
+                type Value = Keys;
+                fn expecting(&self, f: &mut core::fmt::Formatter) -> core::fmt::Result {
+                    f.write_str("an object")
+                }
+                fn visit_map<A: serde::de::MapAccess<'de>>(
+                    self,
+                    mut m: A,
+                ) -> Result<Keys, A::Error> {
+                    let mut keys = Vec::new();
+                    while let Some((k, _)) = m.next_entry::<String, serde::de::IgnoredAny>()? {
+                        keys.push(k);
+                    }
+                    Ok(Keys(keys))
+                }
+            }
+            d.deserialize_map(InOrder)
+        }
+    }
+    serde_json::to_string(settings)
+        .ok()
+        .and_then(|text| serde_json::from_str::<Keys>(&text).ok())
+        .map_or_else(Vec::new, |k| k.0)
+}
+
+/// The settings' keys and values as the wire has them.
 fn wire<T: Serialize>(settings: &T) -> Map<String, Value> {
     match wire_value(settings) {
         Value::Object(map) => map,
@@ -246,7 +265,7 @@ mod tests {
         );
         assert_eq!(
             s.command_line(CliCommand::Simulate).unwrap(),
-            "loratrack simulate --synthetic 1 --capture off --gateway -500,0 --gateway 10,20.5,30 --series"
+            "loratrack simulate --synthetic 1 --gateway -500,0 --gateway 10,20.5,30 --capture off --series"
         );
     }
 
