@@ -259,6 +259,27 @@ pub fn simulate(params: JsValue, progress: JsValue) -> Result<JsValue, JsValue> 
     )
 }
 
+/// `commandLine(params, command?)` → the `loratrack simulate` command line (`command:
+/// 'swarm'`: `loratrack swarm`) that runs the same settings as `simulate(params)` does, each
+/// setting away from its default as its CLI option; a CSV flight or plan by `trajectoryName`
+/// and `planName` ([`Scenario::command_line`](crate::Scenario::command_line)).
+#[wasm_bindgen(js_name = commandLine)]
+pub fn command_line(params: JsValue, command: JsValue) -> Result<JsValue, JsValue> {
+    let command = match command.as_string().as_deref() {
+        _ if command.is_undefined() || command.is_null() => crate::CliCommand::Simulate,
+        Some("simulate") => crate::CliCommand::Simulate,
+        Some("swarm") => crate::CliCommand::Swarm,
+        _ => {
+            return Err(js_error(
+                "command must be 'simulate' or 'swarm', or left out",
+            ))
+        }
+    };
+    call(params, |p: crate::sim::Scenario| {
+        Ok(p.command_line(command)?)
+    })
+}
+
 /// `swarm({drones?, duration?, sfPlan?, schedule?, jitter?, clockDrift?, …every simulate
 /// setting}, progress?)` → `{config, collisionRate, collisionRateTheory, frameLength,
 /// largestSwarm, packetsSent, packetsReceived, deliveryRatio, duplicates, gateways, …, drones}`

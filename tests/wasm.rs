@@ -833,3 +833,35 @@ fn the_series_arrive_as_float64_arrays_holding_the_cores_numbers() {
         );
     }
 }
+
+#[wasm_bindgen_test]
+fn the_command_line_of_a_page_run_names_its_settings_and_its_files() {
+    let line = |params: JsValue, command: JsValue| {
+        wasm::command_line(params, command)
+            .map(|v| v.as_string().expect("a string"))
+            .map_err(error_message)
+    };
+    let page = obj(&[
+        ("trajectoryName", "my flight.csv".into()),
+        ("planName", "survey.plan".into()),
+        ("model", "3d-ctra,mission".into()),
+        ("sf", 10.into()),
+        (
+            "gateways",
+            js_sys::JSON::parse(r#"[{"east": 500, "north": -20}]"#).unwrap(),
+        ),
+    ]);
+    assert_eq!(
+        line(page, JsValue::UNDEFINED).unwrap(),
+        "loratrack simulate --trajectory 'my flight.csv' --plan survey.plan --model 3d-ctra,mission --sf 10 --gateway 500,-20"
+    );
+    let crowd = obj(&[("drones", 72.into()), ("sfPlan", "fixed".into())]);
+    assert_eq!(
+        line(crowd, "swarm".into()).unwrap(),
+        "loratrack swarm --drones 72 --sf-plan fixed"
+    );
+    let e = line(obj(&[("sf", 9.into())]), "sweep".into()).unwrap_err();
+    assert!(e.contains("'simulate' or 'swarm'"), "{e}");
+    let e = line(obj(&[("spreadingFactor", 9.into())]), JsValue::UNDEFINED).unwrap_err();
+    assert!(e.contains("unknown setting 'spreadingFactor'"), "{e}");
+}
