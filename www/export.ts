@@ -119,10 +119,11 @@ export function downloadAirtimeCsv(rows: AirtimeRow[], settings: string): void {
   save(new Blob([csvText([header, ...body])], { type: 'text/csv' }), 'loratrack-time-on-air.csv');
 }
 
-/** Configuration and results, without the bulky series. */
-export function downloadJson(report: SimReport, settings: unknown): void {
+/** Configuration and results, without the bulky series; `command` the CLI's command line that
+ * gives the same results. */
+export function downloadJson(report: SimReport, settings: unknown, command?: string): void {
   const { series: _series, ...rest } = report;
-  save(new Blob([JSON.stringify({ settings, ...rest }, null, 2)], { type: 'application/json' }), 'loratrack-results.json');
+  save(new Blob([JSON.stringify({ settings, command, ...rest }, null, 2)], { type: 'application/json' }), 'loratrack-results.json');
 }
 
 /** The chart's own drawings, top to bottom: every SVG but a legend's small swatches. */

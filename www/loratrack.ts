@@ -75,6 +75,8 @@ export type SimulateParams = Partial<Omit<Scenario, 'seed'>> & {
   /** The drone's mission plan for a CSV or sample flight (input only): CSV text of
    * `x,y,z[,speed]` or a QGroundControl `.plan`; the synthetic flights carry their own. */
   plan?: string;
+  /** The plan's file name, for `commandLine`. */
+  planName?: string;
 };
 /** Input of swarm: the same settings, with `drones`, `duration`, `sfPlan` and `schedule`. */
 export type SwarmParams = SimulateParams;
@@ -112,6 +114,13 @@ export function decode(params: Partial<DecodeParams> & Pick<DecodeParams, 'model
  */
 export function simulate(params: SimulateParams, onProgress?: (done: number, total: number) => void): SimReport {
   return wasm.simulate(params, onProgress) as SimReport;
+}
+
+/** The `loratrack simulate` command line (`'swarm'`: `loratrack swarm`) that gives the numbers
+ * `simulate(params)` gives: each setting away from its default as its CLI option, a CSV flight
+ * or plan by `trajectoryName` and `planName`. */
+export function commandLine(params: SimulateParams, command?: 'simulate' | 'swarm'): string {
+  return wasm.commandLine(params, command) as string;
 }
 
 /** Simulates drones sharing the gateways through the same event loop as simulate.

@@ -3,7 +3,7 @@
 // table in ./results, embeds in ./embed, presentation mode in ./present.
 import { pool } from './boot';
 import { runSwarms, spawnWorker, type SwarmRun } from './pool';
-import { linkBudget, load, MODEL_LABELS, settingOf, stationsOf, type ModelName, type SimReport, type SwarmParams } from './loratrack';
+import { linkBudget, load, MODEL_LABELS, settingOf, stationsOf, type ModelName, type SimReport, type SimulateParams, type SwarmParams } from './loratrack';
 import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './charts/colors';
 import type { BoxRow } from './charts/plots';
 import type { SfRow } from './charts/p75BySf';
@@ -16,7 +16,7 @@ import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
 import { caption, fewPacketsNote, fixedRateNote, noLineNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote } from './format';
 import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
-import { clearTable, renderBaseline, renderTable, restingNotes } from './results';
+import { clearTable, renderBaseline, renderCommand, renderTable, restingNotes } from './results';
 import { setUpPresent } from './present';
 import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, runsMission, simulateRequest, swarmSettings, toParams, toQuery, type Settings } from './state';
 import { pageQuery, store } from './store';
@@ -64,7 +64,7 @@ setUpPresent(() => {
 
 // ---- the workers: latest request wins; a long whole-set run is interrupted by the next change --
 let nextId = 0;
-let running: { id: number; long: boolean; started: number; settings: Settings } | undefined;
+let running: { id: number; long: boolean; started: number; settings: Settings; params: SimulateParams } | undefined;
 let queued: { request: SimulateRequest; settings: Settings } | undefined;
 /** The next run draws a fresh seed (New seed), which then becomes the setting. */
 let freshSeed = false;
@@ -98,7 +98,7 @@ let lastSent = 0;
 function send(request: SimulateRequest, made: Settings): void {
   lastSent = request.id;
   const long = made.flight === 'all' || made.flight === 'csv' || made.seeds > 1;
-  running = { id: request.id, long, started: performance.now(), settings: made };
+  running = { id: request.id, long, started: performance.now(), settings: made, params: request.params };
   updateBusy();
   progress.hidden = !long;
   progress.value = 0;
@@ -215,7 +215,8 @@ function onResponse(r: Response): void {
   }
   if ('report' in r) {
     const made = { ...running.settings };
-    inNextTask(r.id, () => showReport(r.report, made, r.millis));
+    const params = running.params;
+    inNextTask(r.id, () => showReport(r.report, made, r.millis, params));
     // The sweep follows the report (the pool merges the workers' reports before their sweeps).
     clearTimeout(sweepWait);
     sweepWait = setTimeout(() => sweepPending(true), SWEEP_PATIENCE_MS);
@@ -293,7 +294,7 @@ function inNextTask(id: number, show: () => void): void {
 }
 
 /** The report of a run of `made` on show: the table, the status line and every chart. */
-function showReport(report: SimReport, made: Settings, millis: number): void {
+function showReport(report: SimReport, made: Settings, millis: number, params: SimulateParams): void {
   showPartial(false);
   csvError.hidden = true;
   planError.hidden = true;
@@ -318,6 +319,7 @@ function showReport(report: SimReport, made: Settings, millis: number): void {
   const c = report.config;
   status.textContent = `${c.trajectory}: ${c.flights} flight${c.flights > 1 ? 's' : ''}, ${c.flightTime.toFixed(0)} s simulated in ${millis.toFixed(0)} ms. Gateway range${c.adr === 'off' ? '' : ` at SF${c.sf}, ${c.bw} kHz, where ADR starts`} (mean power = sensitivity ${c.sensitivityDbm.toFixed(1)} dBm): ${(c.rangeM / 1000).toFixed(2)} km.`;
   renderResults(report);
+  renderCommand(params, report.config.seed);
   if (settingsChartsWait) renderSettingsCharts();
 }
 
@@ -701,6 +703,16 @@ onUpload('#plan-file', planError, async (f) => {
   store.plan = { text: await f.text(), name: f.name };
 });
 
+$('#copy-command').addEventListener('click', async () => {
+  const command = store.reportCommand ?? '';
+  try {
+    await navigator.clipboard.writeText(command);
+    $('#copy-command-status').textContent = 'Command copied.';
+  } catch {
+    $('#copy-command-status').textContent = 'Select the command to copy it.';
+  }
+});
+
 $('#copy-link').addEventListener('click', async () => {
   const url = location.href;
   // An uploaded file stays on this computer: say what the link will open instead.
@@ -861,7 +873,7 @@ function noResults(): string {
 
 for (const [id, save] of [
   ['download-csv', (r: SimReport) => downloadErrorCsv(r)],
-  ['download-json', (r: SimReport) => downloadJson(r, store.reportSettings)],
+  ['download-json', (r: SimReport) => downloadJson(r, store.reportSettings, store.reportCommand)],
   // An uploaded flight never leaves this computer: no link opens it.
   ['download-results-csv', (r: SimReport) => downloadResultsCsv(r, { settings: caption(store.reportSettings), link: store.reportSettings.flight === 'csv' ? '' : `${location.origin}${location.pathname}?${toQuery(store.reportSettings)}` })],
 ] as const) {

@@ -250,21 +250,21 @@ const SWEEP: SweepPoint[] = [...[500, 1000, 2000, 3000, 4000, 5000].map((distanc
 
 /** What the page asks its workers for these settings: the run and the charts' sweep, and an
  * uploaded flight's file, whose text the workers read (`trajectory`). */
-export function simulateRequest(id: number, s: Settings, csv?: { file: Blob; name: string }, missionPlan?: { text: string }): SimulateRequest {
+export function simulateRequest(id: number, s: Settings, csv?: { file: Blob; name: string }, missionPlan?: { text: string; name?: string }): SimulateRequest {
   const file = s.flight === 'csv' && csv ? { trajectoryFile: csv.file } : {};
   return { id, params: toParams(s, csv, missionPlan), sweep: SWEEP, ...file };
 }
 
 /** simulate() parameters for these settings; `csv` names the uploaded flight, whose text the
  * worker adds as `trajectory` from the request's file, and `missionPlan` is its mission plan. */
-export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { text: string }): SimulateParams {
+export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { text: string; name?: string }): SimulateParams {
   const flight: SimulateParams =
     s.flight === 'all'
       ? { synthetic: 'all' }
       : s.flight === 'canberra'
         ? { sample: 'canberra' }
         : s.flight === 'csv' && csv
-          ? { trajectoryName: csv.name, ...(missionPlan ? { plan: missionPlan.text } : {}) }
+          ? { trajectoryName: csv.name, ...(missionPlan ? { plan: missionPlan.text, ...(missionPlan.name ? { planName: missionPlan.name } : {}) } : {}) }
           : { synthetic: s.flightNumber };
   return {
     ...flight,

@@ -24,6 +24,8 @@ export interface Store {
   reportSettings: Settings;
   /** The numbers on show. */
   report?: SimReport;
+  /** The command line that gives the numbers on show (`commandLine` of the run's parameters). */
+  reportCommand?: string;
   /** The pinned baseline and the settings that made it. */
   baseline?: { report: SimReport; settings: Settings };
   /** An uploaded CSV flight (never in the URL), kept as its bytes in a Blob: the workers read its

@@ -37,6 +37,13 @@ export function nativeJson(args) {
   return JSON.parse(execFileSync(cliPath(), [...args, '--json'], { cwd: root, encoding: 'utf8', maxBuffer: 256 << 20 }));
 }
 
+/** The JSON of a `loratrack …` command line (the page's "Copy command") as a POSIX shell runs it,
+ * in `cwd` (where the files it names are), the native CLI standing for `loratrack`. */
+export function commandJson(line, cwd = root) {
+  if (!line.startsWith('loratrack ')) throw new Error(`not a loratrack command: ${line}`);
+  return JSON.parse(execFileSync('sh', ['-c', `"$0" ${line.slice('loratrack '.length)} --json`, cliPath()], { cwd, encoding: 'utf8', maxBuffer: 256 << 20 }));
+}
+
 const TYPES = {
   '.html': 'text/html; charset=utf-8',
   '.js': 'text/javascript',

@@ -5,7 +5,7 @@ import { after, afterEach, before } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { launch, openPage, serveDist } from './harness.mjs';
+import { launch, nativeJson, openPage, serveDist } from './harness.mjs';
 
 let server;
 let browser;
@@ -235,4 +235,15 @@ export async function lesson(title, { settled = true } = {}) {
   if (settled) await idle(opened.page);
   assert.match(await opened.page.locator('#lesson-title').textContent(), new RegExp(title.replace(/[?+]/g, '\\$&')));
   return opened;
+}
+
+/** Asserts that a "Settings and results (JSON)" download holds what `loratrack simulate ARGS --json`
+ * prints (but the echo's `series` flag: the page always asks for the plotted series), and that its
+ * command line is that one; returns the CLI's JSON. */
+export function assertDownloadIsCli(download, args) {
+  const cli = nativeJson(['simulate', ...args]);
+  const strip = ({ settings: _a, command: _b, series: _c, config: { series: _d, ...config }, ...rest }) => ({ config, ...rest });
+  assert.deepStrictEqual(strip(download), strip(cli));
+  assert.equal(download.command, ['loratrack', 'simulate', ...args].join(' '));
+  return cli;
 }

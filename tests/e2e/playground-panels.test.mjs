@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { nativeJson, openPage, scratchDir } from './harness.mjs';
-import { axe, axisLabelOverlaps, cell, chartTextsCut, cellNumber, downloaded, idle, layoutShifts, lesson, MODELS, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
+import { assertDownloadIsCli, axe, axisLabelOverlaps, cell, chartTextsCut, cellNumber, downloaded, idle, layoutShifts, lesson, MODELS, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -299,10 +299,7 @@ test('gateways are added, moved and removed in the form; each is reported, kept 
   await until(page, () => !document.body.hasAttribute('data-busy') && !document.querySelector('[data-panel="results"].stale'));
   const download = await downloaded(page, page.getByRole('button', { name: /JSON/ }));
   const browserJson = JSON.parse(download.toString('utf8'));
-  const cli = nativeJson(['simulate', '--synthetic', '1', '--model', '3d-ctra', '--distance', '5000', '--gateway', '5000,0', '--gateway', '0,2500']);
-  // Everything but the echo's `series` flag (the page always asks for the plotted series).
-  const strip = ({ settings: _a, series: _b, config: { series: _c, ...config }, ...rest }) => ({ config, ...rest });
-  assert.deepStrictEqual(strip(browserJson), strip(cli));
+  assertDownloadIsCli(browserJson, ['--synthetic', '1', '--model', '3d-ctra', '--distance', '5000', '--gateway', '5000,0', '--gateway', '0,2500']);
   // The distance chart places one gateway at each distance, not the two listed: it says so.
   await until(page, () => /one gateway at each distance; the results table rests on the 2 gateways listed/.test(document.querySelector('#distance-rests-on')?.textContent ?? ''));
   // An impossible coordinate is refused beside the form, and nothing runs.
@@ -427,9 +424,7 @@ test('the regional plan: US915 offers only its data rates, asks for an interval,
   assert.match(link, /US915 has no uplink data rate at SF11, SF12 with this bandwidth/);
   const download = await downloaded(page, page.getByRole('button', { name: /JSON/ }));
   const browserJson = JSON.parse(download.toString('utf8'));
-  const cli = nativeJson(['simulate', '--synthetic', '1', '--sf', '9', '--bw', '125', '--region', 'us915', '--interval', '1']);
-  const strip = ({ settings: _a, series: _b, config: { series: _c, ...config }, ...rest }) => ({ config, ...rest });
-  assert.deepStrictEqual(strip(browserJson), strip(cli));
+  assertDownloadIsCli(browserJson, ['--synthetic', '1', '--sf', '9', '--bw', '125', '--region', 'us915', '--interval', '1']);
   assert.deepEqual(await axe(page), []);
   assert.deepEqual(problems, []);
 });

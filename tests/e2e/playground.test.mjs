@@ -7,8 +7,8 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { nativeJson, scratchDir, openPage, screenshot, serveDist } from './harness.mjs';
-import { axe, axisLabelOverlaps, cell, chartTexts, chartTextsCut, downloaded, idle, layoutShifts, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
+import { commandJson, nativeJson, scratchDir, openPage, screenshot, serveDist } from './harness.mjs';
+import { assertDownloadIsCli, axe, axisLabelOverlaps, cell, chartTexts, chartTextsCut, downloaded, idle, layoutShifts, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -255,6 +255,41 @@ test('a good CSV is simulated and a bad one is refused next to the control', asy
   before = await tableHtml(page);
   await page.getByLabel('Spreading factor', { exact: true }).selectOption('8');
   await waitForResults(page, before);
+  assert.deepEqual(problems, []);
+});
+
+test('the command line under the results gives their numbers, a shell reading it as copied, for a link and for an uploaded flight', async () => {
+  const models = ['dr', 'ctra-plus', '3d-ctra', 'imm'];
+  const { page, problems } = await open('?flight=canberra&sf=8&distance=2500&prediction=bounded&model=dr,ctra-plus,3d-ctra,imm&seeds=2&gateways=800,0;-300,400,25');
+  await page.locator('[data-panel="results"] details.explain summary').click();
+  const line = await page.locator('#command-line').textContent();
+  assert.match(line, /^loratrack simulate --sample canberra .*--gateway 800,0 --gateway -300,400,25/);
+  const cli = commandJson(line);
+  assert.equal(cli.config.seeds, 2);
+  for (const shown of await shownP75(page, models)) {
+    assert.equal(shown.p75.toFixed(2), cli.results.find((r) => r.model === shown.model).error3d.p75.toFixed(2), shown.model);
+  }
+  // Copy command copies that line; the JSON download carries it.
+  await page.context().grantPermissions(['clipboard-read', 'clipboard-write']);
+  await page.getByRole('button', { name: 'Copy command' }).click();
+  assert.equal(await page.evaluate(() => navigator.clipboard.readText()), line);
+  const json = JSON.parse((await downloaded(page, page.locator('#download-json'))).toString('utf8'));
+  assert.equal(json.command, line);
+  // An uploaded flight is named by its file, quoted for the shell, and runs where the file is.
+  const dir = scratchDir();
+  const file = join(dir, "Pat's flight.csv");
+  writeFileSync(file, ['t,x,y,z', ...Array.from({ length: 601 }, (_, i) => `${i / 10},${(2 * i) / 10},${Math.sin(i / 50).toFixed(3)},30`)].join('\n'));
+  const before = await tableHtml(page);
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
+  await page.locator('#csv').setInputFiles(file);
+  await waitForResults(page, before);
+  const upload = await page.locator('#command-line').textContent();
+  assert.match(upload, /^loratrack simulate --trajectory 'Pat'\\''s flight\.csv' /);
+  assert.match(await page.locator('#command-files').textContent(), /run where Pat's flight\.csv is/);
+  const fromFile = commandJson(upload, dir);
+  for (const shown of await shownP75(page, models)) {
+    assert.equal(shown.p75.toFixed(2), fromFile.results.find((r) => r.model === shown.model).error3d.p75.toFixed(2), shown.model);
+  }
   assert.deepEqual(problems, []);
 });
 
@@ -1064,9 +1099,7 @@ test('shadowing fixed in space is one Advanced control away, travels in the link
   await idle(page);
   assert.match(page.url(), /shadowingModel=field/);
   const download = JSON.parse((await downloaded(page, page.getByRole('button', { name: /JSON/ }))).toString('utf8'));
-  const cli = nativeJson(['simulate', '--synthetic', '1', '--distance', '3000', '--shadowing-model', 'field']);
-  const strip = ({ settings: _a, series: _b, config: { series: _c, ...config }, ...rest }) => ({ config, ...rest });
-  assert.deepStrictEqual(strip(download), strip(cli));
+  const cli = assertDownloadIsCli(download, ['--synthetic', '1', '--distance', '3000', '--shadowing-model', 'field']);
   // Other fades than along the path: the same settings without it lose other packets.
   const path = nativeJson(['simulate', '--synthetic', '1', '--distance', '3000']);
   assert.notDeepStrictEqual(cli.results.map((m) => m.packetsReceived), path.results.map((m) => m.packetsReceived));
