@@ -16,7 +16,8 @@ import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
 import { caption, fewPacketsNote, fixedRateNote, noLineNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote } from './format';
 import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
-import { clearTable, renderBaseline, renderCommand, renderTable, restingNotes } from './results';
+import { clearTable, renderBaseline, renderTable, restingNotes } from './results';
+import { setUpCopyCommand, showCommand } from './command';
 import { setUpPresent } from './present';
 import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, runsMission, simulateRequest, swarmSettings, toParams, toQuery, type Settings } from './state';
 import { pageQuery, store } from './store';
@@ -319,7 +320,7 @@ function showReport(report: SimReport, made: Settings, millis: number, params: S
   const c = report.config;
   status.textContent = `${c.trajectory}: ${c.flights} flight${c.flights > 1 ? 's' : ''}, ${c.flightTime.toFixed(0)} s simulated in ${millis.toFixed(0)} ms. Gateway range${c.adr === 'off' ? '' : ` at SF${c.sf}, ${c.bw} kHz, where ADR starts`} (mean power = sensitivity ${c.sensitivityDbm.toFixed(1)} dBm): ${(c.rangeM / 1000).toFixed(2)} km.`;
   renderResults(report);
-  renderCommand(params, report.config.seed);
+  showCommand('results', { ...params, seed: report.config.seed });
   if (settingsChartsWait) renderSettingsCharts();
 }
 
@@ -703,15 +704,7 @@ onUpload('#plan-file', planError, async (f) => {
   store.plan = { text: await f.text(), name: f.name };
 });
 
-$('#copy-command').addEventListener('click', async () => {
-  const command = store.reportCommand ?? '';
-  try {
-    await navigator.clipboard.writeText(command);
-    $('#copy-command-status').textContent = 'Command copied.';
-  } catch {
-    $('#copy-command-status').textContent = 'Select the command to copy it.';
-  }
-});
+setUpCopyCommand();
 
 $('#copy-link').addEventListener('click', async () => {
   const url = location.href;
@@ -801,6 +794,7 @@ $('#run-swarm').addEventListener('click', () => {
       const rates = swarms.map((w) => `${w.config.drones} drones ${(100 * w.collisionRate).toFixed(1)} %`).join(', ');
       $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(millis / 1000).toFixed(1)} s. Packets collided: ${rates}.`;
       swarmShown = JSON.stringify({ sizes, params });
+      showCommand('swarm', { ...params, drones: sizes[sizes.length - 1] });
       markSwarmStale();
       lastSwarm = async () => place('swarm', (await plots()).swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${swarms[0]?.drones[0]?.channelUse.length ?? params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.schedule}, ${params.duration} s each`);
       later('swarm', lastSwarm);
@@ -873,7 +867,7 @@ function noResults(): string {
 
 for (const [id, save] of [
   ['download-csv', (r: SimReport) => downloadErrorCsv(r)],
-  ['download-json', (r: SimReport) => downloadJson(r, store.reportSettings, store.reportCommand)],
+  ['download-json', (r: SimReport) => downloadJson(r, store.reportSettings, store.commands.results)],
   // An uploaded flight never leaves this computer: no link opens it.
   ['download-results-csv', (r: SimReport) => downloadResultsCsv(r, { settings: caption(store.reportSettings), link: store.reportSettings.flight === 'csv' ? '' : `${location.origin}${location.pathname}?${toQuery(store.reportSettings)}` })],
 ] as const) {

@@ -1,7 +1,7 @@
 // The results panel: the table of statistics with their intervals, the verdict on which station
 // is best (only when the intervals say so), the baseline's differences, and the notes under the
 // table. Reads the page's state from the store.
-import { commandLine, deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport, type SimulateParams } from './loratrack';
+import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
 import { adrFrom, caption, fmt, listed, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan } from './state';
@@ -60,35 +60,6 @@ let shown: {
 
 /** No results on show, as before the first run: the table and every note it wrote emptied (a
  * whole set refused after its first flight's numbers were shown, and no earlier run to go back to). */
-/** The command line that gives the numbers on show, from the parameters of the run that made them
- * (its drawn seed where it drew one), under the results' "What this shows" and in the JSON. */
-export function renderCommand(params: SimulateParams, seed: number): void {
-  store.reportCommand = commandLine({ ...params, seed });
-  $('#command-line').replaceChildren(...commandWords(store.reportCommand));
-  const files = [params.trajectoryName, params.planName].filter((f): f is string => Boolean(f));
-  $('#command-files').textContent = files.length ? `, run where ${listed(files)} ${files.length > 1 ? 'are' : 'is'}` : '';
-  $('#copy-command-status').textContent = '';
-  $('#command-line').closest('p')!.hidden = false;
-}
-
-/** A command line's words, each option with its value, in spans a line may break between (and the
- * spaces between them as text, so that a selection copies the command as it is). */
-function commandWords(line: string): (HTMLElement | string)[] {
-  // A word: quoted parts, escaped quotes and plain characters up to a space (the core quotes as
-  // a POSIX shell reads it).
-  const words = line.match(/(?:'[^']*'|\\'|[^\s'\\])+/g) ?? [];
-  const groups: string[] = [];
-  for (let i = 0; i < words.length; i++) {
-    const joined = i === 0 || (words[i].startsWith('--') && i + 1 < words.length && !words[i + 1].startsWith('--'));
-    groups.push(joined ? `${words[i]} ${words[++i] ?? ''}`.trim() : words[i]);
-  }
-  return groups.flatMap((g, i) => {
-    const span = document.createElement('span');
-    span.textContent = g;
-    return i === 0 ? [span] : [' ', span];
-  });
-}
-
 export function clearTable(): void {
   shown = null;
   $('#results-table').replaceChildren();

@@ -24,8 +24,9 @@ export interface Store {
   reportSettings: Settings;
   /** The numbers on show. */
   report?: SimReport;
-  /** The command line that gives the numbers on show (`commandLine` of the run's parameters). */
-  reportCommand?: string;
+  /** The command lines that give the numbers on show: the results' and the largest swarm's
+   * (`commandLine` of the runs' parameters; command.ts). */
+  commands: { results?: string; swarm?: string };
   /** The pinned baseline and the settings that made it. */
   baseline?: { report: SimReport; settings: Settings };
   /** An uploaded CSV flight (never in the URL), kept as its bytes in a Blob: the workers read its
@@ -49,6 +50,7 @@ export const store: Store = {
   settings: parsed.settings,
   reportSettings: parsed.settings,
   notices: [...parsed.problems],
+  commands: {},
 };
 
 /** The page's URL query: the settings, the swarm panel's choices, the pinned baseline's settings,

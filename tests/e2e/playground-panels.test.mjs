@@ -6,7 +6,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { nativeJson, openPage, scratchDir } from './harness.mjs';
+import { commandJson, nativeJson, openPage, scratchDir } from './harness.mjs';
 import { assertDownloadIsCli, axe, axisLabelOverlaps, cell, chartTextsCut, cellNumber, downloaded, idle, layoutShifts, lesson, MODELS, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
@@ -448,7 +448,7 @@ test('on a phone, three stations refused at one SF are counted in one mark, and 
   assert.deepEqual(problems, []);
 });
 
-test('a US915 swarm spread by distance takes the data rates that carry its frame and sends at the interval set, as the CLI runs it', async () => {
+test('a US915 swarm dealt SF7–SF12 in turn takes the data rates that carry its frame and sends at the interval set, as the CLI runs it, and shows that command', async () => {
   const { page, problems } = await open('?region=us915&sf=9&bw=125&interval=5');
   await runSwarm(page, '20', 'spread');
   // 3D-CTRA's 25-byte frame is over the dwell time at SF10 (DR0): the drones take SF7..SF9.
@@ -460,6 +460,14 @@ test('a US915 swarm spread by distance takes the data rates that carry its frame
   // The largest swarm is counted at the interval set, not at a duty cycle US915 does not have.
   const l = cli.largestSwarm;
   assert.ok(note.includes(`every drone sending every 5 s (the interval set: US915 has no duty cycle): ${l.aloha1} drone`), note);
+  // The SF plan is named as it deals the SFs, not "by distance" (which it never was).
+  assert.ok(note.includes('8 channels, SF7–SF9 in turn:'), note);
+  assert.equal(await page.locator('#swarmPlan option:checked').textContent(), 'SF7–SF12 in turn');
+  // The largest swarm's command line, run in a shell, is that swarm.
+  const line = await page.locator('[data-command="swarm"] code').textContent();
+  assert.match(line, /^loratrack swarm .*--drones 20/);
+  const shell = commandJson(line);
+  assert.deepEqual([shell.medianDroneP75, shell.collisionRate, shell.packetsReceived], [cli.medianDroneP75, cli.collisionRate, cli.packetsReceived]);
   assert.deepEqual(problems, []);
 });
 

@@ -262,7 +262,7 @@ test('the command line under the results gives their numbers, a shell reading it
   const models = ['dr', 'ctra-plus', '3d-ctra', 'imm'];
   const { page, problems } = await open('?flight=canberra&sf=8&distance=2500&prediction=bounded&model=dr,ctra-plus,3d-ctra,imm&seeds=2&gateways=800,0;-300,400,25');
   await page.locator('[data-panel="results"] details.explain summary').click();
-  const line = await page.locator('#command-line').textContent();
+  const line = await page.locator('[data-command="results"] code').textContent();
   assert.match(line, /^loratrack simulate --sample canberra .*--gateway 800,0 --gateway -300,400,25/);
   const cli = commandJson(line);
   assert.equal(cli.config.seeds, 2);
@@ -271,7 +271,7 @@ test('the command line under the results gives their numbers, a shell reading it
   }
   // Copy command copies that line; the JSON download carries it.
   await page.context().grantPermissions(['clipboard-read', 'clipboard-write']);
-  await page.getByRole('button', { name: 'Copy command' }).click();
+  await page.getByRole('button', { name: 'Copy command', exact: true }).click();
   assert.equal(await page.evaluate(() => navigator.clipboard.readText()), line);
   const json = JSON.parse((await downloaded(page, page.locator('#download-json'))).toString('utf8'));
   assert.equal(json.command, line);
@@ -283,9 +283,9 @@ test('the command line under the results gives their numbers, a shell reading it
   await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
   await page.locator('#csv').setInputFiles(file);
   await waitForResults(page, before);
-  const upload = await page.locator('#command-line').textContent();
+  const upload = await page.locator('[data-command="results"] code').textContent();
   assert.match(upload, /^loratrack simulate --trajectory 'Pat'\\''s flight\.csv' /);
-  assert.match(await page.locator('#command-files').textContent(), /run where Pat's flight\.csv is/);
+  assert.match(await page.locator('[data-command="results"] .command-files').textContent(), /run where Pat's flight\.csv is/);
   const fromFile = commandJson(upload, dir);
   for (const shown of await shownP75(page, models)) {
     assert.equal(shown.p75.toFixed(2), fromFile.results.find((r) => r.model === shown.model).error3d.p75.toFixed(2), shown.model);
