@@ -1,6 +1,6 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
 import { MODEL_LABELS, PAYLOAD_BYTES, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
-import { DEFAULTS, LIMITS, plan, type Settings } from './state';
+import { DEFAULTS, LIMITS, plan, sendingLimit, type Settings } from './state';
 import { store } from './store';
 
 /** A statistic with `digits` decimals, or a dash where there is none (an empty sample). */
@@ -78,7 +78,7 @@ export function adrFrom(s: Pick<Settings, 'adr' | 'sf' | 'bw'>): string {
  * changed from its default. */
 export function describe(s: Settings): string {
   const p = plan(s.region);
-  const limit = p.dutyCycle === null ? `, every ${s.interval} s` : s.access === 'lbt' ? ', listen before talk' : '';
+  const limit = { interval: `, every ${s.interval} s`, lbt: ', listen before talk', dutyCycle: '' }[sendingLimit(s)];
   const region = s.region === 'eu868' && !limit ? '' : `, ${p.label}${limit}`;
   const fair = s.fairUse === 'off' ? '' : `, ${s.fairUse.toUpperCase()} fair use`;
   return `SF${s.sf}, ${s.bw} kHz${region}${fair}, ${link(s)}, ${prediction(s)}, ${sending(s)}${s.adr === 'off' ? '' : `, ${s.adr} ADR`}${advanced(s)}`;

@@ -4,7 +4,7 @@
 import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
 import { adrFrom, caption, fmt, listed, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
-import { DEFAULTS, overheadBytes, plan } from './state';
+import { DEFAULTS, overheadBytes, plan, sendingLimit } from './state';
 import { store } from './store';
 
 /** The results table, the verdict on it, and the notes under it (network, data rates, TTN). */
@@ -169,12 +169,11 @@ const tightenResults = () => tighten(document.querySelectorAll<HTMLElement>('#re
 export function intervalRule(c: Pick<RunConfig, 'region' | 'access' | 'fairUse' | 'interval' | 'dutyCycle' | 'sender' | 'dutyCycleMode'>): string {
   const p = plan(c.region);
   const fair = c.fairUse === 'off' ? '' : `, or longer where ${c.fairUse.toUpperCase()} fair use leaves less airtime`;
-  const rule =
-    p.dutyCycle === null
-      ? `the ${c.interval ?? DEFAULTS.interval} s set (${p.label} has no duty cycle)`
-      : c.access === 'lbt'
-        ? "time on air divided by listen before talk's share of the air (100 s per hour)"
-        : `time on air divided by the ${+(c.dutyCycle * 100).toPrecision(3)} % duty cycle`;
+  const rule = {
+    interval: `the ${c.interval ?? DEFAULTS.interval} s set (${p.label} has no duty cycle)`,
+    lbt: "time on air divided by listen before talk's share of the air (100 s per hour)",
+    dutyCycle: `time on air divided by the ${+(c.dutyCycle * 100).toPrecision(3)} % duty cycle`,
+  }[sendingLimit(c)];
   const error = c.sender === 'error' ? '. The shortest: error-triggered sending waits longer while the station’s forecast holds' : '';
   const budget = c.dutyCycleMode === 'budget' ? '. On average: the budget rule lets saved airtime go sooner, in a burst' : '';
   return `Time between packets: ${rule}${fair}${error}${budget}`;

@@ -194,6 +194,14 @@ export function plan(region: Region): Plan {
   return PLANS.find((p) => p.region === region) ?? PLANS[0];
 }
 
+/** What sets how often a drone may send: the interval set (a plan without a duty cycle), listen
+ * before talk's airtime, or the plan's duty cycle. One decision for every sentence that names it
+ * (the results' interval header, the swarm's note, a setting's phrase). */
+export function sendingLimit(s: { region: Region; access: string }): 'interval' | 'lbt' | 'dutyCycle' {
+  if (plan(s.region).dutyCycle === null) return 'interval';
+  return s.access === 'lbt' ? 'lbt' : 'dutyCycle';
+}
+
 /** The plan's data rate at `sf` / `bw` kHz, if it has one it allows. */
 export function planRate(region: Region, sf: number, bw: number): number | null {
   const r = plan(region).rates.find((x) => x.sf === sf && x.bw === bw && x.maxPayload !== null);

@@ -1,7 +1,7 @@
 // The page's settings and its URL: every shareable view must come back exactly as it was, and a
 // link asking for something the core refuses must be explained, never silently used.
 import { describe, expect, test } from 'vitest';
-import { adrCanStart, DEFAULTS, fromQuery, gatewaysFromText, gatewaysToText, invalid, LIMITS, modelChoiceOf, planAllows, simulateRequest, toParams, toQuery, type Settings } from '../../www/state';
+import { adrCanStart, DEFAULTS, fromQuery, gatewaysFromText, gatewaysToText, invalid, LIMITS, modelChoiceOf, planAllows, sendingLimit, simulateRequest, toParams, toQuery, type Settings } from '../../www/state';
 import type { Region } from '../../www/loratrack';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings } from '../../www/lessons';
 
@@ -158,6 +158,15 @@ describe('simulate() parameters', () => {
     expect(request.params).not.toHaveProperty('trajectory');
     expect(simulateRequest(1, DEFAULTS, { file, name: 'mine.csv' })).not.toHaveProperty('trajectoryFile');
     expect(toParams({ ...DEFAULTS, lorawan: false }).overhead).toBe(0);
+    // An uploaded plan goes with its file name, for the command line that reruns the run.
+    expect(toParams({ ...DEFAULTS, flight: 'csv' }, { name: 'mine.csv' }, { text: '0,0,10', name: 'mine.plan' })).toMatchObject({ plan: '0,0,10', planName: 'mine.plan' });
+  });
+
+  test('name what sets how often a drone sends: the interval where the plan has no duty cycle, else listen before talk or the duty cycle', () => {
+    expect(sendingLimit({ region: 'eu868', access: 'duty-cycle' })).toBe('dutyCycle');
+    expect(sendingLimit({ region: 'eu868', access: 'lbt' })).toBe('lbt');
+    expect(sendingLimit({ region: 'us915', access: 'duty-cycle' })).toBe('interval');
+    expect(sendingLimit({ region: 'as923', access: 'lbt' })).toBe('lbt');
   });
 });
 

@@ -4,7 +4,7 @@ import { chartFrame, chartFont, fitLabel, SF_COLORS, labelRoom } from './colors'
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
 import { flightTime, stationPhrase, trackedPercent } from '../format';
-import { DEFAULTS, plan } from '../state';
+import { DEFAULTS, plan, sendingLimit } from '../state';
 import { logAxis, plainNumber } from './logAxis';
 
 /** " (errors over 88 % of the flight time: ...)": said when a swarm's stations spend enough of it
@@ -114,11 +114,10 @@ function pileHeight(chart: Element, base: number, least: number): number {
  * results' interval). */
 function pace(c: SwarmReport['config']): string {
   const p = plan(c.region);
-  const rule =
-    p.dutyCycle === null
-      ? `every ${c.interval ?? DEFAULTS.interval} s (the interval set: ${p.label} has no duty cycle)`
-      : c.access === 'lbt'
-        ? "as often as listen before talk's airtime (100 s per hour) allows"
-        : 'as often as its duty cycle allows';
+  const rule = {
+    interval: `every ${c.interval ?? DEFAULTS.interval} s (the interval set: ${p.label} has no duty cycle)`,
+    lbt: "as often as listen before talk's airtime (100 s per hour) allows",
+    dutyCycle: 'as often as its duty cycle allows',
+  }[sendingLimit(c)];
   return c.fairUse === 'off' ? rule : `${rule}, or less often where ${c.fairUse.toUpperCase()} fair use leaves less airtime`;
 }
