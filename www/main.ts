@@ -869,7 +869,7 @@ for (const [id, save] of [
   ['download-csv', (r: SimReport) => downloadErrorCsv(r)],
   ['download-json', (r: SimReport) => downloadJson(r, store.reportSettings, store.commands.results)],
   // An uploaded flight never leaves this computer: no link opens it.
-  ['download-results-csv', (r: SimReport) => downloadResultsCsv(r, { settings: caption(store.reportSettings), link: store.reportSettings.flight === 'csv' ? '' : `${location.origin}${location.pathname}?${toQuery(store.reportSettings)}` })],
+  ['download-results-csv', (r: SimReport) => downloadResultsCsv(r, { settings: caption(store.reportSettings), link: store.reportSettings.flight === 'csv' ? '' : `${location.origin}${location.pathname}?${toQuery(store.reportSettings)}`, command: store.commands.results ?? '' })],
 ] as const) {
   $(`#${id}`).addEventListener('click', () => {
     const report = shownReport($(`#${id}`));

@@ -692,20 +692,23 @@ test('axe finds no violation at all, on the full page and embedded', async () =>
   assert.deepEqual(problems, []);
 });
 
-test('each row of the results CSV says what made it, in words and as a link that opens the page at the same numbers', async () => {
+test('each row of the results CSV says what made it, in words, as a link that opens the page at the same numbers and as the command line that prints them', async () => {
   const { page, problems } = await open('?sf=9&bw=125&distance=2000');
   await idle(page);
   const text = (await downloaded(page, page.getByRole('button', { name: 'Results (CSV)' }))).toString('utf8');
   // Cells are quoted where they hold a comma (the settings in words do).
   const rows = text.trim().split('\n').map((line) => [...line.matchAll(/("(?:[^"]|"")*"|[^,]*)(?:,|$)/g)].map((m) => m[1].replace(/^"|"$/g, '').replace(/""/g, '"')).slice(0, -1));
   const [header, ...body] = rows;
-  assert.deepEqual(header.slice(-2), ['settings', 'link']);
+  assert.deepEqual(header.slice(-3), ['settings', 'link', 'command']);
   assert.equal(body.length, 3);
   const col = (row, name) => row[header.indexOf(name)];
   for (const row of body) {
     assert.equal(row.length, header.length, row.join('|'));
     assert.match(col(row, 'settings'), /SF9, 125 kHz, 2\.0 km.*synthetic flight 1; seed 1; loratrack \d+\.\d+\.\d+/);
   }
+  assert.ok(body.every((row) => col(row, 'command') === 'loratrack simulate --synthetic 1 --sf 9 --bw 125 --distance 2000'), body.map((r) => col(r, 'command')).join('|'));
+  const cli = commandJson(col(body[0], 'command'));
+  for (const row of body) assert.equal(col(row, 'p75_m'), String(cli.results.find((r) => r.model === row[0]).error3d.p75), row[0]);
   const link = new URL(col(body[0], 'link'));
   assert.deepEqual(Object.fromEntries(link.searchParams), { sf: '9', bw: '125', distance: '2000' });
   // The link opens the page at the same settings, whose table gives the file's numbers.
