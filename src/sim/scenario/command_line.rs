@@ -90,6 +90,8 @@ impl Scenario {
     fn file_args(&self) -> Vec<String> {
         let f = &self.flight;
         let file = |name: &Option<String>, fallback: &str| match name.as_deref() {
+            // A name that starts with a dash would read as an option: `./-x.csv` is the same file.
+            Some(n) if n.starts_with('-') => format!("./{n}"),
             Some(n) if !n.trim().is_empty() && n != DEFAULT_CSV_NAME => n.to_string(),
             _ => fallback.to_string(),
         };
@@ -299,6 +301,11 @@ mod tests {
         assert_eq!(
             s.command_line(CliCommand::Simulate).unwrap(),
             r"loratrack simulate --trajectory 'Pat'\''s flight.csv' --plan plan.csv --model mission"
+        );
+        let dashed = scenario(r#"{"trajectoryName": "-x.csv"}"#);
+        assert_eq!(
+            dashed.cli_args(CliCommand::Simulate),
+            ["--trajectory", "./-x.csv"]
         );
         let unnamed =
             scenario(r#"{"trajectory": "t,x,y,z\n0,0,0,0", "trajectoryName": "uploaded CSV"}"#);
