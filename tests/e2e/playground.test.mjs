@@ -923,6 +923,23 @@ test('an invalid field is marked beside itself, nothing runs, and the old result
   assert.deepEqual(problems, []);
 });
 
+test("the SF hint's reach per step is the core's link budget at the path-loss exponent set", async () => {
+  const pkg = await import(join(process.cwd(), 'www', 'pkg', 'loratrack.js'));
+  pkg.initSync({ module: readFileSync(join(process.cwd(), 'www', 'pkg', 'loratrack_bg.wasm')) });
+  const further = (n) => {
+    const [sf7, sf8] = pkg.linkBudget({ pathLossExponent: n }).sfs;
+    return Math.round(100 * (sf8.rangeM / sf7.rangeM - 1));
+  };
+  const { page, problems } = await open('?pathLossExponent=2.7');
+  assert.equal(await page.locator('#sf-help').textContent(), `Each step up doubles the time on air (and the wait between packets) and reaches about ${further(2.7)} % further at path-loss exponent 2.7.`);
+  await page.locator('#advanced summary').click();
+  await page.getByLabel('Path-loss exponent').fill('3.76');
+  await until(page, () => !/exponent/.test(document.querySelector('#sf-help').textContent));
+  assert.match(await page.locator('#sf-help').textContent(), new RegExp(`reaches about ${further(3.76)} % further\\.$`));
+  assert.notEqual(further(2.7), further(3.76));
+  assert.deepEqual(problems, []);
+});
+
 test('a link whose settings the core refuses says why, shows no old results, and every download says there are none yet', async () => {
   // US915's DR0 (SF10/125 kHz) cannot carry 3D-CTRA's 25-byte frame within the 400 ms dwell time:
   // the form no longer offers it, but a link from before, or written by hand, still carries it.
