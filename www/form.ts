@@ -176,7 +176,7 @@ function showSfReach(): void {
   const [sf7, sf8] = linkBudget({ pathLossExponent: n, distances: [] }).sfs;
   const further = Math.round(100 * (sf8.rangeM / sf7.rangeM - 1));
   const at = n === DEFAULTS.pathLossExponent ? '' : ` at path-loss exponent ${n}`;
-  $('#sf-help').textContent = `Each step up doubles the time on air (and the wait between packets) and reaches about ${further} % further${at}.`;
+  $('#sf-help').textContent = `Each step up about doubles the time on air (and the wait between packets) and reaches about ${further} % further${at}.`;
 }
 
 /** Settings the core would refuse are not offered: a plan's missing SF/bandwidth pairs; a data

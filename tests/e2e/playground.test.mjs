@@ -931,7 +931,7 @@ test("the SF hint's reach per step is the core's link budget at the path-loss ex
     return Math.round(100 * (sf8.rangeM / sf7.rangeM - 1));
   };
   const { page, problems } = await open('?pathLossExponent=2.7');
-  assert.equal(await page.locator('#sf-help').textContent(), `Each step up doubles the time on air (and the wait between packets) and reaches about ${further(2.7)} % further at path-loss exponent 2.7.`);
+  assert.equal(await page.locator('#sf-help').textContent(), `Each step up about doubles the time on air (and the wait between packets) and reaches about ${further(2.7)} % further at path-loss exponent 2.7.`);
   await page.locator('#advanced summary').click();
   await page.getByLabel('Path-loss exponent').fill('3.76');
   await until(page, () => !/exponent/.test(document.querySelector('#sf-help').textContent));
