@@ -38,9 +38,10 @@ pub const FLIGHT_FILE: &str = "flight.csv";
 pub const PLAN_FILE: &str = "plan.csv";
 
 impl Scenario {
-    /// The arguments after `loratrack <command>` that run these settings: a CSV flight and
-    /// plan, then each setting that differs from its default, in the order the settings are
-    /// written (flight, station, sending, radio, channel, network, drone, access, swarm, run).
+    /// The arguments after `loratrack <command>` that run these settings: the flight, then each
+    /// setting that differs from its default, in the order the settings are written and
+    /// `simulate --help` lists them (flight, station, sending, radio, channel, network, drone,
+    /// access, swarm, run).
     ///
     /// A CSV flight or plan, which the settings hold as text, is named by its file name
     /// (`trajectoryName`, `planName`), or [`FLIGHT_FILE`] and [`PLAN_FILE`]: the command runs
@@ -52,21 +53,21 @@ impl Scenario {
     /// assert_eq!(s.cli_args(CliCommand::Simulate), ["--synthetic", "3", "--prediction", "bounded", "--sf", "9"]);
     /// ```
     pub fn cli_args(&self, command: CliCommand) -> Vec<String> {
-        let mut args = self.file_args();
         let (values, defaults) = (wire(self), wire(&Scenario::default()));
         let swarm_only = wire(&self.swarm);
-        for key in key_order(self) {
-            if command == CliCommand::Simulate && swarm_only.contains_key(&key) {
-                continue;
-            }
-            match values.get(&key) {
-                Some(value) if defaults.get(&key) != Some(value) => {
-                    args.extend(option(&key, value));
-                }
-                _ => {}
-            }
-        }
-        args
+        let options = |keys: &[String]| -> Vec<String> {
+            keys.iter()
+                .filter(|key| command == CliCommand::Swarm || !swarm_only.contains_key(*key))
+                .filter_map(|key| Some((key, values.get(key)?)))
+                .filter(|(key, value)| defaults.get(*key) != Some(*value))
+                .flat_map(|(key, value)| option(key, value))
+                .collect()
+        };
+        let keys = key_order(self);
+        // The flight's own keys come first; the files it holds as text sit beside them.
+        let (flight, rest) = keys.split_at(key_order(&self.flight).len().min(keys.len()));
+        let (trajectory, plan) = self.file_args();
+        [trajectory, options(flight), plan, options(rest)].concat()
     }
 
     /// The whole command as one line a POSIX shell reads, each argument quoted where it needs
@@ -87,22 +88,34 @@ impl Scenario {
 
     /// `--trajectory` and `--plan`: the files the settings hold as text, which their wire form
     /// leaves out.
-    fn file_args(&self) -> Vec<String> {
+    fn file_args(&self) -> (Vec<String>, Vec<String>) {
         let f = &self.flight;
-        let file = |name: &Option<String>, fallback: &str| match name.as_deref() {
-            // A name that starts with a dash would read as an option: `./-x.csv` is the same file.
-            Some(n) if n.starts_with('-') => format!("./{n}"),
-            Some(n) if !n.trim().is_empty() && n != DEFAULT_CSV_NAME => n.to_string(),
-            _ => fallback.to_string(),
+        let file = |option: &str, given: bool, name: &Option<String>, fallback: &str| {
+            let name = match name.as_deref() {
+                // A name that starts with a dash would read as an option: `./-x.csv` is that file.
+                Some(n) if n.starts_with('-') => format!("./{n}"),
+                Some(n) if !n.trim().is_empty() && n != DEFAULT_CSV_NAME => n.to_string(),
+                _ => fallback.to_string(),
+            };
+            match given {
+                true => vec![option.to_string(), name],
+                false => Vec::new(),
+            }
         };
-        let mut args = Vec::new();
-        if f.trajectory.is_some() || f.trajectory_name.is_some() {
-            args.extend(["--trajectory".into(), file(&f.trajectory_name, FLIGHT_FILE)]);
-        }
-        if f.plan.is_some() || f.plan_name.is_some() {
-            args.extend(["--plan".into(), file(&f.plan_name, PLAN_FILE)]);
-        }
-        args
+        (
+            file(
+                "--trajectory",
+                f.trajectory.is_some() || f.trajectory_name.is_some(),
+                &f.trajectory_name,
+                FLIGHT_FILE,
+            ),
+            file(
+                "--plan",
+                f.plan.is_some() || f.plan_name.is_some(),
+                &f.plan_name,
+                PLAN_FILE,
+            ),
+        )
     }
 }
 
@@ -301,6 +314,17 @@ mod tests {
         assert_eq!(
             s.command_line(CliCommand::Simulate).unwrap(),
             r"loratrack simulate --trajectory 'Pat'\''s flight.csv' --plan plan.csv --model mission"
+        );
+        let named = scenario(r#"{"trajectoryName": "flight.csv"}"#);
+        assert_eq!(
+            named.cli_args(CliCommand::Simulate),
+            ["--trajectory", "flight.csv"]
+        );
+        let sample =
+            scenario(r#"{"sample": "canberra", "planName": "route.plan", "model": "mission"}"#);
+        assert_eq!(
+            sample.command_line(CliCommand::Simulate).unwrap(),
+            "loratrack simulate --sample canberra --plan route.plan --model mission"
         );
         let dashed = scenario(r#"{"trajectoryName": "-x.csv"}"#);
         assert_eq!(
