@@ -387,6 +387,11 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
     const r = cli.results.find((x) => x.model === m);
     assert.equal(number(await cell(page, m, 'p75')).toFixed(2), r.error3d.p75.toFixed(2), m);
   }
+  // The page's command names both files, and run where they are prints the same results.
+  const command = await page.locator('[data-command="results"] code').textContent();
+  assert.equal(command, 'loratrack simulate --trajectory square.csv --plan square-plan.csv --model 3d-ctra,mission');
+  assert.match(await page.locator('[data-command="results"] .command-files').textContent(), /run where square\.csv and square-plan\.csv are/);
+  assert.deepStrictEqual(commandJson(command, dir).results, cli.results);
   // The 3D view draws the plan, whichever worker ran the mission station.
   await view3d(page);
   assert.match(await page.locator('#trajectory-legend').textContent(), /flight plan \(dashed\)/);
