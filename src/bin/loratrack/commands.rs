@@ -1007,15 +1007,51 @@ mod tests {
         assert!(missing.is_empty(), "settings no case changes: {missing:?}");
         for original in runs {
             let args = original.cli_args(loratrack::CliCommand::Swarm);
-            let whole =
-                Whole::try_parse_from(std::iter::once("loratrack".to_string()).chain(args.clone()))
-                    .unwrap_or_else(|e| panic!("{args:?}: {e}"));
-            let back = whole
-                .scenario
-                .scenario(whole.flight.settings().unwrap(), whole.swarm);
-            assert_eq!(back, original, "{args:?}");
+            assert_eq!(read_back(&args), original, "{args:?}");
         }
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// The settings a command line's arguments give, as the CLI reads them.
+    fn read_back(args: &[String]) -> Scenario {
+        let whole = Whole::try_parse_from(
+            std::iter::once("loratrack").chain(args.iter().map(String::as_str)),
+        )
+        .unwrap_or_else(|e| panic!("{args:?}: {e}"));
+        whole
+            .scenario
+            .scenario(whole.flight.settings().unwrap(), whole.swarm)
+    }
+
+    proptest::proptest! {
+        /// Any value a numeric setting accepts, at full precision, reads back from its command
+        /// line to the same bits.
+        #[test]
+        fn any_accepted_number_survives_its_command_line(
+            i in 0..loratrack::options::OPTIONS.len(),
+            u in 0.0f64..=1.0,
+            pick in 0usize..8,
+        ) {
+            let o = loratrack::options::OPTIONS[i];
+            let v = match o.values {
+                [] if o.integer => (o.min + u * (o.max - o.min)).round(),
+                [] => o.min + u * (o.max - o.min),
+                values => values[pick % values.len()],
+            };
+            proptest::prop_assume!(o.accepts(v));
+            // A whole number as JSON writes one: a whole-number setting reads no `1.0`.
+            let value = if v.fract() == 0.0 { serde_json::json!(v as i64) } else { serde_json::json!(v) };
+            let change = match o.key {
+                // A limit on the list's length, not a setting.
+                "gateways" => return Ok(()),
+                "gateway" => serde_json::json!({ "gateways": [{ "east": v, "north": -v }] }),
+                key => serde_json::json!({ key: value }),
+            };
+            let original = Scenario::default().with(&change).unwrap();
+            proptest::prop_assert!(original.unknown.is_empty(), "{} is not a setting", o.key);
+            let args = original.cli_args(loratrack::CliCommand::Swarm);
+            proptest::prop_assert_eq!(read_back(&args), original, "{:?}", args);
+        }
     }
 
     /// The header names every setting of the station's prediction and the drone's sending, so
