@@ -796,7 +796,12 @@ $('#run-swarm').addEventListener('click', () => {
       swarmShown = JSON.stringify({ sizes, params });
       showCommand('swarm', { ...params, drones: sizes[sizes.length - 1] });
       markSwarmStale();
-      lastSwarm = async () => place('swarm', (await plots()).swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${swarms[0]?.drones[0]?.channelUse.length ?? params.channels} channel${params.channels === 1 ? '' : 's'}, ${params.sfPlan} SFs, ${params.schedule}, ${params.duration} s each`);
+      lastSwarm = async () => {
+        const p = await plots();
+        const channels = swarms[0]?.drones[0]?.channelUse.length ?? params.channels ?? 1;
+        const largest = swarms[swarms.length - 1];
+        place('swarm', p.swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${channels} channel${channels === 1 ? '' : 's'}, ${p.sfPlanWords(largest)}, ${params.schedule === 'slotted' ? 'slotted' : 'ALOHA'}, ${params.duration} s each`);
+      };
       later('swarm', lastSwarm);
     },
     (e: Error) => {

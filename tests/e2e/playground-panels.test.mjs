@@ -489,6 +489,8 @@ test('swarms run one seed whatever the table pools, and are marked old once a se
   assert.ok((await page.locator('#chart-swarm .note').textContent()).includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`));
   const slide = (await downloaded(page, page.getByRole('button', { name: 'Download the swarm chart as SVG' }))).toString('utf8').replace(/<[^>]+>/g, ' ');
   assert.match(slide, /whole synthetic set; seed 1;/);
+  // The caption says the swarms in the note's words (it said "fixed SFs, aloha").
+  assert.match(slide.replace(/\s+/g, ' '), /swarms of 2, 3, 5, 10, 20 drones, 3 channels, all on SF9, ALOHA, 120 s each/);
   const panel = page.locator('[data-panel="swarm"]');
   const old = () => panel.evaluate((p) => p.classList.contains('stale') && getComputedStyle(p.querySelector('#chart-swarm'), '::before').content);
   assert.equal(await old(), false);

@@ -6,5 +6,5 @@ export { boxplotChart, type BoxRow } from './boxplot';
 export { errorChart, errorChartData } from './errorOverTime';
 export { linkBudgetCharts } from './linkBudget';
 export { p75BySfChart } from './p75BySf';
-export { swarmCharts } from './swarm';
+export { sfPlanWords, swarmCharts } from './swarm';
 export { warmUps } from './warmUp';
