@@ -66,11 +66,14 @@ export function stationPhrase(station: ModelName, s: Parameters<typeof predictio
   return `${MODEL_LABELS[station]} station (${prediction(s)}${sendsAsPublished(s) ? '' : `, ${sending(s)}`})`;
 }
 
+/** An ADR as the page names it: "LoRaWAN ADR", "tracking ADR" ("no ADR": a fixed rate). */
+export const adrName = (adr: 'off' | 'lorawan' | 'tracking'): string => ({ off: 'no ADR', lorawan: 'LoRaWAN ADR', tracking: 'tracking ADR' })[adr];
+
 /** The data rate's adaptation in words, for a caption that names the station and the sending:
  * `; tracking ADR from SF12, 125 kHz` (the rate the network moves the drone from), or nothing
  * without ADR. */
 export function adrFrom(s: Pick<Settings, 'adr' | 'sf' | 'bw'>): string {
-  return s.adr === 'off' ? '' : `; ${s.adr === 'lorawan' ? 'LoRaWAN' : 'tracking'} ADR from SF${s.sf}, ${s.bw} kHz`;
+  return s.adr === 'off' ? '' : `; ${adrName(s.adr)} from SF${s.sf}, ${s.bw} kHz`;
 }
 
 /** The settings behind a number, in one short phrase: the plan's limit whenever it is not the
@@ -81,7 +84,7 @@ export function describe(s: Settings): string {
   const limit = { interval: `, every ${s.interval} s`, lbt: ', listen before talk', dutyCycle: '' }[sendingLimit(s)];
   const region = s.region === 'eu868' && !limit ? '' : `, ${p.label}${limit}`;
   const fair = s.fairUse === 'off' ? '' : `, ${s.fairUse.toUpperCase()} fair use`;
-  return `SF${s.sf}, ${s.bw} kHz${region}${fair}, ${link(s)}, ${prediction(s)}, ${sending(s)}${s.adr === 'off' ? '' : `, ${s.adr} ADR`}${advanced(s)}`;
+  return `SF${s.sf}, ${s.bw} kHz${region}${fair}, ${link(s)}, ${prediction(s)}, ${sending(s)}${s.adr === 'off' ? '' : `, ${adrName(s.adr)}`}${advanced(s)}`;
 }
 
 /** One line for a download's caption: the settings, flight, seed and version behind a chart. */
@@ -174,7 +177,7 @@ export function oneGatewayNote(listed: number): string {
 /** Under the error-versus-SF chart with ADR on: its runs keep each SF fixed (a point per data
  * rate is the chart's point), while the results table's network moves the rate; '' without ADR. */
 export function fixedRateNote(adr: Settings['adr']): string {
-  return adr === 'off' ? '' : `Each point keeps its SF fixed; the results table's ${adr === 'lorawan' ? 'LoRaWAN' : 'tracking'} ADR moves the rate from the chosen SF.`;
+  return adr === 'off' ? '' : `Each point keeps its SF fixed; the results table's ${adrName(adr)} moves the rate from the chosen SF.`;
 }
 
 /** Under the error-over-time chart (`what`: the 3D view), which draw one flight: the stations

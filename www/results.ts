@@ -3,7 +3,7 @@
 // table. Reads the page's state from the store.
 import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
-import { adrFrom, caption, fmt, listed, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
+import { adrFrom, adrName, caption, fmt, listed, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan, sendingLimit } from './state';
 import { store } from './store';
 
@@ -386,7 +386,7 @@ function renderRateUse(r: SimReport): void {
   if (note.hidden) return;
   const rate = (u: ModelResult['dataRateUse'][number]) => `${rateName(u)}${u.dr === null ? '' : ` (SF${u.sf}/${u.bw})`} ${u.received}/${u.packets}`;
   const lines = r.results.map((m) => `${MODEL_LABELS[m.model]}: ${[...m.dataRateUse].reverse().map(rate).join(', ')}`);
-  note.textContent = `Packets received / sent per data rate (${r.config.adr === 'lorawan' ? 'LoRaWAN' : 'tracking-aware'} ADR; the interval and time on air above are the mean over the packets sent, their span beneath) — ${lines.join('; ')}.`;
+  note.textContent = `Packets received / sent per data rate (${adrName(r.config.adr)}; the interval and time on air above are the mean over the packets sent, their span beneath) — ${lines.join('; ')}.`;
 }
 
 /** What each gateway heard, and the copies the network server removed. */

@@ -59,6 +59,8 @@ test('a results caption names the rate ADR moves the drone from, and nothing wit
 test('a caption names the settings, the flight, every seed and the version', () => {
   expect(describe(DEFAULTS)).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending');
   expect(describe({ ...DEFAULTS, adr: 'tracking', sf: 12, bw: 125 })).toBe('SF12, 125 kHz, 1.0 km, paper prediction, periodic sending, tracking ADR');
+  // LoRaWAN's as the page names it everywhere else, not as its key is spelt.
+  expect(describe({ ...DEFAULTS, adr: 'lorawan', sf: 12, bw: 125 })).toBe('SF12, 125 kHz, 1.0 km, paper prediction, periodic sending, LoRaWAN ADR');
   expect(describe({ ...DEFAULTS, payload: 'lean', dutyCycleMode: 'budget' })).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending, duty-cycle budget, lean payloads');
   expect(sendsAsPublished(DEFAULTS)).toBe(true);
   expect(sendsAsPublished({ ...DEFAULTS, payload: 'lean' })).toBe(false);
