@@ -941,15 +941,11 @@ mod tests {
         assert_eq!(cli, Scenario::default());
     }
 
-    /// Every option a command line may hold, for reading one back.
+    /// `swarm`'s options, which are every option a command line may hold: for reading one back.
     #[derive(Parser)]
     struct Whole {
         #[command(flatten)]
-        flight: FlightArgs,
-        #[command(flatten)]
-        swarm: SwarmSettings,
-        #[command(flatten)]
-        scenario: ScenarioArgs,
+        swarm: SwarmArgs,
     }
 
     /// Each setting away from its default, written as `Scenario::cli_args` writes it, reads back
@@ -1017,7 +1013,8 @@ mod tests {
         let whole = Whole::try_parse_from(
             std::iter::once("loratrack").chain(args.iter().map(String::as_str)),
         )
-        .unwrap_or_else(|e| panic!("{args:?}: {e}"));
+        .unwrap_or_else(|e| panic!("{args:?}: {e}"))
+        .swarm;
         whole
             .scenario
             .scenario(whole.flight.settings().unwrap(), whole.swarm)
