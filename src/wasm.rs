@@ -275,6 +275,14 @@ pub fn command_line(params: JsValue, command: JsValue) -> Result<JsValue, JsValu
             ))
         }
     };
+    // A seed drawn here would not be the one a run drew: the command must name the run's.
+    let seed = js_sys::Reflect::get(&params, &JsValue::from_str("seed")).ok();
+    if seed.and_then(|s| s.as_string()).as_deref() == Some("random") {
+        return Err(error_naming(
+            "seed: give the seed the run drew (its report's config.seed), not 'random'",
+            Some("seed"),
+        ));
+    }
     call(params, |p: crate::sim::Scenario| {
         Ok(p.command_line(command)?)
     })

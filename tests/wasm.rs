@@ -864,4 +864,7 @@ fn the_command_line_of_a_page_run_names_its_settings_and_its_files() {
     assert!(e.contains("'simulate' or 'swarm'"), "{e}");
     let e = line(obj(&[("spreadingFactor", 9.into())]), JsValue::UNDEFINED).unwrap_err();
     assert!(e.contains("unknown setting 'spreadingFactor'"), "{e}");
+    // A seed drawn for the command would not be the run's.
+    let e = line(obj(&[("seed", "random".into())]), JsValue::UNDEFINED).unwrap_err();
+    assert!(e.contains("config.seed"), "{e}");
 }

@@ -39,9 +39,9 @@ pub const PLAN_FILE: &str = "plan.csv";
 
 impl Scenario {
     /// The arguments after `loratrack <command>` that run these settings: the flight, then each
-    /// setting that differs from its default, in the order the settings are written and
-    /// `simulate --help` lists them (flight, station, sending, radio, channel, network, drone,
-    /// access, swarm, run).
+    /// setting that differs from its default, in the order the settings are written, which is
+    /// `simulate --help`'s (flight, station, sending, radio, channel, network, drone, access,
+    /// then for `swarm` its layout, then run).
     ///
     /// A CSV flight or plan, which the settings hold as text, is named by its file name
     /// (`trajectoryName`, `planName`), or [`FLIGHT_FILE`] and [`PLAN_FILE`]: the command runs
