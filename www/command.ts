@@ -10,10 +10,26 @@ import { store } from './store';
 export type CommandPanel = 'results' | 'swarm';
 
 /** Shows in `panel` the command that runs `params` (for a swarm, with `loratrack swarm`), naming
- * the files it reads: an uploaded flight and plan, by their names. */
+ * the files it reads: an uploaded flight and plan, by their names. Written in a task of its own,
+ * after the numbers it belongs to are on screen: the module's first call of `commandLine` on a
+ * load took 3–14 ms, in the task that showed the first results. */
 export function showCommand(panel: CommandPanel, params: SimulateParams): void {
-  const line = commandLine(params, panel === 'swarm' ? 'swarm' : 'simulate');
-  store.commands[panel] = line;
+  store.commands[panel] = { params };
+  setTimeout(() => writeCommand(panel), 0);
+}
+
+/** The command line of `panel`'s numbers on show (written now if its task has not yet run), or
+ * undefined before any. */
+export function commandOf(panel: CommandPanel): string | undefined {
+  const c = store.commands[panel];
+  if (c && c.line === undefined) c.line = commandLine(c.params, panel === 'swarm' ? 'swarm' : 'simulate');
+  return c?.line;
+}
+
+function writeCommand(panel: CommandPanel): void {
+  const params = store.commands[panel]?.params;
+  const line = commandOf(panel);
+  if (!params || line === undefined) return;
   const p = paragraph(panel);
   p.querySelector('code')!.replaceChildren(...commandWords(line));
   const files = [params.trajectoryName, params.planName].filter((f): f is string => Boolean(f));
@@ -29,7 +45,7 @@ export function setUpCopyCommand(): void {
     p.querySelector('button')!.addEventListener('click', async () => {
       const status = p.querySelector('.copy-status')!;
       try {
-        await navigator.clipboard.writeText(store.commands[panel] ?? '');
+        await navigator.clipboard.writeText(commandOf(panel) ?? '');
         status.textContent = 'Command copied.';
       } catch {
         status.textContent = 'Select the command to copy it.';

@@ -17,7 +17,7 @@ import { adrName, caption, fewPacketsNote, fixedRateNote, noLineNote, oneGateway
 import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { clearTable, renderBaseline, renderTable, restingNotes } from './results';
-import { setUpCopyCommand, showCommand } from './command';
+import { commandOf, setUpCopyCommand, showCommand } from './command';
 import { setUpPresent } from './present';
 import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, runsMission, simulateRequest, swarmSettings, toParams, toQuery, type Settings } from './state';
 import { pageQuery, store } from './store';
@@ -872,9 +872,9 @@ function noResults(): string {
 
 for (const [id, save] of [
   ['download-csv', (r: SimReport) => downloadErrorCsv(r)],
-  ['download-json', (r: SimReport) => downloadJson(r, store.reportSettings, store.commands.results)],
+  ['download-json', (r: SimReport) => downloadJson(r, store.reportSettings, commandOf('results'))],
   // An uploaded flight never leaves this computer: no link opens it.
-  ['download-results-csv', (r: SimReport) => downloadResultsCsv(r, { settings: caption(store.reportSettings), link: store.reportSettings.flight === 'csv' ? '' : `${location.origin}${location.pathname}?${toQuery(store.reportSettings)}`, command: store.commands.results ?? '' })],
+  ['download-results-csv', (r: SimReport) => downloadResultsCsv(r, { settings: caption(store.reportSettings), link: store.reportSettings.flight === 'csv' ? '' : `${location.origin}${location.pathname}?${toQuery(store.reportSettings)}`, command: commandOf('results') ?? '' })],
 ] as const) {
   $(`#${id}`).addEventListener('click', () => {
     const report = shownReport($(`#${id}`));

@@ -2,7 +2,7 @@
 // came with the link. Every module of the page reads and changes that state here and nowhere
 // else, so "which settings made these numbers?" has one answer.
 import { presenting } from './dom';
-import type { SimReport } from './loratrack';
+import type { SimReport, SimulateParams } from './loratrack';
 import { fromQuery, toQuery, type Settings } from './state';
 import { swarmQuery } from './swarmChoices';
 
@@ -24,9 +24,9 @@ export interface Store {
   reportSettings: Settings;
   /** The numbers on show. */
   report?: SimReport;
-  /** The command lines that give the numbers on show: the results' and the largest swarm's
-   * (`commandLine` of the runs' parameters; command.ts). */
-  commands: { results?: string; swarm?: string };
+  /** What the command lines that give the numbers on show are written from, the results' and the
+   * largest swarm's: the runs' parameters, and the line once written (command.ts). */
+  commands: { results?: { params: SimulateParams; line?: string }; swarm?: { params: SimulateParams; line?: string } };
   /** The pinned baseline and the settings that made it. */
   baseline?: { report: SimReport; settings: Settings };
   /** An uploaded CSV flight (never in the URL), kept as its bytes in a Blob: the workers read its
