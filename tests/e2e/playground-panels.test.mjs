@@ -64,6 +64,23 @@ test('pinning a baseline shows the next settings as differences against it', asy
   assert.deepEqual([...problems, ...shared.problems, ...far.problems], []);
 });
 
+test("an SF chart's point is the results' command line at that SF with one seed and no ADR, as its explanation says", async () => {
+  const { page, problems } = await open('?sf=9&bw=125&distance=2000&seeds=2&adr=tracking');
+  await idle(page);
+  await page.waitForSelector('#chart-sf svg');
+  assert.match(await page.locator('[data-panel="sf"] details.explain').textContent(), /each SF is the results' command .* with --sf set to it and --seeds 1, without its --adr/);
+  const line = await page.locator('[data-command="results"] code').textContent();
+  assert.match(line, / --sf 9 .*--adr tracking .*--seeds 2/);
+  const atSf11 = line.replace('--sf 9', '--sf 11').replace(' --adr tracking', '').replace('--seeds 2', '--seeds 1');
+  const cli = commandJson(atSf11);
+  const titles = await page.locator('#chart-sf svg title').allTextContents();
+  for (const r of cli.results) {
+    const shown = titles.find((t) => t.startsWith(`${{ dr: 'DR', 'ctra-plus': 'CTRA+', '3d-ctra': '3D-CTRA' }[r.model]}, SF11:`));
+    assert.equal(Number(/p75 ([\d.]+) m/.exec(shown)[1]).toFixed(2), r.error3d.p75.toFixed(2), `${r.model}: ${shown}`);
+  }
+  assert.deepEqual(problems, []);
+});
+
 test('the p75-against-SF chart gives the p75 at each SF as the CLI does, one line per model, with its download', async () => {
   const { page, problems } = await open('?distance=2000');
   await idle(page);
