@@ -2,11 +2,23 @@
 // would tell a reader a rule the simulation no longer follows.
 import { readFileSync } from 'node:fs';
 import { expect, test } from 'vitest';
-import { LEAN_SIGNIFICANCE } from '../../www/generated/types';
+import { LEAN_SIGNIFICANCE, PLANS } from '../../www/generated/types';
 
 const page = readFileSync(new URL('../../index.html', import.meta.url), 'utf8');
 
 test("the Payload hint states the lean payload's significance as the core sets it", () => {
   const hint = /<p id="payload-help"[^>]*>([^<]*)<\/p>/.exec(page)?.[1] ?? '';
   expect(hint).toContain(`within ${LEAN_SIGNIFICANCE} standard deviations of zero`);
+});
+
+test("each regional plan's choice names the duty cycle and dwell time of the core's plan table", () => {
+  const select = /<select id="region"[^>]*>([\s\S]*?)<\/select>/.exec(page)?.[1] ?? '';
+  const options = [...select.matchAll(/<option value="([^"]+)"[^>]*>([^<]*)<\/option>/g)].map((m) => [m[1], m[2]]);
+  expect(options.map(([value]) => value)).toEqual(PLANS.map((p) => p.region));
+  for (const [value, text] of options) {
+    const p = PLANS.find((x) => x.region === value)!;
+    const limits = [p.dutyCycle === null ? 'no duty cycle' : `${+(p.dutyCycle * 100).toPrecision(3)} % duty cycle`, ...(p.dwellTime === null ? [] : [`${Math.round(p.dwellTime * 1000)} ms dwell`])];
+    // Where the plan applies may come first ("Europe, 1 % duty cycle").
+    expect(text.replace(/\([A-Z][a-z]+, /, '(')).toBe(`${p.label} (${limits.join(', ')})`);
+  }
 });
