@@ -3,12 +3,13 @@
 //!
 //! Written from the settings' own wire form: every key whose value differs from the default
 //! becomes the long option of the same name in kebab case (the CLI flattens the same
-//! sub-structs, so the names agree; `gateways` is the repeated `--gateway E,N[,H]`). A setting
-//! added to a sub-struct therefore appears here without a line of this file, and the CLI's tests
-//! read every command back into the settings it came from.
+//! sub-structs, so the names agree; `gateways` is the repeated `--gateway E,N[,H]`, each written
+//! by [`GatewaySite::text`] beside its parser). A setting added to a sub-struct therefore appears
+//! here without a line of this file, and the CLI's tests read every command back into the
+//! settings it came from.
 
-use super::{Scenario, SimError, DEFAULT_CSV_NAME};
-use serde::Serialize;
+use super::{GatewaySite, Scenario, SimError, DEFAULT_CSV_NAME};
+use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 
 /// Which command a [`Scenario`] is written out for.
@@ -153,14 +154,10 @@ fn key_order<T: Serialize>(settings: &T) -> Vec<String> {
 
 /// The settings' keys and values as the wire has them.
 fn wire<T: Serialize>(settings: &T) -> Map<String, Value> {
-    match wire_value(settings) {
-        Value::Object(map) => map,
+    match serde_json::to_value(settings) {
+        Ok(Value::Object(map)) => map,
         _ => Map::new(),
     }
-}
-
-fn wire_value<T: Serialize>(value: &T) -> Value {
-    serde_json::to_value(value).unwrap_or(Value::Null)
 }
 
 /// The option(s) that give `key` its `value`.
@@ -168,22 +165,14 @@ fn option(key: &str, value: &Value) -> Vec<String> {
     match (key, value) {
         ("gateways", Value::Array(sites)) => sites
             .iter()
-            .flat_map(|site| ["--gateway".to_string(), gateway(site)])
+            .filter_map(|site| GatewaySite::deserialize(site).ok())
+            .flat_map(|site| ["--gateway".to_string(), site.text()])
             .collect(),
         // An output flag, not a setting with a value.
         ("series", Value::Bool(on)) => on.then(|| "--series".to_string()).into_iter().collect(),
         (_, Value::Null) => Vec::new(),
         _ => vec![format!("--{}", kebab(key)), text(value)],
     }
-}
-
-/// `E,N` or `E,N,H`, as `--gateway` reads it.
-fn gateway(site: &Value) -> String {
-    ["east", "north", "height"]
-        .iter()
-        .filter_map(|k| site.get(k).filter(|v| !v.is_null()).map(text))
-        .collect::<Vec<_>>()
-        .join(",")
 }
 
 /// A value as the CLI reads it: a number in the shortest text that reads back to the same bits,

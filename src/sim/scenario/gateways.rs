@@ -60,6 +60,22 @@ impl GatewaySite {
         Ok(())
     }
 
+    /// `E,N` or `E,N,H` as [`Self::parse`] reads it back, each number in the shortest text that
+    /// reads back to the same bits (the command line that reruns a scenario).
+    ///
+    /// ```
+    /// use loratrack::GatewaySite;
+    /// let g = GatewaySite { east: -500.0, north: 0.1 + 0.2, height: Some(30.0) };
+    /// assert_eq!(g.text(), "-500,0.30000000000000004,30");
+    /// assert_eq!(GatewaySite::parse(&g.text()).unwrap(), g);
+    /// ```
+    pub fn text(&self) -> String {
+        match self.height {
+            Some(h) => format!("{},{},{h}", self.east, self.north),
+            None => format!("{},{}", self.east, self.north),
+        }
+    }
+
     /// The antenna's position x (east), y (north), z (height), m, with `default_height` m for
     /// a gateway given none.
     pub fn position(&self, default_height: f64) -> [f64; 3] {
