@@ -682,7 +682,7 @@ fn held_out_judges_the_adr_rows_again_on_the_next_block_of_seeds() {
 }
 
 #[test]
-fn a_swarm_header_says_what_each_drone_flies() {
+fn a_swarm_header_says_what_each_drone_flies_and_on_which_sfs() {
     // It said "1 drones x 600 s" for drones flying an 81-s chosen flight.
     let out = cli(&[
         "swarm",
@@ -697,15 +697,29 @@ fn a_swarm_header_says_what_each_drone_flies() {
     ]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
-        text.starts_with("1 drone each flying synthetic 1, at 1000 m, 1 channel, fixed SFs"),
+        text.starts_with("1 drone each flying synthetic 1, at 1000 m, 1 channel, all on SF7,"),
         "{text}"
     );
     let chained = cli(&["swarm", "--drones", "2", "--duration", "60"]);
     let text = String::from_utf8_lossy(&chained.stdout);
     assert!(
-        text.starts_with("2 drones x 60 s, at 1000 m, 3 channels, spread SFs"),
+        text.starts_with("2 drones x 60 s, at 1000 m, 3 channels, SF7-SF8 in turn,"),
         "{text}"
     );
+    // The SFs named are those dealt: in US915 at 125 kHz SF10's frame is over the dwell time.
+    let us = cli(&[
+        "swarm",
+        "--drones",
+        "6",
+        "--duration",
+        "60",
+        "--region",
+        "us915",
+        "--bw",
+        "125",
+    ]);
+    let text = String::from_utf8_lossy(&us.stdout);
+    assert!(text.contains(", 8 channels, SF7-SF9 in turn,"), "{text}");
 }
 
 /// A run long enough to show its progress does so on a terminal (`script` gives it one, where

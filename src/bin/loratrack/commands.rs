@@ -778,7 +778,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         _ => format!("x {:.0} s", c.swarm.duration),
     };
     format!(
-        "{} drone{} {}, at {} m, {} channel{}, {} SFs, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
+        "{} drone{} {}, at {} m, {} channel{}, {}, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
          {}\n\
          channel access      {}\n\
          packets sent        {}{}{}\n\
@@ -797,10 +797,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         c.channel.distance,
         c.channels(),
         if c.channels() == 1 { "" } else { "s" },
-        match c.swarm.sf_plan {
-            loratrack::SfPlan::Spread => "spread",
-            loratrack::SfPlan::Fixed => "fixed",
-        },
+        sf_plan_text(r),
         r.config.station.label(),
         if c.network.capture { "on" } else { "off" },
         if c.network.inter_sf { "on" } else { "off" },
@@ -849,6 +846,33 @@ fn swarm_text(r: &SwarmReport) -> String {
 
 /// With ADR, where the swarm's packets went: "  (ADR sent them at SF7 61 %, SF8 39 %)"; empty
 /// without (every drone stays at its SF).
+/// The SFs the drones were dealt, as the page's swarm note says them: "SF7-SF12 in turn" (drone
+/// i on the plan's SF i mod n), "SF7-SF9 in turn" where the region's plan carries no more, "all
+/// on SF9"; with ADR, where they started.
+fn sf_plan_text(r: &SwarmReport) -> String {
+    let mut sfs: Vec<u8> = r.drones.iter().map(|d| d.sf).collect();
+    sfs.sort_unstable();
+    sfs.dedup();
+    let adr = r.config.settings.network.adr != loratrack::AdrMode::Off;
+    let all_on = if adr { "all starting on" } else { "all on" };
+    let dealt = match sfs.as_slice() {
+        [] => format!("{all_on} SF{}", r.config.settings.radio.sf),
+        [sf] => return format!("{all_on} SF{sf}"),
+        [first, .., last] if usize::from(last - first) + 1 == sfs.len() => {
+            format!("SF{first}-SF{last} in turn")
+        }
+        several => {
+            let names: Vec<String> = several.iter().map(|sf| format!("SF{sf}")).collect();
+            format!("{} in turn", names.join(", "))
+        }
+    };
+    if adr && sfs.len() > 1 {
+        format!("{dealt} at the start")
+    } else {
+        dealt
+    }
+}
+
 fn sf_shares(r: &SwarmReport) -> String {
     if r.config.settings.network.adr == loratrack::AdrMode::Off {
         return String::new();
