@@ -47,3 +47,141 @@ fn the_paper_reproduction_document_is_what_npm_run_reproduce_writes() {
         );
     }
 }
+
+/// `file` (from the crate's root) with each run of whitespace one space, so that a sentence found
+/// in it may wrap anywhere.
+fn prose(file: &str) -> String {
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(file)).unwrap();
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// The CLI's JSON for `args`.
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = crate::cli(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+#[test]
+fn every_readme_transcript_is_what_the_cli_prints() {
+    // In a ```sh block, "$ loratrack ARGS" and the lines up to the next "$" or the block's end.
+    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"));
+    let readme = readme.unwrap();
+    let mut transcripts = 0;
+    for block in readme.split("```sh\n").skip(1) {
+        let block = block.split("```").next().unwrap();
+        for transcript in block.split("$ loratrack ").skip(1) {
+            let (command, shown) = transcript.split_once('\n').unwrap();
+            let args: Vec<&str> = command.split_whitespace().collect();
+            let out = crate::cli(&args);
+            assert!(out.status.success(), "loratrack {command}");
+            assert_eq!(
+                String::from_utf8_lossy(&out.stdout),
+                shown,
+                "the README shows another output for `loratrack {command}`"
+            );
+            transcripts += 1;
+        }
+    }
+    assert!(transcripts > 0, "the README shows no `$ loratrack` run");
+}
+
+#[test]
+fn the_readme_gateway_and_downlink_numbers_are_what_the_cli_prints() {
+    let one = json(&["swarm", "--drones", "72", "--distance", "2000", "--json"]);
+    let three = json(&[
+        "swarm",
+        "--drones",
+        "72",
+        "--distance",
+        "2000",
+        "--gateway",
+        "0,0",
+        "--gateway",
+        "3000,0",
+        "--gateway",
+        "-1500,2600",
+        "--json",
+    ]);
+    let percent = |r: &serde_json::Value| 100.0 * r["deliveryRatio"].as_f64().unwrap();
+    let (readme, beyond) = (prose("README.md"), prose("docs/beyond-the-paper.md"));
+    let claims = [
+        (
+            &readme,
+            format!(
+                "`loratrack swarm --drones 72 --distance 2000` (10 minutes, SF7–SF12 in turn, three channels): one \
+                 gateway at the centre delivers {} of {} packets ({:.1} %); with `--gateway 0,0 --gateway 3000,0 \
+                 --gateway -1500,2600` {} ({:.1} %), and the server removes {} duplicate copies",
+                one["packetsReceived"],
+                one["packetsSent"],
+                percent(&one),
+                three["packetsReceived"],
+                percent(&three),
+                three["duplicates"],
+            ),
+        ),
+        (
+            &readme,
+            format!(
+                "72 drones at 2 km, {:.1} % → {:.1} % with three",
+                percent(&one),
+                percent(&three)
+            ),
+        ),
+        (
+            &beyond,
+            format!(
+                "72 drones at 2 km: {:.1} % with one gateway, {:.1} % with three",
+                percent(&one),
+                percent(&three)
+            ),
+        ),
+    ];
+    let adr = json(&[
+        "swarm",
+        "--drones",
+        "60",
+        "--duration",
+        "600",
+        "--adr",
+        "lorawan",
+        "--sf-plan",
+        "fixed",
+        "--sf",
+        "7",
+        "--bw",
+        "125",
+        "--json",
+    ]);
+    let count = |key: &str| -> u64 {
+        adr["gateways"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|g| g[key].as_u64().unwrap())
+            .sum()
+    };
+    let (sent, dropped) = (count("downlinksSent"), count("downlinksDropped"));
+    let downlinks = [
+        format!(
+            "`swarm --drones 60 --duration 600 --adr lorawan --sf-plan fixed --sf 7 --bw 125`, of the {} downlinks \
+             the network server wants to send",
+            sent + dropped
+        ),
+        format!("the gateway's duty cycle lets {sent} go in RX1 or RX2 and drops {dropped}"),
+    ];
+    for (text, claim) in claims
+        .iter()
+        .map(|(text, claim)| (*text, claim))
+        .chain(downlinks.iter().map(|claim| (&readme, claim)))
+    {
+        assert!(
+            text.contains(claim.as_str()),
+            "the docs no longer say what the CLI prints: {claim}"
+        );
+    }
+}
