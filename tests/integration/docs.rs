@@ -1,4 +1,5 @@
-//! Generated documents stay what their commands generate: a checked-in table that the code no
+//! Generated documents stay what their commands generate, and the README says what the CLI and the
+//! flights give (its transcript, its network numbers, its flights' statistics): a checked-in table that the code no
 //! longer produces would be a claim nobody can reproduce. The commands are read from
 //! `package.json`'s scripts (`cargo run --release --quiet -- ARGS > FILE`), so the test runs
 //! exactly what `npm run NAME` runs. Only the quickest one is checked here (`reproduce`, ~30 s); the
@@ -182,6 +183,62 @@ fn the_readme_gateway_and_downlink_numbers_are_what_the_cli_prints() {
         assert!(
             text.contains(claim.as_str()),
             "the docs no longer say what the CLI prints: {claim}"
+        );
+    }
+}
+
+/// The mean, the 95th percentile and the largest of `values`.
+fn spread(mut values: Vec<f64>) -> (f64, f64, f64) {
+    values.sort_by(f64::total_cmp);
+    let mean = values.iter().sum::<f64>() / values.len() as f64;
+    let p95 = loratrack::percentile(&values, 95.0);
+    (mean, p95, values[values.len() - 1])
+}
+
+#[test]
+fn the_readme_describes_the_flights_as_they_are() {
+    let set = loratrack::synthetic_set();
+    let states = || set.iter().flat_map(|f| (0..f.len()).map(|i| f.state(i)));
+    let (speed, speed_p95, speed_max) = spread(states().map(|s| s[5]).collect());
+    let (_, turn_p95, turn_max) = spread(states().map(|s| s[7].abs()).collect());
+    let (_, climb_p95, climb_max) = spread(
+        set.iter()
+            .flat_map(|f| f.vel.iter().map(|v| v[2].abs()))
+            .collect(),
+    );
+    let hovering = states().filter(|s| s[5] < 0.5).count() as f64 / states().count() as f64;
+    let durations: Vec<f64> = set.iter().map(|f| f.duration()).collect();
+    let (shortest, longest) = durations
+        .iter()
+        .fold((f64::MAX, 0.0f64), |(lo, hi), &d| (lo.min(d), hi.max(d)));
+    let canberra = loratrack::canberra_flight();
+    let rate = (canberra.len() - 1) as f64 / canberra.duration();
+    let fastest = (0..canberra.len())
+        .map(|i| canberra.state(i)[5])
+        .fold(0.0, f64::max);
+    let readme = prose("README.md");
+    for claim in [
+        format!(
+            "30 seeded flights, {:.0} s ({:.0} min) in all, {:.0}–{:.0} s each, at 100 Hz",
+            durations.iter().sum::<f64>(),
+            durations.iter().sum::<f64>() / 60.0,
+            shortest,
+            longest
+        ),
+        format!(
+            "Speed mean {speed:.1} m/s, p95 {speed_p95:.1}, max {speed_max:.1}; |turn rate| p95 \
+             {turn_p95:.2} rad/s, max {turn_max:.2}; |climb rate| p95 {climb_p95:.1} m/s, max \
+             {climb_max:.1}; hovering (< 0.5 m/s) {:.1} % of the time",
+            100.0 * hovering
+        ),
+        format!(
+            "{:.0} s at {rate:.0} Hz, speeds to {fastest:.1} m/s",
+            canberra.duration()
+        ),
+    ] {
+        assert!(
+            readme.contains(&claim),
+            "the README's Flights no longer say: {claim}"
         );
     }
 }
