@@ -168,8 +168,9 @@ export function showConditional(): void {
   showSfReach();
 }
 
-/** The SF hint's "further", from the core's link budget at the form's path-loss exponent: each SF
- * step's gain in sensitivity over that exponent (17 % at the default 3.76, 24 % at 2.7). */
+/** How much further each SF step reaches, in the SF hint and the link budget's explanation, from
+ * the core's link budget at the form's path-loss exponent: each SF step's gain in sensitivity
+ * over that exponent (17 % at the default 3.76, 24 % at 2.7). */
 function showSfReach(): void {
   const n = Number(field('pathLossExponent').value);
   if (!isLoaded() || invalid('pathLossExponent', n)) return;
@@ -177,6 +178,7 @@ function showSfReach(): void {
   const further = Math.round(100 * (sf8.rangeM / sf7.rangeM - 1));
   const at = n === DEFAULTS.pathLossExponent ? '' : ` at path-loss exponent ${n}`;
   $('#sf-help').textContent = `Each step up about doubles the time on air (and the wait between packets) and reaches about ${further} % further${at}.`;
+  $('#link-sf-reach').textContent = `about ${further} % more range${at}`;
 }
 
 /** Settings the core would refuse are not offered: a plan's missing SF/bandwidth pairs; a data

@@ -23,7 +23,7 @@ export const LESSONS: Lesson[] = [
     id: 'why-not-sf12',
     title: 'Why not always SF12?',
     settings: { sf: 12, bw: 125, flight: 'all' },
-    text: 'SF12 reaches furthest, so why not always use it? Each SF step doubles the time on air, and the 1 % duty cycle makes the drone wait 100 times that between packets: at SF12 a 12-byte state goes out every two and a half minutes.',
+    text: 'SF12 reaches furthest, so why not always use it? Each SF step about doubles the time on air, and the 1 % duty cycle makes the drone wait 100 times that between packets: at SF12 a 12-byte state goes out every two and a half minutes.',
     notice: [
       'The interval column: about 148 s at SF12 and 125 kHz, against 3 s at the paper’s SF7 and 250 kHz.',
       'The error-versus-SF chart: at 1 km every model’s p75 rises with the SF; SF12’s is many times SF7’s.',

@@ -928,7 +928,7 @@ test('an invalid field is marked beside itself, nothing runs, and the old result
   assert.deepEqual(problems, []);
 });
 
-test("the SF hint's reach per step is the core's link budget at the path-loss exponent set", async () => {
+test("the SF hint's and the link budget's reach per step is the core's link budget at the path-loss exponent set", async () => {
   const pkg = await import(join(process.cwd(), 'www', 'pkg', 'loratrack.js'));
   pkg.initSync({ module: readFileSync(join(process.cwd(), 'www', 'pkg', 'loratrack_bg.wasm')) });
   const further = (n) => {
@@ -937,10 +937,13 @@ test("the SF hint's reach per step is the core's link budget at the path-loss ex
   };
   const { page, problems } = await open('?pathLossExponent=2.7');
   assert.equal(await page.locator('#sf-help').textContent(), `Each step up about doubles the time on air (and the wait between packets) and reaches about ${further(2.7)} % further at path-loss exponent 2.7.`);
+  // The link budget's explanation says the same (it said "about 15 % more range" whatever the exponent).
+  assert.match(await page.locator('#link-title ~ details.explain').textContent(), new RegExp(`each SF step buys 2\\.5 dB, about ${further(2.7)} % more range at path-loss exponent 2\\.7, for about twice`));
   await page.locator('#advanced summary').click();
   await page.getByLabel('Path-loss exponent').fill('3.76');
   await until(page, () => !/exponent/.test(document.querySelector('#sf-help').textContent));
   assert.match(await page.locator('#sf-help').textContent(), new RegExp(`reaches about ${further(3.76)} % further\\.$`));
+  assert.match(await page.locator('#link-title ~ details.explain').textContent(), new RegExp(`2\\.5 dB, about ${further(3.76)} % more range, for`));
   assert.notEqual(further(2.7), further(3.76));
   assert.deepEqual(problems, []);
 });
