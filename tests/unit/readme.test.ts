@@ -4,7 +4,7 @@
 // Needs the WebAssembly package (`npm run build`), as `npm test` builds it before this suite.
 import { readFileSync } from 'node:fs';
 import { beforeAll, expect, test } from 'vitest';
-import * as api from '../../www/loratrack';
+import { api, loadCore } from './core';
 
 const readme = readFileSync(new URL('../../README.md', import.meta.url), 'utf8');
 const section = readme.slice(readme.indexOf('## JavaScript API'));
@@ -67,9 +67,7 @@ function claimOf(comment: string): Claim {
   return null;
 }
 
-beforeAll(async () => {
-  await api.load(WebAssembly.compile(readFileSync(new URL('../../www/pkg/loratrack_bg.wasm', import.meta.url))));
-});
+beforeAll(loadCore);
 
 test('the example imports what it calls', () => {
   expect(imports.length).toBeGreaterThan(5);

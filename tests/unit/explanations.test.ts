@@ -1,0 +1,40 @@
+// The page's "What this shows" texts quote numbers the core gives at stated settings: each is
+// computed here and looked for in index.html, so that an explanation cannot drift from the
+// simulation it explains. Needs the WebAssembly package (`npm run build`).
+import { readFileSync } from 'node:fs';
+import { beforeAll, expect, test } from 'vitest';
+import { api, loadCore } from './core';
+
+/** index.html's text, each run of whitespace one space, so that a sentence may wrap anywhere. */
+const page = readFileSync(new URL('../../index.html', import.meta.url), 'utf8').replace(/\s+/g, ' ');
+
+/** Fails, naming `claim` (not the whole page), where the page does not say it. */
+const says = (claim: string) => expect(page.includes(claim), `index.html no longer says: ${claim}`).toBe(true);
+
+/** "lo–hi %" of `shares` (0..1) in whole per cent. */
+const percentRange = (shares: number[]) => `${(100 * Math.min(...shares)).toFixed(0)}–${(100 * Math.max(...shares)).toFixed(0)} %`;
+
+/** Each station's `coverage95` over the whole synthetic set with the bounded station. */
+const coverage = (model: string, sf: number, bw: number) =>
+  api.simulate({ synthetic: 'all', model, prediction: 'bounded', sf, bw }).results.map((m) => m.coverage95 ?? Number.NaN);
+
+beforeAll(loadCore);
+
+test("the error chart's explanation gives the bounded station's 95 % coverage as the core measures it", () => {
+  expect(coverage('all,imm', 7, 250).every((c) => c >= 0.93 && c <= 0.97)).toBe(true);
+  says("the bounded station's is about 95 % at SF7/250 kHz");
+  // From SF7/125 kHz to SF9: the rates between, at both bandwidths.
+  const slow = [[7, 125], [8, 250], [8, 125], [9, 250], [9, 125]].map(([sf, bw]) => coverage('ctra-plus,3d-ctra,imm', sf, bw));
+  const rich = percentRange(slow.flatMap((c) => c.slice(0, 2)));
+  const imm = percentRange(slow.map((c) => c[2]));
+  says(`to SF9 CTRA+'s and 3D-CTRA's hold only ${rich} (the IMM's ${imm})`);
+  const dr = [8, 9, 10, 11, 12].flatMap((sf) => coverage('dr', sf, 125));
+  says(`at 125 kHz from SF8 on DR's is wider than it needs to be (${percentRange(dr)})`);
+}, 60_000);
+
+test("the swarm's explanation gives how much longer a slotted drone waits than its duty cycle asks", () => {
+  // The panel's defaults: the form's (3D-CTRA's frame at 250 kHz with LoRaWAN's overhead), SFs in turn.
+  const r = api.swarm({ drones: 12, duration: 120, schedule: 'slotted', sfPlan: 'spread' });
+  const longer = r.drones.filter((d) => d.sf > 7).map((d) => (d.frameLength ?? Number.NaN) / d.dataRateUse[0].interval - 1);
+  says(`(at the defaults with SFs in turn, SF8–SF12 wait ${percentRange(longer)} longer)`);
+});
