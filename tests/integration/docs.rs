@@ -242,3 +242,77 @@ fn the_readme_describes_the_flights_as_they_are() {
         );
     }
 }
+
+/// `x` to three significant figures, as the documents write errors: 263, 28.2, 5.05.
+fn sig3(x: f64) -> String {
+    let decimals = (2 - x.abs().log10().floor() as i32).max(0) as usize;
+    format!("{x:.decimals$}")
+}
+
+#[test]
+fn the_bounded_stations_gain_at_3_km_is_what_the_cli_prints() {
+    // SF7 / 250 kHz, 3 km, the whole synthetic set: the paper's station against the bounded one.
+    let error = |prediction: &str, seeds: &str, overhead: &str| {
+        let r = json(&[
+            "simulate",
+            "--synthetic",
+            "all",
+            "--model",
+            "3d-ctra",
+            "--distance",
+            "3000",
+            "--prediction",
+            prediction,
+            "--seeds",
+            seeds,
+            "--overhead",
+            overhead,
+            "--json",
+        ]);
+        let e = &r["results"][0]["error3d"];
+        [e["mean"].as_f64().unwrap(), e["p95"].as_f64().unwrap()].map(sig3)
+    };
+    let gain = |seeds, overhead| {
+        (
+            error("paper", seeds, overhead),
+            error("bounded", seeds, overhead),
+        )
+    };
+    let (seed1, seeds8, overhead) = (gain("1", "0"), gain("8", "0"), gain("8", "13"));
+    let readme = prose("README.md");
+    let beyond = prose("docs/beyond-the-paper.md");
+    let claims = [
+        (
+            &readme,
+            format!(
+                "3D-CTRA mean {} → {} m on seed 1, {} → {} m over seeds 1–8",
+                seed1.0[0], seed1.1[0], seeds8.0[0], seeds8.1[0]
+            ),
+        ),
+        (
+            &beyond,
+            format!(
+                "3D-CTRA mean {} → {} m, p95 {} → {} m (seed 1, as docs/paper-reproduction.md; over seeds \
+                 1–8 {} → {} m and {} → {} m, with the default overhead {} → {} m and {} → {} m",
+                seed1.0[0],
+                seed1.1[0],
+                seed1.0[1],
+                seed1.1[1],
+                seeds8.0[0],
+                seeds8.1[0],
+                seeds8.0[1],
+                seeds8.1[1],
+                overhead.0[0],
+                overhead.1[0],
+                overhead.0[1],
+                overhead.1[1],
+            ),
+        ),
+    ];
+    for (text, claim) in claims {
+        assert!(
+            text.contains(&claim),
+            "the docs no longer say what the CLI prints: {claim}"
+        );
+    }
+}
