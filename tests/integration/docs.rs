@@ -316,3 +316,48 @@ fn the_bounded_stations_gain_at_3_km_is_what_the_cli_prints() {
         );
     }
 }
+
+#[test]
+fn the_references_aloha_numbers_are_what_the_cli_prints() {
+    // One SF7 channel at 125 kHz, 600 s, with the formula's own assumptions.
+    let (simulated, formula): (Vec<String>, Vec<String>) = [12, 36, 72]
+        .map(|drones| {
+            let drones = drones.to_string();
+            let r = json(&[
+                "swarm",
+                "--drones",
+                &drones,
+                "--channels",
+                "1",
+                "--sf-plan",
+                "fixed",
+                "--sf",
+                "7",
+                "--bw",
+                "125",
+                "--capture",
+                "off",
+                "--inter-sf",
+                "off",
+                "--shadowing",
+                "0",
+                "--duration",
+                "600",
+                "--json",
+            ]);
+            let rate = |key: &str| format!("{:.3}", r[key].as_f64().unwrap());
+            (rate("collisionRate"), rate("collisionRateTheory"))
+        })
+        .into_iter()
+        .unzip();
+    let claim = format!(
+        "the simulated collision rate on one SF7 channel is {} at 12 / 36 / 72 drones (600 s, 125 kHz, \
+         3D-CTRA's payload) against the formula's {}",
+        simulated.join(" / "),
+        formula.join(" / ")
+    );
+    assert!(
+        prose("docs/reference.md").contains(&claim),
+        "docs/reference.md no longer says what the CLI prints: {claim}"
+    );
+}
