@@ -361,3 +361,48 @@ fn the_references_aloha_numbers_are_what_the_cli_prints() {
         "docs/reference.md no longer says what the CLI prints: {claim}"
     );
 }
+
+/// The keys of the JSON object `value`.
+fn keys(value: &serde_json::Value) -> Vec<String> {
+    value.as_object().unwrap().keys().cloned().collect()
+}
+
+#[test]
+fn the_readme_lists_every_key_of_the_json() {
+    let readme = prose("README.md");
+    let between = |from: &str, to: &str| {
+        let start = readme.find(from).unwrap();
+        let end = start + readme[start..].find(to).unwrap();
+        readme[start..end].to_string()
+    };
+    // simulate's, each key in quotes.
+    let sim = json(&["simulate", "--synthetic", "1", "--model", "imm", "--json"]);
+    let section = between("Output (docs/reference.md §9)", "### Gateways");
+    let listed = |section: &str, key: &String, quoted: bool| {
+        if quoted {
+            section.contains(&format!("\"{key}\""))
+        } else {
+            section
+                .split(|c: char| !c.is_ascii_alphanumeric())
+                .any(|word| word == key)
+        }
+    };
+    for key in keys(&sim).iter().chain(&keys(&sim["results"][0])) {
+        assert!(
+            listed(&section, key, true),
+            "the README's simulate output leaves out \"{key}\""
+        );
+    }
+    // swarm's, as words.
+    let swarm = json(&["swarm", "--drones", "2", "--duration", "60", "--json"]);
+    let section = between(
+        "Output: `{config, collisionRate",
+        "`largestSwarm` is how many",
+    );
+    for key in keys(&swarm).iter().chain(&keys(&swarm["drones"][0])) {
+        assert!(
+            listed(&section, key, false),
+            "the README's swarm output leaves out {key}"
+        );
+    }
+}
