@@ -405,4 +405,16 @@ fn the_readme_lists_every_key_of_the_json() {
             "the README's swarm output leaves out {key}"
         );
     }
+    // The reference's contracts name the same keys.
+    let reference = prose("docs/reference.md");
+    let start = reference.find("## 9. Contracts").unwrap();
+    let end = reference.find("## 10. References").unwrap();
+    let contracts = &reference[start..end];
+    let named = keys(&sim).into_iter().chain(keys(&sim["results"][0]));
+    for key in named.chain(keys(&swarm)) {
+        assert!(
+            listed(contracts, &key, false),
+            "docs/reference.md §9 leaves out {key}"
+        );
+    }
 }
