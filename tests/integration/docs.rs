@@ -411,7 +411,7 @@ fn the_readme_lists_every_key_of_the_json() {
     let end = reference.find("## 10. References").unwrap();
     let contracts = &reference[start..end];
     let named = keys(&sim).into_iter().chain(keys(&sim["results"][0]));
-    for key in named.chain(keys(&swarm)) {
+    for key in named.chain(keys(&swarm)).chain(keys(&swarm["drones"][0])) {
         assert!(
             listed(contracts, &key, false),
             "docs/reference.md §9 leaves out {key}"
