@@ -56,9 +56,10 @@ fn prose(file: &str) -> String {
     text.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
-/// The CLI's JSON for `args`.
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = crate::cli(args);
+/// The CLI's JSON for `command`, its arguments separated by spaces as the documents write them.
+fn json(command: &str) -> serde_json::Value {
+    let args: Vec<&str> = command.split_whitespace().collect();
+    let out = crate::cli(&args);
     assert!(
         out.status.success(),
         "{args:?}: {}",
@@ -93,21 +94,8 @@ fn every_readme_transcript_is_what_the_cli_prints() {
 
 #[test]
 fn the_readme_gateway_and_downlink_numbers_are_what_the_cli_prints() {
-    let one = json(&["swarm", "--drones", "72", "--distance", "2000", "--json"]);
-    let three = json(&[
-        "swarm",
-        "--drones",
-        "72",
-        "--distance",
-        "2000",
-        "--gateway",
-        "0,0",
-        "--gateway",
-        "3000,0",
-        "--gateway",
-        "-1500,2600",
-        "--json",
-    ]);
+    let one = json("swarm --drones 72 --distance 2000 --json");
+    let three = json("swarm --drones 72 --distance 2000 --gateway 0,0 --gateway 3000,0 --gateway -1500,2600 --json");
     let percent = |r: &serde_json::Value| 100.0 * r["deliveryRatio"].as_f64().unwrap();
     let (readme, beyond) = (prose("README.md"), prose("docs/beyond-the-paper.md"));
     let claims = [
@@ -142,22 +130,9 @@ fn the_readme_gateway_and_downlink_numbers_are_what_the_cli_prints() {
             ),
         ),
     ];
-    let adr = json(&[
-        "swarm",
-        "--drones",
-        "60",
-        "--duration",
-        "600",
-        "--adr",
-        "lorawan",
-        "--sf-plan",
-        "fixed",
-        "--sf",
-        "7",
-        "--bw",
-        "125",
-        "--json",
-    ]);
+    let adr = json(
+        "swarm --drones 60 --duration 600 --adr lorawan --sf-plan fixed --sf 7 --bw 125 --json",
+    );
     let count = |key: &str| -> u64 {
         adr["gateways"]
             .as_array()
@@ -253,22 +228,10 @@ fn sig3(x: f64) -> String {
 fn the_bounded_stations_gain_at_3_km_is_what_the_cli_prints() {
     // SF7 / 250 kHz, 3 km, the whole synthetic set: the paper's station against the bounded one.
     let error = |prediction: &str, seeds: &str, overhead: &str| {
-        let r = json(&[
-            "simulate",
-            "--synthetic",
-            "all",
-            "--model",
-            "3d-ctra",
-            "--distance",
-            "3000",
-            "--prediction",
-            prediction,
-            "--seeds",
-            seeds,
-            "--overhead",
-            overhead,
-            "--json",
-        ]);
+        let r = json(&format!(
+            "simulate --synthetic all --model 3d-ctra --distance 3000 --prediction {prediction} \
+             --seeds {seeds} --overhead {overhead} --json"
+        ));
         let e = &r["results"][0]["error3d"];
         [e["mean"].as_f64().unwrap(), e["p95"].as_f64().unwrap()].map(sig3)
     };
@@ -322,29 +285,10 @@ fn the_references_aloha_numbers_are_what_the_cli_prints() {
     // One SF7 channel at 125 kHz, 600 s, with the formula's own assumptions.
     let (simulated, formula): (Vec<String>, Vec<String>) = [12, 36, 72]
         .map(|drones| {
-            let drones = drones.to_string();
-            let r = json(&[
-                "swarm",
-                "--drones",
-                &drones,
-                "--channels",
-                "1",
-                "--sf-plan",
-                "fixed",
-                "--sf",
-                "7",
-                "--bw",
-                "125",
-                "--capture",
-                "off",
-                "--inter-sf",
-                "off",
-                "--shadowing",
-                "0",
-                "--duration",
-                "600",
-                "--json",
-            ]);
+            let r = json(&format!(
+                "swarm --drones {drones} --channels 1 --sf-plan fixed --sf 7 --bw 125 --capture off \
+                 --inter-sf off --shadowing 0 --duration 600 --json"
+            ));
             let rate = |key: &str| format!("{:.3}", r[key].as_f64().unwrap());
             (rate("collisionRate"), rate("collisionRateTheory"))
         })
@@ -376,7 +320,7 @@ fn the_readme_lists_every_key_of_the_json() {
         readme[start..end].to_string()
     };
     // simulate's, each key in quotes.
-    let sim = json(&["simulate", "--synthetic", "1", "--model", "imm", "--json"]);
+    let sim = json("simulate --synthetic 1 --model imm --json");
     let section = between("Output (docs/reference.md §9)", "### Gateways");
     let listed = |section: &str, key: &String, quoted: bool| {
         if quoted {
@@ -394,7 +338,7 @@ fn the_readme_lists_every_key_of_the_json() {
         );
     }
     // swarm's, as words.
-    let swarm = json(&["swarm", "--drones", "2", "--duration", "60", "--json"]);
+    let swarm = json("swarm --drones 2 --duration 60 --json");
     let section = between(
         "Output: `{config, collisionRate",
         "`largestSwarm` is how many",

@@ -682,6 +682,26 @@ fn held_out_judges_the_adr_rows_again_on_the_next_block_of_seeds() {
 }
 
 #[test]
+fn a_simulate_header_names_the_seeds_its_numbers_pool() {
+    // It said "seed 1" above numbers pooled over three seeds.
+    let text = |args: &[&str]| String::from_utf8_lossy(&cli(args).stdout).into_owned();
+    let pooled = text(&[
+        "simulate",
+        "--synthetic",
+        "1",
+        "--seed",
+        "4",
+        "--seeds",
+        "3",
+    ]);
+    let first = pooled.lines().next().unwrap_or_default();
+    assert!(first.ends_with(", seeds 4–6 pooled"), "{first}");
+    let one = text(&["simulate", "--synthetic", "1", "--seed", "4"]);
+    let first = one.lines().next().unwrap_or_default();
+    assert!(first.ends_with(", seed 4"), "{first}");
+}
+
+#[test]
 fn a_swarm_header_says_what_each_drone_flies_and_on_which_sfs() {
     // It said "1 drones x 600 s" for drones flying an 81-s chosen flight.
     let out = cli(&[

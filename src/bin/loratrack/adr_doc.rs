@@ -1,7 +1,7 @@
 //! `loratrack sweep --distances`: fixed data rates against ADR by distance, as a table or
 //! docs/adr.md.
 
-use crate::doc_cells::{link_args, link_words, rate_name};
+use crate::doc_cells::{link_args, link_words, rate_name, seeds_words};
 use loratrack::api::{DistanceRun, DistanceSweepReport};
 use loratrack::{
     tracking_ack_limits, AdrMode, Scenario, ADR_ACK_DELAY, ADR_ACK_LIMIT, DEFAULT_ADR_HISTORY,
@@ -275,14 +275,7 @@ fn seeds_phrase(base: &Scenario) -> String {
 
 /// "seed 1", or "seeds 1–8" when a run repeats.
 fn seeds_range(base: &Scenario) -> String {
-    match base.run.seeds {
-        0 | 1 => format!("seed {}", base.run.seed),
-        n => format!(
-            "seeds {}–{}",
-            base.run.seed,
-            base.run.seed + u64::from(n) - 1
-        ),
-    }
+    seeds_words(base.run.seed, base.run.seeds)
 }
 
 /// What `docs/adr.md`'s table shows: each ADR row judged against the tracking ADR's aim, and

@@ -1,6 +1,7 @@
 //! One function per command: parse options into the API's parameter struct, run, format (`sweep`,
 //! which runs grids of them for the generated documents, in sweep.rs).
 
+use crate::doc_cells::pooled_seeds;
 use crate::progress::Progress;
 use clap::{Args, Subcommand};
 use loratrack::api::{self, ApiError};
@@ -457,7 +458,7 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
     }
     let c = &r.config;
     Ok(format!(
-        "{} ({} flight{}, {:.0} s), SF{} / {} kHz ({}){}, overhead {} B, seed {}\n{}\n{}\n{}",
+        "{} ({} flight{}, {:.0} s), SF{} / {} kHz ({}){}, overhead {} B, {}\n{}\n{}\n{}",
         c.trajectory,
         c.flights,
         if c.flights == 1 { "" } else { "s" },
@@ -467,7 +468,7 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
         plan_text(c),
         adr_text(&c.settings.network),
         c.settings.radio.overhead,
-        c.settings.run.seed,
+        pooled_seeds(c.settings.run.seed, c.settings.run.seeds),
         policy_text(&c.settings),
         results_table(&r.results),
         network_lines(&r)

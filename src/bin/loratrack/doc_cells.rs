@@ -12,6 +12,23 @@ pub(crate) fn rate_name(u: &DataRateUse) -> String {
     }
 }
 
+/// The seeds a run pooled: "seed 1", or "seeds 1–8" when it repeats with `seeds` seeds from
+/// `seed`.
+pub(crate) fn seeds_words(seed: u64, seeds: u32) -> String {
+    match seeds {
+        0 | 1 => format!("seed {seed}"),
+        n => format!("seeds {seed}–{}", seed + u64::from(n) - 1),
+    }
+}
+
+/// The seeds whose runs a table's numbers pool: "seed 1", or "seeds 1–8 pooled".
+pub(crate) fn pooled_seeds(seed: u64, seeds: u32) -> String {
+    match seeds {
+        0 | 1 => seeds_words(seed, seeds),
+        _ => format!("{} pooled", seeds_words(seed, seeds)),
+    }
+}
+
 /// The MAC overhead and shadowing of a trade-off sweep in words: no overhead, as the paper
 /// sends, or LoRaWAN's; shadowing along the path unless fixed in space.
 pub(crate) fn link_words(base: &Scenario) -> String {

@@ -1,6 +1,6 @@
 //! `loratrack sweep --mission`: the table, and the document docs/mission.md (`--markdown`).
 
-use crate::doc_cells::{link_args, link_words};
+use crate::doc_cells::{link_args, link_words, pooled_seeds};
 use loratrack::api::{MissionRun, MissionSweepReport, MISSION_MODELS};
 use loratrack::{ModelResult, Scenario, OFFSET_TIME, PACE_SIGMA, PACE_TIME, TRACE_TOLERANCE};
 
@@ -201,10 +201,7 @@ fn real_findings(r: &MissionSweepReport) -> String {
 }
 
 fn seeds(r: &MissionSweepReport) -> String {
-    match r.seeds {
-        0 | 1 => format!("seed {}", r.seed),
-        n => format!("seeds {}–{} pooled", r.seed, r.seed + u64::from(n) - 1),
-    }
+    pooled_seeds(r.seed, r.seeds)
 }
 
 /// What the table shows, from its own numbers, and what it cannot show.
