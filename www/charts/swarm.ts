@@ -14,17 +14,24 @@ function untracked(r: SwarmReport): string {
 }
 
 /** The swarm's SF plan as it dealt the SFs: "all on SF9" (`fixed`), or a `spread` plan's SFs
- * one after another, "SF7–SF12 in turn" (of those the plan carries the frame at: "SF7–SF9 in
- * turn" in US915 at 125 kHz for 12 bytes); the note under the charts and the slide's caption. */
+ * one after another, "SF7–SF12 in turn"; with ADR, where the drones started ("all starting on
+ * SF9", "SF7–SF12 in turn at the start"). Where `spread` dealt fewer SFs than it had drones for,
+ * it says why: "SF7–SF9 in turn (at 125 kHz US915 carries the frame at no other SF)", "all
+ * starting on SF7 (at 250 kHz ADR can start at no other SF)". The note under the charts and the
+ * slide's caption. */
 export function sfPlanWords(r: Pick<SwarmReport, 'drones' | 'config'>): string {
-  return r.config.sfPlan === 'spread' ? dealtSfs(r) : `all on SF${r.config.sf}`;
+  const adr = r.config.adr !== 'off';
+  const sfs = r.config.sfPlan === 'spread' ? [...new Set(r.drones.map((d) => d.sf))].sort((a, b) => a - b) : [r.config.sf];
+  if (sfs.length < 2) return `all ${adr ? 'starting ' : ''}on SF${sfs[0]}${why(r, sfs)}`;
+  const run = sfs.every((sf, i) => sf === sfs[0] + i);
+  return `${run ? `SF${sfs[0]}–SF${sfs[sfs.length - 1]}` : sfs.map((sf) => `SF${sf}`).join(', ')} in turn${why(r, sfs)}${adr ? ' at the start' : ''}`;
 }
 
-function dealtSfs(r: Pick<SwarmReport, 'drones'>): string {
-  const sfs = [...new Set(r.drones.map((d) => d.sf))].sort((a, b) => a - b);
-  if (sfs.length < 2) return `all on SF${sfs[0]}`;
-  const run = sfs.every((sf, i) => sf === sfs[0] + i);
-  return `${run ? `SF${sfs[0]}–SF${sfs[sfs.length - 1]}` : sfs.map((sf) => `SF${sf}`).join(', ')} in turn`;
+/** Why a `spread` plan dealt only `sfs`, where it had drones for more; else nothing. */
+function why(r: Pick<SwarmReport, 'drones' | 'config'>, sfs: number[]): string {
+  if (r.config.sfPlan !== 'spread' || sfs.length >= Math.min(r.drones.length, 6)) return '';
+  const limit = r.config.adr !== 'off' ? 'ADR can start' : `${plan(r.config.region).label} carries the frame`;
+  return ` (at ${r.config.bw} kHz ${limit} at no other SF)`;
 }
 
 /** Where a swarm's packets went, by SF: "SF7 61 %, SF8 30 %, SF9 9 %, SF10 <1 %" (SFs with none
@@ -96,7 +103,7 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   const errors = Math.abs(fitted - frame.height) > 2 ? strip(Math.round(fitted)) : first;
   const note = document.createElement('p');
   note.className = 'note';
-  note.textContent = `${largest.config.drones} drones flying ${flightTime(largest.config.duration)} of ${largest.config.sample ? 'the real flight' : 'the synthetic set'} each to a ${stationPhrase(largest.config.station, largest.config)}, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${largest.config.sfPlan === 'spread' ? `${sfPlanWords(largest)}${adr ? ' at the start' : ''}` : `all ${adr ? 'starting ' : ''}on SF${largest.config.sf}`}${adr ? `, ADR sent their packets at ${sfShares(largest)}` : ''}: ${(100 * largest.collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %)${largest.leanPackets > 0 ? `, ${largest.leanPackets} of ${largest.packetsSent} packets with lean payloads` : ''}, median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${untracked(largest)}${thin ? `; ${thin} of ${drones.length} drones (hollow) received too few packets for their own p75 to compare` : ''}; ${(100 * largest.deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${adr ? `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped` : ''}; radio ${largest.energy.chargePerUplink.toFixed(2)} mC per uplink.${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
+  note.textContent = `${largest.config.drones} drones flying ${flightTime(largest.config.duration)} of ${largest.config.sample ? 'the real flight' : 'the synthetic set'} each to a ${stationPhrase(largest.config.station, largest.config)}, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${sfPlanWords(largest)}${adr ? `, ADR sent their packets at ${sfShares(largest)}` : ''}: ${(100 * largest.collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %)${largest.leanPackets > 0 ? `, ${largest.leanPackets} of ${largest.packetsSent} packets with lean payloads` : ''}, median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${untracked(largest)}${thin ? `; ${thin} of ${drones.length} drones (hollow) received too few packets for their own p75 to compare` : ''}; ${(100 * largest.deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${adr ? `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped` : ''}; radio ${largest.energy.chargePerUplink.toFixed(2)} mC per uplink.${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
   const l = largest.largestSwarm;
   note.textContent += ` Largest swarm one gateway serves at these settings${adr ? ' (at the starting SFs)' : ''}${largest.leanPackets > 0 ? ' (with full frames: the lean ones, shorter, leave room for more)' : ''}, every drone sending ${pace(largest.config)}: ${l.aloha1} drone${l.aloha1 === 1 ? '' : 's'} at ≤ 1 % collisions and ${l.aloha10} at ≤ 10 % with ALOHA (by its formula), ${l.slotted} slotted with none.`;
   const box = document.createElement('div');

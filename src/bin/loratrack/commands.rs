@@ -29,7 +29,7 @@ pub enum Command {
     /// The grids the docs are made from: the paper's (--paper), swarms (--swarm), senders, payloads,
     /// data rates and ADR by distance (--distances), the mission station.
     Sweep(crate::sweep::SweepArgs),
-    /// Many drones, one gateway: collisions (capture, inter-SF, 8 demodulators) and every drone's tracking error.
+    /// Many drones sharing the gateways (one unless --gateway): collisions (capture, inter-SF, 8 demodulators) and every drone's tracking error.
     Swarm(Box<SwarmArgs>),
 }
 

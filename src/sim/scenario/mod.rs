@@ -380,7 +380,7 @@ pub struct SwarmSettings {
             long,
             value_enum,
             default_value_t,
-            help = "Spreading factors: spread (SF7..SF12 in turn, a sixth of the swarm each; outside EU868, those whose data rate at --bw carries the station's frame) or fixed (everyone at --sf)."
+            help = "Spreading factors: spread (SF7..SF12 in turn, a sixth of the swarm each; where a data rate is needed, outside EU868 or with --adr, those whose data rate at --bw carries the station's frame: with --adr at 250 kHz SF7 alone) or fixed (everyone at --sf)."
         )
     )]
     pub sf_plan: SfPlan,
