@@ -702,6 +702,50 @@ fn a_simulate_header_names_the_seeds_its_numbers_pool() {
 }
 
 #[test]
+fn a_sweep_table_says_what_it_rests_on() {
+    // Their headers named neither the station's prediction, the overhead nor the seeds pooled.
+    let first_line = |args: &[&str]| {
+        let out = cli(args);
+        assert!(out.status.success(), "{args:?}");
+        let text = String::from_utf8_lossy(&out.stdout).into_owned();
+        text.lines().next().unwrap_or_default().to_string()
+    };
+    let senders = first_line(&[
+        "sweep",
+        "--senders",
+        "--seeds",
+        "2",
+        "--prediction",
+        "bounded",
+        "--overhead",
+        "13",
+    ]);
+    assert!(
+        senders.ends_with(
+            ": the whole synthetic set, 3D-CTRA station, bounded prediction, SF7 / 250 kHz, gateway \
+             at 1000 m, 13 bytes of MAC overhead per packet, seeds 1–2 pooled"
+        ),
+        "{senders}"
+    );
+    let distances = first_line(&[
+        "sweep",
+        "--distances",
+        "3000",
+        "--seed",
+        "5",
+        "--seeds",
+        "2",
+    ]);
+    assert!(
+        distances.ends_with(
+            ": the whole synthetic set, 3D-CTRA station, paper prediction, no LoRaWAN overhead, \
+             seeds 5–6 pooled"
+        ),
+        "{distances}"
+    );
+}
+
+#[test]
 fn a_swarm_header_says_what_each_drone_flies_and_on_which_sfs() {
     // It said "1 drones x 600 s" for drones flying an 81-s chosen flight.
     let out = cli(&[

@@ -1,7 +1,7 @@
 //! `loratrack sweep --distances`: fixed data rates against ADR by distance, as a table or
 //! docs/adr.md.
 
-use crate::doc_cells::{link_args, link_words, rate_name, seeds_words};
+use crate::doc_cells::{link_args, link_words, pooled_seeds, rate_name, seeds_words};
 use loratrack::api::{DistanceRun, DistanceSweepReport};
 use loratrack::{
     tracking_ack_limits, AdrMode, Scenario, ADR_ACK_DELAY, ADR_ACK_LIMIT, DEFAULT_ADR_HISTORY,
@@ -106,10 +106,15 @@ fn distance_rows(r: &DistanceSweepReport, markdown: bool) -> String {
     out
 }
 
-/// `sweep --distances`: the table.
-pub fn distances_table(r: &DistanceSweepReport) -> String {
+/// `sweep --distances`: the table, under what it rests on.
+pub fn distances_table((r, base): &(DistanceSweepReport, Scenario)) -> String {
     format!(
-        "fixed data rates and ADR by distance (3D error in m)\n{}",
+        "fixed data rates and ADR by distance (3D error in m): the whole synthetic set, {} station, {} \
+         prediction, {}, {}\n{}",
+        base.station.model.models()[0].label(),
+        base.station.prediction.name(),
+        link_words(base),
+        pooled_seeds(base.run.seed, base.run.seeds),
         distance_rows(r, false).trim_end()
     )
 }

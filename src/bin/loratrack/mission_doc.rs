@@ -81,7 +81,7 @@ fn header(runs: &[MissionRun]) -> Vec<String> {
 }
 
 /// `sweep --mission`: a plain table.
-pub fn mission_table(r: &MissionSweepReport) -> String {
+pub fn mission_table(r: &MissionSweepReport, base: &Scenario) -> String {
     let text = |runs: &[MissionRun]| -> String {
         let mut out = header(runs).join("  ") + "\n";
         for run in runs {
@@ -91,7 +91,10 @@ pub fn mission_table(r: &MissionSweepReport) -> String {
         out
     };
     format!(
-        "mission station against the others (3D error in m, whole synthetic set)\n{}\nthe real Canberra flight, its plan traced from its own log, {} seeds\n{}",
+        "mission station against the others (3D error in m): the whole synthetic set, {} prediction, {}, {}\n{}\nthe real Canberra flight, its plan traced from its own log, {} seeds\n{}",
+        base.station.prediction.name(),
+        link_words(base),
+        seeds(r),
         text(&r.runs),
         r.real_seeds,
         text(&r.real)

@@ -1,7 +1,7 @@
 //! `loratrack sweep --senders`: the sender trade-off as a table, docs/senders.md, and its chart
 //! docs/senders.svg.
 
-use crate::doc_cells::{link_args, link_words, text_row};
+use crate::doc_cells::{link_args, link_words, pooled_seeds, text_row};
 use crate::svg;
 use loratrack::api::{SenderPoint, SenderSweepReport, SENDER_THRESHOLDS};
 use loratrack::{DutyCycleMode, ModelResult, Scenario};
@@ -60,10 +60,10 @@ pub(crate) fn sender_rows(r: &SenderSweepReport, markdown: bool) -> String {
 }
 
 /// `sweep --senders` as a text table.
-pub fn senders_table(r: &SenderSweepReport) -> String {
+pub fn senders_table(r: &SenderSweepReport, base: &Scenario) -> String {
     format!(
-        "error-triggered sending against periodic ({}, 3D error in m)\n{}",
-        r.periodic.model.label(),
+        "error-triggered sending against periodic (3D error in m): the whole synthetic set, {}\n{}",
+        sender_setting(r, base),
         sender_rows(r, false).trim_end()
     )
 }
@@ -175,14 +175,14 @@ pub fn senders_svg(r: &SenderSweepReport, base: &Scenario) -> String {
 /// The setting of a sender sweep in words, for the document and the chart's caption alike.
 fn sender_setting(r: &SenderSweepReport, base: &Scenario) -> String {
     format!(
-        "{} station, {} prediction, SF{} / {} kHz, gateway at {} m, {}, seed {}",
+        "{} station, {} prediction, SF{} / {} kHz, gateway at {} m, {}, {}",
         r.periodic.model.label(),
         base.station.prediction.name(),
         base.radio.sf,
         base.radio.bw,
         base.channel.distance,
         link_words(base),
-        base.run.seed
+        pooled_seeds(base.run.seed, base.run.seeds)
     )
 }
 

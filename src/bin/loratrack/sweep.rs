@@ -261,7 +261,7 @@ fn sweep_distances(
     if a.markdown {
         return Ok(crate::adr_doc::distances_markdown(&runs));
     }
-    Ok(crate::adr_doc::distances_table(r))
+    Ok(crate::adr_doc::distances_table(&runs[0][0]))
 }
 
 /// `--held-out`'s runs: the next block of as many seeds. Refused before anything runs when that
@@ -296,7 +296,7 @@ fn sweep_mission(
     if a.markdown {
         return Ok(crate::mission_doc::mission_markdown(&r, &base));
     }
-    Ok(crate::mission_doc::mission_table(&r))
+    Ok(crate::mission_doc::mission_table(&r, &base))
 }
 
 fn sweep_senders(
@@ -339,7 +339,7 @@ fn sweep_senders(
         }
         return Ok(crate::senders_doc::senders_markdown(&r, &base, &overview));
     }
-    Ok(crate::senders_doc::senders_table(&r))
+    Ok(crate::senders_doc::senders_table(&r, &base))
 }
 
 /// Drone counts of `sweep --swarm`.
