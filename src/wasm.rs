@@ -68,10 +68,16 @@ fn js_error(message: &str) -> JsValue {
     error_naming(message, None)
 }
 
-/// The JS `Error` for an operation the core refused: its message, and the setting at fault
-/// where one is ([`ApiError::setting`], e.g. `maxInterval`).
+/// The JS `Error` for an operation the core refused: its message, the setting at fault where one
+/// is ([`ApiError::setting`], e.g. `maxInterval`) and, for a run too long only for its seeds,
+/// `seedsThatFit` ([`ApiError::seeds_that_fit`]).
 fn api_error(e: &ApiError) -> JsValue {
-    error_naming(&api::clean_message(&e.to_string()), e.setting())
+    let error = error_naming(&api::clean_message(&e.to_string()), e.setting());
+    if let Some(fit) = e.seeds_that_fit() {
+        // Defining a property on a fresh Error cannot fail.
+        let _ = set(&error, "seedsThatFit", JsValue::from(fit));
+    }
+    error
 }
 
 /// A JS `Error` with `message` and, as `setting`, the key of the setting at fault, so that a

@@ -76,6 +76,27 @@ fn bad_input_throws_a_readable_error_and_the_module_keeps_working() {
     assert!((num(&ok, "timeOnAir") - 0.072192).abs() < 1e-9);
 }
 
+/// A run too long only for its seeds says how many fit as a number (`seedsThatFit`), beside the
+/// message that says it in words, so that the page can offer them; other refusals carry none.
+#[wasm_bindgen_test]
+fn a_run_too_long_for_its_seeds_says_how_many_fit() {
+    let fit = |e: &JsValue| get(e, "seedsThatFit").as_f64();
+    let e = wasm::simulate(
+        obj(&[("synthetic", "all".into()), ("seeds", 50.into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    assert_eq!(get(&e, "setting").as_string().as_deref(), Some("seeds"));
+    assert_eq!(fit(&e), Some(18.0));
+    assert!(error_message(e).contains("at most 18 seeds"));
+    let e = wasm::simulate(
+        obj(&[("synthetic", 1.into()), ("sf", 13.into())]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    assert_eq!(fit(&e), None);
+}
+
 /// The JS API's promise (README, JavaScript API): where one setting is at fault the thrown Error
 /// names it as `setting`, the key the functions take, so that a caller need not parse messages.
 #[wasm_bindgen_test]

@@ -144,6 +144,13 @@ export function settingOf(error: unknown): string | undefined {
   return typeof setting === 'string' ? setting : undefined;
 }
 
+/** For a run the core refused as too long only for its seeds, how many fit at its rates (the
+ * whole synthetic set at the default rates: 18); `undefined` for any other error. */
+export function seedsThatFit(error: unknown): number | undefined {
+  const fit = (error as { seedsThatFit?: unknown } | null)?.seedsThatFit;
+  return typeof fit === 'number' ? fit : undefined;
+}
+
 /** Every numeric setting's default and accepted range, as the core validates them. */
 export function limits(): NumberOption[] {
   return wasm.limits() as NumberOption[];

@@ -98,6 +98,7 @@ let lastSent = 0;
 
 function send(request: SimulateRequest, made: Settings): void {
   lastSent = request.id;
+  offerSeeds(undefined);
   const long = made.flight === 'all' || made.flight === 'csv' || made.seeds > 1;
   running = { id: request.id, long, started: performance.now(), settings: made, params: request.params };
   updateBusy();
@@ -244,7 +245,8 @@ function onResponse(r: Response): void {
       planError.textContent = r.error;
       planError.hidden = false;
       status.textContent = `The flight plan could not be read${store.report ? '; the results below are for the previous settings.' : '.'}`;
-    } else if (failed.flight === 'csv') {
+    } else if (failed.flight === 'csv' && !numericControl(r.setting)) {
+      // The file's fault, not a number's set beside it (too many seeds for its length).
       csvError.textContent = r.error;
       csvError.hidden = false;
       status.textContent = `The CSV could not be simulated${store.report ? '; the results below are for the previous settings.' : '.'}`;
@@ -252,6 +254,9 @@ function onResponse(r: Response): void {
       // An embed has no settings to change: its author chose them.
       const next = store.report ? ' Change a setting; the results below are for the previous settings.' : store.embed ? '' : ' Change a setting to see results.';
       status.textContent = `These settings cannot be simulated: ${r.error}.${namesSetting(r.setting)}${next}`;
+      // Too long only for its seeds: offer as many as fit, which the core counted (not in an
+      // embed, whose settings are its author's).
+      offerSeeds(store.embed ? undefined : r.seedsThatFit);
       // The core names the setting it refuses (`maxInterval` shorter than the data rate's
       // interval, a limit the form cannot check alone): mark that control as the form marks its
       // own (the next change of any setting checks every control afresh and clears it).
@@ -824,6 +829,20 @@ $('#pin').addEventListener('click', () => {
 
 $('#repeat-seeds').addEventListener('click', () => {
   field('seeds').value = $('#repeat-seeds').dataset.seeds ?? '10';
+  onChange();
+});
+
+/** Shows "Use N seeds" under a refusal of a run too long only for its seeds (the core's
+ * `seedsThatFit`), or hides it. */
+function offerSeeds(fit: number | undefined): void {
+  const button = $<HTMLButtonElement>('#fit-seeds');
+  button.hidden = fit === undefined;
+  button.dataset.seeds = String(fit ?? '');
+  button.textContent = `Use ${fit} seed${fit === 1 ? '' : 's'}`;
+}
+
+$('#fit-seeds').addEventListener('click', () => {
+  field('seeds').value = $('#fit-seeds').dataset.seeds ?? '1';
   onChange();
 });
 

@@ -146,7 +146,7 @@ export class SimulationPool {
         if ('error' in r) {
           failed = true;
           forget();
-          on({ id: request.id, error: r.error, setting: r.setting });
+          on({ id: request.id, error: r.error, setting: r.setting, seedsThatFit: r.seedsThatFit });
           return;
         }
         if ('partial' in r) {

@@ -1,7 +1,7 @@
 // Runs simulations off the main thread so the page never freezes. One message in, one out:
 //   { id, params, sweep? }  →  [{ id, partial }] { id, progress }* then { id, report } | { id, error }
 //                               then, with sweep points, { id, sweep: [{ point, report?, error? }] }
-import { load, loadCsv, settingOf, simulate, stationsOf, swarm, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
+import { load, loadCsv, seedsThatFit, settingOf, simulate, stationsOf, swarm, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
 import { firstRefusal, merge } from './merge';
 
 /** One point of a sweep beside the main run: the gateway at another distance, or another SF. */
@@ -46,8 +46,9 @@ export type Response =
   /** The whole synthetic set's first flight alone, sent before the set (its own report: 1 flight). */
   | { id: number; partial: SimReport }
   | { id: number; report: SimReport; millis: number }
-  /** The core's message, and the setting it refuses where one is at fault (`settingOf`). */
-  | { id: number; error: string; setting?: string }
+  /** The core's message, the setting it refuses where one is at fault (`settingOf`) and, for a
+   * run too long only for its seeds, how many fit (`seedsThatFit`). */
+  | { id: number; error: string; setting?: string; seedsThatFit?: number }
   | { id: number; sweep: SweepResult[] }
   | { id: number; swarms: SwarmReport[] };
 
@@ -111,7 +112,7 @@ self.onmessage = async (event: MessageEvent<Request | ModuleMessage>) => {
       post({ id, sweep });
     }
   } catch (e) {
-    post({ id, error: e instanceof Error ? e.message : String(e), setting: settingOf(e) });
+    post({ id, error: e instanceof Error ? e.message : String(e), setting: settingOf(e), seedsThatFit: seedsThatFit(e) });
   }
 };
 

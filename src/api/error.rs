@@ -57,6 +57,25 @@ impl ApiError {
             ApiError::Codec(_) | ApiError::Invalid(_) => None,
         }
     }
+
+    /// For a `simulate` run too long only for its several seeds, how many would fit at its rates
+    /// ([`SimError::seeds_that_fit`]); the bindings give it to JS as the thrown `Error`'s
+    /// `seedsThatFit`, so that the page offers that many without reading the message.
+    ///
+    /// ```
+    /// use loratrack::{api, Scenario, Simulator, SyntheticChoice};
+    /// let mut s = Scenario::default();
+    /// s.flight.synthetic = Some(SyntheticChoice::All);
+    /// s.run.seeds = 50;
+    /// let e = api::simulate(&mut Simulator::new(), &s).unwrap_err();
+    /// assert_eq!((e.setting(), e.seeds_that_fit()), (Some("seeds"), Some(18)));
+    /// ```
+    pub fn seeds_that_fit(&self) -> Option<u32> {
+        match self {
+            ApiError::Sim(e) => e.seeds_that_fit(),
+            _ => None,
+        }
+    }
 }
 
 impl From<LoraError> for ApiError {

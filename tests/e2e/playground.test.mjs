@@ -1038,6 +1038,23 @@ test('Repeat with … seeds asks for no more seeds than the core takes at these 
   assert.deepEqual(problems, []);
 });
 
+test('a run too long only for its seeds offers as many as the core takes at these rates, and that run is accepted', async () => {
+  // 1000 Hz sensors and a 1 ms station step: one 81 s flight is 162 000 filter steps, six fit.
+  const { page, problems } = await openPage(playground.context, new URL(playground.url).origin);
+  await page.goto(`${playground.url}?seeds=100&sensorRate=1000&step=0.001`);
+  const max = nativeJson(['simulate', '--synthetic', '1', '--sensor-rate', '1000', '--step', '0.001']).config.maxSeeds;
+  await until(page, () => /cannot be simulated/.test(document.querySelector('#status')?.textContent ?? ''));
+  assert.match(await page.locator('#status').textContent(), new RegExp(`at most ${max} seeds`));
+  await page.getByRole('button', { name: `Use ${max} seeds` }).click();
+  await page.locator('#results-table caption').first().waitFor();
+  await idle(page);
+  assert.equal(await page.getByLabel('Seeds (repeats)').inputValue(), String(max));
+  assert.match(await page.locator('#results-table caption').first().textContent(), new RegExp(`over 1 flight × ${max} seeds`));
+  assert.doesNotMatch(await page.locator('#status').textContent(), /cannot be simulated/);
+  assert.equal(await page.locator('#fit-seeds').isVisible(), false);
+  assert.deepEqual(problems, []);
+});
+
 test('with Advanced open the page scrolls, not the settings, and the results table fits its box', async () => {
   const { page, problems } = await open('', { width: 1280, height: 800 });
   await page.locator('#advanced summary').click();
