@@ -1043,8 +1043,20 @@ test('a run too long only for its seeds offers as many as the core takes at thes
   const { page, problems } = await openPage(playground.context, new URL(playground.url).origin);
   await page.goto(`${playground.url}?seeds=100&sensorRate=1000&step=0.001`);
   const max = nativeJson(['simulate', '--synthetic', '1', '--sensor-rate', '1000', '--step', '0.001']).config.maxSeeds;
-  await until(page, () => /cannot be simulated/.test(document.querySelector('#status')?.textContent ?? ''));
+  const refused = () => until(page, () => /cannot be simulated/.test(document.querySelector('#status')?.textContent ?? ''));
+  await refused();
   assert.match(await page.locator('#status').textContent(), new RegExp(`at most ${max} seeds`));
+  // An uploaded flight too long for the seeds is refused for the seeds, not as a bad file.
+  const csv = join(scratchDir(), 'minute.csv');
+  writeFileSync(csv, ['t,x,y,z', ...Array.from({ length: 601 }, (_, i) => `${(i / 10).toFixed(1)},${i / 2},0,20`)].join('\n'));
+  const fits = nativeJson(['simulate', '--trajectory', csv, '--sensor-rate', '1000', '--step', '0.001']).config.maxSeeds;
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
+  await page.getByLabel('CSV file').setInputFiles(csv);
+  await page.getByRole('button', { name: `Use ${fits} seeds` }).waitFor();
+  assert.match(await page.locator('#status').textContent(), new RegExp(`^These settings cannot be simulated: .*at most ${fits} seeds`));
+  assert.equal(await page.locator('#csv-error').isVisible(), false);
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('synthetic');
+  await refused();
   await page.getByRole('button', { name: `Use ${max} seeds` }).click();
   await page.locator('#results-table caption').first().waitFor();
   await idle(page);
