@@ -39,8 +39,9 @@ const WASM = ['--target', 'wasm32-unknown-unknown'];
  * Everything the Rust suites read: the crate, its tests and benches, the bundled flight, the
  * checked-in TypeScript types (a test compares them with the Rust source), the documents whose
  * numbers a test recomputes (README.md, docs/, and package.json's scripts that generate them),
- * the lint wrapper and the toolchain. When none of it changed since a suite last passed on this machine, that suite is
- * not run again (`npm test -- --all` runs it anyway); a fresh clone, as in CI, has no record.
+ * the lint wrapper and the toolchain. When none of it changed since a suite last passed on this
+ * machine, that suite is not run again (`npm test -- --all` runs it anyway); a fresh clone, as in
+ * CI, has no record.
  */
 const RUST_INPUTS = ['Cargo.toml', 'Cargo.lock', 'build.rs', '.cargo', 'src', 'tests', 'benches', 'data', 'www/generated', 'README.md', 'docs', 'package.json', 'scripts/clippy-rustc.sh'];
 const NOT_RUST = ['tests/e2e', 'tests/unit', 'fuzz/target', 'fuzz/corpus', 'fuzz/artifacts'];

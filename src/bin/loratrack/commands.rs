@@ -845,8 +845,6 @@ fn swarm_text(r: &SwarmReport) -> String {
     )
 }
 
-/// With ADR, where the swarm's packets went: "  (ADR sent them at SF7 61 %, SF8 39 %)"; empty
-/// without (every drone stays at its SF).
 /// The SFs the drones were dealt, as the page's swarm note says them: "SF7-SF12 in turn" (drone
 /// i on the plan's SF i mod n), "SF7-SF9 in turn" where the region's plan carries no more, "all
 /// on SF9"; with ADR, where they started.
@@ -874,6 +872,8 @@ fn sf_plan_text(r: &SwarmReport) -> String {
     }
 }
 
+/// With ADR, where the swarm's packets went: "  (ADR sent them at SF7 61 %, SF8 39 %)"; empty
+/// without (every drone stays at its SF).
 fn sf_shares(r: &SwarmReport) -> String {
     if r.config.settings.network.adr == loratrack::AdrMode::Off {
         return String::new();
