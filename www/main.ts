@@ -837,7 +837,8 @@ $('#repeat-seeds').addEventListener('click', () => {
 function offerSeeds(fit: number | undefined): void {
   const button = $<HTMLButtonElement>('#fit-seeds');
   button.hidden = fit === undefined;
-  button.dataset.seeds = String(fit ?? '');
+  if (fit === undefined) return;
+  button.dataset.seeds = String(fit);
   button.textContent = `Use ${fit} seed${fit === 1 ? '' : 's'}`;
 }
 
