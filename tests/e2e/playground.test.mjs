@@ -1021,6 +1021,15 @@ test('a whole set the core refuses after its first flight shows neither that fli
   assert.deepEqual(problems, []);
 });
 
+/** Once the page is idle: the run with `seeds` seeds of one flight was accepted, and its
+ * numbers on show pool them. */
+async function assertRanSeeds(page, seeds) {
+  await idle(page);
+  assert.equal(await page.getByLabel('Seeds (repeats)').inputValue(), String(seeds));
+  assert.match(await page.locator('#results-table caption').first().textContent(), new RegExp(`over 1 flight × ${seeds} seeds`));
+  assert.doesNotMatch(await page.locator('#status').textContent(), /cannot be simulated/);
+}
+
 test('Repeat with … seeds asks for no more seeds than the core takes at these rates, and the run it starts is accepted', async () => {
   // 1000 Hz sensors and a 1 ms station step: one 81 s flight is 162 000 filter steps, six fit.
   const { page, problems } = await open('?sensorRate=1000&step=0.001');
@@ -1029,10 +1038,7 @@ test('Repeat with … seeds asks for no more seeds than the core takes at these 
   const before = await tableHtml(page);
   await page.getByRole('button', { name: `Repeat with ${max} seeds` }).click();
   await waitForResults(page, before);
-  await idle(page);
-  assert.equal(await page.getByLabel('Seeds (repeats)').inputValue(), String(max));
-  assert.match(await page.locator('#results-table caption').first().textContent(), new RegExp(`over 1 flight × ${max} seeds`));
-  assert.doesNotMatch(await page.locator('#status').textContent(), /cannot be simulated/);
+  await assertRanSeeds(page, max);
   // At the most seeds the flights take, it is not offered again.
   assert.equal(await page.locator('#repeat-seeds').isVisible(), false);
   assert.deepEqual(problems, []);
@@ -1043,8 +1049,7 @@ test('a run too long only for its seeds offers as many as the core takes at thes
   const { page, problems } = await openPage(playground.context, new URL(playground.url).origin);
   await page.goto(`${playground.url}?seeds=100&sensorRate=1000&step=0.001`);
   const max = nativeJson(['simulate', '--synthetic', '1', '--sensor-rate', '1000', '--step', '0.001']).config.maxSeeds;
-  const refused = () => until(page, () => /cannot be simulated/.test(document.querySelector('#status')?.textContent ?? ''));
-  await refused();
+  await until(page, () => /cannot be simulated/.test(document.querySelector('#status')?.textContent ?? ''));
   assert.match(await page.locator('#status').textContent(), new RegExp(`at most ${max} seeds`));
   // An uploaded flight too long for the seeds is refused for the seeds, not as a bad file.
   const csv = join(scratchDir(), 'minute.csv');
@@ -1056,13 +1061,10 @@ test('a run too long only for its seeds offers as many as the core takes at thes
   assert.match(await page.locator('#status').textContent(), new RegExp(`^These settings cannot be simulated: .*at most ${fits} seeds`));
   assert.equal(await page.locator('#csv-error').isVisible(), false);
   await page.getByLabel('Trajectory', { exact: true }).selectOption('synthetic');
-  await refused();
+  await until(page, (m) => (document.querySelector('#status')?.textContent ?? '').includes(`at most ${m} seeds`), max);
   await page.getByRole('button', { name: `Use ${max} seeds` }).click();
   await page.locator('#results-table caption').first().waitFor();
-  await idle(page);
-  assert.equal(await page.getByLabel('Seeds (repeats)').inputValue(), String(max));
-  assert.match(await page.locator('#results-table caption').first().textContent(), new RegExp(`over 1 flight × ${max} seeds`));
-  assert.doesNotMatch(await page.locator('#status').textContent(), /cannot be simulated/);
+  await assertRanSeeds(page, max);
   assert.equal(await page.locator('#fit-seeds').isVisible(), false);
   assert.deepEqual(problems, []);
 });
