@@ -99,7 +99,7 @@ export const LESSONS: Lesson[] = [
     notice: [
       'The note under the swarm charts: with 72 drones about half the packets are delivered, and the median drone’s p75 is under 40 m.',
       'Set Sending to Periodic and the duty-cycle rule to Off-time per packet (the paper’s drone) and run the swarm again: every drone sends as often as the duty cycle allows, about a third of the packets are delivered, and the median drone’s p75 is just over 40 m.',
-      'Over 8 seeds of 300 s each (docs/swarm.md): 0.78× periodic sending’s p75 on 0.62× the airtime.',
+      'Over 8 seeds of 300 s each (docs/swarm.md): 0.78× periodic sending’s p75 on 0.62 of its airtime.',
       'Raise the threshold to 40 m: the drones use about a third of periodic sending’s airtime, their p75 stays below it (0.86×), and against periodic sending slowed to the same airtime the p95 is 0.85× (docs/swarm.md, 8 seeds): no better than at 20 m, where the p95 is 0.78×.',
     ],
   },

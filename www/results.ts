@@ -320,7 +320,7 @@ function renderSilenceNote(r: SimReport): void {
   if (note.hidden) return;
   const sent = r.results.reduce((n, m) => n + m.packetsSent, 0);
   const lost = 1 - r.results.reduce((n, m) => n + m.packetsReceived, 0) / sent;
-  note.textContent = `${(lost * 100).toFixed(0)} % of the packets sent were lost. An error-triggered drone cannot tell a lost packet from a delivered one: after a loss it stays silent while the station drifts. Where packets are lost it can track worse than periodic sending at the same airtime (at 3 km its p95 up to 1.23× on the synthetic set and 2.1× on the real flight; docs/senders.md).`;
+  note.textContent = `${(lost * 100).toFixed(0)} % of the packets sent were lost. An error-triggered drone cannot tell a lost packet from a delivered one: after a loss it stays silent while the station drifts. Where packets are lost it can track worse than periodic sending at the same airtime (at 3 km its p95 up to 1.23× on the synthetic set and 2.12× on the real flight; docs/senders.md).`;
   linkDocs(note);
 }
 
