@@ -92,6 +92,7 @@ fn decls() -> Vec<String> {
         SimReport::decl(&c),
         DroneReport::decl(&c),
         LargestSwarm::decl(&c),
+        SfLimit::decl(&c),
         SwarmEcho::decl(&c),
         SwarmReport::decl(&c),
         NumberOption::decl(&c),

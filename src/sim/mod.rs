@@ -66,6 +66,6 @@ pub use station::{
 };
 pub use streams::DroneStreams;
 pub use swarm::{
-    run_swarm, run_swarm_sharing, DroneReport, LargestSwarm, SharedDroneRuns, SwarmEcho,
+    run_swarm, run_swarm_sharing, DroneReport, LargestSwarm, SfLimit, SharedDroneRuns, SwarmEcho,
     SwarmReport,
 };

@@ -746,7 +746,7 @@ fn a_sweep_table_says_what_it_rests_on() {
 }
 
 #[test]
-fn a_swarm_header_says_what_each_drone_flies_and_on_which_sfs() {
+fn a_swarm_header_says_what_each_drone_flies_on_which_sfs_and_why_spread_dealt_fewer() {
     // It said "1 drones x 600 s" for drones flying an 81-s chosen flight.
     let out = cli(&[
         "swarm",
@@ -783,7 +783,27 @@ fn a_swarm_header_says_what_each_drone_flies_and_on_which_sfs() {
         "125",
     ]);
     let text = String::from_utf8_lossy(&us.stdout);
-    assert!(text.contains(", 8 channels, SF7-SF9 in turn,"), "{text}");
+    assert!(
+        text.contains(
+            ", 8 channels, SF7-SF9 in turn (at 125 kHz US915 carries the frame at no other SF),"
+        ),
+        "{text}"
+    );
+    // ADR starts at a data rate, and at 250 kHz EU868 has one at SF7 alone.
+    let adr = cli(&[
+        "swarm",
+        "--drones",
+        "6",
+        "--duration",
+        "60",
+        "--adr",
+        "tracking",
+    ]);
+    let text = String::from_utf8_lossy(&adr.stdout);
+    assert!(
+        text.contains(", all starting on SF7 (at 250 kHz ADR can start at no other SF),"),
+        "{text}"
+    );
 }
 
 /// A run long enough to show its progress does so on a terminal (`script` gives it one, where

@@ -12,6 +12,8 @@ const words = (params: SwarmParams) => sfPlanWords(api.swarm({ drones: 6, durati
 test('a spread plan names the SFs it dealt, and why where it dealt fewer than it had drones for', () => {
   expect(words({})).toBe('SF7–SF12 in turn');
   expect(words({ drones: 2 })).toBe('SF7–SF8 in turn');
+  // Three drones take three SFs whatever the plan carries beyond them: no reason to give.
+  expect(words({ drones: 3, region: 'us915', bw: 125 })).toBe('SF7–SF9 in turn');
   expect(words({ region: 'us915', bw: 125 })).toBe('SF7–SF9 in turn (at 125 kHz US915 carries the frame at no other SF)');
   // ADR starts only at an EU868 data rate: at 250 kHz that is SF7's alone.
   expect(words({ adr: 'tracking' })).toBe('all starting on SF7 (at 250 kHz ADR can start at no other SF)');

@@ -16,21 +16,21 @@ function untracked(r: SwarmReport): string {
 /** The swarm's SF plan as it dealt the SFs: "all on SF9" (`fixed`), or a `spread` plan's SFs
  * one after another, "SF7–SF12 in turn"; with ADR, where the drones started ("all starting on
  * SF9", "SF7–SF12 in turn at the start"). Where `spread` dealt fewer SFs than it had drones for,
- * it says why: "SF7–SF9 in turn (at 125 kHz US915 carries the frame at no other SF)", "all
- * starting on SF7 (at 250 kHz ADR can start at no other SF)". The note under the charts and the
- * slide's caption. */
-export function sfPlanWords(r: Pick<SwarmReport, 'drones' | 'config'>): string {
+ * it says why (the core's `sfLimit`, which the CLI's header says too): "SF7–SF9 in turn (at
+ * 125 kHz US915 carries the frame at no other SF)", "all starting on SF7 (at 250 kHz ADR can
+ * start at no other SF)". The note under the charts and the slide's caption. */
+export function sfPlanWords(r: Pick<SwarmReport, 'drones' | 'config' | 'sfLimit'>): string {
   const adr = r.config.adr !== 'off';
   const sfs = r.config.sfPlan === 'spread' ? [...new Set(r.drones.map((d) => d.sf))].sort((a, b) => a - b) : [r.config.sf];
-  if (sfs.length < 2) return `all ${adr ? 'starting ' : ''}on SF${sfs[0]}${why(r, sfs)}`;
+  if (sfs.length < 2) return `all ${adr ? 'starting ' : ''}on SF${sfs[0]}${why(r)}`;
   const run = sfs.every((sf, i) => sf === sfs[0] + i);
-  return `${run ? `SF${sfs[0]}–SF${sfs[sfs.length - 1]}` : sfs.map((sf) => `SF${sf}`).join(', ')} in turn${why(r, sfs)}${adr ? ' at the start' : ''}`;
+  return `${run ? `SF${sfs[0]}–SF${sfs[sfs.length - 1]}` : sfs.map((sf) => `SF${sf}`).join(', ')} in turn${adr ? ' at the start' : ''}${why(r)}`;
 }
 
-/** Why a `spread` plan dealt only `sfs`, where it had drones for more; else nothing. */
-function why(r: Pick<SwarmReport, 'drones' | 'config'>, sfs: number[]): string {
-  if (r.config.sfPlan !== 'spread' || sfs.length >= Math.min(r.drones.length, 6)) return '';
-  const limit = r.config.adr !== 'off' ? 'ADR can start' : `${plan(r.config.region).label} carries the frame`;
+/** Why a `spread` plan dealt fewer SFs than it had drones for; else nothing. */
+function why(r: Pick<SwarmReport, 'config' | 'sfLimit'>): string {
+  if (r.sfLimit === null) return '';
+  const limit = r.sfLimit === 'adr' ? 'ADR can start' : `${plan(r.config.region).label} carries the frame`;
   return ` (at ${r.config.bw} kHz ${limit} at no other SF)`;
 }
 

@@ -924,6 +924,8 @@ aloha10: number,
  */
 slotted: number, };
 
+export type SfLimit = "adr" | "region";
+
 export type SwarmEcho = Scenario & { 
 /**
  * The one station every drone's ground station ran.
@@ -950,6 +952,12 @@ collisionRate: number,
  * a group is every drone that sent at that SF, at the share of its time it was on air there.
  */
 collisionRateTheory: number, 
+/**
+ * Why the `spread` SF plan dealt fewer SFs than the swarm had drones for (`"adr"`,
+ * `"region"`; `null` where it dealt each drone its own up to six): the drones' `sf` say
+ * which it dealt.
+ */
+sfLimit: SfLimit | null, 
 /**
  * The schedule's longest frame, s: the slowest drone's sending interval (`null` for
  * ALOHA).

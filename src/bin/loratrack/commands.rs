@@ -846,17 +846,20 @@ fn swarm_text(r: &SwarmReport) -> String {
 }
 
 /// The SFs the drones were dealt, as the page's swarm note says them: "SF7-SF12 in turn" (drone
-/// i on the plan's SF i mod n), "SF7-SF9 in turn" where the region's plan carries no more, "all
-/// on SF9"; with ADR, where they started.
+/// i on the plan's SF i mod n), "all on SF9"; with ADR, where they started; and why where
+/// `spread` dealt fewer than it had drones for (the core's `sf_limit`): "SF7-SF9 in turn (at
+/// 125 kHz US915 carries the frame at no other SF)", "all starting on SF7 (at 250 kHz ADR can
+/// start at no other SF)".
 fn sf_plan_text(r: &SwarmReport) -> String {
     let mut sfs: Vec<u8> = r.drones.iter().map(|d| d.sf).collect();
     sfs.sort_unstable();
     sfs.dedup();
-    let adr = r.config.settings.network.adr != loratrack::AdrMode::Off;
+    let settings = &r.config.settings;
+    let adr = settings.network.adr != loratrack::AdrMode::Off;
     let all_on = if adr { "all starting on" } else { "all on" };
     let dealt = match sfs.as_slice() {
-        [] => format!("{all_on} SF{}", r.config.settings.radio.sf),
-        [sf] => return format!("{all_on} SF{sf}"),
+        [] => format!("{all_on} SF{}", settings.radio.sf),
+        [sf] => format!("{all_on} SF{sf}"),
         [first, .., last] if usize::from(last - first) + 1 == sfs.len() => {
             format!("SF{first}-SF{last} in turn")
         }
@@ -865,11 +868,22 @@ fn sf_plan_text(r: &SwarmReport) -> String {
             format!("{} in turn", names.join(", "))
         }
     };
-    if adr && sfs.len() > 1 {
-        format!("{dealt} at the start")
+    let start = if adr && sfs.len() > 1 {
+        " at the start"
     } else {
-        dealt
-    }
+        ""
+    };
+    let why = match r.sf_limit {
+        Some(loratrack::SfLimit::Adr) => "ADR can start".to_string(),
+        Some(loratrack::SfLimit::Region) => {
+            format!("{} carries the frame", settings.access.region.label())
+        }
+        None => return format!("{dealt}{start}"),
+    };
+    format!(
+        "{dealt}{start} (at {} kHz {why} at no other SF)",
+        settings.radio.bw
+    )
 }
 
 /// With ADR, where the swarm's packets went: "  (ADR sent them at SF7 61 %, SF8 39 %)"; empty

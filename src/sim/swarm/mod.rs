@@ -9,9 +9,11 @@
 //! from the centre at bearing 360°·i/N — so one drone flies exactly as `simulate` places it.
 
 mod report;
+mod sf_plan;
 mod shared_runs;
 
 pub use report::{DroneReport, LargestSwarm, SwarmEcho, SwarmReport};
+pub use sf_plan::SfLimit;
 pub use shared_runs::SharedDroneRuns;
 
 use super::drone::{DroneFilter, Estimates, Sensing};
@@ -20,7 +22,7 @@ use super::network::{run_episode, Network};
 use super::pooled::{airtime, RateTally};
 use super::radio::DroneRadio;
 use super::report::{ratio, Delivery, Energy};
-use super::scenario::{SfPlan, SyntheticChoice, TrajectorySource, Validated};
+use super::scenario::{SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::{self, aloha_collision_rate, Airtime, Schedule, Slot};
 use super::sender::LeanPayload;
 use super::simulator::load_flights;
@@ -35,6 +37,7 @@ use crate::parallel::par_map;
 use crate::rng::Rng;
 use crate::trajectory::{chain_flights, Trajectory};
 use core::f64::consts::TAU;
+use sf_plan::SfDeal;
 use std::sync::Arc;
 
 /// Drones whose stations are computed between two progress reports.
@@ -115,33 +118,6 @@ fn plan(cfg: &Validated) -> Result<Plan, SimError> {
     Ok(Plan { flights, episodes })
 }
 
-/// The spreading factors the swarm deals out in turn, drone i taking entry i mod its length:
-/// `fixed`, `sf` alone; `spread`, those of SF7..SF12 at which the plan carries `model`'s frame at
-/// the swarm's bandwidth, as a network server would assign them ([`Validated::drone_radio`]: in
-/// EU868 all six; US915 at 125 kHz SF7..SF9 for the 12-byte payload, SF10's frame being over the
-/// dwell time). Where none does, `sf`, which the plan then refuses with its reason.
-fn swarm_sfs(cfg: &Validated, model: StationModel) -> Vec<i64> {
-    let s = cfg.s();
-    let carried = |sf: i64| {
-        LoraParams::from_settings(sf, s.radio.bw, s.radio.cr)
-            .is_ok_and(|radio| cfg.drone_radio(&radio, model).is_ok())
-    };
-    let spread: Vec<i64> = match s.swarm.sf_plan {
-        SfPlan::Spread => (7..=12).filter(|&sf| carried(sf)).collect(),
-        SfPlan::Fixed => Vec::new(),
-    };
-    if spread.is_empty() {
-        vec![s.radio.sf]
-    } else {
-        spread
-    }
-}
-
-/// The spreading factor of drone `i`, of the swarm's [`swarm_sfs`].
-fn sf_of(sfs: &[i64], i: usize) -> i64 {
-    sfs[i % sfs.len()]
-}
-
 /// Runs the swarm, calling `progress(done, total)` as episodes run and stations complete. The
 /// two halves weigh alike (each is about half a swarm's work: the drones' filters in the loop,
 /// their stations after it): each episode counts `drones` units, by its clock, and each drone's
@@ -191,7 +167,7 @@ struct Swarm<'a> {
     cfg: &'a Validated,
     plan: Plan,
     model: StationModel,
-    sfs: Vec<i64>,
+    deal: SfDeal,
     kits: Vec<Kit>,
     /// A slotted schedule's longest period, s.
     frame_length: Option<f64>,
@@ -228,11 +204,11 @@ impl<'a> Swarm<'a> {
         let model = cfg.swarm_station()?;
         let plan = plan(cfg)?;
         check_length(cfg, &plan)?;
-        let sfs = swarm_sfs(cfg, model);
+        let deal = SfDeal::of(cfg, model);
         let mut radios = Vec::with_capacity(s.swarm.drones);
         let mut duty_cycles = Vec::with_capacity(s.swarm.drones);
         for i in 0..s.swarm.drones {
-            let radio = LoraParams::from_settings(sf_of(&sfs, i), s.radio.bw, s.radio.cr)?;
+            let radio = LoraParams::from_settings(deal.sf_of(i), s.radio.bw, s.radio.cr)?;
             let (r, duty_cycle) = cfg.drone_radio(&radio, model)?;
             cfg.check_heartbeat(&r.current())?;
             radios.push(r);
@@ -257,7 +233,7 @@ impl<'a> Swarm<'a> {
             cfg,
             plan,
             model,
-            sfs,
+            deal,
             kits,
             frame_length,
             payload: cfg.lean_payload(model.sent_model()),
@@ -423,7 +399,7 @@ impl<'a> Swarm<'a> {
         let received = mine.iter().filter(|t| t.received).count();
         DroneReport {
             id: i,
-            sf: sf_of(&self.sfs, i) as u8,
+            sf: self.deal.sf_of(i) as u8,
             bearing_deg: plan.episodes[0][i].bearing.to_degrees(),
             channel_use,
             data_rate_use: rates.into_vec(),
@@ -448,7 +424,7 @@ impl<'a> Swarm<'a> {
     fn report(&self, net: &Network, scored: Scored<'_>) -> Result<SwarmReport, SimError> {
         let (cfg, model) = (self.cfg, self.model);
         let bytes = model.payload_bytes() + cfg.s().radio.overhead;
-        let largest_swarm = largest_swarm(cfg, &self.sfs, bytes)?;
+        let largest_swarm = largest_swarm(cfg, &self.deal, bytes)?;
         let Scored {
             drones,
             mut errors,
@@ -465,6 +441,7 @@ impl<'a> Swarm<'a> {
                 station: model,
                 bandwidth_khz: s.radio.bw,
             },
+            sf_limit: self.deal.limit,
             frame_length: self.frame_length,
             largest_swarm,
             lbt_deferrals: None,
@@ -568,12 +545,13 @@ fn check_length(cfg: &Validated, plan: &Plan) -> Result<(), SimError> {
     Ok(())
 }
 
-/// [`LargestSwarm`] at `cfg`'s settings, the swarm dealing out `sfs`, for packets of `bytes`.
-fn largest_swarm(cfg: &Validated, sfs: &[i64], bytes: usize) -> Result<LargestSwarm, SimError> {
+/// [`LargestSwarm`] at `cfg`'s settings, the swarm dealing out `deal`'s SFs, for packets of
+/// `bytes`.
+fn largest_swarm(cfg: &Validated, deal: &SfDeal, bytes: usize) -> Result<LargestSwarm, SimError> {
     let s = cfg.s();
     let timing = s.access.swarm_timing();
     let (mut toa, mut interval, mut used) = ([0.0; 6], [0.0; 6], [0.0; 6]);
-    for &sf in sfs {
+    for &sf in &deal.sfs {
         let radio = LoraParams::from_settings(sf, s.radio.bw, s.radio.cr)?;
         let k = (sf - 7) as usize;
         toa[k] = time_on_air(&radio, bytes)?.time_on_air;
@@ -581,7 +559,7 @@ fn largest_swarm(cfg: &Validated, sfs: &[i64], bytes: usize) -> Result<LargestSw
         // A random delay of up to J s lengthens the mean interval by J / 2.
         used[k] = toa[k] / (interval[k] + timing.jitter / 2.0);
     }
-    let sf_of = |i: usize| sf_of(sfs, i) as u8;
+    let sf_of = |i: usize| deal.sf_of(i) as u8;
     let ch = cfg.channels;
     Ok(LargestSwarm {
         aloha1: schedule::largest_aloha(sf_of, &toa, &used, ch, 0.01),

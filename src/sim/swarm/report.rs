@@ -1,5 +1,6 @@
 //! The output of `swarm`.
 
+use super::SfLimit;
 use crate::metrics::{Summary, WholeFlightError};
 use crate::sim::caveats::Caveats;
 use crate::sim::report::{DataRateUse, Delivery, Energy};
@@ -67,6 +68,11 @@ pub struct SwarmReport {
     /// for senders at random phases without capture or inter-SF effects (one gateway). With ADR
     /// a group is every drone that sent at that SF, at the share of its time it was on air there.
     pub collision_rate_theory: f64,
+    /// Why the `spread` SF plan dealt fewer SFs than the swarm had drones for (`"adr"`,
+    /// `"region"`; `null` where it dealt each drone its own up to six): the drones' `sf` say
+    /// which it dealt.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "SfLimit | null"))]
+    pub sf_limit: Option<SfLimit>,
     /// The schedule's longest frame, s: the slowest drone's sending interval (`null` for
     /// ALOHA).
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
