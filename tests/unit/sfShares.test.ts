@@ -23,3 +23,7 @@ test('SF7 at both bandwidths counts as one SF: their frames meet', () => {
 test('a swarm that stayed on one SF says so', () => {
   expect(sfShares({ drones: [drone([0, 0, 0, 0, 0, 4]), drone([0, 0, 0, 0, 0, 2])] })).toBe('SF12 100 %');
 });
+
+test('a half per cent rounds up, as the CLI rounds it (`share_words`): 1 packet of 8 is 13 %', () => {
+  expect(sfShares({ drones: [drone([1, 7, 0, 0, 0, 0])] })).toBe('SF7 13 %, SF8 88 %');
+});

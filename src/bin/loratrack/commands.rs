@@ -896,16 +896,23 @@ fn sf_shares(r: &SwarmReport) -> String {
     for u in r.drones.iter().flat_map(|d| &d.data_rate_use) {
         sent[usize::from(u.sf - 7)] += u.packets;
     }
+    format!("  (ADR sent them at {})", share_words(sent))
+}
+
+/// The packets `sent` at SF7..SF12 as shares: "SF7 61 %, SF8 39 %", an SF with none left out,
+/// one with under half a per cent "<1 %". Halves round up, as the page's note rounds them
+/// (`toFixed`), where Rust's formatting rounds them to even: 1 packet of 8 is 13 % in both.
+fn share_words(sent: [usize; 6]) -> String {
     let total = sent.iter().sum::<usize>().max(1) as f64;
     let shares: Vec<String> = (7..)
         .zip(sent)
         .filter(|&(_, n)| n > 0)
         .map(|(sf, n)| match 100.0 * n as f64 / total {
             share if share < 0.5 => format!("SF{sf} <1 %"),
-            share => format!("SF{sf} {share:.0} %"),
+            share => format!("SF{sf} {} %", share.round()),
         })
         .collect();
-    format!("  (ADR sent them at {})", shares.join(", "))
+    shares.join(", ")
 }
 
 /// A share as "78.2 %", or a dash.
@@ -1140,6 +1147,13 @@ mod tests {
 
     /// `simulate`'s first line names the ADR that moves the rate it states, with LoRaWAN's
     /// settings; a fixed rate's says nothing more.
+    #[test]
+    fn adr_shares_round_halves_up_as_the_page_does() {
+        // 12.5 % and 87.5 %: formatted with {:.0}, Rust would say 12 % and 88 %.
+        assert_eq!(share_words([1, 7, 0, 0, 0, 0]), "SF7 13 %, SF8 88 %");
+        assert_eq!(share_words([0, 0, 999, 1, 0, 0]), "SF9 100 %, SF10 <1 %");
+    }
+
     #[test]
     fn simulates_header_names_the_adr_that_moves_its_rate() {
         let mut net = Scenario::default().network;
