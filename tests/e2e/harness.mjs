@@ -37,6 +37,11 @@ export function nativeJson(args) {
   return JSON.parse(execFileSync(cliPath(), [...args, '--json'], { cwd: root, encoding: 'utf8', maxBuffer: 256 << 20 }));
 }
 
+/** The native CLI's text output for `args`, as a person reads it in a terminal. */
+export function nativeText(args) {
+  return execFileSync(cliPath(), args, { cwd: root, encoding: 'utf8', maxBuffer: 256 << 20 });
+}
+
 /** The JSON of a `loratrack …` command line (the page's "Copy command") as a POSIX shell runs it,
  * in `cwd` (where the files it names are), the native CLI standing for `loratrack`. */
 export function commandJson(line, cwd = root) {

@@ -34,13 +34,11 @@ function why(r: Pick<SwarmReport, 'config' | 'sfLimit'>): string {
   return ` (at ${r.config.bw} kHz ${limit} at no other SF)`;
 }
 
-/** Where a swarm's packets went, by SF: "SF7 61 %, SF8 30 %, SF9 9 %, SF10 <1 %" (SFs with none
- * left out). */
-export function sfShares(r: Pick<SwarmReport, 'drones'>): string {
-  const sent = [0, 0, 0, 0, 0, 0];
-  for (const u of r.drones.flatMap((d) => d.dataRateUse)) sent[u.sf - 7] += u.packets;
-  const total = sent.reduce((a, b) => a + b, 0);
-  return sent
+/** Where a swarm's packets went, by SF (the core's `packetsBySf`): "SF7 61 %, SF8 30 %, SF9 9 %,
+ * SF10 <1 %" (SFs with none left out; halves round up, as the CLI's `share_words` rounds them). */
+export function sfShares(r: Pick<SwarmReport, 'packetsBySf'>): string {
+  const total = r.packetsBySf.reduce((a, b) => a + b, 0);
+  return r.packetsBySf
     .map((n, k) => ({ n, sf: k + 7 }))
     .filter(({ n }) => n > 0)
     .map(({ n, sf }) => `SF${sf} ${(100 * n) / total < 0.5 ? '<1' : ((100 * n) / total).toFixed(0)} %`)

@@ -996,6 +996,12 @@ packetsNoDemodulator: number,
  */
 leanPackets: number, 
 /**
+ * Packets sent at SF7..SF12, every drone's summed: each drone's SF, or with ADR the SFs the
+ * network moved it to (the drones' `dataRateUse`, SF7 at either bandwidth as one). The
+ * CLI's "ADR sent them at" and the page's note give these as shares.
+ */
+packetsBySf: number[], 
+/**
  * Seconds on air, all drones.
  */
 airtime: number, 

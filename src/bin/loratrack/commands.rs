@@ -892,11 +892,7 @@ fn sf_shares(r: &SwarmReport) -> String {
     if r.config.settings.network.adr == loratrack::AdrMode::Off {
         return String::new();
     }
-    let mut sent = [0usize; 6];
-    for u in r.drones.iter().flat_map(|d| &d.data_rate_use) {
-        sent[usize::from(u.sf - 7)] += u.packets;
-    }
-    format!("  (ADR sent them at {})", share_words(sent))
+    format!("  (ADR sent them at {})", share_words(r.packets_by_sf))
 }
 
 /// The packets `sent` at SF7..SF12 as shares: "SF7 61 %, SF8 39 %", an SF with none left out,

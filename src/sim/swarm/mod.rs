@@ -434,6 +434,7 @@ impl<'a> Swarm<'a> {
         let s = cfg.s();
         let count = |o: Outcome| tx.iter().filter(|t| t.outcome == o).count();
         let packets_sent = tx.len();
+        let packets_by_sf = packets_by_sf(&drones);
         let received = count(Outcome::Received);
         Ok(SwarmReport {
             config: SwarmEcho {
@@ -447,7 +448,7 @@ impl<'a> Swarm<'a> {
             lbt_deferrals: None,
             lbt_collisions_avoided: None,
             collision_rate: ratio(count(Outcome::Collided), packets_sent),
-            collision_rate_theory: collision_theory(&drones, cfg.channels),
+            collision_rate_theory: collision_theory(&drones, &packets_by_sf, cfg.channels),
             delivery: Delivery {
                 packets_sent,
                 packets_received: received,
@@ -459,6 +460,7 @@ impl<'a> Swarm<'a> {
             packets_below_sensitivity: count(Outcome::BelowSensitivity),
             packets_no_demodulator: count(Outcome::NoDemodulator),
             lean_packets: tx.iter().filter(|t| t.payload.is_some()).count(),
+            packets_by_sf,
             airtime: airtime(tx.iter().copied()),
             error3d: Summary::of(&mut errors),
             whole_flight: WholeFlightError::of_sorted(&errors, untracked),
@@ -491,26 +493,30 @@ fn mean_energy(drones: &[DroneReport]) -> Energy {
     }
 }
 
+/// The packets `drones` sent at SF7..SF12 ([`SwarmReport::packets_by_sf`]).
+fn packets_by_sf(drones: &[DroneReport]) -> [usize; 6] {
+    let mut sent = [0; 6];
+    for u in drones.iter().flat_map(|d| &d.data_rate_use) {
+        sent[usize::from(u.sf - 7)] += u.packets;
+    }
+    sent
+}
+
 /// Pure ALOHA's collision rate for `drones` on `channels` channels: per SF group at the duty
-/// cycle the group achieved, weighted by the packets each group sent (reference §10). A group
+/// cycle the group achieved, weighted by the packets each group sent (`by_sf`; reference §10). A group
 /// is the drones at that SF and, with ADR, every drone that sent there, each at the share of
 /// its time on air at that SF.
-fn collision_theory(drones: &[DroneReport], channels: u8) -> f64 {
+fn collision_theory(drones: &[DroneReport], by_sf: &[usize; 6], channels: u8) -> f64 {
     let mut theory = 0.0;
-    for sf in 7..=12u8 {
+    for (sf, &packets) in (7..=12u8).zip(by_sf) {
         let k = usize::from(sf - 7);
-        let at_sf = |d: &DroneReport| -> usize {
-            let at = d.data_rate_use.iter().filter(|u| u.sf == sf);
-            at.map(|u| u.packets).sum()
-        };
         let group: Vec<&DroneReport> = drones
             .iter()
-            .filter(|d| d.sf == sf || at_sf(d) > 0)
+            .filter(|d| d.sf == sf || d.data_rate_use.iter().any(|u| u.sf == sf && u.packets > 0))
             .collect();
         if group.is_empty() {
             continue;
         }
-        let packets: usize = group.iter().map(|d| at_sf(d)).sum();
         let used = group.iter().map(|d| d.duty_cycle_by_sf[k]).sum::<f64>() / group.len() as f64;
         theory += packets as f64 * aloha_collision_rate(used, channels, group.len());
     }
@@ -644,23 +650,39 @@ mod tests {
         }
     }
 
+    /// [`collision_theory`] of `drones`, with their packets by SF as the report sums them.
+    fn theory(drones: &[DroneReport], channels: u8) -> f64 {
+        collision_theory(drones, &packets_by_sf(drones), channels)
+    }
+
+    #[test]
+    fn packets_by_sf_count_every_drone_and_sf7_at_either_bandwidth_as_one() {
+        let mut both = drone(7, 4, 0.01);
+        let mut wide = use_at(7, 1);
+        wide.bw = 250.0;
+        both.data_rate_use = vec![use_at(7, 3), wide];
+        let mut moved = drone(7, 5, 0.01);
+        moved.data_rate_use = vec![use_at(12, 1), use_at(8, 4)];
+        assert_eq!(packets_by_sf(&[both, moved]), [4, 4, 0, 0, 0, 1]);
+    }
+
     #[test]
     fn the_collision_theory_is_alohas_per_sf_group_weighted_by_packets() {
         // One group: pure ALOHA at the group's mean duty cycle.
         let one = [drone(7, 10, 0.01), drone(7, 30, 0.03)];
         let expected = aloha_collision_rate(0.02, 1, 2);
-        assert!((collision_theory(&one, 1) - expected).abs() < 1e-15);
+        assert!((theory(&one, 1) - expected).abs() < 1e-15);
         // Two groups do not collide with each other: each group's rate, weighted by its packets.
         let two = [drone(7, 10, 0.01), drone(7, 10, 0.01), drone(9, 30, 0.01)];
         let sf7 = aloha_collision_rate(0.01, 1, 2);
         let sf9 = aloha_collision_rate(0.01, 1, 1);
         assert_eq!(sf9, 0.0, "a drone alone on its SF collides with no one");
-        let mixed = collision_theory(&two, 1);
+        let mixed = theory(&two, 1);
         assert!((mixed - (20.0 * sf7 + 30.0 * sf9) / 50.0).abs() < 1e-15);
         assert!(mixed < sf7);
         // More channels, fewer collisions; no packets, no rate.
-        assert!(collision_theory(&one, 3) < collision_theory(&one, 1));
-        assert_eq!(collision_theory(&[drone(7, 0, 0.0)], 1), 0.0);
+        assert!(theory(&one, 3) < theory(&one, 1));
+        assert_eq!(theory(&[drone(7, 0, 0.0)], 1), 0.0);
     }
 
     #[test]
@@ -674,9 +696,9 @@ mod tests {
         let sf7 = aloha_collision_rate(0.015, 1, 2);
         // On SF8 it is alone: no collision there.
         let expected = 30.0 * sf7 / 40.0;
-        let theory = collision_theory(&[stayed.clone(), moved], 1);
-        assert!((theory - expected).abs() < 1e-15, "{theory} vs {expected}");
+        let rate = theory(&[stayed.clone(), moved], 1);
+        assert!((rate - expected).abs() < 1e-15, "{rate} vs {expected}");
         // Counted by the SF they started at, both would share SF7 at 2 %: a higher rate.
-        assert!(theory < collision_theory(&[stayed.clone(), stayed], 1));
+        assert!(rate < theory(&[stayed.clone(), stayed], 1));
     }
 }

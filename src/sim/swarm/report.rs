@@ -101,6 +101,11 @@ pub struct SwarmReport {
     pub packets_no_demodulator: usize,
     /// Packets sent with a smaller payload than the station's model sends (`--payload lean`).
     pub lean_packets: usize,
+    /// Packets sent at SF7..SF12, every drone's summed: each drone's SF, or with ADR the SFs the
+    /// network moved it to (the drones' `dataRateUse`, SF7 at either bandwidth as one). The
+    /// CLI's "ADR sent them at" and the page's note give these as shares.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number[]"))]
+    pub packets_by_sf: [usize; 6],
     /// Seconds on air, all drones.
     pub airtime: f64,
     /// Every drone's errors pooled, m (after each episode's first packet).
