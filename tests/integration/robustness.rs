@@ -789,6 +789,25 @@ fn a_swarm_header_says_what_each_drone_flies_on_which_sfs_and_why_spread_dealt_f
         ),
         "{text}"
     );
+    // Without a duty cycle a drone sends at the interval set, which SF12's frame outlasts.
+    let india = cli(&[
+        "swarm",
+        "--drones",
+        "6",
+        "--duration",
+        "60",
+        "--region",
+        "in865",
+        "--bw",
+        "125",
+    ]);
+    let text = String::from_utf8_lossy(&india.stdout);
+    assert!(
+        text.contains(
+            ", SF7-SF11 in turn (at 125 kHz a slower SF's frame outlasts the 1 s interval set),"
+        ),
+        "{text}"
+    );
     // ADR starts at a data rate, and at 250 kHz EU868 has one at SF7 alone.
     let adr = cli(&[
         "swarm",

@@ -18,7 +18,8 @@ function untracked(r: SwarmReport): string {
  * SF9", "SF7–SF12 in turn at the start"). Where `spread` dealt fewer SFs than it had drones for,
  * it says why (the core's `sfLimit`, which the CLI's header says too): "SF7–SF9 in turn (at
  * 125 kHz US915 carries the frame at no other SF)", "all starting on SF7 (at 250 kHz ADR can
- * start at no other SF)". The note under the charts and the slide's caption. */
+ * start at no other SF)", "SF7–SF11 in turn (at 125 kHz a slower SF’s frame outlasts the 1 s
+ * interval set)". The note under the charts and the slide's caption. */
 export function sfPlanWords(r: Pick<SwarmReport, 'drones' | 'config' | 'sfLimit'>): string {
   const adr = r.config.adr !== 'off';
   const sfs = r.config.sfPlan === 'spread' ? [...new Set(r.drones.map((d) => d.sf))].sort((a, b) => a - b) : [r.config.sf];
@@ -29,9 +30,17 @@ export function sfPlanWords(r: Pick<SwarmReport, 'drones' | 'config' | 'sfLimit'
 
 /** Why a `spread` plan dealt fewer SFs than it had drones for; else nothing. */
 function why(r: Pick<SwarmReport, 'config' | 'sfLimit'>): string {
-  if (r.sfLimit === null) return '';
-  const limit = r.sfLimit === 'adr' ? 'ADR can start' : `${plan(r.config.region).label} carries the frame`;
-  return ` (at ${r.config.bw} kHz ${limit} at no other SF)`;
+  const at = `at ${r.config.bw} kHz`;
+  switch (r.sfLimit) {
+    case null:
+      return '';
+    case 'adr':
+      return ` (${at} ADR can start at no other SF)`;
+    case 'region':
+      return ` (${at} ${plan(r.config.region).label} carries the frame at no other SF)`;
+    case 'interval':
+      return ` (${at} a slower SF’s frame outlasts the ${r.config.interval ?? DEFAULTS.interval} s interval set)`;
+  }
 }
 
 /** Where a swarm's packets went, by SF (the core's `packetsBySf`): "SF7 61 %, SF8 30 %, SF9 9 %,

@@ -924,7 +924,7 @@ aloha10: number,
  */
 slotted: number, };
 
-export type SfLimit = "adr" | "region";
+export type SfLimit = "adr" | "region" | "interval";
 
 export type SwarmEcho = Scenario & { 
 /**

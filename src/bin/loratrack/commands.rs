@@ -849,7 +849,8 @@ fn swarm_text(r: &SwarmReport) -> String {
 /// i on the plan's SF i mod n), "all on SF9"; with ADR, where they started; and why where
 /// `spread` dealt fewer than it had drones for (the core's `sf_limit`): "SF7-SF9 in turn (at
 /// 125 kHz US915 carries the frame at no other SF)", "all starting on SF7 (at 250 kHz ADR can
-/// start at no other SF)".
+/// start at no other SF)", "SF7-SF11 in turn (at 125 kHz a slower SF's frame outlasts the 1 s
+/// interval set)".
 fn sf_plan_text(r: &SwarmReport) -> String {
     let mut sfs: Vec<u8> = r.drones.iter().map(|d| d.sf).collect();
     sfs.sort_unstable();
@@ -873,17 +874,23 @@ fn sf_plan_text(r: &SwarmReport) -> String {
     } else {
         ""
     };
+    let bw = settings.radio.bw;
     let why = match r.sf_limit {
-        Some(loratrack::SfLimit::Adr) => "ADR can start".to_string(),
-        Some(loratrack::SfLimit::Region) => {
-            format!("{} carries the frame", settings.access.region.label())
-        }
+        Some(loratrack::SfLimit::Adr) => format!("at {bw} kHz ADR can start at no other SF"),
+        Some(loratrack::SfLimit::Region) => format!(
+            "at {bw} kHz {} carries the frame at no other SF",
+            settings.access.region.label()
+        ),
+        Some(loratrack::SfLimit::Interval) => format!(
+            "at {bw} kHz a slower SF's frame outlasts the {} s interval set",
+            settings
+                .access
+                .interval
+                .unwrap_or(loratrack::options::INTERVAL.default)
+        ),
         None => return format!("{dealt}{start}"),
     };
-    format!(
-        "{dealt}{start} (at {} kHz {why} at no other SF)",
-        settings.radio.bw
-    )
+    format!("{dealt}{start} ({why})")
 }
 
 /// With ADR, where the swarm's packets went: "  (ADR sent them at SF7 61 %, SF8 39 %)"; empty

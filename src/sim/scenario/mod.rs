@@ -354,7 +354,8 @@ pub enum SfPlan {
     /// SF7..SF12 in turn (drone i gets SF 7 + i mod 6), the paper's suggestion for up to 72
     /// drones; of these, those at which the plan carries the station's frame at the bandwidth
     /// (a data rate, its payload limit, the dwell time: US915 at 125 kHz SF7..SF10 for DR's
-    /// 9-byte payload, SF7..SF9 for the 12-byte one).
+    /// 9-byte payload, SF7..SF9 for the 12-byte one) and, where the plan has no duty cycle, whose
+    /// frame fits in the interval set; the report's `sfLimit` says which rule left SFs out.
     #[default]
     Spread,
     /// Every drone at `sf`.
@@ -380,7 +381,7 @@ pub struct SwarmSettings {
             long,
             value_enum,
             default_value_t,
-            help = "Spreading factors: spread (SF7..SF12 in turn, a sixth of the swarm each; where a data rate is needed, outside EU868 or with --adr, those whose data rate at --bw carries the station's frame: with --adr at 250 kHz SF7 alone) or fixed (everyone at --sf)."
+            help = "Spreading factors: spread (SF7..SF12 in turn, a sixth of the swarm each; where a data rate is needed, outside EU868 or with --adr, those whose data rate at --bw carries the station's frame: with --adr at 250 kHz SF7 alone; where the plan has no duty cycle, those whose frame fits in --interval; the header says why it dealt fewer) or fixed (everyone at --sf)."
         )
     )]
     pub sf_plan: SfPlan,

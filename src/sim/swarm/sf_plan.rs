@@ -20,6 +20,10 @@ pub enum SfLimit {
     /// (a data rate, its payload limit, the dwell time; reference §14): US915 at 125 kHz SF7–SF9
     /// for a 12-byte payload, SF10's frame being over 400 ms.
     Region,
+    /// The plan has no duty cycle, so a drone sends at the interval set, and the slower SFs'
+    /// frames last longer than that interval (IN865 at 125 kHz and the default 1 s: SF12's
+    /// 25-byte frame takes 1.48 s).
+    Interval,
 }
 
 /// The SFs a swarm deals out in turn, drone i taking entry i mod their number.
@@ -54,6 +58,9 @@ impl SfDeal {
             match carried {
                 Ok(_) => sfs.push(sf),
                 Err(SimError::AdrStart(..)) => limit = Some(SfLimit::Adr),
+                Err(SimError::Parameter("interval", ..)) => {
+                    limit = limit.or(Some(SfLimit::Interval))
+                }
                 Err(_) => limit = limit.or(Some(SfLimit::Region)),
             }
         }
@@ -105,6 +112,25 @@ mod tests {
     fn adr_at_250_khz_starts_every_drone_on_sf7_for_want_of_other_data_rates() {
         let d = deal(|s| s.network.adr = crate::lora::AdrMode::Tracking);
         assert_eq!((d.sfs, d.limit), (vec![7], Some(SfLimit::Adr)));
+    }
+
+    #[test]
+    fn without_a_duty_cycle_the_interval_set_bars_the_sfs_whose_frames_outlast_it() {
+        // IN865 carries every SF at 125 kHz, but SF12's frame outlasts the default 1 s.
+        let d = deal(|s| {
+            s.access.region = crate::lora::Region::In865;
+            s.radio.bw = 125.0;
+        });
+        assert_eq!(
+            (d.sfs, d.limit),
+            (vec![7, 8, 9, 10, 11], Some(SfLimit::Interval))
+        );
+        let longer = deal(|s| {
+            s.access.region = crate::lora::Region::In865;
+            s.radio.bw = 125.0;
+            s.access.interval = Some(5.0);
+        });
+        assert_eq!((longer.sfs.len(), longer.limit), (6, None));
     }
 
     #[test]
