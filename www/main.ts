@@ -512,7 +512,7 @@ async function renderSfs(sweep: { sf: number; report?: SimReport }[], asked: Mod
     const ran = r?.results ?? [];
     const refused = asked.filter((model) => !ran.some((m) => m.model === model));
     return [
-      ...ran.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived, few: m.caveats.fewPackets, wholeFlight: m.wholeFlight })),
+      ...ran.map((m) => ({ sf, model: m.model, p75: m.error3d.p75, received: m.packetsReceived, sent: m.packetsSent, few: m.caveats.fewPackets, wholeFlight: m.wholeFlight })),
       ...refused.map((model) => ({ sf, model, p75: null, received: 0, few: false, wholeFlight: { tracked: 0, partlyTracked: false }, refused: true })),
     ];
   });
@@ -566,7 +566,7 @@ async function drawPanel(name: string, inputs: unknown, draw: (p: Awaited<Return
 }
 
 async function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): Promise<void> {
-  const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d, few: m.caveats.fewPackets })));
+  const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d, few: m.caveats.fewPackets, sent: m.packetsSent })));
   const received = sweep.flatMap(({ distance, report: r }) => r.results.filter((m) => m.error3d.count > 0).map((m) => ({ at: `${distance / 1000} km`, received: m.packetsReceived, few: m.caveats.fewPackets })));
   sweepRestsOn('distance', fewPacketsNote(received, 'Dashed boxes', made.flight), made, oneGatewayNote(made.gateways.length));
   // With ADR the runs start at the chosen rate and the network moves them (the SF chart's do not).
@@ -950,7 +950,7 @@ for (const button of document.querySelectorAll<HTMLButtonElement>('[data-downloa
     if (name === 'airtime-table') return void downloadAirtimePicture(button);
     const entry = charts[name];
     const saved = entry && saveSlide(button, entry.chart, `loratrack-${name}`, slide(entry.caption));
-    downloadWhy(button, saved ? '' : name === 'swarm' && !entry ? `Nothing to save yet: ${swarming ? 'the swarms are still running' : 'run a swarm first'}.` : !entry ? noResults() : 'Nothing to save: this chart has no data at these settings (no packet arrives).');
+    downloadWhy(button, saved ? '' : name === 'swarm' && !entry ? `Nothing to save yet: ${swarming ? 'the swarms are still running' : 'run a swarm first'}.` : !entry ? noResults() : 'Nothing to save: this chart has no data at these settings (no packet reached the station).');
   });
 }
 

@@ -151,6 +151,36 @@ test('a station none of whose packets arrived where another\'s did says "none" i
   assert.deepEqual(problems, []);
 });
 
+test('a drone that sends nothing within the flight says so, not that its packets were lost: no delivery share, no charge per uplink, "none sent" on the charts, as the CLI counts them', async () => {
+  // TTN's fair use (30 s on air a day) at SF12: one packet every ~71 minutes, none in 81 s.
+  const { page, problems } = await open('?sf=12&bw=125&fairUse=ttn');
+  await idle(page);
+  await page.waitForSelector('#chart-sf svg');
+  await page.waitForSelector('#chart-distance svg');
+  const cli = nativeJson(['simulate', '--synthetic', '1', '--sf', '12', '--bw', '125', '--fair-use', 'ttn']);
+  assert.ok(cli.results.every((m) => m.packetsSent === 0), 'a case where nothing is sent');
+  // "0 %" read as every packet lost, "0.00" as free uplinks.
+  assert.deepEqual(await page.locator('#results-table td[data-field="delivery"]').allTextContents(), cli.results.map(() => '—'));
+  assert.deepEqual(await page.locator('#results-table td[data-field="energy"]').allTextContents(), cli.results.map(() => '—'));
+  // The error chart said to move the gateway closer or raise the SF, neither of which sends sooner.
+  const note = await page.locator('#chart-error').textContent();
+  const every = Math.min(...cli.results.map((m) => m.interval)).toFixed(0);
+  assert.ok(note.includes(`No packet is sent on synthetic 1: at these settings the drone may send once every ${every} s`), note);
+  assert.ok(note.includes('at a faster data rate, or with Fair use off') && !note.includes('closer'), note);
+  // No distance sends a packet either: the distance chart says so in every column.
+  // (A column's text wraps in lines of its own: their words run together in textContent.)
+  const distance = await page.locator('#chart-distance svg text').allTextContents();
+  assert.equal(distance.filter((t) => t === 'nopacketsent').length, 6, distance.join(' | '));
+  assert.ok(!distance.some((t) => t.includes('arrives')), distance.join(' | '));
+  // The SF chart: "none sent" where the CLI sends nothing at that SF, "none arrives" nowhere.
+  const sent = [7, 8, 9, 10, 11, 12].map((sf) => nativeJson(['simulate', '--synthetic', '1', '--sf', `${sf}`, '--bw', '125', '--fair-use', 'ttn', '--seeds', '1']).results.reduce((n, m) => n + m.packetsSent, 0));
+  const silentSfs = await page.locator('#chart-sf svg text').evaluateAll((ts) => ts.filter((t) => /^none/.test(t.textContent ?? '')).map((t) => t.textContent));
+  assert.equal(silentSfs.length, sent.filter((n) => n === 0).length, `${silentSfs} / sent ${sent}`);
+  assert.ok(silentSfs.every((t) => t.replace(/\s/g, '') === 'nonesent'), silentSfs.join());
+  assert.deepEqual(await axe(page), []);
+  assert.deepEqual(problems, []);
+});
+
 test('the error-versus-distance chart draws the boxes over too few packets dashed, and its note names them, as the CLI flags them', async () => {
   // SF9 sends every 8 s or so: one 81 s flight gives about ten packets near the gateway, fewer beyond.
   const { page, problems } = await open('?sf=9');

@@ -682,6 +682,42 @@ fn held_out_judges_the_adr_rows_again_on_the_next_block_of_seeds() {
 }
 
 #[test]
+fn a_drone_that_sends_nothing_shows_its_interval_and_no_delivery_or_charge() {
+    // TTN's fair use at SF12: one packet every ~71 minutes, none in an 81 s flight. The table
+    // printed "NaNs" (the mean over no packets) where the page shows the rate's interval, and
+    // "0.0 %" delivered and 0.00 mC per uplink, as if every packet were lost and free.
+    let args = [
+        "simulate",
+        "--synthetic",
+        "1",
+        "--fair-use",
+        "ttn",
+        "--sf",
+        "12",
+        "--bw",
+        "125",
+        "--model",
+        "dr",
+    ];
+    let r = json(&[&args[..], &["--json"]].concat());
+    assert_eq!(r["results"][0]["packetsSent"], 0);
+    let interval = r["results"][0]["interval"].as_f64().unwrap();
+    let text = String::from_utf8_lossy(&cli(&args).stdout).into_owned();
+    let row = text
+        .lines()
+        .find(|l| l.starts_with("DR "))
+        .unwrap_or_default();
+    assert!(row.contains(&format!("{interval:.2}s")), "{row}");
+    assert!(row.ends_with(" -"), "no charge per uplink: {row}");
+    assert!(!text.contains("NaN"), "{text}");
+    assert!(
+        text.contains("0 of 0 packets delivered (none sent)"),
+        "{text}"
+    );
+    assert!(text.contains("energy DR        no uplink sent"), "{text}");
+}
+
+#[test]
 fn a_simulate_header_names_the_seeds_its_numbers_pool() {
     // It said "seed 1" above numbers pooled over three seeds.
     let text = |args: &[&str]| String::from_utf8_lossy(&cli(args).stdout).into_owned();

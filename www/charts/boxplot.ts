@@ -17,7 +17,13 @@ export interface BoxRow {
   /** Too few packets received to compare the stations (the core's `caveats.fewPackets`): a
    * dashed, paler box, which the note under the chart explains (`fewPacketsNote`). */
   few?: boolean;
+  /** Packets sent: 0 where the drone sent none within the flight (TTN's fair use at a slow rate),
+   * which the chart says instead of "no packet arrives", since no distance mends it. */
+  sent?: number;
 }
+
+/** Whether each of `rows` sent nothing. */
+const noneSent = (rows: { sent?: number }[]) => rows.length > 0 && rows.every((r) => r.sent === 0);
 
 export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width: number; yLabel?: string; log?: boolean }): SVGSVGElement | HTMLElement {
   const data = rows
@@ -28,13 +34,15 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
   const stations = [...new Set(rows.map((r) => r.model))];
   const models = stations.map((m) => MODEL_LABELS[m]);
   const groups = [...new Set(rows.map((r) => r.group))];
-  const empty = groups.filter((g) => !data.some((d) => d.group === g)).map((group) => ({ group }));
+  const empty = groups
+    .filter((g) => !data.some((d) => d.group === g))
+    .map((group) => ({ group, text: noneSent(rows.filter((r) => r.group === group)) ? 'no packet sent' : 'no packet arrives' }));
   // A station none of whose packets arrived where others' did: "none" in its place, not a gap
   // that reads as a station left out (the real flight at 5 km: one CTRA+ and one 3D-CTRA packet,
   // no DR packet).
   const none = rows
     .filter((r) => r.box.count === 0 && data.some((d) => d.group === r.group))
-    .map((r) => ({ group: r.group, label: MODEL_LABELS[r.model] }));
+    .map((r) => ({ group: r.group, label: MODEL_LABELS[r.model], why: r.sent === 0 ? 'no packet sent' : 'no packet arrived' }));
   const floor = opts.log ? logFloor(data) : {};
   const chart = Plot.plot({
     ...chartFrame(180),
@@ -50,10 +58,10 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
     marks: [
       // A group where nothing arrived says so instead of staying blank, wrapped within its own
       // column (on a phone a column is ~45 px, and one line ran over the boxes beside it).
-      Plot.text(empty, { fx: 'group', text: () => 'no packet arrives', lineWidth: groupEms(opts.width, groups.length), frameAnchor: 'middle', fill: NOTE_GREY, fontSize: chartFont() }),
+      Plot.text(empty, { fx: 'group', text: 'text', lineWidth: groupEms(opts.width, groups.length), frameAnchor: 'middle', fill: NOTE_GREY, fontSize: chartFont() }),
       // Upright from the axis (a slot is about a third of a group's column), the station named and
       // in the notes' grey: its colour would be small text at 3:1 contrast for DR and 3D-CTRA.
-      Plot.text(none, { fx: 'group', x: 'label', text: (d: { label: string }) => `${d.label}: none`, rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: NOTE_GREY, fontSize: chartFont(), title: (d: { group: string; label: string }) => `${d.label}, ${d.group}: no packet arrived` }),
+      Plot.text(none, { fx: 'group', x: 'label', text: (d: { label: string }) => `${d.label}: none`, rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: NOTE_GREY, fontSize: chartFont(), title: (d: { group: string; label: string; why: string }) => `${d.label}, ${d.group}: ${d.why}` }),
       Plot.ruleX(data, { fx: 'group', x: 'label', y1: 'whiskerLow', y2: 'whiskerHigh', stroke: 'label' }),
       Plot.barY(data.filter((d) => !d.few), { fx: 'group', x: 'label', y1: 'q1', y2: 'q3', fill: 'label', fillOpacity: 0.35, stroke: 'label' }),
       Plot.barY(data.filter((d) => d.few), { fx: 'group', x: 'label', y1: 'q1', y2: 'q3', fill: 'label', fillOpacity: 0.12, stroke: 'label', strokeDasharray: '4,3' }),

@@ -26,12 +26,21 @@ export type ErrorChartData =
       thinned: string;
     };
 
+/** Why the first flight's station never had an estimate: its packets were lost on the way, or
+ * none was sent, since the drone may send less often than the flight lasts (TTN's fair use at a
+ * slow rate, a long interval set), which no gateway distance mends. */
+function nothingArrived(report: SimReport): string {
+  const flight = report.series?.flight ?? 'this flight';
+  const sent = report.series?.models.some((m) => m.arrivals.length + m.lost.length > 0) ?? true;
+  if (sent) return `No packet arrives at this distance on ${flight}: the station never has an estimate, so there is no error to plot. Move the gateway closer or raise the spreading factor.`;
+  const every = Math.min(...report.results.map((m) => m.interval));
+  const fairUse = report.config.fairUse === 'off' ? '' : ', or with Fair use off';
+  return `No packet is sent on ${flight}: at these settings the drone may send once every ${every.toFixed(every >= 100 ? 0 : 1)} s, and no sending time fell within the flight, so the station never has an estimate. It sends sooner at a faster data rate${fairUse}.`;
+}
+
 export function errorChartData(report: SimReport, width: number): ErrorChartData {
   const models = report.series?.models ?? [];
-  if (!models.some((m) => m.t.length > 0)) {
-    // Nothing arrived on this flight: the station never had an estimate, so there is no error to draw.
-    return { note: `No packet arrives at this distance on ${report.series?.flight ?? 'this flight'}: the station never has an estimate, so there is no error to plot. Move the gateway closer or raise the spreading factor.` };
-  }
+  if (!models.some((m) => m.t.length > 0)) return { note: nothingArrived(report) };
   // A pixel of the time axis, s: packets less than a dot's width apart draw as one mark (a long
   // flight's tens of thousands would otherwise be as many SVG elements, one on top of another),
   // and a station's samples are thinned to the lowest and highest error in each pixel.

@@ -13,6 +13,9 @@ export interface SfRow {
   /** null where no packet arrived (no error to measure). */
   p75: number | null;
   received: number;
+  /** Packets sent: 0 where the drone sent none within the flight (TTN's fair use at a slow SF),
+   * which the chart says instead of "none arrives", since no distance mends it. */
+  sent?: number;
   /** Too few packets received to compare the stations (the core's `caveats.fewPackets`): drawn
    * hollow, and the note under the chart says so (`fewPacketsNote`). */
   few: boolean;
@@ -35,10 +38,14 @@ const DOT_R = 3.5;
 
 export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number; width: number }): SVGSVGElement | HTMLElement {
   const data = rows.filter((r) => r.p75 !== null && !r.refused).map((r) => ({ ...r, label: MODEL_LABELS[r.model] }));
+  const ran = rows.filter((r) => !r.refused);
+  const noneSent = (at: SfRow[]) => at.length > 0 && at.every((r) => r.sent === 0);
   if (!data.length) {
     const note = document.createElement('p');
     note.className = 'empty-chart';
-    note.textContent = `No packet arrives at ${(opts.distance / 1000).toFixed(1)} km at any SF with ${opts.bw} kHz: move the gateway closer.`;
+    note.textContent = noneSent(ran)
+      ? `No packet is sent within the flight at any SF with ${opts.bw} kHz: at these settings the drone sends less often than the flight lasts.`
+      : `No packet arrives at ${(opts.distance / 1000).toFixed(1)} km at any SF with ${opts.bw} kHz: move the gateway closer.`;
     return note;
   }
   // The stations in the rows' order (their order everywhere on the page), each with its colour,
@@ -55,7 +62,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
   const marked = [...refusedAt, ...silent];
   const none = rows
     .filter((r) => r.p75 === null && !marked.includes(r.sf))
-    .map((r) => ({ sf: r.sf, label: MODEL_LABELS[r.model], kind: r.refused ? 'refused' : 'none', why: r.refused ? 'not simulated: the note under the chart says why' : 'no packet arrived' }));
+    .map((r) => ({ sf: r.sf, label: MODEL_LABELS[r.model], kind: r.refused ? 'refused' : 'none', why: r.refused ? 'not simulated: the note under the chart says why' : r.sent === 0 ? 'no packet sent' : 'no packet arrived' }));
   // The named ones stand beside their SF's dots, not across them (a label centred on the SF ran
   // through a low dot): from just clear of a dot to the right, in the stations' order, and at
   // SF12, the chart's right edge, to the left. Where an SF's labels would reach the next SF's
@@ -94,7 +101,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
       Plot.line(data, { x: 'sf', y: 'p75', stroke: 'label', z: 'label' }),
       Plot.dot(data.filter((d) => !d.few), { x: 'sf', y: 'p75', fill: 'label', r: DOT_R, title }),
       Plot.dot(data.filter((d) => d.few), { x: 'sf', y: 'p75', fill: 'white', stroke: 'label', strokeWidth: 1.5, r: DOT_R, title }),
-      Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: () => 'none\narrives', fill: NOTE_GREY, fontSize: chartFont() }),
+      Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: (d: number) => (noneSent(ran.filter((r) => r.sf === d)) ? 'none\nsent' : 'none\narrives'), fill: NOTE_GREY, fontSize: chartFont() }),
       // Upright: side by side, two SFs' "not simulated" ran into each other on a phone.
       Plot.text(refusedAt, { x: (d: number) => d, text: () => 'not simulated', rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: NOTE_GREY, fontSize: chartFont(), title: (d: number) => `SF${d}: not simulated: the note under the chart says why` }),
       Plot.text(named, { x: 'x', text: 'text', rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: NOTE_GREY, fontSize: chartFont(), title: 'title' }),

@@ -581,10 +581,16 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
     );
     for m in results {
         out += &format!(
-            "{:<9} {:>7.2}s {:>5}/{:<5} {:>6}% {} {} {} {} {} {} {} {:>10.2}\n",
+            "{:<9} {:>7.2}s {:>5}/{:<5} {:>6}% {} {} {} {} {} {} {} {}\n",
             m.model.label(),
             // With ADR the mean over the packets, as the page shows; the rates are listed below.
-            m.mean_interval,
+            // A drone that sent nothing (TTN's fair use at SF12 in a short flight) has no mean:
+            // its rate's interval, as the page shows it.
+            if m.mean_interval.is_finite() {
+                m.mean_interval
+            } else {
+                m.interval
+            },
             m.delivery.packets_received,
             m.delivery.packets_sent,
             num(100.0 * m.whole_flight.tracked, 6, 1),
@@ -595,7 +601,8 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
             num(m.error3d.max, 6, 1),
             num(m.coverage95, 7, 3),
             num(m.nees, 6, 2),
-            m.energy.charge_per_uplink,
+            // No uplink, no charge per uplink (a 0 would read as a free one).
+            num(uplink_charge(m.delivery.packets_sent, &m.energy), 10, 2),
         );
         if let Some(p) = &m.model_probability {
             let parts: Vec<String> = p.iter().map(|(k, v)| format!("{k} {v:.2}")).collect();
@@ -703,24 +710,40 @@ fn caveat_lines(results: &[ModelResult]) -> String {
 /// The network summary under a simulate table: each gateway, the copies removed, the energy.
 fn network_lines(r: &SimReport) -> String {
     let d = &r.delivery;
+    let share = if d.packets_sent == 0 {
+        "none sent".to_string()
+    } else {
+        format!("{:.1} %", 100.0 * d.delivery_ratio)
+    };
     let mut out = format!(
-        "network: {} of {} packets delivered ({:.1} %), {} duplicate{} removed",
+        "network: {} of {} packets delivered ({share}), {} duplicate{} removed",
         d.packets_received,
         d.packets_sent,
-        100.0 * d.delivery_ratio,
         d.duplicates,
         if d.duplicates == 1 { "" } else { "s" }
     );
     out += &gateway_lines(&d.gateways);
     for m in &r.results {
-        out += &format!(
-            "\nenergy {:<9} {:.2} mC per uplink, {:.3} mAh per hour (SX1276 radio only)",
-            m.model.label(),
-            m.energy.charge_per_uplink,
-            m.energy.charge_per_hour
-        );
+        out += &match uplink_charge(m.delivery.packets_sent, &m.energy) {
+            charge if charge.is_finite() => format!(
+                "\nenergy {:<9} {charge:.2} mC per uplink, {:.3} mAh per hour (SX1276 radio only)",
+                m.model.label(),
+                m.energy.charge_per_hour
+            ),
+            _ => format!("\nenergy {:<9} no uplink sent", m.model.label()),
+        };
     }
     out
+}
+
+/// The radio's charge per uplink, mC, or NaN (printed as a dash) where no uplink was sent: the
+/// core's 0 there would read as a free uplink.
+fn uplink_charge(sent: usize, energy: &loratrack::Energy) -> f64 {
+    if sent == 0 {
+        f64::NAN
+    } else {
+        energy.charge_per_uplink
+    }
 }
 
 fn gateway_lines(gateways: &[loratrack::GatewayReport]) -> String {
