@@ -3,6 +3,7 @@
 import * as Plot from '@observablehq/plot';
 import { isThinned, MODEL_LABELS, type ModelSeries, type SimReport } from '../loratrack';
 import { MODEL_COLORS, NOTE_GREY, chartFrame, chartFont, withKey, labelRoom } from './colors';
+import { sendingLimit } from '../state';
 
 /** What the error chart draws, computed from a report for a chart `width` px wide: the picked
  * samples, the packet marks and rate labels, the scale and the words around it. The page computes
@@ -34,8 +35,9 @@ function nothingArrived(report: SimReport): string {
   const sent = report.series?.models.some((m) => m.arrivals.length + m.lost.length > 0) ?? true;
   if (sent) return `No packet arrives at this distance on ${flight}: the station never has an estimate, so there is no error to plot. Move the gateway closer or raise the spreading factor.`;
   const every = Math.min(...report.results.map((m) => m.interval));
-  const fairUse = report.config.fairUse === 'off' ? '' : ', or with Fair use off';
-  return `No packet is sent on ${flight}: at these settings the drone may send once every ${every.toFixed(every >= 100 ? 0 : 1)} s, and no sending time fell within the flight, so the station never has an estimate. It sends sooner at a faster data rate${fairUse}.`;
+  // What would send sooner: where the plan has no duty cycle the interval set, not the rate.
+  const sooner = [sendingLimit(report.config) === 'interval' ? 'with a shorter Interval' : 'at a faster data rate', ...(report.config.fairUse === 'off' ? [] : ['with Fair use off'])];
+  return `No packet is sent on ${flight}: at these settings the drone may send once every ${every.toFixed(every >= 100 ? 0 : 1)} s, and no sending time fell within the flight, so the station never has an estimate. It sends sooner ${sooner.join(', or ')}.`;
 }
 
 export function errorChartData(report: SimReport, width: number): ErrorChartData {
