@@ -718,6 +718,64 @@ fn a_drone_that_sends_nothing_shows_its_interval_and_no_delivery_or_charge() {
 }
 
 #[test]
+fn a_swarm_that_sent_nothing_gives_no_shares_and_no_charge() {
+    // Three drones at SF12 (an interval of 148 s) flying 10 s: on this seed none sends.
+    let args = [
+        "swarm",
+        "--drones",
+        "3",
+        "--duration",
+        "10",
+        "--sf-plan",
+        "fixed",
+        "--sf",
+        "12",
+        "--bw",
+        "125",
+        "--seed",
+        "5",
+    ];
+    let r = json(&[&args[..], &["--json"]].concat());
+    assert_eq!(r["packetsSent"], 0, "a seed on which no drone sends");
+    let text = String::from_utf8_lossy(&cli(&args).stdout).into_owned();
+    for line in [
+        "collision rate      -  (",
+        "delivery ratio      -  (",
+        "energy              no uplink sent",
+    ] {
+        assert!(text.contains(line), "{line}: {text}");
+    }
+    // Where some drones sent and others did not, the charge per uplink is the senders' mean.
+    let mixed = json(&[
+        "swarm",
+        "--drones",
+        "12",
+        "--duration",
+        "10",
+        "--sf-plan",
+        "fixed",
+        "--sf",
+        "12",
+        "--bw",
+        "125",
+        "--json",
+    ]);
+    let drones = mixed["drones"].as_array().unwrap();
+    let charges: Vec<f64> = drones
+        .iter()
+        .filter(|d| d["packetsSent"].as_u64() > Some(0))
+        .map(|d| d["energy"]["chargePerUplink"].as_f64().unwrap())
+        .collect();
+    assert!(
+        !charges.is_empty() && charges.len() < drones.len(),
+        "some silent"
+    );
+    let mean = charges.iter().sum::<f64>() / charges.len() as f64;
+    let reported = mixed["energy"]["chargePerUplink"].as_f64().unwrap();
+    assert!((reported - mean).abs() < 1e-9, "{reported} vs {mean}");
+}
+
+#[test]
 fn a_simulate_header_names_the_seeds_its_numbers_pool() {
     // It said "seed 1" above numbers pooled over three seeds.
     let text = |args: &[&str]| String::from_utf8_lossy(&cli(args).stdout).into_owned();

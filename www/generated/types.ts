@@ -1018,7 +1018,8 @@ wholeFlight: WholeFlightError,
  */
 medianDroneP75: number | null, 
 /**
- * The drone radio's charge, averaged over the drones.
+ * The drone radio's charge, averaged over the drones: per uplink over those that sent one,
+ * per hour over all.
  */
 energy: Energy, 
 /**

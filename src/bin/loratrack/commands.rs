@@ -602,7 +602,11 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
             num(m.coverage95, 7, 3),
             num(m.nees, 6, 2),
             // No uplink, no charge per uplink (a 0 would read as a free one).
-            num(uplink_charge(m.delivery.packets_sent, &m.energy), 10, 2),
+            num(
+                if_sent(m.energy.charge_per_uplink, m.delivery.packets_sent),
+                10,
+                2
+            ),
         );
         if let Some(p) = &m.model_probability {
             let parts: Vec<String> = p.iter().map(|(k, v)| format!("{k} {v:.2}")).collect();
@@ -724,7 +728,7 @@ fn network_lines(r: &SimReport) -> String {
     );
     out += &gateway_lines(&d.gateways);
     for m in &r.results {
-        out += &match uplink_charge(m.delivery.packets_sent, &m.energy) {
+        out += &match if_sent(m.energy.charge_per_uplink, m.delivery.packets_sent) {
             charge if charge.is_finite() => format!(
                 "\nenergy {:<9} {charge:.2} mC per uplink, {:.3} mAh per hour (SX1276 radio only)",
                 m.model.label(),
@@ -736,13 +740,13 @@ fn network_lines(r: &SimReport) -> String {
     out
 }
 
-/// The radio's charge per uplink, mC, or NaN (printed as a dash) where no uplink was sent: the
-/// core's 0 there would read as a free uplink.
-fn uplink_charge(sent: usize, energy: &loratrack::Energy) -> f64 {
+/// `value` where any of `sent` packets was sent, else NaN, printed as a dash: the core reports 0
+/// for a share of no packet and the charge of no uplink, which would read as all lost and free.
+fn if_sent(value: f64, sent: usize) -> f64 {
     if sent == 0 {
         f64::NAN
     } else {
-        energy.charge_per_uplink
+        value
     }
 }
 
@@ -806,14 +810,14 @@ fn swarm_text(r: &SwarmReport) -> String {
          {}\n\
          channel access      {}\n\
          packets sent        {}{}{}\n\
-         collision rate      {:.4}  (pure-ALOHA formula at the duty cycle achieved: {:.4})\n\
+         collision rate      {}  (pure-ALOHA formula at the duty cycle achieved: {:.4})\n\
          largest swarm       {} drone{} at <= 1 % collisions, {} at <= 10 % (ALOHA formula); {} slotted, with none{}\n\
-         delivery ratio      {:.4}  ({} distinct packets, {} duplicate{} removed)\n\
+         delivery ratio      {}  ({} distinct packets, {} duplicate{} removed)\n\
          below sensitivity   {}\n\
          no demodulator      {}\n\
          3D error (pooled)   mean {}  p75 {}  p95 {} m; median drone p75 {} m\n\
          tracked             {}  (the share of the flight time after each flight's first packet, all the errors cover){}\n\
-         energy              {:.2} mC per uplink, {:.3} mAh per hour (mean drone, SX1276 radio only)\n\
+         energy              {}\n\
          drones that received nothing: {}; too few packets for their own p75 to compare (1 to {}): {}{}",
         c.swarm.drones,
         if c.swarm.drones == 1 { "" } else { "s" },
@@ -836,7 +840,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         } else {
             String::new()
         },
-        r.collision_rate,
+        num(if_sent(r.collision_rate, d.packets_sent), 0, 4),
         r.collision_rate_theory,
         r.largest_swarm.aloha1,
         if r.largest_swarm.aloha1 == 1 { "" } else { "s" },
@@ -847,7 +851,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         } else {
             ""
         },
-        d.delivery_ratio,
+        num(if_sent(d.delivery_ratio, d.packets_sent), 0, 4),
         d.packets_received,
         d.duplicates,
         if d.duplicates == 1 { "" } else { "s" },
@@ -859,8 +863,13 @@ fn swarm_text(r: &SwarmReport) -> String {
         num(r.median_drone_p75, 0, 2),
         percent(r.whole_flight.tracked),
         tracked_by_sf(r),
-        r.energy.charge_per_uplink,
-        r.energy.charge_per_hour,
+        match if_sent(r.energy.charge_per_uplink, d.packets_sent) {
+            charge if charge.is_finite() => format!(
+                "{charge:.2} mC per uplink, {:.3} mAh per hour (mean drone, SX1276 radio only)",
+                r.energy.charge_per_hour
+            ),
+            _ => "no uplink sent".to_string(),
+        },
         silent,
         loratrack::FEW_PACKETS - 1,
         thin,

@@ -483,13 +483,18 @@ fn median_drone_p75(drones: &[DroneReport]) -> f64 {
     percentile(&p75s, 50.0)
 }
 
-/// A drone's energy, averaged over the drones.
+/// A drone's energy, averaged over the drones: the charge per uplink over those that sent one (a
+/// drone that sent nothing, as most do in a short swarm at SF12, has no uplink to average in:
+/// counted as 0 it divided the others' charge by the swarm's size), the charge per hour over all.
 fn mean_energy(drones: &[DroneReport]) -> Energy {
-    let n = drones.len().max(1) as f64;
-    let mean = |of: fn(&Energy) -> f64| drones.iter().map(|d| of(&d.energy)).sum::<f64>() / n;
+    let mean = |of: fn(&Energy) -> f64, over: &[&DroneReport]| {
+        over.iter().map(|d| of(&d.energy)).sum::<f64>() / over.len().max(1) as f64
+    };
+    let all: Vec<&DroneReport> = drones.iter().collect();
+    let sending: Vec<&DroneReport> = drones.iter().filter(|d| d.packets_sent > 0).collect();
     Energy {
-        charge_per_uplink: mean(|e| e.charge_per_uplink),
-        charge_per_hour: mean(|e| e.charge_per_hour),
+        charge_per_uplink: mean(|e| e.charge_per_uplink, &sending),
+        charge_per_hour: mean(|e| e.charge_per_hour, &all),
     }
 }
 
@@ -653,6 +658,20 @@ mod tests {
     /// [`collision_theory`] of `drones`, with their packets by SF as the report sums them.
     fn theory(drones: &[DroneReport], channels: u8) -> f64 {
         collision_theory(drones, &packets_by_sf(drones), channels)
+    }
+
+    #[test]
+    fn the_mean_charge_per_uplink_leaves_out_drones_that_sent_none() {
+        let mut sent = drone(12, 1, 0.01);
+        sent.energy = Energy {
+            charge_per_uplink: 69.0,
+            charge_per_hour: 0.4,
+        };
+        let silent = drone(12, 0, 0.0);
+        let mean = mean_energy(&[sent, silent.clone(), silent]);
+        assert_eq!(mean.charge_per_uplink, 69.0);
+        assert!((mean.charge_per_hour - 0.4 / 3.0).abs() < 1e-15);
+        assert_eq!(mean_energy(&[drone(7, 0, 0.0)]), Energy::default());
     }
 
     #[test]

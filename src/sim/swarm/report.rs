@@ -115,7 +115,8 @@ pub struct SwarmReport {
     /// The median over drones of each drone's p75, m (`null` when no drone received anything).
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub median_drone_p75: f64,
-    /// The drone radio's charge, averaged over the drones.
+    /// The drone radio's charge, averaged over the drones: per uplink over those that sent one,
+    /// per hour over all.
     pub energy: Energy,
     /// Per drone.
     pub drones: Vec<DroneReport>,
