@@ -719,22 +719,16 @@ fn a_drone_that_sends_nothing_shows_its_interval_and_no_delivery_or_charge() {
 
 #[test]
 fn a_swarm_that_sent_nothing_gives_no_shares_and_no_charge() {
-    // Three drones at SF12 (an interval of 148 s) flying 10 s: on this seed none sends.
-    let args = [
-        "swarm",
-        "--drones",
-        "3",
-        "--duration",
-        "10",
-        "--sf-plan",
-        "fixed",
-        "--sf",
-        "12",
-        "--bw",
-        "125",
-        "--seed",
-        "5",
-    ];
+    // Drones at SF12 (an interval of 148 s) flying 10 s: most send nothing.
+    let sf12 = |drones: &str, seed: &str| -> Vec<String> {
+        let args = "swarm --duration 10 --sf-plan fixed --sf 12 --bw 125 --drones";
+        let mut a: Vec<String> = args.split(' ').map(String::from).collect();
+        a.extend([drones.into(), "--seed".into(), seed.into()]);
+        a
+    };
+    // Three drones, on this seed none sends.
+    let args = sf12("3", "5");
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let r = json(&[&args[..], &["--json"]].concat());
     assert_eq!(r["packetsSent"], 0, "a seed on which no drone sends");
     let text = String::from_utf8_lossy(&cli(&args).stdout).into_owned();
@@ -746,20 +740,9 @@ fn a_swarm_that_sent_nothing_gives_no_shares_and_no_charge() {
         assert!(text.contains(line), "{line}: {text}");
     }
     // Where some drones sent and others did not, the charge per uplink is the senders' mean.
-    let mixed = json(&[
-        "swarm",
-        "--drones",
-        "12",
-        "--duration",
-        "10",
-        "--sf-plan",
-        "fixed",
-        "--sf",
-        "12",
-        "--bw",
-        "125",
-        "--json",
-    ]);
+    let twelve = sf12("12", "1");
+    let twelve: Vec<&str> = twelve.iter().map(String::as_str).collect();
+    let mixed = json(&[&twelve[..], &["--json"]].concat());
     let drones = mixed["drones"].as_array().unwrap();
     let charges: Vec<f64> = drones
         .iter()
