@@ -279,10 +279,14 @@ function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
   const runs = runsWords(r);
   // Ten seeds, or as many as the core takes for these flights at these rates (`maxSeeds`).
   const seeds = Math.min(REPEAT_SEEDS, r.config.maxSeeds);
-  repeat.hidden = store.reportSettings.seeds >= seeds || r.results.length < 2;
+  // No station has an error when no packet arrived (or none was sent): nothing to compare, and
+  // more seeds of the same flight bring none.
+  const measured = r.results.some((m) => m.error3d.count > 0);
+  repeat.hidden = store.reportSettings.seeds >= seeds || r.results.length < 2 || !measured;
   repeat.dataset.seeds = String(seeds);
   repeat.textContent = `Repeat with ${seeds} seeds`;
-  if (r.results.length < 2) text.textContent = runs ? `p75's 95 % interval rests on ${runs} (flights × seeds).` : '';
+  if (!measured) text.textContent = `No station has an error to compare: ${r.results.every((m) => m.packetsSent === 0) ? 'the drone sent no packet' : 'no packet arrived'}.`;
+  else if (r.results.length < 2) text.textContent = runs ? `p75's 95 % interval rests on ${runs} (flights × seeds).` : '';
   else if (best) text.textContent = `${MODEL_LABELS[best.model]} has the lowest p75, clearly: its 95 % interval lies below every other model's (${runs}).`;
   else if (!runs) text.textContent = 'One flight with one seed cannot tell whether these differences are larger than chance: no model is named best.';
   else text.textContent = noClearLowest(r, runs);

@@ -157,11 +157,15 @@ test('a drone that sends nothing within the flight says so, not that its packets
   await idle(page);
   await page.waitForSelector('#chart-sf svg');
   await page.waitForSelector('#chart-distance svg');
+  await page.waitForSelector('#chart-error .empty-chart');
   const cli = nativeJson(['simulate', '--synthetic', '1', '--sf', '12', '--bw', '125', '--fair-use', 'ttn']);
   assert.ok(cli.results.every((m) => m.packetsSent === 0), 'a case where nothing is sent');
   // "0 %" read as every packet lost, "0.00" as free uplinks.
   assert.deepEqual(await page.locator('#results-table td[data-field="delivery"]').allTextContents(), cli.results.map(() => '—'));
   assert.deepEqual(await page.locator('#results-table td[data-field="energy"]').allTextContents(), cli.results.map(() => '—'));
+  // Nothing to compare, and more seeds of this flight would bring no packet: no Repeat offered.
+  assert.equal(await page.locator('#verdict-text').textContent(), 'No station has an error to compare: the drone sent no packet.');
+  assert.ok(await page.locator('#repeat-seeds').isHidden());
   // The error chart said to move the gateway closer or raise the SF, neither of which sends sooner.
   const note = await page.locator('#chart-error').textContent();
   const every = Math.min(...cli.results.map((m) => m.interval)).toFixed(0);
@@ -180,6 +184,7 @@ test('a drone that sends nothing within the flight says so, not that its packets
   assert.deepEqual(await axe(page), []);
   // Where the plan has no duty cycle the interval set decides, whatever the data rate.
   const us = await open('?region=us915&bw=125&sf=9&interval=200');
+  await us.page.waitForSelector('#chart-error .empty-chart');
   const usNote = await us.page.locator('#chart-error').textContent();
   assert.ok(usNote.includes('once every 200 s') && usNote.includes('It sends sooner with a shorter Interval.'), usNote);
   assert.deepEqual([...problems, ...us.problems], []);

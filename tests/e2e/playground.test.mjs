@@ -797,7 +797,7 @@ test('every chart and both tables download ready for a slide: title, legend, cap
   const far = await open('?distance=9000');
   await idle(far.page);
   await far.page.getByRole('button', { name: 'Download the error over time chart as SVG' }).click();
-  await until(far.page, () => /no packet arrives/.test(document.querySelector('[data-panel="error"] .download-why')?.textContent ?? ''));
+  await until(far.page, () => /no packet reached the station/.test(document.querySelector('[data-panel="error"] .download-why')?.textContent ?? ''));
   // Once packets arrive the chart is drawn again, and the note, which spoke of the empty one, goes.
   await far.page.getByRole('slider', { name: /Distance/ }).fill('1000');
   await until(far.page, () => document.querySelector('[data-panel="error"] .download-why')?.textContent === '' && document.querySelector('#chart-error svg'));
