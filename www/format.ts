@@ -182,13 +182,19 @@ export function fixedRateNote(adr: Settings['adr']): string {
 
 /** Under the error-over-time chart (`what`: the 3D view), which draw one flight: the stations
  * none of whose packets arrived on it (where another's did), which have no line there (in the
- * chart, only the ✕ of their lost packets); '' where every station or none has a line (the chart
- * then says so itself). */
-export function noLineNote(models: Pick<ModelSeries, 'model' | 't'>[], flight: string, what: 'chart' | 'view' = 'chart'): string {
+ * chart, only the ✕ of their lost packets), and apart from them those whose drone sent none on
+ * it (a slow rate under fair use: each station's payload sets its own interval), which have no ✕
+ * either; '' where every station or none has a line (the chart then says so itself). */
+export function noLineNote(models: Pick<ModelSeries, 'model' | 't' | 'lost'>[], flight: string, what: 'chart' | 'view' = 'chart'): string {
   const silent = models.filter((m) => m.t.length === 0);
   if (silent.length === 0 || silent.length === models.length) return '';
-  const drawn = what === 'chart' ? `no line, only the ✕ of ${silent.length === 1 ? 'its' : 'their'} lost packets` : `no track`;
-  return `${names(silent)} received no packet on ${flight}: ${drawn}.`;
+  const lost = silent.filter((m) => m.lost.length > 0);
+  const unsent = silent.filter((m) => m.lost.length === 0);
+  const drawn = (of: unknown[]) => (what === 'chart' ? `no line, only the ✕ of ${of.length === 1 ? 'its' : 'their'} lost packets` : 'no track');
+  return [
+    ...(lost.length ? [`${names(lost)} received no packet on ${flight}: ${drawn(lost)}.`] : []),
+    ...(unsent.length ? [`${names(unsent)} sent no packet on ${flight}: no ${what === 'chart' ? 'line' : 'track'}.`] : []),
+  ].join(' ');
 }
 
 /** Under the error-over-time chart and the 3D view (`what`), which draw one flight with one seed

@@ -25,12 +25,15 @@ test('station lists read as a sentence', () => {
 });
 
 test('the error chart names the stations with no line on its flight, only where others have one', () => {
-  const series = (model: string, samples: number) => ({ model, t: new Float64Array(samples) }) as Parameters<typeof noLineNote>[0][number];
+  const series = (model: string, samples: number, lost = 3) => ({ model, t: new Float64Array(samples), lost: new Float64Array(lost) }) as Parameters<typeof noLineNote>[0][number];
   expect(noLineNote([series('dr', 10), series('ctra-plus', 5)], 'canberra')).toBe('');
   expect(noLineNote([series('dr', 0), series('ctra-plus', 0)], 'canberra')).toBe('');
   expect(noLineNote([series('dr', 0), series('ctra-plus', 5), series('3d-ctra', 5)], 'canberra')).toBe('DR received no packet on canberra: no line, only the ✕ of its lost packets.');
   expect(noLineNote([series('dr', 0), series('ctra-plus', 0), series('3d-ctra', 5)], 'canberra')).toMatch(/^DR and CTRA\+ received no packet on canberra: .* their lost packets\.$/);
   expect(noLineNote([series('dr', 0), series('ctra-plus', 5)], 'canberra', 'view')).toBe('DR received no packet on canberra: no track.');
+  // A drone that sent nothing on the flight (fair use at a slow rate) has no lost packet to mark.
+  expect(noLineNote([series('dr', 5), series('ctra-plus', 0, 0), series('3d-ctra', 0)], 'synthetic 1')).toBe('3D-CTRA received no packet on synthetic 1: no line, only the ✕ of its lost packets. CTRA+ sent no packet on synthetic 1: no line.');
+  expect(noLineNote([series('dr', 5), series('ctra-plus', 0, 0)], 'synthetic 1', 'view')).toBe('CTRA+ sent no packet on synthetic 1: no track.');
 });
 
 test('a swarm names the one station its drones report to, its prediction and any sending not the paper\'s', () => {
