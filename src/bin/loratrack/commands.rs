@@ -865,7 +865,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         tracked_by_sf(r),
         match if_sent(r.energy.charge_per_uplink, d.packets_sent) {
             charge if charge.is_finite() => format!(
-                "{charge:.2} mC per uplink, {:.3} mAh per hour (mean drone, SX1276 radio only)",
+                "{charge:.2} mC per uplink (mean over the drones that sent), {:.3} mAh per hour (mean drone), SX1276 radio only",
                 r.energy.charge_per_hour
             ),
             _ => "no uplink sent".to_string(),
@@ -1180,8 +1180,6 @@ mod tests {
         );
     }
 
-    /// `simulate`'s first line names the ADR that moves the rate it states, with LoRaWAN's
-    /// settings; a fixed rate's says nothing more.
     #[test]
     fn adr_shares_round_halves_up_as_the_page_does() {
         // 12.5 % and 87.5 %: formatted with {:.0}, Rust would say 12 % and 88 %.
@@ -1189,6 +1187,8 @@ mod tests {
         assert_eq!(share_words([0, 0, 999, 1, 0, 0]), "SF9 100 %, SF10 <1 %");
     }
 
+    /// `simulate`'s first line names the ADR that moves the rate it states, with LoRaWAN's
+    /// settings; a fixed rate's says nothing more.
     #[test]
     fn simulates_header_names_the_adr_that_moves_its_rate() {
         let mut net = Scenario::default().network;
