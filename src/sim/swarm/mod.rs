@@ -508,9 +508,9 @@ fn packets_by_sf(drones: &[DroneReport]) -> [usize; 6] {
 }
 
 /// Pure ALOHA's collision rate for `drones` on `channels` channels: per SF group at the duty
-/// cycle the group achieved, weighted by the packets each group sent (`by_sf`; reference §10). A group
-/// is the drones at that SF and, with ADR, every drone that sent there, each at the share of
-/// its time on air at that SF.
+/// cycle the group achieved, weighted by the packets each group sent (`by_sf`; reference §10).
+/// A group is the drones at that SF and, with ADR, every drone that sent there, each at the
+/// share of its time on air at that SF.
 fn collision_theory(drones: &[DroneReport], by_sf: &[usize; 6], channels: u8) -> f64 {
     let mut theory = 0.0;
     for (sf, &packets) in (7..=12u8).zip(by_sf) {
