@@ -847,59 +847,29 @@ fn a_swarm_header_says_what_each_drone_flies_on_which_sfs_and_why_spread_dealt_f
         text.starts_with("2 drones x 60 s, at 1000 m, 3 channels, SF7-SF8 in turn,"),
         "{text}"
     );
-    // The SFs named are those dealt: in US915 at 125 kHz SF10's frame is over the dwell time.
-    let us = cli(&[
-        "swarm",
-        "--drones",
-        "6",
-        "--duration",
-        "60",
-        "--region",
-        "us915",
-        "--bw",
-        "125",
-    ]);
-    let text = String::from_utf8_lossy(&us.stdout);
-    assert!(
-        text.contains(
-            ", 8 channels, SF7-SF9 in turn (at 125 kHz US915 carries the frame at no other SF),"
+    // The SFs named are those dealt, and where `spread` dealt fewer than it had drones for, why:
+    // in US915 at 125 kHz SF10's frame is over the dwell time; without a duty cycle a drone sends
+    // at the interval set, which SF12's frame outlasts; ADR starts at a data rate, and at 250 kHz
+    // EU868 has one at SF7 alone.
+    let cases: [(&[&str], &str); 3] = [
+        (
+            &["--region", "us915", "--bw", "125"],
+            ", 8 channels, SF7-SF9 in turn (at 125 kHz US915 carries the frame at no other SF),",
         ),
-        "{text}"
-    );
-    // Without a duty cycle a drone sends at the interval set, which SF12's frame outlasts.
-    let india = cli(&[
-        "swarm",
-        "--drones",
-        "6",
-        "--duration",
-        "60",
-        "--region",
-        "in865",
-        "--bw",
-        "125",
-    ]);
-    let text = String::from_utf8_lossy(&india.stdout);
-    assert!(
-        text.contains(
-            ", SF7-SF11 in turn (at 125 kHz a slower SF's frame outlasts the 1 s interval set),"
+        (
+            &["--region", "in865", "--bw", "125"],
+            ", SF7-SF11 in turn (at 125 kHz a slower SF's frame outlasts the 1 s interval set),",
         ),
-        "{text}"
-    );
-    // ADR starts at a data rate, and at 250 kHz EU868 has one at SF7 alone.
-    let adr = cli(&[
-        "swarm",
-        "--drones",
-        "6",
-        "--duration",
-        "60",
-        "--adr",
-        "tracking",
-    ]);
-    let text = String::from_utf8_lossy(&adr.stdout);
-    assert!(
-        text.contains(", all starting on SF7 (at 250 kHz ADR can start at no other SF),"),
-        "{text}"
-    );
+        (
+            &["--adr", "tracking"],
+            ", all starting on SF7 (at 250 kHz ADR can start at no other SF),",
+        ),
+    ];
+    for (extra, expected) in cases {
+        let args = [&["swarm", "--drones", "6", "--duration", "60"][..], extra].concat();
+        let text = String::from_utf8_lossy(&cli(&args).stdout).into_owned();
+        assert!(text.contains(expected), "{args:?}: {text}");
+    }
 }
 
 /// A run long enough to show its progress does so on a terminal (`script` gives it one, where
