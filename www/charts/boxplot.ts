@@ -3,7 +3,7 @@
 import * as Plot from '@observablehq/plot';
 import type { Boxplot, ModelName } from '../loratrack';
 import { MODEL_LABELS } from '../loratrack';
-import { MODEL_COLORS, chartFrame, chartFont, NOTE_GREY, fitLabel, withKey, labelRoom } from './colors';
+import { MODEL_COLORS, chartFrame, chartFont, NOTE_GREY, fitLabel, withKey, labelRoom, noneSent } from './colors';
 import { plainNumber } from './logAxis';
 
 /** The plot's left margin at the page's type size, px: room for the y axis's labels. */
@@ -21,9 +21,6 @@ export interface BoxRow {
    * which the chart says instead of "no packet arrives", since no distance mends it. */
   sent?: number;
 }
-
-/** Whether each of `rows` sent nothing. */
-const noneSent = (rows: { sent?: number }[]) => rows.length > 0 && rows.every((r) => r.sent === 0);
 
 export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width: number; yLabel?: string; log?: boolean }): SVGSVGElement | HTMLElement {
   const data = rows

@@ -5,6 +5,11 @@ import type { ModelName } from '../loratrack';
  * on white, where a station's colour would be small text at 3:1. */
 export const NOTE_GREY = '#5a6068';
 
+/** Whether each of `rows` (a chart's runs at one distance or SF) sent no packet at all: such a
+ * place says "sent", not "arrives", since no gateway distance mends it (TTN's fair use at a slow
+ * rate sends less often than a flight lasts). `sent` left out counts as sent. */
+export const noneSent = (rows: { sent?: number }[]) => rows.length > 0 && rows.every((r) => r.sent === 0);
+
 /** One colour per model everywhere on the page (colour-blind-safe Tableau hues). */
 export const MODEL_COLORS: Record<ModelName, string> = { dr: '#e15759', 'ctra-plus': '#4e79a7', '3d-ctra': '#59a14f', imm: '#b07aa1', mission: '#f28e2b' };
 export const TRUTH_COLOR = '#222222';

@@ -3,7 +3,7 @@
 // often: at short range the error grows with SF, beyond SF7's range a higher SF is what arrives.
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type ModelName, type WholeFlightError } from '../loratrack';
-import { chartFrame, chartFont, NOTE_GREY, fitLabel, MODEL_COLORS, labelRoom } from './colors';
+import { chartFrame, chartFont, NOTE_GREY, fitLabel, MODEL_COLORS, labelRoom, noneSent } from './colors';
 import { trackedPercent } from '../format';
 import { logAxis, plainNumber } from './logAxis';
 
@@ -39,7 +39,6 @@ const DOT_R = 3.5;
 export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number; width: number }): SVGSVGElement | HTMLElement {
   const data = rows.filter((r) => r.p75 !== null && !r.refused).map((r) => ({ ...r, label: MODEL_LABELS[r.model] }));
   const ran = rows.filter((r) => !r.refused);
-  const noneSent = (at: SfRow[]) => at.length > 0 && at.every((r) => r.sent === 0);
   if (!data.length) {
     const note = document.createElement('p');
     note.className = 'empty-chart';
