@@ -796,7 +796,7 @@ $('#run-swarm').addEventListener('click', () => {
   run.done.then(
     ({ swarms, millis }) => {
       end();
-      const rates = swarms.map((w) => `${w.config.drones} drones ${(100 * w.collisionRate).toFixed(1)} %`).join(', ');
+      const rates = swarms.map((w) => `${w.config.drones} drones ${w.collisionRate === null ? '— (none sent)' : `${(100 * w.collisionRate).toFixed(1)} %`}`).join(', ');
       $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(millis / 1000).toFixed(1)} s. Packets collided: ${rates}.`;
       swarmShown = JSON.stringify({ sizes, params });
       showCommand('swarm', { ...params, drones: sizes[sizes.length - 1] });

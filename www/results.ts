@@ -25,17 +25,17 @@ export function renderTable(r: SimReport): void {
     framesHead: `<th scope="col" title="${intervalRule(r.config)}">interval</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th>`,
     rows: r.results.map((m) => {
       // A drone that sent nothing (TTN's fair use at SF12 in a short flight) has no delivery
-      // share and no charge per uplink: a dash, not "0 %" (every packet lost) or "0.00" (free).
-      const sent = m.packetsSent > 0;
+      // share and no charge per uplink (the core's null): a dash, not "0 %" (every packet lost)
+      // or "0.00" (free).
       return {
         model: m.model,
         best: m === best,
         errors: `<td data-field="mean">${fmt(m.error3d.mean)}${delta(m, 'mean')}</td><td data-field="p50">${fmt(m.error3d.p50)}${delta(m, 'p50')}</td><td data-field="p75">${fmt(m.error3d.p75)}${interval(m)}${delta(m, 'p75')}</td>
         <td data-field="p95">${fmt(m.error3d.p95)}${delta(m, 'p95')}</td><td data-field="max">${fmt(m.error3d.max, 1)}${delta(m, 'max')}</td>
         <td data-field="coverage" title="${probabilities(m)}">${m.coverage95 === null ? '—' : `${(m.coverage95 * 100).toFixed(0)} %`}</td>`,
-        packets: `<td data-field="delivery">${sent ? `${((m.packetsReceived / m.packetsSent) * 100).toFixed(0)} %` : '—'}</td><td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}${delta(m, 'packets')}</td>`,
+        packets: `<td data-field="delivery">${m.deliveryRatio === null ? '—' : `${(m.deliveryRatio * 100).toFixed(0)} %`}</td><td data-field="packets" title="${m.airtime.toFixed(1)} s on air">${m.packetsReceived} / ${m.packetsSent}${delta(m, 'packets')}</td>`,
         frames: `${frameCells(m)}<td data-field="payload"${leanTitle(m)}>${m.payloadBytes} B${lean(m.leanPackets > 0 && `${m.leanPackets} lean`)}</td>
-        <td data-field="energy" title="${sent ? `${m.energy.chargePerHour.toFixed(3)} mAh per hour of tracking` : 'No uplink was sent'}">${sent ? m.energy.chargePerUplink.toFixed(2) : '—'}</td>`,
+        <td data-field="energy" title="${m.energy.chargePerUplink === null ? 'No uplink was sent' : `${fmt(m.energy.chargePerHour, 3)} mAh per hour of tracking`}">${fmt(m.energy.chargePerUplink)}</td>`,
       };
     }),
   };

@@ -24,7 +24,7 @@ pub struct DistanceRun {
     pub adr: AdrMode,
     /// The data rate an ADR row started at (`null` for a fixed rate).
     pub start: Option<u8>,
-    /// Share of packets received.
+    /// Share of packets received (`null` when none was sent).
     pub delivery: f64,
     /// The result.
     pub result: ModelResult,

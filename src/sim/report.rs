@@ -51,15 +51,20 @@ pub struct RunConfig {
 #[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct Energy {
-    /// Mean charge of one uplink with its receive windows, mC.
+    /// Mean charge of one uplink with its receive windows, mC (`null` when no uplink was sent:
+    /// there is no uplink to average, and 0 would read as free).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub charge_per_uplink: f64,
-    /// Charge per hour of tracking (uplinks, windows and sleep between), mAh.
+    /// Charge per hour of tracking (uplinks, windows and sleep between), mAh (`null` for no
+    /// flight time; a flight with no uplink slept throughout).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub charge_per_hour: f64,
 }
 
 impl Energy {
     /// The charge of `tx` over `flight_time` s of flight (sleeping when not sending or
-    /// listening); zeros for no uplink or no flight time.
+    /// listening); no charge per uplink (NaN) without an uplink, no charge per hour (NaN)
+    /// without flight time.
     pub fn of<'a>(tx: impl Iterator<Item = &'a Transmission>, flight_time: f64) -> Self {
         let (mut n, mut charge, mut active) = (0usize, 0.0, 0.0);
         for t in tx {
@@ -71,22 +76,30 @@ impl Energy {
     }
 
     /// The same from `n` uplinks' summed charge (mC) and awake time (s).
+    ///
+    /// ```
+    /// use loratrack::Energy;
+    /// let silent = Energy::from_sums(0, 0.0, 0.0, 3600.0);
+    /// assert!(silent.charge_per_uplink.is_nan());
+    /// assert_eq!(silent.charge_per_hour, 0.0002); // the radio asleep for the hour
+    /// ```
     pub fn from_sums(n: usize, charge: f64, active: f64, flight_time: f64) -> Self {
-        if n == 0 || flight_time <= 0.0 {
-            return Energy::default();
-        }
         let sleep = SX1276_SLEEP_CURRENT_MA * (flight_time - active).max(0.0);
         Energy {
-            charge_per_uplink: charge / n as f64,
+            charge_per_uplink: if n == 0 { f64::NAN } else { charge / n as f64 },
             // mA·s over the flight, per second of flight, is the mean current in mA, which is
             // the charge per hour in mAh.
-            charge_per_hour: (charge + sleep) / flight_time,
+            charge_per_hour: if flight_time > 0.0 {
+                (charge + sleep) / flight_time
+            } else {
+                f64::NAN
+            },
         }
     }
 }
 
 /// Packets and copies over the whole network (JSON, at the top of `simulate` and `swarm`).
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct Delivery {
@@ -94,12 +107,36 @@ pub struct Delivery {
     pub packets_sent: usize,
     /// Distinct uplinks the network server passed on (each once, however many gateways heard it).
     pub packets_received: usize,
-    /// `packetsReceived / packetsSent` (0 when nothing was sent).
+    /// `packetsReceived / packetsSent` (`null` when nothing was sent: no share of nothing).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
+    #[serde(deserialize_with = "nan_for_null")]
     pub delivery_ratio: f64,
     /// Copies the server removed: receptions beyond the first of each packet.
     pub duplicates: usize,
     /// Per gateway.
     pub gateways: Vec<GatewayReport>,
+}
+
+/// Equal counts: the ratio follows from them (and NaN, for nothing sent, equals nothing).
+impl PartialEq for Delivery {
+    fn eq(&self, other: &Self) -> bool {
+        (self.packets_sent, self.packets_received, self.duplicates)
+            == (other.packets_sent, other.packets_received, other.duplicates)
+            && self.gateways == other.gateways
+    }
+}
+
+impl Default for Delivery {
+    /// Nothing sent, so no delivery ratio.
+    fn default() -> Self {
+        Delivery {
+            packets_sent: 0,
+            packets_received: 0,
+            delivery_ratio: f64::NAN,
+            duplicates: 0,
+            gateways: Vec::new(),
+        }
+    }
 }
 
 impl Delivery {
@@ -151,13 +188,19 @@ impl Delivery {
     }
 }
 
-/// `n / of`, 0 when `of` is 0.
+/// `n / of`, NaN (JSON `null`) when `of` is 0: a share of no packets is not 0 %.
 pub fn ratio(n: usize, of: usize) -> f64 {
     if of == 0 {
-        0.0
+        f64::NAN
     } else {
         n as f64 / of as f64
     }
+}
+
+/// Reads a number that JSON carries as `null` where the core wrote NaN ([`ratio`]), so that a
+/// report read back (the page's pooled stations, `poolDelivery`) keeps its NaN.
+fn nan_for_null<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
 }
 
 /// Per-axis and 3D boxplots.
@@ -414,6 +457,18 @@ pub struct SimReport {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_delivery_of_nothing_sent_has_no_ratio_and_reads_back_from_its_json() {
+        let none = Delivery::pooled(&[Delivery::default(), Delivery::default()]);
+        assert!(none.delivery_ratio.is_nan());
+        let json = serde_json::to_string(&none).unwrap();
+        assert!(json.contains(r#""deliveryRatio":null"#), "{json}");
+        // The page pools its workers' results through this JSON (`poolDelivery`).
+        let back: Delivery = serde_json::from_str(&json).unwrap();
+        assert!(back.delivery_ratio.is_nan());
+        assert_eq!(back, none);
+    }
 
     fn rate(dr: u8, packets: usize, interval: f64) -> DataRateUse {
         DataRateUse {

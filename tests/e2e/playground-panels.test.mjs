@@ -163,6 +163,12 @@ test('a drone that sends nothing within the flight says so, not that its packets
   // "0 %" read as every packet lost, "0.00" as free uplinks.
   assert.deepEqual(await page.locator('#results-table td[data-field="delivery"]').allTextContents(), cli.results.map(() => '—'));
   assert.deepEqual(await page.locator('#results-table td[data-field="energy"]').allTextContents(), cli.results.map(() => '—'));
+  // The Results CSV leaves those cells empty too, as the core's JSON has them null.
+  const [header, ...rows] = (await downloaded(page, page.getByRole('button', { name: 'Results (CSV)' }))).toString('utf8').trim().split('\n').map((l) => l.split(','));
+  const blank = ['delivery_ratio', 'charge_per_uplink_mC'].map((name) => header.indexOf(name));
+  assert.ok(blank.every((i) => i > 0), header.join());
+  assert.deepEqual(rows.map((r) => blank.map((i) => r[i])), cli.results.map(() => ['', '']));
+  assert.ok(cli.results.every((m) => m.deliveryRatio === null && m.energy.chargePerUplink === null));
   // Nothing to compare, and more seeds of this flight would bring no packet: no Repeat offered.
   assert.equal(await page.locator('#verdict-text').textContent(), 'No station has an error to compare: the drone sent no packet.');
   assert.ok(await page.locator('#repeat-seeds').isHidden());

@@ -701,6 +701,14 @@ fn a_drone_that_sends_nothing_shows_its_interval_and_no_delivery_or_charge() {
     ];
     let r = json(&[&args[..], &["--json"]].concat());
     assert_eq!(r["results"][0]["packetsSent"], 0);
+    // The JSON (and so the page's CSV) has no share and no charge either, not zeros; the radio
+    // slept through the flight.
+    for shares in [&r, &r["results"][0]] {
+        assert!(shares["deliveryRatio"].is_null(), "{shares}");
+    }
+    let energy = &r["results"][0]["energy"];
+    assert!(energy["chargePerUplink"].is_null(), "{energy}");
+    assert!(energy["chargePerHour"].as_f64() > Some(0.0), "{energy}");
     let interval = r["results"][0]["interval"].as_f64().unwrap();
     let text = String::from_utf8_lossy(&cli(&args).stdout).into_owned();
     let row = text
@@ -731,6 +739,11 @@ fn a_swarm_that_sent_nothing_gives_no_shares_and_no_charge() {
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let r = json(&[&args[..], &["--json"]].concat());
     assert_eq!(r["packetsSent"], 0, "a seed on which no drone sends");
+    for key in ["collisionRate", "deliveryRatio"] {
+        assert!(r[key].is_null(), "{key}: {}", r[key]);
+    }
+    assert!(r["energy"]["chargePerUplink"].is_null());
+    assert!(r["drones"][0]["energy"]["chargePerUplink"].is_null());
     let text = String::from_utf8_lossy(&cli(&args).stdout).into_owned();
     for line in [
         "collision rate      -  (",

@@ -58,7 +58,8 @@ export function sfShares(r: Pick<SwarmReport, 'packetsBySf'>): string {
 type Drone = { p75: number; sf: string; colour: string; received: number; few: boolean };
 
 export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
-  const rates = swarms.map((r) => ({ n: r.config.drones, measured: 100 * r.collisionRate, theory: 100 * r.collisionRateTheory }));
+  // A swarm that sent nothing has no collision share (null): no dot, and its title says why.
+  const rates = swarms.map((r) => ({ n: r.config.drones, measured: r.collisionRate === null ? Number.NaN : 100 * r.collisionRate, theory: 100 * r.collisionRateTheory }));
   const collisions = Plot.plot({
     ...chartFrame(220, 360),
     width,
@@ -67,7 +68,7 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
     y: { label: 'packets collided (%)', grid: true, zero: true },
     marks: [
       Plot.lineY(rates, { x: 'n', y: 'theory', stroke: '#888', strokeDasharray: '4,3' }),
-      Plot.dot(rates, { x: 'n', y: 'measured', fill: '#4e79a7', r: 4, title: (d) => `${d.n} drones: ${d.measured.toFixed(1)} % collided (ALOHA ${d.theory.toFixed(1)} %)` }),
+      Plot.dot(rates, { x: 'n', y: 'measured', fill: '#4e79a7', r: 4, title: (d) => `${d.n} drones: ${Number.isNaN(d.measured) ? 'no packet sent' : `${d.measured.toFixed(1)} % collided`} (ALOHA ${d.theory.toFixed(1)} %)` }),
       Plot.text(rates.slice(-1), { x: 'n', y: 'theory', text: () => 'ALOHA', dx: -20, dy: -8, fill: '#666', fontSize: chartFont() }),
     ],
   });
@@ -113,10 +114,11 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   const flown = `${largest.config.drones} drones flying ${flightTime(largest.config.duration)} of ${largest.config.sample ? 'the real flight' : 'the synthetic set'} each to a ${stationPhrase(largest.config.station, largest.config)}, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${sfPlanWords(largest)}`;
   // Shares of no packet are none: a swarm whose drones all send less often than they fly (SF12,
   // 2 minutes) sent nothing, which "0.0 % of packets collided" and "0.0 % delivered" would hide.
+  const { collisionRate, deliveryRatio, energy } = largest;
   note.textContent =
-    largest.packetsSent === 0
+    collisionRate === null || deliveryRatio === null || energy.chargePerUplink === null
       ? `${flown}: no drone sent a packet within its flight, so no station had an estimate.`
-      : `${flown}${adr ? `, ADR sent their packets at ${sfShares(largest)}` : ''}: ${(100 * largest.collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %)${largest.leanPackets > 0 ? `, ${largest.leanPackets} of ${largest.packetsSent} packets with lean payloads` : ''}, median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${untracked(largest)}${thin ? `; ${thin} of ${drones.length} drones (hollow) received too few packets for their own p75 to compare` : ''}; ${(100 * largest.deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${adr ? `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped` : ''}; radio ${largest.energy.chargePerUplink.toFixed(2)} mC per uplink (mean over the drones that sent).${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
+      : `${flown}${adr ? `, ADR sent their packets at ${sfShares(largest)}` : ''}: ${(100 * collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %)${largest.leanPackets > 0 ? `, ${largest.leanPackets} of ${largest.packetsSent} packets with lean payloads` : ''}, median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${untracked(largest)}${thin ? `; ${thin} of ${drones.length} drones (hollow) received too few packets for their own p75 to compare` : ''}; ${(100 * deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${adr ? `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped` : ''}; radio ${energy.chargePerUplink.toFixed(2)} mC per uplink (mean over the drones that sent).${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
   const l = largest.largestSwarm;
   note.textContent += ` Largest swarm one gateway serves at these settings${adr ? ' (at the starting SFs)' : ''}${largest.leanPackets > 0 ? ' (with full frames: the lean ones, shorter, leave room for more)' : ''}, every drone sending ${pace(largest.config)}: ${l.aloha1} drone${l.aloha1 === 1 ? '' : 's'} at ≤ 1 % collisions and ${l.aloha10} at ≤ 10 % with ALOHA (by its formula), ${l.slotted} slotted with none.`;
   const box = document.createElement('div');

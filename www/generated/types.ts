@@ -565,9 +565,9 @@ packetsSent: number,
  */
 packetsReceived: number, 
 /**
- * `packetsReceived / packetsSent` (0 when nothing was sent).
+ * `packetsReceived / packetsSent` (`null` when nothing was sent: no share of nothing).
  */
-deliveryRatio: number, 
+deliveryRatio: number | null, 
 /**
  * Copies the server removed: receptions beyond the first of each packet.
  */
@@ -579,13 +579,15 @@ gateways: Array<GatewayReport>, };
 
 export type Energy = { 
 /**
- * Mean charge of one uplink with its receive windows, mC.
+ * Mean charge of one uplink with its receive windows, mC (`null` when no uplink was sent:
+ * there is no uplink to average, and 0 would read as free).
  */
-chargePerUplink: number, 
+chargePerUplink: number | null, 
 /**
- * Charge per hour of tracking (uplinks, windows and sleep between), mAh.
+ * Charge per hour of tracking (uplinks, windows and sleep between), mAh (`null` for no
+ * flight time; a flight with no uplink slept throughout).
  */
-chargePerHour: number, };
+chargePerHour: number | null, };
 
 export type ModelResult = Delivery & { 
 /**
@@ -942,9 +944,10 @@ export type SwarmReport = Delivery & {
  */
 config: SwarmEcho, 
 /**
- * Packets lost to interference at every gateway that could hear them / packets sent.
+ * Packets lost to interference at every gateway that could hear them / packets sent
+ * (`null` when no packet was sent).
  */
-collisionRate: number, 
+collisionRate: number | null, 
 /**
  * Pure ALOHA's collision rate (`aloha_collision_rate`) per SF group at the group's mean
  * achieved duty cycle, weighted by the packets each group sent: what the formula predicts

@@ -601,12 +601,8 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
             num(m.error3d.max, 6, 1),
             num(m.coverage95, 7, 3),
             num(m.nees, 6, 2),
-            // No uplink, no charge per uplink (a 0 would read as a free one).
-            num(
-                if_sent(m.energy.charge_per_uplink, m.delivery.packets_sent),
-                10,
-                2
-            ),
+            // No uplink, no charge per uplink (the core's NaN, a dash).
+            num(m.energy.charge_per_uplink, 10, 2),
         );
         if let Some(p) = &m.model_probability {
             let parts: Vec<String> = p.iter().map(|(k, v)| format!("{k} {v:.2}")).collect();
@@ -714,7 +710,7 @@ fn caveat_lines(results: &[ModelResult]) -> String {
 /// The network summary under a simulate table: each gateway, the copies removed, the energy.
 fn network_lines(r: &SimReport) -> String {
     let d = &r.delivery;
-    let share = if d.packets_sent == 0 {
+    let share = if d.delivery_ratio.is_nan() {
         "none sent".to_string()
     } else {
         format!("{:.1} %", 100.0 * d.delivery_ratio)
@@ -728,7 +724,7 @@ fn network_lines(r: &SimReport) -> String {
     );
     out += &gateway_lines(&d.gateways);
     for m in &r.results {
-        out += &match if_sent(m.energy.charge_per_uplink, m.delivery.packets_sent) {
+        out += &match m.energy.charge_per_uplink {
             charge if charge.is_finite() => format!(
                 "\nenergy {:<9} {charge:.2} mC per uplink, {:.3} mAh per hour (SX1276 radio only)",
                 m.model.label(),
@@ -738,16 +734,6 @@ fn network_lines(r: &SimReport) -> String {
         };
     }
     out
-}
-
-/// `value` where any of `sent` packets was sent, else NaN, printed as a dash: the core reports 0
-/// for a share of no packet and the charge of no uplink, which would read as all lost and free.
-fn if_sent(value: f64, sent: usize) -> f64 {
-    if sent == 0 {
-        f64::NAN
-    } else {
-        value
-    }
 }
 
 fn gateway_lines(gateways: &[loratrack::GatewayReport]) -> String {
@@ -840,7 +826,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         } else {
             String::new()
         },
-        num(if_sent(r.collision_rate, d.packets_sent), 0, 4),
+        num(r.collision_rate, 0, 4),
         r.collision_rate_theory,
         r.largest_swarm.aloha1,
         if r.largest_swarm.aloha1 == 1 { "" } else { "s" },
@@ -851,7 +837,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         } else {
             ""
         },
-        num(if_sent(d.delivery_ratio, d.packets_sent), 0, 4),
+        num(d.delivery_ratio, 0, 4),
         d.packets_received,
         d.duplicates,
         if d.duplicates == 1 { "" } else { "s" },
@@ -863,7 +849,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         num(r.median_drone_p75, 0, 2),
         percent(r.whole_flight.tracked),
         tracked_by_sf(r),
-        match if_sent(r.energy.charge_per_uplink, d.packets_sent) {
+        match r.energy.charge_per_uplink {
             charge if charge.is_finite() => format!(
                 "{charge:.2} mC per uplink (mean over the drones that sent), {:.3} mAh per hour (mean drone), SX1276 radio only",
                 r.energy.charge_per_hour

@@ -487,8 +487,9 @@ fn median_drone_p75(drones: &[DroneReport]) -> f64 {
 /// drone that sent nothing, as most do in a short swarm at SF12, has no uplink to average in:
 /// counted as 0 it divided the others' charge by the swarm's size), the charge per hour over all.
 fn mean_energy(drones: &[DroneReport]) -> Energy {
+    // NaN (JSON `null`) over no drones: no drone, no mean.
     let mean = |of: fn(&Energy) -> f64, over: &[&DroneReport]| {
-        over.iter().map(|d| of(&d.energy)).sum::<f64>() / over.len().max(1) as f64
+        over.iter().map(|d| of(&d.energy)).sum::<f64>() / over.len() as f64
     };
     let all: Vec<&DroneReport> = drones.iter().collect();
     let sending: Vec<&DroneReport> = drones.iter().filter(|d| d.packets_sent > 0).collect();
@@ -671,7 +672,13 @@ mod tests {
         let mean = mean_energy(&[sent, silent.clone(), silent]);
         assert_eq!(mean.charge_per_uplink, 69.0);
         assert!((mean.charge_per_hour - 0.4 / 3.0).abs() < 1e-15);
-        assert_eq!(mean_energy(&[drone(7, 0, 0.0)]), Energy::default());
+        // A swarm in which no drone sent has no charge per uplink, and its charge per hour is
+        // its sleeping radios'.
+        let mut asleep = drone(7, 0, 0.0);
+        asleep.energy = Energy::from_sums(0, 0.0, 0.0, 60.0);
+        let mean = mean_energy(&[asleep]);
+        assert!(mean.charge_per_uplink.is_nan());
+        assert!((mean.charge_per_hour - crate::lora::SX1276_SLEEP_CURRENT_MA).abs() < 1e-18);
     }
 
     #[test]

@@ -61,7 +61,9 @@ pub struct DroneReport {
 pub struct SwarmReport {
     /// The settings.
     pub config: SwarmEcho,
-    /// Packets lost to interference at every gateway that could hear them / packets sent.
+    /// Packets lost to interference at every gateway that could hear them / packets sent
+    /// (`null` when no packet was sent).
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub collision_rate: f64,
     /// Pure ALOHA's collision rate (`aloha_collision_rate`) per SF group at the group's mean
     /// achieved duty cycle, weighted by the packets each group sent: what the formula predicts
