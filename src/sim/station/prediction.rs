@@ -295,12 +295,16 @@ impl Bounds {
     /// j·age³/6 off. A bounded station adds it to the position covariance it reports: the
     /// filter's own covariance grows only with the drone's process noise, which describes the
     /// 10 Hz filter's steps, not minutes of extrapolation (without it the 95 % region covered
-    /// 51 % of the synthetic set at 5 km).
+    /// 51 % of the synthetic set at 5 km). At most (v_max·age)², the speed limit's reach: the
+    /// cap binds from 33 s (DR) and 35 s (CTRA+, 3D-CTRA) on at the defaults (reference §4).
     pub fn model_error_variance(&self, kind: ModelKind, age: f64) -> f64 {
         let off = match kind {
             ModelKind::Dr => self.unmodelled_acceleration * age * age / 2.0,
             ModelKind::CtraPlus | ModelKind::Ctra3d => self.unmodelled_jerk * age * age * age / 6.0,
         };
+        // However long the gap, the drone flies no farther than the speed limit takes it: held
+        // for minutes (SF12), a cubic or quadratic error claimed tens of kilometres.
+        let off = off.min(self.v_max * age);
         off * off
     }
 
@@ -496,6 +500,20 @@ mod tests {
         assert!((dr(4.0) / dr(2.0) - 4.0).abs() < 1e-12);
         assert!((ct(4.0) / ct(2.0) - 8.0).abs() < 1e-12);
         assert_eq!(b.model_error_variance(ModelKind::CtraPlus, 0.0), 0.0);
+    }
+
+    #[test]
+    fn the_model_error_claims_no_more_than_the_speed_limit_reaches() {
+        let b = Bounds::default();
+        // 95 s without a packet (the real flight at SF12): j·t³/6 alone put 14 km on each axis,
+        // a 95 % bound of 42 km for a drone that flies at most 20 m/s.
+        for kind in ModelKind::ALL {
+            let off = b.model_error_variance(kind, 95.0).sqrt();
+            assert!((off - b.v_max * 95.0).abs() < 1e-9, "{kind:?}: {off}");
+            // Within a send interval the cap is far off.
+            let early = b.model_error_variance(kind, 10.0).sqrt();
+            assert!(early < 0.5 * b.v_max * 10.0, "{kind:?}: {early}");
+        }
     }
 
     /// A model's propagation without its linear tail: the filter takes the general sums.
