@@ -117,6 +117,15 @@ fn swarms(c: &mut Criterion) {
             b.iter(|| loratrack::api::swarm(black_box(&p)).unwrap())
         });
     }
+    // The page's two-minute swarm under TTN's fair use: one slot per 4270 s, so the slotted
+    // capacity search packs thousands of drones per try (5.2 s before it became linear).
+    let fair = set(
+        &loratrack::Scenario::default(),
+        json!({"drones": 50, "duration": 120.0, "sf": 12, "bw": 125, "fairUse": "ttn", "sfPlan": "fixed", "model": "3d-ctra"}),
+    );
+    g.bench_function("50_drones_120_s_sf12_fair_use", |b| {
+        b.iter(|| loratrack::api::swarm(black_box(&fair)).unwrap())
+    });
     g.finish();
 }
 
