@@ -188,6 +188,15 @@ test('a drone that sends nothing within the flight says so, not that its packets
   assert.equal(silentSfs.length, sent.filter((n) => n === 0).length, `${silentSfs} / sent ${sent}`);
   assert.ok(silentSfs.every((t) => t.replace(/\s/g, '') === 'nonesent'), silentSfs.join());
   assert.deepEqual(await axe(page), []);
+  // A swarm at these settings: only the drones whose start falls early send in two minutes. The
+  // note counts the silent ones (no dot) apart from the hollow ones, as the CLI does.
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await until(page, () => /simulated in/.test(document.querySelector('#swarm-status')?.textContent ?? ''));
+  const swarmNote = (await page.locator('#chart-swarm .note').allTextContents()).join(' ');
+  const swarmCli = nativeText(['swarm', '--drones', '50', '--duration', '120', '--sf', '12', '--bw', '125', '--fair-use', 'ttn', '--sf-plan', 'fixed']);
+  const silentDrones = Number(/drones that received nothing: (\d+)/.exec(swarmCli)[1]);
+  assert.ok(silentDrones > 0 && silentDrones < 50, swarmCli);
+  assert.ok(swarmNote.includes(`(of the ${50 - silentDrones} that received a packet)`) && swarmNote.includes(`; ${silentDrones} of 50 drones received no packet (no dot)`), swarmNote);
   // Where the plan has no duty cycle the interval set decides, whatever the data rate.
   const us = await open('?region=us915&bw=125&sf=9&interval=200');
   await us.page.waitForSelector('#chart-error .empty-chart');

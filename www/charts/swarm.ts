@@ -54,6 +54,13 @@ export function sfShares(r: Pick<SwarmReport, 'packetsBySf'>): string {
     .join(', ');
 }
 
+/** What the strip of p75s leaves out or draws hollow, of a swarm of `total` drones whose `drawn`
+ * received a packet (the rest have no p75, so no dot) and `thin` of those too few to compare. */
+export function stripCounts(total: number, drawn: number, thin: number): string {
+  if (drawn === total) return thin ? `; ${thin} of ${total} drones (hollow) received too few packets for their own p75 to compare` : '';
+  return `; ${total - drawn} of ${total} drones received no packet (no dot)${thin ? ` and ${thin} (hollow) too few for their own p75 to compare` : ''}`;
+}
+
 /** One drone's point on the strip of p75s. */
 type Drone = { p75: number; sf: string; colour: string; received: number; few: boolean };
 
@@ -118,7 +125,7 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   note.textContent =
     collisionRate === null || deliveryRatio === null || energy.chargePerUplink === null
       ? `${flown}: no drone sent a packet within its flight, so no station had an estimate.`
-      : `${flown}${adr ? `, ADR sent their packets at ${sfShares(largest)}` : ''}: ${(100 * collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %)${largest.leanPackets > 0 ? `, ${largest.leanPackets} of ${largest.packetsSent} packets with lean payloads` : ''}, median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${untracked(largest)}${thin ? `; ${thin} of ${drones.length} drones (hollow) received too few packets for their own p75 to compare` : ''}; ${(100 * deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${adr ? `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped` : ''}; radio ${energy.chargePerUplink.toFixed(2)} mC per uplink (mean over the drones that sent).${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
+      : `${flown}${adr ? `, ADR sent their packets at ${sfShares(largest)}` : ''}: ${(100 * collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %)${largest.leanPackets > 0 ? `, ${largest.leanPackets} of ${largest.packetsSent} packets with lean payloads` : ''}, median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${drones.length < largest.drones.length ? ` (of the ${drones.length} that received a packet)` : ''}${untracked(largest)}${stripCounts(largest.drones.length, drones.length, thin)}; ${(100 * deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${adr ? `, ${largest.gateways.reduce((a, g) => a + g.downlinksSent, 0)} ADR downlinks sent, ${largest.gateways.reduce((a, g) => a + g.downlinksDropped, 0)} dropped` : ''}; radio ${energy.chargePerUplink.toFixed(2)} mC per uplink (mean over the drones that sent).${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
   const l = largest.largestSwarm;
   note.textContent += ` Largest swarm one gateway serves at these settings${adr ? ' (at the starting SFs)' : ''}${largest.leanPackets > 0 ? ' (with full frames: the lean ones, shorter, leave room for more)' : ''}, every drone sending ${pace(largest.config)}: ${l.aloha1} drone${l.aloha1 === 1 ? '' : 's'} at ≤ 1 % collisions and ${l.aloha10} at ≤ 10 % with ALOHA (by its formula), ${l.slotted} slotted with none.`;
   const box = document.createElement('div');
