@@ -194,8 +194,8 @@ fn pack(period: &[f64], len: &[f64]) -> Option<Vec<f64>> {
     let mut placed: Vec<usize> = Vec::new();
     // The placed slots' busy intervals within [0, `span`), sorted by start (so by end too).
     let (mut busy, mut span): (Vec<(f64, f64)>, f64) = (Vec::new(), 0.0);
-    // Per slot length, where the last slot of that length went within this span.
-    let mut fitted: Vec<(f64, f64)> = Vec::new();
+    // Per slot length, the index in `busy` of the last slot of that length placed in this span.
+    let mut fitted: Vec<(f64, usize)> = Vec::new();
     for i in order {
         let (p, l) = (period[i], len[i]);
         if p > span {
@@ -204,31 +204,46 @@ fn pack(period: &[f64], len: &[f64]) -> Option<Vec<f64>> {
             fitted.clear();
         }
         let from = fitted.iter().find(|f| f.0 == l).map(|f| f.1);
-        let first = from.map_or(0, |o| busy.partition_point(|&(_, end)| end < o));
         // Candidates: 0 and each busy interval's end, ascending; near-equal ones count once.
         let mut last = f64::NEG_INFINITY;
-        let o = from
+        let (o, at) = from
             .is_none()
-            .then_some(0.0)
+            .then_some((0.0, None))
             .into_iter()
-            .chain(busy[first..].iter().map(|&(_, end)| end % p))
-            .filter(|&o| o + l <= p + 1e-12)
-            .filter(|&o| {
+            .chain((from.unwrap_or(0)..busy.len()).map(|j| (busy[j].1 % p, Some(j))))
+            .filter(|&(o, _)| o + l <= p + 1e-12)
+            .filter(|&(o, _)| {
                 let new = (o - last).abs() >= 1e-12;
                 last = if new { o } else { last };
                 new
             })
-            .find(|&o| is_free(&busy, o, l))?;
-        let at = busy.partition_point(|&(s, _)| s < o);
+            .find_map(|(o, j)| fits_after(&busy, o, l, j).map(|at| (o, at)))?;
         busy.insert(at, (o, o + l));
+        for f in fitted.iter_mut().filter(|f| f.1 >= at) {
+            f.1 += 1;
+        }
+        match fitted.iter_mut().find(|f| f.0 == l) {
+            Some(f) => f.1 = at,
+            None => fitted.push((l, at)),
+        }
         placed.push(i);
         offsets[i] = o;
-        match fitted.iter_mut().find(|f| f.0 == l) {
-            Some(f) => f.1 = o,
-            None => fitted.push((l, o)),
-        }
     }
     Some(offsets)
+}
+
+/// Where [o, o + `l`) goes in `busy` if it is free there, else `None`; `after` the index of the
+/// busy interval whose end `o` is, when it is one. Free intervals leave the slot before the
+/// next one (disjoint, each longer than 1e-12), so that one alone is checked, and the slot
+/// goes at its index; from 0 or a wrapped end, [`is_free`] and a search.
+fn fits_after(busy: &[(f64, f64)], o: f64, l: f64, after: Option<usize>) -> Option<usize> {
+    match after {
+        Some(j) if busy[j].1 == o => busy
+            .get(j + 1)
+            .is_none_or(|&(s, _)| s >= o + l - 1e-12)
+            .then_some(j + 1),
+        _ => is_free(busy, o, l).then(|| busy.partition_point(|&(s, _)| s < o)),
+    }
 }
 
 /// The busy intervals of the `placed` slots' repeats within [0, `span`), sorted by start.
