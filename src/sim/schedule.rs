@@ -184,12 +184,7 @@ fn pow2(e: i32) -> f64 {
 /// per length, where searching from 0 each time was quadratic in the drones (a capacity search
 /// at TTN's fair use, a slot per 4270 s, packed 8640 drones per try: 5 s for a swarm of 50).
 fn pack(period: &[f64], len: &[f64]) -> Option<Vec<f64>> {
-    let mut order: Vec<usize> = (0..period.len()).collect();
-    order.sort_by(|&a, &b| {
-        period[a]
-            .total_cmp(&period[b])
-            .then(len[b].total_cmp(&len[a]))
-    });
+    let order = packing_order(period, len);
     let mut offsets = vec![0.0; period.len()];
     let mut placed: Vec<usize> = Vec::new();
     // The placed slots' busy intervals within [0, `span`), sorted by start (so by end too).
@@ -230,6 +225,17 @@ fn pack(period: &[f64], len: &[f64]) -> Option<Vec<f64>> {
         offsets[i] = o;
     }
     Some(offsets)
+}
+
+/// The order slots are placed in: shortest period first, the longest slot first among equals.
+fn packing_order(period: &[f64], len: &[f64]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..period.len()).collect();
+    order.sort_by(|&a, &b| {
+        period[a]
+            .total_cmp(&period[b])
+            .then(len[b].total_cmp(&len[a]))
+    });
+    order
 }
 
 /// Where [o, o + `l`) goes in `busy` if it is free there, else `None`; `after` the index of the
@@ -432,12 +438,7 @@ mod tests {
     /// What `pack` and `nested_periods` must still return, bit for bit.
     mod searched_from_zero {
         pub fn pack(period: &[f64], len: &[f64]) -> Option<Vec<f64>> {
-            let mut order: Vec<usize> = (0..period.len()).collect();
-            order.sort_by(|&a, &b| {
-                period[a]
-                    .total_cmp(&period[b])
-                    .then(len[b].total_cmp(&len[a]))
-            });
+            let order = super::super::packing_order(period, len);
             let mut offsets = vec![0.0; period.len()];
             let mut placed: Vec<usize> = Vec::new();
             let (mut busy, mut span): (Vec<(f64, f64)>, f64) = (Vec::new(), 0.0);
