@@ -81,7 +81,7 @@ impl Energy {
     /// use loratrack::Energy;
     /// let silent = Energy::from_sums(0, 0.0, 0.0, 3600.0);
     /// assert!(silent.charge_per_uplink.is_nan());
-    /// assert_eq!(silent.charge_per_hour, 0.0002); // the radio asleep for the hour
+    /// assert!((silent.charge_per_hour - 0.0002).abs() < 1e-12); // the radio asleep for the hour
     /// ```
     pub fn from_sums(n: usize, charge: f64, active: f64, flight_time: f64) -> Self {
         let sleep = SX1276_SLEEP_CURRENT_MA * (flight_time - active).max(0.0);
