@@ -327,6 +327,11 @@ impl TrackingAdr {
         let (mut lo, mut hi) = (-300.0, 100.0);
         for _ in 0..80 {
             let mid = 0.5 * (lo + hi);
+            // Adjacent floats (after ~55 halvings of 400 dB): every further step leaves
+            // 0.5·(lo + hi) at this mid, so the score's exps and erfcs would be spent for nothing.
+            if mid == lo || mid == hi {
+                break;
+            }
             if score(mid) > 0.0 {
                 lo = mid;
             } else {
