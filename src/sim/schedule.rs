@@ -239,9 +239,10 @@ fn packing_order(period: &[f64], len: &[f64]) -> Vec<usize> {
 }
 
 /// Where [o, o + `l`) goes in `busy` if it is free there, else `None`; `after` the index of the
-/// busy interval whose end `o` is, when it is one. Free intervals leave the slot before the
-/// next one (disjoint, each longer than 1e-12), so that one alone is checked, and the slot
-/// goes at its index; from 0 or a wrapped end, [`is_free`] and a search.
+/// busy interval whose end `o` is, when it is one. Busy intervals are disjoint and longer than
+/// 1e-12, so a slot starting at interval j's end can overlap only interval j + 1 ([`is_free`]'s
+/// test there, with its tolerance) and goes in at j + 1; from 0 or a wrapped end (one at the
+/// period), [`is_free`] and a search.
 fn fits_after(busy: &[(f64, f64)], o: f64, l: f64, after: Option<usize>) -> Option<usize> {
     match after {
         Some(j) if busy[j].1 == o => busy
