@@ -147,6 +147,26 @@ export function axisLabelOverlaps(page) {
   });
 }
 
+/** Every pair of texts drawn by one mark of the charts within `selector` (an axis's tick labels
+ * share a group) that overlap, as "chart id: a over b" lines: a phone's swarm strip once printed
+ * "1,000" into "2,000". */
+export function tickLabelOverlaps(page, selector = '.chart') {
+  return page.evaluate((selector) => {
+    const out = [];
+    for (const group of document.querySelectorAll(`${selector} svg g`)) {
+      const boxes = [...group.children].filter((t) => t.tagName === 'text' && t.textContent.trim()).map((t) => ({ text: t.textContent, r: t.getBoundingClientRect() }));
+      for (const [i, a] of boxes.entries()) {
+        for (const b of boxes.slice(i + 1)) {
+          if (a.r.left < b.r.right - 1 && b.r.left < a.r.right - 1 && a.r.top < b.r.bottom - 1 && b.r.top < a.r.bottom - 1) {
+            out.push(`${group.closest('[id]')?.id}: "${a.text}" over "${b.text}"`);
+          }
+        }
+      }
+    }
+    return out;
+  }, selector);
+}
+
 /** Every chart text that runs past the box its chart is drawn in (which scrolls sideways and cuts
  * off what lies outside it), as "panel: text" lines: in presentation mode "1,000" and "−140" ran
  * past the left edge and the x axis's label 2 px past the bottom. */

@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { commandJson, nativeJson, nativeText, openPage, scratchDir } from './harness.mjs';
-import { assertDownloadIsCli, axe, axisLabelOverlaps, cell, chartTextsCut, cellNumber, downloaded, idle, layoutShifts, lesson, MODELS, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
+import { assertDownloadIsCli, axe, axisLabelOverlaps, cell, chartTextsCut, cellNumber, downloaded, idle, layoutShifts, lesson, MODELS, number, open, playground, shownP75, tableHtml, tickLabelOverlaps, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -197,12 +197,18 @@ test('a drone that sends nothing within the flight says so, not that its packets
   const silentDrones = Number(/drones that received nothing: (\d+)/.exec(swarmCli)[1]);
   assert.ok(silentDrones > 0 && silentDrones < 50, swarmCli);
   assert.ok(swarmNote.includes(`(of the ${50 - silentDrones} that received a packet)`) && swarmNote.includes(`; ${silentDrones} of 50 drones received no packet (no dot)`), swarmNote);
+  assert.match(await page.locator('#chart-swarm').textContent(), new RegExp(`p75 error of each of ${50 - silentDrones} of 50 drones`));
+  // Its strip spans three decades of p75: on a phone the 1-2-5 labels ran into each other.
+  const phone = await open('?sf=12&bw=125&fairUse=ttn', { width: 390, height: 844 });
+  await phone.page.getByRole('button', { name: 'Run swarm' }).click();
+  await until(phone.page, () => /simulated in/.test(document.querySelector('#swarm-status')?.textContent ?? ''));
+  assert.deepEqual(await tickLabelOverlaps(phone.page, '#chart-swarm'), []);
   // Where the plan has no duty cycle the interval set decides, whatever the data rate.
   const us = await open('?region=us915&bw=125&sf=9&interval=200');
   await us.page.waitForSelector('#chart-error .empty-chart');
   const usNote = await us.page.locator('#chart-error').textContent();
   assert.ok(usNote.includes('once every 200 s') && usNote.includes('It sends sooner with a shorter Interval.'), usNote);
-  assert.deepEqual([...problems, ...us.problems], []);
+  assert.deepEqual([...problems, ...us.problems, ...phone.problems], []);
 });
 
 test('the error-versus-distance chart draws the boxes over too few packets dashed, and its note names them, as the CLI flags them', async () => {

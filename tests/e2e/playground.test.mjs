@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { commandJson, nativeJson, scratchDir, openPage, screenshot, serveDist } from './harness.mjs';
-import { assertDownloadIsCli, axe, axisLabelOverlaps, cell, chartTexts, chartTextsCut, downloaded, idle, layoutShifts, number, open, playground, shownP75, tableHtml, until, usePlayground, view3d, waitForResults } from './page.mjs';
+import { assertDownloadIsCli, axe, axisLabelOverlaps, cell, chartTexts, chartTextsCut, downloaded, idle, layoutShifts, number, open, playground, shownP75, tableHtml, tickLabelOverlaps, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -474,6 +474,7 @@ test('every screen: the page does not jump as its results come, no sideways scro
       assert.ok(head <= 1.2 * row, `${width}x${height}: the results table's header is ${head} px tall, a row ${row} px`);
     }
     assert.deepEqual(await axisLabelOverlaps(page), [], `${width}x${height}: axis labels on other text`);
+    assert.deepEqual(await tickLabelOverlaps(page), [], `${width}x${height}: tick labels on one another`);
     assert.deepEqual(await chartTextsCut(page), [], `${width}x${height}: chart text cut off`);
     // A table wider than the screen scrolls; what its numbers rest on (its caption) stays within
     // the visible width, scrolled or not.

@@ -22,3 +22,12 @@ test('values on a label keep it as the bound; no positive value gives no axis', 
 test('tick labels are plain numbers, not SI prefixes that read as units', () => {
   expect([0.5, 20, 1000].map(plainNumber)).toEqual(['0.5', '20', '1,000']);
 });
+
+test('given the axis length, 1-2-5 labels that would run into each other give way to the powers of ten', () => {
+  // A swarm's p75s from 6 m to 2.1 km: on a phone's 250 px "1,000" and "2,000" lie 25 px apart.
+  expect(logAxis([6, 2100], { px: 250, font: 13 })?.ticks).toEqual([1, 10, 100, 1000, 10000]);
+  // Presenting at 1024 px the same labels have room.
+  expect(logAxis([6, 2100], { px: 838, font: 18 })?.ticks).toEqual([5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000]);
+  // Short labels fit where long ones do not.
+  expect(logAxis([2, 50], { px: 250, font: 13 })?.ticks).toEqual([2, 5, 10, 20, 50]);
+});

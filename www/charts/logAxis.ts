@@ -9,13 +9,25 @@ function multiples(decades: number): number[] {
 }
 
 /** A log scale's domain, rounded out to labelled values, and its labelled ticks, for positive
- * `values` (others ignored). `null` when there is no positive value. */
-export function logAxis(values: number[]): { domain: [number, number]; ticks: number[] } | null {
+ * `values` (others ignored). `null` when there is no positive value. With `across` (a horizontal
+ * axis's drawn length and its labels' font size, px), 1-2-5 labels that would run into each other
+ * (1 and 2 lie 0.3 of a decade apart: on a phone "1,000" and "2,000" overlapped) give way to the
+ * powers of ten alone. */
+export function logAxis(values: number[], across?: { px: number; font: number }): { domain: [number, number]; ticks: number[] } | null {
   const positive = values.filter((v) => Number.isFinite(v) && v > 0);
   if (!positive.length) return null;
   const lo = Math.min(...positive);
   const hi = Math.max(...positive);
-  const steps = multiples(Math.log10(hi / lo));
+  const axis = labelled(lo, hi, multiples(Math.log10(hi / lo)));
+  if (!across || axis.ticks.length < 2) return axis;
+  // A label is about 0.6 em a character; two neighbours need half of each apart, and a gap.
+  const widest = Math.max(...axis.ticks.map((t) => plainNumber(t).length)) * 0.6 * across.font;
+  const closest = (Math.log10(2) * across.px) / Math.log10(axis.domain[1] / axis.domain[0]);
+  return closest >= widest + 0.3 * across.font ? axis : labelled(lo, hi, [1]);
+}
+
+/** The domain from `lo` to `hi` rounded out to the `steps` of each power of ten, and those ticks. */
+function labelled(lo: number, hi: number, steps: number[]): { domain: [number, number]; ticks: number[] } {
   const candidates: number[] = [];
   for (let e = Math.floor(Math.log10(lo)) - 1; e <= Math.ceil(Math.log10(hi)) + 1; e++) {
     // Rounded so that 0.1 × 2 reads 0.2, not 0.20000000000000004.

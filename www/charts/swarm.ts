@@ -54,6 +54,9 @@ export function sfShares(r: Pick<SwarmReport, 'packetsBySf'>): string {
     .join(', ');
 }
 
+/** Plot's default right margin, px, which the collision chart keeps. */
+const PLOT_MARGIN_RIGHT = 20;
+
 /** What the strip of p75s leaves out or draws hollow, of a swarm of `total` drones whose `drawn`
  * received a packet (the rest have no p75, so no dot) and `thin` of those too few to compare. */
 export function stripCounts(total: number, drawn: number, thin: number): string {
@@ -71,7 +74,7 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
     ...chartFrame(220, 360),
     width,
     marginLeft: labelRoom(50),
-    x: { label: 'drones sharing the gateway', type: 'log', ...logAxis(rates.map((r) => r.n)), tickFormat: plainNumber },
+    x: { label: 'drones sharing the gateway', type: 'log', ...logAxis(rates.map((r) => r.n), { px: width - labelRoom(50) - PLOT_MARGIN_RIGHT, font: chartFont() }), tickFormat: plainNumber },
     y: { label: 'packets collided (%)', grid: true, zero: true },
     marks: [
       Plot.lineY(rates, { x: 'n', y: 'theory', stroke: '#888', strokeDasharray: '4,3' }),
@@ -87,6 +90,8 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   // A drone whose p75 rests on too few packets (an SF12 drone's two minutes see one or two) is
   // drawn hollow, as the SF chart's points are, and the note counts them.
   const thin = drones.filter((d) => d.few).length;
+  // The strip's axis counts the dots it draws: "of each of 4 of 50 drones" where 46 received nothing.
+  const shown = drones.length < largest.drones.length ? `${drones.length} of ${largest.drones.length}` : `${largest.drones.length}`;
   // SF7 first (not SF10, as sorting the names put it), in the SFs' page-wide colours.
   const sfs = [...new Set(largest.drones.map((d) => d.sf))].sort((a, b) => a - b);
   // Each drone a dot piled up from the axis as far as the spread of their p75s needs (dodgeY):
@@ -108,7 +113,7 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
       marginRight: labelRoom(24),
       // Labelling only the powers of ten left a swarm whose p75s lie within one decade (all on SF7:
       // 2–7 m) without a single number on its axis.
-      x: { label: fitLabel(width, `p75 error of each of ${largest.config.drones} drones (m, log scale)`, `p75 of each of ${largest.config.drones} drones (m, log)`, 'p75 per drone (m, log)'), type: 'log', ...logAxis(drones.map((d) => d.p75)), tickFormat: plainNumber },
+      x: { label: fitLabel(width, `p75 error of each of ${shown} drones (m, log scale)`, `p75 of each of ${shown} drones (m, log)`, 'p75 per drone (m, log)'), type: 'log', ...logAxis(drones.map((d) => d.p75), { px: width - labelRoom(50) - labelRoom(24), font: chartFont() }), tickFormat: plainNumber },
       y: { axis: null },
       color: { legend: true, domain: sfs.map(sfName), range: sfs.map((sf) => SF_COLORS[sf - 7]) },
       marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: { value: (d: Drone) => (d.few ? 'white' : d.colour), scale: null }, stroke: 'sf', strokeWidth: 1.2, r, title: (d: Drone) => `${d.sf}: p75 ${d.p75.toFixed(2)} m over ${d.received} packets${d.few ? ', too few to compare' : ''}` }))],
