@@ -54,9 +54,6 @@ export function sfShares(r: Pick<SwarmReport, 'packetsBySf'>): string {
     .join(', ');
 }
 
-/** Plot's default right margin, px, which the collision chart keeps. */
-const PLOT_MARGIN_RIGHT = 20;
-
 /** What the strip of p75s leaves out or draws hollow, of a swarm of `total` drones whose `drawn`
  * received a packet (the rest have no p75, so no dot) and `thin` of those too few to compare. */
 export function stripCounts(total: number, drawn: number, thin: number): string {
@@ -69,12 +66,17 @@ type Drone = { p75: number; sf: string; colour: string; received: number; few: b
 
 export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   // A swarm that sent nothing has no collision share (null): no dot, and its title says why.
+  // The charts' side margins, px, as drawn: their log axes run between them. The collision chart
+  // keeps Plot's default right margin; the strip needs room for half its last tick label
+  // ("10,000" ran past the right edge).
+  const margin = { left: labelRoom(50), collisionsRight: 20, stripRight: labelRoom(24) };
   const rates = swarms.map((r) => ({ n: r.config.drones, measured: r.collisionRate === null ? Number.NaN : 100 * r.collisionRate, theory: 100 * r.collisionRateTheory }));
   const collisions = Plot.plot({
     ...chartFrame(220, 360),
     width,
-    marginLeft: labelRoom(50),
-    x: { label: 'drones sharing the gateway', type: 'log', ...logAxis(rates.map((r) => r.n), { px: width - labelRoom(50) - PLOT_MARGIN_RIGHT, font: chartFont() }), tickFormat: plainNumber },
+    marginLeft: margin.left,
+    marginRight: margin.collisionsRight,
+    x: { label: 'drones sharing the gateway', type: 'log', ...logAxis(rates.map((r) => r.n), { px: width - margin.left - margin.collisionsRight, font: chartFont() }), tickFormat: plainNumber },
     y: { label: 'packets collided (%)', grid: true, zero: true },
     marks: [
       Plot.lineY(rates, { x: 'n', y: 'theory', stroke: '#888', strokeDasharray: '4,3' }),
@@ -108,12 +110,11 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
       marginTop,
       height,
       width,
-      marginLeft: labelRoom(50),
-      // Room for half the last tick label ("10,000" ran past the right edge).
-      marginRight: labelRoom(24),
+      marginLeft: margin.left,
+      marginRight: margin.stripRight,
       // Labelling only the powers of ten left a swarm whose p75s lie within one decade (all on SF7:
       // 2–7 m) without a single number on its axis.
-      x: { label: fitLabel(width, `p75 error of each of ${shown} drones (m, log scale)`, `p75 of each of ${shown} drones (m, log)`, 'p75 per drone (m, log)'), type: 'log', ...logAxis(drones.map((d) => d.p75), { px: width - labelRoom(50) - labelRoom(24), font: chartFont() }), tickFormat: plainNumber },
+      x: { label: fitLabel(width, `p75 error of each of ${shown} drones (m, log scale)`, `p75 of each of ${shown} drones (m, log)`, 'p75 per drone (m, log)'), type: 'log', ...logAxis(drones.map((d) => d.p75), { px: width - margin.left - margin.stripRight, font: chartFont() }), tickFormat: plainNumber },
       y: { axis: null },
       color: { legend: true, domain: sfs.map(sfName), range: sfs.map((sf) => SF_COLORS[sf - 7]) },
       marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: { value: (d: Drone) => (d.few ? 'white' : d.colour), scale: null }, stroke: 'sf', strokeWidth: 1.2, r, title: (d: Drone) => `${d.sf}: p75 ${d.p75.toFixed(2)} m over ${d.received} packets${d.few ? ', too few to compare' : ''}` }))],
