@@ -183,6 +183,28 @@ fn invalid_swarms_are_refused() {
     }
 }
 
+#[test]
+fn a_heartbeat_too_short_for_the_slowest_drone_is_refused_with_that_drones_interval() {
+    // SF7..SF12 dealt in turn at 250 kHz: SF9 is the first drone's rate the 10 s heartbeat
+    // misses, but SF12's interval is the one that makes the whole swarm fit.
+    let spread = |max_interval: f64| {
+        set(
+            &Scenario::default(),
+            json!({"drones": 12, "duration": 60.0, "sender": "error", "maxInterval": max_interval}),
+        )
+    };
+    let e = swarm(&spread(10.0)).unwrap_err().to_string();
+    let named = e
+        .split("(SF12 at 250 kHz: ")
+        .nth(1)
+        .and_then(|rest| rest.split(" s)").next())
+        .and_then(|v| v.parse::<f64>().ok())
+        .unwrap_or_else(|| panic!("{e:?} should name SF12 at 250 kHz"));
+    // The value it names, rounded up to the next whole second, is enough.
+    assert!(swarm(&spread(named.ceil())).is_ok());
+    assert!(swarm(&spread(named - 1.0)).is_err());
+}
+
 /// One SF7 channel, with the formula's own assumptions (no capture, SFs orthogonal, no
 /// shadowing) and the swarm's default clocks and random delays.
 fn one_channel(drones: usize) -> Scenario {

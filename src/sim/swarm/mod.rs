@@ -210,9 +210,18 @@ impl<'a> Swarm<'a> {
         for i in 0..s.swarm.drones {
             let radio = LoraParams::from_settings(deal.sf_of(i), s.radio.bw, s.radio.cr)?;
             let (r, duty_cycle) = cfg.drone_radio(&radio, model)?;
-            cfg.check_heartbeat(&r.current())?;
             radios.push(r);
             duty_cycles.push(duty_cycle);
+        }
+        // The heartbeat is every drone's, so it is checked against the slowest drone's frame:
+        // naming the first drone that fails (SF9 where SFs are dealt in turn) would leave a
+        // reader who raised it to that interval to meet SF10, SF11 and SF12 in turn.
+        let slowest = radios
+            .iter()
+            .map(|r| r.current())
+            .max_by(|a, b| a.interval.total_cmp(&b.interval));
+        if let Some(frame) = slowest {
+            cfg.check_heartbeat(&frame)?;
         }
         let slots = slots(cfg, &radios)?;
         let setup = cfg.station_setup(0.0);
