@@ -69,13 +69,14 @@ fn js_error(message: &str) -> JsValue {
 }
 
 /// The JS `Error` for an operation the core refused: its message, the setting at fault where one
-/// is ([`ApiError::setting`], e.g. `maxInterval`) and, for a run too long only for its seeds,
-/// `seedsThatFit` ([`ApiError::seeds_that_fit`]).
+/// is ([`ApiError::setting`], e.g. `maxInterval`) and, where the core knows one, the value of
+/// that setting with which the run would go ahead, `valueThatFits` ([`ApiError::value_that_fits`]:
+/// the seeds that fit, the heartbeat the slowest data rate needs).
 fn api_error(e: &ApiError) -> JsValue {
     let error = error_naming(&api::clean_message(&e.to_string()), e.setting());
-    if let Some(fit) = e.seeds_that_fit() {
+    if let Some(fit) = e.value_that_fits() {
         // Defining a property on a fresh Error cannot fail.
-        let _ = set(&error, "seedsThatFit", JsValue::from(fit));
+        let _ = set(&error, "valueThatFits", JsValue::from(fit));
     }
     error
 }

@@ -76,19 +76,40 @@ fn bad_input_throws_a_readable_error_and_the_module_keeps_working() {
     assert!((num(&ok, "timeOnAir") - 0.072192).abs() < 1e-9);
 }
 
-/// A run too long only for its seeds says how many fit as a number (`seedsThatFit`), beside the
-/// message that says it in words, so that the page can offer them; other refusals carry none.
+/// A refusal that knows the value of its setting with which the run would go ahead carries it as
+/// a number (`valueThatFits`), beside the message that says it in words, so that the page can
+/// offer it: the seeds that fit, the heartbeat the slowest data rate needs; other refusals carry
+/// none.
 #[wasm_bindgen_test]
-fn a_run_too_long_for_its_seeds_says_how_many_fit() {
-    let fit = |e: &JsValue| get(e, "seedsThatFit").as_f64();
+fn a_refusal_says_which_value_of_its_setting_fits() {
+    let fit = |e: &JsValue| get(e, "valueThatFits").as_f64();
+    let setting = |e: &JsValue| get(e, "setting").as_string();
     let e = wasm::simulate(
         obj(&[("synthetic", "all".into()), ("seeds", 50.into())]),
         JsValue::UNDEFINED,
     )
     .unwrap_err();
-    assert_eq!(get(&e, "setting").as_string().as_deref(), Some("seeds"));
+    assert_eq!(setting(&e).as_deref(), Some("seeds"));
     assert_eq!(fit(&e), Some(18.0));
     assert!(error_message(e).contains("at most 18 seeds"));
+    let heartbeat = obj(&[
+        ("synthetic", 1.into()),
+        ("sf", 12.into()),
+        ("bw", 125.into()),
+        ("sender", "error".into()),
+    ]);
+    let e = wasm::simulate(heartbeat, JsValue::UNDEFINED).unwrap_err();
+    assert_eq!(setting(&e).as_deref(), Some("maxInterval"));
+    let needed = fit(&e).expect("a heartbeat that fits");
+    assert!(error_message(e).contains(&format!("{needed} s), got 10")));
+    let kept = obj(&[
+        ("synthetic", 1.into()),
+        ("sf", 12.into()),
+        ("bw", 125.into()),
+        ("sender", "error".into()),
+        ("maxInterval", needed.into()),
+    ]);
+    assert!(wasm::simulate(kept, JsValue::UNDEFINED).is_ok());
     let e = wasm::simulate(
         obj(&[("synthetic", 1.into()), ("sf", 13.into())]),
         JsValue::UNDEFINED,

@@ -3,7 +3,7 @@
 // table in ./results, embeds in ./embed, presentation mode in ./present.
 import { pool } from './boot';
 import { runSwarms, spawnWorker, type SwarmRun } from './pool';
-import { linkBudget, load, MODEL_LABELS, settingOf, stationsOf, type ModelName, type SimReport, type SimulateParams, type SwarmParams } from './loratrack';
+import { linkBudget, load, MODEL_LABELS, settingOf, stationsOf, valueThatFits, type ModelName, type SimReport, type SimulateParams, type SwarmParams } from './loratrack';
 import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './charts/colors';
 import type { BoxRow } from './charts/plots';
 import type { SfRow } from './charts/p75BySf';
@@ -98,7 +98,7 @@ let lastSent = 0;
 
 function send(request: SimulateRequest, made: Settings): void {
   lastSent = request.id;
-  offerSeeds(undefined);
+  offerFit($('#fit-setting'), undefined, undefined);
   const long = made.flight === 'all' || made.flight === 'csv' || made.seeds > 1;
   running = { id: request.id, long, started: performance.now(), settings: made, params: request.params };
   updateBusy();
@@ -254,9 +254,10 @@ function onResponse(r: Response): void {
       // An embed has no settings to change: its author chose them.
       const next = store.report ? ' Change a setting; the results below are for the previous settings.' : store.embed ? '' : ' Change a setting to see results.';
       status.textContent = `These settings cannot be simulated: ${r.error}.${namesSetting(r.setting)}${next}`;
-      // Too long only for its seeds: offer as many as fit, which the core counted (not in an
-      // embed, whose settings are its author's).
-      offerSeeds(store.embed ? undefined : r.seedsThatFit);
+      // Where the core knows the value of the setting it names that lets the run go ahead (the
+      // seeds that fit, the heartbeat the slowest data rate needs), offer it (not in an embed,
+      // whose settings are its author's).
+      offerFit($('#fit-setting'), r.setting, store.embed ? undefined : r.valueThatFits);
       // The core names the setting it refuses (`maxInterval` shorter than the data rate's
       // interval, a limit the form cannot check alone): mark that control as the form marks its
       // own (the next change of any setting checks every control afresh and clears it).
@@ -779,6 +780,7 @@ $('#run-swarm').addEventListener('click', () => {
   bar.hidden = false;
   bar.value = 0;
   $('#swarm-status').textContent = `Simulating swarms of ${sizes.join(', ')} drones…`;
+  offerFit($('#swarm-fit'), undefined, undefined);
   // Before the first swarm's chart, the placeholder says it is on its way, not that none was run.
   const placeholder = document.querySelector('#chart-swarm > .empty-chart');
   const unrun = placeholder?.textContent ?? '';
@@ -813,6 +815,7 @@ $('#run-swarm').addEventListener('click', () => {
       end();
       if (placeholder) placeholder.textContent = unrun;
       $('#swarm-status').textContent = `These swarms cannot be simulated: ${e.message}.${namesSetting(settingOf(e))}`;
+      offerFit($('#swarm-fit'), settingOf(e), store.embed ? undefined : valueThatFits(e));
     },
   );
 });
@@ -832,19 +835,38 @@ $('#repeat-seeds').addEventListener('click', () => {
   onChange();
 });
 
-/** Shows "Use N seeds" under a refusal of a run too long only for its seeds (the core's
- * `seedsThatFit`), or hides it. */
-function offerSeeds(fit: number | undefined): void {
-  const button = $<HTMLButtonElement>('#fit-seeds');
-  button.hidden = fit === undefined;
-  if (fit === undefined) return;
-  button.dataset.seeds = String(fit);
-  button.textContent = `Use ${fit} seed${fit === 1 ? '' : 's'}`;
+/** The words of the button that sets `setting` to `value`: "Use 18 seeds", "Use a heartbeat of
+ * 148.3 s", or the control's label and the value. */
+function fitWords(setting: string, value: number): string {
+  if (setting === 'seeds') return `Use ${value} seed${value === 1 ? '' : 's'}`;
+  if (setting === 'maxInterval') return `Use a heartbeat of ${value} s`;
+  return `Set ${numericControl(setting)?.labels?.[0]?.textContent?.trim() ?? setting} to ${value}`;
 }
 
-$('#fit-seeds').addEventListener('click', () => {
-  field('seeds').value = $('#fit-seeds').dataset.seeds ?? '1';
+/** Shows `button` under a refusal, to set the setting it names to the value with which the run
+ * would go ahead (the core's `valueThatFits`), or hides it where there is none. */
+function offerFit(button: HTMLButtonElement, setting: string | undefined, value: number | undefined): void {
+  button.hidden = value === undefined || !numericControl(setting);
+  if (button.hidden || setting === undefined || value === undefined) return;
+  button.dataset.setting = setting;
+  button.dataset.value = String(value);
+  button.textContent = fitWords(setting, value);
+}
+
+/** Sets the control `button` was offered for to its value, as if typed, and runs. */
+function useFit(button: HTMLElement): void {
+  const control = numericControl(button.dataset.setting);
+  if (!control || button.dataset.value === undefined) return;
+  control.value = button.dataset.value;
   onChange();
+}
+
+$('#fit-setting').addEventListener('click', () => useFit($('#fit-setting')));
+
+// The swarms asked for again at once: the reader pressed Run swarm to see them.
+$('#swarm-fit').addEventListener('click', () => {
+  useFit($('#swarm-fit'));
+  $('#run-swarm').click();
 });
 
 $('#use-whole-set').addEventListener('click', () => {

@@ -72,8 +72,9 @@ export function runSwarms(sizes: number[], params: SwarmParams, progress: (done:
               resolve();
             } else if ('error' in r) {
               stop();
-              // With the setting the core names, as a thrown error carries it (`settingOf`).
-              reject(Object.assign(new Error(r.error), { setting: r.setting }));
+              // With the setting the core names and the value of it that fits, as a thrown
+              // error carries them (`settingOf`, `valueThatFits`).
+              reject(Object.assign(new Error(r.error), { setting: r.setting, valueThatFits: r.valueThatFits }));
             }
           };
           running[k].postMessage({ id: 1, swarm: { sizes: share.map((i) => sizes[i]), params } } satisfies Request);
@@ -146,7 +147,7 @@ export class SimulationPool {
         if ('error' in r) {
           failed = true;
           forget();
-          on({ id: request.id, error: r.error, setting: r.setting, seedsThatFit: r.seedsThatFit });
+          on({ id: request.id, error: r.error, setting: r.setting, valueThatFits: r.valueThatFits });
           return;
         }
         if ('partial' in r) {

@@ -1,7 +1,7 @@
 // Runs simulations off the main thread so the page never freezes. One message in, one out:
 //   { id, params, sweep? }  →  [{ id, partial }] { id, progress }* then { id, report } | { id, error }
 //                               then, with sweep points, { id, sweep: [{ point, report?, error? }] }
-import { load, loadCsv, seedsThatFit, settingOf, simulate, stationsOf, swarm, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
+import { load, loadCsv, settingOf, simulate, stationsOf, swarm, valueThatFits, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
 import { firstRefusal, merge } from './merge';
 
 /** One point of a sweep beside the main run: the gateway at another distance, or another SF. */
@@ -46,9 +46,10 @@ export type Response =
   /** The whole synthetic set's first flight alone, sent before the set (its own report: 1 flight). */
   | { id: number; partial: SimReport }
   | { id: number; report: SimReport; millis: number }
-  /** The core's message, the setting it refuses where one is at fault (`settingOf`) and, for a
-   * run too long only for its seeds, how many fit (`seedsThatFit`). */
-  | { id: number; error: string; setting?: string; seedsThatFit?: number }
+  /** The core's message, the setting it refuses where one is at fault (`settingOf`) and, where
+   * the core knows one, the value of that setting with which the run would go ahead
+   * (`valueThatFits`: the seeds that fit, the heartbeat the slowest data rate needs). */
+  | { id: number; error: string; setting?: string; valueThatFits?: number }
   | { id: number; sweep: SweepResult[] }
   | { id: number; swarms: SwarmReport[] };
 
@@ -112,9 +113,13 @@ self.onmessage = async (event: MessageEvent<Request | ModuleMessage>) => {
       post({ id, sweep });
     }
   } catch (e) {
-    post({ id, error: e instanceof Error ? e.message : String(e), setting: settingOf(e), seedsThatFit: seedsThatFit(e) });
+    post(refusal(id, e));
   }
 };
+
+/** The answer to request `id` when the core refused it: its message, the setting it names and
+ * the value of that setting that fits, where it knows one. */
+const refusal = (id: number, e: unknown): Response => ({ id, error: e instanceof Error ? e.message : String(e), setting: settingOf(e), valueThatFits: valueThatFits(e) });
 
 /** A sweep point's run. Where the core refuses it, each station is tried alone: a data rate may
  * carry DR's and CTRA+'s frames but not the 12-byte one (US915's SF10), or an error-triggered
@@ -146,6 +151,6 @@ function runSwarms({ id, swarm: { sizes, params } }: SwarmRequest, post: (r: Res
     });
     post({ id, swarms });
   } catch (e) {
-    post({ id, error: e instanceof Error ? e.message : String(e), setting: settingOf(e) });
+    post(refusal(id, e));
   }
 }

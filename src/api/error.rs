@@ -58,9 +58,11 @@ impl ApiError {
         }
     }
 
-    /// For a `simulate` run too long only for its several seeds, how many would fit at its rates
-    /// ([`SimError::seeds_that_fit`]); the bindings give it to JS as the thrown `Error`'s
-    /// `seedsThatFit`, so that the page offers that many without reading the message.
+    /// The value of the setting this error names ([`Self::setting`]) with which the run would go
+    /// ahead ([`SimError::value_that_fits`]): how many seeds fit a run too long only for its
+    /// seeds, or the heartbeat the slowest drone's data rate needs. The bindings give it to JS as
+    /// the thrown `Error`'s `valueThatFits`, so that the page offers it without reading the
+    /// message.
     ///
     /// ```
     /// use loratrack::{api, Scenario, Simulator, SyntheticChoice};
@@ -68,11 +70,15 @@ impl ApiError {
     /// s.flight.synthetic = Some(SyntheticChoice::All);
     /// s.run.seeds = 50;
     /// let e = api::simulate(&mut Simulator::new(), &s).unwrap_err();
-    /// assert_eq!((e.setting(), e.seeds_that_fit()), (Some("seeds"), Some(18)));
+    /// assert_eq!((e.setting(), e.value_that_fits()), (Some("seeds"), Some(18.0)));
+    /// // SF12 at 125 kHz sends a 12-byte state every 148.3 s: the default 10 s heartbeat cannot be kept.
+    /// let s = Scenario::from_json(r#"{"synthetic": 1, "sf": 12, "bw": 125, "sender": "error"}"#).unwrap();
+    /// let e = api::simulate(&mut Simulator::new(), &s).unwrap_err();
+    /// assert_eq!((e.setting(), e.value_that_fits()), (Some("maxInterval"), Some(148.3)));
     /// ```
-    pub fn seeds_that_fit(&self) -> Option<u32> {
+    pub fn value_that_fits(&self) -> Option<f64> {
         match self {
-            ApiError::Sim(e) => e.seeds_that_fit(),
+            ApiError::Sim(e) => e.value_that_fits(),
             _ => None,
         }
     }

@@ -69,7 +69,8 @@ impl fmt::Display for SimError {
                 interval,
             } => write!(
                 f,
-                "maxInterval must be at least the duty-cycle interval of every drone's data rate (SF{sf} at {bw_khz} kHz: {interval:.1} s), got {}",
+                "maxInterval must be at least the duty-cycle interval of every drone's data rate (SF{sf} at {bw_khz} kHz: {} s), got {}",
+                as_given(tenths_up(*interval)),
                 as_given(*max_interval)
             ),
             SimError::Source(msg) => f.write_str(msg),
@@ -137,13 +138,25 @@ impl SimError {
     /// For a `simulate` run too long only for its several seeds, how many would fit (the whole
     /// synthetic set at the default rates: 18); `None` for any other error, or where one seed is
     /// already too long.
-    pub fn seeds_that_fit(&self) -> Option<u32> {
+    fn seeds_that_fit(&self) -> Option<u32> {
         match self {
             SimError::TooLong {
                 run: LongRun::Simulate { seeds, fit },
                 ..
             } if *seeds > 1 && *fit >= 1 => Some(*fit),
             _ => None,
+        }
+    }
+
+    /// The value of the setting this error names ([`Self::setting`]) with which the run would go
+    /// ahead, every other setting as it is, where the error knows one: for a `simulate` run too
+    /// long only for its several seeds, how many fit; for error-triggered sending's heartbeat
+    /// (`maxInterval`), the slowest drone's duty-cycle interval rounded up to 0.1 s, as the
+    /// message gives it. `None` for any other error.
+    pub fn value_that_fits(&self) -> Option<f64> {
+        match self {
+            SimError::Heartbeat { interval, .. } => Some(tenths_up(*interval)),
+            _ => self.seeds_that_fit().map(f64::from),
         }
     }
 
@@ -168,6 +181,19 @@ impl SimError {
     }
 }
 
+/// `x` rounded up to the next tenth, never below `x`: a limit quoted to 0.1 that a reader may type
+/// back (a duty-cycle interval of 10.34 s is quoted as 10.4 s, not as 10.3 s, which falls short).
+fn tenths_up(x: f64) -> f64 {
+    let tenths = (x * 10.0).ceil();
+    // k / 10 is the float nearest the decimal, so it prints as one; where x · 10 rounded down
+    // onto k, that k / 10 may fall an ulp short of x, and the next tenth is taken.
+    if tenths / 10.0 < x {
+        (tenths + 1.0) / 10.0
+    } else {
+        tenths / 10.0
+    }
+}
+
 impl From<TrajectoryError> for SimError {
     fn from(e: TrajectoryError) -> Self {
         SimError::Trajectory(e)
@@ -189,5 +215,44 @@ impl From<OutOfRange> for SimError {
 impl From<LoraError> for SimError {
     fn from(e: LoraError) -> Self {
         SimError::Lora(e)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_interval_is_quoted_rounded_up_so_that_the_quoted_value_suffices() {
+        assert_eq!(tenths_up(10.34), 10.4);
+        assert_eq!(tenths_up(10.3), 10.3);
+        assert_eq!(tenths_up(148.27), 148.3);
+        for k in 1..20_000 {
+            let x = f64::from(k) * 0.0137;
+            let q = tenths_up(x);
+            assert!(q >= x && q < x + 0.1 + 1e-9, "{x} -> {q}");
+            // Printed as the decimal it is, one digit after the point.
+            assert_eq!(
+                format!("{q:?}").split('.').nth(1).map(str::len),
+                Some(1),
+                "{q:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_heartbeat_refusal_names_maxinterval_and_the_value_that_fits() {
+        let e = SimError::Heartbeat {
+            max_interval: 10.0,
+            sf: 9,
+            bw_khz: 250.0,
+            interval: 10.34,
+        };
+        assert_eq!(e.setting(), Some("maxInterval"));
+        assert_eq!(e.value_that_fits(), Some(10.4));
+        assert!(
+            e.to_string().contains("(SF9 at 250 kHz: 10.4 s), got 10"),
+            "{e}"
+        );
     }
 }

@@ -632,15 +632,28 @@ test('with the mission station chosen the swarm runs 3D-CTRA, as it does for sev
   assert.deepEqual(problems, []);
 });
 
-test('a swarm the core refuses says why and names the setting as the form labels it', async () => {
-  // Error-triggered sending's 10 s heartbeat is shorter than SF9's interval at 250 kHz: the single
-  // drone at SF7 runs, a swarm spread over SF7..SF12 cannot.
+test('a swarm the core refuses says why, names the setting as the form labels it, and offers the heartbeat that fits, which runs the swarms', async () => {
+  // Error-triggered sending's 10 s heartbeat is shorter than the interval of every SF from SF9 up
+  // at 250 kHz: the single drone at SF7 runs, a swarm spread over SF7..SF12 cannot, and the
+  // refusal names SF12's interval, the one that lets every drone keep the heartbeat.
   const { page, problems } = await open('?sender=error');
   await page.getByLabel('SF plan').selectOption('spread');
   await page.getByRole('button', { name: 'Run swarm' }).click();
   await until(page, () => /cannot be simulated/.test(document.querySelector('#swarm-status')?.textContent ?? ''), null, { timeout: 60_000 });
-  assert.match(await page.locator('#swarm-status').textContent(), /^These swarms cannot be simulated: maxInterval must be at least .*\(SF9 at 250 kHz: 10\.3 s\), got 10\. The setting it names is Heartbeat \(s\)\.$/);
+  const status = await page.locator('#swarm-status').textContent();
+  const [, named] = status.match(/^These swarms cannot be simulated: maxInterval must be at least .*\(SF12 at 250 kHz: ([\d.]+) s\), got 10\. The setting it names is Heartbeat \(s\)\.$/) ?? [];
+  assert.ok(named, status);
   assert.match(await page.locator('#chart-swarm').textContent(), /No swarm run yet/);
+  assert.deepEqual(await axe(page), []);
+  // One press sets the heartbeat the refusal names and runs the swarms, which the CLI's run of
+  // the largest matches.
+  await page.getByRole('button', { name: `Use a heartbeat of ${named} s` }).click();
+  await page.waitForSelector('#chart-swarm svg', { timeout: 60_000 });
+  assert.equal(await page.getByLabel('Heartbeat (s)').inputValue(), named);
+  assert.equal(await page.locator('#swarm-fit').isVisible(), false);
+  const cli = nativeJson(['swarm', '--drones', '50', '--duration', '120', '--sender', 'error', '--max-interval', named]);
+  const note = await page.locator('#chart-swarm .note').textContent();
+  assert.ok(note.includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`), note);
   assert.deepEqual(problems, []);
 });
 
@@ -1372,6 +1385,9 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   assert.match(await page.locator('#status').textContent(), /got 10\. The setting it names is Heartbeat \(s\)\. Change a setting/);
   assert.equal(await heartbeat.getAttribute('aria-invalid'), 'true');
   assert.match(await page.locator('#maxInterval-error').textContent(), /SF12 at 250 kHz: [\d.]+ s\), got 10/);
+  // Under the refusal, the heartbeat it names, on offer (taken in the swarm's test; typed here).
+  const [, named] = (await page.locator('#status').textContent()).match(/SF12 at 250 kHz: ([\d.]+) s\)/);
+  assert.equal(await page.locator('#fit-setting').textContent(), `Use a heartbeat of ${named} s`);
   const before = await page.locator('#chart-sf').innerHTML();
   const table = await tableHtml(page);
   await heartbeat.fill('200');
@@ -1380,6 +1396,7 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   await idle(page);
   assert.equal(await heartbeat.getAttribute('aria-invalid'), null);
   assert.equal(await page.locator('#maxInterval-error').count(), 0);
+  assert.equal(await page.locator('#fit-setting').isVisible(), false);
   assert.match(page.url(), /maxInterval=200/);
   assert.equal(await page.locator('#sf-note').isVisible(), false);
   const longer = await page.locator('#chart-sf svg title').allTextContents();

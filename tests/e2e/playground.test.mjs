@@ -1066,7 +1066,7 @@ test('a run too long only for its seeds offers as many as the core takes at thes
   await page.getByRole('button', { name: `Use ${max} seeds` }).click();
   await page.locator('#results-table caption').first().waitFor();
   await assertRanSeeds(page, max);
-  assert.equal(await page.locator('#fit-seeds').isVisible(), false);
+  assert.equal(await page.locator('#fit-setting').isVisible(), false);
   assert.deepEqual(problems, []);
 });
 
