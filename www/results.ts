@@ -167,8 +167,11 @@ const tightenResults = () => tighten(document.querySelectorAll<HTMLElement>('#re
 
 /** What the interval column rests on under the run's plan and sending (its header's tooltip): the
  * duty cycle set, listen before talk's airtime, or the interval set where the plan has none; never
- * less than fair use leaves (the core's `AccessSettings::duty_cycle_for`). */
-export function intervalRule(c: Pick<RunConfig, 'region' | 'access' | 'fairUse' | 'interval' | 'dutyCycle' | 'sender' | 'dutyCycleMode'>): string {
+ * less than fair use leaves (the core's `AccessSettings::duty_cycle_for`). With the paper's exact
+ * timing (no clock drift, no random delay) a packet leaves on a sensor step, carrying its estimate
+ * (`Flier::next_uplink`), so the time between packets is that rounded up to whole steps: at 1 Hz
+ * SF7's 3.08 s are 4 s. */
+export function intervalRule(c: Pick<RunConfig, 'region' | 'access' | 'fairUse' | 'interval' | 'dutyCycle' | 'sender' | 'dutyCycleMode' | 'sensorRate' | 'clockDrift' | 'jitter'>): string {
   const p = plan(c.region);
   const fair = c.fairUse === 'off' ? '' : `, or longer where ${c.fairUse.toUpperCase()} fair use leaves less airtime`;
   const rule = {
@@ -176,9 +179,10 @@ export function intervalRule(c: Pick<RunConfig, 'region' | 'access' | 'fairUse' 
     lbt: "time on air divided by listen before talk's share of the air (100 s per hour)",
     dutyCycle: `time on air divided by the ${+(c.dutyCycle * 100).toPrecision(3)} % duty cycle`,
   }[sendingLimit(c)];
+  const steps = !c.clockDrift && !c.jitter ? `, then rounded up to whole sensor steps (${+(1 / c.sensorRate).toPrecision(3)} s): a packet carries the estimate of the step it leaves on` : '';
   const error = c.sender === 'error' ? '. The shortest: error-triggered sending waits longer while the station’s forecast holds' : '';
   const budget = c.dutyCycleMode === 'budget' ? '. On average: the budget rule lets saved airtime go sooner, in a burst' : '';
-  return `Time between packets: ${rule}${fair}${error}${budget}`;
+  return `Time between packets: ${rule}${fair}${steps}${error}${budget}`;
 }
 
 /** The interval and time on air cells: one packet's at the run's rate, or with ADR that moved the

@@ -5,7 +5,8 @@ import { expect, test } from 'vitest';
 import { intervalRule } from '../../www/results';
 import { DEFAULTS } from '../../www/state';
 
-const eu = { region: DEFAULTS.region, access: DEFAULTS.access, fairUse: DEFAULTS.fairUse, interval: undefined, dutyCycle: 0.01, sender: DEFAULTS.sender, dutyCycleMode: DEFAULTS.dutyCycleMode };
+// With a random delay before each uplink packets leave when the rule allows, not on a sensor step.
+const eu = { region: DEFAULTS.region, access: DEFAULTS.access, fairUse: DEFAULTS.fairUse, interval: undefined, dutyCycle: 0.01, sender: DEFAULTS.sender, dutyCycleMode: DEFAULTS.dutyCycleMode, sensorRate: 10, jitter: 1 };
 
 test('EU868 names its duty cycle as set', () => {
   expect(intervalRule(eu)).toBe('Time between packets: time on air divided by the 1 % duty cycle');
@@ -24,4 +25,13 @@ test('under error-triggered sending or the budget rule the number is a shortest 
   expect(intervalRule(periodic)).toBe('Time between packets: time on air divided by the 1 % duty cycle');
   expect(intervalRule({ ...periodic, sender: 'error' })).toMatch(/duty cycle\. The shortest: error-triggered sending waits longer while the station’s forecast holds$/);
   expect(intervalRule({ ...periodic, dutyCycleMode: 'budget' })).toMatch(/duty cycle\. On average: the budget rule lets saved airtime go sooner, in a burst$/);
+});
+
+test('with the paper\'s exact timing packets leave on sensor steps, and the rule rounds up to them', () => {
+  const exact = { ...eu, jitter: undefined, clockDrift: 0 };
+  expect(intervalRule(exact)).toBe('Time between packets: time on air divided by the 1 % duty cycle, then rounded up to whole sensor steps (0.1 s): a packet carries the estimate of the step it leaves on');
+  expect(intervalRule({ ...exact, sensorRate: 1 })).toMatch(/whole sensor steps \(1 s\)/);
+  expect(intervalRule({ ...exact, sensorRate: 3 })).toMatch(/whole sensor steps \(0\.333 s\)/);
+  expect(intervalRule({ ...exact, clockDrift: 20 })).not.toMatch(/sensor steps/);
+  expect(intervalRule({ ...exact, region: 'us915', interval: 2.5 })).toMatch(/US915 has no duty cycle\), then rounded up to whole sensor steps/);
 });
