@@ -768,9 +768,15 @@ let swarmShown: string | undefined;
  * drone or a choice of the panel changed since): they run only when asked, so nothing else would
  * say that their numbers are not the settings' on show. */
 function markSwarmStale(): void {
-  const stale = swarmShown !== undefined && JSON.stringify(swarmRequest()) !== swarmShown;
+  const now = JSON.stringify(swarmRequest());
+  const stale = swarmShown !== undefined && now !== swarmShown;
   $('[data-panel="swarm"]').classList.toggle('stale', stale);
+  // A refusal's offered value fits the swarms it refused, not others.
+  if (swarmRefused !== now) offerFit($('#swarm-fit'), undefined, undefined);
 }
+
+/** The swarms the core refused last (their request), whose refusal is on show. */
+let swarmRefused: string | undefined;
 
 $('#run-swarm').addEventListener('click', () => {
   swarmRun?.stop();
@@ -815,6 +821,7 @@ $('#run-swarm').addEventListener('click', () => {
       end();
       if (placeholder) placeholder.textContent = unrun;
       $('#swarm-status').textContent = `These swarms cannot be simulated: ${e.message}.${namesSetting(settingOf(e))}`;
+      swarmRefused = JSON.stringify({ sizes, params });
       offerFit($('#swarm-fit'), settingOf(e), store.embed ? undefined : valueThatFits(e));
     },
   );
