@@ -47,7 +47,7 @@ pub struct RunConfig {
 }
 
 /// The drone radio's charge (SX1276 currents; `docs/reference.md` §7).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct Energy {

@@ -643,7 +643,12 @@ mod tests {
             packets_sent,
             packets_received: packets_sent,
             packets_collided: 0,
-            energy: Energy::default(),
+            // Zeros, as the tests below read them (a real silent drone's would be no charge per
+            // uplink and its sleeping radio's per hour: `Energy::from_sums`).
+            energy: Energy {
+                charge_per_uplink: 0.0,
+                charge_per_hour: 0.0,
+            },
             duty_cycle_used,
             frame_length: None,
             error3d: Summary::of(&mut Vec::new()),
