@@ -532,7 +532,7 @@ function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made
   // An SF, or a station at an SF, the core refuses at these settings is marked in the chart, and
   // the note says why; the SFs the plan lacks under one reason (the core names each SF).
   const asked = stationsOf(made.model);
-  const sfs = sweep.flatMap(({ point, report: rep, error, setting }) => ('sf' in point ? [{ sf: point.sf, report: rep, error, setting }] : []));
+  const sfs = sweep.flatMap(({ point, report: rep, error, setting, valueThatFits: fits }) => ('sf' in point ? [{ sf: point.sf, report: rep, error, setting, valueThatFits: fits }] : []));
   later('sf', () => renderSfs(sfs, asked, made));
   // Each refusal with the label of the setting it names, as the status line gives it.
   const why = (sf: number, error?: string, setting?: string) =>
@@ -540,6 +540,15 @@ function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made
   const note = refusedNote(sfs.map(({ sf, report: rep, error, setting }) => ({ at: `SF${sf}`, asked, ran: rep?.results.map((r) => r.model) ?? [], error: why(sf, error, setting) })));
   $('#sf-note').hidden = !note;
   $('#sf-note').textContent = note;
+  offerFit($('#sf-fit'), 'maxInterval', store.embed ? undefined : heartbeatThatFits(sfs));
+}
+
+/** The heartbeat with which every SF the core refused for its heartbeat would run: the
+ * largest value it named (the slowest data rate's duty-cycle interval, since each point's is a
+ * least heartbeat), or undefined where none was refused for it. */
+function heartbeatThatFits(sweep: { setting?: string; valueThatFits?: number }[]): number | undefined {
+  const fits = sweep.flatMap(({ setting, valueThatFits: v }) => (setting === 'maxInterval' && v !== undefined ? [v] : []));
+  return fits.length ? Math.max(...fits) : undefined;
 }
 
 /** What each panel drawn by `drawPanel` was last drawn from, with the page's type size then. */
@@ -869,6 +878,7 @@ function useFit(button: HTMLElement): void {
 }
 
 $('#fit-setting').addEventListener('click', () => useFit($('#fit-setting')));
+$('#sf-fit').addEventListener('click', () => useFit($('#sf-fit')));
 
 // The swarms asked for again at once: the reader pressed Run swarm to see them.
 $('#swarm-fit').addEventListener('click', () => {

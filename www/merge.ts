@@ -29,8 +29,9 @@ export function mergeSweepPoint(point: SweepPoint, runs: SweepResult[], models: 
   return { point, ...(reports.length ? { report: merge(reports, models, model) } : {}), ...firstRefusal(runs) };
 }
 
-/** The first of `runs` the core refused, as its error and the setting it names; `{}` where none was. */
-export function firstRefusal(runs: SweepResult[]): Pick<SweepResult, 'error' | 'setting'> {
+/** The first of `runs` the core refused, as its error, the setting it names and the value of that
+ * setting that fits; `{}` where none was. */
+export function firstRefusal(runs: SweepResult[]): Pick<SweepResult, 'error' | 'setting' | 'valueThatFits'> {
   const refused = runs.find((x) => x.error);
-  return refused ? { error: refused.error, setting: refused.setting } : {};
+  return refused ? { error: refused.error, setting: refused.setting, valueThatFits: refused.valueThatFits } : {};
 }

@@ -16,6 +16,8 @@ export interface SweepResult {
   error?: string;
   /** The setting the error names (`settingOf`), for the page to give its label. */
   setting?: string;
+  /** That setting's value with which the point would run (`valueThatFits`), where the core knows one. */
+  valueThatFits?: number;
 }
 
 export interface SimulateRequest {
@@ -117,9 +119,12 @@ self.onmessage = async (event: MessageEvent<Request | ModuleMessage>) => {
   }
 };
 
-/** The answer to request `id` when the core refused it: its message, the setting it names and
- * the value of that setting that fits, where it knows one. */
-const refusal = (id: number, e: unknown): Response => ({ id, error: e instanceof Error ? e.message : String(e), setting: settingOf(e), valueThatFits: valueThatFits(e) });
+/** What the core said in refusing a run: its message, the setting it names and the value of that
+ * setting that fits, where it knows one. */
+const why = (e: unknown) => ({ error: e instanceof Error ? e.message : String(e), setting: settingOf(e), valueThatFits: valueThatFits(e) });
+
+/** The answer to request `id` when the core refused it. */
+const refusal = (id: number, e: unknown): Response => ({ id, ...why(e) });
 
 /** A sweep point's run. Where the core refuses it, each station is tried alone: a data rate may
  * carry DR's and CTRA+'s frames but not the 12-byte one (US915's SF10), or an error-triggered
@@ -129,7 +134,7 @@ function sweepPoint(params: SimulateParams, point: SweepPoint): SweepResult {
     try {
       return { point, report: simulate(p) };
     } catch (e) {
-      return { point, error: e instanceof Error ? e.message : String(e), setting: settingOf(e) };
+      return { point, ...why(e) };
     }
   };
   const all = run(params);

@@ -1361,7 +1361,7 @@ test('axe finds no violation in the stale, error, presentation and phone states'
   assert.deepEqual([...stale.problems, ...present.problems, ...phone.problems], []);
 });
 
-test('with error-triggered sending the SF chart leaves out the SFs whose interval exceeds the heartbeat, says why, and the results stand; a longer heartbeat brings them back', async () => {
+test('with error-triggered sending the SF chart leaves out the SFs whose interval exceeds the heartbeat, says why, and the results stand; its button sets the heartbeat that brings them all back', async () => {
   const { page, problems } = await open('?sender=error');
   await idle(page);
   await page.waitForSelector('#chart-sf svg');
@@ -1382,6 +1382,9 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   assert.match(slide, /Not simulated at (SF\d+, )*SF12: maxInterval must be at least the duty-cycle interval/);
   assert.equal(await page.locator('[data-panel="results"].stale').count(), 0);
   assert.doesNotMatch(await page.locator('#status').textContent(), /cannot be simulated/);
+  // Under the note, the heartbeat that lets every SF run: the slowest one's interval, the note's last.
+  const slowest = (await page.locator('#sf-note').textContent()).match(/: ([\d./]+) s\), got 10/)[1].split('/').at(-1);
+  assert.equal(await page.locator('#sf-fit').textContent(), `Use a heartbeat of ${slowest} s`);
   // The heartbeat the note names is a control beside the threshold, with the core's default; at
   // SF12 the run itself is refused, and the refusal is marked on that control.
   const heartbeat = page.getByLabel('Heartbeat (s)');
@@ -1394,19 +1397,33 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   // Under the refusal, the heartbeat it names, on offer (taken in the swarm's test; typed here).
   const [, named] = (await page.locator('#status').textContent()).match(/SF12 at 250 kHz: ([\d.]+) s\)/);
   assert.equal(await page.locator('#fit-setting').textContent(), `Use a heartbeat of ${named} s`);
+  // The SF chart's button offers the same: SF12 is the slowest either way.
+  assert.equal(named, slowest);
+  assert.equal(await page.locator('#sf-fit').textContent(), `Use a heartbeat of ${named} s`);
   const before = await page.locator('#chart-sf').innerHTML();
   const table = await tableHtml(page);
-  await heartbeat.fill('200');
+  await page.locator('#sf-fit').click();
   await waitForResults(page, table);
   await until(page, (html) => document.querySelector('#chart-sf')?.innerHTML !== html && document.querySelector('#chart-sf svg'), before);
   await idle(page);
+  assert.equal(await heartbeat.inputValue(), named);
   assert.equal(await heartbeat.getAttribute('aria-invalid'), null);
   assert.equal(await page.locator('#maxInterval-error').count(), 0);
   assert.equal(await page.locator('#fit-setting').isVisible(), false);
-  assert.match(page.url(), /maxInterval=200/);
+  assert.equal(await page.locator('#sf-fit').isVisible(), false);
+  assert.match(page.url(), new RegExp(`maxInterval=${named}`));
   assert.equal(await page.locator('#sf-note').isVisible(), false);
+  // Every SF is back, each the results' command at that SF with one seed, the heartbeat now set.
   const longer = await page.locator('#chart-sf svg title').allTextContents();
-  assert.ok(longer.some((t) => t.startsWith('DR, SF12:')), longer.join('; '));
+  const line = await page.locator('[data-command="results"] code').textContent();
+  assert.ok(line.includes(' --sf 12') && line.includes(` --max-interval ${named}`), line);
+  for (const sf of [9, 12]) {
+    const cli = commandJson(line.replace('--sf 12', `--sf ${sf}`));
+    for (const r of cli.results) {
+      const shown = longer.find((t) => t.startsWith(`${{ dr: 'DR', 'ctra-plus': 'CTRA+', '3d-ctra': '3D-CTRA' }[r.model]}, SF${sf}:`));
+      assert.equal(Number(/p75 ([\d.]+) m/.exec(shown)[1]).toFixed(2), r.error3d.p75.toFixed(2), `${r.model}, SF${sf}: ${shown}`);
+    }
+  }
   assert.deepEqual(problems, []);
 });
 

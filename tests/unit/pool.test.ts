@@ -188,4 +188,7 @@ test('a sweep point some of whose stations the core refused keeps those that ran
   expect(mergeSweepPoint(point, [{ point, report: a }], ['dr'], 'dr').error).toBeUndefined();
   // The setting a refusal names comes with it, for the page to give its label.
   expect(mergeSweepPoint(point, [{ point, report: a }, { point, error: 'heartbeat too short', setting: 'maxInterval' }], ['dr', '3d-ctra'], 'all').setting).toBe('maxInterval');
+  // And the value of it that fits, for the SF chart's button.
+  const fits = mergeSweepPoint(point, [{ point, report: a }, { point, error: 'heartbeat too short', setting: 'maxInterval', valueThatFits: 74.2 }], ['dr', '3d-ctra'], 'all');
+  expect([fits.setting, fits.valueThatFits]).toEqual(['maxInterval', 74.2]);
 });
