@@ -567,12 +567,19 @@ fn plan_text(c: &loratrack::RunConfig) -> String {
 }
 
 /// A number with `decimals`, or a dash where there is none (an empty sample's statistic).
+/// `v` right-aligned in `width` columns with `decimals` decimals, or as many fewer as keep it in
+/// them (a p95 of 1299.82 m prints 1299.8, so that the columns after it stay under their heads);
+/// a dash for a missing number.
 fn num(v: f64, width: usize, decimals: usize) -> String {
-    if v.is_finite() {
-        format!("{v:>width$.decimals$}")
-    } else {
-        format!("{:>width$}", "-")
+    if !v.is_finite() {
+        return format!("{:>width$}", "-");
     }
+    let text = (0..=decimals)
+        .rev()
+        .map(|d| format!("{v:.d$}"))
+        .find(|t| t.len() <= width)
+        .unwrap_or_else(|| format!("{v:.0}"));
+    format!("{text:>width$}")
 }
 
 pub(crate) fn results_table(results: &[ModelResult]) -> String {
@@ -987,6 +994,16 @@ fn schedule_text(r: &SwarmReport) -> String {
 mod tests {
     use super::*;
     use clap::Parser;
+
+    #[test]
+    fn a_number_too_wide_for_its_column_drops_decimals_before_it_pushes_the_next_one() {
+        assert_eq!(num(12.345, 6, 2), " 12.35");
+        assert_eq!(num(1299.82, 6, 2), "1299.8");
+        assert_eq!(num(99999.4, 6, 2), " 99999");
+        // Past its width with no decimals left it is printed whole, wider.
+        assert_eq!(num(1234567.0, 6, 2), "1234567");
+        assert_eq!(num(f64::NAN, 6, 2), "     -");
+    }
 
     #[derive(Parser)]
     struct Bare {
