@@ -71,7 +71,7 @@ fn js_error(message: &str) -> JsValue {
 /// The JS `Error` for an operation the core refused: its message, the setting at fault where one
 /// is ([`ApiError::setting`], e.g. `maxInterval`) and, where the core knows one, the value of
 /// that setting with which the run would go ahead, `valueThatFits` ([`ApiError::value_that_fits`]:
-/// the seeds that fit, the heartbeat the slowest data rate needs).
+/// the seeds or the swarm's drones that fit, the heartbeat the slowest data rate needs).
 fn api_error(e: &ApiError) -> JsValue {
     let error = error_naming(&api::clean_message(&e.to_string()), e.setting());
     if let Some(fit) = e.value_that_fits() {

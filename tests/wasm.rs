@@ -78,8 +78,8 @@ fn bad_input_throws_a_readable_error_and_the_module_keeps_working() {
 
 /// A refusal that knows the value of its setting with which the run would go ahead carries it as
 /// a number (`valueThatFits`), beside the message that says it in words, so that the page can
-/// offer it: the seeds that fit, the heartbeat the slowest data rate needs; other refusals carry
-/// none.
+/// offer it: the seeds that fit, a swarm's drones that fit, the heartbeat the slowest data rate
+/// needs; other refusals carry none.
 #[wasm_bindgen_test]
 fn a_refusal_says_which_value_of_its_setting_fits() {
     let fit = |e: &JsValue| get(e, "valueThatFits").as_f64();
@@ -110,6 +110,19 @@ fn a_refusal_says_which_value_of_its_setting_fits() {
         ("maxInterval", needed.into()),
     ]);
     assert!(wasm::simulate(kept, JsValue::UNDEFINED).is_ok());
+    // A swarm too long for its drones: as many as fit (refused before it flies).
+    let e = wasm::swarm(
+        obj(&[
+            ("drones", 500.into()),
+            ("duration", 3600.into()),
+            ("sensorRate", 20.into()),
+        ]),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
+    assert_eq!(setting(&e).as_deref(), Some("drones"));
+    assert_eq!(fit(&e), Some(333.0));
+    assert!(error_message(e).contains("at most 333 drones"));
     let e = wasm::simulate(
         obj(&[("synthetic", 1.into()), ("sf", 13.into())]),
         JsValue::UNDEFINED,

@@ -100,7 +100,7 @@ impl fmt::Display for SimError {
                     "the run is too long: {flight_time:.0} s of flight at these rates is {steps:.0} filter steps per model; \
                      the limit is {MAX_FILTER_STEPS} ("
                 )?;
-                if let Some(room) = self.seeds_that_fit() {
+                if let Some(("seeds", room)) = self.fewer_that_fit() {
                     write!(f, "at most {room} seeds, or ")?;
                 }
                 f.write_str("shorten the flight, lower the sensor rate or lengthen the step T)")
@@ -108,12 +108,19 @@ impl fmt::Display for SimError {
             SimError::TooLong {
                 flight_time,
                 steps,
-                run: LongRun::Swarm,
-            } => write!(
-                f,
-                "the swarm is too long: its drones fly {flight_time:.0} s in all, {steps:.0} filter steps at these rates; \
-                 the limit is {MAX_SWARM_FILTER_STEPS} (fewer drones, shorter flights, a lower sensor rate or a longer step T)"
-            ),
+                run: LongRun::Swarm { .. },
+            } => {
+                write!(
+                    f,
+                    "the swarm is too long: its drones fly {flight_time:.0} s in all, {steps:.0} filter steps at these rates; \
+                     the limit is {MAX_SWARM_FILTER_STEPS} ("
+                )?;
+                // Where one drone's flights are already too long, fewer drones would not do.
+                if let Some(("drones", room)) = self.fewer_that_fit() {
+                    write!(f, "at most {room} drones, or ")?;
+                }
+                f.write_str("shorter flights, a lower sensor rate or a longer step T)")
+            }
         }
     }
 }
@@ -129,41 +136,52 @@ pub enum LongRun {
         fit: u32,
     },
     /// `swarm`: every drone's flights.
-    Swarm,
+    Swarm {
+        /// The swarm's drones.
+        drones: usize,
+        /// How many of them fit at these rates, each flying what it flies in this swarm (0
+        /// where one drone's flights are already too long).
+        fit: u32,
+    },
 }
 
 impl std::error::Error for SimError {}
 
 impl SimError {
-    /// For a `simulate` run too long only for its several seeds, how many would fit (the whole
-    /// synthetic set at the default rates: 18); `None` for any other error, or where one seed is
-    /// already too long.
-    fn seeds_that_fit(&self) -> Option<u32> {
+    /// For a run too long only for how many times it flies, the setting that counts them and how
+    /// many would fit: a `simulate` run's seeds (the whole synthetic set at the default rates:
+    /// 18), a swarm's drones. `None` for any other error, or where one is already too long.
+    fn fewer_that_fit(&self) -> Option<(&'static str, u32)> {
         match self {
             SimError::TooLong {
                 run: LongRun::Simulate { seeds, fit },
                 ..
-            } if *seeds > 1 && *fit >= 1 => Some(*fit),
+            } if *seeds > 1 && *fit >= 1 => Some(("seeds", *fit)),
+            SimError::TooLong {
+                run: LongRun::Swarm { drones, fit },
+                ..
+            } if *drones > 1 && *fit >= 1 => Some(("drones", *fit)),
             _ => None,
         }
     }
 
     /// The value of the setting this error names ([`Self::setting`]) with which the run would go
     /// ahead, every other setting as it is, where the error knows one: for a `simulate` run too
-    /// long only for its several seeds, how many fit; for error-triggered sending's heartbeat
-    /// (`maxInterval`), the slowest drone's duty-cycle interval rounded up to 0.1 s, as the
-    /// message gives it. `None` for any other error.
+    /// long only for its several seeds, how many fit, and for a swarm too long only for its many
+    /// drones, how many fit; for error-triggered sending's heartbeat (`maxInterval`), the slowest
+    /// drone's duty-cycle interval rounded up to 0.1 s, as the message gives it. `None` for any
+    /// other error.
     pub fn value_that_fits(&self) -> Option<f64> {
         match self {
             SimError::Heartbeat { interval, .. } => Some(tenths_up(*interval)),
-            _ => self.seeds_that_fit().map(f64::from),
+            _ => self.fewer_that_fit().map(|(_, n)| f64::from(n)),
         }
     }
 
     /// The setting this error refuses, by its key in the JS API and the page's form (as
     /// [`LoraError::setting`]); `None` where no one setting is at fault (a choice of flight that
     /// conflicts with another setting, a run too long for its several settings together; one
-    /// too long only for its seeds names `seeds`).
+    /// too long only for its seeds names `seeds`, a swarm too long only for its drones `drones`).
     pub fn setting(&self) -> Option<&'static str> {
         match self {
             SimError::Trajectory(e) => Some(e.setting()),
@@ -175,8 +193,8 @@ impl SimError {
             SimError::Seed(_) => Some("seed"),
             SimError::Seeds { .. } => Some("seeds"),
             SimError::AdrStart(..) => Some("adr"),
-            SimError::TooLong { .. } if self.seeds_that_fit().is_some() => Some("seeds"),
-            SimError::Source(_) | SimError::TooLong { .. } => None,
+            SimError::TooLong { .. } => self.fewer_that_fit().map(|(setting, _)| setting),
+            SimError::Source(_) => None,
         }
     }
 }

@@ -417,7 +417,7 @@ fn runs_beyond_the_work_limit_are_refused_quickly() {
         &["simulate", "--synthetic", "all", "--seeds", "20"],
         "(at most 18 seeds, or shorten the flight",
     );
-    // A swarm is refused at its own limit, with a swarm's remedies.
+    // A swarm is refused at its own limit, with a swarm's remedies: as many drones as fit first.
     refused(
         &[
             "swarm",
@@ -428,7 +428,7 @@ fn runs_beyond_the_work_limit_are_refused_quickly() {
             "--sensor-rate",
             "20",
         ],
-        "the swarm is too long: its drones fly 1800000 s in all, 54000000 filter steps at these rates; the limit is 36000000 (fewer drones",
+        "the swarm is too long: its drones fly 1800000 s in all, 54000000 filter steps at these rates; the limit is 36000000 (at most 333 drones, or shorter flights",
     );
     assert!(
         started.elapsed().as_secs_f64() < 5.0,

@@ -543,24 +543,30 @@ fn collision_theory(drones: &[DroneReport], by_sf: &[usize; 6], channels: u8) ->
     }
 }
 
-/// Refuses a swarm whose filters would take more than [`MAX_SWARM_FILTER_STEPS`] steps.
+/// Refuses a swarm whose filters would take more than [`MAX_SWARM_FILTER_STEPS`] steps, with how
+/// many of its drones fit: the first drones of a swarm fly what they fly in a larger one (the
+/// layout is drawn drone by drone), so as many as the longest-flying drone fits fly no more.
 fn check_length(cfg: &Validated, plan: &Plan) -> Result<(), SimError> {
     let s = cfg.s();
-    let flown: f64 = plan
-        .episodes
-        .iter()
-        .map(|e| {
-            e.iter()
-                .map(|seat| plan.flights[seat.flight].duration())
-                .sum::<f64>()
-        })
-        .sum();
-    let steps = flown * (s.drone.sensor_rate + 1.0 / s.station.step);
+    let drones = s.swarm.drones;
+    let mut per_drone = vec![0.0; drones];
+    for seats in &plan.episodes {
+        for (flown, seat) in per_drone.iter_mut().zip(seats) {
+            *flown += plan.flights[seat.flight].duration();
+        }
+    }
+    let flown: f64 = per_drone.iter().sum();
+    let rate = s.drone.sensor_rate + 1.0 / s.station.step;
+    let steps = flown * rate;
     if steps > MAX_SWARM_FILTER_STEPS as f64 {
+        let longest = per_drone.iter().fold(0.0, |a: f64, &b| a.max(b)) * rate;
+        let fit = (MAX_SWARM_FILTER_STEPS as f64 / longest)
+            .floor()
+            .min(drones as f64) as u32;
         return Err(SimError::TooLong {
             flight_time: flown,
             steps,
-            run: LongRun::Swarm,
+            run: LongRun::Swarm { drones, fit },
         });
     }
     Ok(())
@@ -628,6 +634,32 @@ mod tests {
     use super::*;
     use crate::sim::report::DataRateUse;
     use crate::sim::sender::SenderKind;
+    use crate::Scenario;
+
+    /// Whether `check_length` lets a swarm of `drones` × 3600 s at 20 Hz sensors go ahead, and
+    /// its refusal where it does not.
+    fn length_check(drones: usize) -> Result<(), SimError> {
+        let mut s = Scenario::default();
+        (s.swarm.drones, s.swarm.duration, s.drone.sensor_rate) = (drones, 3600.0, 20.0);
+        let cfg = s.validate().unwrap();
+        check_length(&cfg, &plan(&cfg).unwrap())
+    }
+
+    #[test]
+    fn a_swarm_too_long_for_its_drones_names_as_many_as_fit_and_that_many_do() {
+        let e = length_check(500).unwrap_err();
+        assert_eq!(e.setting(), Some("drones"));
+        let fit = e.value_that_fits().unwrap();
+        assert!(e
+            .to_string()
+            .contains(&format!("(at most {fit} drones, or shorter flights")));
+        let fit = fit as usize;
+        assert!(length_check(fit).is_ok());
+        assert_eq!(
+            length_check(fit + 1).unwrap_err().value_that_fits(),
+            Some(fit as f64)
+        );
+    }
 
     /// A drone on `sf` that sent `packets_sent` packets, on air `duty_cycle_used` of the time.
     fn drone(sf: u8, packets_sent: usize, duty_cycle_used: f64) -> DroneReport {
