@@ -515,3 +515,42 @@ fn the_swarm_text_counts_the_drones_on_too_few_packets_as_the_json_flags_them() 
     );
     assert!(text.contains(&line), "{text}");
 }
+
+/// The CLI's text gives the swarm's rates to four decimals and its errors to two, as the JSON
+/// has them: a crowd on one channel at 4 km, where packets both collide and fade.
+#[test]
+fn the_swarm_text_gives_its_rates_and_errors_to_their_decimals() {
+    let args = [
+        "swarm",
+        "--drones",
+        "24",
+        "--duration",
+        "60",
+        "--sf-plan",
+        "fixed",
+        "--channels",
+        "1",
+        "--distance",
+        "4000",
+    ];
+    let text = String::from_utf8(crate::cli(&args).stdout).unwrap();
+    let out = crate::cli(&[&args[..], &["--json"]].concat());
+    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let f = |v: &Value| v.as_f64().unwrap();
+    let (collided, delivered) = (f(&r["collisionRate"]), f(&r["deliveryRatio"]));
+    assert!(collided > 0.0 && delivered < 1.0, "{collided} {delivered}");
+    let e = &r["error3d"];
+    for line in [
+        format!("collision rate      {collided:.4}  ("),
+        format!("delivery ratio      {delivered:.4}  ("),
+        format!(
+            "3D error (pooled)   mean {:.2}  p75 {:.2}  p95 {:.2} m; median drone p75 {:.2} m",
+            f(&e["mean"]),
+            f(&e["p75"]),
+            f(&e["p95"]),
+            f(&r["medianDroneP75"])
+        ),
+    ] {
+        assert!(text.contains(&line), "{line}\n{text}");
+    }
+}

@@ -567,9 +567,9 @@ fn plan_text(c: &loratrack::RunConfig) -> String {
 }
 
 /// A number with `decimals`, or a dash where there is none (an empty sample's statistic).
-/// `v` right-aligned in `width` columns with `decimals` decimals, or as many fewer as keep it in
-/// them (a p95 of 1299.82 m prints 1299.8, so that the columns after it stay under their heads);
-/// a dash for a missing number.
+/// `v` with `decimals` decimals, right-aligned in a column `width` wide (0: no column) with as
+/// many fewer decimals as keep it in it (a p95 of 1299.82 m prints 1299.8, so that the columns
+/// after it stay under their heads); a dash for a missing number.
 fn num(v: f64, width: usize, decimals: usize) -> String {
     if !v.is_finite() {
         return format!("{:>width$}", "-");
@@ -577,7 +577,7 @@ fn num(v: f64, width: usize, decimals: usize) -> String {
     let text = (0..=decimals)
         .rev()
         .map(|d| format!("{v:.d$}"))
-        .find(|t| t.len() <= width)
+        .find(|t| width == 0 || t.len() <= width)
         .unwrap_or_else(|| format!("{v:.0}"));
     format!("{text:>width$}")
 }
@@ -1003,6 +1003,8 @@ mod tests {
         // Past its width with no decimals left it is printed whole, wider.
         assert_eq!(num(1234567.0, 6, 2), "1234567");
         assert_eq!(num(f64::NAN, 6, 2), "     -");
+        // Outside a column (width 0), every decimal asked for.
+        assert_eq!(num(0.0699, 0, 4), "0.0699");
     }
 
     #[derive(Parser)]
