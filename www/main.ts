@@ -76,6 +76,7 @@ function submit(): void {
   if (store.settings.flight === 'csv' && !store.csv) {
     // Nothing runs until a file is chosen: the numbers on show are the previous flight's.
     markStale(store.report !== undefined);
+    markChartsUnrun(true);
     status.textContent = `Choose a CSV file to simulate it${store.report ? '; the results below are for the previous settings.' : '.'}`;
     return;
   }
@@ -148,6 +149,7 @@ function unshowPartial(): void {
  * flight) and its error chart, which is the one the whole set's report draws too. */
 function renderPartial(r: SimReport, made: Settings): void {
   markStale(typing !== undefined || JSON.stringify(made) !== JSON.stringify(store.settings));
+  markChartsUnrun(false);
   showPartial(true);
   renderTable(r);
   updateEmbedCaption();
@@ -192,6 +194,22 @@ function sameData(a: unknown, b: unknown): boolean {
 function markStale(stale: boolean): void {
   $('[data-panel="results"]').classList.toggle('stale', stale);
   updateEmbedCaption();
+}
+
+/** The panels whose charts are drawn from the results (the distance and SF charts from the runs
+ * that follow them). */
+const RESULT_CHARTS = ['error', 'distance', 'sf', 'axes', 'trajectory'];
+
+/** Marks the charts drawn from the results while the settings on show are not simulated
+ * (`unrun`: the core refused them, the form holds a value it would refuse, or a CSV is still to
+ * be chosen), as the table is marked: one drawn for the previous settings says so, an empty one
+ * why it is empty. An embed, whose settings its reader cannot change, says so in its caption. */
+function markChartsUnrun(unrun: boolean): void {
+  for (const name of RESULT_CHARTS) {
+    const chart = $(`#chart-${name}`);
+    if (!unrun || store.embed) delete chart.dataset.unrun;
+    else chart.dataset.unrun = chart.childElementCount ? 'Old chart: for the previous settings (Results says why).' : 'No chart: these settings are not simulated (Results says why).';
+  }
 }
 
 function sendQueued(): void {
@@ -268,6 +286,7 @@ function onResponse(r: Response): void {
     // its caption, which markStale brings up to date).
     if (!store.report) store.refused = status.textContent ?? '';
     markStale(store.report !== undefined);
+    markChartsUnrun(true);
     if (settingsChartsWait) renderSettingsCharts();
     sendQueued();
     return;
@@ -309,6 +328,7 @@ function showReport(report: SimReport, made: Settings, millis: number, params: S
   store.report = report;
   store.reportSettings = made;
   store.refused = undefined;
+  markChartsUnrun(false);
   // A note that there were no results yet, beside the buttons of panels that draw no Plot chart
   // (the others' go as their chart is placed), is out of date.
   for (const panel of ['results', 'trajectory']) clearDownloadWhy($(`[data-panel="${panel}"]`));
@@ -649,6 +669,7 @@ function onChange(): void {
   if (errors.length) {
     // Nothing runs on a value the core would refuse; the numbers on show are marked as old.
     markStale(store.report !== undefined);
+    markChartsUnrun(true);
     status.textContent = `Not simulated: ${errors.join(' ')}${store.report ? ' The results below are for the previous settings.' : ''}`;
     return;
   }

@@ -1341,10 +1341,13 @@ test('axe finds no violation in the stale, error, presentation and phone states'
   await stale.page.locator('#advanced summary').click();
   await stale.page.getByLabel('Path-loss exponent').fill('0.5');
   await stale.page.waitForSelector('#pathLossExponent[aria-invalid="true"]');
+  // Nothing runs on it: the charts on show are marked old, as the table is.
+  assert.equal(await stale.page.locator('.chart[data-unrun^="Old chart"]').count(), 5);
   assert.deepEqual(await axe(stale.page), [], 'stale');
   // The error state: a CSV that cannot be read (once the form is valid again).
   await stale.page.getByLabel('Path-loss exponent').fill('3');
   await until(stale.page, () => !document.querySelector('[data-panel="results"].stale'));
+  assert.equal(await stale.page.locator('.chart[data-unrun]').count(), 0);
   const dir = scratchDir();
   writeFileSync(join(dir, 'bad.csv'), 't,x,y\n0,1,2\n');
   await stale.page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
@@ -1394,6 +1397,9 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   assert.match(await page.locator('#status').textContent(), /got 10\. The setting it names is Heartbeat \(s\)\. Change a setting/);
   assert.equal(await heartbeat.getAttribute('aria-invalid'), 'true');
   assert.match(await page.locator('#maxInterval-error').textContent(), /SF12 at 250 kHz: [\d.]+ s\), got 10/);
+  // The charts still on show are SF7's, and say so as the table does.
+  const old = await page.evaluate(() => ['error', 'distance', 'sf', 'axes'].map((n) => getComputedStyle(document.querySelector(`#chart-${n}`), '::before').content));
+  assert.deepEqual(old, Array(4).fill('"Old chart: for the previous settings (Results says why)."'));
   // Under the refusal, the heartbeat it names, on offer (taken in the swarm's test; typed here).
   const [, named] = (await page.locator('#status').textContent()).match(/SF12 at 250 kHz: ([\d.]+) s\)/);
   assert.equal(await page.locator('#fit-setting').textContent(), `Use a heartbeat of ${named} s`);
@@ -1411,6 +1417,7 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   assert.equal(await page.locator('#maxInterval-error').count(), 0);
   assert.equal(await page.locator('#fit-setting').isVisible(), false);
   assert.equal(await page.locator('#sf-fit').isVisible(), false);
+  assert.equal(await page.locator('.chart[data-unrun]').count(), 0);
   assert.match(page.url(), new RegExp(`maxInterval=${named}`));
   assert.equal(await page.locator('#sf-note').isVisible(), false);
   // Every SF is back, each the results' command at that SF with one seed, the heartbeat now set.

@@ -961,6 +961,9 @@ test('a link whose settings the core refuses says why, shows no old results, and
   assert.equal(await page.locator('[data-panel="results"].stale').count(), 0, 'no frame of old results around nothing');
   assert.equal(await page.locator('#results-table tbody tr').count(), 0);
   await idle(page);
+  // The charts drawn from results say why they are empty.
+  const empty = await page.evaluate(() => ['error', 'distance', 'sf', 'axes', 'trajectory'].map((n) => getComputedStyle(document.querySelector(`#chart-${n}`), '::before').content));
+  assert.deepEqual(empty, Array(5).fill('"No chart: these settings are not simulated (Results says why)."'));
   // The form shows the link's choices, and that it would not offer them.
   assert.equal(await page.locator('#sf option[value="10"]:checked:disabled').count(), 1);
   assert.equal(await page.locator('#model option[value="all"]:checked:disabled').count(), 1);
@@ -977,12 +980,15 @@ test('a link whose settings the core refuses says why, shows no old results, and
   await waitForResults(page);
   await until(page, () => document.querySelector('#chart-error svg'));
   for (const panel of ['results', 'error', 'trajectory']) assert.equal(await why(panel).textContent(), '', panel);
+  assert.equal(await page.locator('.chart[data-unrun]').count(), 0);
   // An embed of a chart alone has no status line and no settings to change: its caption says why.
   const embed = await openPage(playground.context, new URL(playground.url).origin);
   await embed.page.goto(`${playground.url}?embed=1&panels=error&region=us915&sf=10&bw=125`);
   await until(embed.page, () => /cannot be simulated/.test(document.querySelector('#embed-notices')?.textContent ?? ''));
   assert.doesNotMatch(await embed.page.locator('#embed-notices').textContent(), /Change a setting|previous settings/);
   await idle(embed.page);
+  // Its caption says why, once: not again over the chart.
+  assert.equal(await embed.page.locator('.chart[data-unrun]').count(), 0);
   await embed.page.getByRole('button', { name: 'Download the error over time chart as SVG' }).click();
   assert.match(await embed.page.locator('[data-panel="error"] .download-why').textContent(), /^No results yet: .*the caption at the top says why/);
   assert.deepEqual([...problems, ...embed.problems], []);
