@@ -560,7 +560,8 @@ function renderSweep(sweep: Extract<Response, { sweep: unknown }>['sweep'], made
   const note = refusedNote(sfs.map(({ sf, report: rep, error, setting }) => ({ at: `SF${sf}`, asked, ran: rep?.results.map((r) => r.model) ?? [], error: why(sf, error, setting) })));
   $('#sf-note').hidden = !note;
   $('#sf-note').textContent = note;
-  offerFit($('#sf-fit'), 'maxInterval', store.embed ? undefined : heartbeatThatFits(sfs));
+  // Named apart from the results' and the swarm panel's offers, which may give the same value.
+  offerFit($('#sf-fit'), 'maxInterval', store.embed ? undefined : heartbeatThatFits(sfs), ' for every SF');
 }
 
 /** The heartbeat with which every SF the core refused for its heartbeat would run: the
@@ -881,13 +882,14 @@ function fitWords(setting: string, value: number): string {
 }
 
 /** Shows `button` under a refusal, to set the setting it names to the value with which the run
- * would go ahead (the core's `valueThatFits`), or hides it where there is none. */
-function offerFit(button: HTMLButtonElement, setting: string | undefined, value: number | undefined): void {
+ * would go ahead (the core's `valueThatFits`), or hides it where there is none; `what` says what
+ * it lets run where the page offers the same value for more than one thing (" for every SF"). */
+function offerFit(button: HTMLButtonElement, setting: string | undefined, value: number | undefined, what = ''): void {
   button.hidden = value === undefined || !numericControl(setting);
   if (button.hidden || setting === undefined || value === undefined) return;
   button.dataset.setting = setting;
   button.dataset.value = String(value);
-  button.textContent = fitWords(setting, value);
+  button.textContent = `${fitWords(setting, value)}${what}`;
 }
 
 /** Sets the control `button` was offered for to its value, as if typed, and runs. */

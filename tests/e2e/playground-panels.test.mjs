@@ -645,7 +645,8 @@ test('a swarm the core refuses says why, names the setting as the form labels it
   assert.ok(named, status);
   assert.match(await page.locator('#chart-swarm').textContent(), /No swarm run yet/);
   assert.deepEqual(await axe(page), []);
-  const offer = page.getByRole('button', { name: `Use a heartbeat of ${named} s` });
+  // (Exactly: the SF chart's offer, under its own refusal, goes on with "for every SF".)
+  const offer = page.getByRole('button', { name: `Use a heartbeat of ${named} s`, exact: true });
   // The value fits the swarms refused: other swarms (all on SF7) are not offered it.
   await page.getByLabel('SF plan').selectOption('fixed');
   assert.equal(await offer.isVisible(), false);
@@ -1387,7 +1388,7 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   assert.doesNotMatch(await page.locator('#status').textContent(), /cannot be simulated/);
   // Under the note, the heartbeat that lets every SF run: the slowest one's interval, the note's last.
   const slowest = (await page.locator('#sf-note').textContent()).match(/: ([\d./]+) s\), got 10/)[1].split('/').at(-1);
-  assert.equal(await page.locator('#sf-fit').textContent(), `Use a heartbeat of ${slowest} s`);
+  assert.equal(await page.locator('#sf-fit').textContent(), `Use a heartbeat of ${slowest} s for every SF`);
   // The heartbeat the note names is a control beside the threshold, with the core's default; at
   // SF12 the run itself is refused, and the refusal is marked on that control.
   const heartbeat = page.getByLabel('Heartbeat (s)');
@@ -1405,7 +1406,7 @@ test('with error-triggered sending the SF chart leaves out the SFs whose interva
   assert.equal(await page.locator('#fit-setting').textContent(), `Use a heartbeat of ${named} s`);
   // The SF chart's button offers the same: SF12 is the slowest either way.
   assert.equal(named, slowest);
-  assert.equal(await page.locator('#sf-fit').textContent(), `Use a heartbeat of ${named} s`);
+  assert.equal(await page.locator('#sf-fit').textContent(), `Use a heartbeat of ${named} s for every SF`);
   const before = await page.locator('#chart-sf').innerHTML();
   const table = await tableHtml(page);
   await page.locator('#sf-fit').click();
