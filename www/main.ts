@@ -150,6 +150,10 @@ function unshowPartial(): void {
 function renderPartial(r: SimReport, made: Settings): void {
   markStale(typing !== undefined || JSON.stringify(made) !== JSON.stringify(store.settings));
   markChartsUnrun(false);
+  // The first flight draws the error chart alone; the others wait for the set (its report, then
+  // its sweep), and say so if that takes a while.
+  clearTimeout(sweepWait);
+  sweepWait = setTimeout(() => setPending(SET_PANELS, true), SWEEP_PATIENCE_MS);
   showPartial(true);
   renderTable(r);
   updateEmbedCaption();
@@ -329,6 +333,8 @@ function showReport(report: SimReport, made: Settings, millis: number, params: S
   store.reportSettings = made;
   store.refused = undefined;
   markChartsUnrun(false);
+  // Drawn from this report now (the distance and SF charts wait on for its sweep).
+  setPending(['axes', 'trajectory'], false);
   // A note that there were no results yet, beside the buttons of panels that draw no Plot chart
   // (the others' go as their chart is placed), is out of date.
   for (const panel of ['results', 'trajectory']) clearDownloadWhy($(`[data-panel="${panel}"]`));
@@ -357,12 +363,24 @@ function showReport(report: SimReport, made: Settings, millis: number, params: S
 const SWEEP_PATIENCE_MS = 600;
 let sweepWait: ReturnType<typeof setTimeout> | undefined;
 
+/** The panels drawn from the sweep that follows a report. */
+const SWEEP_PANELS = ['distance', 'sf'];
+/** The panels a whole set's first flight does not draw: the sweep's, and those drawn from the
+ * set's report. */
+const SET_PANELS = [...SWEEP_PANELS, 'axes', 'trajectory'];
+
 /** Marks the distance and SF panels as waiting for the sweep of the numbers on show (`on`), or
- * not: the chart dimmed, a note over it (on a page still without them, the note alone). */
+ * none as waiting. */
 function sweepPending(on: boolean): void {
   clearTimeout(sweepWait);
   sweepWait = undefined;
-  for (const name of ['distance', 'sf']) {
+  setPending(on ? SWEEP_PANELS : SET_PANELS, on);
+}
+
+/** Marks panels `names` as waiting for runs of the settings on show (`on`), or not: the chart
+ * dimmed, a note over it (on a page still without them, the note alone). */
+function setPending(names: string[], on: boolean): void {
+  for (const name of names) {
     const panel = $(`[data-panel="${name}"]`);
     panel.classList.toggle('pending', on);
     const drawn = panel.querySelector('.chart')!.childElementCount > 0;

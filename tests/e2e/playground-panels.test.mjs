@@ -765,6 +765,25 @@ test('while the distance and SF charts wait for their runs, they say they show t
   assert.deepEqual(problems, []);
 });
 
+test('while a whole set runs after its first flight, the charts that flight does not draw say they show the previous settings', async () => {
+  // Ten seeds of the 44-minute set take seconds; its first flight comes at once, with the error chart.
+  const { page, problems } = await open('?seeds=10');
+  await idle(page);
+  const pending = () => page.evaluate(() => ['distance', 'sf', 'axes', 'trajectory'].map((p) => document.querySelector(`[data-panel="${p}"]`).classList.contains('pending')));
+  assert.deepEqual(await pending(), [false, false, false, false]);
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('all');
+  await until(page, () => document.querySelector('[data-panel="results"]').classList.contains('partial') && document.querySelector('[data-panel="axes"]').classList.contains('pending'), null, { timeout: 30_000 });
+  assert.deepEqual(await pending(), [true, true, true, true]);
+  const note = await page.locator('[data-panel="axes"] .pending-note').textContent();
+  assert.match(note, /^Computing this chart for the current settings; until then it shows the previous ones\.$/);
+  assert.equal(await page.locator('[data-panel="error"].pending').count(), 0, "the first flight's own chart");
+  assert.deepEqual(await axe(page), []);
+  await idle(page);
+  assert.deepEqual(await pending(), [false, false, false, false], 'drawn for the whole set');
+  assert.match(await page.locator('#status').textContent(), /^synthetic all: 30 flights/);
+  assert.deepEqual(problems, []);
+});
+
 test('a number being typed runs once it is whole: -15 dBm never runs as -1', async () => {
   const { page, problems } = await open();
   await page.locator('#advanced summary').click();
