@@ -209,6 +209,8 @@ const RESULT_CHARTS = ['error', 'distance', 'sf', 'axes', 'trajectory'];
  * be chosen), as the table is marked: one drawn for the previous settings says so, an empty one
  * why it is empty. An embed, whose settings its reader cannot change, says so in its caption. */
 function markChartsUnrun(unrun: boolean): void {
+  // The SF chart's offer fitted the settings it was drawn for, which may not be these.
+  if (unrun) offerFit($('#sf-fit'), undefined, undefined);
   for (const name of RESULT_CHARTS) {
     const chart = $(`#chart-${name}`);
     if (!unrun || store.embed) delete chart.dataset.unrun;
