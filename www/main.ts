@@ -204,14 +204,18 @@ function markStale(stale: boolean): void {
  * that follow them). */
 const RESULT_CHARTS = ['error', 'distance', 'sf', 'axes', 'trajectory'];
 
-/** Marks the charts drawn from the results while the settings on show are not simulated
- * (`unrun`: the core refused them, the form holds a value it would refuse, or a CSV is still to
- * be chosen), as the table is marked: one drawn for the previous settings says so, an empty one
- * why it is empty. An embed, whose settings its reader cannot change, says so in its caption. */
-function markChartsUnrun(unrun: boolean): void {
+/** The panels drawn from the settings alone: the form's last valid ones. */
+const SETTINGS_CHARTS = ['link', 'airtime'];
+
+/** Marks charts `names` (those drawn from the results) while the settings on show are not
+ * simulated (`unrun`: the core refused them, the form holds a value it would refuse, or a CSV is
+ * still to be chosen), as the table is marked: one drawn for the previous settings says so, an
+ * empty one why it is empty. An embed, whose settings its reader cannot change, says so in its
+ * caption. */
+function markChartsUnrun(unrun: boolean, names = RESULT_CHARTS): void {
   // The SF chart's offer fitted the settings it was drawn for, which may not be these.
   if (unrun) offerFit($('#sf-fit'), undefined, undefined);
-  for (const name of RESULT_CHARTS) {
+  for (const name of names) {
     const chart = $(`#chart-${name}`);
     if (!unrun || store.embed) delete chart.dataset.unrun;
     else chart.dataset.unrun = chart.childElementCount ? 'Old chart: for the previous settings (Results says why).' : 'No chart: these settings are not simulated (Results says why).';
@@ -452,6 +456,7 @@ let settingsChartsWait = false;
 /** The panels that follow the settings alone (time on air, link budget), drawn at once or, while a run is under way, after its first answer (`settingsChartsWait`). */
 function renderSettingsCharts(): void {
   settingsChartsWait = false;
+  markChartsUnrun(false, SETTINGS_CHARTS);
   later('airtime', renderAirtime);
   later('link', renderLink);
 }
@@ -690,7 +695,8 @@ function onChange(): void {
   if (errors.length) {
     // Nothing runs on a value the core would refuse; the numbers on show are marked as old.
     markStale(store.report !== undefined);
-    markChartsUnrun(true);
+    // The link budget and time on air, too, are drawn from the last valid settings.
+    markChartsUnrun(true, [...RESULT_CHARTS, ...SETTINGS_CHARTS]);
     status.textContent = `Not simulated: ${errors.join(' ')}${store.report ? ' The results below are for the previous settings.' : ''}`;
     return;
   }

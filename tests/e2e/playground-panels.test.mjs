@@ -1361,8 +1361,10 @@ test('axe finds no violation in the stale, error, presentation and phone states'
   await stale.page.locator('#advanced summary').click();
   await stale.page.getByLabel('Path-loss exponent').fill('0.5');
   await stale.page.waitForSelector('#pathLossExponent[aria-invalid="true"]');
-  // Nothing runs on it: the charts on show are marked old, as the table is.
-  assert.equal(await stale.page.locator('.chart[data-unrun^="Old chart"]').count(), 5);
+  // Nothing runs on it: the charts on show are marked old, as the table is, and so are the link
+  // budget and time on air, drawn from the last valid settings.
+  assert.equal(await stale.page.locator('.chart[data-unrun^="Old chart"]').count(), 7);
+  assert.equal(await stale.page.locator('#chart-link[data-unrun]').count(), 1);
   assert.deepEqual(await axe(stale.page), [], 'stale');
   // The error state: a CSV that cannot be read (once the form is valid again).
   await stale.page.getByLabel('Path-loss exponent').fill('3');
