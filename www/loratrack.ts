@@ -147,8 +147,8 @@ export function settingOf(error: unknown): string | undefined {
 /** For a run the core refused, the value of the setting it names (`settingOf`) with which the
  * run would go ahead, where the core knows one: how many seeds fit a run too long only for its
  * seeds (the whole synthetic set at the default rates: 18), how many drones fit a swarm too long
- * only for its drones, or the heartbeat (`maxInterval`) the
- * slowest drone's data rate needs; `undefined` for any other error. */
+ * only for its drones, or the heartbeat (`maxInterval`) the slowest drone's data rate needs;
+ * `undefined` for any other error. */
 export function valueThatFits(error: unknown): number | undefined {
   const fit = (error as { valueThatFits?: unknown } | null)?.valueThatFits;
   return typeof fit === 'number' ? fit : undefined;

@@ -207,7 +207,7 @@ const RESULT_CHARTS = ['error', 'distance', 'sf', 'axes', 'trajectory'];
 /** The panels drawn from the settings alone: the form's last valid ones. */
 const SETTINGS_CHARTS = ['link', 'airtime'];
 
-/** Marks charts `names` (those drawn from the results) while the settings on show are not
+/** Marks charts `names` (by default those drawn from the results) while the settings on show are not
  * simulated (`unrun`: the core refused them, the form holds a value it would refuse, or a CSV is
  * still to be chosen), as the table is marked: one drawn for the previous settings says so, an
  * empty one why it is empty. An embed, whose settings its reader cannot change, says so in its

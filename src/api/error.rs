@@ -60,8 +60,8 @@ impl ApiError {
 
     /// The value of the setting this error names ([`Self::setting`]) with which the run would go
     /// ahead ([`SimError::value_that_fits`]): how many seeds fit a run too long only for its
-    /// seeds, how many drones a swarm too long only for its drones, or the heartbeat the slowest
-    /// drone's data rate needs. The bindings give it to JS as the thrown `Error`'s
+    /// seeds, how many drones fit a swarm too long only for its drones, or the heartbeat the
+    /// slowest drone's data rate needs. The bindings give it to JS as the thrown `Error`'s
     /// `valueThatFits`, so that the page offers it without reading the message.
     ///
     /// ```

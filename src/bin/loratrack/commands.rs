@@ -566,10 +566,9 @@ fn plan_text(c: &loratrack::RunConfig) -> String {
     format!("{rate}, {limit}{fair}")
 }
 
-/// A number with `decimals`, or a dash where there is none (an empty sample's statistic).
 /// `v` with `decimals` decimals, right-aligned in a column `width` wide (0: no column) with as
 /// many fewer decimals as keep it in it (a p95 of 1299.82 m prints 1299.8, so that the columns
-/// after it stay under their heads); a dash for a missing number.
+/// after it stay under their heads); a dash where there is none (an empty sample's statistic).
 fn num(v: f64, width: usize, decimals: usize) -> String {
     if !v.is_finite() {
         return format!("{:>width$}", "-");
