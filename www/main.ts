@@ -386,6 +386,8 @@ function sweepPending(on: boolean): void {
 /** Marks panels `names` as waiting for runs of the settings on show (`on`), or not: the chart
  * dimmed, a note over it (on a page still without them, the note alone). */
 function setPending(names: string[], on: boolean): void {
+  // The SF chart's heartbeat offer fitted the chart now dimmed; its sweep offers its own.
+  if (on && names.includes('sf')) offerFit($('#sf-fit'), undefined, undefined);
   for (const name of names) {
     const panel = $(`[data-panel="${name}"]`);
     panel.classList.toggle('pending', on);

@@ -741,11 +741,13 @@ test('a large CSV is read with its own progress, then simulated', async () => {
 
 test('while the distance and SF charts wait for their runs, they say they show the previous settings, and then do not', async () => {
   // The IMM's predictions are not remembered between runs, so its whole-set sweep (12 runs) takes
-  // seconds, as a long uploaded flight's did for every station (90 s for 10⁶ rows).
-  const { page, problems } = await open('?flight=all&model=imm');
+  // seconds, as a long uploaded flight's did for every station (90 s for 10⁶ rows). Error-triggered
+  // sending's heartbeat leaves the slow SFs out of the SF chart, which offers the one they need.
+  const { page, problems } = await open('?flight=all&model=imm&sender=error');
   await idle(page);
   const pending = () => page.evaluate(() => ['distance', 'sf'].map((p) => document.querySelector(`[data-panel="${p}"]`).classList.contains('pending')));
   assert.deepEqual(await pending(), [false, false], 'drawn for the settings on show');
+  assert.equal(await page.locator('#sf-fit').isVisible(), true);
   const before = await tableHtml(page);
   // Beyond SF7's reach at 3.5 km: the numbers change, and the SF chart with them.
   await page.locator('#distance').fill('3500');
@@ -758,10 +760,13 @@ test('while the distance and SF charts wait for their runs, they say they show t
   });
   assert.match(shown.note, /Computing this chart for the current settings; until then it shows the previous ones/);
   assert.ok(shown.opacity < 0.5, `the old chart is dimmed (opacity ${shown.opacity})`);
+  // The old chart's offer goes with it, and comes back with the new one.
+  assert.equal(await page.locator('#sf-fit').isVisible(), false);
   assert.deepEqual(await axe(page), []);
   await idle(page);
   assert.deepEqual(await pending(), [false, false], 'drawn for the settings on show again');
   assert.equal(await page.locator('[data-panel="sf"] .pending-note').isVisible(), false);
+  assert.equal(await page.locator('#sf-fit').isVisible(), true);
   assert.deepEqual(problems, []);
 });
 
