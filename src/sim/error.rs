@@ -52,6 +52,23 @@ pub enum SimError {
     },
 }
 
+/// A count rounded to a whole number, its thousands grouped as the docs write them (SI: "36 000
+/// 000"), with no-break spaces, so that a message wrapped on a phone never splits a number.
+fn grouped(x: f64) -> String {
+    let digits = format!("{:.0}", x.abs());
+    if digits.len() <= 4 || !x.is_finite() {
+        return format!("{x:.0}");
+    }
+    let mut out = String::from(if x < 0.0 { "-" } else { "" });
+    for (i, d) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push('\u{a0}');
+        }
+        out.push(d);
+    }
+    out
+}
+
 impl fmt::Display for SimError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -97,8 +114,11 @@ impl fmt::Display for SimError {
             } => {
                 write!(
                     f,
-                    "the run is too long: {flight_time:.0} s of flight at these rates is {steps:.0} filter steps per model; \
-                     the limit is {MAX_FILTER_STEPS} ("
+                    "the run is too long: {} s of flight at these rates is {} filter steps per model; \
+                     the limit is {} (",
+                    grouped(*flight_time),
+                    grouped(*steps),
+                    grouped(MAX_FILTER_STEPS as f64)
                 )?;
                 if let Some(("seeds", room)) = self.fewer_that_fit() {
                     write!(f, "at most {room} seeds, or ")?;
@@ -112,8 +132,11 @@ impl fmt::Display for SimError {
             } => {
                 write!(
                     f,
-                    "the swarm is too long: its drones fly {flight_time:.0} s in all, {steps:.0} filter steps at these rates; \
-                     the limit is {MAX_SWARM_FILTER_STEPS} ("
+                    "the swarm is too long: its drones fly {} s in all, {} filter steps at these rates; \
+                     the limit is {} (",
+                    grouped(*flight_time),
+                    grouped(*steps),
+                    grouped(MAX_SWARM_FILTER_STEPS as f64)
                 )?;
                 // Where one drone's flights are already too long, fewer drones would not do.
                 if let Some(("drones", room)) = self.fewer_that_fit() {
@@ -256,6 +279,36 @@ mod tests {
                 "{q:?}"
             );
         }
+    }
+
+    #[test]
+    fn large_counts_are_grouped_in_thousands_that_never_break_apart() {
+        assert_eq!(grouped(242_400_000.0), "242\u{a0}400\u{a0}000");
+        assert_eq!(grouped(36_000_000.0), "36\u{a0}000\u{a0}000");
+        assert_eq!(grouped(162_000.4), "162\u{a0}000");
+        assert_eq!(grouped(99_999.6), "100\u{a0}000");
+        assert_eq!(grouped(1000.0), "1000");
+        assert_eq!(grouped(-12_345.0), "-12\u{a0}345");
+        assert_eq!(grouped(f64::INFINITY), "inf");
+    }
+
+    #[test]
+    fn a_too_long_swarm_gives_its_counts_grouped() {
+        let e = SimError::TooLong {
+            flight_time: 240_000.0,
+            steps: 242_400_000.0,
+            run: LongRun::Swarm {
+                drones: 200,
+                fit: 29,
+            },
+        };
+        assert!(
+            e.to_string().starts_with(
+                "the swarm is too long: its drones fly 240\u{a0}000 s in all, 242\u{a0}400\u{a0}000 filter steps \
+                 at these rates; the limit is 36\u{a0}000\u{a0}000 (at most 29 drones, or shorter"
+            ),
+            "{e}"
+        );
     }
 
     #[test]

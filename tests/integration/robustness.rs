@@ -410,7 +410,7 @@ fn runs_beyond_the_work_limit_are_refused_quickly() {
             "--step",
             "0.001",
         ],
-        "the limit is 1000000",
+        "the limit is 1\u{a0}000\u{a0}000",
     );
     // Several seeds of a flight: the refusal says how many fit, and that many run.
     refused(
@@ -428,7 +428,7 @@ fn runs_beyond_the_work_limit_are_refused_quickly() {
             "--sensor-rate",
             "20",
         ],
-        "the swarm is too long: its drones fly 1800000 s in all, 54000000 filter steps at these rates; the limit is 36000000 (at most 333 drones, or shorter flights",
+        "the swarm is too long: its drones fly 1\u{a0}800\u{a0}000 s in all, 54\u{a0}000\u{a0}000 filter steps at these rates; the limit is 36\u{a0}000\u{a0}000 (at most 333 drones, or shorter flights",
     );
     assert!(
         started.elapsed().as_secs_f64() < 5.0,
