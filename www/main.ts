@@ -306,10 +306,14 @@ function onResponse(r: Response): void {
 /** The form's control of the numeric setting the core names by its key (`maxInterval`), if any. */
 const numericControl = (key?: string) => (key && isNumericKey(key) ? field(key) : null);
 
-/** The core names a setting it refuses by its key (`maxInterval`), the form by its label:
+/** The control a refusal's setting names: a numeric field of the form, or for a swarm's
+ * `drones` the swarm panel's select of sizes. */
+const fitControl = (setting?: string): HTMLInputElement | HTMLSelectElement | null => (setting === 'drones' ? $<HTMLSelectElement>('#swarmDrones') : numericControl(setting));
+
+/** The core names a setting it refuses by its key (`maxInterval`), the page by its label:
  * " The setting it names is Heartbeat (s)." for a status line, or '' where it names none. */
 function namesSetting(key?: string): string {
-  const label = numericControl(key)?.labels?.[0]?.textContent?.trim();
+  const label = fitControl(key)?.labels?.[0]?.textContent?.trim();
   return label ? ` The setting it names is ${label}.` : '';
 }
 
@@ -906,26 +910,39 @@ $('#repeat-seeds').addEventListener('click', () => {
 function fitWords(setting: string, value: number): string {
   if (setting === 'seeds') return `Use ${value} seed${value === 1 ? '' : 's'}`;
   if (setting === 'maxInterval') return `Use a heartbeat of ${value} s`;
+  if (setting === 'drones') return `Use ${value} drones`;
   return `Set ${numericControl(setting)?.labels?.[0]?.textContent?.trim() ?? setting} to ${value}`;
+}
+
+/** The value `control` can take for the core's `value`: a number as it is; for a select of
+ * sizes, the largest of its options within it (a swarm of at most 29 drones: 20), if any. */
+function fitFor(control: HTMLInputElement | HTMLSelectElement, value: number): number | undefined {
+  if (!(control instanceof HTMLSelectElement)) return value;
+  const within = [...control.options].map((o) => Number(o.value)).filter((v) => v <= value);
+  return within.length ? Math.max(...within) : undefined;
 }
 
 /** Shows `button` under a refusal, to set the setting it names to the value with which the run
  * would go ahead (the core's `valueThatFits`), or hides it where there is none; `what` says what
  * it lets run where the page offers the same value for more than one thing (" for every SF"). */
 function offerFit(button: HTMLButtonElement, setting: string | undefined, value: number | undefined, what = ''): void {
-  button.hidden = value === undefined || !numericControl(setting);
-  if (button.hidden || setting === undefined || value === undefined) return;
+  const control = fitControl(setting);
+  const fit = control && value !== undefined ? fitFor(control, value) : undefined;
+  button.hidden = fit === undefined;
+  if (setting === undefined || fit === undefined) return;
   button.dataset.setting = setting;
-  button.dataset.value = String(value);
-  button.textContent = `${fitWords(setting, value)}${what}`;
+  button.dataset.value = String(fit);
+  button.textContent = `${fitWords(setting, fit)}${what}`;
 }
 
-/** Sets the control `button` was offered for to its value, as if typed, and runs. */
+/** Sets the control `button` was offered for to its value, as if typed or chosen, and runs the
+ * form (a swarm size: the panel's choice, which its own button runs). */
 function useFit(button: HTMLElement): void {
-  const control = numericControl(button.dataset.setting);
+  const control = fitControl(button.dataset.setting);
   if (!control || button.dataset.value === undefined) return;
   control.value = button.dataset.value;
-  onChange();
+  if (control instanceof HTMLSelectElement) control.dispatchEvent(new Event('change'));
+  else onChange();
 }
 
 $('#fit-setting').addEventListener('click', () => useFit($('#fit-setting')));

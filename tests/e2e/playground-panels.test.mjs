@@ -664,6 +664,31 @@ test('a swarm the core refuses says why, names the setting as the form labels it
   assert.deepEqual(problems, []);
 });
 
+test('a swarm too long for its drones offers the largest size of the panel that fits, which runs', async () => {
+  // At 1000 Hz two hundred drones flying 20 minutes each are more filter steps than the core
+  // runs; it names how many drones fit, and the panel offers the largest of its sizes within that.
+  const { page, problems } = await open('?sensorRate=1000&swarmDrones=200&swarmDuration=1200');
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await until(page, () => /cannot be simulated/.test(document.querySelector('#swarm-status')?.textContent ?? ''), null, { timeout: 60_000 });
+  const status = await page.locator('#swarm-status').textContent();
+  const [, most] = status.match(/at most (\d+) drones, or shorter flights.*\. The setting it names is Drones\.$/) ?? [];
+  assert.ok(most, status);
+  const sizes = await page.getByLabel('Drones', { exact: true }).locator('option').evaluateAll((os) => os.map((o) => Number(o.value)));
+  const fits = Math.max(...sizes.filter((n) => n <= Number(most)));
+  assert.ok(fits < 200, `${fits} of ${sizes} within ${most}`);
+  assert.deepEqual(await axe(page), []);
+  // One press picks that size and runs its swarms: the core, which refused the larger ones before
+  // any drone flew, reports progress on these (their end is too long to wait for here).
+  await page.getByRole('button', { name: `Use ${fits} drones`, exact: true }).click();
+  assert.equal(await page.getByLabel('Drones', { exact: true }).inputValue(), String(fits));
+  assert.match(await page.locator('#swarm-status').textContent(), new RegExp(`^Simulating swarms of [\\d, ]*\\b${fits} drones…$`));
+  await until(page, () => document.querySelector('#swarm-progress').value > 0, null, { timeout: 60_000 });
+  assert.doesNotMatch(await page.locator('#swarm-status').textContent(), /cannot be simulated/);
+  assert.equal(new URL(page.url()).searchParams.get('swarmDrones'), String(fits));
+  assert.equal(await page.locator('#swarm-fit').isVisible(), false);
+  assert.deepEqual(problems, []);
+});
+
 test('with the real flight chosen the swarm flies it, as the CLI\'s --sample does, and its note and slide say so', async () => {
   const { page, problems } = await open('?flight=canberra');
   await runSwarm(page, '20', 'fixed');
