@@ -1,7 +1,7 @@
 // The results panel: the table of statistics with their intervals, the verdict on which station
 // is best (only when the intervals say so), the baseline's differences, and the notes under the
 // table. Reads the page's state from the store.
-import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
+import { deliverySpread, MODEL_LABELS, SENT_EVERY_NOTED, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
 import { adrFrom, adrName, caption, fmt, listed, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan, sendingLimit } from './state';
@@ -197,9 +197,24 @@ function frameCells(m: ModelResult): string {
     const span = (values: number[], unit: string) => ` <span class="sub" data-span>${short(Math.min(...values))}–${short(Math.max(...values))}\u00a0${unit}</span>`;
     // The means to three figures, as the spans: an average over rates claims no more.
     const mean = (v: number | null, scale: number, unit: string) => (v === null ? '—' : `${short(v * scale)} ${unit}`);
-    return `<td data-field="interval"${title}>${mean(m.meanInterval, 1, 's')}${span(used.map((u) => u.interval), 's')}</td><td data-field="toa"${title}>${mean(m.meanTimeOnAir, 1e3, 'ms')}${span(used.map((u) => u.timeOnAir * 1e3), 'ms')}</td>`;
+    return `<td data-field="interval"${title}>${mean(m.meanInterval, 1, 's')}${span(used.map((u) => u.interval), 's')}${sentLine(m)}</td><td data-field="toa"${title}>${mean(m.meanTimeOnAir, 1e3, 'ms')}${span(used.map((u) => u.timeOnAir * 1e3), 'ms')}</td>`;
   }
-  return `<td data-field="interval"${leanTitle(m)}>${m.interval.toFixed(2)} s${lean(m.leanFrame && `lean ${m.leanFrame.interval.toFixed(2)} s`)}</td><td data-field="toa"${leanTitle(m)}>${(m.timeOnAir * 1e3).toFixed(1)} ms${lean(m.leanFrame && `lean ${(m.leanFrame.timeOnAir * 1e3).toFixed(1)} ms`)}</td>`;
+  return `<td data-field="interval"${leanTitle(m)}>${m.interval.toFixed(2)} s${lean(m.leanFrame && `lean ${m.leanFrame.interval.toFixed(2)} s`)}${sentLine(m)}</td><td data-field="toa"${leanTitle(m)}>${(m.timeOnAir * 1e3).toFixed(1)} ms${lean(m.leanFrame && `lean ${(m.leanFrame.timeOnAir * 1e3).toFixed(1)} ms`)}</td>`;
+}
+
+/** The duty-cycle interval the table shows, s: the mean over the packets sent (ADR), or the
+ * starting rate's where none was sent (the core's `ModelResult::interval_shown`). */
+function intervalShown(m: ModelResult): number {
+  return m.meanInterval ?? m.interval;
+}
+
+/** Under the interval, where the drone's packets went notably less often (the core's
+ * `ModelResult::sent_slower`: by over `SENT_EVERY_NOTED`, as the CLI's line under the station):
+ * how often they did go. At 1 Hz SF7's 3.08 s are 4 s, since a packet leaves on a sensor step;
+ * error-triggered sending waits for its threshold. Nothing otherwise. */
+function sentLine(m: ModelResult): string {
+  if (m.sentEvery === null || !(m.sentEvery > SENT_EVERY_NOTED * intervalShown(m))) return '';
+  return ` <span class="sub" data-sent title="The mean time between two packets the drone sent in a flight; the interval above is what the plan allows">sent every ${short(m.sentEvery)}\u00a0s</span>`;
 }
 
 /** A data rate by its EU868 name, `DR3`, or `SF8/500` where it has none. */
@@ -417,10 +432,12 @@ function probabilities(m: ModelResult): string {
 }
 
 /** The Things Network's fair-use limit: what it sets when chosen, otherwise what it would. "Sent
- * here" is the mean interval over the packets sent: with ADR the starting rate's would miscount it. */
+ * here" counts by the mean time between the packets sent where there were two, else by the mean
+ * interval over the packets sent: the starting rate's interval would miscount ADR, and any
+ * interval a drone that waits for sensor steps or a threshold. */
 function ttnNote(r: SimReport): string {
   const m = r.results[r.results.length - 1];
-  const interval = m.meanInterval ?? m.interval;
+  const interval = intervalShown(m);
   // The settings that made these results, not the form's (which may have moved on).
   const made = store.reportSettings;
   const who = `${m.payloadBytes} B (${MODEL_LABELS[m.model]})`;
@@ -428,7 +445,7 @@ function ttnNote(r: SimReport): string {
     return `<p class="note" id="ttn-note">The Things Network's fair use (30 s of airtime a day, spread evenly) sets the interval here: one packet of ${who} every ${interval.toFixed(0)} s.</p>`;
   }
   const a = timeOnAir({ sf: made.sf, bw: made.bw, payload: m.payloadBytes, overhead: overheadBytes(made), cr: made.cr });
-  const perDay = 86400 / interval;
+  const perDay = 86400 / (m.sentEvery ?? interval);
   return `<p class="note" id="ttn-note">On The Things Network, fair use allows 30 s of airtime a day: ${a.ttnPacketsPerDay} packets of ${who}
     at this setting, one every ${(86400 / Math.max(1, a.ttnPacketsPerDay)).toFixed(0)} s — ${(perDay / Math.max(1, a.ttnPacketsPerDay)).toFixed(0)}× fewer than sent here. Not applied (choose it under Fair use).</p>`;
 }

@@ -43,7 +43,7 @@ pub use packet::Transmission;
 pub use radio::{DroneRadio, Frame, RateTable};
 pub use report::{
     Boxplots, DataRateUse, Delivery, Energy, FrameTiming, ModelResult, ModelSeries, RunConfig,
-    Series, SimReport,
+    Series, SimReport, SENT_EVERY_NOTED,
 };
 pub use scenario::{
     parse_seed, random_seed, AccessSettings, ChannelSettings, CliCommand, DroneSettings,

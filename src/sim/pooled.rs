@@ -42,6 +42,10 @@ pub(crate) struct Pooled {
     charge_mc: f64,
     active_s: f64,
     flight_time: f64,
+    /// From each flight's first packet sent to its last, s, summed, and the gaps between
+    /// them: the mean time between packets is their ratio.
+    sending_span: f64,
+    gaps: usize,
     /// Packets and receptions per data rate, slowest first.
     rates: RateTally,
 }
@@ -120,6 +124,12 @@ impl Pooled {
         self.received += tx.iter().filter(|t| t.received).count();
         self.lean += tx.iter().filter(|t| t.payload.is_some()).count();
         self.flight_time += flight_time;
+        // From first to last, whatever order they came in: the gaps between them sum to it.
+        let sent = tx.iter().map(|t| t.sent);
+        if let (Some(first), Some(last)) = (sent.clone().reduce(f64::min), sent.reduce(f64::max)) {
+            self.sending_span += last - first;
+            self.gaps += tx.len() - 1;
+        }
         for t in tx {
             self.charge_mc += t.charge_mc;
             self.active_s += t.active_s;
@@ -236,6 +246,11 @@ impl Pooled {
             interval,
             mean_interval: packet_mean(&data_rate_use, |u| u.interval),
             mean_time_on_air: packet_mean(&data_rate_use, |u| u.time_on_air),
+            sent_every: if self.gaps == 0 {
+                f64::NAN
+            } else {
+                self.sending_span / self.gaps as f64
+            },
             lean_frame,
             airtime,
             error3d: s3,

@@ -88,6 +88,25 @@ test('SF12 shows the SF12 interval, the same number as the time-on-air table, an
   assert.deepEqual(problems, []);
 });
 
+test('at a 1 Hz sensor rate each interval says how often the packets went, as the CLI counts them; at 10 Hz the interval alone', async () => {
+  const { page, problems } = await open('?sensorRate=1');
+  await idle(page);
+  const cli = nativeJson(['simulate', '--synthetic', '1', '--sensor-rate', '1']);
+  const csv = (await downloaded(page, page.getByRole('button', { name: 'Results (CSV)' }))).toString('utf8').trim().split('\n').map((l) => l.split(','));
+  for (const [i, m] of cli.results.entries()) {
+    // A packet waits for a whole-second step: SF7's 3.08 s become 4 s, DR's 2.83 s 3 s.
+    assert.ok(Math.abs(m.sentEvery - Math.ceil(m.interval)) < 1e-9, `${m.model}: ${m.sentEvery}`);
+    assert.equal(await cell(page, m.model, 'interval'), `${m.interval.toFixed(2)} s sent every ${m.sentEvery.toFixed(2)}\u00a0s`);
+    assert.equal(Number(csv[i + 1][csv[0].indexOf('sent_every_s')]), m.sentEvery);
+  }
+  // Back at 10 Hz the step adds at most 0.1 s, and the cell is the interval alone.
+  const before = await tableHtml(page);
+  await page.getByRole('button', { name: 'Reset', exact: true }).click();
+  await waitForResults(page, before);
+  for (const m of nativeJson(['simulate', '--synthetic', '1']).results) assert.equal(await cell(page, m.model, 'interval'), `${m.interval.toFixed(2)} s`);
+  assert.deepEqual(problems, []);
+});
+
 test('5 km at SF7 loses packets and the bandwidth changes the time on air', async () => {
   const { page, problems } = await open();
   assert.equal(await cell(page, 'dr', 'delivery'), '100 %');
@@ -1146,9 +1165,9 @@ test('with ADR the interval and time on air are the mean over its packets and sp
   assert.equal(col('interval_max_s'), Math.max(...used.map((u) => u.interval)));
   assert.equal(col('time_on_air_min_s'), Math.min(...used.map((u) => u.timeOnAir)));
   assert.equal(col('time_on_air_max_s'), Math.max(...used.map((u) => u.timeOnAir)));
-  // The Things Network's note counts what was sent by that mean, not by the starting rate.
+  // The Things Network's note counts what was sent by the packets' spacing, not by the starting rate.
   const ttn = nativeJson(['airtime', '--sf', '7', '--bw', '250', '--payload', '12']).ttnPacketsPerDay;
-  assert.match(await page.locator('#ttn-note').textContent(), new RegExp(`— ${(86400 / cli.results[0].meanInterval / ttn).toFixed(0)}× fewer than sent here`));
+  assert.match(await page.locator('#ttn-note').textContent(), new RegExp(`— ${(86400 / cli.results[0].sentEvery / ttn).toFixed(0)}× fewer than sent here`));
   // The distance chart's runs move their rate too, and its axis says so.
   await page.waitForSelector('#chart-distance svg', { timeout: 30_000 });
   assert.ok((await chartTexts(page, '#chart-distance')).some((t) => t.includes('gateway distance (SF7, 250 kHz and tracking ADR)')));

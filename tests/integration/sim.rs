@@ -210,6 +210,69 @@ fn intervals_follow_the_payload_sizes_and_the_overhead() {
 }
 
 #[test]
+fn packets_go_out_on_sensor_steps_so_their_mean_spacing_is_the_interval_rounded_up_to_steps() {
+    // The whole set: a spacing taken across two flights' packets would show here.
+    for rate in [1.0, 2.0, 10.0] {
+        let r = simulate(
+            &mut Simulator::new(),
+            &set(
+                &Scenario::default(),
+                json!({"synthetic": "all", "sensorRate": rate}),
+            ),
+        )
+        .unwrap();
+        for m in &r.results {
+            let steps = (m.interval * rate - 1e-9).ceil();
+            assert!(
+                (m.sent_every - steps / rate).abs() < 1e-9,
+                "{rate} Hz, {:?}: {} against {} steps",
+                m.model,
+                m.sent_every,
+                steps
+            );
+            // Said where the steps add over 5 %: at 1 Hz for every station, at 10 Hz for none.
+            assert_eq!(m.sent_slower(), steps / rate > 1.05 * m.interval);
+            if rate != 2.0 {
+                assert_eq!(m.sent_slower(), rate == 1.0, "{rate} Hz, {:?}", m.model);
+            }
+        }
+    }
+    // The CLI says it under each station where the page's cell does, with the report's number.
+    for (rate, said) in [("1", true), ("10", false)] {
+        let args = ["simulate", "--synthetic", "1", "--sensor-rate", rate];
+        let text = String::from_utf8(crate::cli(&args).stdout).unwrap();
+        let json: Value =
+            serde_json::from_slice(&crate::cli(&[&args[..], &["--json"]].concat()).stdout).unwrap();
+        for m in json["results"].as_array().unwrap() {
+            let line = format!(
+                "sent every {:.2} s on average; the interval column is what the plan allows",
+                m["sentEvery"].as_f64().unwrap()
+            );
+            assert_eq!(text.contains(&line), said, "{rate} Hz: {text}");
+        }
+    }
+    // An error-triggered drone waits for its threshold beyond the interval.
+    let r = simulate(
+        &mut Simulator::new(),
+        &set(&one_flight(1), json!({"sender": "error", "threshold": 10})),
+    )
+    .unwrap();
+    assert!(r.results.iter().all(|m| m.sent_slower()), "{r:?}");
+    // A drone that sent one packet has no spacing.
+    let r = simulate(
+        &mut Simulator::new(),
+        &set(&one_flight(1), json!({"sf": 12, "bw": 125.0})),
+    )
+    .unwrap();
+    assert!(r
+        .results
+        .iter()
+        .all(|m| m.delivery.packets_sent == 1 && m.sent_every.is_nan()));
+    let v = serde_json::to_value(&r).unwrap();
+    assert!(v["results"][0]["sentEvery"].is_null());
+}
+
+#[test]
 fn the_json_shape_is_the_spec_contract() {
     let r = simulate(
         &mut Simulator::new(),

@@ -625,6 +625,14 @@ meanInterval: number | null,
  */
 meanTimeOnAir: number | null, 
 /**
+ * The mean time between two packets the drone sent in one flight, s (`null` where no
+ * flight sent two): how often it did send, where `interval` is how often it may. Longer
+ * than the interval where a packet waits for a sensor step (reference §6.4: at 1 Hz SF7's
+ * 3.08 s become 4 s), where error-triggered sending waits for its threshold, where ADR
+ * slowed the rate or a random delay falls between packets.
+ */
+sentEvery: number | null, 
+/**
  * With `--payload lean`, the shortest frame a lean packet took at the starting data rate
  * (reference §5); `null` when no lean packet went there.
  */
@@ -1982,3 +1990,6 @@ export const PAYLOAD_BYTES: Record<ModelName, number> = {
 
 /** How many of the drone filter's settled standard deviations a manoeuvre field (a, ω, ψ) may reach and still be left out of a lean payload (src/sim/sender/payload.rs). */
 export const LEAN_SIGNIFICANCE = 10;
+
+/** How many times the duty-cycle interval the packets' mean spacing (`sentEvery`) must exceed before the tables say how often they went (src/sim/report.rs). */
+export const SENT_EVERY_NOTED = 1.05;

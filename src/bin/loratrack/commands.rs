@@ -590,13 +590,7 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
             "{:<9} {:>7.2}s {:>5}/{:<5} {:>6}% {} {} {} {} {} {} {} {}\n",
             m.model.label(),
             // With ADR the mean over the packets, as the page shows; the rates are listed below.
-            // A drone that sent nothing (TTN's fair use at SF12 in a short flight) has no mean:
-            // its rate's interval, as the page shows it.
-            if m.mean_interval.is_finite() {
-                m.mean_interval
-            } else {
-                m.interval
-            },
+            m.interval_shown(),
             m.delivery.packets_received,
             m.delivery.packets_sent,
             num(100.0 * m.whole_flight.tracked, 6, 1),
@@ -616,6 +610,12 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
         }
         if m.data_rate_use.len() > 1 {
             out += &format!("          {}\n", rates_line(&m.data_rate_use));
+        }
+        if m.sent_slower() {
+            out += &format!(
+                "          sent every {:.2} s on average; the interval column is what the plan allows\n",
+                m.sent_every
+            );
         }
         if m.lean_packets > 0 {
             out += &format!(
