@@ -100,9 +100,10 @@ export function downloadErrorCsv(report: SimReport): void {
  * at them, in each row so that rows pasted beside another run's keep theirs.
  * `time_on_air_s` and `interval_s` are the starting rate's; the `_mean_s` columns average over the
  * packets sent and the `_min_s` / `_max_s` ones span the data rates used, as the table's cells
- * show them where ADR moved the rate; `sent_every_s` is the mean time between the packets sent (the
- * core's `sentEvery`, empty where no flight sent two), whether or not the table shows it. `too_few_packets` and `silence_after_loss` are the notes
- * under the table (the core's caveats), true or false: a spreadsheet sorted by p75 keeps them. */
+ * show them where ADR moved the rate; `sent_every_s` is the mean time between the packets sent
+ * (the core's `sentEvery`, empty where no flight sent two), whether or not the table shows it.
+ * `too_few_packets` and `silence_after_loss` are the notes under the table (the core's caveats),
+ * true or false: a spreadsheet sorted by p75 keeps them. */
 export function downloadResultsCsv(report: SimReport, made: { settings: string; link: string; command: string }): void {
   const header = ['model', 'payload_bytes', 'time_on_air_s', 'interval_s', 'packets_sent', 'packets_received', 'delivery_ratio', 'mean_m', 'p50_m', 'p75_m', 'p75_lo_m', 'p75_hi_m', 'p95_m', 'max_m', 'samples', 'tracked_share', 'runs', 'coverage95', 'nees', 'charge_per_uplink_mC', 'lean_packets', 'lean_time_on_air_s', 'lean_interval_s', 'time_on_air_mean_s', 'time_on_air_min_s', 'time_on_air_max_s', 'interval_mean_s', 'interval_min_s', 'interval_max_s', 'sent_every_s', 'too_few_packets', 'silence_after_loss', 'settings', 'link', 'command'];
   const n = (v: number | null | undefined) => (v === null || v === undefined ? '' : String(v));
