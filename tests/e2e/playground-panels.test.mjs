@@ -151,6 +151,27 @@ test('a station none of whose packets arrived where another\'s did says "none" i
   assert.deepEqual(problems, []);
 });
 
+test('beyond the low SFs\' reach the SF chart says "none arrives" at each SF the CLI hears nothing at, the labels clear of one another on a phone and on a laptop', async () => {
+  // 7 km at 125 kHz: SF7–SF10 lose every packet of the 81 s flight. On a phone an SF's column is
+  // about 41 px, narrower than "arrives": side by side, the four ran into one line.
+  const silent = [7, 8, 9, 10, 11, 12].filter((sf) => nativeJson(['simulate', '--synthetic', '1', '--sf', `${sf}`, '--bw', '125', '--distance', '7000']).results.every((m) => m.packetsReceived === 0));
+  assert.ok(silent.length >= 2 && silent.length < 6, `a case with some SFs silent: ${silent}`);
+  const problems = [];
+  for (const [width, height] of [[390, 844], [1280, 800]]) {
+    const opened = await open('?sf=12&bw=125&distance=7000', { width, height });
+    await idle(opened.page);
+    await opened.page.waitForSelector('#chart-sf svg');
+    const labels = await opened.page.locator('#chart-sf svg text').evaluateAll((ts) => ts.filter((t) => /^none/.test(t.textContent ?? '')).map((t) => t.getBoundingClientRect().left));
+    assert.equal(labels.length, silent.length, `${width}: ${labels.length} labels for SFs ${silent}`);
+    // In the SFs' order, left to right.
+    assert.deepEqual(labels, [...labels].sort((a, b) => a - b), `${width}`);
+    assert.deepEqual(await tickLabelOverlaps(opened.page, '#chart-sf'), [], `${width}x${height}`);
+    assert.deepEqual(await chartTextsCut(opened.page), [], `${width}x${height}`);
+    problems.push(...opened.problems);
+  }
+  assert.deepEqual(problems, []);
+});
+
 test('a drone that sends nothing within the flight says so, not that its packets were lost: no delivery share, no charge per uplink, "none sent" on the charts, as the CLI counts them', async () => {
   // TTN's fair use (30 s on air a day) at SF12: one packet every ~71 minutes, none in 81 s.
   const { page, problems } = await open('?sf=12&bw=125&fairUse=ttn');

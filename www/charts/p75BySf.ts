@@ -86,6 +86,10 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
           });
     return labels.map((l, j) => ({ ...l, x: sf + (sf === 12 ? -(clear + (labels.length - 1 - j) * step) : clear + j * step) / pxPerSf }));
   });
+  // "none arrives" stands in two lines on its SF; where an SF's column is narrower than
+  // "arrives" (about 4.2 em; 41 px on a phone, where neighbours' ran into one another), upright.
+  const upright = pxPerSf < 4.2 * chartFont() + 4;
+  const wrap = upright ? ' ' : '\n';
   const km = (opts.distance / 1000).toFixed(1);
   const title = (d: (typeof data)[number]) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${d.received} packets${d.few ? ', too few to compare' : ''}, ${covered(d.wholeFlight)}`;
   return Plot.plot({
@@ -100,7 +104,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
       Plot.line(data, { x: 'sf', y: 'p75', stroke: 'label', z: 'label' }),
       Plot.dot(data.filter((d) => !d.few), { x: 'sf', y: 'p75', fill: 'label', r: DOT_R, title }),
       Plot.dot(data.filter((d) => d.few), { x: 'sf', y: 'p75', fill: 'white', stroke: 'label', strokeWidth: 1.5, r: DOT_R, title }),
-      Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: (d: number) => (noneSent(ran.filter((r) => r.sf === d)) ? 'none\nsent' : 'none\narrives'), fill: NOTE_GREY, fontSize: chartFont() }),
+      Plot.text(silent, { x: (d: number) => d, frameAnchor: 'bottom', dy: -4, text: (d: number) => (noneSent(ran.filter((r) => r.sf === d)) ? `none${wrap}sent` : `none${wrap}arrives`), fill: NOTE_GREY, fontSize: chartFont(), ...(upright ? { rotate: -90, textAnchor: 'start' as const } : {}) }),
       // Upright: side by side, two SFs' "not simulated" ran into each other on a phone.
       Plot.text(refusedAt, { x: (d: number) => d, text: () => 'not simulated', rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: NOTE_GREY, fontSize: chartFont(), title: (d: number) => `SF${d}: not simulated: the note under the chart says why` }),
       Plot.text(named, { x: 'x', text: 'text', rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: NOTE_GREY, fontSize: chartFont(), title: 'title' }),
