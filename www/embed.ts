@@ -14,6 +14,9 @@ export const PANELS = ['controls', 'results', 'trajectory', 'error', 'axes', 'di
 /** The panels that show the single drone's run (its flight and seeds). */
 const SINGLE_DRONE_PANELS = ['results', 'trajectory', 'error', 'axes', 'distance', 'sf'];
 
+/** Of those, the charts that run it again at other SFs or distances: what each sweeps. */
+const SWEEP_CHARTS: Record<string, string> = { sf: 'SFs', distance: 'distances' };
+
 /** Hides every panel but the chosen ones, explains unknown names, and starts posting the height. */
 export function setUpEmbed(): void {
   if (!store.embed) return;
@@ -64,7 +67,15 @@ export function updateEmbedCaption(): void {
   // an embed of charts alone carries them here.
   if (store.embed && results.hidden) {
     if (store.refused) lines.push(store.refused);
-    lines.push(...restingNotes());
+    const notes = restingNotes();
+    // Beside the SF or distance chart alone, the run's notes ("These errors cover 17 % of the flight
+    // time") read as if about every point of the chart, which sweeps past the settings above.
+    const sweeps = shown.filter((p) => p in SWEEP_CHARTS);
+    const runShown = shown.some((p) => SINGLE_DRONE_PANELS.includes(p) && !(p in SWEEP_CHARTS));
+    if (notes.length && sweeps.length && !runShown) {
+      lines.push(`These notes are about the one run at these settings, not ${sweeps.length > 1 ? "the charts'" : "the chart's"} other ${sweeps.map((p) => SWEEP_CHARTS[p]).join(' and ')}:`);
+    }
+    lines.push(...notes);
     if (results.classList.contains('stale')) lines.push('The numbers shown are for the previous settings.');
     if (results.classList.contains('partial')) lines.push('The numbers shown are the first flight’s alone; the rest of the set is still running.');
   }

@@ -933,8 +933,14 @@ test('an embed says what it shows and every notice, offers no Pin, and grows its
   const { page, problems } = await open('?embed=1&panels=error&sf=12&bw=125');
   await idle(page);
   assert.match(await page.locator('#embed-settings').textContent(), /Settings: SF12, 125 kHz, 1\.0 km.*seed 1; loratrack \d/);
-  assert.match(await page.locator('#embed-notices').textContent(), /Too few packets to compare/);
+  assert.match(await page.locator('#embed-notices').textContent(), /^Too few packets to compare/);
   assert.equal(await page.locator('#pin').isVisible(), false);
+  // Beside the SF chart alone the same notes say that they are about the run at the settings
+  // named, not about the chart's other SFs (whose own note stands under the chart).
+  const sfAlone = await open('?embed=1&panels=sf&sf=12&bw=125');
+  await idle(sfAlone.page);
+  assert.match(await sfAlone.page.locator('#embed-notices').textContent(), /^These notes are about the one run at these settings, not the chart's other SFs: Too few packets to compare/);
+  assert.deepEqual(sfAlone.problems, []);
   // With the results panel the note stands under the table, and the caption does not repeat it.
   const withTable = await open('?embed=1&panels=results,error&sf=12&bw=125');
   await idle(withTable.page);
