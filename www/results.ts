@@ -321,7 +321,7 @@ function renderUntracked(r: SimReport): void {
   if (note.hidden) return;
   const shares = new Set(r.results.map(share));
   const cover = shares.size === 1 ? `${share(r.results[0])} %` : r.results.map((m) => `${share(m)} % (${MODEL_LABELS[m.model]})`).join(', ');
-  note.textContent = `These errors cover ${cover} of the flight time: until a flight's first packet arrives the station has no estimate, and that time is not in the table.`;
+  note.textContent = `These errors cover ${cover} of the flight time: until a flight's first packet arrives the station has no estimate, so that time has no error to count.`;
 }
 
 /** The notes under the table that say what its numbers rest on (too few packets, untracked time,
