@@ -217,10 +217,6 @@ fn generated() -> String {
         "\n/** How many of the drone filter's settled standard deviations a manoeuvre field (a, ω, ψ) may reach and still be left out of a lean payload (src/sim/sender/payload.rs). */\nexport const LEAN_SIGNIFICANCE = {};\n",
         crate::sim::LEAN_SIGNIFICANCE
     ));
-    out.push_str(&format!(
-        "\n/** How many times the duty-cycle interval the packets' mean spacing (`sentEvery`) must exceed before the tables say how often they went (src/sim/report.rs). */\nexport const SENT_EVERY_NOTED = {};\n",
-        crate::sim::SENT_EVERY_NOTED
-    ));
     out
 }
 

@@ -1,7 +1,7 @@
 // The results panel: the table of statistics with their intervals, the verdict on which station
 // is best (only when the intervals say so), the baseline's differences, and the notes under the
 // table. Reads the page's state from the store.
-import { deliverySpread, MODEL_LABELS, SENT_EVERY_NOTED, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
+import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
 import { adrFrom, adrName, caption, fmt, listed, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan, sendingLimit } from './state';
@@ -209,11 +209,11 @@ function intervalShown(m: ModelResult): number {
 }
 
 /** Under the interval, where the drone's packets went notably less often (the core's
- * `ModelResult::sent_slower`: by over `SENT_EVERY_NOTED`, as the CLI's line under the station):
- * how often they did go. At 1 Hz SF7's 3.08 s are 4 s, since a packet leaves on a sensor step;
- * error-triggered sending waits for its threshold. Nothing otherwise. */
+ * `sentSlower`, which the CLI's line under the station reads too): how often they did go. At
+ * 1 Hz SF7's 3.08 s are 4 s, since a packet leaves on a sensor step; error-triggered sending
+ * waits for its threshold. Nothing otherwise. */
 function sentLine(m: ModelResult): string {
-  if (m.sentEvery === null || !(m.sentEvery > SENT_EVERY_NOTED * intervalShown(m))) return '';
+  if (!m.sentSlower || m.sentEvery === null) return '';
   return ` <span class="sub" data-sent title="The mean time between two packets the drone sent in a flight; the interval above is what the plan allows">sent every ${short(m.sentEvery)}\u00a0s</span>`;
 }
 

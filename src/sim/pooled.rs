@@ -238,7 +238,7 @@ impl Pooled {
             let refs: Vec<&[f64]> = runs.iter().map(Vec::as_slice).collect();
             bootstrap_sorted(&refs, &self.e3, seed)
         });
-        ModelResult {
+        let mut result = ModelResult {
             model,
             payload_bytes: model.payload_bytes(),
             lean_packets: self.lean,
@@ -251,6 +251,7 @@ impl Pooled {
             } else {
                 self.sending_span / self.gaps as f64
             },
+            sent_slower: false,
             lean_frame,
             airtime,
             error3d: s3,
@@ -269,7 +270,10 @@ impl Pooled {
             delivery,
             energy,
             model_probability,
-        }
+        };
+        // Decided once from the fields it compares; the CLI and the page read the flag.
+        result.sent_slower = result.sends_slower();
+        result
     }
 
     /// This station's packets, with the network's duplicates and gateway counts.

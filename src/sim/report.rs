@@ -265,6 +265,12 @@ pub struct ModelResult {
     /// slowed the rate or a random delay falls between packets.
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub sent_every: f64,
+    /// Whether the packets went notably less often than the interval the tables show
+    /// (`meanInterval`, or `interval` where none was sent): `sentEvery` over `SENT_EVERY_NOTED`
+    /// times it (src/sim/report.rs), so that the interval alone would mislead a reader counting
+    /// packets.
+    /// Decided once, here; the CLI's line under a station and the page's "sent every" read it.
+    pub sent_slower: bool,
     /// With `--payload lean`, the shortest frame a lean packet took at the starting data rate
     /// (reference §5); `null` when no lean packet went there.
     pub lean_frame: Option<FrameTiming>,
@@ -340,22 +346,21 @@ impl ModelResult {
         }
     }
 
-    /// Whether the drone's packets went notably less often than [`Self::interval_shown`]
-    /// (`sentEvery` over [`SENT_EVERY_NOTED`] times it), so that the interval alone would
-    /// mislead a reader counting packets.
+    /// Whether packets spaced `sent_every` s apart went notably less often than
+    /// [`Self::interval_shown`]: the value of the field `sent_slower`.
     ///
     /// ```
     /// use loratrack::{api, Scenario, Simulator};
     /// // At 1 Hz a packet waits for a whole-second sensor step: 3D-CTRA's 3.08 s become 4 s.
     /// let s = Scenario::from_json(r#"{"synthetic": 1, "sensorRate": 1, "model": "3d-ctra"}"#).unwrap();
     /// let r = &api::simulate(&mut Simulator::new(), &s).unwrap().results[0];
-    /// assert!((r.sent_every - 4.0).abs() < 1e-9 && r.sent_slower());
+    /// assert!((r.sent_every - 4.0).abs() < 1e-9 && r.sent_slower);
     /// // At the default 10 Hz, 3.1 s: the interval alone says it.
     /// let s = Scenario::from_json(r#"{"synthetic": 1, "model": "3d-ctra"}"#).unwrap();
     /// let r = &api::simulate(&mut Simulator::new(), &s).unwrap().results[0];
-    /// assert!((r.sent_every - 3.1).abs() < 1e-9 && !r.sent_slower());
+    /// assert!((r.sent_every - 3.1).abs() < 1e-9 && !r.sent_slower);
     /// ```
-    pub fn sent_slower(&self) -> bool {
+    pub(crate) fn sends_slower(&self) -> bool {
         self.sent_every > SENT_EVERY_NOTED * self.interval_shown()
     }
 }

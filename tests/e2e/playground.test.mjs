@@ -96,6 +96,7 @@ test('at a 1 Hz sensor rate each interval says how often the packets went, as th
   for (const [i, m] of cli.results.entries()) {
     // A packet waits for a whole-second step: SF7's 3.08 s become 4 s, DR's 2.83 s 3 s.
     assert.ok(Math.abs(m.sentEvery - Math.ceil(m.interval)) < 1e-9, `${m.model}: ${m.sentEvery}`);
+    assert.ok(m.sentSlower, `${m.model}: the core's flag the cell and the CLI's line read`);
     assert.equal(await cell(page, m.model, 'interval'), `${m.interval.toFixed(2)} s sent every ${m.sentEvery.toFixed(2)}\u00a0s`);
     assert.equal(Number(csv[i + 1][csv[0].indexOf('sent_every_s')]), m.sentEvery);
   }
@@ -103,7 +104,10 @@ test('at a 1 Hz sensor rate each interval says how often the packets went, as th
   const before = await tableHtml(page);
   await page.getByRole('button', { name: 'Reset', exact: true }).click();
   await waitForResults(page, before);
-  for (const m of nativeJson(['simulate', '--synthetic', '1']).results) assert.equal(await cell(page, m.model, 'interval'), `${m.interval.toFixed(2)} s`);
+  for (const m of nativeJson(['simulate', '--synthetic', '1']).results) {
+    assert.equal(m.sentSlower, false, m.model);
+    assert.equal(await cell(page, m.model, 'interval'), `${m.interval.toFixed(2)} s`);
+  }
   assert.deepEqual(problems, []);
 });
 

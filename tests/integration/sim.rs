@@ -231,9 +231,9 @@ fn packets_go_out_on_sensor_steps_so_their_mean_spacing_is_the_interval_rounded_
                 steps
             );
             // Said where the steps add over 5 %: at 1 Hz for every station, at 10 Hz for none.
-            assert_eq!(m.sent_slower(), steps / rate > 1.05 * m.interval);
+            assert_eq!(m.sent_slower, steps / rate > 1.05 * m.interval);
             if rate != 2.0 {
-                assert_eq!(m.sent_slower(), rate == 1.0, "{rate} Hz, {:?}", m.model);
+                assert_eq!(m.sent_slower, rate == 1.0, "{rate} Hz, {:?}", m.model);
             }
         }
     }
@@ -249,6 +249,7 @@ fn packets_go_out_on_sensor_steps_so_their_mean_spacing_is_the_interval_rounded_
                 m["sentEvery"].as_f64().unwrap()
             );
             assert_eq!(text.contains(&line), said, "{rate} Hz: {text}");
+            assert_eq!(m["sentSlower"].as_bool(), Some(said), "{rate} Hz: {m}");
         }
     }
     // An error-triggered drone waits for its threshold beyond the interval.
@@ -257,7 +258,7 @@ fn packets_go_out_on_sensor_steps_so_their_mean_spacing_is_the_interval_rounded_
         &set(&one_flight(1), json!({"sender": "error", "threshold": 10})),
     )
     .unwrap();
-    assert!(r.results.iter().all(|m| m.sent_slower()), "{r:?}");
+    assert!(r.results.iter().all(|m| m.sent_slower), "{r:?}");
     // A drone that sent one packet has no spacing.
     let r = simulate(
         &mut Simulator::new(),

@@ -633,6 +633,14 @@ meanTimeOnAir: number | null,
  */
 sentEvery: number | null, 
 /**
+ * Whether the packets went notably less often than the interval the tables show
+ * (`meanInterval`, or `interval` where none was sent): `sentEvery` over `SENT_EVERY_NOTED`
+ * times it (src/sim/report.rs), so that the interval alone would mislead a reader counting
+ * packets.
+ * Decided once, here; the CLI's line under a station and the page's "sent every" read it.
+ */
+sentSlower: boolean, 
+/**
  * With `--payload lean`, the shortest frame a lean packet took at the starting data rate
  * (reference §5); `null` when no lean packet went there.
  */
@@ -1990,6 +1998,3 @@ export const PAYLOAD_BYTES: Record<ModelName, number> = {
 
 /** How many of the drone filter's settled standard deviations a manoeuvre field (a, ω, ψ) may reach and still be left out of a lean payload (src/sim/sender/payload.rs). */
 export const LEAN_SIGNIFICANCE = 10;
-
-/** How many times the duty-cycle interval the packets' mean spacing (`sentEvery`) must exceed before the tables say how often they went (src/sim/report.rs). */
-export const SENT_EVERY_NOTED = 1.05;

@@ -611,7 +611,7 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
         if m.data_rate_use.len() > 1 {
             out += &format!("          {}\n", rates_line(&m.data_rate_use));
         }
-        if m.sent_slower() {
+        if m.sent_slower {
             out += &format!(
                 "          sent every {:.2} s on average; the interval column is what the plan allows\n",
                 m.sent_every
