@@ -174,6 +174,19 @@ export function oneGatewayNote(listed: number): string {
   return listed > 0 ? `This chart places one gateway at each distance; the results table rests on the ${listed} gateway${listed === 1 ? '' : 's'} listed under Settings.` : '';
 }
 
+/** Under the error-versus-distance chart where the results table's one gateway (at `distance` m,
+ * none listed) lies outside the chart's distances (`swept`, m): a lecturer at 7 km sees the
+ * table's errors and a chart that stops at 5 km, which must not seem to contain them; '' where it
+ * lies within (between two boxes it is read between them) or gateways are `listed`. */
+export function offChartNote(distance: number, swept: number[], listed: number): string {
+  if (listed > 0 || !swept.length) return '';
+  const [near, far] = [Math.min(...swept), Math.max(...swept)];
+  const at = `The results table's gateway at ${(distance / 1000).toFixed(1)} km lies`;
+  if (distance > far) return `${at} beyond this chart's furthest distance, ${far / 1000} km.`;
+  if (distance < near) return `${at} nearer than this chart's nearest distance, ${near / 1000} km.`;
+  return '';
+}
+
 /** Under the error-versus-SF chart with ADR on: its runs keep each SF fixed (a point per data
  * rate is the chart's point), while the results table's network moves the rate; '' without ADR. */
 export function fixedRateNote(adr: Settings['adr']): string {

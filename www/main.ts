@@ -13,7 +13,7 @@ import { airtimeRows } from './airtime';
 import { chartSvg, downloadAirtimeCsv, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
 import { field, form, markField, onFormChange, readControls, settingWords, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
-import { adrName, caption, fewPacketsNote, fixedRateNote, noLineNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote } from './format';
+import { adrName, caption, fewPacketsNote, fixedRateNote, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote } from './format';
 import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { clearTable, renderBaseline, renderTable, restingNotes } from './results';
@@ -630,7 +630,9 @@ async function drawPanel(name: string, inputs: unknown, draw: (p: Awaited<Return
 async function renderDistance(sweep: { distance: number; report: SimReport }[], made: Settings): Promise<void> {
   const rows: BoxRow[] = sweep.flatMap(({ distance, report: r }) => r.results.map((m) => ({ group: `${distance / 1000} km`, model: m.model, box: m.boxplot.error3d, few: m.caveats.fewPackets, sent: m.packetsSent })));
   const received = sweep.flatMap(({ distance, report: r }) => r.results.filter((m) => m.error3d.count > 0).map((m) => ({ at: `${distance / 1000} km`, received: m.packetsReceived, few: m.caveats.fewPackets })));
-  sweepRestsOn('distance', fewPacketsNote(received, 'Dashed boxes', made.flight), made, oneGatewayNote(made.gateways.length));
+  const swept = sweep.map(({ distance }) => distance);
+  const fixed = [oneGatewayNote(made.gateways.length), offChartNote(made.distance, swept, made.gateways.length)].filter(Boolean).join(' ');
+  sweepRestsOn('distance', fewPacketsNote(received, 'Dashed boxes', made.flight), made, fixed);
   // With ADR the runs start at the chosen rate and the network moves them (the SF chart's do not).
   const adr = made.adr === 'off' ? '' : ` and ${adrName(made.adr)}`;
   const rate = `SF${made.sf}, ${made.bw} kHz${adr}`;

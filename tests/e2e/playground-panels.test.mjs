@@ -253,6 +253,30 @@ test('the error-versus-distance chart draws the boxes over too few packets dashe
   assert.deepEqual(problems, []);
 });
 
+test("beyond the distance chart's furthest box its note says the table's gateway lies outside it, and the slide carries that", async () => {
+  // At SF9 packets still arrive at 5 km, the chart's furthest box, and none at 7 km.
+  const { page, problems } = await open('?sf=9&distance=7000');
+  await idle(page);
+  await page.waitForSelector('#chart-distance svg');
+  const furthest = Math.max(...(await page.evaluate(() => [...document.querySelectorAll('#chart-distance svg text')].map((t) => t.textContent).filter((t) => /^[\d.]+ km$/.test(t)))).map(Number.parseFloat));
+  assert.ok(furthest < 7, `the chart's furthest box, ${furthest} km, falls short of the table's 7 km`);
+  // The table's packets are the CLI's at 7 km, not those of the chart's furthest box.
+  const at = (d) => nativeJson(['simulate', '--synthetic', '1', '--sf', '9', '--distance', String(d)]).results.find((m) => m.model === '3d-ctra');
+  const [table, box] = [at(7000), at(furthest * 1000)];
+  assert.equal(await cell(page, '3d-ctra', 'packets'), `${table.packetsReceived} / ${table.packetsSent}`);
+  assert.notEqual(table.packetsReceived, box.packetsReceived, 'the furthest box is another run than the table\'s');
+  const said = `The results table's gateway at 7.0 km lies beyond this chart's furthest distance, ${furthest} km.`;
+  await until(page, (s) => document.querySelector('#distance-rests-on')?.textContent?.includes(s), said);
+  const slide = (await downloaded(page, page.locator('[data-download="distance"][data-format="svg"]'))).toString('utf8');
+  assert.ok(slide.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ').includes(said), 'the slide of the chart says it too');
+  // Within the chart's distances there is nothing to say.
+  const before = await tableHtml(page);
+  await page.locator('#distance').fill('3000');
+  await waitForResults(page, before);
+  await until(page, () => !/lies beyond/.test(document.querySelector('#distance-rests-on')?.textContent ?? ''));
+  assert.deepEqual(problems, []);
+});
+
 test('the error-versus-distance axis stops at 1 cm where the mission station forecasts a kept plan, every label whole', async () => {
   // Its lowest whisker at 5 km lies at micrometres: the axis ran down to 0.000001, six decades that
   // squashed every box, and its lowest labels were cut off at the chart's left edge.

@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { adrFrom, caption, describe, stationPhrase, fewPacketsNote, fixedRateNote, flightTime, noLineNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
+import { adrFrom, caption, describe, stationPhrase, fewPacketsNote, fixedRateNote, flightTime, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -45,6 +45,19 @@ test('the distance chart says it places one gateway where the table rests on lis
   expect(oneGatewayNote(0)).toBe('');
   expect(oneGatewayNote(1)).toBe('This chart places one gateway at each distance; the results table rests on the 1 gateway listed under Settings.');
   expect(oneGatewayNote(3)).toMatch(/rests on the 3 gateways listed/);
+});
+
+test('the distance chart says where the table\'s gateway lies outside its distances, and nothing where it lies within', () => {
+  const swept = [500, 1000, 2000, 3000, 4000, 5000];
+  const beyond = offChartNote(7000, swept, 0);
+  expect(beyond).toMatch(/7\.0 km/);
+  expect(beyond).toMatch(/beyond this chart's furthest distance, 5 km/);
+  expect(offChartNote(200, swept, 0)).toMatch(/0\.2 km lies nearer than this chart's nearest distance, 0\.5 km/);
+  // On a box, or between two, the chart holds the table's distance.
+  for (const d of [500, 2500, 5000]) expect(offChartNote(d, swept, 0)).toBe('');
+  // Listed gateways have no one distance: the one-gateway note speaks for them.
+  expect(offChartNote(7000, swept, 2)).toBe('');
+  expect(offChartNote(7000, [], 0)).toBe('');
 });
 
 test('the SF chart says its points keep their SF where the table\'s ADR moves the rate', () => {
