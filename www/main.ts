@@ -569,7 +569,7 @@ async function renderSfs(sweep: { sf: number; report?: SimReport }[], asked: Mod
     ];
   });
   sweepRestsOn('sf', fewPacketsNote(rows.filter((r) => r.p75 !== null).map((r) => ({ at: `SF${r.sf}`, received: r.received, few: r.few })), 'Hollow points', made.flight), made, fixedRateNote(made.adr));
-  const opts = { bw: made.bw, distance: made.distance, width: chartWidth('sf') };
+  const opts = { bw: made.bw, distance: made.distance, sf: made.sf, adr: made.adr !== 'off', width: chartWidth('sf') };
   await drawPanel('sf', [rows, opts], (p) => p.p75BySfChart(rows, opts), made);
 }
 

@@ -64,6 +64,32 @@ test('pinning a baseline shows the next settings as differences against it', asy
   assert.deepEqual([...problems, ...shared.problems, ...far.problems], []);
 });
 
+test("the SF chart's grey column stands on the chosen SF, whose point is the table's run, and moves with it; the slide names it", async () => {
+  const { page, problems } = await open('?sf=9&bw=125&distance=2000');
+  await idle(page);
+  await page.waitForSelector('#chart-sf svg');
+  // The column's centre against the centre of its SF's tick label, px.
+  const offset = (sf) => page.evaluate((sf) => {
+    const column = document.querySelector('#chart-sf svg g[fill-opacity] rect')?.getBoundingClientRect();
+    const tick = [...document.querySelectorAll('#chart-sf svg text')].find((t) => t.textContent === `SF${sf}`)?.getBoundingClientRect();
+    return column && tick ? Math.abs(column.x + column.width / 2 - (tick.x + tick.width / 2)) : Infinity;
+  }, sf);
+  assert.ok((await offset(9)) < 2, `column ${await offset(9)} px off SF9`);
+  // The point in the column is the table's run: the CLI's p75 at these settings, in both.
+  const cli = nativeJson(['simulate', '--synthetic', '1', '--sf', '9', '--bw', '125', '--distance', '2000']).results.find((m) => m.model === '3d-ctra');
+  const [shown] = await shownP75(page, ['3d-ctra']);
+  assert.equal(shown.p75, Number(cli.error3d.p75.toFixed(2)));
+  assert.ok(await page.locator('#chart-sf svg title').evaluateAll((ts, p) => ts.some((t) => t.textContent.startsWith(`3D-CTRA, SF9: p75 ${p} m`)), cli.error3d.p75.toFixed(2)), 'the chart\'s SF9 point is the table\'s');
+  const before = await tableHtml(page);
+  await page.getByLabel('Spreading factor', { exact: true }).selectOption('11');
+  await waitForResults(page, before);
+  await until(page, () => !document.body.hasAttribute('data-busy'));
+  assert.ok((await offset(11)) < 2, `column ${await offset(11)} px off SF11`);
+  const slide = (await downloaded(page, page.locator('[data-download="sf"][data-format="svg"]'))).toString('utf8');
+  assert.ok(slide.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ').includes("Grey column: SF11, the chosen SF, where the results' run is."), 'the slide says what the column is');
+  assert.deepEqual(problems, []);
+});
+
 test("an SF chart's point is the results' command line at that SF with one seed and no ADR, as its explanation says", async () => {
   const { page, problems } = await open('?sf=9&bw=125&distance=2000&seeds=2&adr=tracking');
   await idle(page);

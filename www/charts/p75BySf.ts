@@ -3,7 +3,7 @@
 // often: at short range the error grows with SF, beyond SF7's range a higher SF is what arrives.
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type ModelName, type WholeFlightError } from '../loratrack';
-import { chartFrame, chartFont, NOTE_GREY, fitLabel, MODEL_COLORS, labelRoom, noneSent } from './colors';
+import { chartFrame, chartFont, NOTE_GREY, fitLabel, MODEL_COLORS, labelRoom, noneSent, withKey } from './colors';
 import { trackedPercent } from '../format';
 import { logAxis, plainNumber } from './logAxis';
 
@@ -36,7 +36,14 @@ function covered({ tracked, partlyTracked }: SfRow['wholeFlight']): string {
 /** The dots' radius, px. */
 const DOT_R = 3.5;
 
-export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number; width: number }): SVGSVGElement | HTMLElement {
+/** The column behind the chosen SF: over white #eef0f3, light enough that the grey notes standing
+ * in it keep 5.5:1, and translucent so that the grid's lines (drawn under it) show through. */
+const CHOSEN_FILL = { fill: '#d5dae1', fillOpacity: 0.4 };
+
+/** `opts.sf` is the chosen SF, where the results table's run is (with ADR, where it starts): a
+ * grey column behind it, which the slide's key names, so that a reader finds the table's SF among
+ * the six. */
+export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number; sf: number; width: number; adr?: boolean }): SVGSVGElement | HTMLElement {
   const data = rows.filter((r) => r.p75 !== null && !r.refused).map((r) => ({ ...r, label: MODEL_LABELS[r.model] }));
   const ran = rows.filter((r) => !r.refused);
   if (!data.length) {
@@ -92,7 +99,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
   const wrap = upright ? ' ' : '\n';
   const km = (opts.distance / 1000).toFixed(1);
   const title = (d: (typeof data)[number]) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${d.received} packets${d.few ? ', too few to compare' : ''}, ${covered(d.wholeFlight)}`;
-  return Plot.plot({
+  const chart = Plot.plot({
     ...chartFrame(220),
     width: opts.width,
     marginLeft,
@@ -101,6 +108,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
     y: { label: 'p75 3D error (m, log scale)', type: 'log', grid: true, ...logAxis(data.map((d) => d.p75!)), tickFormat: plainNumber },
     color: { domain: models, range: stations.map((m) => MODEL_COLORS[m]), legend: true },
     marks: [
+      Plot.rect([opts.sf], { x1: (d: number) => d - 0.5, x2: (d: number) => d + 0.5, ...CHOSEN_FILL }),
       Plot.line(data, { x: 'sf', y: 'p75', stroke: 'label', z: 'label' }),
       Plot.dot(data.filter((d) => !d.few), { x: 'sf', y: 'p75', fill: 'label', r: DOT_R, title }),
       Plot.dot(data.filter((d) => d.few), { x: 'sf', y: 'p75', fill: 'white', stroke: 'label', strokeWidth: 1.5, r: DOT_R, title }),
@@ -110,4 +118,5 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
       Plot.text(named, { x: 'x', text: 'text', rotate: -90, textAnchor: 'start', frameAnchor: 'bottom', dy: -4, fill: NOTE_GREY, fontSize: chartFont(), title: 'title' }),
     ],
   });
+  return withKey(chart, `Grey column: SF${opts.sf}, the chosen SF, ${opts.adr ? 'where the results\' run starts before ADR moves it' : 'where the results\' run is'}.`);
 }
