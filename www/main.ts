@@ -610,9 +610,10 @@ const drawnFrom: Record<string, unknown> = {};
  * Draws panel `name` with `draw` (given the Plot charts) from `inputs`, everything the drawing
  * reads, unless it is on show drawn from the same data (`sameData`): a change of distance, model
  * or station leaves the time-on-air panel as it was (drawn again, 54–64 ms of the page's thread on
- * two cores), a change of model the link budget, a change of distance the error-versus-distance
- * chart (whose points do not move with it), and a change that leaves the numbers as they were (a
- * distance within the link's reach, where every packet arrives) the charts of those numbers.
+ * two cores), a change of model the link budget, a change between distances at which the
+ * error-versus-distance chart has no box that chart (its points do not move with the distance,
+ * and its grey column stands only at a box), and a change that leaves the numbers as they were
+ * (a distance within the link's reach, where every packet arrives) the charts of those numbers.
  * Either way its download's caption names the settings (`made`) now on show.
  */
 async function drawPanel(name: string, inputs: unknown, draw: (p: Awaited<ReturnType<typeof plots>>) => Element | Promise<Element>, made: Settings = store.settings): Promise<void> {
@@ -636,7 +637,11 @@ async function renderDistance(sweep: { distance: number; report: SimReport }[], 
   // With ADR the runs start at the chosen rate and the network moves them (the SF chart's do not).
   const adr = made.adr === 'off' ? '' : ` and ${adrName(made.adr)}`;
   const rate = `SF${made.sf}, ${made.bw} kHz${adr}`;
-  const opts = { log: true, groupLabel: [`gateway distance (${rate})`, `distance (${rate})`, `distance (${rate.replace(' and ', ', ')})`], width: chartWidth('distance') };
+  // A column where the results' one gateway stands at one of the chart's distances (listed
+  // gateways have no one distance); a distance between them or beyond leaves the chart as drawn.
+  const group = `${made.distance / 1000} km`;
+  const chosen = made.gateways.length || !swept.includes(made.distance) ? undefined : { group, key: `Grey column: ${group}, the chosen distance, where the results' run is.` };
+  const opts = { log: true, groupLabel: [`gateway distance (${rate})`, `distance (${rate})`, `distance (${rate.replace(' and ', ', ')})`], width: chartWidth('distance'), chosen };
   await drawPanel('distance', [rows, opts], (p) => p.boxplotChart(rows, opts), made);
 }
 

@@ -70,7 +70,7 @@ test("the SF chart's grey column stands on the chosen SF, whose point is the tab
   await page.waitForSelector('#chart-sf svg');
   // The column's centre against the centre of its SF's tick label, px.
   const offset = (sf) => page.evaluate((sf) => {
-    const column = document.querySelector('#chart-sf svg g[fill-opacity] rect')?.getBoundingClientRect();
+    const column = document.querySelector('#chart-sf svg g[fill="#d5dae1"] rect')?.getBoundingClientRect();
     const tick = [...document.querySelectorAll('#chart-sf svg text')].find((t) => t.textContent === `SF${sf}`)?.getBoundingClientRect();
     return column && tick ? Math.abs(column.x + column.width / 2 - (tick.x + tick.width / 2)) : Infinity;
   }, sf);
@@ -279,7 +279,7 @@ test('the error-versus-distance chart draws the boxes over too few packets dashe
   assert.deepEqual(problems, []);
 });
 
-test("beyond the distance chart's furthest box its note says the table's gateway lies outside it, and the slide carries that", async () => {
+test("beyond the distance chart's furthest box its note says the table's gateway lies outside it; at a box a grey column marks it; the slide says which", async () => {
   // At SF9 packets still arrive at 5 km, the chart's furthest box, and none at 7 km.
   const { page, problems } = await open('?sf=9&distance=7000');
   await idle(page);
@@ -295,11 +295,22 @@ test("beyond the distance chart's furthest box its note says the table's gateway
   await until(page, (s) => document.querySelector('#distance-rests-on')?.textContent?.includes(s), said);
   const slide = (await downloaded(page, page.locator('[data-download="distance"][data-format="svg"]'))).toString('utf8');
   assert.ok(slide.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ').includes(said), 'the slide of the chart says it too');
-  // Within the chart's distances there is nothing to say.
+  // No box is the table's run, so no column marks one.
+  const column = () => page.evaluate(() => {
+    const c = document.querySelector('#chart-distance svg g[fill="#d5dae1"] rect')?.getBoundingClientRect();
+    return c ? [...document.querySelectorAll('#chart-distance svg text')].filter((t) => /^[\d.]+ km$/.test(t.textContent)).find((t) => { const b = t.getBoundingClientRect(); return b.x >= c.x && b.x + b.width <= c.x + c.width; })?.textContent ?? 'between' : null;
+  });
+  assert.equal(await column(), null);
+  assert.doesNotMatch(slide, /Grey column/);
+  // At a box's distance there is nothing to say, and the column stands on that box.
   const before = await tableHtml(page);
   await page.locator('#distance').fill('3000');
   await waitForResults(page, before);
   await until(page, () => !/lies beyond/.test(document.querySelector('#distance-rests-on')?.textContent ?? ''));
+  await until(page, () => !document.body.hasAttribute('data-busy'));
+  assert.equal(await column(), '3 km');
+  const marked = (await downloaded(page, page.locator('[data-download="distance"][data-format="svg"]'))).toString('utf8');
+  assert.ok(marked.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ').includes("Grey column: 3 km, the chosen distance, where the results' run is."), 'the slide names the column');
   assert.deepEqual(problems, []);
 });
 

@@ -3,7 +3,7 @@
 import * as Plot from '@observablehq/plot';
 import type { Boxplot, ModelName } from '../loratrack';
 import { MODEL_LABELS } from '../loratrack';
-import { MODEL_COLORS, chartFrame, chartFont, NOTE_GREY, fitLabel, withKey, labelRoom, noneSent } from './colors';
+import { CHOSEN_FILL, MODEL_COLORS, chartFrame, chartFont, NOTE_GREY, fitLabel, withKey, labelRoom, noneSent } from './colors';
 import { plainNumber } from './logAxis';
 
 /** The plot's left margin at the page's type size, px: room for the y axis's labels. */
@@ -22,7 +22,9 @@ export interface BoxRow {
   sent?: number;
 }
 
-export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width: number; yLabel?: string; log?: boolean }): SVGSVGElement | HTMLElement {
+/** `opts.chosen`: the group the results' run is (the distance chart's chosen distance), drawn on a
+ * grey column that `chosen.key` names in the slide's key; none where the run is none of them. */
+export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width: number; yLabel?: string; log?: boolean; chosen?: { group: string; key: string } }): SVGSVGElement | HTMLElement {
   const data = rows
     .filter((r) => r.box.count > 0 && (!opts.log || (r.box.whiskerLow ?? 0) > 0))
     .map((r) => ({ group: r.group, label: MODEL_LABELS[r.model], model: r.model, few: r.few ?? false, ...r.box }));
@@ -41,6 +43,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
     .filter((r) => r.box.count === 0 && data.some((d) => d.group === r.group))
     .map((r) => ({ group: r.group, label: MODEL_LABELS[r.model], why: r.sent === 0 ? 'no packet sent' : 'no packet arrived' }));
   const floor = opts.log ? logFloor(data) : {};
+  const chosen = opts.chosen && groups.includes(opts.chosen.group) ? opts.chosen : undefined;
   const chart = Plot.plot({
     ...chartFrame(180),
     width: opts.width,
@@ -53,6 +56,8 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
     y: opts.log ? { label: opts.yLabel ?? 'error (m, log scale)', grid: true, type: 'log', tickFormat: decade, ...floor } : { label: opts.yLabel ?? 'error (m)', grid: true, zero: true },
     color: { domain: models, range: stations.map((m) => MODEL_COLORS[m]), legend: true },
     marks: [
+      // Without x or y channels a rect fills its facet's frame: the chosen group's whole column.
+      Plot.rect(chosen ? [chosen.group] : [], { fx: (g: string) => g, ...CHOSEN_FILL }),
       // A group where nothing arrived says so instead of staying blank, wrapped within its own
       // column (on a phone a column is ~45 px, and one line ran over the boxes beside it).
       Plot.text(empty, { fx: 'group', text: 'text', lineWidth: groupEms(opts.width, groups.length), frameAnchor: 'middle', fill: NOTE_GREY, fontSize: chartFont() }),
@@ -68,7 +73,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
   });
   const clamped = floor.domain ? ` Whiskers that reach below ${plainNumber(floor.domain[0])} m end at the axis's bottom edge.` : '';
   const silent = none.length ? ' "DR: none" (or another station) in its place: none of its packets arrived there.' : '';
-  return withKey(chart, `Box: the middle half of the errors (quartiles), thick line the median; whiskers: the furthest errors within 1.5 box heights of the box (any beyond, the outliers, are not drawn).${clamped}${silent}`);
+  return withKey(chart, `Box: the middle half of the errors (quartiles), thick line the median; whiskers: the furthest errors within 1.5 box heights of the box (any beyond, the outliers, are not drawn).${clamped}${silent}${chosen ? ` ${chosen.key}` : ''}`);
 }
 
 /** The width of one group's column in ems of the chart's type, a little inside it: `width` px

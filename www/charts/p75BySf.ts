@@ -3,7 +3,7 @@
 // often: at short range the error grows with SF, beyond SF7's range a higher SF is what arrives.
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type ModelName, type WholeFlightError } from '../loratrack';
-import { chartFrame, chartFont, NOTE_GREY, fitLabel, MODEL_COLORS, labelRoom, noneSent, withKey } from './colors';
+import { CHOSEN_FILL, chartFrame, chartFont, NOTE_GREY, fitLabel, MODEL_COLORS, labelRoom, noneSent, withKey } from './colors';
 import { trackedPercent } from '../format';
 import { logAxis, plainNumber } from './logAxis';
 
@@ -35,10 +35,6 @@ function covered({ tracked, partlyTracked }: SfRow['wholeFlight']): string {
 
 /** The dots' radius, px. */
 const DOT_R = 3.5;
-
-/** The column behind the chosen SF: over white #eef0f3, light enough that the grey notes standing
- * in it keep 5.5:1, and translucent so that the grid's lines (drawn under it) show through. */
-const CHOSEN_FILL = { fill: '#d5dae1', fillOpacity: 0.4 };
 
 /** `opts.sf` is the chosen SF, where the results table's run is (with ADR, where it starts): a
  * grey column behind it, which the slide's key names, so that a reader finds the table's SF among
