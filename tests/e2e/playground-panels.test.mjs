@@ -70,7 +70,7 @@ test("the SF chart's grey column stands on the chosen SF, whose point is the tab
   await page.waitForSelector('#chart-sf svg');
   // The column's centre against the centre of its SF's tick label, px.
   const offset = (sf) => page.evaluate((sf) => {
-    const column = document.querySelector('#chart-sf svg g[fill="#d5dae1"] rect')?.getBoundingClientRect();
+    const column = document.querySelector('#chart-sf svg g.chosen-column rect')?.getBoundingClientRect();
     const tick = [...document.querySelectorAll('#chart-sf svg text')].find((t) => t.textContent === `SF${sf}`)?.getBoundingClientRect();
     return column && tick ? Math.abs(column.x + column.width / 2 - (tick.x + tick.width / 2)) : Infinity;
   }, sf);
@@ -297,7 +297,7 @@ test("beyond the distance chart's furthest box its note says the table's gateway
   assert.ok(slide.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ').includes(said), 'the slide of the chart says it too');
   // No box is the table's run, so no column marks one.
   const column = () => page.evaluate(() => {
-    const c = document.querySelector('#chart-distance svg g[fill="#d5dae1"] rect')?.getBoundingClientRect();
+    const c = document.querySelector('#chart-distance svg g.chosen-column rect')?.getBoundingClientRect();
     return c ? [...document.querySelectorAll('#chart-distance svg text')].filter((t) => /^[\d.]+ km$/.test(t.textContent)).find((t) => { const b = t.getBoundingClientRect(); return b.x >= c.x && b.x + b.width <= c.x + c.width; })?.textContent ?? 'between' : null;
   });
   assert.equal(await column(), null);

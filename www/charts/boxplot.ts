@@ -3,7 +3,7 @@
 import * as Plot from '@observablehq/plot';
 import type { Boxplot, ModelName } from '../loratrack';
 import { MODEL_LABELS } from '../loratrack';
-import { CHOSEN_FILL, MODEL_COLORS, chartFrame, chartFont, NOTE_GREY, fitLabel, withKey, labelRoom, noneSent } from './colors';
+import { CHOSEN_COLUMN, MODEL_COLORS, chartFrame, chartFont, NOTE_GREY, fitLabel, withKey, labelRoom, noneSent } from './colors';
 import { plainNumber } from './logAxis';
 
 /** The plot's left margin at the page's type size, px: room for the y axis's labels. */
@@ -57,7 +57,7 @@ export function boxplotChart(rows: BoxRow[], opts: { groupLabel: string[]; width
     color: { domain: models, range: stations.map((m) => MODEL_COLORS[m]), legend: true },
     marks: [
       // Without x or y channels a rect fills its facet's frame: the chosen group's whole column.
-      Plot.rect(chosen ? [chosen.group] : [], { fx: (g: string) => g, ...CHOSEN_FILL }),
+      Plot.rect(chosen ? [chosen.group] : [], { fx: (g: string) => g, ...CHOSEN_COLUMN }),
       // A group where nothing arrived says so instead of staying blank, wrapped within its own
       // column (on a phone a column is ~45 px, and one line ran over the boxes beside it).
       Plot.text(empty, { fx: 'group', text: 'text', lineWidth: groupEms(opts.width, groups.length), frameAnchor: 'middle', fill: NOTE_GREY, fontSize: chartFont() }),

@@ -18,8 +18,9 @@ export const TRUTH_COLOR = '#222222';
 export const SF_COLORS = ['#4e79a7', '#59a14f', '#9c755f', '#f28e2b', '#e15759', '#76b7b2'];
 /** The column behind the chosen setting in a sweep's chart (the SF chart's SF, the distance
  * chart's distance): over white #eef0f3, light enough that the grey notes standing in it keep
- * 5.5:1, and translucent so that the grid's lines (drawn under it) show through. */
-export const CHOSEN_FILL = { fill: '#d5dae1', fillOpacity: 0.4 };
+ * 5.5:1, and translucent so that the grid's lines (drawn under it) show through. Its class tells
+ * it from the boxes and marks that stand in front of it. */
+export const CHOSEN_COLUMN = { fill: '#d5dae1', fillOpacity: 0.4, className: 'chosen-column' };
 /** The mission's flight plan in the 3D view (dashed). */
 export const PLAN_COLOR = '#9c755f';
 

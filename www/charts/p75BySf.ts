@@ -3,7 +3,7 @@
 // often: at short range the error grows with SF, beyond SF7's range a higher SF is what arrives.
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type ModelName, type WholeFlightError } from '../loratrack';
-import { CHOSEN_FILL, chartFrame, chartFont, NOTE_GREY, fitLabel, MODEL_COLORS, labelRoom, noneSent, withKey } from './colors';
+import { CHOSEN_COLUMN, chartFrame, chartFont, NOTE_GREY, fitLabel, MODEL_COLORS, labelRoom, noneSent, withKey } from './colors';
 import { trackedPercent } from '../format';
 import { logAxis, plainNumber } from './logAxis';
 
@@ -104,7 +104,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
     y: { label: 'p75 3D error (m, log scale)', type: 'log', grid: true, ...logAxis(data.map((d) => d.p75!)), tickFormat: plainNumber },
     color: { domain: models, range: stations.map((m) => MODEL_COLORS[m]), legend: true },
     marks: [
-      Plot.rect([opts.sf], { x1: (d: number) => d - 0.5, x2: (d: number) => d + 0.5, ...CHOSEN_FILL }),
+      Plot.rect([opts.sf], { x1: (d: number) => d - 0.5, x2: (d: number) => d + 0.5, ...CHOSEN_COLUMN }),
       Plot.line(data, { x: 'sf', y: 'p75', stroke: 'label', z: 'label' }),
       Plot.dot(data.filter((d) => !d.few), { x: 'sf', y: 'p75', fill: 'label', r: DOT_R, title }),
       Plot.dot(data.filter((d) => d.few), { x: 'sf', y: 'p75', fill: 'white', stroke: 'label', strokeWidth: 1.5, r: DOT_R, title }),
