@@ -31,9 +31,15 @@ use std::sync::Mutex;
 
 /// Cache sizes by count; past them the cache starts afresh (a page rarely alternates between
 /// more). Together the caches also stay within [`MAX_CACHE_BYTES`], least recently used out.
+/// Drone runs have no count of their own: a key is one seed's, so a run of 64 seeds and three
+/// drone filters asks for 192, and a count of 24 emptied the cache eight times within that one
+/// run, leaving the next run (another data rate, the same drones) to compute every one again
+/// (`npm run reproduce`: 95.6 s of CPU, 64.8 s with the bytes alone deciding).
 const MAX_CACHED_FLIGHTS: usize = 4;
-const MAX_CACHED_DRONE_RUNS: usize = 24;
 const MAX_CACHED_STATIONS: usize = 6;
+/// How many streamed keys are noted ([`Simulator::note_streamed`]): a run's keys at the most
+/// seeds and every drone filter, so that a run asking for them again finds all of them noted.
+const MAX_STREAMED_NOTES: usize = 3 * SEEDS.max as usize;
 /// A run's drone runs may take at most this fraction (1/n) of [`MAX_CACHE_BYTES`] together: a
 /// 10⁶-row flight at 25 Hz (40 000 s; 29 MB per model at 10 Hz) streams its drones instead.
 const MAX_DRONE_SHARE: usize = 4;
@@ -341,10 +347,8 @@ impl Simulator {
         let kept: Vec<&DroneKey> = if fit.len() == all.len() {
             fit
         } else {
-            // No more than the cache holds by count: past it, remembering one clears the rest.
             fit.into_iter()
                 .filter(|k| self.drones.contains_key(k) || self.streamed.contains(k))
-                .take(MAX_CACHED_DRONE_RUNS)
                 .collect()
         };
         self.note_streamed(&all, &kept);
@@ -375,7 +379,7 @@ impl Simulator {
 
     /// Notes the keys of `all` that a run streams (neither `kept` nor cached), so that a run
     /// asking for them again remembers them, and forgets the notes of `kept`; at most
-    /// [`MAX_CACHED_DRONE_RUNS`] notes, the oldest dropped first.
+    /// [`MAX_STREAMED_NOTES`] notes, the oldest dropped first.
     fn note_streamed(&mut self, all: &[&DroneKey], kept: &[&DroneKey]) {
         self.streamed.retain(|k| !kept.contains(&k));
         for &key in all {
@@ -386,18 +390,12 @@ impl Simulator {
                 self.streamed.push(key.clone());
             }
         }
-        let over = self.streamed.len().saturating_sub(MAX_CACHED_DRONE_RUNS);
+        let over = self.streamed.len().saturating_sub(MAX_STREAMED_NOTES);
         self.streamed.drain(..over);
     }
 
-    /// Keeps one key's drone runs in the cache.
+    /// Keeps one key's drone runs in the cache; the byte budget forgets the least recently used.
     fn remember_drones(&mut self, key: DroneKey, tracks: Rc<Vec<DroneTrack>>) {
-        if self.drones.len() >= MAX_CACHED_DRONE_RUNS {
-            self.drones
-                .keys()
-                .for_each(|k| self.ledger.remove(&Entry::Drones(k.clone())));
-            self.drones.clear();
-        }
         let bytes = tracks.iter().map(|t| t.states.len()).sum::<usize>() * DRONE_STEP_BYTES;
         self.drones.insert(key.clone(), tracks);
         self.remember(Entry::Drones(key), bytes);

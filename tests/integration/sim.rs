@@ -69,6 +69,23 @@ fn changing_only_the_link_does_not_rerun_the_drone_filters() {
 }
 
 #[test]
+fn many_seeds_keep_their_drone_runs_for_the_next_link_setting() {
+    // 40 seeds and three drone filters: 120 drone runs, each one seed's. A cache that counted
+    // them against a small number emptied itself within the run and computed all of them again
+    // at the next data rate.
+    let mut sim = Simulator::new();
+    let many = set(&one_flight(4), json!({"seeds": 40}));
+    let first = simulate(&mut sim, &many).unwrap();
+    let runs = sim.drone_runs();
+    assert_eq!(runs, 120, "one drone run per model and seed");
+    let slower = set(&many, json!({"sf": 9, "bw": 125.0}));
+    let again = simulate(&mut sim, &slower).unwrap();
+    assert_eq!(sim.drone_runs(), runs, "a data rate change must reuse them");
+    assert!(again.results[0].interval > first.results[0].interval);
+    assert_eq!(again, simulate(&mut Simulator::new(), &slower).unwrap());
+}
+
+#[test]
 fn reused_station_predictions_give_the_numbers_of_a_fresh_simulator() {
     let mut warm = Simulator::new();
     for prediction in [Prediction::Paper, Prediction::Bounded] {
