@@ -39,7 +39,7 @@ const MAX_CACHED_FLIGHTS: usize = 4;
 const MAX_CACHED_STATIONS: usize = 6;
 /// How many streamed keys are noted ([`Simulator::note_streamed`]): a run's keys at the most
 /// seeds and every drone filter, so that a run asking for them again finds all of them noted.
-const MAX_STREAMED_NOTES: usize = 3 * SEEDS.max as usize;
+const MAX_STREAMED_NOTES: usize = ModelKind::ALL.len() * SEEDS.max as usize;
 /// A run's drone runs may take at most this fraction (1/n) of [`MAX_CACHE_BYTES`] together: a
 /// 10⁶-row flight at 25 Hz (40 000 s; 29 MB per model at 10 Hz) streams its drones instead.
 const MAX_DRONE_SHARE: usize = 4;
