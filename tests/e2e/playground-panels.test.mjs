@@ -855,6 +855,7 @@ test('while the distance and SF charts wait for their runs, they say they show t
   const pending = () => page.evaluate(() => ['distance', 'sf'].map((p) => document.querySelector(`[data-panel="${p}"]`).classList.contains('pending')));
   assert.deepEqual(await pending(), [false, false], 'drawn for the settings on show');
   assert.equal(await page.locator('#sf-fit').isVisible(), true);
+  assert.equal(await page.locator('#sf-note').isVisible(), true, 'the SFs the heartbeat leaves out are named');
   const before = await tableHtml(page);
   // Beyond SF7's reach at 3.5 km: the numbers change, and the SF chart with them.
   await page.locator('#distance').fill('3500');
@@ -867,13 +868,15 @@ test('while the distance and SF charts wait for their runs, they say they show t
   });
   assert.match(shown.note, /Computing this chart for the current settings; until then it shows the previous ones/);
   assert.ok(shown.opacity < 0.5, `the old chart is dimmed (opacity ${shown.opacity})`);
-  // The old chart's offer goes with it, and comes back with the new one.
+  // The old chart's offer and its note on the SFs left out go with it, and come back with the new one.
   assert.equal(await page.locator('#sf-fit').isVisible(), false);
+  assert.equal(await page.locator('#sf-note').isVisible(), false, "the old chart's note is not read as the current settings'");
   assert.deepEqual(await axe(page), []);
   await idle(page);
   assert.deepEqual(await pending(), [false, false], 'drawn for the settings on show again');
   assert.equal(await page.locator('[data-panel="sf"] .pending-note').isVisible(), false);
   assert.equal(await page.locator('#sf-fit').isVisible(), true);
+  assert.equal(await page.locator('#sf-note').isVisible(), true);
   assert.deepEqual(problems, []);
 });
 
