@@ -137,10 +137,11 @@ pub(crate) fn sweep(a: SweepArgs) -> Result<String, ApiError> {
     if a.markdown {
         let real = real_flight_runs(a.seed, &predictions, &model, &count)?;
         let (rates, variants) = if predictions.contains(&Prediction::Bounded) {
-            (
-                crate::real_flight_rates::runs(&mut count.simulator(), a.seed, &model)?,
-                crate::real_flight_variants::runs(&mut count.simulator(), a.seed, &model)?,
-            )
+            // One simulator: the flight as flown at 3.3 km reuses the drone runs of the rates.
+            let mut sim = count.simulator();
+            let rates = crate::real_flight_rates::runs(&mut sim, a.seed, &model)?;
+            let variants = crate::real_flight_variants::runs(&mut sim, a.seed, &model, &rates)?;
+            (rates, variants)
         } else {
             (Vec::new(), Vec::new())
         };
