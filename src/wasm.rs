@@ -370,6 +370,46 @@ pub fn pool_delivery(params: JsValue) -> Result<JsValue, JsValue> {
     })
 }
 
+/// `versusLowest({results})` → for each of `simulate`'s results (each a `model` with its
+/// `error3d` and `p75Draws`), its p75 against the lowest station's on the same runs resampled
+/// together (`{lowest, ratio, interval, runs}`) or `null` ([`versus_lowest`](crate::versus_lowest)):
+/// the page pairs the stations its workers ran apart as one run pairs them.
+#[wasm_bindgen(js_name = versusLowest)]
+pub fn versus_lowest(params: JsValue) -> Result<JsValue, JsValue> {
+    #[derive(serde::Deserialize)]
+    struct Error3d {
+        p75: Option<f64>,
+        count: usize,
+    }
+    #[derive(serde::Deserialize)]
+    #[serde(rename_all = "camelCase")]
+    struct Station {
+        model: String,
+        error3d: Error3d,
+        p75_draws: Option<crate::metrics::P75Draws>,
+    }
+    #[derive(serde::Deserialize)]
+    struct Params {
+        results: Vec<Station>,
+    }
+    call(params, |p: Params| {
+        let stations = p
+            .results
+            .into_iter()
+            .map(|s| {
+                Ok(crate::Contender {
+                    model: s.model.parse::<crate::StationModel>()?,
+                    p75: s.error3d.p75.unwrap_or(f64::NAN),
+                    count: s.error3d.count,
+                    p75_draws: s.p75_draws,
+                })
+            })
+            .collect::<Result<Vec<_>, crate::models::ModelError>>()
+            .map_err(|e| ApiError::Invalid(e.to_string()))?;
+        Ok(crate::versus_lowest(&stations))
+    })
+}
+
 /// `deliverySpread({results})` → `{lowest, lowestRatio, highest, highestRatio}` or `null`: the
 /// stations of `simulate` results (each a `model` with its `packetsSent`, `packetsReceived`,
 /// `deliveryRatio`) whose delivery ratios lie more than 5 points apart

@@ -831,6 +831,47 @@ fn the_delivery_spread_of_results_run_apart_is_the_one_the_core_finds_in_one_run
 }
 
 #[wasm_bindgen_test]
+fn stations_run_apart_are_paired_with_the_lowest_as_one_run_pairs_them() {
+    let settings = |model: &str| {
+        obj(&[
+            ("synthetic", 2.into()),
+            ("model", model.into()),
+            ("seeds", 6.into()),
+        ])
+    };
+    let together = wasm::simulate(settings("dr,ctra-plus,3d-ctra"), JsValue::UNDEFINED).unwrap();
+    let together = js_sys::Array::from(&get(&together, "results"));
+    let apart = js_sys::Array::new();
+    for model in ["dr", "ctra-plus", "3d-ctra"] {
+        let one = wasm::simulate(settings(model), JsValue::UNDEFINED).unwrap();
+        let result = js_sys::Array::from(&get(&one, "results")).get(0);
+        // Alone, a station has nothing to be compared with.
+        assert!(get(&result, "p75VsLowest").is_null());
+        apart.push(&result);
+    }
+    let paired =
+        js_sys::Array::from(&wasm::versus_lowest(obj(&[("results", apart.into())])).unwrap());
+    let mut nulls = 0;
+    for i in 0..3 {
+        let (p, t) = (paired.get(i), get(&together.get(i), "p75VsLowest"));
+        if t.is_null() {
+            nulls += 1;
+            assert!(p.is_null(), "the lowest is the lowest apart too");
+            continue;
+        }
+        assert_eq!(get(&p, "lowest").as_string(), get(&t, "lowest").as_string());
+        for key in ["ratio", "runs"] {
+            assert_eq!(num(&p, key), num(&t, key), "{key}");
+        }
+        let interval = |v: &JsValue| js_sys::Array::from(&get(v, "interval")).to_vec();
+        assert_eq!(format!("{:?}", interval(&p)), format!("{:?}", interval(&t)));
+    }
+    assert_eq!(nulls, 1);
+    let e = wasm::versus_lowest(obj(&[("results", 3.into())])).unwrap_err();
+    assert!(error_message(e).contains("invalid parameters"));
+}
+
+#[wasm_bindgen_test]
 fn the_series_arrive_as_float64_arrays_holding_the_cores_numbers() {
     let settings = serde_json::json!({"synthetic": 2, "model": "dr,3d-ctra", "series": true});
     let r = wasm::simulate(

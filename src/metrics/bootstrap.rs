@@ -72,17 +72,7 @@ pub(crate) fn bootstrap_sorted(runs: &[&[f64]], all: &[f64], seed: u64) -> Optio
     let ranks = Ranks::of(&runs, all);
     // The draws' weights come from one stream, in order; the draws are then independent, and
     // natively run on every core (a sweep's single station scored them on one).
-    let mut rng = Rng::derive(seed, 0xb00_757a);
-    let draws: Vec<Vec<u32>> = (0..RESAMPLES)
-        .map(|_| {
-            let mut weights = vec![0u32; runs.len()];
-            for _ in 0..runs.len() {
-                let pick = (rng.uniform() * runs.len() as f64) as usize;
-                weights[pick.min(runs.len() - 1)] += 1;
-            }
-            weights
-        })
-        .collect();
+    let draws = draw_weights(runs.len(), Rng::derive(seed, 0xb00_757a));
     let ranks = ranks.as_ref();
     let per_draw = crate::parallel::par_map_owned(draws, |weights| {
         Draw {
@@ -113,6 +103,21 @@ pub(crate) fn bootstrap_sorted(runs: &[&[f64]], all: &[f64], seed: u64) -> Optio
     })
 }
 
+/// [`RESAMPLES`] draws of `runs` runs with replacement, from `rng`'s stream in order: how many
+/// times each draw takes each run.
+pub(super) fn draw_weights(runs: usize, mut rng: Rng) -> Vec<Vec<u32>> {
+    (0..RESAMPLES)
+        .map(|_| {
+            let mut weights = vec![0u32; runs];
+            for _ in 0..runs {
+                let pick = (rng.uniform() * runs as f64) as usize;
+                weights[pick.min(runs - 1)] += 1;
+            }
+            weights
+        })
+        .collect()
+}
+
 /// At most this many entries (4 bytes each) in a [`Ranks`] table: the whole synthetic set with
 /// one seed fits every candidate (0.8 million entries); more runs keep every 2nd, 4th, …
 const RANKS_BUDGET: usize = 4_000_000;
@@ -122,7 +127,7 @@ const RANKS_BUDGET: usize = 4_000_000;
 /// search in every run (the same integers, tested). An order statistic is bracketed between two
 /// rows of the table and found within the bracket by the searches: log₂ stride of them instead of
 /// log₂ of every sample.
-struct Ranks {
+pub(super) struct Ranks {
     runs: usize,
     stride: usize,
     rows: usize,
@@ -133,7 +138,7 @@ impl Ranks {
     /// The table, with the smallest stride (a power of two) that keeps it within
     /// [`RANKS_BUDGET`]; `None` when no stride does, a run is longer than `u32` counts, or a
     /// sample is not finite (a NaN breaks the merge's order).
-    fn of(runs: &[&[f64]], all: &[f64]) -> Option<Self> {
+    pub(super) fn of(runs: &[&[f64]], all: &[f64]) -> Option<Self> {
         Self::with_budget(runs, all, RANKS_BUDGET)
     }
 
@@ -201,13 +206,13 @@ impl Ranks {
 }
 
 /// One bootstrap draw: each run taken `weights[i]` times.
-struct Draw<'a> {
-    runs: &'a [&'a [f64]],
-    weights: &'a [u32],
+pub(super) struct Draw<'a> {
+    pub(super) runs: &'a [&'a [f64]],
+    pub(super) weights: &'a [u32],
     /// Every sample of every run, ascending (the candidates for an order statistic).
-    all: &'a [f64],
+    pub(super) all: &'a [f64],
     /// The candidates' ranks in each run, when they fit in memory.
-    ranks: Option<&'a Ranks>,
+    pub(super) ranks: Option<&'a Ranks>,
 }
 
 impl Draw<'_> {
@@ -237,7 +242,7 @@ impl Draw<'_> {
     }
 
     /// How many samples of the draw are at most `v`.
-    fn count_at_most(&self, v: f64) -> u64 {
+    pub(super) fn count_at_most(&self, v: f64) -> u64 {
         self.runs
             .iter()
             .zip(self.weights)
@@ -266,7 +271,7 @@ impl Draw<'_> {
     }
 
     /// The `p`-th percentile of the draw's `n` samples, interpolated as [`percentile`] does.
-    fn percentile(&self, n: u64, p: f64) -> f64 {
+    pub(super) fn percentile(&self, n: u64, p: f64) -> f64 {
         let rank = p / 100.0 * (n - 1) as f64;
         let lo = rank.floor() as u64;
         let a = self.order_statistic(lo);

@@ -1,11 +1,12 @@
 //! Error statistics: summaries (mean and percentiles), boxplots (reference §9; paper Figs. 3–6) and the
 //! consistency of the station's uncertainty (95 % coverage), and how sure each statistic is
-//! (bootstrap intervals over runs), and the error over the whole flight time, untracked time
+//! (bootstrap intervals over runs, and of the ratio of two stations' p75 on the same runs), and the error over the whole flight time, untracked time
 //! included.
 
 mod bootstrap;
 mod boxplot;
 mod coverage;
+mod paired;
 mod percentile;
 mod sort;
 mod summary;
@@ -15,6 +16,7 @@ pub(crate) use bootstrap::bootstrap_sorted;
 pub use bootstrap::{bootstrap, Intervals, RESAMPLES};
 pub use boxplot::Boxplot;
 pub use coverage::{bound_95, inside_95, nees, Consistency, CHI2_3DOF_95};
+pub use paired::P75Draws;
 pub use percentile::percentile;
 pub use sort::sort_total;
 pub use summary::Summary;

@@ -29,6 +29,7 @@ pub mod station;
 mod station_run;
 mod streams;
 pub mod swarm;
+mod versus_lowest;
 
 pub use cache_budget::MAX_CACHE_BYTES;
 pub use caveats::{Caveats, FEW_PACKETS, SILENCE_LOSS};
@@ -69,3 +70,4 @@ pub use swarm::{
     run_swarm, run_swarm_sharing, DroneReport, LargestSwarm, SfLimit, SharedDroneRuns, SwarmEcho,
     SwarmReport,
 };
+pub use versus_lowest::{versus_lowest, Contender, VersusLowest};

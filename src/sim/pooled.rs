@@ -9,7 +9,9 @@ use super::report::{
 use super::sender::SenderKind;
 use super::station::{StationModel, StationTrack};
 use crate::lora::DataRate;
-use crate::metrics::{bootstrap_sorted, sort_total, Consistency, Summary, WholeFlightError};
+use crate::metrics::{
+    bootstrap_sorted, sort_total, Consistency, P75Draws, Summary, WholeFlightError,
+};
 use crate::models::ModelKind;
 use std::collections::BTreeMap;
 
@@ -163,10 +165,12 @@ impl Pooled {
         Energy::from_sums(self.sent, self.charge_mc, self.active_s, self.flight_time)
     }
 
-    /// Each run's 3D errors in ascending order, the samples the intervals resample; `None` with
-    /// fewer than two runs that have errors (one run cannot show its own spread). Read before
-    /// `e3` itself is sorted.
-    fn sorted_runs(&self) -> Option<Vec<Vec<f64>>> {
+    /// Each run's 3D errors in ascending order, in the order the runs were added (runs without
+    /// errors left empty): the samples the intervals resample, this station's alone (`ci95`)
+    /// and drawn alike for every station of the run ([`P75Draws`]). `None` with fewer than two
+    /// runs that have errors (one run cannot show its own spread), so that a single long flight
+    /// is not copied. Read before `e3` itself is sorted.
+    fn run_errors(&self) -> Option<Vec<Vec<f64>>> {
         let spans: Vec<(usize, usize)> = self
             .run_ends
             .iter()
@@ -222,7 +226,7 @@ impl Pooled {
             .get(&(start.sf.get(), start.bw.khz() as u64))
             .copied();
         let energy = self.energy();
-        let runs = self.sorted_runs();
+        let runs = self.run_errors();
         let delivery = self.delivery(network);
         let model_probability = self.model_probability();
         let airtime = self.rates.airtime();
@@ -234,10 +238,13 @@ impl Pooled {
             Summary::of(&mut self.ez),
         );
         // Summary::of left e3 sorted: the pooled sample the intervals need, not sorted twice.
-        let ci95 = runs.and_then(|runs| {
-            let refs: Vec<&[f64]> = runs.iter().map(Vec::as_slice).collect();
-            bootstrap_sorted(&refs, &self.e3, seed)
-        });
+        let refs: Option<Vec<&[f64]>> = runs
+            .as_ref()
+            .map(|runs| runs.iter().map(Vec::as_slice).collect());
+        let ci95 = refs
+            .as_ref()
+            .and_then(|refs| bootstrap_sorted(refs, &self.e3, seed));
+        let p75_draws = refs.and_then(|refs| P75Draws::of(&refs, seed));
         let mut result = ModelResult {
             model,
             payload_bytes: model.payload_bytes(),
@@ -258,6 +265,9 @@ impl Pooled {
             whole_flight: WholeFlightError::of_sorted(&self.e3, self.untracked),
             caveats: Caveats::of(self.received, self.sent, self.sender),
             ci95,
+            // Set across the stations, once all are pooled (versus_lowest).
+            p75_vs_lowest: None,
+            p75_draws,
             error_x: sx,
             error_y: sy,
             error_z: sz,

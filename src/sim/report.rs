@@ -5,8 +5,9 @@ use super::network::{GatewayReport, Network};
 use super::packet::Transmission;
 use super::scenario::Scenario;
 use super::station::StationModel;
+use super::versus_lowest::{versus_lowest, Contender, VersusLowest};
 use crate::lora::SX1276_SLEEP_CURRENT_MA;
-use crate::metrics::{Boxplot, Intervals, Summary, WholeFlightError};
+use crate::metrics::{Boxplot, Intervals, P75Draws, Summary, WholeFlightError};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -289,6 +290,19 @@ pub struct ModelResult {
     /// own spread.
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Intervals | null"))]
     pub ci95: Option<Intervals>,
+    /// This station's p75 against the lowest station's on the same runs, with the ratio's 95 %
+    /// interval from resampling both together (`docs/reference.md` §12); `null` for the lowest
+    /// station itself, a station alone, a single run, or errors in fewer than two runs.
+    #[cfg_attr(
+        all(test, not(target_arch = "wasm32")),
+        ts(type = "VersusLowest | null")
+    )]
+    pub p75_vs_lowest: Option<VersusLowest>,
+    /// The p75 of each bootstrap draw of the runs, drawn alike for every station of the run,
+    /// from which `p75VsLowest` is paired (`docs/reference.md` §12; the page pairs the stations
+    /// its workers ran apart with `versusLowest`); `null` where `ci95` is.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "P75Draws | null"))]
+    pub p75_draws: Option<P75Draws>,
     /// |x error|, m.
     pub error_x: Summary,
     /// |y error|, m.
@@ -333,6 +347,22 @@ pub struct ModelResult {
 /// paper's settings show the interval alone; at 500 kHz DR's 1.41 s become 1.5 s (6 %), and at
 /// 1 Hz SF7's 3.08 s become 4 s (30 %), which are said.
 pub const SENT_EVERY_NOTED: f64 = 1.05;
+
+/// Sets [`ModelResult::p75_vs_lowest`] across the stations of one run.
+pub(crate) fn set_versus_lowest(results: &mut [ModelResult]) {
+    let stations: Vec<Contender> = results
+        .iter()
+        .map(|r| Contender {
+            model: r.model,
+            p75: r.error3d.p75,
+            count: r.error3d.count,
+            p75_draws: r.p75_draws.clone(),
+        })
+        .collect();
+    for (r, v) in results.iter_mut().zip(versus_lowest(&stations)) {
+        r.p75_vs_lowest = v;
+    }
+}
 
 impl ModelResult {
     /// The duty-cycle interval the tables show, s: the mean over the packets sent

@@ -3,7 +3,9 @@
 use super::cache_budget::{Ledger, MAX_CACHE_BYTES};
 use super::drone::{run_drones, DroneTrack};
 use super::pooled::{axis_every, series_stride, Pooled};
-use super::report::{Delivery, ModelResult, ModelSeries, RunConfig, Series, SimReport};
+use super::report::{
+    set_versus_lowest, Delivery, ModelResult, ModelSeries, RunConfig, Series, SimReport,
+};
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::Schedule;
 use super::station::{
@@ -713,7 +715,7 @@ fn pool(
     }
     // Each station's errors sorted and resampled on a core of its own: on one long flight
     // that was a second of one core while the other idled.
-    let results = par_map_owned(gathered, |(station, pooled, counted, recoveries)| {
+    let mut results = par_map_owned(gathered, |(station, pooled, counted, recoveries)| {
         pooled.finish(
             station.model,
             &station.start.current(),
@@ -722,6 +724,7 @@ fn pool(
             s.run.seed,
         )
     });
+    set_versus_lowest(&mut results);
     Ok((results, series))
 }
 

@@ -497,6 +497,48 @@ fn seeds_pool_their_runs_and_give_each_statistic_an_interval() {
 }
 
 #[test]
+fn every_station_is_compared_with_the_lowest_on_the_same_runs_resampled_together() {
+    let flight = set(&one_flight(2), json!({"model": "dr,ctra-plus,3d-ctra"}));
+    let mut sim = Simulator::new();
+    let alone = simulate(&mut sim, &flight).unwrap();
+    assert!(
+        alone.results.iter().all(|m| m.p75_vs_lowest.is_none()),
+        "one run: nothing to resample"
+    );
+    let r = simulate(&mut sim, &set(&flight, json!({"seeds": 6}))).unwrap();
+    let lowest = r
+        .results
+        .iter()
+        .min_by(|a, b| a.error3d.p75.total_cmp(&b.error3d.p75))
+        .unwrap();
+    assert!(
+        lowest.p75_vs_lowest.is_none(),
+        "the lowest is the reference"
+    );
+    for m in r.results.iter().filter(|m| m.model != lowest.model) {
+        let v = m.p75_vs_lowest.expect("six seeds: a paired interval");
+        assert_eq!((v.lowest, v.runs), (lowest.model, 6));
+        assert!((v.ratio - m.error3d.p75 / lowest.error3d.p75).abs() < 1e-12);
+        assert!(v.ratio >= 1.0 && v.interval[0] <= v.interval[1], "{v:?}");
+        assert_eq!(v.clearly_higher(), v.interval[0] > 1.0);
+    }
+    // A station alone has nothing to be compared with.
+    let one = simulate(&mut sim, &set(&flight, json!({"seeds": 6, "model": "dr"}))).unwrap();
+    assert!(one.results[0].p75_vs_lowest.is_none());
+    // CTRA+ against 3D-CTRA on the whole set at the paper's rate: their own intervals overlap,
+    // paired they do not (docs/reference.md §12).
+    let all = set(
+        &Scenario::default(),
+        json!({"synthetic": "all", "model": "ctra-plus,3d-ctra"}),
+    );
+    let r = simulate(&mut sim, &all).unwrap();
+    let (a, b) = (r.results[0].ci95.unwrap(), r.results[1].ci95.unwrap());
+    assert!(a.p75[1] > b.p75[0] && b.p75[1] > a.p75[0], "{a:?} {b:?}");
+    let paired = r.results[1].p75_vs_lowest.expect("3D-CTRA against CTRA+");
+    assert!(paired.clearly_higher(), "{paired:?}");
+}
+
+#[test]
 fn the_whole_set_gives_intervals_over_its_flights_and_seeds_multiply_the_work_limit() {
     let all = set(
         &Scenario::default(),

@@ -435,6 +435,35 @@ p95: [number, number],
  */
 max: [number, number], };
 
+export type VersusLowest = { 
+/**
+ * The station with the lowest p75.
+ */
+lowest: ModelName, 
+/**
+ * p75 / the lowest station's p75, each over every run pooled (≥ 1).
+ */
+ratio: number, 
+/**
+ * 95 % interval of the ratio, every run resampled for both stations at once: wholly
+ * above 1 where the runs tell the two apart.
+ */
+interval: [number, number], 
+/**
+ * Runs resampled (flights × seeds).
+ */
+runs: number, };
+
+export type P75Draws = { 
+/**
+ * Runs drawn from (flights × seeds), runs without errors included.
+ */
+runs: number, 
+/**
+ * The p75 of each draw, m; `null` (NaN) where a draw holds none of the station's errors.
+ */
+p75: (number | null)[], };
+
 export type Boxplot = { 
 /**
  * Lower whisker.
@@ -669,6 +698,18 @@ caveats: Caveats,
  * own spread.
  */
 ci95: Intervals | null, 
+/**
+ * This station's p75 against the lowest station's on the same runs, with the ratio's 95 %
+ * interval from resampling both together (`docs/reference.md` §12); `null` for the lowest
+ * station itself, a station alone, a single run, or errors in fewer than two runs.
+ */
+p75VsLowest: VersusLowest | null, 
+/**
+ * The p75 of each bootstrap draw of the runs, drawn alike for every station of the run,
+ * from which `p75VsLowest` is paired (`docs/reference.md` §12; the page pairs the stations
+ * its workers ran apart with `versusLowest`); `null` where `ci95` is.
+ */
+p75Draws: P75Draws | null, 
 /**
  * |x error|, m.
  */

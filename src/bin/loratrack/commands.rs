@@ -644,11 +644,48 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
             intervals.join(", ")
         );
     }
+    out += &versus_lowest_line(results);
     if results.iter().any(|m| m.whole_flight.partly_tracked) {
         out += "tracked: the share of the flight time after each flight's first packet; the errors cover only that time\n";
     }
     out += &caveat_lines(results);
     out.trim_end().to_string()
+}
+
+/// Each station's p75 against the lowest one's on the same runs, resampled together:
+/// `p75 against 3D-CTRA's (paired, 30 runs): DR 1.61x (1.45-1.80, clearly higher), CTRA+ 1.02x
+/// (0.99-1.05)`; empty where there is nothing to pair.
+fn versus_lowest_line(results: &[loratrack::ModelResult]) -> String {
+    let versus: Vec<(&loratrack::ModelResult, loratrack::VersusLowest)> = results
+        .iter()
+        .filter_map(|m| m.p75_vs_lowest.map(|v| (m, v)))
+        .collect();
+    let Some((_, first)) = versus.first() else {
+        return String::new();
+    };
+    let parts: Vec<String> = versus
+        .iter()
+        .map(|(m, v)| {
+            let clear = if v.clearly_higher() {
+                ", clearly higher"
+            } else {
+                ""
+            };
+            format!(
+                "{} {:.3}x ({:.3}-{:.3}{clear})",
+                m.model.label(),
+                v.ratio,
+                v.interval[0],
+                v.interval[1]
+            )
+        })
+        .collect();
+    format!(
+        "p75 against {}'s (paired bootstrap over {} runs): {}\n",
+        first.lowest.label(),
+        first.runs,
+        parts.join(", ")
+    )
 }
 
 /// Where ADR sent a station's packets, fastest rate first, received / sent and each rate's

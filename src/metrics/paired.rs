@@ -1,0 +1,177 @@
+//! How sure a difference between two stations is: the ratio of their p75s, with a 95 % interval
+//! from resampling the runs both were scored on together (a paired percentile bootstrap; Efron &
+//! Tibshirani 1993, ch. 13; `docs/reference.md` §12).
+//!
+//! Stations of one run fly the same flights with the same seeds, so much of their errors' spread
+//! is shared: a hard flight is hard for every station. Intervals of each station alone carry that
+//! shared spread, and asking that they do not overlap misses differences the runs show plainly.
+//! Every station of a run is resampled with the same draws (they follow from the seed and the
+//! number of runs alone), so each station's p75 in each draw can be computed apart, by whichever
+//! worker ran that station, and the draws paired afterwards: the ratio's interval holds only
+//! what differs between the stations.
+
+use super::bootstrap::{draw_weights, Draw, Ranks};
+use super::{percentile, sort_total};
+use crate::rng::Rng;
+use serde::{Deserialize, Serialize};
+
+/// A station's p75 (m) in each of the [`RESAMPLES`](super::RESAMPLES) bootstrap draws of its
+/// runs, drawn alike for every station of the run (the same seed, the same number of runs).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
+pub struct P75Draws {
+    /// Runs drawn from (flights × seeds), runs without errors included.
+    pub runs: usize,
+    /// The p75 of each draw, m; `null` (NaN) where a draw holds none of the station's errors.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "(number | null)[]"))]
+    #[serde(deserialize_with = "nan_for_null")]
+    pub p75: Vec<f64>,
+}
+
+/// Numbers with `null` read as NaN: JSON writes a NaN as `null`, and reading it back must not
+/// refuse the draws.
+fn nan_for_null<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
+    let values: Vec<Option<f64>> = Deserialize::deserialize(d)?;
+    Ok(values.into_iter().map(|v| v.unwrap_or(f64::NAN)).collect())
+}
+
+impl P75Draws {
+    /// The draws of a station whose errors in run i are `runs[i]`, ascending (run i the same
+    /// flight and seed for every station); `seed` draws the resamples. `None` with errors in
+    /// fewer than two runs: one run cannot show its own spread.
+    ///
+    /// ```
+    /// use loratrack::metrics::P75Draws;
+    /// // Three runs; the second station's errors are the first's doubled, run by run.
+    /// let a: [&[f64]; 3] = [&[1.0, 2.0], &[4.0, 8.0], &[2.0, 3.0]];
+    /// let b: [&[f64]; 3] = [&[2.0, 4.0], &[8.0, 16.0], &[4.0, 6.0]];
+    /// let (a, b) = (P75Draws::of(&a, 1).unwrap(), P75Draws::of(&b, 1).unwrap());
+    /// // However the runs are drawn, b's p75 is twice a's: the shared spread cancels.
+    /// assert_eq!(b.ratio_interval(&a), Some([2.0, 2.0]));
+    /// ```
+    pub fn of(runs: &[&[f64]], seed: u64) -> Option<Self> {
+        if runs.iter().filter(|r| !r.is_empty()).count() < 2 {
+            return None;
+        }
+        let mut all: Vec<f64> = runs.iter().flat_map(|r| r.iter().copied()).collect();
+        sort_total(&mut all);
+        let ranks = Ranks::of(runs, &all);
+        let p75 = draw_weights(runs.len(), Rng::derive(seed, 0x9a1_7ed))
+            .iter()
+            .map(|weights| {
+                let draw = Draw {
+                    runs,
+                    weights,
+                    all: &all,
+                    ranks: ranks.as_ref(),
+                };
+                match draw.count_at_most(f64::INFINITY) {
+                    0 => f64::NAN,
+                    n => draw.percentile(n, 75.0),
+                }
+            })
+            .collect();
+        Some(P75Draws {
+            runs: runs.len(),
+            p75,
+        })
+    }
+
+    /// The 95 % interval of this station's p75 over `other`'s, draw by draw (the 2.5th to the
+    /// 97.5th percentile of the ratios of the draws that hold both); `None` where the two were
+    /// not drawn from the same number of runs, or no draw holds both.
+    pub fn ratio_interval(&self, other: &P75Draws) -> Option<[f64; 2]> {
+        if self.runs != other.runs || self.p75.len() != other.p75.len() {
+            return None;
+        }
+        let mut ratios: Vec<f64> = self
+            .p75
+            .iter()
+            .zip(&other.p75)
+            .map(|(a, b)| a / b)
+            .filter(|r| r.is_finite())
+            .collect();
+        if ratios.is_empty() {
+            return None;
+        }
+        sort_total(&mut ratios);
+        Some([percentile(&ratios, 2.5), percentile(&ratios, 97.5)])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::metrics::bootstrap;
+
+    /// Runs of very different difficulty: run k's errors are about 10^(k mod 4) m.
+    fn shared_spread(scale: f64, wobble: u64) -> Vec<Vec<f64>> {
+        (0..12u64)
+            .map(|k| {
+                let mut run: Vec<f64> = (0..20u64)
+                    .map(|i| {
+                        let noise = 1.0 + 0.01 * (((i * 7 + k * 3 + wobble) % 5) as f64 - 2.0);
+                        scale * 10f64.powi((k % 4) as i32) * (1.0 + i as f64 / 20.0) * noise
+                    })
+                    .collect();
+                sort_total(&mut run);
+                run
+            })
+            .collect()
+    }
+
+    fn refs(runs: &[Vec<f64>]) -> Vec<&[f64]> {
+        runs.iter().map(Vec::as_slice).collect()
+    }
+
+    fn draws(runs: &[Vec<f64>], seed: u64) -> P75Draws {
+        P75Draws::of(&refs(runs), seed).unwrap()
+    }
+
+    #[test]
+    fn a_small_difference_on_shared_runs_is_clear_paired_but_not_by_overlap() {
+        let a = shared_spread(1.0, 0);
+        let b = shared_spread(1.1, 1);
+        // Alone, each station's p75 interval spans the runs' decades: they overlap.
+        let (ia, ib) = (
+            bootstrap(&refs(&a), 1).unwrap(),
+            bootstrap(&refs(&b), 1).unwrap(),
+        );
+        assert!(ia.p75[1] > ib.p75[0], "{ia:?} {ib:?}");
+        let [lo, hi] = draws(&b, 1).ratio_interval(&draws(&a, 1)).unwrap();
+        assert!(lo > 1.0 && lo < 1.1 && hi > 1.1 && hi < 1.2, "{lo}..{hi}");
+        assert_eq!(draws(&a, 1).runs, 12);
+    }
+
+    #[test]
+    fn stations_alike_but_for_noise_are_not_told_apart() {
+        let a = shared_spread(1.0, 0);
+        let b = shared_spread(1.0, 2);
+        let [lo, hi] = draws(&a, 3).ratio_interval(&draws(&b, 3)).unwrap();
+        assert!(lo < 1.0 && 1.0 < hi, "{lo}..{hi}");
+    }
+
+    #[test]
+    fn a_run_without_errors_is_drawn_too_and_errors_in_one_run_give_no_draws() {
+        let a = shared_spread(1.0, 0);
+        let mut b = shared_spread(2.0, 0);
+        // A run in which station b heard no packet (one of the easy ones): still drawn, with
+        // nothing of b's in it.
+        b[4].clear();
+        let with_gap = draws(&b, 5);
+        assert_eq!(with_gap.runs, 12);
+        assert!(with_gap.ratio_interval(&draws(&a, 5)).unwrap()[0] > 1.0);
+        // With errors in one run only, a station cannot show its spread.
+        let one: Vec<Vec<f64>> = (0..12)
+            .map(|k| if k == 0 { a[0].clone() } else { Vec::new() })
+            .collect();
+        assert!(P75Draws::of(&refs(&one), 5).is_none());
+        // Draws of another number of runs, or of another seed's draws, are not paired: those
+        // of fewer runs refuse; another seed pairs other draws and moves the interval.
+        assert!(draws(&a[..5], 5).ratio_interval(&draws(&b, 5)).is_none());
+        let (a5, b5, b6) = (draws(&a, 5), draws(&b, 5), draws(&b, 6));
+        assert_eq!(b5.ratio_interval(&a5), draws(&b, 5).ratio_interval(&a5));
+        assert_ne!(b5.p75, b6.p75);
+    }
+}
