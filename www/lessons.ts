@@ -56,7 +56,7 @@ export const LESSONS: Lesson[] = [
     text: 'Between packets the station predicts. Dead reckoning (DR) flies straight on; CTRA+ also turns and accelerates; 3D-CTRA also tilts. Over the whole synthetic set, with packets every 3 s, the richer models pay off.',
     notice: [
       'DR’s p75 interval lies wholly above CTRA+’s and 3D-CTRA’s: a clear difference.',
-      'CTRA+ and 3D-CTRA overlap: our synthetic climbs are short, so the tilt rate rarely pays off.',
+      'CTRA+’s and 3D-CTRA’s intervals overlap, yet the verdict names CTRA+ clearly lowest: on the same runs resampled together 3D-CTRA’s p75 is about 1.06× CTRA+’s, and every resample agrees within a few per cent. Each model’s own interval carries the spread all models share (a hard flight is hard for every model); the verdict compares them run by run. Our synthetic climbs are short, so the tilt rate rarely pays off.',
     ],
   },
   {
@@ -67,7 +67,7 @@ export const LESSONS: Lesson[] = [
     notice: [
       'The results table: at SF8, with a packet about every 5 s, IMM’s p75 and p95 are the lowest of the four stations (it receives 3D-CTRA’s 12-byte packets).',
       'The tooltip of IMM’s “in 95 % bound” cell: its mean probabilities, about a third each: straight legs and turns share each flight.',
-      'With one seed the p75 intervals overlap; Repeat with 10 seeds and IMM’s lies below DR’s and reaches only the bottom of CTRA+’s and 3D-CTRA’s.',
+      'IMM’s p75 interval overlaps CTRA+’s and 3D-CTRA’s, yet the verdict names IMM clearly lowest: on the same runs resampled together their p75 is about 1.07× IMM’s, an interval wholly above 1.',
     ],
   },
   {

@@ -26,6 +26,7 @@ import type {
   Scenario,
   SimReport,
   SwarmReport,
+  VersusLowest,
 } from './generated/types';
 
 export type * from './generated/types';
@@ -170,6 +171,14 @@ export function poolDelivery(results: Delivery[]): Delivery {
  * (the core's `DeliverySpread`), or null. */
 export function deliverySpread(results: ModelResult[]): DeliverySpread | null {
   return wasm.deliverySpread({ results }) as DeliverySpread | null;
+}
+
+/** Each of `results`' p75 against the lowest station's, paired over the same runs (`p75VsLowest`
+ * of each, from their `p75Draws`; null for the lowest itself), as one run of all their stations
+ * reports them (the core's `versus_lowest`): the stations a worker ran alone were compared only
+ * with each other. */
+export function versusLowest(results: ModelResult[]): (VersusLowest | null)[] {
+  return wasm.versusLowest({ results }) as (VersusLowest | null)[];
 }
 
 /** The stations a `model` setting names, in order (`all` is the paper's three). */

@@ -1,13 +1,16 @@
 // Reports of some of a run's stations made one: the pool's workers each run a group of stations,
 // and a sweep point some stations of which the core refuses runs the others alone (worker.ts).
-import { poolDelivery, type SimReport } from './loratrack';
+import { poolDelivery, versusLowest, type SimReport } from './loratrack';
 import type { SweepPoint, SweepResult } from './worker';
 
 /** The reports of disjoint groups of stations as one report, stations in `models` order (those
  * that ran: a sweep point may lack some), with the network totals the core pools from every
- * station's run (`poolDelivery`). */
+ * station's run (`poolDelivery`) and every station against the lowest of them all
+ * (`versusLowest`: a worker compared its own stations only). */
 export function merge(reports: SimReport[], models: string[], model: SimReport['config']['model']): SimReport {
-  const results = models.flatMap((m) => reports.flatMap((r) => r.results).filter((x) => x.model === m).slice(0, 1));
+  const ran = models.flatMap((m) => reports.flatMap((r) => r.results).filter((x) => x.model === m).slice(0, 1));
+  const versus = versusLowest(ran);
+  const results = ran.map((r, i) => ({ ...r, p75VsLowest: versus[i] }));
   const base = reports[0];
   // The mission's plan comes with whichever group ran the mission station.
   const plan = reports.map((r) => r.series?.plan).find((p) => p !== undefined);

@@ -1,5 +1,5 @@
 // The results panel: the table of statistics with their intervals, the verdict on which station
-// is best (only when the intervals say so), the baseline's differences, and the notes under the
+// is best (only when the same runs, resampled together, say so), the baseline's differences, and the notes under the
 // table. Reads the page's state from the store.
 import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
@@ -242,30 +242,43 @@ function leanTitle(m: ModelResult): string {
   return ` title="${m.leanPackets} of ${m.packetsSent} packets left out small manoeuvre fields (DR's 9 or CTRA+'s 11 bytes)${shortest}; a full packet: ${(m.timeOnAir * 1e3).toFixed(1)} ms, ${m.interval.toFixed(2)} s"`;
 }
 
-/** The station with the lowest p75 among `list` (undefined for none). */
-function lowestP75(list: ModelResult[]): ModelResult | undefined {
-  return list.reduce<ModelResult | undefined>((a, m) => (!a || (m.error3d.p75 ?? Infinity) < (a.error3d.p75 ?? Infinity) ? m : a), undefined);
+/** The station with the lowest p75 and every other station's p75 against it, paired over the
+ * same runs (`p75VsLowest`, docs/reference.md §12); undefined where the core could pair none. */
+function versusLowest(r: SimReport): { lowest: ModelResult; others: ModelResult[] } | undefined {
+  const others = r.results.filter((m) => m.p75VsLowest !== null);
+  const lowest = r.results.find((m) => m.model === others[0]?.p75VsLowest?.lowest);
+  return lowest ? { lowest, others } : undefined;
 }
 
-/** The station whose p75 is lowest, when its 95 % interval lies below every other station's
- * (docs/reference.md §12); undefined when no difference is clear. */
+/** The station whose p75 is lowest, when on the same runs resampled together every other
+ * station's is clearly higher (its ratio's 95 % interval wholly above 1); undefined when no
+ * difference is clear. */
 function clearlyLowest(r: SimReport): ModelResult | undefined {
-  const withData = r.results.filter((m) => m.error3d.count > 0);
-  const lowest = lowestP75(withData);
-  if (r.results.length < 2 || withData.length < r.results.length || !lowest?.ci95) return undefined;
-  const below = lowest.ci95.p75[1];
-  return withData.every((m) => m === lowest || (m.ci95 !== null && below < m.ci95.p75[0])) ? lowest : undefined;
+  const v = versusLowest(r);
+  if (!v || v.others.length !== r.results.length - 1) return undefined;
+  return v.others.every((m) => m.p75VsLowest!.interval[0] > 1) ? v.lowest : undefined;
 }
 
-/** Why no station is named best: the stations whose p75 intervals overlap the lowest one's, and
- * those clearly above them. */
+/** "DR's 1.47× (1.39–1.58)": a station's p75 over the lowest's, with its paired interval. */
+function ratioWords(m: ModelResult): string {
+  const v = m.p75VsLowest!;
+  return `${MODEL_LABELS[m.model]}’s ${v.ratio.toFixed(2)}× (${v.interval[0].toFixed(2)}–${v.interval[1].toFixed(2)})`;
+}
+
+/** Why no station is named best: the stations the runs cannot tell from the lowest, those
+ * clearly above it, and those with too few runs with errors to compare. */
 function noClearLowest(r: SimReport, runs: string): string {
-  const withData = r.results.filter((m) => m.ci95 !== null);
-  const top = lowestP75(withData)!.ci95!.p75[1];
-  const tied = withData.filter((m) => m.ci95!.p75[0] <= top);
-  const above = withData.filter((m) => !tied.includes(m));
-  const rest = above.length ? `; ${names(above)}'s ${above.length === 1 ? 'lies' : 'lie'} clearly above` : '';
-  return `No clear lowest p75: the 95 % intervals of ${names(tied)} overlap${rest} (${runs}). More seeds or flights narrow them.`;
+  const v = versusLowest(r);
+  if (!v) return `Too few runs with errors to compare the stations (${runs}): no model is named best.`;
+  const tied = v.others.filter((m) => m.p75VsLowest!.interval[0] <= 1);
+  const above = v.others.filter((m) => !tied.includes(m));
+  const unpaired = r.results.filter((m) => m !== v.lowest && !v.others.includes(m));
+  const parts = [
+    tied.length ? `${listed(tied.map(ratioWords))} ${MODEL_LABELS[v.lowest.model]}’s, which chance can give` : '',
+    above.length ? `${listed(above.map(ratioWords))} ${above.length === 1 ? 'lies' : 'lie'} clearly above` : '',
+    unpaired.length ? `${names(unpaired)} ${unpaired.length === 1 ? 'has' : 'have'} errors in too few runs to compare` : '',
+  ].filter(Boolean);
+  return `No clear lowest p75: on the same runs resampled together, ${parts.join('; ')} (95 % intervals, ${runs}). More seeds or flights narrow them.`;
 }
 
 /** How many runs (flights × seeds) the stations' p75 intervals rest on: "30 runs", or where a run
@@ -306,7 +319,7 @@ function renderVerdict(r: SimReport, best: ModelResult | undefined): void {
   repeat.textContent = `Repeat with ${seeds} seeds`;
   if (!measured) text.textContent = `No station has an error to compare: ${r.results.every((m) => m.packetsSent === 0) ? 'the drone sent no packet' : 'no packet arrived'}.`;
   else if (r.results.length < 2) text.textContent = runs ? `p75's 95 % interval rests on ${runs} (flights × seeds).` : '';
-  else if (best) text.textContent = `${MODEL_LABELS[best.model]} has the lowest p75, clearly: its 95 % interval lies below every other model's (${runs}).`;
+  else if (best) text.textContent = `${MODEL_LABELS[best.model]} has the lowest p75, clearly: on the same runs resampled together, ${listed(r.results.filter((m) => m !== best).map(ratioWords))} as high (95 % intervals, ${runs}).`;
   else if (!runs) text.textContent = 'One flight with one seed cannot tell whether these differences are larger than chance: no model is named best.';
   else text.textContent = noClearLowest(r, runs);
 }

@@ -96,6 +96,12 @@ export const number = (text) => Number.parseFloat(text);
 export const cellNumber = async (page, model, field) => number(await cell(page, model, field));
 
 export const MODELS = ['dr', 'ctra-plus', '3d-ctra'];
+/** The stations' names as the page writes them. */
+export const LABELS = { dr: 'DR', 'ctra-plus': 'CTRA+', '3d-ctra': '3D-CTRA', imm: 'IMM', mission: 'Mission' };
+/** "DR’s 1.47× (1.39–1.58)": how the verdict quotes a CLI result's p75 against the lowest station's, paired over the same runs. */
+export const ratioWords = ({ model, p75VsLowest: v }) => `${LABELS[model]}’s ${v.ratio.toFixed(2)}× (${v.interval[0].toFixed(2)}–${v.interval[1].toFixed(2)})`;
+/** "a, b and c", as the page lists. */
+export const listed = (words) => (words.length < 2 ? words.join('') : `${words.slice(0, -1).join(', ')} and ${words.at(-1)}`);
 /** Each model's p75 and its shown 95 % interval, as the table shows them. */
 export async function shownP75(page, models = MODELS) {
   return Promise.all(

@@ -8,9 +8,11 @@ import type { Response, SimulateRequest } from '../../www/worker';
 
 // The pool's workers are stand-ins: each keeps what it was sent and answers when told to. The
 // module never compiles here (the stand-ins need none), a model list names its stations, and the
-// core's pooling of the network totals (its own tests: Delivery::pooled, tests/wasm.rs) is a
-// stand-in that remembers what it was given.
-const core = vi.hoisted(() => ({ pooled: [] as unknown[][] }));
+// core's pooling of the network totals (its own tests: Delivery::pooled, tests/wasm.rs) and its
+// pairing of every station with the lowest (versus_lowest) are stand-ins that remember what they
+// were given.
+const core = vi.hoisted(() => ({ pooled: [] as unknown[][], paired: [] as unknown[][] }));
+const VERSUS = { lowest: 'ctra-plus', ratio: 1.5, interval: [1.2, 1.8], runs: 30 };
 const TOTALS = { packetsSent: 7, packetsReceived: 5, deliveryRatio: 5 / 7, duplicates: 2, gateways: [] };
 vi.mock('../../www/loratrack', () => ({
   compiledModule: () => new Promise(() => {}),
@@ -23,6 +25,7 @@ vi.mock('../../www/loratrack', () => ({
     return Array.from({ length: Math.min(workers, stations.length) }, (_, w) => stations.filter((_, k) => k % workers === w));
   },
   poolDelivery: (results: unknown[]) => (core.pooled.push(results), TOTALS),
+  versusLowest: (results: { model: string }[]) => (core.paired.push(results), results.map((r) => (r.model === 'ctra-plus' ? null : VERSUS))),
 }));
 class StandIn {
   static all: StandIn[] = [];
@@ -56,11 +59,16 @@ test('merged stations come in the request order, with the totals the core pools 
   const a = report([result('dr', 28, 28), result('3d-ctra', 26, 20)]);
   const b = report([result('ctra-plus', 26, 25)]);
   core.pooled = [];
+  core.paired = [];
   const m = merge([a, b], ['dr', 'ctra-plus', '3d-ctra'], 'all');
   expect(m.results.map((r) => r.model)).toEqual(['dr', 'ctra-plus', '3d-ctra']);
   expect(m.series?.models.map((s) => s.model)).toEqual(['dr', 'ctra-plus', '3d-ctra']);
   // Every station's own run, once each, and not a worker's partial totals.
   expect(core.pooled).toEqual([m.results]);
+  // Every station against the lowest of all, not of its worker's group: paired by the core once,
+  // over every station.
+  expect(core.paired.map((rs) => rs.map((r) => (r as { model: string }).model))).toEqual([['dr', 'ctra-plus', '3d-ctra']]);
+  expect(m.results.map((r) => r.p75VsLowest)).toEqual([VERSUS, null, VERSUS]);
   expect(m).toMatchObject(TOTALS);
   expect(m.config.model).toBe('all');
   expect(m.config.models).toEqual(['dr', 'ctra-plus', '3d-ctra']);
