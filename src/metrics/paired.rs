@@ -51,27 +51,35 @@ impl P75Draws {
     /// assert_eq!(b.ratio_interval(&a), Some([2.0, 2.0]));
     /// ```
     pub fn of(runs: &[&[f64]], seed: u64) -> Option<Self> {
+        let mut all: Vec<f64> = runs.iter().flat_map(|r| r.iter().copied()).collect();
+        sort_total(&mut all);
+        Self::of_sorted(runs, &all, seed)
+    }
+
+    /// [`Self::of`] given every error of `runs` pooled and in ascending order (`f64::total_cmp`)
+    /// as `all`: a station's result has sorted them for its summary already.
+    pub(crate) fn of_sorted(runs: &[&[f64]], all: &[f64], seed: u64) -> Option<Self> {
         if runs.iter().filter(|r| !r.is_empty()).count() < 2 {
             return None;
         }
-        let mut all: Vec<f64> = runs.iter().flat_map(|r| r.iter().copied()).collect();
-        sort_total(&mut all);
-        let ranks = Ranks::of(runs, &all);
-        let p75 = draw_weights(runs.len(), Rng::derive(seed, 0x9a1_7ed))
-            .iter()
-            .map(|weights| {
-                let draw = Draw {
-                    runs,
-                    weights,
-                    all: &all,
-                    ranks: ranks.as_ref(),
-                };
-                match draw.count_at_most(f64::INFINITY) {
-                    0 => f64::NAN,
-                    n => draw.percentile(n, 75.0),
-                }
-            })
-            .collect();
+        debug_assert_eq!(all.len(), runs.iter().map(|r| r.len()).sum::<usize>());
+        let ranks = Ranks::of(runs, all);
+        let ranks = ranks.as_ref();
+        // As the intervals' draws (`bootstrap`): drawn from one stream in order, then computed
+        // on every core.
+        let draws = draw_weights(runs.len(), Rng::derive(seed, 0x9a1_7ed));
+        let p75 = crate::parallel::par_map_owned(draws, |weights| {
+            let draw = Draw {
+                runs,
+                weights: &weights,
+                all,
+                ranks,
+            };
+            match draw.count_at_most(f64::INFINITY) {
+                0 => f64::NAN,
+                n => draw.percentile(n, 75.0),
+            }
+        });
         Some(P75Draws {
             runs: runs.len(),
             p75,

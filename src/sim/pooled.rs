@@ -244,7 +244,7 @@ impl Pooled {
         let ci95 = refs
             .as_ref()
             .and_then(|refs| bootstrap_sorted(refs, &self.e3, seed));
-        let p75_draws = refs.and_then(|refs| P75Draws::of(&refs, seed));
+        let p75_draws = refs.and_then(|refs| P75Draws::of_sorted(&refs, &self.e3, seed));
         let mut result = ModelResult {
             model,
             payload_bytes: model.payload_bytes(),
