@@ -8,7 +8,7 @@ use crate::lora::{
     AdrMode, ChannelAccess, DutyCycleMode, FairUse, LdroMode, Plan, PlanRate, Region,
     ShadowingModel,
 };
-use crate::metrics::{Boxplot, Intervals, P75Draws, Summary, WholeFlightError};
+use crate::metrics::{Boxplot, Draws, Intervals, Summary, WholeFlightError};
 use crate::models::ModelKind;
 use crate::options::{NumberOption, OPTIONS};
 use crate::sim::scenario::*;
@@ -79,7 +79,7 @@ fn decls() -> Vec<String> {
         DeliverySpread::decl(&c),
         Intervals::decl(&c),
         VersusLowest::decl(&c),
-        P75Draws::decl(&c),
+        Draws::decl(&c),
         Boxplot::decl(&c),
         Boxplots::decl(&c),
         DataRateUse::decl(&c),

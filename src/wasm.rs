@@ -371,7 +371,7 @@ pub fn pool_delivery(params: JsValue) -> Result<JsValue, JsValue> {
 }
 
 /// `versusLowest({results})` → for each of `simulate`'s results (each a `model` with its
-/// `error3d` and `p75Draws`), its p75 against the lowest station's on the same runs resampled
+/// `error3d` and `draws`), its p75 against the lowest station's on the same runs resampled
 /// together (`{lowest, ratio, interval, runs}`) or `null` ([`versus_lowest`](crate::versus_lowest)):
 /// the page pairs the stations its workers ran apart as one run pairs them.
 #[wasm_bindgen(js_name = versusLowest)]
@@ -386,7 +386,7 @@ pub fn versus_lowest(params: JsValue) -> Result<JsValue, JsValue> {
     struct Station {
         model: String,
         error3d: Error3d,
-        p75_draws: Option<crate::metrics::P75Draws>,
+        draws: Option<crate::metrics::Draws>,
     }
     #[derive(serde::Deserialize)]
     struct Params {
@@ -401,7 +401,7 @@ pub fn versus_lowest(params: JsValue) -> Result<JsValue, JsValue> {
                     model: s.model.parse::<crate::StationModel>()?,
                     p75: s.error3d.p75.unwrap_or(f64::NAN),
                     count: s.error3d.count,
-                    p75_draws: s.p75_draws,
+                    draws: s.draws,
                 })
             })
             .collect::<Result<Vec<_>, crate::models::ModelError>>()

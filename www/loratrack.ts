@@ -174,7 +174,7 @@ export function deliverySpread(results: ModelResult[]): DeliverySpread | null {
 }
 
 /** Each of `results`' p75 against the lowest station's, paired over the same runs (`p75VsLowest`
- * of each, from their `p75Draws`; null for the lowest itself), as one run of all their stations
+ * of each, from their `draws`; null for the lowest itself), as one run of all their stations
  * reports them (the core's `versus_lowest`): the stations a worker ran alone were compared only
  * with each other. */
 export function versusLowest(results: ModelResult[]): (VersusLowest | null)[] {

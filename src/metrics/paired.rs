@@ -1,4 +1,4 @@
-//! How sure a difference between two stations is: the ratio of their p75s, with a 95 % interval
+//! How sure a difference between two stations is: the ratio of their p75s (or p95s), with a 95 % interval
 //! from resampling the runs both were scored on together (a paired percentile bootstrap; Efron &
 //! Tibshirani 1993, ch. 13; `docs/reference.md` §12).
 //!
@@ -15,18 +15,23 @@ use super::{percentile, sort_total};
 use crate::rng::Rng;
 use serde::{Deserialize, Serialize};
 
-/// A station's p75 (m) in each of the [`RESAMPLES`](super::RESAMPLES) bootstrap draws of its
-/// runs, drawn alike for every station of the run (the same seed, the same number of runs).
+/// A station's p75 and p95 (m) in each of the [`RESAMPLES`](super::RESAMPLES) bootstrap draws
+/// of its runs, drawn alike for every station of the run (the same seed, the same number of
+/// runs).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
-pub struct P75Draws {
+pub struct Draws {
     /// Runs drawn from (flights × seeds), runs without errors included.
     pub runs: usize,
     /// The p75 of each draw, m; `null` (NaN) where a draw holds none of the station's errors.
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "(number | null)[]"))]
     #[serde(deserialize_with = "nan_for_null")]
     pub p75: Vec<f64>,
+    /// The p95 of each draw, m, likewise.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "(number | null)[]"))]
+    #[serde(deserialize_with = "nan_for_null")]
+    pub p95: Vec<f64>,
 }
 
 /// Numbers with `null` read as NaN: JSON writes a NaN as `null`, and reading it back must not
@@ -36,19 +41,20 @@ fn nan_for_null<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::E
     Ok(values.into_iter().map(|v| v.unwrap_or(f64::NAN)).collect())
 }
 
-impl P75Draws {
+impl Draws {
     /// The draws of a station whose errors in run i are `runs[i]`, ascending (run i the same
     /// flight and seed for every station); `seed` draws the resamples. `None` with errors in
     /// fewer than two runs: one run cannot show its own spread.
     ///
     /// ```
-    /// use loratrack::metrics::P75Draws;
+    /// use loratrack::metrics::Draws;
     /// // Three runs; the second station's errors are the first's doubled, run by run.
     /// let a: [&[f64]; 3] = [&[1.0, 2.0], &[4.0, 8.0], &[2.0, 3.0]];
     /// let b: [&[f64]; 3] = [&[2.0, 4.0], &[8.0, 16.0], &[4.0, 6.0]];
-    /// let (a, b) = (P75Draws::of(&a, 1).unwrap(), P75Draws::of(&b, 1).unwrap());
-    /// // However the runs are drawn, b's p75 is twice a's: the shared spread cancels.
-    /// assert_eq!(b.ratio_interval(&a), Some([2.0, 2.0]));
+    /// let (a, b) = (Draws::of(&a, 1).unwrap(), Draws::of(&b, 1).unwrap());
+    /// // However the runs are drawn, b's percentiles are twice a's: the shared spread cancels.
+    /// assert_eq!(b.p75_ratio_interval(&a), Some([2.0, 2.0]));
+    /// assert_eq!(b.p95_ratio_interval(&a), Some([2.0, 2.0]));
     /// ```
     pub fn of(runs: &[&[f64]], seed: u64) -> Option<Self> {
         let mut all: Vec<f64> = runs.iter().flat_map(|r| r.iter().copied()).collect();
@@ -68,7 +74,7 @@ impl P75Draws {
         // As the intervals' draws (`bootstrap`): drawn from one stream in order, then computed
         // on every core.
         let draws = draw_weights(runs.len(), Rng::derive(seed, 0x9a1_7ed));
-        let p75 = crate::parallel::par_map_owned(draws, |weights| {
+        let stats = crate::parallel::par_map_owned(draws, |weights| {
             let draw = Draw {
                 runs,
                 weights: &weights,
@@ -76,27 +82,37 @@ impl P75Draws {
                 ranks,
             };
             match draw.count_at_most(f64::INFINITY) {
-                0 => f64::NAN,
-                n => draw.percentile(n, 75.0),
+                0 => [f64::NAN; 2],
+                n => [draw.percentile(n, 75.0), draw.percentile(n, 95.0)],
             }
         });
-        Some(P75Draws {
+        Some(Draws {
             runs: runs.len(),
-            p75,
+            p75: stats.iter().map(|s| s[0]).collect(),
+            p95: stats.iter().map(|s| s[1]).collect(),
         })
     }
 
-    /// The 95 % interval of this station's p75 over `other`'s, draw by draw (the 2.5th to the
-    /// 97.5th percentile of the ratios of the draws that hold both); `None` where the two were
-    /// not drawn from the same number of runs, or no draw holds both.
-    pub fn ratio_interval(&self, other: &P75Draws) -> Option<[f64; 2]> {
-        if self.runs != other.runs || self.p75.len() != other.p75.len() {
+    /// The 95 % interval of this station's p75 over `other`'s, draw by draw; `None` where the
+    /// two were not drawn from the same number of runs, or no draw holds both.
+    pub fn p75_ratio_interval(&self, other: &Draws) -> Option<[f64; 2]> {
+        self.ratio_interval(other, &self.p75, &other.p75)
+    }
+
+    /// The 95 % interval of this station's p95 over `other`'s, likewise.
+    pub fn p95_ratio_interval(&self, other: &Draws) -> Option<[f64; 2]> {
+        self.ratio_interval(other, &self.p95, &other.p95)
+    }
+
+    /// The 2.5th to the 97.5th percentile of the ratios `mine[i] / theirs[i]` of the draws that
+    /// hold both stations.
+    fn ratio_interval(&self, other: &Draws, mine: &[f64], theirs: &[f64]) -> Option<[f64; 2]> {
+        if self.runs != other.runs || mine.len() != theirs.len() {
             return None;
         }
-        let mut ratios: Vec<f64> = self
-            .p75
+        let mut ratios: Vec<f64> = mine
             .iter()
-            .zip(&other.p75)
+            .zip(theirs)
             .map(|(a, b)| a / b)
             .filter(|r| r.is_finite())
             .collect();
@@ -133,8 +149,8 @@ mod tests {
         runs.iter().map(Vec::as_slice).collect()
     }
 
-    fn draws(runs: &[Vec<f64>], seed: u64) -> P75Draws {
-        P75Draws::of(&refs(runs), seed).unwrap()
+    fn draws(runs: &[Vec<f64>], seed: u64) -> Draws {
+        Draws::of(&refs(runs), seed).unwrap()
     }
 
     #[test]
@@ -147,7 +163,7 @@ mod tests {
             bootstrap(&refs(&b), 1).unwrap(),
         );
         assert!(ia.p75[1] > ib.p75[0], "{ia:?} {ib:?}");
-        let [lo, hi] = draws(&b, 1).ratio_interval(&draws(&a, 1)).unwrap();
+        let [lo, hi] = draws(&b, 1).p75_ratio_interval(&draws(&a, 1)).unwrap();
         assert!(lo > 1.0 && lo < 1.1 && hi > 1.1 && hi < 1.2, "{lo}..{hi}");
         assert_eq!(draws(&a, 1).runs, 12);
     }
@@ -156,7 +172,7 @@ mod tests {
     fn stations_alike_but_for_noise_are_not_told_apart() {
         let a = shared_spread(1.0, 0);
         let b = shared_spread(1.0, 2);
-        let [lo, hi] = draws(&a, 3).ratio_interval(&draws(&b, 3)).unwrap();
+        let [lo, hi] = draws(&a, 3).p75_ratio_interval(&draws(&b, 3)).unwrap();
         assert!(lo < 1.0 && 1.0 < hi, "{lo}..{hi}");
     }
 
@@ -169,17 +185,22 @@ mod tests {
         b[4].clear();
         let with_gap = draws(&b, 5);
         assert_eq!(with_gap.runs, 12);
-        assert!(with_gap.ratio_interval(&draws(&a, 5)).unwrap()[0] > 1.0);
+        assert!(with_gap.p75_ratio_interval(&draws(&a, 5)).unwrap()[0] > 1.0);
         // With errors in one run only, a station cannot show its spread.
         let one: Vec<Vec<f64>> = (0..12)
             .map(|k| if k == 0 { a[0].clone() } else { Vec::new() })
             .collect();
-        assert!(P75Draws::of(&refs(&one), 5).is_none());
+        assert!(Draws::of(&refs(&one), 5).is_none());
         // Draws of another number of runs, or of another seed's draws, are not paired: those
         // of fewer runs refuse; another seed pairs other draws and moves the interval.
-        assert!(draws(&a[..5], 5).ratio_interval(&draws(&b, 5)).is_none());
+        assert!(draws(&a[..5], 5)
+            .p75_ratio_interval(&draws(&b, 5))
+            .is_none());
         let (a5, b5, b6) = (draws(&a, 5), draws(&b, 5), draws(&b, 6));
-        assert_eq!(b5.ratio_interval(&a5), draws(&b, 5).ratio_interval(&a5));
+        assert_eq!(
+            b5.p75_ratio_interval(&a5),
+            draws(&b, 5).p75_ratio_interval(&a5)
+        );
         assert_ne!(b5.p75, b6.p75);
     }
 }

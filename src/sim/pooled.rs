@@ -9,9 +9,7 @@ use super::report::{
 use super::sender::SenderKind;
 use super::station::{StationModel, StationTrack};
 use crate::lora::DataRate;
-use crate::metrics::{
-    bootstrap_sorted, sort_total, Consistency, P75Draws, Summary, WholeFlightError,
-};
+use crate::metrics::{bootstrap_sorted, sort_total, Consistency, Draws, Summary, WholeFlightError};
 use crate::models::ModelKind;
 use std::collections::BTreeMap;
 
@@ -167,7 +165,7 @@ impl Pooled {
 
     /// Each run's 3D errors in ascending order, in the order the runs were added (runs without
     /// errors left empty): the samples the intervals resample, this station's alone (`ci95`)
-    /// and drawn alike for every station of the run ([`P75Draws`]). `None` with fewer than two
+    /// and drawn alike for every station of the run ([`Draws`]). `None` with fewer than two
     /// runs that have errors (one run cannot show its own spread), so that a single long flight
     /// is not copied. Read before `e3` itself is sorted.
     fn run_errors(&self) -> Option<Vec<Vec<f64>>> {
@@ -244,7 +242,7 @@ impl Pooled {
         let ci95 = refs
             .as_ref()
             .and_then(|refs| bootstrap_sorted(refs, &self.e3, seed));
-        let p75_draws = refs.and_then(|refs| P75Draws::of_sorted(&refs, &self.e3, seed));
+        let draws = refs.and_then(|refs| Draws::of_sorted(&refs, &self.e3, seed));
         let mut result = ModelResult {
             model,
             payload_bytes: model.payload_bytes(),
@@ -267,7 +265,7 @@ impl Pooled {
             ci95,
             // Set across the stations, once all are pooled (versus_lowest).
             p75_vs_lowest: None,
-            p75_draws,
+            draws,
             error_x: sx,
             error_y: sy,
             error_z: sz,

@@ -7,7 +7,7 @@ use super::scenario::Scenario;
 use super::station::StationModel;
 use super::versus_lowest::{versus_lowest, Contender, VersusLowest};
 use crate::lora::SX1276_SLEEP_CURRENT_MA;
-use crate::metrics::{Boxplot, Intervals, P75Draws, Summary, WholeFlightError};
+use crate::metrics::{Boxplot, Draws, Intervals, Summary, WholeFlightError};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -298,11 +298,12 @@ pub struct ModelResult {
         ts(type = "VersusLowest | null")
     )]
     pub p75_vs_lowest: Option<VersusLowest>,
-    /// The p75 of each bootstrap draw of the runs, drawn alike for every station of the run,
-    /// from which `p75VsLowest` is paired (`docs/reference.md` §12; the page pairs the stations
-    /// its workers ran apart with `versusLowest`); `null` where `ci95` is.
-    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "P75Draws | null"))]
-    pub p75_draws: Option<P75Draws>,
+    /// The p75 and p95 of each bootstrap draw of the runs, drawn alike for every station of the
+    /// run (and of any run of the same seeds and flights), from which `p75VsLowest` is paired
+    /// (`docs/reference.md` §12; the page pairs the stations its workers ran apart with
+    /// `versusLowest`); `null` where `ci95` is.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Draws | null"))]
+    pub draws: Option<Draws>,
     /// |x error|, m.
     pub error_x: Summary,
     /// |y error|, m.
@@ -356,7 +357,7 @@ pub(crate) fn set_versus_lowest(results: &mut [ModelResult]) {
             model: r.model,
             p75: r.error3d.p75,
             count: r.error3d.count,
-            p75_draws: r.p75_draws.clone(),
+            draws: r.draws.clone(),
         })
         .collect();
     for (r, v) in results.iter_mut().zip(versus_lowest(&stations)) {

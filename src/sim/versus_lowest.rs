@@ -3,7 +3,7 @@
 //! table read.
 
 use super::station::StationModel;
-use crate::metrics::P75Draws;
+use crate::metrics::Draws;
 use serde::Serialize;
 
 /// A station's p75 over the lowest station's of the same run
@@ -42,9 +42,9 @@ pub struct Contender {
     pub p75: f64,
     /// How many errors that p75 rests on (0: the station has none, and no p75).
     pub count: usize,
-    /// Its p75 in each bootstrap draw of the runs
-    /// ([`ModelResult::p75_draws`](crate::ModelResult::p75_draws)).
-    pub p75_draws: Option<P75Draws>,
+    /// Its p75 and p95 in each bootstrap draw of the runs
+    /// ([`ModelResult::draws`](crate::ModelResult::draws)).
+    pub draws: Option<Draws>,
 }
 
 /// Each of `stations` against the one with the lowest p75 among those with errors: `None` for
@@ -59,15 +59,12 @@ pub fn versus_lowest(stations: &[Contender]) -> Vec<Option<VersusLowest>> {
         .iter()
         .map(|s| {
             let low = lowest.filter(|l| stations.len() >= 2 && l.model != s.model)?;
-            let interval = s
-                .p75_draws
-                .as_ref()?
-                .ratio_interval(low.p75_draws.as_ref()?)?;
+            let interval = s.draws.as_ref()?.p75_ratio_interval(low.draws.as_ref()?)?;
             Some(VersusLowest {
                 lowest: low.model,
                 ratio: s.p75 / low.p75,
                 interval,
-                runs: low.p75_draws.as_ref()?.runs,
+                runs: low.draws.as_ref()?.runs,
             })
         })
         .collect()
@@ -87,7 +84,11 @@ mod tests {
             model,
             p75,
             count: usize::from(p75.is_finite()) * 100,
-            p75_draws: draws.map(|p75| P75Draws { runs: 4, p75 }),
+            draws: draws.map(|p75| Draws {
+                runs: 4,
+                p95: p75.clone(),
+                p75,
+            }),
         }
     }
 
@@ -121,7 +122,7 @@ mod tests {
         assert_eq!(v, vec![None, None, None]);
         // Draws of another number of runs are not paired.
         let mut other = station(DR, 3.0, Some(vec![3.0; 4]));
-        other.p75_draws.as_mut().unwrap().runs = 5;
+        other.draws.as_mut().unwrap().runs = 5;
         let v = versus_lowest(&[other, station(CTRA3D, 2.0, Some(vec![2.0; 4]))]);
         assert_eq!(v, vec![None, None]);
     }

@@ -454,7 +454,7 @@ interval: [number, number],
  */
 runs: number, };
 
-export type P75Draws = { 
+export type Draws = { 
 /**
  * Runs drawn from (flights × seeds), runs without errors included.
  */
@@ -462,7 +462,11 @@ runs: number,
 /**
  * The p75 of each draw, m; `null` (NaN) where a draw holds none of the station's errors.
  */
-p75: (number | null)[], };
+p75: (number | null)[], 
+/**
+ * The p95 of each draw, m, likewise.
+ */
+p95: (number | null)[], };
 
 export type Boxplot = { 
 /**
@@ -705,11 +709,12 @@ ci95: Intervals | null,
  */
 p75VsLowest: VersusLowest | null, 
 /**
- * The p75 of each bootstrap draw of the runs, drawn alike for every station of the run,
- * from which `p75VsLowest` is paired (`docs/reference.md` §12; the page pairs the stations
- * its workers ran apart with `versusLowest`); `null` where `ci95` is.
+ * The p75 and p95 of each bootstrap draw of the runs, drawn alike for every station of the
+ * run (and of any run of the same seeds and flights), from which `p75VsLowest` is paired
+ * (`docs/reference.md` §12; the page pairs the stations its workers ran apart with
+ * `versusLowest`); `null` where `ci95` is.
  */
-p75Draws: P75Draws | null, 
+draws: Draws | null, 
 /**
  * |x error|, m.
  */
