@@ -1182,7 +1182,11 @@ test('lesson "Three bytes at SF10": lean payloads send more packets and lower th
     assert.equal(col('lean_packets'), String(m.leanPackets), m.model);
     assert.equal(col('lean_time_on_air_s'), lean ? String(lean.timeOnAir) : '', m.model);
     assert.equal(col('lean_interval_s'), lean ? String(lean.interval) : '', m.model);
+    // The verdict's numbers, as the core paired them: this station against the lowest.
+    const v = m.p75VsLowest;
+    assert.deepEqual([col('lowest_p75_model'), col('p75_over_lowest'), col('p75_over_lowest_lo'), col('p75_over_lowest_hi')], v ? [v.lowest, String(v.ratio), String(v.interval[0]), String(v.interval[1])] : ['', '', '', ''], m.model);
   }
+  assert.equal(cli.results.filter((m) => !m.p75VsLowest).length, 1, 'one lowest station, compared with every other');
   assert.ok(cli.results.find((m) => m.model === 'imm').leanPackets > 0);
   // The table's picture for a slide keeps the second lines.
   const picture = (await downloaded(page, page.getByRole('button', { name: 'Download the results table as SVG' }))).toString('utf8');
