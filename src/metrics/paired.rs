@@ -1,6 +1,6 @@
-//! How sure a difference between two stations is: the ratio of their p75s (or p95s), with a 95 % interval
-//! from resampling the runs both were scored on together (a paired percentile bootstrap; Efron &
-//! Tibshirani 1993, ch. 13; `docs/reference.md` §12).
+//! How sure a difference between two stations is: the ratio of their p75s (or p95s), with a 95 %
+//! interval from resampling the runs both were scored on together (a paired percentile bootstrap;
+//! Efron & Tibshirani 1993, ch. 13; `docs/reference.md` §12).
 //!
 //! Stations of one run fly the same flights with the same seeds, so much of their errors' spread
 //! is shared: a hard flight is hard for every station. Intervals of each station alone carry that
@@ -22,6 +22,8 @@ use serde::{Deserialize, Serialize};
 #[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct Draws {
+    /// The seed the draws were made from (the run's own).
+    pub seed: u64,
     /// Runs drawn from (flights × seeds), runs without errors included.
     pub runs: usize,
     /// The p75 of each draw, m; `null` (NaN) where a draw holds none of the station's errors.
@@ -87,6 +89,7 @@ impl Draws {
             }
         });
         Some(Draws {
+            seed,
             runs: runs.len(),
             p75: stats.iter().map(|s| s[0]).collect(),
             p95: stats.iter().map(|s| s[1]).collect(),
@@ -94,7 +97,7 @@ impl Draws {
     }
 
     /// The 95 % interval of this station's p75 over `other`'s, draw by draw; `None` where the
-    /// two were not drawn from the same number of runs, or no draw holds both.
+    /// two were not drawn alike (another seed or number of runs), or no draw holds both.
     pub fn p75_ratio_interval(&self, other: &Draws) -> Option<[f64; 2]> {
         self.ratio_interval(other, &self.p75, &other.p75)
     }
@@ -107,7 +110,7 @@ impl Draws {
     /// The 2.5th to the 97.5th percentile of the ratios `mine[i] / theirs[i]` of the draws that
     /// hold both stations.
     fn ratio_interval(&self, other: &Draws, mine: &[f64], theirs: &[f64]) -> Option<[f64; 2]> {
-        if self.runs != other.runs || mine.len() != theirs.len() {
+        if (self.seed, self.runs) != (other.seed, other.runs) || mine.len() != theirs.len() {
             return None;
         }
         let mut ratios: Vec<f64> = mine
@@ -191,8 +194,7 @@ mod tests {
             .map(|k| if k == 0 { a[0].clone() } else { Vec::new() })
             .collect();
         assert!(Draws::of(&refs(&one), 5).is_none());
-        // Draws of another number of runs, or of another seed's draws, are not paired: those
-        // of fewer runs refuse; another seed pairs other draws and moves the interval.
+        // Draws of another number of runs, or of another seed, are other draws: not paired.
         assert!(draws(&a[..5], 5)
             .p75_ratio_interval(&draws(&b, 5))
             .is_none());
@@ -202,5 +204,6 @@ mod tests {
             draws(&b, 5).p75_ratio_interval(&a5)
         );
         assert_ne!(b5.p75, b6.p75);
+        assert!(b6.p75_ratio_interval(&a5).is_none());
     }
 }

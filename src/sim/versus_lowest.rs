@@ -85,6 +85,7 @@ mod tests {
             p75,
             count: usize::from(p75.is_finite()) * 100,
             draws: draws.map(|p75| Draws {
+                seed: 1,
                 runs: 4,
                 p95: p75.clone(),
                 p75,

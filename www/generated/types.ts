@@ -456,6 +456,10 @@ runs: number, };
 
 export type Draws = { 
 /**
+ * The seed the draws were made from (the run's own).
+ */
+seed: number, 
+/**
  * Runs drawn from (flights × seeds), runs without errors included.
  */
 runs: number, 
