@@ -1,6 +1,6 @@
 // The results panel: the table of statistics with their intervals, the verdict on which station
-// is best (only when the same runs, resampled together, say so), the baseline's differences, and the notes under the
-// table. Reads the page's state from the store.
+// is best (only when the same runs, resampled together, say so), the baseline's differences, and
+// the notes under the table. Reads the page's state from the store.
 import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
 import { adrFrom, adrName, caption, fmt, listed, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
@@ -244,7 +244,7 @@ function leanTitle(m: ModelResult): string {
 
 /** The station with the lowest p75 and every other station's p75 against it, paired over the
  * same runs (`p75VsLowest`, docs/reference.md §12); undefined where the core could pair none. */
-function versusLowest(r: SimReport): { lowest: ModelResult; others: ModelResult[] } | undefined {
+function pairedWithLowest(r: SimReport): { lowest: ModelResult; others: ModelResult[] } | undefined {
   const others = r.results.filter((m) => m.p75VsLowest !== null);
   const lowest = r.results.find((m) => m.model === others[0]?.p75VsLowest?.lowest);
   return lowest ? { lowest, others } : undefined;
@@ -254,7 +254,7 @@ function versusLowest(r: SimReport): { lowest: ModelResult; others: ModelResult[
  * station's is clearly higher (its ratio's 95 % interval wholly above 1); undefined when no
  * difference is clear. */
 function clearlyLowest(r: SimReport): ModelResult | undefined {
-  const v = versusLowest(r);
+  const v = pairedWithLowest(r);
   if (!v || v.others.length !== r.results.length - 1) return undefined;
   return v.others.every((m) => m.p75VsLowest!.interval[0] > 1) ? v.lowest : undefined;
 }
@@ -268,7 +268,7 @@ function ratioWords(m: ModelResult): string {
 /** Why no station is named best: the stations the runs cannot tell from the lowest, those
  * clearly above it, and those with too few runs with errors to compare. */
 function noClearLowest(r: SimReport, runs: string): string {
-  const v = versusLowest(r);
+  const v = pairedWithLowest(r);
   if (!v) return `Too few runs with errors to compare the stations (${runs}): no model is named best.`;
   const tied = v.others.filter((m) => m.p75VsLowest!.interval[0] <= 1);
   const above = v.others.filter((m) => !tied.includes(m));
