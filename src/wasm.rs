@@ -370,6 +370,31 @@ pub fn pool_delivery(params: JsValue) -> Result<JsValue, JsValue> {
     })
 }
 
+/// `{results}` as the page's pool sends them: `simulate` results of stations run apart, each
+/// read as its `model` and the fields `T` takes from it.
+#[derive(serde::Deserialize)]
+struct Stations<T> {
+    results: Vec<Named<T>>,
+}
+
+#[derive(serde::Deserialize)]
+struct Named<T> {
+    model: String,
+    #[serde(flatten)]
+    rest: T,
+}
+
+impl<T> Stations<T> {
+    /// Each station's model, parsed, with its fields; an unknown model is refused.
+    fn parsed(self) -> Result<Vec<(crate::StationModel, T)>, ApiError> {
+        self.results
+            .into_iter()
+            .map(|s| Ok((s.model.parse::<crate::StationModel>()?, s.rest)))
+            .collect::<Result<Vec<_>, crate::models::ModelError>>()
+            .map_err(|e| ApiError::Invalid(e.to_string()))
+    }
+}
+
 /// `versusLowest({results})` → for each of `simulate`'s results (each a `model` with its
 /// `error3d` and `draws`), its p75 against the lowest station's on the same runs resampled
 /// together (`{lowest, ratio, interval, runs}`) or `null` ([`versus_lowest`](crate::versus_lowest)):
@@ -382,30 +407,21 @@ pub fn versus_lowest(params: JsValue) -> Result<JsValue, JsValue> {
         count: usize,
     }
     #[derive(serde::Deserialize)]
-    #[serde(rename_all = "camelCase")]
-    struct Station {
-        model: String,
+    struct Paired {
         error3d: Error3d,
         draws: Option<crate::metrics::Draws>,
     }
-    #[derive(serde::Deserialize)]
-    struct Params {
-        results: Vec<Station>,
-    }
-    call(params, |p: Params| {
-        let stations = p
-            .results
+    call(params, |p: Stations<Paired>| {
+        let stations: Vec<crate::Contender> = p
+            .parsed()?
             .into_iter()
-            .map(|s| {
-                Ok(crate::Contender {
-                    model: s.model.parse::<crate::StationModel>()?,
-                    p75: s.error3d.p75.unwrap_or(f64::NAN),
-                    count: s.error3d.count,
-                    draws: s.draws,
-                })
+            .map(|(model, s)| crate::Contender {
+                model,
+                p75: s.error3d.p75.unwrap_or(f64::NAN),
+                count: s.error3d.count,
+                draws: s.draws,
             })
-            .collect::<Result<Vec<_>, crate::models::ModelError>>()
-            .map_err(|e| ApiError::Invalid(e.to_string()))?;
+            .collect();
         Ok(crate::versus_lowest(&stations))
     })
 }
@@ -417,24 +433,11 @@ pub fn versus_lowest(params: JsValue) -> Result<JsValue, JsValue> {
 /// says what the CLI says.
 #[wasm_bindgen(js_name = deliverySpread)]
 pub fn delivery_spread(params: JsValue) -> Result<JsValue, JsValue> {
-    #[derive(serde::Deserialize)]
-    struct Station {
-        model: String,
-        #[serde(flatten)]
-        delivery: crate::sim::Delivery,
-    }
-    #[derive(serde::Deserialize)]
-    struct Params {
-        results: Vec<Station>,
-    }
-    call(params, |p: Params| {
-        let stations = p
-            .results
-            .iter()
-            .map(|s| Ok((s.model.parse::<crate::StationModel>()?, &s.delivery)))
-            .collect::<Result<Vec<_>, crate::models::ModelError>>()
-            .map_err(|e| ApiError::Invalid(e.to_string()))?;
-        Ok(crate::DeliverySpread::of(stations))
+    call(params, |p: Stations<crate::sim::Delivery>| {
+        let stations = p.parsed()?;
+        Ok(crate::DeliverySpread::of(
+            stations.iter().map(|(m, d)| (*m, d)),
+        ))
     })
 }
 
