@@ -366,6 +366,18 @@ pub(crate) fn set_versus_lowest(results: &mut [ModelResult]) {
 }
 
 impl ModelResult {
+    /// The 95 % interval of this station's statistic over `other`'s, by `interval`
+    /// ([`Draws::p75_ratio_interval`] or [`Draws::p95_ratio_interval`]): their runs resampled
+    /// alike, which pairs them where both ran on the same flights and seeds (`docs/reference.md`
+    /// §12); `None` where either has too few runs, or they were drawn otherwise.
+    pub fn paired_interval(
+        &self,
+        other: &ModelResult,
+        interval: fn(&Draws, &Draws) -> Option<[f64; 2]>,
+    ) -> Option<[f64; 2]> {
+        interval(self.draws.as_ref()?, other.draws.as_ref()?)
+    }
+
     /// The duty-cycle interval the tables show, s: the mean over the packets sent
     /// (`meanInterval`, which with ADR spans the rates used), or the starting rate's where the
     /// drone sent nothing.

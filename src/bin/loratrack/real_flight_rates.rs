@@ -3,6 +3,7 @@
 //! A section of `docs/paper-reproduction.md` (`npm run reproduce`; docs/beyond-the-paper.md).
 
 use loratrack::api::{self, ApiError, MISSION_RATES};
+use loratrack::metrics::Draws;
 use loratrack::{
     ModelChoice, ModelKind, ModelResult, Prediction, Scenario, Simulator, StationModel,
 };
@@ -190,10 +191,7 @@ fn worst_beyond<'a>(
 /// (the same seeds of the same flight, so their draws pair), or nothing where either has too
 /// few runs with errors to be resampled.
 fn paired_words(m: &ModelResult, dr: &ModelResult) -> String {
-    m.draws
-        .as_ref()
-        .zip(dr.draws.as_ref())
-        .and_then(|(a, b)| a.p95_ratio_interval(b))
+    m.paired_interval(dr, Draws::p95_ratio_interval)
         .map_or(String::new(), |[lo, hi]| {
             format!(", {}'s; 95 % interval {lo:.2}–{hi:.2}", m.model.label())
         })

@@ -274,13 +274,7 @@ impl Paired {
 
 /// `p`'s errors against periodic sending's at the same airtime, by `interval`.
 fn paired(p: &SenderPoint, interval: fn(&Draws, &Draws) -> Option<[f64; 2]>) -> Paired {
-    Paired(
-        p.result
-            .draws
-            .as_ref()
-            .zip(p.equal_airtime.draws.as_ref())
-            .and_then(|(a, b)| interval(a, b)),
-    )
+    Paired(p.result.paired_interval(&p.equal_airtime, interval))
 }
 
 /// What the tables show, in words computed from them.
