@@ -90,7 +90,13 @@ export async function serveDist(dir = dist, stall) {
     }
     try {
       if (!statSync(file).isFile()) throw new Error('not a file');
-      res.writeHead(200, { 'content-type': TYPES[extname(file)] ?? 'application/octet-stream' });
+      // As a documentation host serves it (GitHub Pages: ten minutes): a page loaded again takes
+      // its scripts and its WebAssembly module's compiled code from the browser's caches.
+      res.writeHead(200, {
+        'content-type': TYPES[extname(file)] ?? 'application/octet-stream',
+        'cache-control': 'max-age=600',
+        'last-modified': statSync(file).mtime.toUTCString(),
+      });
       const body = readFileSync(file);
       const at = stall && rel === 'index.html' ? body.indexOf(stall.after) : -1;
       if (at >= 0) {
@@ -109,8 +115,10 @@ export async function serveDist(dir = dist, stall) {
   return { origin: `http://127.0.0.1:${port}`, url: `http://127.0.0.1:${port}${SUB_PATH}`, close: () => server.close() };
 }
 
-/** Launches headless chromium with the flags this closed network needs. */
-export async function launch() {
+/** Launches headless chromium with the flags this closed network needs. With `oneRenderer`, the
+ * pages of one site share one renderer process, as a user's tabs of one site come to once their
+ * browser runs short of processes (`usePlayground`). */
+export async function launch({ oneRenderer = false } = {}) {
   return chromium.launch({
     executablePath: '/usr/bin/chromium',
     args: [
@@ -127,6 +135,7 @@ export async function launch() {
       // beside the page being measured, for a popup no headless page shows. A user's browser
       // loads it once when it starts, not with the page.
       '--disable-features=WebUIOmniboxPopup,WebUIOmniboxAimPopup,WebUIOmniboxFullPopup',
+      ...(oneRenderer ? ['--process-per-site'] : []),
     ],
   });
 }

@@ -15,21 +15,22 @@ let keeper;
 /** Starts the server and the browser before this file's tests, closes each test's pages after it,
  * and stops both after the last test.
  *
- * The tests' pages share one browser context, in which a blank page stays open from the first
- * test to the last. Measured: a default load cost 3.7 core-seconds and 1.9 s in a context of its
- * own, 2.1 and 1.2 s here, and 3.4 core-s in a shared context whose last page closed between loads.
- * The likely reason: with a page open, Chromium hands the next page a renderer process that has
- * already compiled the page's code, where a fresh one spent ~0.9 s of background CPU compiling the
- * WebAssembly module's hot functions again (a trace of one cold load), more on the JavaScript, and
- * its own start. The page stores nothing (no cookies, no storage), so a test sees nothing of the
- * ones before it; the permissions a test grants are cleared after it. `npm run bench:page` times
- * cold loads, each in a fresh context. */
+ * The tests' pages share one browser context, and in it one renderer process (`launch`'s
+ * `oneRenderer`), in which the playground stays open, idle once drawn, from the first test to the
+ * last. Chromium otherwise starts a renderer for every new page, which compiles the page's
+ * JavaScript and its WebAssembly module again: measured over eight loads in a row, 1.55 core-s and
+ * 1.25 s a load so, 1.05 core-s and 0.9 s with the open playground holding the compiled module in
+ * the process the next page joins (and the server's caching headers). A renderer of its own per
+ * page gave no saving, nor did an open page of another process. The page stores nothing (no
+ * cookies, no storage), so a test sees nothing of the ones before it; the permissions a test grants
+ * are cleared after it. `npm run bench:page` times cold loads, each in a fresh context. */
 export function usePlayground() {
   before(async () => {
     server = await serveDist();
-    browser = await launch();
+    browser = await launch({ oneRenderer: true });
     context = await browser.newContext({ acceptDownloads: true });
     keeper = await context.newPage();
+    await keeper.goto(server.url);
   });
   // A test's pages close with it. Left open, each went on computing its remaining panels (the SF
   // chart, the whole set) in its two workers while the next tests ran, on the same two cores.

@@ -1076,8 +1076,10 @@ async function assertRanSeeds(page, seeds) {
 
 test('Repeat with … seeds asks for no more seeds than the core takes at these rates, and the run it starts is accepted', async () => {
   // 1000 Hz sensors and a 1 ms station step: one 81 s flight is 162 000 filter steps, six fit.
-  const { page, problems } = await open('?sensorRate=1000&step=0.001');
-  const max = nativeJson(['simulate', '--synthetic', '1', '--sensor-rate', '1000', '--step', '0.001']).config.maxSeeds;
+  // The limit is per station, and two are the fewest the offer is made for (DR and CTRA+, quicker
+  // than three).
+  const { page, problems } = await open('?sensorRate=1000&step=0.001&model=dr,ctra-plus');
+  const max = nativeJson(['simulate', '--synthetic', '1', '--sensor-rate', '1000', '--step', '0.001', '--model', 'dr,ctra-plus']).config.maxSeeds;
   assert.ok(max > 1 && max < 10, `maxSeeds ${max}`);
   const before = await tableHtml(page);
   await page.getByRole('button', { name: `Repeat with ${max} seeds` }).click();
@@ -1089,16 +1091,17 @@ test('Repeat with … seeds asks for no more seeds than the core takes at these 
 });
 
 test('a run too long only for its seeds offers as many as the core takes at these rates, and that run is accepted', async () => {
-  // 1000 Hz sensors and a 1 ms station step: one 81 s flight is 162 000 filter steps, six fit.
+  // 1000 Hz sensors and a 1 ms station step: one 81 s flight is 162 000 filter steps, six fit
+  // (per station: one runs them a third as long as three).
   const { page, problems } = await openPage(playground.context, new URL(playground.url).origin);
-  await page.goto(`${playground.url}?seeds=100&sensorRate=1000&step=0.001`);
-  const max = nativeJson(['simulate', '--synthetic', '1', '--sensor-rate', '1000', '--step', '0.001']).config.maxSeeds;
+  await page.goto(`${playground.url}?seeds=100&sensorRate=1000&step=0.001&model=dr`);
+  const max = nativeJson(['simulate', '--synthetic', '1', '--sensor-rate', '1000', '--step', '0.001', '--model', 'dr']).config.maxSeeds;
   await until(page, () => /cannot be simulated/.test(document.querySelector('#status')?.textContent ?? ''));
   assert.match(await page.locator('#status').textContent(), new RegExp(`at most ${max} seeds`));
   // An uploaded flight too long for the seeds is refused for the seeds, not as a bad file.
   const csv = join(scratchDir(), 'minute.csv');
   writeFileSync(csv, ['t,x,y,z', ...Array.from({ length: 601 }, (_, i) => `${(i / 10).toFixed(1)},${i / 2},0,20`)].join('\n'));
-  const fits = nativeJson(['simulate', '--trajectory', csv, '--sensor-rate', '1000', '--step', '0.001']).config.maxSeeds;
+  const fits = nativeJson(['simulate', '--trajectory', csv, '--sensor-rate', '1000', '--step', '0.001', '--model', 'dr']).config.maxSeeds;
   await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
   await page.getByLabel('CSV file').setInputFiles(csv);
   await page.getByRole('button', { name: `Use ${fits} seeds` }).waitFor();
