@@ -47,6 +47,13 @@ const RUST_INPUTS = ['Cargo.toml', 'Cargo.lock', 'build.rs', '.cargo', 'src', 't
 const NOT_RUST = ['tests/e2e', 'tests/unit', 'fuzz/target', 'fuzz/corpus', 'fuzz/artifacts'];
 /** What the fuzz suite reads: the crate and its fuzz targets and seeds (not its working corpus). */
 const FUZZ_INPUTS = [...RUST_INPUTS, 'fuzz'];
+/** The TypeScript tests that recompute, through the WebAssembly package, the numbers index.html's
+ * explanations and the README's JavaScript example cite: half a minute of simulations on each core,
+ * which a change to another page file need not repeat beside the browser suite. */
+const CITED = ['tests/unit/explanations.test.ts', 'tests/unit/readme.test.ts'];
+/** What they read: the core and the README (the Rust suites' inputs), the page's text, the module
+ * that wraps the package, and vitest's configuration and version. */
+const CITED_INPUTS = [...RUST_INPUTS, ...CITED, 'tests/unit/core.ts', 'index.html', 'www/loratrack.ts', 'vite.config.ts', 'tsconfig.json', 'package-lock.json'];
 
 /** Each suite is one or more commands run in order; the first failure fails the suite. */
 const suites = [
@@ -76,7 +83,8 @@ const BESIDE = {
   'build (wasm + page)': [['fuzz (nightly, 20 s per target)', 'node', ['scripts/fuzz.mjs', '20'], 'fuzz.log', FUZZ_INPUTS]],
   'clippy + wasm-bindgen-test (Node)': [
     ['type check', 'npm', ['run', 'typecheck'], 'typecheck.log'],
-    ['TypeScript unit tests (vitest)', 'npm', ['run', 'test:unit'], 'vitest.log'],
+    ['TypeScript unit tests (vitest)', 'npx', ['vitest', 'run', '--dir', 'tests/unit', ...CITED.flatMap((file) => ['--exclude', `**/${file.split('/').at(-1)}`])], 'vitest.log'],
+    ['numbers the page and README cite (vitest)', 'npx', ['vitest', 'run', ...CITED], 'vitest-cited.log', CITED_INPUTS],
   ],
 };
 
