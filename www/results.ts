@@ -273,12 +273,14 @@ function noClearLowest(r: SimReport, runs: string): string {
   const tied = v.others.filter((m) => m.p75VsLowest!.interval[0] <= 1);
   const above = v.others.filter((m) => !tied.includes(m));
   const unpaired = r.results.filter((m) => m !== v.lowest && !v.others.includes(m));
+  // Each ratio with its verb: "CTRA+’s 1.02× (0.99–1.05) as high is within chance".
+  const are = (ms: ModelResult[]) => `${listed(ms.map(ratioWords))} as high ${ms.length === 1 ? 'is' : 'are'}`;
   const parts = [
-    tied.length ? `${listed(tied.map(ratioWords))} ${MODEL_LABELS[v.lowest.model]}’s, which chance can give` : '',
-    above.length ? `${listed(above.map(ratioWords))} ${above.length === 1 ? 'lies' : 'lie'} clearly above` : '',
+    `${MODEL_LABELS[v.lowest.model]}’s is lowest${tied.length ? `, but ${are(tied)} within chance` : ''}`,
+    above.length ? `${are(above)} clearly above` : '',
     unpaired.length ? `${names(unpaired)} ${unpaired.length === 1 ? 'has' : 'have'} errors in too few runs to compare` : '',
   ].filter(Boolean);
-  return `No clear lowest p75: on the same runs resampled together, ${parts.join('; ')} (95 % intervals, ${runs}). More seeds or flights narrow them.`;
+  return `No clear lowest p75: ${parts.join('; ')} (the same runs resampled together: 95 % intervals, ${runs}). More seeds or flights narrow them.`;
 }
 
 /** How many runs (flights × seeds) the stations' p75 intervals rest on: "30 runs", or where a run
