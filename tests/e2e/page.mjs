@@ -18,12 +18,13 @@ let keeper;
  * The tests' pages share one browser context, and in it one renderer process (`launch`'s
  * `oneRenderer`), in which the playground stays open, idle once drawn, from the first test to the
  * last. Chromium otherwise starts a renderer for every new page, which compiles the page's
- * JavaScript and its WebAssembly module again: measured over eight loads in a row, 1.55 core-s and
- * 1.25 s a load so, 1.05 core-s and 0.9 s with the open playground holding the compiled module in
- * the process the next page joins (and the server's caching headers). A renderer of its own per
- * page gave no saving, nor did an open page of another process. The page stores nothing (no
- * cookies, no storage), so a test sees nothing of the ones before it; the permissions a test grants
- * are cleared after it. `npm run bench:page` times cold loads, each in a fresh context. */
+ * JavaScript and its WebAssembly module again. Measured over eight loads in a row (2026-12-04):
+ * 1.55 core-s and 1.25 s a load with a blank page kept open, as before; 1.47 core-s with the
+ * playground kept open but a renderer per page; 1.2 with one renderer and a document of the site
+ * kept open; 1.15 with the playground kept open, whose compiled module the next page finds in the
+ * process; 1.05 core-s and 0.9 s with the server's caching headers too. The page stores nothing
+ * (no cookies, no storage), so a test sees nothing of the ones before it; the permissions a test
+ * grants are cleared after it. `npm run bench:page` times cold loads, each in a fresh context. */
 export function usePlayground() {
   before(async () => {
     server = await serveDist();
