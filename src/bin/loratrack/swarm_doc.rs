@@ -224,7 +224,9 @@ fn crowd_markdown(crowd: &[Crowd]) -> String {
             );
         }
     }
-    s += "\n";
+    s += "\nEach verdict compares the means over the seeds, with a 95 % interval from the seeds resampled together \
+          (each seed's pair of runs kept whole, so a seed hard for both senders does not widen it; 400 draws): a sender \
+          is called better or worse only where that interval lies wholly below or above 1.\n\n";
     for g in crowd {
         let mean =
             |f: fn(&CrowdSeed) -> f64| g.seeds.iter().map(f).sum::<f64>() / g.seeds.len() as f64;
@@ -239,21 +241,26 @@ fn crowd_markdown(crowd: &[Crowd]) -> String {
             mean(|x| x.periodic.median_drone_p75),
             mean(|x| x.equal.median_drone_p75),
         );
+        let versus = |f: fn(&CrowdSeed) -> f64| Versus::of(g, f);
+        let (vs_periodic, vs_equal) = (
+            versus(|x| x.periodic.median_drone_p75),
+            versus(|x| x.equal.median_drone_p75),
+        );
         let p95 = mean(|x| x.error.error3d.p95) / mean(|x| x.equal.error3d.p95);
         s += &format!(
-            "- {}, {}: error-triggered median drone p75 {e:.1} m on average against periodic {p:.1} m ({:.2}×; lower in {} of {} seeds) \
-             and periodic at equal airtime {q:.1} m ({:.2}×; lower in {} of {}) — {}; its p95 {p95:.2}× that of periodic sending at equal airtime.\n",
+            "- {}, {}: error-triggered median drone p75 {e:.1} m on average against periodic {p:.1} m ({}; lower in {} of {} seeds) \
+             and periodic at equal airtime {q:.1} m ({}; lower in {} of {}) — {}; its p95 {p95:.2}× that of periodic sending at equal airtime.\n",
             g.schedule.name(),
             g.seeds
                 .first()
                 .map_or_else(String::new, |x| rule_label(&x.error.config.settings.sending)),
-            e / p,
+            vs_periodic.words(),
             wins(|x| x.periodic.median_drone_p75),
             g.seeds.len(),
-            e / q,
+            vs_equal.words(),
             wins(|x| x.equal.median_drone_p75),
             g.seeds.len(),
-            crowd_verdict(e / p, e / q)
+            crowd_verdict(vs_periodic.side(), vs_equal.side())
         );
     }
     s
@@ -351,12 +358,76 @@ fn rule_label(s: &loratrack::Sending) -> String {
 
 /// The verdict on the means over seeds: against periodic sending as the duty cycle allows
 /// (the bar a sender beyond the paper must clear: no worse) and at equal airtime.
-fn crowd_verdict(vs_periodic: f64, vs_equal: f64) -> &'static str {
-    match (vs_periodic <= 1.0, vs_equal <= 1.0) {
-        (true, true) if vs_periodic.max(vs_equal) <= 0.95 => "error-triggered sending wins against both",
-        (true, true) => "no worse than either, but a tie within the seeds' spread rather than a win: where most packets collide, the drone's silence after a lost packet costs what its saved packets gain",
-        (true, false) => "no worse than periodic sending, but periodic sending slowed to the same airtime does better: the packets it saves are not what helps",
-        (false, true) => "worse than periodic sending, though not than periodic sending at the same airtime",
-        (false, false) => "error-triggered sending is worse: a drone believes its lost packets arrived and stays silent",
+fn crowd_verdict(vs_periodic: Side, vs_equal: Side) -> &'static str {
+    use Side::{Above, Below, Level};
+    match (vs_periodic, vs_equal) {
+        (Below, Below) => "error-triggered sending wins against both",
+        (Below, Level) => "better than periodic sending; against periodic sending at the same airtime a tie within the seeds' spread",
+        (Level, Below) => "better than periodic sending at the same airtime; against periodic sending a tie within the seeds' spread",
+        (Level, Level) => "level with both within the seeds' spread, neither a win nor a loss: where most packets collide, the drone's silence after a lost packet costs what its saved packets gain",
+        (Below | Level, Above) => "no worse than periodic sending, but periodic sending slowed to the same airtime does better: the packets it saves are not what helps",
+        (Above, Below | Level) => "worse than periodic sending, though not than periodic sending at the same airtime",
+        (Above, Above) => "error-triggered sending is worse: a drone believes its lost packets arrived and stays silent",
+    }
+}
+
+/// Where a ratio's 95 % interval lies against 1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Side {
+    /// Wholly below 1: clearly lower.
+    Below,
+    /// Holding 1: the seeds cannot tell the two apart.
+    Level,
+    /// Wholly above 1: clearly higher.
+    Above,
+}
+
+/// Error-triggered sending's mean median-drone p75 over another sender's, with its 95 % interval
+/// from the seeds resampled together (`metrics::mean_ratio_interval`, drawn from the crowd's
+/// first seed): a hard seed is hard for both senders, and resampling the seeds' pairs whole keeps
+/// that shared spread out of the interval.
+struct Versus {
+    ratio: f64,
+    interval: Option<[f64; 2]>,
+}
+
+impl Versus {
+    fn of(g: &Crowd, other: fn(&CrowdSeed) -> f64) -> Self {
+        let mine: Vec<f64> = g.seeds.iter().map(|x| x.error.median_drone_p75).collect();
+        let theirs: Vec<f64> = g.seeds.iter().map(other).collect();
+        let seed = g
+            .seeds
+            .first()
+            .map_or(1, |x| x.periodic.config.settings.run.seed);
+        match loratrack::metrics::mean_ratio_interval(&mine, &theirs, seed) {
+            Some((ratio, interval)) => Self {
+                ratio,
+                interval: Some(interval),
+            },
+            None => Self {
+                ratio: mine.iter().sum::<f64>() / theirs.iter().sum::<f64>(),
+                interval: None,
+            },
+        }
+    }
+
+    /// "0.92×, 0.88–0.96": the ratio and its interval.
+    fn words(&self) -> String {
+        match self.interval {
+            Some([lo, hi]) => format!("{:.2}×, 95 % interval {lo:.2}–{hi:.2}", self.ratio),
+            None => format!("{:.2}×", self.ratio),
+        }
+    }
+
+    /// With one seed there is no interval: the ratio alone, against 1, as the table reads.
+    fn side(&self) -> Side {
+        let [lo, hi] = self.interval.unwrap_or([self.ratio; 2]);
+        if hi < 1.0 {
+            Side::Below
+        } else if lo > 1.0 {
+            Side::Above
+        } else {
+            Side::Level
+        }
     }
 }
