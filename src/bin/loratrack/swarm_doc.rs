@@ -285,7 +285,7 @@ fn budget_by_threshold(crowd: &[Crowd]) -> String {
         "\nThe budget rule by threshold (means over the seeds). A higher threshold spends less airtime, so \
          periodic sending slowed to the same airtime sends less too; the aim for a sender that knows it may be lost is a \
          p95 at most {P95_AIM}× that of periodic sending at equal airtime.\n\n\
-         | rule | airtime share | delivery, error-triggered / equal airtime | p75, error / periodic | p75, error / equal airtime | p95, error / equal airtime | seeds within the aim |\n\
+         | rule | airtime share | delivery, error-triggered / equal airtime | p75, error / periodic | p75, error / equal airtime | p95, error / equal airtime (95 % interval, the seeds resampled together) | seeds within the aim |\n\
          | --- | --- | --- | --- | --- | --- | --- |\n"
     );
     let mut within = Vec::new();
@@ -297,13 +297,20 @@ fn budget_by_threshold(crowd: &[Crowd]) -> String {
         let p95 = mean(&|x| x.error.error3d.p95) / mean(&|x| x.equal.error3d.p95);
         let share = mean(&|x| x.error.airtime / x.periodic.airtime);
         let rule = rule_label(&g.seeds[0].error.config.settings.sending);
+        let p95s = |f: fn(&CrowdSeed) -> f64| g.seeds.iter().map(f).collect::<Vec<f64>>();
+        let p95_interval = loratrack::metrics::mean_ratio_interval(
+            &p95s(|x| x.error.error3d.p95),
+            &p95s(|x| x.equal.error3d.p95),
+            g.seeds[0].periodic.config.settings.run.seed,
+        )
+        .map_or_else(String::new, |(_, [lo, hi])| format!(" ({lo:.2}–{hi:.2})"));
         let seeds_within = g
             .seeds
             .iter()
             .filter(|x| x.error.error3d.p95 <= P95_AIM * x.equal.error3d.p95)
             .count();
         s += &format!(
-            "| {rule} | {share:.2} | {:.2} / {:.2} | {:.2} | {:.2} | {p95:.2} | {seeds_within} of {} |\n",
+            "| {rule} | {share:.2} | {:.2} / {:.2} | {:.2} | {:.2} | {p95:.2}{p95_interval} | {seeds_within} of {} |\n",
             mean(&|x| x.error.delivery.delivery_ratio),
             mean(&|x| x.equal.delivery.delivery_ratio),
             e / mean(&|x| x.periodic.median_drone_p75),
