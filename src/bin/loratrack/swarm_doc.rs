@@ -241,7 +241,7 @@ fn crowd_markdown(crowd: &[Crowd]) -> String {
             mean(|x| x.periodic.median_drone_p75),
             mean(|x| x.equal.median_drone_p75),
         );
-        let versus = |f: fn(&CrowdSeed) -> f64| Versus::of(g, f);
+        let versus = |f: fn(&CrowdSeed) -> f64| Versus::of(g, |x| x.error.median_drone_p75, f);
         let (vs_periodic, vs_equal) = (
             versus(|x| x.periodic.median_drone_p75),
             versus(|x| x.equal.median_drone_p75),
@@ -294,30 +294,27 @@ fn budget_by_threshold(crowd: &[Crowd]) -> String {
             g.seeds.iter().map(f).sum::<f64>() / g.seeds.len() as f64
         };
         let e = mean(&|x| x.error.median_drone_p75);
-        let p95 = mean(&|x| x.error.error3d.p95) / mean(&|x| x.equal.error3d.p95);
+        let p95 = Versus::of(g, |x| x.error.error3d.p95, |x| x.equal.error3d.p95);
         let share = mean(&|x| x.error.airtime / x.periodic.airtime);
         let rule = rule_label(&g.seeds[0].error.config.settings.sending);
-        let p95s = |f: fn(&CrowdSeed) -> f64| g.seeds.iter().map(f).collect::<Vec<f64>>();
-        let p95_interval = loratrack::metrics::mean_ratio_interval(
-            &p95s(|x| x.error.error3d.p95),
-            &p95s(|x| x.equal.error3d.p95),
-            g.seeds[0].periodic.config.settings.run.seed,
-        )
-        .map_or_else(String::new, |(_, [lo, hi])| format!(" ({lo:.2}–{hi:.2})"));
+        let p95_interval = p95
+            .interval
+            .map_or_else(String::new, |[lo, hi]| format!(" ({lo:.2}–{hi:.2})"));
         let seeds_within = g
             .seeds
             .iter()
             .filter(|x| x.error.error3d.p95 <= P95_AIM * x.equal.error3d.p95)
             .count();
         s += &format!(
-            "| {rule} | {share:.2} | {:.2} / {:.2} | {:.2} | {:.2} | {p95:.2}{p95_interval} | {seeds_within} of {} |\n",
+            "| {rule} | {share:.2} | {:.2} / {:.2} | {:.2} | {:.2} | {:.2}{p95_interval} | {seeds_within} of {} |\n",
             mean(&|x| x.error.delivery.delivery_ratio),
             mean(&|x| x.equal.delivery.delivery_ratio),
             e / mean(&|x| x.periodic.median_drone_p75),
             e / mean(&|x| x.equal.median_drone_p75),
+            p95.ratio,
             g.seeds.len(),
         );
-        within.push((rule, share, p95));
+        within.push((rule, share, p95.ratio));
     }
     let (met, missed): (Vec<_>, Vec<_>) = within.iter().partition(|(_, _, p95)| *p95 <= P95_AIM);
     let list = |groups: Vec<&(String, f64, f64)>| {
@@ -389,19 +386,21 @@ enum Side {
     Above,
 }
 
-/// Error-triggered sending's mean median-drone p75 over another sender's, with its 95 % interval
-/// from the seeds resampled together (`metrics::mean_ratio_interval`, drawn from the crowd's
-/// first seed): a hard seed is hard for both senders, and resampling the seeds' pairs whole keeps
-/// that shared spread out of the interval.
+/// Error-triggered sending's mean of a statistic over another sender's (the median drone's p75,
+/// the swarm's p95), with its 95 % interval from the seeds resampled together
+/// (`metrics::mean_ratio_interval`, drawn from the crowd's first seed): a hard seed is hard for
+/// both senders, and resampling the seeds' pairs whole keeps that shared spread out of the
+/// interval.
 struct Versus {
     ratio: f64,
     interval: Option<[f64; 2]>,
 }
 
 impl Versus {
-    fn of(g: &Crowd, other: fn(&CrowdSeed) -> f64) -> Self {
-        let mine: Vec<f64> = g.seeds.iter().map(|x| x.error.median_drone_p75).collect();
-        let theirs: Vec<f64> = g.seeds.iter().map(other).collect();
+    /// `mine`'s mean over the crowd's seeds against `theirs`'.
+    fn of(g: &Crowd, mine: fn(&CrowdSeed) -> f64, theirs: fn(&CrowdSeed) -> f64) -> Self {
+        let mine: Vec<f64> = g.seeds.iter().map(mine).collect();
+        let theirs: Vec<f64> = g.seeds.iter().map(theirs).collect();
         let seed = g
             .seeds
             .first()
