@@ -437,3 +437,37 @@ impl Versus {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn versus(ratio: f64, interval: Option<[f64; 2]>) -> Versus {
+        Versus { ratio, interval }
+    }
+
+    #[test]
+    fn a_ratio_is_a_win_or_a_loss_only_where_its_interval_lies_wholly_on_one_side_of_1() {
+        // 1.02x with an interval holding 1 is level, not worse, as a 5 % margin once read it.
+        assert_eq!(versus(1.02, Some([0.98, 1.05])).side(), Side::Level);
+        assert_eq!(versus(0.97, Some([0.92, 1.02])).side(), Side::Level);
+        assert_eq!(versus(0.97, Some([0.95, 0.99])).side(), Side::Below);
+        assert_eq!(versus(1.03, Some([1.02, 1.04])).side(), Side::Above);
+        // One seed has no interval: the ratio alone decides.
+        assert_eq!(versus(0.9, None).side(), Side::Below);
+        assert_eq!(versus(1.0, None).side(), Side::Level);
+        assert_eq!(
+            crowd_verdict(Side::Level, Side::Below),
+            "better than periodic sending at the same airtime; against periodic sending a tie within the seeds' spread"
+        );
+    }
+
+    #[test]
+    fn a_ratio_reads_with_its_interval_where_it_has_one() {
+        assert_eq!(
+            versus(0.92, Some([0.89, 0.95])).words(),
+            "0.92×, 95 % interval 0.89–0.95"
+        );
+        assert_eq!(versus(0.92, None).words(), "0.92×");
+    }
+}
