@@ -229,13 +229,20 @@ test('an answer that arrives as a newer run starts is not shown over it: the sta
         super.onmessage = (e) => {
           handler(e);
           if (!(e.data && 'partial' in e.data) || ++partials !== Math.min(3, spawned)) return;
-          const sf = document.querySelector('#sf');
-          sf.value = '8';
-          sf.dispatchEvent(new Event('input', { bubbles: true }));
           const seen = () => ({ status: document.querySelector('#status').textContent, progress: !document.querySelector('#progress').hidden, partial: document.querySelector('[data-panel="results"]').classList.contains('partial') });
-          // Read once the page has had its next tasks (the deferred answer's among them), well before
-          // the new run's fresh workers can answer.
-          setTimeout(() => (window.__afterSwitch = seen()), 10);
+          const choose = () => {
+            // The form answers once the page's script (main.ts) has taken over the run boot.ts
+            // started: on a busy machine the workers, their module already compiled in this
+            // renderer, can answer before it has (the status still the HTML's "Loading…").
+            if (document.querySelector('#status').textContent === 'Loading…') return setTimeout(choose, 0);
+            const sf = document.querySelector('#sf');
+            sf.value = '8';
+            sf.dispatchEvent(new Event('input', { bubbles: true }));
+            // Read once the page has had its next tasks (the deferred answer's among them), well
+            // before the new run's fresh workers can answer.
+            setTimeout(() => (window.__afterSwitch = seen()), 10);
+          };
+          choose();
         };
       }
     };
