@@ -9,7 +9,10 @@ use super::report::{
 use super::sender::SenderKind;
 use super::station::{StationModel, StationTrack};
 use crate::lora::DataRate;
-use crate::metrics::{bootstrap_sorted, sort_total, Consistency, Draws, Summary, WholeFlightError};
+use crate::metrics::{
+    bootstrap_sorted, sort_total, Consistency, Draws, SeedSpan, Summary, WholeFlightDraws,
+    WholeFlightError,
+};
 use crate::models::ModelKind;
 use std::collections::BTreeMap;
 
@@ -25,8 +28,11 @@ pub(crate) struct Pooled {
     e3: Vec<f64>,
     /// Where each run's 3D errors end in `e3`: the units the intervals resample.
     run_ends: Vec<usize>,
-    /// Evaluation times with no packet yet, summed over the runs.
-    untracked: usize,
+    /// Evaluation times with no packet yet, run by run.
+    untracked: Vec<usize>,
+    /// Each seed's runs (`run_ends` indices), once a seed's flights are all added: the units the
+    /// whole-flight draws resample.
+    seeds: Vec<SeedSpan>,
     ex: Vec<f64>,
     ey: Vec<f64>,
     ez: Vec<f64>,
@@ -148,7 +154,7 @@ impl Pooled {
             append(pool, run);
         }
         self.run_ends.push(self.e3.len());
-        self.untracked += st.untracked;
+        self.untracked.push(st.untracked);
         self.consistency.merge(&st.consistency);
         if let Some(p) = st.probability_sum {
             let sum = self.probability_sum.get_or_insert([0.0; 3]);
@@ -156,6 +162,12 @@ impl Pooled {
                 sum[k] += p[k];
             }
         }
+    }
+
+    /// Marks the runs added since the last call (or the first run) as one seed's flights.
+    pub fn end_seed(&mut self) {
+        let first = self.seeds.last().map_or(0, |s| s.end);
+        self.seeds.push(first..self.run_ends.len());
     }
 
     /// The energy of what was added.
@@ -242,6 +254,9 @@ impl Pooled {
         let ci95 = refs
             .as_ref()
             .and_then(|refs| bootstrap_sorted(refs, &self.e3, seed));
+        let whole_flight_draws = refs.as_ref().and_then(|refs| {
+            WholeFlightDraws::of(refs, &self.e3, &self.untracked, &self.seeds, seed)
+        });
         let draws = refs.and_then(|refs| Draws::of_sorted(&refs, &self.e3, seed));
         let mut result = ModelResult {
             model,
@@ -260,7 +275,8 @@ impl Pooled {
             lean_frame,
             airtime,
             error3d: s3,
-            whole_flight: WholeFlightError::of_sorted(&self.e3, self.untracked),
+            whole_flight: WholeFlightError::of_sorted(&self.e3, self.untracked.iter().sum()),
+            whole_flight_draws,
             caveats: Caveats::of(self.received, self.sent, self.sender),
             ci95,
             // Set across the stations, once all are pooled (versus_lowest).

@@ -7,7 +7,7 @@ use super::scenario::Scenario;
 use super::station::StationModel;
 use super::versus_lowest::{versus_lowest, Contender, VersusLowest};
 use crate::lora::SX1276_SLEEP_CURRENT_MA;
-use crate::metrics::{Boxplot, Draws, Intervals, Summary, WholeFlightError};
+use crate::metrics::{Boxplot, Draws, Intervals, Summary, WholeFlightDraws, WholeFlightError};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -282,6 +282,11 @@ pub struct ModelResult {
     /// The share of the flight time with a packet, and the 3D error's percentiles over the
     /// whole flight time (time before a flight's first packet counting as the largest error).
     pub whole_flight: WholeFlightError,
+    /// `wholeFlight`'s p75 in each bootstrap draw of whole seeds, from which `sweep --distances`
+    /// pairs an ADR mode with the best fixed rate (`docs/reference.md` §12); `None` for a single
+    /// seed. Not serialised: the documents pair them in the process that ran them.
+    #[serde(skip)]
+    pub whole_flight_draws: Option<WholeFlightDraws>,
     /// What these numbers rest on, where a reader could be misled: too few packets received, an
     /// error-triggered drone whose packets were lost ([`Caveats`]).
     pub caveats: Caveats,

@@ -710,6 +710,7 @@ fn pool(
                 }
                 recoveries += run.recoveries;
             }
+            pooled.end_seed();
         }
         gathered.push((station, pooled, counted, recoveries));
     }

@@ -613,6 +613,9 @@ fn the_adr_document_pools_the_seeds_it_names_and_judges_every_adr_row() {
         // Judged at the one distance, on the whole flight time.
         assert!(lines[0].contains("at 2000 m"), "{}", lines[0]);
     }
+    // Two seeds give each ratio an interval from drawing them again: "1.00× (0.97–1.02) at".
+    let ratio = first_ratio_interval(findings).expect("a ratio with its interval");
+    assert!(ratio.0 <= ratio.1 && !ratio.1.is_nan(), "{findings}");
     // Two seeds fly the set twice: about twice the packets of one (the random start of each
     // run's duty-cycle phase moves a packet or two).
     let packets = |seeds: &str| {
@@ -623,6 +626,18 @@ fn the_adr_document_pools_the_seeds_it_names_and_judges_every_adr_row() {
     };
     let (one, two) = (packets("1"), packets("2"));
     assert!(two.abs_diff(2 * one) <= 4, "{one} then {two}");
+}
+
+/// The first "1.00× (0.97–1.02)" in `text`: the interval's ends (∞ read as infinity).
+fn first_ratio_interval(text: &str) -> Option<(f64, f64)> {
+    let (_, rest) = text.split_once("× (")?;
+    let (inside, _) = rest.split_once(')')?;
+    let (lo, hi) = inside.split_once('–')?;
+    let end = |s: &str| match s {
+        "∞" => Some(f64::INFINITY),
+        s => s.parse().ok(),
+    };
+    Some((end(lo)?, end(hi)?))
 }
 
 #[test]

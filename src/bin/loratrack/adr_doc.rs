@@ -58,6 +58,33 @@ fn vs_best_fixed(r: &DistanceSweepReport, run: &DistanceRun) -> Option<f64> {
     Some(flight_p75(run).map_or(f64::INFINITY, |p| p / best))
 }
 
+/// The 95 % interval of `run`'s p75 over the best fixed rate's at its distance, both over the
+/// flight time, from resampling the seeds of both together (`None` for one seed).
+fn vs_best_fixed_interval(r: &DistanceSweepReport, run: &DistanceRun) -> Option<[f64; 2]> {
+    let best = best_fixed(r, run.distance)?
+        .result
+        .whole_flight_draws
+        .as_ref()?;
+    run.result
+        .whole_flight_draws
+        .as_ref()?
+        .p75_ratio_interval(best)
+}
+
+/// " (0.98–1.13)": a ratio's interval, ∞ where some draws leave the p75 in the untracked time.
+fn interval_words(interval: Option<[f64; 2]>) -> String {
+    let end = |v: f64| {
+        if v.is_infinite() {
+            "∞".to_string()
+        } else {
+            format!("{v:.2}")
+        }
+    };
+    interval.map_or(String::new(), |[lo, hi]| {
+        format!(" ({}–{})", end(lo), end(hi))
+    })
+}
+
 /// A percentile over the flight time, or "—" where the untracked time reaches it.
 fn metres(v: Option<f64>) -> String {
     v.map_or("—".to_string(), |v| format!("{v:.2}"))
@@ -187,7 +214,7 @@ fn first_prediction(runs: &[Blocks]) -> String {
          time after it, and p50, p75 and p95 are over the whole flight time, a moment without any packet counting as \
          an error larger than all others (docs/reference.md §12; — where the untracked time reaches the percentile). \
          Without that, a rate that reaches the station in one flight of ten could show the smallest p75. `p75 / best \
-         fixed` compares with the fixed rate of lowest p75 at that distance.\n\n",
+         fixed` compares with the fixed rate of lowest p75 at that distance.{}\n\n",
         model.label(),
         base.station.prediction.name(),
         link_words(base),
@@ -201,7 +228,8 @@ fn first_prediction(runs: &[Blocks]) -> String {
         TRACKING_WINDOW,
         100.0 * TRACKING_HYSTERESIS,
         lone.limit,
-        lone.delay
+        lone.delay,
+        interval_setting(base)
     );
     s += &distance_rows(r, true);
     s += &adr_findings(r, base);
@@ -209,6 +237,20 @@ fn first_prediction(runs: &[Blocks]) -> String {
         s += &held_out_findings(r, b);
     }
     s
+}
+
+/// What the intervals beside the verdicts' ratios are, where the seeds give them.
+fn interval_setting(base: &Scenario) -> String {
+    if base.run.seeds < 2 {
+        return String::new();
+    }
+    format!(
+        " Below the table each ratio carries its 95 % interval from resampling the {} seeds together, the ADR row's \
+         and the best fixed rate's alike, each seed a whole pass over the set, which ADR carries from flight to \
+         flight (a paired bootstrap, docs/reference.md §12; ∞ where some draws leave the row's p75 in the \
+         untracked time): a ratio above 1.05 whose interval reaches 1.05 may be the seeds' luck.",
+        base.run.seeds
+    )
 }
 
 /// The distances the sweep ran, m, in its order (its runs come grouped by distance).
@@ -301,10 +343,32 @@ fn adr_findings(r: &DistanceSweepReport, base: &Scenario) -> String {
          too fast for the link, as at SF7 at 5 and 7 km, costs the device's back-off before the network hears it \
          at all ({} silent uplinks a rate). A back-off that short also steps the drone down when two requests in \
          a row go unanswered on a link that still delivers most frames (at 5 km, DR3's two in three): the \
-         network brings it back with the next frame it hears, one slow interval later.\n\n{}",
+         network brings it back with the next frame it hears, one slow interval later.{}\n\n{}",
         adr_verdicts(r),
         lone.limit + lone.delay,
+        edge_of_tracking(r),
         lorawan_explained(r, base)
+    )
+}
+
+/// Where the best fixed rate has a packet for less than 80 % of the flight time, its p75 lies
+/// near the untracked quarter: a few flights' first packets decide it, and the intervals say so.
+fn edge_of_tracking(r: &DistanceSweepReport) -> String {
+    let edge: Vec<String> = sweep_distances(r)
+        .into_iter()
+        .filter_map(|d| {
+            let tracked = best_fixed(r, d)?.result.whole_flight.tracked;
+            (tracked < 0.8).then(|| format!("{:.1} % at {d:.0} m", 100.0 * tracked))
+        })
+        .collect();
+    if edge.is_empty() {
+        return String::new();
+    }
+    format!(
+        " Where even the best fixed rate has a packet for less than 80 % of the flight time ({}), its p75 lies \
+         near the untracked quarter, so a few flights' first packets move it far: the ratios' intervals there \
+         are wide, and a ratio is a weak verdict.",
+        edge.join(", ")
     )
 }
 
@@ -332,9 +396,15 @@ fn adr_verdicts(r: &DistanceSweepReport) -> String {
             let tracked = 100.0 * x.result.whole_flight.tracked;
             match (best_fixed(r, d), vs_best_fixed(r, x)) {
                 (Some(_), Some(v)) if v.is_finite() => {
-                    parts.push(format!("{v:.2}× at {d:.0} m"));
+                    let interval = vs_best_fixed_interval(r, x);
+                    parts.push(format!("{v:.2}×{} at {d:.0} m", interval_words(interval)));
                     if v > 1.05 {
-                        misses.push(format!("{d:.0} m"));
+                        misses.push(match interval {
+                            Some([lo, _]) if lo <= 1.05 => {
+                                format!("{d:.0} m (though its interval reaches 1.05)")
+                            }
+                            _ => format!("{d:.0} m"),
+                        });
                     }
                 }
                 (Some(b), _) => {
