@@ -11,6 +11,8 @@ let server;
 let browser;
 let context;
 let keeper;
+/** What the kept-open playground reported: console errors, uncaught exceptions, foreign requests. */
+let keeperProblems = [];
 
 /** Starts the server and the browser before this file's tests, closes each test's pages after it,
  * and stops both after the last test.
@@ -30,7 +32,7 @@ export function usePlayground() {
     server = await serveDist();
     browser = await launch({ oneRenderer: true });
     context = await browser.newContext({ acceptDownloads: true });
-    keeper = await context.newPage();
+    ({ page: keeper, problems: keeperProblems } = await openPage(context, server.origin));
     await keeper.goto(server.url);
   });
   // A test's pages close with it. Left open, each went on computing its remaining panels (the SF
@@ -42,9 +44,13 @@ export function usePlayground() {
     ]);
     await context?.clearPermissions();
   });
+  // The kept-open playground is a page too: whatever it reported from its load to the file's end
+  // fails the file, as a test's own page's problems fail the test.
   after(async () => {
+    const problems = [...keeperProblems];
     await browser?.close();
     server?.close();
+    assert.deepEqual(problems, [], 'the playground kept open beside the tests reported problems');
   });
 }
 
