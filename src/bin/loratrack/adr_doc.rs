@@ -248,7 +248,7 @@ fn interval_setting(base: &Scenario) -> String {
         " Below the table each ratio carries its 95 % interval from resampling the {} seeds together, the ADR row's \
          and the best fixed rate's alike, each seed a whole pass over the set, which ADR carries from flight to \
          flight (a paired bootstrap, docs/reference.md §12; ∞ where some draws leave the row's p75 in the \
-         untracked time): a ratio above 1.05 whose interval reaches 1.05 may be the seeds' luck.",
+         untracked time): a ratio above 1.05 whose interval reaches down to 1.05 may be the seeds' luck.",
         base.run.seeds
     )
 }
@@ -401,7 +401,7 @@ fn adr_verdicts(r: &DistanceSweepReport) -> String {
                     if v > 1.05 {
                         misses.push(match interval {
                             Some([lo, _]) if lo <= 1.05 => {
-                                format!("{d:.0} m (though its interval reaches 1.05)")
+                                format!("{d:.0} m (though its interval reaches down to 1.05)")
                             }
                             _ => format!("{d:.0} m"),
                         });
