@@ -28,6 +28,24 @@ pub struct DistanceRun {
     pub delivery: f64,
     /// The result.
     pub result: ModelResult,
+    /// This row's p75 over the whole flight time against the best fixed rate's at its distance
+    /// ([`DistanceSweepReport::best_fixed`]); `null` where no fixed rate has such a p75 there.
+    pub p75_vs_best_fixed: Option<VersusBestFixed>,
+}
+
+/// A row's whole-flight p75 over the best fixed rate's at the same distance.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct VersusBestFixed {
+    /// The best fixed rate's data rate (0–6).
+    pub dr: u8,
+    /// The ratio; infinite (`null` in JSON) where this row has no whole-flight p75: a quarter of
+    /// its flight time or more had no packet.
+    pub ratio: f64,
+    /// Its 95 % interval from resampling the seeds together for both rows
+    /// ([`WholeFlightDraws`](crate::metrics::WholeFlightDraws), `docs/reference.md` §12); an
+    /// end of `null` in JSON is infinite; `null` for a single seed or where this row has no p75.
+    pub interval: Option<[f64; 2]>,
 }
 
 /// The output of `sweep --distances`.
@@ -39,6 +57,51 @@ pub struct DistanceSweepReport {
     /// Every run, distance by distance: DR0..DR6, then `lorawan` and `tracking` from `base`'s
     /// data rate, then both from DR0.
     pub runs: Vec<DistanceRun>,
+}
+
+impl DistanceSweepReport {
+    /// The fixed data rate of lowest whole-flight p75 at `distance` (time before a flight's
+    /// first packet counted as the largest error): the rate an ADR mode is judged against.
+    pub fn best_fixed(&self, distance: f64) -> Option<&DistanceRun> {
+        self.runs
+            .iter()
+            .filter(|x| x.distance == distance && x.dr.is_some())
+            .filter_map(|x| Some((x, x.result.whole_flight.p75?)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(x, _)| x)
+    }
+
+    /// Each row's [`VersusBestFixed`], once every row of its distance has run.
+    fn judge(&mut self) {
+        let judged: Vec<Option<VersusBestFixed>> = self
+            .runs
+            .iter()
+            .map(|run| {
+                let best = self.best_fixed(run.distance)?;
+                let best_p75 = best.result.whole_flight.p75?;
+                let draws = (
+                    &run.result.whole_flight_draws,
+                    &best.result.whole_flight_draws,
+                );
+                let interval = match (run.result.whole_flight.p75, draws) {
+                    (Some(_), (Some(mine), Some(theirs))) => mine.p75_ratio_interval(theirs),
+                    _ => None,
+                };
+                Some(VersusBestFixed {
+                    dr: best.dr?,
+                    ratio: run
+                        .result
+                        .whole_flight
+                        .p75
+                        .map_or(f64::INFINITY, |p| p / best_p75),
+                    interval,
+                })
+            })
+            .collect();
+        for (run, v) in self.runs.iter_mut().zip(judged) {
+            run.p75_vs_best_fixed = v;
+        }
+    }
 }
 
 /// Runs `base` (its first model) at each distance with each fixed data rate DR0–DR6 and with
@@ -92,11 +155,14 @@ pub fn sweep_distances(
                 start: (!fixed).then_some(dr.index()),
                 delivery: result.delivery.delivery_ratio,
                 result,
+                p75_vs_best_fixed: None,
             });
         }
     }
-    Ok(DistanceSweepReport {
+    let mut report = DistanceSweepReport {
         seed: base.run.seed,
         runs,
-    })
+    };
+    report.judge();
+    Ok(report)
 }

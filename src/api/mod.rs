@@ -18,7 +18,9 @@ mod simulate;
 mod swarm;
 
 pub use airtime::{airtime, AirtimeParams, AirtimeReport};
-pub use distances::{sweep_distances, DistanceRun, DistanceSweepReport, ADR_DISTANCES};
+pub use distances::{
+    sweep_distances, DistanceRun, DistanceSweepReport, VersusBestFixed, ADR_DISTANCES,
+};
 pub use error::{clean_message, ApiError, MAX_ECHO_CHARS};
 pub use link_budget::{link_budget, LinkBudgetParams, LinkBudgetReport, SfBudget};
 pub use misread::{explain_serde_error, misread_setting};

@@ -641,6 +641,43 @@ fn first_ratio_interval(text: &str) -> Option<(f64, f64)> {
 }
 
 #[test]
+fn the_distance_sweep_judges_every_row_against_the_best_fixed_rate_in_its_json() {
+    let r = json(&["sweep", "--distances", "2000", "--seeds", "2", "--json"]);
+    let runs = r["runs"].as_array().expect("runs");
+    let p75 = |run: &serde_json::Value| run["result"]["wholeFlight"]["p75"].as_f64();
+    let best = runs
+        .iter()
+        .filter(|run| run["dr"].is_u64())
+        .filter_map(|run| Some((run, p75(run)?)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .expect("a fixed rate with a p75 at 2 km");
+    for run in runs {
+        let v = &run["p75VsBestFixed"];
+        assert_eq!(v["dr"], best.0["dr"], "{v}");
+        match p75(run) {
+            // Its ratio, and an interval holding it, from the same two seeds drawn alike.
+            Some(p) => {
+                let ratio = v["ratio"].as_f64().expect("a ratio");
+                assert!((ratio - p / best.1).abs() < 1e-12, "{v}");
+                let (lo, hi) = (
+                    v["interval"][0].as_f64().unwrap(),
+                    v["interval"][1].as_f64(),
+                );
+                assert!(lo <= ratio && hi.is_none_or(|hi| ratio <= hi), "{v}");
+            }
+            // No p75 of its own: an infinite ratio, written null, and no interval.
+            None => assert!(v["ratio"].is_null() && v["interval"].is_null(), "{v}"),
+        }
+    }
+    // The best fixed rate against itself: 1, with an interval of [1, 1].
+    assert_eq!(best.0["p75VsBestFixed"]["ratio"].as_f64(), Some(1.0));
+    assert_eq!(
+        best.0["p75VsBestFixed"]["interval"],
+        serde_json::json!([1.0, 1.0])
+    );
+}
+
+#[test]
 fn held_out_judges_the_adr_rows_again_on_the_next_block_of_seeds() {
     let verdicts = |md: &str, after: &str| -> Vec<String> {
         md.split(after)

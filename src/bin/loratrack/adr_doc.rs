@@ -2,7 +2,7 @@
 //! docs/adr.md.
 
 use crate::doc_cells::{link_args, link_words, pooled_seeds, rate_name, seeds_words};
-use loratrack::api::{DistanceRun, DistanceSweepReport};
+use loratrack::api::{DistanceRun, DistanceSweepReport, VersusBestFixed};
 use loratrack::{
     tracking_ack_limits, AdrMode, Scenario, ADR_ACK_DELAY, ADR_ACK_LIMIT, DEFAULT_ADR_HISTORY,
     DEFAULT_ADR_MARGIN_DB, TRACKING_HYSTERESIS, TRACKING_WINDOW,
@@ -43,34 +43,6 @@ fn fixed_at(r: &DistanceSweepReport, distance: f64) -> impl Iterator<Item = &Dis
         .filter(move |x| x.distance == distance && x.dr.is_some())
 }
 
-/// The fixed data rate of lowest p75 over the flight time at `distance`.
-fn best_fixed(r: &DistanceSweepReport, distance: f64) -> Option<&DistanceRun> {
-    fixed_at(r, distance)
-        .filter_map(|x| Some((x, flight_p75(x)?)))
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(x, _)| x)
-}
-
-/// `run`'s p75 over the best fixed rate's at its distance, both over the flight time; infinite
-/// when `run` left a quarter of the time or more untracked.
-fn vs_best_fixed(r: &DistanceSweepReport, run: &DistanceRun) -> Option<f64> {
-    let best = flight_p75(best_fixed(r, run.distance)?)?;
-    Some(flight_p75(run).map_or(f64::INFINITY, |p| p / best))
-}
-
-/// The 95 % interval of `run`'s p75 over the best fixed rate's at its distance, both over the
-/// flight time, from resampling the seeds of both together (`None` for one seed).
-fn vs_best_fixed_interval(r: &DistanceSweepReport, run: &DistanceRun) -> Option<[f64; 2]> {
-    let best = best_fixed(r, run.distance)?
-        .result
-        .whole_flight_draws
-        .as_ref()?;
-    run.result
-        .whole_flight_draws
-        .as_ref()?
-        .p75_ratio_interval(best)
-}
-
 /// " (0.98–1.13)": a ratio's interval, ∞ where some draws leave the p75 in the untracked time.
 fn interval_words(interval: Option<[f64; 2]>) -> String {
     let end = |v: f64| {
@@ -98,8 +70,8 @@ fn distance_rows(r: &DistanceSweepReport, markdown: bool) -> String {
     };
     for run in &r.runs {
         let e = &run.result.whole_flight;
-        let vs = match vs_best_fixed(r, run) {
-            Some(v) if v.is_finite() => format!("{v:.2}"),
+        let vs = match run.p75_vs_best_fixed {
+            Some(v) if v.ratio.is_finite() => format!("{:.2}", v.ratio),
             _ => "—".to_string(),
         };
         let cells = [
@@ -295,7 +267,7 @@ fn block_verdicts(lead: &str, r: &DistanceSweepReport) -> String {
     let best: Vec<String> = sweep_distances(r)
         .iter()
         .map(
-            |&d| match best_fixed(r, d).or_else(|| most_tracked_fixed(r, d)) {
+            |&d| match r.best_fixed(d).or_else(|| most_tracked_fixed(r, d)) {
                 Some(b) => format!("{d:.0} m {}, {}", distance_label(b), p75_phrase(b)),
                 None => format!("{d:.0} m none"),
             },
@@ -357,7 +329,7 @@ fn edge_of_tracking(r: &DistanceSweepReport) -> String {
     let edge: Vec<String> = sweep_distances(r)
         .into_iter()
         .filter_map(|d| {
-            let tracked = best_fixed(r, d)?.result.whole_flight.tracked;
+            let tracked = r.best_fixed(d)?.result.whole_flight.tracked;
             (tracked < 0.8).then(|| format!("{:.1} % at {d:.0} m", 100.0 * tracked))
         })
         .collect();
@@ -394,9 +366,14 @@ fn adr_verdicts(r: &DistanceSweepReport) -> String {
         {
             let d = x.distance;
             let tracked = 100.0 * x.result.whole_flight.tracked;
-            match (best_fixed(r, d), vs_best_fixed(r, x)) {
-                (Some(_), Some(v)) if v.is_finite() => {
-                    let interval = vs_best_fixed_interval(r, x);
+            let vs = x.p75_vs_best_fixed.filter(|v| v.ratio.is_finite());
+            match (r.best_fixed(d), vs) {
+                (
+                    Some(_),
+                    Some(VersusBestFixed {
+                        ratio: v, interval, ..
+                    }),
+                ) => {
                     parts.push(format!("{v:.2}×{} at {d:.0} m", interval_words(interval)));
                     if v > 1.05 {
                         misses.push(match interval {
@@ -477,7 +454,7 @@ fn lorawan_explained(r: &DistanceSweepReport, base: &Scenario) -> String {
         .iter()
         .filter(|x| x.adr == AdrMode::Lorawan && x.start == Some(start))
         .filter_map(|x| {
-            let b = best_fixed(r, x.distance)?;
+            let b = r.best_fixed(x.distance)?;
             Some(format!(
                 "at {:.0} m it delivers {:.1} % for {} where the best fixed rate, {}, delivers {:.1} % for {}",
                 x.distance,
