@@ -9,6 +9,19 @@ import { SimulationPool } from './pool';
 import { simulateRequest } from './state';
 import { store } from './store';
 
+/** The settings a person changed in the form before main.ts took over, by control name, with
+ * the value (or, for a checkbox, the state) each was left at: the form works as soon as the HTML
+ * is parsed, and main.ts would otherwise write the link's settings over such a choice without a
+ * word. */
+export const changedEarly = new Map<string, string | boolean>();
+const noteEarly = (e: Event) => {
+  // As form.ts `field` finds a setting's control: by its name, or its id where it has none.
+  const el = e.target as HTMLInputElement | HTMLSelectElement | null;
+  const name = el?.name || el?.id;
+  if (el && name) changedEarly.set(name, el instanceof HTMLInputElement && el.type === 'checkbox' ? el.checked : el.value);
+};
+for (const type of ['input', 'change']) document.getElementById('controls')?.addEventListener(type, noteEarly);
+
 /** The page's worker pool, one worker per core. */
 export const pool = new SimulationPool();
 // An uploaded flight is never in a link: such a page waits for the file.

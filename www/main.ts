@@ -1,7 +1,7 @@
 // The playground's wiring: reads the form, asks the worker pool to simulate, hands the numbers
 // to the panels that draw them. The state lives in ./store, the form in ./form, the results
 // table in ./results, embeds in ./embed, presentation mode in ./present.
-import { pool } from './boot';
+import { changedEarly, pool } from './boot';
 import { runSwarms, spawnWorker, type SwarmRun } from './pool';
 import { linkBudget, load, MODEL_LABELS, settingOf, stationsOf, valueThatFits, type ModelName, type SimReport, type SimulateParams, type SwarmParams } from './loratrack';
 import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './charts/colors';
@@ -1145,6 +1145,7 @@ linkDocs(document.body);
 
 // ---- start -------------------------------------------------------------------------------------
 writeControls(store.settings);
+keepEarlyChoices();
 // The form is the truth: a value the slider cannot show (a distance between its steps) is what it shows.
 const shown = readControls().next;
 if (shown.distance !== store.settings.distance) {
@@ -1152,6 +1153,23 @@ if (shown.distance !== store.settings.distance) {
   store.settings = shown;
 }
 renderLessonChanges();
+/** A setting changed in the form before this script ran (boot.ts `changedEarly`) keeps the value
+ * chosen, the others show the link's; where the choices together are not valid, the link's stand. */
+function keepEarlyChoices(): void {
+  if (!changedEarly.size) return;
+  for (const [name, value] of changedEarly) {
+    const el = field(name);
+    if (!el) continue;
+    if (typeof value === 'boolean') (el as HTMLInputElement).checked = value;
+    else el.value = value;
+  }
+  const { next, errors } = readControls();
+  if (!errors.length) {
+    store.settings = next;
+    history.replaceState(null, '', `?${pageQuery()}`);
+  }
+  writeControls(store.settings);
+}
 /** Adds a sentence to the notices at the top of the settings (and of an embed). */
 function showNotice(text: string): void {
   if (text) store.notices.push(text);

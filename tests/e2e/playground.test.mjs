@@ -261,6 +261,29 @@ test('an answer that arrives as a newer run starts is not shown over it: the sta
   assert.deepEqual(problems, []);
 });
 
+test('a setting chosen before the page’s script runs is kept, simulated and put in the link', async () => {
+  const { page, problems } = await openPage(playground.context, new URL(playground.url).origin);
+  // main.ts held back, as on a slow phone: the form, parsed with the HTML, already works.
+  let release;
+  const held = new Promise((resolve) => (release = resolve));
+  await page.route(/\/assets\/main-[^/]*\.js$/, async (route) => {
+    await held;
+    await route.continue();
+  });
+  await page.goto(playground.url);
+  await page.selectOption('#sf', '9');
+  assert.equal(await page.locator('#status').textContent(), 'Loading…');
+  release();
+  await waitForResults(page);
+  assert.equal(await page.locator('#sf').inputValue(), '9');
+  assert.match(new URL(page.url()).search, /(^\?|&)sf=9(&|$)/);
+  // The numbers are SF9's: its frames' time on air, as the CLI gives it.
+  const sf9 = nativeJson(['simulate', '--synthetic', '1', '--sf', '9']).results.find((r) => r.model === 'dr');
+  assert.equal(await cell(page, 'dr', 'toa'), `${(sf9.timeOnAir * 1e3).toFixed(1)} ms`);
+  assert.equal(await page.locator('[data-panel="results"].stale').count(), 0);
+  assert.deepEqual(problems, []);
+});
+
 test('a good CSV is simulated and a bad one is refused next to the control', async () => {
   const { page, problems } = await open();
   const dir = scratchDir();
