@@ -17,6 +17,8 @@ export const changedEarly = new Map<string, string | boolean>();
 const noteEarly = (e: Event) => {
   // As form.ts `field` finds a setting's control: by its name, or its id where it has none.
   const el = e.target as HTMLInputElement | HTMLSelectElement | null;
+  // A chosen file cannot be written back to its control; one chosen this early is not read.
+  if (el instanceof HTMLInputElement && el.type === 'file') return;
   const name = el?.name || el?.id;
   if (el && name) changedEarly.set(name, el instanceof HTMLInputElement && el.type === 'checkbox' ? el.checked : el.value);
 };
