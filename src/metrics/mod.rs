@@ -17,6 +17,7 @@ pub(crate) use bootstrap::bootstrap_sorted;
 pub use bootstrap::{bootstrap, Intervals, RESAMPLES};
 pub use boxplot::Boxplot;
 pub use coverage::{bound_95, inside_95, nees, Consistency, CHI2_3DOF_95};
+pub(crate) use paired::station_draws;
 pub use paired::{mean_ratio_interval, Draws};
 pub use percentile::percentile;
 pub use sort::sort_total;

@@ -11,6 +11,7 @@
 //! what differs between the stations.
 
 use super::bootstrap::{draw_weights, Draw, Ranks};
+use super::whole_flight_draws::{SeedSpan, WholeFlightDraws};
 use super::{percentile, sort_total};
 use crate::rng::Rng;
 use serde::{Deserialize, Serialize};
@@ -61,18 +62,17 @@ impl Draws {
     pub fn of(runs: &[&[f64]], seed: u64) -> Option<Self> {
         let mut all: Vec<f64> = runs.iter().flat_map(|r| r.iter().copied()).collect();
         sort_total(&mut all);
-        Self::of_sorted(runs, &all, seed)
+        Self::of_ranked(runs, &all, Ranks::of(runs, &all).as_ref(), seed)
     }
 
     /// [`Self::of`] given every error of `runs` pooled and in ascending order (`f64::total_cmp`)
-    /// as `all`: a station's result has sorted them for its summary already.
-    pub(crate) fn of_sorted(runs: &[&[f64]], all: &[f64], seed: u64) -> Option<Self> {
+    /// as `all`, and their rank table where it fits ([`station_draws`] builds it once for these
+    /// and the whole-flight draws).
+    fn of_ranked(runs: &[&[f64]], all: &[f64], ranks: Option<&Ranks>, seed: u64) -> Option<Self> {
         if runs.iter().filter(|r| !r.is_empty()).count() < 2 {
             return None;
         }
         debug_assert_eq!(all.len(), runs.iter().map(|r| r.len()).sum::<usize>());
-        let ranks = Ranks::of(runs, all);
-        let ranks = ranks.as_ref();
         // As the intervals' draws (`bootstrap`): drawn from one stream in order, then computed
         // on every core.
         let draws = draw_weights(runs.len(), Rng::derive(seed, 0x9a1_7ed));
@@ -125,6 +125,28 @@ impl Draws {
         sort_total(&mut ratios);
         Some([percentile(&ratios, 2.5), percentile(&ratios, 97.5)])
     }
+}
+
+/// A station's paired draws of its flight runs ([`Draws`]) and of its seeds
+/// ([`WholeFlightDraws`]), from one rank table: both resample the same runs and errors (`runs`,
+/// each ascending; `all`, every error pooled and ascending), the second with each run's
+/// `untracked` evaluation times and `seeds`' spans of runs. `(None, None)` with errors in fewer
+/// than two runs.
+pub(crate) fn station_draws(
+    runs: &[&[f64]],
+    all: &[f64],
+    untracked: &[usize],
+    seeds: &[SeedSpan],
+    seed: u64,
+) -> (Option<Draws>, Option<WholeFlightDraws>) {
+    if runs.iter().filter(|r| !r.is_empty()).count() < 2 {
+        return (None, None);
+    }
+    let ranks = Ranks::of(runs, all);
+    (
+        Draws::of_ranked(runs, all, ranks.as_ref(), seed),
+        WholeFlightDraws::of_ranked(runs, all, ranks.as_ref(), untracked, seeds, seed),
+    )
 }
 
 /// The ratio of the means of `mine` and `theirs`, one number each per run (a swarm's median

@@ -53,6 +53,27 @@ impl WholeFlightDraws {
         seeds: &[SeedSpan],
         seed: u64,
     ) -> Option<Self> {
+        Self::of_ranked(
+            runs,
+            all,
+            Ranks::of(runs, all).as_ref(),
+            untracked,
+            seeds,
+            seed,
+        )
+    }
+
+    /// [`Self::of`] with the rank table of `runs` and `all` where it fits
+    /// ([`station_draws`](super::paired::station_draws) builds it once for these and the
+    /// flights' draws).
+    pub(super) fn of_ranked(
+        runs: &[&[f64]],
+        all: &[f64],
+        ranks: Option<&Ranks>,
+        untracked: &[usize],
+        seeds: &[SeedSpan],
+        seed: u64,
+    ) -> Option<Self> {
         let spans_runs = seeds
             .iter()
             .all(|s| s.start <= s.end && s.end <= runs.len());
@@ -60,8 +81,6 @@ impl WholeFlightDraws {
             return None;
         }
         debug_assert_eq!(all.len(), runs.iter().map(|r| r.len()).sum::<usize>());
-        let ranks = Ranks::of(runs, all);
-        let ranks = ranks.as_ref();
         let p75 = draw_weights(seeds.len(), Rng::derive(seed, 0x3f1_16b7))
             .into_iter()
             .map(|per_seed| {

@@ -10,8 +10,7 @@ use super::sender::SenderKind;
 use super::station::{StationModel, StationTrack};
 use crate::lora::DataRate;
 use crate::metrics::{
-    bootstrap_sorted, sort_total, Consistency, Draws, SeedSpan, Summary, WholeFlightDraws,
-    WholeFlightError,
+    bootstrap_sorted, sort_total, station_draws, Consistency, SeedSpan, Summary, WholeFlightError,
 };
 use crate::models::ModelKind;
 use std::collections::BTreeMap;
@@ -254,10 +253,9 @@ impl Pooled {
         let ci95 = refs
             .as_ref()
             .and_then(|refs| bootstrap_sorted(refs, &self.e3, seed));
-        let whole_flight_draws = refs.as_ref().and_then(|refs| {
-            WholeFlightDraws::of(refs, &self.e3, &self.untracked, &self.seeds, seed)
+        let (draws, whole_flight_draws) = refs.map_or((None, None), |refs| {
+            station_draws(&refs, &self.e3, &self.untracked, &self.seeds, seed)
         });
-        let draws = refs.and_then(|refs| Draws::of_sorted(&refs, &self.e3, seed));
         let mut result = ModelResult {
             model,
             payload_bytes: model.payload_bytes(),
