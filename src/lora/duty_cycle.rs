@@ -203,14 +203,23 @@ impl DutyCycle {
         }
     }
 
-    /// Later packets take `time_on_air` s (an ADR data-rate change). The credit shifts by the
-    /// difference, so the wait the last packet imposed stays what it was (ETSI's off-time follows
-    /// the packet sent), while later packets cost their own airtime.
+    /// Later packets take `time_on_air` s (an ADR data-rate change), and the credit holds at most
+    /// `burst` of them.
+    ///
+    /// Per packet, the credit shifts by the difference, so the off-time the last packet imposed
+    /// stays what it was (LoRaMac-node before 4.5 waits out the packet sent). A budget's credit
+    /// is airtime and stays what it is: a packet costs its own airtime whatever the rate of the
+    /// one before it (LoRaMac-node 4.5's time credits; ETSI EN 300 220 counts airtime over an
+    /// hour; docs/reference.md §6.1). Shifted there too, a drone moved from DR0 to DR6 after its
+    /// first DR0 frame waited out that frame's whole off-time (115 s at 12 bytes), and one moved
+    /// the other way was given the difference as credit it had not earned.
     pub fn set_time_on_air(&mut self, time_on_air: f64) {
         if time_on_air == self.time_on_air || !(time_on_air > 0.0 && time_on_air.is_finite()) {
             return;
         }
-        self.credit += time_on_air - self.time_on_air;
+        if self.packets == 1.0 {
+            self.credit += time_on_air - self.time_on_air;
+        }
         self.time_on_air = time_on_air;
         self.capacity = self.packets * time_on_air;
         self.credit = self.credit.min(self.capacity);
@@ -312,6 +321,26 @@ mod tests {
         assert!((r.earliest(0.0) - 5.0).abs() < 1e-9, "{}", r.earliest(0.0));
         r.spend(5.0);
         assert!((r.earliest(5.0) - 25.0).abs() < 1e-9, "{}", r.earliest(5.0));
+    }
+
+    #[test]
+    fn a_budget_keeps_its_airtime_credit_when_the_rate_changes() {
+        // A 1 s frame at 1 % from a budget of 10 leaves no credit; 10 ms frames then wait only
+        // for their own 10 ms (1 s), not for the 1 s frame's 100 s off-time.
+        let mut b = DutyCycle::new(DutyCycleMode::Budget, 0.01, 1.0, 10, 0.0).unwrap();
+        b.spend(0.0);
+        b.set_time_on_air(0.01);
+        assert!((b.earliest(0.0) - 1.0).abs() < 1e-9, "{}", b.earliest(0.0));
+        // Quiet until the credit is full (10 frames, 0.1 s), one more frame leaves 0.09 s; moved
+        // back to 1 s frames right after it, the next waits to earn the other 0.91 s (91 s),
+        // not at once on credit the change would have given.
+        b.spend(100.0);
+        b.set_time_on_air(1.0);
+        assert!(
+            (b.earliest(100.0) - 191.0).abs() < 1e-9,
+            "{}",
+            b.earliest(100.0)
+        );
     }
 
     #[test]
