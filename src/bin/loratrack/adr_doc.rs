@@ -311,7 +311,10 @@ fn adr_findings(r: &DistanceSweepReport, base: &Scenario) -> String {
          say) loses a run of frames that reads as a poor link and sends it to a slower \
          rate (see the packets per data rate), and the hysteresis, about as large as the true difference in cost \
          between neighbouring rates, holds it there until the window has forgotten those frames; at the slowest \
-         rates each frame, and so each chance to move again, is minutes apart. Starting from DR0 costs the first frame's long interval, in which the first flight goes untracked; starting \
+         rates each frame, and so each chance to move again, is minutes apart. Starting from DR0 costs the first flight's start: a drone's first packet goes out at a random \
+         moment within its starting rate's interval (as in every run, so that no setting starts in step with the \
+         flight), at DR0 up to about two minutes in, the first flight untracked until it arrives, and that frame's \
+         off-time holds the next one back as long; starting \
          too fast for the link, as at SF7 at 5 and 7 km, costs the device's back-off before the network hears it \
          at all ({} silent uplinks a rate). A back-off that short also steps the drone down when two requests in \
          a row go unanswered on a link that still delivers most frames (at 5 km, DR3's two in three): the \
