@@ -119,7 +119,7 @@ pub struct Bounds {
     /// jerk (0.59), since a jerk seldom lasts a whole gap. With [`Bounds::unmodelled_speed`]
     /// calibrated so that the 95 % region covers 93–97 % of the synthetic set at every EU868
     /// data rate, at 1 and 3 km (reference §4, "Honest uncertainty"); the Canberra flight,
-    /// jerkier (3.4 rms), is covered less at SF7 (88–89 %).
+    /// jerkier (3.4 rms), is covered less at SF7 (83–89 %, 64 seeds).
     pub unmodelled_jerk: f64,
     /// The speed, m/s, at which every model's error grows at most: 2. A manoeuvre the packet did
     /// not show changes the velocity by a few m/s and ends (speed changes last 1–4 s), so past a
