@@ -218,3 +218,25 @@ export function seriesNote(c: { flights: number; seeds: number; seed: number }, 
   const pooled = `${c.flights} flight${c.flights === 1 ? '' : 's'} × ${c.seeds} seed${c.seeds === 1 ? '' : 's'}`;
   return `This ${what} is ${flight} with seed ${c.seed} alone; the results table pools ${pooled}.`;
 }
+
+/** The shares of the time inside a 95 % bound, in whole per cent as the table shows them, that the
+ * error chart's note leaves unsaid for a bounded station (calibrated to 93–97 % on the synthetic
+ * set; docs/reference.md §4). */
+const BAND_HOLDS: [number, number] = [90, 98];
+
+/**
+ * Under the error-over-time chart: how often the truth lay inside its band, each station's own
+ * 95 % bound, over the table's runs (`coverage95`, in whole per cent as the table's "in 95 %
+ * bound" column shows it), so that the band on a slide says what it is worth. The paper's station
+ * does not calibrate its covariance, so its band is always qualified; a bounded station's only
+ * where a share falls outside 90–98 %. '' where nothing was scored.
+ */
+export function bandNote(prediction: Settings['prediction'], results: Pick<ModelResult, 'model' | 'coverage95'>[]): string {
+  const shares = results.flatMap((m) => (m.coverage95 === null ? [] : [{ model: m.model, percent: Math.round(100 * m.coverage95) }]));
+  if (shares.length === 0) return '';
+  const strays = shares.some((m) => m.percent < BAND_HOLDS[0] || m.percent > BAND_HOLDS[1]);
+  if (prediction === 'bounded' && !strays) return '';
+  const held = listed(shares.map((m) => `${m.percent} % (${MODEL_LABELS[m.model]})`));
+  const whose = prediction === 'paper' ? "each station's own 95 % bound, which the paper's station does not calibrate" : "each station's own 95 % bound";
+  return `The band is ${whose}: the truth lay inside it ${held} of the time in the table's runs.`;
+}

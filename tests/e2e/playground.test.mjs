@@ -58,8 +58,14 @@ test('opens with the paper defaults and names no best model from one flight and 
   for (const name of ['sf', 'distance']) {
     await until(page, (n) => /This chart runs seed 1 alone; the results table pools 10 seeds\./.test(document.querySelector(`#${n}-rests-on`)?.textContent ?? ''), name);
   }
-  // So does the error-over-time chart, which draws the first flight's first seed.
-  assert.equal(await page.locator('#error-rests-on').textContent(), 'This chart is synthetic 1 with seed 1 alone; the results table pools 1 flight × 10 seeds.');
+  // So does the error-over-time chart, which draws the first flight's first seed; and its band,
+  // the paper's station's uncalibrated bound, says how often it held in those ten runs, as the CLI
+  // computes it.
+  const held = cli.results.map((x) => `${Math.round(100 * x.coverage95)} % (${LABELS[x.model]})`);
+  assert.equal(
+    await page.locator('#error-rests-on').textContent(),
+    `This chart is synthetic 1 with seed 1 alone; the results table pools 1 flight × 10 seeds. The band is each station's own 95 % bound, which the paper's station does not calibrate: the truth lay inside it ${held.slice(0, -1).join(', ')} and ${held.at(-1)} of the time in the table's runs.`,
+  );
   await screenshot(page, 'playground');
   assert.deepEqual(problems, []);
 });

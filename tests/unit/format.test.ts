@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { adrFrom, caption, describe, stationPhrase, fewPacketsNote, fixedRateNote, flightTime, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
+import { adrFrom, bandNote, caption, describe, stationPhrase, fewPacketsNote, fixedRateNote, flightTime, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -22,6 +22,19 @@ test('station lists read as a sentence', () => {
   expect(names([m('dr')])).toBe('DR');
   expect(names([m('dr'), m('ctra-plus')])).toBe('DR and CTRA+');
   expect(names([m('dr'), m('ctra-plus'), m('3d-ctra')])).toBe('DR, CTRA+ and 3D-CTRA');
+});
+
+test("the error chart's band says how often it held: always for the paper's station, for a bounded one only where it strays", () => {
+  const r = (model: string, coverage95: number | null) => ({ model, coverage95 }) as Pick<ModelResult, 'model' | 'coverage95'>;
+  const paper = bandNote('paper', [r('dr', 0.878), r('ctra-plus', 0.9996), r('3d-ctra', 1)]);
+  expect(paper).toBe("The band is each station's own 95 % bound, which the paper's station does not calibrate: the truth lay inside it 88 % (DR), 100 % (CTRA+) and 100 % (3D-CTRA) of the time in the table's runs.");
+  // Calibrated and holding, as the table rounds it: nothing to add under the chart.
+  expect(bandNote('bounded', [r('dr', 0.935), r('3d-ctra', 0.957), r('imm', 0.984)])).toBe('');
+  // One station strays (either way): every share is given.
+  expect(bandNote('bounded', [r('dr', 0.935), r('imm', 0.993)])).toBe("The band is each station's own 95 % bound: the truth lay inside it 94 % (DR) and 99 % (IMM) of the time in the table's runs.");
+  expect(bandNote('bounded', [r('3d-ctra', 0.884)])).toMatch(/inside it 88 % \(3D-CTRA\) of the time/);
+  // Nothing scored (no packet arrived): no claim.
+  expect(bandNote('paper', [r('dr', null)])).toBe('');
 });
 
 test('the error chart names the stations with no line on its flight, only where others have one', () => {
