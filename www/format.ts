@@ -220,14 +220,15 @@ export function seriesNote(c: { flights: number; seeds: number; seed: number }, 
 }
 
 /** The shares of the time inside a 95 % bound, in whole per cent as the table shows them, that the
- * error chart's note leaves unsaid for a bounded station (calibrated to 93–97 % on the synthetic
+ * error chart's key leaves unsaid for a bounded station (calibrated to 93–97 % on the synthetic
  * set; docs/reference.md §4). */
 const BAND_HOLDS: [number, number] = [90, 98];
 
 /**
- * Under the error-over-time chart: how often the truth lay inside its band, each station's own
- * 95 % bound, over the table's runs (`coverage95`, in whole per cent as the table's "in 95 %
- * bound" column shows it), so that the band on a slide says what it is worth. The paper's station
+ * In the error-over-time chart's key, which its slide carries: how often the truth lay inside its
+ * band, each station's own 95 % bound, over the results' runs (`coverage95`, in whole per cent as
+ * the table's "in 95 % bound" column shows it), so that the band on a slide, with no table beside
+ * it, says what it is worth. The paper's station
  * does not calibrate its covariance, so its band is always qualified; a bounded station's only
  * where a share falls outside 90–98 %. '' where nothing was scored.
  */
@@ -238,5 +239,5 @@ export function bandNote(prediction: Settings['prediction'], results: Pick<Model
   if (prediction === 'bounded' && !strays) return '';
   const held = listed(shares.map((m) => `${m.percent} % (${MODEL_LABELS[m.model]})`));
   const whose = prediction === 'paper' ? "each station's own 95 % bound, which the paper's station does not calibrate" : "each station's own 95 % bound";
-  return `The band is ${whose}: the truth lay inside it ${held} of the time in the table's runs.`;
+  return `The band is ${whose}: the truth lay inside it ${held} of the time in the results' runs.`;
 }

@@ -13,7 +13,7 @@ import { airtimeRows } from './airtime';
 import { chartSvg, downloadAirtimeCsv, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
 import { field, form, markField, onFormChange, readControls, settingWords, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
-import { adrName, bandNote, caption, fewPacketsNote, fixedRateNote, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote } from './format';
+import { adrName, caption, fewPacketsNote, fixedRateNote, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote } from './format';
 import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { clearTable, renderBaseline, renderTable, restingNotes } from './results';
@@ -165,7 +165,7 @@ function renderPartial(r: SimReport, made: Settings): void {
 /** The error chart, in a later task. A whole set's report draws the chart its first flight
  * already drew (the series is always the first flight's), so that second drawing is skipped. */
 function drawErrorChart(r: SimReport, made: Settings): void {
-  restsOn('error', r.series ? seriesNote(r.config, r.series.flight) : '', r.series ? noLineNote(r.series.models, r.series.flight) : '', r.series ? bandNote(made.prediction, r.results) : '');
+  restsOn('error', r.series ? seriesNote(r.config, r.series.flight) : '', r.series ? noLineNote(r.series.models, r.series.flight) : '');
   later('error', () => {
     const width = chartWidth('error');
     // What the chart reads: the stations' series, not where the gateway stood. Its numbers and
