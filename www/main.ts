@@ -13,7 +13,7 @@ import { airtimeRows } from './airtime';
 import { chartSvg, downloadAirtimeCsv, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
 import { field, form, markField, onFormChange, readControls, settingWords, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
-import { adrName, caption, fewPacketsNote, fixedRateNote, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote } from './format';
+import { adrName, bandNote, caption, fewPacketsNote, fixedRateNote, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote } from './format';
 import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { clearTable, renderBaseline, renderTable, restingNotes } from './results';
@@ -163,14 +163,16 @@ function renderPartial(r: SimReport, made: Settings): void {
 }
 
 /** The error chart, in a later task. A whole set's report draws the chart its first flight
- * already drew (the series is always the first flight's), so that second drawing is skipped. */
+ * already drew (the series is always the first flight's), so that second drawing is skipped,
+ * unless its slide's key changes with it (how often the band held over the runs: `bandNote`). */
 function drawErrorChart(r: SimReport, made: Settings): void {
   restsOn('error', r.series ? seriesNote(r.config, r.series.flight) : '', r.series ? noLineNote(r.series.models, r.series.flight) : '');
   later('error', () => {
     const width = chartWidth('error');
-    // What the chart reads: the stations' series, not where the gateway stood. Its numbers and
-    // Plot's drawing of them each take a task: on a long flight each is tens of milliseconds.
-    return drawPanel('error', [width, r.series?.flight, r.series?.models, r.config.adr], async (p) => {
+    // What the chart reads: the stations' series and the words of its key, not where the gateway
+    // stood. Its numbers and Plot's drawing of them each take a task: on a long flight each is
+    // tens of milliseconds.
+    return drawPanel('error', [width, r.series?.flight, r.series?.models, r.config.adr, bandNote(r.config.prediction, r.results)], async (p) => {
       const data = p.errorChartData(r, width);
       await nextTask();
       return p.errorChart(data);

@@ -207,6 +207,13 @@ test('the whole set shows its first flight at once, marked as that flight alone 
     assert.equal(Number(col('p75_m')).toFixed(2), final.find((f) => f.model === col('model')).p75.toFixed(2), col('model'));
   }
   assert.equal(rows.length, 3);
+  // The error chart still draws the first flight, but its slide's key says how often the band held
+  // over the whole set, as the table's column does.
+  const held = rows.map((row) => `${Math.round(100 * Number(row[header.indexOf('coverage95')]))} %`);
+  await until(page, (words) => words.every((w) => (document.querySelector('#chart-error [data-key]')?.getAttribute('data-key') ?? '').includes(w)), held);
+  const shares = await page.locator('#results-table td[data-field="coverage"]').allTextContents();
+  const key = await page.locator('#chart-error [data-key]').getAttribute('data-key');
+  for (const share of shares) assert.ok(key.includes(`${share.trim()} (`), `${share} in ${key}`);
   assert.deepEqual(problems, []);
 });
 
