@@ -253,7 +253,7 @@ impl Draw<'_> {
 
     /// The `k`-th smallest sample of the draw (0-based), by bisection over the sorted candidates:
     /// the smallest candidate with more than `k` samples at or below it.
-    pub(super) fn order_statistic(&self, k: u64) -> f64 {
+    fn order_statistic(&self, k: u64) -> f64 {
         let last = self.all.len() - 1;
         let (mut lo, mut hi) = match self.ranks {
             Some(r) => r.bracket(k, self.weights, last),

@@ -160,26 +160,20 @@ impl WholeFlightDraws {
     }
 }
 
-/// The draw's p75 over its tracked errors and `untracked` larger ones, by the interpolation of
-/// [`WholeFlightError::of_sorted`](super::WholeFlightError::of_sorted): infinite where it lies
-/// among (or leans on) the untracked ones, NaN where there is nothing.
+/// The draw's p75 over its tracked errors and `untracked` larger ones, as
+/// [`WholeFlightError::of_sorted`](super::WholeFlightError::of_sorted) takes it: infinite where
+/// it lies among (or leans on) the untracked ones, NaN where there is nothing.
 fn p75_with_untracked(draw: &Draw, untracked: u64) -> f64 {
     let tracked = draw.count_at_most(f64::INFINITY);
     let all = tracked + untracked;
     if all == 0 {
         return f64::NAN;
     }
-    let rank = 0.75 * (all - 1) as f64;
-    let lo = rank.floor() as u64;
-    let frac = rank - lo as f64;
-    if lo >= tracked || (frac > 0.0 && lo + 1 >= tracked) {
+    // The interpolation leans on the sample after the rank's floor wherever the rank is not whole.
+    if (0.75 * (all - 1) as f64).ceil() as u64 >= tracked {
         return f64::INFINITY;
     }
-    let a = draw.order_statistic(lo);
-    if frac == 0.0 {
-        return a;
-    }
-    a + frac * (draw.order_statistic(lo + 1) - a)
+    draw.percentile(all, 75.0)
 }
 
 #[cfg(test)]
