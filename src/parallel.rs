@@ -58,25 +58,27 @@ pub(crate) fn par_each<T: Send>(items: &mut [T], f: impl Fn(&mut T) + Sync + Sen
 }
 
 /// [`par_map`] calling `tick(i)` once per item `i`: after each item in WebAssembly (so a long
-/// run can report progress between items), after all of them natively.
+/// run can report progress between items), after all of them natively. A tick that returns
+/// `false` asks to stop: in WebAssembly no further item starts, natively nothing more is left to
+/// start; either way the result is `None`, so that the caller stops too (a page's run that a
+/// newer one replaced, `docs/reference.md` §9).
 pub(crate) fn par_map_ticking<T: Send>(
     range: core::ops::Range<usize>,
     f: impl Fn(usize) -> T + Sync + Send,
-    tick: &mut dyn FnMut(usize),
-) -> Vec<T> {
+    tick: &mut dyn FnMut(usize) -> bool,
+) -> Option<Vec<T>> {
     #[cfg(not(target_arch = "wasm32"))]
     {
         let out = par_map(range.clone(), f);
-        range.for_each(tick);
-        out
+        let mut range = range;
+        range.all(tick).then_some(out)
     }
     #[cfg(target_arch = "wasm32")]
     {
         range
             .map(|i| {
                 let r = f(i);
-                tick(i);
-                r
+                tick(i).then_some(r)
             })
             .collect()
     }
@@ -90,27 +92,28 @@ pub(crate) fn par_map_costliest_first<T: Send>(
     n: usize,
     cost: impl Fn(usize) -> u32,
     f: impl Fn(usize) -> T + Sync + Send,
-    tick: &mut dyn FnMut(usize),
-) -> Vec<T> {
+    tick: &mut dyn FnMut(usize) -> bool,
+) -> Option<Vec<T>> {
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by_key(|&i| core::cmp::Reverse(cost(i)));
-    let done = par_map_ticking(0..n, |k| f(order[k]), &mut |k| tick(order[k]));
+    let done = par_map_ticking(0..n, |k| f(order[k]), &mut |k| tick(order[k]))?;
     let mut slots: Vec<Option<T>> = (0..n).map(|_| None).collect();
     for (i, r) in order.into_iter().zip(done) {
         slots[i] = Some(r);
     }
-    slots.into_iter().flatten().collect()
+    Some(slots.into_iter().flatten().collect())
 }
 
 /// `f(i, tick)` for every `i` in `range`, in order, where `f` calls `tick` as its item
 /// progresses (a run's flights flown in order): in WebAssembly the items run in turn and each
 /// tick is passed on as it comes; natively they run side by side, each item's ticks are counted,
-/// and as many are passed on once all are done, as [`par_map_ticking`] does.
+/// and as many are passed on once all are done, as [`par_map_ticking`] does. A tick passed on
+/// that returns `false` stops as there: no further item starts, and the result is `None`.
 pub(crate) fn par_map_progressing<T: Send>(
     range: core::ops::Range<usize>,
     f: impl Fn(usize, &mut dyn FnMut()) -> T + Sync + Send,
-    tick: &mut dyn FnMut(),
-) -> Vec<T> {
+    tick: &mut dyn FnMut() -> bool,
+) -> Option<Vec<T>> {
     #[cfg(not(target_arch = "wasm32"))]
     {
         let counted = par_map(range, |i| {
@@ -118,17 +121,25 @@ pub(crate) fn par_map_progressing<T: Send>(
             let r = f(i, &mut || ticks += 1);
             (r, ticks)
         });
-        counted
+        let mut go = true;
+        let out = counted
             .into_iter()
             .map(|(r, ticks)| {
-                (0..ticks).for_each(|_| tick());
+                (0..ticks).for_each(|_| go &= tick());
                 r
             })
-            .collect()
+            .collect();
+        go.then_some(out)
     }
     #[cfg(target_arch = "wasm32")]
     {
-        range.map(|i| f(i, tick)).collect()
+        range
+            .map(|i| {
+                let mut go = true;
+                let r = f(i, &mut || go &= tick());
+                go.then_some(r)
+            })
+            .collect()
     }
 }
 
@@ -139,9 +150,41 @@ mod tests {
     #[test]
     fn results_come_back_in_index_order_with_one_tick_each() {
         let mut ticked = Vec::new();
-        let out = par_map_ticking(0..100, |i| i * i, &mut |i| ticked.push(i));
-        assert_eq!(out, (0..100).map(|i| i * i).collect::<Vec<_>>());
+        let out = par_map_ticking(0..100, |i| i * i, &mut |i| {
+            ticked.push(i);
+            true
+        });
+        assert_eq!(out, Some((0..100).map(|i| i * i).collect::<Vec<_>>()));
         assert_eq!(ticked, (0..100).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn a_tick_that_says_stop_ends_the_map_with_none() {
+        let started = std::sync::atomic::AtomicUsize::new(0);
+        let out = par_map_ticking(
+            0..10,
+            |i| {
+                started.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                i
+            },
+            &mut |i| i < 3,
+        );
+        assert_eq!(out, None);
+        // In WebAssembly the items run in turn, and none starts after the fourth's tick.
+        #[cfg(target_arch = "wasm32")]
+        assert_eq!(started.into_inner(), 4);
+        let mut ticks = 0;
+        let out = par_map_progressing(0..4, |i, tick| tick_times(i, tick), &mut || {
+            ticks += 1;
+            ticks < 2
+        });
+        assert_eq!(out, None);
+    }
+
+    /// Ticks `n` times and returns `n`.
+    fn tick_times(n: usize, tick: &mut dyn FnMut()) -> usize {
+        (0..n).for_each(|_| tick());
+        n
     }
 
     #[test]
@@ -153,9 +196,12 @@ mod tests {
                 (0..i).for_each(|_| tick());
                 i * 2
             },
-            &mut || ticks += 1,
+            &mut || {
+                ticks += 1;
+                true
+            },
         );
-        assert_eq!(out, (0..8).map(|i| i * 2).collect::<Vec<_>>());
+        assert_eq!(out, Some((0..8).map(|i| i * 2).collect::<Vec<_>>()));
         assert_eq!(ticks, (0..8).sum::<usize>());
     }
 
@@ -170,9 +216,12 @@ mod tests {
                 started.lock().unwrap().push(i);
                 10 * i
             },
-            &mut |i| ticked.push(i),
+            &mut |i| {
+                ticked.push(i);
+                true
+            },
         );
-        assert_eq!(out, vec![0, 10, 20, 30, 40, 50]);
+        assert_eq!(out, Some(vec![0, 10, 20, 30, 40, 50]));
         // Each tick names its item, in the order the items were started.
         assert_eq!(ticked, vec![4, 1, 3, 5, 0, 2]);
         #[cfg(target_arch = "wasm32")]

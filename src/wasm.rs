@@ -245,7 +245,9 @@ pub fn decode(params: JsValue) -> Result<JsValue, JsValue> {
 /// `simulate({synthetic | sample | trajectory (CSV text), model?, sf?, bw?, distance?, seed?, …, series?}, progress?)`
 /// → `{config, results, series?}` (reference §9). Drone-side filter runs are cached between calls.
 /// `progress(done, total)`, if given, is called as flights complete (it must not call back into
-/// this module).
+/// this module); where it returns `false` the run stops before its next flight and `simulate`
+/// throws "the run was stopped by its progress callback" (the page's worker stops a run a newer
+/// one replaced, docs/reference.md §9). Any other return value, or a throw, goes on.
 #[wasm_bindgen]
 pub fn simulate(params: JsValue, progress: JsValue) -> Result<JsValue, JsValue> {
     let progress = progress_function(progress)?;
@@ -259,7 +261,7 @@ pub fn simulate(params: JsValue, progress: JsValue) -> Result<JsValue, JsValue> 
                 let mut sim = s.try_borrow_mut().map_err(|_| {
                     ApiError::Invalid("simulate was called from its own progress callback".into())
                 })?;
-                api::simulate_with_progress(&mut sim, &p, &mut report)
+                api::simulate_stoppable(&mut sim, &p, &mut report)
             })
         },
         report_value,
@@ -304,7 +306,10 @@ pub fn command_line(params: JsValue, command: JsValue) -> Result<JsValue, JsValu
 pub fn swarm(params: JsValue, progress: JsValue) -> Result<JsValue, JsValue> {
     let progress = progress_function(progress)?;
     call(params, |p: crate::sim::Scenario| {
-        api::swarm_with_progress(&p, &mut reporter(&progress))
+        let mut report = reporter(&progress);
+        api::swarm_with_progress(&p, &mut |done, total| {
+            report(done, total);
+        })
     })
 }
 
@@ -467,7 +472,9 @@ pub fn load_csv(params: JsValue, progress: JsValue) -> Result<JsValue, JsValue> 
             let name = p
                 .trajectory_name
                 .unwrap_or_else(|| crate::sim::scenario::DEFAULT_CSV_NAME.into());
-            let rows = sim.load_csv(p.trajectory, name, &mut report)?;
+            let rows = sim.load_csv(p.trajectory, name, &mut |done, total| {
+                report(done, total);
+            })?;
             Ok(Rows { rows })
         })
     })
@@ -485,17 +492,19 @@ fn progress_function(progress: JsValue) -> Result<Option<js_sys::Function>, JsVa
         .map_err(|_| js_error("progress must be a function (done, total) => void, or left out"))
 }
 
-/// Calls `progress(done, total)`; a throwing callback must not abort the run, so its error is
-/// dropped.
-fn reporter(progress: &Option<js_sys::Function>) -> impl FnMut(usize, usize) + '_ {
+/// Calls `progress(done, total)` and tells whether the run may go on: unless the callback
+/// returned `false` itself. A throwing callback must not abort the run, so its error is dropped.
+fn reporter(progress: &Option<js_sys::Function>) -> impl FnMut(usize, usize) -> bool + '_ {
     move |done, total| {
-        if let Some(f) = progress {
-            let _ = f.call2(
-                &JsValue::NULL,
-                &JsValue::from(done as u32),
-                &JsValue::from(total as u32),
-            );
-        }
+        let Some(f) = progress else {
+            return true;
+        };
+        let said = f.call2(
+            &JsValue::NULL,
+            &JsValue::from(done as u32),
+            &JsValue::from(total as u32),
+        );
+        said.map_or(true, |v| v != JsValue::FALSE)
     }
 }
 

@@ -354,6 +354,40 @@ fn simulate_reports_progress_up_to_the_total() {
 }
 
 #[wasm_bindgen_test]
+fn a_progress_callback_that_returns_false_stops_the_run_before_its_next_flight() {
+    use std::cell::RefCell;
+    use std::rc::Rc;
+    use wasm_bindgen::closure::Closure;
+    let set = |seed: i32| obj(&[("synthetic", "all".into()), ("seed", seed.into())]);
+    let json = |v: &JsValue| String::from(js_sys::JSON::stringify(v).unwrap());
+    let before = json(&wasm::simulate(set(41), JsValue::UNDEFINED).unwrap());
+    let calls: Rc<RefCell<usize>> = Rc::default();
+    let sink = Rc::clone(&calls);
+    // Go on for the first two flights' drone runs, then stop.
+    let cb = Closure::<dyn FnMut(f64, f64) -> bool>::new(move |_, _| {
+        *sink.borrow_mut() += 1;
+        *sink.borrow() < 3
+    });
+    let f: &js_sys::Function = cb.as_ref().unchecked_ref();
+    let e = wasm::simulate(set(42), f.clone().into()).unwrap_err();
+    assert_eq!(
+        error_message(e),
+        "the run was stopped by its progress callback"
+    );
+    // In turn, one flight at a time: no flight starts after the tick that said stop.
+    assert_eq!(*calls.borrow(), 3);
+    // A callback that returns anything but false goes on to the end; the stopped run left the
+    // module's simulator giving the numbers it gave before.
+    let on = Closure::<dyn FnMut(f64, f64) -> JsValue>::new(|_, _| JsValue::from_str("no"));
+    let f: &js_sys::Function = on.as_ref().unchecked_ref();
+    assert_eq!(
+        json(&wasm::simulate(set(41), f.clone().into()).unwrap()),
+        before
+    );
+    assert!(wasm::simulate(set(42), JsValue::UNDEFINED).is_ok());
+}
+
+#[wasm_bindgen_test]
 fn a_progress_callback_that_calls_simulate_gets_an_error_not_a_trap() {
     use std::cell::RefCell;
     use std::rc::Rc;

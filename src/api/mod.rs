@@ -34,7 +34,7 @@ pub use senders::{
     SENDER_SETTINGS, SENDER_THRESHOLDS,
 };
 pub use simulate::{
-    p75, simulate, simulate_with_progress, sweep_paper, SweepReport, SweepRun, PAPER_DISTANCES,
-    PAPER_SFS,
+    p75, simulate, simulate_stoppable, simulate_with_progress, sweep_paper, SweepReport, SweepRun,
+    PAPER_DISTANCES, PAPER_SFS,
 };
 pub use swarm::{swarm, swarm_sharing, swarm_with_progress};

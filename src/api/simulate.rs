@@ -18,8 +18,22 @@ pub fn simulate_with_progress(
     p: &Scenario,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<SimReport, ApiError> {
+    simulate_stoppable(sim, p, &mut |done, total| {
+        progress(done, total);
+        true
+    })
+}
+
+/// [`simulate_with_progress`], where `progress` also says whether to go on: `false` stops the
+/// run before its next flight with [`SimError::Stopped`](crate::sim::SimError::Stopped)
+/// ([`Simulator::run_stoppable`]).
+pub fn simulate_stoppable(
+    sim: &mut Simulator,
+    p: &Scenario,
+    progress: &mut dyn FnMut(usize, usize) -> bool,
+) -> Result<SimReport, ApiError> {
     let cfg = p.validate()?;
-    Ok(sim.run_with_progress(&cfg, progress)?)
+    Ok(sim.run_stoppable(&cfg, progress)?)
 }
 
 /// One point of the sweep grid.

@@ -50,6 +50,10 @@ pub enum SimError {
         /// Which run, with what its remedy names.
         run: LongRun,
     },
+    /// The run's progress callback asked it to stop ([`Simulator::run_stoppable`]).
+    ///
+    /// [`Simulator::run_stoppable`]: super::Simulator::run_stoppable
+    Stopped,
 }
 
 /// A count rounded to a whole number, its thousands grouped as the docs write them (SI: "36 000
@@ -91,6 +95,7 @@ impl fmt::Display for SimError {
                 as_given(*max_interval)
             ),
             SimError::Source(msg) => f.write_str(msg),
+            SimError::Stopped => f.write_str("the run was stopped by its progress callback"),
             SimError::Seed(seed) => write!(
                 f,
                 "seed must be 0..{} (2^53 - 1, the largest integer JavaScript holds exactly), got {seed}",
@@ -217,7 +222,7 @@ impl SimError {
             SimError::Seeds { .. } => Some("seeds"),
             SimError::AdrStart(..) => Some("adr"),
             SimError::TooLong { .. } => self.fewer_that_fit().map(|(setting, _)| setting),
-            SimError::Source(_) => None,
+            SimError::Source(_) | SimError::Stopped => None,
         }
     }
 }

@@ -175,12 +175,13 @@ fn sensor_steps(flights: &[Trajectory], cfg: &Validated) -> usize {
 
 /// The drone runs of every flight for each of `missing`, in its order and each in flight order,
 /// computed in one parallel batch of [`sensor_groups`]; `tick` is called once per key and flight.
+/// `None` where a tick asked to stop ([`par_map_ticking`](crate::parallel)).
 fn run_missing(
     missing: &[&DroneKey],
     flights: &[Trajectory],
     cfg: &Validated,
-    tick: &mut dyn FnMut(),
-) -> Vec<Vec<DroneTrack>> {
+    tick: &mut dyn FnMut() -> bool,
+) -> Option<Vec<Vec<DroneTrack>>> {
     let n = flights.len();
     let seeds = sensor_groups(missing, n);
     let computed = par_map_costliest_first(
@@ -201,8 +202,8 @@ fn run_missing(
             };
             run_drones(&flights[i], &models, &cfg.sensing(streams))
         },
-        &mut |k| seeds[k / n].1.iter().for_each(|_| tick()),
-    );
+        &mut |k| ticks(seeds[k / n].1.len(), tick),
+    )?;
     // Task k is group k / n on flight k % n, its tracks in member order: dealt out in task
     // order, each key's tracks come in flight order.
     let mut tracks: Vec<Vec<DroneTrack>> = missing.iter().map(|_| Vec::with_capacity(n)).collect();
@@ -211,7 +212,12 @@ fn run_missing(
             tracks[m].push(track);
         }
     }
-    tracks
+    Some(tracks)
+}
+
+/// Calls `tick` up to `n` times, until one asks to stop; whether none did.
+fn ticks(n: usize, tick: &mut dyn FnMut() -> bool) -> bool {
+    (0..n).all(|_| tick())
 }
 
 impl Simulator {
@@ -336,14 +342,14 @@ impl Simulator {
     /// estimates), so that a single run, the CLI's, holds no more than it needs; a key asked for
     /// again is remembered if it is among the costliest that fit ([`remembered_keys`]), since
     /// a second run on the same drones (the page's distance and SF charts) will likely not be
-    /// the last.
+    /// the last. `None` where a tick asked to stop: nothing computed is remembered then.
     fn drone_sets(
         &mut self,
         keys: &[DroneKey],
         flights: &[Trajectory],
         cfg: &Validated,
-        tick: &mut dyn FnMut(),
-    ) -> Vec<Option<Rc<Vec<DroneTrack>>>> {
+        tick: &mut dyn FnMut() -> bool,
+    ) -> Option<Vec<Option<Rc<Vec<DroneTrack>>>>> {
         let n = flights.len();
         let (fit, all) = remembered_keys(keys, sensor_steps(flights, cfg));
         let kept: Vec<&DroneKey> = if fit.len() == all.len() {
@@ -365,8 +371,10 @@ impl Simulator {
                 missing.push(key);
             }
         }
-        let computed = run_missing(&missing, flights, cfg, tick);
-        (0..(keys.len() - missing.len()) * n).for_each(|_| tick());
+        let computed = run_missing(&missing, flights, cfg, tick)?;
+        if !ticks((keys.len() - missing.len()) * n, tick) {
+            return None;
+        }
         let live = keys
             .iter()
             .filter(|k| !sets.contains_key(k) && !missing.contains(k));
@@ -376,7 +384,7 @@ impl Simulator {
             sets.insert(key.clone(), Rc::clone(&tracks));
             self.remember_drones(key.clone(), tracks);
         }
-        keys.iter().map(|key| sets.get(key).cloned()).collect()
+        Some(keys.iter().map(|key| sets.get(key).cloned()).collect())
     }
 
     /// Notes the keys of `all` that a run streams (neither `kept` nor cached), so that a run
@@ -480,6 +488,23 @@ impl Simulator {
         cfg: &Validated,
         progress: &mut dyn FnMut(usize, usize),
     ) -> Result<SimReport, SimError> {
+        self.run_stoppable(cfg, &mut |done, total| {
+            progress(done, total);
+            true
+        })
+    }
+
+    /// [`Simulator::run_with_progress`], where `progress` also says whether to go on: once it
+    /// returns `false` the run stops at the next flight it would start (in WebAssembly, where
+    /// flights run in turn; natively, at the end of the batch under way) with
+    /// [`SimError::Stopped`], and remembers nothing it computed for that batch. The page stops a
+    /// run a newer one replaced this way (`docs/reference.md` §9): its worker could otherwise
+    /// only be terminated, which lets it compute on for seconds.
+    pub fn run_stoppable(
+        &mut self,
+        cfg: &Validated,
+        progress: &mut dyn FnMut(usize, usize) -> bool,
+    ) -> Result<SimReport, SimError> {
         let report = self.run_flights(cfg, progress);
         if let Some(done) = &mut self.run_done {
             done();
@@ -487,11 +512,11 @@ impl Simulator {
         report
     }
 
-    /// [`Simulator::run_with_progress`]'s run.
+    /// [`Simulator::run_stoppable`]'s run.
     fn run_flights(
         &mut self,
         cfg: &Validated,
-        progress: &mut dyn FnMut(usize, usize),
+        progress: &mut dyn FnMut(usize, usize) -> bool,
     ) -> Result<SimReport, SimError> {
         let s = cfg.s();
         let source = simulated_source(cfg)?;
@@ -503,7 +528,7 @@ impl Simulator {
         let mut done = 0;
         let mut tick = || {
             done += 1;
-            progress(done, total);
+            progress(done, total)
         };
         // Each station's radio, setup and plans, checked before any work.
         let stations = cfg
@@ -530,7 +555,9 @@ impl Simulator {
             seed,
         };
         let keys: Vec<DroneKey> = pairs.iter().map(|&(p, seed)| drone_key(p, seed)).collect();
-        let drones = self.drone_sets(&keys, &flights, cfg, &mut tick);
+        let drones = self
+            .drone_sets(&keys, &flights, cfg, &mut tick)
+            .ok_or(SimError::Stopped)?;
         let grid = flight_time / s.station.step + flights.len() as f64;
         let chains: Vec<_> = pairs
             .iter()
@@ -550,7 +577,7 @@ impl Simulator {
                 seed,
             })
             .collect();
-        let flown = fly_all(&runs, flights.len(), &mut tick);
+        let flown = fly_all(&runs, flights.len(), &mut tick).ok_or(SimError::Stopped)?;
         let (results, series_models) = pool(cfg, &stations, flown, &flights)?;
         let delivery = Delivery::pooled(results.iter().map(|r| &r.delivery));
         let series = s
@@ -733,12 +760,12 @@ fn pool(
 /// ([`StationRun::fly_in_order`]), those runs side by side; every other run joins the first run
 /// whose drone sends the same transmissions ([`StationRun::sends_as`]), and each such group's
 /// flights are one parallel batch, the costliest groups first. One list of flights per run, in
-/// flight order; `tick` once per run and flight.
+/// flight order; `tick` once per run and flight. `None` where a tick asked to stop.
 fn fly_all(
     runs: &[StationRun],
     flights: usize,
-    tick: &mut dyn FnMut(),
-) -> Vec<Vec<Result<FlightRun, SimError>>> {
+    tick: &mut dyn FnMut() -> bool,
+) -> Option<Vec<Vec<Result<FlightRun, SimError>>>> {
     let fixed_rate = (0..runs.len()).filter(|&r| !runs[r].adaptive());
     let mut groups: Vec<Vec<usize>> = Vec::new();
     for r in fixed_rate {
@@ -763,8 +790,8 @@ fn fly_all(
             members[0].fly_shared(i, &members)
         },
         // One tick per run and flight: a group's job is as many.
-        &mut |k| groups[jobs[k].0].iter().for_each(|_| tick()),
-    );
+        &mut |k| ticks(groups[jobs[k].0].len(), tick),
+    )?;
     // Back to one list per run: group g's job for flight i holds its members' flights in order.
     let mut per_run: Vec<Vec<Result<FlightRun, SimError>>> =
         (0..runs.len()).map(|_| Vec::new()).collect();
@@ -779,11 +806,11 @@ fn fly_all(
         0..adaptive.len(),
         |k, tick| runs[adaptive[k]].fly_in_order(tick),
         tick,
-    );
+    )?;
     for (r, flown) in adaptive.into_iter().zip(in_order) {
         per_run[r] = flown;
     }
-    per_run
+    Some(per_run)
 }
 
 /// Reads or builds the flights `source` names.

@@ -1,7 +1,7 @@
 //! The end-to-end simulation: reproducibility, the drone-run cache, link effects and the JSON
 //! contract of reference §9.
 
-use loratrack::api::{simulate, sweep_paper};
+use loratrack::api::{simulate, simulate_stoppable, sweep_paper, ApiError};
 use loratrack::{ModelChoice, ModelKind, Prediction, Scenario, Simulator, MAX_SEED};
 use serde_json::{json, Value};
 
@@ -110,6 +110,42 @@ fn reused_station_predictions_give_the_numbers_of_a_fresh_simulator() {
             let fresh = simulate(&mut Simulator::new(), &at(distance, sf)).unwrap();
             assert_eq!(reused, fresh, "{prediction:?} at {distance} m, SF{sf}");
         }
+    }
+}
+
+#[test]
+fn a_run_its_progress_stops_ends_stopped_and_the_next_gives_a_fresh_simulators_numbers() {
+    let set_of = |sf: i64| {
+        set(
+            &Scenario::default(),
+            json!({"synthetic": "all", "sf": sf, "seeds": 2}),
+        )
+    };
+    let mut sim = Simulator::new();
+    let mut calls = 0;
+    let stopped = simulate_stoppable(&mut sim, &set_of(7), &mut |_, _| {
+        calls += 1;
+        false
+    });
+    let Err(ApiError::Sim(e)) = stopped else {
+        panic!("a stopped run gave {stopped:?}");
+    };
+    assert_eq!(e, loratrack::SimError::Stopped);
+    assert_eq!(
+        e.to_string(),
+        "the run was stopped by its progress callback"
+    );
+    // Natively the first batch (every drone filter) ends before the first tick says stop.
+    assert!(calls > 0);
+    // Nothing half done is remembered: the same run, and another link on the same drones, give
+    // a fresh simulator's numbers.
+    for sf in [7, 8] {
+        let again = simulate(&mut sim, &set_of(sf)).unwrap();
+        assert_eq!(
+            again,
+            simulate(&mut Simulator::new(), &set_of(sf)).unwrap(),
+            "SF{sf}"
+        );
     }
 }
 
