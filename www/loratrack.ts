@@ -111,9 +111,11 @@ export function decode(params: Partial<DecodeParams> & Pick<DecodeParams, 'model
 
 /**
  * Runs the tracking simulation (drone filter runs are cached between calls). `onProgress(done,
- * total)` is called as flights complete; it must not call back into this module.
+ * total)` is called as flights complete; it must not call back into this module. Where it returns
+ * `false` the run stops before its next flight and this throws "the run was stopped by its
+ * progress callback" (any other return value goes on).
  */
-export function simulate(params: SimulateParams, onProgress?: (done: number, total: number) => void): SimReport {
+export function simulate(params: SimulateParams, onProgress?: (done: number, total: number) => boolean | void): SimReport {
   return wasm.simulate(params, onProgress) as SimReport;
 }
 

@@ -82,7 +82,7 @@ function submit(): void {
   }
   if (running?.long) {
     // A whole-set run takes about a second: stop it rather than make the user wait for stale numbers.
-    pool.restart();
+    pool.interrupt();
     running = undefined;
     // A first flight on show belongs to the run just stopped.
     if (showPartial(false)) markStale(true);

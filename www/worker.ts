@@ -28,6 +28,10 @@ export interface SimulateRequest {
    * reference, where its 31 MB of text (10⁶ rows) copied to each worker held the page's thread
    * ~50 ms. */
   trajectoryFile?: Blob;
+  /** A blob URL the page revokes to stop this run (`SimulationPool.interrupt`): checked between
+   * flights (`stillWanted`), so a run a newer one replaced ends within ~0.1 s and its worker,
+   * caches kept, takes the next request. */
+  stop?: string;
 }
 
 /** Swarms of each size in `sizes`, otherwise `params`. */
@@ -73,6 +77,56 @@ function warmNumberFormat(): void {
   new Intl.NumberFormat('en-US').format(1.5);
 }
 
+/** How often a run checks whether it is still wanted, ms: each check is a request to the browser
+ * (about 1–3 ms on a busy 2-core machine), so a run spends at most a few per cent on them. */
+const STOP_CHECK_MS = 100;
+
+/** Whether this worker can read a blob URL synchronously: where it cannot, no run is ever
+ * stopped (each then ends as it would have). */
+const canCheck = ((): boolean => {
+  try {
+    const url = URL.createObjectURL(new Blob(['']));
+    const ok = loads(url);
+    URL.revokeObjectURL(url);
+    return ok;
+  } catch {
+    return false;
+  }
+})();
+
+/** Whether `url` loads now: a synchronous request, allowed in a worker. */
+function loads(url: string): boolean {
+  try {
+    const request = new XMLHttpRequest();
+    request.open('GET', url, false);
+    request.send();
+    return request.status === 200;
+  } catch {
+    return false;
+  }
+}
+
+/**
+ * Whether the run whose stop URL is `stop` is still wanted, checked at most every STOP_CHECK_MS.
+ * A worker busy in the core reads no message until the run returns, and `Worker.terminate()`
+ * lets a running script go on for two seconds in Chromium (docs/performance.md, twenty-second
+ * session): a URL the page revokes is the one signal that reaches it while it runs, without
+ * SharedArrayBuffer (which static hosting cannot enable). A closing page revokes its URLs too.
+ */
+function stillWanted(stop: string | undefined): () => boolean {
+  if (!stop || !canCheck) return () => true;
+  let last = performance.now();
+  let wanted = true;
+  return () => {
+    const now = performance.now();
+    if (wanted && now - last >= STOP_CHECK_MS) {
+      last = now;
+      wanted = loads(stop);
+    }
+    return wanted;
+  };
+}
+
 let give: (module: WebAssembly.Module) => void;
 const ready = load(new Promise((resolve) => (give = resolve)));
 
@@ -82,18 +136,21 @@ self.onmessage = async (event: MessageEvent<Request | ModuleMessage>) => {
   const post = (r: Response) => (self as unknown as Worker).postMessage(r);
   if ('swarm' in event.data) return runSwarms(event.data, post);
   const { id, sweep: points, trajectoryFile } = event.data;
+  const wanted = stillWanted(event.data.stop);
   try {
     const params = trajectoryFile ? { ...event.data.params, trajectory: await trajectoryFile.text() } : event.data.params;
     const t0 = performance.now();
     let last = 0;
     // A few dozen messages at most: one per 2 % of the work. A large CSV is read first, with its
     // own progress (the first half of the bar), then simulated from the module's cache.
+    // Returns whether the run goes on (`simulate`'s progress: false stops it).
     const report_ = (from: number, share: number) => (done: number, total: number) => {
       const p = from + (share * done) / total;
       if (p - last >= 0.02 || done === total) {
         last = p;
         post({ id, progress: p });
       }
+      return wanted();
     };
     const large = (params.trajectory?.length ?? 0) > LARGE_CSV_BYTES;
     // The whole set takes 30 flights' time; its first flight alone, about a thirtieth of it, gives
@@ -102,6 +159,7 @@ self.onmessage = async (event: MessageEvent<Request | ModuleMessage>) => {
       post({ id, partial: simulate({ ...params, synthetic: 1, series: true }) });
       warmNumberFormat();
     }
+    // Reading a file is not stopped: its lines are the module's cache for the next run.
     if (large && params.trajectory) loadCsv({ trajectory: params.trajectory, trajectoryName: params.trajectoryName }, report_(0, 0.5));
     const report = simulate({ ...params, series: true }, large ? report_(0.5, 0.5) : report_(0, 1));
     post({ id, report, millis: performance.now() - t0 });
@@ -111,6 +169,7 @@ self.onmessage = async (event: MessageEvent<Request | ModuleMessage>) => {
       // seed each (the charts show the spread across the sweep, not across seeds). A distance
       // moves the one default gateway, so listed gateways are left out; another SF is a fixed
       // data rate (ADR would move it).
+      if (!wanted()) return;
       const sweep = points.map((point) => sweepPoint({ ...params, ...('distance' in point ? { gateways: [] } : { adr: 'off' }), ...point, seeds: 1, series: false }, point));
       post({ id, sweep });
     }

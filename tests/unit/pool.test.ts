@@ -124,17 +124,28 @@ test('answers of the early run that come after the takeover reach the new run', 
   expect(answers.map((r) => r.id)).toEqual([3]);
 });
 
-test('a run asked for with other settings stops the early run and runs on fresh workers', () => {
+test('a run asked for with other settings stops the early run by its stop URL and runs on the same workers', () => {
   StandIn.all = [];
+  const revoked = vi.spyOn(URL, 'revokeObjectURL');
   const pool = new SimulationPool(2);
   pool.start(request(0, 1000));
   const answers: Response[] = [];
   pool.run(request(1, 3000), (r) => answers.push(r));
-  const [early, fresh] = [StandIn.all.slice(0, 2), StandIn.all.slice(2)];
-  expect(early.every((w) => w.terminated)).toBe(true);
-  expect(fresh.map((w) => w.sent.map((m) => m.params.distance))).toEqual([[3000], [3000]]);
-  fresh.forEach((w) => w.answer());
+  // The workers keep their caches: none is terminated or added, each is sent the new run after
+  // the early one, under another stop URL, and the early one's is revoked.
+  expect(StandIn.all.length).toBe(2);
+  expect(StandIn.all.some((w) => w.terminated)).toBe(false);
+  expect(StandIn.all.map((w) => w.sent.map((m) => m.params.distance))).toEqual([[1000, 3000], [1000, 3000]]);
+  const [early, now] = StandIn.all[0].sent.map((m) => m.stop);
+  expect(early && now && early !== now).toBe(true);
+  expect(revoked).toHaveBeenCalledWith(early);
+  expect(revoked).not.toHaveBeenCalledWith(now);
+  // The stopped run's refusal, which comes first, is dropped; the new run's report arrives.
+  for (const w of StandIn.all) w.onmessage?.({ data: { id: w.sent[0].id, error: 'the run was stopped by its progress callback' } });
+  expect(answers).toEqual([]);
+  StandIn.all.forEach((w) => w.answer());
   expect(answers.map((r) => r.id)).toEqual([1]);
+  revoked.mockRestore();
 });
 
 test('a refusal reaches the page once, with the setting the core named', () => {
