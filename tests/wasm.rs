@@ -384,6 +384,21 @@ fn a_progress_callback_that_returns_false_stops_the_run_before_its_next_flight()
         json(&wasm::simulate(set(41), f.clone().into()).unwrap()),
         before
     );
+    // Stopped among the stations' flights (the 90 drone runs, 30 flights × 3 models, come from
+    // the cache and tick first), whose remembered predictions it has begun to extend: the same.
+    let late: Rc<RefCell<usize>> = Rc::default();
+    let sink = Rc::clone(&late);
+    let cb = Closure::<dyn FnMut(f64, f64) -> bool>::new(move |_, _| {
+        *sink.borrow_mut() += 1;
+        *sink.borrow() < 100
+    });
+    let f: &js_sys::Function = cb.as_ref().unchecked_ref();
+    assert!(wasm::simulate(set(41), f.clone().into()).is_err());
+    assert_eq!(*late.borrow(), 100);
+    assert_eq!(
+        json(&wasm::simulate(set(41), JsValue::UNDEFINED).unwrap()),
+        before
+    );
     assert!(wasm::simulate(set(42), JsValue::UNDEFINED).is_ok());
 }
 
