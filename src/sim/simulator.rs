@@ -497,9 +497,11 @@ impl Simulator {
     /// [`Simulator::run_with_progress`], where `progress` also says whether to go on: once it
     /// returns `false` the run stops at the next flight it would start (in WebAssembly, where
     /// flights run in turn; natively, at the end of the batch under way) with
-    /// [`SimError::Stopped`], and remembers nothing it computed for that batch. The page stops a
-    /// run a newer one replaced this way (`docs/reference.md` §9): its worker could otherwise
-    /// only be terminated, which lets it compute on for seconds.
+    /// [`SimError::Stopped`]. No drone run of a stopped batch is remembered, and the stations'
+    /// remembered predictions are extended only by whole flights, so the next run gives a fresh
+    /// simulator's numbers. The page stops a run a newer one replaced this way
+    /// (`docs/reference.md` §9): its worker could otherwise only be terminated, which lets it
+    /// compute on for seconds.
     pub fn run_stoppable(
         &mut self,
         cfg: &Validated,
