@@ -18,10 +18,8 @@ pub fn simulate_with_progress(
     p: &Scenario,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<SimReport, ApiError> {
-    simulate_stoppable(sim, p, &mut |done, total| {
-        progress(done, total);
-        true
-    })
+    let cfg = p.validate()?;
+    Ok(sim.run_with_progress(&cfg, progress)?)
 }
 
 /// [`simulate_with_progress`], where `progress` also says whether to go on: `false` stops the
