@@ -301,15 +301,14 @@ pub fn command_line(params: JsValue, command: JsValue) -> Result<JsValue, JsValu
 /// setting}, progress?)` → `{config, collisionRate, collisionRateTheory, frameLength,
 /// largestSwarm, packetsSent, packetsReceived, deliveryRatio, duplicates, gateways, …, drones}`
 /// (the CLI's `swarm --json`). `progress(done, total)` is called
-/// as episodes and drones complete.
+/// as episodes and drones complete; where it returns `false` the swarm stops where it is and
+/// `swarm` throws "the run was stopped by its progress callback" (the page stops a swarm its
+/// panel runs again, docs/reference.md §9). Any other return value, or a throw, goes on.
 #[wasm_bindgen]
 pub fn swarm(params: JsValue, progress: JsValue) -> Result<JsValue, JsValue> {
     let progress = progress_function(progress)?;
     call(params, |p: crate::sim::Scenario| {
-        let mut report = reporter(&progress);
-        api::swarm_with_progress(&p, &mut |done, total| {
-            report(done, total);
-        })
+        api::swarm_stoppable(&p, &mut reporter(&progress))
     })
 }
 

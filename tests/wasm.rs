@@ -619,6 +619,38 @@ fn swarm_runs_across_the_boundary_with_progress() {
 }
 
 #[wasm_bindgen_test]
+fn a_swarm_progress_callback_that_returns_false_stops_the_swarm_there() {
+    use std::cell::Cell;
+    use std::rc::Rc;
+    use wasm_bindgen::closure::Closure;
+    let calls = Rc::new(Cell::new(0u32));
+    let seen = Rc::clone(&calls);
+    // Go on once (the loop's first stretch computed ahead), then stop.
+    let cb = Closure::<dyn FnMut(u32, u32) -> bool>::new(move |_, _| {
+        seen.set(seen.get() + 1);
+        seen.get() < 2
+    });
+    let params = || {
+        obj(&[
+            ("drones", 40.into()),
+            ("duration", 120.into()),
+            ("sensorRate", 1.into()),
+            ("step", 1.into()),
+        ])
+    };
+    let e = wasm::swarm(params(), cb.as_ref().clone()).unwrap_err();
+    assert_eq!(
+        error_message(e),
+        "the run was stopped by its progress callback"
+    );
+    assert_eq!(calls.get(), 2);
+    // Any other answer goes on to the end.
+    let on = Closure::<dyn FnMut(u32, u32) -> JsValue>::new(|_, _| JsValue::UNDEFINED);
+    let r = wasm::swarm(params(), on.as_ref().clone()).unwrap();
+    assert_eq!(js_sys::Array::from(&get(&r, "drones")).length(), 40);
+}
+
+#[wasm_bindgen_test]
 fn gateways_cross_the_boundary_and_each_is_reported() {
     let gateways = js_sys::JSON::parse(
         r#"[{"east": 5000, "north": 0}, {"east": 0, "north": 0, "height": 30}]"#,

@@ -37,4 +37,4 @@ pub use simulate::{
     p75, simulate, simulate_stoppable, simulate_with_progress, sweep_paper, SweepReport, SweepRun,
     PAPER_DISTANCES, PAPER_SFS,
 };
-pub use swarm::{swarm, swarm_sharing, swarm_with_progress};
+pub use swarm::{swarm, swarm_sharing, swarm_stoppable, swarm_with_progress};

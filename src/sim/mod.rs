@@ -67,7 +67,7 @@ pub use station::{
 };
 pub use streams::DroneStreams;
 pub use swarm::{
-    run_swarm, run_swarm_sharing, DroneReport, LargestSwarm, SfLimit, SharedDroneRuns, SwarmEcho,
-    SwarmReport,
+    run_swarm, run_swarm_sharing, run_swarm_stoppable, DroneReport, LargestSwarm, SfLimit,
+    SharedDroneRuns, SwarmEcho, SwarmReport,
 };
 pub use versus_lowest::{versus_lowest, Contender, VersusLowest};

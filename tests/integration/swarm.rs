@@ -491,6 +491,44 @@ fn a_swarm_reports_progress_while_its_drones_fly() {
     assert!(flying.len() >= 4, "{calls:?}");
 }
 
+#[test]
+fn a_swarm_its_progress_stops_ends_stopped_there_and_asks_nothing_more() {
+    use loratrack::api::swarm_stoppable;
+    let p = set(&aloha(40, 1, 1), json!({"duration": 120.0}));
+    let whole = serde_json::to_value(swarm(&p).unwrap()).unwrap();
+    let mut calls: Vec<(usize, usize)> = Vec::new();
+    let on = swarm_stoppable(&p, &mut |done, total| {
+        calls.push((done, total));
+        true
+    })
+    .unwrap();
+    assert_eq!(serde_json::to_value(on).unwrap(), whole);
+    // The loop asks after each group of 32 drones computed ahead: twice a 30 s stretch for 40.
+    let half = calls[0].1 / 2;
+    let flying = calls.iter().take_while(|c| c.0 < half).count();
+    assert!(flying >= 8, "{calls:?}");
+    // Told to stop in the loop, or among the stations after it: stopped there.
+    for stop_at in [2, flying + 2] {
+        let mut asked = 0;
+        let e = swarm_stoppable(&p, &mut |_, _| {
+            asked += 1;
+            asked < stop_at
+        })
+        .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "the run was stopped by its progress callback"
+        );
+        assert_eq!(
+            asked,
+            stop_at,
+            "stopped at call {stop_at} of {}",
+            calls.len()
+        );
+    }
+    assert!(flying + 2 < calls.len(), "{calls:?}");
+}
+
 /// The CLI's text counts the drones whose own p75 rests on too few packets, as its JSON flags
 /// them (the page draws them hollow and its note counts them).
 #[test]

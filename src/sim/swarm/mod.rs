@@ -126,16 +126,31 @@ pub fn run_swarm(
     cfg: &Validated,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<SwarmReport, SimError> {
+    run_swarm_stoppable(cfg, &mut |done, total| {
+        progress(done, total);
+        true
+    })
+}
+
+/// [`run_swarm`], where `progress` also says whether to go on: once it returns `false` the swarm
+/// stops where it is (in its event loop, at the next stretch of estimates computed ahead; among
+/// its stations, before the next chunk of drones) with [`SimError::Stopped`]. Nothing of a
+/// swarm outlives it, so the next one runs as it would have. The page stops a swarm its panel
+/// runs again, or that its page closed, this way (`docs/reference.md` §9).
+pub fn run_swarm_stoppable(
+    cfg: &Validated,
+    progress: &mut dyn FnMut(usize, usize) -> bool,
+) -> Result<SwarmReport, SimError> {
     run_swarm_sharing(cfg, None, progress)
 }
 
-/// [`run_swarm`], its drones' filter runs taken from `shared` (and left there for the next
-/// swarm) where it holds them: the same report, bit for bit, with less work for a family of
+/// [`run_swarm_stoppable`], its drones' filter runs taken from `shared` (and left there for the
+/// next swarm) where it holds them: the same report, bit for bit, with less work for a family of
 /// swarms over the same drones.
 pub fn run_swarm_sharing(
     cfg: &Validated,
     shared: Option<&SharedDroneRuns>,
-    progress: &mut dyn FnMut(usize, usize),
+    progress: &mut dyn FnMut(usize, usize) -> bool,
 ) -> Result<SwarmReport, SimError> {
     let (mut swarm, mut net) = Swarm::new(cfg)?;
     swarm.shared = shared;
@@ -149,11 +164,15 @@ pub fn run_swarm_sharing(
         let before = sent.len() * n;
         let mut clock = |share: f64| progress(before + (share * n as f64) as usize, total);
         sent.push(swarm.fly(&mut net, seats, &mut lbt, &mut clock)?);
-        progress(sent.len() * n, total);
+        if !progress(sent.len() * n, total) {
+            return Err(SimError::Stopped);
+        }
     }
-    let scored = swarm.score(&sent, &mut |drones| {
-        progress(episodes * n + drones * episodes, total)
-    });
+    let scored = swarm
+        .score(&sent, &mut |drones| {
+            progress(episodes * n + drones * episodes, total)
+        })
+        .ok_or(SimError::Stopped)?;
     let mut r = swarm.report(&net, scored)?;
     if net.listen_before_talk {
         (r.lbt_deferrals, r.lbt_collisions_avoided) = (Some(lbt.0), Some(lbt.1));
@@ -252,13 +271,14 @@ impl<'a> Swarm<'a> {
     }
 
     /// One episode: every drone's filter, sender and links through the event loop, calling
-    /// `progress(share)` as its clock passes each stretch of its time span ([`run_episode`]).
+    /// `progress(share)` as its clock passes each stretch of its time span ([`run_episode`]);
+    /// [`SimError::Stopped`] where it says stop.
     fn fly(
         &self,
         net: &mut Network,
         seats: &[Seat],
         lbt: &mut (usize, usize),
-        progress: &mut dyn FnMut(f64),
+        progress: &mut dyn FnMut(f64) -> bool,
     ) -> Result<Vec<Vec<Transmission>>, SimError> {
         let s = self.cfg.s();
         let model = self.model.sent_model();
@@ -319,7 +339,9 @@ impl<'a> Swarm<'a> {
                 None => flier,
             });
         }
-        run_episode(net, &mut fliers, progress);
+        if !run_episode(net, &mut fliers, progress) {
+            return Err(SimError::Stopped);
+        }
         for f in &fliers {
             lbt.0 += f.lbt_deferrals;
             lbt.1 += f.lbt_avoided;
@@ -329,12 +351,12 @@ impl<'a> Swarm<'a> {
 
     /// Each drone's station over what the network passed on in every episode (`sent`: per
     /// episode, per drone), drones in parallel, calling `progress(drones done)` after each
-    /// chunk of them.
+    /// chunk of them; `None` where it says stop.
     fn score<'s>(
         &self,
         sent: &'s [Vec<Vec<Transmission>>],
-        progress: &mut dyn FnMut(usize),
-    ) -> Scored<'s> {
+        progress: &mut dyn FnMut(usize) -> bool,
+    ) -> Option<Scored<'s>> {
         let n = self.kits.len();
         let mut scored = Scored {
             drones: Vec::with_capacity(n),
@@ -356,9 +378,11 @@ impl<'a> Swarm<'a> {
                     .push(self.drone_report(i, &mine, error3d, whole_flight));
                 scored.tx.extend(mine);
             }
-            progress(scored.drones.len());
+            if !progress(scored.drones.len()) {
+                return None;
+            }
         }
-        scored
+        Some(scored)
     }
 
     /// Drone `i`'s station over its transmissions in every episode: its errors, m, and the
