@@ -38,6 +38,8 @@ export interface SimulateRequest {
 export interface SwarmRequest {
   id: number;
   swarm: { sizes: number[]; params: SwarmParams };
+  /** A blob URL the page revokes to stop these swarms (`runSwarms`' `stop`), as `SimulateRequest`'s. */
+  stop?: string;
 }
 
 /** A worker's first message: the page's compiled module, which it instantiates (`spawnWorker`). */
@@ -205,12 +207,17 @@ function sweepPoint(params: SimulateParams, point: SweepPoint): SweepResult {
   return ran.length ? { point, report: merge(ran, stations, params.model ?? 'all'), ...firstRefusal([...alone, all]) } : all;
 }
 
-function runSwarms({ id, swarm: { sizes, params } }: SwarmRequest, post: (r: Response) => void): void {
+function runSwarms({ id, swarm: { sizes, params }, stop }: SwarmRequest, post: (r: Response) => void): void {
+  const wanted = stillWanted(stop);
   try {
     const total = sizes.reduce((a, b) => a + b, 0);
     let before = 0;
     const swarms = sizes.map((drones) => {
-      const r = swarm({ ...params, drones }, (done, all) => post({ id, progress: (before + (done / all) * drones) / total }));
+      // The core asks every ~0.2–0.4 s (a group of drones computed ahead, or of stations scored).
+      const r = swarm({ ...params, drones }, (done, all) => {
+        post({ id, progress: (before + (done / all) * drones) / total });
+        return wanted();
+      });
       before += drones;
       return r;
     });

@@ -195,6 +195,32 @@ test('a swarm that fails stops every worker of the run and says why', async () =
   expect(workers.every((w) => w.terminated)).toBe(true);
 });
 
+test('a swarm run stopped revokes the stop URL its workers were sent before terminating them; one that ends revokes it too', async () => {
+  const revoked = vi.spyOn(URL, 'revokeObjectURL');
+  type SwarmWorker = { sent: { stop?: string }[]; onmessage: ((e: { data: unknown }) => void) | null; terminated: boolean };
+  StandIn.all = [];
+  const stopped = runSwarms([2, 20], { model: '3d-ctra' }, () => {}, 2);
+  const workers = StandIn.all.slice(-2) as unknown as SwarmWorker[];
+  const url = workers[0].sent[0].stop;
+  expect(url && workers.every((w) => w.sent[0].stop === url)).toBe(true);
+  expect(revoked).not.toHaveBeenCalledWith(url);
+  stopped.stop();
+  // Revoked, so a worker busy in the core stops at its next check, and terminated; answers after
+  // that are not listened to.
+  expect(revoked).toHaveBeenCalledWith(url);
+  expect(workers.every((w) => w.terminated && w.onmessage === null)).toBe(true);
+
+  StandIn.all = [];
+  const run = runSwarms([2], { model: '3d-ctra' }, () => {}, 1);
+  const [only] = StandIn.all as unknown as SwarmWorker[];
+  const own = only.sent[0].stop;
+  expect(own && own !== url).toBe(true);
+  only.onmessage?.({ data: { id: 1, swarms: [{ config: { drones: 2 } }] } });
+  await run.done;
+  expect(revoked).toHaveBeenCalledWith(own);
+  revoked.mockRestore();
+});
+
 test('a sweep point some of whose stations the core refused keeps those that ran, in order, with the refusal', () => {
   const a = report([result('dr', 28, 28)]);
   const point = { sf: 10 };
