@@ -59,9 +59,10 @@ export function runSwarms(sizes: number[], params: SwarmParams, progress: (done:
   const running = shares.map(() => spawnWorker());
   const done = new Array<number>(shares.length).fill(0);
   const swarms = new Array<SwarmReport>(sizes.length);
-  // Terminating alone lets a worker busy in the core compute on for two seconds (Chromium's
-  // forcible-termination delay), beside the swarms run next; revoking the run's URL first stops
-  // its swarm at the core's next question (www/worker.ts `stillWanted`), as a closing page does.
+  // A page that closes mid-swarm left its workers computing for seconds in Chromium (where another
+  // page of the site kept the renderer, as the browser suite's pages do: 4.1-4.2 CPU-s in the 3 s
+  // after the close); the run's URL, revoked by stop() and by a closing page alike, stops its
+  // swarm at the core's next question (www/worker.ts `stillWanted`).
   const stopUrl = newStop();
   const stop = () => {
     URL.revokeObjectURL(stopUrl);
@@ -124,9 +125,8 @@ export class SimulationPool {
   /** Stops the runs under way: each worker ends its run before its next flight (within ~0.1 s
    * and that flight) and takes the next request with its caches, so a change of settings during
    * a whole set waits neither for the set nor for fresh workers to compute the drones again.
-   * Their answers are dropped. (Terminated workers went on for two seconds beside the new run,
-   * and their replacements started without caches: 1.8 s to a new whole set's results instead
-   * of 0.9 s, docs/performance.md.) */
+   * Their answers are dropped. (Terminated and replaced, the workers started without caches: 1.8 s
+   * to a new whole set's results instead of 0.9 s, docs/performance.md.) */
   interrupt(): void {
     URL.revokeObjectURL(this.stop);
     this.stop = newStop();

@@ -111,10 +111,11 @@ function loads(url: string): boolean {
 /**
  * Whether the run whose stop URL is `stop` is still wanted: checked at its first call (a request
  * that waited behind a stopped run may itself have been replaced since) and then at most every
- * STOP_CHECK_MS. A worker busy in the core reads no message until the run returns, and `Worker.terminate()`
- * lets a running script go on for two seconds in Chromium (docs/performance.md, twenty-second
- * session): a URL the page revokes is the one signal that reaches it while it runs, without
- * SharedArrayBuffer (which static hosting cannot enable). A closing page revokes its URLs too.
+ * STOP_CHECK_MS. A worker busy in the core reads no message until the run returns, and terminating
+ * it would throw away its caches; a page that closes mid-run left its workers computing for seconds
+ * in Chromium (docs/performance.md, twenty-second and twenty-third sessions). A URL the page revokes
+ * is the one signal that reaches a running worker without SharedArrayBuffer (which static hosting
+ * cannot enable), and a closing page's URLs are revoked with it.
  */
 function stillWanted(stop: string | undefined): () => boolean {
   if (!stop || !canCheck) return () => true;
