@@ -108,7 +108,8 @@ pub(crate) fn par_map_costliest_first<T: Send>(
 /// progresses (a run's flights flown in order): in WebAssembly the items run in turn and each
 /// tick is passed on as it comes; natively they run side by side, each item's ticks are counted,
 /// and as many are passed on once all are done, as [`par_map_ticking`] does. A tick passed on
-/// that returns `false` stops as there: no further item starts, and the result is `None`.
+/// that returns `false` stops as there: no further tick is passed on, no further item starts,
+/// and the result is `None`.
 pub(crate) fn par_map_progressing<T: Send>(
     range: core::ops::Range<usize>,
     f: impl Fn(usize, &mut dyn FnMut()) -> T + Sync + Send,
@@ -125,7 +126,7 @@ pub(crate) fn par_map_progressing<T: Send>(
         let out = counted
             .into_iter()
             .map(|(r, ticks)| {
-                (0..ticks).for_each(|_| go &= tick());
+                (0..ticks).for_each(|_| go = go && tick());
                 r
             })
             .collect();
@@ -136,7 +137,7 @@ pub(crate) fn par_map_progressing<T: Send>(
         range
             .map(|i| {
                 let mut go = true;
-                let r = f(i, &mut || go &= tick());
+                let r = f(i, &mut || go = go && tick());
                 go.then_some(r)
             })
             .collect()
@@ -179,6 +180,8 @@ mod tests {
             ticks < 2
         });
         assert_eq!(out, None);
+        // The tick that said stop was the last one passed on (of the 0 + 1 + 2 + 3 counted).
+        assert_eq!(ticks, 2);
     }
 
     /// Ticks `n` times and returns `n`.
