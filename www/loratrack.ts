@@ -127,8 +127,10 @@ export function commandLine(params: SimulateParams, command?: 'simulate' | 'swar
 }
 
 /** Simulates drones sharing the gateways through the same event loop as simulate.
- * `onProgress(done, total)` as episodes and drones complete. */
-export function swarm(params: SwarmParams, onProgress?: (done: number, total: number) => void): SwarmReport {
+ * `onProgress(done, total)` as episodes and drones complete (every ~0.2–0.4 s of work); where it
+ * returns `false` the swarm stops there and this throws "the run was stopped by its progress
+ * callback" (any other return value goes on). */
+export function swarm(params: SwarmParams, onProgress?: (done: number, total: number) => boolean | void): SwarmReport {
   return wasm.swarm(params, onProgress) as SwarmReport;
 }
 
