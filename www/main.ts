@@ -850,6 +850,12 @@ function markSwarmStale(): void {
 /** The swarms the core refused last (their request), whose refusal is on show. */
 let swarmRefused: string | undefined;
 
+/** Stops the swarms under way and says so (the panel's Stop button, shown while they run): a
+ * 200-drone swarm of 20-minute flights takes a minute or more, and Run swarm was the only way
+ * out of one started by mistake. */
+let stopSwarms: (() => void) | undefined;
+$('#stop-swarm').addEventListener('click', () => stopSwarms?.());
+
 $('#run-swarm').addEventListener('click', () => {
   swarmRun?.stop();
   const { sizes, params } = swarmRequest();
@@ -866,12 +872,24 @@ $('#run-swarm').addEventListener('click', () => {
   swarming = true;
   updateBusy();
   const run = (swarmRun = runSwarms(sizes, params, (done) => (bar.value = done)));
+  const stopButton = $<HTMLButtonElement>('#stop-swarm');
+  stopButton.hidden = false;
   const end = () => {
     bar.hidden = true;
+    // Focus on the Stop button would be lost with it: it goes to Run swarm.
+    if (document.activeElement === stopButton) $<HTMLButtonElement>('#run-swarm').focus();
+    stopButton.hidden = true;
+    stopSwarms = undefined;
     swarming = false;
     updateBusy();
     // "Still running" no longer holds, whether the chart follows or an error.
     clearDownloadWhy($('[data-panel="swarm"]'));
+  };
+  stopSwarms = () => {
+    run.stop();
+    end();
+    if (placeholder) placeholder.textContent = unrun;
+    $('#swarm-status').textContent = `Stopped: the swarms of ${sizes.join(', ')} drones were not run to the end.${swarmShown === undefined ? '' : ' The chart is of the swarms run before.'}`;
   };
   run.done.then(
     ({ swarms, millis }) => {

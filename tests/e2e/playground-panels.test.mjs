@@ -773,6 +773,35 @@ test('a swarm too long for its drones offers the largest size of the panel that 
   assert.deepEqual(problems, []);
 });
 
+test('a swarm run can be stopped: the panel says so, gives focus back to Run swarm, and runs the next swarm', async () => {
+  const { page, problems } = await open('?swarmDrones=200&swarmDuration=1200');
+  const stop = page.getByRole('button', { name: 'Stop', exact: true });
+  assert.equal(await stop.isVisible(), false);
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await until(page, () => document.querySelector('#swarm-progress').value > 0, null, { timeout: 60_000 });
+  await stop.click();
+  assert.equal(await page.locator('#swarm-status').textContent(), 'Stopped: the swarms of 2, 25, 50, 100, 200 drones were not run to the end.');
+  assert.equal(await stop.isVisible(), false);
+  assert.equal(await page.locator('#swarm-progress').isVisible(), false);
+  assert.equal(await page.evaluate(() => document.activeElement?.id), 'run-swarm');
+  // Nothing was run to the end, so the placeholder says so again.
+  assert.match(await page.locator('#chart-swarm').textContent(), /^No swarm run yet/);
+  await idle(page);
+  assert.deepEqual(await axe(page), []);
+  // The stopped swarms' workers are gone: the next swarms run to their chart, and then stopping
+  // them says the chart is of the swarms run before.
+  await page.getByLabel('Flights', { exact: true }).selectOption('120');
+  await runSwarm(page, '20', 'fixed');
+  assert.match(await page.locator('#swarm-status').textContent(), /^5 swarms simulated in/);
+  await page.getByLabel('Drones', { exact: true }).selectOption('200');
+  await page.getByLabel('Flights', { exact: true }).selectOption('1200');
+  await page.getByRole('button', { name: 'Run swarm' }).click();
+  await stop.click();
+  assert.match(await page.locator('#swarm-status').textContent(), /not run to the end\. The chart is of the swarms run before\.$/);
+  assert.equal(await page.locator('#chart-swarm figure').count() > 0, true);
+  assert.deepEqual(problems, []);
+});
+
 test('with the real flight chosen the swarm flies it, as the CLI\'s --sample does, and its note and slide say so', async () => {
   const { page, problems } = await open('?flight=canberra');
   await runSwarm(page, '20', 'fixed');
