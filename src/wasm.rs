@@ -302,8 +302,9 @@ pub fn command_line(params: JsValue, command: JsValue) -> Result<JsValue, JsValu
 /// largestSwarm, packetsSent, packetsReceived, deliveryRatio, duplicates, gateways, …, drones}`
 /// (the CLI's `swarm --json`). `progress(done, total)` is called
 /// as episodes and drones complete; where it returns `false` the swarm stops where it is and
-/// `swarm` throws "the run was stopped by its progress callback" (the page stops a swarm its
-/// panel runs again, docs/reference.md §9). Any other return value, or a throw, goes on.
+/// `swarm` throws "the run was stopped by its progress callback" (the page's Stop button, a
+/// re-run or a closing page stop its swarms so, docs/reference.md §9). Any other return value,
+/// or a throw, goes on.
 #[wasm_bindgen]
 pub fn swarm(params: JsValue, progress: JsValue) -> Result<JsValue, JsValue> {
     let progress = progress_function(progress)?;

@@ -78,9 +78,9 @@ fn packet_id(drone: usize, index: usize) -> u64 {
 const LOOKAHEAD_S: f64 = 30.0;
 
 /// Drones whose estimates are computed ahead between two progress reports: where they run in
-/// turn (WebAssembly), 32 drones' 30 s at 100 Hz take about 0.2 s, so a swarm told to stop
-/// (`run_episode`) stops within about that long, not the 1.3–2 s all 200 of a large panel's
-/// take.
+/// turn (WebAssembly), 32 drones' 30 s at 100 Hz take 0.2–0.4 s, so a swarm told to stop
+/// (`run_episode`) stops within about that long, not the 1.3–2 s all 200 of the panel's largest
+/// swarm take (docs/performance.md, twenty-third session).
 const AHEAD_GROUP: usize = 32;
 
 /// Runs one episode: every flier's uplinks until its flight ends, through every gateway of

@@ -133,10 +133,11 @@ pub fn run_swarm(
 }
 
 /// [`run_swarm`], where `progress` also says whether to go on: once it returns `false` the swarm
-/// stops where it is (in its event loop, at the next stretch of estimates computed ahead; among
-/// its stations, before the next chunk of drones) with [`SimError::Stopped`]. Nothing of a
-/// swarm outlives it, so the next one runs as it would have. The page stops a swarm its panel
-/// runs again, or that its page closed, this way (`docs/reference.md` §9).
+/// stops where it is (in its event loop, after the group of drones whose estimates it is
+/// computing ahead; among its stations, before the next chunk of drones) with
+/// [`SimError::Stopped`]. Nothing of a swarm outlives it, so the next one runs as it would have.
+/// The page stops this way a swarm its panel's Stop button ends, that its panel runs again, or
+/// whose page closed (`docs/reference.md` §9).
 pub fn run_swarm_stoppable(
     cfg: &Validated,
     progress: &mut dyn FnMut(usize, usize) -> bool,
