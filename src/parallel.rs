@@ -57,6 +57,11 @@ pub(crate) fn par_each<T: Send>(items: &mut [T], f: impl Fn(&mut T) + Sync + Sen
     }
 }
 
+/// Calls `tick` up to `n` times, until one asks to stop; whether none did.
+pub(crate) fn ticks(n: usize, tick: &mut dyn FnMut() -> bool) -> bool {
+    (0..n).all(|_| tick())
+}
+
 /// [`par_map`] calling `tick(i)` once per item `i`: after each item in WebAssembly (so a long
 /// run can report progress between items), after all of them natively. A tick that returns
 /// `false` asks to stop: in WebAssembly no further item starts, natively nothing more is left to
@@ -118,15 +123,15 @@ pub(crate) fn par_map_progressing<T: Send>(
     #[cfg(not(target_arch = "wasm32"))]
     {
         let counted = par_map(range, |i| {
-            let mut ticks = 0usize;
-            let r = f(i, &mut || ticks += 1);
-            (r, ticks)
+            let mut count = 0usize;
+            let r = f(i, &mut || count += 1);
+            (r, count)
         });
         let mut go = true;
         let out = counted
             .into_iter()
-            .map(|(r, ticks)| {
-                (0..ticks).for_each(|_| go = go && tick());
+            .map(|(r, n)| {
+                go = go && ticks(n, tick);
                 r
             })
             .collect();

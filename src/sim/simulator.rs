@@ -20,7 +20,7 @@ use crate::math::pow;
 use crate::models::ModelKind;
 use crate::options::{MAX_FILTER_STEPS, SEEDS};
 use crate::parallel::{
-    enough_tasks, par_map, par_map_costliest_first, par_map_owned, par_map_progressing,
+    enough_tasks, par_map, par_map_costliest_first, par_map_owned, par_map_progressing, ticks,
 };
 use crate::trajectory::{
     canberra_flight, parse_csv, parse_csv_with_progress, synthetic_flight, Trajectory,
@@ -213,11 +213,6 @@ fn run_missing(
         }
     }
     Some(tracks)
-}
-
-/// Calls `tick` up to `n` times, until one asks to stop; whether none did.
-fn ticks(n: usize, tick: &mut dyn FnMut() -> bool) -> bool {
-    (0..n).all(|_| tick())
 }
 
 impl Simulator {
@@ -500,8 +495,8 @@ impl Simulator {
     /// [`SimError::Stopped`]. No drone run of a stopped batch is remembered, and the stations'
     /// remembered predictions are extended only by whole flights, so the next run gives a fresh
     /// simulator's numbers. The page stops a run a newer one replaced this way
-    /// (`docs/reference.md` §9): its worker could otherwise only be terminated, which lets it
-    /// compute on for seconds.
+    /// (`docs/reference.md` §9): its worker could otherwise only be terminated, which would throw
+    /// away its caches.
     pub fn run_stoppable(
         &mut self,
         cfg: &Validated,
