@@ -449,6 +449,8 @@ pub fn delivery_spread(params: JsValue) -> Result<JsValue, JsValue> {
 /// `loadCsv({trajectory, trajectoryName?}, progress?)` → `{rows}`: reads a CSV flight into the
 /// module's cache, calling `progress(lines read, lines)` about a hundred times, so that the page
 /// can show how far a large file is; a following `simulate` of the same text starts at once.
+/// A progress callback that returns `false` stops the reading there, which then throws as a
+/// stopped `simulate` does (the page stops the reading of a file its user has replaced).
 #[wasm_bindgen(js_name = loadCsv)]
 pub fn load_csv(params: JsValue, progress: JsValue) -> Result<JsValue, JsValue> {
     #[derive(serde::Deserialize)]
@@ -472,9 +474,7 @@ pub fn load_csv(params: JsValue, progress: JsValue) -> Result<JsValue, JsValue> 
             let name = p
                 .trajectory_name
                 .unwrap_or_else(|| crate::sim::scenario::DEFAULT_CSV_NAME.into());
-            let rows = sim.load_csv(p.trajectory, name, &mut |done, total| {
-                report(done, total);
-            })?;
+            let rows = sim.load_csv(p.trajectory, name, &mut report)?;
             Ok(Rows { rows })
         })
     })

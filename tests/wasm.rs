@@ -798,6 +798,40 @@ fn a_large_csv_is_read_with_progress_and_then_simulated_from_the_cache() {
 }
 
 #[wasm_bindgen_test]
+fn a_csv_reading_whose_progress_returns_false_stops_and_is_read_again_whole() {
+    use std::cell::Cell;
+    use std::rc::Rc;
+    use wasm_bindgen::closure::Closure;
+    let mut text = String::from("t,x,y,z\n");
+    for i in 0..2000 {
+        text += &format!("{},{},0,20\n", f64::from(i) * 0.1, 0.5 * f64::from(i));
+    }
+    let calls = Rc::new(Cell::new(0u32));
+    let seen = Rc::clone(&calls);
+    let stop = Closure::<dyn FnMut(u32, u32) -> bool>::new(move |_, _| {
+        seen.set(seen.get() + 1);
+        seen.get() < 5
+    });
+    let params = || obj(&[("trajectory", text.clone().into())]);
+    let e = wasm::load_csv(params(), stop.as_ref().clone()).unwrap_err();
+    assert_eq!(
+        error_message(e),
+        "the run was stopped by its progress callback"
+    );
+    assert_eq!(calls.get(), 5, "asked nothing after the stop");
+    // Nothing of the stopped reading was kept: the next reads the file again, with its progress.
+    let again = Rc::new(Cell::new(0u32));
+    let count = Rc::clone(&again);
+    let on = Closure::<dyn FnMut(u32, u32) -> JsValue>::new(move |_, _| {
+        count.set(count.get() + 1);
+        JsValue::UNDEFINED
+    });
+    let r = wasm::load_csv(params(), on.as_ref().clone()).unwrap();
+    assert_eq!(num(&r, "rows"), 2000.0);
+    assert!(again.get() >= 50, "{} progress calls", again.get());
+}
+
+#[wasm_bindgen_test]
 fn seeds_give_each_result_an_interval_and_a_swarm_refuses_them() {
     let one = wasm::simulate(
         obj(&[("synthetic", 2.into()), ("model", "dr".into())]),

@@ -281,22 +281,24 @@ impl Simulator {
     /// Reads CSV `text` (named `name`) into the flight cache, calling `progress(lines read,
     /// lines)` as it goes, so that a following `simulate` of the same text starts at once. A
     /// page calls it first for a large file, to show how far the reading is. The flight's row
-    /// count.
+    /// count; [`SimError::Stopped`] where `progress` returned `false` (nothing is cached then).
     pub fn load_csv(
         &mut self,
         text: Arc<str>,
         name: String,
-        progress: &mut dyn FnMut(usize, usize),
+        progress: &mut dyn FnMut(usize, usize) -> bool,
     ) -> Result<usize, SimError> {
         let source = TrajectorySource::Csv(text, name);
         let (_, flights) = self.flights(&source, progress)?;
         Ok(flights.iter().map(|f| f.t.len()).sum())
     }
 
+    /// The flights of `source`, from the cache or read (a CSV text with `progress`, which may stop
+    /// the reading: [`SimError::Stopped`]).
     fn flights(
         &mut self,
         source: &TrajectorySource,
-        progress: &mut dyn FnMut(usize, usize),
+        progress: &mut dyn FnMut(usize, usize) -> bool,
     ) -> Result<(FlightKey, Rc<Vec<Trajectory>>), SimError> {
         let key = match source {
             TrajectorySource::Synthetic(c) => FlightKey::Synthetic(*c),
@@ -310,7 +312,7 @@ impl Simulator {
         }
         let flights = match source {
             TrajectorySource::Csv(text, name) => {
-                vec![parse_csv_with_progress(text, name, progress)?]
+                vec![parse_csv_with_progress(text, name, progress)?.ok_or(SimError::Stopped)?]
             }
             _ => load_flights(source)?,
         };
@@ -517,7 +519,7 @@ impl Simulator {
     ) -> Result<SimReport, SimError> {
         let s = cfg.s();
         let source = simulated_source(cfg)?;
-        let (flight_key, flights) = self.flights(source, &mut |_, _| {})?;
+        let (flight_key, flights) = self.flights(source, &mut |_, _| true)?;
         let flight_time: f64 = flights.iter().map(Trajectory::duration).sum();
         let seeds = u64::from(s.run.seeds.max(1));
         check_steps(cfg, flight_time, seeds)?;
@@ -863,6 +865,32 @@ mod tests {
             a,
             "the same text keeps its key"
         );
+    }
+
+    #[test]
+    fn a_stopped_csv_reading_caches_nothing_and_the_next_reads_it_whole() {
+        let text: Arc<str> = ("t,x,y,z\n".to_string()
+            + &(0..500)
+                .map(|i| format!("{},{},0,10\n", f64::from(i) * 0.1, i))
+                .collect::<String>())
+            .into();
+        let mut sim = Simulator::new();
+        let stopped = sim.load_csv(Arc::clone(&text), "f.csv".into(), &mut |_, _| false);
+        assert!(matches!(stopped, Err(SimError::Stopped)), "{stopped:?}");
+        let mut asked = 0;
+        let rows = sim.load_csv(Arc::clone(&text), "f.csv".into(), &mut |_, _| {
+            asked += 1;
+            true
+        });
+        assert_eq!(rows.unwrap(), 500);
+        assert!(asked > 50, "read again, not from a cache: {asked} reports");
+        let mut again = 0;
+        sim.load_csv(text, "f.csv".into(), &mut |_, _| {
+            again += 1;
+            true
+        })
+        .unwrap();
+        assert_eq!(again, 0, "a whole reading is cached");
     }
 
     #[test]
