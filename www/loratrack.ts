@@ -135,8 +135,9 @@ export function swarm(params: SwarmParams, onProgress?: (done: number, total: nu
 }
 
 /** Reads a CSV flight into the module's cache, calling `onProgress(lines read, lines)` as it
- * goes; a following simulate of the same text starts at once. */
-export function loadCsv(params: { trajectory: string; trajectoryName?: string }, onProgress?: (done: number, total: number) => void): { rows: number } {
+ * goes; a following simulate of the same text starts at once. Where `onProgress` returns `false`
+ * the reading stops there, caching nothing, and this throws as a stopped `simulate` does. */
+export function loadCsv(params: { trajectory: string; trajectoryName?: string }, onProgress?: (done: number, total: number) => boolean | void): { rows: number } {
   return wasm.loadCsv(params, onProgress) as { rows: number };
 }
 

@@ -32,6 +32,9 @@ export interface SimulateRequest {
    * flights (`stillWanted`), so a run a newer one replaced ends within ~0.1 s and its worker,
    * caches kept, takes the next request. */
   stop?: string;
+  /** A blob URL the page revokes to stop the reading of `trajectoryFile` (`SimulationPool`'s
+   * `readStop`): kept while runs of the same file follow, whose stop URLs are revoked. */
+  readStop?: string;
 }
 
 /** Swarms of each size in `sizes`, otherwise `params`. */
@@ -141,20 +144,21 @@ self.onmessage = async (event: MessageEvent<Request | ModuleMessage>) => {
   if ('swarm' in event.data) return runSwarms(event.data, post);
   const { id, sweep: points, trajectoryFile } = event.data;
   const wanted = stillWanted(event.data.stop);
+  const readWanted = stillWanted(event.data.readStop);
   try {
     const params = trajectoryFile ? { ...event.data.params, trajectory: await trajectoryFile.text() } : event.data.params;
     const t0 = performance.now();
     let last = 0;
     // A few dozen messages at most: one per 2 % of the work. A large CSV is read first, with its
     // own progress (the first half of the bar), then simulated from the module's cache.
-    // Returns whether the run goes on (`simulate`'s progress: false stops it).
-    const report_ = (from: number, share: number) => (done: number, total: number) => {
+    // Returns whether the work goes on (`simulate`'s and `loadCsv`'s progress: false stops it).
+    const report_ = (from: number, share: number, goOn = wanted) => (done: number, total: number) => {
       const p = from + (share * done) / total;
       if (p - last >= 0.02 || done === total) {
         last = p;
         post({ id, progress: p });
       }
-      return wanted();
+      return goOn();
     };
     const large = (params.trajectory?.length ?? 0) > LARGE_CSV_BYTES;
     // The whole set takes 30 flights' time; its first flight alone, about a thirtieth of it, gives
@@ -163,8 +167,9 @@ self.onmessage = async (event: MessageEvent<Request | ModuleMessage>) => {
       post({ id, partial: simulate({ ...params, synthetic: 1, series: true }) });
       warmNumberFormat();
     }
-    // Reading a file is not stopped: its lines are the module's cache for the next run.
-    if (large && params.trajectory) loadCsv({ trajectory: params.trajectory, trajectoryName: params.trajectoryName }, report_(0, 0.5));
+    // A file's reading goes on when only its run is stopped (a setting changed): its lines are the
+    // module's cache for the next run of the file. It stops when the page reads another.
+    if (large && params.trajectory) loadCsv({ trajectory: params.trajectory, trajectoryName: params.trajectoryName }, report_(0, 0.5, readWanted));
     const report = simulate({ ...params, series: true }, large ? report_(0.5, 0.5) : report_(0, 1));
     post({ id, report, millis: performance.now() - t0 });
     warmNumberFormat();

@@ -874,6 +874,19 @@ test('a large CSV is read with its own progress, then simulated', async () => {
   await waitForResults(page, uploaded);
   await until(page, () => !document.body.hasAttribute('data-busy'));
   assert.match(await page.locator('#status').textContent(), /long\.csv: 1 flight, 800 s simulated/);
+  // Another file chosen while a large one is read: its reading is stopped (www/pool.ts `readStop`),
+  // not the new one's, whose results come and stay.
+  // 200 000 rows (about 7 MB), read in a few tenths of a second.
+  const huge = Array.from({ length: 200_000 }, (_, i) => `${(i * 0.02).toFixed(2)},${(i * 0.01).toFixed(2)},0,30`);
+  writeFileSync(join(dir, 'huge.csv'), 't,x,y,z\n' + huge.join('\n') + '\n');
+  writeFileSync(join(dir, 'second.csv'), 't,x,y,z\n' + rows.slice(0, 20_000).join('\n') + '\n');
+  const first = await tableHtml(page);
+  await page.locator('#csv').setInputFiles(join(dir, 'huge.csv'));
+  await until(page, () => document.querySelector('#status').textContent.includes('huge.csv'));
+  await page.locator('#csv').setInputFiles(join(dir, 'second.csv'));
+  await waitForResults(page, first);
+  await until(page, () => !document.body.hasAttribute('data-busy'));
+  assert.match(await page.locator('#status').textContent(), /second\.csv: 1 flight, 400 s simulated/);
   assert.deepEqual(problems, []);
 });
 

@@ -148,6 +148,36 @@ test('a run asked for with other settings stops the early run by its stop URL an
   revoked.mockRestore();
 });
 
+test("an uploaded file's reading goes on through a change of settings and stops once another file or none is asked for", () => {
+  StandIn.all = [];
+  const revoked = vi.spyOn(URL, 'revokeObjectURL');
+  const pool = new SimulationPool(2);
+  const [first, second] = [new Blob(['t,x,y,z\n']), new Blob(['t,x,y,z\n'])];
+  const upload = (id: number, file: Blob | undefined, distance: number) => {
+    pool.interrupt();
+    pool.run({ ...request(id, distance), trajectoryFile: file }, () => {});
+    return StandIn.all.map((w) => w.sent.at(-1)!);
+  };
+  const sent = upload(1, first, 1000);
+  const reading = sent[0].readStop;
+  expect(reading && sent.every((m) => m.readStop === reading && m.stop !== reading)).toBe(true);
+  // Another distance, the same file: the run is stopped, its reading (the workers' cache) is not.
+  const moved = upload(2, first, 3000);
+  expect(revoked).toHaveBeenCalledWith(sent[0].stop);
+  expect(revoked).not.toHaveBeenCalledWith(reading);
+  expect(moved.every((m) => m.readStop === reading)).toBe(true);
+  // Another file: the first one's reading is stopped, the second read under a URL of its own.
+  const other = upload(3, second, 3000);
+  expect(revoked).toHaveBeenCalledWith(reading);
+  const otherReading = other[0].readStop;
+  expect(otherReading && otherReading !== reading).toBe(true);
+  // No file (a synthetic flight): nothing is read, and the second file's reading is stopped.
+  const none = upload(4, undefined, 3000);
+  expect(revoked).toHaveBeenCalledWith(otherReading);
+  expect(none.every((m) => m.readStop === undefined)).toBe(true);
+  revoked.mockRestore();
+});
+
 test('a refusal reaches the page once, with the setting the core named', () => {
   StandIn.all = [];
   const pool = new SimulationPool(2);
