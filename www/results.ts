@@ -433,7 +433,7 @@ function renderRateUse(r: SimReport): void {
 function networkNote(m: ModelResult, named: boolean): string {
   const { packetsSent: sent, packetsReceived: received, duplicates, gateways } = m;
   const each = gateways
-    .map((g, i) => `gateway ${i + 1} at (${(g.east / 1000).toFixed(1)}, ${(g.north / 1000).toFixed(1)}) km heard ${g.heard}${gateways.length > 1 ? ` (${g.onlyHeard} only it)` : ''}${g.downlinksSent + g.downlinksDropped ? `, ${g.downlinksSent} downlinks sent, ${g.downlinksDropped} dropped by its duty cycle` : ''}`)
+    .map((g, i) => `gateway ${i + 1} at (${(g.east / 1000).toFixed(1)}, ${(g.north / 1000).toFixed(1)}) km heard ${g.heard}${gateways.length > 1 ? ` (${g.onlyHeard} only it)` : ''}${g.downlinksSent + g.downlinksDropped ? `, ${g.downlinksSent} downlinks sent, ${g.downlinksDropped} dropped by its duty cycle` : ''}${g.missedWhileTransmitting ? `, ${g.missedWhileTransmitting} uplinks missed while it sent` : ''}`)
     .join('; ');
   return `Network${named ? ` (${MODEL_LABELS[m.model]}'s packets)` : ''}: ${received} of ${sent} packets delivered (${sent ? ((100 * received) / sent).toFixed(0) : 0} %)${gateways.length > 1 ? `, ${duplicates} duplicate copies removed` : ''} — ${each}.`;
 }

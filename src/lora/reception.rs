@@ -9,7 +9,10 @@
 //! leaves it the signal-to-interference ratio the [`InterferenceModel`] requires (same-SF capture,
 //! inter-SF rejection). Any overlap counts, as in LoRaSim's basic model (Bor et al. 2016); ns-3
 //! weighs interference by the overlap's duration instead, which loses fewer packets to short
-//! overlaps.
+//! overlaps. A gateway is half-duplex: while it transmits a downlink ([`Receiver::transmit`]) it
+//! hears nothing, and a packet on air at any moment of it is lost, as in ns-3's
+//! `SimpleGatewayLoraPhy` (a transmission frees every demodulation path; a packet arriving
+//! during it finds none).
 
 use super::interference::{sum_dbm, survives, InterferenceModel};
 use super::{Bandwidth, Channel, SpreadingFactor};
@@ -39,6 +42,8 @@ pub struct Uplink {
 pub enum Outcome {
     /// Below the sensitivity: never detected.
     BelowSensitivity,
+    /// Audible, but on air while the gateway transmitted a downlink (half-duplex).
+    GatewayTransmitting,
     /// All demodulation paths were busy when its preamble arrived.
     NoDemodulator,
     /// Lost to interference from overlapping packets on its channel.
@@ -89,6 +94,8 @@ pub struct Receiver {
     model: InterferenceModel,
     demodulators: usize,
     on_air: Vec<OnAir>,
+    /// The receiver's own transmissions (start, end), s: a gateway's downlinks.
+    sending: Vec<(f64, f64)>,
 }
 
 impl Receiver {
@@ -98,21 +105,38 @@ impl Receiver {
             model,
             demodulators,
             on_air: Vec::new(),
+            sending: Vec::new(),
         }
     }
 
-    /// Packet `id` starts: an audible one takes a free demodulation path, if there is one.
-    /// Calls come in order of start time (ties in a fixed order: the loop's drone order).
+    /// The receiver transmits from `start` to `end`, s (a gateway's downlink, decided at the end of
+    /// the uplink it answers, so before any packet it can overlap has ended): every packet on air
+    /// at any moment of it is lost ([`Outcome::GatewayTransmitting`]) and frees its demodulation
+    /// path when the transmission begins.
+    pub fn transmit(&mut self, start: f64, end: f64) {
+        self.sending.push((start, end));
+    }
+
+    /// Whether the receiver transmits at some moment between `from` and `to`, s.
+    fn sends_within(&self, from: f64, to: f64) -> bool {
+        self.sending.iter().any(|&(s, e)| s <= to && e > from)
+    }
+
+    /// Packet `id` starts: an audible one takes a free demodulation path, if there is one and
+    /// the receiver is not transmitting. Calls come in order of start time (ties in a fixed
+    /// order: the loop's drone order).
     pub fn start(&mut self, id: u64, uplink: Uplink) {
+        let at = uplink.start;
+        // A path stays busy until its packet ends or a transmission since its start freed it.
         let busy = self
             .on_air
             .iter()
-            .filter(|p| p.locked && p.uplink.end > uplink.start)
+            .filter(|p| p.locked && p.uplink.end > at && !self.sends_within(p.uplink.start, at))
             .count();
         self.on_air.push(OnAir {
             id,
             uplink,
-            locked: uplink.audible && busy < self.demodulators,
+            locked: uplink.audible && busy < self.demodulators && !self.sends_within(at, at),
             finished: false,
         });
     }
@@ -139,7 +163,11 @@ impl Receiver {
                 per_sf[usize::from(v.uplink.sf - 7)].push(v.uplink.rx_dbm);
             }
         }
-        let outcome = decide(&u, me.locked, &per_sf.map(sum_dbm), self.model);
+        let outcome = if u.audible && self.sends_within(u.start, u.end) {
+            Outcome::GatewayTransmitting
+        } else {
+            decide(&u, me.locked, &per_sf.map(sum_dbm), self.model)
+        };
         self.on_air[pos].finished = true;
         // Forget what can no longer overlap a packet still on air.
         let oldest_open = self
@@ -148,8 +176,10 @@ impl Receiver {
             .filter(|p| !p.finished)
             .map(|p| p.uplink.start)
             .fold(f64::INFINITY, f64::min);
+        let horizon = oldest_open.min(u.end);
         self.on_air
-            .retain(|p| !p.finished || p.uplink.end > oldest_open.min(u.end));
+            .retain(|p| !p.finished || p.uplink.end > horizon);
+        self.sending.retain(|&(_, end)| end > horizon);
         outcome
     }
 }
@@ -221,6 +251,62 @@ mod tests {
             resolve(&mut gateway(false, true), &[up(0.0, 7, -100.0), b]),
             [Outcome::Received; 2]
         );
+    }
+
+    #[test]
+    fn a_gateway_hears_nothing_on_air_while_it_transmits() {
+        let mut gw = gateway(true, true);
+        // A downlink from 1.0 to 1.5 s, decided before any of these packets ends.
+        gw.transmit(1.0, 1.5);
+        // Each on a channel of its own, so that none meets another.
+        let ups: Vec<Uplink> = [0.85, 0.95, 1.2, 1.45, 1.5]
+            .iter()
+            .zip(0u8..)
+            .map(|(&t, channel)| Uplink {
+                channel,
+                ..up(t, 7, -100.0)
+            })
+            .collect();
+        // Ends before it; on air as it begins; within it; on air as it ends; after it.
+        let r = resolve(&mut gw, &ups);
+        use Outcome::{GatewayTransmitting as Tx, Received};
+        assert_eq!(r, [Received, Tx, Tx, Tx, Received]);
+        let mut faint = up(1.2, 7, -150.0);
+        faint.audible = false;
+        let mut gw = gateway(true, true);
+        gw.transmit(1.0, 1.5);
+        assert_eq!(
+            resolve(&mut gw, &[faint]),
+            [Outcome::BelowSensitivity],
+            "a packet it could not hear is below its sensitivity, transmitting or not"
+        );
+    }
+
+    #[test]
+    fn a_transmission_frees_every_demodulation_path() {
+        // Eight long packets hold every path; a transmission at 0.5 s frees them, so a packet
+        // after it finds one.
+        let long = |k: u8| Uplink {
+            end: 2.0,
+            channel: k % 3,
+            ..up(0.01 * f64::from(k), 7 + k % 6, -100.0)
+        };
+        let mut ups: Vec<Uplink> = (0..8).map(long).collect();
+        ups.push(Uplink {
+            channel: 5,
+            ..up(0.7, 7, -100.0)
+        });
+        let mut gw = gateway(false, false);
+        gw.transmit(0.5, 0.6);
+        let r = resolve(&mut gw, &ups);
+        assert!(
+            r[..8].iter().all(|o| *o == Outcome::GatewayTransmitting),
+            "{r:?}"
+        );
+        assert_eq!(r[8], Outcome::Received);
+        // Without the transmission the ninth finds none.
+        let r = resolve(&mut gateway(false, false), &ups);
+        assert_eq!(r[8], Outcome::NoDemodulator);
     }
 
     #[test]

@@ -160,6 +160,7 @@ fn the_readme_gateway_and_downlink_numbers_are_what_the_cli_prints() {
             .sum()
     };
     let (sent, dropped) = (count("downlinksSent"), count("downlinksDropped"));
+    let missed = count("missedWhileTransmitting");
     let downlinks = [
         format!(
             "`swarm --drones 60 --duration 600 --adr lorawan --sf-plan fixed --sf 7 --bw 125`, of the {} downlinks \
@@ -167,6 +168,7 @@ fn the_readme_gateway_and_downlink_numbers_are_what_the_cli_prints() {
             sent + dropped
         ),
         format!("the gateway's duty cycle lets {sent} go in RX1 or RX2 and drops {dropped}"),
+        format!("it misses {missed} uplinks while it sends them"),
     ];
     for (text, claim) in claims
         .iter()

@@ -111,7 +111,10 @@ fn every_drone_is_reported_and_the_counts_add_up() {
             .all(|d| d.caveats.few_packets)
     };
     assert!(few(12) && !few(7));
-    let lost = r.packets_collided + r.packets_below_sensitivity + r.packets_no_demodulator;
+    let lost = r.packets_collided
+        + r.packets_below_sensitivity
+        + r.packets_no_demodulator
+        + r.packets_gateway_transmitting;
     assert_eq!(r.delivery.packets_received + lost, r.delivery.packets_sent);
 }
 

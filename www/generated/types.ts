@@ -588,9 +588,15 @@ onlyHeard: number,
 downlinksSent: number, 
 /**
  * Downlinks the network server wanted to send through it but its duty cycle forbade in
- * both receive windows.
+ * both receive windows (or in RX1, where the ADR keeps its answers out of a crowded RX2:
+ * `AdrNetwork::spares_the_gateway`).
  */
-downlinksDropped: number, };
+downlinksDropped: number, 
+/**
+ * Uplinks it would have had to hear while it transmitted a downlink, and so lost (a gateway
+ * is half-duplex, reference §5).
+ */
+missedWhileTransmitting: number, };
 
 export type Delivery = { 
 /**
@@ -1060,6 +1066,12 @@ packetsBelowSensitivity: number,
  * Packets audible somewhere but finding no free demodulation path where they were.
  */
 packetsNoDemodulator: number, 
+/**
+ * Packets audible somewhere but on air, wherever they were, while that gateway transmitted
+ * a downlink (half-duplex gateways, reference §5); only with ADR, whose answers are the
+ * downlinks.
+ */
+packetsGatewayTransmitting: number, 
 /**
  * Packets sent with a smaller payload than the station's model sends (`--payload lean`).
  */

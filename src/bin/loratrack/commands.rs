@@ -785,7 +785,7 @@ fn gateway_lines(gateways: &[loratrack::GatewayReport]) -> String {
         .enumerate()
         .map(|(i, g)| {
             format!(
-                "\n  gateway {} at ({:.0}, {:.0}) m, {:.0} m high: heard {}, only it {}, downlinks {} sent / {} dropped",
+                "\n  gateway {} at ({:.0}, {:.0}) m, {:.0} m high: heard {}, only it {}, downlinks {} sent / {} dropped{}",
                 i + 1,
                 g.east,
                 g.north,
@@ -793,7 +793,11 @@ fn gateway_lines(gateways: &[loratrack::GatewayReport]) -> String {
                 g.heard,
                 g.only_heard,
                 g.downlinks_sent,
-                g.downlinks_dropped
+                g.downlinks_dropped,
+                match g.missed_while_transmitting {
+                    0 => String::new(),
+                    n => format!(", {n} uplinks missed while sending"),
+                }
             )
         })
         .collect()
@@ -843,7 +847,7 @@ fn swarm_text(r: &SwarmReport) -> String {
          largest swarm       {} drone{} at <= 1 % collisions, {} at <= 10 % (ALOHA formula); {} slotted, with none{}\n\
          delivery ratio      {}  ({} distinct packets, {} duplicate{} removed)\n\
          below sensitivity   {}\n\
-         no demodulator      {}\n\
+         no demodulator      {}{}\n\
          3D error (pooled)   mean {}  p75 {}  p95 {} m; median drone p75 {} m\n\
          tracked             {}  (the share of the flight time after each flight's first packet, all the errors cover){}\n\
          energy              {}\n\
@@ -886,6 +890,10 @@ fn swarm_text(r: &SwarmReport) -> String {
         if d.duplicates == 1 { "" } else { "s" },
         r.packets_below_sensitivity,
         r.packets_no_demodulator,
+        match r.packets_gateway_transmitting {
+            0 => String::new(),
+            n => format!("\ngateway sending     {n}  (on air while the gateway sent a downlink: it is half-duplex)"),
+        },
         num(r.error3d.mean, 0, 2),
         num(r.error3d.p75, 0, 2),
         num(r.error3d.p95, 0, 2),

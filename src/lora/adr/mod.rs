@@ -156,4 +156,12 @@ pub trait AdrNetwork {
     /// Called for each uplink the gateway received; returns the command to send in the downlink
     /// after it, if the device should change.
     fn on_uplink(&mut self, up: &UplinkReport) -> Option<LinkAdrReq>;
+
+    /// Whether the network keeps its answers out of RX2 where the other devices would lose
+    /// frames while the gateway sends there: a half-duplex gateway hears nothing during RX2's
+    /// SF12 frame (over a second), and a command can wait for RX1 after a later uplink. LoRaWAN
+    /// network servers answer in RX2 whenever RX1 is not free (`false`, the default).
+    fn spares_the_gateway(&self) -> bool {
+        false
+    }
 }

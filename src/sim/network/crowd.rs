@@ -86,6 +86,32 @@ impl CrowdLoad {
         self.count[now.0] += 1;
     }
 
+    /// How many of the other devices' frames are expected to be on air at some moment of a
+    /// transmission `seconds` long (a downlink, during which a half-duplex gateway hears none):
+    /// Σ r (`seconds` + T′) over the devices other than `d`. Exactly 0 where no other device has
+    /// been heard.
+    pub fn others_on_air(&self, d: usize, seconds: f64) -> f64 {
+        let own = self.devices.get(d).and_then(|dev| dev.counted);
+        (0..6)
+            .map(|sf| {
+                let (mut rate, mut airtime, mut others) =
+                    (self.rate[sf], self.airtime[sf], self.count[sf]);
+                if let Some((own_sf, own_rate, own_airtime)) = own {
+                    if own_sf == sf {
+                        rate -= own_rate;
+                        airtime -= own_airtime;
+                        others -= 1;
+                    }
+                }
+                if others == 0 {
+                    0.0
+                } else {
+                    (rate * seconds + airtime).max(0.0)
+                }
+            })
+            .sum()
+    }
+
     /// For device `d`, per EU868 data rate: the chance that its frame at that rate, lasting
     /// `time_on_air[rate]` s, on one of `channels` channels picked at random, overlaps another
     /// device's frame at the rate's SF (type docs). Exactly 0 where no other device has been
@@ -129,6 +155,22 @@ mod tests {
         let mut crowd = CrowdLoad::new(1);
         steady(&mut crowd, 0, 2.0, 0.02, 50);
         assert_eq!(crowd.loss(0, &[0.02; 7], 1), [0.0; 7]);
+    }
+
+    #[test]
+    fn the_frames_on_air_during_a_transmission_are_the_others_at_every_sf() {
+        // Device 0 alone: nothing to miss, whatever its own traffic.
+        let mut crowd = CrowdLoad::new(3);
+        steady(&mut crowd, 0, 2.0, 0.02, 20);
+        assert_eq!(crowd.others_on_air(0, 1.0), 0.0);
+        // Two others, each 0.5 frames a second of 0.02 s, one of them at SF12: a 1 s
+        // transmission overlaps 2 · 0.5 · (1 + 0.02) of their frames, whichever SF they use.
+        steady(&mut crowd, 1, 2.0, 0.02, 20);
+        for k in 0..20 {
+            crowd.heard(2, k, DataRate::DR0, 0.02, f64::from(k) * 2.0);
+        }
+        assert!((crowd.others_on_air(0, 1.0) - 1.02).abs() < 1e-9);
+        assert!((crowd.others_on_air(1, 1.0) - 1.02).abs() < 1e-9);
     }
 
     #[test]

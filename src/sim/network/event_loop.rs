@@ -258,6 +258,9 @@ impl Episode {
             if o == Outcome::Received {
                 heard_by |= 1 << g;
             }
+            if o == Outcome::GatewayTransmitting {
+                net.gateways[g].missed_while_transmitting += 1;
+            }
             outcome = outcome.max(o);
         }
         net.count_copies(heard_by);
@@ -476,6 +479,9 @@ impl Episode {
             let Ok(toa) = downlink_time_on_air(dr, bytes) else {
                 break;
             };
+            if !net.may_answer_in(f.drone, w, toa) {
+                continue;
+            }
             let at = end + w.delay_s();
             if self.gateways[g].try_downlink(w, at, toa) {
                 net.gateways[g].downlinks_sent += 1;

@@ -25,8 +25,12 @@ pub struct GatewayReport {
     /// ADR downlinks it sent.
     pub downlinks_sent: usize,
     /// Downlinks the network server wanted to send through it but its duty cycle forbade in
-    /// both receive windows.
+    /// both receive windows (or in RX1, where the ADR keeps its answers out of a crowded RX2:
+    /// `AdrNetwork::spares_the_gateway`).
     pub downlinks_dropped: usize,
+    /// Uplinks it would have had to hear while it transmitted a downlink, and so lost (a gateway
+    /// is half-duplex, reference §5).
+    pub missed_while_transmitting: usize,
 }
 
 impl GatewayReport {
@@ -36,6 +40,7 @@ impl GatewayReport {
         self.only_heard += other.only_heard;
         self.downlinks_sent += other.downlinks_sent;
         self.downlinks_dropped += other.downlinks_dropped;
+        self.missed_while_transmitting += other.missed_while_transmitting;
     }
 }
 
@@ -63,8 +68,8 @@ impl Gateway {
     }
 
     /// Sends a downlink of `time_on_air` s at `t` in `window` if the sub-band's duty cycle
-    /// allows it (an off-time of time on air / duty cycle after each, ETSI EN 300 220); whether
-    /// it went.
+    /// allows it (an off-time of time on air / duty cycle after each, ETSI EN 300 220), deaf to
+    /// uplinks meanwhile; whether it went.
     pub fn try_downlink(&mut self, window: Window, t: f64, time_on_air: f64) -> bool {
         let dc = window.sub_band().duty_cycle();
         let band = &mut self.bands[window.index()];
@@ -82,6 +87,7 @@ impl Gateway {
         };
         if rule.earliest(t) <= t {
             rule.spend(t);
+            self.receiver.transmit(t, t + time_on_air);
             true
         } else {
             false

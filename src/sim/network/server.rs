@@ -8,7 +8,7 @@ use super::gateway::GatewayReport;
 use super::CrowdLoad;
 use crate::lora::{
     snr_db, tracking_ack_limits, AckLimits, AdrMode, AdrNetwork, AdrParams, Channel, ChannelAccess,
-    InterferenceModel, LinkAdrReq, UplinkFrame, UplinkReport,
+    InterferenceModel, LinkAdrReq, UplinkFrame, UplinkReport, Window,
 };
 use crate::sim::radio::DroneRadio;
 use crate::sim::scenario::{GatewaySite, Validated};
@@ -33,6 +33,11 @@ pub struct NetworkSetup {
     /// Whether the drones listen before they talk (reference §15).
     pub listen_before_talk: bool,
 }
+
+/// The most of the other devices' frames a downlink may be expected to cost, where the ADR
+/// spares the gateway ([`AdrNetwork::spares_the_gateway`]): a lone drone's answers go in RX2 as
+/// LoRaWAN's do, a swarm's wait for RX1.
+pub const MAX_FRAMES_MISSED_PER_ANSWER: f64 = 0.5;
 
 /// Everything that lasts across the episodes (flights) of a run: the gateways and their counts,
 /// each drone's radio, and the server's ADR state per drone.
@@ -200,6 +205,16 @@ impl Network {
         });
         (command.is_some() || frame.adr_ack_req, command)
     }
+
+    /// Whether the server may answer drone `drone` in `window` with a downlink `seconds` long:
+    /// always in RX1, and in RX2 unless its ADR spares the gateway and the other devices are
+    /// expected to have more than [`MAX_FRAMES_MISSED_PER_ANSWER`] frames on air meanwhile.
+    pub(crate) fn may_answer_in(&self, drone: usize, window: Window, seconds: f64) -> bool {
+        let spares = matches!(self.adr.get(drone), Some(Some(a)) if a.spares_the_gateway());
+        window == Window::Rx1
+            || !spares
+            || self.crowd.others_on_air(drone, seconds) <= MAX_FRAMES_MISSED_PER_ANSWER
+    }
 }
 
 /// One received ADR uplink, as the server learns of it.
@@ -237,7 +252,12 @@ mod tests {
     /// `drones` drones at SF7 / 250 kHz with tracking ADR, one gateway 1 km east (the scenario's
     /// network, as `simulate` and `swarm` build it).
     fn network(drones: usize) -> Network {
-        let settings = serde_json::json!({"adr": "tracking", "sf": 7, "bw": 250});
+        network_with(drones, AdrMode::Tracking)
+    }
+
+    /// [`network`] with ADR `adr`.
+    fn network_with(drones: usize, adr: AdrMode) -> Network {
+        let settings = serde_json::json!({"adr": adr, "sf": 7, "bw": 250});
         let cfg = Scenario::default()
             .with(&settings)
             .unwrap()
@@ -245,7 +265,7 @@ mod tests {
             .unwrap();
         let radio = LoraParams::new(DataRate::DR6.sf(), DataRate::DR6.bw());
         let radios = (0..drones)
-            .map(|_| DroneRadio::new(&radio, 12, 0.01, AdrMode::Tracking).unwrap())
+            .map(|_| DroneRadio::new(&radio, 12, 0.01, adr).unwrap())
             .collect();
         Network::of(&cfg, 1000.0, radios)
     }
@@ -269,6 +289,28 @@ mod tests {
             }
         }
         seen.lock().map(|v| v.clone()).unwrap()
+    }
+
+    #[test]
+    fn a_tracking_network_keeps_its_answers_out_of_rx2_in_a_crowd_and_lorawans_does_not() {
+        // RX2's 17-byte SF12 answer: 1.15 s on air.
+        let rx2 = 1.15;
+        let mut alone = network(1);
+        hear_all(&mut alone, 10, Some(1));
+        assert!(
+            alone.may_answer_in(0, Window::Rx2, rx2),
+            "no one else to miss"
+        );
+        // Eleven others, each every 2 s: about 6 of their frames on air during the answer.
+        let mut crowd = network(12);
+        hear_all(&mut crowd, 10, Some(1));
+        assert!(crowd.may_answer_in(1, Window::Rx1, rx2));
+        assert!(!crowd.may_answer_in(1, Window::Rx2, rx2));
+        // Before the server has heard the others, it knows of no crowd.
+        assert!(network(12).may_answer_in(1, Window::Rx2, rx2));
+        let mut lorawan = network_with(12, AdrMode::Lorawan);
+        hear_all(&mut lorawan, 10, Some(1));
+        assert!(lorawan.may_answer_in(1, Window::Rx2, rx2));
     }
 
     #[test]

@@ -493,6 +493,7 @@ impl<'a> Swarm<'a> {
             packets_collided: count(Outcome::Collided),
             packets_below_sensitivity: count(Outcome::BelowSensitivity),
             packets_no_demodulator: count(Outcome::NoDemodulator),
+            packets_gateway_transmitting: count(Outcome::GatewayTransmitting),
             lean_packets: tx.iter().filter(|t| t.payload.is_some()).count(),
             packets_by_sf,
             airtime: airtime(tx.iter().copied()),

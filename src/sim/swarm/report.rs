@@ -101,6 +101,10 @@ pub struct SwarmReport {
     pub packets_below_sensitivity: usize,
     /// Packets audible somewhere but finding no free demodulation path where they were.
     pub packets_no_demodulator: usize,
+    /// Packets audible somewhere but on air, wherever they were, while that gateway transmitted
+    /// a downlink (half-duplex gateways, reference §5); only with ADR, whose answers are the
+    /// downlinks.
+    pub packets_gateway_transmitting: usize,
     /// Packets sent with a smaller payload than the station's model sends (`--payload lean`).
     pub lean_packets: usize,
     /// Packets sent at SF7..SF12, every drone's summed: each drone's SF, or with ADR the SFs the
