@@ -443,9 +443,9 @@ impl TrackingAdr {
 
 impl AdrNetwork for TrackingAdr {
     /// Answering in RX2 as LoRaWAN does, a swarm of 12 drones on one SF7/250 kHz channel at 3 km
-    /// lost 3.5 % of its frames while the gateway sent, and its median drone's p75 was 1.15× the
-    /// fixed rate's; sparing the gateway, 0.9 % and 1.09× (32 seeds; docs/beyond-the-paper.md,
-    /// "Half-duplex gateways").
+    /// missed 3.5 % of the frames that reached the gateway while it sent, and its median drone's
+    /// p75 was 1.15× the fixed rate's; sparing the gateway, 0.9 % and 1.09× (32 seeds;
+    /// docs/beyond-the-paper.md, "Half-duplex gateways").
     fn spares_the_gateway(&self) -> bool {
         true
     }
