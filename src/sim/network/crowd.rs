@@ -91,24 +91,9 @@ impl CrowdLoad {
     /// Σ r (`seconds` + T′) over the devices other than `d`. Exactly 0 where no other device has
     /// been heard.
     pub fn others_on_air(&self, d: usize, seconds: f64) -> f64 {
-        let own = self.devices.get(d).and_then(|dev| dev.counted);
         (0..6)
-            .map(|sf| {
-                let (mut rate, mut airtime, mut others) =
-                    (self.rate[sf], self.airtime[sf], self.count[sf]);
-                if let Some((own_sf, own_rate, own_airtime)) = own {
-                    if own_sf == sf {
-                        rate -= own_rate;
-                        airtime -= own_airtime;
-                        others -= 1;
-                    }
-                }
-                if others == 0 {
-                    0.0
-                } else {
-                    (rate * seconds + airtime).max(0.0)
-                }
-            })
+            .filter_map(|sf| self.others(d, sf))
+            .map(|(rate, airtime)| (rate * seconds + airtime).max(0.0))
             .sum()
     }
 
@@ -117,25 +102,30 @@ impl CrowdLoad {
     /// device's frame at the rate's SF (type docs). Exactly 0 where no other device has been
     /// heard at that SF.
     pub fn loss(&self, d: usize, time_on_air: &[f64; 7], channels: u8) -> [f64; 7] {
-        let own = self.devices.get(d).and_then(|dev| dev.counted);
         let channels = f64::from(channels.max(1));
         DataRate::ALL.map(|dr| {
-            let sf = usize::from(dr.sf().get() - 7);
-            let (mut rate, mut airtime, mut others) =
-                (self.rate[sf], self.airtime[sf], self.count[sf]);
-            if let Some((own_sf, own_rate, own_airtime)) = own {
-                if own_sf == sf {
-                    rate -= own_rate;
-                    airtime -= own_airtime;
-                    others -= 1;
-                }
-            }
-            if others == 0 {
+            let Some((rate, airtime)) = self.others(d, usize::from(dr.sf().get() - 7)) else {
                 return 0.0;
-            }
+            };
             let load = (time_on_air[usize::from(dr.index())] * rate + airtime).max(0.0);
             1.0 - exp(-load / channels)
         })
+    }
+
+    /// The frames per second and seconds on air per second at SF 7 + `sf` of the devices other
+    /// than `d`; `None` where no other device has been heard there.
+    fn others(&self, d: usize, sf: usize) -> Option<(f64, f64)> {
+        let (mut rate, mut airtime, mut others) = (self.rate[sf], self.airtime[sf], self.count[sf]);
+        if let Some((own_sf, own_rate, own_airtime)) =
+            self.devices.get(d).and_then(|dev| dev.counted)
+        {
+            if own_sf == sf {
+                rate -= own_rate;
+                airtime -= own_airtime;
+                others -= 1;
+            }
+        }
+        (others > 0).then_some((rate, airtime))
     }
 }
 
