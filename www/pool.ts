@@ -139,7 +139,7 @@ export class SimulationPool {
   /** The stop URL for reading `file`: a file's reading goes on through a change of settings, which
    * stops only its run (the lines read are the workers' cache for the next run of the same file),
    * and ends once a run asks for another file or none, so that a second upload does not wait for
-   * the first (10⁶ rows: about 1.7 s). */
+   * the first (10⁶ rows: about 2 s). */
   private readStop(file: Blob | undefined): string | undefined {
     if (this.reading?.file === file) return this.reading?.stop;
     if (this.reading) URL.revokeObjectURL(this.reading.stop);

@@ -1,5 +1,5 @@
 //! Whether a receiver hears a LoRa packet: the one place reception is decided, for every gateway
-//! and for the drone's downlink receiver alike (reference: `docs/reference.md` §5).
+//! and for the drone's downlink receiver alike (reference: `docs/reference.md` §6.3).
 //!
 //! A packet whose received power (mean path loss + shadowing, per drone–gateway link) is below
 //! the sensitivity for its SF and bandwidth is never detected. An audible one needs a free

@@ -72,7 +72,7 @@ pub fn parse_csv(text: &str, name: &str) -> Result<Trajectory, TrajectoryError> 
 /// [`parse_csv`], calling `progress(lines read, lines)` about a hundred times as it reads, so a
 /// page can show how far a large file is. Where `progress` returns `false` the reading ends there
 /// with `Ok(None)`: a page whose user chose another file need not wait for this one (10⁶ rows
-/// take about 1.7 s in WebAssembly).
+/// take about 2 s in a browser).
 pub fn parse_csv_with_progress(
     text: &str,
     name: &str,

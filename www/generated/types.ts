@@ -594,7 +594,7 @@ downlinksSent: number,
 downlinksDropped: number, 
 /**
  * Uplinks it would have had to hear while it transmitted a downlink, and so lost (a gateway
- * is half-duplex, reference §5).
+ * is half-duplex, reference §6.3).
  */
 missedWhileTransmitting: number, };
 
@@ -1068,7 +1068,7 @@ packetsBelowSensitivity: number,
 packetsNoDemodulator: number, 
 /**
  * Packets audible somewhere but on air, wherever they were, while that gateway transmitted
- * a downlink (half-duplex gateways, reference §5); only with ADR, whose answers are the
+ * a downlink (half-duplex gateways, reference §6.3); only with ADR, whose answers are the
  * downlinks.
  */
 packetsGatewayTransmitting: number, 

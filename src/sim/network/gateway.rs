@@ -29,7 +29,7 @@ pub struct GatewayReport {
     /// `AdrNetwork::spares_the_gateway`).
     pub downlinks_dropped: usize,
     /// Uplinks it would have had to hear while it transmitted a downlink, and so lost (a gateway
-    /// is half-duplex, reference §5).
+    /// is half-duplex, reference §6.3).
     pub missed_while_transmitting: usize,
 }
 

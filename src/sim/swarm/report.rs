@@ -102,7 +102,7 @@ pub struct SwarmReport {
     /// Packets audible somewhere but finding no free demodulation path where they were.
     pub packets_no_demodulator: usize,
     /// Packets audible somewhere but on air, wherever they were, while that gateway transmitted
-    /// a downlink (half-duplex gateways, reference §5); only with ADR, whose answers are the
+    /// a downlink (half-duplex gateways, reference §6.3); only with ADR, whose answers are the
     /// downlinks.
     pub packets_gateway_transmitting: usize,
     /// Packets sent with a smaller payload than the station's model sends (`--payload lean`).
