@@ -36,7 +36,9 @@ pub struct NetworkSetup {
 
 /// The most of the other devices' frames a downlink may be expected to cost, where the ADR
 /// spares the gateway ([`AdrNetwork::spares_the_gateway`]): a lone drone's answers go in RX2 as
-/// LoRaWAN's do, a swarm's wait for RX1.
+/// LoRaWAN's do, a swarm's wait for RX1. Not tuned: at SF7/250 kHz (a frame every 3.1 s) one other
+/// drone puts 0.38 frames on air during RX2's 1.15 s answer, two 0.77, eleven 4.2; no other value
+/// was tried (docs/beyond-the-paper.md, "Half-duplex gateways").
 pub const MAX_FRAMES_MISSED_PER_ANSWER: f64 = 0.5;
 
 /// Everything that lasts across the episodes (flights) of a run: the gateways and their counts,
