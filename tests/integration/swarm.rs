@@ -595,3 +595,38 @@ fn the_swarm_text_gives_its_rates_and_errors_to_their_decimals() {
         assert!(text.contains(&line), "{line}\n{text}");
     }
 }
+
+#[test]
+fn a_gateway_answering_adr_misses_the_uplinks_on_air_meanwhile_and_every_packet_is_counted() {
+    let swarm_of = |adr: &str| {
+        swarm(&set(
+            &Scenario::default(),
+            json!({"drones": 30, "duration": 300.0, "adr": adr, "sfPlan": "fixed", "sf": 7, "bw": 125, "sensorRate": 1.0, "step": 1.0}),
+        ))
+        .unwrap()
+    };
+    for adr in ["lorawan", "tracking"] {
+        let r = swarm_of(adr);
+        let gateway = &r.delivery.gateways[0];
+        assert!(gateway.downlinks_sent > 0, "{adr}: no answer sent");
+        assert!(r.packets_gateway_transmitting > 0, "{adr}: none missed");
+        // One gateway: what it missed is what the swarm lost that way.
+        assert_eq!(
+            gateway.missed_while_transmitting,
+            r.packets_gateway_transmitting
+        );
+        let lost = r.packets_collided
+            + r.packets_below_sensitivity
+            + r.packets_no_demodulator
+            + r.packets_gateway_transmitting;
+        assert_eq!(
+            r.delivery.packets_received + lost,
+            r.delivery.packets_sent,
+            "{adr}"
+        );
+    }
+    // Without ADR no downlink is sent, and none is missed.
+    let off = swarm_of("off");
+    assert_eq!(off.packets_gateway_transmitting, 0);
+    assert_eq!(off.delivery.gateways[0].downlinks_sent, 0);
+}
