@@ -14,7 +14,8 @@ pub struct Transmission {
     /// station, once).
     pub received: bool,
     /// What became of it: [`Outcome::Received`] if any gateway received it, else the furthest
-    /// any gateway got (collided after locking on, no demodulator, or below every sensitivity).
+    /// any gateway got (collided after locking on, no demodulator, on air while the gateway sent
+    /// a downlink, or below every sensitivity).
     pub outcome: Outcome,
     /// Which gateways received it (bit g for gateway g).
     pub heard_by: u32,
