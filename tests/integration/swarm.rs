@@ -630,3 +630,41 @@ fn a_gateway_answering_adr_misses_the_uplinks_on_air_meanwhile_and_every_packet_
     assert_eq!(off.packets_gateway_transmitting, 0);
     assert_eq!(off.delivery.gateways[0].downlinks_sent, 0);
 }
+
+/// A gateway's line names what happened to the downlinks it did not send as the page's swarm note
+/// does: LoRaWAN's server drops what the gateway's duty cycle refuses; the tracking network holds
+/// answers back, also to keep a crowded gateway listening. Each count is the JSON's.
+#[test]
+fn the_gateway_line_says_tracking_adr_held_back_what_lorawan_dropped() {
+    for (adr, word) in [("lorawan", "dropped"), ("tracking", "held back")] {
+        let args = [
+            "swarm",
+            "--drones",
+            "60",
+            "--duration",
+            "300",
+            "--sf-plan",
+            "fixed",
+            "--sf",
+            "7",
+            "--bw",
+            "125",
+            "--adr",
+            adr,
+        ];
+        let text = String::from_utf8(crate::cli(&args).stdout).unwrap();
+        let json: Value =
+            serde_json::from_slice(&crate::cli(&[&args[..], &["--json"]].concat()).stdout).unwrap();
+        let gateway = &json["gateways"][0];
+        let unsent = gateway["downlinksDropped"].as_u64().unwrap();
+        assert!(unsent > 0, "{adr}: the crowd leaves every answer sent");
+        let expected = format!(
+            "downlinks {} sent / {unsent} {word}",
+            gateway["downlinksSent"]
+        );
+        assert!(
+            text.contains(&expected),
+            "{adr}: no {expected:?} in\n{text}"
+        );
+    }
+}

@@ -765,7 +765,7 @@ fn network_lines(r: &SimReport) -> String {
         d.duplicates,
         if d.duplicates == 1 { "" } else { "s" }
     );
-    out += &gateway_lines(&d.gateways);
+    out += &gateway_lines(&d.gateways, r.config.settings.network.adr);
     for m in &r.results {
         out += &match m.energy.charge_per_uplink {
             charge if charge.is_finite() => format!(
@@ -779,13 +779,22 @@ fn network_lines(r: &SimReport) -> String {
     out
 }
 
-fn gateway_lines(gateways: &[loratrack::GatewayReport]) -> String {
+/// Each gateway's line. A downlink the server wanted but did not send is "held back" under the
+/// tracking ADR, which may also keep one off a crowded gateway's air (`AdrNetwork::spares_the_gateway`),
+/// and "dropped" otherwise, where only the gateway's duty cycle refuses it; the page's swarm note
+/// says the same.
+fn gateway_lines(gateways: &[loratrack::GatewayReport], adr: loratrack::AdrMode) -> String {
+    let unsent = if adr == loratrack::AdrMode::Tracking {
+        "held back"
+    } else {
+        "dropped"
+    };
     gateways
         .iter()
         .enumerate()
         .map(|(i, g)| {
             format!(
-                "\n  gateway {} at ({:.0}, {:.0}) m, {:.0} m high: heard {}, only it {}, downlinks {} sent / {} dropped{}",
+                "\n  gateway {} at ({:.0}, {:.0}) m, {:.0} m high: heard {}, only it {}, downlinks {} sent / {} {unsent}{}",
                 i + 1,
                 g.east,
                 g.north,
@@ -910,7 +919,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         silent,
         loratrack::FEW_PACKETS - 1,
         thin,
-        gateway_lines(&d.gateways)
+        gateway_lines(&d.gateways, r.config.settings.network.adr)
     )
 }
 
