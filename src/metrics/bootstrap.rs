@@ -153,15 +153,18 @@ impl Ranks {
             stride *= 2;
         }
         let rows = (all.len() - 1) / stride + 1;
+        // Row by row, each run's merge resumed where it stopped: the table (up to 16 MB) is
+        // written in order. Filled run by run, each run touched one entry in every row, a cache
+        // line per entry, and building it was 8 % of `npm run reproduce` (perf).
         let mut counts = vec![0u32; rows * runs.len()];
-        for (i, run) in runs.iter().enumerate() {
-            let mut j = 0;
-            for row in 0..rows {
-                let v = all[row * stride];
-                while j < run.len() && run[j] <= v {
-                    j += 1;
+        let mut merged = vec![0usize; runs.len()];
+        for (row, out) in counts.chunks_exact_mut(runs.len()).enumerate() {
+            let v = all[row * stride];
+            for ((j, run), count) in merged.iter_mut().zip(runs).zip(out) {
+                while *j < run.len() && run[*j] <= v {
+                    *j += 1;
                 }
-                counts[row * runs.len() + i] = j as u32;
+                *count = *j as u32;
             }
         }
         Some(Ranks {
