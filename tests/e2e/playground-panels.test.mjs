@@ -498,6 +498,9 @@ test('the swarm panel takes the single drone settings, ADR included, and reports
   const lost = cli.match(/gateway sending +(\d+)/)?.[1];
   if (lost) assert.ok(note.includes(`, ${lost} packets lost while the gateway sent them`), `${note} / CLI: ${lost}`);
   else assert.doesNotMatch(note, /lost while the gateway sent/);
+  // Beside the median drone's p75 the p95 of every drone's error together, which ADR lowers most.
+  const p95 = cli.match(/3D error \(pooled\) .* p95 ([\d.]+) m/)?.[1];
+  assert.ok(p95 && note.includes(`, p95 pooled over the drones ${p95} m`), `${note} / CLI: ${p95}`);
   assert.match(await page.locator('#chart-swarm').textContent(), /from SF9/);
   // One SF, p75s within a decade: its axis still has numbers (powers of ten alone left none).
   const { numbers } = await swarmStrip(page);
