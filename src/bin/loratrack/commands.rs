@@ -780,9 +780,9 @@ fn network_lines(r: &SimReport) -> String {
 }
 
 /// Each gateway's line. A downlink the server wanted but did not send is "held back" under the
-/// tracking ADR, which may also keep one off a crowded gateway's air (`AdrNetwork::spares_the_gateway`),
-/// and "dropped" otherwise, where only the gateway's duty cycle refuses it; the page's swarm note
-/// says the same.
+/// tracking ADR, which may also keep one off a crowded gateway's air
+/// (`AdrNetwork::spares_the_gateway`), and "dropped" otherwise, where only the gateway's duty
+/// cycle refuses it; the page's swarm note says the same.
 fn gateway_lines(gateways: &[loratrack::GatewayReport], adr: loratrack::AdrMode) -> String {
     let unsent = if adr == loratrack::AdrMode::Tracking {
         "held back"
