@@ -523,6 +523,8 @@ async function draw3d(r: SimReport): Promise<void> {
     // meets short tasks, not one long one.
     await nextTask();
     trajectory3d ??= createTrajectory3d($('#chart-trajectory'));
+    // Without a view there is nothing to rotate or reset; the PNG button stays and says why.
+    if (!trajectory3d.webgl) for (const control of [$('#reset-view'), $('#trajectory-controls')]) control.hidden = true;
     await nextTask();
   }
   if (r !== store.report) return;

@@ -1458,3 +1458,29 @@ test('the docs the page cites open as pages beside it, in a new tab: every link 
   assert.equal(page.url(), playgroundUrl);
   assert.deepEqual(problems, []);
 });
+
+test('a browser without WebGL gets a note in place of the 3D view, no console error, no control it cannot use, and a PNG button that says why', async () => {
+  const { page, problems } = await openPage(playground.context, new URL(playground.url).origin);
+  // As headless Firefox or a browser with WebGL turned off: no WebGL context of any kind.
+  await page.addInitScript(() => {
+    const getContext = HTMLCanvasElement.prototype.getContext;
+    HTMLCanvasElement.prototype.getContext = function (kind, ...rest) {
+      return /webgl/.test(kind) ? null : getContext.call(this, kind, ...rest);
+    };
+  });
+  await page.goto(playground.url);
+  await waitForResults(page);
+  const panel = page.locator('[data-panel="trajectory"]');
+  await panel.scrollIntoViewIfNeeded();
+  await until(page, () => document.querySelector('#chart-trajectory').textContent.includes('needs WebGL'));
+  await idle(page);
+  assert.equal(await panel.locator('canvas').count(), 0);
+  assert.equal(await page.locator('#reset-view').isVisible(), false, 'Reset view with no view to reset');
+  assert.equal(await page.locator('#trajectory-controls').isVisible(), false, 'how to rotate a view that is not there');
+  await panel.getByRole('button', { name: /as PNG$/ }).click();
+  assert.equal(await panel.locator('.download-why').textContent(), 'Nothing to save: the 3D view needs WebGL, which this browser does not offer.');
+  // The rest of the page is drawn as ever.
+  for (const chart of ['#chart-error', '#chart-distance', '#chart-axes']) assert.equal(await page.locator(`${chart} svg`).count() > 0, true, chart);
+  assert.deepEqual(await axe(page), []);
+  assert.deepEqual(problems, []);
+});

@@ -19,6 +19,8 @@ export interface Drawn {
 
 export interface Trajectory3d {
   element: HTMLElement;
+  /** Whether the view is drawn: false where the browser offers no WebGL (a note stands there). */
+  webgl: boolean;
   update(report: SimReport): Drawn | undefined;
   /** Back to the initial camera. */
   resetView(): void;
@@ -27,16 +29,29 @@ export interface Trajectory3d {
   snapshot(minWidth: number): { canvas: HTMLCanvasElement; scale: number } | null;
 }
 
+/** Whether this browser offers WebGL 2, which three.js needs. Asked of a canvas of our own first:
+ * three.js finding none logs three console errors before it throws (headless Firefox, a browser
+ * with WebGL turned off), which a reader's console should not hold for a view the page does
+ * without. The trial context is given back at once. */
+function webgl2Offered(): boolean {
+  const gl = document.createElement('canvas').getContext('webgl2');
+  gl?.getExtension('WEBGL_lose_context')?.loseContext();
+  return gl !== null;
+}
+
 export function createTrajectory3d(container: HTMLElement): Trajectory3d {
-  let renderer: THREE.WebGLRenderer;
+  let renderer: THREE.WebGLRenderer | undefined;
   try {
-    renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    if (webgl2Offered()) renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
   } catch {
+    // The context was offered to the trial and refused to three.js: the same note.
+  }
+  if (!renderer) {
     const note = document.createElement('p');
     note.className = 'note';
     note.textContent = 'The 3D view needs WebGL, which this browser does not offer. The other charts work without it.';
     container.replaceChildren(note);
-    return { element: note, update: () => undefined, resetView: () => undefined, snapshot: () => null };
+    return { element: note, webgl: false, update: () => undefined, resetView: () => undefined, snapshot: () => null };
   }
   const width = () => Math.max(280, container.clientWidth);
   const height = () => Math.min(480, Math.round(width() * 0.6));
@@ -146,6 +161,7 @@ export function createTrajectory3d(container: HTMLElement): Trajectory3d {
 
   return {
     element: renderer.domElement,
+    webgl: true,
     resetView: place,
     update(report: SimReport) {
       const s = report.series;
