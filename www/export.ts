@@ -394,12 +394,30 @@ function linesBelow(notes: string[], caption: string, fits: (text: string) => bo
   return [...notes.filter(Boolean).map((n) => ({ lines: wrap(n, fits), fill: '#5a6068' })), { lines: wrap(caption, fits), fill: '#3a3f45' }];
 }
 
+/** A number ending a word and a unit after it (`95 %`, `13 B`, `1.0 km`, `250 kHz,`): the space
+ * between them is no place to break a line. */
+const NUMBER_END = /\d$/;
+const UNIT = /^(%|[A-Za-zµ°Ω]{1,3})[),.;:]?$/;
+
+/** `line`'s words, each number kept with the unit after it (a slide that wraps "95" and "%" onto
+ * two lines reads as a typo). */
+export function unbreakable(line: string): string[] {
+  const groups: string[] = [];
+  for (const word of line.split(' ')) {
+    const last = groups.length - 1;
+    if (last >= 0 && NUMBER_END.test(groups[last]) && UNIT.test(word)) groups[last] += ` ${word}`;
+    else groups.push(word);
+  }
+  return groups;
+}
+
 /** `line` broken at spaces into the longest lines that `fits` (a word that does not fit alone
- * stands alone): by characters in an SVG, by measured width on a canvas. */
+ * stands alone), never between a number and its unit ([`unbreakable`]): by characters in an SVG,
+ * by measured width on a canvas. */
 export function wrap(line: string, fits: (text: string) => boolean): string[] {
   const out: string[] = [];
   let current = '';
-  for (const word of line.split(' ')) {
+  for (const word of unbreakable(line)) {
     const next = current ? `${current} ${word}` : word;
     if (current && !fits(next)) {
       out.push(current);
