@@ -16,7 +16,7 @@ import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
 import { adrName, bandNote, caption, fewPacketsNote, fixedRateNote, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote } from './format';
 import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
-import { clearTable, renderBaseline, renderTable, restingNotes } from './results';
+import { clearTable, renderBaseline, renderTable, restingNotes, resultsWhat } from './results';
 import { commandOf, setUpCopyCommand, showCommand } from './command';
 import { setUpPresent } from './present';
 import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, runsMission, simulateRequest, swarmSettings, toParams, toQuery, type Settings } from './state';
@@ -1049,13 +1049,13 @@ function notesAfter(chart: Element): string[] {
 function saveSlide(button: HTMLButtonElement, picture: Element, name: string, slide: SlideText): boolean {
   return (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(picture, name, slide);
 }
-/** The results table as drawn (in the pieces the page splits it into), for a slide: its caption (what the numbers are), the settings they
+/** The results table as drawn (in the pieces the page splits it into), for a slide: what the numbers are, the settings they
  * rest on and, with a baseline pinned, what the differences are against. None while a whole set's
  * first flight stands in for the set. */
 function downloadResultsPicture(button: HTMLButtonElement): void {
   const [table, ...rest] = document.querySelectorAll<HTMLTableElement>('#results-table table');
   if (!shownReport(button) || !table) return;
-  const what = table.caption?.textContent?.trim() ?? '';
+  const what = resultsWhat();
   const against = $('#baseline-note').hidden ? '' : ` ${$('#baseline-note').textContent ?? ''}`;
   const notes = restingNotes().map((n) => `${n} `).join('');
   const slide = { title: 'Results', caption: `${what ? `${what}. ` : ''}${notes}${caption(store.reportSettings)}.${against}` };

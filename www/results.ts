@@ -20,7 +20,8 @@ export function renderTable(r: SimReport): void {
   // (which the time-on-air and link panels show too); a little wider, the link's half goes under
   // it (fitTable).
   shown = {
-    caption: `3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet, over ${r.config.flights} flight${r.config.flights === 1 ? '' : 's'} × ${r.config.seeds} seed${r.config.seeds === 1 ? '' : 's'}; overhead ${r.config.overhead} B; ${prediction(r.config)}${sendsAsPublished(r.config) ? '' : `; ${sending(r.config)}`}${adrFrom(r.config)}`,
+    what: `3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet, over ${r.config.flights} flight${r.config.flights === 1 ? '' : 's'} × ${r.config.seeds} seed${r.config.seeds === 1 ? '' : 's'}`,
+    setup: `overhead ${r.config.overhead} B; ${prediction(r.config)}${sendsAsPublished(r.config) ? '' : `; ${sending(r.config)}`}${adrFrom(r.config)}`,
     packetsHead: `<th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th>`,
     framesHead: `<th scope="col" title="${intervalRule(r.config)}">interval</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th>`,
     rows: r.results.map((m) => {
@@ -53,12 +54,21 @@ export function renderTable(r: SimReport): void {
 
 /** The results on show, as the table's pieces: laid out as one table, two or three by `fitTable`. */
 let shown: {
-  caption: string;
+  /** What the numbers are (the error, how often it was taken, over which runs). */
+  what: string;
+  /** The settings the table's caption names beside them; a slide's caption names every setting. */
+  setup: string;
   /** The link's columns in two groups: what arrived, and what each packet cost. */
   packetsHead: string;
   framesHead: string;
   rows: { model: ModelResult['model']; best: boolean; errors: string; packets: string; frames: string }[];
 } | null = null;
+
+/** What the results on show are, without the settings their table's caption adds: a slide's
+ * caption names the settings in full ([`caption`]), so they would be said twice. */
+export function resultsWhat(): string {
+  return shown?.what ?? '';
+}
 
 /** No results on show, as before the first run: the table and every note it wrote emptied (a
  * whole set refused after its first flight's numbers were shown, and no earlier run to go back to). */
@@ -80,7 +90,8 @@ type Parts = 1 | 2 | 3;
 /** The results as `parts` tables, each row named by its station. */
 function layoutTable(parts: Parts): void {
   if (!shown) return;
-  const { caption, packetsHead, framesHead, rows } = shown;
+  const { what, setup, packetsHead, framesHead, rows } = shown;
+  const caption = `${what}; ${setup}`;
   const table = (label: string, what: string, head: string, cells: (row: (typeof rows)[number]) => string, badge: boolean) =>
     `<div class="table-wrap" tabindex="0" role="region" aria-label="${label}"><table class="results">
     <caption>${what}</caption>

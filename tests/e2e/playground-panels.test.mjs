@@ -433,6 +433,13 @@ test('on a phone every slide keeps its title, legend and text within the picture
       return [...past, ...crowded];
     });
     assert.deepEqual(past, [], `the ${name} slide's text past its right edge or its legend crowded`);
+    if (name === 'results') {
+      // The table's caption names the overhead and the prediction beside what the numbers are, and
+      // the slide's caption names every setting: the slide said both twice.
+      const words = await viewer.evaluate(() => [...document.querySelectorAll('svg text')].map((t) => t.textContent).join(' '));
+      for (const setting of ['overhead', 'prediction']) assert.equal(words.split(setting).length - 1, 1, `the results slide names the ${setting} once: ${words}`);
+      assert.match(words, /3D tracking error \(m\) at the station/);
+    }
   }
   await viewer.close();
   assert.deepEqual(problems, []);
