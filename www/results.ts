@@ -90,8 +90,8 @@ type Parts = 1 | 2 | 3;
 /** The results as `parts` tables, each row named by its station. */
 function layoutTable(parts: Parts): void {
   if (!shown) return;
-  const { what, setup, packetsHead, framesHead, rows } = shown;
-  const caption = `${what}; ${setup}`;
+  const { packetsHead, framesHead, rows } = shown;
+  const caption = `${shown.what}; ${shown.setup}`;
   const table = (label: string, what: string, head: string, cells: (row: (typeof rows)[number]) => string, badge: boolean) =>
     `<div class="table-wrap" tabindex="0" role="region" aria-label="${label}"><table class="results">
     <caption>${what}</caption>
