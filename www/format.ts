@@ -1,5 +1,5 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
-import { MODEL_LABELS, PAYLOAD_BYTES, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
+import { MODEL_LABELS, PAYLOAD_BYTES, type GatewayReport, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
 import { DEFAULTS, LIMITS, plan, sendingLimit, type Settings } from './state';
 import { store } from './store';
 
@@ -9,6 +9,15 @@ export const fmt = (v: number | null, digits = 2) => (v === null || v === undefi
 /** The share of the flight time a station's errors cover (`wholeFlight.tracked`, 0-1; before a
  * flight's first packet there is no estimate), in whole percent. */
 export const trackedPercent = (tracked: number | null) => Math.round(100 * (tracked ?? 0));
+
+/** What became of the ADR answers the network server wanted to send through `gateways`, summed:
+ * sent, refused by the gateway's duty cycle, and (where any) held back for a later uplink to keep
+ * a crowded gateway listening; the counts the CLI's gateway lines print. */
+export function downlinkCounts(gateways: GatewayReport[]): string {
+  const sum = (count: (g: GatewayReport) => number) => gateways.reduce((total, g) => total + count(g), 0);
+  const held = sum((g) => g.downlinksHeldBack);
+  return `${sum((g) => g.downlinksSent)} ADR downlinks sent, ${sum((g) => g.downlinksDropped)} dropped by the gateway's duty cycle${held ? `, ${held} held back for a later uplink to keep a crowded gateway listening` : ''}`;
+}
 
 /** Words as a list in a sentence: "a", "a and b", "a, b and c". */
 export const listed = (words: string[]): string => (words.length < 2 ? words.join('') : `${words.slice(0, -1).join(', ')} and ${words[words.length - 1]}`);

@@ -146,13 +146,14 @@ fn three_gateways_serve_a_72_drone_swarm_better_and_the_copies_are_removed() {
 #[test]
 fn adr_runs_in_a_swarm_and_its_downlinks_are_counted() {
     // A gateway at 1 % (RX1) and 10 % (RX2) cannot answer sixty drones' ADR: it sends what its
-    // duty cycle allows and drops the rest.
+    // duty cycle allows and drops the rest; LoRaWAN's server holds none back for a later uplink.
     let busy = swarm(&scenario(
         json!({"drones": 60, "duration": 600, "adr": "lorawan", "sfPlan": "fixed", "sf": 7, "bw": 125}),
     ))
     .unwrap();
     let g = &busy.delivery.gateways[0];
     assert!(g.downlinks_sent > 0 && g.downlinks_dropped > 0, "{g:?}");
+    assert_eq!(g.downlinks_held_back, 0, "{g:?}");
 }
 
 #[test]

@@ -588,10 +588,16 @@ onlyHeard: number,
 downlinksSent: number, 
 /**
  * Downlinks the network server wanted to send through it but its duty cycle forbade in
- * both receive windows (or in RX1, where the ADR keeps its answers out of a crowded RX2:
- * `AdrNetwork::spares_the_gateway`).
+ * both receive windows.
  */
 downlinksDropped: number, 
+/**
+ * Downlinks the network server held back for a later uplink: its duty cycle forbade RX1,
+ * and the ADR keeps its answers out of RX2 while the gateway's other devices are expected
+ * on air meanwhile (`AdrNetwork::spares_the_gateway`; the tracking-aware ADR, reference
+ * §6.5). Always 0 under LoRaWAN ADR, whose server uses RX2 whenever RX1 is not free.
+ */
+downlinksHeldBack: number, 
 /**
  * Uplinks it would have had to hear while it transmitted a downlink, and so lost (a gateway
  * is half-duplex, reference §6.3).

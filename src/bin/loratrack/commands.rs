@@ -765,7 +765,7 @@ fn network_lines(r: &SimReport) -> String {
         d.duplicates,
         if d.duplicates == 1 { "" } else { "s" }
     );
-    out += &gateway_lines(&d.gateways, r.config.settings.network.adr);
+    out += &gateway_lines(&d.gateways);
     for m in &r.results {
         out += &match m.energy.charge_per_uplink {
             charge if charge.is_finite() => format!(
@@ -779,22 +779,16 @@ fn network_lines(r: &SimReport) -> String {
     out
 }
 
-/// Each gateway's line. A downlink the server wanted but did not send is "held back" under the
-/// tracking ADR, which may also keep one off a crowded gateway's air
-/// (`AdrNetwork::spares_the_gateway`), and "dropped" otherwise, where only the gateway's duty
-/// cycle refuses it; the page's swarm note says the same.
-fn gateway_lines(gateways: &[loratrack::GatewayReport], adr: loratrack::AdrMode) -> String {
-    let unsent = if adr == loratrack::AdrMode::Tracking {
-        "held back"
-    } else {
-        "dropped"
-    };
+/// Each gateway's line: the downlinks it sent, those its duty cycle refused ("dropped") and, where
+/// any, those the network server held back for a later uplink to keep a crowded gateway listening
+/// (`GatewayReport::downlinks_held_back`); the page's notes give the same counts.
+fn gateway_lines(gateways: &[loratrack::GatewayReport]) -> String {
     gateways
         .iter()
         .enumerate()
         .map(|(i, g)| {
             format!(
-                "\n  gateway {} at ({:.0}, {:.0}) m, {:.0} m high: heard {}, only it {}, downlinks {} sent / {} {unsent}{}",
+                "\n  gateway {} at ({:.0}, {:.0}) m, {:.0} m high: heard {}, only it {}, downlinks {} sent / {} dropped{}{}",
                 i + 1,
                 g.east,
                 g.north,
@@ -803,6 +797,10 @@ fn gateway_lines(gateways: &[loratrack::GatewayReport], adr: loratrack::AdrMode)
                 g.only_heard,
                 g.downlinks_sent,
                 g.downlinks_dropped,
+                match g.downlinks_held_back {
+                    0 => String::new(),
+                    n => format!(" / {n} held back"),
+                },
                 match g.missed_while_transmitting {
                     0 => String::new(),
                     n => format!(", {n} uplinks missed while sending"),
@@ -919,7 +917,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         silent,
         loratrack::FEW_PACKETS - 1,
         thin,
-        gateway_lines(&d.gateways, r.config.settings.network.adr)
+        gateway_lines(&d.gateways)
     )
 }
 

@@ -474,12 +474,15 @@ impl Episode {
         } else {
             ACK_DOWNLINK_BYTES
         };
+        // Whether the server kept a window free that the gateway's duty cycle may have allowed.
+        let mut held_back = false;
         for w in [Window::Rx1, Window::Rx2] {
             let dr = w.data_rate(frame.dr);
             let Ok(toa) = downlink_time_on_air(dr, bytes) else {
                 break;
             };
             if !net.may_answer_in(f.drone, w, toa) {
+                held_back = true;
                 continue;
             }
             let at = end + w.delay_s();
@@ -490,7 +493,12 @@ impl Episode {
                 return (Some((w, toa, audible(r.rx_dbm, dr.sf(), dr.bw()))), command);
             }
         }
-        net.gateways[g].downlinks_dropped += 1;
+        let unsent = &mut net.gateways[g];
+        if held_back {
+            unsent.downlinks_held_back += 1;
+        } else {
+            unsent.downlinks_dropped += 1;
+        }
         (None, command)
     }
 }

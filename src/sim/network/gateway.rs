@@ -25,9 +25,13 @@ pub struct GatewayReport {
     /// ADR downlinks it sent.
     pub downlinks_sent: usize,
     /// Downlinks the network server wanted to send through it but its duty cycle forbade in
-    /// both receive windows (or in RX1, where the ADR keeps its answers out of a crowded RX2:
-    /// `AdrNetwork::spares_the_gateway`).
+    /// both receive windows.
     pub downlinks_dropped: usize,
+    /// Downlinks the network server held back for a later uplink: its duty cycle forbade RX1,
+    /// and the ADR keeps its answers out of RX2 while the gateway's other devices are expected
+    /// on air meanwhile (`AdrNetwork::spares_the_gateway`; the tracking-aware ADR, reference
+    /// §6.5). Always 0 under LoRaWAN ADR, whose server uses RX2 whenever RX1 is not free.
+    pub downlinks_held_back: usize,
     /// Uplinks it would have had to hear while it transmitted a downlink, and so lost (a gateway
     /// is half-duplex, reference §6.3).
     pub missed_while_transmitting: usize,
@@ -40,6 +44,7 @@ impl GatewayReport {
         self.only_heard += other.only_heard;
         self.downlinks_sent += other.downlinks_sent;
         self.downlinks_dropped += other.downlinks_dropped;
+        self.downlinks_held_back += other.downlinks_held_back;
         self.missed_while_transmitting += other.missed_while_transmitting;
     }
 }
