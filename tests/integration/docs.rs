@@ -326,6 +326,41 @@ fn the_references_aloha_numbers_are_what_the_cli_prints() {
     );
 }
 
+/// What sending on two EU868 sub-bands buys (reference §6.1): the interval and p75 at 1 % and 2 %,
+/// as the CLI computes them now.
+#[test]
+fn the_references_two_sub_band_numbers_are_what_the_cli_prints() {
+    let reference = prose("docs/reference.md");
+    for (link, words) in [
+        ("--sf 7 --bw 250 --distance 1000", "at SF7/250 kHz and 1 km"),
+        (
+            "--sf 10 --bw 125 --distance 3000",
+            "at SF10/125 kHz and 3 km",
+        ),
+    ] {
+        let [one, two] = ["0.01", "0.02"].map(|dc| {
+            let r = json(&format!(
+                "simulate --synthetic all --model 3d-ctra {link} --duty-cycle {dc} --json"
+            ));
+            let r = &r["results"][0];
+            (
+                r["interval"].as_f64().unwrap(),
+                r["error3d"]["p75"].as_f64().unwrap(),
+            )
+        });
+        // The interval halves exactly: it is the time on air over the duty cycle.
+        assert!((one.0 - 2.0 * two.0).abs() < 1e-9, "{one:?} {two:?}");
+        let claim = format!(
+            "{words} the interval {:.2} → {:.2} s and the p75 {:.2} → {:.2} m",
+            one.0, two.0, one.1, two.1
+        );
+        assert!(
+            reference.contains(&claim),
+            "docs/reference.md no longer says what the CLI prints: {claim}"
+        );
+    }
+}
+
 /// The keys of the JSON object `value`.
 fn keys(value: &serde_json::Value) -> Vec<String> {
     value.as_object().unwrap().keys().cloned().collect()
