@@ -199,7 +199,8 @@ pub const OVERHEAD: NumberOption = NumberOption::new(
     "MAC overhead added to each payload: 13 for LoRaWAN, 0 as in the paper's Table II.",
 )
 .whole();
-/// Duty-cycle limit as a fraction (EU868 868.0–868.6 MHz: 1 %).
+/// Duty-cycle limit as a fraction (EU868 868.0–868.6 MHz: 1 %; per sub-band, so 2 % for a device
+/// alternating two 1 % sub-bands, reference §6.1).
 pub const DUTY_CYCLE: NumberOption = NumberOption::new(
     "dutyCycle",
     "Duty cycle",
@@ -207,7 +208,7 @@ pub const DUTY_CYCLE: NumberOption = NumberOption::new(
     0.01,
     1e-4,
     1.0,
-    "Duty-cycle limit as a fraction; 0.0001 is ten times below EU868's strictest sub-band.",
+    "Duty-cycle limit as a fraction: 0.01, EU868's default channels; 0.02, two 1 % sub-bands alternated (The Things Network's eight channels); 0.0001 is ten times below EU868's strictest sub-band.",
 );
 /// Transmit power, dBm (EU868's 14 dBm ERP).
 pub const TX_POWER: NumberOption = NumberOption::new(

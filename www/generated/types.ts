@@ -1476,7 +1476,7 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "Duty-cycle limit as a fraction; 0.0001 is ten times below EU868's strictest sub-band."
+    "help": "Duty-cycle limit as a fraction: 0.01, EU868's default channels; 0.02, two 1 % sub-bands alternated (The Things Network's eight channels); 0.0001 is ten times below EU868's strictest sub-band."
   },
   {
     "key": "txPower",
