@@ -507,7 +507,8 @@ fn policy_text(s: &loratrack::Scenario) -> String {
         ),
         (loratrack::DutyCycleMode::PerPacket, Some(_)) => "an off-time per packet".to_string(),
         (loratrack::DutyCycleMode::Budget, _) => {
-            format!("a duty-cycle budget of {} packets", send.burst)
+            let packets = if send.burst == 1 { "packet" } else { "packets" };
+            format!("a duty-cycle budget of {} {packets}", send.burst)
         }
     };
     let payload = match send.payload {
@@ -1056,6 +1057,17 @@ mod tests {
         assert_eq!(num(f64::NAN, 6, 2), "     -");
         // Outside a column (width 0), every decimal asked for.
         assert_eq!(num(0.0699, 0, 4), "0.0699");
+    }
+
+    #[test]
+    fn a_budget_of_one_packet_is_named_in_the_singular() {
+        let mut s = Scenario::default();
+        s.sending.duty_cycle_mode = loratrack::DutyCycleMode::Budget;
+        for (burst, words) in [(1, "budget of 1 packet"), (10, "budget of 10 packets")] {
+            s.sending.burst = burst;
+            let line = policy_text(&s);
+            assert!(line.ends_with(words), "{line}");
+        }
     }
 
     #[derive(Parser)]
