@@ -126,7 +126,7 @@ impl fmt::Display for SimError {
                     grouped(MAX_FILTER_STEPS as f64)
                 )?;
                 if let Some(("seeds", room)) = self.fewer_that_fit() {
-                    write!(f, "at most {room} seeds, or ")?;
+                    write!(f, "at most {}, or ", counted(room, "seed"))?;
                 }
                 f.write_str("shorten the flight, lower the sensor rate or lengthen the step T)")
             }
@@ -145,11 +145,20 @@ impl fmt::Display for SimError {
                 )?;
                 // Where one drone's flights are already too long, fewer drones would not do.
                 if let Some(("drones", room)) = self.fewer_that_fit() {
-                    write!(f, "at most {room} drones, or ")?;
+                    write!(f, "at most {}, or ", counted(room, "drone"))?;
                 }
                 f.write_str("shorter flights, a lower sensor rate or a longer step T)")
             }
         }
+    }
+}
+
+/// `n` and the noun `one` names one of, in the plural unless `n` is 1: "1 seed", "18 seeds".
+fn counted(n: u32, one: &str) -> String {
+    if n == 1 {
+        format!("1 {one}")
+    } else {
+        format!("{n} {one}s")
     }
 }
 
@@ -313,6 +322,27 @@ mod tests {
                  at these rates; the limit is 36\u{a0}000\u{a0}000 (at most 29 drones, or shorter"
             ),
             "{e}"
+        );
+    }
+
+    #[test]
+    fn room_for_one_seed_or_one_drone_is_named_in_the_singular() {
+        let run = |run| SimError::TooLong {
+            flight_time: 5280.0,
+            steps: 1_636_806.0,
+            run,
+        };
+        let one_seed = run(LongRun::Simulate { seeds: 2, fit: 1 }).to_string();
+        assert!(
+            one_seed.contains("(at most 1 seed, or shorten"),
+            "{one_seed}"
+        );
+        let seeds = run(LongRun::Simulate { seeds: 20, fit: 2 }).to_string();
+        assert!(seeds.contains("(at most 2 seeds, or shorten"), "{seeds}");
+        let one_drone = run(LongRun::Swarm { drones: 2, fit: 1 }).to_string();
+        assert!(
+            one_drone.contains("(at most 1 drone, or shorter"),
+            "{one_drone}"
         );
     }
 
