@@ -10,13 +10,16 @@ export const fmt = (v: number | null, digits = 2) => (v === null || v === undefi
  * flight's first packet there is no estimate), in whole percent. */
 export const trackedPercent = (tracked: number | null) => Math.round(100 * (tracked ?? 0));
 
+/** `n` and the noun `one` names one of, in the plural unless `n` is 1: "1 packet", "3 packets". */
+export const counted = (n: number, one: string, many = `${one}s`): string => `${n} ${n === 1 ? one : many}`;
+
 /** What became of the ADR answers the network server wanted to send through `gateways`, summed:
  * sent, refused by the gateway's duty cycle, and (where any) held back for a later uplink to keep
  * a crowded gateway listening; the counts the CLI's gateway lines print. */
 export function downlinkCounts(gateways: GatewayReport[]): string {
   const sum = (count: (g: GatewayReport) => number) => gateways.reduce((total, g) => total + count(g), 0);
   const held = sum((g) => g.downlinksHeldBack);
-  return `${sum((g) => g.downlinksSent)} ADR downlinks sent, ${sum((g) => g.downlinksDropped)} dropped by the gateway's duty cycle${held ? `, ${held} held back for a later uplink to keep a crowded gateway listening` : ''}`;
+  return `${counted(sum((g) => g.downlinksSent), 'ADR downlink')} sent, ${sum((g) => g.downlinksDropped)} dropped by the gateway's duty cycle${held ? `, ${held} held back for a later uplink to keep a crowded gateway listening` : ''}`;
 }
 
 /** Words as a list in a sentence: "a", "a and b", "a, b and c". */

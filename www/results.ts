@@ -3,7 +3,7 @@
 // the notes under the table. Reads the page's state from the store.
 import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
-import { adrFrom, adrName, caption, downlinkCounts, fmt, listed, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
+import { adrFrom, adrName, caption, counted, downlinkCounts, fmt, listed, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan, sendingLimit } from './state';
 import { store } from './store';
 
@@ -203,7 +203,7 @@ export function intervalRule(c: Pick<RunConfig, 'region' | 'access' | 'fairUse' 
 function frameCells(m: ModelResult): string {
   const used = [...m.dataRateUse].reverse();
   if (used.length > 1) {
-    const title = ` title="Mean over the ${m.packetsSent} packets sent; ADR sent at ${used.length} data rates: ${used.map((u) => `${rateName(u)} ${u.packets} packets, ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`).join('; ')}"`;
+    const title = ` title="Mean over the ${counted(m.packetsSent, 'packet')} sent; ADR sent at ${used.length} data rates: ${used.map((u) => `${rateName(u)} ${counted(u.packets, 'packet')}, ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`).join('; ')}"`;
     // Where the table is tight (fitTable) the span may break after its dash, not before its unit.
     const span = (values: number[], unit: string) => ` <span class="sub" data-span>${short(Math.min(...values))}–${short(Math.max(...values))}\u00a0${unit}</span>`;
     // The means to three figures, as the spans: an average over rates claims no more.
@@ -250,7 +250,7 @@ function leanTitle(m: ModelResult): string {
   if (!m.leanPackets) return '';
   const frame = m.leanFrame;
   const shortest = frame ? `, as short as ${(frame.timeOnAir * 1e3).toFixed(1)} ms on air with the next allowed ${frame.interval.toFixed(2)} s later` : '';
-  return ` title="${m.leanPackets} of ${m.packetsSent} packets left out small manoeuvre fields (DR's 9 or CTRA+'s 11 bytes)${shortest}; a full packet: ${(m.timeOnAir * 1e3).toFixed(1)} ms, ${m.interval.toFixed(2)} s"`;
+  return ` title="${m.leanPackets} of ${counted(m.packetsSent, 'packet')} left out small manoeuvre fields (DR's 9 or CTRA+'s 11 bytes)${shortest}; a full packet: ${(m.timeOnAir * 1e3).toFixed(1)} ms, ${m.interval.toFixed(2)} s"`;
 }
 
 /** The station with the lowest p75 and every other station's p75 against it, paired over the
@@ -444,9 +444,9 @@ function renderRateUse(r: SimReport): void {
 function networkNote(m: ModelResult, named: boolean): string {
   const { packetsSent: sent, packetsReceived: received, duplicates, gateways } = m;
   const each = gateways
-    .map((g, i) => `gateway ${i + 1} at (${(g.east / 1000).toFixed(1)}, ${(g.north / 1000).toFixed(1)}) km heard ${g.heard}${gateways.length > 1 ? ` (${g.onlyHeard} only it)` : ''}${g.downlinksSent + g.downlinksDropped + g.downlinksHeldBack ? `, ${downlinkCounts([g])}` : ''}${g.missedWhileTransmitting ? `, ${g.missedWhileTransmitting} uplinks missed while it sent` : ''}`)
+    .map((g, i) => `gateway ${i + 1} at (${(g.east / 1000).toFixed(1)}, ${(g.north / 1000).toFixed(1)}) km heard ${g.heard}${gateways.length > 1 ? ` (${g.onlyHeard} only it)` : ''}${g.downlinksSent + g.downlinksDropped + g.downlinksHeldBack ? `, ${downlinkCounts([g])}` : ''}${g.missedWhileTransmitting ? `, ${counted(g.missedWhileTransmitting, 'uplink')} missed while it sent` : ''}`)
     .join('; ');
-  return `Network${named ? ` (${MODEL_LABELS[m.model]}'s packets)` : ''}: ${received} of ${sent} packets delivered (${sent ? ((100 * received) / sent).toFixed(0) : 0} %)${gateways.length > 1 ? `, ${duplicates} duplicate copies removed` : ''} — ${each}.`;
+  return `Network${named ? ` (${MODEL_LABELS[m.model]}'s packets)` : ''}: ${received} of ${counted(sent, 'packet')} delivered (${sent ? ((100 * received) / sent).toFixed(0) : 0} %)${gateways.length > 1 ? `, ${duplicates} duplicate copies removed` : ''} — ${each}.`;
 }
 
 /** The IMM's mean member probabilities, as a tooltip. */

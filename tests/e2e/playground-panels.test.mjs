@@ -500,15 +500,15 @@ test('the swarm panel takes the single drone settings, ADR included, and reports
   assert.ok(shares && shares !== 'SF9 100 %', `ADR moved no packet off SF9: ${cli}`);
   assert.ok(note.includes(`all starting on SF9, ADR sent their packets at ${shares}:`), `${note} / CLI: ${shares}`);
   assert.match(note, /^20 drones flying 5 minutes of the synthetic set each to a 3D-CTRA station \(paper prediction\), /);
-  assert.match(note, /\d+ ADR downlinks sent, \d+ dropped by the gateway's duty cycle(, \d+ held back for a later uplink to keep a crowded gateway listening)?(, \d+ packets lost while the gateway sent them \(it cannot listen meanwhile\))?; radio [\d.]+ mC per uplink/);
+  assert.match(note, /\d+ ADR downlinks? sent, \d+ dropped by the gateway's duty cycle(, \d+ held back for a later uplink to keep a crowded gateway listening)?(, \d+ packets? lost while the gateway sent them \(it cannot listen meanwhile\))?; radio [\d.]+ mC per uplink/);
   // What became of the answers, counted as the CLI's gateway line counts them.
   const [, sentDown, dropped, , held] = cli.match(/downlinks (\d+) sent \/ (\d+) dropped( \/ (\d+) held back)?/) ?? [];
   assert.ok(sentDown, `no gateway line in the CLI's output: ${cli}`);
-  const counts = `${sentDown} ADR downlinks sent, ${dropped} dropped by the gateway's duty cycle${held ? `, ${held} held back for a later uplink to keep a crowded gateway listening` : ''}`;
+  const counts = `${sentDown} ADR downlink${sentDown === '1' ? '' : 's'} sent, ${dropped} dropped by the gateway's duty cycle${held ? `, ${held} held back for a later uplink to keep a crowded gateway listening` : ''}`;
   assert.ok(note.includes(counts), `${note} / CLI: ${counts}`);
   // The packets a half-duplex gateway missed while it answered, as the CLI counts them.
   const lost = cli.match(/gateway sending +(\d+)/)?.[1];
-  if (lost) assert.ok(note.includes(`, ${lost} packets lost while the gateway sent them`), `${note} / CLI: ${lost}`);
+  if (lost) assert.ok(note.includes(`, ${lost} packet${lost === '1' ? '' : 's'} lost while the gateway sent them`), `${note} / CLI: ${lost}`);
   else assert.doesNotMatch(note, /lost while the gateway sent/);
   // Beside the median drone's p75 the p95 of every drone's error together, which ADR lowers most.
   const p95 = cli.match(/3D error \(pooled\) .* p95 ([\d.]+) m/)?.[1];

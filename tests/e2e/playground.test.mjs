@@ -1224,7 +1224,7 @@ test('with ADR the interval and time on air are the mean over its packets and sp
   // Not the starting rate's: the slower rates' packets waited longer.
   assert.ok(mean((u) => u.interval) > cli.results[0].interval);
   const title = await page.locator('#results-table tr[data-model="3d-ctra"] td[data-field="interval"]').getAttribute('title');
-  for (const u of used) assert.ok(title.includes(`DR${u.dr} ${u.packets} packets, ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`), `${title} / DR${u.dr}`);
+  for (const u of used) assert.ok(title.includes(`DR${u.dr} ${u.packets} packet${u.packets === 1 ? '' : 's'}, ${(u.timeOnAir * 1e3).toFixed(1)} ms on air, every ${u.interval.toFixed(2)} s`), `${title} / DR${u.dr}`);
   assert.match(await page.locator('#rate-use').textContent(), /the interval and time on air above are the mean over the packets sent, their span beneath/);
   // The Results CSV spans them too, unrounded, beside the starting rate's.
   const [header, row] = (await downloaded(page, page.getByRole('button', { name: 'Results (CSV)' }))).toString('utf8').trim().split('\n').map((l) => l.split(','));

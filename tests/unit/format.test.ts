@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { adrFrom, bandNote, caption, describe, stationPhrase, fewPacketsNote, fixedRateNote, flightTime, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
+import { adrFrom, bandNote, caption, counted, describe, downlinkCounts, stationPhrase, fewPacketsNote, fixedRateNote, flightTime, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -15,6 +15,15 @@ test('the tracked share is said in whole percent', () => {
   expect(trackedPercent(0.169)).toBe(17);
   expect(trackedPercent(0.946)).toBe(95);
   expect(trackedPercent(null)).toBe(0);
+});
+
+test('a count of one names one thing; ADR answers are counted as the CLI counts them', () => {
+  expect(counted(1, 'packet')).toBe('1 packet');
+  expect(counted(0, 'packet')).toBe('0 packets');
+  expect(counted(3, 'copy', 'copies')).toBe('3 copies');
+  const g = (downlinksSent: number, downlinksDropped: number, downlinksHeldBack: number) => ({ east: 0, north: 0, height: 15, heard: 9, onlyHeard: 9, downlinksSent, downlinksDropped, downlinksHeldBack, missedWhileTransmitting: 0 });
+  expect(downlinkCounts([g(1, 2, 0)])).toBe("1 ADR downlink sent, 2 dropped by the gateway's duty cycle");
+  expect(downlinkCounts([g(4, 0, 5), g(2, 1, 1)])).toBe("6 ADR downlinks sent, 1 dropped by the gateway's duty cycle, 6 held back for a later uplink to keep a crowded gateway listening");
 });
 
 test('station lists read as a sentence', () => {

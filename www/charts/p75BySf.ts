@@ -4,7 +4,7 @@
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, type ModelName, type WholeFlightError } from '../loratrack';
 import { CHOSEN_COLUMN, chartFrame, chartFont, NOTE_GREY, fitLabel, MODEL_COLORS, labelRoom, noneSent, withKey } from './colors';
-import { trackedPercent } from '../format';
+import { counted, trackedPercent } from '../format';
 import { logAxis, plainNumber } from './logAxis';
 
 export interface SfRow {
@@ -94,7 +94,7 @@ export function p75BySfChart(rows: SfRow[], opts: { bw: number; distance: number
   const upright = pxPerSf < 4.2 * chartFont() + 4;
   const wrap = upright ? ' ' : '\n';
   const km = (opts.distance / 1000).toFixed(1);
-  const title = (d: (typeof data)[number]) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${d.received} packets${d.few ? ', too few to compare' : ''}, ${covered(d.wholeFlight)}`;
+  const title = (d: (typeof data)[number]) => `${d.label}, SF${d.sf}: p75 ${d.p75!.toFixed(2)} m over ${counted(d.received, 'packet')}${d.few ? ', too few to compare' : ''}, ${covered(d.wholeFlight)}`;
   const chart = Plot.plot({
     ...chartFrame(220),
     width: opts.width,

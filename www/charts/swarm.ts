@@ -3,7 +3,7 @@
 import { chartFrame, chartFont, fitLabel, SF_COLORS, labelRoom } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
-import { downlinkCounts, flightTime, stationPhrase, trackedPercent } from '../format';
+import { counted, downlinkCounts, flightTime, stationPhrase, trackedPercent } from '../format';
 import { DEFAULTS, plan, sendingLimit } from '../state';
 import { logAxis, plainNumber } from './logAxis';
 
@@ -117,7 +117,7 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
       x: { label: fitLabel(width, `p75 error of each of ${shown} drones (m, log scale)`, `p75 of each of ${shown} drones (m, log)`, 'p75 per drone (m, log)'), type: 'log', ...logAxis(drones.map((d) => d.p75), { px: width - margin.left - margin.stripRight, font: chartFont() }), tickFormat: plainNumber },
       y: { axis: null },
       color: { legend: true, domain: sfs.map(sfName), range: sfs.map((sf) => SF_COLORS[sf - 7]) },
-      marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: { value: (d: Drone) => (d.few ? 'white' : d.colour), scale: null }, stroke: 'sf', strokeWidth: 1.2, r, title: (d: Drone) => `${d.sf}: p75 ${d.p75.toFixed(2)} m over ${d.received} packets${d.few ? ', too few to compare' : ''}` }))],
+      marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: { value: (d: Drone) => (d.few ? 'white' : d.colour), scale: null }, stroke: 'sf', strokeWidth: 1.2, r, title: (d: Drone) => `${d.sf}: p75 ${d.p75.toFixed(2)} m over ${counted(d.received, 'packet')}${d.few ? ', too few to compare' : ''}` }))],
     });
   const first = strip(frame.height);
   const fitted = marginTop + pileHeight(first, frame.height - frame.marginBottom, 2 * r) + frame.marginBottom;
@@ -131,7 +131,7 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   note.textContent =
     collisionRate === null || deliveryRatio === null || energy.chargePerUplink === null
       ? `${flown}: no drone sent a packet within its flight, so no station had an estimate.`
-      : `${flown}${adr ? `, ADR sent their packets at ${sfShares(largest)}` : ''}: ${(100 * collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %)${largest.leanPackets > 0 ? `, ${largest.leanPackets} of ${largest.packetsSent} packets with lean payloads` : ''}, median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${drones.length < largest.drones.length ? ` (of the ${drones.length} that received a packet)` : ''}, p95 pooled over the drones ${largest.error3d.p95?.toFixed(2) ?? '—'} m${untracked(largest)}${stripCounts(largest.drones.length, drones.length, thin)}; ${(100 * deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${adr ? `, ${downlinkCounts(largest.gateways)}${largest.packetsGatewayTransmitting > 0 ? `, ${largest.packetsGatewayTransmitting} packets lost while the gateway sent them (it cannot listen meanwhile)` : ''}` : ''}; radio ${energy.chargePerUplink.toFixed(2)} mC per uplink (mean over the drones that sent).${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
+      : `${flown}${adr ? `, ADR sent their packets at ${sfShares(largest)}` : ''}: ${(100 * collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %)${largest.leanPackets > 0 ? `, ${largest.leanPackets} of ${largest.packetsSent} packets with lean payloads` : ''}, median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${drones.length < largest.drones.length ? ` (of the ${drones.length} that received a packet)` : ''}, p95 pooled over the drones ${largest.error3d.p95?.toFixed(2) ?? '—'} m${untracked(largest)}${stripCounts(largest.drones.length, drones.length, thin)}; ${(100 * deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${largest.duplicates} duplicate copies removed)` : ''}${adr ? `, ${downlinkCounts(largest.gateways)}${largest.packetsGatewayTransmitting > 0 ? `, ${counted(largest.packetsGatewayTransmitting, 'packet')} lost while the gateway sent them (it cannot listen meanwhile)` : ''}` : ''}; radio ${energy.chargePerUplink.toFixed(2)} mC per uplink (mean over the drones that sent).${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
   const l = largest.largestSwarm;
   note.textContent += ` Largest swarm one gateway serves at these settings${adr ? ' (at the starting SFs)' : ''}${largest.leanPackets > 0 ? ' (with full frames: the lean ones, shorter, leave room for more)' : ''}, every drone sending ${pace(largest.config)}: ${l.aloha1} drone${l.aloha1 === 1 ? '' : 's'} at ≤ 1 % collisions and ${l.aloha10} at ≤ 10 % with ALOHA (by its formula), ${l.slotted} slotted with none.`;
   const box = document.createElement('div');
