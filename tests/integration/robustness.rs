@@ -778,6 +778,30 @@ fn a_drone_that_sends_nothing_shows_its_interval_and_no_delivery_or_charge() {
     assert!(text.contains("energy DR        no uplink sent"), "{text}");
 }
 
+/// One packet on a flight (SF12 for 81 s) is "1 of 1 packet", as a LoRaWAN ADR that reads one
+/// uplink reads "1 uplink".
+#[test]
+fn counts_of_one_are_named_in_the_singular() {
+    let one = cli(&[
+        "simulate",
+        "--synthetic",
+        "1",
+        "--model",
+        "dr",
+        "--sf",
+        "12",
+        "--bw",
+        "125",
+        "--adr",
+        "lorawan",
+        "--adr-history",
+        "1",
+    ]);
+    let text = String::from_utf8_lossy(&one.stdout);
+    assert!(text.contains("network: 1 of 1 packet delivered"), "{text}");
+    assert!(text.contains("(margin 10 dB, 1 uplink)"), "{text}");
+}
+
 #[test]
 fn a_swarm_that_sent_nothing_gives_no_shares_and_no_charge() {
     // Drones at SF12 (an interval of 148 s) flying 10 s: most send nothing.

@@ -534,8 +534,10 @@ fn adr_text(net: &loratrack::NetworkSettings) -> String {
         loratrack::AdrMode::Off => String::new(),
         loratrack::AdrMode::Tracking => ", tracking ADR from this rate".to_string(),
         loratrack::AdrMode::Lorawan => format!(
-            ", LoRaWAN ADR from this rate (margin {} dB, {} uplinks)",
-            net.adr_margin, net.adr_history
+            ", LoRaWAN ADR from this rate (margin {} dB, {} uplink{})",
+            net.adr_margin,
+            net.adr_history,
+            if net.adr_history == 1 { "" } else { "s" }
         ),
     }
 }
@@ -620,9 +622,14 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
         }
         if m.lean_packets > 0 {
             out += &format!(
-                "          lean payload: {} of {} packets left out a, omega or psi{}\n",
+                "          lean payload: {} of {} packet{} left out a, omega or psi{}\n",
                 m.lean_packets,
                 m.delivery.packets_sent,
+                if m.delivery.packets_sent == 1 {
+                    ""
+                } else {
+                    "s"
+                },
                 m.lean_frame.map_or(String::new(), |f| format!(
                     " (shortest {:.1} ms on air, {:.2} s interval)",
                     f.time_on_air * 1e3,
@@ -760,9 +767,10 @@ fn network_lines(r: &SimReport) -> String {
         format!("{:.1} %", 100.0 * d.delivery_ratio)
     };
     let mut out = format!(
-        "network: {} of {} packets delivered ({share}), {} duplicate{} removed",
+        "network: {} of {} packet{} delivered ({share}), {} duplicate{} removed",
         d.packets_received,
         d.packets_sent,
+        if d.packets_sent == 1 { "" } else { "s" },
         d.duplicates,
         if d.duplicates == 1 { "" } else { "s" }
     );
