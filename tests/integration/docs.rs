@@ -161,6 +161,10 @@ fn the_readme_gateway_and_downlink_numbers_are_what_the_cli_prints() {
     };
     let (sent, dropped) = (count("downlinksSent"), count("downlinksDropped"));
     let missed = count("missedWhileTransmitting");
+    let tracking = json(
+        "swarm --drones 60 --duration 600 --adr tracking --sf-plan fixed --sf 7 --bw 125 --json",
+    );
+    let held = |key: &str| tracking["gateways"][0][key].as_u64().unwrap();
     let downlinks = [
         format!(
             "`swarm --drones 60 --duration 600 --adr lorawan --sf-plan fixed --sf 7 --bw 125`, of the {} downlinks \
@@ -169,6 +173,14 @@ fn the_readme_gateway_and_downlink_numbers_are_what_the_cli_prints() {
         ),
         format!("the gateway's duty cycle lets {sent} go in RX1 or RX2 and drops {dropped}"),
         format!("it misses {missed} uplinks while it sends them"),
+        format!(
+            "with `--adr tracking` the same swarm's server sends {}, drops {} and holds back {} for a \
+             later uplink (`downlinksHeldBack`), and the gateway misses {}",
+            held("downlinksSent"),
+            held("downlinksDropped"),
+            held("downlinksHeldBack"),
+            held("missedWhileTransmitting")
+        ),
     ];
     for (text, claim) in claims
         .iter()
