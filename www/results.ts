@@ -446,7 +446,7 @@ function networkNote(m: ModelResult, named: boolean): string {
   const each = gateways
     .map((g, i) => `gateway ${i + 1} at (${(g.east / 1000).toFixed(1)}, ${(g.north / 1000).toFixed(1)}) km heard ${g.heard}${gateways.length > 1 ? ` (${g.onlyHeard} only it)` : ''}${g.downlinksSent + g.downlinksDropped + g.downlinksHeldBack ? `, ${downlinkCounts([g])}` : ''}${g.missedWhileTransmitting ? `, ${counted(g.missedWhileTransmitting, 'uplink')} missed while it sent` : ''}`)
     .join('; ');
-  return `Network${named ? ` (${MODEL_LABELS[m.model]}'s packets)` : ''}: ${received} of ${counted(sent, 'packet')} delivered (${sent ? ((100 * received) / sent).toFixed(0) : 0} %)${gateways.length > 1 ? `, ${duplicates} duplicate copies removed` : ''} — ${each}.`;
+  return `Network${named ? ` (${MODEL_LABELS[m.model]}'s packets)` : ''}: ${received} of ${counted(sent, 'packet')} delivered (${sent ? ((100 * received) / sent).toFixed(0) : 0} %)${gateways.length > 1 ? `, ${counted(duplicates, 'duplicate copy', 'duplicate copies')} removed` : ''} — ${each}.`;
 }
 
 /** The IMM's mean member probabilities, as a tooltip. */
