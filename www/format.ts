@@ -13,6 +13,9 @@ export const trackedPercent = (tracked: number | null) => Math.round(100 * (trac
 /** `n` and the noun `one` names one of, in the plural unless `n` is 1: "1 packet", "3 packets". */
 export const counted = (n: number, one: string, many = `${one}s`): string => `${n} ${n === 1 ? one : many}`;
 
+/** The ADR answers the network server wanted to send through gateway `g`: sent, dropped or held back. */
+export const downlinksWanted = (g: GatewayReport): number => g.downlinksSent + g.downlinksDropped + g.downlinksHeldBack;
+
 /** What became of the ADR answers the network server wanted to send through `gateways`, summed:
  * sent, refused by the gateway's duty cycle, and (where any) held back for a later uplink to keep
  * a crowded gateway listening; the counts the CLI's gateway lines print. */

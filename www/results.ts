@@ -3,7 +3,7 @@
 // the notes under the table. Reads the page's state from the store.
 import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
-import { adrFrom, adrName, caption, counted, downlinkCounts, fmt, listed, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
+import { adrFrom, adrName, caption, counted, downlinkCounts, downlinksWanted, fmt, listed, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan, sendingLimit } from './state';
 import { store } from './store';
 
@@ -45,7 +45,7 @@ export function renderTable(r: SimReport): void {
   // One gateway and no downlink: the table's delivery column already says it all. Each station's
   // run is its own (the drone sends that station's payload): the note tells the first station's.
   const first = r.results[0];
-  const networkShown = first.gateways.length > 1 || first.gateways.some((g) => g.downlinksSent + g.downlinksDropped + g.downlinksHeldBack > 0);
+  const networkShown = first.gateways.length > 1 || first.gateways.some((g) => downlinksWanted(g) > 0);
   $('#network-note').hidden = !networkShown;
   $('#network-note').textContent = networkShown ? networkNote(first, r.results.length > 1) : '';
 
@@ -444,7 +444,7 @@ function renderRateUse(r: SimReport): void {
 function networkNote(m: ModelResult, named: boolean): string {
   const { packetsSent: sent, packetsReceived: received, duplicates, gateways } = m;
   const each = gateways
-    .map((g, i) => `gateway ${i + 1} at (${(g.east / 1000).toFixed(1)}, ${(g.north / 1000).toFixed(1)}) km heard ${g.heard}${gateways.length > 1 ? ` (${g.onlyHeard} only it)` : ''}${g.downlinksSent + g.downlinksDropped + g.downlinksHeldBack ? `, ${downlinkCounts([g])}` : ''}${g.missedWhileTransmitting ? `, ${counted(g.missedWhileTransmitting, 'uplink')} missed while it sent` : ''}`)
+    .map((g, i) => `gateway ${i + 1} at (${(g.east / 1000).toFixed(1)}, ${(g.north / 1000).toFixed(1)}) km heard ${g.heard}${gateways.length > 1 ? ` (${g.onlyHeard} only it)` : ''}${downlinksWanted(g) ? `, ${downlinkCounts([g])}` : ''}${g.missedWhileTransmitting ? `, ${counted(g.missedWhileTransmitting, 'uplink')} missed while it sent` : ''}`)
     .join('; ');
   return `Network${named ? ` (${MODEL_LABELS[m.model]}'s packets)` : ''}: ${received} of ${counted(sent, 'packet')} delivered (${sent ? ((100 * received) / sent).toFixed(0) : 0} %)${gateways.length > 1 ? `, ${counted(duplicates, 'duplicate copy', 'duplicate copies')} removed` : ''} — ${each}.`;
 }

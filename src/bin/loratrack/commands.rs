@@ -309,6 +309,15 @@ pub fn run(cmd: Command) -> Result<String, String> {
     .map_err(|e| e.to_string())
 }
 
+/// The plural ending of a count's noun: "" for one, "s" otherwise ("1 packet", "3 packets").
+pub(crate) fn plural(n: usize) -> &'static str {
+    if n == 1 {
+        ""
+    } else {
+        "s"
+    }
+}
+
 pub(crate) fn json<T: Serialize>(value: &T) -> String {
     serde_json::to_string_pretty(value).unwrap_or_else(|e| format!("{{\"error\":\"{e}\"}}"))
 }
@@ -461,7 +470,7 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
         "{} ({} flight{}, {:.0} s), SF{} / {} kHz ({}){}, overhead {} B, {}\n{}\n{}\n{}",
         c.trajectory,
         c.flights,
-        if c.flights == 1 { "" } else { "s" },
+        plural(c.flights),
         c.flight_time,
         c.settings.radio.sf,
         c.bandwidth_khz,
@@ -507,8 +516,11 @@ fn policy_text(s: &loratrack::Scenario) -> String {
         ),
         (loratrack::DutyCycleMode::PerPacket, Some(_)) => "an off-time per packet".to_string(),
         (loratrack::DutyCycleMode::Budget, _) => {
-            let packets = if send.burst == 1 { "packet" } else { "packets" };
-            format!("a duty-cycle budget of {} {packets}", send.burst)
+            format!(
+                "a duty-cycle budget of {} packet{}",
+                send.burst,
+                plural(send.burst as usize)
+            )
         }
     };
     let payload = match send.payload {
@@ -537,7 +549,7 @@ fn adr_text(net: &loratrack::NetworkSettings) -> String {
             ", LoRaWAN ADR from this rate (margin {} dB, {} uplink{})",
             net.adr_margin,
             net.adr_history,
-            if net.adr_history == 1 { "" } else { "s" }
+            plural(net.adr_history)
         ),
     }
 }
@@ -625,11 +637,7 @@ pub(crate) fn results_table(results: &[ModelResult]) -> String {
                 "          lean payload: {} of {} packet{} left out a, omega or psi{}\n",
                 m.lean_packets,
                 m.delivery.packets_sent,
-                if m.delivery.packets_sent == 1 {
-                    ""
-                } else {
-                    "s"
-                },
+                plural(m.delivery.packets_sent),
                 m.lean_frame.map_or(String::new(), |f| format!(
                     " (shortest {:.1} ms on air, {:.2} s interval)",
                     f.time_on_air * 1e3,
@@ -770,9 +778,9 @@ fn network_lines(r: &SimReport) -> String {
         "network: {} of {} packet{} delivered ({share}), {} duplicate{} removed",
         d.packets_received,
         d.packets_sent,
-        if d.packets_sent == 1 { "" } else { "s" },
+        plural(d.packets_sent),
         d.duplicates,
-        if d.duplicates == 1 { "" } else { "s" }
+        plural(d.duplicates)
     );
     out += &gateway_lines(&d.gateways);
     for m in &r.results {
@@ -869,11 +877,11 @@ fn swarm_text(r: &SwarmReport) -> String {
          energy              {}\n\
          drones that received nothing: {}; too few packets for their own p75 to compare (1 to {}): {}{}",
         c.swarm.drones,
-        if c.swarm.drones == 1 { "" } else { "s" },
+        plural(c.swarm.drones),
         flown,
         c.channel.distance,
         c.channels(),
-        if c.channels() == 1 { "" } else { "s" },
+        plural(usize::from(c.channels())),
         sf_plan_text(r),
         r.config.station.label(),
         if c.network.capture { "on" } else { "off" },
@@ -892,7 +900,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         num(r.collision_rate, 0, 4),
         r.collision_rate_theory,
         r.largest_swarm.aloha1,
-        if r.largest_swarm.aloha1 == 1 { "" } else { "s" },
+        plural(r.largest_swarm.aloha1),
         r.largest_swarm.aloha10,
         r.largest_swarm.slotted,
         if r.lean_packets > 0 {
@@ -903,7 +911,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         num(d.delivery_ratio, 0, 4),
         d.packets_received,
         d.duplicates,
-        if d.duplicates == 1 { "" } else { "s" },
+        plural(d.duplicates),
         r.packets_below_sensitivity,
         r.packets_no_demodulator,
         match r.packets_gateway_transmitting {

@@ -125,7 +125,7 @@ fn swarm_claims(rows: &[SwarmReport], crowd: &[Crowd]) -> String {
                 "- {}, {} channel{}: 72 drones with spread SFs collide at {:.1} % (ALOHA formula {:.1} %) — {}; median drone p75 {:.0} m.\n",
                 schedule.name(),
                 channels,
-                if channels == 1 { "" } else { "s" },
+                crate::commands::plural(usize::from(channels)),
                 100.0 * r.collision_rate,
                 100.0 * r.collision_rate_theory,
                 if r.collision_rate < 0.10 { "the claim holds" } else { "the claim does not hold here" },
