@@ -544,6 +544,47 @@ pub fn option(key: &str) -> Option<&'static NumberOption> {
     OPTIONS.iter().copied().find(|o| o.key == key)
 }
 
+/// The command line's long option for the setting `key`: its kebab-case form, since the CLI
+/// flattens the same settings structs as the JSON (reference §9).
+///
+/// ```
+/// use loratrack::options::long_option;
+/// assert_eq!(long_option("maxInterval"), "--max-interval");
+/// assert_eq!(long_option("sf"), "--sf");
+/// ```
+pub fn long_option(key: &str) -> String {
+    let mut out = String::with_capacity(key.len() + 6);
+    out.push_str("--");
+    for c in key.chars() {
+        if c.is_ascii_uppercase() {
+            out.push('-');
+            out.push(c.to_ascii_lowercase());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// `message`, a refusal that starts by naming its setting as JS and JSON do, with that name
+/// replaced by `flag` where `flag` is that setting's long option: what a CLI user typed, not a
+/// key they never saw. Any other message comes back as it is.
+///
+/// ```
+/// use loratrack::options::naming_flag;
+/// let m = "maxInterval must be in (0, 3600] s, got 0";
+/// assert_eq!(naming_flag(m, "--max-interval"), "--max-interval must be in (0, 3600] s, got 0");
+/// assert_eq!(naming_flag(m, "--interval"), m);
+/// ```
+pub fn naming_flag(message: &str, flag: &str) -> String {
+    match message.split_once(' ') {
+        Some((key, rest)) if rest.starts_with("must ") && long_option(key) == flag => {
+            format!("{flag} {rest}")
+        }
+        _ => message.to_string(),
+    }
+}
+
 /// A refused value as its error message writes it: a whole number as one (`got 300`, where the
 /// user typed 300, not `got 300.0`), anything else as Rust reads it back (`0.5`, `1e300`, `NaN`).
 ///
@@ -620,6 +661,21 @@ pub fn number(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_refusal_takes_a_flags_name_only_where_it_starts_with_that_flags_setting() {
+        assert_eq!(
+            naming_flag("sensorRate must be 0.1..1000 Hz, got 0", "--sensor-rate"),
+            "--sensor-rate must be 0.1..1000 Hz, got 0"
+        );
+        // `--distances` lists distances; a refused one is named as the setting it is.
+        let one = "distance must be a number (0..100000 m), got ''";
+        assert_eq!(naming_flag(one, "--distances"), one);
+        // A message that names its setting otherwise than "<key> must …" stays as it is.
+        let adr = "adr starts at an EU868 data rate (SF7..12 at 125 kHz or SF7 at 250 kHz)";
+        assert_eq!(naming_flag(adr, "--adr"), adr);
+        assert_eq!(naming_flag("", "--sf"), "");
+    }
 
     #[cfg(cli)]
     #[test]

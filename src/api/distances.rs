@@ -119,10 +119,11 @@ pub fn sweep_distances(
             distances.len()
         )));
     }
+    // Named as the list, not as the scenario's own `distance`, which is another setting.
     for &d in distances {
         crate::options::DISTANCE
             .check(d)
-            .map_err(crate::sim::SimError::from)?;
+            .map_err(|e| ApiError::Invalid(format!("distances: {e}")))?;
     }
     let radio = base.validate()?.radio;
     let given = DataRate::of(radio.sf, radio.bw).ok_or(crate::sim::SimError::AdrStart(

@@ -111,6 +111,25 @@ fn every_readme_transcript_is_what_the_cli_prints() {
 }
 
 #[test]
+fn the_readmes_example_refusal_is_what_the_cli_prints() {
+    let out = crate::cli(&[
+        "simulate",
+        "--synthetic",
+        "1",
+        "--sender",
+        "error",
+        "--max-interval",
+        "0",
+    ]);
+    let line = String::from_utf8_lossy(&out.stderr).trim_end().to_string();
+    assert_eq!(out.status.code(), Some(2), "{line}");
+    assert!(
+        prose("README.md").contains(&format!("(`{line}`)")),
+        "the README's limits paragraph no longer shows the CLI's refusal {line:?}"
+    );
+}
+
+#[test]
 fn the_readme_gateway_and_downlink_numbers_are_what_the_cli_prints() {
     let one = json("swarm --drones 72 --distance 2000 --json");
     let three = json("swarm --drones 72 --distance 2000 --gateway 0,0 --gateway 3000,0 --gateway -1500,2600 --json");

@@ -177,7 +177,7 @@ fn inputs_that_would_give_infinities_are_refused_with_their_range() {
             "--duty-cycle",
             "5e-324",
         ],
-        "dutyCycle must be a fraction in 0.0001..1",
+        "--duty-cycle must be a fraction in 0.0001..1",
     );
     refused(
         &[
@@ -187,7 +187,7 @@ fn inputs_that_would_give_infinities_are_refused_with_their_range() {
             "--path-loss-exponent",
             "0.01",
         ],
-        "pathLossExponent must be 1.5..6",
+        "--path-loss-exponent must be 1.5..6",
     );
     refused(
         &[
@@ -477,11 +477,59 @@ fn help_to_a_full_disk_is_an_error() {
     assert!(String::from_utf8_lossy(&out.stderr).starts_with("error: cannot write the output"));
 }
 
+/// The CLI names a refused setting by the flag its user typed, whether the flag's parser or the
+/// core refused it; the JS API names the same refusal by its key (`tests/wasm.rs`). A setting the
+/// CLI has no flag for keeps its name.
+#[test]
+fn the_cli_names_a_refused_setting_by_its_flag_not_its_js_key() {
+    let e = |extra: &[&str]| {
+        let mut args = vec!["simulate", "--synthetic", "1"];
+        args.extend_from_slice(extra);
+        let out = cli(&args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    for (extra, flag, key) in [
+        (
+            &["--sender", "error", "--max-interval", "0"][..],
+            "--max-interval",
+            "maxInterval",
+        ),
+        (&["--max-interval", "x"], "--max-interval", "maxInterval"),
+        (
+            &["--sender", "error", "--sf", "12", "--bw", "125"],
+            "--max-interval",
+            "maxInterval",
+        ),
+        (&["--sensor-rate", "0"], "--sensor-rate", "sensorRate"),
+        (&["--duty-cycle", "2"], "--duty-cycle", "dutyCycle"),
+        (&["--adr-history", "0.5"], "--adr-history", "adrHistory"),
+        (&["--sf", "13"], "--sf", "sf"),
+    ] {
+        let err = e(extra);
+        assert!(
+            err.starts_with(&format!("error: {flag} must be ")),
+            "{extra:?}: {err}"
+        );
+        assert!(!err.contains(&format!(" {key} must")), "{extra:?}: {err}");
+    }
+    let err = String::from_utf8_lossy(&cli(&["simulate", "--synthetic", "40"]).stderr).into_owned();
+    assert!(
+        err.starts_with("error: --synthetic must be 'all' or a flight number 1..30, got 40"),
+        "{err}"
+    );
+    // 17 gateways are 17 `--gateway` flags: the count has no flag of its own.
+    let mut args = vec!["swarm", "--drones", "2"];
+    args.extend(std::iter::repeat_n(["--gateway", "0,0"], 17).flatten());
+    let err = String::from_utf8_lossy(&cli(&args).stderr).into_owned();
+    assert!(err.starts_with("error: gateways must be 1..16"), "{err}");
+}
+
 #[test]
 fn negative_numbers_are_numbers_and_refused_by_their_own_field() {
     refused(
         &["simulate", "--synthetic", "1", "--overhead", "-1"],
-        "invalid value '-1' for '--overhead",
+        "--overhead must be 0..255 bytes, a whole number, got -1",
     );
     refused(
         &["simulate", "--synthetic", "1", "--drones", "-1"],
@@ -489,7 +537,7 @@ fn negative_numbers_are_numbers_and_refused_by_their_own_field() {
     );
     refused(
         &["swarm", "--drones", "-1"],
-        "invalid value '-1' for '--drones",
+        "--drones must be 1..500, a whole number, got -1",
     );
     refused(
         &["simulate", "--synthetic", "1", "--q", "-1"],
@@ -521,7 +569,7 @@ fn negative_numbers_are_numbers_and_refused_by_their_own_field() {
 fn swept_distances_are_checked_and_bounded_before_any_run() {
     refused(
         &["sweep", "--distances", "1000,-5"],
-        "distance must be 0..100000 m, got -5",
+        "distances: distance must be 0..100000 m, got -5",
     );
     let many: Vec<String> = (1..=101).map(|k| (k * 10).to_string()).collect();
     refused(

@@ -41,8 +41,8 @@ pub struct FlightArgs {
     #[arg(long, value_name = "FILE", conflicts_with_all = ["synthetic", "sample"])]
     trajectory: Option<std::path::PathBuf>,
     /// The canonical synthetic set: `all` (30 flights, 44 min) or one flight 1..30.
-    #[arg(long, value_name = "all|1..30", conflicts_with = "sample")]
-    synthetic: Option<String>,
+    #[arg(long, value_name = "all|1..30", conflicts_with = "sample", value_parser = SyntheticChoice::parse)]
+    synthetic: Option<SyntheticChoice>,
     /// A bundled real flight: canberra (ArduCopter log171, CC BY-SA 3.0).
     #[arg(long, value_name = "NAME")]
     sample: Option<String>,
@@ -61,11 +61,7 @@ impl FlightArgs {
                 .transpose()?
                 .map(Into::into),
             trajectory_name: self.trajectory.as_ref().map(|p| p.display().to_string()),
-            synthetic: self
-                .synthetic
-                .as_deref()
-                .map(|s| SyntheticChoice::parse(s).map_err(ApiError::Invalid))
-                .transpose()?,
+            synthetic: self.synthetic,
             sample: self.sample.clone(),
             plan: self.plan.as_deref().map(read_flight).transpose()?,
             plan_name: self.plan.as_ref().map(|p| p.display().to_string()),
@@ -295,8 +291,8 @@ impl From<Ldro> for LdroMode {
     }
 }
 
-/// Runs a command; `Ok` is what to print, `Err` the error message.
-pub fn run(cmd: Command) -> Result<String, String> {
+/// Runs a command; `Ok` is what to print, `Err` why it could not.
+pub fn run(cmd: Command) -> Result<String, ApiError> {
     match cmd {
         Command::Airtime(a) => airtime(a),
         Command::Predict(a) => predict(a),
@@ -306,7 +302,6 @@ pub fn run(cmd: Command) -> Result<String, String> {
         Command::Sweep(a) => crate::sweep::sweep(a),
         Command::Swarm(a) => swarm(*a),
     }
-    .map_err(|e| e.to_string())
 }
 
 /// The plural ending of a count's noun: "" for one, "s" otherwise ("1 packet", "3 packets").

@@ -35,19 +35,20 @@ mod sweep;
 #[cfg(not(target_arch = "wasm32"))]
 use std::io::Write;
 
+/// Remote UAV tracking over LoRa: airtime, motion models, payload codec and tracking
+/// simulation (Mason et al., LoRaWAN + 3D-CTRA).
+#[cfg(not(target_arch = "wasm32"))]
+#[derive(clap::Parser)]
+#[command(name = "loratrack", version, about, propagate_version = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: commands::Command,
+}
+
 #[cfg(not(target_arch = "wasm32"))]
 fn main() -> std::process::ExitCode {
     use clap::Parser;
     use std::process::ExitCode;
-
-    /// Remote UAV tracking over LoRa: airtime, motion models, payload codec and tracking
-    /// simulation (Mason et al., LoRaWAN + 3D-CTRA).
-    #[derive(Parser)]
-    #[command(name = "loratrack", version, about, propagate_version = true)]
-    struct Cli {
-        #[command(subcommand)]
-        command: commands::Command,
-    }
 
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -72,7 +73,9 @@ fn main() -> std::process::ExitCode {
                 names.join(", ")
             ));
         }
-        Err(e) => return fail(&one_line(&e.render().to_string())),
+        Err(e) => {
+            return fail(&refused_value(&e).unwrap_or_else(|| one_line(&e.render().to_string())))
+        }
     };
     match commands::run(cli.command) {
         Ok(text) => {
@@ -82,8 +85,44 @@ fn main() -> std::process::ExitCode {
                 Err(e) => fail(&format!("cannot write the output: {e}")),
             }
         }
-        Err(msg) => fail(&msg),
+        Err(e) => fail(&in_flags(&e)),
     }
+}
+
+/// The core's refusal in the words of the command line: the setting at fault named by the flag
+/// its user typed (`--max-interval must be …`), not by its JS key (`maxInterval`), where the CLI
+/// has that flag.
+#[cfg(not(target_arch = "wasm32"))]
+fn in_flags(e: &loratrack::api::ApiError) -> String {
+    use clap::CommandFactory;
+    let message = e.to_string();
+    let flag = e.setting().map(loratrack::options::long_option);
+    let has = |flag: &str| {
+        Cli::command()
+            .get_subcommands()
+            .flat_map(|c| c.get_arguments())
+            .any(|a| a.get_long() == flag.strip_prefix("--"))
+    };
+    match flag {
+        Some(flag) if has(&flag) => loratrack::options::naming_flag(&message, &flag),
+        _ => message,
+    }
+}
+
+/// A value its flag's parser refused, in the parser's words with the flag named first
+/// (`--sf must be 7..12, a whole number, got 7.5 (see --help)`: that message already quotes the
+/// value, so clap's "invalid value '7.5' for '--sf <SF>'" before it would say it twice). `None`
+/// for any other error, or a parser whose message does not start with its setting.
+#[cfg(not(target_arch = "wasm32"))]
+fn refused_value(e: &clap::Error) -> Option<String> {
+    use clap::error::{ContextKind, ContextValue};
+    let Some(ContextValue::String(arg)) = e.get(ContextKind::InvalidArg) else {
+        return None;
+    };
+    let flag = arg.split(' ').next()?;
+    let reason = std::error::Error::source(e)?.to_string();
+    let named = loratrack::options::naming_flag(&reason, flag);
+    (named != reason).then(|| format!("{named} (see --help)"))
 }
 
 /// clap's message in one line: its first line, without its own `error: ` prefix, and a pointer

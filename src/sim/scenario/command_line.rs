@@ -2,11 +2,11 @@
 //! reproduced by the CLI (`docs/reference.md` §9).
 //!
 //! Written from the settings' own wire form: every key whose value differs from the default
-//! becomes the long option of the same name in kebab case (the CLI flattens the same
-//! sub-structs, so the names agree; `gateways` is the repeated `--gateway E,N[,H]`, each written
-//! by [`GatewaySite::text`] beside its parser). A setting added to a sub-struct therefore appears
-//! here without a line of this file, and the CLI's tests read every command back into the
-//! settings it came from.
+//! becomes its long option ([`long_option`](crate::options::long_option), the key in kebab case:
+//! the CLI flattens the same sub-structs, so the names agree; `gateways` is the repeated
+//! `--gateway E,N[,H]`, each written by [`GatewaySite::text`] beside its parser). A setting added
+//! to a sub-struct therefore appears here without a line of this file, and the CLI's tests read
+//! every command back into the settings it came from.
 
 use super::{GatewaySite, Scenario, SimError, DEFAULT_CSV_NAME};
 use serde::{Deserialize, Serialize};
@@ -171,7 +171,7 @@ fn option(key: &str, value: &Value) -> Vec<String> {
         // An output flag, not a setting with a value.
         ("series", Value::Bool(on)) => on.then(|| "--series".to_string()).into_iter().collect(),
         (_, Value::Null) => Vec::new(),
-        _ => vec![format!("--{}", kebab(key)), text(value)],
+        _ => vec![crate::options::long_option(key), text(value)],
     }
 }
 
@@ -189,20 +189,6 @@ fn text(value: &Value) -> String {
         },
         other => other.to_string(),
     }
-}
-
-/// `adrMargin` → `adr-margin`.
-fn kebab(key: &str) -> String {
-    let mut out = String::with_capacity(key.len() + 4);
-    for c in key.chars() {
-        if c.is_ascii_uppercase() {
-            out.push('-');
-            out.push(c.to_ascii_lowercase());
-        } else {
-            out.push(c);
-        }
-    }
-    out
 }
 
 /// `word` as a POSIX shell reads it back: as it is where it holds nothing the shell treats
