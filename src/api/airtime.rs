@@ -128,6 +128,9 @@ pub fn airtime(p: &AirtimeParams) -> Result<AirtimeReport, ApiError> {
         fair_use: p.fair_use,
         ..AccessSettings::default()
     };
+    crate::options::DUTY_CYCLE
+        .check(p.duty_cycle)
+        .map_err(lora::LoraError::OutOfRange)?;
     access.validate(p.duty_cycle)?;
     let check = p
         .region

@@ -49,7 +49,8 @@ impl fmt::Display for LoraError {
             LoraError::DutyCycle(d) => {
                 write!(
                     f,
-                    "dutyCycle must be a fraction in 0.0001..1 (0.01 %..100 %), got {}",
+                    "dutyCycle must be a fraction in {}..1, got {}",
+                    crate::options::as_given(super::MIN_DUTY_CYCLE),
                     crate::options::as_given(*d)
                 )
             }

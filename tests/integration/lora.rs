@@ -64,6 +64,27 @@ fn airtime_names_the_plans_data_rate_and_says_why_a_plan_refuses_a_packet() {
 }
 
 #[test]
+fn airtime_refuses_a_duty_cycle_outside_the_limits_a_simulation_keeps() {
+    let at = |duty_cycle| {
+        airtime(&AirtimeParams {
+            duty_cycle,
+            ..params(7, 125.0, 9, 0)
+        })
+    };
+    for refused in [2.0, 1e-5, 0.0] {
+        let e = at(refused).unwrap_err();
+        assert_eq!(e.setting(), Some("dutyCycle"), "{refused}");
+        assert!(
+            e.to_string().starts_with("dutyCycle must be 0.0001..1"),
+            "{e}"
+        );
+    }
+    // Two sub-bands halve the interval of one (reference §6.1).
+    let (one, two) = (at(0.01).unwrap(), at(0.02).unwrap());
+    assert!((one.min_interval - 2.0 * two.min_interval).abs() < 1e-12);
+}
+
+#[test]
 fn paper_table_ii_with_the_corrections_of_spec_section_3() {
     // (SF, kHz, payloads, transmission time s, min interval s), no LoRaWAN overhead.
     let table: [(i64, f64, &[usize], f64, f64); 6] = [

@@ -177,7 +177,7 @@ fn inputs_that_would_give_infinities_are_refused_with_their_range() {
             "--duty-cycle",
             "5e-324",
         ],
-        "--duty-cycle must be a fraction in 0.0001..1",
+        "--duty-cycle must be 0.0001..1, got 5e-324",
     );
     refused(
         &[
