@@ -9,9 +9,9 @@ export const BWS = [125, 250, 500];
 /** The paper's three stations, whose payloads (9, 11, 12 bytes) are the table's columns. */
 export const PAPER_STATIONS = ['dr', 'ctra-plus', '3d-ctra'] as const satisfies readonly ModelName[];
 
-/** The plan's settings the table speaks: region, interval where it has no duty cycle, access,
- * fair use. */
-export type PlanOpts = Pick<AirtimeParams, 'region' | 'interval' | 'access' | 'fairUse'>;
+/** The plan's settings the table speaks: region, interval where it has no duty cycle, duty cycle
+ * where the drone keeps one, access, fair use. */
+export type PlanOpts = Pick<AirtimeParams, 'region' | 'interval' | 'access' | 'fairUse'> & Partial<Pick<AirtimeParams, 'dutyCycle'>>;
 
 /** One payload at one SF and bandwidth. */
 export interface AirtimeCell {
@@ -39,7 +39,7 @@ const rawLora = (region: Region) => PLANS.some((p) => p.region === region && p.r
 
 /** Every row of the table at `opts` (overhead, coding rate and plan), SF by SF, bandwidth by bandwidth. */
 export function airtimeRows(opts: { overhead: number; cr: number } & PlanOpts): AirtimeRow[] {
-  const plan = { region: opts.region, interval: opts.interval, access: opts.access, fairUse: opts.fairUse };
+  const plan = { region: opts.region, interval: opts.interval, dutyCycle: opts.dutyCycle, access: opts.access, fairUse: opts.fairUse };
   return SFS.flatMap((sf) =>
     BWS.map((bw) => {
       const cells = PAPER_STATIONS.map((station) => {

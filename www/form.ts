@@ -164,6 +164,8 @@ export function showConditional(): void {
   field('distance').setAttribute('aria-valuetext', `${km} to the gateway`);
   const noDutyCycle = plan(field('region').value as Region).dutyCycle === null;
   for (const el of document.querySelectorAll<HTMLElement>('[data-when-plan]')) el.hidden = (el.dataset.whenPlan === 'interval') !== noDutyCycle;
+  // The duty cycle is not the drone's to keep where it listens before talk instead.
+  for (const el of document.querySelectorAll<HTMLElement>('[data-when-access]')) el.hidden ||= el.dataset.whenAccess !== field('access').value;
   showPlanChoices();
   showSfReach();
 }
@@ -238,7 +240,7 @@ function show(note: HTMLElement, text: string | null): void {
  * frame fits, and until the WebAssembly module is loaded (main.ts then asks again). */
 function frameRefusal(model: string, sf: number, bw: number, region: Region): string | null {
   if (!isLoaded() || !planAllows(region, sf, bw)) return null;
-  const interval = Number(field('interval').value);
+  const [interval, dutyCycle] = [Number(field('interval').value), Number(field('dutyCycle').value)];
   const link = packetPlan({
     region,
     lorawan: (field('lorawan') as HTMLInputElement).checked,
@@ -246,6 +248,7 @@ function frameRefusal(model: string, sf: number, bw: number, region: Region): st
     access: field('access').value as Settings['access'],
     fairUse: field('fairUse').value as Settings['fairUse'],
     interval: invalid('interval', interval) ? store.settings.interval : interval,
+    dutyCycle: invalid('dutyCycle', dutyCycle) ? store.settings.dutyCycle : dutyCycle,
   });
   // Each reason with the stations refused for it by their frames' length in bytes.
   const refused = new Map<string, Map<number, string[]>>();

@@ -91,12 +91,16 @@ export function adrFrom(s: Pick<Settings, 'adr' | 'sf' | 'bw'>): string {
   return s.adr === 'off' ? '' : `; ${adrName(s.adr)} from SF${s.sf}, ${s.bw} kHz`;
 }
 
+/** A fraction as a percentage, to three significant digits: 0.02 → "2 %". */
+export const percent = (fraction: number): string => `${+(fraction * 100).toPrecision(3)} %`;
+
 /** The settings behind a number, in one short phrase: the plan's limit whenever it is not the
  * paper's EU868 1 % duty cycle, the sender's threshold and heartbeat, and any advanced setting
  * changed from its default. */
 export function describe(s: Settings): string {
   const p = plan(s.region);
-  const limit = { interval: `, every ${s.interval} s`, lbt: ', listen before talk', dutyCycle: '' }[sendingLimit(s)];
+  const dutyCycle = s.dutyCycle === DEFAULTS.dutyCycle ? '' : `, ${percent(s.dutyCycle)} duty cycle`;
+  const limit = { interval: `, every ${s.interval} s`, lbt: ', listen before talk', dutyCycle }[sendingLimit(s)];
   const region = s.region === 'eu868' && !limit ? '' : `, ${p.label}${limit}`;
   const fair = s.fairUse === 'off' ? '' : `, ${s.fairUse.toUpperCase()} fair use`;
   return `SF${s.sf}, ${s.bw} kHz${region}${fair}, ${link(s)}, ${prediction(s)}, ${sending(s)}${s.adr === 'off' ? '' : `, ${adrName(s.adr)}`}${advanced(s)}`;

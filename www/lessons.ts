@@ -34,8 +34,12 @@ export const LESSONS: Lesson[] = [
     id: 'duty-cycle-wall',
     title: 'The duty-cycle wall',
     settings: { sf: 10, bw: 125 },
-    text: 'In the EU868 band a device may be on air 1 % of the time. Whatever the link could carry, the next packet waits until the last one’s time on air has been paid for 99 times over.',
-    notice: ['The interval is exactly 100 times the time on air, for every model.', 'The time-on-air table: the second number in each cell is that interval.'],
+    text: 'In the EU868 band a device may be on air 1 % of the time. Whatever the link could carry, the next packet waits until the last one’s time on air has been paid for 99 times over. The 1 % holds per sub-band: a drone that alternates two, as The Things Network’s eight channels allow, waits half as long.',
+    notice: [
+      'The interval is exactly 100 times the time on air, for every model.',
+      'The time-on-air table: the second number in each cell is that interval.',
+      'Set Duty cycle to 0.02 (two sub-bands alternated): every interval halves, to 50 times the time on air, and twice the packets arrive.',
+    ],
   },
   {
     id: 'eu868-vs-us915',

@@ -3,7 +3,7 @@
 // the notes under the table. Reads the page's state from the store.
 import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
-import { adrFrom, adrName, caption, counted, downlinkCounts, downlinksWanted, fmt, listed, names, prediction, sending, sendsAsPublished, trackedPercent } from './format';
+import { adrFrom, adrName, caption, counted, downlinkCounts, downlinksWanted, fmt, listed, names, percent, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan, sendingLimit } from './state';
 import { store } from './store';
 
@@ -188,7 +188,7 @@ export function intervalRule(c: Pick<RunConfig, 'region' | 'access' | 'fairUse' 
   const rule = {
     interval: `the ${c.interval ?? DEFAULTS.interval} s set (${p.label} has no duty cycle)`,
     lbt: "time on air divided by listen before talk's share of the air (100 s per hour)",
-    dutyCycle: `time on air divided by the ${+(c.dutyCycle * 100).toPrecision(3)} % duty cycle`,
+    dutyCycle: `time on air divided by the ${percent(c.dutyCycle)} duty cycle`,
   }[sendingLimit(c)];
   const steps = !c.clockDrift && !c.jitter ? `, then rounded up to whole sensor steps (${+(1 / c.sensorRate).toPrecision(3)} s): a packet carries the estimate of the step it leaves on` : '';
   const error = c.sender === 'error' ? '. The shortest: error-triggered sending waits longer while the station’s forecast holds' : '';

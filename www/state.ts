@@ -32,6 +32,9 @@ export interface Settings {
   interval: number;
   /** Duty cycle or listen-before-talk (plans with a duty cycle). */
   access: ChannelAccess;
+  /** The duty cycle as a fraction where the plan has one and the drone keeps it (not listening
+   * before talk): 0.01, one EU868 sub-band; 0.02, two alternated (reference §6.1). */
+  dutyCycle: number;
   fairUse: FairUse;
   flight: FlightChoice;
   flightNumber: number;
@@ -77,6 +80,7 @@ export const DEFAULTS: Settings = {
   region: CHOICE_DEFAULTS.region,
   interval: def('interval'),
   access: CHOICE_DEFAULTS.access,
+  dutyCycle: def('dutyCycle'),
   fairUse: CHOICE_DEFAULTS.fairUse,
   flight: 'synthetic',
   flightNumber: 1,
@@ -160,6 +164,7 @@ export const LIMITS: Record<NumericKey, Limit> = {
   threshold: limit('threshold'),
   maxInterval: limit('maxInterval'),
   interval: limit('interval'),
+  dutyCycle: limit('dutyCycle'),
   flightNumber: { label: 'Synthetic flight number', min: 1, max: 30, integer: true },
   cr: limit('cr'),
   txPower: limit('txPower'),
@@ -175,7 +180,7 @@ export const LIMITS: Record<NumericKey, Limit> = {
 /** What a gateway's coordinates and height accept (the core's limits). */
 export const GATEWAY_LIMITS = { coordinate: limit('gateway', 'Gateway coordinate'), height: limit('gatewayHeight', 'Gateway height'), count: limit('gateways', 'Gateways') };
 
-type NumericKey = 'sf' | 'bw' | 'distance' | 'threshold' | 'maxInterval' | 'interval' | 'flightNumber' | 'cr' | 'txPower' | 'pathLossExponent' | 'shadowing' | 'sensorRate' | 'step' | 'eta' | 'seed' | 'seeds';
+type NumericKey = 'sf' | 'bw' | 'distance' | 'threshold' | 'maxInterval' | 'interval' | 'dutyCycle' | 'flightNumber' | 'cr' | 'txPower' | 'pathLossExponent' | 'shadowing' | 'sensorRate' | 'step' | 'eta' | 'seed' | 'seeds';
 const NUMERIC = Object.keys(LIMITS) as NumericKey[];
 
 /** Why `value` is not acceptable for `key`, in the words of the form; null when it is. */
@@ -240,9 +245,17 @@ export function overheadBytes(s: Pick<Settings, 'lorawan'>): number {
 
 /** What a packet's time on air and the plan's verdict on it depend on besides its SF, bandwidth
  * and payload: the overhead, coding rate and plan settings (the interval where the plan has no
- * duty cycle), as `timeOnAir` takes them. */
-export function packetPlan(s: Pick<Settings, 'lorawan' | 'cr' | 'region' | 'access' | 'fairUse' | 'interval'>) {
-  return { overhead: overheadBytes(s), cr: s.cr, region: s.region, access: s.access, fairUse: s.fairUse, ...(plan(s.region).dutyCycle === null ? { interval: s.interval } : {}) };
+ * duty cycle, the duty cycle where the drone keeps one), as `timeOnAir` takes them. */
+export function packetPlan(s: Pick<Settings, 'lorawan' | 'cr' | 'region' | 'access' | 'fairUse' | 'interval' | 'dutyCycle'>) {
+  return { overhead: overheadBytes(s), cr: s.cr, region: s.region, access: s.access, fairUse: s.fairUse, ...sendingSetting(s) };
+}
+
+/** The setting that paces the drone where it applies, as the core takes it: the interval where
+ * the plan has no duty cycle, the duty cycle where the drone keeps one, none with listen before
+ * talk (the core refuses either setting where it does not apply). */
+function sendingSetting(s: Pick<Settings, 'region' | 'access' | 'interval' | 'dutyCycle'>): { interval?: number; dutyCycle?: number } {
+  const limit = sendingLimit(s);
+  return limit === 'interval' ? { interval: s.interval } : limit === 'dutyCycle' ? { dutyCycle: s.dutyCycle } : {};
 }
 
 /** The settings a swarm of the swarm panel rests on, as its captions give them: one seed (its
@@ -288,8 +301,7 @@ export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { te
     payload: s.payload,
     adr: s.adr,
     region: s.region,
-    // The interval applies only where the plan has no duty cycle (the core refuses it elsewhere).
-    ...(plan(s.region).dutyCycle === null ? { interval: s.interval } : {}),
+    ...sendingSetting(s),
     access: s.access,
     fairUse: s.fairUse,
     sf: s.sf,

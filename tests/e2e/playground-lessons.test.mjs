@@ -5,7 +5,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { nativeJson } from './harness.mjs';
-import { axe, cell, cellNumber, downloaded, idle, lesson, listed, MODELS, open, ratioWords, shownP75, tableHtml, until, usePlayground, waitForResults } from './page.mjs';
+import { axe, cell, cellNumber, downloaded, idle, lesson, listed, MODELS, number, open, ratioWords, shownP75, tableHtml, until, usePlayground, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -77,6 +77,18 @@ test('lesson "The duty-cycle wall": the interval is 100 times the time on air fo
   await waitForResults(page);
   assert.equal(await page.getByLabel('Spreading factor', { exact: true }).inputValue(), '10');
   assert.equal(await page.locator('#lesson-changed').isHidden(), true);
+  // Its last step: two sub-bands alternated halve the interval and double the packets that arrive.
+  const received = async (m) => number((await cell(page, m, 'packets')).split('/')[0]);
+  const oneSubBand = await Promise.all(MODELS.map(received));
+  const again = await tableHtml(page);
+  await page.getByLabel('Duty cycle (0.01 = 1 %)').fill('0.02');
+  await waitForResults(page, again);
+  for (const [i, m] of MODELS.entries()) {
+    const toaMs = await cellNumber(page, m, 'toa');
+    assert.ok(Math.abs((await cellNumber(page, m, 'interval')) - toaMs / 20) < 0.06, m);
+    assert.equal(await received(m), 2 * oneSubBand[i], m);
+  }
+  assert.match(await page.locator('#lesson-changed').textContent(), /^Not the lesson's settings: Duty cycle \(0\.01 = 1 %\): 0\.02 instead of 0\.01\. /);
   assert.deepEqual(problems, []);
 });
 

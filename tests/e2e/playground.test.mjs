@@ -862,7 +862,7 @@ test('every chart and both tables download ready for a slide: title, legend, cap
   // current data rate shaded, captioned with what the numbers are and the settings they follow.
   const airSvg = (await save(page.getByRole('button', { name: 'Download the time on air table as SVG' }))).toString('utf8');
   assert.match(airSvg, />Time on air</);
-  assert.match(airSvg.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' '), /EU868: time on air · shortest interval.*SF7, 250 kHz.*13 B LoRaWAN overhead.*loratrack \d+\.\d+\.\d+/, 'time on air: captioned');
+  assert.match(airSvg.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' '), /EU868 at a 1 % duty cycle: time on air · shortest interval.*SF7, 250 kHz.*13 B LoRaWAN overhead.*loratrack \d+\.\d+\.\d+/, 'time on air: captioned');
   const shown = await page.locator('.airtime-table tbody tr').evaluateAll((rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
   assert.equal(shown.length, 18);
   for (const row of shown) for (const text of row) assert.ok(airSvg.includes(`>${text}<`), `time on air: "${text}" in the picture`);
@@ -1260,6 +1260,40 @@ test('shadowing fixed in space is one Advanced control away, travels in the link
   const path = nativeJson(['simulate', '--synthetic', '1', '--distance', '3000']);
   assert.notDeepStrictEqual(cli.results.map((m) => m.packetsReceived), path.results.map((m) => m.packetsReceived));
   assert.deepEqual(await axe(page), []);
+  assert.deepEqual(problems, []);
+});
+
+test('two sub-bands alternated: the Duty cycle control halves the intervals, the results and the time-on-air table are the CLI\'s, and listening before talk hides it', async () => {
+  const { page, problems } = await open();
+  await idle(page);
+  let before = await tableHtml(page);
+  await page.getByLabel('Duty cycle (0.01 = 1 %)').fill('0.02');
+  await waitForResults(page, before);
+  await idle(page);
+  assert.match(page.url(), /dutyCycle=0\.02/);
+  const download = JSON.parse((await downloaded(page, page.getByRole('button', { name: /JSON/ }))).toString('utf8'));
+  const cli = assertDownloadIsCli(download, ['--synthetic', '1', '--duty-cycle', '0.02']);
+  const one = nativeJson(['simulate', '--synthetic', '1']);
+  // Half one sub-band's interval, and so more packets (each leaves on a whole sensor step).
+  for (const [i, m] of cli.results.entries()) {
+    assert.ok(Math.abs(2 * m.interval - one.results[i].interval) < 1e-9, `${m.model}: ${m.interval} s vs ${one.results[i].interval} s`);
+    assert.ok(m.packetsSent > 1.8 * one.results[i].packetsSent, `${m.model}: ${m.packetsSent} vs ${one.results[i].packetsSent}`);
+  }
+  // The time-on-air table divides by the duty cycle set, says so, and gives the CLI's interval.
+  const air = nativeJson(['airtime', '--sf', '7', '--bw', '250', '--payload', '12', '--duty-cycle', '0.02']);
+  const tableCell = await page.locator('.airtime-table tr.current td').last().textContent();
+  assert.equal(tableCell.split('·')[1].trim(), `${air.minInterval.toFixed(2)} s`);
+  assert.match(await page.locator('.airtime-table caption').textContent(), /^EU868 at a 2 % duty cycle: /);
+  assert.match(await page.locator('#results-table thead th', { hasText: /^interval$/ }).first().getAttribute('title'), /^Time between packets: time on air divided by the 2 % duty cycle/);
+  assert.deepEqual(await axe(page), []);
+  // Listening before talk replaces the duty cycle: the control goes, and so does the setting.
+  before = await tableHtml(page);
+  await page.getByLabel('Channel access').selectOption('lbt');
+  await waitForResults(page, before);
+  await idle(page);
+  assert.equal(await page.locator('#dutyCycle').isVisible(), false);
+  const lbt = JSON.parse((await downloaded(page, page.getByRole('button', { name: /JSON/ }))).toString('utf8'));
+  assertDownloadIsCli(lbt, ['--synthetic', '1', '--access', 'lbt']);
   assert.deepEqual(problems, []);
 });
 

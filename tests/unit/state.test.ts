@@ -34,6 +34,7 @@ function* variedSettings(): Generator<Settings> {
           region,
           interval: pick([0.5, 1, 30]),
           access: dutyCycled ? pick(['duty-cycle', 'lbt'] as const) : 'duty-cycle',
+          dutyCycle: pick([0.01, 0.02, 0.0001, 1]),
           fairUse: pick(['off', 'ttn'] as const),
         };
       })(),
@@ -87,6 +88,18 @@ describe('the URL', () => {
     expect(toParams({ ...DEFAULTS, region: 'us915', sf: 9, bw: 125, interval: 2 })).toMatchObject({ region: 'us915', interval: 2 });
     // The interval is not sent where the plan has a duty cycle (the core would refuse it).
     expect(toParams({ ...DEFAULTS, interval: 2 })).not.toHaveProperty('interval');
+  });
+
+  test('sends the duty cycle only where the drone keeps one: not where the plan has none, nor with listen before talk', () => {
+    const twoSubBands = { ...DEFAULTS, dutyCycle: 0.02 };
+    expect(toParams(twoSubBands)).toMatchObject({ dutyCycle: 0.02 });
+    expect(toParams({ ...twoSubBands, region: 'as923' })).toMatchObject({ dutyCycle: 0.02 });
+    expect(toParams({ ...twoSubBands, access: 'lbt' })).not.toHaveProperty('dutyCycle');
+    expect(toParams({ ...twoSubBands, region: 'us915', sf: 9, bw: 125 })).not.toHaveProperty('dutyCycle');
+    expect(fromQuery('?dutyCycle=0.02').settings.dutyCycle).toBe(0.02);
+    const refused = fromQuery('?dutyCycle=2');
+    expect(refused.settings.dutyCycle).toBe(DEFAULTS.dutyCycle);
+    expect(refused.problems.join(' ')).toMatch(/dutyCycle=2 was replaced by 0.01: Duty cycle must be between 0.0001 and 1/);
   });
 
   test('opens a link’s model written as the CLI takes it as the page’s choice of the same stations', () => {

@@ -4,6 +4,7 @@ import { chartFrame, SF_COLORS, withKey, labelRoom } from './colors';
 import * as Plot from '@observablehq/plot';
 import { MODEL_LABELS, PAYLOAD_BYTES, timeOnAir } from '../loratrack';
 import { airtimeRows, PAPER_STATIONS, SFS, type PlanOpts } from '../airtime';
+import { percent } from '../format';
 
 /** SF × bandwidth × payload table in the plan's words: each pair's data rate (or that the plan
  * lacks it), and for each payload its time on air and interval, or why the plan refuses it (the
@@ -12,7 +13,8 @@ export function airtimeTable(opts: { overhead: number; cr: number; sf: number; b
   const table = document.createElement('table');
   table.className = 'airtime-table';
   const caption = table.createCaption();
-  const label = opts.region.toUpperCase();
+  // The duty cycle the intervals divide by, where the drone keeps one (not with listen before talk).
+  const label = `${opts.region.toUpperCase()}${opts.dutyCycle === undefined ? '' : ` at a ${percent(opts.dutyCycle)} duty cycle`}`;
   caption.textContent = `${label}: time on air · shortest interval between packets; refused where the plan does not carry the packet.`;
   const head = table.createTHead().insertRow();
   for (const h of ['SF', 'bandwidth', 'data rate', ...PAPER_STATIONS.map((m) => `${PAYLOAD_BYTES[m]} B (${MODEL_LABELS[m]})`)]) {
