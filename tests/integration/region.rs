@@ -175,3 +175,70 @@ fn a_spread_swarm_gets_the_data_rates_that_carry_its_frame() {
     let eu = json!({"drones": 6, "duration": 30, "sfPlan": "spread"});
     assert_eq!(sfs(eu).unwrap(), [7, 8, 9, 10, 11, 12]);
 }
+
+/// The CLI's texts say what an interval rests on: the duty cycle set, listen before talk or the
+/// interval set, and fair use; two runs that differ only in it do not print alike.
+#[test]
+fn the_cli_says_what_paces_the_uplinks_beside_each_interval() {
+    let text = |args: &[&str]| {
+        let out = crate::cli(args);
+        assert_eq!(out.status.code(), Some(0), "{args:?}");
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let airtime = |extra: &[&str]| {
+        let args = [
+            &["airtime", "--sf", "7", "--bw", "125", "--payload", "12"][..],
+            extra,
+        ]
+        .concat();
+        let out = text(&args);
+        out.lines()
+            .find(|l| l.starts_with("min interval"))
+            .unwrap()
+            .to_string()
+    };
+    assert!(
+        airtime(&[]).ends_with(" s (1 % duty cycle)"),
+        "{}",
+        airtime(&[])
+    );
+    assert!(airtime(&["--duty-cycle", "0.02"]).ends_with(" s (2 % duty cycle)"));
+    assert!(airtime(&["--access", "lbt"])
+        .ends_with(" s (listen-before-talk, 100 s of airtime per hour)"));
+    assert!(airtime(&["--fair-use", "ttn"]).ends_with(" s (1 % duty cycle, TTN fair use)"));
+    let us = text(&[
+        "airtime",
+        "--sf",
+        "9",
+        "--bw",
+        "125",
+        "--payload",
+        "12",
+        "--region",
+        "us915",
+    ]);
+    assert!(
+        us.contains("min interval     1.000 s (every 1 s, no duty cycle)"),
+        "{us}"
+    );
+    // A fraction whose product with 100 is no short float is written as it was given.
+    let header = text(&["simulate", "--synthetic", "1", "--duty-cycle", "0.0007"]);
+    assert!(
+        header.starts_with(
+            "synthetic 1 (1 flight, 81 s), SF7 / 250 kHz (EU868 DR6, 0.07 % duty cycle),"
+        ),
+        "{header}"
+    );
+    let swarm = |extra: &[&str]| {
+        let args = [&["swarm", "--drones", "2", "--duration", "60"][..], extra].concat();
+        text(&args).lines().next().unwrap().to_string()
+    };
+    assert!(
+        swarm(&[]).contains(", at 1000 m, EU868 (1 % duty cycle), 3 channels,"),
+        "{}",
+        swarm(&[])
+    );
+    assert!(swarm(&["--duty-cycle", "0.02"]).contains(", EU868 (2 % duty cycle),"));
+    assert!(swarm(&["--access", "lbt"])
+        .contains(", EU868 (listen-before-talk, 100 s of airtime per hour),"));
+}

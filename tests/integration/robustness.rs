@@ -976,13 +976,17 @@ fn a_swarm_header_says_what_each_drone_flies_on_which_sfs_and_why_spread_dealt_f
     ]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
-        text.starts_with("1 drone each flying synthetic 1, at 1000 m, 1 channel, all on SF7,"),
+        text.starts_with(
+            "1 drone each flying synthetic 1, at 1000 m, EU868 (1 % duty cycle), 1 channel, all on SF7,"
+        ),
         "{text}"
     );
     let chained = cli(&["swarm", "--drones", "2", "--duration", "60"]);
     let text = String::from_utf8_lossy(&chained.stdout);
     assert!(
-        text.starts_with("2 drones x 60 s, at 1000 m, 3 channels, SF7-SF8 in turn,"),
+        text.starts_with(
+            "2 drones x 60 s, at 1000 m, EU868 (1 % duty cycle), 3 channels, SF7-SF8 in turn,"
+        ),
         "{text}"
     );
     // The SFs named are those dealt, and where `spread` dealt fewer than it had drones for, why:

@@ -335,6 +335,13 @@ fn airtime(a: AirtimeArgs) -> Result<String, ApiError> {
         fair_use: a.fair_use,
     };
     let r = api::airtime(&params)?;
+    let access = loratrack::AccessSettings {
+        region: a.region,
+        interval: a.interval,
+        access: a.access,
+        fair_use: a.fair_use,
+        ..Default::default()
+    };
     if a.out.json {
         return Ok(json(&r));
     }
@@ -344,13 +351,14 @@ fn airtime(a: AirtimeArgs) -> Result<String, ApiError> {
         (None, None) => format!("raw LoRa (no {} data rate)", a.region.label()),
     };
     Ok(format!(
-        "time on air      {:.3} ms\nsymbol time      {:.3} ms\npayload symbols  {}\nPHY payload      {} B\nLDRO             {}\ndata rate        {rate}\nmin interval     {:.3} s\nTTN fair use     {} packets/day (30 s of airtime; {})",
+        "time on air      {:.3} ms\nsymbol time      {:.3} ms\npayload symbols  {}\nPHY payload      {} B\nLDRO             {}\ndata rate        {rate}\nmin interval     {:.3} s ({})\nTTN fair use     {} packets/day (30 s of airtime; {})",
         r.time_on_air * 1e3,
         r.symbol_time * 1e3,
         r.payload_symbols,
         r.phy_payload_bytes,
         if r.low_data_rate_optimize { "on" } else { "off" },
         r.min_interval,
+        limit_text(&access, a.duty_cycle),
         r.ttn_packets_per_day,
         if a.fair_use == loratrack::FairUse::Ttn { "applied to the interval" } else { "not enforced; --fair-use ttn applies it" }
     ))
@@ -549,7 +557,7 @@ fn adr_text(net: &loratrack::NetworkSettings) -> String {
     }
 }
 
-/// The plan in words: `US915 DR1, every 1 s (no duty cycle)`, `EU868 DR5, 1 % duty cycle`,
+/// The plan in words: `US915 DR1, every 1 s, no duty cycle`, `EU868 DR5, 1 % duty cycle`,
 /// `EU868, raw LoRa outside its data rates, 1 % duty cycle`.
 fn plan_text(c: &loratrack::RunConfig) -> String {
     let a = &c.settings.access;
@@ -559,21 +567,35 @@ fn plan_text(c: &loratrack::RunConfig) -> String {
         .map_or(format!("{region}, raw LoRa outside its data rates"), |dr| {
             format!("{region} DR{dr}")
         });
+    format!("{rate}, {}", limit_text(a, c.settings.radio.duty_cycle))
+}
+
+/// What paces the uplinks under `a` with the `duty_cycle` setting, in words: `1 % duty cycle`,
+/// `listen-before-talk, 100 s of airtime per hour`, `every 1 s, no duty cycle`, each followed by
+/// `, TTN fair use` where that applies.
+fn limit_text(a: &loratrack::AccessSettings, duty_cycle: f64) -> String {
     let limit = match a.region.duty_cycle() {
         Some(_) if a.access == loratrack::ChannelAccess::Lbt => {
             "listen-before-talk, 100 s of airtime per hour".to_string()
         }
-        Some(_) => format!("{} % duty cycle", 100.0 * c.settings.radio.duty_cycle),
+        Some(_) => format!("{} duty cycle", exact_percent(duty_cycle)),
         None => format!(
-            "every {} s (no duty cycle)",
+            "every {} s, no duty cycle",
             a.interval.unwrap_or(opt::INTERVAL.default)
         ),
     };
     let fair = match a.fair_use {
         loratrack::FairUse::Off => String::new(),
-        f => format!(", {} fair use", f.name()),
+        f => format!(", {} fair use", f.name().to_uppercase()),
     };
-    format!("{rate}, {limit}{fair}")
+    format!("{limit}{fair}")
+}
+
+/// A setting's fraction as a percentage in the decimals that say it (0.0007 → `0.07 %`, not the
+/// float product's `0.06999999999999999 %`), where a measured share is rounded ([`percent`]).
+fn exact_percent(fraction: f64) -> String {
+    let text = format!("{:.10}", 100.0 * fraction);
+    format!("{} %", text.trim_end_matches('0').trim_end_matches('.'))
 }
 
 /// `v` with `decimals` decimals, right-aligned in a column `width` wide (0: no column) with as
@@ -858,7 +880,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         _ => format!("x {:.0} s", c.swarm.duration),
     };
     format!(
-        "{} drone{} {}, at {} m, {} channel{}, {}, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
+        "{} drone{} {}, at {} m, {} ({}), {} channel{}, {}, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
          {}\n\
          channel access      {}\n\
          packets sent        {}{}{}\n\
@@ -875,6 +897,8 @@ fn swarm_text(r: &SwarmReport) -> String {
         plural(c.swarm.drones),
         flown,
         c.channel.distance,
+        c.access.region.label(),
+        limit_text(&c.access, c.radio.duty_cycle),
         c.channels(),
         plural(usize::from(c.channels())),
         sf_plan_text(r),
