@@ -84,7 +84,7 @@ export type SwarmParams = SimulateParams;
 /** Output of predict. */
 export type StateReport = PredictReport;
 
-/** Time on air and 1 % duty-cycle interval of one packet. */
+/** Time on air of one packet and the shortest interval between packets under the plan (its duty cycle, 1 % unless `dutyCycle` says otherwise; listen before talk; or the interval set where it has none). */
 export function timeOnAir(params: Partial<AirtimeParams> & Pick<AirtimeParams, 'sf' | 'bw' | 'payload'>): AirtimeReport {
   return wasm.timeOnAir(params) as AirtimeReport;
 }

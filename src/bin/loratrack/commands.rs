@@ -16,7 +16,7 @@ use serde::Serialize;
 
 #[derive(Subcommand)]
 pub enum Command {
-    /// Time on air and 1 % duty-cycle interval of one LoRa packet (Semtech SX1276 formula).
+    /// Time on air of one LoRa packet (Semtech SX1276 formula) and the shortest interval between packets under the plan (1 % duty cycle unless --duty-cycle).
     Airtime(AirtimeArgs),
     /// Noise-free propagation of a state with one motion model (closed form, reference §3).
     Predict(PredictArgs),
