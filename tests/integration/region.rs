@@ -221,6 +221,26 @@ fn the_cli_says_what_paces_the_uplinks_beside_each_interval() {
         us.contains("min interval     1.000 s (every 1 s, no duty cycle)"),
         "{us}"
     );
+    // An interval shorter than the frame is the interval's refusal, not the data rate's.
+    let short = text(&[
+        "airtime",
+        "--sf",
+        "9",
+        "--bw",
+        "125",
+        "--payload",
+        "12",
+        "--region",
+        "us915",
+        "--interval",
+        "0.1",
+    ]);
+    assert!(
+        short.contains(
+            "data rate        US915 DR1\nmin interval     refused: interval must be at least"
+        ),
+        "{short}"
+    );
     // A fraction whose product with 100 is no short float is written as it was given.
     let header = text(&["simulate", "--synthetic", "1", "--duty-cycle", "0.0007"]);
     assert!(

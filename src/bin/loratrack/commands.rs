@@ -345,20 +345,32 @@ fn airtime(a: AirtimeArgs) -> Result<String, ApiError> {
     if a.out.json {
         return Ok(json(&r));
     }
-    let rate = match (r.data_rate, &r.refused) {
-        (_, Some(why)) => format!("refused: {why}"),
-        (Some(dr), None) => format!("{} DR{dr}", a.region.label()),
-        (None, None) => format!("raw LoRa (no {} data rate)", a.region.label()),
+    // The plan refuses a data rate it lacks or a frame over its dwell time (no data rate then);
+    // at a data rate it has, only an interval shorter than the frame, which the interval line says.
+    let (rate, interval) = match (r.data_rate, &r.refused) {
+        (None, Some(why)) => (format!("refused: {why}"), None),
+        (Some(dr), Some(why)) => (format!("{} DR{dr}", a.region.label()), Some(why)),
+        (Some(dr), None) => (format!("{} DR{dr}", a.region.label()), None),
+        (None, None) => (
+            format!("raw LoRa (no {} data rate)", a.region.label()),
+            None,
+        ),
+    };
+    let interval = match interval {
+        Some(why) => format!("refused: {why}"),
+        None => format!(
+            "{:.3} s ({})",
+            r.min_interval,
+            limit_text(&access, a.duty_cycle)
+        ),
     };
     Ok(format!(
-        "time on air      {:.3} ms\nsymbol time      {:.3} ms\npayload symbols  {}\nPHY payload      {} B\nLDRO             {}\ndata rate        {rate}\nmin interval     {:.3} s ({})\nTTN fair use     {} packets/day (30 s of airtime; {})",
+        "time on air      {:.3} ms\nsymbol time      {:.3} ms\npayload symbols  {}\nPHY payload      {} B\nLDRO             {}\ndata rate        {rate}\nmin interval     {interval}\nTTN fair use     {} packets/day (30 s of airtime; {})",
         r.time_on_air * 1e3,
         r.symbol_time * 1e3,
         r.payload_symbols,
         r.phy_payload_bytes,
         if r.low_data_rate_optimize { "on" } else { "off" },
-        r.min_interval,
-        limit_text(&access, a.duty_cycle),
         r.ttn_packets_per_day,
         if a.fair_use == loratrack::FairUse::Ttn { "applied to the interval" } else { "not enforced; --fair-use ttn applies it" }
     ))
