@@ -585,6 +585,43 @@ pub fn naming_flag(message: &str, flag: &str) -> String {
     }
 }
 
+/// `message` with the settings it names in the middle of a sentence, which the core marks as
+/// `` `key` `` ("set `interval` instead of `dutyCycle`"), named as each skin's users know them:
+/// `name` gives the words for a key (the CLI: its flag), `None` keeps the key (the JS API); the
+/// marks go either way. Backticks around anything but one word (a command, `` `loratrack
+/// simulate --help` ``) stay as they are.
+///
+/// ```
+/// use loratrack::options::{long_option, naming_settings};
+/// let m = "US915 has no duty cycle: set `interval` instead of `dutyCycle`";
+/// assert_eq!(naming_settings(m, |_| None), "US915 has no duty cycle: set interval instead of dutyCycle");
+/// assert_eq!(
+///     naming_settings(m, |key| Some(long_option(key))),
+///     "US915 has no duty cycle: set --interval instead of --duty-cycle"
+/// );
+/// ```
+pub fn naming_settings(message: &str, name: impl Fn(&str) -> Option<String>) -> String {
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message;
+    while let Some(open) = rest.find('`') {
+        out.push_str(&rest[..open]);
+        let after = &rest[open + 1..];
+        let Some(close) = after.find('`') else {
+            out.push_str(&rest[open..]);
+            return out;
+        };
+        let inner = &after[..close];
+        if !inner.is_empty() && inner.chars().all(|c| c.is_ascii_alphabetic()) {
+            out.push_str(&name(inner).unwrap_or_else(|| inner.to_string()));
+        } else {
+            out.push_str(&rest[open..open + close + 2]);
+        }
+        rest = &after[close + 1..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// A refused value as its error message writes it: a whole number as one (`got 300`, where the
 /// user typed 300, not `got 300.0`), anything else as Rust reads it back (`0.5`, `1e300`, `NaN`).
 ///

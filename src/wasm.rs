@@ -73,7 +73,8 @@ fn js_error(message: &str) -> JsValue {
 /// that setting with which the run would go ahead, `valueThatFits` ([`ApiError::value_that_fits`]:
 /// the seeds or the swarm's drones that fit, the heartbeat the slowest data rate needs).
 fn api_error(e: &ApiError) -> JsValue {
-    let error = error_naming(&api::clean_message(&e.to_string()), e.setting());
+    let message = crate::options::naming_settings(&e.to_string(), |_| None);
+    let error = error_naming(&api::clean_message(&message), e.setting());
     if let Some(fit) = e.value_that_fits() {
         // Defining a property on a fresh Error cannot fail.
         let _ = set(&error, "valueThatFits", JsValue::from(fit));

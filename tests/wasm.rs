@@ -325,7 +325,8 @@ fn a_plan_crosses_the_boundary_and_a_mission_station_needs_one() {
         Some("mission")
     );
     let e = run(None).unwrap_err();
-    assert!(error_message(e).contains("needs the plan the drone flies"));
+    // The settings it names are JS keys, without the marks the CLI turns into its flags.
+    assert!(error_message(e).contains("needs the plan the drone flies: give plan (a CSV"));
     let e = run(Some("0,0,20\n1,zero,20\n")).unwrap_err();
     // The page shows a plan's error beside the plan control by this name.
     assert_eq!(get(&e, "setting").as_string().as_deref(), Some("plan"));

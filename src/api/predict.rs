@@ -108,7 +108,7 @@ pub fn predict(p: &PredictParams) -> Result<PredictReport, ApiError> {
         (None, None) => None,
         (None, Some(_)) => {
             return Err(ApiError::Invalid(
-                "eta needs step (the decay is applied after each step)".into(),
+                "`eta` needs `step` (the decay is applied after each step)".into(),
             ))
         }
         (Some(step), eta) => {

@@ -110,7 +110,7 @@ impl fmt::Display for SimError {
             ),
             SimError::AdrStart(sf, bw) => write!(
                 f,
-                "adr starts at an EU868 data rate (SF7..12 at 125 kHz or SF7 at 250 kHz), got SF{sf} at {bw} kHz"
+                "`adr` starts at an EU868 data rate (SF7..12 at 125 kHz or SF7 at 250 kHz), got SF{sf} at {bw} kHz"
             ),
             SimError::TooLong {
                 flight_time,

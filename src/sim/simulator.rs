@@ -598,18 +598,18 @@ fn simulated_source(cfg: &Validated) -> Result<&TrajectorySource, SimError> {
     let s = cfg.s();
     if s.swarm != SwarmSettings::default() {
         return Err(SimError::Source(
-            "drones, duration and sfPlan are swarm settings: simulate flies one drone over its flight"
+            "`drones`, `duration` and `sfPlan` are swarm settings: simulate flies one drone over its flight"
                 .into(),
         ));
     }
     if s.access.schedule != Schedule::Aloha {
         return Err(SimError::Source(
-            "schedule is a swarm setting: simulate's one drone has the air to itself".into(),
+            "`schedule` is a swarm setting: simulate's one drone has the air to itself".into(),
         ));
     }
     cfg.source.as_ref().ok_or_else(|| {
         SimError::Source(
-            "choose a flight: trajectory (CSV), synthetic (all or 1..30) or sample (canberra)"
+            "choose a flight: `trajectory` (CSV), `synthetic` (all or 1..30) or `sample` (canberra)"
                 .into(),
         )
     })

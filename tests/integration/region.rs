@@ -128,7 +128,7 @@ fn the_interval_and_fair_use_decide_how_often_a_drone_sends_where_they_apply() {
     assert!(e.contains("at least the time on air"), "{e}");
     let e = run(json!({"synthetic": 1, "region": "us915", "adr": "lorawan", "sf": 9, "bw": 125}))
         .unwrap_err();
-    assert!(e.contains("adr runs EU868's data rates"), "{e}");
+    assert!(e.contains("`adr` runs EU868's data rates"), "{e}");
 }
 
 #[test]

@@ -518,6 +518,37 @@ fn the_cli_names_a_refused_setting_by_its_flag_not_its_js_key() {
         err.starts_with("error: --synthetic must be 'all' or a flight number 1..30, got 40"),
         "{err}"
     );
+    // Settings named within a sentence too.
+    for (args, expected) in [
+        (
+            &["--region", "us915", "--sf", "9", "--bw", "125", "--duty-cycle", "0.02"][..],
+            "error: US915 has no duty cycle: set --interval instead of --duty-cycle\n",
+        ),
+        (
+            &["--heading-noise", "adaptive"],
+            "error: --heading-noise adaptive is a bounded station's: set --prediction to bounded\n",
+        ),
+        (
+            &["--access", "lbt", "--duty-cycle", "0.02"],
+            "error: --duty-cycle does not apply with --access lbt (ETSI's 100 s of airtime per hour)\n",
+        ),
+    ] {
+        assert_eq!(e(args), expected);
+    }
+    let err = String::from_utf8_lossy(&cli(&["simulate"]).stderr).into_owned();
+    assert!(
+        err.starts_with("error: choose a flight: --trajectory (CSV), --synthetic"),
+        "{err}"
+    );
+    // A value none of a flag's choices names them (clap puts them on a line the one line left out).
+    assert_eq!(
+        e(&["--fair-use", "x"]),
+        "error: invalid value 'x' for --fair-use: expected off or ttn (see --help)\n"
+    );
+    assert_eq!(
+        e(&["--region", "mars"]),
+        "error: invalid value 'mars' for --region: expected eu868, us915, au915, as923 or in865 (see --help)\n"
+    );
     // 17 gateways are 17 `--gateway` flags: the count has no flag of its own.
     let mut args = vec!["swarm", "--drones", "2"];
     args.extend(std::iter::repeat_n(["--gateway", "0,0"], 17).flatten());

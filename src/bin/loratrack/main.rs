@@ -74,7 +74,8 @@ fn main() -> std::process::ExitCode {
             ));
         }
         Err(e) => {
-            return fail(&refused_value(&e).unwrap_or_else(|| one_line(&e.render().to_string())))
+            let message = refused_value(&e).or_else(|| unknown_choice(&e));
+            return fail(&message.unwrap_or_else(|| one_line(&e.render().to_string())));
         }
     };
     match commands::run(cli.command) {
@@ -89,23 +90,26 @@ fn main() -> std::process::ExitCode {
     }
 }
 
-/// The core's refusal in the words of the command line: the setting at fault named by the flag
-/// its user typed (`--max-interval must be …`), not by its JS key (`maxInterval`), where the CLI
-/// has that flag.
+/// The core's refusal in the words of the command line: the settings it names by the flags its
+/// user typed (`--max-interval must be …`, `set --interval instead of --duty-cycle`), not by
+/// their JS keys (`maxInterval`, `dutyCycle`), wherever the CLI has that flag.
 #[cfg(not(target_arch = "wasm32"))]
 fn in_flags(e: &loratrack::api::ApiError) -> String {
     use clap::CommandFactory;
-    let message = e.to_string();
-    let flag = e.setting().map(loratrack::options::long_option);
-    let has = |flag: &str| {
-        Cli::command()
+    use loratrack::options::{long_option, naming_flag, naming_settings};
+    let command = Cli::command();
+    let flag = |key: &str| {
+        let flag = long_option(key);
+        let has = command
             .get_subcommands()
             .flat_map(|c| c.get_arguments())
-            .any(|a| a.get_long() == flag.strip_prefix("--"))
+            .any(|a| a.get_long() == flag.strip_prefix("--"));
+        has.then_some(flag)
     };
-    match flag {
-        Some(flag) if has(&flag) => loratrack::options::naming_flag(&message, &flag),
-        _ => message,
+    let message = naming_settings(&e.to_string(), flag);
+    match e.setting().and_then(flag) {
+        Some(flag) => naming_flag(&message, &flag),
+        None => message,
     }
 }
 
@@ -123,6 +127,36 @@ fn refused_value(e: &clap::Error) -> Option<String> {
     let reason = std::error::Error::source(e)?.to_string();
     let named = loratrack::options::naming_flag(&reason, flag);
     (named != reason).then(|| format!("{named} (see --help)"))
+}
+
+/// A value that is none of its flag's choices, with the choices (clap lists them on a line of
+/// their own, which the one line left out): `invalid value 'x' for --fair-use: expected off or
+/// ttn (see --help)`.
+#[cfg(not(target_arch = "wasm32"))]
+fn unknown_choice(e: &clap::Error) -> Option<String> {
+    use clap::error::{ContextKind, ContextValue};
+    let (
+        Some(ContextValue::String(arg)),
+        Some(ContextValue::String(value)),
+        Some(ContextValue::Strings(choices)),
+    ) = (
+        e.get(ContextKind::InvalidArg),
+        e.get(ContextKind::InvalidValue),
+        e.get(ContextKind::ValidValue),
+    )
+    else {
+        return None;
+    };
+    let (last, rest) = choices.split_last()?;
+    let choices = if rest.is_empty() {
+        last.clone()
+    } else {
+        format!("{} or {last}", rest.join(", "))
+    };
+    let flag = arg.split(' ').next()?;
+    Some(format!(
+        "invalid value '{value}' for {flag}: expected {choices} (see --help)"
+    ))
 }
 
 /// clap's message in one line: its first line, without its own `error: ` prefix, and a pointer

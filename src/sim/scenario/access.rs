@@ -87,20 +87,20 @@ impl AccessSettings {
         if self.region.duty_cycle().is_none() {
             if self.access == ChannelAccess::Lbt {
                 return Err(SimError::Source(format!(
-                    "access lbt replaces a duty cycle; {} has none (its sending interval is interval)",
+                    "`access` lbt replaces a duty cycle; {} has none (its sending interval is `interval`)",
                     self.region.label()
                 )));
             }
             if changed {
                 return Err(SimError::Source(format!(
-                    "{} has no duty cycle: set interval instead of dutyCycle",
+                    "{} has no duty cycle: set `interval` instead of `dutyCycle`",
                     self.region.label()
                 )));
             }
         }
         if self.access == ChannelAccess::Lbt && changed {
             return Err(SimError::Source(
-                "dutyCycle does not apply with access lbt (ETSI's 100 s of airtime per hour)"
+                "`dutyCycle` does not apply with `access` lbt (ETSI's 100 s of airtime per hour)"
                     .into(),
             ));
         }
@@ -108,7 +108,7 @@ impl AccessSettings {
             opt::INTERVAL.check(i)?;
             if self.region.duty_cycle().is_some() {
                 return Err(SimError::Source(format!(
-                    "interval is for plans without a duty cycle; {} limits sending by its duty cycle (dutyCycle)",
+                    "`interval` is for plans without a duty cycle; {} limits sending by its duty cycle (`dutyCycle`)",
                     self.region.label()
                 )));
             }

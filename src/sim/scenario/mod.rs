@@ -591,7 +591,7 @@ impl Scenario {
         };
         if adr.mode != AdrMode::Off && self.access.region != Region::Eu868 {
             return Err(SimError::Source(format!(
-                "adr runs EU868's data rates; {} has its own (choose a data rate with sf and bw)",
+                "`adr` runs EU868's data rates; {} has its own (choose a data rate with `sf` and `bw`)",
                 self.access.region.label()
             )));
         }
@@ -635,7 +635,7 @@ impl FlightSettings {
         let synthetic = matches!(source, Some(TrajectorySource::Synthetic(_)));
         let plan = match self.plan.take() {
             Some(_) if synthetic => return Err(SimError::Source(
-                "the synthetic flights carry their own plans: plan goes with trajectory or sample"
+                "the synthetic flights carry their own plans: `plan` goes with `trajectory` or `sample`"
                     .into(),
             )),
             Some(text) => Some(parse_plan(&text)?),
@@ -647,7 +647,7 @@ impl FlightSettings {
             && models.models().contains(&StationModel::Mission)
         {
             return Err(SimError::Source(
-                "the mission station needs the plan the drone flies: give plan (a CSV of x,y,z[,speed] or a QGroundControl .plan), or fly the synthetic flights, which carry their own"
+                "the mission station needs the plan the drone flies: give `plan` (a CSV of x,y,z[,speed] or a QGroundControl .plan), or fly the synthetic flights, which carry their own"
                     .into(),
             ));
         }
@@ -670,7 +670,7 @@ impl FlightSettings {
                 (None, None, Some(name)) => Some(TrajectorySource::Sample(name)),
                 _ => {
                     return Err(SimError::Source(
-                        "choose only one of trajectory, synthetic and sample".into(),
+                        "choose only one of `trajectory`, `synthetic` and `sample`".into(),
                     ))
                 }
             },
@@ -742,7 +742,8 @@ impl StationSettings {
         // The paper's station has no hedge to choose (its q is the drone's, on every component).
         if self.heading_noise == HeadingNoise::Adaptive && self.prediction != Prediction::Bounded {
             return Err(SimError::Source(
-                "headingNoise adaptive is a bounded station's: set prediction to bounded".into(),
+                "`headingNoise` adaptive is a bounded station's: set `prediction` to bounded"
+                    .into(),
             ));
         }
         Ok(())

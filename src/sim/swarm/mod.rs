@@ -637,7 +637,7 @@ fn slots(cfg: &Validated, radios: &[DroneRadio]) -> Result<Option<Vec<Slot>>, Si
     }
     if cfg.adr.mode != AdrMode::Off {
         return Err(SimError::Source(
-            "a slotted schedule sizes each slot for a drone's data rate: it cannot run with adr, which moves drones between rates".into(),
+            "a slotted schedule sizes each slot for a drone's data rate: it cannot run with `adr`, which moves drones between rates".into(),
         ));
     }
     let air: Vec<Airtime> = radios
