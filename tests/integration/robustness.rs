@@ -1179,3 +1179,52 @@ fn no_help_shows_rustdoc_link_syntax() {
         }
     }
 }
+
+/// Two runs that differ in one setting do not print the same header: every numeric setting of
+/// the options table changed from its default is named above `simulate`'s table (a new one
+/// fails here until the text words it or this list says where it is worded instead).
+#[test]
+fn simulates_header_names_every_numeric_setting_changed_from_its_default() {
+    // Worded elsewhere, or with no effect on one drone at the defaults.
+    let elsewhere = [
+        ("distance", "the gateway line under the table"),
+        ("gateway", "the gateway line (a site of --gateway)"),
+        ("gateways", "the gateway lines, one per --gateway"),
+        ("drones", "a swarm's"),
+        ("duration", "a swarm's"),
+        ("channels", "a swarm's header"),
+        ("threshold", "the stations line, with --sender error"),
+        ("maxInterval", "the stations line, with --sender error"),
+        ("burst", "the stations line, with --duty-cycle-mode budget"),
+        (
+            "interval",
+            "a plan without a duty cycle's (EU868 refuses it)",
+        ),
+        ("adrMargin", "the header's ADR, with --adr lorawan"),
+        ("adrHistory", "the header's ADR, with --adr lorawan"),
+    ];
+    let header = |extra: &[&str]| {
+        let out = cli(&[&["simulate", "--synthetic", "1"][..], extra].concat());
+        assert_eq!(out.status.code(), Some(0), "{extra:?}");
+        let text = String::from_utf8(out.stdout).unwrap();
+        text.lines()
+            .take_while(|l| !l.starts_with("model "))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    let base = header(&[]);
+    for o in loratrack::options::OPTIONS {
+        if elsewhere.iter().any(|(key, _)| *key == o.key) {
+            continue;
+        }
+        let other = match o.values.iter().find(|&&v| v != o.default) {
+            Some(&v) => v,
+            None if o.default + 1.0 <= o.max => o.default + 1.0,
+            None => (o.min + o.default) / 2.0,
+        };
+        let value = loratrack::options::as_given(other);
+        let flag = loratrack::options::long_option(o.key);
+        let changed = header(&[&flag, &value]);
+        assert_ne!(changed, base, "{flag} {value} prints the default's header");
+    }
+}

@@ -358,7 +358,7 @@ fn an_adaptive_heading_noise_is_refused_for_the_paper_station_and_changes_nothin
 ) {
     let p = set(&Scenario::default(), json!({ "headingNoise": "adaptive" }));
     let e = p.validate().unwrap_err().to_string();
-    assert!(e.contains("prediction to bounded"), "{e}");
+    assert!(e.contains("set `prediction` to bounded"), "{e}");
     // At SF12 a synthetic flight brings one or two packets: none is chosen from five.
     let mut sim = Simulator::new();
     let slow = json!({ "synthetic": "all", "sf": 12, "bw": 125.0, "prediction": "bounded", "model": "dr,3d-ctra" });

@@ -482,7 +482,7 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
     }
     let c = &r.config;
     Ok(format!(
-        "{} ({} flight{}, {:.0} s), SF{} / {} kHz ({}){}, overhead {} B, {}\n{}\n{}\n{}",
+        "{} ({} flight{}, {:.0} s), SF{} / {} kHz ({}){}, overhead {} B, {}\n{}{}\n{}\n{}",
         c.trajectory,
         c.flights,
         plural(c.flights),
@@ -494,6 +494,7 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
         c.settings.radio.overhead,
         pooled_seeds(c.settings.run.seed, c.settings.run.seeds),
         policy_text(&c.settings),
+        settings_line(&c.settings, &[]),
         results_table(&r.results),
         network_lines(&r)
     ))
@@ -551,6 +552,56 @@ fn policy_text(s: &loratrack::Scenario) -> String {
             ""
         },
     )
+}
+
+/// The settings the lines above do not word that differ from their defaults, named and in the
+/// units of the options table: `\nsettings: Tx power 10 dBm, Sensor rate 3 Hz, shadowing fixed
+/// in space`, or nothing; `worded` are those the caller's lines already give. Two runs that
+/// differ only in them must not print alike (the page's captions name them too, `format.ts
+/// advanced`).
+fn settings_line(s: &loratrack::Scenario, worded: &[&str]) -> String {
+    const NUMBERS: [&str; 12] = [
+        "cr",
+        "txPower",
+        "pathLossExponent",
+        "shadowing",
+        "gatewayHeight",
+        "sensorRate",
+        "step",
+        "eta",
+        "q",
+        "planTolerance",
+        "jitter",
+        "clockDrift",
+    ];
+    let (now, default) = match (
+        serde_json::to_value(s),
+        serde_json::to_value(loratrack::Scenario::default()),
+    ) {
+        (Ok(now), Ok(default)) => (now, default),
+        _ => return String::new(),
+    };
+    let mut named: Vec<String> = NUMBERS
+        .iter()
+        .filter(|&&key| now[key] != default[key] && !worded.contains(&key))
+        .filter_map(|&key| Some((key, now[key].as_f64()?, opt::option(key)?)))
+        .map(|(key, v, o)| match key {
+            "cr" => format!("{} 4/{}", o.label, 4.0 + v),
+            _ if o.unit.is_empty() => format!("{} {}", o.label, opt::as_given(v)),
+            _ => format!("{} {} {}", o.label, opt::as_given(v), o.unit),
+        })
+        .collect();
+    if s.channel.shadowing_model == loratrack::ShadowingModel::Field {
+        named.push("shadowing fixed in space".into());
+    }
+    if s.station.plan_pace == loratrack::PlanPace::Packet {
+        named.push("pace along the plan from the packet's speed".into());
+    }
+    if named.is_empty() {
+        String::new()
+    } else {
+        format!("\nsettings: {}", named.join(", "))
+    }
 }
 
 /// After `simulate`'s data rate, the ADR that moves the run from it: `, tracking ADR from this
@@ -893,7 +944,7 @@ fn swarm_text(r: &SwarmReport) -> String {
     };
     format!(
         "{} drone{} {}, at {} m, {} ({}), {} channel{}, {}, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
-         {}\n\
+         {}{}\n\
          channel access      {}\n\
          packets sent        {}{}{}\n\
          collision rate      {}  (pure-ALOHA formula at the duty cycle achieved: {:.4})\n\
@@ -920,6 +971,8 @@ fn swarm_text(r: &SwarmReport) -> String {
         c.network.adr.name(),
         c.run.seed,
         policy_text(c),
+        // The channel access line gives the swarm's timing.
+        settings_line(c, &["jitter", "clockDrift"]),
         schedule_text(r),
         d.packets_sent,
         sf_shares(r),
