@@ -206,35 +206,27 @@ fn the_cli_says_what_paces_the_uplinks_beside_each_interval() {
     assert!(airtime(&["--access", "lbt"])
         .ends_with(" s (listen-before-talk, 100 s of airtime per hour)"));
     assert!(airtime(&["--fair-use", "ttn"]).ends_with(" s (1 % duty cycle, TTN fair use)"));
-    let us = text(&[
-        "airtime",
-        "--sf",
-        "9",
-        "--bw",
-        "125",
-        "--payload",
-        "12",
-        "--region",
-        "us915",
-    ]);
+    let us915 = |extra: &[&str]| {
+        let args = [
+            "airtime",
+            "--sf",
+            "9",
+            "--bw",
+            "125",
+            "--payload",
+            "12",
+            "--region",
+            "us915",
+        ];
+        text(&[&args[..], extra].concat())
+    };
+    let us = us915(&[]);
     assert!(
         us.contains("min interval     1.000 s (every 1 s, no duty cycle)"),
         "{us}"
     );
     // An interval shorter than the frame is the interval's refusal, not the data rate's.
-    let short = text(&[
-        "airtime",
-        "--sf",
-        "9",
-        "--bw",
-        "125",
-        "--payload",
-        "12",
-        "--region",
-        "us915",
-        "--interval",
-        "0.1",
-    ]);
+    let short = us915(&["--interval", "0.1"]);
     assert!(
         short.contains(
             "data rate        US915 DR1\nmin interval     refused: interval must be at least"
