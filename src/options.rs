@@ -714,6 +714,23 @@ mod tests {
         assert_eq!(naming_flag("", "--sf"), "");
     }
 
+    #[test]
+    fn only_one_word_in_backticks_is_a_setting_to_name() {
+        let flags = |key: &str| Some(long_option(key));
+        // A command in backticks is quoted text, not a setting.
+        let unknown = "unknown setting 'x' (see `loratrack simulate --help` or limits())";
+        assert_eq!(naming_settings(unknown, flags), unknown);
+        // A key the skin has no name for keeps its own, without the marks.
+        assert_eq!(
+            naming_settings("`drones` and `sfPlan` are swarm settings", |k| {
+                (k == "sfPlan").then(|| long_option(k))
+            }),
+            "drones and --sf-plan are swarm settings"
+        );
+        // An unclosed backtick is left as it is.
+        assert_eq!(naming_settings("set `dutyCycle", flags), "set `dutyCycle");
+    }
+
     #[cfg(cli)]
     #[test]
     fn number_options_refuse_text_with_their_name_and_range() {

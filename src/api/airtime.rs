@@ -80,6 +80,18 @@ impl AirtimeParams {
         p.ldro = self.ldro;
         Ok(p)
     }
+
+    /// The plan's settings these parameters give: region, interval, access and fair use (the
+    /// duty cycle is the `dutyCycle` beside them).
+    pub fn access(&self) -> AccessSettings {
+        AccessSettings {
+            region: self.region,
+            interval: self.interval,
+            access: self.access,
+            fair_use: self.fair_use,
+            ..AccessSettings::default()
+        }
+    }
 }
 
 /// Output of `airtime` (reference §9).
@@ -121,13 +133,7 @@ pub fn airtime(p: &AirtimeParams) -> Result<AirtimeReport, ApiError> {
         .checked_add(p.overhead)
         .ok_or(lora::LoraError::PayloadTooLarge(usize::MAX))?;
     let t = lora::time_on_air(&radio, phy)?;
-    let access = AccessSettings {
-        region: p.region,
-        interval: p.interval,
-        access: p.access,
-        fair_use: p.fair_use,
-        ..AccessSettings::default()
-    };
+    let access = p.access();
     crate::options::DUTY_CYCLE
         .check(p.duty_cycle)
         .map_err(lora::LoraError::OutOfRange)?;

@@ -335,13 +335,6 @@ fn airtime(a: AirtimeArgs) -> Result<String, ApiError> {
         fair_use: a.fair_use,
     };
     let r = api::airtime(&params)?;
-    let access = loratrack::AccessSettings {
-        region: a.region,
-        interval: a.interval,
-        access: a.access,
-        fair_use: a.fair_use,
-        ..Default::default()
-    };
     if a.out.json {
         return Ok(json(&r));
     }
@@ -361,7 +354,7 @@ fn airtime(a: AirtimeArgs) -> Result<String, ApiError> {
         None => format!(
             "{:.3} s ({})",
             r.min_interval,
-            limit_text(&access, a.duty_cycle)
+            limit_text(&params.access(), a.duty_cycle)
         ),
     };
     Ok(format!(
