@@ -56,7 +56,9 @@ function advanced(s: Settings): string {
     .map((k) => {
       if (k === 'cr') return `, coding rate 4/${4 + s.cr}`;
       const { label, unit } = LIMITS[k];
-      return `, ${label.charAt(0).toLowerCase()}${label.slice(1)} ${s[k]}${unit ? ` ${unit}` : ''}`;
+      // Lower case within the sentence, but an abbreviation keeps its capital ("Tx power").
+      const named = label.startsWith('Tx ') ? label : `${label.charAt(0).toLowerCase()}${label.slice(1)}`;
+      return `, ${named} ${s[k]}${unit ? ` ${unit}` : ''}`;
     })
     .join('');
   return `${named}${s.shadowingModel === 'field' ? ', shadowing fixed in space' : ''}`;

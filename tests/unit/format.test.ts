@@ -108,6 +108,7 @@ test('a caption names the settings, the flight, every seed and the version', () 
   // Two sub-bands alternated: the duty cycle the intervals rest on; none where it does not apply.
   expect(describe({ ...DEFAULTS, dutyCycle: 0.02 })).toBe('SF7, 250 kHz, EU868, 2 % duty cycle, 1.0 km, paper prediction, periodic sending');
   expect(describe({ ...DEFAULTS, dutyCycle: 0.02, access: 'lbt' })).toBe(describe({ ...DEFAULTS, access: 'lbt' }));
+  expect(describe({ ...DEFAULTS, txPower: 10, sensorRate: 5 })).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending, Tx power 10 dBm, sensor rate 5 Hz');
   expect(describe({ ...DEFAULTS, region: 'as923', sf: 7, bw: 125 })).toMatch(/^SF7, 125 kHz, AS923, 1\.0 km/);
   // Fades fixed in space are other fades: a caption says so.
   expect(describe({ ...DEFAULTS, shadowingModel: 'field' })).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending, shadowing fixed in space');
