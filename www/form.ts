@@ -240,15 +240,19 @@ function show(note: HTMLElement, text: string | null): void {
  * frame fits, and until the WebAssembly module is loaded (main.ts then asks again). */
 function frameRefusal(model: string, sf: number, bw: number, region: Region): string | null {
   if (!isLoaded() || !planAllows(region, sf, bw)) return null;
-  const [interval, dutyCycle] = [Number(field('interval').value), Number(field('dutyCycle').value)];
+  // A field's value where it is acceptable, else the settings' (its mark says why).
+  const typed = (key: 'interval' | 'dutyCycle') => {
+    const v = Number(field(key).value);
+    return invalid(key, v) ? store.settings[key] : v;
+  };
   const link = packetPlan({
     region,
     lorawan: (field('lorawan') as HTMLInputElement).checked,
     cr: Number(field('cr').value),
     access: field('access').value as Settings['access'],
     fairUse: field('fairUse').value as Settings['fairUse'],
-    interval: invalid('interval', interval) ? store.settings.interval : interval,
-    dutyCycle: invalid('dutyCycle', dutyCycle) ? store.settings.dutyCycle : dutyCycle,
+    interval: typed('interval'),
+    dutyCycle: typed('dutyCycle'),
   });
   // Each reason with the stations refused for it by their frames' length in bytes.
   const refused = new Map<string, Map<number, string[]>>();

@@ -197,10 +197,10 @@ fn the_cli_says_what_paces_the_uplinks_beside_each_interval() {
             .unwrap()
             .to_string()
     };
+    let one_sub_band = airtime(&[]);
     assert!(
-        airtime(&[]).ends_with(" s (1 % duty cycle)"),
-        "{}",
-        airtime(&[])
+        one_sub_band.ends_with(" s (1 % duty cycle)"),
+        "{one_sub_band}"
     );
     assert!(airtime(&["--duty-cycle", "0.02"]).ends_with(" s (2 % duty cycle)"));
     assert!(airtime(&["--access", "lbt"])
@@ -245,10 +245,10 @@ fn the_cli_says_what_paces_the_uplinks_beside_each_interval() {
         let args = [&["swarm", "--drones", "2", "--duration", "60"][..], extra].concat();
         text(&args).lines().next().unwrap().to_string()
     };
+    let swarm_header = swarm(&[]);
     assert!(
-        swarm(&[]).contains(", at 1000 m, EU868 (1 % duty cycle), 3 channels,"),
-        "{}",
-        swarm(&[])
+        swarm_header.contains(", at 1000 m, EU868 (1 % duty cycle), 3 channels,"),
+        "{swarm_header}"
     );
     assert!(swarm(&["--duty-cycle", "0.02"]).contains(", EU868 (2 % duty cycle),"));
     assert!(swarm(&["--access", "lbt"])
