@@ -96,16 +96,23 @@ export function adrFrom(s: Pick<Settings, 'adr' | 'sf' | 'bw'>): string {
 /** A fraction as a percentage, to three significant digits: 0.02 → "2 %". */
 export const percent = (fraction: number): string => `${+(fraction * 100).toPrecision(3)} %`;
 
+/** The plan and what limits sending, where it is not the paper's EU868 1 % duty cycle, and fair
+ * use: "EU868, 2 % duty cycle", "US915, every 1 s", "EU868, listen before talk, TTN fair use";
+ * '' for the paper's. Settings and a run's echoed config both have these. */
+export function planLimit(s: Pick<Settings, 'region' | 'access' | 'fairUse' | 'dutyCycle'> & { interval?: number }): string {
+  const dutyCycle = s.dutyCycle === DEFAULTS.dutyCycle ? '' : `, ${percent(s.dutyCycle)} duty cycle`;
+  const limit = { interval: `, every ${s.interval ?? DEFAULTS.interval} s`, lbt: ', listen before talk', dutyCycle }[sendingLimit(s)];
+  const region = s.region === 'eu868' && !limit ? [] : [`${plan(s.region).label}${limit}`];
+  const fair = s.fairUse === 'off' ? [] : [`${s.fairUse.toUpperCase()} fair use`];
+  return [...region, ...fair].join(', ');
+}
+
 /** The settings behind a number, in one short phrase: the plan's limit whenever it is not the
  * paper's EU868 1 % duty cycle, the sender's threshold and heartbeat, and any advanced setting
  * changed from its default. */
 export function describe(s: Settings): string {
-  const p = plan(s.region);
-  const dutyCycle = s.dutyCycle === DEFAULTS.dutyCycle ? '' : `, ${percent(s.dutyCycle)} duty cycle`;
-  const limit = { interval: `, every ${s.interval} s`, lbt: ', listen before talk', dutyCycle }[sendingLimit(s)];
-  const region = s.region === 'eu868' && !limit ? '' : `, ${p.label}${limit}`;
-  const fair = s.fairUse === 'off' ? '' : `, ${s.fairUse.toUpperCase()} fair use`;
-  return `SF${s.sf}, ${s.bw} kHz${region}${fair}, ${link(s)}, ${prediction(s)}, ${sending(s)}${s.adr === 'off' ? '' : `, ${adrName(s.adr)}`}${advanced(s)}`;
+  const limit = planLimit(s);
+  return `SF${s.sf}, ${s.bw} kHz${limit ? `, ${limit}` : ''}, ${link(s)}, ${prediction(s)}, ${sending(s)}${s.adr === 'off' ? '' : `, ${adrName(s.adr)}`}${advanced(s)}`;
 }
 
 /** One line for a download's caption: the settings, flight, seed and version behind a chart. */

@@ -3,7 +3,7 @@
 // the notes under the table. Reads the page's state from the store.
 import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
-import { adrFrom, adrName, caption, counted, downlinkCounts, downlinksWanted, fmt, listed, names, percent, prediction, sending, sendsAsPublished, trackedPercent } from './format';
+import { adrFrom, adrName, caption, counted, downlinkCounts, downlinksWanted, fmt, listed, names, percent, planLimit, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan, sendingLimit } from './state';
 import { store } from './store';
 
@@ -15,13 +15,15 @@ export function renderTable(r: SimReport): void {
   renderUntracked(r);
   renderSilenceNote(r);
   renderSpreadNote(r);
+  // What limits sending, where it is not the paper's 1 % duty cycle: the intervals rest on it.
+  const limit = planLimit(r.config);
   // The tracking error first, then what the link spent on it: on a phone the table scrolls
   // sideways, and the headline p75 must be within the first screen, not after the link's columns
   // (which the time-on-air and link panels show too); a little wider, the link's half goes under
   // it (fitTable).
   shown = {
     what: `3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet, over ${r.config.flights} flight${r.config.flights === 1 ? '' : 's'} × ${r.config.seeds} seed${r.config.seeds === 1 ? '' : 's'}`,
-    setup: `overhead ${r.config.overhead} B; ${prediction(r.config)}${sendsAsPublished(r.config) ? '' : `; ${sending(r.config)}`}${adrFrom(r.config)}`,
+    setup: `overhead ${r.config.overhead} B; ${limit ? `${limit}; ` : ''}${prediction(r.config)}${sendsAsPublished(r.config) ? '' : `; ${sending(r.config)}`}${adrFrom(r.config)}`,
     packetsHead: `<th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th>`,
     framesHead: `<th scope="col" title="${intervalRule(r.config)}">interval</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th>`,
     rows: r.results.map((m) => {

@@ -1284,6 +1284,8 @@ test('two sub-bands alternated: the Duty cycle control halves the intervals, the
   const tableCell = await page.locator('.airtime-table tr.current td').last().textContent();
   assert.equal(tableCell.split('·')[1].trim(), `${air.minInterval.toFixed(2)} s`);
   assert.match(await page.locator('.airtime-table caption').textContent(), /^EU868 at a 2 % duty cycle: /);
+  // So does the results table's caption, above numbers that would otherwise read as 1 %'s.
+  assert.match(await page.locator('#results-table caption').first().textContent(), /; overhead 13 B; EU868, 2 % duty cycle; paper prediction$/);
   assert.match(await page.locator('#results-table thead th', { hasText: /^interval$/ }).first().getAttribute('title'), /^Time between packets: time on air divided by the 2 % duty cycle/);
   assert.deepEqual(await axe(page), []);
   // Listening before talk replaces the duty cycle: the control goes, and so does the setting.

@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { adrFrom, bandNote, caption, counted, describe, downlinkCounts, stationPhrase, fewPacketsNote, fixedRateNote, flightTime, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
+import { adrFrom, bandNote, caption, counted, describe, planLimit, downlinkCounts, stationPhrase, fewPacketsNote, fixedRateNote, flightTime, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
 import { DEFAULTS } from '../../www/state';
 import type { ModelResult } from '../../www/loratrack';
 
@@ -108,6 +108,10 @@ test('a caption names the settings, the flight, every seed and the version', () 
   // Two sub-bands alternated: the duty cycle the intervals rest on; none where it does not apply.
   expect(describe({ ...DEFAULTS, dutyCycle: 0.02 })).toBe('SF7, 250 kHz, EU868, 2 % duty cycle, 1.0 km, paper prediction, periodic sending');
   expect(describe({ ...DEFAULTS, dutyCycle: 0.02, access: 'lbt' })).toBe(describe({ ...DEFAULTS, access: 'lbt' }));
+  // The plan's limit alone, as the results' caption gives it (from a run's echoed config, which may lack the interval).
+  expect(planLimit(DEFAULTS)).toBe('');
+  expect(planLimit({ ...DEFAULTS, dutyCycle: 0.02 })).toBe('EU868, 2 % duty cycle');
+  expect(planLimit({ region: 'us915', access: 'duty-cycle', fairUse: 'ttn', dutyCycle: 0.01 })).toBe('US915, every 1 s, TTN fair use');
   expect(describe({ ...DEFAULTS, txPower: 10, sensorRate: 5 })).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending, Tx power 10 dBm, sensor rate 5 Hz');
   expect(describe({ ...DEFAULTS, region: 'as923', sf: 7, bw: 125 })).toMatch(/^SF7, 125 kHz, AS923, 1\.0 km/);
   // Fades fixed in space are other fades: a caption says so.
