@@ -2,7 +2,8 @@
 //!
 //! The validation of [`Scenario`](crate::sim::Scenario) and of the link budget, the CLI's defaults
 //! and help (`loratrack simulate --help`), the WebAssembly `limits()` export and the page's form
-//! (min, max, step and help of each field, `www/generated/options.ts`) all read this table, so a
+//! (min, max, step and help of each field, `OPTIONS` in `www/generated/types.ts`), and the
+//! captions that list settings changed from their defaults (`listed_when_changed`) all read this table, so a
 //! limit cannot differ between them. Sources of the defaults: `docs/reference.md` §"Defaults".
 
 use serde::Serialize;
@@ -32,6 +33,10 @@ pub struct NumberOption {
     pub values: &'static [f64],
     /// One sentence: what it is and why these limits.
     pub help: &'static str,
+    /// Whether a run's caption lists it with its value when it differs from its default (the
+    /// CLI's `settings:` line, the page's download and results captions): the settings that no
+    /// other part of a caption words, so that two runs differing only in it are not captioned alike.
+    pub listed_when_changed: bool,
 }
 
 impl NumberOption {
@@ -55,6 +60,7 @@ impl NumberOption {
             integer: false,
             values: &[],
             help,
+            listed_when_changed: false,
         }
     }
 
@@ -74,6 +80,13 @@ impl NumberOption {
 
     const fn only(self, values: &'static [f64]) -> Self {
         NumberOption { values, ..self }
+    }
+
+    const fn listed(self) -> Self {
+        NumberOption {
+            listed_when_changed: true,
+            ..self
+        }
     }
 
     /// Whether `v` is accepted.
@@ -187,7 +200,8 @@ pub const CR: NumberOption = NumberOption::new(
     4.0,
     "Coding rate n of 4/(4+n).",
 )
-.whole();
+.whole()
+.listed();
 /// MAC overhead per packet, bytes (LoRaWAN: 13; the paper's Table II: 0).
 pub const OVERHEAD: NumberOption = NumberOption::new(
     "overhead",
@@ -219,7 +233,8 @@ pub const TX_POWER: NumberOption = NumberOption::new(
     -30.0,
     30.0,
     "Drone transmit power.",
-);
+)
+.listed();
 
 // --- channel -----------------------------------------------------------------------------------
 
@@ -242,7 +257,8 @@ pub const PATH_LOSS_EXPONENT: NumberOption = NumberOption::new(
     1.5,
     6.0,
     "Exponent of the log-distance path loss: free space 2, obstructed paths up to 6.",
-);
+)
+.listed();
 /// Log-normal shadowing standard deviation, dB.
 pub const SHADOWING: NumberOption = NumberOption::new(
     "shadowing",
@@ -252,7 +268,8 @@ pub const SHADOWING: NumberOption = NumberOption::new(
     0.0,
     20.0,
     "Standard deviation of log-normal shadowing (0 turns it off).",
-);
+)
+.listed();
 /// Gateway antenna height, m (default of every gateway not given a height).
 pub const GATEWAY_HEIGHT: NumberOption = NumberOption::new(
     "gatewayHeight",
@@ -262,7 +279,8 @@ pub const GATEWAY_HEIGHT: NumberOption = NumberOption::new(
     0.0,
     1000.0,
     "Antenna height of every gateway not given its own.",
-);
+)
+.listed();
 /// A gateway's east or north coordinate, m.
 pub const GATEWAY_COORDINATE: NumberOption = NumberOption::new(
     "gateway",
@@ -296,7 +314,8 @@ pub const SENSOR_RATE: NumberOption = NumberOption::new(
     0.1,
     1000.0,
     "Drone sensor and filter rate.",
-);
+)
+.listed();
 /// Station prediction step T, s (paper: 0.1 s).
 pub const STEP: NumberOption = NumberOption::new(
     "step",
@@ -306,7 +325,8 @@ pub const STEP: NumberOption = NumberOption::new(
     0.001,
     10.0,
     "Station prediction step T.",
-);
+)
+.listed();
 /// Tilt-rate decay per station step (paper: 0.9).
 pub const ETA: NumberOption = NumberOption::new(
     "eta",
@@ -316,7 +336,8 @@ pub const ETA: NumberOption = NumberOption::new(
     0.0,
     1.0,
     "3D-CTRA's tilt-rate decay per station step.",
-);
+)
+.listed();
 /// Process noise scale q of Q = q·I (paper: 0.1).
 pub const Q: NumberOption = NumberOption::new(
     "q",
@@ -327,7 +348,8 @@ pub const Q: NumberOption = NumberOption::new(
     1000.0,
     "Process noise q of Q = q I per second.",
 )
-.above();
+.above()
+.listed();
 /// How far from its plan a packet may place the drone for the mission station to follow the
 /// plan, m (reference §16).
 pub const PLAN_TOLERANCE: NumberOption = NumberOption::new(
@@ -338,7 +360,8 @@ pub const PLAN_TOLERANCE: NumberOption = NumberOption::new(
     0.1,
     1000.0,
     "Mission station: a packet farther than this from the plan hands over to bounded 3D-CTRA.",
-);
+)
+.listed();
 
 // --- sending -----------------------------------------------------------------------------------
 
@@ -424,7 +447,8 @@ pub const JITTER: NumberOption = NumberOption::new(
     0.0,
     60.0,
     "The longest random delay a drone adds before each uplink (swarm default 1 s as LoRaMac-node's example; simulate default 0, the paper's timing).",
-);
+)
+.listed();
 /// The largest clock error of a drone, ppm (crystals are specified at ±10–20 ppm). The default
 /// is a swarm's; `simulate` keeps a perfect clock (0) unless given.
 pub const CLOCK_DRIFT: NumberOption = NumberOption::new(
@@ -435,7 +459,8 @@ pub const CLOCK_DRIFT: NumberOption = NumberOption::new(
     0.0,
     1000.0,
     "Each drone's clock runs up to this fast or slow, drawn per drone (swarm default 20 ppm, a common crystal; simulate default 0).",
-);
+)
+.listed();
 
 /// The sending interval where the plan has no duty cycle (US915, AU915, IN865), s: once a
 /// second, the rate at which drone Remote ID broadcasts (ASTM F3411-22a: at least 1 Hz).

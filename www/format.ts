@@ -1,6 +1,6 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
-import { MODEL_LABELS, PAYLOAD_BYTES, type GatewayReport, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
-import { DEFAULTS, LIMITS, plan, sendingLimit, type Settings } from './state';
+import { MODEL_LABELS, OPTIONS, PAYLOAD_BYTES, type GatewayReport, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
+import { DEFAULTS, isNumericKey, LIMITS, plan, sendingLimit, type Settings } from './state';
 import { store } from './store';
 
 /** A statistic with `digits` decimals, or a dash where there is none (an empty sample). */
@@ -47,10 +47,15 @@ export function sending(s: Pick<Settings, 'sender' | 'threshold' | 'maxInterval'
 export const sendsAsPublished = (s: Pick<Settings, 'sender' | 'dutyCycleMode'> & Partial<Pick<Settings, 'payload'>>) =>
   s.sender === 'periodic' && s.dutyCycleMode === 'per-packet' && s.payload !== 'lean';
 
-/** The form's advanced settings (link and filter), named where they differ from the paper's
- * defaults, in the core table's words: "shadowing sigma 8 dB". */
-const ADVANCED = ['cr', 'txPower', 'pathLossExponent', 'shadowing', 'sensorRate', 'step', 'eta'] as const;
+/** The settings a caption lists with their values where they differ from their defaults: those the
+ * core's table marks (`listedWhenChanged`, src/options.rs; the CLI's `settings:` line lists the same)
+ * that the form sets (link and filter). */
+const ADVANCED = OPTIONS.filter((o) => o.listedWhenChanged)
+  .map((o) => o.key)
+  .filter(isNumericKey);
 
+/** The form's advanced settings changed from their defaults, in the core table's words:
+ * ", shadowing sigma 8 dB". */
 function advanced(s: Settings): string {
   const named = ADVANCED.filter((k) => s[k] !== DEFAULTS[k])
     .map((k) => {

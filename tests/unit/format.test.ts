@@ -1,8 +1,8 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
 import { adrFrom, bandNote, caption, counted, describe, planLimit, downlinkCounts, stationPhrase, fewPacketsNote, fixedRateNote, flightTime, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
-import { DEFAULTS } from '../../www/state';
-import type { ModelResult } from '../../www/loratrack';
+import { DEFAULTS, LIMITS } from '../../www/state';
+import { OPTIONS, type ModelResult } from '../../www/loratrack';
 
 test('a statistic with no data is a dash, never NaN or "null"', () => {
   expect(fmt(null)).toBe('—');
@@ -131,6 +131,28 @@ test('a caption names the settings, the flight, every seed and the version', () 
   expect(describe({ ...DEFAULTS, shadowing: 8, cr: 4, sensorRate: 5 })).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending, coding rate 4/8, shadowing sigma 8 dB, sensor rate 5 Hz');
   expect(caption(DEFAULTS)).toMatch(/^SF7, 250 kHz, 1\.0 km, paper prediction, periodic sending, 13 B LoRaWAN overhead; synthetic flight 1; seed 1; loratrack \d+\.\d+\.\d+$/);
   expect(caption({ ...DEFAULTS, flight: 'all', seed: 5, seeds: 10, lorawan: false })).toMatch(/no LoRaWAN overhead; whole synthetic set; seed 5 to 14;/);
+});
+
+// A caption lists the settings the core's table marks (`listedWhenChanged`, which the CLI's
+// `settings:` line reads too) and words the rest itself: every numeric setting of the form,
+// changed, must move it, or two different runs are captioned alike.
+test('every numeric setting of the form, changed from its default, changes the caption', () => {
+  // Worded only where they apply: with error-triggered sending, and on a plan without a duty cycle.
+  const elsewhere: Partial<Record<keyof typeof LIMITS, Partial<typeof DEFAULTS>>> = {
+    threshold: { sender: 'error' },
+    maxInterval: { sender: 'error' },
+    interval: { region: 'us915', sf: 9, bw: 125 },
+  };
+  const keys = (Object.keys(LIMITS) as (keyof typeof LIMITS)[]).filter((k) => OPTIONS.some((o) => o.key === k));
+  expect(keys.length).toBeGreaterThan(10);
+  for (const key of keys) {
+    const o = OPTIONS.find((x) => x.key === key)!;
+    // The distance moves by the slider's step (100 m), as the page can set it.
+    const step = key === 'distance' ? 100 : 1;
+    const other = o.values.find((v) => v !== o.default) ?? (o.default + step <= o.max ? o.default + step : (o.min + o.default) / 2);
+    const base = { ...DEFAULTS, ...elsewhere[key] };
+    expect(caption({ ...base, [key]: other }), `${key} ${other}`).not.toBe(caption(base));
+  }
 });
 
 test('a flight time reads in whole minutes where it is one, else in seconds', () => {

@@ -1154,7 +1154,13 @@ values: Array<number>,
 /**
  * One sentence: what it is and why these limits.
  */
-help: string, };
+help: string, 
+/**
+ * Whether a run's caption lists it with its value when it differs from its default (the
+ * CLI's `settings:` line, the page's download and results captions): the settings that no
+ * other part of a caption words, so that two runs differing only in it are not captioned alike.
+ */
+listedWhenChanged: boolean, };
 
 export type AirtimeParams = { 
 /**
@@ -1424,7 +1430,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": true,
     "values": [],
-    "help": "Spreading factor; with ADR, the one the drone starts at."
+    "help": "Spreading factor; with ADR, the one the drone starts at.",
+    "listedWhenChanged": false
   },
   {
     "key": "bw",
@@ -1440,7 +1447,8 @@ export const OPTIONS: NumberOption[] = [
       250.0,
       500.0
     ],
-    "help": "LoRa bandwidth."
+    "help": "LoRa bandwidth.",
+    "listedWhenChanged": false
   },
   {
     "key": "cr",
@@ -1452,7 +1460,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": true,
     "values": [],
-    "help": "Coding rate n of 4/(4+n)."
+    "help": "Coding rate n of 4/(4+n).",
+    "listedWhenChanged": true
   },
   {
     "key": "overhead",
@@ -1464,7 +1473,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": true,
     "values": [],
-    "help": "MAC overhead added to each payload: 13 for LoRaWAN, 0 as in the paper's Table II."
+    "help": "MAC overhead added to each payload: 13 for LoRaWAN, 0 as in the paper's Table II.",
+    "listedWhenChanged": false
   },
   {
     "key": "dutyCycle",
@@ -1476,7 +1486,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "Duty-cycle limit as a fraction: 0.01, EU868's default channels; 0.02, two 1 % sub-bands alternated (The Things Network's eight channels); 0.0001 is ten times below EU868's strictest sub-band."
+    "help": "Duty-cycle limit as a fraction: 0.01, EU868's default channels; 0.02, two 1 % sub-bands alternated (The Things Network's eight channels); 0.0001 is ten times below EU868's strictest sub-band.",
+    "listedWhenChanged": false
   },
   {
     "key": "txPower",
@@ -1488,7 +1499,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "Drone transmit power."
+    "help": "Drone transmit power.",
+    "listedWhenChanged": true
   },
   {
     "key": "distance",
@@ -1500,7 +1512,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "simulate: horizontal distance from the flight's first point to the gateway (placed east of it) when no gateway is given; swarm: every drone's starting distance from the centre."
+    "help": "simulate: horizontal distance from the flight's first point to the gateway (placed east of it) when no gateway is given; swarm: every drone's starting distance from the centre.",
+    "listedWhenChanged": false
   },
   {
     "key": "pathLossExponent",
@@ -1512,7 +1525,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "Exponent of the log-distance path loss: free space 2, obstructed paths up to 6."
+    "help": "Exponent of the log-distance path loss: free space 2, obstructed paths up to 6.",
+    "listedWhenChanged": true
   },
   {
     "key": "shadowing",
@@ -1524,7 +1538,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "Standard deviation of log-normal shadowing (0 turns it off)."
+    "help": "Standard deviation of log-normal shadowing (0 turns it off).",
+    "listedWhenChanged": true
   },
   {
     "key": "gatewayHeight",
@@ -1536,7 +1551,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "Antenna height of every gateway not given its own."
+    "help": "Antenna height of every gateway not given its own.",
+    "listedWhenChanged": true
   },
   {
     "key": "gateway",
@@ -1548,7 +1564,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "A gateway's east or north coordinate in the scenario's frame."
+    "help": "A gateway's east or north coordinate in the scenario's frame.",
+    "listedWhenChanged": false
   },
   {
     "key": "gateways",
@@ -1560,7 +1577,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": true,
     "values": [],
-    "help": "Number of gateways."
+    "help": "Number of gateways.",
+    "listedWhenChanged": false
   },
   {
     "key": "sensorRate",
@@ -1572,7 +1590,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "Drone sensor and filter rate."
+    "help": "Drone sensor and filter rate.",
+    "listedWhenChanged": true
   },
   {
     "key": "step",
@@ -1584,7 +1603,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "Station prediction step T."
+    "help": "Station prediction step T.",
+    "listedWhenChanged": true
   },
   {
     "key": "eta",
@@ -1596,7 +1616,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "3D-CTRA's tilt-rate decay per station step."
+    "help": "3D-CTRA's tilt-rate decay per station step.",
+    "listedWhenChanged": true
   },
   {
     "key": "q",
@@ -1608,7 +1629,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": true,
     "integer": false,
     "values": [],
-    "help": "Process noise q of Q = q I per second."
+    "help": "Process noise q of Q = q I per second.",
+    "listedWhenChanged": true
   },
   {
     "key": "planTolerance",
@@ -1620,7 +1642,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "Mission station: a packet farther than this from the plan hands over to bounded 3D-CTRA."
+    "help": "Mission station: a packet farther than this from the plan hands over to bounded 3D-CTRA.",
+    "listedWhenChanged": true
   },
   {
     "key": "threshold",
@@ -1632,7 +1655,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "Error-triggered sending: the drift between the mirrored station and the drone's own estimate that triggers a packet."
+    "help": "Error-triggered sending: the drift between the mirrored station and the drone's own estimate that triggers a packet.",
+    "listedWhenChanged": false
   },
   {
     "key": "maxInterval",
@@ -1644,7 +1668,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": true,
     "integer": false,
     "values": [],
-    "help": "Error-triggered sending: the longest silence (at least every drone's duty-cycle interval)."
+    "help": "Error-triggered sending: the longest silence (at least every drone's duty-cycle interval).",
+    "listedWhenChanged": false
   },
   {
     "key": "burst",
@@ -1656,7 +1681,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": true,
     "values": [],
-    "help": "Budget duty-cycle rule: the most packets' airtime the credit holds (1 is per-packet)."
+    "help": "Budget duty-cycle rule: the most packets' airtime the credit holds (1 is per-packet).",
+    "listedWhenChanged": false
   },
   {
     "key": "adrMargin",
@@ -1668,7 +1694,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "LoRaWAN ADR: the device margin."
+    "help": "LoRaWAN ADR: the device margin.",
+    "listedWhenChanged": false
   },
   {
     "key": "adrHistory",
@@ -1680,7 +1707,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": true,
     "values": [],
-    "help": "LoRaWAN ADR: the uplinks whose best SNR decides."
+    "help": "LoRaWAN ADR: the uplinks whose best SNR decides.",
+    "listedWhenChanged": false
   },
   {
     "key": "channels",
@@ -1697,7 +1725,8 @@ export const OPTIONS: NumberOption[] = [
       3.0,
       8.0
     ],
-    "help": "Uplink channels: 1, or the plan's default channels with a random one per packet (EU868 868.1/868.3/868.5 MHz, under one 1 % duty cycle; US915 and AU915 8 of a sub-band; AS923 2; IN865 3), the default."
+    "help": "Uplink channels: 1, or the plan's default channels with a random one per packet (EU868 868.1/868.3/868.5 MHz, under one 1 % duty cycle; US915 and AU915 8 of a sub-band; AS923 2; IN865 3), the default.",
+    "listedWhenChanged": false
   },
   {
     "key": "interval",
@@ -1709,7 +1738,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "Where the plan has no duty cycle (US915, AU915, IN865): seconds from one uplink's start to the next (default 1 s, Remote ID's rate); at least the time on air."
+    "help": "Where the plan has no duty cycle (US915, AU915, IN865): seconds from one uplink's start to the next (default 1 s, Remote ID's rate); at least the time on air.",
+    "listedWhenChanged": false
   },
   {
     "key": "jitter",
@@ -1721,7 +1751,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "The longest random delay a drone adds before each uplink (swarm default 1 s as LoRaMac-node's example; simulate default 0, the paper's timing)."
+    "help": "The longest random delay a drone adds before each uplink (swarm default 1 s as LoRaMac-node's example; simulate default 0, the paper's timing).",
+    "listedWhenChanged": true
   },
   {
     "key": "clockDrift",
@@ -1733,7 +1764,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "Each drone's clock runs up to this fast or slow, drawn per drone (swarm default 20 ppm, a common crystal; simulate default 0)."
+    "help": "Each drone's clock runs up to this fast or slow, drawn per drone (swarm default 20 ppm, a common crystal; simulate default 0).",
+    "listedWhenChanged": true
   },
   {
     "key": "drones",
@@ -1745,7 +1777,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": true,
     "values": [],
-    "help": "Number of drones sharing the gateways."
+    "help": "Number of drones sharing the gateways.",
+    "listedWhenChanged": false
   },
   {
     "key": "duration",
@@ -1757,7 +1790,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "Seconds of flight per drone when the drones fly chained synthetic flights."
+    "help": "Seconds of flight per drone when the drones fly chained synthetic flights.",
+    "listedWhenChanged": false
   },
   {
     "key": "seed",
@@ -1769,7 +1803,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": true,
     "values": [],
-    "help": "Seed of every random draw; the largest is 2^53 - 1, the largest integer a JavaScript number holds exactly."
+    "help": "Seed of every random draw; the largest is 2^53 - 1, the largest integer a JavaScript number holds exactly.",
+    "listedWhenChanged": false
   },
   {
     "key": "seeds",
@@ -1781,7 +1816,8 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": true,
     "values": [],
-    "help": "Repeat the simulation with this many seeds (seed, seed + 1, ...): the statistics pool every run and each gets a 95 % interval."
+    "help": "Repeat the simulation with this many seeds (seed, seed + 1, ...): the statistics pool every run and each gets a 95 % interval.",
+    "listedWhenChanged": false
   }
 ];
 

@@ -549,24 +549,10 @@ fn policy_text(s: &loratrack::Scenario) -> String {
 
 /// The settings the lines above do not word that differ from their defaults, named and in the
 /// units of the options table: `\nsettings: Tx power 10 dBm, Sensor rate 3 Hz, shadowing fixed
-/// in space`, or nothing; `worded` are those the caller's lines already give. Two runs that
-/// differ only in them must not print alike (the page's captions name them too, `format.ts
-/// advanced`).
+/// in space`, or nothing. The numeric ones are the table's `listed_when_changed` (the page's
+/// captions list the same, `format.ts advanced`) but `worded`, those the caller's lines already
+/// give. Two runs that differ only in them must not print alike.
 fn settings_line(s: &loratrack::Scenario, worded: &[&str]) -> String {
-    const NUMBERS: [&str; 12] = [
-        "cr",
-        "txPower",
-        "pathLossExponent",
-        "shadowing",
-        "gatewayHeight",
-        "sensorRate",
-        "step",
-        "eta",
-        "q",
-        "planTolerance",
-        "jitter",
-        "clockDrift",
-    ];
     let (now, default) = match (
         serde_json::to_value(s),
         serde_json::to_value(loratrack::Scenario::default()),
@@ -574,11 +560,12 @@ fn settings_line(s: &loratrack::Scenario, worded: &[&str]) -> String {
         (Ok(now), Ok(default)) => (now, default),
         _ => return String::new(),
     };
-    let mut named: Vec<String> = NUMBERS
+    let mut named: Vec<String> = opt::OPTIONS
         .iter()
-        .filter(|&&key| now[key] != default[key] && !worded.contains(&key))
-        .filter_map(|&key| Some((key, now[key].as_f64()?, opt::option(key)?)))
-        .map(|(key, v, o)| match key {
+        .filter(|o| o.listed_when_changed && !worded.contains(&o.key))
+        .filter(|o| now[o.key] != default[o.key])
+        .filter_map(|&o| Some((now[o.key].as_f64()?, o)))
+        .map(|(v, o)| match o.key {
             "cr" => format!("{} 4/{}", o.label, 4.0 + v),
             _ if o.unit.is_empty() => format!("{} {}", o.label, opt::as_given(v)),
             _ => format!("{} {} {}", o.label, opt::as_given(v), o.unit),
