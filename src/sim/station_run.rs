@@ -252,6 +252,7 @@ impl StationRun<'_> {
         let scoring = Scoring {
             step: s.station.step,
             series: with_series,
+            axes: true,
             calibrate: setup.prediction == Prediction::Bounded,
             uncertainty: true,
         };

@@ -444,34 +444,46 @@ fn a_drone_listening_to_its_channel_sends_as_before_alone_and_less_in_a_crowd() 
 fn swarms_sharing_their_drones_filter_runs_report_what_each_reports_alone() {
     use loratrack::api::swarm_sharing;
     use loratrack::SharedDroneRuns;
-    let shared = SharedDroneRuns::new(usize::MAX);
     let base = json!({"duration": 120.0, "model": "3d-ctra", "seed": 4});
     // Growing and shrinking, the network changed between them, and a chosen flight (each drone
     // flies it from its own bearing): every drone's estimates come from `shared` after the first.
+    // Their stations' errors too, where kept, from the packets delivered alike: the paper's and
+    // the bounded station forget the past at each packet, an adaptive heading noise and the IMM
+    // do not.
     let changes = [
         json!({"drones": 12}),
+        json!({"drones": 20, "channels": 1}),
         json!({"drones": 30, "sender": "error", "schedule": "slotted", "sfPlan": "fixed"}),
         json!({"drones": 7, "channels": 1, "sender": "error", "dutyCycleMode": "budget", "maxInterval": 150.0}),
+        json!({"drones": 12, "prediction": "bounded"}),
+        json!({"drones": 20, "prediction": "bounded", "channels": 1}),
+        json!({"drones": 20, "prediction": "bounded", "headingNoise": "adaptive"}),
+        json!({"drones": 12, "model": "imm", "prediction": "bounded"}),
         json!({"drones": 5, "synthetic": 3}),
         json!({"drones": 9, "synthetic": 3, "sfPlan": "fixed"}),
     ];
-    for change in changes {
-        let p = set(&set(&Scenario::default(), base.clone()), change.clone());
-        assert_eq!(
-            swarm_sharing(&p, &shared).unwrap(),
-            swarm(&p).unwrap(),
-            "{change}"
+    for shared in [
+        SharedDroneRuns::new(usize::MAX),
+        SharedDroneRuns::new(usize::MAX).with_station_errors(),
+    ] {
+        for change in &changes {
+            let p = set(&set(&Scenario::default(), base.clone()), change.clone());
+            assert_eq!(
+                swarm_sharing(&p, &shared).unwrap(),
+                swarm(&p).unwrap(),
+                "{change}"
+            );
+        }
+        // 30 chained drones (120 s each) and 9 on flight 3 were each run once and kept, at 10
+        // Hz and 72 bytes a step.
+        let flight3 = loratrack::synthetic_flight(3).unwrap().duration();
+        let steps = 30.0 * 120.0 * 10.0 + 9.0 * flight3 * 10.0;
+        assert!(
+            shared.bytes() as f64 >= steps * 72.0,
+            "{} bytes",
+            shared.bytes()
         );
     }
-    // 30 chained drones (120 s each) and 9 on flight 3 were each run once and kept, at 10 Hz and
-    // 72 bytes a step.
-    let flight3 = loratrack::synthetic_flight(3).unwrap().duration();
-    let steps = 30.0 * 120.0 * 10.0 + 9.0 * flight3 * 10.0;
-    assert!(
-        shared.bytes() as f64 >= steps * 72.0,
-        "{} bytes",
-        shared.bytes()
-    );
 }
 
 /// The progress a swarm reports (the page's bar, the CLI's line) moves while its drones fly,

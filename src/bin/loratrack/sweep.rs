@@ -345,26 +345,33 @@ fn sweep_senders(
 
 /// Drone counts of `sweep --swarm`.
 const SWARM_SIZES: [usize; 7] = [1, 12, 36, 72, 150, 300, 500];
+/// The schedules, SF plans and senders of `sweep --swarm`, in the table's order.
+const SCHEDULES: [Schedule; 2] = [Schedule::Aloha, Schedule::Slotted];
+const SF_PLANS: [SfPlan; 2] = [SfPlan::Fixed, SfPlan::Spread];
+const SENDERS: [SenderKind; 2] = [SenderKind::Periodic, SenderKind::Error];
 
 fn sweep_swarm(
     a: &SweepArgs,
     prediction: Prediction,
     count: &RunCount,
 ) -> Result<String, ApiError> {
-    // Every combination, in the table's order: schedule, channels, SF plan, sender, size.
+    // Every combination, flown family by family: a drone's station errs alike from the packets
+    // that swarms of any size, either channel count and (the paper's station) either sender
+    // deliver alike, and each drone keeps its station's errors for the last few swarms only
+    // (`SharedDroneRuns`).
     let mut cases = Vec::new();
-    for schedule in [Schedule::Aloha, Schedule::Slotted] {
-        for channels in [1u8, 3] {
-            for plan in [SfPlan::Fixed, SfPlan::Spread] {
-                for sender in [SenderKind::Periodic, SenderKind::Error] {
+    for schedule in SCHEDULES {
+        for plan in SF_PLANS {
+            for channels in [1u8, 3] {
+                for sender in SENDERS {
                     cases.extend(SWARM_SIZES.map(|n| (schedule, channels, plan, sender, n)));
                 }
             }
         }
     }
     let scenarios = cases
-        .into_iter()
-        .map(|(schedule, channels, plan, sender, drones)| {
+        .iter()
+        .map(|&(schedule, channels, plan, sender, drones)| {
             Scenario {
                 access: AccessSettings {
                     schedule,
@@ -410,11 +417,23 @@ fn sweep_swarm(
                 ..Scenario::default()
             }
         });
-    let rows = swarms(
-        scenarios.collect(),
-        &SharedDroneRuns::new(SHARED_RUNS_BYTES),
-        count,
-    )?;
+    let shared = SharedDroneRuns::new(SHARED_RUNS_BYTES).with_station_errors();
+    let flown = swarms(scenarios.collect(), &shared, count)?;
+    // Freed before the crowd comparisons below fly drones of their own.
+    drop(shared);
+    // Reported in the table's order: schedule, channels, SF plan, sender, size.
+    let at = |x: &dyn Fn(usize) -> bool| (0..2).position(x);
+    let mut rows: Vec<_> = cases.iter().zip(flown).collect();
+    rows.sort_by_key(|((schedule, channels, plan, sender, n), _)| {
+        (
+            at(&|k| SCHEDULES[k] == *schedule),
+            *channels,
+            at(&|k| SF_PLANS[k] == *plan),
+            at(&|k| SENDERS[k] == *sender),
+            *n,
+        )
+    });
+    let rows: Vec<SwarmReport> = rows.into_iter().map(|(_, r)| r).collect();
     if a.out.json {
         return Ok(json(&rows));
     }
@@ -426,9 +445,9 @@ fn sweep_swarm(
 }
 
 /// The most bytes of drone estimates a swarm sweep keeps to share between its swarms: its 112
-/// swarms fly the same 500 drones for 300 s (108 MB), its crowd comparison 72 drones at eight
-/// seeds (124 MB).
-const SHARED_RUNS_BYTES: usize = 256 << 20;
+/// swarms fly the same 500 drones for 300 s (108 MB of estimates, and up to 192 MB set aside for
+/// their stations' errors), its crowd comparison 72 drones at eight seeds (124 MB).
+const SHARED_RUNS_BYTES: usize = 320 << 20;
 
 /// Each swarm of `scenarios`, in order; independent, so natively they share the cores (each
 /// swarm alone leaves one idle for most of its loop). Drones flown alike share their filter

@@ -58,55 +58,61 @@ impl FlightChains {
         let mut served: Vec<f64> = Vec::new();
         let mut live: Option<Box<dyn Tracker>> = None;
         let (chains, stored) = (&mut self.chains, &mut self.stored);
-        let track = score_station(flight, transmissions, scoring, &mut |t, received, fresh| {
-            let chain = if fresh.is_some() {
-                let packet = received.packet;
-                let key = (
-                    packet.sent.to_bits(),
-                    packet.arrival.to_bits(),
-                    packet.interval.to_bits(),
-                    received.silence_trusted,
-                );
-                if let Some((served_key, chain)) = current.take() {
-                    chains.insert(served_key, chain);
-                }
-                k = 0;
-                served.clear();
-                live = None;
-                &mut current
-                    .insert((key, chains.remove(&key).unwrap_or_default()))
-                    .1
-            } else {
-                // Before any packet (which scoring never asks for) the chain of no packet.
-                &mut current
-                    .get_or_insert_with(|| {
-                        let key = (0, 0, 0, false);
-                        (key, chains.remove(&key).unwrap_or_default())
-                    })
-                    .1
-            };
-            let e = match chain.estimates.get(k) {
-                Some(e) => *e,
-                None => {
-                    let tracker = live.get_or_insert_with(|| {
-                        let mut tr = new_tracker();
-                        start_from(tr.as_mut(), received);
-                        for &s in &served {
-                            tr.predict_to(s);
-                        }
-                        tr
-                    });
-                    tracker.predict_to(t);
-                    let e = Estimate::of(tracker.as_ref());
-                    chain.estimates.push(e);
-                    *stored += 1;
-                    e
-                }
-            };
-            served.push(t);
-            k += 1;
-            e
-        });
+        let track = score_station(
+            flight,
+            transmissions,
+            scoring,
+            None,
+            &mut |t, received, fresh| {
+                let chain = if fresh.is_some() {
+                    let packet = received.packet;
+                    let key = (
+                        packet.sent.to_bits(),
+                        packet.arrival.to_bits(),
+                        packet.interval.to_bits(),
+                        received.silence_trusted,
+                    );
+                    if let Some((served_key, chain)) = current.take() {
+                        chains.insert(served_key, chain);
+                    }
+                    k = 0;
+                    served.clear();
+                    live = None;
+                    &mut current
+                        .insert((key, chains.remove(&key).unwrap_or_default()))
+                        .1
+                } else {
+                    // Before any packet (which scoring never asks for) the chain of no packet.
+                    &mut current
+                        .get_or_insert_with(|| {
+                            let key = (0, 0, 0, false);
+                            (key, chains.remove(&key).unwrap_or_default())
+                        })
+                        .1
+                };
+                let e = match chain.estimates.get(k) {
+                    Some(e) => *e,
+                    None => {
+                        let tracker = live.get_or_insert_with(|| {
+                            let mut tr = new_tracker();
+                            start_from(tr.as_mut(), received);
+                            for &s in &served {
+                                tr.predict_to(s);
+                            }
+                            tr
+                        });
+                        tracker.predict_to(t);
+                        let e = Estimate::of(tracker.as_ref());
+                        chain.estimates.push(e);
+                        *stored += 1;
+                        e
+                    }
+                };
+                served.push(t);
+                k += 1;
+                e
+            },
+        );
         if let Some((key, chain)) = current {
             chains.insert(key, chain);
         }

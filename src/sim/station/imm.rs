@@ -497,7 +497,7 @@ mod tests {
     ) -> (crate::sim::station::StationTrack, Imm) {
         use crate::sim::station::{score_station, start_from, Estimate};
         let mut imm = Imm::new(&ModelKind::ALL, setup);
-        let track = score_station(flight, tx, scoring, &mut |t, packet, upcoming| {
+        let track = score_station(flight, tx, scoring, None, &mut |t, packet, upcoming| {
             if upcoming.is_some() {
                 start_from(&mut imm, packet);
             }
@@ -529,6 +529,7 @@ mod tests {
         let scoring = Scoring {
             step: 0.1,
             series: true,
+            axes: true,
             calibrate: true,
             uncertainty: true,
         };
@@ -559,6 +560,7 @@ mod tests {
         let scoring = Scoring {
             step: 0.1,
             series: false,
+            axes: true,
             calibrate: false,
             uncertainty: true,
         };

@@ -11,6 +11,7 @@
 mod calibration;
 mod chains;
 mod drone_covariance;
+mod forecast_memo;
 mod heading_noise;
 mod imm;
 mod manoeuvre_evidence;
@@ -23,6 +24,7 @@ mod workload;
 pub use calibration::{Calibration, CALIBRATION_GAIN};
 pub(crate) use chains::{FlightChains, MAX_GRIDS};
 pub use drone_covariance::{DroneCovariances, NOMINAL_SPEED};
+pub use forecast_memo::{ForecastMemo, SpanKey};
 pub use heading_noise::{
     HeadingNoise, HedgeChoice, HEDGE_FORECAST_STEP, HEDGE_LEVELS, HEDGE_MEMORY, HEDGE_MIN_SCORED,
     HEDGE_MISS_CAP,
@@ -79,6 +81,13 @@ pub trait Tracker {
     /// be done ahead, on every core (an IMM runs its members through them side by side). The
     /// numbers are those of the work done in order.
     fn look_ahead(&mut self, _upcoming: &Upcoming) {}
+    /// Whether its estimates after a packet depend on that packet and the settings alone, not on
+    /// the packets before: runs that deliver the same packet then err alike from it, and may
+    /// share those errors ([`ForecastMemo`]). A single-model station with a fixed heading noise
+    /// does; an IMM (its probabilities) and an adaptive heading noise (its scores) carry the past.
+    fn forgets_the_past(&self) -> bool {
+        false
+    }
 }
 
 /// The received packets a station has still to apply during scoring, from the one being
@@ -194,7 +203,7 @@ pub struct StationTrack {
     pub times: Vec<f64>,
     /// Estimated position at each time, m (only with [`Scoring::series`]).
     pub estimate: Vec<[f64; 3]>,
-    /// |estimate − truth| along east, north and up, m.
+    /// |estimate − truth| along east, north and up, m (only with [`Scoring::axes`]).
     pub error_axes: [Vec<f64>; 3],
     /// 3D distance between estimate and truth, m.
     pub error3d: Vec<f64>,
@@ -243,6 +252,8 @@ pub struct Scoring {
     /// Whether to keep what a plot of the flight shows at every step: the time, the estimate
     /// and the longest semi-axis of the 95 % ellipsoid.
     pub series: bool,
+    /// Whether to keep the error along each axis ([`StationTrack::error_axes`]).
+    pub axes: bool,
     /// Whether the station calibrates its covariance against its forecasts of the packets
     /// ([`Calibration`]; a bounded station: the paper's is scored as published).
     pub calibrate: bool,
@@ -254,15 +265,21 @@ pub struct Scoring {
 }
 
 impl Scoring {
-    /// Only the errors, every `step` s: no series, no calibration, no uncertainty (a swarm keeps
-    /// each drone's errors alone).
+    /// Only the 3D errors, every `step` s: no series, no axes, no calibration, no uncertainty (a
+    /// swarm keeps each drone's errors alone).
     pub fn errors_only(step: f64) -> Self {
         Scoring {
             step,
             series: false,
+            axes: false,
             calibrate: false,
             uncertainty: false,
         }
+    }
+
+    /// Whether it keeps the 3D errors alone ([`Scoring::errors_only`]).
+    fn errors_alone(&self) -> bool {
+        !(self.series || self.axes || self.calibrate || self.uncertainty)
     }
 }
 
@@ -278,14 +295,31 @@ pub fn track_station(
     transmissions: &[Transmission],
     scoring: Scoring,
 ) -> StationTrack {
+    track_station_recalling(flight, tracker, transmissions, scoring, None)
+}
+
+/// [`track_station`], with a memo of the errors other runs of this station over this flight
+/// made from the packets they received: for a tracker that forgets the past at each packet
+/// ([`Tracker::forgets_the_past`]) scored for its errors only ([`Scoring::errors_only`]), each
+/// packet's errors are recalled from `memo` where it holds them and kept there otherwise. The
+/// track is the same, bit for bit; any other tracker or scoring runs as without a memo.
+pub fn track_station_recalling(
+    flight: &Trajectory,
+    tracker: &mut dyn Tracker,
+    transmissions: &[Transmission],
+    scoring: Scoring,
+    memo: Option<&dyn ForecastMemo>,
+) -> StationTrack {
     if !scoring.uncertainty {
         tracker.ignore_uncertainty();
     }
     tracker.prepare(transmissions);
+    let memo = memo.filter(|_| tracker.forgets_the_past() && scoring.errors_alone());
     score_station(
         flight,
         transmissions,
         scoring,
+        memo,
         &mut |t, packet, upcoming| {
             if let Some(upcoming) = upcoming {
                 tracker.look_ahead(upcoming);
@@ -329,11 +363,14 @@ pub(crate) fn start_from(tracker: &mut dyn Tracker, r: &Received) {
 
 /// The evaluation loop of [`track_station`], with the station's estimate at each grid time `t`
 /// from `estimate(t, newest packet, upcoming)`; `upcoming` is `Some` where the packet is newly
-/// applied, and holds it and the packets after it with the times each serves.
+/// applied, and holds it and the packets after it with the times each serves. A packet's errors
+/// found in `memo` are recalled instead (the station then skips that packet: each packet's first
+/// estimate starts from it), and those computed are kept there.
 pub(crate) fn score_station(
     flight: &Trajectory,
     transmissions: &[Transmission],
     scoring: Scoring,
+    memo: Option<&dyn ForecastMemo>,
     estimate: &mut dyn FnMut(f64, &Received, Option<&Upcoming>) -> Estimate,
 ) -> StationTrack {
     let step = scoring.step;
@@ -353,6 +390,12 @@ pub(crate) fn score_station(
     let mut scorer = Scorer::new(flight, grid, j.min(grid), scoring);
     for (s, span) in spans.iter().enumerate() {
         let packet = &received[span.packet];
+        let memo = memo.map(|m| (m, SpanKey::of(packet, span.first)));
+        if let Some(errors) = memo.as_ref().and_then(|(m, key)| m.recall(key, span.count)) {
+            scorer.out.error3d.extend_from_slice(&errors[..span.count]);
+            continue;
+        }
+        let from = scorer.out.error3d.len();
         for j in span.first..span.first + span.count {
             let t = t0 + j as f64 * step;
             let fresh = j == span.first;
@@ -364,6 +407,9 @@ pub(crate) fn score_station(
             });
             let e = estimate(t, packet, upcoming.as_ref());
             scorer.add(t, fresh.then_some(packet), e);
+        }
+        if let Some((m, key)) = memo {
+            m.keep(key, &scorer.out.error3d[from..]);
         }
     }
     scorer.out
@@ -377,6 +423,7 @@ struct Scorer<'f> {
     /// Where the last truth lookup found its time in the flight.
     hint: usize,
     series: bool,
+    axes: bool,
     uncertainty: bool,
 }
 
@@ -384,12 +431,14 @@ impl<'f> Scorer<'f> {
     /// For up to `grid` evaluation times of `flight`, the first `untracked` of which had no
     /// estimate.
     fn new(flight: &'f Trajectory, grid: usize, untracked: usize, scoring: Scoring) -> Self {
-        let (series, uncertainty) = (scoring.series, scoring.uncertainty);
+        let (series, axes, uncertainty) = (scoring.series, scoring.axes, scoring.uncertainty);
         Scorer {
             out: StationTrack {
                 times: Vec::with_capacity(if series { grid } else { 0 }),
                 estimate: Vec::with_capacity(if series { grid } else { 0 }),
-                error_axes: core::array::from_fn(|_| Vec::with_capacity(grid)),
+                error_axes: core::array::from_fn(|_| {
+                    Vec::with_capacity(if axes { grid } else { 0 })
+                }),
                 error3d: Vec::with_capacity(grid),
                 untracked,
                 ..StationTrack::default()
@@ -400,6 +449,7 @@ impl<'f> Scorer<'f> {
             flight,
             hint: 0,
             series,
+            axes,
             uncertainty,
         }
     }
@@ -418,8 +468,10 @@ impl<'f> Scorer<'f> {
         let truth = self.flight.position_at(t, &mut self.hint);
         let est = e.position;
         let d: [f64; 3] = core::array::from_fn(|k| est[k] - truth[k]);
-        for (axis, d) in out.error_axes.iter_mut().zip(d) {
-            axis.push(d.abs());
+        if self.axes {
+            for (axis, d) in out.error_axes.iter_mut().zip(d) {
+                axis.push(d.abs());
+            }
         }
         out.error3d
             .push((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
@@ -601,6 +653,7 @@ pub(crate) mod tests {
         }
         let full = Scoring {
             uncertainty: true,
+            axes: true,
             ..Scoring::errors_only(0.1)
         };
         for (model, setup) in bounded_stations() {
@@ -614,10 +667,131 @@ pub(crate) mod tests {
             };
             let (scored, errors_only) = (track(full), track(Scoring::errors_only(0.1)));
             assert_eq!(scored.error3d, errors_only.error3d, "{model:?}");
-            assert_eq!(scored.error_axes, errors_only.error_axes, "{model:?}");
+            assert!(
+                errors_only.error_axes.iter().all(Vec::is_empty),
+                "{model:?}"
+            );
             assert_eq!(errors_only.consistency, Consistency::default(), "{model:?}");
             assert!(scored.consistency.coverage95() > 0.0, "{model:?}");
         }
+    }
+
+    /// A memo that keeps every packet's errors and counts the evaluation times it gives back.
+    #[derive(Default)]
+    struct CountingMemo {
+        kept: std::cell::RefCell<std::collections::HashMap<SpanKey, Vec<f64>>>,
+        recalled: std::cell::Cell<usize>,
+    }
+
+    impl ForecastMemo for CountingMemo {
+        fn recall(&self, key: &SpanKey, count: usize) -> Option<std::sync::Arc<[f64]>> {
+            let kept = self.kept.borrow();
+            let errors = kept.get(key).filter(|e| e.len() >= count)?;
+            self.recalled.set(self.recalled.get() + count);
+            Some(errors.as_slice().into())
+        }
+
+        fn keep(&self, key: SpanKey, errors: &[f64]) {
+            let mut kept = self.kept.borrow_mut();
+            let entry = kept.entry(key).or_default();
+            if errors.len() > entry.len() {
+                *entry = errors.to_vec();
+            }
+        }
+    }
+
+    #[test]
+    fn a_station_that_forgets_the_past_recalls_the_errors_it_would_compute() {
+        let flight = crate::trajectory::synthetic_flight(2).unwrap();
+        let t0 = flight.t[0];
+        // Two runs of the same frames, delivered differently: most packets arrive in both, some
+        // in one only, so some of the second run's turns are the first's and some are longer.
+        let delivered = |pattern: &str| {
+            let mut tx = frames(pattern);
+            for t in &mut tx {
+                t.sent += t0;
+                t.arrival += t0;
+                let i = flight.t.partition_point(|&s| s < t.sent);
+                t.state = flight.state(i.min(flight.t.len() - 1));
+            }
+            tx
+        };
+        let runs = [
+            delivered("110111011111111100111101111011"),
+            delivered("110110011111101100111111111011"),
+        ];
+        let adaptive = StationSetup {
+            prediction: Prediction::Bounded,
+            bounds: Bounds {
+                heading_noise: HeadingNoise::Adaptive,
+                ..Bounds::default()
+            },
+            ..paper_setup()
+        };
+        let stations = bounded_stations()
+            .into_iter()
+            .chain([(StationModel::Single(ModelKind::Ctra3d), paper_setup())])
+            .chain([(StationModel::Single(ModelKind::Ctra3d), adaptive)]);
+        for (model, setup) in stations {
+            let memo = CountingMemo::default();
+            for tx in &runs {
+                let track = |memo: Option<&dyn ForecastMemo>| {
+                    let mut tracker = new_tracker(model, setup, None);
+                    let scoring = Scoring::errors_only(0.1);
+                    track_station_recalling(&flight, tracker.as_mut(), tx, scoring, memo)
+                };
+                assert_eq!(track(Some(&memo)), track(None), "{model:?} {setup:?}");
+            }
+            let forgets = new_tracker(model, setup, None).forgets_the_past();
+            assert_eq!(forgets, model != StationModel::Imm && setup != adaptive);
+            // Only a station that forgets the past recalls, and the second run met packets
+            // the first had delivered and served as long.
+            assert_eq!(memo.recalled.get() > 0, forgets, "{model:?} {setup:?}");
+        }
+    }
+
+    #[test]
+    fn what_estimate_inputs_leaves_out_moves_no_estimate() {
+        let flight = crate::trajectory::synthetic_flight(2).unwrap();
+        let mut tx = frames("1101110111111111001111");
+        for t in &mut tx {
+            t.sent += flight.t[0];
+            t.arrival += flight.t[0];
+            t.state = flight.state(flight.t.partition_point(|&s| s < t.sent));
+        }
+        let other = |setup: StationSetup| StationSetup {
+            interval: 7.5,
+            error_triggered: setup.prediction == Prediction::Paper,
+            bounds: match setup.prediction {
+                Prediction::Paper => Bounds {
+                    v_max: 3.0,
+                    tau_a: 0.5,
+                    ..Bounds::default()
+                },
+                Prediction::Bounded => setup.bounds,
+            },
+            ..setup
+        };
+        let bounded = StationSetup {
+            prediction: Prediction::Bounded,
+            ..paper_setup()
+        };
+        for setup in [paper_setup(), bounded] {
+            let changed = other(setup);
+            assert_ne!(changed, setup);
+            assert_eq!(changed.estimate_inputs(), setup.estimate_inputs());
+            let track = |setup| {
+                let mut tracker = new_tracker(StationModel::Single(ModelKind::Ctra3d), setup, None);
+                track_station(&flight, tracker.as_mut(), &tx, Scoring::errors_only(0.1))
+            };
+            assert_eq!(track(changed), track(setup), "{setup:?}");
+        }
+        // What a bounded station reads stays in.
+        let error_triggered = StationSetup {
+            error_triggered: true,
+            ..bounded
+        };
+        assert_ne!(error_triggered.estimate_inputs(), bounded.estimate_inputs());
     }
 
     #[test]

@@ -39,6 +39,27 @@ pub struct StationSetup {
     pub drone_covariance: Option<DroneCovariances>,
 }
 
+impl StationSetup {
+    /// The part of it a station's estimates read, the rest set to defaults: each packet brings
+    /// its own interval ([`Tracker::set_interval`]), and the paper's prediction reads neither the
+    /// bounds nor whether the drone sends on error. Setups with equal parts estimate alike from
+    /// the same packet (a swarm's stations share their errors by it: `ForecastMemo`).
+    pub fn estimate_inputs(&self) -> StationSetup {
+        let read = StationSetup {
+            interval: 0.0,
+            ..*self
+        };
+        match self.prediction {
+            Prediction::Paper => StationSetup {
+                bounds: Bounds::default(),
+                error_triggered: false,
+                ..read
+            },
+            Prediction::Bounded => read,
+        }
+    }
+}
+
 /// The station's UKF for one model: on each packet its state is replaced by the decoded state
 /// with covariance R + quantisation variance (step²/12 per field) — or, with
 /// [`StationSetup::drone_covariance`], the drone filter's settled covariance + quantisation —
@@ -297,6 +318,12 @@ impl<const N: usize, M: MotionModel<N> + Copy> Tracker for StationPredictor<N, M
 
     fn ignore_uncertainty(&mut self) {
         self.uncertainty_read = false;
+    }
+
+    fn forgets_the_past(&self) -> bool {
+        // A reset replaces the state and covariance and restarts the clocks; only an adaptive
+        // heading noise's scores carry over.
+        self.hedge.is_none()
     }
 
     fn position(&self) -> [f64; 3] {

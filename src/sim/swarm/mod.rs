@@ -15,6 +15,7 @@ mod shared_runs;
 pub use report::{DroneReport, LargestSwarm, SwarmEcho, SwarmReport};
 pub use sf_plan::SfLimit;
 pub use shared_runs::SharedDroneRuns;
+use shared_runs::SharedRun;
 
 use super::drone::{DroneFilter, Estimates, Sensing};
 use super::flier::{Aboard, Air, Flier};
@@ -26,7 +27,9 @@ use super::scenario::{SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::{self, aloha_collision_rate, Airtime, Schedule, Slot};
 use super::sender::LeanPayload;
 use super::simulator::load_flights;
-use super::station::{new_tracker, track_station, Scoring, StationModel, StationSetup};
+use super::station::{
+    new_tracker, track_station_recalling, ForecastMemo, Scoring, StationModel, StationSetup,
+};
 use super::streams::{DroneStreams, LAYOUT_STREAM};
 use super::{Caveats, LongRun, SimError, Transmission};
 use crate::lora::{time_on_air, AdrMode, LoraParams, Outcome};
@@ -283,23 +286,12 @@ impl<'a> Swarm<'a> {
     ) -> Result<Vec<Vec<Transmission>>, SimError> {
         let s = self.cfg.s();
         let model = self.model.sent_model();
-        let streams = |seat: &Seat| DroneStreams {
-            seed: s.run.seed,
-            stream: seat.stream,
-        };
-        let sensing: Vec<Sensing> = seats
-            .iter()
-            .map(|seat| self.cfg.sensing(streams(seat)))
-            .collect();
+        let sensing: Vec<Sensing> = seats.iter().map(|seat| self.sensing(seat)).collect();
         // Each drone's filter run where another swarm has made (or this one may keep) it.
         let shared: Vec<_> = seats
             .iter()
             .zip(&sensing)
-            .map(|(seat, sensing)| {
-                let flight = &self.plan.flights[seat.flight];
-                self.shared
-                    .and_then(|runs| runs.get(flight, model, sensing))
-            })
+            .map(|(seat, sensing)| self.shared_run(seat, sensing))
             .collect();
         let mut fliers = Vec::with_capacity(seats.len());
         for (i, seat) in seats.iter().enumerate() {
@@ -314,7 +306,7 @@ impl<'a> Swarm<'a> {
             ];
             let now = net.radios[i].current();
             let kit = &self.kits[i];
-            let streams = streams(seat);
+            let streams = sensing[i].streams;
             let estimates = match &shared[i] {
                 Some(run) => Estimates::Stored(&run.track),
                 None => Estimates::live(DroneFilter::new(flight, model, &sensing[i])),
@@ -387,21 +379,54 @@ impl<'a> Swarm<'a> {
     }
 
     /// Drone `i`'s station over its transmissions in every episode: its errors, m, and the
-    /// evaluation times before each episode's first packet.
+    /// evaluation times before each episode's first packet. Where the drone's filter run is
+    /// shared with other swarms, so are its station's errors from each packet they deliver
+    /// alike ([`SharedDroneRuns`]).
     fn track(&self, i: usize, sent: &[Vec<Vec<Transmission>>]) -> (Vec<f64>, usize) {
         let (mut e3, mut untracked) = (Vec::new(), 0);
+        let setup = self.kits[i].setup;
+        let step = self.cfg.s().station.step;
+        let station = self
+            .shared
+            .filter(|runs| runs.keeps_station_errors())
+            .map(|runs| {
+                runs.station(format!(
+                    "{:?} {:?} {step:?}",
+                    self.model,
+                    setup.estimate_inputs()
+                ))
+            });
         for (seats, out) in self.plan.episodes.iter().zip(sent) {
-            let flight = &self.plan.flights[seats[i].flight];
+            let seat = &seats[i];
+            let flight = &self.plan.flights[seat.flight];
+            let run = station.and_then(|_| self.shared_run(seat, &self.sensing(seat)));
+            let memo = run.as_ref().zip(station).map(|(r, id)| r.forecasts(id));
             // Only the error is kept: a station need not propagate a covariance its estimate
             // no longer depends on (an overdue bounded station, or one whose error-triggered
             // drone's silence it trusts).
-            let mut tracker = new_tracker(self.model, self.kits[i].setup, None);
-            let scoring = Scoring::errors_only(self.cfg.s().station.step);
-            let track = track_station(flight, tracker.as_mut(), &out[i], scoring);
+            let mut tracker = new_tracker(self.model, setup, None);
+            let scoring = Scoring::errors_only(step);
+            let memo = memo.as_ref().map(|m| m as &dyn ForecastMemo);
+            let track = track_station_recalling(flight, tracker.as_mut(), &out[i], scoring, memo);
             e3.extend(track.error3d);
             untracked += track.untracked;
         }
         (e3, untracked)
+    }
+
+    /// What drone `seat`'s sensors and filter run on.
+    fn sensing(&self, seat: &Seat) -> Sensing {
+        self.cfg.sensing(DroneStreams {
+            seed: self.cfg.s().run.seed,
+            stream: seat.stream,
+        })
+    }
+
+    /// Drone `seat`'s filter run, where another swarm has made it or this one may keep it.
+    fn shared_run(&self, seat: &Seat, sensing: &Sensing) -> Option<Arc<SharedRun>> {
+        let flight = &self.plan.flights[seat.flight];
+        self.shared
+            .and_then(|runs| runs.get(flight, self.model.sent_model(), sensing))
     }
 
     /// Drone `i`'s report from its transmissions `mine` and its station's errors.

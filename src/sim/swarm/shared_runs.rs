@@ -1,7 +1,9 @@
-//! The drones' own filter runs, computed once for every swarm that flies them alike.
+//! The drones' own filter runs, computed once for every swarm that flies them alike, and their
+//! stations' errors from each packet on, computed once for every swarm that delivers it.
 
 use crate::models::ModelKind;
 use crate::sim::drone::{run_drone, DroneTrack, Sensing};
+use crate::sim::station::{ForecastMemo, SpanKey};
 use crate::trajectory::Trajectory;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -9,6 +11,16 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 /// Bytes a stored estimate takes: nine `f64`s.
 const BYTES_PER_STEP: usize = 9 * 8;
+/// Bytes a run's stations' errors may take per sensor step in each of their two generations
+/// ([`Forecasts`], [`SharedDroneRuns::with_station_errors`]): eight errors' worth with their
+/// keys, so where the station's step T is the sensor period (the paper's 0.1 s at 10 Hz) a
+/// generation holds about six swarms' errors. `sweep --swarm` (two swarms at a time, each
+/// drone in 28 swarms a family): with four errors' worth 32.5 s, with eight 30.1 s, with twelve
+/// 29.7 s, with all kept 29.6 s, against 42.6 s without (2026-12-05).
+const FORECAST_BYTES_PER_STEP: usize = 8 * 8;
+/// Bytes one kept packet's errors take beyond the errors themselves: its key and its handle.
+const FORECAST_ENTRY_BYTES: usize =
+    core::mem::size_of::<(u32, SpanKey)>() + core::mem::size_of::<Arc<[f64]>>() + 16;
 
 /// Where a run is looked for: the drone's seed, stream and model, and its flight's samples, first
 /// and last time and first and last position (bits), which tell apart the flights of one drone
@@ -39,6 +51,87 @@ pub(super) struct SharedRun {
     sensing: Sensing,
     /// The estimate at every sensor step.
     pub track: DroneTrack,
+    /// Its stations' errors from the packets they received.
+    forecasts: Mutex<Forecasts>,
+}
+
+impl SharedRun {
+    /// The errors station `station` ([`SharedDroneRuns::station`]) made from each packet of this
+    /// drone it received, shared with every swarm that runs that station over this drone.
+    pub fn forecasts(&self, station: u32) -> RunForecasts<'_> {
+        RunForecasts { run: self, station }
+    }
+}
+
+/// A run's stations' errors from each packet on, in two generations: where the newer outgrows its
+/// bytes it becomes the older, and the older is dropped. So what the swarms flying this drone
+/// now deliver stays, what the swarms before them delivered goes, and a drone's errors take at
+/// most twice a generation's bytes.
+struct Forecasts {
+    newer: HashMap<(u32, SpanKey), Arc<[f64]>>,
+    older: HashMap<(u32, SpanKey), Arc<[f64]>>,
+    /// Bytes the newer generation holds.
+    bytes: usize,
+    /// Bytes a generation may hold.
+    room: usize,
+}
+
+impl Forecasts {
+    fn new(room: usize) -> Self {
+        Forecasts {
+            newer: HashMap::new(),
+            older: HashMap::new(),
+            bytes: 0,
+            room,
+        }
+    }
+
+    fn keep(&mut self, key: (u32, SpanKey), errors: Arc<[f64]>) {
+        let bytes = FORECAST_ENTRY_BYTES + 8 * errors.len();
+        if bytes > self.room {
+            return;
+        }
+        if self.bytes + bytes > self.room {
+            self.older = std::mem::take(&mut self.newer);
+            self.bytes = 0;
+        }
+        self.bytes += bytes;
+        if let Some(replaced) = self.newer.insert(key, errors) {
+            self.bytes -= FORECAST_ENTRY_BYTES + 8 * replaced.len();
+        }
+    }
+}
+
+/// One station's errors over one drone's run ([`SharedRun::forecasts`]).
+pub(super) struct RunForecasts<'a> {
+    run: &'a SharedRun,
+    station: u32,
+}
+
+impl ForecastMemo for RunForecasts<'_> {
+    fn recall(&self, key: &SpanKey, count: usize) -> Option<Arc<[f64]>> {
+        let key = (self.station, *key);
+        let mut f = self.run.forecasts.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(errors) = f.newer.get(&key) {
+            return (errors.len() >= count).then(|| Arc::clone(errors));
+        }
+        // Met again: it belongs to the swarms flying now.
+        let errors = f.older.remove(&key)?;
+        f.keep(key, Arc::clone(&errors));
+        (errors.len() >= count).then_some(errors)
+    }
+
+    fn keep(&self, key: SpanKey, errors: &[f64]) {
+        let key = (self.station, key);
+        let mut f = self.run.forecasts.lock().unwrap_or_else(|e| e.into_inner());
+        if f.newer
+            .get(&key)
+            .is_some_and(|kept| kept.len() >= errors.len())
+        {
+            return;
+        }
+        f.keep(key, errors.into());
+    }
 }
 
 /// Drone filter runs shared by swarms that differ only in what the network does.
@@ -52,11 +145,22 @@ pub(super) struct SharedRun {
 /// stream, model and flight, and used only when its flight and sensing are exactly the ones asked
 /// for (otherwise the swarm runs that drone's filter live, as without sharing).
 ///
+/// Each run also keeps its stations' errors from the packets they received: a station that
+/// forgets the past at each packet (the paper's, or a bounded one with a fixed heading noise)
+/// errs alike from a packet in every swarm that delivers it, and swarms that differ in size or
+/// channels deliver most packets alike (`sweep --swarm`: half its stations' evaluation times).
+/// Those errors are recalled instead of computed again ([`ForecastMemo`]); the reports are the
+/// same, bit for bit.
+///
 /// Stored estimates cost 72 bytes a sensor step (216 kB for a drone flying 300 s at 10 Hz), which
-/// a single swarm does not need: the live filter keeps only a window. So runs are shared only
-/// within `budget` bytes; past it, drones run live.
+/// a single swarm does not need: the live filter keeps only a window; its stations' errors up
+/// to 128 more. So runs are shared only within `budget` bytes; past it, drones run live.
 pub struct SharedDroneRuns {
     runs: Mutex<HashMap<RunKey, Arc<Slot>>>,
+    /// Each station's settings (model and setup, in words) and its number.
+    stations: Mutex<HashMap<String, u32>>,
+    /// Whether runs keep their stations' errors.
+    station_errors: bool,
     bytes: AtomicUsize,
     budget: usize,
 }
@@ -66,14 +170,39 @@ impl SharedDroneRuns {
     pub fn new(budget: usize) -> Self {
         SharedDroneRuns {
             runs: Mutex::new(HashMap::new()),
+            stations: Mutex::new(HashMap::new()),
+            station_errors: false,
             bytes: AtomicUsize::new(0),
             budget,
         }
     }
 
-    /// Bytes of estimates held.
+    /// The same, each run keeping its stations' errors too (within the budget, which sets
+    /// aside their room): for swarms that deliver most packets alike (the same drones in swarms
+    /// of other sizes or channel counts), not for swarms whose drones send otherwise.
+    pub fn with_station_errors(self) -> Self {
+        SharedDroneRuns {
+            station_errors: true,
+            ..self
+        }
+    }
+
+    /// Whether runs keep their stations' errors ([`SharedDroneRuns::with_station_errors`]).
+    pub(super) fn keeps_station_errors(&self) -> bool {
+        self.station_errors
+    }
+
+    /// Bytes held for estimates and set aside for their stations' errors.
     pub fn bytes(&self) -> usize {
         self.bytes.load(Ordering::Relaxed)
+    }
+
+    /// The number of the station `settings` describes (its model and setup, `Debug`-printed:
+    /// every number to the bit), the same for every swarm that runs it.
+    pub(super) fn station(&self, settings: String) -> u32 {
+        let mut stations = self.stations.lock().unwrap_or_else(|e| e.into_inner());
+        let next = stations.len() as u32;
+        *stations.entry(settings).or_insert(next)
     }
 
     /// The run of a drone flying `flight` with `model` and `sensing`: computed on first asking
@@ -100,7 +229,12 @@ impl SharedDroneRuns {
         let run = cell.get_or_init(|| {
             // As the sensors count them (`drone.rs`).
             let steps = (flight.duration() / (1.0 / sensing.rate) + 1e-9).floor() as usize + 1;
-            let bytes = steps * BYTES_PER_STEP;
+            let room = if self.station_errors {
+                steps * FORECAST_BYTES_PER_STEP
+            } else {
+                0
+            };
+            let bytes = steps * BYTES_PER_STEP + 2 * room;
             if self.bytes.fetch_add(bytes, Ordering::Relaxed) + bytes > self.budget {
                 self.bytes.fetch_sub(bytes, Ordering::Relaxed);
                 return None;
@@ -109,6 +243,7 @@ impl SharedDroneRuns {
                 flight: Arc::clone(flight),
                 sensing: *sensing,
                 track: run_drone(flight, model, sensing),
+                forecasts: Mutex::new(Forecasts::new(room)),
             }))
         });
         run.as_ref()
@@ -179,6 +314,73 @@ mod tests {
                 }
             )
             .is_some());
+    }
+
+    #[test]
+    fn a_runs_station_errors_keep_the_latest_generations_within_their_room() {
+        use crate::sim::station::{Received, SpanKey};
+        let flight = Arc::new(synthetic_flight(1).unwrap());
+        let runs = SharedDroneRuns::new(usize::MAX).with_station_errors();
+        let run = runs.get(&flight, ModelKind::Dr, &sensing(0)).unwrap();
+        let room = run.forecasts.lock().unwrap().room;
+        let steps = run.track.states.len();
+        assert_eq!(room, steps * FORECAST_BYTES_PER_STEP);
+        assert_eq!(runs.bytes(), steps * (BYTES_PER_STEP + 2 * room / steps));
+        let entry = |n: usize| FORECAST_ENTRY_BYTES + 8 * n;
+        // Errors of `n` evaluation times from the packet sent at `sent` s.
+        let packet = crate::sim::station::tests::frames("1").remove(0);
+        let key = |sent: f64| {
+            let p = crate::sim::Transmission {
+                sent,
+                ..packet.clone()
+            };
+            SpanKey::of(
+                &Received {
+                    packet: &p,
+                    silence_trusted: true,
+                },
+                0,
+            )
+        };
+        let (paper, bounded) = (runs.station("paper".into()), runs.station("bounded".into()));
+        assert_eq!(
+            runs.station("paper".into()),
+            paper,
+            "a station keeps its number"
+        );
+        let memo = run.forecasts(paper);
+        // Errors of 100 times each, enough for two and a half generations: the first two go to
+        // the older generation as the newer fills, and the first is dropped when it fills again.
+        let each = (room / 2) / entry(100);
+        for k in 0..5 * each {
+            memo.keep(key(k as f64), &vec![k as f64; 100]);
+        }
+        let held = |k: usize| memo.recall(&key(k as f64), 100).is_some();
+        assert!(!held(0), "the oldest went");
+        assert!(held(5 * each - 1), "the newest stayed");
+        // A recalled error is the one kept, and at most as many times as were kept are recalled.
+        assert_eq!(
+            &*memo.recall(&key((5 * each - 1) as f64), 100).unwrap(),
+            &vec![(5 * each - 1) as f64; 100][..]
+        );
+        assert!(memo.recall(&key((5 * each - 1) as f64), 101).is_none());
+        // Another station's errors from the same packet are its own.
+        assert!(run
+            .forecasts(bounded)
+            .recall(&key((5 * each - 1) as f64), 1)
+            .is_none());
+        // A longer run of errors replaces a shorter; one larger than the room is not kept.
+        memo.keep(key(-1.0), &[1.0; 10]);
+        memo.keep(key(-1.0), &[2.0; 20]);
+        assert_eq!(memo.recall(&key(-1.0), 15).unwrap().len(), 20);
+        memo.keep(key(-2.0), &vec![0.0; room / 8]);
+        assert!(memo.recall(&key(-2.0), 1).is_none());
+        let f = run.forecasts.lock().unwrap();
+        let bytes = |m: &HashMap<(u32, SpanKey), Arc<[f64]>>| {
+            m.values().map(|e| entry(e.len())).sum::<usize>()
+        };
+        assert!(bytes(&f.newer) <= room && bytes(&f.older) <= room);
+        assert_eq!(bytes(&f.newer), f.bytes);
     }
 
     #[test]
