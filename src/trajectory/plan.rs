@@ -56,9 +56,8 @@ impl FlightPlan {
         }
         if speeds.len() + 1 != points.len() && !points.is_empty() {
             return Err(PlanError::Invalid(format!(
-                "{} waypoints need {} leg speeds, got {}",
+                "a plan has one leg speed fewer than its waypoints (waypoints: {}, leg speeds: {})",
                 points.len(),
-                points.len() - 1,
                 speeds.len()
             )));
         }
@@ -319,6 +318,12 @@ mod tests {
         );
         assert!(FlightPlan::new(vec![[0.0; 3], [f64::NAN, 0.0, 0.0]], vec![None]).is_err());
         assert!(FlightPlan::new(vec![[0.0; 3], [1.0, 0.0, 0.0]], vec![Some(0.0)]).is_err());
+        // A leg speed for each leg, whatever the counts (no "1 waypoints need 0 leg speeds").
+        let Err(PlanError::Invalid(why)) = FlightPlan::new(vec![[0.0; 3]], vec![None]) else {
+            panic!("one waypoint with a leg speed was accepted");
+        };
+        assert!(why.contains("waypoints: 1, leg speeds: 1"), "{why}");
+        assert!(!why.contains("1 waypoints"), "{why}");
     }
 
     #[test]

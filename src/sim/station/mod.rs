@@ -6,7 +6,9 @@
 //! * [`Imm`]: an Interacting Multiple Model mixture of the three.
 //! * [`MissionStation`]: flies the drone's plan between packets, a bounded 3D-CTRA off it.
 //!
-//! All implement [`Tracker`], which is also what an error-triggered drone mirrors.
+//! All implement [`Tracker`], which is also what an error-triggered drone mirrors. A station
+//! that forgets the past at each packet errs alike from it in every run that delivers it, so
+//! runs of a family may share those errors ([`ForecastMemo`], [`track_station_recalling`]).
 
 mod calibration;
 mod chains;
