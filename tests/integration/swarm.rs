@@ -695,3 +695,33 @@ fn the_gateway_line_counts_the_downlinks_dropped_and_those_held_back() {
         );
     }
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(12))]
+
+    /// Swarms of a family (the same drones in swarms of other sizes and channel counts) share
+    /// their drones' runs and their stations' errors from the packets they deliver alike: each
+    /// still reports what it reports alone, bit for bit, whatever the seed, station and link.
+    #[test]
+    fn a_family_sharing_its_station_errors_reports_what_each_swarm_reports_alone(
+        seed in 1u64..1000,
+        prediction in proptest::sample::select(vec!["paper", "bounded"]),
+        model in proptest::sample::select(vec!["dr", "ctra-plus", "3d-ctra"]),
+        sender in proptest::sample::select(vec!["periodic", "error"]),
+        distance in 500.0f64..4000.0,
+        sizes in proptest::collection::vec((1usize..10, proptest::sample::select(vec![1u8, 3])), 2..4),
+    ) {
+        use loratrack::api::swarm_sharing;
+        use loratrack::SharedDroneRuns;
+        let shared = SharedDroneRuns::new(usize::MAX).with_station_errors();
+        let base = json!({"duration": 60.0, "seed": seed, "prediction": prediction, "model": model,
+            "sender": sender, "distance": distance, "sfPlan": "fixed", "bw": 125});
+        for (drones, channels) in sizes {
+            let p = set(&set(&Scenario::default(), base.clone()), json!({"drones": drones, "channels": channels}));
+            // Compared as JSON: a drone that received nothing has NaN statistics (null in
+            // JSON), which equal nothing, not even themselves.
+            let json = |r: SwarmReport| serde_json::to_string(&r).unwrap();
+            proptest::prop_assert_eq!(json(swarm_sharing(&p, &shared).unwrap()), json(swarm(&p).unwrap()));
+        }
+    }
+}
