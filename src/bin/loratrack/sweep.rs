@@ -422,14 +422,16 @@ fn sweep_swarm(
     // Freed before the crowd comparisons below fly drones of their own.
     drop(shared);
     // Reported in the table's order: schedule, channels, SF plan, sender, size.
-    let at = |x: &dyn Fn(usize) -> bool| (0..2).position(x);
+    fn place<T: PartialEq>(all: &[T], x: &T) -> Option<usize> {
+        all.iter().position(|a| a == x)
+    }
     let mut rows: Vec<_> = cases.iter().zip(flown).collect();
     rows.sort_by_key(|((schedule, channels, plan, sender, n), _)| {
         (
-            at(&|k| SCHEDULES[k] == *schedule),
+            place(&SCHEDULES, schedule),
             *channels,
-            at(&|k| SF_PLANS[k] == *plan),
-            at(&|k| SENDERS[k] == *sender),
+            place(&SF_PLANS, plan),
+            place(&SENDERS, sender),
             *n,
         )
     });
