@@ -160,20 +160,22 @@ pub fn run_swarm_sharing(
     swarm.shared = shared;
     let (episodes, n) = (swarm.plan.episodes.len(), swarm.kits.len());
     let total = 2 * episodes * n;
-    // Per episode, per drone: its transmissions.
+    // Per episode, per drone: its transmissions, and its filter run where shared.
     let mut sent: Vec<Vec<Vec<Transmission>>> = Vec::with_capacity(episodes);
+    let mut runs: Vec<Vec<Option<Arc<SharedRun>>>> = Vec::with_capacity(episodes);
     // Listen-before-talk: deferrals, and collisions avoided.
     let mut lbt = (0, 0);
     for seats in &swarm.plan.episodes {
         let before = sent.len() * n;
         let mut clock = |share: f64| progress(before + (share * n as f64) as usize, total);
-        sent.push(swarm.fly(&mut net, seats, &mut lbt, &mut clock)?);
+        runs.push(swarm.shared_runs(seats));
+        sent.push(swarm.fly(&mut net, seats, &runs[sent.len()], &mut lbt, &mut clock)?);
         if !progress(sent.len() * n, total) {
             return Err(SimError::Stopped);
         }
     }
     let scored = swarm
-        .score(&sent, &mut |drones| {
+        .score(&sent, &runs, &mut |drones| {
             progress(episodes * n + drones * episodes, total)
         })
         .ok_or(SimError::Stopped)?;
@@ -274,25 +276,21 @@ impl<'a> Swarm<'a> {
         Ok((swarm, Network::of(cfg, 0.0, radios)))
     }
 
-    /// One episode: every drone's filter, sender and links through the event loop, calling
+    /// One episode: every drone's filter (read from `shared`, its run where another swarm made
+    /// it or this one keeps it), sender and links through the event loop, calling
     /// `progress(share)` as its clock passes each stretch of its time span ([`run_episode`]);
     /// [`SimError::Stopped`] where it says stop.
     fn fly(
         &self,
         net: &mut Network,
         seats: &[Seat],
+        shared: &[Option<Arc<SharedRun>>],
         lbt: &mut (usize, usize),
         progress: &mut dyn FnMut(f64) -> bool,
     ) -> Result<Vec<Vec<Transmission>>, SimError> {
         let s = self.cfg.s();
         let model = self.model.sent_model();
         let sensing: Vec<Sensing> = seats.iter().map(|seat| self.sensing(seat)).collect();
-        // Each drone's filter run where another swarm has made (or this one may keep) it.
-        let shared: Vec<_> = seats
-            .iter()
-            .zip(&sensing)
-            .map(|(seat, sensing)| self.shared_run(seat, sensing))
-            .collect();
         let mut fliers = Vec::with_capacity(seats.len());
         for (i, seat) in seats.iter().enumerate() {
             let flight: &Trajectory = &self.plan.flights[seat.flight];
@@ -348,6 +346,7 @@ impl<'a> Swarm<'a> {
     fn score<'s>(
         &self,
         sent: &'s [Vec<Vec<Transmission>>],
+        runs: &[Vec<Option<Arc<SharedRun>>>],
         progress: &mut dyn FnMut(usize) -> bool,
     ) -> Option<Scored<'s>> {
         let n = self.kits.len();
@@ -358,7 +357,7 @@ impl<'a> Swarm<'a> {
             tx: Vec::new(),
         };
         for chunk in (0..n.div_ceil(CHUNK)).map(|c| c * CHUNK..((c + 1) * CHUNK).min(n)) {
-            let tracked = par_map(chunk.clone(), |i| self.track(i, sent));
+            let tracked = par_map(chunk.clone(), |i| self.track(i, sent, runs));
             for (i, (mut e3, untracked)) in chunk.zip(tracked) {
                 let mine: Vec<&Transmission> = sent.iter().flat_map(|ep| ep[i].iter()).collect();
                 scored.errors.extend_from_slice(&e3);
@@ -382,7 +381,12 @@ impl<'a> Swarm<'a> {
     /// evaluation times before each episode's first packet. Where the drone's filter run is
     /// shared with other swarms, so are its station's errors from each packet they deliver
     /// alike ([`SharedDroneRuns`]).
-    fn track(&self, i: usize, sent: &[Vec<Vec<Transmission>>]) -> (Vec<f64>, usize) {
+    fn track(
+        &self,
+        i: usize,
+        sent: &[Vec<Vec<Transmission>>],
+        runs: &[Vec<Option<Arc<SharedRun>>>],
+    ) -> (Vec<f64>, usize) {
         let (mut e3, mut untracked) = (Vec::new(), 0);
         let setup = self.kits[i].setup;
         let step = self.cfg.s().station.step;
@@ -396,11 +400,9 @@ impl<'a> Swarm<'a> {
                     setup.estimate_inputs()
                 ))
             });
-        for (seats, out) in self.plan.episodes.iter().zip(sent) {
-            let seat = &seats[i];
-            let flight = &self.plan.flights[seat.flight];
-            let run = station.and_then(|_| self.shared_run(seat, &self.sensing(seat)));
-            let memo = run.as_ref().zip(station).map(|(r, id)| r.forecasts(id));
+        for ((seats, out), runs) in self.plan.episodes.iter().zip(sent).zip(runs) {
+            let flight = &self.plan.flights[seats[i].flight];
+            let memo = runs[i].as_ref().zip(station).map(|(r, id)| r.forecasts(id));
             // Only the error is kept: a station need not propagate a covariance its estimate
             // no longer depends on (an overdue bounded station, or one whose error-triggered
             // drone's silence it trusts).
@@ -422,11 +424,18 @@ impl<'a> Swarm<'a> {
         })
     }
 
-    /// Drone `seat`'s filter run, where another swarm has made it or this one may keep it.
-    fn shared_run(&self, seat: &Seat, sensing: &Sensing) -> Option<Arc<SharedRun>> {
-        let flight = &self.plan.flights[seat.flight];
-        self.shared
-            .and_then(|runs| runs.get(flight, self.model.sent_model(), sensing))
+    /// Each drone's filter run in an episode (`seats`), where another swarm has made it or this
+    /// one may keep it: the loop reads its estimates, the station its kept errors.
+    fn shared_runs(&self, seats: &[Seat]) -> Vec<Option<Arc<SharedRun>>> {
+        let model = self.model.sent_model();
+        seats
+            .iter()
+            .map(|seat| {
+                let flight = &self.plan.flights[seat.flight];
+                self.shared
+                    .and_then(|runs| runs.get(flight, model, &self.sensing(seat)))
+            })
+            .collect()
     }
 
     /// Drone `i`'s report from its transmissions `mine` and its station's errors.
