@@ -1,6 +1,6 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
 import { MODEL_LABELS, OPTIONS, PAYLOAD_BYTES, type GatewayReport, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
-import { DEFAULTS, isNumericKey, LIMITS, plan, sendingLimit, type Settings } from './state';
+import { DEFAULTS, isNumericKey, LIMITS, plan, sendingLimit, type NumericKey, type Settings } from './state';
 import { store } from './store';
 
 /** A statistic with `digits` decimals, or a dash where there is none (an empty sample). */
@@ -55,18 +55,17 @@ const ADVANCED = OPTIONS.filter((o) => o.listedWhenChanged)
   .filter(isNumericKey);
 
 /** The form's advanced settings changed from their defaults, in the core table's words:
- * ", shadowing sigma 8 dB". */
-function advanced(s: Settings): string {
-  const named = ADVANCED.filter((k) => s[k] !== DEFAULTS[k])
-    .map((k) => {
-      if (k === 'cr') return `, coding rate 4/${4 + s.cr}`;
-      const { label, unit } = LIMITS[k];
-      // Lower case within the sentence, but an abbreviation keeps its capital ("Tx power").
-      const named = label.startsWith('Tx ') ? label : `${label.charAt(0).toLowerCase()}${label.slice(1)}`;
-      return `, ${named} ${s[k]}${unit ? ` ${unit}` : ''}`;
-    })
-    .join('');
-  return `${named}${s.shadowingModel === 'field' ? ', shadowing fixed in space' : ''}`;
+ * `['shadowing sigma 8 dB']`. Reads the page's settings or a run's echoed config alike, so that a
+ * table names what its numbers rest on, not what the form says now. */
+export function advancedChanged(s: Partial<Record<NumericKey, number>> & Pick<Settings, 'shadowingModel'>): string[] {
+  const named = ADVANCED.filter((k) => s[k] !== undefined && s[k] !== DEFAULTS[k]).map((k) => {
+    if (k === 'cr') return `coding rate 4/${4 + (s.cr ?? DEFAULTS.cr)}`;
+    const { label, unit } = LIMITS[k];
+    // Lower case within the sentence, but an abbreviation keeps its capital ("Tx power").
+    const named = label.startsWith('Tx ') ? label : `${label.charAt(0).toLowerCase()}${label.slice(1)}`;
+    return `${named} ${s[k]}${unit ? ` ${unit}` : ''}`;
+  });
+  return s.shadowingModel === 'field' ? [...named, 'shadowing fixed in space'] : named;
 }
 
 /** Where the gateways stand: the default gateway's distance, or the sites given (the distance
@@ -117,7 +116,7 @@ export function planLimit(s: Pick<Settings, 'region' | 'access' | 'fairUse' | 'd
  * changed from its default. */
 export function describe(s: Settings): string {
   const limit = planLimit(s);
-  return `SF${s.sf}, ${s.bw} kHz${limit ? `, ${limit}` : ''}, ${link(s)}, ${prediction(s)}, ${sending(s)}${s.adr === 'off' ? '' : `, ${adrName(s.adr)}`}${advanced(s)}`;
+  return `SF${s.sf}, ${s.bw} kHz${limit ? `, ${limit}` : ''}, ${link(s)}, ${prediction(s)}, ${sending(s)}${s.adr === 'off' ? '' : `, ${adrName(s.adr)}`}${advancedChanged(s).map((a) => `, ${a}`).join('')}`;
 }
 
 /** One line for a download's caption: the settings, flight, seed and version behind a chart. */

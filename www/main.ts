@@ -1066,7 +1066,8 @@ function downloadResultsPicture(button: HTMLButtonElement): void {
 function downloadAirtimePicture(button: HTMLButtonElement): void {
   const table = document.querySelector<HTMLTableElement>('#airtime-table table');
   if (!table) return;
-  const what = table.caption?.textContent?.trim() ?? '';
+  // The caption's first part: its second (overhead, coding rate) is among the settings named after it.
+  const what = table.caption?.querySelector('.what')?.textContent?.trim() ?? '';
   const slide = { title: 'Time on air', caption: `${what} ${caption(airtimeDrawn?.settings ?? store.settings)}.` };
   saveSlide(button, tableSvg(table), 'loratrack-time-on-air', slide);
 }

@@ -3,7 +3,7 @@
 // the notes under the table. Reads the page's state from the store.
 import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
-import { adrFrom, adrName, caption, counted, downlinkCounts, downlinksWanted, fmt, listed, names, percent, planLimit, prediction, sending, sendsAsPublished, trackedPercent } from './format';
+import { adrFrom, adrName, advancedChanged, caption, counted, downlinkCounts, downlinksWanted, fmt, listed, names, percent, planLimit, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan, sendingLimit } from './state';
 import { store } from './store';
 
@@ -23,7 +23,7 @@ export function renderTable(r: SimReport): void {
   // it (fitTable).
   shown = {
     what: `3D tracking error (m) at the station, every ${r.config.step ?? 0.1} s after the first packet, over ${r.config.flights} flight${r.config.flights === 1 ? '' : 's'} × ${r.config.seeds} seed${r.config.seeds === 1 ? '' : 's'}`,
-    setup: `overhead ${r.config.overhead} B; ${limit ? `${limit}; ` : ''}${prediction(r.config)}${sendsAsPublished(r.config) ? '' : `; ${sending(r.config)}`}${adrFrom(r.config)}`,
+    setup: `overhead ${r.config.overhead} B; ${limit ? `${limit}; ` : ''}${prediction(r.config)}${sendsAsPublished(r.config) ? '' : `; ${sending(r.config)}`}${adrFrom(r.config)}${advancedSetup(r.config)}`,
     packetsHead: `<th scope="col" title="Share of packets received">delivery</th><th scope="col" title="Packets the gateway received out of those sent, over all flights">received / sent</th>`,
     framesHead: `<th scope="col" title="${intervalRule(r.config)}">interval</th><th scope="col" title="How long one packet occupies the channel (Semtech's formula)">time on air</th><th scope="col" title="Bytes of state in each packet (before the LoRaWAN overhead)">payload</th><th scope="col" title="The drone radio's charge per uplink with its receive windows (Semtech SX1276 currents), mC; the tooltip gives mAh per hour">mC / uplink</th>`,
     rows: r.results.map((m) => {
@@ -52,6 +52,14 @@ export function renderTable(r: SimReport): void {
   $('#network-note').textContent = networkShown ? networkNote(first, r.results.length > 1) : '';
 
   renderRateUse(r);
+}
+
+/** The advanced settings the run changed from their defaults, as the caption's last clause
+ * (`; Tx power 10 dBm, shadowing sigma 6 dB`): where the form sits under the results (1024×768,
+ * a phone) the caption is the one place beside the numbers that says what they rest on. */
+function advancedSetup(config: RunConfig): string {
+  const changed = advancedChanged(config);
+  return changed.length ? `; ${changed.join(', ')}` : '';
 }
 
 /** The results on show, as the table's pieces: laid out as one table, two or three by `fitTable`. */

@@ -180,7 +180,7 @@ export const LIMITS: Record<NumericKey, Limit> = {
 /** What a gateway's coordinates and height accept (the core's limits). */
 export const GATEWAY_LIMITS = { coordinate: limit('gateway', 'Gateway coordinate'), height: limit('gatewayHeight', 'Gateway height'), count: limit('gateways', 'Gateways') };
 
-type NumericKey = 'sf' | 'bw' | 'distance' | 'threshold' | 'maxInterval' | 'interval' | 'dutyCycle' | 'flightNumber' | 'cr' | 'txPower' | 'pathLossExponent' | 'shadowing' | 'sensorRate' | 'step' | 'eta' | 'seed' | 'seeds';
+export type NumericKey = 'sf' | 'bw' | 'distance' | 'threshold' | 'maxInterval' | 'interval' | 'dutyCycle' | 'flightNumber' | 'cr' | 'txPower' | 'pathLossExponent' | 'shadowing' | 'sensorRate' | 'step' | 'eta' | 'seed' | 'seeds';
 const NUMERIC = Object.keys(LIMITS) as NumericKey[];
 
 /** Why `value` is not acceptable for `key`, in the words of the form; null when it is. */

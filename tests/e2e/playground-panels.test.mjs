@@ -445,6 +445,33 @@ test('on a phone every slide keeps its title, legend and text within the picture
   assert.deepEqual(problems, []);
 });
 
+test('at 1024x768, with the form under the results, the tables name the advanced settings their numbers rest on, in the CLI\'s words', async () => {
+  const { page, problems } = await open('?txPower=10&shadowing=6&cr=2', { width: 1024, height: 768 });
+  await idle(page);
+  const resultsCaption = () => page.locator('#results-table caption').first().textContent();
+  const airtimeCaption = () => page.locator('.airtime-table caption').textContent();
+  // The caption's last clause lists what the CLI's `settings:` line lists for the same run.
+  const cli = nativeText(['simulate', '--synthetic', '1', '--tx-power', '10', '--shadowing', '6', '--cr', '2']).match(/^settings: (.*)$/m);
+  assert.ok(cli, 'the CLI names the changed settings');
+  assert.equal((await resultsCaption()).split('; ').at(-1).toLowerCase(), cli[1].toLowerCase());
+  assert.match(await airtimeCaption(), /: time on air · .*\. Each payload plus 13 B of LoRaWAN overhead, coding rate 4\/6\.$/);
+  // Tx power back at its default: once the numbers are those of the form, the caption drops it.
+  const before = await tableHtml(page);
+  await page.locator('#advanced summary').click();
+  await page.getByLabel('Tx power (dBm)').fill('14');
+  await waitForResults(page, before);
+  await until(page, () => !document.querySelector('[data-panel="results"].stale'));
+  assert.match(await resultsCaption(), /; paper prediction; coding rate 4\/6, shadowing sigma 6 dB$/);
+  // The paper's raw LoRa: the time-on-air table says its bytes are the payload's alone.
+  await page.getByLabel(/LoRaWAN overhead \(13 B\)/).uncheck();
+  await until(page, () => /no LoRaWAN overhead/.test(document.querySelector('.airtime-table caption')?.textContent ?? ''));
+  assert.match(await airtimeCaption(), /Each payload alone \(no LoRaWAN overhead, as the paper's Table II\), coding rate 4\/6\.$/);
+  await idle(page);
+  assert.match(await resultsCaption(), /; overhead 0 B; paper prediction; coding rate 4\/6, shadowing sigma 6 dB$/);
+  assert.deepEqual(await axe(page), []);
+  assert.deepEqual(problems, []);
+});
+
 test('gateways are added, moved and removed in the form; each is reported, kept in the link, and the numbers equal the CLI', async () => {
   const { page, problems } = await open('?distance=5000&model=3d-ctra');
   const alone = number(await cell(page, '3d-ctra', 'delivery'));

@@ -863,6 +863,9 @@ test('every chart and both tables download ready for a slide: title, legend, cap
   const airSvg = (await save(page.getByRole('button', { name: 'Download the time on air table as SVG' }))).toString('utf8');
   assert.match(airSvg, />Time on air</);
   assert.match(airSvg.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' '), /EU868 at a 1 % duty cycle: time on air · shortest interval.*SF7, 250 kHz.*13 B LoRaWAN overhead.*loratrack \d+\.\d+\.\d+/, 'time on air: captioned');
+  // The page's caption names the overhead and coding rate beside the table; the slide's caption names
+  // them with every other setting, so once.
+  assert.equal(airSvg.split('overhead').length - 1, 1, 'time on air: the slide names the overhead once');
   const shown = await page.locator('.airtime-table tbody tr').evaluateAll((rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
   assert.equal(shown.length, 18);
   for (const row of shown) for (const text of row) assert.ok(airSvg.includes(`>${text}<`), `time on air: "${text}" in the picture`);

@@ -1,6 +1,6 @@
 // How the page words numbers and settings: captions on every download and embed rest on these.
 import { expect, test } from 'vitest';
-import { adrFrom, bandNote, caption, counted, describe, planLimit, downlinkCounts, stationPhrase, fewPacketsNote, fixedRateNote, flightTime, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
+import { adrFrom, advancedChanged, bandNote, caption, counted, describe, planLimit, downlinkCounts, stationPhrase, fewPacketsNote, fixedRateNote, flightTime, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote, fmt, names, sendsAsPublished, trackedPercent } from '../../www/format';
 import { DEFAULTS, LIMITS } from '../../www/state';
 import { OPTIONS, type ModelResult } from '../../www/loratrack';
 
@@ -129,6 +129,11 @@ test('a caption names the settings, the flight, every seed and the version', () 
     'SF7, 250 kHz, gateways at (500, -200) m, (0, 3000) m, paper prediction, periodic sending',
   );
   expect(describe({ ...DEFAULTS, shadowing: 8, cr: 4, sensorRate: 5 })).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending, coding rate 4/8, shadowing sigma 8 dB, sensor rate 5 Hz');
+  // A run's echoed config, which has the core's settings but not the form's own (flight number,
+  // seeds…), names what it changed as the form's settings do: the results' caption reads it.
+  expect(advancedChanged({ shadowingModel: 'path', cr: 1, txPower: 10, shadowing: DEFAULTS.shadowing, step: 0.5 })).toEqual(['Tx power 10 dBm', 'prediction step T 0.5 s']);
+  expect(advancedChanged({ shadowingModel: 'field', cr: 2 })).toEqual(['coding rate 4/6', 'shadowing fixed in space']);
+  expect(advancedChanged(DEFAULTS)).toEqual([]);
   expect(caption(DEFAULTS)).toMatch(/^SF7, 250 kHz, 1\.0 km, paper prediction, periodic sending, 13 B LoRaWAN overhead; synthetic flight 1; seed 1; loratrack \d+\.\d+\.\d+$/);
   expect(caption({ ...DEFAULTS, flight: 'all', seed: 5, seeds: 10, lorawan: false })).toMatch(/no LoRaWAN overhead; whole synthetic set; seed 5 to 14;/);
 });

@@ -15,7 +15,17 @@ export function airtimeTable(opts: { overhead: number; cr: number; sf: number; b
   const caption = table.createCaption();
   // The duty cycle the intervals divide by, where the drone keeps one (not with listen before talk).
   const label = `${opts.region.toUpperCase()}${opts.dutyCycle === undefined ? '' : ` at a ${percent(opts.dutyCycle)} duty cycle`}`;
-  caption.textContent = `${label}: time on air · shortest interval between packets; refused where the plan does not carry the packet.`;
+  // What every number rests on besides the plan: the bytes on air and the coding rate, which the
+  // form may have changed (the paper's Table II has no overhead). The slide's caption names them
+  // with the other settings, so it reads only the first part (`.what`).
+  const what = document.createElement('span');
+  what.className = 'what';
+  what.textContent = `${label}: time on air · shortest interval between packets; refused where the plan does not carry the packet.`;
+  const restsOn = document.createElement('span');
+  restsOn.className = 'rests-on';
+  const bytes = opts.overhead > 0 ? `each payload plus ${opts.overhead} B of LoRaWAN overhead` : 'each payload alone (no LoRaWAN overhead, as the paper\'s Table II)';
+  restsOn.textContent = ` ${bytes.charAt(0).toUpperCase()}${bytes.slice(1)}, coding rate 4/${4 + opts.cr}.`;
+  caption.append(what, restsOn);
   const head = table.createTHead().insertRow();
   for (const h of ['SF', 'bandwidth', 'data rate', ...PAPER_STATIONS.map((m) => `${PAYLOAD_BYTES[m]} B (${MODEL_LABELS[m]})`)]) {
     const th = document.createElement('th');
