@@ -848,6 +848,16 @@ test('a swarm run can be stopped: the panel says so, gives focus back to Run swa
   assert.deepEqual(problems, []);
 });
 
+test('the swarm note names the plan\'s limit and the advanced settings its swarm ran with, and its numbers are the CLI\'s for them', async () => {
+  const { page, problems } = await open('?dutyCycle=0.02&txPower=10');
+  await runSwarm(page, '20', 'fixed');
+  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--duty-cycle', '0.02', '--tx-power', '10']);
+  const note = await page.locator('#chart-swarm .note').textContent();
+  assert.match(note, /, all on SF7, EU868, 2 % duty cycle, Tx power 10 dBm: /);
+  assert.ok(note.includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`), `${note} / CLI: ${cli.medianDroneP75}`);
+  assert.deepEqual(problems, []);
+});
+
 test('with the real flight chosen the swarm flies it, as the CLI\'s --sample does, and its note and slide say so', async () => {
   const { page, problems } = await open('?flight=canberra');
   await runSwarm(page, '20', 'fixed');

@@ -1507,6 +1507,17 @@ test('the link-budget panel shows power, sensitivities and delivery, and follows
   await page.getByLabel('Bandwidth').selectOption('125');
   await until(page, (old) => document.querySelector('#chart-link .note')?.textContent !== old, before);
   const sf7 = (t) => Number(/SF7(?: \(DR\d\))? ([\d.]+) km/.exec(t)[1]);
-  assert.ok(sf7(await page.locator('#chart-link .note').textContent()) > sf7(before), 'a narrower band reaches further');
+  const narrow = await page.locator('#chart-link .note').textContent();
+  assert.ok(sf7(narrow) > sf7(before), 'a narrower band reaches further');
+  // The power sent and the path-loss exponent set every curve: the note names them, and follows
+  // them when the Advanced settings change them.
+  assert.match(narrow, /^Range \(where the mean power, 14 dBm sent with a path-loss exponent of [\d.]+, meets the sensitivity\): /);
+  await page.locator('#advanced summary').click();
+  await page.getByLabel('Tx power (dBm)').fill('20');
+  await page.getByLabel('Tx power (dBm)').blur();
+  await until(page, (old) => document.querySelector('#chart-link .note')?.textContent !== old, narrow);
+  const stronger = await page.locator('#chart-link .note').textContent();
+  assert.match(stronger, /, 20 dBm sent with /);
+  assert.ok(sf7(stronger) > sf7(narrow), '6 dB more reaches further');
   assert.deepEqual(problems, []);
 });

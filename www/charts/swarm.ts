@@ -3,7 +3,7 @@
 import { chartFrame, chartFont, fitLabel, SF_COLORS, labelRoom } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
-import { advancedChanged, counted, downlinkCounts, flightTime, stationPhrase, trackedPercent } from '../format';
+import { advancedChanged, counted, downlinkCounts, flightTime, planLimit, stationPhrase, trackedPercent } from '../format';
 import { DEFAULTS, plan, sendingLimit } from '../state';
 import { logAxis, plainNumber } from './logAxis';
 
@@ -124,7 +124,9 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   const errors = Math.abs(fitted - frame.height) > 2 ? strip(Math.round(fitted)) : first;
   const note = document.createElement('p');
   note.className = 'note';
-  const flown = `${largest.config.drones} drones flying ${flightTime(largest.config.duration)} of ${largest.config.sample ? 'the real flight' : 'the synthetic set'} each to a ${stationPhrase(largest.config.station, largest.config)}, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${sfPlanWords(largest)}${advancedChanged(largest.config).map((a) => `, ${a}`).join('')}`;
+  // The plan's limit and the advanced settings where not the defaults: the note is all the panel
+  // says of what its numbers rest on (the slide's caption names every setting).
+  const flown = `${largest.config.drones} drones flying ${flightTime(largest.config.duration)} of ${largest.config.sample ? 'the real flight' : 'the synthetic set'} each to a ${stationPhrase(largest.config.station, largest.config)}, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${sfPlanWords(largest)}${[planLimit(largest.config), ...advancedChanged(largest.config)].filter(Boolean).map((a) => `, ${a}`).join('')}`;
   // Shares of no packet are none: a swarm whose drones all send less often than they fly (SF12,
   // 2 minutes) sent nothing, which "0.0 % of packets collided" and "0.0 % delivered" would hide.
   const { collisionRate, deliveryRatio, energy } = largest;
