@@ -664,8 +664,8 @@ test('a US915 swarm dealt SF7–SF12 in turn takes the data rates that carry its
   const l = cli.largestSwarm;
   assert.ok(note.includes(`every drone sending every 5 s (the interval set: US915 has no duty cycle): ${l.aloha1} drone`), note);
   // The SF plan is named as it deals the SFs, not "by distance" (which it never was), and why
-  // it dealt three.
-  assert.ok(note.includes('8 channels, SF7–SF9 in turn (at 125 kHz US915 carries the frame at no other SF):'), note);
+  // it dealt three; then the plan's limit the numbers rest on.
+  assert.ok(note.includes('8 channels, SF7–SF9 in turn (at 125 kHz US915 carries the frame at no other SF), US915, every 5 s:'), note);
   assert.equal(await page.locator('#swarmPlan option:checked').textContent(), 'SF7–SF12 in turn');
   // The largest swarm's command line, run in a shell, is that swarm.
   const line = await page.locator('[data-command="swarm"] code').textContent();
