@@ -448,6 +448,9 @@ test('on a phone every slide keeps its title, legend and text within the picture
 test('at 1024x768, with the form under the results, the tables name the advanced settings their numbers rest on, in the CLI\'s words', async () => {
   const { page, problems } = await open('?txPower=10&shadowing=6&cr=2', { width: 1024, height: 768 });
   await idle(page);
+  const results = await page.locator('[data-panel="results"]').boundingBox();
+  const controls = await page.locator('#controls').boundingBox();
+  assert.ok(controls.y > results.y + results.height - 1, `the form at ${controls.y} px, the results' panel ending at ${results.y + results.height} px`);
   const resultsCaption = () => page.locator('#results-table caption').first().textContent();
   const airtimeCaption = () => page.locator('.airtime-table caption').textContent();
   // The caption's last clause lists what the CLI's `settings:` line lists for the same run.
