@@ -654,7 +654,7 @@ async function renderLink(): Promise<void> {
   const params = { bw: s.bw, txPower: s.txPower, pathLossExponent: s.pathLossExponent, shadowing: s.shadowing, region: s.region };
   // Each gateway's distance from the flight's start (the default one: the distance setting).
   const distances = s.gateways.length ? s.gateways.map((g) => Math.hypot(g.east, g.north)) : [s.distance];
-  const opts = { width: chartWidth('link'), distances, sf: s.sf, plan: plan(s.region).label, adr: s.adr !== 'off', txPower: s.txPower, pathLossExponent: s.pathLossExponent };
+  const opts = { width: chartWidth('link'), distances, sf: s.sf, plan: plan(s.region).label, adr: s.adr !== 'off' };
   await drawPanel('link', [params, opts], (p) => p.linkBudgetCharts(linkBudget(params), opts));
 }
 

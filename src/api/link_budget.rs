@@ -73,6 +73,10 @@ pub struct LinkBudgetReport {
     /// Mean received power at each, dBm (before shadowing), for a drone on the ground
     /// (3D distance from the gateway's antenna).
     pub mean_rx_dbm: Vec<f64>,
+    /// The transmit power the mean rests on, dBm.
+    pub tx_power: f64,
+    /// The path-loss exponent the mean rests on.
+    pub path_loss_exponent: f64,
     /// The shadowing σ, dB: 90 % of packets arrive within ±1.645 σ of the mean.
     pub shadowing: f64,
     /// SF7..SF12.
@@ -131,6 +135,8 @@ pub fn link_budget(p: &LinkBudgetParams) -> Result<LinkBudgetReport, ApiError> {
     Ok(LinkBudgetReport {
         distances: p.distances.clone(),
         mean_rx_dbm: mean,
+        tx_power: p.tx_power,
+        path_loss_exponent: p.path_loss_exponent,
         shadowing: p.shadowing,
         sfs,
     })

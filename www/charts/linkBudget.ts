@@ -8,7 +8,7 @@ import type { LinkBudgetReport } from '../loratrack';
 
 /** The charts, in the plan's words: only the SFs the plan allows at this bandwidth, each named
  * with its data rate (`SF9 (DR1)`); the note says which the plan lacks. */
-export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; distances: number[]; sf: number; plan: string; adr?: boolean; txPower: number; pathLossExponent: number }): HTMLElement {
+export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; distances: number[]; sf: number; plan: string; adr?: boolean }): HTMLElement {
   const km = (d: number) => d / 1000;
   const band = r.distances.map((d, i) => ({ d: km(d), lo: r.meanRxDbm[i] - 1.645 * r.shadowing, hi: r.meanRxDbm[i] + 1.645 * r.shadowing, mean: r.meanRxDbm[i] }));
   const shown = r.sfs.filter((s) => s.inPlan);
@@ -62,7 +62,7 @@ export function linkBudgetCharts(r: LinkBudgetReport, opts: { width: number; dis
   const missing = r.sfs.filter((s) => !s.inPlan).map((s) => `SF${s.sf}`);
   // The power sent and the path-loss exponent set every curve here: the Advanced settings may
   // have changed them, and the form may be a screen away.
-  ranges.textContent = `Range (where the mean power, ${opts.txPower} dBm sent with a path-loss exponent of ${opts.pathLossExponent}, meets the sensitivity): ${sens.map((s) => `${s.sf} ${s.range.toFixed(1)} km`).join(', ')}. Dashed lines: each SF's sensitivity (the chosen SF's bold${opts.adr ? ': where ADR starts the drone, which it then moves' : ''}); ${opts.distances.length > 1 ? 'red lines: each gateway\'s distance' : 'red line: the gateway\'s distance'}; grey band: 90 % of packets (shadowing σ ${r.shadowing} dB).${missing.length ? ` ${opts.plan} has no uplink data rate at ${missing.join(', ')} with this bandwidth.` : ''}`;
+  ranges.textContent = `Range (where the mean power, ${r.txPower} dBm sent with a path-loss exponent of ${r.pathLossExponent}, meets the sensitivity): ${sens.map((s) => `${s.sf} ${s.range.toFixed(1)} km`).join(', ')}. Dashed lines: each SF's sensitivity (the chosen SF's bold${opts.adr ? ': where ADR starts the drone, which it then moves' : ''}); ${opts.distances.length > 1 ? 'red lines: each gateway\'s distance' : 'red line: the gateway\'s distance'}; grey band: 90 % of packets (shadowing σ ${r.shadowing} dB).${missing.length ? ` ${opts.plan} has no uplink data rate at ${missing.join(', ')} with this bandwidth.` : ''}`;
   const box = document.createElement('div');
   box.append(power, delivery, ranges);
   return box;

@@ -1330,6 +1330,14 @@ distances: Array<number>,
  */
 meanRxDbm: Array<number>, 
 /**
+ * The transmit power the mean rests on, dBm.
+ */
+txPower: number, 
+/**
+ * The path-loss exponent the mean rests on.
+ */
+pathLossExponent: number, 
+/**
  * The shadowing σ, dB: 90 % of packets arrive within ±1.645 σ of the mean.
  */
 shadowing: number, 
