@@ -4,7 +4,7 @@
 import { isLoaded, linkBudget, MODEL_LABELS, PAYLOAD_BYTES, stationsOf, timeOnAir, type GatewaySite, type Region } from './loratrack';
 import { $ } from './dom';
 import { listed } from './format';
-import { ADR_START_REASON, adrCanStart, DEFAULTS, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, MISSION_REASON, packetPlan, plan, planAllows, planKnown, planReason, runsMission, type FlightChoice, type Settings } from './state';
+import { ADR_START_REASON, adrCanStart, DEFAULTS, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, MISSION_REASON, overheadBytes, packetPlan, plan, planAllows, planKnown, planReason, runsMission, type FlightChoice, type Settings } from './state';
 import { store } from './store';
 
 export const form = $<HTMLFormElement>('#controls');
@@ -282,6 +282,9 @@ for (const [key, l] of Object.entries(LIMITS)) {
   }
   if (el && l.help) el.title = `${l.help} Accepted: ${l.min}–${l.max}${l.unit ? ` ${l.unit}` : ''}.`;
 }
+
+// The overhead the LoRaWAN box adds, as the core's table declares it.
+$('#overhead-bytes').textContent = String(overheadBytes({ lorawan: true }));
 
 const gatewayRows = $('#gateway-rows');
 

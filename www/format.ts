@@ -1,6 +1,6 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
 import { MODEL_LABELS, OPTIONS, PAYLOAD_BYTES, type GatewayReport, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
-import { DEFAULTS, isNumericKey, LIMITS, plan, sendingLimit, type NumericKey, type Settings } from './state';
+import { DEFAULTS, isNumericKey, LIMITS, overheadBytes, plan, sendingLimit, type NumericKey, type Settings } from './state';
 import { store } from './store';
 
 /** A statistic with `digits` decimals, or a dash where there is none (an empty sample). */
@@ -123,7 +123,7 @@ export function describe(s: Settings): string {
 export function caption(s: Settings, extra = ''): string {
   const flight = s.flight === 'all' ? 'whole synthetic set' : s.flight === 'canberra' ? 'real flight (Canberra)' : s.flight === 'csv' ? (store.csv?.name ?? 'uploaded CSV') : `synthetic flight ${s.flightNumber}`;
   const seeds = s.seeds > 1 ? ` to ${s.seed + s.seeds - 1}` : '';
-  return `${describe(s)}, ${s.lorawan ? '13 B' : 'no'} LoRaWAN overhead; ${flight}; seed ${s.seed}${seeds}${extra}; loratrack ${__LORATRACK_VERSION__}`;
+  return `${describe(s)}, ${s.lorawan ? `${overheadBytes(s)} B` : 'no'} LoRaWAN overhead; ${flight}; seed ${s.seed}${seeds}${extra}; loratrack ${__LORATRACK_VERSION__}`;
 }
 
 /** A flight time as a sentence says it: "2 minutes", "1 minute", "90 s". */

@@ -239,8 +239,9 @@ export function isNumericKey(key: string): key is NumericKey {
   return key in LIMITS;
 }
 
+/** The overhead the LoRaWAN box stands for: the core's default (LoRaWAN's 13 bytes), or none. */
 export function overheadBytes(s: Pick<Settings, 'lorawan'>): number {
-  return s.lorawan ? 13 : 0;
+  return s.lorawan ? def('overhead') : 0;
 }
 
 /** What a packet's time on air and the plan's verdict on it depend on besides its SF, bandwidth
