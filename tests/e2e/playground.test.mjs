@@ -465,6 +465,22 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
   assert.match(await page.locator('#trajectory-legend').textContent(), /flight plan \(dashed\)/);
   assert.deepEqual(await axe(page), []);
 
+  // The same square as QGroundControl saves a mission (`fileType: "Plan"`, its home in Canberra,
+  // latitude and longitude about it): take-off at home, then the corners at 6 m/s.
+  const home = [-35.3632, 149.1652, 584];
+  const k = (Math.PI / 180) * 6371000;
+  const at = ([x, y]) => [home[0] + y / k, home[1] + x / (k * Math.cos((home[0] * Math.PI) / 180))];
+  const item = (command, params) => ({ type: 'SimpleItem', command, frame: 3, autoContinue: true, AMSLAltAboveTerrain: null, Altitude: params[6], AltitudeMode: 1, params });
+  const items = [item(22, [0, 0, 0, null, ...at([0, 0]), 30]), item(178, [1, 6, -1, 0, 0, 0, 0]), ...[[100, 0], [100, 100], [0, 100], [0, 0]].map((c) => item(16, [0, 0, 0, null, ...at(c), 30]))];
+  const qgc = join(dir, 'square.plan');
+  writeFileSync(qgc, JSON.stringify({ fileType: 'Plan', version: 1, groundStation: 'QGroundControl', geoFence: { circles: [], polygons: [], version: 2 }, rallyPoints: { points: [], version: 2 }, mission: { version: 2, firmwareType: 3, vehicleType: 2, cruiseSpeed: 15, hoverSpeed: 5, plannedHomePosition: home, items } }, null, 4));
+  const fromQgc = nativeJson(['simulate', '--trajectory', flight, '--plan', qgc, '--model', '3d-ctra,mission']).results.find((x) => x.model === 'mission');
+  assert.notEqual(fromQgc.error3d.p75, cli.results.find((x) => x.model === 'mission').error3d.p75);
+  before = await tableHtml(page);
+  await page.getByLabel(/Flight plan/).setInputFiles(qgc);
+  await waitForResults(page, before);
+  assert.equal(number(await cell(page, 'mission', 'p75')).toFixed(2), fromQgc.error3d.p75.toFixed(2));
+
   const bad = join(dir, 'bad-plan.csv');
   writeFileSync(bad, '0,0,30\n100,zero,30\n');
   await page.getByLabel(/Flight plan/).setInputFiles(bad);

@@ -104,6 +104,82 @@ fn a_plan_file_is_followed_as_the_synthetic_flight_follows_its_own() {
     assert_eq!(r[1].coverage95, r[0].coverage95);
 }
 
+/// `plan` as QGroundControl saves a mission (`fileType: "Plan"`): home at `home` (latitude,
+/// longitude, degrees; altitude m), then for each leg a speed change and a waypoint at relative
+/// altitude, its position turned into latitude and longitude about home.
+fn qgroundcontrol_plan(plan: &FlightPlan, home: [f64; 3]) -> String {
+    let k = std::f64::consts::PI / 180.0 * 6_371_000.0;
+    let mut items = Vec::new();
+    let speeds = leg_speeds(plan);
+    for (i, w) in plan.waypoints().iter().enumerate() {
+        if let Some(v) = i.checked_sub(1).and_then(|leg| speeds[leg]) {
+            items.push(
+                json!({"type": "SimpleItem", "command": 178, "frame": 2, "autoContinue": true,
+                              "params": [1, v, -1, 0, 0, 0, 0]}),
+            );
+        }
+        let lat = home[0] + w[1] / k;
+        let lon = home[1] + w[0] / (k * home[0].to_radians().cos());
+        items.push(
+            json!({"type": "SimpleItem", "command": 16, "frame": 3, "autoContinue": true,
+                          "AMSLAltAboveTerrain": null, "Altitude": w[2], "AltitudeMode": 1,
+                          "params": [0, 0, 0, null, lat, lon, w[2]]}),
+        );
+    }
+    json!({"fileType": "Plan", "version": 1, "groundStation": "QGroundControl",
+           "geoFence": {"circles": [], "polygons": [], "version": 2},
+           "rallyPoints": {"points": [], "version": 2},
+           "mission": {"version": 2, "firmwareType": 3, "vehicleType": 2, "cruiseSpeed": 15,
+                       "hoverSpeed": 5, "plannedHomePosition": home, "items": items}})
+    .to_string()
+}
+
+/// Each leg's planned speed, read at the leg's middle.
+fn leg_speeds(plan: &FlightPlan) -> Vec<Option<f64>> {
+    let mut along = 0.0;
+    plan.waypoints()
+        .windows(2)
+        .map(|leg| {
+            let length = (0..3)
+                .map(|k| (leg[1][k] - leg[0][k]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            along += length;
+            plan.speed_at(along - length / 2.0)
+        })
+        .collect()
+}
+
+#[test]
+fn a_qgroundcontrol_plan_is_followed_as_the_same_plan_in_csv() {
+    let flight = synthetic_flight(5).unwrap();
+    let traced = FlightPlan::traced(&flight, TRACE_TOLERANCE);
+    // QGroundControl's plan starts at home, on the ground: the CSV plan does too.
+    let mut points = vec![[0.0, 0.0, 0.0]];
+    points.extend_from_slice(traced.waypoints());
+    let mut speeds = vec![None];
+    speeds.extend(leg_speeds(&traced));
+    let csv_plan = FlightPlan::new(points, speeds).unwrap();
+    let settings = |plan: String| {
+        json!({"trajectory": csv(&flight), "model": "mission", "prediction": "bounded",
+               "sf": 10, "bw": 125.0, "plan": plan})
+    };
+    let from_csv = run(settings(csv_plan.to_csv()));
+    let from_qgc = run(settings(qgroundcontrol_plan(
+        &csv_plan,
+        [-35.3632, 149.1652, 584.0],
+    )));
+    let (a, b) = (p75(&from_qgc, "mission"), p75(&from_csv, "mission"));
+    assert!(
+        (a - b).abs() <= 1e-6 * b.max(1.0),
+        "QGroundControl {a} against CSV {b}"
+    );
+    assert_eq!(
+        from_qgc[0].delivery.packets_received,
+        from_csv[0].delivery.packets_received
+    );
+}
+
 #[test]
 fn packet_pace_ignores_the_plans_speeds() {
     let r = |pace: &str| {
