@@ -5,11 +5,14 @@ mod chain;
 mod csv;
 mod error;
 mod kinematics;
+mod mission_items;
 mod plan;
 mod plan_file;
+mod qgc_plan;
 mod sample;
 mod synthetic;
 mod track;
+mod waypoint_list;
 
 pub use chain::chain_flights;
 pub use csv::{

@@ -480,6 +480,16 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
   await page.getByLabel(/Flight plan/).setInputFiles(qgc);
   await waitForResults(page, before);
   assert.equal(number(await cell(page, 'mission', 'p75')).toFixed(2), fromQgc.error3d.p75.toFixed(2));
+  // And as Mission Planner saves it (a `QGC WPL 110` list, home as item 0), at 7 m/s.
+  const wpl = join(dir, 'square.waypoints');
+  const line = (i, frame, command, params) => [i, i === 0 ? 1 : 0, frame, command, ...params, 1].join('\t');
+  writeFileSync(wpl, ['QGC WPL 110', line(0, 0, 16, [0, 0, 0, 0, ...home]), line(1, 3, 22, [0, 0, 0, 0, ...at([0, 0]), 30]), line(2, 3, 178, [1, 7, -1, 0, 0, 0, 0]), ...[[100, 0], [100, 100], [0, 100], [0, 0]].map((c, i) => line(3 + i, 3, 16, [0, 0, 0, 0, ...at(c), 30]))].join('\n') + '\n');
+  const fromList = nativeJson(['simulate', '--trajectory', flight, '--plan', wpl, '--model', '3d-ctra,mission']).results.find((x) => x.model === 'mission');
+  assert.notEqual(fromList.error3d.p75, fromQgc.error3d.p75);
+  before = await tableHtml(page);
+  await page.getByLabel(/Flight plan/).setInputFiles(wpl);
+  await waitForResults(page, before);
+  assert.equal(number(await cell(page, 'mission', 'p75')).toFixed(2), fromList.error3d.p75.toFixed(2));
 
   const bad = join(dir, 'bad-plan.csv');
   writeFileSync(bad, '0,0,30\n100,zero,30\n');

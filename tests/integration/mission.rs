@@ -134,6 +134,34 @@ fn qgroundcontrol_plan(plan: &FlightPlan, home: [f64; 3]) -> String {
     .to_string()
 }
 
+/// `plan` as Mission Planner saves a mission (`QGC WPL 110`, tab-separated): home as item 0,
+/// then for each leg a speed change and a waypoint at relative altitude.
+fn waypoint_list(plan: &FlightPlan, home: [f64; 3]) -> String {
+    let k = std::f64::consts::PI / 180.0 * 6_371_000.0;
+    let mut lines = vec![
+        "QGC WPL 110".to_string(),
+        format!(
+            "0\t1\t0\t16\t0\t0\t0\t0\t{}\t{}\t{}\t1",
+            home[0], home[1], home[2]
+        ),
+    ];
+    let speeds = leg_speeds(plan);
+    for (i, w) in plan.waypoints().iter().enumerate().skip(1) {
+        if let Some(v) = speeds[i - 1] {
+            let n = lines.len() - 1;
+            lines.push(format!("{n}\t0\t3\t178\t1\t{v}\t-1\t0\t0\t0\t0\t1"));
+        }
+        let lat = home[0] + w[1] / k;
+        let lon = home[1] + w[0] / (k * home[0].to_radians().cos());
+        let n = lines.len() - 1;
+        lines.push(format!(
+            "{n}\t0\t3\t16\t0\t0\t0\t0\t{lat}\t{lon}\t{}\t1",
+            w[2]
+        ));
+    }
+    lines.join("\n") + "\n"
+}
+
 /// Each leg's planned speed, read at the leg's middle.
 fn leg_speeds(plan: &FlightPlan) -> Vec<Option<f64>> {
     let mut along = 0.0;
@@ -151,7 +179,7 @@ fn leg_speeds(plan: &FlightPlan) -> Vec<Option<f64>> {
 }
 
 #[test]
-fn a_qgroundcontrol_plan_is_followed_as_the_same_plan_in_csv() {
+fn a_qgroundcontrol_plan_or_waypoint_list_is_followed_as_the_same_plan_in_csv() {
     let flight = synthetic_flight(5).unwrap();
     let traced = FlightPlan::traced(&flight, TRACE_TOLERANCE);
     // QGroundControl's plan starts at home, on the ground: the CSV plan does too.
@@ -177,6 +205,13 @@ fn a_qgroundcontrol_plan_is_followed_as_the_same_plan_in_csv() {
     assert_eq!(
         from_qgc[0].delivery.packets_received,
         from_csv[0].delivery.packets_received
+    );
+    // And as Mission Planner's waypoint list, its home as item 0.
+    let from_list = run(settings(waypoint_list(&csv_plan, [47.3977, 8.5456, 488.0])));
+    let c = p75(&from_list, "mission");
+    assert!(
+        (c - b).abs() <= 1e-6 * b.max(1.0),
+        "waypoint list {c} against CSV {b}"
     );
 }
 

@@ -1,0 +1,186 @@
+//! MAVLink mission items, as ground stations save them, turned into a plan's waypoints (reference
+//! §16): what a QGroundControl `.plan` and a plain-text waypoint list (`QGC WPL`) share.
+
+use super::plan::FlightPlan;
+use super::plan_file::PlanError;
+
+/// MAVLink commands (`MAV_CMD`) that loratrack reads.
+const NAV_WAYPOINT: u64 = 16;
+const NAV_LOITER_UNLIM: u64 = 17;
+const NAV_LOITER_TURNS: u64 = 18;
+const NAV_LOITER_TIME: u64 = 19;
+const NAV_RETURN_TO_LAUNCH: u64 = 20;
+const NAV_LAND: u64 = 21;
+const NAV_TAKEOFF: u64 = 22;
+const NAV_LOITER_TO_ALT: u64 = 31;
+const NAV_SPLINE_WAYPOINT: u64 = 82;
+const NAV_VTOL_TAKEOFF: u64 = 84;
+const NAV_VTOL_LAND: u64 = 85;
+const DO_CHANGE_SPEED: u64 = 178;
+/// Commands that fly to their own latitude and longitude: a waypoint, a spline waypoint (its leg
+/// read as straight) and the loiters (read as their centre: the circle is not flown).
+const FLY_TO: [u64; 6] = [
+    NAV_WAYPOINT,
+    NAV_LOITER_UNLIM,
+    NAV_LOITER_TURNS,
+    NAV_LOITER_TIME,
+    NAV_LOITER_TO_ALT,
+    NAV_SPLINE_WAYPOINT,
+];
+/// Mean Earth radius, m: over a mission's few kilometres the local east-north plane is flat to
+/// well under a metre.
+const EARTH_RADIUS: f64 = 6_371_000.0;
+
+/// One MAVLink mission item (`MISSION_ITEM`): its command, coordinate frame and seven
+/// parameters (5–7: latitude and longitude, degrees, and altitude, m, for the commands that
+/// fly somewhere). A parameter a file leaves empty (`null`, NaN) is `None`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct MissionItem {
+    pub command: u64,
+    pub frame: Option<u64>,
+    pub params: [Option<f64>; 7],
+}
+
+/// A mission as its items are read in order: the waypoints so far (home first), the speed of
+/// each leg, and the speed the next leg will have.
+pub(super) struct Flown {
+    /// Home: latitude and longitude, degrees, and altitude above mean sea level, m.
+    home: [f64; 3],
+    speed: Option<f64>,
+    points: Vec<[f64; 3]>,
+    speeds: Vec<Option<f64>>,
+}
+
+impl Flown {
+    /// Starts at home (latitude, longitude, degrees; altitude above mean sea level, m), the
+    /// origin of the plan's east-north-up frame, with legs at `speed` (m/s) until a speed change.
+    pub fn new(home: [f64; 3], speed: Option<f64>) -> Self {
+        Flown {
+            home,
+            speed,
+            points: vec![[0.0, 0.0, 0.0]],
+            speeds: Vec::new(),
+        }
+    }
+
+    /// Reads one mission item: a speed change, a leg to a new waypoint, or nothing that moves
+    /// the vehicle. The refusal says what is wrong with the item.
+    pub fn item(&mut self, item: &MissionItem) -> Result<(), String> {
+        let param = |k: usize| item.params[k];
+        let last = self.points[self.points.len() - 1];
+        let point = match item.command {
+            DO_CHANGE_SPEED => {
+                // Parameter 2 is the speed; −1 means no change.
+                self.speed = param(1).filter(|s| *s > 0.0).or(self.speed);
+                return Ok(());
+            }
+            NAV_RETURN_TO_LAUNCH => [0.0, 0.0, last[2]],
+            // Take-off and landing often leave the position to the vehicle: in place.
+            NAV_TAKEOFF | NAV_VTOL_TAKEOFF => {
+                let [x, y] = self
+                    .horizontal(param(4), param(5))
+                    .unwrap_or([last[0], last[1]]);
+                [x, y, self.altitude(param(6), item.frame)?]
+            }
+            NAV_LAND | NAV_VTOL_LAND => {
+                let [x, y] = self
+                    .horizontal(param(4), param(5))
+                    .unwrap_or([last[0], last[1]]);
+                [x, y, 0.0]
+            }
+            c if FLY_TO.contains(&c) => {
+                let [x, y] = self
+                    .horizontal(param(4), param(5))
+                    .ok_or("a waypoint without latitude and longitude")?;
+                [x, y, self.altitude(param(6), item.frame)?]
+            }
+            // Camera, gimbal, delay and other commands do not move the vehicle.
+            _ => return Ok(()),
+        };
+        self.points.push(point);
+        self.speeds.push(self.speed);
+        Ok(())
+    }
+
+    /// The plan flown: home and every waypoint read, in order.
+    pub fn plan(self) -> Result<FlightPlan, PlanError> {
+        if self.points.len() < 2 {
+            return Err(PlanError::Empty);
+        }
+        FlightPlan::new(self.points, self.speeds)
+    }
+
+    /// East and north of home, m, of an item's latitude and longitude (degrees); `None` where it
+    /// gives none (missing, or 0, 0: the vehicle's own position).
+    fn horizontal(&self, lat: Option<f64>, lon: Option<f64>) -> Option<[f64; 2]> {
+        let (lat, lon) = (lat?, lon?);
+        if lat == 0.0 && lon == 0.0 {
+            return None;
+        }
+        let k = core::f64::consts::PI / 180.0 * EARTH_RADIUS;
+        Some([
+            (lon - self.home[1]) * k * crate::math::cos(self.home[0].to_radians()),
+            (lat - self.home[0]) * k,
+        ])
+    }
+
+    /// An item's altitude above home, m, from its altitude parameter in its `frame`.
+    fn altitude(&self, alt: Option<f64>, frame: Option<u64>) -> Result<f64, String> {
+        let alt = alt.ok_or("no altitude")?;
+        // MAV_FRAME_GLOBAL (0) and its integer twin (5) are above mean sea level; the relative
+        // frames (3, 6) above home; terrain-following ones need a terrain model loratrack lacks.
+        match frame {
+            Some(0 | 5) => Ok(alt - self.home[2]),
+            Some(3 | 6) | None => Ok(alt),
+            Some(f) => Err(format!(
+                "altitude frame {f} is not read (use relative altitude, frame 3)"
+            )),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn item(command: u64, frame: u64, lat: f64, lon: f64, alt: f64) -> MissionItem {
+        MissionItem {
+            command,
+            frame: Some(frame),
+            params: [Some(0.0), None, None, None, Some(lat), Some(lon), Some(alt)],
+        }
+    }
+
+    #[test]
+    fn a_loiter_is_flown_to_its_centre_and_a_camera_command_is_not_flown() {
+        let mut f = Flown::new([-35.0, 149.0, 500.0], Some(5.0));
+        f.item(&item(19, 3, -35.0, 149.001, 30.0)).unwrap();
+        f.item(&item(206, 2, 0.0, 0.0, 0.0)).unwrap();
+        f.item(&item(16, 0, -35.001, 149.001, 540.0)).unwrap();
+        let p = f.plan().unwrap();
+        let w = p.waypoints();
+        assert_eq!(w.len(), 3, "{w:?}");
+        // 0.001° of longitude at −35°: 91.1 m east; 0.001° of latitude: 111.2 m south.
+        assert!(
+            (w[1][0] - 91.1).abs() < 0.1 && w[1][2] == 30.0,
+            "{:?}",
+            w[1]
+        );
+        assert!(
+            (w[2][1] + 111.2).abs() < 0.1 && w[2][2] == 40.0,
+            "{:?}",
+            w[2]
+        );
+        assert_eq!(p.speed_at(1.0), Some(5.0));
+    }
+
+    #[test]
+    fn a_waypoint_without_a_position_or_in_a_terrain_frame_is_refused() {
+        let mut f = Flown::new([0.0, 0.0, 0.0], None);
+        let e = f.item(&item(16, 3, 0.0, 0.0, 30.0)).unwrap_err();
+        assert!(e.contains("without latitude"), "{e}");
+        let e = f.item(&item(16, 10, 1.0, 1.0, 30.0)).unwrap_err();
+        assert!(e.contains("frame 10"), "{e}");
+        assert_eq!(f.plan(), Err(PlanError::Empty));
+    }
+}
