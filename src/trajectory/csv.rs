@@ -1,5 +1,6 @@
 //! CSV import of a flight (reference §11).
 
+use super::geodetic::{east_north, on_earth};
 use super::{Trajectory, TrajectoryError};
 
 /// Fewest data rows accepted: a filter needs a few samples to start and a derivative needs
@@ -49,13 +50,18 @@ const ALIASES: [(&str, &[&str]); 9] = [
     ("ay", &["ay", "ay_mps2", "ay_m_s2", "a_y", "acc_y"]),
 ];
 const AZ_ALIASES: &[&str] = &["az", "az_mps2", "az_m_s2", "a_z", "acc_z"];
+/// Latitude and longitude (degrees) where the file has no x and y: a flight logged by GPS.
+const LAT_ALIASES: &[&str] = &["lat", "latitude", "lat_deg"];
+const LON_ALIASES: &[&str] = &["lon", "lng", "longitude", "lon_deg", "lng_deg"];
 
 fn find(header: &[String], names: &[&str]) -> Option<usize> {
     header.iter().position(|h| names.contains(&h.as_str()))
 }
 
-/// Parses a CSV flight: a header row with at least `t,x,y,z` (seconds, metres, local ENU) and
-/// optionally `vx,vy,vz` (m/s) and `ax,ay,az` (m/s²). Missing velocities or accelerations are
+/// Parses a CSV flight: a header row with at least `t,x,y,z` (seconds, metres, local ENU), or
+/// `t,lat,lon,alt` (degrees and metres: a GPS log, read as metres east, north and up of its first
+/// row by the equirectangular projection about it, reference §11), and optionally `vx,vy,vz`
+/// (m/s, east, north, up) and `ax,ay,az` (m/s²). Missing velocities or accelerations are
 /// derived by smoothed differentiation (local linear regression over ±0.15 s for velocity,
 /// ±0.3 s for acceleration). Blank lines and lines starting with `#` are skipped.
 ///
@@ -121,6 +127,9 @@ fn data_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
 struct Columns {
     header: Vec<String>,
     index: [Option<usize>; 10],
+    /// The file gives longitude and latitude (degrees) where x and y would be, and z is an
+    /// altitude: the flight is read in metres from its first row.
+    geodetic: bool,
     /// The row gives velocities.
     has_vel: bool,
     /// The row gives velocities and accelerations.
@@ -139,6 +148,11 @@ impl Columns {
             index[k] = find(&header, names);
         }
         index[9] = find(&header, AZ_ALIASES);
+        let (lat, lon) = (find(&header, LAT_ALIASES), find(&header, LON_ALIASES));
+        let geodetic = (index[1].is_none() || index[2].is_none()) && lat.is_some() && lon.is_some();
+        if geodetic {
+            (index[1], index[2]) = (lon, lat);
+        }
         if let Some((canonical, _)) = ALIASES[..4]
             .iter()
             .zip(&index)
@@ -155,6 +169,7 @@ impl Columns {
         Ok(Columns {
             header,
             index,
+            geodetic,
             has_vel,
             has_acc,
         })
@@ -201,6 +216,10 @@ impl Columns {
 /// The flight as read so far, column by column (no table of rows: a 10⁶-row file's would be
 /// 80 MB), with the line of each row only where a derivative's refusal may need to name it.
 struct Read<'a> {
+    /// The rows give longitude, latitude and altitude ([`Columns::geodetic`]).
+    geodetic: bool,
+    /// A geodetic flight's first row: latitude, longitude, degrees, and altitude, m.
+    origin: Option<[f64; 3]>,
     has_vel: bool,
     has_acc: bool,
     t: Vec<f64>,
@@ -215,6 +234,8 @@ struct Read<'a> {
 impl Read<'_> {
     fn new(columns: &Columns) -> Self {
         Read {
+            geodetic: columns.geodetic,
+            origin: None,
             has_vel: columns.has_vel,
             has_acc: columns.has_acc,
             t: Vec::new(),
@@ -229,7 +250,10 @@ impl Read<'_> {
     /// Adds data line `line`'s quantities, once they pass [`Read::check`]. A row that repeats
     /// the one before it exactly, time and all (a logger that wrote a sample twice), is the same
     /// sample and is passed over; a repeated time with other values stays refused.
-    fn push(&mut self, line: usize, row: [f64; 10]) -> Result<(), TrajectoryError> {
+    fn push(&mut self, line: usize, mut row: [f64; 10]) -> Result<(), TrajectoryError> {
+        if self.geodetic {
+            self.localise(line, &mut row)?;
+        }
         if self.repeats_last(&row) {
             return Ok(());
         }
@@ -244,6 +268,22 @@ impl Read<'_> {
         } else {
             self.line_numbers.push(line);
         }
+        Ok(())
+    }
+
+    /// A geodetic row's longitude, latitude and altitude as metres east, north and up of the
+    /// flight's first row ([`east_north`]).
+    fn localise(&mut self, line: usize, row: &mut [f64; 10]) -> Result<(), TrajectoryError> {
+        let (lon, lat, alt) = (row[1], row[2], row[3]);
+        if !on_earth(lat, lon) {
+            return Err(TrajectoryError::Absurd {
+                line,
+                what: "a latitude beyond ±90° or a longitude beyond ±180°".into(),
+            });
+        }
+        let origin = *self.origin.get_or_insert([lat, lon, alt]);
+        let [east, north] = east_north([origin[0], origin[1]], lat, lon);
+        (row[1], row[2], row[3]) = (east, north, alt - origin[2]);
         Ok(())
     }
 
@@ -575,6 +615,55 @@ mod tests {
             s += &format!("{t},{},{},{}\n", 3.0 * t, 0.5 * t * t, 20.0);
         }
         s
+    }
+
+    #[test]
+    fn a_gps_log_is_read_in_metres_from_its_first_row() {
+        // A climbing turn logged as latitude, longitude and altitude above sea level, and the
+        // same flight in metres from its first fix.
+        let (lat0, lon0, alt0) = (-35.3632, 149.1652, 584.0);
+        let k = core::f64::consts::PI / 180.0 * 6_371_000.0;
+        let (mut gps, mut local) = (
+            String::from("time,Lat,Lng,Alt\n"),
+            String::from("t,x,y,z\n"),
+        );
+        for i in 0..100 {
+            let t = i as f64 * 0.1;
+            let (x, y, z) = (
+                40.0 * (0.2 * t).sin(),
+                40.0 - 40.0 * (0.2 * t).cos(),
+                2.0 * t,
+            );
+            let lat = lat0 + y / k;
+            let lon = lon0 + x / (k * lat0.to_radians().cos());
+            gps += &format!("{t},{lat},{lon},{}\n", alt0 + z);
+            local += &format!("{t},{x},{y},{z}\n");
+        }
+        let (a, b) = (
+            parse_csv(&gps, "gps").unwrap(),
+            parse_csv(&local, "local").unwrap(),
+        );
+        for i in [0, 37, 99] {
+            for k in 0..3 {
+                assert!(
+                    (a.pos[i][k] - b.pos[i][k]).abs() < 1e-6,
+                    "{i}: {:?} {:?}",
+                    a.pos[i],
+                    b.pos[i]
+                );
+                assert!((a.vel[i][k] - b.vel[i][k]).abs() < 1e-6);
+            }
+        }
+        // With x and y given, latitude and longitude columns are only other columns.
+        let both: String = local
+            .lines()
+            .enumerate()
+            .map(|(i, l)| format!("{l},{}\n", if i == 0 { "lat,lon" } else { "1,2" }))
+            .collect();
+        assert_eq!(parse_csv(&both, "local").unwrap().pos, b.pos);
+        let off = gps.replacen(&format!("{lat0},"), "95,", 1);
+        let e = parse_csv(&off, "gps").unwrap_err().to_string();
+        assert!(e.contains("line 2") && e.contains("latitude"), "{e}");
     }
 
     #[test]

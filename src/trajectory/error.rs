@@ -112,7 +112,7 @@ impl fmt::Display for TrajectoryError {
                 header,
             } => write!(
                 f,
-                "line {line}: no '{column}' column in the header '{}' (need t, x, y, z; aliases like t_seconds, x_m are accepted)",
+                "line {line}: no '{column}' column in the header '{}' (need t, x, y, z, or t, lat, lon, alt for a GPS log; aliases like t_seconds, x_m are accepted)",
                 excerpt(header)
             ),
             TrajectoryError::FieldCount { line, got, expected } => {

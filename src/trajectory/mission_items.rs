@@ -1,6 +1,7 @@
 //! MAVLink mission items, as ground stations save them, turned into a plan's waypoints (reference
 //! §16): what a QGroundControl `.plan` and a plain-text waypoint list (`QGC WPL`) share.
 
+use super::geodetic::east_north;
 use super::plan::FlightPlan;
 use super::plan_file::PlanError;
 
@@ -27,9 +28,6 @@ const FLY_TO: [u64; 6] = [
     NAV_LOITER_TO_ALT,
     NAV_SPLINE_WAYPOINT,
 ];
-/// Mean Earth radius, m: over a mission's few kilometres the local east-north plane is flat to
-/// well under a metre.
-const EARTH_RADIUS: f64 = 6_371_000.0;
 
 /// One MAVLink mission item (`MISSION_ITEM`): its command, coordinate frame and seven
 /// parameters (5–7: latitude and longitude, degrees, and altitude, m, for the commands that
@@ -117,11 +115,7 @@ impl Flown {
         if lat == 0.0 && lon == 0.0 {
             return None;
         }
-        let k = core::f64::consts::PI / 180.0 * EARTH_RADIUS;
-        Some([
-            (lon - self.home[1]) * k * crate::math::cos(self.home[0].to_radians()),
-            (lat - self.home[0]) * k,
-        ])
+        Some(east_north([self.home[0], self.home[1]], lat, lon))
     }
 
     /// An item's altitude above home, m, from its altitude parameter in its `frame`.

@@ -4,6 +4,7 @@
 mod chain;
 mod csv;
 mod error;
+mod geodetic;
 mod kinematics;
 mod mission_items;
 mod plan;

@@ -216,6 +216,53 @@ fn a_qgroundcontrol_plan_or_waypoint_list_is_followed_as_the_same_plan_in_csv() 
 }
 
 #[test]
+fn a_gps_log_with_a_plan_about_its_first_fix_is_tracked_as_the_same_flight_in_metres() {
+    let flight = synthetic_flight(5).unwrap();
+    let home = [-35.3632, 149.1652, 584.0];
+    let k = std::f64::consts::PI / 180.0 * 6_371_000.0;
+    let start = flight.pos[0];
+    let (mut gps, mut local) = (
+        String::from("t,lat,lon,alt,vx,vy,vz,ax,ay,az\n"),
+        String::from("t,x,y,z,vx,vy,vz,ax,ay,az\n"),
+    );
+    for i in 0..flight.t.len() {
+        let p = [0, 1, 2].map(|c| flight.pos[i][c] - start[c]);
+        let (v, a) = (flight.vel[i], flight.acc[i]);
+        let rates = format!("{},{},{},{},{},{}", v[0], v[1], v[2], a[0], a[1], a[2]);
+        let lat = home[0] + p[1] / k;
+        let lon = home[1] + p[0] / (k * home[0].to_radians().cos());
+        gps += &format!("{},{lat},{lon},{},{rates}\n", flight.t[i], home[2] + p[2]);
+        local += &format!("{},{},{},{},{rates}\n", flight.t[i], p[0], p[1], p[2]);
+    }
+    // Its plan, in the same frame: as CSV for the flight in metres, as a waypoint list about the
+    // same home for the GPS log.
+    let traced = FlightPlan::traced(&flight, TRACE_TOLERANCE);
+    let shifted: Vec<[f64; 3]> = traced
+        .waypoints()
+        .iter()
+        .map(|w| [0, 1, 2].map(|c| w[c] - start[c]))
+        .collect();
+    let mut points = vec![[0.0, 0.0, 0.0]];
+    points.extend(shifted);
+    let mut speeds = vec![None];
+    speeds.extend(leg_speeds(&traced));
+    let plan = FlightPlan::new(points, speeds).unwrap();
+    let settings = |trajectory: String, plan: String| {
+        json!({"trajectory": trajectory, "model": "3d-ctra,mission", "prediction": "bounded",
+               "sf": 9, "bw": 125.0, "plan": plan})
+    };
+    let metres = run(settings(local, plan.to_csv()));
+    let logged = run(settings(gps, waypoint_list(&plan, home)));
+    for model in ["3d-ctra", "mission"] {
+        let (a, b) = (p75(&logged, model), p75(&metres, model));
+        assert!(
+            (a - b).abs() <= 1e-6 * b.max(1.0),
+            "{model}: GPS log {a} against metres {b}"
+        );
+    }
+}
+
+#[test]
 fn packet_pace_ignores_the_plans_speeds() {
     let r = |pace: &str| {
         run(json!({"synthetic": 2, "model": "mission", "sf": 10, "bw": 125.0, "planPace": pace}))
