@@ -490,6 +490,18 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
   await page.getByLabel(/Flight plan/).setInputFiles(wpl);
   await waitForResults(page, before);
   assert.equal(number(await cell(page, 'mission', 'p75')).toFixed(2), fromList.error3d.p75.toFixed(2));
+  // The flight as a GPS log (latitude, longitude, altitude above sea level) that starts on the
+  // ground at that home and climbs to the square at 5 m/s: read in metres from its first row,
+  // the list's frame.
+  const gps = join(dir, 'square-gps.csv');
+  const climb = Array.from({ length: 60 }, (_, i) => [i / 10, ...at([0, 0]), home[2] + i / 2]);
+  const square = rows.slice(1).map((r) => { const [t, x, y, z] = r.split(',').map(Number); return [t + 6, ...at([x, y]), home[2] + z]; });
+  writeFileSync(gps, ['time,Lat,Lng,Alt', ...[...climb, ...square].map((r) => r.join(','))].join('\n') + '\n');
+  const fromGps = nativeJson(['simulate', '--trajectory', gps, '--plan', wpl, '--model', '3d-ctra,mission']).results.find((x) => x.model === 'mission');
+  before = await tableHtml(page);
+  await page.getByLabel('CSV file').setInputFiles(gps);
+  await waitForResults(page, before);
+  assert.equal(number(await cell(page, 'mission', 'p75')).toFixed(2), fromGps.error3d.p75.toFixed(2));
 
   const bad = join(dir, 'bad-plan.csv');
   writeFileSync(bad, '0,0,30\n100,zero,30\n');
