@@ -37,7 +37,7 @@ pub enum Command {
 /// a swarm without one chains synthetic flights for --duration).
 #[derive(Args)]
 pub struct FlightArgs {
-    /// A flight as CSV: header with t,x,y,z (s, m, ENU) and optional vx,vy,vz / ax,ay,az; a regular file of at most 64 MiB.
+    /// A flight as CSV: header with t,x,y,z (s, m, ENU), or a GPS log's t,lat,lon,alt (degrees, m; read in metres from its first row), and optional vx,vy,vz / ax,ay,az; a regular file of at most 64 MiB.
     #[arg(long, value_name = "FILE", conflicts_with_all = ["synthetic", "sample"])]
     trajectory: Option<std::path::PathBuf>,
     /// The canonical synthetic set: `all` (30 flights, 44 min) or one flight 1..30.
@@ -46,7 +46,7 @@ pub struct FlightArgs {
     /// A bundled real flight: canberra (ArduCopter log171, CC BY-SA 3.0).
     #[arg(long, value_name = "NAME")]
     sample: Option<String>,
-    /// The drone's mission plan for --model mission with --trajectory or --sample: a CSV of x,y,z[,speed] (m, the flight's frame; speed m/s on the leg to that waypoint) or a QGroundControl .plan (its home is the frame's origin). The synthetic flights carry their own.
+    /// The drone's mission plan for --model mission with --trajectory or --sample: a CSV of x,y,z[,speed] (m, the flight's frame; speed m/s on the leg to that waypoint), a QGroundControl .plan (its home is the frame's origin) or a QGC WPL waypoint list, Mission Planner's .waypoints (its item 0 is). The synthetic flights carry their own.
     #[arg(long, value_name = "FILE", conflicts_with = "synthetic")]
     plan: Option<std::path::PathBuf>,
 }
