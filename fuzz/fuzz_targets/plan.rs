@@ -1,0 +1,14 @@
+//! Any text as a mission plan (CSV, a QGroundControl `.plan`, a `QGC WPL` waypoint list): the
+//! reader returns a plan or an error naming what is wrong, never panics, and every plan it
+//! returns has at least two waypoints, all finite, and a finite length.
+#![no_main]
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let text = String::from_utf8_lossy(data);
+    if let Ok(plan) = loratrack::parse_plan(&text) {
+        assert!(plan.waypoints().len() >= 2);
+        assert!(plan.waypoints().iter().flatten().all(|v| v.is_finite()));
+        assert!(plan.length().is_finite() && plan.length() > 0.0);
+    }
+});
