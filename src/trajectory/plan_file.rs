@@ -78,6 +78,8 @@ pub fn parse_plan(text: &str) -> Result<FlightPlan, PlanError> {
     if text.len() > MAX_CSV_BYTES {
         return Err(PlanError::TooLarge { bytes: text.len() });
     }
+    // A byte-order mark, as Windows editors write one, is not part of the plan.
+    let text = text.trim_start_matches('\u{feff}');
     let start = text.trim_start();
     if start.starts_with('{') {
         parse_qgc(text)

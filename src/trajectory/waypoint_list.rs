@@ -152,6 +152,9 @@ mod tests {
             items.join(", ")
         );
         assert_eq!(parse_plan(&qgc).unwrap(), wpl);
+        // Saved on Windows: a byte-order mark and CRLF line ends.
+        let windows = format!("\u{feff}{}", MISSION_PLANNER.replace('\n', "\r\n"));
+        assert_eq!(parse_plan(&windows).unwrap(), wpl);
     }
 
     #[test]
