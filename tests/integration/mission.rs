@@ -104,11 +104,20 @@ fn a_plan_file_is_followed_as_the_synthetic_flight_follows_its_own() {
     assert_eq!(r[1].coverage95, r[0].coverage95);
 }
 
+/// The latitude and longitude (degrees) of the point `p` m east and north of `home`: the inverse
+/// of the projection plans and GPS logs are read through (reference §11).
+fn lat_lon(home: [f64; 3], p: &[f64; 3]) -> [f64; 2] {
+    let k = std::f64::consts::PI / 180.0 * 6_371_000.0;
+    [
+        home[0] + p[1] / k,
+        home[1] + p[0] / (k * home[0].to_radians().cos()),
+    ]
+}
+
 /// `plan` as QGroundControl saves a mission (`fileType: "Plan"`): home at `home` (latitude,
 /// longitude, degrees; altitude m), then for each leg a speed change and a waypoint at relative
 /// altitude, its position turned into latitude and longitude about home.
 fn qgroundcontrol_plan(plan: &FlightPlan, home: [f64; 3]) -> String {
-    let k = std::f64::consts::PI / 180.0 * 6_371_000.0;
     let mut items = Vec::new();
     let speeds = leg_speeds(plan);
     for (i, w) in plan.waypoints().iter().enumerate() {
@@ -118,8 +127,7 @@ fn qgroundcontrol_plan(plan: &FlightPlan, home: [f64; 3]) -> String {
                               "params": [1, v, -1, 0, 0, 0, 0]}),
             );
         }
-        let lat = home[0] + w[1] / k;
-        let lon = home[1] + w[0] / (k * home[0].to_radians().cos());
+        let [lat, lon] = lat_lon(home, w);
         items.push(
             json!({"type": "SimpleItem", "command": 16, "frame": 3, "autoContinue": true,
                           "AMSLAltAboveTerrain": null, "Altitude": w[2], "AltitudeMode": 1,
@@ -137,7 +145,6 @@ fn qgroundcontrol_plan(plan: &FlightPlan, home: [f64; 3]) -> String {
 /// `plan` as Mission Planner saves a mission (`QGC WPL 110`, tab-separated): home as item 0,
 /// then for each leg a speed change and a waypoint at relative altitude.
 fn waypoint_list(plan: &FlightPlan, home: [f64; 3]) -> String {
-    let k = std::f64::consts::PI / 180.0 * 6_371_000.0;
     let mut lines = vec![
         "QGC WPL 110".to_string(),
         format!(
@@ -151,8 +158,7 @@ fn waypoint_list(plan: &FlightPlan, home: [f64; 3]) -> String {
             let n = lines.len() - 1;
             lines.push(format!("{n}\t0\t3\t178\t1\t{v}\t-1\t0\t0\t0\t0\t1"));
         }
-        let lat = home[0] + w[1] / k;
-        let lon = home[1] + w[0] / (k * home[0].to_radians().cos());
+        let [lat, lon] = lat_lon(home, w);
         let n = lines.len() - 1;
         lines.push(format!(
             "{n}\t0\t3\t16\t0\t0\t0\t0\t{lat}\t{lon}\t{}\t1",
@@ -219,7 +225,6 @@ fn a_qgroundcontrol_plan_or_waypoint_list_is_followed_as_the_same_plan_in_csv() 
 fn a_gps_log_with_a_plan_about_its_first_fix_is_tracked_as_the_same_flight_in_metres() {
     let flight = synthetic_flight(5).unwrap();
     let home = [-35.3632, 149.1652, 584.0];
-    let k = std::f64::consts::PI / 180.0 * 6_371_000.0;
     let start = flight.pos[0];
     let (mut gps, mut local) = (
         String::from("t,lat,lon,alt,vx,vy,vz,ax,ay,az\n"),
@@ -229,8 +234,7 @@ fn a_gps_log_with_a_plan_about_its_first_fix_is_tracked_as_the_same_flight_in_me
         let p = [0, 1, 2].map(|c| flight.pos[i][c] - start[c]);
         let (v, a) = (flight.vel[i], flight.acc[i]);
         let rates = format!("{},{},{},{},{},{}", v[0], v[1], v[2], a[0], a[1], a[2]);
-        let lat = home[0] + p[1] / k;
-        let lon = home[1] + p[0] / (k * home[0].to_radians().cos());
+        let [lat, lon] = lat_lon(home, &p);
         gps += &format!("{},{lat},{lon},{},{rates}\n", flight.t[i], home[2] + p[2]);
         local += &format!("{},{},{},{},{rates}\n", flight.t[i], p[0], p[1], p[2]);
     }
