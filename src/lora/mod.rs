@@ -24,8 +24,8 @@ pub use adr::{
     expected_age_cost, tracking_ack_limits, AckLimits, AdrDevice, AdrMode, AdrNetwork, AdrParams,
     LinkAdrReq, LorawanAdr, TrackingAdr, UplinkFrame, UplinkReport, ADR_ACK_DELAY, ADR_ACK_LIMIT,
     DEFAULT_ADR_HISTORY, DEFAULT_ADR_MARGIN_DB, ERROR_GROWTH, GATEWAY_TX_POWER_DBM,
-    MAX_POWER_REDUCTION_DB, RECEIVE_DELAY1_S, TRACKING_HYSTERESIS, TRACKING_WINDOW,
-    TX_POWER_STEP_DB,
+    LORAWAN_ADR_MAX_DR, MAX_POWER_REDUCTION_DB, RECEIVE_DELAY1_S, TRACKING_HYSTERESIS,
+    TRACKING_WINDOW, TX_POWER_STEP_DB,
 };
 pub use airtime::{
     time_on_air, Airtime, Bandwidth, CodingRate, LdroMode, LoraParams, SpreadingFactor,

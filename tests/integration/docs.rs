@@ -201,10 +201,13 @@ fn the_readme_gateway_and_downlink_numbers_are_what_the_cli_prints() {
             held("missedWhileTransmitting")
         ),
     ];
+    let reference = prose("docs/reference.md");
+    let reference_claim = format!("{sent} downlinks sent, {missed} uplinks missed while they were");
     for (text, claim) in claims
         .iter()
         .map(|(text, claim)| (*text, claim))
         .chain(downlinks.iter().map(|claim| (&readme, claim)))
+        .chain([(&reference, &reference_claim)])
     {
         assert!(
             text.contains(claim.as_str()),

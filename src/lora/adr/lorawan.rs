@@ -5,12 +5,20 @@ use super::{AdrNetwork, LinkAdrReq, UplinkReport, MAX_POWER_REDUCTION_DB, TX_POW
 use crate::lora::{demodulation_floor_db, DataRate};
 use std::collections::VecDeque;
 
+/// The fastest data rate LoRaWAN's ADR asks for: DR5, SF7 at 125 kHz.
+///
+/// The Things Stack's EU868 band caps ADR there (`MaxADRDataRateIndex`), as does the ns-3
+/// `lorawan` `AdrComponent` (SF7 at 125 kHz); DR6 (SF7 / 250 kHz) is on one default channel only
+/// (868.3 MHz), so a device ADR moved there would give up the other two. A device already above
+/// it (one that starts at DR6) is left there: the server never lowers a data rate.
+pub const LORAWAN_ADR_MAX_DR: DataRate = DataRate::DR5;
+
 /// The LoRaWAN network server's ADR.
 ///
 /// Once `history` uplinks at the device's current data rate and power have arrived, the margin
 /// is `max SNR − demodulation floor − device margin`; each whole 3 dB of it first raises the data
-/// rate (up to DR6), then lowers the power by 3 dB; a negative margin raises the power back. It
-/// never lowers the data rate: that is the device's own back-off
+/// rate (up to [`LORAWAN_ADR_MAX_DR`], DR5), then lowers the power by 3 dB; a negative margin
+/// raises the power back. It never lowers the data rate: that is the device's own back-off
 /// ([`AdrDevice::no_downlink`](super::AdrDevice::no_downlink)). The history restarts whenever the
 /// device's data rate or power changes, since older SNRs describe other settings.
 #[derive(Clone, Debug)]
@@ -52,7 +60,7 @@ impl AdrNetwork for LorawanAdr {
         let mut steps = (margin / TX_POWER_STEP_DB).floor() as i64;
         let (mut dr, mut reduction) = now;
         while steps > 0 {
-            if let Some(faster) = dr.faster() {
+            if let Some(faster) = dr.faster().filter(|&f| f <= LORAWAN_ADR_MAX_DR) {
                 dr = faster;
             } else if reduction + TX_POWER_STEP_DB <= MAX_POWER_REDUCTION_DB {
                 reduction += TX_POWER_STEP_DB;
@@ -107,6 +115,19 @@ mod tests {
         // DR6 floor −7.5: SNR 10 → margin 7.5 → 2 steps, both into power.
         let cmd = adr.on_uplink(&report(0, DataRate::DR6, 0.0, 10.0)).unwrap();
         assert_eq!((cmd.dr, cmd.power_reduction_db), (DataRate::DR6, 6.0));
+    }
+
+    #[test]
+    fn never_asks_for_dr6_however_large_the_margin() {
+        let mut adr = LorawanAdr::new(10.0, 1);
+        // DR4 (SF8, floor −10): SNR 11 → margin 11 → 3 steps: one to DR5, two into power.
+        let cmd = adr
+            .on_uplink(&report(0, DataRate::new(4).unwrap(), 0.0, 11.0))
+            .unwrap();
+        assert_eq!((cmd.dr, cmd.power_reduction_db), (DataRate::DR5, 6.0));
+        let mut adr = LorawanAdr::new(10.0, 1);
+        let cmd = adr.on_uplink(&report(0, DataRate::DR5, 0.0, 20.0)).unwrap();
+        assert_eq!((cmd.dr, cmd.power_reduction_db), (DataRate::DR5, 12.0));
     }
 
     #[test]

@@ -14,7 +14,7 @@ mod lorawan;
 mod tracking;
 
 pub use device::{AckLimits, AdrDevice, UplinkFrame, ADR_ACK_DELAY, ADR_ACK_LIMIT};
-pub use lorawan::LorawanAdr;
+pub use lorawan::{LorawanAdr, LORAWAN_ADR_MAX_DR};
 pub use tracking::{
     expected_age_cost, tracking_ack_limits, TrackingAdr, ERROR_GROWTH, TRACKING_HYSTERESIS,
     TRACKING_WINDOW,
@@ -35,8 +35,8 @@ pub enum AdrMode {
     Off,
     /// LoRaWAN's network-server ADR (Semtech's algorithm, as The Things Stack and ns-3 run it):
     /// once --adr-history uplinks have arrived, each whole 3 dB of margin over --adr-margin raises
-    /// the data rate, then lowers the power; only the device's own back-off slows it. Built for
-    /// delivery and battery, not tracking.
+    /// the data rate (to DR5 at most), then lowers the power; only the device's own back-off slows
+    /// it. Built for delivery and battery, not tracking.
     Lorawan,
     /// Ours: the network picks the data rate whose packets keep the station's newest packet
     /// youngest, from each rate's delivery estimated on the received frames, and slows it
