@@ -74,7 +74,7 @@ export type SimulateParams = Partial<Omit<Scenario, 'seed'>> & {
   /** A name for the CSV flight, shown in reports. */
   trajectoryName?: string;
   /** The drone's mission plan for a CSV or sample flight (input only): CSV text of
-   * `x,y,z[,speed]`, a QGroundControl `.plan` or a `QGC WPL` waypoint list (Mission Planner's
+   * `x,y,z[,speed[,hold]]`, a QGroundControl `.plan` or a `QGC WPL` waypoint list (Mission Planner's
    * `.waypoints`); the synthetic flights carry their own. */
   plan?: string;
   /** The plan's file name, for `commandLine`. */

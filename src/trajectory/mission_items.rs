@@ -14,6 +14,7 @@ const NAV_RETURN_TO_LAUNCH: u64 = 20;
 const NAV_LAND: u64 = 21;
 const NAV_TAKEOFF: u64 = 22;
 const NAV_LOITER_TO_ALT: u64 = 31;
+const NAV_DELAY: u64 = 93;
 const NAV_SPLINE_WAYPOINT: u64 = 82;
 const NAV_VTOL_TAKEOFF: u64 = 84;
 const NAV_VTOL_LAND: u64 = 85;
@@ -40,13 +41,14 @@ pub(super) struct MissionItem {
 }
 
 /// A mission as its items are read in order: the waypoints so far (home first), the speed of
-/// each leg, and the speed the next leg will have.
+/// each leg, the time held at each waypoint, and the speed the next leg will have.
 pub(super) struct Flown {
     /// Home: latitude and longitude, degrees, and altitude above mean sea level, m.
     home: [f64; 3],
     speed: Option<f64>,
     points: Vec<[f64; 3]>,
     speeds: Vec<Option<f64>>,
+    holds: Vec<f64>,
 }
 
 impl Flown {
@@ -58,18 +60,31 @@ impl Flown {
             speed,
             points: vec![[0.0, 0.0, 0.0]],
             speeds: Vec::new(),
+            holds: vec![0.0],
         }
     }
 
-    /// Reads one mission item: a speed change, a leg to a new waypoint, or nothing that moves
-    /// the vehicle. The refusal says what is wrong with the item.
+    /// Reads one mission item: a speed change, a leg to a new waypoint, a wait where the vehicle
+    /// is, or nothing that moves the vehicle. The refusal says what is wrong with the item.
     pub fn item(&mut self, item: &MissionItem) -> Result<(), String> {
         let param = |k: usize| item.params[k];
         let last = self.points[self.points.len() - 1];
+        // Parameter 1 of a waypoint, a timed loiter and a delay is the time held there, s (a
+        // negative one, as `NAV_DELAY` writes for "until a time of day", is not read).
+        let hold = match item.command {
+            NAV_WAYPOINT | NAV_LOITER_TIME | NAV_DELAY => param(0).filter(|h| *h > 0.0),
+            _ => None,
+        }
+        .unwrap_or(0.0);
         let point = match item.command {
             DO_CHANGE_SPEED => {
                 // Parameter 2 is the speed; −1 means no change.
                 self.speed = param(1).filter(|s| *s > 0.0).or(self.speed);
+                return Ok(());
+            }
+            NAV_DELAY => {
+                let held = self.holds.len() - 1;
+                self.holds[held] += hold;
                 return Ok(());
             }
             NAV_RETURN_TO_LAUNCH => [0.0, 0.0, last[2]],
@@ -97,15 +112,21 @@ impl Flown {
         };
         self.points.push(point);
         self.speeds.push(self.speed);
+        self.holds.push(hold);
         Ok(())
     }
 
-    /// The plan flown: home and every waypoint read, in order.
+    /// The plan flown: home and every waypoint read, in order, with their holds.
     pub fn plan(self) -> Result<FlightPlan, PlanError> {
         if self.points.len() < 2 {
             return Err(PlanError::Empty);
         }
-        FlightPlan::new(self.points, self.speeds)
+        let holds = self
+            .holds
+            .into_iter()
+            .map(|h| h.min(super::plan::MAX_HOLD))
+            .collect();
+        FlightPlan::with_holds(self.points, self.speeds, holds)
     }
 
     /// East and north of home, m, of an item's latitude and longitude (degrees); `None` where it
@@ -166,6 +187,48 @@ mod tests {
             w[2]
         );
         assert_eq!(p.speed_at(1.0), Some(5.0));
+    }
+
+    #[test]
+    fn holds_are_read_from_waypoints_timed_loiters_and_delays() {
+        let mut f = Flown::new([-35.0, 149.0, 500.0], Some(5.0));
+        let mut wp = item(16, 3, -35.0, 149.001, 30.0);
+        wp.params[0] = Some(12.0);
+        f.item(&wp).unwrap();
+        f.item(&MissionItem {
+            command: 93,
+            frame: Some(2),
+            params: [
+                Some(8.0),
+                Some(-1.0),
+                Some(-1.0),
+                Some(-1.0),
+                None,
+                None,
+                None,
+            ],
+        })
+        .unwrap();
+        let mut loiter = item(19, 3, -35.001, 149.001, 30.0);
+        loiter.params[0] = Some(40.0);
+        f.item(&loiter).unwrap();
+        // A delay "until a time of day" (−1) holds nothing loratrack can time.
+        f.item(&MissionItem {
+            command: 93,
+            frame: Some(2),
+            params: [
+                Some(-1.0),
+                Some(10.0),
+                Some(30.0),
+                Some(0.0),
+                None,
+                None,
+                None,
+            ],
+        })
+        .unwrap();
+        f.item(&item(16, 3, -35.002, 149.001, 30.0)).unwrap();
+        assert_eq!(f.plan().unwrap().holds(), &[0.0, 20.0, 40.0, 0.0]);
     }
 
     #[test]

@@ -22,7 +22,8 @@ pub use csv::{
 pub use error::TrajectoryError;
 pub use kinematics::{heading_angles, kinematic_state, kinematic_states, HOVER_SPEED};
 pub use plan::{
-    FlightPlan, OnPlan, MAX_PLAN_COORDINATE, MAX_PLAN_SPEED, MAX_WAYPOINTS, TRACE_TOLERANCE,
+    FlightPlan, OnPlan, MAX_HOLD, MAX_PLAN_COORDINATE, MAX_PLAN_SPEED, MAX_WAYPOINTS,
+    TRACE_TOLERANCE,
 };
 pub use plan_file::{parse_plan, PlanError};
 pub use sample::{canberra_flight, CANBERRA_CREDIT};

@@ -12,11 +12,14 @@ pub const MAX_WAYPOINTS: usize = 10_000;
 pub const MAX_PLAN_COORDINATE: f64 = 1.0e6;
 /// The largest planned speed, m/s: as for a CSV flight.
 pub const MAX_PLAN_SPEED: f64 = 300.0;
+/// The longest hold at a waypoint, s: a day.
+pub const MAX_HOLD: f64 = 86_400.0;
 /// How far the flown path of a synthetic flight may stray from the plan traced through it, m
 /// ([`FlightPlan::traced`]): a mission planner's waypoints on a curve, every few metres of sagitta.
 pub const TRACE_TOLERANCE: f64 = 2.0;
 
-/// Waypoints joined by straight legs, with an optional planned ground speed per leg.
+/// Waypoints joined by straight legs, with an optional planned ground speed per leg and a time
+/// the drone holds (hovers) at each waypoint.
 ///
 /// Positions are ENU metres in the flight's frame; `along` is the distance flown along the legs.
 ///
@@ -34,6 +37,9 @@ pub struct FlightPlan {
     along: Vec<f64>,
     /// Planned ground speed on leg i (from waypoint i to i + 1), m/s.
     speeds: Vec<Option<f64>>,
+    /// Seconds the drone holds at waypoint i before it flies on (MAVLink `NAV_WAYPOINT`'s hold,
+    /// `NAV_LOITER_TIME`, `NAV_DELAY`); 0 for most.
+    holds: Vec<f64>,
 }
 
 /// The nearest point of a plan to a position.
@@ -50,7 +56,43 @@ impl FlightPlan {
     /// the points; `None` where the plan gives no speed). A waypoint equal to the one before it
     /// is dropped, with its leg. Refuses fewer than two distinct waypoints, more than
     /// [`MAX_WAYPOINTS`], non-finite or absurd values (line numbers count waypoints from 1).
+    /// No holds: [`FlightPlan::with_holds`].
     pub fn new(points: Vec<[f64; 3]>, speeds: Vec<Option<f64>>) -> Result<Self, PlanError> {
+        let holds = vec![0.0; points.len()];
+        Self::with_holds(points, speeds, holds)
+    }
+
+    /// As [`FlightPlan::new`], with `holds[i]` s held at waypoint i (one per waypoint, each in
+    /// 0..=[`MAX_HOLD`]). A dropped repeat's hold is added to the waypoint it repeats, so a
+    /// waypoint followed by a timed loiter at the same place holds for both.
+    ///
+    /// ```
+    /// use loratrack::FlightPlan;
+    /// let p = FlightPlan::with_holds(vec![[0.0; 3], [50.0, 0.0, 0.0], [50.0, 0.0, 0.0]], vec![None, None], vec![0.0, 10.0, 5.0]).unwrap();
+    /// assert_eq!(p.holds(), &[0.0, 15.0]);
+    /// ```
+    pub fn with_holds(
+        points: Vec<[f64; 3]>,
+        speeds: Vec<Option<f64>>,
+        holds: Vec<f64>,
+    ) -> Result<Self, PlanError> {
+        if holds.len() != points.len() {
+            return Err(PlanError::Invalid(format!(
+                "a plan has one hold per waypoint (waypoints: {}, holds: {})",
+                points.len(),
+                holds.len()
+            )));
+        }
+        if let Some(i) = holds
+            .iter()
+            .position(|h| !(h.is_finite() && (0.0..=MAX_HOLD).contains(h)))
+        {
+            return Err(PlanError::Invalid(format!(
+                "waypoint {}: a hold must be in 0..={MAX_HOLD} s, got {}",
+                i + 1,
+                holds[i]
+            )));
+        }
         if points.len() > MAX_WAYPOINTS {
             return Err(PlanError::TooManyWaypoints { max: MAX_WAYPOINTS });
         }
@@ -85,6 +127,7 @@ impl FlightPlan {
             points: Vec::with_capacity(points.len()),
             along: Vec::with_capacity(points.len()),
             speeds: Vec::with_capacity(speeds.len()),
+            holds: Vec::with_capacity(points.len()),
         };
         for (i, p) in points.into_iter().enumerate() {
             match plan.points.last() {
@@ -92,6 +135,8 @@ impl FlightPlan {
                 Some(last) => {
                     let leg = distance(last, &p);
                     if leg == 0.0 {
+                        let held = plan.holds.len() - 1;
+                        plan.holds[held] = (plan.holds[held] + holds[i]).min(MAX_HOLD);
                         continue;
                     }
                     plan.along.push(plan.along[plan.along.len() - 1] + leg);
@@ -99,6 +144,7 @@ impl FlightPlan {
                 }
             }
             plan.points.push(p);
+            plan.holds.push(holds[i]);
         }
         if plan.points.len() < 2 {
             return Err(PlanError::TooFewWaypoints);
@@ -126,6 +172,7 @@ impl FlightPlan {
             points: vec![p, [p[0] + 1e-3, p[1], p[2]]],
             along: vec![0.0, 1e-3],
             speeds: vec![Some(1e-3)],
+            holds: vec![0.0; 2],
         })
     }
 
@@ -137,18 +184,56 @@ impl FlightPlan {
         }
     }
 
+    /// The same waypoints and speeds without holds.
+    pub fn without_holds(&self) -> Self {
+        FlightPlan {
+            holds: vec![0.0; self.holds.len()],
+            ..self.clone()
+        }
+    }
+
     /// The plan as CSV text that [`parse_plan`](super::parse_plan) reads back to the same plan:
-    /// `x,y,z,speed`, every number in its shortest round-trip form.
+    /// `x,y,z,speed`, and `hold` where any waypoint has one, every number in its shortest
+    /// round-trip form.
     pub fn to_csv(&self) -> String {
-        let mut out = String::from("x,y,z,speed\n");
+        let with_holds = self.holds.iter().any(|&h| h > 0.0);
+        let mut out = String::from(if with_holds {
+            "x,y,z,speed,hold\n"
+        } else {
+            "x,y,z,speed\n"
+        });
         for (i, p) in self.points.iter().enumerate() {
             let speed = match i.checked_sub(1).and_then(|leg| self.speeds[leg]) {
                 Some(v) => format!(",{v}"),
+                None if with_holds => ",".into(),
                 None => String::new(),
             };
-            out += &format!("{},{},{}{speed}\n", p[0], p[1], p[2]);
+            let hold = if with_holds {
+                format!(",{}", self.holds[i])
+            } else {
+                String::new()
+            };
+            out += &format!("{},{},{}{speed}{hold}\n", p[0], p[1], p[2]);
         }
         out
+    }
+
+    /// Seconds held at each waypoint.
+    pub fn holds(&self) -> &[f64] {
+        &self.holds
+    }
+
+    /// The index of the first waypoint at or past `along` m (the waypoint count past the end).
+    pub fn waypoint_at_or_after(&self, along: f64) -> usize {
+        self.along.partition_point(|&a| a < along)
+    }
+
+    /// The first waypoint from index `from` on that has a hold, with the distance along the plan
+    /// at which it stands, m.
+    pub fn next_hold(&self, from: usize) -> Option<(usize, f64)> {
+        (from..self.points.len())
+            .find(|&i| self.holds[i] > 0.0)
+            .map(|i| (i, self.along[i]))
     }
 
     /// The waypoints, m.
@@ -278,6 +363,31 @@ mod tests {
         assert_eq!(p.speed_at(50.0), Some(10.0));
         assert_eq!(p.speed_at(150.0), None);
         assert_eq!(p.direction_at(250.0), [-1.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn holds_add_up_where_a_waypoint_repeats_and_are_found_ahead() {
+        let p = FlightPlan::with_holds(
+            vec![
+                [0.0; 3],
+                [10.0, 0.0, 0.0],
+                [10.0, 0.0, 0.0],
+                [20.0, 0.0, 0.0],
+            ],
+            vec![None; 3],
+            vec![0.0, 4.0, 6.0, 0.0],
+        )
+        .unwrap();
+        assert_eq!(p.holds(), &[0.0, 10.0, 0.0]);
+        assert_eq!(p.next_hold(p.waypoint_at_or_after(3.0)), Some((1, 10.0)));
+        assert_eq!(p.next_hold(p.waypoint_at_or_after(10.0)), Some((1, 10.0)));
+        assert_eq!(p.next_hold(p.waypoint_at_or_after(10.5)), None);
+        assert_eq!(p.without_holds().holds(), &[0.0; 3]);
+        assert!(FlightPlan::with_holds(vec![[0.0; 3], [1.0; 3]], vec![None], vec![0.0]).is_err());
+        assert!(
+            FlightPlan::with_holds(vec![[0.0; 3], [1.0; 3]], vec![None], vec![0.0, f64::NAN])
+                .is_err()
+        );
     }
 
     #[test]

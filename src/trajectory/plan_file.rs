@@ -1,4 +1,4 @@
-//! Reading a mission plan (reference §16): a CSV of `x,y,z[,speed]` in the flight's frame, a
+//! Reading a mission plan (reference §16): a CSV of `x,y,z[,speed[,hold]]` in the flight's frame, a
 //! QGroundControl `.plan` file (JSON; its planned home position is the frame's origin) or a
 //! plain-text waypoint list (`QGC WPL`, Mission Planner's `.waypoints`; its home, item 0, is).
 
@@ -25,7 +25,7 @@ pub enum PlanError {
         /// Its size, bytes.
         bytes: usize,
     },
-    /// A CSV line that is not `x,y,z[,speed]`.
+    /// A CSV line that is not `x,y,z[,speed[,hold]]`.
     Line {
         /// Line number.
         line: usize,
@@ -66,9 +66,10 @@ impl std::error::Error for PlanError {}
 /// Reads a plan: QGroundControl JSON when the text starts with `{`, a waypoint list when it starts
 /// with `QGC WPL`, else CSV.
 ///
-/// CSV: one waypoint per line, `x,y,z` or `x,y,z,speed` (m east, north, up in the flight's
-/// frame; the speed, m/s, is for the leg that ends at that waypoint); a header line of names,
-/// blank lines and lines starting with `#` are skipped.
+/// CSV: one waypoint per line, `x,y,z`, `x,y,z,speed` or `x,y,z,speed,hold` (m east, north,
+/// up in the flight's frame; the speed, m/s, is for the leg that ends at that waypoint, and may
+/// be left empty; the hold, s, is how long the drone stays at the waypoint); a header line of
+/// names, blank lines and lines starting with `#` are skipped.
 ///
 /// ```
 /// let plan = loratrack::parse_plan("x,y,z,speed\n0,0,20\n100,0,20,8\n").unwrap();
@@ -93,32 +94,49 @@ pub fn parse_plan(text: &str) -> Result<FlightPlan, PlanError> {
 fn parse_csv_plan(text: &str) -> Result<FlightPlan, PlanError> {
     let mut points = Vec::new();
     let mut speeds = Vec::new();
+    let mut holds = Vec::new();
     for (i, raw) in text.lines().enumerate() {
         let line = raw.trim();
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
         let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        let numbers: Result<Vec<f64>, _> = fields.iter().map(|f| f.parse::<f64>()).collect();
+        // The speed and the hold may be left empty (a hold without a speed: `x,y,z,,hold`).
+        let numbers: Result<Vec<Option<f64>>, _> = fields
+            .iter()
+            .enumerate()
+            .map(|(k, f)| match (k, f.is_empty()) {
+                (3.., true) => Ok(None),
+                _ => f.parse::<f64>().map(Some),
+            })
+            .collect();
         let Ok(numbers) = numbers else {
             if points.is_empty() && fields.iter().all(|f| f.parse::<f64>().is_err()) {
                 continue; // a header
             }
             return Err(PlanError::Line {
                 line: i + 1,
-                what: format!("expected x,y,z[,speed] numbers, got '{}'", excerpt(line)),
+                what: format!(
+                    "expected x,y,z[,speed[,hold]] numbers, got '{}'",
+                    excerpt(line)
+                ),
             });
         };
-        if !(3..=4).contains(&numbers.len()) {
+        if !(3..=5).contains(&numbers.len()) {
             return Err(PlanError::Line {
                 line: i + 1,
-                what: format!("{} fields; a waypoint is x,y,z[,speed]", numbers.len()),
+                what: format!(
+                    "{} fields; a waypoint is x,y,z[,speed[,hold]]",
+                    numbers.len()
+                ),
             });
         }
         if !points.is_empty() {
-            speeds.push(numbers.get(3).copied());
+            speeds.push(numbers.get(3).copied().flatten());
         }
-        points.push([numbers[0], numbers[1], numbers[2]]);
+        let coordinate = |k: usize| numbers[k].unwrap_or(f64::NAN);
+        points.push([coordinate(0), coordinate(1), coordinate(2)]);
+        holds.push(numbers.get(4).copied().flatten().unwrap_or(0.0));
         if points.len() > super::MAX_WAYPOINTS {
             return Err(PlanError::TooManyWaypoints {
                 max: super::MAX_WAYPOINTS,
@@ -128,7 +146,7 @@ fn parse_csv_plan(text: &str) -> Result<FlightPlan, PlanError> {
     if points.is_empty() {
         return Err(PlanError::Empty);
     }
-    FlightPlan::new(points, speeds)
+    FlightPlan::with_holds(points, speeds, holds)
 }
 
 /// At most 60 characters of `text`.
@@ -156,13 +174,25 @@ mod tests {
     }
 
     #[test]
+    fn reads_holds_with_or_without_a_speed() {
+        let p = parse_plan("x,y,z,speed,hold\n0,0,20,,3\n100,0,20,,30\n100,50,20,5\n").unwrap();
+        assert_eq!(p.holds(), &[3.0, 30.0, 0.0]);
+        assert_eq!((p.speed_at(10.0), p.speed_at(110.0)), (None, Some(5.0)));
+        assert_eq!(parse_plan(&p.to_csv()).unwrap(), p);
+        let e = parse_plan("0,0,20\n100,0,20,,-1\n").unwrap_err();
+        assert!(e.to_string().contains("waypoint 2: a hold"), "{e}");
+        // An empty coordinate is still an error, not a zero.
+        assert!(parse_plan("0,,20\n100,0,20\n").is_err());
+    }
+
+    #[test]
     fn csv_errors_name_the_line() {
         let e = parse_plan("x,y,z\n0,0,1\n1,abc,1\n").unwrap_err();
         assert_eq!(
             e,
             PlanError::Line {
                 line: 3,
-                what: "expected x,y,z[,speed] numbers, got '1,abc,1'".into()
+                what: "expected x,y,z[,speed[,hold]] numbers, got '1,abc,1'".into()
             }
         );
         assert!(e.to_string().starts_with("plan line 3:"));

@@ -116,7 +116,7 @@ fn lat_lon(home: [f64; 3], p: &[f64; 3]) -> [f64; 2] {
 
 /// `plan` as QGroundControl saves a mission (`fileType: "Plan"`): home at `home` (latitude,
 /// longitude, degrees; altitude m), then for each leg a speed change and a waypoint at relative
-/// altitude, its position turned into latitude and longitude about home.
+/// altitude with its hold, its position turned into latitude and longitude about home.
 fn qgroundcontrol_plan(plan: &FlightPlan, home: [f64; 3]) -> String {
     let mut items = Vec::new();
     let speeds = leg_speeds(plan);
@@ -131,7 +131,7 @@ fn qgroundcontrol_plan(plan: &FlightPlan, home: [f64; 3]) -> String {
         items.push(
             json!({"type": "SimpleItem", "command": 16, "frame": 3, "autoContinue": true,
                           "AMSLAltAboveTerrain": null, "Altitude": w[2], "AltitudeMode": 1,
-                          "params": [0, 0, 0, null, lat, lon, w[2]]}),
+                          "params": [plan.holds()[i], 0, 0, null, lat, lon, w[2]]}),
         );
     }
     json!({"fileType": "Plan", "version": 1, "groundStation": "QGroundControl",
@@ -143,7 +143,7 @@ fn qgroundcontrol_plan(plan: &FlightPlan, home: [f64; 3]) -> String {
 }
 
 /// `plan` as Mission Planner saves a mission (`QGC WPL 110`, tab-separated): home as item 0,
-/// then for each leg a speed change and a waypoint at relative altitude.
+/// then for each leg a speed change and a waypoint at relative altitude with its hold.
 fn waypoint_list(plan: &FlightPlan, home: [f64; 3]) -> String {
     let mut lines = vec![
         "QGC WPL 110".to_string(),
@@ -161,7 +161,8 @@ fn waypoint_list(plan: &FlightPlan, home: [f64; 3]) -> String {
         let [lat, lon] = lat_lon(home, w);
         let n = lines.len() - 1;
         lines.push(format!(
-            "{n}\t0\t3\t16\t0\t0\t0\t0\t{lat}\t{lon}\t{}\t1",
+            "{n}\t0\t3\t16\t{}\t0\t0\t0\t{lat}\t{lon}\t{}\t1",
+            plan.holds()[i],
             w[2]
         ));
     }
@@ -262,6 +263,102 @@ fn a_gps_log_with_a_plan_about_its_first_fix_is_tracked_as_the_same_flight_in_me
         assert!(
             (a - b).abs() <= 1e-6 * b.max(1.0),
             "{model}: GPS log {a} against metres {b}"
+        );
+    }
+}
+
+/// The flight of a multicopter that flies `plan` as an autopilot without splines does: from rest
+/// to each leg's planned speed and back at 2 m/s², stopping at every waypoint and hovering there
+/// for its hold; as CSV at 25 Hz with velocities and accelerations.
+fn flown(plan: &FlightPlan) -> String {
+    const ACCEL: f64 = 2.0;
+    const DT: f64 = 0.04;
+    let mut csv = String::from("t,x,y,z,vx,vy,vz,ax,ay,az\n");
+    let mut t = 0.0;
+    let mut sample = |p: [f64; 3], v: [f64; 3], a: [f64; 3]| {
+        csv += &format!(
+            "{t},{},{},{},{},{},{},{},{},{}\n",
+            p[0], p[1], p[2], v[0], v[1], v[2], a[0], a[1], a[2]
+        );
+        t += DT;
+    };
+    let w = plan.waypoints();
+    for (leg, speed) in leg_speeds(plan).into_iter().enumerate() {
+        let (from, to) = (w[leg], w[leg + 1]);
+        let length = (0..3)
+            .map(|k| (to[k] - from[k]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let u = [0, 1, 2].map(|k| (to[k] - from[k]) / length);
+        let top = speed.unwrap().min((ACCEL * length).sqrt());
+        let ramp = top / ACCEL;
+        let total = 2.0 * ramp + (length - top * ramp) / top;
+        for j in 0..(total / DT).ceil() as usize {
+            let tau = j as f64 * DT;
+            let left = total - tau;
+            let (s, v, a) = if tau < ramp {
+                (ACCEL * tau * tau / 2.0, ACCEL * tau, ACCEL)
+            } else if left > ramp {
+                (top * (tau - ramp / 2.0), top, 0.0)
+            } else {
+                (length - ACCEL * left * left / 2.0, ACCEL * left, -ACCEL)
+            };
+            sample(
+                [0, 1, 2].map(|k| from[k] + u[k] * s),
+                u.map(|c| c * v),
+                u.map(|c| c * a),
+            );
+        }
+        for _ in 0..(plan.holds()[leg + 1] / DT).round() as usize {
+            sample(to, [0.0; 3], [0.0; 3]);
+        }
+    }
+    sample(w[w.len() - 1], [0.0; 3], [0.0; 3]);
+    csv
+}
+
+#[test]
+fn a_station_that_reads_the_plans_holds_waits_with_the_drone() {
+    // An inspection: take off, hover at four of six points for 15–60 s, come back and land.
+    let points = vec![
+        [0.0, 0.0, 0.0],
+        [0.0, 0.0, 30.0],
+        [250.0, 40.0, 30.0],
+        [310.0, 260.0, 45.0],
+        [60.0, 330.0, 45.0],
+        [-200.0, 180.0, 35.0],
+        [-240.0, -150.0, 35.0],
+        [30.0, -220.0, 30.0],
+        [0.0, 0.0, 30.0],
+        [0.0, 0.0, 0.0],
+    ];
+    let mut speeds = vec![Some(3.0)];
+    speeds.extend([Some(8.0); 7]);
+    speeds.push(Some(2.0));
+    let holds = vec![0.0, 0.0, 30.0, 0.0, 60.0, 15.0, 0.0, 45.0, 0.0, 0.0];
+    let plan = FlightPlan::with_holds(points, speeds, holds).unwrap();
+    let flight = flown(&plan);
+    let with = |plan: String| {
+        json!({"trajectory": flight, "model": "mission", "prediction": "bounded",
+               "sf": 9, "bw": 125.0, "plan": plan})
+    };
+    let holding = p75(&run(with(plan.to_csv())), "mission");
+    let flying_on = p75(&run(with(plan.without_holds().to_csv())), "mission");
+    // Without the holds the station flies on while the drone hovers, 30–60 s at a time.
+    assert!(
+        holding < 0.2 * flying_on,
+        "with holds {holding}, without {flying_on}"
+    );
+    // The holds are read from a QGroundControl plan and a waypoint list as from the CSV.
+    let home = [-35.3632, 149.1652, 584.0];
+    for (kind, text) in [
+        ("QGroundControl", qgroundcontrol_plan(&plan, home)),
+        ("waypoint list", waypoint_list(&plan, home)),
+    ] {
+        let read = p75(&run(with(text)), "mission");
+        assert!(
+            (read - holding).abs() <= 1e-6 * holding.max(1.0),
+            "{kind} {read} against CSV {holding}"
         );
     }
 }

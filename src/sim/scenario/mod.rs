@@ -86,8 +86,8 @@ pub struct FlightSettings {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
     pub sample: Option<String>,
-    /// The drone's mission plan for a CSV or sample flight, as text: a CSV of `x,y,z[,speed]` or
-    /// a QGroundControl `.plan` (the CLI reads `--plan FILE` into this; reference §16); input
+    /// The drone's mission plan for a CSV or sample flight, as text: a CSV of `x,y,z[,speed[,hold]]`
+    /// or a QGroundControl `.plan` (the CLI reads `--plan FILE` into this; reference §16); input
     /// only, not echoed (the JS API's `SimulateParams` adds it to the generated type). The
     /// synthetic flights carry their own.
     #[serde(default, skip_serializing)]
@@ -647,7 +647,7 @@ impl FlightSettings {
             && models.models().contains(&StationModel::Mission)
         {
             return Err(SimError::Source(
-                "the mission station needs the plan the drone flies: give `plan` (a CSV of x,y,z[,speed] or a QGroundControl .plan), or fly the synthetic flights, which carry their own"
+                "the mission station needs the plan the drone flies: give `plan` (a CSV of x,y,z[,speed[,hold]] or a QGroundControl .plan), or fly the synthetic flights, which carry their own"
                     .into(),
             ));
         }

@@ -3,7 +3,7 @@
 //! movement model that uses mission-level information).
 
 use super::{Prediction, StationPredictor, StationSetup, Tracker};
-use crate::math::exp;
+use crate::math::{distance, exp};
 use crate::models::Ctra3d;
 use crate::trajectory::FlightPlan;
 use nalgebra::Matrix3;
@@ -57,6 +57,13 @@ pub const PACE_SIGMA: f64 = 1.0;
 const SEARCH_MARGIN: f64 = 20.0;
 /// m/s: see [`SEARCH_MARGIN`].
 const SEARCH_SPEED: f64 = 5.0;
+/// A packet shows the drone holding at a waypoint with a hold when it reports less than this
+/// speed, m/s, within [`HOLD_RADIUS`] of it: a hovering multicopter's estimated speed is a few
+/// tenths of a metre per second.
+pub const HOLD_SPEED: f64 = 1.0;
+/// m: see [`HOLD_SPEED`]; a hovering drone's filtered position stays within a few metres of the
+/// waypoint.
+pub const HOLD_RADIUS: f64 = 5.0;
 
 /// Where along the plan the station believes the drone is, from the newest packet on the plan.
 #[derive(Clone, Copy, Debug)]
@@ -72,6 +79,15 @@ struct Following {
     /// The time and distance along the plan the station has flown to, s and m.
     t: f64,
     along: f64,
+    /// The waypoint the station holds at, and when it believes the drone got there, s.
+    holding: Option<(usize, f64)>,
+    /// The next waypoint with a hold, and its distance along the plan, m.
+    next_hold: Option<(usize, f64)>,
+    /// When the station's last hold since the packet ended, s: from then it speeds up from rest.
+    resumed: Option<f64>,
+    /// The speed to fly on at after a hold where the plan gives none, m/s: the newest packet's
+    /// that showed the drone moving.
+    cruise: f64,
 }
 
 /// The mission-aware station: each packet that places the drone within the tolerance of its plan
@@ -80,6 +96,12 @@ struct Following {
 /// from the plan closing over [`OFFSET_TIME`]. A packet off the plan (or no plan) hands the
 /// estimate to a bounded 3D-CTRA station, which runs beside it on every packet, until a packet
 /// is back on the plan. The drone sends the 12-byte 3D-CTRA payload.
+///
+/// A waypoint with a hold (reference §16) stops the station there for the hold; a packet that
+/// shows the drone hovering within [`HOLD_RADIUS`] of one (under [`HOLD_SPEED`]) places the
+/// drone's arrival halfway between the packet before and this one (no later than the hold
+/// allows), unless the station was already holding there; after a hold the station speeds up
+/// from rest over [`PACE_TIME`].
 ///
 /// Its covariance on the plan: the packet's (the drone filter's settled covariance, as the
 /// bounded station's), plus ([`PACE_SIGMA`]·τ)² in every direction, τ s after the packet.
@@ -114,12 +136,45 @@ impl MissionStation {
         self.following.is_some()
     }
 
-    /// The speed along the plan `tau` s after the packet, at `along` m.
-    fn pace(plan: &FlightPlan, f: &Following, tau: f64, along: f64) -> f64 {
-        match plan.speed_at(along) {
-            Some(v) => v + (f.speed - v) * exp(-tau / PACE_TIME),
-            None => f.speed,
+    /// The speed along the plan at time `t`, at `along` m: after a hold, from rest toward the
+    /// leg's planned speed (or the cruise speed); else from the packet's speed toward it.
+    fn pace(plan: &FlightPlan, f: &Following, t: f64, along: f64) -> f64 {
+        let planned = plan.speed_at(along);
+        match f.resumed {
+            Some(end) => planned.unwrap_or(f.cruise) * (1.0 - exp(-(t - end) / PACE_TIME)),
+            None => match planned {
+                Some(v) => v + (f.speed - v) * exp(-(t - f.sent) / PACE_TIME),
+                None => f.speed,
+            },
         }
+    }
+
+    /// The hold a packet at `p` (m; `along` m along the plan), moving at `speed` (m/s), shows
+    /// the drone in: the waypoint, its distance along the plan (m), and when the drone got there
+    /// (s).
+    fn hold_shown(
+        &self,
+        plan: &FlightPlan,
+        (p, along): (&[f64; 3], f64),
+        speed: f64,
+        sent: f64,
+    ) -> Option<(usize, f64, f64)> {
+        if speed >= HOLD_SPEED {
+            return None;
+        }
+        let (k, at) = plan
+            .next_hold(plan.waypoint_at_or_after(along - HOLD_RADIUS))
+            .filter(|&(k, _)| distance(p, &plan.waypoints()[k]) <= HOLD_RADIUS)?;
+        let hold = plan.holds()[k];
+        let reached = match self.following {
+            Some(Following {
+                holding: Some((at, reached)),
+                ..
+            }) if at == k => reached,
+            Some(f) => sent - hold.min((sent - f.sent).max(0.0) / 2.0),
+            None => sent - hold / 2.0,
+        };
+        Some((k, at, reached))
     }
 }
 
@@ -145,14 +200,25 @@ impl Tracker for MissionStation {
             self.following = None;
             return;
         }
-        let on = plan.point_at(found.along);
+        let speed = state[5].clamp(0.0, self.speed_limit);
+        let holding = self.hold_shown(plan, (&p, found.along), speed, sent);
+        let along = holding.map_or(found.along, |(_, at, _)| at);
+        let on = plan.point_at(along);
+        let cruise = match self.following {
+            Some(f) if speed < HOLD_SPEED => f.cruise,
+            _ => speed,
+        };
         self.following = Some(Following {
             sent,
             offset: core::array::from_fn(|k| p[k] - on[k]),
-            speed: state[5].clamp(0.0, self.speed_limit),
+            speed,
             covariance: self.fallback.position_covariance(),
             t: sent,
-            along: found.along,
+            along,
+            holding: holding.map(|(k, _, reached)| (k, reached)),
+            next_hold: plan.next_hold(plan.waypoint_at_or_after(found.along)),
+            resumed: None,
+            cruise,
         });
     }
 
@@ -161,12 +227,39 @@ impl Tracker for MissionStation {
         let (Some(mp), Some(f)) = (&self.plan, &mut self.following) else {
             return;
         };
+        let plan = &mp.plan;
         while f.t < t {
+            if let Some((k, reached)) = f.holding {
+                let end = reached + plan.holds()[k];
+                if f.t < end {
+                    f.t = end.min(t);
+                    continue;
+                }
+                f.holding = None;
+                f.resumed = Some(end);
+                f.next_hold = plan.next_hold(k + 1);
+            }
             let dt = self.step.min(t - f.t);
             // The midpoint's pace: second order in dt.
-            let v = Self::pace(&mp.plan, f, f.t + dt / 2.0 - f.sent, f.along);
-            f.along = (f.along + v * dt).min(mp.plan.length());
-            f.t += dt;
+            let v = Self::pace(plan, f, f.t + dt / 2.0, f.along);
+            let along = (f.along + v * dt).min(plan.length());
+            match f.next_hold {
+                // The hold's waypoint is reached within the step: the station stops there.
+                Some((k, at)) if along >= at => {
+                    f.t += if v > 0.0 {
+                        ((at - f.along) / v).clamp(0.0, dt)
+                    } else {
+                        0.0
+                    };
+                    f.along = at;
+                    f.holding = Some((k, f.t));
+                    f.next_hold = None;
+                }
+                _ => {
+                    f.along = along;
+                    f.t += dt;
+                }
+            }
         }
     }
 
@@ -259,6 +352,74 @@ mod tests {
         plain.reset(&packet(50.0, 0.0, 10.0), 0.0);
         plain.predict_to(9.0);
         assert!(plain.position()[0] > 130.0);
+    }
+
+    /// [`corner`] with a hold of 10 s at the corner.
+    fn corner_with_a_hold() -> MissionPlan {
+        let c = corner().plan;
+        MissionPlan {
+            plan: FlightPlan::with_holds(
+                c.waypoints().to_vec(),
+                vec![Some(10.0), Some(5.0)],
+                vec![0.0, 10.0, 0.0],
+            )
+            .unwrap(),
+            tolerance: 10.0,
+        }
+    }
+
+    #[test]
+    fn a_hold_stops_the_station_at_its_waypoint_then_it_speeds_up_from_rest() {
+        let mut st = MissionStation::new(Some(corner_with_a_hold()), setup());
+        st.reset(&packet(50.0, 0.0, 10.0), 0.0);
+        // At the corner after 5 s, held there until 15 s.
+        for t in [5.0, 10.0, 15.0] {
+            st.predict_to(t);
+            assert!(
+                (st.position()[0] - 100.0).abs() < 1e-9,
+                "{t}: {:?}",
+                st.position()
+            );
+            assert!(st.position()[1].abs() < 1e-9, "{t}: {:?}", st.position());
+        }
+        // Then from rest toward the leg's 5 m/s: 5 (τ − 2 (1 − e^(−τ/2))) north after τ s.
+        st.predict_to(19.0);
+        let north = 5.0 * (4.0 - PACE_TIME * (1.0 - exp(-4.0 / PACE_TIME)));
+        assert!(
+            (st.position()[1] - north).abs() < 1e-3,
+            "{:?} against {north}",
+            st.position()
+        );
+        // Without the hold the station would be 50 m further on.
+        let mut plain = MissionStation::new(Some(corner()), setup());
+        plain.reset(&packet(50.0, 0.0, 10.0), 0.0);
+        plain.predict_to(19.0);
+        assert!(plain.position()[1] > 60.0, "{:?}", plain.position());
+    }
+
+    #[test]
+    fn a_packet_hovering_at_a_hold_keeps_or_places_the_arrival() {
+        let mut st = MissionStation::new(Some(corner_with_a_hold()), setup());
+        st.reset(&packet(50.0, 0.0, 10.0), 0.0);
+        st.predict_to(8.0);
+        // Hovering at the corner: the station was holding there since 5 s, and keeps that.
+        st.reset(&packet(101.0, 1.0, 0.3), 8.0);
+        st.predict_to(14.9);
+        assert!((st.position()[1] - 1.0 * exp(-6.9 / OFFSET_TIME)).abs() < 1e-9);
+        st.predict_to(16.0);
+        assert!(st.position()[1] > 1.0 * exp(-8.0 / OFFSET_TIME) + 0.5);
+        // A first packet hovering there: the drone got there half a hold before it.
+        let mut first = MissionStation::new(Some(corner_with_a_hold()), setup());
+        first.reset(&packet(100.0, 0.0, 0.0), 20.0);
+        first.predict_to(24.9);
+        assert_eq!(first.position(), [100.0, 0.0, 20.0]);
+        first.predict_to(26.0);
+        assert!(first.position()[1] > 0.5, "{:?}", first.position());
+        // A packet passing the corner at speed is not holding.
+        let mut passing = MissionStation::new(Some(corner_with_a_hold()), setup());
+        passing.reset(&packet(100.0, 2.0, 5.0), 0.0);
+        passing.predict_to(2.0);
+        assert!(passing.position()[1] > 8.0, "{:?}", passing.position());
     }
 
     #[test]
