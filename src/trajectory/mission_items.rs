@@ -70,9 +70,11 @@ impl Flown {
         let param = |k: usize| item.params[k];
         let last = self.points[self.points.len() - 1];
         // Parameter 1 of a waypoint, a timed loiter and a delay is the time held there, s (a
-        // negative one, as `NAV_DELAY` writes for "until a time of day", is not read).
+        // negative one, as `NAV_DELAY` writes for "until a time of day", is not read); an
+        // unlimited loiter holds for the longest hold, since the mission goes no further.
         let hold = match item.command {
             NAV_WAYPOINT | NAV_LOITER_TIME | NAV_DELAY => param(0).filter(|h| *h > 0.0),
+            NAV_LOITER_UNLIM => Some(super::plan::MAX_HOLD),
             _ => None,
         }
         .unwrap_or(0.0);
@@ -228,7 +230,11 @@ mod tests {
         })
         .unwrap();
         f.item(&item(16, 3, -35.002, 149.001, 30.0)).unwrap();
-        assert_eq!(f.plan().unwrap().holds(), &[0.0, 20.0, 40.0, 0.0]);
+        f.item(&item(17, 3, -35.002, 149.002, 30.0)).unwrap();
+        assert_eq!(
+            f.plan().unwrap().holds(),
+            &[0.0, 20.0, 40.0, 0.0, crate::trajectory::MAX_HOLD]
+        );
     }
 
     #[test]
