@@ -49,6 +49,9 @@ pub(super) struct Flown {
     points: Vec<[f64; 3]>,
     speeds: Vec<Option<f64>>,
     holds: Vec<f64>,
+    /// Whether a waypoint's hold time is flown: MAVLink's `NAV_WAYPOINT` says fixed-wing
+    /// vehicles ignore it.
+    waypoint_holds: bool,
 }
 
 impl Flown {
@@ -61,6 +64,16 @@ impl Flown {
             points: vec![[0.0, 0.0, 0.0]],
             speeds: Vec::new(),
             holds: vec![0.0],
+            waypoint_holds: true,
+        }
+    }
+
+    /// The same for a fixed-wing vehicle, which flies through a waypoint's hold time (timed
+    /// loiters and delays it still flies, circling).
+    pub fn fixed_wing(self) -> Self {
+        Flown {
+            waypoint_holds: false,
+            ..self
         }
     }
 
@@ -73,6 +86,7 @@ impl Flown {
         // negative one, as `NAV_DELAY` writes for "until a time of day", is not read); an
         // unlimited loiter holds for the longest hold, since the mission goes no further.
         let hold = match item.command {
+            NAV_WAYPOINT if !self.waypoint_holds => None,
             NAV_WAYPOINT | NAV_LOITER_TIME | NAV_DELAY => param(0).filter(|h| *h > 0.0),
             NAV_LOITER_UNLIM => Some(super::plan::MAX_HOLD),
             _ => None,
@@ -235,6 +249,11 @@ mod tests {
             f.plan().unwrap().holds(),
             &[0.0, 20.0, 40.0, 0.0, crate::trajectory::MAX_HOLD]
         );
+        // A fixed-wing vehicle flies through a waypoint's hold, not a timed loiter's.
+        let mut plane = Flown::new([-35.0, 149.0, 500.0], Some(15.0)).fixed_wing();
+        plane.item(&wp).unwrap();
+        plane.item(&loiter).unwrap();
+        assert_eq!(plane.plan().unwrap().holds(), &[0.0, 0.0, 40.0]);
     }
 
     #[test]

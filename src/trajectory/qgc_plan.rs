@@ -37,7 +37,13 @@ pub(super) fn parse_qgc(text: &str) -> Result<FlightPlan, PlanError> {
     let mission = v
         .get("mission")
         .ok_or_else(|| PlanError::Qgc("no mission".into()))?;
-    let mut flown = Flown::new(home(mission)?, speed(mission));
+    let vehicle = mission.get("vehicleType").and_then(Value::as_u64);
+    let multirotor = vehicle.is_some_and(|t| MULTIROTORS.contains(&t));
+    let mut flown = Flown::new(home(mission)?, speed(mission, multirotor));
+    // A plan that names no vehicle keeps the holds it gives.
+    if vehicle.is_some() && !multirotor {
+        flown = flown.fixed_wing();
+    }
     let items = mission
         .get("items")
         .and_then(Value::as_array)
@@ -64,11 +70,7 @@ fn home(mission: &Value) -> Result<[f64; 3], PlanError> {
 }
 
 /// The mission's default speed, m/s: its hover speed for a multi-rotor, else its cruise speed.
-fn speed(mission: &Value) -> Option<f64> {
-    let multirotor = mission
-        .get("vehicleType")
-        .and_then(Value::as_u64)
-        .is_some_and(|t| MULTIROTORS.contains(&t));
+fn speed(mission: &Value, multirotor: bool) -> Option<f64> {
     let key = if multirotor {
         "hoverSpeed"
     } else {
@@ -194,8 +196,20 @@ mod tests {
         assert_eq!(w[5], [w[4][0], w[4][1], 0.0]);
         // A hexarotor flies at the hover speed, as QGroundControl plans a multi-rotor.
         assert_eq!(p.speed_at(1.0), Some(4.0));
+        // The timed loiter holds 30 s at its centre.
+        assert_eq!(p.holds(), &[0.0, 0.0, 0.0, 30.0, 0.0, 0.0]);
         let fixed_wing = QGC4_HEXAROTOR.replace(r#""vehicleType": 13"#, r#""vehicleType": 1"#);
         assert_eq!(parse_plan(&fixed_wing).unwrap().speed_at(1.0), Some(15.0));
+        // A waypoint's hold time: a multi-rotor hovers there, a fixed-wing flies through it.
+        let held = |plan: &str| {
+            let held = plan.replace(
+                "[0, 0, 0, null, -35.3632, 149.1663, 25]",
+                "[12, 0, 0, null, -35.3632, 149.1663, 25]",
+            );
+            parse_plan(&held).unwrap().holds().to_vec()
+        };
+        assert_eq!(held(QGC4_HEXAROTOR), [0.0, 0.0, 12.0, 30.0, 0.0, 0.0]);
+        assert_eq!(held(&fixed_wing), [0.0, 0.0, 0.0, 30.0, 0.0, 0.0]);
     }
 
     #[test]
