@@ -424,11 +424,13 @@ test("a long uploaded flight's error chart and error series CSV say they are its
 test('an uploaded flight with its uploaded plan runs the mission station, with the CLI\'s numbers; a bad plan is refused next to its control', async () => {
   const { page, problems } = await open();
   const dir = scratchDir();
-  // A 100 m square at 5 m/s and 30 m, flown once round, and its plan.
+  // A 100 m square at 5 m/s and 30 m, flown once round with a 10 s hold at its far corner, and
+  // its plan (the hold in its fifth column).
   const corner = (k) => [[0, 0], [100, 0], [100, 100], [0, 100]][k % 4];
   const rows = ['t,x,y,z'];
-  for (let i = 0; i <= 800; i++) {
-    const s = (i * 0.1 * 5) % 400;
+  for (let i = 0; i <= 900; i++) {
+    const t = i * 0.1;
+    const s = (t < 40 ? 5 * t : t < 50 ? 200 : 5 * (t - 10)) % 400;
     const [a, b] = [corner(Math.floor(s / 100)), corner(Math.floor(s / 100) + 1)];
     const w = (s % 100) / 100;
     rows.push(`${(i * 0.1).toFixed(1)},${(a[0] + w * (b[0] - a[0])).toFixed(3)},${(a[1] + w * (b[1] - a[1])).toFixed(3)},30`);
@@ -436,7 +438,7 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
   const flight = join(dir, 'square.csv');
   writeFileSync(flight, rows.join('\n') + '\n');
   const plan = join(dir, 'square-plan.csv');
-  writeFileSync(plan, 'x,y,z,speed\n0,0,30\n100,0,30,5\n100,100,30,5\n0,100,30,5\n0,0,30,5\n');
+  writeFileSync(plan, 'x,y,z,speed,hold\n0,0,30\n100,0,30,5\n100,100,30,5,10\n0,100,30,5\n0,0,30,5\n');
 
   let before = await tableHtml(page);
   await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
@@ -466,12 +468,14 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
   assert.deepEqual(await axe(page), []);
 
   // The same square as QGroundControl saves a mission (`fileType: "Plan"`, its home in Canberra,
-  // latitude and longitude about it): take-off at home, then the corners at 6 m/s.
+  // latitude and longitude about it): take-off at home, then the corners at 6 m/s, the far one's
+  // hold as its waypoint's first parameter.
+  const hold = ([x, y]) => (x === 100 && y === 100 ? 10 : 0);
   const home = [-35.3632, 149.1652, 584];
   const k = (Math.PI / 180) * 6371000;
   const at = ([x, y]) => [home[0] + y / k, home[1] + x / (k * Math.cos((home[0] * Math.PI) / 180))];
   const item = (command, params) => ({ type: 'SimpleItem', command, frame: 3, autoContinue: true, AMSLAltAboveTerrain: null, Altitude: params[6], AltitudeMode: 1, params });
-  const items = [item(22, [0, 0, 0, null, ...at([0, 0]), 30]), item(178, [1, 6, -1, 0, 0, 0, 0]), ...[[100, 0], [100, 100], [0, 100], [0, 0]].map((c) => item(16, [0, 0, 0, null, ...at(c), 30]))];
+  const items = [item(22, [0, 0, 0, null, ...at([0, 0]), 30]), item(178, [1, 6, -1, 0, 0, 0, 0]), ...[[100, 0], [100, 100], [0, 100], [0, 0]].map((c) => item(16, [hold(c), 0, 0, null, ...at(c), 30]))];
   const qgc = join(dir, 'square.plan');
   writeFileSync(qgc, JSON.stringify({ fileType: 'Plan', version: 1, groundStation: 'QGroundControl', geoFence: { circles: [], polygons: [], version: 2 }, rallyPoints: { points: [], version: 2 }, mission: { version: 2, firmwareType: 3, vehicleType: 2, cruiseSpeed: 15, hoverSpeed: 5, plannedHomePosition: home, items } }, null, 4));
   const fromQgc = nativeJson(['simulate', '--trajectory', flight, '--plan', qgc, '--model', '3d-ctra,mission']).results.find((x) => x.model === 'mission');
@@ -483,7 +487,7 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
   // And as Mission Planner saves it (a `QGC WPL 110` list, home as item 0), at 7 m/s.
   const wpl = join(dir, 'square.waypoints');
   const line = (i, frame, command, params) => [i, i === 0 ? 1 : 0, frame, command, ...params, 1].join('\t');
-  writeFileSync(wpl, ['QGC WPL 110', line(0, 0, 16, [0, 0, 0, 0, ...home]), line(1, 3, 22, [0, 0, 0, 0, ...at([0, 0]), 30]), line(2, 3, 178, [1, 7, -1, 0, 0, 0, 0]), ...[[100, 0], [100, 100], [0, 100], [0, 0]].map((c, i) => line(3 + i, 3, 16, [0, 0, 0, 0, ...at(c), 30]))].join('\n') + '\n');
+  writeFileSync(wpl, ['QGC WPL 110', line(0, 0, 16, [0, 0, 0, 0, ...home]), line(1, 3, 22, [0, 0, 0, 0, ...at([0, 0]), 30]), line(2, 3, 178, [1, 7, -1, 0, 0, 0, 0]), ...[[100, 0], [100, 100], [0, 100], [0, 0]].map((c, i) => line(3 + i, 3, 16, [hold(c), 0, 0, 0, ...at(c), 30]))].join('\n') + '\n');
   const fromList = nativeJson(['simulate', '--trajectory', flight, '--plan', wpl, '--model', '3d-ctra,mission']).results.find((x) => x.model === 'mission');
   assert.notEqual(fromList.error3d.p75, fromQgc.error3d.p75);
   before = await tableHtml(page);
