@@ -1,5 +1,7 @@
 //! Semtech's recommended network-server ADR ("LoRaWAN – simple rate adaptation recommended
-//! algorithm", Semtech 2016), as The Things Stack and the ns-3 `lorawan` `AdrComponent` run it.
+//! algorithm", Semtech 2016), as the ns-3 `lorawan` `AdrComponent` runs it. The Things Stack runs
+//! the same idea with other steps (2.5 dB a data rate, 2 dB a power index, a 15 dB margin) and
+//! the same DR5 ceiling.
 
 use super::{AdrNetwork, LinkAdrReq, UplinkReport, MAX_POWER_REDUCTION_DB, TX_POWER_STEP_DB};
 use crate::lora::{demodulation_floor_db, DataRate};

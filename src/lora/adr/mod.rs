@@ -3,8 +3,8 @@
 //!
 //! * [`AdrDevice`]: the drone's side: applies commands, and backs off on its own when it hears
 //!   nothing (`ADR_ACK_LIMIT`, `ADR_ACK_DELAY`).
-//! * [`LorawanAdr`]: Semtech's recommended network-server algorithm, as The Things Stack and the
-//!   ns-3 `lorawan` module implement it: margin of the best recent SNR, 3 dB steps.
+//! * [`LorawanAdr`]: Semtech's recommended network-server algorithm, as the ns-3 `lorawan`
+//!   module implements it: margin of the best recent SNR, 3 dB steps, DR5 at most.
 //! * [`TrackingAdr`]: ours: the data rate with the smallest expected cost in the age of the
 //!   station's newest packet, from the delivery it estimates for each rate over the long run and,
 //!   through a fade, for the next frame.
@@ -33,7 +33,7 @@ pub enum AdrMode {
     /// The data rate stays where `--sf`/`--bw` put it (the paper).
     #[default]
     Off,
-    /// LoRaWAN's network-server ADR (Semtech's algorithm, as The Things Stack and ns-3 run it):
+    /// LoRaWAN's network-server ADR (Semtech's algorithm, as ns-3 runs it):
     /// once --adr-history uplinks have arrived, each whole 3 dB of margin over --adr-margin raises
     /// the data rate (to DR5 at most), then lowers the power; only the device's own back-off slows
     /// it. Built for delivery and battery, not tracking.
