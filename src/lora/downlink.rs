@@ -7,8 +7,8 @@ use super::{time_on_air, DataRate, LoraError, LoraParams, SubBand};
 /// The device opens its second receive window this long after an uplink ends, s (LoRaWAN
 /// `RECEIVE_DELAY2`).
 pub const RECEIVE_DELAY2_S: f64 = 2.0;
-/// A downlink frame carrying one `LinkADRReq`: MHDR 1 + FHDR 7 (with 5 bytes of FOpts: the
-/// command's CID and 4 bytes) + MIC 4, no FPort and no application payload, bytes.
+/// A downlink frame carrying one `LinkADRReq`: MHDR 1 + FHDR 7 + FOpts 5 (the command's CID and
+/// its 4 bytes) + MIC 4, no FPort and no application payload, bytes.
 pub const ADR_DOWNLINK_BYTES: usize = 17;
 /// A downlink frame with no command (the answer to `ADRACKReq`): MHDR 1 + FHDR 7 + MIC 4, bytes.
 pub const ACK_DOWNLINK_BYTES: usize = 12;
