@@ -6,7 +6,7 @@ use crate::sim::DEFAULT_BURST;
 use crate::sim::{
     ModelChoice, ModelResult, PlanPace, Scenario, Simulator, StationModel, SyntheticChoice,
 };
-use crate::trajectory::{canberra_flight, FlightPlan, TRACE_TOLERANCE};
+use crate::trajectory::{canberra_flight, fly_plan, inspection_plan, FlightPlan, TRACE_TOLERANCE};
 use serde::Serialize;
 
 /// The data rates of the sweep, (SF, bandwidth kHz): EU868 DR6 (SF7 at 250 kHz), then DR5..DR0
@@ -35,6 +35,28 @@ pub const REAL_SEEDS: u32 = 8;
 
 /// The stations compared: the paper's three, the IMM and the mission station.
 pub const MISSION_MODELS: &str = "dr,ctra-plus,3d-ctra,imm,mission";
+
+/// The seed of the inspection mission the sweep flies ([`inspection_plan`]).
+pub const INSPECTION_SEED: u64 = 1;
+
+/// The inspection mission ([`inspection_plan`], flown by [`fly_plan`]) at one data rate, 1 km:
+/// the mission station reading the plan's holds, the same station given the plan without them,
+/// and bounded 3D-CTRA.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct HoldRun {
+    /// Spreading factor.
+    pub sf: i64,
+    /// Bandwidth, kHz.
+    pub bw: f64,
+    /// 3D-CTRA with the sweep's prediction.
+    pub ctra3d: ModelResult,
+    /// The mission station with the plan's holds.
+    pub holding: ModelResult,
+    /// The mission station with the same plan without its holds: it flies on while the drone
+    /// hovers.
+    pub flying_on: ModelResult,
+}
 
 /// One setting's results.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -94,6 +116,9 @@ pub struct MissionSweepReport {
     /// to the same airtime, over the synthetic set at SF7/250 kHz and 1 km (the drone mirrors the
     /// mission station, plan and all).
     pub senders: SenderSweepReport,
+    /// The inspection mission at every rate of [`MISSION_RATES`], 1 km: what reading a plan's
+    /// holds is worth.
+    pub holds: Vec<HoldRun>,
 }
 
 /// Runs `base` over the whole synthetic set (each flight's own plan) with every station of
@@ -126,6 +151,10 @@ pub fn sweep_mission(sim: &mut Simulator, base: &Scenario) -> Result<MissionSwee
     (senders.radio.sf, senders.radio.bw) = MISSION_RATES[0];
     senders.channel.distance = MISSION_DISTANCES[0];
     let senders = sweep_senders(sim, &senders, DEFAULT_BURST)?;
+    let holds = MISSION_RATES
+        .iter()
+        .map(|&(sf, bw)| hold_run(sim, &s, sf, bw))
+        .collect::<Result<_, _>>()?;
     Ok(MissionSweepReport {
         seed: base.run.seed,
         seeds: s.run.seeds.max(1),
@@ -133,7 +162,36 @@ pub fn sweep_mission(sim: &mut Simulator, base: &Scenario) -> Result<MissionSwee
         real: real_runs,
         real_seeds: real.run.seeds,
         senders,
+        holds,
     })
+}
+
+/// The inspection mission at one rate, 1 km, with and without its plan's holds.
+fn hold_run(sim: &mut Simulator, s: &Scenario, sf: i64, bw: f64) -> Result<HoldRun, ApiError> {
+    let plan = inspection_plan(INSPECTION_SEED);
+    let mut s = s.clone();
+    s.flight = Default::default();
+    s.flight.trajectory = Some(fly_plan(&plan, "inspection").to_csv().into());
+    s.flight.trajectory_name = Some("inspection".into());
+    s.flight.plan = Some(plan.to_csv());
+    s.station.model = ModelChoice::parse("3d-ctra,mission").map_err(ApiError::Invalid)?;
+    (s.radio.sf, s.radio.bw, s.channel.distance) = (sf, bw, MISSION_DISTANCES[0]);
+    let mut both = sim.run(&s.validate()?)?.results.into_iter();
+    s.flight.plan = Some(plan.without_holds().to_csv());
+    s.station.model = ModelChoice::one(StationModel::Mission);
+    let flying_on = sim.run(&s.validate()?)?.results.pop();
+    match (both.next(), both.next(), flying_on) {
+        (Some(ctra3d), Some(holding), Some(flying_on)) => Ok(HoldRun {
+            sf,
+            bw,
+            ctra3d,
+            holding,
+            flying_on,
+        }),
+        _ => Err(ApiError::Invalid(
+            "the inspection mission gave no result".into(),
+        )),
+    }
 }
 
 /// Every station of `s` at one rate and distance, and the mission station pacing by the packet.

@@ -25,7 +25,8 @@ pub use error::{clean_message, ApiError, MAX_ECHO_CHARS};
 pub use link_budget::{link_budget, LinkBudgetParams, LinkBudgetReport, SfBudget};
 pub use misread::{explain_serde_error, misread_setting};
 pub use mission::{
-    sweep_mission, MissionRun, MissionSweepReport, MISSION_DISTANCES, MISSION_MODELS, MISSION_RATES,
+    sweep_mission, HoldRun, MissionRun, MissionSweepReport, INSPECTION_SEED, MISSION_DISTANCES,
+    MISSION_MODELS, MISSION_RATES,
 };
 pub use payload::{decode, encode, DecodeParams, DecodeReport, EncodeParams, EncodeReport};
 pub use predict::{predict, validate_state, PredictParams, PredictReport, MAX_STEPS};

@@ -1,9 +1,10 @@
-//! Ground-truth flights: the synthetic Mid-Air-like set, CSV import and the bundled real flight
-//! (reference §11).
+//! Ground-truth flights: the synthetic Mid-Air-like set, CSV import, the bundled real flight
+//! (reference §11), mission plans and flights flown from them (§16).
 
 mod chain;
 mod csv;
 mod error;
+mod flown_plan;
 mod geodetic;
 mod kinematics;
 mod mission_items;
@@ -20,6 +21,10 @@ pub use csv::{
     parse_csv, parse_csv_with_progress, MAX_CSV_BYTES, MAX_ROWS, MIN_ROWS, MIN_TIME_STEP,
 };
 pub use error::TrajectoryError;
+pub use flown_plan::{
+    fly_plan, inspection_plan, INSPECTION_HOLDS, INSPECTION_POINTS, PLAN_ACCEL, PLAN_CRUISE,
+    PLAN_RATE_HZ,
+};
 pub use kinematics::{heading_angles, kinematic_state, kinematic_states, HOVER_SPEED};
 pub use plan::{
     FlightPlan, OnPlan, MAX_HOLD, MAX_PLAN_COORDINATE, MAX_PLAN_SPEED, MAX_WAYPOINTS,

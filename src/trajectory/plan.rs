@@ -270,6 +270,12 @@ impl FlightPlan {
         core::array::from_fn(|k| (b[k] - a[k]) / len)
     }
 
+    /// The planned speed of leg `leg` (from waypoint `leg` to `leg + 1`), m/s, if the plan gives
+    /// one.
+    pub fn leg_speed(&self, leg: usize) -> Option<f64> {
+        self.speeds.get(leg).copied().flatten()
+    }
+
     /// The planned speed of the leg at `along`, m/s, if the plan gives one.
     pub fn speed_at(&self, along: f64) -> Option<f64> {
         self.speeds[self.leg(along)]

@@ -66,6 +66,20 @@ impl Trajectory {
         })
     }
 
+    /// The flight as CSV text that [`parse_csv`](super::parse_csv) reads back to the same
+    /// samples: `t,x,y,z,vx,vy,vz,ax,ay,az`, every number in its shortest round-trip form.
+    pub fn to_csv(&self) -> String {
+        let mut s = String::from("t,x,y,z,vx,vy,vz,ax,ay,az\n");
+        for i in 0..self.t.len() {
+            let (p, v, a) = (self.pos[i], self.vel[i], self.acc[i]);
+            s += &format!(
+                "{},{},{},{},{},{},{},{},{},{}\n",
+                self.t[i], p[0], p[1], p[2], v[0], v[1], v[2], a[0], a[1], a[2]
+            );
+        }
+        s
+    }
+
     /// Number of samples.
     pub fn len(&self) -> usize {
         self.t.len()
@@ -138,6 +152,13 @@ mod tests {
         let vel = vec![[2.0, 0.0, 0.0]; 5];
         let acc = vec![[0.0; 3]; 5];
         Trajectory::new("line".into(), t, pos, vel, acc).unwrap()
+    }
+
+    #[test]
+    fn csv_text_reads_back_to_the_same_flight() {
+        let f = crate::trajectory::synthetic_flight(3).unwrap();
+        let back = crate::trajectory::parse_csv(&f.to_csv(), &f.name).unwrap();
+        assert_eq!(back, f);
     }
 
     #[test]

@@ -4,7 +4,7 @@
 
 use loratrack::api::{clean_message, simulate, swarm};
 use loratrack::{
-    synthetic_flight, FlightPlan, ModelResult, Scenario, Simulator, StationModel, Trajectory,
+    fly_plan, synthetic_flight, FlightPlan, ModelResult, Scenario, Simulator, StationModel,
     TRACE_TOLERANCE,
 };
 use serde_json::{json, Value};
@@ -21,19 +21,6 @@ fn p75(results: &[ModelResult], model: &str) -> f64 {
         .unwrap()
         .error3d
         .p75
-}
-
-/// The flight as CSV text with its velocities and accelerations, so that it is the same flight.
-fn csv(f: &Trajectory) -> String {
-    let mut s = String::from("t,x,y,z,vx,vy,vz,ax,ay,az\n");
-    for i in 0..f.t.len() {
-        let (p, v, a) = (f.pos[i], f.vel[i], f.acc[i]);
-        s += &format!(
-            "{},{},{},{},{},{},{},{},{},{}\n",
-            f.t[i], p[0], p[1], p[2], v[0], v[1], v[2], a[0], a[1], a[2]
-        );
-    }
-    s
 }
 
 #[test]
@@ -77,7 +64,7 @@ fn its_uncertainty_is_honest_on_the_synthetic_set() {
 fn a_plan_file_is_followed_as_the_synthetic_flight_follows_its_own() {
     let flight = synthetic_flight(5).unwrap();
     let traced = FlightPlan::traced(&flight, TRACE_TOLERANCE);
-    let settings = json!({"trajectory": csv(&flight), "model": "3d-ctra,mission",
+    let settings = json!({"trajectory": flight.to_csv(), "model": "3d-ctra,mission",
                           "prediction": "bounded", "sf": 9, "bw": 125.0,
                           "plan": traced.to_csv()});
     let from_file = run(settings.clone());
@@ -196,7 +183,7 @@ fn a_qgroundcontrol_plan_or_waypoint_list_is_followed_as_the_same_plan_in_csv() 
     speeds.extend(leg_speeds(&traced));
     let csv_plan = FlightPlan::new(points, speeds).unwrap();
     let settings = |plan: String| {
-        json!({"trajectory": csv(&flight), "model": "mission", "prediction": "bounded",
+        json!({"trajectory": flight.to_csv(), "model": "mission", "prediction": "bounded",
                "sf": 10, "bw": 125.0, "plan": plan})
     };
     let from_csv = run(settings(csv_plan.to_csv()));
@@ -267,56 +254,6 @@ fn a_gps_log_with_a_plan_about_its_first_fix_is_tracked_as_the_same_flight_in_me
     }
 }
 
-/// The flight of a multicopter that flies `plan` as an autopilot without splines does: from rest
-/// to each leg's planned speed and back at 2 m/s², stopping at every waypoint and hovering there
-/// for its hold; as CSV at 25 Hz with velocities and accelerations.
-fn flown(plan: &FlightPlan) -> String {
-    const ACCEL: f64 = 2.0;
-    const DT: f64 = 0.04;
-    let mut csv = String::from("t,x,y,z,vx,vy,vz,ax,ay,az\n");
-    let mut t = 0.0;
-    let mut sample = |p: [f64; 3], v: [f64; 3], a: [f64; 3]| {
-        csv += &format!(
-            "{t},{},{},{},{},{},{},{},{},{}\n",
-            p[0], p[1], p[2], v[0], v[1], v[2], a[0], a[1], a[2]
-        );
-        t += DT;
-    };
-    let w = plan.waypoints();
-    for (leg, speed) in leg_speeds(plan).into_iter().enumerate() {
-        let (from, to) = (w[leg], w[leg + 1]);
-        let length = (0..3)
-            .map(|k| (to[k] - from[k]).powi(2))
-            .sum::<f64>()
-            .sqrt();
-        let u = [0, 1, 2].map(|k| (to[k] - from[k]) / length);
-        let top = speed.unwrap().min((ACCEL * length).sqrt());
-        let ramp = top / ACCEL;
-        let total = 2.0 * ramp + (length - top * ramp) / top;
-        for j in 0..(total / DT).ceil() as usize {
-            let tau = j as f64 * DT;
-            let left = total - tau;
-            let (s, v, a) = if tau < ramp {
-                (ACCEL * tau * tau / 2.0, ACCEL * tau, ACCEL)
-            } else if left > ramp {
-                (top * (tau - ramp / 2.0), top, 0.0)
-            } else {
-                (length - ACCEL * left * left / 2.0, ACCEL * left, -ACCEL)
-            };
-            sample(
-                [0, 1, 2].map(|k| from[k] + u[k] * s),
-                u.map(|c| c * v),
-                u.map(|c| c * a),
-            );
-        }
-        for _ in 0..(plan.holds()[leg + 1] / DT).round() as usize {
-            sample(to, [0.0; 3], [0.0; 3]);
-        }
-    }
-    sample(w[w.len() - 1], [0.0; 3], [0.0; 3]);
-    csv
-}
-
 #[test]
 fn a_station_that_reads_the_plans_holds_waits_with_the_drone() {
     // An inspection: take off, hover at four of six points for 15–60 s, come back and land.
@@ -337,7 +274,7 @@ fn a_station_that_reads_the_plans_holds_waits_with_the_drone() {
     speeds.push(Some(2.0));
     let holds = vec![0.0, 0.0, 30.0, 0.0, 60.0, 15.0, 0.0, 45.0, 0.0, 0.0];
     let plan = FlightPlan::with_holds(points, speeds, holds).unwrap();
-    let flight = flown(&plan);
+    let flight = fly_plan(&plan, "inspection").to_csv();
     let with = |plan: String| {
         json!({"trajectory": flight, "model": "mission", "prediction": "bounded",
                "sf": 9, "bw": 125.0, "plan": plan})

@@ -1,8 +1,11 @@
 //! `loratrack sweep --mission`: the table, and the document docs/mission.md (`--markdown`).
 
 use crate::doc_cells::{link_args, link_words, pooled_seeds};
-use loratrack::api::{MissionRun, MissionSweepReport, MISSION_MODELS};
-use loratrack::{ModelResult, Scenario, OFFSET_TIME, PACE_SIGMA, PACE_TIME, TRACE_TOLERANCE};
+use loratrack::api::{HoldRun, MissionRun, MissionSweepReport, INSPECTION_SEED, MISSION_MODELS};
+use loratrack::{
+    fly_plan, inspection_plan, ModelResult, Scenario, HOLD_RADIUS, HOLD_SPEED, INSPECTION_HOLDS,
+    INSPECTION_POINTS, OFFSET_TIME, PACE_SIGMA, PACE_TIME, PLAN_ACCEL, TRACE_TOLERANCE,
+};
 
 /// The stations' labels in the sweep's order.
 fn labels(runs: &[MissionRun]) -> Vec<&'static str> {
@@ -143,7 +146,85 @@ pub fn mission_markdown(r: &MissionSweepReport, base: &Scenario) -> String {
     s += &markdown_table(&r.real);
     s += &real_findings(r);
     s += &senders_section(r);
+    s += &holds_section(r);
     s
+}
+
+/// The inspection mission with and without its plan's holds: the table and what it shows.
+fn holds_section(r: &MissionSweepReport) -> String {
+    let plan = inspection_plan(INSPECTION_SEED);
+    let held = plan.holds().iter().filter(|&&h| h > 0.0).count();
+    let minutes = fly_plan(&plan, "inspection").duration() / 60.0;
+    let holds: Vec<String> = INSPECTION_HOLDS[1..]
+        .iter()
+        .map(|h| format!("{h}"))
+        .collect();
+    let mut s = format!(
+        "\n## Holds: an inspection that hovers\n\nA plan's holds (a waypoint's hold time, a timed loiter, a delay; \
+         reference §16) are where the drone hovers. The inspection mission (`inspection_plan({INSPECTION_SEED})`, \
+         `src/trajectory/flown_plan.rs`): take off, {INSPECTION_POINTS} points within ±400 m at 8 m/s, holding at {held} \
+         of them for {} s, back and land; flown from its plan by a multicopter that stops at every waypoint \
+         ({PLAN_ACCEL} m/s² up and down) and hovers for each hold, {minutes:.0} min, 1 km, {}. `holding`: the \
+         mission station with the plan, holds and all (it waits at a hold's waypoint, and a packet under {HOLD_SPEED} \
+         m/s within {HOLD_RADIUS} m of one places the drone there); `flying on`: the same station given the plan \
+         without its holds, which flies on while the drone hovers.\n\n",
+        holds.join(", "),
+        seeds(r),
+    );
+    s += "| rate | interval (s) | received | 3D-CTRA p75 | holding p75 | holding p95 | flying on p75 | flying on p95 | \
+          holding / flying on p75 | cover95 |\n";
+    s += &format!("|{}\n", " --- |".repeat(10));
+    for run in &r.holds {
+        let h = &run.holding;
+        s += &format!(
+            "| SF{}/{} | {:.1} | {}/{} | {} | {} | {} | {} | {} | {:.2} | {:.3} |\n",
+            run.sf,
+            run.bw,
+            h.interval,
+            h.delivery.packets_received,
+            h.delivery.packets_sent,
+            num(run.ctra3d.error3d.p75),
+            num(h.error3d.p75),
+            num(h.error3d.p95),
+            num(run.flying_on.error3d.p75),
+            num(run.flying_on.error3d.p95),
+            h.error3d.p75 / run.flying_on.error3d.p75,
+            h.coverage95,
+        );
+    }
+    s += &holds_findings(&r.holds);
+    s
+}
+
+/// What the holds table shows, from its own numbers.
+fn holds_findings(runs: &[HoldRun]) -> String {
+    let ratio = |run: &HoldRun, p: fn(&ModelResult) -> f64| p(&run.holding) / p(&run.flying_on);
+    let range = |p: fn(&ModelResult) -> f64| {
+        runs.iter()
+            .map(|run| ratio(run, p))
+            .filter(|v| v.is_finite())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            })
+    };
+    let (p75_lo, p75_hi) = range(|m| m.error3d.p75);
+    let (p95_lo, p95_hi) = range(|m| m.error3d.p95);
+    let worse: Vec<String> = runs
+        .iter()
+        .filter(|run| ratio(run, |m| m.error3d.p75) >= 1.0)
+        .map(|run| format!("SF{}/{}", run.sf, run.bw))
+        .collect();
+    format!(
+        "\nReading the holds, the mission station's p75 is {p75_lo:.2}–{p75_hi:.2}× and its p95 {p95_lo:.2}–{p95_hi:.2}× \
+         those of the station that flies on{}. What this rests on: the drone holds exactly as planned and flies every \
+         leg at its planned speed, without wind; a hold the drone cuts short or stretches is found again only from a \
+         packet that shows it hovering, so where packets are scarce the plan's holds must be about right to pay.\n",
+        if worse.is_empty() {
+            ", lower at every rate".to_string()
+        } else {
+            format!(", not lower at {}", worse.join(", "))
+        }
+    )
 }
 
 /// Error-triggered sending along the plan: the table and what it shows.
