@@ -99,9 +99,10 @@ struct Following {
 ///
 /// A waypoint with a hold (reference §16) stops the station there for the hold; a packet that
 /// shows the drone hovering within [`HOLD_RADIUS`] of one (under [`HOLD_SPEED`]) places the
-/// drone's arrival halfway between the packet before and this one (no later than the hold
-/// allows), unless the station was already holding there; after a hold the station speeds up
-/// from rest over [`PACE_TIME`].
+/// drone's arrival halfway between the packet before and this one (but at most a hold before
+/// this one; half a hold before a first packet), unless the station was already holding there;
+/// after a hold the station speeds up from rest over [`PACE_TIME`], toward the leg's planned
+/// speed or, on a leg without one, the speed of the newest packet that showed the drone moving.
 ///
 /// Its covariance on the plan: the packet's (the drone filter's settled covariance, as the
 /// bounded station's), plus ([`PACE_SIGMA`]·τ)² in every direction, τ s after the packet.
