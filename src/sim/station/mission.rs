@@ -64,6 +64,10 @@ pub const HOLD_SPEED: f64 = 1.0;
 /// m: see [`HOLD_SPEED`]; a hovering drone's filtered position stays within a few metres of the
 /// waypoint.
 pub const HOLD_RADIUS: f64 = 5.0;
+/// The deceleration with which the station brakes into a waypoint it will hold at, m/s²: a drone
+/// that is to hover there has to stop there (ArduPilot's default waypoint acceleration,
+/// `WPNAV_ACCEL`, 2.5 m/s²).
+pub const HOLD_BRAKE: f64 = 2.5;
 
 /// Where along the plan the station believes the drone is, from the newest packet on the plan.
 #[derive(Clone, Copy, Debug)]
@@ -81,6 +85,8 @@ struct Following {
     along: f64,
     /// The waypoint the station holds at, and when it believes the drone got there, s.
     holding: Option<(usize, f64)>,
+    /// The same for the newest hold since the packet, kept once the hold is over.
+    last_hold: Option<(usize, f64)>,
     /// The next waypoint with a hold, and its distance along the plan, m.
     next_hold: Option<(usize, f64)>,
     /// When the station's last hold since the packet ended, s: from then it speeds up from rest.
@@ -100,7 +106,8 @@ struct Following {
 /// A waypoint with a hold (reference §16) stops the station there for the hold; a packet that
 /// shows the drone hovering within [`HOLD_RADIUS`] of one (under [`HOLD_SPEED`]) places the
 /// drone's arrival halfway between the packet before and this one (but at most a hold before
-/// this one; half a hold before a first packet), unless the station was already holding there;
+/// this one; half a hold before a first packet), unless the station has held there since the
+/// packet before and the hold is not over (then it keeps its arrival);
 /// after a hold the station speeds up from rest over [`PACE_TIME`], toward the leg's planned
 /// speed or, on a leg without one, the speed of the newest packet that showed the drone moving.
 ///
@@ -168,10 +175,13 @@ impl MissionStation {
             .filter(|&(k, _)| distance(p, &plan.waypoints()[k]) <= HOLD_RADIUS)?;
         let hold = plan.holds()[k];
         let reached = match self.following {
+            // Held there already, and the hold not over: the same arrival. A drone that outstays
+            // the plan's hold is placed as one that has just come (below): a hold too short in
+            // the plan is likelier than a drone about to leave.
             Some(Following {
-                holding: Some((at, reached)),
+                last_hold: Some((at, reached)),
                 ..
-            }) if at == k => reached,
+            }) if at == k && reached + hold > sent => reached,
             Some(f) => sent - hold.min((sent - f.sent).max(0.0) / 2.0),
             None => sent - hold / 2.0,
         };
@@ -217,6 +227,7 @@ impl Tracker for MissionStation {
             t: sent,
             along,
             holding: holding.map(|(k, _, reached)| (k, reached)),
+            last_hold: holding.map(|(k, _, reached)| (k, reached)),
             next_hold: plan.next_hold(plan.waypoint_at_or_after(found.along)),
             resumed: None,
             cruise,
@@ -243,17 +254,30 @@ impl Tracker for MissionStation {
             let dt = self.step.min(t - f.t);
             // The midpoint's pace: second order in dt.
             let v = Self::pace(plan, f, f.t + dt / 2.0, f.along);
-            let along = (f.along + v * dt).min(plan.length());
+            // Where a hold is ahead and the pace would overshoot it at `HOLD_BRAKE`, the station
+            // brakes: exactly, at constant deceleration, to a stop at the hold's waypoint.
+            let braking = f.next_hold.and_then(|(_, at)| {
+                let brake = (2.0 * HOLD_BRAKE * (at - f.along).max(0.0)).sqrt();
+                (brake <= v).then_some(brake)
+            });
+            let (advance, to_stop) = match braking {
+                Some(b) => (b * dt - HOLD_BRAKE * dt * dt / 2.0, b / HOLD_BRAKE),
+                None => (v * dt, f64::INFINITY),
+            };
+            let along = (f.along + advance).min(plan.length());
             match f.next_hold {
                 // The hold's waypoint is reached within the step: the station stops there.
-                Some((k, at)) if along >= at => {
-                    f.t += if v > 0.0 {
+                Some((k, at)) if along >= at || to_stop <= dt => {
+                    f.t += if to_stop <= dt {
+                        to_stop
+                    } else if v > 0.0 {
                         ((at - f.along) / v).clamp(0.0, dt)
                     } else {
                         0.0
                     };
                     f.along = at;
                     f.holding = Some((k, f.t));
+                    f.last_hold = f.holding;
                     f.next_hold = None;
                 }
                 _ => {
@@ -373,8 +397,16 @@ mod tests {
     fn a_hold_stops_the_station_at_its_waypoint_then_it_speeds_up_from_rest() {
         let mut st = MissionStation::new(Some(corner_with_a_hold()), setup());
         st.reset(&packet(50.0, 0.0, 10.0), 0.0);
-        // At the corner after 5 s, held there until 15 s.
-        for t in [5.0, 10.0, 15.0] {
+        // 30 m at 10 m/s, then 20 m braking at 2.5 m/s² to the corner: there after 7 s, held
+        // until 17 s.
+        st.predict_to(6.0);
+        let braking = 100.0 - HOLD_BRAKE / 2.0;
+        assert!(
+            (st.position()[0] - braking).abs() < 0.3,
+            "{:?}",
+            st.position()
+        );
+        for t in [7.2, 12.0, 16.9] {
             st.predict_to(t);
             assert!(
                 (st.position()[0] - 100.0).abs() < 1e-9,
@@ -383,19 +415,21 @@ mod tests {
             );
             assert!(st.position()[1].abs() < 1e-9, "{t}: {:?}", st.position());
         }
-        // Then from rest toward the leg's 5 m/s: 5 (τ − 2 (1 − e^(−τ/2))) north after τ s.
-        st.predict_to(19.0);
-        let north = 5.0 * (4.0 - PACE_TIME * (1.0 - exp(-4.0 / PACE_TIME)));
+        // Then from rest toward the leg's 5 m/s: 5 (τ − 2 (1 − e^(−τ/2))) north after τ s, τ
+        // about 4 s.
+        st.predict_to(21.0);
+        let north = |tau: f64| 5.0 * (tau - PACE_TIME * (1.0 - exp(-tau / PACE_TIME)));
+        let y = st.position()[1];
         assert!(
-            (st.position()[1] - north).abs() < 1e-3,
-            "{:?} against {north}",
-            st.position()
+            north(3.8) < y && y < north(4.2),
+            "{y} against {}",
+            north(4.0)
         );
-        // Without the hold the station would be 50 m further on.
+        // Without the hold the station would be 60 m further on.
         let mut plain = MissionStation::new(Some(corner()), setup());
         plain.reset(&packet(50.0, 0.0, 10.0), 0.0);
-        plain.predict_to(19.0);
-        assert!(plain.position()[1] > 60.0, "{:?}", plain.position());
+        plain.predict_to(21.0);
+        assert!(plain.position()[1] > 70.0, "{:?}", plain.position());
     }
 
     #[test]
@@ -403,12 +437,19 @@ mod tests {
         let mut st = MissionStation::new(Some(corner_with_a_hold()), setup());
         st.reset(&packet(50.0, 0.0, 10.0), 0.0);
         st.predict_to(8.0);
-        // Hovering at the corner: the station was holding there since 5 s, and keeps that.
+        // Hovering at the corner: the station was holding there since about 7 s, and keeps that.
         st.reset(&packet(101.0, 1.0, 0.3), 8.0);
-        st.predict_to(14.9);
-        assert!((st.position()[1] - 1.0 * exp(-6.9 / OFFSET_TIME)).abs() < 1e-9);
-        st.predict_to(16.0);
-        assert!(st.position()[1] > 1.0 * exp(-8.0 / OFFSET_TIME) + 0.5);
+        st.predict_to(16.9);
+        assert!((st.position()[1] - 1.0 * exp(-8.9 / OFFSET_TIME)).abs() < 1e-9);
+        st.predict_to(18.5);
+        assert!(st.position()[1] > 1.0 * exp(-10.5 / OFFSET_TIME) + 0.5);
+        // Still hovering 3 s after the hold it planned: placed as if it came halfway since the
+        // packet before, so held until 20 + 10 − 6 = 24 s.
+        st.reset(&packet(100.0, 0.0, 0.2), 20.0);
+        st.predict_to(23.9);
+        assert_eq!(st.position(), [100.0, 0.0, 20.0]);
+        st.predict_to(25.0);
+        assert!(st.position()[1] > 0.2, "{:?}", st.position());
         // A first packet hovering there: the drone got there half a hold before it.
         let mut first = MissionStation::new(Some(corner_with_a_hold()), setup());
         first.reset(&packet(100.0, 0.0, 0.0), 20.0);
