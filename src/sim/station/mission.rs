@@ -425,7 +425,7 @@ mod tests {
             "{y} against {}",
             north(4.0)
         );
-        // Without the hold the station would be 60 m further on.
+        // Without the hold the station would be about 70 m further on.
         let mut plain = MissionStation::new(Some(corner()), setup());
         plain.reset(&packet(50.0, 0.0, 10.0), 0.0);
         plain.predict_to(21.0);
