@@ -94,14 +94,19 @@ pub fn mission_table(r: &MissionSweepReport, base: &Scenario) -> String {
         }
         out
     };
+    let mut holds = HOLD_HEADER.join("  ") + "\n";
+    for run in &r.holds {
+        holds += &(hold_cells(run).join("  ") + "\n");
+    }
     format!(
-        "mission station against the others (3D error in m): the whole synthetic set, {} prediction, {}, {}\n{}\nthe real Canberra flight, its plan traced from its own log, {} seeds\n{}",
+        "mission station against the others (3D error in m): the whole synthetic set, {} prediction, {}, {}\n{}\nthe real Canberra flight, its plan traced from its own log, {} seeds\n{}\nan inspection that hovers (docs/mission.md, \"Holds\"), 1 km: the mission station with the plan's holds and without\n{}",
         base.station.prediction.name(),
         link_words(base),
         seeds(r),
         text(&r.runs),
         r.real_seeds,
-        text(&r.real)
+        text(&r.real),
+        holds
     )
     .trim_end()
     .to_string()
@@ -172,29 +177,48 @@ fn holds_section(r: &MissionSweepReport) -> String {
         holds.join(", "),
         seeds(r),
     );
-    s += "| rate | interval (s) | received | 3D-CTRA p75 | holding p75 | holding p95 | flying on p75 | flying on p95 | \
-          holding / flying on p75 | cover95 |\n";
-    s += &format!("|{}\n", " --- |".repeat(10));
+    s += &format!("| {} |\n", HOLD_HEADER.join(" | "));
+    s += &format!("|{}\n", " --- |".repeat(HOLD_HEADER.len()));
     for run in &r.holds {
-        let h = &run.holding;
-        s += &format!(
-            "| SF{}/{} | {:.1} | {}/{} | {} | {} | {} | {} | {} | {:.2} | {:.3} |\n",
-            run.sf,
-            run.bw,
-            h.interval,
-            h.delivery.packets_received,
-            h.delivery.packets_sent,
-            num(run.ctra3d.error3d.p75),
-            num(h.error3d.p75),
-            num(h.error3d.p95),
-            num(run.flying_on.error3d.p75),
-            num(run.flying_on.error3d.p95),
-            h.error3d.p75 / run.flying_on.error3d.p75,
-            h.coverage95,
-        );
+        s += &format!("| {} |\n", hold_cells(run).join(" | "));
     }
     s += &holds_findings(&r.holds);
     s
+}
+
+/// The columns of the holds table.
+const HOLD_HEADER: [&str; 10] = [
+    "rate",
+    "interval (s)",
+    "received",
+    "3D-CTRA p75",
+    "holding p75",
+    "holding p95",
+    "flying on p75",
+    "flying on p95",
+    "holding / flying on p75",
+    "cover95",
+];
+
+/// One row of the holds table: the rate, the holding station's interval and packets, 3D-CTRA's
+/// p75, both mission stations' p75 and p95, their ratio and the holding station's coverage.
+fn hold_cells(run: &HoldRun) -> Vec<String> {
+    let h = &run.holding;
+    vec![
+        format!("SF{}/{}", run.sf, run.bw),
+        format!("{:.1}", h.interval),
+        format!(
+            "{}/{}",
+            h.delivery.packets_received, h.delivery.packets_sent
+        ),
+        num(run.ctra3d.error3d.p75),
+        num(h.error3d.p75),
+        num(h.error3d.p95),
+        num(run.flying_on.error3d.p75),
+        num(run.flying_on.error3d.p95),
+        format!("{:.2}", h.error3d.p75 / run.flying_on.error3d.p75),
+        format!("{:.3}", h.coverage95),
+    ]
 }
 
 /// What the holds table shows, from its own numbers.
