@@ -85,12 +85,11 @@ struct Following {
     along: f64,
     /// The waypoint the station holds at, and when it believes the drone got there, s.
     holding: Option<(usize, f64)>,
-    /// The same for the newest hold since the packet, kept once the hold is over.
+    /// The same for the newest hold since the packet, kept once the hold is over: from its end
+    /// the station speeds up from rest.
     last_hold: Option<(usize, f64)>,
     /// The next waypoint with a hold, and its distance along the plan, m.
     next_hold: Option<(usize, f64)>,
-    /// When the station's last hold since the packet ended, s: from then it speeds up from rest.
-    resumed: Option<f64>,
     /// The speed to fly on at after a hold where the plan gives none, m/s: the newest packet's
     /// that showed the drone moving.
     cruise: f64,
@@ -148,7 +147,8 @@ impl MissionStation {
     /// leg's planned speed (or the cruise speed); else from the packet's speed toward it.
     fn pace(plan: &FlightPlan, f: &Following, t: f64, along: f64) -> f64 {
         let planned = plan.speed_at(along);
-        match f.resumed {
+        let resumed = f.last_hold.map(|(k, reached)| reached + plan.holds()[k]);
+        match resumed {
             Some(end) => planned.unwrap_or(f.cruise) * (1.0 - exp(-(t - end) / PACE_TIME)),
             None => match planned {
                 Some(v) => v + (f.speed - v) * exp(-(t - f.sent) / PACE_TIME),
@@ -229,7 +229,6 @@ impl Tracker for MissionStation {
             holding: holding.map(|(k, _, reached)| (k, reached)),
             last_hold: holding.map(|(k, _, reached)| (k, reached)),
             next_hold: plan.next_hold(plan.waypoint_at_or_after(found.along)),
-            resumed: None,
             cruise,
         });
     }
@@ -248,7 +247,6 @@ impl Tracker for MissionStation {
                     continue;
                 }
                 f.holding = None;
-                f.resumed = Some(end);
                 f.next_hold = plan.next_hold(k + 1);
             }
             let dt = self.step.min(t - f.t);
