@@ -151,9 +151,14 @@ pub fn sweep_mission(sim: &mut Simulator, base: &Scenario) -> Result<MissionSwee
     (senders.radio.sf, senders.radio.bw) = MISSION_RATES[0];
     senders.channel.distance = MISSION_DISTANCES[0];
     let senders = sweep_senders(sim, &senders, DEFAULT_BURST)?;
+    let plan = inspection_plan(INSPECTION_SEED);
+    let mut inspection = s.clone();
+    inspection.flight = Default::default();
+    inspection.flight.trajectory = Some(fly_plan(&plan, "inspection").to_csv().into());
+    inspection.flight.trajectory_name = Some("inspection".into());
     let holds = MISSION_RATES
         .iter()
-        .map(|&(sf, bw)| hold_run(sim, &s, sf, bw))
+        .map(|&(sf, bw)| hold_run(sim, &inspection, &plan, sf, bw))
         .collect::<Result<_, _>>()?;
     Ok(MissionSweepReport {
         seed: base.run.seed,
@@ -166,13 +171,16 @@ pub fn sweep_mission(sim: &mut Simulator, base: &Scenario) -> Result<MissionSwee
     })
 }
 
-/// The inspection mission at one rate, 1 km, with and without its plan's holds.
-fn hold_run(sim: &mut Simulator, s: &Scenario, sf: i64, bw: f64) -> Result<HoldRun, ApiError> {
-    let plan = inspection_plan(INSPECTION_SEED);
+/// The inspection mission (`s` flies it, `plan` is its plan) at one rate, 1 km, with and
+/// without the plan's holds.
+fn hold_run(
+    sim: &mut Simulator,
+    s: &Scenario,
+    plan: &FlightPlan,
+    sf: i64,
+    bw: f64,
+) -> Result<HoldRun, ApiError> {
     let mut s = s.clone();
-    s.flight = Default::default();
-    s.flight.trajectory = Some(fly_plan(&plan, "inspection").to_csv().into());
-    s.flight.trajectory_name = Some("inspection".into());
     s.flight.plan = Some(plan.to_csv());
     s.station.model = ModelChoice::parse("3d-ctra,mission").map_err(ApiError::Invalid)?;
     (s.radio.sf, s.radio.bw, s.channel.distance) = (sf, bw, MISSION_DISTANCES[0]);
