@@ -4,7 +4,8 @@
 use super::{sweep_senders, ApiError, SenderSweepReport};
 use crate::sim::DEFAULT_BURST;
 use crate::sim::{
-    ModelChoice, ModelResult, PlanPace, Scenario, Simulator, StationModel, SyntheticChoice,
+    ModelChoice, ModelResult, PlanPace, Scenario, SimError, Simulator, StationModel,
+    SyntheticChoice,
 };
 use crate::trajectory::{canberra_flight, fly_plan, inspection_plan, FlightPlan, TRACE_TOLERANCE};
 use serde::Serialize;
@@ -154,7 +155,12 @@ pub fn sweep_mission(sim: &mut Simulator, base: &Scenario) -> Result<MissionSwee
     let plan = inspection_plan(INSPECTION_SEED);
     let mut inspection = s.clone();
     inspection.flight = Default::default();
-    inspection.flight.trajectory = Some(fly_plan(&plan, "inspection").to_csv().into());
+    inspection.flight.trajectory = Some(
+        fly_plan(&plan, "inspection")
+            .map_err(SimError::from)?
+            .to_csv()
+            .into(),
+    );
     inspection.flight.trajectory_name = Some("inspection".into());
     let holds = MISSION_RATES
         .iter()

@@ -23,8 +23,8 @@ use crate::parallel::{
     enough_tasks, par_map, par_map_costliest_first, par_map_owned, par_map_progressing, ticks,
 };
 use crate::trajectory::{
-    canberra_flight, parse_csv, parse_csv_with_progress, synthetic_flight, Trajectory,
-    TrajectoryError, SYNTHETIC_FLIGHTS,
+    canberra_flight, fly_plan, parse_csv, parse_csv_with_progress, parse_plan, synthetic_flight,
+    Trajectory, TrajectoryError, SYNTHETIC_FLIGHTS,
 };
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -79,8 +79,10 @@ struct StationKey {
 enum FlightKey {
     Synthetic(SyntheticChoice),
     Sample(String),
-    /// One id per distinct CSV text this simulator has seen ([`Simulator::csv_key`]).
+    /// One id per distinct CSV text this simulator has seen ([`Simulator::text_id`]).
     Csv(u64),
+    /// A plan's text flown ([`fly_plan`]), by the same ids.
+    Plan(u64),
 }
 
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -255,9 +257,10 @@ impl Simulator {
         }
     }
 
-    /// The key of CSV `text` whose hash is `hash`: the id it was given before if the same text
-    /// is remembered, otherwise a fresh one (the oldest text is forgotten past the cache size).
-    fn csv_key(&mut self, text: &Arc<str>, hash: u64) -> FlightKey {
+    /// The id of `text` (a CSV flight or a plan) whose hash is `hash`: the id it was given before
+    /// if the same text is remembered, otherwise a fresh one (the oldest text is forgotten past
+    /// the cache size).
+    fn text_id(&mut self, text: &Arc<str>, hash: u64) -> u64 {
         if let Some((_, _, id)) = self
             .csv_texts
             .iter()
@@ -265,7 +268,7 @@ impl Simulator {
         {
             let id = *id;
             self.ledger.touch(&Entry::CsvText(id));
-            return FlightKey::Csv(id);
+            return id;
         }
         if self.csv_texts.len() >= MAX_CACHED_FLIGHTS {
             let (_, _, id) = self.csv_texts.remove(0);
@@ -275,7 +278,7 @@ impl Simulator {
         self.next_csv_id += 1;
         self.csv_texts.push((hash, Arc::clone(text), id));
         self.remember(Entry::CsvText(id), text.len());
-        FlightKey::Csv(id)
+        id
     }
 
     /// Reads CSV `text` (named `name`) into the flight cache, calling `progress(lines read,
@@ -303,7 +306,8 @@ impl Simulator {
         let key = match source {
             TrajectorySource::Synthetic(c) => FlightKey::Synthetic(*c),
             TrajectorySource::Sample(name) => FlightKey::Sample(name.to_ascii_lowercase()),
-            TrajectorySource::Csv(text, _) => self.csv_key(text, fnv1a(text)),
+            TrajectorySource::Csv(text, _) => FlightKey::Csv(self.text_id(text, fnv1a(text))),
+            TrajectorySource::Plan(text, _) => FlightKey::Plan(self.text_id(text, fnv1a(text))),
         };
         if let Some(f) = self.flights.get(&key) {
             let f = Rc::clone(f);
@@ -609,7 +613,7 @@ fn simulated_source(cfg: &Validated) -> Result<&TrajectorySource, SimError> {
     }
     cfg.source.as_ref().ok_or_else(|| {
         SimError::Source(
-            "choose a flight: `trajectory` (CSV), `synthetic` (all or 1..30) or `sample` (canberra)"
+            "choose a flight: `trajectory` (CSV), `synthetic` (all or 1..30), `sample` (canberra) or a `plan` to fly"
                 .into(),
         )
     })
@@ -832,6 +836,7 @@ pub(crate) fn load_flights(source: &TrajectorySource) -> Result<Vec<Trajectory>,
             return Err(TrajectoryError::UnknownSample(name.clone()).into())
         }
         TrajectorySource::Csv(text, name) => vec![parse_csv(text, name)?],
+        TrajectorySource::Plan(text, name) => vec![fly_plan(&parse_plan(text)?, name)?],
     })
 }
 
@@ -852,16 +857,16 @@ mod tests {
     }
 
     #[test]
-    fn csv_texts_that_share_a_hash_never_share_a_key() {
+    fn texts_that_share_a_hash_never_share_an_id() {
         let mut sim = Simulator::new();
-        let a = sim.csv_key(&"t,x,y,z\n0,0,0,0\n".into(), 42);
-        let b = sim.csv_key(&"t,x,y,z\n0,1,0,0\n".into(), 42);
+        let a = sim.text_id(&"t,x,y,z\n0,0,0,0\n".into(), 42);
+        let b = sim.text_id(&"t,x,y,z\n0,1,0,0\n".into(), 42);
         assert_ne!(
             a, b,
             "a hash collision must not give the first file's results"
         );
         assert_eq!(
-            sim.csv_key(&"t,x,y,z\n0,0,0,0\n".into(), 42),
+            sim.text_id(&"t,x,y,z\n0,0,0,0\n".into(), 42),
             a,
             "the same text keeps its key"
         );

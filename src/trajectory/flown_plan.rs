@@ -3,7 +3,7 @@
 //! holds (`sweep --mission`, docs/mission.md).
 
 use super::plan::FlightPlan;
-use super::Trajectory;
+use super::{PlanError, Trajectory, MAX_ROWS};
 use crate::math::distance;
 use crate::rng::Rng;
 
@@ -15,21 +15,92 @@ pub const PLAN_RATE_HZ: f64 = 25.0;
 /// The speed of a leg whose plan gives none, m/s ([`fly_plan`]).
 pub const PLAN_CRUISE: f64 = 5.0;
 
+/// The longest flight [`fly_plan`] flies, s: [`MAX_ROWS`] samples at [`PLAN_RATE_HZ`], the
+/// longest flight a CSV may give.
+pub const MAX_FLOWN_S: f64 = MAX_ROWS as f64 / PLAN_RATE_HZ;
+
+/// One leg as [`fly_plan`] flies it: a trapezoid of speed from rest to rest.
+struct Leg {
+    from: [f64; 3],
+    /// Unit vector along the leg.
+    u: [f64; 3],
+    length: f64,
+    /// The peak speed, m/s, and the time to reach it, s.
+    top: f64,
+    ramp: f64,
+    /// Seconds from the leg's start to rest at its end.
+    total: f64,
+}
+
+impl Leg {
+    fn of(plan: &FlightPlan, leg: usize) -> Leg {
+        let w = plan.waypoints();
+        let (from, to) = (w[leg], w[leg + 1]);
+        let length = distance(&from, &to);
+        let cruise = plan.leg_speed(leg).unwrap_or(PLAN_CRUISE);
+        let top = cruise.min((PLAN_ACCEL * length).sqrt());
+        let ramp = top / PLAN_ACCEL;
+        Leg {
+            from,
+            u: core::array::from_fn(|k| (to[k] - from[k]) / length),
+            length,
+            top,
+            ramp,
+            total: 2.0 * ramp + (length - top * ramp) / top,
+        }
+    }
+
+    /// Position along the leg, speed and acceleration (m, m/s, m/s²) `tau` s into it.
+    fn at(&self, tau: f64) -> (f64, f64, f64) {
+        let left = self.total - tau;
+        if tau < self.ramp {
+            (PLAN_ACCEL * tau * tau / 2.0, PLAN_ACCEL * tau, PLAN_ACCEL)
+        } else if left > self.ramp {
+            (self.top * (tau - self.ramp / 2.0), self.top, 0.0)
+        } else {
+            (
+                self.length - PLAN_ACCEL * left * left / 2.0,
+                PLAN_ACCEL * left,
+                -PLAN_ACCEL,
+            )
+        }
+    }
+}
+
+/// How long [`fly_plan`] takes to fly `plan`, s: its legs and its holds.
+///
+/// ```
+/// use loratrack::{flown_duration, FlightPlan};
+/// let plan = FlightPlan::with_holds(vec![[0.0; 3], [100.0, 0.0, 0.0]], vec![Some(10.0)], vec![0.0, 20.0]).unwrap();
+/// assert!((flown_duration(&plan) - 35.0).abs() < 1e-9);
+/// ```
+pub fn flown_duration(plan: &FlightPlan) -> f64 {
+    let legs: f64 = (0..plan.waypoints().len() - 1)
+        .map(|leg| Leg::of(plan, leg).total)
+        .sum();
+    legs + plan.holds().iter().sum::<f64>()
+}
+
 /// The flight of a multicopter that flies `plan` from rest: on each leg it speeds up to the leg's
 /// planned speed ([`PLAN_CRUISE`] where the plan gives none) and brakes to a stop at the next
 /// waypoint, both at [`PLAN_ACCEL`] (a leg too short for the speed peaks lower), then hovers
 /// there for the waypoint's hold; sampled at [`PLAN_RATE_HZ`] with its velocities and
 /// accelerations. No wind and no corner cutting: the plan flown exactly, a best case for a
-/// station that knows it.
+/// station that knows it. Refuses a plan that takes longer than [`MAX_FLOWN_S`] to fly
+/// ([`PlanError::TooLongToFly`]; an unlimited loiter holds for a day).
 ///
 /// ```
 /// use loratrack::{fly_plan, FlightPlan};
 /// let plan = FlightPlan::with_holds(vec![[0.0; 3], [100.0, 0.0, 0.0]], vec![Some(10.0)], vec![0.0, 20.0]).unwrap();
-/// let flight = fly_plan(&plan, "demo");
+/// let flight = fly_plan(&plan, "demo").unwrap();
 /// // 5 s to reach 10 m/s, 5 s at it, 5 s to stop after 100 m, then the 20 s hold.
 /// assert!((flight.duration() - 35.0).abs() < 0.05);
 /// ```
-pub fn fly_plan(plan: &FlightPlan, name: &str) -> Trajectory {
+pub fn fly_plan(plan: &FlightPlan, name: &str) -> Result<Trajectory, PlanError> {
+    let seconds = flown_duration(plan);
+    if seconds.is_nan() || seconds > MAX_FLOWN_S {
+        return Err(PlanError::TooLongToFly { seconds });
+    }
     let dt = 1.0 / PLAN_RATE_HZ;
     let (mut t, mut pos, mut vel, mut acc) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut sample = |p: [f64; 3], v: [f64; 3], a: [f64; 3]| {
@@ -40,40 +111,22 @@ pub fn fly_plan(plan: &FlightPlan, name: &str) -> Trajectory {
     };
     let w = plan.waypoints();
     for leg in 0..w.len() - 1 {
-        let (from, to) = (w[leg], w[leg + 1]);
-        let length = distance(&from, &to);
-        let u: [f64; 3] = core::array::from_fn(|k| (to[k] - from[k]) / length);
-        let cruise = plan.leg_speed(leg).unwrap_or(PLAN_CRUISE);
-        let top = cruise.min((PLAN_ACCEL * length).sqrt());
-        let ramp = top / PLAN_ACCEL;
-        let total = 2.0 * ramp + (length - top * ramp) / top;
-        for j in 0..(total / dt).ceil() as usize {
-            let tau = j as f64 * dt;
-            let left = total - tau;
-            let (s, v, a) = if tau < ramp {
-                (PLAN_ACCEL * tau * tau / 2.0, PLAN_ACCEL * tau, PLAN_ACCEL)
-            } else if left > ramp {
-                (top * (tau - ramp / 2.0), top, 0.0)
-            } else {
-                (
-                    length - PLAN_ACCEL * left * left / 2.0,
-                    PLAN_ACCEL * left,
-                    -PLAN_ACCEL,
-                )
-            };
+        let l = Leg::of(plan, leg);
+        for j in 0..(l.total / dt).ceil() as usize {
+            let (s, v, a) = l.at(j as f64 * dt);
             sample(
-                core::array::from_fn(|k| from[k] + u[k] * s),
-                u.map(|c| c * v),
-                u.map(|c| c * a),
+                core::array::from_fn(|k| l.from[k] + l.u[k] * s),
+                l.u.map(|c| c * v),
+                l.u.map(|c| c * a),
             );
         }
         for _ in 0..(plan.holds()[leg + 1] / dt).round() as usize {
-            sample(to, [0.0; 3], [0.0; 3]);
+            sample(w[leg + 1], [0.0; 3], [0.0; 3]);
         }
     }
     sample(w[w.len() - 1], [0.0; 3], [0.0; 3]);
-    // Finite samples at increasing times from a valid plan: always a flight.
-    Trajectory::new(name.to_string(), t, pos, vel, acc).expect("a flown plan is a valid flight")
+    Trajectory::new(name.to_string(), t, pos, vel, acc)
+        .map_err(|e| PlanError::Invalid(format!("the flown plan: {e}")))
 }
 
 /// Points an [`inspection_plan`] visits.
@@ -124,7 +177,7 @@ mod tests {
             vec![0.0, 10.0, 0.0],
         )
         .unwrap();
-        let f = fly_plan(&plan, "test");
+        let f = fly_plan(&plan, "test").unwrap();
         // The 2 m leg peaks at 2 m/s: 1 s up, 1 s down.
         assert!(
             (f.duration() - (15.0 + 10.0 + 2.0)).abs() < 0.1,
@@ -144,7 +197,31 @@ mod tests {
     fn an_inspection_is_the_same_for_its_seed_and_another_for_another() {
         assert_eq!(inspection_plan(3), inspection_plan(3));
         assert_ne!(inspection_plan(3), inspection_plan(4));
-        let minutes = fly_plan(&inspection_plan(1), "i").duration() / 60.0;
+        let minutes = fly_plan(&inspection_plan(1), "i").unwrap().duration() / 60.0;
         assert!((30.0..50.0).contains(&minutes), "{minutes}");
+    }
+
+    #[test]
+    fn the_duration_is_known_before_the_flight_within_a_sample_a_leg() {
+        let plan = inspection_plan(2);
+        let flown = fly_plan(&plan, "i").unwrap().duration();
+        let legs = (plan.waypoints().len() - 1) as f64;
+        let known = flown_duration(&plan);
+        assert!(
+            (flown - known).abs() <= legs / PLAN_RATE_HZ,
+            "{flown} against {known}"
+        );
+    }
+
+    #[test]
+    fn a_plan_too_slow_to_fly_is_refused_without_flying_it() {
+        // 30 m at a millimetre a second: 30 000 s at the speed, plus the ramps.
+        let plan = FlightPlan::new(vec![[0.0; 3], [0.0, 0.0, 30.0]], vec![Some(1e-3)]).unwrap();
+        assert!(fly_plan(&plan, "slow").is_ok());
+        let plan = FlightPlan::new(vec![[0.0; 3], [0.0, 0.0, 50.0]], vec![Some(1e-3)]).unwrap();
+        match fly_plan(&plan, "slow") {
+            Err(PlanError::TooLongToFly { seconds }) => assert!(seconds > MAX_FLOWN_S),
+            other => panic!("{:?}", other.map(|f| f.duration())),
+        }
     }
 }

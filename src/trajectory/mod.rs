@@ -22,8 +22,8 @@ pub use csv::{
 };
 pub use error::TrajectoryError;
 pub use flown_plan::{
-    fly_plan, inspection_plan, INSPECTION_HOLDS, INSPECTION_POINTS, PLAN_ACCEL, PLAN_CRUISE,
-    PLAN_RATE_HZ,
+    flown_duration, fly_plan, inspection_plan, INSPECTION_HOLDS, INSPECTION_POINTS, MAX_FLOWN_S,
+    PLAN_ACCEL, PLAN_CRUISE, PLAN_RATE_HZ,
 };
 pub use kinematics::{heading_angles, kinematic_state, kinematic_states, HOVER_SPEED};
 pub use plan::{

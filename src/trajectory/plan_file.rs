@@ -36,12 +36,22 @@ pub enum PlanError {
     Qgc(String),
     /// Values that do not make a plan.
     Invalid(String),
+    /// A plan that takes longer to fly than a flight may last (`fly_plan`).
+    TooLongToFly {
+        /// How long it takes, s.
+        seconds: f64,
+    },
 }
 
 impl fmt::Display for PlanError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             PlanError::Empty => write!(f, "the plan has no waypoints"),
+            PlanError::TooLongToFly { seconds } => write!(
+                f,
+                "the plan takes {seconds:.0} s to fly; a flown plan lasts at most {:.0} s (an unlimited loiter holds for a day)",
+                super::MAX_FLOWN_S
+            ),
             PlanError::TooFewWaypoints => {
                 write!(f, "the plan needs at least two distinct waypoints")
             }

@@ -274,7 +274,7 @@ fn a_station_that_reads_the_plans_holds_waits_with_the_drone() {
     speeds.push(Some(2.0));
     let holds = vec![0.0, 0.0, 30.0, 0.0, 60.0, 15.0, 0.0, 45.0, 0.0, 0.0];
     let plan = FlightPlan::with_holds(points, speeds, holds).unwrap();
-    let flight = fly_plan(&plan, "inspection").to_csv();
+    let flight = fly_plan(&plan, "inspection").unwrap().to_csv();
     let with = |plan: String| {
         json!({"trajectory": flight, "model": "mission", "prediction": "bounded",
                "sf": 9, "bw": 125.0, "plan": plan})
@@ -298,6 +298,58 @@ fn a_station_that_reads_the_plans_holds_waits_with_the_drone() {
             "{kind} {read} against CSV {holding}"
         );
     }
+}
+
+#[test]
+fn a_plan_alone_is_flown_as_fly_plan_flies_it() {
+    let plan = FlightPlan::with_holds(
+        vec![
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 30.0],
+            [300.0, 0.0, 30.0],
+            [300.0, 200.0, 40.0],
+        ],
+        vec![Some(3.0), Some(8.0), None],
+        vec![0.0, 0.0, 20.0, 10.0],
+    )
+    .unwrap();
+    let settings =
+        json!({"model": "3d-ctra,mission", "prediction": "bounded", "sf": 9, "bw": 125.0});
+    let with = |extra: Value| {
+        let mut s = settings.clone();
+        s.as_object_mut()
+            .unwrap()
+            .extend(extra.as_object().unwrap().clone());
+        let s = Scenario::default().with(&s).unwrap();
+        simulate(&mut Simulator::new(), &s).unwrap()
+    };
+    let alone = with(json!({"plan": plan.to_csv()}));
+    let flown = fly_plan(&plan, "flight").unwrap();
+    let logged = with(json!({"plan": plan.to_csv(), "trajectory": flown.to_csv()}));
+    assert_eq!(alone.config.trajectory, "flown plan");
+    assert_eq!(alone.results.len(), 2);
+    assert!((alone.config.flight_time - flown.duration()).abs() < 1e-9);
+    for (a, b) in alone.results.iter().zip(&logged.results) {
+        assert_eq!(a.error3d, b.error3d, "{}", a.model.name());
+    }
+    // A swarm flies it too, every drone.
+    let s = Scenario::default()
+        .with(&json!({"plan": plan.to_csv(), "drones": 3}))
+        .unwrap();
+    assert_eq!(swarm(&s).unwrap().drones.len(), 3);
+}
+
+#[test]
+fn a_plan_that_would_fly_for_more_than_a_long_flight_is_refused_before_it_is_flown() {
+    // An unlimited loiter holds for a day.
+    let s = Scenario::default()
+        .with(&json!({"plan": "x,y,z,speed,hold\n0,0,0\n0,0,30,3,86400\n"}))
+        .unwrap();
+    let e = simulate(&mut Simulator::new(), &s).unwrap_err().to_string();
+    assert!(
+        e.contains("takes 86412 s to fly") && e.contains("at most 40000 s"),
+        "{e}"
+    );
 }
 
 #[test]

@@ -46,7 +46,7 @@ pub struct FlightArgs {
     /// A bundled real flight: canberra (ArduCopter log171, CC BY-SA 3.0).
     #[arg(long, value_name = "NAME")]
     sample: Option<String>,
-    /// The drone's mission plan for --model mission with --trajectory or --sample: a CSV of x,y,z[,speed[,hold]] (m, the flight's frame; speed m/s on the leg to that waypoint, which may be empty; hold s at the waypoint), a QGroundControl .plan (its home is the frame's origin) or a QGC WPL waypoint list, Mission Planner's .waypoints (its item 0 is). The synthetic flights carry their own.
+    /// The drone's mission plan for --model mission with --trajectory or --sample: a CSV of x,y,z[,speed[,hold]] (m, the flight's frame; speed m/s on the leg to that waypoint, which may be empty; hold s at the waypoint), a QGroundControl .plan (its home is the frame's origin) or a QGC WPL waypoint list, Mission Planner's .waypoints (its item 0 is). The synthetic flights carry their own. Alone, without a flight, the drone flies the plan: from rest at each waypoint to the next at 2 m/s², each leg at its speed (5 m/s where none is given), each hold as planned, no wind (the mission station's best case; at most 40000 s).
     #[arg(long, value_name = "FILE", conflicts_with = "synthetic")]
     plan: Option<std::path::PathBuf>,
 }
@@ -909,17 +909,20 @@ fn swarm_text(r: &SwarmReport) -> String {
         .count();
     let d = &r.delivery;
     // With a flight chosen every drone flies it (the duration is for chained synthetic flights).
-    let flown = match (
-        c.flight.synthetic,
-        &c.flight.sample,
-        &c.flight.trajectory_name,
-    ) {
-        (Some(loratrack::SyntheticChoice::All), _, _) => {
-            "each flying the synthetic set".to_string()
+    let f = &c.flight;
+    let flown = match (f.synthetic, &f.sample, &f.trajectory_name, &f.plan_name) {
+        (Some(loratrack::SyntheticChoice::All), ..) => "each flying the synthetic set".to_string(),
+        (Some(loratrack::SyntheticChoice::One(i)), ..) => format!("each flying synthetic {i}"),
+        (None, Some(sample), ..) => format!("each flying {sample}"),
+        (None, None, Some(name), _) => {
+            format!("each flying {}", loratrack::api::clean_message(name))
         }
-        (Some(loratrack::SyntheticChoice::One(i)), _, _) => format!("each flying synthetic {i}"),
-        (None, Some(sample), _) => format!("each flying {sample}"),
-        (None, None, Some(name)) => format!("each flying {}", loratrack::api::clean_message(name)),
+        (None, None, None, Some(plan)) => {
+            format!(
+                "each flying {} (flown)",
+                loratrack::api::clean_message(plan)
+            )
+        }
         _ => format!("x {:.0} s", c.swarm.duration),
     };
     format!(

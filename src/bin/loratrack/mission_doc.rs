@@ -3,7 +3,7 @@
 use crate::doc_cells::{link_args, link_words, pooled_seeds};
 use loratrack::api::{HoldRun, MissionRun, MissionSweepReport, INSPECTION_SEED, MISSION_MODELS};
 use loratrack::{
-    fly_plan, inspection_plan, ModelResult, Scenario, HOLD_BRAKE, HOLD_RADIUS, HOLD_SPEED,
+    flown_duration, inspection_plan, ModelResult, Scenario, HOLD_BRAKE, HOLD_RADIUS, HOLD_SPEED,
     INSPECTION_HOLDS, INSPECTION_POINTS, OFFSET_TIME, PACE_SIGMA, PACE_TIME, PLAN_ACCEL,
     TRACE_TOLERANCE,
 };
@@ -160,7 +160,7 @@ pub fn mission_markdown(r: &MissionSweepReport, base: &Scenario) -> String {
 fn holds_section(r: &MissionSweepReport) -> String {
     let plan = inspection_plan(INSPECTION_SEED);
     let held = plan.holds().iter().filter(|&&h| h > 0.0).count();
-    let minutes = fly_plan(&plan, "inspection").duration() / 60.0;
+    let minutes = flown_duration(&plan) / 60.0;
     let holds: Vec<String> = INSPECTION_HOLDS[1..]
         .iter()
         .map(|h| format!("{h}"))

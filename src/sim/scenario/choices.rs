@@ -250,4 +250,8 @@ pub enum TrajectorySource {
     Synthetic(SyntheticChoice),
     /// A bundled sample by name.
     Sample(String),
+    /// A mission plan's text (`x,y,z[,speed[,hold]]`, `.plan` or waypoint list) and a name:
+    /// the drone flies the plan as [`fly_plan`](crate::fly_plan) flies it, the mission
+    /// station's best case (no wind, every leg at its planned speed, every hold as planned).
+    Plan(Arc<str>, String),
 }

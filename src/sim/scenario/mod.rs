@@ -57,9 +57,12 @@ fn on_off(text: &str) -> Result<bool, String> {
 
 /// The name of a CSV flight given without one.
 pub const DEFAULT_CSV_NAME: &str = "uploaded CSV";
+/// The name of a flown plan given without its own (`plan_name`).
+pub const DEFAULT_PLAN_NAME: &str = "flown plan";
 
 /// Which flight(s) the drones fly: exactly one of CSV text, synthetic flights or a bundled
-/// sample, or none in a swarm (each drone then chains synthetic flights for `duration`).
+/// sample, a plan alone (flown), or none in a swarm (each drone then chains synthetic flights
+/// for `duration`).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
@@ -86,10 +89,12 @@ pub struct FlightSettings {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(optional))]
     pub sample: Option<String>,
-    /// The drone's mission plan for a CSV or sample flight, as text: a CSV of `x,y,z[,speed[,hold]]`
-    /// or a QGroundControl `.plan` (the CLI reads `--plan FILE` into this; reference §16); input
-    /// only, not echoed (the JS API's `SimulateParams` adds it to the generated type). The
-    /// synthetic flights carry their own.
+    /// The drone's mission plan for a CSV or sample flight, as text: a CSV of `x,y,z[,speed[,hold]]`,
+    /// a QGroundControl `.plan` or a waypoint list (the CLI reads `--plan FILE` into this;
+    /// reference §16); input only, not echoed (the JS API's `SimulateParams` adds it to the
+    /// generated type). The synthetic flights carry their own. Without a flight the drone flies
+    /// the plan ([`fly_plan`](crate::fly_plan): stopping at every waypoint, no wind), the
+    /// mission station's best case.
     #[serde(default, skip_serializing)]
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(skip))]
     pub plan: Option<String>,
@@ -654,12 +659,19 @@ impl FlightSettings {
         Ok(plan)
     }
 
-    /// The chosen flight(s), taking the CSV text out of the settings: `None` when nothing is
-    /// chosen, an error when more than one is.
+    /// The chosen flight(s), taking the CSV text out of the settings: a plan alone is flown
+    /// ([`TrajectorySource::Plan`]); `None` when nothing is chosen, an error when more than one
+    /// flight is.
     pub fn take_source(&mut self) -> Result<Option<TrajectorySource>, SimError> {
         Ok(
             match (self.trajectory.take(), self.synthetic, self.sample.clone()) {
-                (None, None, None) => None,
+                (None, None, None) => self.plan.as_deref().map(|text| {
+                    let name = match self.plan_name.as_deref() {
+                        Some(n) if !n.trim().is_empty() => format!("{n} (flown)"),
+                        _ => DEFAULT_PLAN_NAME.into(),
+                    };
+                    TrajectorySource::Plan(text.into(), name)
+                }),
                 (Some(text), None, None) => Some(TrajectorySource::Csv(
                     text,
                     self.trajectory_name
