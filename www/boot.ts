@@ -27,5 +27,5 @@ for (const type of ['input', 'change']) document.getElementById('controls')?.add
 /** The page's worker pool, one worker per core. */
 export const pool = new SimulationPool();
 // An uploaded flight is never in a link: such a page waits for the file.
-void load().then(() => store.settings.flight !== 'csv' && pool.start(simulateRequest(0, store.settings)));
+void load().then(() => !['csv', 'plan'].includes(store.settings.flight) && pool.start(simulateRequest(0, store.settings)));
 void import('./main');

@@ -155,7 +155,7 @@ export function markField(el: HTMLInputElement | HTMLSelectElement, why: string 
 }
 
 export function showConditional(): void {
-  for (const el of document.querySelectorAll<HTMLElement>('[data-when]')) el.hidden = el.dataset.when !== field('flight').value;
+  for (const el of document.querySelectorAll<HTMLElement>('[data-when]')) el.hidden = !el.dataset.when!.split(' ').includes(field('flight').value);
   for (const el of document.querySelectorAll<HTMLElement>('[data-when-sender]')) el.hidden = el.dataset.whenSender !== field('sender').value;
   for (const el of document.querySelectorAll<HTMLElement>('[data-when-prediction]')) el.hidden = el.dataset.whenPrediction !== field('prediction').value;
   const km = `${(Number(field('distance').value) / 1000).toFixed(1)} km`;

@@ -121,7 +121,7 @@ export function describe(s: Settings): string {
 
 /** One line for a download's caption: the settings, flight, seed and version behind a chart. */
 export function caption(s: Settings, extra = ''): string {
-  const flight = s.flight === 'all' ? 'whole synthetic set' : s.flight === 'canberra' ? 'real flight (Canberra)' : s.flight === 'csv' ? (store.csv?.name ?? 'uploaded CSV') : `synthetic flight ${s.flightNumber}`;
+  const flight = s.flight === 'all' ? 'whole synthetic set' : s.flight === 'canberra' ? 'real flight (Canberra)' : s.flight === 'csv' ? (store.csv?.name ?? 'uploaded CSV') : s.flight === 'plan' ? `${store.plan?.name ?? 'plan'} (flown)` : `synthetic flight ${s.flightNumber}`;
   const seeds = s.seeds > 1 ? ` to ${s.seed + s.seeds - 1}` : '';
   return `${describe(s)}, ${s.lorawan ? `${overheadBytes(s)} B` : 'no'} LoRaWAN overhead; ${flight}; seed ${s.seed}${seeds}${extra}; loratrack ${__LORATRACK_VERSION__}`;
 }
@@ -145,7 +145,7 @@ export function fewPacketsNote(points: { at: string; received: number; few: bool
     return `${a} (${lo === hi ? lo : `${lo}–${hi}`})`;
   });
   const unit = at.length === 1 && counts[0].endsWith('(1)') ? 'packet' : 'packets';
-  const more = flight === 'all' ? '' : flight === 'csv' ? ' A longer flight gives them more.' : ' More flight time gives them more: the whole synthetic set (Trajectory) flies 44 minutes.';
+  const more = flight === 'all' ? '' : flight === 'csv' ? ' A longer flight gives them more.' : flight === 'plan' ? ' A longer plan gives them more.' : ' More flight time gives them more: the whole synthetic set (Trajectory) flies 44 minutes.';
   return `${marks} rest on too few received packets to tell the stations apart: ${counts.join(', ')} ${unit}.${more}`;
 }
 

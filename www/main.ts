@@ -73,11 +73,12 @@ let freshSeed = false;
 function submit(): void {
   const request = simulateRequest(++nextId, store.settings, store.csv, store.plan);
   if (freshSeed) request.params.seed = 'random';
-  if (store.settings.flight === 'csv' && !store.csv) {
+  const missing = store.settings.flight === 'csv' && !store.csv ? 'a CSV file to simulate it' : store.settings.flight === 'plan' && !store.plan ? 'a flight plan to fly it' : undefined;
+  if (missing) {
     // Nothing runs until a file is chosen: the numbers on show are the previous flight's.
     markStale(store.report !== undefined);
     markChartsUnrun(true);
-    status.textContent = `Choose a CSV file to simulate it${store.report ? '; the results below are for the previous settings.' : '.'}`;
+    status.textContent = `Choose ${missing}${store.report ? '; the results below are for the previous settings.' : '.'}`;
     return;
   }
   if (running?.long) {
@@ -100,7 +101,7 @@ let lastSent = 0;
 function send(request: SimulateRequest, made: Settings): void {
   lastSent = request.id;
   offerFit($('#fit-setting'), undefined, undefined);
-  const long = made.flight === 'all' || made.flight === 'csv' || made.seeds > 1;
+  const long = made.flight === 'all' || made.flight === 'csv' || made.flight === 'plan' || made.seeds > 1;
   running = { id: request.id, long, started: performance.now(), settings: made, params: request.params };
   updateBusy();
   progress.hidden = !long;
@@ -109,6 +110,7 @@ function send(request: SimulateRequest, made: Settings): void {
   if (made.flight === 'all') status.textContent = `Simulating 30 flights (44 min of flight${repeats})… change any setting to interrupt.`;
   else if (made.seeds > 1) status.textContent = `Simulating ${made.seeds} seeds… change any setting to interrupt.`;
   else if (made.flight === 'csv' && store.csv) status.textContent = `Simulating ${store.csv.name} (${(store.csv.file.size / 1024).toFixed(0)} KB)… change any setting to interrupt.`;
+  else if (made.flight === 'plan' && store.plan) status.textContent = `Flying ${store.plan.name} and simulating it… change any setting to interrupt.`;
   pool.run(request, onResponse);
 }
 
@@ -789,7 +791,7 @@ setUpCopyCommand();
 $('#copy-link').addEventListener('click', async () => {
   const url = location.href;
   // An uploaded file stays on this computer: say what the link will open instead.
-  const caveat = store.settings.flight === 'csv' ? ' It opens one synthetic flight: an uploaded CSV never leaves this computer, so a link cannot carry it.' : '';
+  const caveat = ['csv', 'plan'].includes(store.settings.flight) ? ` It opens one synthetic flight: an uploaded ${store.settings.flight === 'csv' ? 'CSV' : 'plan'} never leaves this computer, so a link cannot carry it.` : '';
   try {
     await navigator.clipboard.writeText(url);
     $('#copy-status').textContent = `Link copied.${caveat}`;
@@ -1030,7 +1032,7 @@ for (const [id, save] of [
   ['download-csv', (r: SimReport) => downloadErrorCsv(r)],
   ['download-json', (r: SimReport) => downloadJson(r, store.reportSettings, commandOf('results'))],
   // An uploaded flight never leaves this computer: no link opens it.
-  ['download-results-csv', (r: SimReport) => downloadResultsCsv(r, { settings: caption(store.reportSettings), link: store.reportSettings.flight === 'csv' ? '' : `${location.origin}${location.pathname}?${toQuery(store.reportSettings)}`, command: commandOf('results') ?? '' })],
+  ['download-results-csv', (r: SimReport) => downloadResultsCsv(r, { settings: caption(store.reportSettings), link: ['csv', 'plan'].includes(store.reportSettings.flight) ? '' : `${location.origin}${location.pathname}?${toQuery(store.reportSettings)}`, command: commandOf('results') ?? '' })],
 ] as const) {
   $(`#${id}`).addEventListener('click', () => {
     const report = shownReport($(`#${id}`));

@@ -6,7 +6,7 @@
 import type { SimulateRequest, SweepPoint } from './worker';
 import { CHOICE_DEFAULTS, OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type HeadingNoise, type ModelChoice, type NumberOption, type PayloadChoice, type Plan, type Prediction, type Region, type ShadowingModel, type SimulateParams } from './loratrack';
 
-export type FlightChoice = 'synthetic' | 'all' | 'canberra' | 'csv';
+export type FlightChoice = 'synthetic' | 'all' | 'canberra' | 'csv' | 'plan';
 
 export interface Settings {
   sf: number;
@@ -119,10 +119,10 @@ export function modelChoiceOf(raw: string): string | null {
 }
 
 /** Whether the flight's plan is known to the page: the synthetic flights carry theirs, an
- * uploaded flight has one when its plan was uploaded too; the real flight has none here (the
- * CLI's `--plan` and the JS API's `plan` give one). */
+ * uploaded flight has one when its plan was uploaded too, as a flown plan has once it is chosen;
+ * the real flight has none here (the CLI's `--plan` and the JS API's `plan` give one). */
 export function planKnown(flight: FlightChoice, uploadedPlan = false): boolean {
-  return flight === 'synthetic' || flight === 'all' || (flight === 'csv' && uploadedPlan);
+  return flight === 'synthetic' || flight === 'all' || ((flight === 'csv' || flight === 'plan') && uploadedPlan);
 }
 
 /** Whether a model choice runs the mission station. */
@@ -277,8 +277,14 @@ export function simulateRequest(id: number, s: Settings, csv?: { file: Blob; nam
   return { id, params: toParams(s, csv, missionPlan), sweep: SWEEP, ...file };
 }
 
+/** A mission plan's parameters: its text and, where it has one, its file's name. */
+function planParams(missionPlan?: { text: string; name?: string }): SimulateParams {
+  return missionPlan ? { plan: missionPlan.text, ...(missionPlan.name ? { planName: missionPlan.name } : {}) } : {};
+}
+
 /** simulate() parameters for these settings; `csv` names the uploaded flight, whose text the
- * worker adds as `trajectory` from the request's file, and `missionPlan` is its mission plan. */
+ * worker adds as `trajectory` from the request's file, and `missionPlan` is its mission plan (with
+ * `flight: 'plan'` the flight itself: the core flies it). */
 export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { text: string; name?: string }): SimulateParams {
   const flight: SimulateParams =
     s.flight === 'all'
@@ -286,8 +292,10 @@ export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { te
       : s.flight === 'canberra'
         ? { sample: 'canberra' }
         : s.flight === 'csv' && csv
-          ? { trajectoryName: csv.name, ...(missionPlan ? { plan: missionPlan.text, ...(missionPlan.name ? { planName: missionPlan.name } : {}) } : {}) }
-          : { synthetic: s.flightNumber };
+          ? { trajectoryName: csv.name, ...planParams(missionPlan) }
+          : s.flight === 'plan' && missionPlan
+            ? planParams(missionPlan)
+            : { synthetic: s.flightNumber };
   return {
     ...flight,
     model: s.model,
@@ -401,7 +409,7 @@ export function fromQuery(search: string): { settings: Settings; problems: strin
   choice('access', ['duty-cycle', 'lbt']);
   choice('fairUse', ['off', 'ttn']);
   choice('shadowingModel', ['path', 'field']);
-  // An uploaded CSV cannot travel in a URL; such links open the default flight.
+  // An uploaded CSV or plan cannot travel in a URL; such links open the default flight.
   choice('flight', ['synthetic', 'all', 'canberra']);
   if (q.get('lorawan') === 'false') s.lorawan = false;
   if (!planAllows(s.region, s.sf, s.bw)) {

@@ -516,6 +516,42 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
   assert.deepEqual(problems, []);
 });
 
+test('a plan alone is flown: the page\'s numbers are the CLI\'s for --plan alone, its command says so, and a plan too long to fly is refused next to its control', async () => {
+  const { page, problems } = await open();
+  const dir = scratchDir();
+  const plan = join(dir, 'survey.csv');
+  writeFileSync(plan, 'x,y,z,speed,hold\n0,0,0\n0,0,30,3\n200,0,30,8,20\n200,150,40,6,10\n0,150,40\n0,0,30,8\n0,0,0,2\n');
+  let before = await tableHtml(page);
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('plan');
+  // Nothing to fly yet: the page says what it needs, and the CSV flight's control is not shown.
+  await until(page, () => /Choose a flight plan to fly it/.test(document.querySelector('#status').textContent));
+  assert.equal(await page.locator('#csv').isVisible(), false);
+  await page.getByLabel(/Flight plan/).setInputFiles(plan);
+  await waitForResults(page, before);
+  await until(page, () => !document.querySelector('#model option[value="3d-ctra,mission"]').disabled);
+  before = await tableHtml(page);
+  await page.getByLabel('Model').selectOption('3d-ctra,mission');
+  await waitForResults(page, before);
+  const cli = nativeJson(['simulate', '--plan', plan, '--model', '3d-ctra,mission']);
+  assert.equal(cli.config.trajectory, `${plan} (flown)`);
+  for (const m of ['3d-ctra', 'mission']) {
+    const r = cli.results.find((x) => x.model === m);
+    assert.equal(number(await cell(page, m, 'p75')).toFixed(2), r.error3d.p75.toFixed(2), m);
+  }
+  const command = await page.locator('[data-command="results"] code').textContent();
+  assert.equal(command, 'loratrack simulate --plan survey.csv --model 3d-ctra,mission');
+  assert.deepStrictEqual(commandJson(command, dir).results, cli.results);
+  assert.deepEqual(await axe(page), []);
+
+  const long = join(dir, 'loiter.csv');
+  writeFileSync(long, 'x,y,z,speed,hold\n0,0,0\n0,0,30,3,86400\n');
+  await page.getByLabel(/Flight plan/).setInputFiles(long);
+  await page.waitForSelector('#plan-error:not([hidden])');
+  assert.match(await page.locator('#plan-error').textContent(), /takes 86412 s to fly; a flown plan lasts at most 40000 s/);
+  assert.equal(await page.locator('#results-table tbody tr').count(), 2);
+  assert.deepEqual(problems, []);
+});
+
 test('the URL carries the state: a shared link reopens the same view; embed shows only chosen panels', async () => {
   const { page, problems } = await open();
   const before = await tableHtml(page);

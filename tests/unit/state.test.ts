@@ -1,7 +1,7 @@
 // The page's settings and its URL: every shareable view must come back exactly as it was, and a
 // link asking for something the core refuses must be explained, never silently used.
 import { describe, expect, test } from 'vitest';
-import { adrCanStart, DEFAULTS, fromQuery, gatewaysFromText, gatewaysToText, invalid, LIMITS, modelChoiceOf, planAllows, sendingLimit, simulateRequest, toParams, toQuery, type Settings } from '../../www/state';
+import { adrCanStart, DEFAULTS, fromQuery, gatewaysFromText, gatewaysToText, invalid, LIMITS, modelChoiceOf, planAllows, planKnown, sendingLimit, simulateRequest, toParams, toQuery, type Settings } from '../../www/state';
 import type { Region } from '../../www/loratrack';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings } from '../../www/lessons';
 
@@ -173,6 +173,12 @@ describe('simulate() parameters', () => {
     expect(toParams({ ...DEFAULTS, lorawan: false }).overhead).toBe(0);
     // An uploaded plan goes with its file name, for the command line that reruns the run.
     expect(toParams({ ...DEFAULTS, flight: 'csv' }, { name: 'mine.csv' }, { text: '0,0,10', name: 'mine.plan' })).toMatchObject({ plan: '0,0,10', planName: 'mine.plan' });
+    // A plan flown is the flight: no other flight goes with it, and the page knows its plan.
+    const flown = toParams({ ...DEFAULTS, flight: 'plan' }, undefined, { text: '0,0,10', name: 'mine.plan' });
+    expect(flown).toMatchObject({ plan: '0,0,10', planName: 'mine.plan' });
+    for (const other of ['synthetic', 'sample', 'trajectoryName']) expect(flown).not.toHaveProperty(other);
+    expect(planKnown('plan', true)).toBe(true);
+    expect(planKnown('plan', false)).toBe(false);
   });
 
   test('name what sets how often a drone sends: the interval where the plan has no duty cycle, else listen before talk or the duty cycle', () => {
