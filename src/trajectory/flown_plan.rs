@@ -12,7 +12,10 @@ use crate::rng::Rng;
 pub const PLAN_ACCEL: f64 = 2.0;
 /// The sample rate of [`fly_plan`]'s flights, Hz: a flight log's GPS and EKF rate.
 pub const PLAN_RATE_HZ: f64 = 25.0;
-/// The speed of a leg whose plan gives none, m/s ([`fly_plan`]).
+/// The speed of a leg whose plan gives none, m/s ([`fly_plan`], and the mission station after a
+/// hold before any packet showed the drone moving): QGroundControl's default mission speed for a
+/// multi-rotor (`hoverSpeed`) and PX4's `MPC_XY_CRUISE` (ArduPilot's `WPNAV_SPEED` defaults to
+/// 10 m/s).
 pub const PLAN_CRUISE: f64 = 5.0;
 
 /// The longest flight [`fly_plan`] flies, s: [`MAX_ROWS`] samples at [`PLAN_RATE_HZ`], the

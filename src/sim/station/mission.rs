@@ -5,7 +5,7 @@
 use super::{Prediction, StationPredictor, StationSetup, Tracker};
 use crate::math::{distance, exp};
 use crate::models::Ctra3d;
-use crate::trajectory::FlightPlan;
+use crate::trajectory::{FlightPlan, PLAN_CRUISE};
 use nalgebra::Matrix3;
 use serde::{Deserialize, Serialize};
 
@@ -91,7 +91,8 @@ struct Following {
     /// The next waypoint with a hold, and its distance along the plan, m.
     next_hold: Option<(usize, f64)>,
     /// The speed to fly on at after a hold where the plan gives none, m/s: the newest packet's
-    /// that showed the drone moving.
+    /// that showed the drone moving, [`PLAN_CRUISE`] before any did (a drone that hovers at every
+    /// packet would otherwise be kept at its first hold until one showed it moving).
     cruise: f64,
 }
 
@@ -108,7 +109,8 @@ struct Following {
 /// this one; half a hold before a first packet), unless the station has held there since the
 /// packet before and the hold is not over (then it keeps its arrival);
 /// after a hold the station speeds up from rest over [`PACE_TIME`], toward the leg's planned
-/// speed or, on a leg without one, the speed of the newest packet that showed the drone moving.
+/// speed or, on a leg without one, the speed of the newest packet that showed the drone moving
+/// ([`PLAN_CRUISE`] before any did).
 ///
 /// Its covariance on the plan: the packet's (the drone filter's settled covariance, as the
 /// bounded station's), plus ([`PACE_SIGMA`]·τ)² in every direction, τ s after the packet.
@@ -217,6 +219,7 @@ impl Tracker for MissionStation {
         let on = plan.point_at(along);
         let cruise = match self.following {
             Some(f) if speed < HOLD_SPEED => f.cruise,
+            None if speed < HOLD_SPEED => PLAN_CRUISE,
             _ => speed,
         };
         self.following = Some(Following {
@@ -460,6 +463,42 @@ mod tests {
         passing.reset(&packet(100.0, 2.0, 5.0), 0.0);
         passing.predict_to(2.0);
         assert!(passing.position()[1] > 8.0, "{:?}", passing.position());
+    }
+
+    #[test]
+    fn after_a_hold_on_a_leg_without_a_speed_it_flies_on_at_the_cruise_speed_if_no_packet_showed_one(
+    ) {
+        let c = corner_with_a_hold().plan;
+        let plan = MissionPlan {
+            plan: FlightPlan::with_holds(
+                c.waypoints().to_vec(),
+                vec![None, None],
+                c.holds().to_vec(),
+            )
+            .unwrap(),
+            tolerance: 10.0,
+        };
+        // A first packet hovering at the corner: held until 25 s, then from rest toward 5 m/s.
+        let mut st = MissionStation::new(Some(plan.clone()), setup());
+        st.reset(&packet(100.0, 0.0, 0.0), 20.0);
+        st.predict_to(29.0);
+        let north = |v: f64, tau: f64| v * (tau - PACE_TIME * (1.0 - exp(-tau / PACE_TIME)));
+        assert!(
+            (st.position()[1] - north(PLAN_CRUISE, 4.0)).abs() < 0.1,
+            "{:?}",
+            st.position()
+        );
+        // A packet that showed the drone moving sets the speed instead (the arrival placed
+        // halfway since it, so held from 10 s to 20 s).
+        let mut seen = MissionStation::new(Some(plan), setup());
+        seen.reset(&packet(50.0, 0.0, 8.0), 0.0);
+        seen.reset(&packet(100.0, 0.0, 0.0), 20.0);
+        seen.predict_to(29.0);
+        assert!(
+            (seen.position()[1] - north(8.0, 9.0)).abs() < 0.1,
+            "{:?}",
+            seen.position()
+        );
     }
 
     #[test]
