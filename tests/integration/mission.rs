@@ -5,7 +5,7 @@
 use loratrack::api::{clean_message, simulate, swarm};
 use loratrack::{
     fly_plan, synthetic_flight, FlightPlan, ModelResult, Scenario, Simulator, StationModel,
-    TRACE_TOLERANCE,
+    MAX_FLOWN_S, PLAN_ACCEL, PLAN_CRUISE, TRACE_TOLERANCE,
 };
 use serde_json::{json, Value};
 
@@ -350,6 +350,25 @@ fn a_plan_that_would_fly_for_more_than_a_long_flight_is_refused_before_it_is_flo
         e.contains("takes 86412 s to fly") && e.contains("at most 40000 s"),
         "{e}"
     );
+}
+
+#[test]
+fn the_cli_help_gives_the_flown_plans_own_constants() {
+    let out = crate::cli(&["simulate", "--help"]);
+    assert!(out.status.success());
+    // clap wraps the help to the terminal's width: read it as one line.
+    let help = String::from_utf8(out.stdout)
+        .unwrap()
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    for said in [
+        format!("to the next at {PLAN_ACCEL} m/s²"),
+        format!("({PLAN_CRUISE} m/s where none is given)"),
+        format!("at most {MAX_FLOWN_S} s"),
+    ] {
+        assert!(help.contains(&said), "{said}: {help}");
+    }
 }
 
 #[test]
