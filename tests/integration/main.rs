@@ -16,6 +16,18 @@ pub(crate) fn cli(args: &[&str]) -> Output {
         .expect("the CLI runs")
 }
 
+/// `loratrack <command> --help` as one line: clap wraps the help to the terminal's width, so a
+/// sentence in it may wrap anywhere.
+pub(crate) fn cli_help(command: &str) -> String {
+    let out = cli(&[command, "--help"]);
+    assert!(out.status.success());
+    String::from_utf8(out.stdout)
+        .unwrap()
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 /// The network of one drone sending `bytes`-byte frames at `radio` under `duty_cycle`, without
 /// ADR: one gateway 1 km east of the flight's first point, the default channel, capture and
 /// inter-SF interference on.

@@ -354,14 +354,7 @@ fn a_plan_that_would_fly_for_more_than_a_long_flight_is_refused_before_it_is_flo
 
 #[test]
 fn the_cli_help_gives_the_flown_plans_own_constants() {
-    let out = crate::cli(&["simulate", "--help"]);
-    assert!(out.status.success());
-    // clap wraps the help to the terminal's width: read it as one line.
-    let help = String::from_utf8(out.stdout)
-        .unwrap()
-        .split_whitespace()
-        .collect::<Vec<_>>()
-        .join(" ");
+    let help = crate::cli_help("simulate");
     for said in [
         format!("to the next at {PLAN_ACCEL} m/s²"),
         format!("({PLAN_CRUISE} m/s where none is given)"),

@@ -202,14 +202,7 @@ fn the_cli_says_what_lean_packets_took_and_what_the_largest_swarm_counts() {
 
 #[test]
 fn the_cli_help_names_the_significance_the_lean_rule_uses() {
-    let out = crate::cli(&["simulate", "--help"]);
-    assert!(out.status.success());
-    // clap wraps the help to the terminal's width: read it as one line.
-    let help = String::from_utf8(out.stdout)
-        .unwrap()
-        .split_whitespace()
-        .collect::<Vec<_>>()
-        .join(" ");
+    let help = crate::cli_help("simulate");
     let said = format!("every manoeuvre field over {LEAN_SIGNIFICANCE} standard deviations");
     assert!(help.contains(&said), "{help}");
 }

@@ -139,15 +139,22 @@ mod tests {
         }
     }
 
-    /// Forecasts `off` m from each packet, with a claimed variance of 1 m² per axis, 200 times.
-    fn run(off: f64) -> f64 {
+    /// A calibration that has scored forecasts `off` m from `packets` packets 2 s apart, each
+    /// claiming a variance of 1 m² per axis; its next estimate is the first after a packet, at
+    /// 2·`packets` s.
+    fn scored(off: f64, packets: usize) -> Calibration {
         let mut c = Calibration::new(CALIBRATION_GAIN);
-        for k in 0..200 {
+        for k in 0..packets {
             let t = 2.0 * k as f64;
             c.estimate(t + 2.0, [off, 0.0, 30.0], Matrix3::identity());
             c.packet(&packet(t + 2.0, 0.0));
         }
-        c.scale()
+        c
+    }
+
+    /// The scale after 200 forecasts `off` m from their packets.
+    fn run(off: f64) -> f64 {
+        scored(off, 200).scale()
     }
 
     #[test]
@@ -161,12 +168,7 @@ mod tests {
 
     #[test]
     fn a_narrowing_scale_shrinks_only_the_growth_since_the_packet() {
-        let mut c = Calibration::new(CALIBRATION_GAIN);
-        for k in 0..200 {
-            let t = 2.0 * k as f64;
-            c.estimate(t + 2.0, [0.0, 0.0, 30.0], Matrix3::identity());
-            c.packet(&packet(t + 2.0, 0.0));
-        }
+        let mut c = scored(0.0, 200);
         let s = c.scale();
         assert!(s < 0.1, "{s}");
         // The span's first estimate is its floor and is left as it is; later ones keep it and
@@ -179,12 +181,7 @@ mod tests {
 
     #[test]
     fn a_widening_scale_widens_the_whole_covariance() {
-        let mut c = Calibration::new(CALIBRATION_GAIN);
-        for k in 0..20 {
-            let t = 2.0 * k as f64;
-            c.estimate(t + 2.0, [4.0, 0.0, 30.0], Matrix3::identity());
-            c.packet(&packet(t + 2.0, 0.0));
-        }
+        let mut c = scored(4.0, 20);
         let s = c.scale();
         assert!(s > 1.0, "{s}");
         let floor = Matrix3::identity() * 0.5;
