@@ -6,7 +6,7 @@
 // `plots`, the 3D view on first draw).
 import { load } from './loratrack';
 import { SimulationPool } from './pool';
-import { simulateRequest } from './state';
+import { simulateRequest, uploaded } from './state';
 import { store } from './store';
 
 /** The settings a person changed in the form before main.ts took over, by control name, with
@@ -27,5 +27,5 @@ for (const type of ['input', 'change']) document.getElementById('controls')?.add
 /** The page's worker pool, one worker per core. */
 export const pool = new SimulationPool();
 // An uploaded flight is never in a link: such a page waits for the file.
-void load().then(() => !['csv', 'plan'].includes(store.settings.flight) && pool.start(simulateRequest(0, store.settings)));
+void load().then(() => !uploaded(store.settings.flight) && pool.start(simulateRequest(0, store.settings)));
 void import('./main');

@@ -19,7 +19,7 @@ import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSetti
 import { clearTable, renderBaseline, renderTable, restingNotes, resultsWhat } from './results';
 import { commandOf, setUpCopyCommand, showCommand } from './command';
 import { setUpPresent } from './present';
-import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, runsMission, simulateRequest, swarmSettings, toParams, toQuery, type Settings } from './state';
+import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, runsMission, simulateRequest, swarmSettings, toParams, toQuery, uploaded, type Settings } from './state';
 import { pageQuery, store } from './store';
 import { readSwarmQuery, resetSwarmChoices, swarmSelects } from './swarmChoices';
 import type { Request, Response, SimulateRequest } from './worker';
@@ -101,7 +101,7 @@ let lastSent = 0;
 function send(request: SimulateRequest, made: Settings): void {
   lastSent = request.id;
   offerFit($('#fit-setting'), undefined, undefined);
-  const long = made.flight === 'all' || made.flight === 'csv' || made.flight === 'plan' || made.seeds > 1;
+  const long = made.flight === 'all' || uploaded(made.flight) || made.seeds > 1;
   running = { id: request.id, long, started: performance.now(), settings: made, params: request.params };
   updateBusy();
   progress.hidden = !long;
@@ -791,7 +791,7 @@ setUpCopyCommand();
 $('#copy-link').addEventListener('click', async () => {
   const url = location.href;
   // An uploaded file stays on this computer: say what the link will open instead.
-  const caveat = ['csv', 'plan'].includes(store.settings.flight) ? ` It opens one synthetic flight: an uploaded ${store.settings.flight === 'csv' ? 'CSV' : 'plan'} never leaves this computer, so a link cannot carry it.` : '';
+  const caveat = uploaded(store.settings.flight) ? ` It opens one synthetic flight: an uploaded ${store.settings.flight === 'csv' ? 'CSV' : 'plan'} never leaves this computer, so a link cannot carry it.` : '';
   try {
     await navigator.clipboard.writeText(url);
     $('#copy-status').textContent = `Link copied.${caveat}`;
@@ -1032,7 +1032,7 @@ for (const [id, save] of [
   ['download-csv', (r: SimReport) => downloadErrorCsv(r)],
   ['download-json', (r: SimReport) => downloadJson(r, store.reportSettings, commandOf('results'))],
   // An uploaded flight never leaves this computer: no link opens it.
-  ['download-results-csv', (r: SimReport) => downloadResultsCsv(r, { settings: caption(store.reportSettings), link: ['csv', 'plan'].includes(store.reportSettings.flight) ? '' : `${location.origin}${location.pathname}?${toQuery(store.reportSettings)}`, command: commandOf('results') ?? '' })],
+  ['download-results-csv', (r: SimReport) => downloadResultsCsv(r, { settings: caption(store.reportSettings), link: uploaded(store.reportSettings.flight) ? '' : `${location.origin}${location.pathname}?${toQuery(store.reportSettings)}`, command: commandOf('results') ?? '' })],
 ] as const) {
   $(`#${id}`).addEventListener('click', () => {
     const report = shownReport($(`#${id}`));

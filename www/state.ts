@@ -118,11 +118,17 @@ export function modelChoiceOf(raw: string): string | null {
   return MODEL_CHOICES.includes(choice) ? choice : null;
 }
 
+/** Whether the flight comes from a file the user uploaded (a CSV flight, or a plan flown): it
+ * never leaves this computer, so no link carries it and a page opened from a link never has it. */
+export function uploaded(flight: FlightChoice): boolean {
+  return flight === 'csv' || flight === 'plan';
+}
+
 /** Whether the flight's plan is known to the page: the synthetic flights carry theirs, an
  * uploaded flight has one when its plan was uploaded too, as a flown plan has once it is chosen;
  * the real flight has none here (the CLI's `--plan` and the JS API's `plan` give one). */
 export function planKnown(flight: FlightChoice, uploadedPlan = false): boolean {
-  return flight === 'synthetic' || flight === 'all' || ((flight === 'csv' || flight === 'plan') && uploadedPlan);
+  return flight === 'synthetic' || flight === 'all' || (uploaded(flight) && uploadedPlan);
 }
 
 /** Whether a model choice runs the mission station. */

@@ -1,7 +1,7 @@
 // The page's settings and its URL: every shareable view must come back exactly as it was, and a
 // link asking for something the core refuses must be explained, never silently used.
 import { describe, expect, test } from 'vitest';
-import { adrCanStart, DEFAULTS, fromQuery, gatewaysFromText, gatewaysToText, invalid, LIMITS, modelChoiceOf, planAllows, planKnown, sendingLimit, simulateRequest, toParams, toQuery, type Settings } from '../../www/state';
+import { adrCanStart, DEFAULTS, fromQuery, gatewaysFromText, gatewaysToText, invalid, LIMITS, modelChoiceOf, planAllows, planKnown, sendingLimit, uploaded, simulateRequest, toParams, toQuery, type Settings } from '../../www/state';
 import type { Region } from '../../www/loratrack';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings } from '../../www/lessons';
 
@@ -179,6 +179,7 @@ describe('simulate() parameters', () => {
     for (const other of ['synthetic', 'sample', 'trajectoryName']) expect(flown).not.toHaveProperty(other);
     expect(planKnown('plan', true)).toBe(true);
     expect(planKnown('plan', false)).toBe(false);
+    expect((['synthetic', 'all', 'canberra', 'csv', 'plan'] as const).filter(uploaded)).toEqual(['csv', 'plan']);
   });
 
   test('name what sets how often a drone sends: the interval where the plan has no duty cycle, else listen before talk or the duty cycle', () => {
