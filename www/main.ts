@@ -364,7 +364,7 @@ function showReport(report: SimReport, made: Settings, millis: number, params: S
   // Typing may have moved the form on while this ran: the numbers say so.
   markStale(typing !== undefined || JSON.stringify(store.reportSettings) !== JSON.stringify(store.settings));
   const c = report.config;
-  status.textContent = `${c.trajectory}: ${c.flights} flight${c.flights > 1 ? 's' : ''}, ${c.flightTime.toFixed(0)} s simulated in ${millis.toFixed(0)} ms. Gateway range${c.adr === 'off' ? '' : ` at SF${c.sf}, ${c.bw} kHz, where ADR starts`} (mean power = sensitivity ${c.sensitivityDbm.toFixed(1)} dBm): ${(c.rangeM / 1000).toFixed(2)} km.`;
+  status.textContent = `${c.trajectory}: ${c.flights} flight${c.flights > 1 ? 's' : ''}, ${c.flightTime.toFixed(0)} s simulated in ${millis.toFixed(0)} ms. Gateway range${c.adr === 'off' ? '' : ` at SF${c.sf}, ${c.bw} kHz, where ADR starts`} (mean power = sensitivity ${c.sensitivityDbm.toFixed(1)} dBm): ${(c.rangeM / 1000).toFixed(2)} km.${store.reportSettings.flight === 'plan' ? ' The plan is flown exactly, without wind: the mission station’s best case.' : ''}`;
   renderResults(report);
   showCommand('results', { ...params, seed: report.config.seed });
   if (settingsChartsWait) renderSettingsCharts();

@@ -534,6 +534,8 @@ test('a plan alone is flown: the page\'s numbers are the CLI\'s for --plan alone
   await waitForResults(page, before);
   const cli = nativeJson(['simulate', '--plan', plan, '--model', '3d-ctra,mission']);
   assert.equal(cli.config.trajectory, `${plan} (flown)`);
+  // What the numbers rest on: the plan flown as planned.
+  assert.match(await page.locator('#status').textContent(), /^survey\.csv \(flown\): 1 flight, \d+ s simulated .* the mission station’s best case\.$/);
   for (const m of ['3d-ctra', 'mission']) {
     const r = cli.results.find((x) => x.model === m);
     assert.equal(number(await cell(page, m, 'p75')).toFixed(2), r.error3d.p75.toFixed(2), m);
