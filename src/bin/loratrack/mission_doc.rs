@@ -15,8 +15,9 @@ fn labels(runs: &[MissionRun]) -> Vec<&'static str> {
         .unwrap_or_default()
 }
 
-fn rate(run: &MissionRun) -> String {
-    format!("SF{}/{}", run.sf, run.bw)
+/// A run's data rate, `SF9/125`.
+fn rate(sf: i64, bw: f64) -> String {
+    format!("SF{sf}/{bw}")
 }
 
 fn num(v: f64) -> String {
@@ -37,7 +38,7 @@ fn cells(run: &MissionRun) -> Vec<String> {
     let m = mission(run);
     let mut c = vec![
         format!("{:.0} m", run.distance),
-        rate(run),
+        rate(run.sf, run.bw),
         m.map_or("—".into(), |m| format!("{:.1}", m.interval)),
         m.map_or("—".into(), |m| {
             format!(
@@ -205,7 +206,7 @@ const HOLD_HEADER: [&str; 10] = [
 fn hold_cells(run: &HoldRun) -> Vec<String> {
     let h = &run.holding;
     vec![
-        format!("SF{}/{}", run.sf, run.bw),
+        rate(run.sf, run.bw),
         format!("{:.1}", h.interval),
         format!(
             "{}/{}",
@@ -234,11 +235,7 @@ fn holds_findings(runs: &[HoldRun]) -> String {
     };
     let (p75_lo, p75_hi) = range(|m| m.error3d.p75);
     let (p95_lo, p95_hi) = range(|m| m.error3d.p95);
-    let worse: Vec<String> = runs
-        .iter()
-        .filter(|run| ratio(run, |m| m.error3d.p75) >= 1.0)
-        .map(|run| format!("SF{}/{}", run.sf, run.bw))
-        .collect();
+    let worse = rates_where(runs, |run| ratio(run, |m| m.error3d.p75) >= 1.0);
     let coverage = |pick: fn(f64, f64) -> f64| {
         runs.iter()
             .map(|run| run.holding.coverage95)
@@ -262,13 +259,17 @@ fn holds_findings(runs: &[HoldRun]) -> String {
     )
 }
 
+/// The rates of the hold runs for which `pick` holds.
+fn rates_where(runs: &[HoldRun], pick: impl Fn(&HoldRun) -> bool) -> Vec<String> {
+    runs.iter()
+        .filter(|run| pick(run))
+        .map(|run| rate(run.sf, run.bw))
+        .collect()
+}
+
 /// Where the holding station's 95 % region holds the truth less than 93 % of the time.
 fn narrow_note(runs: &[HoldRun]) -> String {
-    let narrow: Vec<String> = runs
-        .iter()
-        .filter(|run| run.holding.coverage95 < 0.93)
-        .map(|run| format!("SF{}/{}", run.sf, run.bw))
-        .collect();
+    let narrow = rates_where(runs, |run| run.holding.coverage95 < 0.93);
     if narrow.is_empty() {
         return String::new();
     }
@@ -324,7 +325,7 @@ fn real_findings(r: &MissionSweepReport) -> String {
             let best = run.best_other()?.model.label();
             Some(format!(
                 "{}: {ratio:.2}× {best}'s p75{}",
-                rate(run),
+                rate(run.sf, run.bw),
                 if ratio < 1.0 { "" } else { " — not lower" }
             ))
         })
@@ -354,15 +355,21 @@ fn findings(r: &MissionSweepReport) -> String {
         let losses: Vec<String> = ratios
             .iter()
             .filter(|(_, v)| *v >= 1.0)
-            .map(|(run, v)| format!("{} at {:.0} m ({v:.2}×)", rate(run), run.distance))
+            .map(|(run, v)| {
+                format!(
+                    "{} at {:.0} m ({v:.2}×)",
+                    rate(run.sf, run.bw),
+                    run.distance
+                )
+            })
             .collect();
         out += &format!(
             "- Mission p75 / best other station's p75 ranges from {:.2}× ({} at {:.0} m) to {:.2}× ({} at {:.0} m).\n",
             best.1,
-            rate(best.0),
+            rate(best.0.sf, best.0.bw),
             best.0.distance,
             worst.1,
-            rate(worst.0),
+            rate(worst.0.sf, worst.0.bw),
             worst.0.distance
         );
         out += &if losses.is_empty() {
@@ -378,7 +385,7 @@ fn findings(r: &MissionSweepReport) -> String {
         let at: Vec<String> = ratios
             .iter()
             .filter(|(run, _)| run.distance == d)
-            .map(|(run, v)| format!("{} {v:.2}", rate(run)))
+            .map(|(run, v)| format!("{} {v:.2}", rate(run.sf, run.bw)))
             .collect();
         out += &format!("- At {d:.0} m, by data rate: {}.\n", at.join(", "));
     }
@@ -393,7 +400,7 @@ fn findings(r: &MissionSweepReport) -> String {
             (packet < plan).then(|| {
                 format!(
                     "{} at {:.0} m ({packet:.2} against {plan:.2} m)",
-                    rate(run),
+                    rate(run.sf, run.bw),
                     run.distance
                 )
             })
