@@ -83,12 +83,10 @@ struct Following {
     /// The time and distance along the plan the station has flown to, s and m.
     t: f64,
     along: f64,
-    /// The waypoint the station holds at, and when it believes the drone got there, s.
-    holding: Option<(usize, f64)>,
-    /// The same for the newest hold since the packet, kept once the hold is over: from its end
-    /// the station speeds up from rest.
+    /// The newest hold since the packet: its waypoint, and when the station believes the drone
+    /// got there, s. The station holds there until the hold is over, then speeds up from rest.
     last_hold: Option<(usize, f64)>,
-    /// The next waypoint with a hold, and its distance along the plan, m.
+    /// The next waypoint with a hold after the last one, and its distance along the plan, m.
     next_hold: Option<(usize, f64)>,
     /// The speed to fly on at after a hold where the plan gives none, m/s: the newest packet's
     /// that showed the drone moving, [`PLAN_CRUISE`] before any did (a drone that hovers at every
@@ -229,9 +227,11 @@ impl Tracker for MissionStation {
             covariance: self.fallback.position_covariance(),
             t: sent,
             along,
-            holding: holding.map(|(k, _, reached)| (k, reached)),
             last_hold: holding.map(|(k, _, reached)| (k, reached)),
-            next_hold: plan.next_hold(plan.waypoint_at_or_after(found.along)),
+            next_hold: match holding {
+                Some((k, _, _)) => plan.next_hold(k + 1),
+                None => plan.next_hold(plan.waypoint_at_or_after(found.along)),
+            },
             cruise,
         });
     }
@@ -243,14 +243,12 @@ impl Tracker for MissionStation {
         };
         let plan = &mp.plan;
         while f.t < t {
-            if let Some((k, reached)) = f.holding {
+            if let Some((k, reached)) = f.last_hold {
                 let end = reached + plan.holds()[k];
                 if f.t < end {
                     f.t = end.min(t);
                     continue;
                 }
-                f.holding = None;
-                f.next_hold = plan.next_hold(k + 1);
             }
             let dt = self.step.min(t - f.t);
             // The midpoint's pace: second order in dt.
@@ -277,9 +275,8 @@ impl Tracker for MissionStation {
                         0.0
                     };
                     f.along = at;
-                    f.holding = Some((k, f.t));
-                    f.last_hold = f.holding;
-                    f.next_hold = None;
+                    f.last_hold = Some((k, f.t));
+                    f.next_hold = plan.next_hold(k + 1);
                 }
                 _ => {
                     f.along = along;
