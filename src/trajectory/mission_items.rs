@@ -182,6 +182,16 @@ mod tests {
         }
     }
 
+    /// A `NAV_DELAY` with its four parameters: seconds, or −1 and an hour, minute and second.
+    fn delay(params: [f64; 4]) -> MissionItem {
+        let [a, b, c, d] = params.map(Some);
+        MissionItem {
+            command: 93,
+            frame: Some(2),
+            params: [a, b, c, d, None, None, None],
+        }
+    }
+
     #[test]
     fn a_loiter_is_flown_to_its_centre_and_a_camera_command_is_not_flown() {
         let mut f = Flown::new([-35.0, 149.0, 500.0], Some(5.0));
@@ -211,38 +221,12 @@ mod tests {
         let mut wp = item(16, 3, -35.0, 149.001, 30.0);
         wp.params[0] = Some(12.0);
         f.item(&wp).unwrap();
-        f.item(&MissionItem {
-            command: 93,
-            frame: Some(2),
-            params: [
-                Some(8.0),
-                Some(-1.0),
-                Some(-1.0),
-                Some(-1.0),
-                None,
-                None,
-                None,
-            ],
-        })
-        .unwrap();
+        f.item(&delay([8.0, -1.0, -1.0, -1.0])).unwrap();
         let mut loiter = item(19, 3, -35.001, 149.001, 30.0);
         loiter.params[0] = Some(40.0);
         f.item(&loiter).unwrap();
         // A delay "until a time of day" (−1) holds nothing loratrack can time.
-        f.item(&MissionItem {
-            command: 93,
-            frame: Some(2),
-            params: [
-                Some(-1.0),
-                Some(10.0),
-                Some(30.0),
-                Some(0.0),
-                None,
-                None,
-                None,
-            ],
-        })
-        .unwrap();
+        f.item(&delay([-1.0, 10.0, 30.0, 0.0])).unwrap();
         f.item(&item(16, 3, -35.002, 149.001, 30.0)).unwrap();
         f.item(&item(17, 3, -35.002, 149.002, 30.0)).unwrap();
         assert_eq!(
