@@ -40,7 +40,7 @@ impl Leg {
         let w = plan.waypoints();
         let (from, to) = (w[leg], w[leg + 1]);
         let length = distance(&from, &to);
-        let cruise = plan.leg_speed(leg).unwrap_or(PLAN_CRUISE);
+        let cruise = plan.flown_speed(leg, PLAN_CRUISE);
         let top = cruise.min((PLAN_ACCEL * length).sqrt());
         let ramp = top / PLAN_ACCEL;
         Leg {
@@ -85,8 +85,9 @@ pub fn flown_duration(plan: &FlightPlan) -> f64 {
 }
 
 /// The flight of a multicopter that flies `plan` from rest: on each leg it speeds up to the leg's
-/// planned speed ([`PLAN_CRUISE`] where the plan gives none) and brakes to a stop at the next
-/// waypoint, both at [`PLAN_ACCEL`] (a leg too short for the speed peaks lower), then hovers
+/// planned speed ([`PLAN_CRUISE`] where the plan gives none; slower on a leg too steep for the
+/// plan's [`ClimbLimits`](crate::ClimbLimits), [`FlightPlan::flown_speed`]) and brakes to a stop
+/// at the next waypoint, both at [`PLAN_ACCEL`] (a leg too short for the speed peaks lower), then hovers
 /// there for the waypoint's hold; sampled at [`PLAN_RATE_HZ`] with its velocities and
 /// accelerations. No wind and no corner cutting: the plan flown exactly, a best case for a
 /// station that knows it. Refuses a plan that takes longer than [`MAX_FLOWN_S`] to fly
@@ -194,6 +195,38 @@ mod tests {
         assert!(distance(&at(f.duration()), &[100.0, 2.0, 0.0]) < 1e-6);
         let top = f.vel.iter().map(|v| v[0].hypot(v[1])).fold(0.0, f64::max);
         assert!((top - 10.0).abs() < 1e-9, "{top}");
+    }
+
+    #[test]
+    fn a_steep_leg_is_flown_within_the_climb_limits_and_a_gentle_one_at_its_speed() {
+        // Up 40 m at a planned 8 m/s, along 200 m rising 10 m, then down a 45° slope.
+        let plan = FlightPlan::new(
+            vec![
+                [0.0; 3],
+                [0.0, 0.0, 40.0],
+                [200.0, 0.0, 50.0],
+                [250.0, 0.0, 0.0],
+            ],
+            vec![Some(8.0); 3],
+        )
+        .unwrap();
+        let f = fly_plan(&plan, "steep").unwrap();
+        let limits = crate::trajectory::ClimbLimits::MULTICOPTER;
+        let (up, down) = f
+            .vel
+            .iter()
+            .fold((0.0f64, 0.0f64), |(u, d), v| (u.max(v[2]), d.min(v[2])));
+        assert!((up - limits.up).abs() < 1e-9, "{up}");
+        assert!((down + limits.down).abs() < 1e-9, "{down}");
+        let top = f
+            .vel
+            .iter()
+            .map(|v| distance(v, &[0.0; 3]))
+            .fold(0.0, f64::max);
+        assert!((top - 8.0).abs() < 1e-9, "{top}");
+        // Without limits (a traced plan's pace) the climb is flown at the planned speed.
+        let free = fly_plan(&plan.clone().with_climb(None), "free").unwrap();
+        assert!(free.duration() < f.duration() - 20.0);
     }
 
     #[test]

@@ -4,6 +4,7 @@
 use super::geodetic::east_north;
 use super::plan::FlightPlan;
 use super::plan_file::PlanError;
+use super::ClimbLimits;
 
 /// MAVLink commands (`MAV_CMD`) that loratrack reads.
 const NAV_WAYPOINT: u64 = 16;
@@ -52,6 +53,8 @@ pub(super) struct Flown {
     /// Whether a waypoint's hold time is flown: MAVLink's `NAV_WAYPOINT` says fixed-wing
     /// vehicles ignore it.
     waypoint_holds: bool,
+    /// The vehicle's climb and descent limits.
+    climb: ClimbLimits,
 }
 
 impl Flown {
@@ -65,14 +68,16 @@ impl Flown {
             speeds: Vec::new(),
             holds: vec![0.0],
             waypoint_holds: true,
+            climb: ClimbLimits::MULTICOPTER,
         }
     }
 
     /// The same for a fixed-wing vehicle, which flies through a waypoint's hold time (timed
-    /// loiters and delays it still flies, circling).
+    /// loiters and delays it still flies, circling) and climbs and descends faster.
     pub fn fixed_wing(self) -> Self {
         Flown {
             waypoint_holds: false,
+            climb: ClimbLimits::FIXED_WING,
             ..self
         }
     }
@@ -94,8 +99,12 @@ impl Flown {
         .unwrap_or(0.0);
         let point = match item.command {
             DO_CHANGE_SPEED => {
-                // Parameter 2 is the speed; −1 means no change.
-                self.speed = param(1).filter(|s| *s > 0.0).or(self.speed);
+                // Parameter 1 is the speed's type: 2 and 3 change the climb and the descent
+                // speed, which are not read; 0 (airspeed) and 1 (ground speed) the speed along
+                // the path, which parameter 2 gives (−1: no change).
+                if !matches!(param(0), Some(t) if t == 2.0 || t == 3.0) {
+                    self.speed = param(1).filter(|s| *s > 0.0).or(self.speed);
+                }
                 return Ok(());
             }
             NAV_DELAY => {
@@ -142,7 +151,7 @@ impl Flown {
             .into_iter()
             .map(|h| h.min(super::plan::MAX_HOLD))
             .collect();
-        FlightPlan::with_holds(self.points, self.speeds, holds)
+        Ok(FlightPlan::with_holds(self.points, self.speeds, holds)?.with_climb(Some(self.climb)))
     }
 
     /// East and north of home, m, of an item's latitude and longitude (degrees); `None` where it
@@ -238,6 +247,47 @@ mod tests {
         plane.item(&wp).unwrap();
         plane.item(&loiter).unwrap();
         assert_eq!(plane.plan().unwrap().holds(), &[0.0, 0.0, 40.0]);
+    }
+
+    /// A `DO_CHANGE_SPEED` of `kind` (0 airspeed, 1 ground speed, 2 climb, 3 descent) to `speed`.
+    fn change_speed(kind: f64, speed: f64) -> MissionItem {
+        MissionItem {
+            command: 178,
+            frame: Some(2),
+            params: [Some(kind), Some(speed), Some(-1.0), None, None, None, None],
+        }
+    }
+
+    #[test]
+    fn a_change_of_climb_or_descent_speed_leaves_the_speed_along_the_path_alone() {
+        let mut f = Flown::new([-35.0, 149.0, 500.0], Some(5.0));
+        f.item(&change_speed(2.0, 1.0)).unwrap();
+        f.item(&change_speed(3.0, 0.5)).unwrap();
+        f.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
+        f.item(&change_speed(1.0, 9.0)).unwrap();
+        f.item(&item(16, 3, -35.001, 149.001, 30.0)).unwrap();
+        let p = f.plan().unwrap();
+        assert_eq!(p.leg_speed(0), Some(5.0));
+        assert_eq!(p.leg_speed(1), Some(9.0));
+    }
+
+    #[test]
+    fn a_multicopter_climbs_slower_than_a_plane_on_the_same_steep_leg() {
+        // Straight up 30 m at a planned 5 m/s, then level.
+        let fly = |f: Flown| {
+            let mut f = f;
+            f.item(&item(16, 3, -35.0, 149.0, 30.0)).unwrap();
+            f.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
+            f.plan().unwrap()
+        };
+        let copter = fly(Flown::new([-35.0, 149.0, 500.0], Some(5.0)));
+        let plane = fly(Flown::new([-35.0, 149.0, 500.0], Some(5.0)).fixed_wing());
+        assert_eq!(copter.flown_speed(0, 5.0), ClimbLimits::MULTICOPTER.up);
+        assert_eq!(plane.flown_speed(0, 5.0), 5.0);
+        assert_eq!(
+            (copter.flown_speed(1, 5.0), plane.flown_speed(1, 5.0)),
+            (5.0, 5.0)
+        );
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! (reference §11), mission plans and flights flown from them (§16).
 
 mod chain;
+mod climb;
 mod csv;
 mod error;
 mod flown_plan;
@@ -17,6 +18,7 @@ mod track;
 mod waypoint_list;
 
 pub use chain::chain_flights;
+pub use climb::ClimbLimits;
 pub use csv::{
     parse_csv, parse_csv_with_progress, MAX_CSV_BYTES, MAX_ROWS, MIN_ROWS, MIN_TIME_STEP,
 };

@@ -3,7 +3,7 @@
 //! predicts along it between packets.
 
 use super::plan_file::PlanError;
-use super::Trajectory;
+use super::{ClimbLimits, Trajectory};
 use crate::math::distance;
 
 /// At most this many waypoints (a QGroundControl mission rarely has more than a few hundred).
@@ -22,6 +22,8 @@ pub const TRACE_TOLERANCE: f64 = 2.0;
 /// the drone holds (hovers) at each waypoint.
 ///
 /// Positions are ENU metres in the flight's frame; `along` is the distance flown along the legs.
+/// A plan for an autopilot (as every constructor but [`FlightPlan::traced`] makes one) is flown
+/// within its vehicle's [`ClimbLimits`] ([`FlightPlan::flown_speed`]).
 ///
 /// ```
 /// use loratrack::FlightPlan;
@@ -40,6 +42,9 @@ pub struct FlightPlan {
     /// Seconds the drone holds at waypoint i before it flies on (MAVLink `NAV_WAYPOINT`'s hold,
     /// `NAV_LOITER_TIME`, `NAV_DELAY`); 0 for most.
     holds: Vec<f64>,
+    /// The autopilot's climb and descent limits; `None` for a plan traced through a flight,
+    /// whose leg speeds are the flight's own.
+    climb: Option<ClimbLimits>,
 }
 
 /// The nearest point of a plan to a position.
@@ -56,7 +61,8 @@ impl FlightPlan {
     /// the points; `None` where the plan gives no speed). A waypoint equal to the one before it
     /// is dropped, with its leg. Refuses fewer than two distinct waypoints, more than
     /// [`MAX_WAYPOINTS`], non-finite or absurd values (line numbers count waypoints from 1).
-    /// No holds: [`FlightPlan::with_holds`].
+    /// No holds: [`FlightPlan::with_holds`]. Flown within [`ClimbLimits::MULTICOPTER`]
+    /// ([`FlightPlan::with_climb`] for another vehicle's).
     pub fn new(points: Vec<[f64; 3]>, speeds: Vec<Option<f64>>) -> Result<Self, PlanError> {
         let holds = vec![0.0; points.len()];
         Self::with_holds(points, speeds, holds)
@@ -128,6 +134,7 @@ impl FlightPlan {
             along: Vec::with_capacity(points.len()),
             speeds: Vec::with_capacity(speeds.len()),
             holds: Vec::with_capacity(points.len()),
+            climb: Some(ClimbLimits::MULTICOPTER),
         };
         for (i, p) in points.into_iter().enumerate() {
             match plan.points.last() {
@@ -168,12 +175,24 @@ impl FlightPlan {
             .collect();
         let p = points[0];
         // A flight that never moves traces one point; a leg of a millimetre keeps it a plan.
-        FlightPlan::new(points, speeds).unwrap_or_else(|_| FlightPlan {
+        let plan = FlightPlan::new(points, speeds).unwrap_or_else(|_| FlightPlan {
             points: vec![p, [p[0] + 1e-3, p[1], p[2]]],
             along: vec![0.0, 1e-3],
             speeds: vec![Some(1e-3)],
             holds: vec![0.0; 2],
-        })
+            climb: None,
+        });
+        plan.with_climb(None)
+    }
+
+    /// The same plan flown within `climb` (`None`: at its leg speeds however steep the leg).
+    pub fn with_climb(self, climb: Option<ClimbLimits>) -> Self {
+        FlightPlan { climb, ..self }
+    }
+
+    /// The climb and descent limits the plan is flown within, if any.
+    pub fn climb(&self) -> Option<ClimbLimits> {
+        self.climb
     }
 
     /// The same waypoints without planned speeds.
@@ -279,6 +298,35 @@ impl FlightPlan {
     /// The planned speed of the leg at `along`, m/s, if the plan gives one.
     pub fn speed_at(&self, along: f64) -> Option<f64> {
         self.speeds[self.leg(along)]
+    }
+
+    /// The speed along leg `leg` at which the vehicle flies it, m/s: its planned speed
+    /// (`otherwise` where the plan gives none), slowed on a steep leg to keep within the plan's
+    /// [`ClimbLimits`].
+    ///
+    /// ```
+    /// use loratrack::FlightPlan;
+    /// // A take-off to 30 m planned at 5 m/s, then 100 m east with no speed.
+    /// let plan = FlightPlan::new(vec![[0.0; 3], [0.0, 0.0, 30.0], [100.0, 0.0, 30.0]], vec![Some(5.0), None]).unwrap();
+    /// assert_eq!(plan.flown_speed(0, 8.0), 2.5);
+    /// assert_eq!(plan.flown_speed(1, 8.0), 8.0);
+    /// ```
+    pub fn flown_speed(&self, leg: usize, otherwise: f64) -> f64 {
+        self.within_climb(leg, self.speeds[leg].unwrap_or(otherwise))
+    }
+
+    /// `speed` (m/s) slowed, on the leg at `along`, to keep within the plan's [`ClimbLimits`].
+    pub fn within_climb_at(&self, along: f64, speed: f64) -> f64 {
+        self.within_climb(self.leg(along), speed)
+    }
+
+    fn within_climb(&self, leg: usize, speed: f64) -> f64 {
+        let Some(climb) = self.climb else {
+            return speed;
+        };
+        let rise = (self.points[leg + 1][2] - self.points[leg][2])
+            / (self.along[leg + 1] - self.along[leg]);
+        climb.speed_along(rise, speed)
     }
 
     /// The point of the plan nearest to `p` among those between `from` and `to` m along it.
@@ -400,10 +448,13 @@ mod tests {
     fn csv_text_reads_back_to_the_same_plan() {
         let p = square();
         assert_eq!(crate::trajectory::parse_plan(&p.to_csv()).unwrap(), p);
+        // A plan read from a file is one for an autopilot, within its climb limits; a traced
+        // plan is the flight's own pace.
         let traced = FlightPlan::traced(&synthetic_flight(9).unwrap(), TRACE_TOLERANCE);
+        assert_eq!(traced.climb(), None);
         assert_eq!(
             crate::trajectory::parse_plan(&traced.to_csv()).unwrap(),
-            traced
+            traced.with_climb(Some(ClimbLimits::MULTICOPTER))
         );
     }
 

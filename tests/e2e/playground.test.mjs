@@ -546,7 +546,7 @@ test('a plan alone is flown: the page\'s numbers are the CLI\'s for --plan alone
   assert.deepEqual(await axe(page), []);
 
   const long = join(dir, 'loiter.csv');
-  writeFileSync(long, 'x,y,z,speed,hold\n0,0,0\n0,0,30,3,86400\n');
+  writeFileSync(long, 'x,y,z,speed,hold\n0,0,30\n30,0,30,3,86400\n');
   await page.getByLabel(/Flight plan/).setInputFiles(long);
   await page.waitForSelector('#plan-error:not([hidden])');
   assert.match(await page.locator('#plan-error').textContent(), /takes 86412 s to fly; a flown plan lasts at most 40000 s/);

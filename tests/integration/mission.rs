@@ -4,8 +4,8 @@
 
 use loratrack::api::{clean_message, simulate, swarm};
 use loratrack::{
-    fly_plan, synthetic_flight, FlightPlan, ModelResult, Scenario, Simulator, StationModel,
-    MAX_FLOWN_S, PLAN_ACCEL, PLAN_CRUISE, TRACE_TOLERANCE,
+    fly_plan, synthetic_flight, ClimbLimits, FlightPlan, ModelResult, Scenario, Simulator,
+    StationModel, MAX_FLOWN_S, PLAN_ACCEL, PLAN_CRUISE, TRACE_TOLERANCE,
 };
 use serde_json::{json, Value};
 
@@ -62,14 +62,28 @@ fn its_uncertainty_is_honest_on_the_synthetic_set() {
 
 #[test]
 fn a_plan_file_is_followed_as_the_synthetic_flight_follows_its_own() {
-    let flight = synthetic_flight(5).unwrap();
-    let traced = FlightPlan::traced(&flight, TRACE_TOLERANCE);
+    // A plan file is one for an autopilot, flown within a multicopter's climb limits, which a
+    // traced plan is not: a flight none of whose legs climbs or descends past them.
+    let within = |plan: &FlightPlan| {
+        (0..plan.waypoints().len() - 1).all(|leg| {
+            let limited = plan.clone().with_climb(Some(ClimbLimits::MULTICOPTER));
+            limited.flown_speed(leg, 0.0) == plan.flown_speed(leg, 0.0)
+        })
+    };
+    let (i, flight, traced) = (1..=30)
+        .map(|i| {
+            let flight = synthetic_flight(i).unwrap();
+            let traced = FlightPlan::traced(&flight, TRACE_TOLERANCE);
+            (i, flight, traced)
+        })
+        .find(|(_, _, traced)| within(traced))
+        .expect("a synthetic flight within the climb limits");
     let settings = json!({"trajectory": flight.to_csv(), "model": "3d-ctra,mission",
                           "prediction": "bounded", "sf": 9, "bw": 125.0,
                           "plan": traced.to_csv()});
     let from_file = run(settings.clone());
     let own = run(
-        json!({"synthetic": 5, "model": "3d-ctra,mission", "prediction": "bounded",
+        json!({"synthetic": i, "model": "3d-ctra,mission", "prediction": "bounded",
                          "sf": 9, "bw": 125.0}),
     );
     let (a, b) = (p75(&from_file, "mission"), p75(&own, "mission"));
@@ -343,7 +357,7 @@ fn a_plan_alone_is_flown_as_fly_plan_flies_it() {
 fn a_plan_that_would_fly_for_more_than_a_long_flight_is_refused_before_it_is_flown() {
     // An unlimited loiter holds for a day.
     let s = Scenario::default()
-        .with(&json!({"plan": "x,y,z,speed,hold\n0,0,0\n0,0,30,3,86400\n"}))
+        .with(&json!({"plan": "x,y,z,speed,hold\n0,0,30\n30,0,30,3,86400\n"}))
         .unwrap();
     let e = simulate(&mut Simulator::new(), &s).unwrap_err().to_string();
     assert!(
@@ -357,7 +371,12 @@ fn the_cli_help_gives_the_flown_plans_own_constants() {
     let help = crate::cli_help("simulate");
     for said in [
         format!("to the next at {PLAN_ACCEL} m/s²"),
-        format!("({PLAN_CRUISE} m/s where none is given)"),
+        format!("({PLAN_CRUISE} m/s where none is given;"),
+        format!(
+            "climbs over {} m/s or descends over {} m/s",
+            ClimbLimits::MULTICOPTER.up,
+            ClimbLimits::MULTICOPTER.down
+        ),
         format!("at most {MAX_FLOWN_S} s"),
     ] {
         assert!(help.contains(&said), "{said}: {help}");

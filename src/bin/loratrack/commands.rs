@@ -46,7 +46,7 @@ pub struct FlightArgs {
     /// A bundled real flight: canberra (ArduCopter log171, CC BY-SA 3.0).
     #[arg(long, value_name = "NAME")]
     sample: Option<String>,
-    /// The drone's mission plan for --model mission with --trajectory or --sample: a CSV of x,y,z[,speed[,hold]] (m, the flight's frame; speed m/s on the leg to that waypoint, which may be empty; hold s at the waypoint), a QGroundControl .plan (its home is the frame's origin) or a QGC WPL waypoint list, Mission Planner's .waypoints (its item 0 is). The synthetic flights carry their own. Alone, without a flight, the drone flies the plan: from rest at each waypoint to the next at 2 m/s², each leg at its speed (5 m/s where none is given), each hold as planned, no wind (the mission station's best case; at most 40000 s).
+    /// The drone's mission plan for --model mission with --trajectory or --sample: a CSV of x,y,z[,speed[,hold]] (m, the flight's frame; speed m/s on the leg to that waypoint, which may be empty; hold s at the waypoint), a QGroundControl .plan (its home is the frame's origin) or a QGC WPL waypoint list, Mission Planner's .waypoints (its item 0 is). The synthetic flights carry their own. Alone, without a flight, the drone flies the plan: from rest at each waypoint to the next at 2 m/s², each leg at its speed (5 m/s where none is given; slower where it climbs over 2.5 m/s or descends over 1.5 m/s, a multicopter autopilot's limits), each hold as planned, no wind (the mission station's best case; at most 40000 s).
     #[arg(long, value_name = "FILE", conflicts_with = "synthetic")]
     plan: Option<std::path::PathBuf>,
 }

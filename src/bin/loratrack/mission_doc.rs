@@ -3,9 +3,9 @@
 use crate::doc_cells::{link_args, link_words, pooled_seeds};
 use loratrack::api::{HoldRun, MissionRun, MissionSweepReport, INSPECTION_SEED, MISSION_MODELS};
 use loratrack::{
-    flown_duration, inspection_plan, ModelResult, Scenario, HOLD_BRAKE, HOLD_RADIUS, HOLD_SPEED,
-    INSPECTION_HOLDS, INSPECTION_POINTS, OFFSET_TIME, PACE_SIGMA, PACE_TIME, PLAN_ACCEL,
-    TRACE_TOLERANCE,
+    flown_duration, inspection_plan, ClimbLimits, ModelResult, Scenario, HOLD_BRAKE, HOLD_RADIUS,
+    HOLD_SPEED, INSPECTION_HOLDS, INSPECTION_POINTS, OFFSET_TIME, PACE_SIGMA, PACE_TIME,
+    PLAN_ACCEL, TRACE_TOLERANCE,
 };
 
 /// The stations' labels in the sweep's order.
@@ -171,11 +171,14 @@ fn holds_section(r: &MissionSweepReport) -> String {
          reference §16) are where the drone hovers. The inspection mission (`inspection_plan({INSPECTION_SEED})`, \
          `src/trajectory/flown_plan.rs`): take off, {INSPECTION_POINTS} points within ±400 m at 8 m/s, holding at {held} \
          of them for {} s, back and land; flown from its plan by a multicopter that stops at every waypoint \
-         ({PLAN_ACCEL} m/s² up and down) and hovers for each hold, {minutes:.0} min, 1 km, {}. `holding`: the \
+         ({PLAN_ACCEL} m/s² up and down), climbs at most {} m/s and descends at most {} m/s (a multicopter \
+         autopilot's limits) and hovers for each hold, {minutes:.0} min, 1 km, {}. `holding`: the \
          mission station with the plan, holds and all (it brakes into a hold's waypoint at {HOLD_BRAKE} m/s², waits \
          there, and a packet under {HOLD_SPEED} m/s within {HOLD_RADIUS} m of one places the drone there); `flying on`: the same station given the plan \
          without its holds, which flies on while the drone hovers.\n\n",
         holds.join(", "),
+        ClimbLimits::MULTICOPTER.up,
+        ClimbLimits::MULTICOPTER.down,
         seeds(r),
     );
     s += &format!("| {} |\n", HOLD_HEADER.join(" | "));
@@ -246,7 +249,7 @@ fn holds_findings(runs: &[HoldRun]) -> String {
     format!(
         "\nReading the holds, the mission station's p75 is {p75_lo:.2}–{p75_hi:.2}× and its p95 {p95_lo:.2}–{p95_hi:.2}× \
          those of the station that flies on{}. Its coverage95 ranges from {:.3} to {:.3}{}. What this rests on: the drone holds exactly as planned and flies every \
-         leg at its planned speed, without wind; a hold the drone cuts short or stretches is found again only from a \
+         leg at its planned speed (within the climb limits), without wind; a hold the drone cuts short or stretches is found again only from a \
          packet that shows it hovering, so where packets are scarce the plan's holds must be about right to pay.\n",
         if worse.is_empty() {
             ", lower at every rate".to_string()

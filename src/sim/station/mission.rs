@@ -144,15 +144,17 @@ impl MissionStation {
     }
 
     /// The speed along the plan at time `t`, at `along` m: after a hold, from rest toward the
-    /// leg's planned speed (or the cruise speed); else from the packet's speed toward it.
+    /// leg's planned speed (or the cruise speed); else from the packet's speed toward it. On a
+    /// leg too steep for the plan's climb limits, what the autopilot slows it to.
     fn pace(plan: &FlightPlan, f: &Following, t: f64, along: f64) -> f64 {
         let planned = plan.speed_at(along);
+        let flown = |v| plan.within_climb_at(along, v);
         let resumed = f.last_hold.map(|(k, reached)| reached + plan.holds()[k]);
         match resumed {
-            Some(end) => planned.unwrap_or(f.cruise) * (1.0 - exp(-(t - end) / PACE_TIME)),
+            Some(end) => flown(planned.unwrap_or(f.cruise)) * (1.0 - exp(-(t - end) / PACE_TIME)),
             None => match planned {
-                Some(v) => v + (f.speed - v) * exp(-(t - f.sent) / PACE_TIME),
-                None => f.speed,
+                Some(v) => flown(v) + (f.speed - flown(v)) * exp(-(t - f.sent) / PACE_TIME),
+                None => flown(f.speed),
             },
         }
     }
