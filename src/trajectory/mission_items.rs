@@ -4,7 +4,7 @@
 use super::geodetic::east_north;
 use super::plan::FlightPlan;
 use super::plan_file::PlanError;
-use super::ClimbLimits;
+use super::{ClimbLimits, MAX_PLAN_SPEED};
 
 /// MAVLink commands (`MAV_CMD`) that loratrack reads.
 const NAV_WAYPOINT: u64 = 16;
@@ -53,8 +53,9 @@ pub(super) struct Flown {
     /// Whether a waypoint's hold time is flown: MAVLink's `NAV_WAYPOINT` says fixed-wing
     /// vehicles ignore it.
     waypoint_holds: bool,
-    /// The vehicle's climb and descent limits.
+    /// The vehicle's climb and descent limits, as the next leg will have them, and each leg's.
     climb: ClimbLimits,
+    climbs: Vec<ClimbLimits>,
 }
 
 impl Flown {
@@ -69,6 +70,7 @@ impl Flown {
             holds: vec![0.0],
             waypoint_holds: true,
             climb: ClimbLimits::MULTICOPTER,
+            climbs: Vec::new(),
         }
     }
 
@@ -99,12 +101,26 @@ impl Flown {
         .unwrap_or(0.0);
         let point = match item.command {
             DO_CHANGE_SPEED => {
-                // Parameter 1 is the speed's type: 2 and 3 change the climb and the descent
-                // speed, which are not read; 0 (airspeed) and 1 (ground speed) the speed along
-                // the path, which parameter 2 gives (−1: no change).
-                if !matches!(param(0), Some(t) if t == 2.0 || t == 3.0) {
-                    self.speed = param(1).filter(|s| *s > 0.0).or(self.speed);
+                // Parameter 1 is the speed's type: 0 (airspeed) and 1 (ground speed) change the
+                // speed along the path, 2 the climb speed and 3 the descent speed (ArduPilot's
+                // Copter), each given by parameter 2 (−1: no change).
+                let Some(speed) = param(1).filter(|s| *s > 0.0) else {
+                    return Ok(());
+                };
+                let vertical = match param(0) {
+                    Some(2.0) => &mut self.climb.up,
+                    Some(3.0) => &mut self.climb.down,
+                    _ => {
+                        self.speed = Some(speed);
+                        return Ok(());
+                    }
+                };
+                if speed > MAX_PLAN_SPEED {
+                    return Err(format!(
+                        "a climb or descent speed must be in (0, {MAX_PLAN_SPEED}] m/s, got {speed}"
+                    ));
                 }
+                *vertical = speed;
                 return Ok(());
             }
             NAV_DELAY => {
@@ -135,8 +151,15 @@ impl Flown {
             // Camera, gimbal, delay and other commands do not move the vehicle.
             _ => return Ok(()),
         };
+        if point == last {
+            // Where the vehicle is already (a timed loiter over the waypoint before): no leg.
+            let held = self.holds.len() - 1;
+            self.holds[held] += hold;
+            return Ok(());
+        }
         self.points.push(point);
         self.speeds.push(self.speed);
+        self.climbs.push(self.climb);
         self.holds.push(hold);
         Ok(())
     }
@@ -151,7 +174,7 @@ impl Flown {
             .into_iter()
             .map(|h| h.min(super::plan::MAX_HOLD))
             .collect();
-        Ok(FlightPlan::with_holds(self.points, self.speeds, holds)?.with_climb(Some(self.climb)))
+        FlightPlan::with_holds(self.points, self.speeds, holds)?.with_leg_climbs(self.climbs)
     }
 
     /// East and north of home, m, of an item's latitude and longitude (degrees); `None` where it
@@ -259,16 +282,38 @@ mod tests {
     }
 
     #[test]
-    fn a_change_of_climb_or_descent_speed_leaves_the_speed_along_the_path_alone() {
+    fn a_change_of_climb_or_descent_speed_limits_the_legs_after_it() {
         let mut f = Flown::new([-35.0, 149.0, 500.0], Some(5.0));
+        // Up 30 m at the default limits, then up 30 m more at 1 m/s, then down 60 m at 0.5 m/s.
+        f.item(&item(16, 3, -35.0, 149.0, 30.0)).unwrap();
         f.item(&change_speed(2.0, 1.0)).unwrap();
         f.item(&change_speed(3.0, 0.5)).unwrap();
-        f.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
+        f.item(&item(16, 3, -35.0, 149.0, 60.0)).unwrap();
         f.item(&change_speed(1.0, 9.0)).unwrap();
+        f.item(&item(16, 3, -35.0, 149.0, 0.0)).unwrap();
+        let p = f.plan().unwrap();
+        // The speed along the path is not the climb's.
+        assert_eq!(p.leg_speed(0), Some(5.0));
+        assert_eq!(p.leg_speed(1), Some(5.0));
+        assert_eq!(p.leg_speed(2), Some(9.0));
+        let flown: Vec<f64> = (0..3).map(|leg| p.flown_speed(leg, 5.0)).collect();
+        assert_eq!(flown, [ClimbLimits::MULTICOPTER.up, 1.0, 0.5]);
+        let mut f = Flown::new([-35.0, 149.0, 500.0], Some(5.0));
+        let e = f.item(&change_speed(2.0, 1000.0)).unwrap_err();
+        assert!(e.contains("climb or descent speed"), "{e}");
+    }
+
+    #[test]
+    fn a_loiter_over_the_waypoint_before_adds_its_time_there() {
+        let mut f = Flown::new([-35.0, 149.0, 500.0], Some(5.0));
+        f.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
+        let mut loiter = item(19, 3, -35.0, 149.001, 30.0);
+        loiter.params[0] = Some(25.0);
+        f.item(&loiter).unwrap();
         f.item(&item(16, 3, -35.001, 149.001, 30.0)).unwrap();
         let p = f.plan().unwrap();
-        assert_eq!(p.leg_speed(0), Some(5.0));
-        assert_eq!(p.leg_speed(1), Some(9.0));
+        assert_eq!(p.holds(), &[0.0, 25.0, 0.0]);
+        assert_eq!(p.climbs().map(<[_]>::len), Some(2));
     }
 
     #[test]

@@ -42,9 +42,9 @@ pub struct FlightPlan {
     /// Seconds the drone holds at waypoint i before it flies on (MAVLink `NAV_WAYPOINT`'s hold,
     /// `NAV_LOITER_TIME`, `NAV_DELAY`); 0 for most.
     holds: Vec<f64>,
-    /// The autopilot's climb and descent limits; `None` for a plan traced through a flight,
-    /// whose leg speeds are the flight's own.
-    climb: Option<ClimbLimits>,
+    /// The autopilot's climb and descent limits on each leg; `None` for a plan traced through a
+    /// flight, whose leg speeds are the flight's own.
+    climbs: Option<Vec<ClimbLimits>>,
 }
 
 /// The nearest point of a plan to a position.
@@ -134,7 +134,7 @@ impl FlightPlan {
             along: Vec::with_capacity(points.len()),
             speeds: Vec::with_capacity(speeds.len()),
             holds: Vec::with_capacity(points.len()),
-            climb: Some(ClimbLimits::MULTICOPTER),
+            climbs: None,
         };
         for (i, p) in points.into_iter().enumerate() {
             match plan.points.last() {
@@ -156,7 +156,7 @@ impl FlightPlan {
         if plan.points.len() < 2 {
             return Err(PlanError::TooFewWaypoints);
         }
-        Ok(plan)
+        Ok(plan.with_climb(Some(ClimbLimits::MULTICOPTER)))
     }
 
     /// The plan a synthetic flight flies: its path simplified (Douglas–Peucker) until no sample
@@ -180,19 +180,40 @@ impl FlightPlan {
             along: vec![0.0, 1e-3],
             speeds: vec![Some(1e-3)],
             holds: vec![0.0; 2],
-            climb: None,
+            climbs: None,
         });
         plan.with_climb(None)
     }
 
-    /// The same plan flown within `climb` (`None`: at its leg speeds however steep the leg).
+    /// The same plan flown within `climb` on every leg (`None`: at its leg speeds however steep
+    /// the leg).
     pub fn with_climb(self, climb: Option<ClimbLimits>) -> Self {
-        FlightPlan { climb, ..self }
+        let legs = self.speeds.len();
+        FlightPlan {
+            climbs: climb.map(|c| vec![c; legs]),
+            ..self
+        }
     }
 
-    /// The climb and descent limits the plan is flown within, if any.
-    pub fn climb(&self) -> Option<ClimbLimits> {
-        self.climb
+    /// The same plan with `climbs[i]` on leg i (one per leg; a mission that changes its climb or
+    /// descent speed on the way). Refuses a list of another length.
+    pub fn with_leg_climbs(self, climbs: Vec<ClimbLimits>) -> Result<Self, PlanError> {
+        if climbs.len() != self.speeds.len() {
+            return Err(PlanError::Invalid(format!(
+                "a plan has one climb limit per leg (legs: {}, limits: {})",
+                self.speeds.len(),
+                climbs.len()
+            )));
+        }
+        Ok(FlightPlan {
+            climbs: Some(climbs),
+            ..self
+        })
+    }
+
+    /// The climb and descent limits each leg is flown within, if any.
+    pub fn climbs(&self) -> Option<&[ClimbLimits]> {
+        self.climbs.as_deref()
     }
 
     /// The same waypoints without planned speeds.
@@ -321,7 +342,7 @@ impl FlightPlan {
     }
 
     fn within_climb(&self, leg: usize, speed: f64) -> f64 {
-        let Some(climb) = self.climb else {
+        let Some(climb) = self.climbs.as_ref().map(|c| c[leg]) else {
             return speed;
         };
         let rise = (self.points[leg + 1][2] - self.points[leg][2])
@@ -451,7 +472,7 @@ mod tests {
         // A plan read from a file is one for an autopilot, within its climb limits; a traced
         // plan is the flight's own pace.
         let traced = FlightPlan::traced(&synthetic_flight(9).unwrap(), TRACE_TOLERANCE);
-        assert_eq!(traced.climb(), None);
+        assert_eq!(traced.climbs(), None);
         assert_eq!(
             crate::trajectory::parse_plan(&traced.to_csv()).unwrap(),
             traced.with_climb(Some(ClimbLimits::MULTICOPTER))
