@@ -7,7 +7,8 @@
 /// climbs or descends steeply it slows down along the leg until the vertical part of its speed
 /// is within the limit (ArduPilot's `kinematic_limit` in `AP_Math/control.cpp`, used for every
 /// waypoint leg). A plan that asks for 8 m/s up a 45° slope is flown at 2.5 m/s up, 3.5 m/s
-/// along the leg.
+/// along the leg. (ArduPilot reads a planned speed as horizontal; a plan's speed here is along the
+/// leg, which on the gentle legs of most missions is the same to within a few per cent.)
 ///
 /// ```
 /// use loratrack::ClimbLimits;
