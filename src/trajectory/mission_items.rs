@@ -151,12 +151,6 @@ impl Flown {
             // Camera, gimbal, delay and other commands do not move the vehicle.
             _ => return Ok(()),
         };
-        if point == last {
-            // Where the vehicle is already (a timed loiter over the waypoint before): no leg.
-            let held = self.holds.len() - 1;
-            self.holds[held] += hold;
-            return Ok(());
-        }
         self.points.push(point);
         self.speeds.push(self.speed);
         self.climbs.push(self.climb);
@@ -174,7 +168,7 @@ impl Flown {
             .into_iter()
             .map(|h| h.min(super::plan::MAX_HOLD))
             .collect();
-        FlightPlan::with_holds(self.points, self.speeds, holds)?.with_leg_climbs(self.climbs)
+        FlightPlan::with_holds_and_climbs(self.points, self.speeds, holds, self.climbs)
     }
 
     /// East and north of home, m, of an item's latitude and longitude (degrees); `None` where it

@@ -82,6 +82,36 @@ impl FlightPlan {
         speeds: Vec<Option<f64>>,
         holds: Vec<f64>,
     ) -> Result<Self, PlanError> {
+        let climbs = vec![ClimbLimits::MULTICOPTER; speeds.len()];
+        Self::with_holds_and_climbs(points, speeds, holds, climbs)
+    }
+
+    /// As [`FlightPlan::with_holds`], with `climbs[i]` the climb limits on the leg from waypoint
+    /// i (one per leg, as the speeds; a mission that changes its climb or descent speed on the
+    /// way), each in (0, [`MAX_PLAN_SPEED`]] m/s. A dropped repeat's leg takes its limits with it.
+    pub fn with_holds_and_climbs(
+        points: Vec<[f64; 3]>,
+        speeds: Vec<Option<f64>>,
+        holds: Vec<f64>,
+        climbs: Vec<ClimbLimits>,
+    ) -> Result<Self, PlanError> {
+        if climbs.len() != speeds.len() {
+            return Err(PlanError::Invalid(format!(
+                "a plan has one climb limit per leg (leg speeds: {}, limits: {})",
+                speeds.len(),
+                climbs.len()
+            )));
+        }
+        if let Some(i) = climbs.iter().position(|c| {
+            ![c.up, c.down]
+                .iter()
+                .all(|v| v.is_finite() && *v > 0.0 && *v <= MAX_PLAN_SPEED)
+        }) {
+            return Err(PlanError::Invalid(format!(
+                "waypoint {}: climb and descent speeds must be in (0, {MAX_PLAN_SPEED}] m/s",
+                i + 2
+            )));
+        }
         if holds.len() != points.len() {
             return Err(PlanError::Invalid(format!(
                 "a plan has one hold per waypoint (waypoints: {}, holds: {})",
@@ -136,6 +166,7 @@ impl FlightPlan {
             holds: Vec::with_capacity(points.len()),
             climbs: None,
         };
+        let mut kept_climbs = Vec::with_capacity(climbs.len());
         for (i, p) in points.into_iter().enumerate() {
             match plan.points.last() {
                 None => plan.along.push(0.0),
@@ -148,6 +179,7 @@ impl FlightPlan {
                     }
                     plan.along.push(plan.along[plan.along.len() - 1] + leg);
                     plan.speeds.push(speeds[i - 1]);
+                    kept_climbs.push(climbs[i - 1]);
                 }
             }
             plan.points.push(p);
@@ -156,7 +188,8 @@ impl FlightPlan {
         if plan.points.len() < 2 {
             return Err(PlanError::TooFewWaypoints);
         }
-        Ok(plan.with_climb(Some(ClimbLimits::MULTICOPTER)))
+        plan.climbs = Some(kept_climbs);
+        Ok(plan)
     }
 
     /// The plan a synthetic flight flies: its path simplified (Douglas–Peucker) until no sample
@@ -193,22 +226,6 @@ impl FlightPlan {
             climbs: climb.map(|c| vec![c; legs]),
             ..self
         }
-    }
-
-    /// The same plan with `climbs[i]` on leg i (one per leg; a mission that changes its climb or
-    /// descent speed on the way). Refuses a list of another length.
-    pub fn with_leg_climbs(self, climbs: Vec<ClimbLimits>) -> Result<Self, PlanError> {
-        if climbs.len() != self.speeds.len() {
-            return Err(PlanError::Invalid(format!(
-                "a plan has one climb limit per leg (legs: {}, limits: {})",
-                self.speeds.len(),
-                climbs.len()
-            )));
-        }
-        Ok(FlightPlan {
-            climbs: Some(climbs),
-            ..self
-        })
     }
 
     /// The climb and descent limits each leg is flown within, if any.
@@ -463,6 +480,36 @@ mod tests {
             FlightPlan::with_holds(vec![[0.0; 3], [1.0; 3]], vec![None], vec![0.0, f64::NAN])
                 .is_err()
         );
+    }
+
+    #[test]
+    fn a_dropped_repeat_takes_its_legs_climb_limits_with_it() {
+        let slow = ClimbLimits { up: 1.0, down: 0.5 };
+        let points = vec![
+            [0.0; 3],
+            [0.0, 0.0, 30.0],
+            [0.0, 0.0, 30.0],
+            [0.0, 0.0, 60.0],
+        ];
+        let climbs = vec![ClimbLimits::MULTICOPTER, ClimbLimits::FIXED_WING, slow];
+        let p =
+            FlightPlan::with_holds_and_climbs(points.clone(), vec![None; 3], vec![0.0; 4], climbs)
+                .unwrap();
+        assert_eq!(p.climbs(), Some(&[ClimbLimits::MULTICOPTER, slow][..]));
+        assert_eq!(p.flown_speed(1, 5.0), 1.0);
+        let refused = |climbs| {
+            FlightPlan::with_holds_and_climbs(points.clone(), vec![None; 3], vec![0.0; 4], climbs)
+                .is_err()
+        };
+        assert!(refused(vec![slow; 2]));
+        assert!(refused(vec![ClimbLimits { up: 0.0, down: 1.0 }; 3]));
+        assert!(refused(vec![
+            ClimbLimits {
+                up: 1.0,
+                down: f64::NAN
+            };
+            3
+        ]));
     }
 
     #[test]

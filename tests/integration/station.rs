@@ -4,9 +4,9 @@
 
 use loratrack::api::simulate;
 use loratrack::{
-    inside_95, new_tracker, Bounds, Ctra3d, CtraPlus, Dr, ModelChoice, ModelKind, MotionModel,
-    Prediction, Rng, Scenario, Simulator, StationModel, StationPredictor, StationSetup, Tracker,
-    Ukf, MANOEUVRE_SPREAD, PAPER_Q, PAPER_R_DIAGONAL,
+    inside_95, new_tracker, Bounds, Ctra3d, CtraPlus, Dr, ModelChoice, ModelKind, ModelResult,
+    MotionModel, Prediction, Rng, Scenario, Simulator, StationModel, StationPredictor,
+    StationSetup, Tracker, Ukf, MANOEUVRE_SPREAD, PAPER_Q, PAPER_R_DIAGONAL,
 };
 use nalgebra::{Matrix3, SMatrix, SVector};
 use serde_json::{json, Value};
@@ -268,15 +268,11 @@ fn the_bounded_stations_95_percent_region_covers_93_to_97_percent_at_1_and_3_km(
         let three = |c: f64| (c * 1000.0).round() / 1000.0;
         for (overhead, upper) in [(13, 0.97), (0, 0.975)] {
             let bounded = run(Prediction::Bounded, overhead);
-            assert!(
-                (0.93..=upper).contains(&three(bounded.coverage95)),
-                "{distance} m, overhead {overhead}: coverage {}",
-                bounded.coverage95
-            );
-            assert!(
-                (1.5..=4.5).contains(&bounded.nees),
-                "{distance} m: NEES {}",
-                bounded.nees
+            assert_honest_region(
+                &bounded,
+                three(bounded.coverage95),
+                0.93..=upper,
+                &format!("{distance} m, overhead {overhead}"),
             );
         }
         let paper = run(Prediction::Paper, 0);
@@ -287,6 +283,22 @@ fn the_bounded_stations_95_percent_region_covers_93_to_97_percent_at_1_and_3_km(
             paper.nees
         );
     }
+}
+
+/// Asserts a station's 95 % region is about honest: `coverage` (its coverage95, as the test
+/// reads it) within `expected`, and its mean NEES within 1.5–4.5 (3 for an honest one).
+fn assert_honest_region(
+    m: &ModelResult,
+    coverage: f64,
+    expected: std::ops::RangeInclusive<f64>,
+    what: &str,
+) {
+    assert!(
+        expected.contains(&coverage),
+        "{what}: coverage {}",
+        m.coverage95
+    );
+    assert!((1.5..=4.5).contains(&m.nees), "{what}: NEES {}", m.nees);
 }
 
 #[test]
@@ -300,16 +312,7 @@ fn on_the_jerkier_real_flight_the_calibrated_region_still_covers_about_95_percen
         let mut p = set(&Scenario::default(), real.clone());
         p = set(&p, json!({ "distance": distance }));
         let m = simulate(&mut sim, &p).unwrap().results[0].clone();
-        assert!(
-            (0.9..=0.97).contains(&m.coverage95),
-            "{distance} m: coverage {}",
-            m.coverage95
-        );
-        assert!(
-            (1.5..=4.5).contains(&m.nees),
-            "{distance} m: NEES {}",
-            m.nees
-        );
+        assert_honest_region(&m, m.coverage95, 0.9..=0.97, &format!("{distance} m"));
     }
 }
 
