@@ -76,9 +76,10 @@ export type SimulateParams = Partial<Omit<Scenario, 'seed'>> & {
   /** The drone's mission plan for a CSV or sample flight, or alone (input only): CSV text of
    * `x,y,z[,speed[,hold]]`, a QGroundControl `.plan` or a `QGC WPL` waypoint list (Mission Planner's
    * `.waypoints`); the synthetic flights carry their own. Given without a flight, the drone flies it:
-   * from rest to rest on every leg at 2 m/s², at the leg's speed (5 m/s where none is given; slower
-   * where that would climb faster than 2.5 m/s or descend faster than 1.5 m/s, a multicopter
-   * autopilot's limits), holding as planned, without wind: the mission station's best case. */
+   * as a multicopter's autopilot does, at the leg's speed (5 m/s where none is given; slower where
+   * that would climb faster than 2.5 m/s or descend faster than 1.5 m/s), speeding up and braking
+   * at 2 m/s², through each waypoint it does not hold at on an arc within 2 m of it, holding as
+   * planned, without wind: the mission station's best case. */
   plan?: string;
   /** The plan's file name, for `commandLine`. */
   planName?: string;

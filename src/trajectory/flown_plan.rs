@@ -1,7 +1,8 @@
-//! A flight made from a plan: a multicopter flying it as an autopilot without splines does
-//! (reference §16), and inspection missions that hover at their points, for the mission station's
+//! A flight made from a plan: a multicopter flying it as its autopilot does, through the
+//! waypoints it need not stop at (reference §16), and inspection missions that hover at their points, for the mission station's
 //! holds (`sweep --mission`, docs/mission.md).
 
+use super::cornering::{corners, Corner};
 use super::plan::FlightPlan;
 use super::{PlanError, Trajectory, MAX_ROWS};
 use crate::math::distance;
@@ -22,55 +23,201 @@ pub const PLAN_CRUISE: f64 = 5.0;
 /// longest flight a CSV may give.
 pub const MAX_FLOWN_S: f64 = MAX_ROWS as f64 / PLAN_RATE_HZ;
 
-/// One leg as [`fly_plan`] flies it: a trapezoid of speed from rest to rest.
-struct Leg {
+/// A straight as [`fly_plan`] flies it: from one speed to another, at most `top`, changing speed
+/// at [`PLAN_ACCEL`].
+struct Straight {
     from: [f64; 3],
     /// Unit vector along the leg.
     u: [f64; 3],
     length: f64,
-    /// The peak speed, m/s, and the time to reach it, s.
+    /// Speeds at its start and end, and the peak between, m/s.
+    start: f64,
+    end: f64,
     top: f64,
-    ramp: f64,
-    /// Seconds from the leg's start to rest at its end.
-    total: f64,
+    /// Seconds speeding up, at the peak and slowing down.
+    up: f64,
+    cruise: f64,
+    down: f64,
 }
 
-impl Leg {
-    fn of(plan: &FlightPlan, leg: usize) -> Leg {
-        let w = plan.waypoints();
-        let (from, to) = (w[leg], w[leg + 1]);
+impl Straight {
+    /// From `from` to `to` (m), entered at `start` and left at `end` m/s, no faster than
+    /// `speed`: the two need be within [`PLAN_ACCEL`]'s reach over the length ([`corners`]).
+    fn new(from: [f64; 3], to: [f64; 3], (start, end): (f64, f64), speed: f64) -> Straight {
         let length = distance(&from, &to);
-        let cruise = plan.flown_speed(leg, PLAN_CRUISE);
-        let top = cruise.min((PLAN_ACCEL * length).sqrt());
-        let ramp = top / PLAN_ACCEL;
-        Leg {
+        let a = PLAN_ACCEL;
+        let top = speed
+            .min((a * length + (start * start + end * end) / 2.0).sqrt())
+            .max(start.max(end));
+        let ramps = (top * top - start * start) / (2.0 * a) + (top * top - end * end) / (2.0 * a);
+        Straight {
             from,
-            u: core::array::from_fn(|k| (to[k] - from[k]) / length),
+            u: if length > 0.0 {
+                core::array::from_fn(|k| (to[k] - from[k]) / length)
+            } else {
+                [0.0; 3]
+            },
             length,
+            start,
+            end,
             top,
-            ramp,
-            total: 2.0 * ramp + (length - top * ramp) / top,
+            up: (top - start) / a,
+            cruise: if top > 0.0 {
+                (length - ramps).max(0.0) / top
+            } else {
+                0.0
+            },
+            down: (top - end) / a,
         }
     }
 
-    /// Position along the leg, speed and acceleration (m, m/s, m/s²) `tau` s into it.
-    fn at(&self, tau: f64) -> (f64, f64, f64) {
-        let left = self.total - tau;
-        if tau < self.ramp {
-            (PLAN_ACCEL * tau * tau / 2.0, PLAN_ACCEL * tau, PLAN_ACCEL)
-        } else if left > self.ramp {
-            (self.top * (tau - self.ramp / 2.0), self.top, 0.0)
-        } else {
+    fn duration(&self) -> f64 {
+        self.up + self.cruise + self.down
+    }
+
+    /// Position, velocity and acceleration (m, m/s, m/s²) `tau` s into it.
+    fn at(&self, tau: f64) -> ([f64; 3], [f64; 3], [f64; 3]) {
+        let a = PLAN_ACCEL;
+        let (s, v, acc) = if tau < self.up {
             (
-                self.length - PLAN_ACCEL * left * left / 2.0,
-                PLAN_ACCEL * left,
-                -PLAN_ACCEL,
+                self.start * tau + a * tau * tau / 2.0,
+                self.start + a * tau,
+                a,
             )
+        } else if tau < self.up + self.cruise {
+            let ramp = (self.top * self.top - self.start * self.start) / (2.0 * a);
+            (ramp + self.top * (tau - self.up), self.top, 0.0)
+        } else {
+            let left = (self.duration() - tau).max(0.0);
+            (
+                self.length - self.end * left - a * left * left / 2.0,
+                self.end + a * left,
+                -a,
+            )
+        };
+        let along = |m: f64| self.u.map(|c| c * m);
+        let p = along(s.clamp(0.0, self.length));
+        (
+            core::array::from_fn(|k| self.from[k] + p[k]),
+            along(v),
+            along(acc),
+        )
+    }
+}
+
+/// A corner's arc as [`fly_plan`] flies it, at constant speed.
+struct Arc {
+    /// The arc's centre, m; `inward` the unit vector from its start toward the centre, `u` the
+    /// direction it starts in.
+    centre: [f64; 3],
+    inward: [f64; 3],
+    u: [f64; 3],
+    radius: f64,
+    speed: f64,
+    turn: f64,
+}
+
+impl Arc {
+    /// The arc of `corner` at waypoint `at`, from the leg along `u_in` onto the leg along `u_out`.
+    fn new(corner: &Corner, at: [f64; 3], u_in: [f64; 3], u_out: [f64; 3]) -> Arc {
+        let along_in: f64 = (0..3).map(|k| u_out[k] * u_in[k]).sum();
+        let side: [f64; 3] = core::array::from_fn(|k| u_out[k] - along_in * u_in[k]);
+        let norm = side.iter().map(|c| c * c).sum::<f64>().sqrt();
+        let inward = side.map(|c| c / norm);
+        Arc {
+            centre: core::array::from_fn(|k| {
+                at[k] - u_in[k] * corner.cut + inward[k] * corner.radius
+            }),
+            inward,
+            u: u_in,
+            radius: corner.radius,
+            speed: corner.speed,
+            turn: corner.turn,
+        }
+    }
+
+    fn duration(&self) -> f64 {
+        self.radius * self.turn / self.speed
+    }
+
+    /// Position, velocity and acceleration (m, m/s, m/s²) `tau` s into it.
+    fn at(&self, tau: f64) -> ([f64; 3], [f64; 3], [f64; 3]) {
+        let angle = (self.speed * tau / self.radius).min(self.turn);
+        let (sin, cos) = (angle.sin(), angle.cos());
+        let r = self.radius;
+        let v = self.speed;
+        let centripetal = v * v / r;
+        (
+            core::array::from_fn(|k| {
+                self.centre[k] - r * cos * self.inward[k] + r * sin * self.u[k]
+            }),
+            core::array::from_fn(|k| v * (cos * self.u[k] + sin * self.inward[k])),
+            core::array::from_fn(|k| centripetal * (cos * self.inward[k] - sin * self.u[k])),
+        )
+    }
+}
+
+/// One stretch of a flown plan.
+enum Piece {
+    Straight(Straight),
+    Arc(Arc),
+    /// Hovering at a waypoint for so many seconds.
+    Hold([f64; 3], f64),
+}
+
+impl Piece {
+    fn duration(&self) -> f64 {
+        match self {
+            Piece::Straight(s) => s.duration(),
+            Piece::Arc(a) => a.duration(),
+            Piece::Hold(_, seconds) => *seconds,
+        }
+    }
+
+    fn at(&self, tau: f64) -> ([f64; 3], [f64; 3], [f64; 3]) {
+        match self {
+            Piece::Straight(s) => s.at(tau),
+            Piece::Arc(a) => a.at(tau),
+            Piece::Hold(p, _) => (*p, [0.0; 3], [0.0; 3]),
         }
     }
 }
 
-/// How long [`fly_plan`] takes to fly `plan`, s: its legs and its holds.
+/// The stretches `plan` is flown in: a straight per leg (shortened where a corner cuts it), the
+/// arc of each corner, and each hold.
+fn pieces(plan: &FlightPlan) -> Vec<Piece> {
+    let w = plan.waypoints();
+    let turns = corners(plan);
+    let unit = |leg: usize| {
+        let d = distance(&w[leg], &w[leg + 1]);
+        core::array::from_fn::<f64, 3, _>(|k| (w[leg + 1][k] - w[leg][k]) / d)
+    };
+    let mut out = Vec::new();
+    for leg in 0..w.len() - 1 {
+        let u = unit(leg);
+        let (from, to) = (turns[leg], turns[leg + 1]);
+        let cut = |c: Option<Corner>| c.map_or(0.0, |c| c.cut);
+        let start: [f64; 3] = core::array::from_fn(|k| w[leg][k] + u[k] * cut(from));
+        let end: [f64; 3] = core::array::from_fn(|k| w[leg + 1][k] - u[k] * cut(to));
+        let speeds = (from.map_or(0.0, |c| c.speed), to.map_or(0.0, |c| c.speed));
+        out.push(Piece::Straight(Straight::new(
+            start,
+            end,
+            speeds,
+            plan.flown_speed(leg, PLAN_CRUISE),
+        )));
+        match to {
+            Some(c) if c.length() > 0.0 => {
+                out.push(Piece::Arc(Arc::new(&c, w[leg + 1], u, unit(leg + 1))))
+            }
+            Some(_) => {}
+            None => out.push(Piece::Hold(w[leg + 1], plan.holds()[leg + 1])),
+        }
+    }
+    out
+}
+
+/// How long [`fly_plan`] takes to fly `plan`, s: its legs, its corners and its holds.
 ///
 /// ```
 /// use loratrack::{flown_duration, FlightPlan};
@@ -78,20 +225,20 @@ impl Leg {
 /// assert!((flown_duration(&plan) - 35.0).abs() < 1e-9);
 /// ```
 pub fn flown_duration(plan: &FlightPlan) -> f64 {
-    let legs: f64 = (0..plan.waypoints().len() - 1)
-        .map(|leg| Leg::of(plan, leg).total)
-        .sum();
-    legs + plan.holds().iter().sum::<f64>()
+    pieces(plan).iter().map(Piece::duration).sum()
 }
 
 /// The flight of a multicopter that flies `plan` from rest: on each leg it speeds up to the leg's
 /// planned speed ([`PLAN_CRUISE`] where the plan gives none; slower on a leg too steep for the
-/// plan's [`ClimbLimits`](crate::ClimbLimits), [`FlightPlan::flown_speed`]) and brakes to a stop
-/// at the next waypoint, both at [`PLAN_ACCEL`] (a leg too short for the speed peaks lower), then hovers
-/// there for the waypoint's hold; sampled at [`PLAN_RATE_HZ`] with its velocities and
-/// accelerations. No wind and no corner cutting: the plan flown exactly, a best case for a
-/// station that knows it. Refuses a plan that takes longer than [`MAX_FLOWN_S`] to fly
-/// ([`PlanError::TooLongToFly`]; an unlimited loiter holds for a day).
+/// plan's [`ClimbLimits`](crate::ClimbLimits), [`FlightPlan::flown_speed`]), at [`PLAN_ACCEL`];
+/// through a waypoint without a hold it turns onto the next leg on an arc that passes
+/// [`CORNER_RADIUS`](crate::CORNER_RADIUS) from it, slowed only as much as the turn asks
+/// ([`corners`]: ArduPilot Copter's S-curves and PX4's multicopter missions fly through such
+/// waypoints); it brakes to a stop where it holds (then hovers for the hold), where the path
+/// doubles back and at the last waypoint. Sampled at [`PLAN_RATE_HZ`] with its velocities and
+/// accelerations. No wind: the plan flown as planned, a best case for a station that knows it.
+/// Refuses a plan that takes longer than [`MAX_FLOWN_S`] to fly ([`PlanError::TooLongToFly`]; an
+/// unlimited loiter holds for a day).
 ///
 /// ```
 /// use loratrack::{fly_plan, FlightPlan};
@@ -101,34 +248,40 @@ pub fn flown_duration(plan: &FlightPlan) -> f64 {
 /// assert!((flight.duration() - 35.0).abs() < 0.05);
 /// ```
 pub fn fly_plan(plan: &FlightPlan, name: &str) -> Result<Trajectory, PlanError> {
-    let seconds = flown_duration(plan);
+    let pieces = pieces(plan);
+    let seconds: f64 = pieces.iter().map(Piece::duration).sum();
     if seconds.is_nan() || seconds > MAX_FLOWN_S {
         return Err(PlanError::TooLongToFly { seconds });
     }
     let dt = 1.0 / PLAN_RATE_HZ;
-    let (mut t, mut pos, mut vel, mut acc) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    let mut sample = |p: [f64; 3], v: [f64; 3], a: [f64; 3]| {
-        t.push(t.len() as f64 * dt);
+    let samples = (seconds / dt).floor() as usize + 1;
+    let (mut t, mut pos, mut vel, mut acc) = (
+        Vec::with_capacity(samples + 1),
+        Vec::with_capacity(samples + 1),
+        Vec::with_capacity(samples + 1),
+        Vec::with_capacity(samples + 1),
+    );
+    let (mut piece, mut began) = (0, 0.0);
+    for i in 0..samples {
+        let now = i as f64 * dt;
+        while piece + 1 < pieces.len() && now >= began + pieces[piece].duration() {
+            began += pieces[piece].duration();
+            piece += 1;
+        }
+        let (p, v, a) = pieces[piece].at(now - began);
+        t.push(now);
         pos.push(p);
         vel.push(v);
         acc.push(a);
-    };
-    let w = plan.waypoints();
-    for leg in 0..w.len() - 1 {
-        let l = Leg::of(plan, leg);
-        for j in 0..(l.total / dt).ceil() as usize {
-            let (s, v, a) = l.at(j as f64 * dt);
-            sample(
-                core::array::from_fn(|k| l.from[k] + l.u[k] * s),
-                l.u.map(|c| c * v),
-                l.u.map(|c| c * a),
-            );
-        }
-        for _ in 0..(plan.holds()[leg + 1] / dt).round() as usize {
-            sample(w[leg + 1], [0.0; 3], [0.0; 3]);
-        }
     }
-    sample(w[w.len() - 1], [0.0; 3], [0.0; 3]);
+    // A last sample at rest on the last waypoint, where the flight ends between two samples.
+    let last = plan.waypoints()[plan.waypoints().len() - 1];
+    if pos.last() != Some(&last) {
+        t.push(samples as f64 * dt);
+        pos.push(last);
+        vel.push([0.0; 3]);
+        acc.push([0.0; 3]);
+    }
     Trajectory::new(name.to_string(), t, pos, vel, acc)
         .map_err(|e| PlanError::Invalid(format!("the flown plan: {e}")))
 }

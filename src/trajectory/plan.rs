@@ -251,14 +251,20 @@ impl FlightPlan {
 
     /// The plan as CSV text that [`parse_plan`](super::parse_plan) reads back to the same plan:
     /// `x,y,z,speed`, and `hold` where any waypoint has one, every number in its shortest
-    /// round-trip form.
+    /// round-trip form; a plan traced through a flight begins with
+    /// [`TRACED_MARK`](super::TRACED_MARK), so that it is read back as one (a multicopter's climb
+    /// limits, the only ones a CSV plan carries, are the rest's).
     pub fn to_csv(&self) -> String {
         let with_holds = self.holds.iter().any(|&h| h > 0.0);
-        let mut out = String::from(if with_holds {
+        let mut out = match self.climbs {
+            None => format!("{}\n", super::TRACED_MARK),
+            Some(_) => String::new(),
+        };
+        out += if with_holds {
             "x,y,z,speed,hold\n"
         } else {
             "x,y,z,speed\n"
-        });
+        };
         for (i, p) in self.points.iter().enumerate() {
             let speed = match i.checked_sub(1).and_then(|leg| self.speeds[leg]) {
                 Some(v) => format!(",{v}"),
@@ -291,6 +297,11 @@ impl FlightPlan {
         (from..self.points.len())
             .find(|&i| self.holds[i] > 0.0)
             .map(|i| (i, self.along[i]))
+    }
+
+    /// The distance along the plan at which waypoint `k` stands, m.
+    pub fn along_at(&self, k: usize) -> f64 {
+        self.along[k]
     }
 
     /// The waypoints, m.
@@ -517,11 +528,15 @@ mod tests {
         let p = square();
         assert_eq!(crate::trajectory::parse_plan(&p.to_csv()).unwrap(), p);
         // A plan read from a file is one for an autopilot, within its climb limits; a traced
-        // plan is the flight's own pace.
+        // plan is the flight's own pace, and its CSV says so.
         let traced = FlightPlan::traced(&synthetic_flight(9).unwrap(), TRACE_TOLERANCE);
         assert_eq!(traced.climbs(), None);
+        let text = traced.to_csv();
+        assert!(text.starts_with(crate::trajectory::TRACED_MARK));
+        assert_eq!(crate::trajectory::parse_plan(&text).unwrap(), traced);
+        let unmarked: String = text.lines().skip(1).map(|l| format!("{l}\n")).collect();
         assert_eq!(
-            crate::trajectory::parse_plan(&traced.to_csv()).unwrap(),
+            crate::trajectory::parse_plan(&unmarked).unwrap(),
             traced.with_climb(Some(ClimbLimits::MULTICOPTER))
         );
     }

@@ -105,8 +105,10 @@ fn parse_csv_plan(text: &str) -> Result<FlightPlan, PlanError> {
     let mut points = Vec::new();
     let mut speeds = Vec::new();
     let mut holds = Vec::new();
+    let mut traced = false;
     for (i, raw) in text.lines().enumerate() {
         let line = raw.trim();
+        traced |= line == TRACED_MARK;
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
@@ -156,8 +158,15 @@ fn parse_csv_plan(text: &str) -> Result<FlightPlan, PlanError> {
     if points.is_empty() {
         return Err(PlanError::Empty);
     }
-    FlightPlan::with_holds(points, speeds, holds)
+    let plan = FlightPlan::with_holds(points, speeds, holds)?;
+    Ok(if traced { plan.with_climb(None) } else { plan })
 }
+
+/// The comment line with which [`FlightPlan::to_csv`] begins a plan traced through a flight
+/// ([`FlightPlan::traced`]), so that reading it back gives the same plan: one whose leg speeds
+/// are the flight's own, flown within no autopilot's climb limits and turning on no corners.
+/// Any other CSV plan is one for an autopilot.
+pub const TRACED_MARK: &str = "# traced from a flight: its legs' speeds are the flight's own";
 
 /// At most 60 characters of `text`.
 pub(super) fn excerpt(text: &str) -> String {

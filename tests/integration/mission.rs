@@ -5,7 +5,8 @@
 use loratrack::api::{clean_message, simulate, swarm};
 use loratrack::{
     fly_plan, synthetic_flight, ClimbLimits, FlightPlan, ModelResult, Scenario, Simulator,
-    StationModel, MAX_FLOWN_S, PLAN_ACCEL, PLAN_CRUISE, TRACE_TOLERANCE,
+    StationModel, CORNER_ACCEL, CORNER_RADIUS, MAX_FLOWN_S, PLAN_ACCEL, PLAN_CRUISE,
+    TRACE_TOLERANCE,
 };
 use serde_json::{json, Value};
 
@@ -370,7 +371,8 @@ fn a_plan_that_would_fly_for_more_than_a_long_flight_is_refused_before_it_is_flo
 fn the_cli_help_gives_the_flown_plans_own_constants() {
     let help = crate::cli_help("simulate");
     for said in [
-        format!("to the next at {PLAN_ACCEL} m/s²"),
+        format!("speeding up and braking at {PLAN_ACCEL} m/s²"),
+        format!("on an arc within {CORNER_RADIUS} m of it (at most {CORNER_ACCEL} m/s² sideways)"),
         format!("({PLAN_CRUISE} m/s where none is given;"),
         format!(
             "climbs over {} m/s or descends over {} m/s",

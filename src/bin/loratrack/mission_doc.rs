@@ -3,9 +3,9 @@
 use crate::doc_cells::{link_args, link_words, pooled_seeds};
 use loratrack::api::{HoldRun, MissionRun, MissionSweepReport, INSPECTION_SEED, MISSION_MODELS};
 use loratrack::{
-    flown_duration, inspection_plan, ClimbLimits, ModelResult, Scenario, HOLD_BRAKE, HOLD_RADIUS,
-    HOLD_SPEED, INSPECTION_HOLDS, INSPECTION_POINTS, OFFSET_TIME, PACE_SIGMA, PACE_TIME,
-    PLAN_ACCEL, TRACE_TOLERANCE,
+    flown_duration, inspection_plan, ClimbLimits, ModelResult, Scenario, CORNER_RADIUS, HOLD_BRAKE,
+    HOLD_RADIUS, HOLD_SPEED, INSPECTION_HOLDS, INSPECTION_POINTS, OFFSET_TIME, PACE_SIGMA,
+    PACE_TIME, PLAN_ACCEL, TRACE_TOLERANCE,
 };
 
 /// The stations' labels in the sweep's order.
@@ -170,8 +170,9 @@ fn holds_section(r: &MissionSweepReport) -> String {
         "\n## Holds: an inspection that hovers\n\nA plan's holds (a waypoint's hold time, a timed loiter, a delay; \
          reference §16) are where the drone hovers. The inspection mission (`inspection_plan({INSPECTION_SEED})`, \
          `src/trajectory/flown_plan.rs`): take off, {INSPECTION_POINTS} points within ±400 m at 8 m/s, holding at {held} \
-         of them for {} s, back and land; flown from its plan by a multicopter that stops at every waypoint \
-         ({PLAN_ACCEL} m/s² up and down), climbs at most {} m/s and descends at most {} m/s (a multicopter \
+         of them for {} s, back and land; flown from its plan by a multicopter that speeds up and brakes at \
+         {PLAN_ACCEL} m/s², turns through the points it does not hold at on an arc within {CORNER_RADIUS} m of \
+         them, climbs at most {} m/s and descends at most {} m/s (a multicopter \
          autopilot's limits) and hovers for each hold, {minutes:.0} min, 1 km, {}. `holding`: the \
          mission station with the plan, holds and all (it brakes into a hold's waypoint at {HOLD_BRAKE} m/s², waits \
          there, and a packet under {HOLD_SPEED} m/s within {HOLD_RADIUS} m of one places the drone there); `flying on`: the same station given the plan \

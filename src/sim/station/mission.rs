@@ -5,7 +5,7 @@
 use super::{Prediction, StationPredictor, StationSetup, Tracker};
 use crate::math::{distance, exp};
 use crate::models::Ctra3d;
-use crate::trajectory::{FlightPlan, PLAN_CRUISE};
+use crate::trajectory::{CornerSpeeds, FlightPlan, PLAN_ACCEL, PLAN_CRUISE};
 use nalgebra::Matrix3;
 use serde::{Deserialize, Serialize};
 
@@ -114,6 +114,9 @@ struct Following {
 /// bounded station's), plus ([`PACE_SIGMA`]·τ)² in every direction, τ s after the packet.
 pub struct MissionStation {
     plan: Option<MissionPlan>,
+    /// How fast the plan lets the drone pass each waypoint, from its corners (none for a plan
+    /// traced through a flight).
+    corners: Option<CornerSpeeds>,
     fallback: StationPredictor<9, Ctra3d>,
     step: f64,
     /// The bounded station's top speed, m/s: a packet's speed is held within it on the plan too.
@@ -130,6 +133,7 @@ impl MissionStation {
             ..setup
         };
         MissionStation {
+            corners: plan.as_ref().map(|mp| CornerSpeeds::of(&mp.plan)),
             plan,
             fallback: StationPredictor::new(Ctra3d, bounded),
             step: setup.step,
@@ -143,10 +147,22 @@ impl MissionStation {
         self.following.is_some()
     }
 
+    /// The speed along the plan over a step of `dt` s from `f`: [`Self::free_pace`] at the
+    /// step's midpoint in time, and near a waypoint the drone turns or stops at, no faster than
+    /// it can pass there ([`CornerSpeeds`]) at the midpoint of the distance it covers (from rest,
+    /// a quarter of what `PLAN_ACCEL` covers in the step: second order where the drone speeds up
+    /// out of a stop).
+    fn pace(plan: &FlightPlan, corners: &CornerSpeeds, f: &Following, dt: f64) -> f64 {
+        let free = Self::free_pace(plan, f, f.t + dt / 2.0, f.along);
+        let start = free.min(corners.cap(f.along));
+        let half = (start * dt / 2.0).max(PLAN_ACCEL * dt * dt / 8.0);
+        free.min(corners.cap(f.along + half))
+    }
+
     /// The speed along the plan at time `t`, at `along` m: after a hold, from rest toward the
     /// leg's planned speed (or the cruise speed); else from the packet's speed toward it. On a
     /// leg too steep for the plan's climb limits, what the autopilot slows it to.
-    fn pace(plan: &FlightPlan, f: &Following, t: f64, along: f64) -> f64 {
+    fn free_pace(plan: &FlightPlan, f: &Following, t: f64, along: f64) -> f64 {
         let planned = plan.speed_at(along);
         let flown = |v| plan.within_climb_at(along, v);
         let resumed = f.last_hold.map(|(k, reached)| reached + plan.holds()[k]);
@@ -240,7 +256,8 @@ impl Tracker for MissionStation {
 
     fn predict_to(&mut self, t: f64) {
         self.fallback.predict_to(t);
-        let (Some(mp), Some(f)) = (&self.plan, &mut self.following) else {
+        let (Some(mp), Some(corners), Some(f)) = (&self.plan, &self.corners, &mut self.following)
+        else {
             return;
         };
         let plan = &mp.plan;
@@ -253,8 +270,7 @@ impl Tracker for MissionStation {
                 }
             }
             let dt = self.step.min(t - f.t);
-            // The midpoint's pace: second order in dt.
-            let v = Self::pace(plan, f, f.t + dt / 2.0, f.along);
+            let v = Self::pace(plan, corners, f, dt);
             // Where a hold is ahead and the pace would overshoot it at `HOLD_BRAKE`, the station
             // brakes: exactly, at constant deceleration, to a stop at the hold's waypoint.
             let braking = f.next_hold.and_then(|(_, at)| {
@@ -362,7 +378,12 @@ mod tests {
 
     #[test]
     fn follows_the_plan_round_a_corner_at_the_planned_speeds() {
-        let mut st = MissionStation::new(Some(corner()), setup());
+        // Traced through a flight, the plan's speeds are the flight's own: no corner slows it.
+        let traced = MissionPlan {
+            plan: corner().plan.with_climb(None),
+            ..corner()
+        };
+        let mut st = MissionStation::new(Some(traced), setup());
         st.reset(&packet(50.0, 0.0, 10.0), 0.0);
         assert!(st.on_plan());
         // 5 s at 10 m/s reach the corner; then 4 s at 5 m/s plus what is left of the packet's
@@ -377,6 +398,36 @@ mod tests {
         plain.reset(&packet(50.0, 0.0, 10.0), 0.0);
         plain.predict_to(9.0);
         assert!(plain.position()[0] > 130.0);
+    }
+
+    #[test]
+    fn paces_through_a_corner_as_the_flown_plan_flies_it() {
+        let plan = corner().plan;
+        let flown = crate::fly_plan(&plan, "corner").unwrap();
+        // A packet 8 s in, cruising east at 10 m/s.
+        let k = (8.0 * crate::PLAN_RATE_HZ) as usize;
+        let (p, v) = (flown.pos[k], flown.vel[k]);
+        assert!((v[0] - 10.0).abs() < 1e-9 && p[0] < 70.0, "{p:?} {v:?}");
+        let mut st = MissionStation::new(Some(corner()), setup());
+        st.reset(&packet(p[0], p[1], v[0]), flown.t[k]);
+        let mut worst: f64 = 0.0;
+        // Through the braking, the right angle (4.4 m/s) and the speeding up to 5 m/s north.
+        for step in 1..=60 {
+            let i = k + step * 5;
+            st.predict_to(flown.t[i]);
+            worst = worst.max(distance(&st.position(), &flown.pos[i]));
+        }
+        // Within the corner radius: the station paces along the legs, the drone cuts the corner.
+        assert!(worst < crate::CORNER_RADIUS, "{worst}");
+        // Without the corner the station would have rounded it at 5 m/s or more: metres ahead.
+        let traced = MissionPlan {
+            plan: corner().plan.with_climb(None),
+            ..corner()
+        };
+        let mut fast = MissionStation::new(Some(traced), setup());
+        fast.reset(&packet(p[0], p[1], v[0]), flown.t[k]);
+        fast.predict_to(flown.t[k + 300]);
+        assert!(distance(&fast.position(), &flown.pos[k + 300]) > worst + 2.0);
     }
 
     /// [`corner`] with a hold of 10 s at the corner.

@@ -1,0 +1,309 @@
+//! How an autopilot flies through a waypoint it need not stop at (reference §16): it turns onto
+//! the next leg on an arc that passes close to the waypoint, slowed only as much as the turn
+//! asks, for the flown plan ([`crate::fly_plan`]) and the mission station's pace alike.
+
+use super::plan::FlightPlan;
+use crate::math::distance;
+
+/// How close to a waypoint flown through the path passes, m: ArduPilot Copter's waypoint radius
+/// (`WPNAV_RADIUS`, 2 m by default), within which its S-curves cut a corner.
+pub const CORNER_RADIUS: f64 = 2.0;
+/// The sideways acceleration in a corner, m/s²: twice the along-track one, as ArduPilot's
+/// cornering acceleration (`WPNAV_ACCEL_C`) is twice `WPNAV_ACCEL` by default (Copter 4.5).
+pub const CORNER_ACCEL: f64 = 2.0 * super::PLAN_ACCEL;
+
+/// The smallest arc radius a waypoint is turned on, m; a sharper turn (the path doubling back)
+/// is flown by stopping there.
+const MIN_ARC: f64 = 0.01;
+
+/// A turn through a waypoint: the arc tangent to both legs that passes [`CORNER_RADIUS`] from the
+/// waypoint (tighter where a leg is too short for it), flown at one speed.
+///
+/// ```
+/// use loratrack::{corners, FlightPlan};
+/// let plan = FlightPlan::new(vec![[0.0, 0.0, 10.0], [100.0, 0.0, 10.0], [100.0, 100.0, 10.0]], vec![Some(8.0), Some(8.0)]).unwrap();
+/// let turn = corners(&plan)[1].unwrap();
+/// // A right angle: an arc of 4.8 m radius, entered 4.8 m before the waypoint, flown at 4.4 m/s
+/// // (4 m/s² sideways).
+/// assert!((turn.radius - 4.83).abs() < 0.01 && (turn.cut - turn.radius).abs() < 1e-9);
+/// assert!((turn.speed - (4.0 * turn.radius).sqrt()).abs() < 1e-9);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Corner {
+    /// How far before and after the waypoint the arc meets the legs, m.
+    pub cut: f64,
+    /// The arc's radius, m (infinite where the legs run straight on).
+    pub radius: f64,
+    /// The change of direction, rad (0 to π).
+    pub turn: f64,
+    /// The speed through the arc, m/s: within [`CORNER_ACCEL`] sideways, the two legs' speeds,
+    /// and what the legs on either side let the vehicle reach or brake from.
+    pub speed: f64,
+}
+
+impl Corner {
+    /// The arc's length, m.
+    pub fn length(&self) -> f64 {
+        if self.turn == 0.0 {
+            0.0
+        } else {
+            self.radius * self.turn
+        }
+    }
+}
+
+/// How `plan` is flown at each waypoint: `None` where the vehicle stops (the first and the last,
+/// a waypoint with a hold, one where the path doubles back), and the [`Corner`] it turns on
+/// elsewhere. Only plans flown by an autopilot turn so (those with [`ClimbLimits`]); a plan traced
+/// through a flight stops nowhere but at its ends and holds, and turns on no arc (its leg speeds
+/// are the flight's own).
+///
+/// The speeds respect the along-track acceleration [`PLAN_ACCEL`](super::PLAN_ACCEL): a corner
+/// is flown no faster than the straight before it lets the vehicle reach, nor than the straight
+/// after it lets it brake from (one pass forward, one back, as a trajectory planner's).
+///
+/// [`ClimbLimits`]: crate::ClimbLimits
+pub fn corners(plan: &FlightPlan) -> Vec<Option<Corner>> {
+    let w = plan.waypoints();
+    let n = w.len();
+    let mut out: Vec<Option<Corner>> = (0..n).map(|k| turn_at(plan, k)).collect();
+    // The straight between two corners, m, and the speed cap at each corner after the passes.
+    let straight = |out: &[Option<Corner>], leg: usize| {
+        distance(&w[leg], &w[leg + 1])
+            - out[leg].map_or(0.0, |c| c.cut)
+            - out[leg + 1].map_or(0.0, |c| c.cut)
+    };
+    let reach = |from: f64, length: f64| (from * from + 2.0 * super::PLAN_ACCEL * length).sqrt();
+    for k in 1..n {
+        let before = out[k - 1].map_or(0.0, |c| c.speed);
+        let length = straight(&out, k - 1);
+        if let Some(c) = &mut out[k] {
+            c.speed = c.speed.min(reach(before, length));
+        }
+    }
+    for k in (0..n - 1).rev() {
+        let after = out[k + 1].map_or(0.0, |c| c.speed);
+        let length = straight(&out, k);
+        if let Some(c) = &mut out[k] {
+            c.speed = c.speed.min(reach(after, length));
+        }
+    }
+    out
+}
+
+/// The fastest a vehicle flying a plan may be anywhere along it, given how it passes each
+/// waypoint ([`corners`]): braking at [`PLAN_ACCEL`](super::PLAN_ACCEL) into each corner and each
+/// stop, and speeding up at it out of them. The mission station paces the drone within it.
+///
+/// ```
+/// use loratrack::{CornerSpeeds, FlightPlan};
+/// let plan = FlightPlan::new(vec![[0.0, 0.0, 10.0], [100.0, 0.0, 10.0], [100.0, 100.0, 10.0]], vec![Some(8.0), Some(8.0)]).unwrap();
+/// let caps = CornerSpeeds::of(&plan);
+/// // From rest at the start, 2 m/s² for 4 m: 4 m/s.
+/// assert!((caps.cap(4.0) - 4.0).abs() < 1e-9);
+/// // Far from every corner, nothing.
+/// assert!(caps.cap(50.0) > 8.0);
+/// // Entering the right angle's arc, 4.8 m before it, its speed through it (4.4 m/s).
+/// assert!((caps.cap(100.0 - 4.83) - 4.4).abs() < 0.01);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct CornerSpeeds {
+    at: Vec<Pass>,
+}
+
+/// How a waypoint is passed, along the plan's straight legs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Pass {
+    /// The waypoint's distance along the plan, m, and the corner's cut on either side of it.
+    along: f64,
+    cut: f64,
+    /// The speed through it, m/s: 0 at a stop, infinite where no limit applies.
+    speed: f64,
+    /// The legs' length within the cut over the arc's, so that the plan's straight legs are
+    /// covered within the cut in the time the arc takes.
+    stretch: f64,
+}
+
+impl CornerSpeeds {
+    /// The limits of `plan`: none for a plan traced through a flight (whose leg speeds are the
+    /// flight's own) and none at a waypoint with a hold (the mission station brakes into a hold
+    /// and leaves it by its own rules).
+    pub fn of(plan: &FlightPlan) -> Self {
+        let autopilot = plan.climbs().is_some();
+        let at = corners(plan)
+            .iter()
+            .enumerate()
+            .map(|(k, c)| {
+                let along = plan.along_at(k);
+                let free = Pass {
+                    along,
+                    cut: 0.0,
+                    speed: f64::INFINITY,
+                    stretch: 1.0,
+                };
+                match c {
+                    _ if !autopilot || plan.holds()[k] > 0.0 => free,
+                    Some(c) => Pass {
+                        cut: c.cut,
+                        speed: c.speed,
+                        stretch: if c.length() > 0.0 {
+                            2.0 * c.cut / c.length()
+                        } else {
+                            1.0
+                        },
+                        ..free
+                    },
+                    None => Pass { speed: 0.0, ..free },
+                }
+            })
+            .collect();
+        CornerSpeeds { at }
+    }
+
+    /// The fastest the vehicle may move along the plan's legs `along` m along it, m/s: within
+    /// reach of the corners and stops on either side, and within a corner's cut its speed
+    /// through the arc, scaled to the legs' longer way round.
+    pub fn cap(&self, along: f64) -> f64 {
+        let next = self.at.partition_point(|p| p.along < along);
+        let near = [next.checked_sub(1), Some(next)];
+        near.into_iter()
+            .flatten()
+            .filter_map(|k| self.at.get(k))
+            .map(|p| {
+                let gap = (along - p.along).abs() - p.cut;
+                if gap <= 0.0 {
+                    p.speed * p.stretch
+                } else {
+                    (p.speed * p.speed + 2.0 * super::PLAN_ACCEL * gap).sqrt()
+                }
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// The turn at waypoint `k` before the speed passes, or `None` where the vehicle stops there.
+fn turn_at(plan: &FlightPlan, k: usize) -> Option<Corner> {
+    let w = plan.waypoints();
+    if plan.climbs().is_none() || k == 0 || k + 1 >= w.len() || plan.holds()[k] > 0.0 {
+        return None;
+    }
+    let (len_in, len_out) = (distance(&w[k - 1], &w[k]), distance(&w[k], &w[k + 1]));
+    let cos_turn = (0..3)
+        .map(|i| (w[k][i] - w[k - 1][i]) * (w[k + 1][i] - w[k][i]))
+        .sum::<f64>()
+        / (len_in * len_out);
+    let turn = cos_turn.clamp(-1.0, 1.0).acos();
+    let legs = plan
+        .flown_speed(k - 1, super::PLAN_CRUISE)
+        .min(plan.flown_speed(k, super::PLAN_CRUISE));
+    if turn == 0.0 {
+        return Some(Corner {
+            cut: 0.0,
+            radius: f64::INFINITY,
+            turn,
+            speed: legs,
+        });
+    }
+    let half = turn / 2.0;
+    // The arc whose midpoint lies CORNER_RADIUS from the waypoint: r (1 / cos(θ/2) − 1) = R.
+    let by_radius = CORNER_RADIUS * half.cos() / (1.0 - half.cos());
+    // Each arc may take at most half of either leg, so that two corners never overlap.
+    let by_legs = 0.5 * len_in.min(len_out) / half.tan();
+    let radius = by_radius.min(by_legs);
+    if radius.is_nan() || radius < MIN_ARC {
+        return None;
+    }
+    Some(Corner {
+        cut: radius * half.tan(),
+        radius,
+        turn,
+        speed: legs.min((CORNER_ACCEL * radius).sqrt()),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ClimbLimits;
+
+    fn plan(points: Vec<[f64; 3]>, speed: f64) -> FlightPlan {
+        let legs = points.len() - 1;
+        FlightPlan::new(points, vec![Some(speed); legs]).unwrap()
+    }
+
+    #[test]
+    fn a_gentle_turn_keeps_the_legs_speed_and_a_sharp_one_slows() {
+        let gentle = plan(vec![[0.0; 3], [100.0, 0.0, 0.0], [200.0, 20.0, 0.0]], 8.0);
+        let c = corners(&gentle)[1].unwrap();
+        assert_eq!(c.speed, 8.0);
+        assert!(c.radius > 50.0, "{}", c.radius);
+        let sharp = plan(vec![[0.0; 3], [100.0, 0.0, 0.0], [0.0, 10.0, 0.0]], 8.0);
+        let c = corners(&sharp)[1].unwrap();
+        assert!(c.speed < 1.5, "{}", c.speed);
+        // The arc's midpoint lies the corner radius from the waypoint.
+        let mid = c.radius / (c.turn / 2.0).cos() - c.radius;
+        assert!((mid - CORNER_RADIUS).abs() < 1e-9, "{mid}");
+    }
+
+    #[test]
+    fn the_vehicle_stops_at_ends_holds_reversals_and_on_traced_plans() {
+        let points = vec![
+            [0.0; 3],
+            [100.0, 0.0, 0.0],
+            [100.0, 50.0, 0.0],
+            [0.0, 50.0, 0.0],
+        ];
+        let held = FlightPlan::with_holds(
+            points.clone(),
+            vec![Some(5.0); 3],
+            vec![0.0, 0.0, 10.0, 0.0],
+        )
+        .unwrap();
+        let c = corners(&held);
+        assert!(c[0].is_none() && c[1].is_some() && c[2].is_none() && c[3].is_none());
+        let back = plan(vec![[0.0; 3], [100.0, 0.0, 0.0], [0.0, 0.0, 0.0]], 5.0);
+        assert!(corners(&back)[1].is_none());
+        let traced = plan(points, 5.0).with_climb(None);
+        assert!(corners(&traced).iter().all(Option::is_none));
+    }
+
+    #[test]
+    fn corner_speeds_are_within_reach_of_the_straights_beside_them() {
+        // Short legs between right angles: each corner is within what 2 m/s² reaches from rest.
+        let zigzag = plan(
+            vec![
+                [0.0; 3],
+                [3.0, 0.0, 0.0],
+                [3.0, 30.0, 0.0],
+                [60.0, 30.0, 0.0],
+            ],
+            10.0,
+        );
+        let c = corners(&zigzag);
+        let first = c[1].unwrap();
+        let straight = 3.0 - first.cut;
+        assert!(first.speed <= (2.0 * super::super::PLAN_ACCEL * straight).sqrt() + 1e-9);
+        // Within half of the 3 m leg.
+        assert!(first.cut <= 1.5 + 1e-9, "{}", first.cut);
+        assert!(c[2].unwrap().speed > 0.0);
+    }
+
+    #[test]
+    fn a_climb_limited_leg_caps_the_corner() {
+        let climb = plan(
+            vec![[0.0, 0.0, 10.0], [50.0, 0.0, 10.0], [60.0, 0.0, 40.0]],
+            8.0,
+        );
+        let up = climb.flown_speed(1, 8.0);
+        assert!(up < 8.0);
+        assert!(corners(&climb)[1].unwrap().speed <= up);
+        assert_eq!(
+            ClimbLimits::MULTICOPTER.speed_along(30.0 / climb_leg(), 8.0),
+            up
+        );
+    }
+
+    fn climb_leg() -> f64 {
+        (10.0f64 * 10.0 + 30.0 * 30.0).sqrt()
+    }
+}
