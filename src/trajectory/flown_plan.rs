@@ -1,6 +1,6 @@
 //! A flight made from a plan: a multicopter flying it as its autopilot does, through the
-//! waypoints it need not stop at (reference §16), and inspection missions that hover at their points, for the mission station's
-//! holds (`sweep --mission`, docs/mission.md).
+//! waypoints it need not stop at (reference §16), and inspection missions that hover at their
+//! points, for the mission station's holds (`sweep --mission`, docs/mission.md).
 
 use super::cornering::{corners, Corner};
 use super::plan::FlightPlan;
@@ -327,7 +327,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_flight_stops_at_every_waypoint_and_hovers_for_its_hold() {
+    fn the_flight_stops_where_it_holds_and_hovers_for_the_hold() {
         let plan = FlightPlan::with_holds(
             vec![[0.0; 3], [100.0, 0.0, 0.0], [100.0, 2.0, 0.0]],
             vec![Some(10.0), Some(10.0)],
@@ -348,6 +348,47 @@ mod tests {
         assert!(distance(&at(f.duration()), &[100.0, 2.0, 0.0]) < 1e-6);
         let top = f.vel.iter().map(|v| v[0].hypot(v[1])).fold(0.0, f64::max);
         assert!((top - 10.0).abs() < 1e-9, "{top}");
+    }
+
+    #[test]
+    fn a_corner_is_flown_through_on_an_arc_near_the_waypoint_within_the_sideways_limit() {
+        // East 100 m, then a right angle north, at 8 m/s; no hold.
+        let plan = FlightPlan::new(
+            vec![[0.0, 0.0, 10.0], [100.0, 0.0, 10.0], [100.0, 100.0, 10.0]],
+            vec![Some(8.0), Some(8.0)],
+        )
+        .unwrap();
+        let f = fly_plan(&plan, "corner").unwrap();
+        let turn = crate::trajectory::corners(&plan)[1].unwrap();
+        // Within 20 m of the waypoint it never stops: its slowest is the arc's speed.
+        let slowest = (0..f.len())
+            .filter(|&i| distance(&f.pos[i], &[100.0, 0.0, 10.0]) < 20.0)
+            .map(|i| f.vel[i][0].hypot(f.vel[i][1]))
+            .fold(f64::INFINITY, f64::min);
+        assert!((slowest - turn.speed).abs() < 1e-9, "{slowest}");
+        // It passes the corner radius from the waypoint, no closer.
+        let nearest = f
+            .pos
+            .iter()
+            .map(|p| distance(p, &[100.0, 0.0, 10.0]))
+            .fold(f64::INFINITY, f64::min);
+        let radius = crate::trajectory::CORNER_RADIUS;
+        assert!(
+            nearest > radius - 0.05 && nearest < radius + 0.05,
+            "{nearest}"
+        );
+        // Sideways, never more than the cornering limit; along the legs, never more than 2 m/s².
+        let most = f.acc.iter().map(|a| a[0].hypot(a[1])).fold(0.0, f64::max);
+        assert!(most <= crate::trajectory::CORNER_ACCEL + 1e-9, "{most}");
+        // Faster than stopping there: braking to rest and speeding up again cost seconds.
+        let stopped = FlightPlan::with_holds(
+            plan.waypoints().to_vec(),
+            vec![Some(8.0); 2],
+            vec![0.0, 1e-9, 0.0],
+        )
+        .unwrap();
+        let lost = flown_duration(&stopped) - f.duration();
+        assert!(lost > 2.0, "{lost}");
     }
 
     #[test]
