@@ -63,8 +63,8 @@ pub use station::{
     new_tracker, split_stations, station_work, track_station, Bounds, Calibration, HeadingNoise,
     HedgeChoice, Imm, ManoeuvreEvidence, MissionPlan, MissionStation, PlanPace, Prediction,
     Scoring, StationModel, StationPredictor, StationSetup, StationTrack, Tracker, Upcoming,
-    CALIBRATION_GAIN, HOLD_BRAKE, HOLD_RADIUS, HOLD_SPEED, MANOEUVRE_SPREAD, OFFSET_TIME,
-    PACE_SIGMA, PACE_TIME,
+    CALIBRATION_GAIN, HOLD_RADIUS, HOLD_SPEED, MANOEUVRE_SPREAD, OFFSET_TIME, PACE_SIGMA,
+    PACE_TIME,
 };
 pub use streams::DroneStreams;
 pub use swarm::{

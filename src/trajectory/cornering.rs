@@ -54,9 +54,10 @@ impl Corner {
 
 /// How `plan` is flown at each waypoint: `None` where the vehicle stops (the first and the last,
 /// a waypoint with a hold, one where the path doubles back), and the [`Corner`] it turns on
-/// elsewhere. Only plans flown by an autopilot turn so (those with [`ClimbLimits`]); a plan traced
-/// through a flight stops nowhere but at its ends and holds, and turns on no arc (its leg speeds
-/// are the flight's own).
+/// elsewhere. Only a plan for an autopilot (one with [`ClimbLimits`]) has corners: a plan traced
+/// through a flight has none, its leg speeds being the flight's own, so [`crate::fly_plan`] flies
+/// it from rest to rest on every leg and [`CornerSpeeds`] leaves the mission station's pace on it
+/// unlimited.
 ///
 /// The speeds respect the along-track acceleration [`PLAN_ACCEL`](super::PLAN_ACCEL): a corner
 /// is flown no faster than the straight before it lets the vehicle reach, nor than the straight
@@ -67,7 +68,7 @@ pub fn corners(plan: &FlightPlan) -> Vec<Option<Corner>> {
     let w = plan.waypoints();
     let n = w.len();
     let mut out: Vec<Option<Corner>> = (0..n).map(|k| turn_at(plan, k)).collect();
-    // The straight between two corners, m, and the speed cap at each corner after the passes.
+    // The straight of a leg between the corners at its ends, m.
     let straight = |out: &[Option<Corner>], leg: usize| {
         distance(&w[leg], &w[leg + 1])
             - out[leg].map_or(0.0, |c| c.cut)

@@ -3,7 +3,7 @@
 use crate::doc_cells::{link_args, link_words, pooled_seeds};
 use loratrack::api::{HoldRun, MissionRun, MissionSweepReport, INSPECTION_SEED, MISSION_MODELS};
 use loratrack::{
-    flown_duration, inspection_plan, ClimbLimits, ModelResult, Scenario, CORNER_RADIUS, HOLD_BRAKE,
+    flown_duration, inspection_plan, ClimbLimits, ModelResult, Scenario, CORNER_RADIUS,
     HOLD_RADIUS, HOLD_SPEED, INSPECTION_HOLDS, INSPECTION_POINTS, OFFSET_TIME, PACE_SIGMA,
     PACE_TIME, PLAN_ACCEL, TRACE_TOLERANCE,
 };
@@ -174,7 +174,7 @@ fn holds_section(r: &MissionSweepReport) -> String {
          {PLAN_ACCEL} m/s², turns through the points it does not hold at on an arc within {CORNER_RADIUS} m of \
          them, climbs at most {} m/s and descends at most {} m/s (a multicopter \
          autopilot's limits) and hovers for each hold, {minutes:.0} min, 1 km, {}. `holding`: the \
-         mission station with the plan, holds and all (it brakes into a hold's waypoint at {HOLD_BRAKE} m/s², waits \
+         mission station with the plan, holds and all (it brakes into a hold's waypoint at {PLAN_ACCEL} m/s², as the drone does, waits \
          there, and a packet under {HOLD_SPEED} m/s within {HOLD_RADIUS} m of one places the drone there); `flying on`: the same station given the plan \
          without its holds, which flies on while the drone hovers.\n\n",
         holds.join(", "),

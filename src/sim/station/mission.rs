@@ -64,10 +64,6 @@ pub const HOLD_SPEED: f64 = 1.0;
 /// m: see [`HOLD_SPEED`]; a hovering drone's filtered position stays within a few metres of the
 /// waypoint.
 pub const HOLD_RADIUS: f64 = 5.0;
-/// The deceleration with which the station brakes into a waypoint it will hold at, m/s²: a drone
-/// that is to hover there has to stop there (ArduPilot's default waypoint acceleration,
-/// `WPNAV_ACCEL`, 2.5 m/s²).
-pub const HOLD_BRAKE: f64 = 2.5;
 
 /// Where along the plan the station believes the drone is, from the newest packet on the plan.
 #[derive(Clone, Copy, Debug)]
@@ -271,14 +267,15 @@ impl Tracker for MissionStation {
             }
             let dt = self.step.min(t - f.t);
             let v = Self::pace(plan, corners, f, dt);
-            // Where a hold is ahead and the pace would overshoot it at `HOLD_BRAKE`, the station
+            // Where a hold is ahead and the pace would overshoot it at `PLAN_ACCEL` (a drone that
+            // is to hover there has to stop there, braking as the flown plan brakes), the station
             // brakes: exactly, at constant deceleration, to a stop at the hold's waypoint.
             let braking = f.next_hold.and_then(|(_, at)| {
-                let brake = (2.0 * HOLD_BRAKE * (at - f.along).max(0.0)).sqrt();
+                let brake = (2.0 * PLAN_ACCEL * (at - f.along).max(0.0)).sqrt();
                 (brake <= v).then_some(brake)
             });
             let (advance, to_stop) = match braking {
-                Some(b) => (b * dt - HOLD_BRAKE * dt * dt / 2.0, b / HOLD_BRAKE),
+                Some(b) => (b * dt - PLAN_ACCEL * dt * dt / 2.0, b / PLAN_ACCEL),
                 None => (v * dt, f64::INFINITY),
             };
             let along = (f.along + advance).min(plan.length());
@@ -448,16 +445,18 @@ mod tests {
     fn a_hold_stops_the_station_at_its_waypoint_then_it_speeds_up_from_rest() {
         let mut st = MissionStation::new(Some(corner_with_a_hold()), setup());
         st.reset(&packet(50.0, 0.0, 10.0), 0.0);
-        // 30 m at 10 m/s, then 20 m braking at 2.5 m/s² to the corner: there after 7 s, held
-        // until 17 s.
-        st.predict_to(6.0);
-        let braking = 100.0 - HOLD_BRAKE / 2.0;
+        // At 10 m/s until the braking at PLAN_ACCEL (2 m/s²: 25 m, 5 s) stops it at the corner,
+        // 7.5 s in; held there for 10 s.
+        let (brake_time, brake_distance) = (10.0 / PLAN_ACCEL, 50.0 / PLAN_ACCEL);
+        let arrival = (50.0 - brake_distance) / 10.0 + brake_time;
+        st.predict_to(arrival - 1.0);
+        let braking = 100.0 - PLAN_ACCEL / 2.0;
         assert!(
             (st.position()[0] - braking).abs() < 0.3,
             "{:?}",
             st.position()
         );
-        for t in [7.2, 12.0, 16.9] {
+        for t in [arrival + 0.2, arrival + 5.0, arrival + 9.9] {
             st.predict_to(t);
             assert!(
                 (st.position()[0] - 100.0).abs() < 1e-9,
@@ -468,7 +467,7 @@ mod tests {
         }
         // Then from rest toward the leg's 5 m/s: 5 (τ − 2 (1 − e^(−τ/2))) north after τ s, τ
         // about 4 s.
-        st.predict_to(21.0);
+        st.predict_to(arrival + 14.0);
         let north = |tau: f64| 5.0 * (tau - PACE_TIME * (1.0 - exp(-tau / PACE_TIME)));
         let y = st.position()[1];
         assert!(

@@ -34,8 +34,8 @@ pub use heading_noise::{
 pub use imm::{Imm, ImmMember, IMM_STAY};
 pub use manoeuvre_evidence::{ManoeuvreEvidence, MANOEUVRE_SPREAD};
 pub use mission::{
-    MissionPlan, MissionStation, PlanPace, HOLD_BRAKE, HOLD_RADIUS, HOLD_SPEED, OFFSET_TIME,
-    PACE_SIGMA, PACE_TIME,
+    MissionPlan, MissionStation, PlanPace, HOLD_RADIUS, HOLD_SPEED, OFFSET_TIME, PACE_SIGMA,
+    PACE_TIME,
 };
 pub use prediction::{Bounded, Bounds, Prediction};
 pub use predictor::{StationPredictor, StationSetup};
