@@ -65,9 +65,15 @@ impl Corner {
 ///
 /// [`ClimbLimits`]: crate::ClimbLimits
 pub fn corners(plan: &FlightPlan) -> Vec<Option<Corner>> {
+    passed(plan, super::PLAN_CRUISE)
+}
+
+/// [`corners`], each corner's speed held within its legs' flown speeds, `unplanned` m/s on a leg
+/// the plan gives none (within the climb limits all the same).
+fn passed(plan: &FlightPlan, unplanned: f64) -> Vec<Option<Corner>> {
     let w = plan.waypoints();
     let n = w.len();
-    let mut out: Vec<Option<Corner>> = (0..n).map(|k| turn_at(plan, k)).collect();
+    let mut out: Vec<Option<Corner>> = (0..n).map(|k| turn_at(plan, k, unplanned)).collect();
     // The straight of a leg between the corners at its ends, m.
     let straight = |out: &[Option<Corner>], leg: usize| {
         distance(&w[leg], &w[leg + 1])
@@ -131,7 +137,9 @@ impl CornerSpeeds {
     /// and leaves it by its own rules).
     pub fn of(plan: &FlightPlan) -> Self {
         let autopilot = plan.climbs().is_some();
-        let at = corners(plan)
+        // A leg without a planned speed (every leg with `--plan-pace packet`) sets no limit: the
+        // station follows the packet's speed there, which need not be the flown plan's cruise.
+        let at = passed(plan, f64::INFINITY)
             .iter()
             .enumerate()
             .map(|(k, c)| {
@@ -183,7 +191,7 @@ impl CornerSpeeds {
 }
 
 /// The turn at waypoint `k` before the speed passes, or `None` where the vehicle stops there.
-fn turn_at(plan: &FlightPlan, k: usize) -> Option<Corner> {
+fn turn_at(plan: &FlightPlan, k: usize, unplanned: f64) -> Option<Corner> {
     let w = plan.waypoints();
     if plan.climbs().is_none() || k == 0 || k + 1 >= w.len() || plan.holds()[k] > 0.0 {
         return None;
@@ -195,8 +203,8 @@ fn turn_at(plan: &FlightPlan, k: usize) -> Option<Corner> {
         / (len_in * len_out);
     let turn = cos_turn.clamp(-1.0, 1.0).acos();
     let legs = plan
-        .flown_speed(k - 1, super::PLAN_CRUISE)
-        .min(plan.flown_speed(k, super::PLAN_CRUISE));
+        .flown_speed(k - 1, unplanned)
+        .min(plan.flown_speed(k, unplanned));
     if turn == 0.0 {
         return Some(Corner {
             cut: 0.0,
@@ -287,6 +295,18 @@ mod tests {
         // Within half of the 3 m leg.
         assert!(first.cut <= 1.5 + 1e-9, "{}", first.cut);
         assert!(c[2].unwrap().speed > 0.0);
+    }
+
+    #[test]
+    fn on_legs_without_speeds_the_paces_limits_come_from_the_turn_alone() {
+        // A 30° turn on legs without speeds: flown at the cruise speed, but a drone flying them
+        // faster (the packet's pace) need not slow there.
+        let points = vec![[0.0; 3], [200.0, 0.0, 0.0], [373.2, 100.0, 0.0]];
+        let plan = FlightPlan::new(points, vec![None, None]).unwrap();
+        assert_eq!(corners(&plan)[1].unwrap().speed, super::super::PLAN_CRUISE);
+        let turn = (CORNER_ACCEL * corners(&plan)[1].unwrap().radius).sqrt();
+        assert!(turn > 10.0, "{turn}");
+        assert!(CornerSpeeds::of(&plan).cap(200.0) >= turn);
     }
 
     #[test]
