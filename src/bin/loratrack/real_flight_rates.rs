@@ -66,11 +66,7 @@ pub fn runs(sim: &mut Simulator, seed: u64, model: &ModelChoice) -> Result<Vec<R
                 dr_equal.push(None);
                 continue;
             }
-            let mut q = p.clone();
-            q.station.model = ModelChoice::one(ModelKind::Dr);
-            q.radio.overhead = p.radio.overhead + m.payload_bytes - ModelKind::Dr.payload_bytes();
-            let at_length = api::simulate(sim, &q)?.results;
-            dr_equal.push(at_length.into_iter().next());
+            dr_equal.push(dr_at_length_of(sim, &p, m)?);
         }
         out.push(RateRun {
             sf,
@@ -80,6 +76,20 @@ pub fn runs(sim: &mut Simulator, seed: u64, model: &ModelChoice) -> Result<Vec<R
         });
     }
     Ok(out)
+}
+
+/// DR on the settings `p`, sending frames as long as those of `m` (a result of `p`'s): its
+/// overhead raised by the payloads' difference, so that it sends at the same moments and the
+/// correlated shadowing takes the same packets from both; on `sim`.
+pub fn dr_at_length_of(
+    sim: &mut Simulator,
+    p: &Scenario,
+    m: &ModelResult,
+) -> Result<Option<ModelResult>, ApiError> {
+    let mut q = p.clone();
+    q.station.model = ModelChoice::one(ModelKind::Dr);
+    q.radio.overhead = p.radio.overhead + m.payload_bytes - ModelKind::Dr.payload_bytes();
+    Ok(api::simulate(sim, &q)?.results.into_iter().next())
 }
 
 /// The section: per rate, each station's p95 (m), its ratio to DR's and to DR's at its frame

@@ -7,7 +7,7 @@
 use crate::doc_cells::worst_p95_over_dr;
 use crate::real_flight_rates::{RateRun, RATE_DISTANCE, RATE_SEEDS};
 use loratrack::api::{self, ApiError};
-use loratrack::{canberra_flight, ModelChoice, ModelKind, ModelResult, Scenario, Simulator};
+use loratrack::{canberra_flight, ModelChoice, ModelResult, Scenario, Simulator};
 use std::sync::Arc;
 
 /// The rates and gateway distances (SF, bandwidth kHz, m) of the section: the page's default,
@@ -164,11 +164,8 @@ fn at_equal_length(
     if ratio.is_nan() || ratio <= P95_AIM {
         return Ok(None);
     }
-    let mut q = p.clone();
-    q.station.model = ModelChoice::one(ModelKind::Dr);
-    q.radio.overhead = p.radio.overhead + m.payload_bytes - ModelKind::Dr.payload_bytes();
-    let dr = api::simulate(sim, &q)?.results;
-    Ok(dr.first().map(|d| m.error3d.p95 / d.error3d.p95))
+    let dr = crate::real_flight_rates::dr_at_length_of(sim, p, m)?;
+    Ok(dr.map(|d| m.error3d.p95 / d.error3d.p95))
 }
 
 /// The flight as flown and each variant, bounded stations of `model`, [`RATE_SEEDS`] seeds from
