@@ -380,23 +380,40 @@ impl FlightPlan {
 
     /// The point of the plan nearest to `p` among those between `from` and `to` m along it.
     pub fn nearest(&self, p: &[f64; 3], from: f64, to: f64) -> OnPlan {
+        // Every window holds at least the leg it starts on, so the fallback is never taken.
+        self.nearest_on(p, from, to, |_| true)
+            .unwrap_or_else(|| OnPlan {
+                along: from,
+                off: distance(p, &self.point_at(from)),
+            })
+    }
+
+    /// [`Self::nearest`] among the legs whose unit direction `keep` accepts (none if it accepts
+    /// none in the window): e.g. only the legs flown the way a packet's velocity points, so that
+    /// a plan that doubles back along itself is followed on the right pass.
+    pub fn nearest_on(
+        &self,
+        p: &[f64; 3],
+        from: f64,
+        to: f64,
+        keep: impl Fn(&[f64; 3]) -> bool,
+    ) -> Option<OnPlan> {
         let (from, to) = (from.max(0.0), to.min(self.length()));
-        let mut best = OnPlan {
-            along: from,
-            off: distance(p, &self.point_at(from)),
-        };
-        let first = self.leg(from);
-        for i in first..self.points.len() - 1 {
+        let mut best: Option<OnPlan> = None;
+        for i in self.leg(from)..self.points.len() - 1 {
             if self.along[i] > to {
                 break;
             }
             let (a, b) = (self.points[i], self.points[i + 1]);
             let len = self.along[i + 1] - self.along[i];
+            if !keep(&core::array::from_fn(|k| (b[k] - a[k]) / len)) {
+                continue;
+            }
             let w: f64 = (0..3).map(|k| (p[k] - a[k]) * (b[k] - a[k])).sum::<f64>() / (len * len);
             let along = (self.along[i] + w.clamp(0.0, 1.0) * len).clamp(from, to);
             let off = distance(p, &self.point_at(along));
-            if off < best.off {
-                best = OnPlan { along, off };
+            if best.is_none_or(|b| off < b.off) {
+                best = Some(OnPlan { along, off });
             }
         }
         best
@@ -574,6 +591,21 @@ mod tests {
         };
         assert!(why.contains("waypoints: 1, leg speeds: 1"), "{why}");
         assert!(!why.contains("1 waypoints"), "{why}");
+    }
+
+    #[test]
+    fn the_nearest_point_on_the_legs_kept() {
+        // Out along x and back: every point of the line is on both legs.
+        let p = FlightPlan::new(
+            vec![[0.0; 3], [100.0, 0.0, 0.0], [0.0; 3]],
+            vec![None, None],
+        )
+        .unwrap();
+        let q = [30.0, 2.0, 0.0];
+        assert_eq!(p.nearest(&q, 0.0, 200.0).along, 30.0);
+        let back = p.nearest_on(&q, 0.0, 200.0, |d| d[0] < 0.0).unwrap();
+        assert_eq!((back.along, back.off), (170.0, 2.0));
+        assert_eq!(p.nearest_on(&q, 0.0, 90.0, |d| d[0] < 0.0), None);
     }
 
     #[test]

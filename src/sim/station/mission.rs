@@ -5,7 +5,7 @@
 use super::{Prediction, StationPredictor, StationSetup, Tracker};
 use crate::math::{distance, exp};
 use crate::models::Ctra3d;
-use crate::trajectory::{CornerSpeeds, FlightPlan, PLAN_ACCEL, PLAN_CRUISE};
+use crate::trajectory::{CornerSpeeds, FlightPlan, OnPlan, PLAN_ACCEL, PLAN_CRUISE};
 use nalgebra::Matrix3;
 use serde::{Deserialize, Serialize};
 
@@ -171,6 +171,45 @@ impl MissionStation {
         }
     }
 
+    /// Where on the plan a packet at `p` (m) places the drone, if within the tolerance: near
+    /// where the station expected the drone, so that a path that crosses itself is followed on
+    /// the right pass, else anywhere; and on a leg flown the way the packet's `heading` (a unit
+    /// vector; none for a drone too slow to show one) points, where one is near enough, so that
+    /// a path that doubles back along itself is too (an out-and-back inspection, a survey's
+    /// return pass).
+    fn place(
+        &self,
+        mp: &MissionPlan,
+        p: &[f64; 3],
+        heading: Option<[f64; 3]>,
+        sent: f64,
+    ) -> Option<OnPlan> {
+        let plan = &mp.plan;
+        let window = self.following.map(|f| {
+            let margin = SEARCH_MARGIN + SEARCH_SPEED * (sent - f.sent).max(0.0);
+            (f.along - margin, f.along + margin)
+        });
+        let ahead =
+            |d: &[f64; 3]| heading.is_none_or(|h| (0..3).map(|k| h[k] * d[k]).sum::<f64>() > 0.0);
+        let anywhere = (0.0, plan.length());
+        let within = |n: &OnPlan| n.off <= mp.tolerance;
+        let searches = [
+            (window, true),
+            (Some(anywhere), true),
+            (window, false),
+            (Some(anywhere), false),
+        ];
+        searches.into_iter().find_map(|(w, heeded)| {
+            let (from, to) = w?;
+            let found = if heeded {
+                plan.nearest_on(p, from, to, ahead)
+            } else {
+                Some(plan.nearest(p, from, to))
+            };
+            found.filter(within)
+        })
+    }
+
     /// The hold a packet at `p` (m; `along` m along the plan), moving at `speed` (m/s), shows
     /// the drone in: the waypoint, its distance along the plan (m), and when the drone got there
     /// (s).
@@ -211,21 +250,11 @@ impl Tracker for MissionStation {
         };
         let p = [state[0], state[1], state[2]];
         let plan = &mp.plan;
-        // Near where the station expected the drone, so that a path that crosses itself is
-        // followed on the right pass; anywhere on the plan otherwise.
-        let near = self.following.map(|f| {
-            let margin = SEARCH_MARGIN + SEARCH_SPEED * (sent - f.sent).max(0.0);
-            plan.nearest(&p, f.along - margin, f.along + margin)
-        });
-        let found = match near {
-            Some(n) if n.off <= mp.tolerance => n,
-            _ => plan.nearest(&p, 0.0, plan.length()),
-        };
-        if found.off > mp.tolerance {
+        let speed = state[5].clamp(0.0, self.speed_limit);
+        let Some(found) = self.place(mp, &p, heading(state, speed), sent) else {
             self.following = None;
             return;
-        }
-        let speed = state[5].clamp(0.0, self.speed_limit);
+        };
         let holding = self.hold_shown(plan, (&p, found.along), speed, sent);
         let along = holding.map_or(found.along, |(_, at, _)| at);
         let on = plan.point_at(along);
@@ -334,6 +363,13 @@ impl Tracker for MissionStation {
     fn ignore_uncertainty(&mut self) {
         self.fallback.ignore_uncertainty();
     }
+}
+
+/// The unit direction a 3D-CTRA `state` (`[x, y, z, θ, φ, v, …]`) moves in at `speed` m/s; none
+/// below [`HOLD_SPEED`], where a hovering drone's estimated heading is noise.
+fn heading(state: &[f64; 9], speed: f64) -> Option<[f64; 3]> {
+    let (theta, phi) = (state[3], state[4]);
+    (speed >= HOLD_SPEED).then(|| [theta.cos() * phi.cos(), theta.sin() * phi.cos(), phi.sin()])
 }
 
 #[cfg(test)]
@@ -507,9 +543,11 @@ mod tests {
         assert_eq!(first.position(), [100.0, 0.0, 20.0]);
         first.predict_to(26.0);
         assert!(first.position()[1] > 0.5, "{:?}", first.position());
-        // A packet passing the corner at speed is not holding.
+        // A packet passing the corner at speed, north, is not holding.
         let mut passing = MissionStation::new(Some(corner_with_a_hold()), setup());
-        passing.reset(&packet(100.0, 2.0, 5.0), 0.0);
+        let mut north = packet(100.0, 2.0, 5.0);
+        north[3] = core::f64::consts::FRAC_PI_2;
+        passing.reset(&north, 0.0);
         passing.predict_to(2.0);
         assert!(passing.position()[1] > 8.0, "{:?}", passing.position());
     }
@@ -581,6 +619,35 @@ mod tests {
         // Back on the plan with the next packet.
         st.reset(&packet(100.0, 5.0, 5.0), 3.0);
         assert!(st.on_plan());
+    }
+
+    #[test]
+    fn a_plan_flown_out_and_back_is_followed_the_way_the_packet_moves() {
+        // 200 m east and back along the same line at 10 m/s.
+        let there_and_back = MissionPlan {
+            plan: FlightPlan::new(
+                vec![[0.0, 0.0, 20.0], [200.0, 0.0, 20.0], [0.0, 0.0, 20.0]],
+                vec![Some(10.0), Some(10.0)],
+            )
+            .unwrap(),
+            tolerance: 10.0,
+        };
+        let mut st = MissionStation::new(Some(there_and_back.clone()), setup());
+        st.reset(&packet(50.0, 0.0, 10.0), 0.0);
+        // The next packet, 20 s on, finds the drone at 150 m heading west: on the way back,
+        // though the station expected it at 250 m along, and the way out passes 150 m too.
+        let mut west = packet(150.0, 0.0, 10.0);
+        west[3] = core::f64::consts::PI;
+        st.reset(&west, 20.0);
+        st.predict_to(25.0);
+        let p = st.position();
+        assert!((p[0] - 100.0).abs() < 1e-6, "{p:?}");
+        // Read by position alone, the packet is on the way out, and the station flies east.
+        let mut blind = MissionStation::new(Some(there_and_back), setup());
+        blind.reset(&packet(50.0, 0.0, 10.0), 0.0);
+        blind.reset(&packet(150.0, 0.0, 0.5), 20.0);
+        blind.predict_to(25.0);
+        assert!(blind.position()[0] > 150.0, "{:?}", blind.position());
     }
 
     #[test]
