@@ -398,25 +398,71 @@ impl FlightPlan {
         to: f64,
         keep: impl Fn(&[f64; 3]) -> bool,
     ) -> Option<OnPlan> {
+        self.projections(p, from, to)
+            .filter(|(direction, _)| keep(direction))
+            .map(|(_, on)| on)
+            .min_by(|a, b| a.off.total_cmp(&b.off))
+    }
+
+    /// The point of each leg between `from` and `to` m along the plan nearest to `p`, with the
+    /// leg's unit direction: a position near a path that passes it more than once has one
+    /// near point on each pass.
+    pub fn projections(
+        &self,
+        p: &[f64; 3],
+        from: f64,
+        to: f64,
+    ) -> impl Iterator<Item = ([f64; 3], OnPlan)> + '_ {
         let (from, to) = (from.max(0.0), to.min(self.length()));
-        let mut best: Option<OnPlan> = None;
-        for i in self.leg(from)..self.points.len() - 1 {
-            if self.along[i] > to {
-                break;
-            }
-            let (a, b) = (self.points[i], self.points[i + 1]);
-            let len = self.along[i + 1] - self.along[i];
-            if !keep(&core::array::from_fn(|k| (b[k] - a[k]) / len)) {
-                continue;
-            }
-            let w: f64 = (0..3).map(|k| (p[k] - a[k]) * (b[k] - a[k])).sum::<f64>() / (len * len);
-            let along = (self.along[i] + w.clamp(0.0, 1.0) * len).clamp(from, to);
-            let off = distance(p, &self.point_at(along));
-            if best.is_none_or(|b| off < b.off) {
-                best = Some(OnPlan { along, off });
-            }
+        let p = *p;
+        (self.leg(from)..self.points.len() - 1)
+            .take_while(move |&i| self.along[i] <= to)
+            .map(move |i| {
+                let (a, b) = (self.points[i], self.points[i + 1]);
+                let len = self.along[i + 1] - self.along[i];
+                let w: f64 =
+                    (0..3).map(|k| (p[k] - a[k]) * (b[k] - a[k])).sum::<f64>() / (len * len);
+                let along = (self.along[i] + w.clamp(0.0, 1.0) * len).clamp(from, to);
+                let direction = core::array::from_fn(|k| (b[k] - a[k]) / len);
+                let off = distance(&p, &self.point_at(along));
+                (direction, OnPlan { along, off })
+            })
+    }
+
+    /// How far along the plan, m, a vehicle is `t` s after it set out on it by the plan's
+    /// timetable: each hold as planned and each leg at the speed it is flown at (`cruise` m/s,
+    /// positive, where the plan gives none), without the time that speeding up, braking and
+    /// turning take; clamped to the plan's ends. None for a plan without any speed, which has no
+    /// timetable.
+    ///
+    /// ```
+    /// use loratrack::FlightPlan;
+    /// // 100 m east at 10 m/s, a 20 s hold, 100 m north at 5 m/s.
+    /// let plan = FlightPlan::with_holds(vec![[0.0; 3], [100.0, 0.0, 0.0], [100.0, 100.0, 0.0]], vec![Some(10.0), Some(5.0)], vec![0.0, 20.0, 0.0]).unwrap();
+    /// assert_eq!(plan.scheduled_along(5.0, 8.0), Some(50.0));
+    /// assert_eq!(plan.scheduled_along(25.0, 8.0), Some(100.0));
+    /// assert_eq!(plan.scheduled_along(40.0, 8.0), Some(150.0));
+    /// assert_eq!(plan.scheduled_along(1e4, 8.0), Some(200.0));
+    /// assert_eq!(plan.without_speeds().scheduled_along(5.0, 8.0), None);
+    /// ```
+    pub fn scheduled_along(&self, t: f64, cruise: f64) -> Option<f64> {
+        if self.speeds.iter().all(Option::is_none) {
+            return None;
         }
-        best
+        let mut clock = 0.0;
+        for leg in 0..self.points.len() - 1 {
+            clock += self.holds[leg];
+            if t <= clock {
+                return Some(self.along[leg]);
+            }
+            let v = self.flown_speed(leg, cruise);
+            let takes = (self.along[leg + 1] - self.along[leg]) / v;
+            if t <= clock + takes {
+                return Some(self.along[leg] + (t - clock) * v);
+            }
+            clock += takes;
+        }
+        Some(self.length())
     }
 }
 

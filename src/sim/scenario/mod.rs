@@ -875,6 +875,7 @@ impl Validated {
         Some(MissionPlan {
             plan,
             tolerance: self.settings.station.plan_tolerance,
+            start: flight.t.first().copied().unwrap_or(0.0),
         })
     }
 

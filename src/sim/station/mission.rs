@@ -33,6 +33,9 @@ pub struct MissionPlan {
     /// The largest distance from the plan, m, at which a packet still counts as on the plan
     /// (`--plan-tolerance`).
     pub tolerance: f64,
+    /// When the drone set out on the plan, s (the flight's first time): the station reads a first
+    /// packet on a path flown more than once by the plan's timetable from then.
+    pub start: f64,
 }
 
 /// Seconds over which the speed the packet reported gives way to the leg's planned speed: the
@@ -171,42 +174,58 @@ impl MissionStation {
         }
     }
 
-    /// Where on the plan a packet at `p` (m) places the drone, if within the tolerance: near
-    /// where the station expected the drone, so that a path that crosses itself is followed on
-    /// the right pass, else anywhere; and on a leg flown the way the packet's `heading` (a unit
-    /// vector; none for a drone too slow to show one) points, where one is near enough, so that
-    /// a path that doubles back along itself is too (an out-and-back inspection, a survey's
-    /// return pass).
+    /// Where on the plan a packet at `p` (m), sent at `sent` s, places the drone, if within the
+    /// tolerance: near where the station expected the drone, so that a path that crosses itself
+    /// is followed on the right pass; else, on the pass of the plan nearest to where its
+    /// timetable puts the drone (at the packet's `speed` on legs without a planned speed), so
+    /// that a first packet on a plan flown in laps is placed on the right lap (on a plan without
+    /// speeds, or paced by the packet, the nearest pass). In each, first onto a leg
+    /// flown the way the packet's `heading` (a unit vector; none for a drone too slow to show
+    /// one) points, where one is near enough, so that a path that doubles back along itself is
+    /// followed the right way (an out-and-back inspection, a survey's return pass).
     fn place(
         &self,
         mp: &MissionPlan,
         p: &[f64; 3],
-        heading: Option<[f64; 3]>,
+        (heading, speed): (Option<[f64; 3]>, f64),
         sent: f64,
     ) -> Option<OnPlan> {
         let plan = &mp.plan;
-        let window = self.following.map(|f| {
-            let margin = SEARCH_MARGIN + SEARCH_SPEED * (sent - f.sent).max(0.0);
-            (f.along - margin, f.along + margin)
-        });
-        let ahead =
-            |d: &[f64; 3]| heading.is_none_or(|h| (0..3).map(|k| h[k] * d[k]).sum::<f64>() > 0.0);
-        let anywhere = (0.0, plan.length());
+        let keep = |heeded: bool, d: &[f64; 3]| {
+            !heeded || heading.is_none_or(|h| (0..3).map(|k| h[k] * d[k]).sum::<f64>() > 0.0)
+        };
         let within = |n: &OnPlan| n.off <= mp.tolerance;
-        let searches = [
-            (window, true),
-            (Some(anywhere), true),
-            (window, false),
-            (Some(anywhere), false),
-        ];
-        searches.into_iter().find_map(|(w, heeded)| {
-            let (from, to) = w?;
-            let found = if heeded {
-                plan.nearest_on(p, from, to, ahead)
-            } else {
-                Some(plan.nearest(p, from, to))
-            };
-            found.filter(within)
+        let near = |(centre, margin): (f64, f64), heeded: bool| {
+            plan.nearest_on(p, centre - margin, centre + margin, |d| keep(heeded, d))
+                .filter(within)
+        };
+        let expected = self.following.map(|f| {
+            let margin = SEARCH_MARGIN + SEARCH_SPEED * (sent - f.sent).max(0.0);
+            (f.along, margin)
+        });
+        let cruise = if speed >= HOLD_SPEED {
+            speed
+        } else {
+            PLAN_CRUISE
+        };
+        let scheduled = plan.scheduled_along(sent - mp.start, cruise);
+        let on_time = |heeded: bool| {
+            let passes = plan
+                .projections(p, 0.0, plan.length())
+                .filter(|(d, n)| keep(heeded, d) && within(n))
+                .map(|(_, n)| n);
+            let pass = match scheduled {
+                Some(s) => {
+                    passes.min_by(|a, b| (a.along - s).abs().total_cmp(&(b.along - s).abs()))
+                }
+                None => passes.min_by(|a, b| a.off.total_cmp(&b.off)),
+            }?;
+            near((pass.along, SEARCH_MARGIN), heeded)
+        };
+        [true, false].into_iter().find_map(|heeded| {
+            expected
+                .and_then(|e| near(e, heeded))
+                .or_else(|| on_time(heeded))
         })
     }
 
@@ -251,7 +270,7 @@ impl Tracker for MissionStation {
         let p = [state[0], state[1], state[2]];
         let plan = &mp.plan;
         let speed = state[5].clamp(0.0, self.speed_limit);
-        let Some(found) = self.place(mp, &p, heading(state, speed), sent) else {
+        let Some(found) = self.place(mp, &p, (heading(state, speed), speed), sent) else {
             self.following = None;
             return;
         };
@@ -401,6 +420,7 @@ mod tests {
             )
             .unwrap(),
             tolerance: 10.0,
+            start: 0.0,
         }
     }
 
@@ -474,6 +494,7 @@ mod tests {
             )
             .unwrap(),
             tolerance: 10.0,
+            start: 0.0,
         }
     }
 
@@ -564,6 +585,7 @@ mod tests {
             )
             .unwrap(),
             tolerance: 10.0,
+            start: 0.0,
         };
         // A first packet hovering at the corner: held until 25 s, then from rest toward 5 m/s.
         let mut st = MissionStation::new(Some(plan.clone()), setup());
@@ -631,6 +653,7 @@ mod tests {
             )
             .unwrap(),
             tolerance: 10.0,
+            start: 0.0,
         };
         let mut st = MissionStation::new(Some(there_and_back.clone()), setup());
         st.reset(&packet(50.0, 0.0, 10.0), 0.0);
@@ -648,6 +671,45 @@ mod tests {
         blind.reset(&packet(150.0, 0.0, 0.5), 20.0);
         blind.predict_to(25.0);
         assert!(blind.position()[0] > 150.0, "{:?}", blind.position());
+    }
+
+    #[test]
+    fn a_first_packet_on_a_plan_flown_in_laps_is_placed_on_the_lap_its_time_shows() {
+        // Three laps of a 400 m square at 10 m/s (traced: no corner slows it), 40 s a lap, set
+        // out on at 100 s.
+        let corners = [[0.0, 0.0], [100.0, 0.0], [100.0, 100.0], [0.0, 100.0]];
+        let mut points: Vec<[f64; 3]> = (0..12)
+            .map(|i| [corners[i % 4][0], corners[i % 4][1], 20.0])
+            .collect();
+        points.push([0.0, 0.0, 20.0]);
+        let plan = FlightPlan::new(points, vec![Some(10.0); 12]).unwrap();
+        let laps = MissionPlan {
+            plan: plan.with_climb(None),
+            tolerance: 10.0,
+            start: 100.0,
+        };
+        // 45 s out, halfway along the first side: on the second lap, 450 m along.
+        let mut st = MissionStation::new(Some(laps.clone()), setup());
+        st.reset(&packet(50.0, 0.0, 10.0), 145.0);
+        st.predict_to(175.0);
+        let p = st.position();
+        assert!(distance(&p, &[0.0, 50.0, 20.0]) < 1e-6, "{p:?}");
+        // At the end of the plan (from 220 s) when the drone is.
+        st.predict_to(230.0);
+        assert!(distance(&st.position(), &[0.0, 0.0, 20.0]) < 1e-6);
+        // Had the drone set out 40 s later, the same packet would be on the first lap: the
+        // station then flies a third lap.
+        let mut later = MissionStation::new(
+            Some(MissionPlan {
+                start: 140.0,
+                ..laps
+            }),
+            setup(),
+        );
+        later.reset(&packet(50.0, 0.0, 10.0), 145.0);
+        later.predict_to(230.0);
+        let p = later.position();
+        assert!(distance(&p, &[100.0, 0.0, 20.0]) < 1e-6, "{p:?}");
     }
 
     #[test]
