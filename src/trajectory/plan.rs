@@ -428,42 +428,6 @@ impl FlightPlan {
                 (direction, OnPlan { along, off })
             })
     }
-
-    /// How far along the plan, m, a vehicle is `t` s after it set out on it by the plan's
-    /// timetable: each hold as planned and each leg at the speed it is flown at (`cruise` m/s,
-    /// positive, where the plan gives none), without the time that speeding up, braking and
-    /// turning take; clamped to the plan's ends. None for a plan without any speed, which has no
-    /// timetable.
-    ///
-    /// ```
-    /// use loratrack::FlightPlan;
-    /// // 100 m east at 10 m/s, a 20 s hold, 100 m north at 5 m/s.
-    /// let plan = FlightPlan::with_holds(vec![[0.0; 3], [100.0, 0.0, 0.0], [100.0, 100.0, 0.0]], vec![Some(10.0), Some(5.0)], vec![0.0, 20.0, 0.0]).unwrap();
-    /// assert_eq!(plan.scheduled_along(5.0, 8.0), Some(50.0));
-    /// assert_eq!(plan.scheduled_along(25.0, 8.0), Some(100.0));
-    /// assert_eq!(plan.scheduled_along(40.0, 8.0), Some(150.0));
-    /// assert_eq!(plan.scheduled_along(1e4, 8.0), Some(200.0));
-    /// assert_eq!(plan.without_speeds().scheduled_along(5.0, 8.0), None);
-    /// ```
-    pub fn scheduled_along(&self, t: f64, cruise: f64) -> Option<f64> {
-        if self.speeds.iter().all(Option::is_none) {
-            return None;
-        }
-        let mut clock = 0.0;
-        for leg in 0..self.points.len() - 1 {
-            clock += self.holds[leg];
-            if t <= clock {
-                return Some(self.along[leg]);
-            }
-            let v = self.flown_speed(leg, cruise);
-            let takes = (self.along[leg + 1] - self.along[leg]) / v;
-            if t <= clock + takes {
-                return Some(self.along[leg] + (t - clock) * v);
-            }
-            clock += takes;
-        }
-        Some(self.length())
-    }
 }
 
 /// Indices of the samples Douglas–Peucker keeps so that every sample lies within `tolerance` m

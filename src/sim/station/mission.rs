@@ -121,6 +121,9 @@ pub struct MissionStation {
     /// The bounded station's top speed, m/s: a packet's speed is held within it on the plan too.
     speed_limit: f64,
     following: Option<Following>,
+    /// The station's own flight of the plan from its start, as far as it has been needed: the
+    /// plan's timetable (see [`MissionStation::place`]).
+    timetable: Option<Following>,
 }
 
 impl MissionStation {
@@ -138,6 +141,7 @@ impl MissionStation {
             step: setup.step,
             speed_limit: setup.bounds.v_max,
             following: None,
+            timetable: None,
         }
     }
 
@@ -177,9 +181,9 @@ impl MissionStation {
     /// Where on the plan a packet at `p` (m), sent at `sent` s, places the drone, if within the
     /// tolerance: near where the station expected the drone, so that a path that crosses itself
     /// is followed on the right pass; else, on the pass of the plan nearest to where its
-    /// timetable puts the drone (at the packet's `speed` on legs without a planned speed), so
-    /// that a first packet on a plan flown in laps is placed on the right lap (on a plan without
-    /// speeds, or paced by the packet, the nearest pass). In each, first onto a leg
+    /// timetable puts the drone then (`scheduled`, m: [`Self::scheduled`]), so that a first
+    /// packet on a plan flown in laps is placed on the right lap (without a timetable, the
+    /// nearest pass). In each, first onto a leg
     /// flown the way the packet's `heading` (a unit vector; none for a drone too slow to show
     /// one) points, where one is near enough, so that a path that doubles back along itself is
     /// followed the right way (an out-and-back inspection, a survey's return pass).
@@ -187,8 +191,8 @@ impl MissionStation {
         &self,
         mp: &MissionPlan,
         p: &[f64; 3],
-        (heading, speed): (Option<[f64; 3]>, f64),
-        sent: f64,
+        heading: Option<[f64; 3]>,
+        (sent, scheduled): (f64, Option<f64>),
     ) -> Option<OnPlan> {
         let plan = &mp.plan;
         let keep = |heeded: bool, d: &[f64; 3]| {
@@ -203,12 +207,6 @@ impl MissionStation {
             let margin = SEARCH_MARGIN + SEARCH_SPEED * (sent - f.sent).max(0.0);
             (f.along, margin)
         });
-        let cruise = if speed >= HOLD_SPEED {
-            speed
-        } else {
-            PLAN_CRUISE
-        };
-        let scheduled = plan.scheduled_along(sent - mp.start, cruise);
         let on_time = |heeded: bool| {
             let passes = plan
                 .projections(p, 0.0, plan.length())
@@ -227,6 +225,84 @@ impl MissionStation {
                 .and_then(|e| near(e, heeded))
                 .or_else(|| on_time(heeded))
         })
+    }
+
+    /// Flies `f` along `plan` to `t` s, in steps of at most `step` s: the pace
+    /// ([`Self::pace`]), each hold waited out, braking into it at [`PLAN_ACCEL`].
+    fn fly(plan: &FlightPlan, corners: &CornerSpeeds, step: f64, f: &mut Following, t: f64) {
+        while f.t < t {
+            if let Some((k, reached)) = f.last_hold {
+                let end = reached + plan.holds()[k];
+                if f.t < end {
+                    f.t = end.min(t);
+                    continue;
+                }
+            }
+            let dt = step.min(t - f.t);
+            let v = Self::pace(plan, corners, f, dt);
+            // Where a hold is ahead and the pace would overshoot it at `PLAN_ACCEL` (a drone that
+            // is to hover there has to stop there, braking as the flown plan brakes), the station
+            // brakes: exactly, at constant deceleration, to a stop at the hold's waypoint.
+            let braking = f.next_hold.and_then(|(_, at)| {
+                let brake = (2.0 * PLAN_ACCEL * (at - f.along).max(0.0)).sqrt();
+                (brake <= v).then_some(brake)
+            });
+            let (advance, to_stop) = match braking {
+                Some(b) => (b * dt - PLAN_ACCEL * dt * dt / 2.0, b / PLAN_ACCEL),
+                None => (v * dt, f64::INFINITY),
+            };
+            let along = (f.along + advance).min(plan.length());
+            match f.next_hold {
+                // The hold's waypoint is reached within the step: the station stops there.
+                Some((k, at)) if along >= at || to_stop <= dt => {
+                    f.t += if to_stop <= dt {
+                        to_stop
+                    } else if v > 0.0 {
+                        ((at - f.along) / v).clamp(0.0, dt)
+                    } else {
+                        0.0
+                    };
+                    f.along = at;
+                    f.last_hold = Some((k, f.t));
+                    f.next_hold = plan.next_hold(k + 1);
+                }
+                _ => {
+                    f.along = along;
+                    f.t += dt;
+                }
+            }
+        }
+    }
+
+    /// Where along the plan, m, its timetable puts the drone at `sent` s: the station's own
+    /// flight of the plan ([`Self::fly`]) from the plan's start, from rest at its first waypoint
+    /// after that waypoint's hold, at [`PLAN_CRUISE`] on a leg without a planned speed (as the
+    /// flown plan). None for a plan without any planned speed, which has no timetable (and
+    /// every plan with `--plan-pace packet`). Kept between packets: a flight's packets come in
+    /// the order they were sent, so the flight is flown once.
+    fn scheduled(&mut self, sent: f64) -> Option<f64> {
+        let (mp, corners) = (self.plan.as_ref()?, self.corners.as_ref()?);
+        let plan = &mp.plan;
+        let legs = plan.waypoints().len() - 1;
+        if (0..legs).all(|leg| plan.leg_speed(leg).is_none()) {
+            return None;
+        }
+        let timetable = match self.timetable {
+            Some(f) if f.t <= sent => self.timetable.insert(f),
+            _ => self.timetable.insert(Following {
+                sent: mp.start,
+                offset: [0.0; 3],
+                speed: 0.0,
+                covariance: Matrix3::zeros(),
+                t: mp.start,
+                along: 0.0,
+                last_hold: Some((0, mp.start)),
+                next_hold: plan.next_hold(1),
+                cruise: PLAN_CRUISE,
+            }),
+        };
+        Self::fly(plan, corners, self.step, timetable, sent);
+        Some(timetable.along)
     }
 
     /// The hold a packet at `p` (m; `along` m along the plan), moving at `speed` (m/s), shows
@@ -264,13 +340,14 @@ impl MissionStation {
 impl Tracker for MissionStation {
     fn reset(&mut self, state: &[f64; 9], sent: f64) {
         self.fallback.reset(state, sent);
+        let scheduled = self.scheduled(sent);
         let Some(mp) = &self.plan else {
             return;
         };
         let p = [state[0], state[1], state[2]];
         let plan = &mp.plan;
         let speed = state[5].clamp(0.0, self.speed_limit);
-        let Some(found) = self.place(mp, &p, (heading(state, speed), speed), sent) else {
+        let Some(found) = self.place(mp, &p, heading(state, speed), (sent, scheduled)) else {
             self.following = None;
             return;
         };
@@ -304,49 +381,7 @@ impl Tracker for MissionStation {
         else {
             return;
         };
-        let plan = &mp.plan;
-        while f.t < t {
-            if let Some((k, reached)) = f.last_hold {
-                let end = reached + plan.holds()[k];
-                if f.t < end {
-                    f.t = end.min(t);
-                    continue;
-                }
-            }
-            let dt = self.step.min(t - f.t);
-            let v = Self::pace(plan, corners, f, dt);
-            // Where a hold is ahead and the pace would overshoot it at `PLAN_ACCEL` (a drone that
-            // is to hover there has to stop there, braking as the flown plan brakes), the station
-            // brakes: exactly, at constant deceleration, to a stop at the hold's waypoint.
-            let braking = f.next_hold.and_then(|(_, at)| {
-                let brake = (2.0 * PLAN_ACCEL * (at - f.along).max(0.0)).sqrt();
-                (brake <= v).then_some(brake)
-            });
-            let (advance, to_stop) = match braking {
-                Some(b) => (b * dt - PLAN_ACCEL * dt * dt / 2.0, b / PLAN_ACCEL),
-                None => (v * dt, f64::INFINITY),
-            };
-            let along = (f.along + advance).min(plan.length());
-            match f.next_hold {
-                // The hold's waypoint is reached within the step: the station stops there.
-                Some((k, at)) if along >= at || to_stop <= dt => {
-                    f.t += if to_stop <= dt {
-                        to_stop
-                    } else if v > 0.0 {
-                        ((at - f.along) / v).clamp(0.0, dt)
-                    } else {
-                        0.0
-                    };
-                    f.along = at;
-                    f.last_hold = Some((k, f.t));
-                    f.next_hold = plan.next_hold(k + 1);
-                }
-                _ => {
-                    f.along = along;
-                    f.t += dt;
-                }
-            }
-        }
+        Self::fly(&mp.plan, corners, self.step, f, t);
     }
 
     fn position(&self) -> [f64; 3] {
