@@ -2,9 +2,11 @@
 //! §16): what a QGroundControl `.plan` and a plain-text waypoint list (`QGC WPL`) share.
 
 use super::geodetic::east_north;
-use super::plan::FlightPlan;
+use super::plan::{FlightPlan, MAX_WAYPOINTS};
 use super::plan_file::PlanError;
-use super::{ClimbLimits, MAX_PLAN_SPEED};
+use super::{ClimbLimits, MAX_PLAN_SPEED, PLAN_CRUISE};
+use crate::math::{atan2, sin_cos};
+use core::f64::consts::TAU;
 
 /// MAVLink commands (`MAV_CMD`) that loratrack reads.
 const NAV_WAYPOINT: u64 = 16;
@@ -21,7 +23,7 @@ const NAV_VTOL_TAKEOFF: u64 = 84;
 const NAV_VTOL_LAND: u64 = 85;
 const DO_CHANGE_SPEED: u64 = 178;
 /// Commands that fly to their own latitude and longitude: a waypoint, a spline waypoint (its leg
-/// read as straight) and the loiters (read as their centre: the circle is not flown).
+/// read as straight) and the loiters (read as their centre, but for [`Flown::circle`]'s turns).
 const FLY_TO: [u64; 6] = [
     NAV_WAYPOINT,
     NAV_LOITER_UNLIM,
@@ -30,6 +32,12 @@ const FLY_TO: [u64; 6] = [
     NAV_LOITER_TO_ALT,
     NAV_SPLINE_WAYPOINT,
 ];
+
+/// The rate a multicopter circles at, rad/s: ArduPilot Copter's `CIRCLE_RATE` default, 20°/s
+/// (`AC_Circle`), at which a loiter's turns are flown unless the mission's speed is lower.
+pub const CIRCLE_RATE: f64 = 20.0 * core::f64::consts::PI / 180.0;
+/// The points each turn of a loiter is flown through: one every 30°.
+const CIRCLE_POINTS: f64 = 12.0;
 
 /// One MAVLink mission item (`MISSION_ITEM`): its command, coordinate frame and seven
 /// parameters (5–7: latitude and longitude, degrees, and altitude, m, for the commands that
@@ -92,7 +100,7 @@ impl Flown {
         // Parameter 1 of a waypoint, a timed loiter and a delay is the time held there, s (a
         // negative one, as `NAV_DELAY` writes for "until a time of day", is not read); an
         // unlimited loiter holds for the longest hold, since the mission goes no further.
-        let hold = match item.command {
+        let mut hold = match item.command {
             NAV_WAYPOINT if !self.waypoint_holds => None,
             NAV_WAYPOINT | NAV_LOITER_TIME | NAV_DELAY => param(0).filter(|h| *h > 0.0),
             NAV_LOITER_UNLIM => Some(super::plan::MAX_HOLD),
@@ -151,10 +159,68 @@ impl Flown {
             // Camera, gimbal, delay and other commands do not move the vehicle.
             _ => return Ok(()),
         };
+        // A loiter's turns: parameter 1 the turns, parameter 3 the radius, m (negative:
+        // counter-clockwise). Of radius 0 a multicopter turns on the spot, at the circle rate.
+        let turns = param(0).filter(|t| *t > 0.0 && item.command == NAV_LOITER_TURNS);
+        match (turns, param(2)) {
+            (Some(turns), Some(r)) if r != 0.0 => return self.circle(last, point, turns, r),
+            (Some(turns), _) if self.waypoint_holds => hold = turns * TAU / CIRCLE_RATE,
+            _ => {}
+        }
+        self.push(point, self.speed, hold);
+        Ok(())
+    }
+
+    /// A waypoint, with the speed of the leg to it and the time held there.
+    fn push(&mut self, point: [f64; 3], speed: Option<f64>, hold: f64) {
         self.points.push(point);
-        self.speeds.push(self.speed);
+        self.speeds.push(speed);
         self.climbs.push(self.climb);
         self.holds.push(hold);
+    }
+
+    /// A loiter of `turns` turns about `centre` at `radius` m (clockwise seen from above;
+    /// counter-clockwise where negative), as ArduPilot's Copter flies `NAV_LOITER_TURNS`: from
+    /// `from` to the nearest point of the circle, then round it through a point every 30° (its
+    /// corners flown as any other's), at the mission's speed or, for a multicopter, at most
+    /// [`CIRCLE_RATE`] × radius (a 10 m circle at 3.5 m/s). A fixed-wing vehicle circles at its
+    /// speed.
+    fn circle(
+        &mut self,
+        from: [f64; 3],
+        centre: [f64; 3],
+        turns: f64,
+        radius: f64,
+    ) -> Result<(), String> {
+        let points = (turns * CIRCLE_POINTS).ceil();
+        if !radius.is_finite() || points > MAX_WAYPOINTS as f64 {
+            return Err(format!(
+                "a loiter of {turns} turns of radius {radius} m is not read (at most {} turns)",
+                MAX_WAYPOINTS as f64 / CIRCLE_POINTS
+            ));
+        }
+        let (dx, dy) = (from[0] - centre[0], from[1] - centre[1]);
+        let start = if dx == 0.0 && dy == 0.0 {
+            0.0
+        } else {
+            atan2(dy, dx)
+        };
+        let way = if radius < 0.0 { 1.0 } else { -1.0 };
+        let r = radius.abs();
+        let at = |angle: f64| {
+            let (s, c) = sin_cos(angle);
+            [centre[0] + r * c, centre[1] + r * s, centre[2]]
+        };
+        let round = match self.speed {
+            _ if !self.waypoint_holds => self.speed,
+            Some(v) => Some(v.min(CIRCLE_RATE * r)),
+            None => Some(PLAN_CRUISE.min(CIRCLE_RATE * r)),
+        };
+        self.push(at(start), self.speed, 0.0);
+        for k in 1..=points as usize {
+            let angle = (k as f64 * TAU / CIRCLE_POINTS).min(turns * TAU);
+            self.push(at(start + way * angle), round, 0.0);
+        }
         Ok(())
     }
 
@@ -239,6 +305,64 @@ mod tests {
             w[2]
         );
         assert_eq!(p.speed_at(1.0), Some(5.0));
+    }
+
+    /// A `NAV_LOITER_TURNS` of `turns` turns of `radius` m (negative: counter-clockwise) about
+    /// `lat`, `lon`, 30 m up.
+    fn loiter_turns(lat: f64, lon: f64, turns: f64, radius: f64) -> MissionItem {
+        let mut loiter = item(18, 3, lat, lon, 30.0);
+        loiter.params[0] = Some(turns);
+        loiter.params[2] = Some(radius);
+        loiter
+    }
+
+    #[test]
+    fn a_loiters_turns_are_flown_round_its_circle_from_the_nearest_edge() {
+        // 91.1 m east, then two turns of 10 m clockwise about home, 30 m up.
+        let mut f = Flown::new([-35.0, 149.0, 500.0], Some(8.0));
+        f.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
+        f.item(&loiter_turns(-35.0, 149.0, 2.0, 10.0)).unwrap();
+        let p = f.plan().unwrap();
+        let w = p.waypoints();
+        // Home, the waypoint, the edge nearest it, then 24 points a 30° apart.
+        assert_eq!(w.len(), 2 + 1 + 24, "{w:?}");
+        let edge = [10.0, 0.0, 30.0];
+        assert!(crate::math::distance(&w[2], &edge) < 1e-9, "{:?}", w[2]);
+        assert!(w[3..]
+            .iter()
+            .all(|q| (q[0].hypot(q[1]) - 10.0).abs() < 1e-9 && q[2] == 30.0));
+        // Clockwise seen from above: the first step goes south.
+        assert!(w[3][1] < -4.9, "{:?}", w[3]);
+        assert!(crate::math::distance(&w[26], &edge) < 1e-9);
+        // To the edge at the mission's 8 m/s, round at 20°/s: 3.49 m/s.
+        assert_eq!(p.leg_speed(1), Some(8.0));
+        assert!((p.leg_speed(2).unwrap() - 10.0 * CIRCLE_RATE).abs() < 1e-12);
+        assert!((CIRCLE_RATE * 10.0 - 3.49).abs() < 0.01);
+        // Half a turn of 30 m counter-clockwise: 6 points north of the edge, at the 8 m/s.
+        let mut f = Flown::new([-35.0, 149.0, 500.0], Some(8.0));
+        f.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
+        f.item(&loiter_turns(-35.0, 149.0, 0.5, -30.0)).unwrap();
+        let p = f.plan().unwrap();
+        let w = p.waypoints();
+        assert_eq!(w.len(), 2 + 1 + 6);
+        assert!(w[3][1] > 14.9 && w[8][0] < -29.9, "{w:?}");
+        assert_eq!(p.leg_speed(3), Some(8.0));
+        // Of radius 0 a multicopter turns on the spot: 18 s a turn, held at the centre.
+        let mut f = Flown::new([-35.0, 149.0, 500.0], Some(8.0));
+        f.item(&loiter_turns(-35.0, 149.001, 2.0, 0.0)).unwrap();
+        assert_eq!(f.plan().unwrap().holds(), &[0.0, 36.0]);
+        // A fixed-wing vehicle circles at its speed.
+        let mut plane = Flown::new([-35.0, 149.0, 500.0], Some(15.0)).fixed_wing();
+        plane
+            .item(&loiter_turns(-35.0, 149.001, 1.0, 80.0))
+            .unwrap();
+        assert_eq!(plane.plan().unwrap().leg_speed(3), Some(15.0));
+        // Absurd turns are refused, not read into millions of points.
+        let mut f = Flown::new([-35.0, 149.0, 500.0], Some(8.0));
+        let e = f
+            .item(&loiter_turns(-35.0, 149.001, 1e9, 10.0))
+            .unwrap_err();
+        assert!(e.contains("turns"), "{e}");
     }
 
     #[test]

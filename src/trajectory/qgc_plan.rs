@@ -13,10 +13,10 @@ const MULTIROTORS: [u64; 6] = [2, 3, 4, 13, 14, 15];
 const PLAN_FILE_TYPE: &str = "Plan";
 
 /// A QGroundControl `.plan` (`fileType: "Plan"`): the mission's items (reference §16:
-/// take-off, waypoints, loiters at their centre, spline waypoints as straight legs, landing,
-/// return to launch) from its planned home position, at the mission's hover speed (multi-rotor)
-/// or cruise speed, changed by `DO_CHANGE_SPEED`. Complex items (surveys, corridor scans) are
-/// refused with their name.
+/// take-off, waypoints, timed loiters at their centre, loiter turns round their circle, spline
+/// waypoints as straight legs, landing, return to launch) from its planned home position, at the
+/// mission's hover speed (multi-rotor) or cruise speed, changed by `DO_CHANGE_SPEED`. Complex
+/// items (surveys, corridor scans) are refused with their name.
 pub(super) fn parse_qgc(text: &str) -> Result<FlightPlan, PlanError> {
     let v: Value =
         serde_json::from_str(text).map_err(|e| PlanError::Qgc(format!("not JSON: {e}")))?;
