@@ -354,6 +354,76 @@ fn a_plan_alone_is_flown_as_fly_plan_flies_it() {
     assert_eq!(swarm(&s).unwrap().drones.len(), 3);
 }
 
+/// Mission and 3D-CTRA p75 (m) on `plan` flown alone, bounded, SF12/125 kHz, 8 seeds.
+fn flown_alone_at_sf12(plan: &str) -> (f64, f64) {
+    let r = run(
+        json!({"plan": plan, "model": "3d-ctra,mission", "prediction": "bounded",
+        "sf": 12, "bw": 125.0, "seeds": 8}),
+    );
+    (p75(&r, "mission"), p75(&r, "3d-ctra"))
+}
+
+#[test]
+fn a_plan_flown_out_and_back_over_itself_is_followed_both_ways() {
+    // 300 m east and back, twice: every point of the line is on four legs.
+    let (mission, ctra) =
+        flown_alone_at_sf12("x,y,z,speed\n0,0,30,\n300,0,30,8\n0,0,30,8\n300,0,30,8\n0,0,30,8\n");
+    // Followed on the way out while the drone came back, it was 91.7 m.
+    assert!(mission < 2.0, "{mission}");
+    assert!(ctra > 100.0 * mission, "{ctra} against {mission}");
+}
+
+#[test]
+fn a_plan_flown_in_laps_is_followed_on_the_right_lap() {
+    // Three laps of a 150 m octagon at 10 m/s, a lap 92 s; a packet every 148 s.
+    let mut csv = String::from("x,y,z,speed\n0,0,0,\n0,0,30,10\n");
+    for k in 0..=24 {
+        let a = core::f64::consts::FRAC_PI_4 * f64::from(k);
+        csv += &format!("{},{},30,10\n", 150.0 * a.cos(), 150.0 * a.sin());
+    }
+    csv += "0,0,30,10\n";
+    let r = run(
+        json!({"plan": csv, "model": "mission", "prediction": "bounded",
+        "sf": 12, "bw": 125.0, "seeds": 8}),
+    );
+    let e = &r[0].error3d;
+    // A first packet put on the first lap left the station a lap behind: p95 147 m.
+    assert!(e.p95 < 20.0, "{e:?}");
+}
+
+#[test]
+fn a_loiters_turns_are_flown_round_their_circle_and_followed() {
+    // Take-off, 8 m/s, 200 m east, three turns of 30 m about home's north, back home.
+    let list = "QGC WPL 110\n\
+        0\t1\t0\t16\t0\t0\t0\t0\t-35.0\t149.0\t500.0\t1\n\
+        1\t0\t3\t22\t0\t0\t0\t0\t0\t0\t30\t1\n\
+        2\t0\t3\t178\t1\t8\t-1\t0\t0\t0\t0\t1\n\
+        3\t0\t3\t16\t0\t0\t0\t0\t-35.0\t149.0022\t30\t1\n\
+        4\t0\t3\t18\t3\t0\t30\t0\t-34.999\t149.0011\t30\t1\n\
+        5\t0\t3\t20\t0\t0\t0\t0\t0\t0\t0\t1\n";
+    let plan = loratrack::parse_plan(list).unwrap();
+    let flown = fly_plan(&plan, "orbit").unwrap();
+    // Home, take-off, the waypoint, the circle's edge, then 36 points round it.
+    let w = plan.waypoints();
+    assert_eq!(w.len(), 4 + 36 + 1);
+    let centre: [f64; 2] =
+        core::array::from_fn(|k| w[4..40].iter().map(|p| p[k]).sum::<f64>() / 36.0);
+    let round = |p: &[f64; 3]| (p[0] - centre[0]).hypot(p[1] - centre[1]);
+    // A third of the flight on the circle (within its 2 m corners), none of it at its centre.
+    let on = flown
+        .pos
+        .iter()
+        .filter(|p| (round(p) - 30.0).abs() < 2.0)
+        .count();
+    assert!(3 * on > flown.pos.len(), "{on} of {}", flown.pos.len());
+    assert!(flown.pos.iter().all(|p| round(p) > 25.0 || p[1] < 60.0));
+    let (mission, ctra) = flown_alone_at_sf12(list);
+    assert!(
+        mission < 5.0 && ctra > 10.0 * mission,
+        "{mission} against {ctra}"
+    );
+}
+
 #[test]
 fn a_plan_that_would_fly_for_more_than_a_long_flight_is_refused_before_it_is_flown() {
     // An unlimited loiter holds for a day.

@@ -446,17 +446,21 @@ mod tests {
         }
     }
 
-    /// East 100 m at 10 m/s, then north 100 m at 5 m/s, 20 m up.
-    fn corner() -> MissionPlan {
+    /// A plan through `points` at `speeds`, a packet on it within 10 m, set out on at 0 s.
+    fn mission(points: Vec<[f64; 3]>, speeds: Vec<Option<f64>>) -> MissionPlan {
         MissionPlan {
-            plan: FlightPlan::new(
-                vec![[0.0, 0.0, 20.0], [100.0, 0.0, 20.0], [100.0, 100.0, 20.0]],
-                vec![Some(10.0), Some(5.0)],
-            )
-            .unwrap(),
+            plan: FlightPlan::new(points, speeds).unwrap(),
             tolerance: 10.0,
             start: 0.0,
         }
+    }
+
+    /// East 100 m at 10 m/s, then north 100 m at 5 m/s, 20 m up.
+    fn corner() -> MissionPlan {
+        mission(
+            vec![[0.0, 0.0, 20.0], [100.0, 0.0, 20.0], [100.0, 100.0, 20.0]],
+            vec![Some(10.0), Some(5.0)],
+        )
     }
 
     /// A 3D-CTRA state at (x, y, 20) heading east at `v` m/s.
@@ -681,15 +685,10 @@ mod tests {
     #[test]
     fn a_plan_flown_out_and_back_is_followed_the_way_the_packet_moves() {
         // 200 m east and back along the same line at 10 m/s.
-        let there_and_back = MissionPlan {
-            plan: FlightPlan::new(
-                vec![[0.0, 0.0, 20.0], [200.0, 0.0, 20.0], [0.0, 0.0, 20.0]],
-                vec![Some(10.0), Some(10.0)],
-            )
-            .unwrap(),
-            tolerance: 10.0,
-            start: 0.0,
-        };
+        let there_and_back = mission(
+            vec![[0.0, 0.0, 20.0], [200.0, 0.0, 20.0], [0.0, 0.0, 20.0]],
+            vec![Some(10.0), Some(10.0)],
+        );
         let mut st = MissionStation::new(Some(there_and_back.clone()), setup());
         st.reset(&packet(50.0, 0.0, 10.0), 0.0);
         // The next packet, 20 s on, finds the drone at 150 m heading west: on the way back,
