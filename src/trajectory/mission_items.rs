@@ -196,7 +196,7 @@ impl Flown {
         if !radius.is_finite() || points > MAX_WAYPOINTS as f64 {
             return Err(format!(
                 "a loiter of {turns} turns of radius {radius} m is not read (at most {} turns)",
-                MAX_WAYPOINTS as f64 / CIRCLE_POINTS
+                (MAX_WAYPOINTS as f64 / CIRCLE_POINTS).floor()
             ));
         }
         let (dx, dy) = (from[0] - centre[0], from[1] - centre[1]);

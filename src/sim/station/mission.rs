@@ -3,7 +3,7 @@
 //! movement model that uses mission-level information).
 
 use super::{Prediction, StationPredictor, StationSetup, Tracker};
-use crate::math::{distance, exp};
+use crate::math::{distance, exp, sin_cos};
 use crate::models::Ctra3d;
 use crate::trajectory::{CornerSpeeds, FlightPlan, OnPlan, PLAN_ACCEL, PLAN_CRUISE};
 use nalgebra::Matrix3;
@@ -183,10 +183,10 @@ impl MissionStation {
     /// is followed on the right pass; else, on the pass of the plan nearest to where its
     /// timetable puts the drone then (`scheduled`, m: [`Self::scheduled`]), so that a first
     /// packet on a plan flown in laps is placed on the right lap (without a timetable, the
-    /// nearest pass). In each, first onto a leg
-    /// flown the way the packet's `heading` (a unit vector; none for a drone too slow to show
-    /// one) points, where one is near enough, so that a path that doubles back along itself is
-    /// followed the right way (an out-and-back inspection, a survey's return pass).
+    /// nearest pass). In each, first onto a leg flown the way the packet's `heading` (a unit
+    /// vector; none for a drone too slow to show one) points, where one is near enough, so that
+    /// a path that doubles back along itself is followed the right way (an out-and-back
+    /// inspection, a survey's return pass).
     fn place(
         &self,
         mp: &MissionPlan,
@@ -422,8 +422,8 @@ impl Tracker for MissionStation {
 /// The unit direction a 3D-CTRA `state` (`[x, y, z, θ, φ, v, …]`) moves in at `speed` m/s; none
 /// below [`HOLD_SPEED`], where a hovering drone's estimated heading is noise.
 fn heading(state: &[f64; 9], speed: f64) -> Option<[f64; 3]> {
-    let (theta, phi) = (state[3], state[4]);
-    (speed >= HOLD_SPEED).then(|| [theta.cos() * phi.cos(), theta.sin() * phi.cos(), phi.sin()])
+    let ((st, ct), (sp, cp)) = (sin_cos(state[3]), sin_cos(state[4]));
+    (speed >= HOLD_SPEED).then_some([ct * cp, st * cp, sp])
 }
 
 #[cfg(test)]
