@@ -381,27 +381,13 @@ impl FlightPlan {
     /// The point of the plan nearest to `p` among those between `from` and `to` m along it.
     pub fn nearest(&self, p: &[f64; 3], from: f64, to: f64) -> OnPlan {
         // Every window holds at least the leg it starts on, so the fallback is never taken.
-        self.nearest_on(p, from, to, |_| true)
+        self.projections(p, from, to)
+            .map(|(_, on)| on)
+            .min_by(|a, b| a.off.total_cmp(&b.off))
             .unwrap_or_else(|| OnPlan {
                 along: from,
                 off: distance(p, &self.point_at(from)),
             })
-    }
-
-    /// [`Self::nearest`] among the legs whose unit direction `keep` accepts (none if it accepts
-    /// none in the window): e.g. only the legs flown the way a packet's velocity points, so that
-    /// a plan that doubles back along itself is followed on the right pass.
-    pub fn nearest_on(
-        &self,
-        p: &[f64; 3],
-        from: f64,
-        to: f64,
-        keep: impl Fn(&[f64; 3]) -> bool,
-    ) -> Option<OnPlan> {
-        self.projections(p, from, to)
-            .filter(|(direction, _)| keep(direction))
-            .map(|(_, on)| on)
-            .min_by(|a, b| a.off.total_cmp(&b.off))
     }
 
     /// The point of each leg between `from` and `to` m along the plan nearest to `p`, with the
@@ -604,7 +590,7 @@ mod tests {
     }
 
     #[test]
-    fn the_nearest_point_on_the_legs_kept() {
+    fn a_position_has_a_nearest_point_on_each_pass_of_the_plan() {
         // Out along x and back: every point of the line is on both legs.
         let p = FlightPlan::new(
             vec![[0.0; 3], [100.0, 0.0, 0.0], [0.0; 3]],
@@ -612,10 +598,19 @@ mod tests {
         )
         .unwrap();
         let q = [30.0, 2.0, 0.0];
-        assert_eq!(p.nearest(&q, 0.0, 200.0).along, 30.0);
-        let back = p.nearest_on(&q, 0.0, 200.0, |d| d[0] < 0.0).unwrap();
-        assert_eq!((back.along, back.off), (170.0, 2.0));
-        assert_eq!(p.nearest_on(&q, 0.0, 90.0, |d| d[0] < 0.0), None);
+        let passes: Vec<_> = p.projections(&q, 0.0, 200.0).collect();
+        let out = OnPlan {
+            along: 30.0,
+            off: 2.0,
+        };
+        let back = OnPlan {
+            along: 170.0,
+            off: 2.0,
+        };
+        assert_eq!(passes, [([1.0, 0.0, 0.0], out), ([-1.0, 0.0, 0.0], back)]);
+        // The first of equally near points; within a window, only its own.
+        assert_eq!(p.nearest(&q, 0.0, 200.0), out);
+        assert_eq!(p.nearest(&q, 90.0, 200.0), back);
     }
 
     #[test]

@@ -60,6 +60,12 @@ pub const PACE_SIGMA: f64 = 1.0;
 const SEARCH_MARGIN: f64 = 20.0;
 /// m/s: see [`SEARCH_MARGIN`].
 const SEARCH_SPEED: f64 = 5.0;
+/// Passes of the plan within this distance of each other from a packet, m, are equally near it:
+/// the station then takes the one nearest where it expected the drone. A path flown round
+/// again (a loiter's turns, laps) is as near on every pass; distinct legs almost never are
+/// within a centimetre (choosing by the expectation among all passes within the tolerance cost
+/// the real Canberra flight: docs/beyond-the-paper.md, "Laps").
+const TIE: f64 = 0.01;
 /// A packet shows the drone holding at a waypoint with a hold when it reports less than this
 /// speed, m/s, within [`HOLD_RADIUS`] of it: a hovering multicopter's estimated speed is a few
 /// tenths of a metre per second.
@@ -199,9 +205,24 @@ impl MissionStation {
             !heeded || heading.is_none_or(|h| (0..3).map(|k| h[k] * d[k]).sum::<f64>() > 0.0)
         };
         let within = |n: &OnPlan| n.off <= mp.tolerance;
+        // Of the passes within `margin` m of `centre` that are as near the packet as the nearest
+        // (within `TIE`), the one nearest `centre`: a path flown round more than once (a loiter's
+        // turns) is as near on every turn.
         let near = |(centre, margin): (f64, f64), heeded: bool| {
-            plan.nearest_on(p, centre - margin, centre + margin, |d| keep(heeded, d))
-                .filter(within)
+            let passes: Vec<OnPlan> = plan
+                .projections(p, centre - margin, centre + margin)
+                .filter(|(d, n)| keep(heeded, d) && within(n))
+                .map(|(_, n)| n)
+                .collect();
+            let nearest = passes.iter().map(|n| n.off).min_by(f64::total_cmp)?;
+            passes
+                .into_iter()
+                .filter(|n| n.off <= nearest + TIE)
+                .min_by(|a, b| {
+                    (a.along - centre)
+                        .abs()
+                        .total_cmp(&(b.along - centre).abs())
+                })
         };
         let expected = self.following.map(|f| {
             let margin = SEARCH_MARGIN + SEARCH_SPEED * (sent - f.sent).max(0.0);
@@ -744,6 +765,32 @@ mod tests {
         later.predict_to(230.0);
         let p = later.position();
         assert!(distance(&p, &[100.0, 0.0, 20.0]) < 1e-6, "{p:?}");
+    }
+
+    #[test]
+    fn of_laps_equally_near_a_packet_it_takes_the_one_it_expected() {
+        // Six laps of a 200 m square at 10 m/s (traced: no corners), 20 s a lap.
+        let corners = [[0.0, 0.0], [50.0, 0.0], [50.0, 50.0], [0.0, 50.0]];
+        let mut points: Vec<[f64; 3]> = (0..24)
+            .map(|i| [corners[i % 4][0], corners[i % 4][1], 20.0])
+            .collect();
+        points.push([0.0, 0.0, 20.0]);
+        let plan = FlightPlan::new(points, vec![Some(10.0); 24]).unwrap();
+        let laps = MissionPlan {
+            plan: plan.with_climb(None),
+            ..corner()
+        };
+        let mut st = MissionStation::new(Some(laps), setup());
+        st.reset(&packet(25.0, 0.0, 10.0), 2.5);
+        // A minute on, the drone is back there three laps later; the search near the station's
+        // expectation (625 m along, ±320 m) spans three laps.
+        st.predict_to(62.5);
+        st.reset(&packet(25.0, 0.0, 10.0), 62.5);
+        // Placed on the lap it expected, the station ends the plan with the drone; placed on
+        // the first lap searched, it would still fly, at (50, 0), 2.5 s later.
+        st.predict_to(125.0);
+        let p = st.position();
+        assert!(distance(&p, &[0.0, 0.0, 20.0]) < 1e-6, "{p:?}");
     }
 
     #[test]
