@@ -476,6 +476,18 @@ mod tests {
         }
     }
 
+    /// `laps` laps of a square of `side` m, anticlockwise from the origin, 20 m up, at 10 m/s,
+    /// traced (no corner slows it).
+    fn square_laps(side: f64, laps: usize) -> MissionPlan {
+        let corners = [[0.0, 0.0], [side, 0.0], [side, side], [0.0, side]];
+        let points = (0..=4 * laps).map(|i| [corners[i % 4][0], corners[i % 4][1], 20.0]);
+        let plan = mission(points.collect(), vec![Some(10.0); 4 * laps]);
+        MissionPlan {
+            plan: plan.plan.with_climb(None),
+            ..plan
+        }
+    }
+
     /// East 100 m at 10 m/s, then north 100 m at 5 m/s, 20 m up.
     fn corner() -> MissionPlan {
         mission(
@@ -730,18 +742,10 @@ mod tests {
 
     #[test]
     fn a_first_packet_on_a_plan_flown_in_laps_is_placed_on_the_lap_its_time_shows() {
-        // Three laps of a 400 m square at 10 m/s (traced: no corner slows it), 40 s a lap, set
-        // out on at 100 s.
-        let corners = [[0.0, 0.0], [100.0, 0.0], [100.0, 100.0], [0.0, 100.0]];
-        let mut points: Vec<[f64; 3]> = (0..12)
-            .map(|i| [corners[i % 4][0], corners[i % 4][1], 20.0])
-            .collect();
-        points.push([0.0, 0.0, 20.0]);
-        let plan = FlightPlan::new(points, vec![Some(10.0); 12]).unwrap();
+        // Three laps of a 400 m square, 40 s a lap, set out on at 100 s.
         let laps = MissionPlan {
-            plan: plan.with_climb(None),
-            tolerance: 10.0,
             start: 100.0,
+            ..square_laps(100.0, 3)
         };
         // 45 s out, halfway along the first side: on the second lap, 450 m along.
         let mut st = MissionStation::new(Some(laps.clone()), setup());
@@ -769,17 +773,8 @@ mod tests {
 
     #[test]
     fn of_laps_equally_near_a_packet_it_takes_the_one_it_expected() {
-        // Six laps of a 200 m square at 10 m/s (traced: no corners), 20 s a lap.
-        let corners = [[0.0, 0.0], [50.0, 0.0], [50.0, 50.0], [0.0, 50.0]];
-        let mut points: Vec<[f64; 3]> = (0..24)
-            .map(|i| [corners[i % 4][0], corners[i % 4][1], 20.0])
-            .collect();
-        points.push([0.0, 0.0, 20.0]);
-        let plan = FlightPlan::new(points, vec![Some(10.0); 24]).unwrap();
-        let laps = MissionPlan {
-            plan: plan.with_climb(None),
-            ..corner()
-        };
+        // Six laps of a 200 m square, 20 s a lap.
+        let laps = square_laps(50.0, 6);
         let mut st = MissionStation::new(Some(laps), setup());
         st.reset(&packet(25.0, 0.0, 10.0), 2.5);
         // A minute on, the drone is back there three laps later; the search near the station's
