@@ -128,7 +128,7 @@ pub struct MissionStation {
     speed_limit: f64,
     following: Option<Following>,
     /// The station's own flight of the plan from its start, as far as it has been needed: the
-    /// plan's timetable (see [`MissionStation::place`]).
+    /// plan's timetable (see [`MissionStation::place`]); none for a plan without speeds.
     timetable: Option<Following>,
 }
 
@@ -142,12 +142,12 @@ impl MissionStation {
         };
         MissionStation {
             corners: plan.as_ref().map(|mp| CornerSpeeds::of(&mp.plan)),
+            timetable: plan.as_ref().and_then(Self::set_out),
             plan,
             fallback: StationPredictor::new(Ctra3d, bounded),
             step: setup.step,
             speed_limit: setup.bounds.v_max,
             following: None,
-            timetable: None,
         }
     }
 
@@ -295,22 +295,16 @@ impl MissionStation {
         }
     }
 
-    /// Where along the plan, m, its timetable puts the drone at `sent` s: the station's own
-    /// flight of the plan ([`Self::fly`]) from the plan's start, from rest at its first waypoint
-    /// after that waypoint's hold, at [`PLAN_CRUISE`] on a leg without a planned speed (as the
-    /// flown plan). None for a plan without any planned speed, which has no timetable (and
-    /// every plan with `--plan-pace packet`). Kept between packets: a flight's packets come in
-    /// the order they were sent, so the flight is flown once.
-    fn scheduled(&mut self, sent: f64) -> Option<f64> {
-        let (mp, corners) = (self.plan.as_ref()?, self.corners.as_ref()?);
+    /// The station's own flight of `mp` as it sets out: from rest at the first waypoint, at the
+    /// flight's first time, after that waypoint's hold, at [`PLAN_CRUISE`] on a leg without a
+    /// planned speed (as the flown plan). None for a plan without any planned speed, which has no
+    /// timetable (every plan with `--plan-pace packet`).
+    fn set_out(mp: &MissionPlan) -> Option<Following> {
         let plan = &mp.plan;
         let legs = plan.waypoints().len() - 1;
-        if (0..legs).all(|leg| plan.leg_speed(leg).is_none()) {
-            return None;
-        }
-        let timetable = match self.timetable {
-            Some(f) if f.t <= sent => self.timetable.insert(f),
-            _ => self.timetable.insert(Following {
+        (0..legs)
+            .any(|leg| plan.leg_speed(leg).is_some())
+            .then(|| Following {
                 sent: mp.start,
                 offset: [0.0; 3],
                 speed: 0.0,
@@ -320,10 +314,26 @@ impl MissionStation {
                 last_hold: Some((0, mp.start)),
                 next_hold: plan.next_hold(1),
                 cruise: PLAN_CRUISE,
-            }),
-        };
-        Self::fly(plan, corners, self.step, timetable, sent);
-        Some(timetable.along)
+            })
+    }
+
+    /// Where along the plan, m, its timetable puts the drone at `sent` s: the station's own
+    /// flight of the plan ([`Self::fly`]) from [`Self::set_out`]. Kept between packets: a
+    /// flight's packets come in the order they were sent, so the flight is flown once.
+    fn scheduled(&mut self, sent: f64) -> Option<f64> {
+        let Self {
+            plan,
+            corners,
+            timetable,
+            step,
+            ..
+        } = self;
+        let (mp, corners, f) = (plan.as_ref()?, corners.as_ref()?, timetable.as_mut()?);
+        if f.t > sent {
+            *f = Self::set_out(mp)?;
+        }
+        Self::fly(&mp.plan, corners, *step, f, sent);
+        Some(f.along)
     }
 
     /// The hold a packet at `p` (m; `along` m along the plan), moving at `speed` (m/s), shows
