@@ -175,7 +175,7 @@ fn holds_section(r: &MissionSweepReport) -> String {
          them, climbs at most {} m/s and descends at most {} m/s (a multicopter \
          autopilot's limits) and hovers for each hold, {minutes:.0} min, 1 km, {}. `holding`: the \
          mission station with the plan, holds and all (it brakes into a hold's waypoint at {PLAN_ACCEL} m/s², as the drone does, waits \
-         there, and a packet under {HOLD_SPEED} m/s within {HOLD_RADIUS} m of one places the drone there); `flying on`: the same station given the plan \
+         there, speeds up from it at {PLAN_ACCEL} m/s² too, and a packet under {HOLD_SPEED} m/s within {HOLD_RADIUS} m of one places the drone there); `flying on`: the same station given the plan \
          without its holds, which flies on while the drone hovers.\n\n",
         holds.join(", "),
         ClimbLimits::MULTICOPTER.up,

@@ -111,9 +111,9 @@ struct Following {
 /// drone's arrival halfway between the packet before and this one (but at most a hold before
 /// this one; half a hold before a first packet), unless the station has held there since the
 /// packet before and the hold is not over (then it keeps its arrival);
-/// after a hold the station speeds up from rest over [`PACE_TIME`], toward the leg's planned
-/// speed or, on a leg without one, the speed of the newest packet that showed the drone moving
-/// ([`PLAN_CRUISE`] before any did).
+/// after a hold the station speeds up from rest at [`PLAN_ACCEL`], as the flown plan does, to
+/// the leg's planned speed or, on a leg without one, the speed of the newest packet that showed
+/// the drone moving ([`PLAN_CRUISE`] before any did).
 ///
 /// Its covariance on the plan: the packet's (the drone filter's settled covariance, as the
 /// bounded station's), plus ([`PACE_SIGMA`]·τ)² in every direction, τ s after the packet.
@@ -168,15 +168,16 @@ impl MissionStation {
         free.min(corners.cap(f.along + half))
     }
 
-    /// The speed along the plan at time `t`, at `along` m: after a hold, from rest toward the
-    /// leg's planned speed (or the cruise speed); else from the packet's speed toward it. On a
+    /// The speed along the plan at time `t`, at `along` m: after a hold, from rest up to the
+    /// leg's planned speed (or the cruise speed) at [`PLAN_ACCEL`]; else from the packet's speed
+    /// toward it. On a
     /// leg too steep for the plan's climb limits, what the autopilot slows it to.
     fn free_pace(plan: &FlightPlan, f: &Following, t: f64, along: f64) -> f64 {
         let planned = plan.speed_at(along);
         let flown = |v| plan.within_climb_at(along, v);
         let resumed = f.last_hold.map(|(k, reached)| reached + plan.holds()[k]);
         match resumed {
-            Some(end) => flown(planned.unwrap_or(f.cruise)) * (1.0 - exp(-(t - end) / PACE_TIME)),
+            Some(end) => flown(planned.unwrap_or(f.cruise)).min(PLAN_ACCEL * (t - end).max(0.0)),
             None => match planned {
                 Some(v) => flown(v) + (f.speed - flown(v)) * exp(-(t - f.sent) / PACE_TIME),
                 None => flown(f.speed),
@@ -506,6 +507,13 @@ mod tests {
         )
     }
 
+    /// The distance, m, covered `tau` s after a stop by a drone speeding up at [`PLAN_ACCEL`] to
+    /// `v` m/s and holding it.
+    fn from_rest(v: f64, tau: f64) -> f64 {
+        let speeding_up = (v / PLAN_ACCEL).min(tau);
+        PLAN_ACCEL * speeding_up * speeding_up / 2.0 + v * (tau - speeding_up)
+    }
+
     /// A 3D-CTRA state at (x, y, 20) heading east at `v` m/s.
     fn packet(x: f64, y: f64, v: f64) -> [f64; 9] {
         [x, y, 20.0, 0.0, 0.0, v, 0.0, 0.0, 0.0]
@@ -604,10 +612,10 @@ mod tests {
             );
             assert!(st.position()[1].abs() < 1e-9, "{t}: {:?}", st.position());
         }
-        // Then from rest toward the leg's 5 m/s: 5 (τ − 2 (1 − e^(−τ/2))) north after τ s, τ
-        // about 4 s.
+        // Then from rest up to the leg's 5 m/s at PLAN_ACCEL, as the flown plan speeds up:
+        // 5 τ − 5² / (2 · 2) north after τ s (once at speed, from 2.5 s), τ about 4 s.
         st.predict_to(arrival + 14.0);
-        let north = |tau: f64| 5.0 * (tau - PACE_TIME * (1.0 - exp(-tau / PACE_TIME)));
+        let north = |tau: f64| from_rest(5.0, tau);
         let y = st.position()[1];
         assert!(
             north(3.8) < y && y < north(4.2),
@@ -669,11 +677,11 @@ mod tests {
             tolerance: 10.0,
             start: 0.0,
         };
-        // A first packet hovering at the corner: held until 25 s, then from rest toward 5 m/s.
+        // A first packet hovering at the corner: held until 25 s, then from rest up to 5 m/s.
         let mut st = MissionStation::new(Some(plan.clone()), setup());
         st.reset(&packet(100.0, 0.0, 0.0), 20.0);
         st.predict_to(29.0);
-        let north = |v: f64, tau: f64| v * (tau - PACE_TIME * (1.0 - exp(-tau / PACE_TIME)));
+        let north = from_rest;
         assert!(
             (st.position()[1] - north(PLAN_CRUISE, 4.0)).abs() < 0.1,
             "{:?}",
