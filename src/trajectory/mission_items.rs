@@ -38,6 +38,21 @@ const FLY_TO: [u64; 6] = [
 pub const CIRCLE_RATE: f64 = 20.0 * core::f64::consts::PI / 180.0;
 /// The points each turn of a loiter is flown through: one every 30°.
 const CIRCLE_POINTS: f64 = 12.0;
+/// How a multicopter returns to launch and lands: ArduPilot Copter's defaults. It climbs to
+/// `RTL_ALT` (15 m above home) before it heads home, unless it is higher (then it returns at its
+/// own height) or near home (`RTL_CONE_SLOPE` 3: at most 3 m up a metre from home), hovers
+/// above home for `RTL_LOIT_TIME` (5 s) and lands.
+pub const RTL_ALT: f64 = 15.0;
+/// See [`RTL_ALT`].
+pub const RTL_CONE_SLOPE: f64 = 3.0;
+/// See [`RTL_ALT`], s.
+pub const RTL_LOITER: f64 = 5.0;
+/// A multicopter lands at its descent limit (`WPNAV_SPEED_DN`, [`ClimbLimits::down`]) down to
+/// `LAND_ALT_LOW` (10 m), then at `LAND_SPEED` (0.5 m/s) to the ground: ArduPilot Copter's
+/// defaults (PX4's `MPC_LAND_SPEED` is 0.7 m/s).
+pub const LAND_ALT_LOW: f64 = 10.0;
+/// See [`LAND_ALT_LOW`], m/s.
+pub const LAND_SPEED: f64 = 0.5;
 
 /// One MAVLink mission item (`MISSION_ITEM`): its command, coordinate frame and seven
 /// parameters (5–7: latitude and longitude, degrees, and altitude, m, for the commands that
@@ -136,6 +151,12 @@ impl Flown {
                 self.holds[held] += hold;
                 return Ok(());
             }
+            NAV_RETURN_TO_LAUNCH if self.waypoint_holds => {
+                self.return_to_launch(last);
+                return Ok(());
+            }
+            // A plane returns at its own height and circles home (ArduPlane without
+            // `RTL_AUTOLAND`): read as home at that height.
             NAV_RETURN_TO_LAUNCH => [0.0, 0.0, last[2]],
             // Take-off and landing often leave the position to the vehicle: in place.
             NAV_TAKEOFF | NAV_VTOL_TAKEOFF => {
@@ -144,10 +165,17 @@ impl Flown {
                     .unwrap_or([last[0], last[1]]);
                 [x, y, self.altitude(param(6), item.frame)?]
             }
+            // A multicopter flies to where it lands at its own height, then lands straight down
+            // ([`Flown::land`]); a plane glides there.
             NAV_LAND | NAV_VTOL_LAND => {
                 let [x, y] = self
                     .horizontal(param(4), param(5))
                     .unwrap_or([last[0], last[1]]);
+                if self.waypoint_holds {
+                    self.push([x, y, last[2]], self.speed, 0.0);
+                    self.land();
+                    return Ok(());
+                }
                 [x, y, 0.0]
             }
             c if FLY_TO.contains(&c) => {
@@ -177,6 +205,26 @@ impl Flown {
         self.speeds.push(speed);
         self.climbs.push(self.climb);
         self.holds.push(hold);
+    }
+
+    /// A multicopter's return to launch from `from` ([`RTL_ALT`]): the climb, the way home, the
+    /// hover above it and the landing.
+    fn return_to_launch(&mut self, from: [f64; 3]) {
+        let away = from[0].hypot(from[1]);
+        let height = from[2].max(RTL_ALT.min(RTL_CONE_SLOPE * away));
+        self.push([from[0], from[1], height], self.speed, 0.0);
+        self.push([0.0, 0.0, height], self.speed, RTL_LOITER);
+        self.land();
+    }
+
+    /// A multicopter's landing straight down from where it is ([`LAND_ALT_LOW`]).
+    fn land(&mut self) {
+        let [x, y, z] = self.points[self.points.len() - 1];
+        self.push([x, y, z.min(LAND_ALT_LOW)], self.speed, 0.0);
+        let descent = self.climb;
+        self.climb.down = self.climb.down.min(LAND_SPEED);
+        self.push([x, y, 0.0], self.speed, 0.0);
+        self.climb = descent;
     }
 
     /// A loiter of `turns` turns about `centre` at `radius` m (clockwise seen from above;
@@ -450,6 +498,72 @@ mod tests {
         assert_eq!(
             (copter.flown_speed(1, 5.0), plane.flown_speed(1, 5.0)),
             (5.0, 5.0)
+        );
+    }
+
+    /// The waypoints a multicopter (or, `plane`, a fixed-wing vehicle) flies for a return to
+    /// launch from `from` (east, north, up of home, m), and the climb limits of the last leg.
+    fn returned(from: [f64; 3], plane: bool) -> (FlightPlan, ClimbLimits) {
+        let home = [-35.0, 149.0, 500.0];
+        let mut f = Flown::new(home, Some(5.0));
+        if plane {
+            f = f.fixed_wing();
+        }
+        // 0.001° of latitude is 111.2 m: a waypoint `from[1]` m north of home.
+        let lat = home[0] + from[1] / 111_195.0;
+        f.item(&item(16, 3, lat, home[1], from[2])).unwrap();
+        f.item(&item(20, 2, 0.0, 0.0, 0.0)).unwrap();
+        let p = f.plan().unwrap();
+        let last = *p.climbs().unwrap().last().unwrap();
+        (p, last)
+    }
+
+    #[test]
+    fn a_multicopter_returns_to_launch_as_ardupilots_copter_flies_it_and_lands() {
+        // From 8 m up, 100 m away: up to RTL_ALT in place, home, RTL_LOITER over it, down.
+        let (p, last) = returned([0.0, 100.0, 8.0], false);
+        let w: Vec<[f64; 3]> = p.waypoints().iter().map(|q| q.map(|c| c.round())).collect();
+        assert_eq!(
+            w[2..],
+            [
+                [0.0, 100.0, 15.0],
+                [0.0, 0.0, 15.0],
+                [0.0, 0.0, 10.0],
+                [0.0, 0.0, 0.0]
+            ]
+        );
+        assert_eq!(p.holds()[3], RTL_LOITER);
+        // The last 10 m at LAND_SPEED, the metres above at the descent limit.
+        assert_eq!(last.down, LAND_SPEED);
+        assert_eq!(p.climbs().unwrap()[3].down, ClimbLimits::MULTICOPTER.down);
+        // Higher than RTL_ALT: home at its own height. Near home: at most 3 m up per metre away.
+        let (high, _) = returned([0.0, 100.0, 40.0], false);
+        let rounded = |p: &FlightPlan| -> Vec<[f64; 3]> {
+            p.waypoints().iter().map(|q| q.map(|c| c.round())).collect()
+        };
+        assert_eq!(rounded(&high)[1..3], [[0.0, 100.0, 40.0], [0.0, 0.0, 40.0]]);
+        let (near, _) = returned([0.0, 2.0, 1.0], false);
+        assert!(
+            (near.waypoints()[2][2] - 6.0).abs() < 1e-3,
+            "{:?}",
+            near.waypoints()
+        );
+        // A plane returns at its own height and stays there.
+        let (plane, _) = returned([0.0, 100.0, 8.0], true);
+        assert_eq!(plane.waypoints().last(), Some(&[0.0, 0.0, 8.0]));
+    }
+
+    #[test]
+    fn a_multicopter_flies_to_its_landing_point_at_its_height_then_lands_straight_down() {
+        let mut f = Flown::new([-35.0, 149.0, 500.0], Some(5.0));
+        f.item(&item(16, 3, -35.0, 149.0, 30.0)).unwrap();
+        f.item(&item(21, 3, -35.0, 149.001, 0.0)).unwrap();
+        let w = f.plan().unwrap().waypoints().to_vec();
+        let east = w[2][0];
+        assert!((east - 91.1).abs() < 0.1, "{w:?}");
+        assert_eq!(
+            w[2..],
+            [[east, 0.0, 30.0], [east, 0.0, 10.0], [east, 0.0, 0.0]]
         );
     }
 

@@ -30,6 +30,9 @@ pub use flown_plan::{
     PLAN_ACCEL, PLAN_CRUISE, PLAN_RATE_HZ,
 };
 pub use kinematics::{heading_angles, kinematic_state, kinematic_states, HOVER_SPEED};
+pub use mission_items::{
+    CIRCLE_RATE, LAND_ALT_LOW, LAND_SPEED, RTL_ALT, RTL_CONE_SLOPE, RTL_LOITER,
+};
 pub use plan::{
     FlightPlan, OnPlan, MAX_HOLD, MAX_PLAN_COORDINATE, MAX_PLAN_SPEED, MAX_WAYPOINTS,
     TRACE_TOLERANCE,

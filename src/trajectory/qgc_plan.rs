@@ -121,7 +121,7 @@ mod tests {
         );
         let p = parse_plan(&text).unwrap();
         let w = p.waypoints();
-        assert_eq!(w.len(), 5);
+        assert_eq!(w.len(), 7, "{w:?}");
         assert_eq!(w[1], [0.0, 0.0, 30.0]);
         // 0.0011° of longitude at -35.36°: about 99.8 m east; 0.0009° of latitude: 100.1 m north.
         assert!(
@@ -134,7 +134,13 @@ mod tests {
             "{:?}",
             w[3]
         );
-        assert_eq!(w[4], [0.0, 0.0, 40.0]);
+        // Home at the height it returns at (above RTL_ALT), hovered over for RTL_LOIT_TIME, and
+        // the landing: at the descent limit to 10 m, then at LAND_SPEED.
+        assert_eq!(
+            w[4..],
+            [[0.0, 0.0, 40.0], [0.0, 0.0, 10.0], [0.0, 0.0, 0.0]]
+        );
+        assert_eq!(p.holds()[4], crate::trajectory::RTL_LOITER);
         assert_eq!(p.speed_at(1.0), Some(5.0));
         assert_eq!(p.speed_at(p.length() - 1.0), Some(8.0));
     }
@@ -175,8 +181,9 @@ mod tests {
     fn reads_a_mission_as_qgroundcontrol_saves_it() {
         let p = parse_plan(QGC4_HEXAROTOR).unwrap();
         let w = p.waypoints();
-        // Home, take-off above it, the waypoint, the loiter's centre, the spline waypoint, landing.
-        assert_eq!(w.len(), 6, "{w:?}");
+        // Home, take-off above it, the waypoint, the loiter's centre, the spline waypoint, and
+        // the landing in place: down to 10 m, then to the ground.
+        assert_eq!(w.len(), 7, "{w:?}");
         assert_eq!(w[1], [0.0, 0.0, 25.0]);
         assert!(
             (w[2][0] - 99.8).abs() < 0.5 && w[2][2] == 25.0,
@@ -193,11 +200,11 @@ mod tests {
             "{:?}",
             w[4]
         );
-        assert_eq!(w[5], [w[4][0], w[4][1], 0.0]);
+        assert_eq!(w[5..], [[w[4][0], w[4][1], 10.0], [w[4][0], w[4][1], 0.0]]);
         // A hexarotor flies at the hover speed, as QGroundControl plans a multi-rotor.
         assert_eq!(p.speed_at(1.0), Some(4.0));
         // The timed loiter holds 30 s at its centre.
-        assert_eq!(p.holds(), &[0.0, 0.0, 0.0, 30.0, 0.0, 0.0]);
+        assert_eq!(p.holds(), &[0.0, 0.0, 0.0, 30.0, 0.0, 0.0, 0.0]);
         let fixed_wing = QGC4_HEXAROTOR.replace(r#""vehicleType": 13"#, r#""vehicleType": 1"#);
         assert_eq!(parse_plan(&fixed_wing).unwrap().speed_at(1.0), Some(15.0));
         // A waypoint's hold time: a multi-rotor hovers there, a fixed-wing flies through it.
@@ -208,7 +215,8 @@ mod tests {
             );
             parse_plan(&held).unwrap().holds().to_vec()
         };
-        assert_eq!(held(QGC4_HEXAROTOR), [0.0, 0.0, 12.0, 30.0, 0.0, 0.0]);
+        assert_eq!(held(QGC4_HEXAROTOR), [0.0, 0.0, 12.0, 30.0, 0.0, 0.0, 0.0]);
+        // A plane glides to the landing.
         assert_eq!(held(&fixed_wing), [0.0, 0.0, 0.0, 30.0, 0.0, 0.0]);
     }
 

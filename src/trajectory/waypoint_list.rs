@@ -111,7 +111,8 @@ mod tests {
     fn reads_a_mission_planner_waypoint_file_as_the_same_qgroundcontrol_plan() {
         let wpl = parse_plan(MISSION_PLANNER).unwrap();
         let w = wpl.waypoints();
-        assert_eq!(w.len(), 6, "{w:?}");
+        // Home, take-off, two waypoints, the loiter, home at 40 m and the landing (10 m, 0 m).
+        assert_eq!(w.len(), 8, "{w:?}");
         assert_eq!(w[1], [0.0, 0.0, 30.0]);
         assert!(
             (w[2][0] - 99.8).abs() < 0.5 && w[2][2] == 30.0,

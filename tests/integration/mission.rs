@@ -403,9 +403,10 @@ fn a_loiters_turns_are_flown_round_their_circle_and_followed() {
         5\t0\t3\t20\t0\t0\t0\t0\t0\t0\t0\t1\n";
     let plan = loratrack::parse_plan(list).unwrap();
     let flown = fly_plan(&plan, "orbit").unwrap();
-    // Home, take-off, the waypoint, the circle's edge, then 36 points round it.
+    // Home, take-off, the waypoint, the circle's edge, then 36 points round it; home at 30 m and
+    // the landing (10 m, the ground).
     let w = plan.waypoints();
-    assert_eq!(w.len(), 4 + 36 + 1);
+    assert_eq!(w.len(), 4 + 36 + 3);
     let centre: [f64; 2] =
         core::array::from_fn(|k| w[4..40].iter().map(|p| p[k]).sum::<f64>() / 36.0);
     let round = |p: &[f64; 3]| (p[0] - centre[0]).hypot(p[1] - centre[1]);
@@ -422,6 +423,30 @@ fn a_loiters_turns_are_flown_round_their_circle_and_followed() {
         mission < 5.0 && ctra > 10.0 * mission,
         "{mission} against {ctra}"
     );
+}
+
+#[test]
+fn a_return_to_launch_is_flown_home_and_down_to_the_ground_slowly_at_the_end() {
+    // Take-off to 8 m, 150 m north, return to launch.
+    let list = "QGC WPL 110\n\
+        0\t1\t0\t16\t0\t0\t0\t0\t-35.0\t149.0\t500.0\t1\n\
+        1\t0\t3\t22\t0\t0\t0\t0\t0\t0\t8\t1\n\
+        2\t0\t3\t16\t0\t0\t0\t0\t-34.99865\t149.0\t8\t1\n\
+        3\t0\t3\t20\t0\t0\t0\t0\t0\t0\t0\t1\n";
+    let plan = loratrack::parse_plan(list).unwrap();
+    let flown = fly_plan(&plan, "home").unwrap();
+    let (pos, t) = (&flown.pos, &flown.t);
+    let top = pos.iter().map(|p| p[2]).fold(0.0, f64::max);
+    // Up to RTL_ALT before it turns home, and on the ground, home, at the end.
+    assert!((top - loratrack::RTL_ALT).abs() < 0.1, "{top}");
+    let end = pos[pos.len() - 1];
+    assert!(end[0].hypot(end[1]) < 0.1 && end[2] < 0.1, "{end:?}");
+    // Below LAND_ALT_LOW it descends no faster than LAND_SPEED.
+    let fastest_low = (1..pos.len())
+        .filter(|&k| pos[k][2] < loratrack::LAND_ALT_LOW - 0.1)
+        .map(|k| (pos[k - 1][2] - pos[k][2]) / (t[k] - t[k - 1]))
+        .fold(0.0, f64::max);
+    assert!(fastest_low <= loratrack::LAND_SPEED + 1e-6, "{fastest_low}");
 }
 
 #[test]
