@@ -38,6 +38,9 @@ const FLY_TO: [u64; 6] = [
 pub const CIRCLE_RATE: f64 = 20.0 * core::f64::consts::PI / 180.0;
 /// The points each turn of a loiter is flown through: one every 30°.
 const CIRCLE_POINTS: f64 = 12.0;
+/// The radius a plane circles at where a loiter gives none, m: ArduPlane's `WP_LOITER_RAD`
+/// default (clockwise). A plane cannot hover, so it circles a timed loiter and a delay too.
+pub const LOITER_RADIUS: f64 = 60.0;
 /// How a multicopter returns to launch and lands: ArduPilot Copter's defaults. It climbs to
 /// `RTL_ALT` (15 m above home) before it heads home, unless it is higher (then it returns at its
 /// own height) or near home (`RTL_CONE_SLOPE` 3: at most 3 m up a metre from home), hovers
@@ -97,8 +100,9 @@ impl Flown {
         }
     }
 
-    /// The same for a fixed-wing vehicle, which flies through a waypoint's hold time (timed
-    /// loiters and delays it still flies, circling) and climbs and descends faster.
+    /// The same for a fixed-wing vehicle, which flies through a waypoint's hold time, circles its
+    /// timed loiters and delays for their time ([`LOITER_RADIUS`] where a loiter gives no
+    /// radius), and climbs and descends faster.
     pub fn fixed_wing(self) -> Self {
         Flown {
             waypoint_holds: false,
@@ -146,6 +150,15 @@ impl Flown {
                 *vertical = speed;
                 return Ok(());
             }
+            // A plane cannot wait in place: it circles where it is.
+            NAV_DELAY if !self.waypoint_holds && hold > 0.0 => {
+                return self.circle(
+                    last,
+                    last,
+                    self.turns_in(hold, LOITER_RADIUS),
+                    LOITER_RADIUS,
+                );
+            }
             NAV_DELAY => {
                 let held = self.holds.len() - 1;
                 self.holds[held] += hold;
@@ -189,10 +202,17 @@ impl Flown {
         };
         // A loiter's turns: parameter 1 the turns, parameter 3 the radius, m (negative:
         // counter-clockwise). Of radius 0 a multicopter turns on the spot, at the circle rate.
+        // A plane circles its timed loiters too, and its loiters of radius 0 at [`LOITER_RADIUS`].
         let turns = param(0).filter(|t| *t > 0.0 && item.command == NAV_LOITER_TURNS);
-        match (turns, param(2)) {
-            (Some(turns), Some(r)) if r != 0.0 => return self.circle(last, point, turns, r),
-            (Some(turns), _) if self.waypoint_holds => hold = turns * TAU / CIRCLE_RATE,
+        let radius = param(2).filter(|r| *r != 0.0);
+        match (turns, radius) {
+            (Some(turns), Some(r)) => return self.circle(last, point, turns, r),
+            (Some(turns), None) if self.waypoint_holds => hold = turns * TAU / CIRCLE_RATE,
+            (Some(turns), None) => return self.circle(last, point, turns, LOITER_RADIUS),
+            (None, r) if !self.waypoint_holds && item.command == NAV_LOITER_TIME && hold > 0.0 => {
+                let r = r.unwrap_or(LOITER_RADIUS);
+                return self.circle(last, point, self.turns_in(hold, r), r);
+            }
             _ => {}
         }
         self.push(point, self.speed, hold);
@@ -205,6 +225,12 @@ impl Flown {
         self.speeds.push(speed);
         self.climbs.push(self.climb);
         self.holds.push(hold);
+    }
+
+    /// The turns of radius `r` m (either sign) a plane flies in `time` s at the mission's speed
+    /// ([`PLAN_CRUISE`] where it has none).
+    fn turns_in(&self, time: f64, r: f64) -> f64 {
+        time * self.speed.unwrap_or(PLAN_CRUISE) / (TAU * r.abs())
     }
 
     /// A multicopter's return to launch from `from` ([`RTL_ALT`]): the climb, the way home, the
@@ -431,11 +457,13 @@ mod tests {
             f.plan().unwrap().holds(),
             &[0.0, 20.0, 40.0, 0.0, crate::trajectory::MAX_HOLD]
         );
-        // A fixed-wing vehicle flies through a waypoint's hold, not a timed loiter's.
+        // A fixed-wing vehicle flies through a waypoint's hold and circles a timed loiter
+        // (a_plane_circles_its_timed_loiters_and_delays_and_its_loiters_of_radius_0_at_60_m):
+        // it holds nowhere.
         let mut plane = Flown::new([-35.0, 149.0, 500.0], Some(15.0)).fixed_wing();
         plane.item(&wp).unwrap();
         plane.item(&loiter).unwrap();
-        assert_eq!(plane.plan().unwrap().holds(), &[0.0, 0.0, 40.0]);
+        assert!(plane.plan().unwrap().holds().iter().all(|h| *h == 0.0));
     }
 
     /// A `DO_CHANGE_SPEED` of `kind` (0 airspeed, 1 ground speed, 2 climb, 3 descent) to `speed`.
@@ -565,6 +593,58 @@ mod tests {
             w[2..],
             [[east, 0.0, 30.0], [east, 0.0, 10.0], [east, 0.0, 0.0]]
         );
+    }
+
+    #[test]
+    fn a_plane_circles_its_timed_loiters_and_delays_and_its_loiters_of_radius_0_at_60_m() {
+        let plane = || Flown::new([-35.0, 149.0, 500.0], Some(15.0)).fixed_wing();
+        // The distances from the waypoint 91.1 m east of home (`points[1]`, the loiters' centre)
+        // of the points from `from` on.
+        let radii = |f: &Flown, from: usize| -> Vec<f64> {
+            let c = f.points[1];
+            f.points[from..]
+                .iter()
+                .map(|p| (p[0] - c[0]).hypot(p[1] - c[1]))
+                .collect()
+        };
+        // 60 s at 15 m/s round a circle of 60 m: 2.39 turns, 29 points after its edge.
+        let mut timed = plane();
+        timed.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
+        let mut loiter = item(19, 3, -35.0, 149.001, 30.0);
+        loiter.params[0] = Some(60.0);
+        timed.item(&loiter).unwrap();
+        assert_eq!(timed.points.len(), 2 + 1 + 29, "{:?}", timed.points);
+        assert!(radii(&timed, 2)
+            .iter()
+            .all(|r| (r - LOITER_RADIUS).abs() < 1e-9));
+        assert!(timed.holds.iter().all(|h| *h == 0.0));
+        // Its timed loiter's own radius, and a delay: circled where the plane is.
+        let mut own = plane();
+        own.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
+        loiter.params[2] = Some(-20.0);
+        own.item(&loiter).unwrap();
+        assert!(radii(&own, 2).iter().all(|r| (r - 20.0).abs() < 1e-9));
+        let mut delayed = plane();
+        delayed.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
+        delayed.item(&delay([60.0, -1.0, -1.0, -1.0])).unwrap();
+        assert_eq!(delayed.points.len(), 2 + 1 + 29);
+        assert!(radii(&delayed, 2)
+            .iter()
+            .all(|r| (r - LOITER_RADIUS).abs() < 1e-9));
+        // Turns of radius 0: at 60 m for a plane, on the spot for a multicopter.
+        let mut turns = plane();
+        turns.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
+        turns.item(&loiter_turns(-35.0, 149.001, 2.0, 0.0)).unwrap();
+        assert_eq!(turns.points.len(), 2 + 1 + 24);
+        assert!(radii(&turns, 2)
+            .iter()
+            .all(|r| (r - LOITER_RADIUS).abs() < 1e-9));
+        let mut copter = Flown::new([-35.0, 149.0, 500.0], Some(15.0));
+        copter.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
+        copter
+            .item(&loiter_turns(-35.0, 149.001, 2.0, 0.0))
+            .unwrap();
+        assert_eq!(copter.points.len(), 3);
     }
 
     #[test]

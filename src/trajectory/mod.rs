@@ -31,7 +31,7 @@ pub use flown_plan::{
 };
 pub use kinematics::{heading_angles, kinematic_state, kinematic_states, HOVER_SPEED};
 pub use mission_items::{
-    CIRCLE_RATE, LAND_ALT_LOW, LAND_SPEED, RTL_ALT, RTL_CONE_SLOPE, RTL_LOITER,
+    CIRCLE_RATE, LAND_ALT_LOW, LAND_SPEED, LOITER_RADIUS, RTL_ALT, RTL_CONE_SLOPE, RTL_LOITER,
 };
 pub use plan::{
     FlightPlan, OnPlan, MAX_HOLD, MAX_PLAN_COORDINATE, MAX_PLAN_SPEED, MAX_WAYPOINTS,

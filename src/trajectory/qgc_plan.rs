@@ -216,8 +216,11 @@ mod tests {
             parse_plan(&held).unwrap().holds().to_vec()
         };
         assert_eq!(held(QGC4_HEXAROTOR), [0.0, 0.0, 12.0, 30.0, 0.0, 0.0, 0.0]);
-        // A plane glides to the landing.
-        assert_eq!(held(&fixed_wing), [0.0, 0.0, 0.0, 30.0, 0.0, 0.0]);
+        // A plane holds nowhere: it circles the timed loiter's 10 m for its 30 s at 15 m/s
+        // (7.2 turns, 86 points after the circle's edge) and glides to the landing.
+        let plane = held(&fixed_wing);
+        assert_eq!(plane.len(), 3 + 1 + 86 + 2, "{plane:?}");
+        assert!(plane.iter().all(|h| *h == 0.0), "{plane:?}");
     }
 
     #[test]
