@@ -873,9 +873,9 @@ impl Validated {
             PlanPace::Packet => plan.without_speeds(),
         };
         Some(MissionPlan {
+            start: MissionPlan::start_on(&plan, flight),
             plan,
             tolerance: self.settings.station.plan_tolerance,
-            start: flight.t.first().copied().unwrap_or(0.0),
         })
     }
 

@@ -5,7 +5,7 @@
 use super::{Prediction, StationPredictor, StationSetup, Tracker};
 use crate::math::{distance, exp, sin_cos};
 use crate::models::Ctra3d;
-use crate::trajectory::{CornerSpeeds, FlightPlan, OnPlan, PLAN_ACCEL, PLAN_CRUISE};
+use crate::trajectory::{CornerSpeeds, FlightPlan, OnPlan, Trajectory, PLAN_ACCEL, PLAN_CRUISE};
 use nalgebra::Matrix3;
 use serde::{Deserialize, Serialize};
 
@@ -33,9 +33,33 @@ pub struct MissionPlan {
     /// The largest distance from the plan, m, at which a packet still counts as on the plan
     /// (`--plan-tolerance`).
     pub tolerance: f64,
-    /// When the drone set out on the plan, s (the flight's first time): the station reads a first
-    /// packet on a path flown more than once by the plan's timetable from then.
+    /// When the drone set out on the plan, s ([`MissionPlan::start_on`]): the station reads a
+    /// first packet on a path flown more than once by the plan's timetable from then.
     pub start: f64,
+}
+
+impl MissionPlan {
+    /// When `flight` sets out on `plan`, s. A plan with an autopilot's timing (read from a file,
+    /// with climb limits) starts the last moment the flight was at rest (under [`HOLD_SPEED`])
+    /// before it first moved faster, its first time if it moves from the start: a log begins
+    /// when the autopilot does, often minutes before it takes off, and a timetable from the
+    /// log's first time would put a first packet on a plan flown in laps a lap or more ahead. A
+    /// drone seen moving by noise alone (a position-only log's jittery speeds) sets out at its
+    /// first time. A plan traced through the flight ([`FlightPlan::traced`]) starts at the
+    /// flight's first time: its first leg's speed already counts any wait before it.
+    pub fn start_on(plan: &FlightPlan, flight: &Trajectory) -> f64 {
+        if plan.climbs().is_none() {
+            return flight.t[0];
+        }
+        let moving = flight
+            .vel
+            .iter()
+            .position(|v| v.iter().map(|c| c * c).sum::<f64>() >= HOLD_SPEED * HOLD_SPEED);
+        match moving {
+            Some(k) if k > 0 => flight.t[k - 1],
+            _ => flight.t[0],
+        }
+    }
 }
 
 /// Seconds over which the speed the packet reported gives way to the leg's planned speed: the
@@ -339,7 +363,9 @@ impl MissionStation {
 
     /// The hold a packet at `p` (m; `along` m along the plan), moving at `speed` (m/s), shows
     /// the drone in: the waypoint, its distance along the plan (m), and when the drone got there
-    /// (s).
+    /// (s). A packet sent before the drone set out ([`MissionPlan::start`]) at the plan's first
+    /// waypoint shows it waiting there until then, as the timetable has it: a drone seen on the
+    /// ground before its mission stays there, not off along the plan.
     fn hold_shown(
         &self,
         plan: &FlightPlan,
@@ -349,6 +375,10 @@ impl MissionStation {
     ) -> Option<(usize, f64, f64)> {
         if speed >= HOLD_SPEED {
             return None;
+        }
+        let start = self.plan.as_ref().map_or(f64::NEG_INFINITY, |mp| mp.start);
+        if sent < start && distance(p, &plan.waypoints()[0]) <= HOLD_RADIUS {
+            return Some((0, 0.0, start - plan.holds()[0]));
         }
         let (k, at) = plan
             .next_hold(plan.waypoint_at_or_after(along - HOLD_RADIUS))
@@ -804,6 +834,48 @@ mod tests {
         st.predict_to(125.0);
         let p = st.position();
         assert!(distance(&p, &[0.0, 0.0, 20.0]) < 1e-6, "{p:?}");
+    }
+
+    #[test]
+    fn a_plan_is_timed_from_when_the_flight_sets_out_and_a_traced_one_from_its_first_time() {
+        // At rest for 5 s (a second at 0.3 m/s of noise among them), then east at 5 m/s.
+        let t: Vec<f64> = (0..20).map(f64::from).collect();
+        let speed = |k: usize| match k {
+            0..=5 => [if k == 3 { 0.3 } else { 0.0 }, 0.0, 0.0],
+            _ => [5.0, 0.0, 0.0],
+        };
+        let vel: Vec<[f64; 3]> = (0..20).map(speed).collect();
+        let pos = (0..20)
+            .map(|k| [5.0 * (k.max(5) - 5) as f64, 0.0, 20.0])
+            .collect();
+        let flight = Trajectory::new("log".into(), t, pos, vel, vec![[0.0; 3]; 20]).unwrap();
+        assert_eq!(MissionPlan::start_on(&corner().plan, &flight), 5.0);
+        let traced = FlightPlan::traced(&flight, 2.0);
+        assert_eq!(MissionPlan::start_on(&traced, &flight), 0.0);
+    }
+
+    #[test]
+    fn a_packet_on_the_ground_before_the_drone_set_out_keeps_it_there_until_then() {
+        let plan = MissionPlan {
+            start: 30.0,
+            ..corner()
+        };
+        let mut st = MissionStation::new(Some(plan), setup());
+        st.reset(&packet(0.5, 0.0, 0.0), 10.0);
+        st.predict_to(29.9);
+        assert!(st.position()[0] < 0.5, "{:?}", st.position());
+        // Then from rest at PLAN_ACCEL toward the leg's 10 m/s.
+        st.predict_to(33.0);
+        assert!(
+            (st.position()[0] - from_rest(10.0, 3.0)).abs() < 0.1,
+            "{:?}",
+            st.position()
+        );
+        // Once the drone has set out, a packet at rest there is not waiting for it.
+        let mut late = MissionStation::new(Some(corner()), setup());
+        late.reset(&packet(0.5, 0.0, 0.0), 10.0);
+        late.predict_to(13.0);
+        assert!(late.position()[0] > 1.0, "{:?}", late.position());
     }
 
     #[test]
