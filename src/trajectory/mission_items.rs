@@ -5,7 +5,7 @@ use super::geodetic::east_north;
 use super::plan::{FlightPlan, MAX_WAYPOINTS};
 use super::plan_file::PlanError;
 use super::{ClimbLimits, MAX_PLAN_SPEED, PLAN_CRUISE};
-use crate::math::{atan2, sin_cos};
+use crate::math::{atan2, hypot, sin_cos};
 use core::f64::consts::TAU;
 
 /// MAVLink commands (`MAV_CMD`) that loratrack reads.
@@ -236,7 +236,7 @@ impl Flown {
     /// A multicopter's return to launch from `from` ([`RTL_ALT`]): the climb, the way home, the
     /// hover above it and the landing.
     fn return_to_launch(&mut self, from: [f64; 3]) {
-        let away = from[0].hypot(from[1]);
+        let away = hypot(from[0], from[1]);
         let height = from[2].max(RTL_ALT.min(RTL_CONE_SLOPE * away));
         self.push([from[0], from[1], height], self.speed, 0.0);
         self.push([0.0, 0.0, height], self.speed, RTL_LOITER);

@@ -194,8 +194,7 @@ impl MissionStation {
 
     /// The speed along the plan at time `t`, at `along` m: after a hold, from rest up to the
     /// leg's planned speed (or the cruise speed) at [`PLAN_ACCEL`]; else from the packet's speed
-    /// toward it. On a
-    /// leg too steep for the plan's climb limits, what the autopilot slows it to.
+    /// toward it. On a leg too steep for the plan's climb limits, what the autopilot slows it to.
     fn free_pace(plan: &FlightPlan, f: &Following, t: f64, along: f64) -> f64 {
         let planned = plan.speed_at(along);
         let flown = |v| plan.within_climb_at(along, v);
