@@ -239,14 +239,10 @@ impl MissionStation {
                 .map(|(_, n)| n)
                 .collect();
             let nearest = passes.iter().map(|n| n.off).min_by(f64::total_cmp)?;
-            passes
-                .into_iter()
-                .filter(|n| n.off <= nearest + TIE)
-                .min_by(|a, b| {
-                    (a.along - centre)
-                        .abs()
-                        .total_cmp(&(b.along - centre).abs())
-                })
+            nearest_along(
+                passes.into_iter().filter(|n| n.off <= nearest + TIE),
+                centre,
+            )
         };
         let expected = self.following.map(|f| {
             let margin = SEARCH_MARGIN + SEARCH_SPEED * (sent - f.sent).max(0.0);
@@ -258,9 +254,7 @@ impl MissionStation {
                 .filter(|(d, n)| keep(heeded, d) && within(n))
                 .map(|(_, n)| n);
             let pass = match scheduled {
-                Some(s) => {
-                    passes.min_by(|a, b| (a.along - s).abs().total_cmp(&(b.along - s).abs()))
-                }
+                Some(s) => nearest_along(passes, s),
                 None => passes.min_by(|a, b| a.off.total_cmp(&b.off)),
             }?;
             near((pass.along, SEARCH_MARGIN), heeded)
@@ -478,6 +472,11 @@ impl Tracker for MissionStation {
     fn ignore_uncertainty(&mut self) {
         self.fallback.ignore_uncertainty();
     }
+}
+
+/// Of `passes`, the one nearest `along` m along the plan (the first of equally near ones).
+fn nearest_along(passes: impl Iterator<Item = OnPlan>, along: f64) -> Option<OnPlan> {
+    passes.min_by(|a, b| (a.along - along).abs().total_cmp(&(b.along - along).abs()))
 }
 
 /// The unit direction a 3D-CTRA `state` (`[x, y, z, θ, φ, v, …]`) moves in at `speed` m/s; none
