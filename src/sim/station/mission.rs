@@ -60,6 +60,12 @@ impl MissionPlan {
             _ => flight.t[0],
         }
     }
+    /// The wait at the plan's first waypoint before the drone sets out: that waypoint and when
+    /// the drone got there, s, so that its hold there (if any) ends at [`MissionPlan::start`], as
+    /// the flown plan leaves it at once and a log's drone leaves it when it sets out.
+    fn waiting(&self) -> (usize, f64) {
+        (0, self.start - self.plan.holds()[0])
+    }
 }
 
 /// Seconds over which the speed the packet reported gives way to the leg's planned speed: the
@@ -313,9 +319,9 @@ impl MissionStation {
         }
     }
 
-    /// The station's own flight of `mp` as it sets out: from rest at the first waypoint, at the
-    /// flight's first time, after that waypoint's hold, at [`PLAN_CRUISE`] on a leg without a
-    /// planned speed (as the flown plan). None for a plan without any planned speed, which has no
+    /// The station's own flight of `mp` as it sets out: from rest at the first waypoint when the
+    /// drone set out ([`MissionPlan::start`], by which a hold there is over), at [`PLAN_CRUISE`]
+    /// on a leg without a planned speed (as the flown plan). None for a plan without any planned speed, which has no
     /// timetable (every plan with `--plan-pace packet`).
     fn set_out(mp: &MissionPlan) -> Option<Following> {
         let plan = &mp.plan;
@@ -329,7 +335,7 @@ impl MissionStation {
                 covariance: Matrix3::zeros(),
                 t: mp.start,
                 along: 0.0,
-                last_hold: Some((0, mp.start)),
+                last_hold: Some(mp.waiting()),
                 next_hold: plan.next_hold(1),
                 cruise: PLAN_CRUISE,
             })
@@ -369,9 +375,11 @@ impl MissionStation {
         if speed >= HOLD_SPEED {
             return None;
         }
-        let start = self.plan.as_ref().map_or(f64::NEG_INFINITY, |mp| mp.start);
-        if sent < start && distance(p, &plan.waypoints()[0]) <= HOLD_RADIUS {
-            return Some((0, 0.0, start - plan.holds()[0]));
+        if let Some(mp) = self.plan.as_ref().filter(|mp| sent < mp.start) {
+            if distance(p, &plan.waypoints()[0]) <= HOLD_RADIUS {
+                let (k, reached) = mp.waiting();
+                return Some((k, 0.0, reached));
+            }
         }
         let (k, at) = plan
             .next_hold(plan.waypoint_at_or_after(along - HOLD_RADIUS))
@@ -874,6 +882,37 @@ mod tests {
         late.reset(&packet(0.5, 0.0, 0.0), 10.0);
         late.predict_to(13.0);
         assert!(late.position()[0] > 1.0, "{:?}", late.position());
+    }
+
+    #[test]
+    fn the_timetable_leaves_the_first_waypoint_when_the_drone_set_out_whatever_its_hold() {
+        // A plan that holds 20 s at its first waypoint (a delay before the first leg), flown
+        // from 30 s: the drone leaves that waypoint then, as a packet before then says.
+        let c = corner().plan;
+        let held = FlightPlan::with_holds(
+            c.waypoints().to_vec(),
+            vec![Some(10.0), Some(5.0)],
+            vec![20.0, 0.0, 0.0],
+        )
+        .unwrap();
+        let mp = MissionPlan {
+            plan: held,
+            start: 30.0,
+            ..corner()
+        };
+        let mut st = MissionStation::new(Some(mp.clone()), setup());
+        assert_eq!(st.scheduled(30.0), Some(0.0));
+        let along = st.scheduled(33.0).unwrap();
+        assert!((along - from_rest(10.0, 3.0)).abs() < 0.1, "{along}");
+        // A packet on the ground before then holds the station there until the same moment.
+        let mut ground = MissionStation::new(Some(mp), setup());
+        ground.reset(&packet(0.0, 0.0, 0.0), 10.0);
+        ground.predict_to(33.0);
+        assert!(
+            (ground.position()[0] - along).abs() < 1e-9,
+            "{:?}",
+            ground.position()
+        );
     }
 
     #[test]
