@@ -231,37 +231,33 @@ impl MissionStation {
         (sent, scheduled): (f64, Option<f64>),
     ) -> Option<OnPlan> {
         let plan = &mp.plan;
-        let keep = |heeded: bool, d: &[f64; 3]| {
-            !heeded || heading.is_none_or(|h| (0..3).map(|k| h[k] * d[k]).sum::<f64>() > 0.0)
+        // The passes between `from` and `to` m along the plan within the tolerance (and, where
+        // `heeded`, flown the way the packet heads).
+        let passes = move |from: f64, to: f64, heeded: bool| {
+            let ahead = move |d: &[f64; 3]| {
+                heading.is_none_or(|h| (0..3).map(|k| h[k] * d[k]).sum::<f64>() > 0.0)
+            };
+            plan.projections(p, from, to)
+                .filter(move |(d, n)| (!heeded || ahead(d)) && n.off <= mp.tolerance)
+                .map(|(_, n)| n)
         };
-        let within = |n: &OnPlan| n.off <= mp.tolerance;
         // Of the passes within `margin` m of `centre` that are as near the packet as the nearest
         // (within `TIE`), the one nearest `centre`: a path flown round more than once (a loiter's
         // turns) is as near on every turn.
         let near = |(centre, margin): (f64, f64), heeded: bool| {
-            let passes: Vec<OnPlan> = plan
-                .projections(p, centre - margin, centre + margin)
-                .filter(|(d, n)| keep(heeded, d) && within(n))
-                .map(|(_, n)| n)
-                .collect();
-            let nearest = passes.iter().map(|n| n.off).min_by(f64::total_cmp)?;
-            nearest_along(
-                passes.into_iter().filter(|n| n.off <= nearest + TIE),
-                centre,
-            )
+            let found: Vec<OnPlan> = passes(centre - margin, centre + margin, heeded).collect();
+            let nearest = found.iter().map(|n| n.off).min_by(f64::total_cmp)?;
+            nearest_along(found.into_iter().filter(|n| n.off <= nearest + TIE), centre)
         };
         let expected = self.following.map(|f| {
             let margin = SEARCH_MARGIN + SEARCH_SPEED * (sent - f.sent).max(0.0);
             (f.along, margin)
         });
         let on_time = |heeded: bool| {
-            let passes = plan
-                .projections(p, 0.0, plan.length())
-                .filter(|(d, n)| keep(heeded, d) && within(n))
-                .map(|(_, n)| n);
+            let found = passes(0.0, plan.length(), heeded);
             let pass = match scheduled {
-                Some(s) => nearest_along(passes, s),
-                None => passes.min_by(|a, b| a.off.total_cmp(&b.off)),
+                Some(s) => nearest_along(found, s),
+                None => found.min_by(|a, b| a.off.total_cmp(&b.off)),
             }?;
             near((pass.along, SEARCH_MARGIN), heeded)
         };
