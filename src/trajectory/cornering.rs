@@ -1,9 +1,11 @@
 //! How an autopilot flies through a waypoint it need not stop at (reference §16): it turns onto
-//! the next leg on an arc that passes close to the waypoint, slowed only as much as the turn
-//! asks, for the flown plan ([`crate::fly_plan`]) and the mission station's pace alike.
+//! the next leg on an arc, a multicopter's passing close to the waypoint and slowed only as much
+//! as the turn asks, a plane's begun early and flown at its speed, for the flown plan
+//! ([`crate::fly_plan`]) and the mission station's pace alike.
 
 use super::plan::FlightPlan;
 use crate::math::distance;
+use core::f64::consts::{FRAC_PI_2, PI};
 
 /// How close to a waypoint flown through the path passes, m: ArduPilot Copter's waypoint radius
 /// (`WPNAV_RADIUS`, 2 m by default), within which its S-curves cut a corner.
@@ -12,12 +14,40 @@ pub const CORNER_RADIUS: f64 = 2.0;
 /// cornering acceleration (`WPNAV_ACCEL_C`) is twice `WPNAV_ACCEL` by default (Copter 4.5).
 pub const CORNER_ACCEL: f64 = 2.0 * super::PLAN_ACCEL;
 
+/// How far before a waypoint a fixed-wing aircraft may begin its turn onto the next leg, m:
+/// ArduPlane's waypoint radius (`WP_RADIUS`, 90 m by default).
+pub const PLANE_WP_RADIUS: f64 = 90.0;
+/// ArduPlane's L1 navigation period (`NAVL1_PERIOD`, 17 s) and damping (`NAVL1_DAMPING`, 0.75):
+/// the L1 distance, which bounds how early a turn begins, is period × damping / π × speed (73 m
+/// at 18 m/s; `AP_L1_Control`).
+const L1_PERIOD: f64 = 17.0;
+const L1_DAMPING: f64 = 0.75;
+
+/// How an autopilot turns through a waypoint it flies through.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Cornering {
+    /// A multicopter's (ArduPilot Copter's S-curves): an arc passing [`CORNER_RADIUS`] from the
+    /// waypoint, slowed to within [`CORNER_ACCEL`] sideways.
+    #[default]
+    Multicopter,
+    /// A fixed-wing aircraft's (ArduPlane's L1 navigation): the turn begins where ArduPlane
+    /// counts the waypoint reached (`AP_L1_Control::turn_distance`: the L1 distance, at most
+    /// [`PLANE_WP_RADIUS`], scaled down for turns under 90°), on the arc tangent to both legs from
+    /// there, at the legs' speed: a plane holds its airspeed through a turn (ArduPlane's TECS)
+    /// and banks instead. The 90° corner a multicopter takes at 4.4 m/s on a 4.8 m arc, a plane
+    /// at 18 m/s takes on a 73 m arc (a 24° bank). Where the legs are too short for the arc, it
+    /// is tightened to fit them, as for a multicopter, though a real plane turning it would bank
+    /// past its 45° limit (ArduPlane's `ROLL_LIMIT_DEG`) and swing wide instead.
+    FixedWing,
+}
+
 /// The smallest arc radius a waypoint is turned on, m; a sharper turn (the path doubling back)
 /// is flown by stopping there.
 const MIN_ARC: f64 = 0.01;
 
 /// A turn through a waypoint: the arc tangent to both legs that passes [`CORNER_RADIUS`] from the
-/// waypoint (tighter where a leg is too short for it), flown at one speed.
+/// waypoint (a multicopter's; a plane's begins earlier, [`Cornering::FixedWing`]), tighter where a
+/// leg is too short for it, flown at one speed.
 ///
 /// ```
 /// use loratrack::{corners, FlightPlan};
@@ -36,8 +66,9 @@ pub struct Corner {
     pub radius: f64,
     /// The change of direction, rad (0 to π).
     pub turn: f64,
-    /// The speed through the arc, m/s: within [`CORNER_ACCEL`] sideways, the two legs' speeds,
-    /// and what the legs on either side let the vehicle reach or brake from.
+    /// The speed through the arc, m/s: within the sideways acceleration ([`CORNER_ACCEL`]; a
+    /// plane's is not limited, [`Cornering::FixedWing`]), the two legs' speeds, and what the legs
+    /// on either side let the vehicle reach or brake from.
     pub speed: f64,
 }
 
@@ -214,11 +245,22 @@ fn turn_at(plan: &FlightPlan, k: usize, unplanned: f64) -> Option<Corner> {
         });
     }
     let half = turn / 2.0;
-    // The arc whose midpoint lies CORNER_RADIUS from the waypoint: r (1 / cos(θ/2) − 1) = R.
-    let by_radius = CORNER_RADIUS * half.cos() / (1.0 - half.cos());
+    let (wanted, sideways) = match plan.cornering() {
+        // The arc whose midpoint lies CORNER_RADIUS from the waypoint: r (1 / cos(θ/2) − 1) = R.
+        Cornering::Multicopter => (
+            CORNER_RADIUS * half.cos() / (1.0 - half.cos()),
+            CORNER_ACCEL,
+        ),
+        // The arc that meets the leg in where the turn begins: r tan(θ/2) = the turn distance.
+        Cornering::FixedWing => {
+            let l1 = (L1_DAMPING * L1_PERIOD / PI * legs).min(PLANE_WP_RADIUS);
+            let begins = l1 * (turn / FRAC_PI_2).min(1.0);
+            (begins / half.tan(), f64::INFINITY)
+        }
+    };
     // Each arc may take at most half of either leg, so that two corners never overlap.
     let by_legs = 0.5 * len_in.min(len_out) / half.tan();
-    let radius = by_radius.min(by_legs);
+    let radius = wanted.min(by_legs);
     if radius.is_nan() || radius < MIN_ARC {
         return None;
     }
@@ -226,7 +268,7 @@ fn turn_at(plan: &FlightPlan, k: usize, unplanned: f64) -> Option<Corner> {
         cut: radius * half.tan(),
         radius,
         turn,
-        speed: legs.min((CORNER_ACCEL * radius).sqrt()),
+        speed: legs.min((sideways * radius).sqrt()),
     })
 }
 
@@ -252,6 +294,61 @@ mod tests {
         // The arc's midpoint lies the corner radius from the waypoint.
         let mid = c.radius / (c.turn / 2.0).cos() - c.radius;
         assert!((mid - CORNER_RADIUS).abs() < 1e-9, "{mid}");
+    }
+
+    fn plane(points: Vec<[f64; 3]>, speed: f64) -> FlightPlan {
+        plan(points, speed)
+            .with_climb(Some(ClimbLimits::FIXED_WING))
+            .with_cornering(Cornering::FixedWing)
+    }
+
+    #[test]
+    fn a_plane_turns_a_right_angle_at_its_speed_on_an_arc_begun_an_l1_distance_early() {
+        let points = vec![[0.0, 0.0, 80.0], [400.0, 0.0, 80.0], [400.0, 400.0, 80.0]];
+        let c = corners(&plane(points.clone(), 18.0))[1].unwrap();
+        // ArduPlane's L1 distance at 18 m/s: 0.75 × 17 / π × 18 = 73 m, under WP_RADIUS (90 m).
+        let l1 = 0.75 * 17.0 / PI * 18.0;
+        assert!(
+            (c.cut - l1).abs() < 1e-9 && (c.radius - l1).abs() < 1e-9,
+            "{c:?}"
+        );
+        assert_eq!(c.speed, 18.0);
+        // A multicopter on the same legs passes 2 m from the waypoint, slowed to 4.4 m/s.
+        let copter = corners(&plan(points.clone(), 18.0))[1].unwrap();
+        assert!(copter.radius < 5.0 && copter.speed < 4.5, "{copter:?}");
+        // Faster, the turn begins no earlier than the waypoint radius.
+        let fast = corners(&plane(points, 30.0))[1].unwrap();
+        assert!((fast.cut - PLANE_WP_RADIUS).abs() < 1e-9, "{fast:?}");
+    }
+
+    #[test]
+    fn a_plane_begins_a_gentle_turn_later_and_never_slows_for_a_tight_one() {
+        // 30°: the turn distance scaled by 30 / 90.
+        let gentle = plane(
+            vec![[0.0; 3], [400.0, 0.0, 0.0], [400.0 + 346.4, 200.0, 0.0]],
+            18.0,
+        );
+        let c = corners(&gentle)[1].unwrap();
+        let l1 = 0.75 * 17.0 / PI * 18.0;
+        assert!((c.turn - PI / 6.0).abs() < 1e-4, "{}", c.turn);
+        assert!((c.cut - l1 * c.turn / FRAC_PI_2).abs() < 1e-9, "{c:?}");
+        assert_eq!(c.speed, 18.0);
+        // Two right angles 40 m apart: each arc takes half of the 40 m leg, a 20 m radius, flown
+        // at 18 m/s all the same (a multicopter slows to 8.9 m/s).
+        let tight = plane(
+            vec![
+                [0.0; 3],
+                [400.0, 0.0, 0.0],
+                [400.0, 40.0, 0.0],
+                [800.0, 40.0, 0.0],
+            ],
+            18.0,
+        );
+        let c = corners(&tight)[1].unwrap();
+        assert!((c.radius - 20.0).abs() < 1e-9, "{c:?}");
+        assert_eq!(c.speed, 18.0);
+        let copter = corners(&plan(tight.waypoints().to_vec(), 18.0))[1].unwrap();
+        assert!(copter.speed < 9.0, "{copter:?}");
     }
 
     #[test]

@@ -140,17 +140,22 @@ impl Arc {
         self.radius * self.turn / self.speed
     }
 
+    /// The point `angle` rad round the arc from its start, m.
+    fn point(&self, angle: f64) -> [f64; 3] {
+        let (sin, cos) = (angle.sin(), angle.cos());
+        core::array::from_fn(|k| {
+            self.centre[k] - self.radius * cos * self.inward[k] + self.radius * sin * self.u[k]
+        })
+    }
+
     /// Position, velocity and acceleration (m, m/s, m/s²) `tau` s into it.
     fn at(&self, tau: f64) -> ([f64; 3], [f64; 3], [f64; 3]) {
         let angle = (self.speed * tau / self.radius).min(self.turn);
         let (sin, cos) = (angle.sin(), angle.cos());
-        let r = self.radius;
         let v = self.speed;
-        let centripetal = v * v / r;
+        let centripetal = v * v / self.radius;
         (
-            core::array::from_fn(|k| {
-                self.centre[k] - r * cos * self.inward[k] + r * sin * self.u[k]
-            }),
+            self.point(angle),
             core::array::from_fn(|k| v * (cos * self.u[k] + sin * self.inward[k])),
             core::array::from_fn(|k| centripetal * (cos * self.inward[k] - sin * self.u[k])),
         )
@@ -215,6 +220,96 @@ fn pieces(plan: &FlightPlan) -> Vec<Piece> {
         }
     }
     out
+}
+
+/// The largest turn between two waypoints of [`rounded`]'s arcs, rad (5°): the polyline then
+/// lies within r·(1 − cos 2.5°) of the arc, 7 cm on a plane's 73 m arc.
+const ARC_STEP: f64 = core::f64::consts::PI / 36.0;
+
+/// The path `plan` is flown on, as a plan: each corner's arc ([`corners`]) as waypoints every
+/// 5° of turn, each with the speed and climb limits of the leg it leads onto (the
+/// autopilot counts a waypoint reached where its turn begins); the straights, stops and holds
+/// as planned. For the mission station on a plane's plan, whose arcs pass tens of metres inside
+/// its waypoints ([`Cornering::FixedWing`](crate::Cornering::FixedWing)): on the plan's legs a
+/// plane in its turn lies farther from them than the station's tolerance.
+///
+/// ```
+/// use loratrack::{rounded, ClimbLimits, Cornering, FlightPlan};
+/// let plan = FlightPlan::new(vec![[0.0, 0.0, 80.0], [600.0, 0.0, 80.0], [600.0, 600.0, 80.0]], vec![Some(18.0); 2])
+///     .unwrap()
+///     .with_climb(Some(ClimbLimits::FIXED_WING))
+///     .with_cornering(Cornering::FixedWing);
+/// let path = rounded(&plan);
+/// // The right angle: its arc's start, 18 points 5° apart, then the last waypoint.
+/// assert_eq!(path.waypoints().len(), 1 + 19 + 1);
+/// assert!(path.length() < plan.length());
+/// ```
+pub fn rounded(plan: &FlightPlan) -> FlightPlan {
+    let w = plan.waypoints();
+    let turns = corners(plan);
+    let unit = |leg: usize| {
+        let d = distance(&w[leg], &w[leg + 1]);
+        core::array::from_fn::<f64, 3, _>(|k| (w[leg + 1][k] - w[leg][k]) / d)
+    };
+    let climbs = plan.climbs();
+    let mut path = Rounding {
+        points: vec![w[0]],
+        speeds: Vec::new(),
+        holds: vec![plan.holds()[0]],
+        climbs: Vec::new(),
+    };
+    for leg in 0..w.len() - 1 {
+        let along_leg = (plan.leg_speed(leg), climbs.map(|c| c[leg]));
+        match turns[leg + 1] {
+            Some(c) if c.length() > 0.0 => {
+                let arc = Arc::new(&c, w[leg + 1], unit(leg), unit(leg + 1));
+                path.push(arc.point(0.0), along_leg, 0.0);
+                let onto = (plan.leg_speed(leg + 1), climbs.map(|c| c[leg + 1]));
+                let n = (c.turn / ARC_STEP).ceil();
+                for k in 1..=n as usize {
+                    path.push(arc.point(c.turn * k as f64 / n), onto, 0.0);
+                }
+            }
+            _ => path.push(w[leg + 1], along_leg, plan.holds()[leg + 1]),
+        }
+    }
+    let rounded = match climbs {
+        Some(_) => {
+            FlightPlan::with_holds_and_climbs(path.points, path.speeds, path.holds, path.climbs)
+        }
+        None => {
+            FlightPlan::with_holds(path.points, path.speeds, path.holds).map(|p| p.with_climb(None))
+        }
+    };
+    // Every point of the path lies on the plan's legs or between them: as valid as the plan.
+    rounded.map_or_else(|_| plan.clone(), |p| p.with_cornering(plan.cornering()))
+}
+
+/// The waypoints of [`rounded`] so far, with each leg's speed and climb limits.
+struct Rounding {
+    points: Vec<[f64; 3]>,
+    speeds: Vec<Option<f64>>,
+    holds: Vec<f64>,
+    climbs: Vec<crate::ClimbLimits>,
+}
+
+impl Rounding {
+    /// Adds waypoint `p` with `hold` s there, reached on a leg with `leg`'s speed and climb
+    /// limits; a point within a micrometre of the last (an arc that begins where the one
+    /// before ended) only adds its hold, since a leg that short has no direction to turn from.
+    fn push(&mut self, p: [f64; 3], leg: (Option<f64>, Option<crate::ClimbLimits>), hold: f64) {
+        let last = self.points.len() - 1;
+        if distance(&self.points[last], &p) < 1e-6 {
+            self.holds[last] += hold;
+            return;
+        }
+        self.points.push(p);
+        self.speeds.push(leg.0);
+        self.holds.push(hold);
+        if let Some(c) = leg.1 {
+            self.climbs.push(c);
+        }
+    }
 }
 
 /// How long [`fly_plan`] takes to fly `plan`, s: its legs, its corners and its holds.
@@ -389,6 +484,38 @@ mod tests {
         .unwrap();
         let lost = flown_duration(&stopped) - f.duration();
         assert!(lost > 2.0, "{lost}");
+    }
+
+    #[test]
+    fn a_plane_flies_a_corner_at_its_speed_wide_of_the_waypoint() {
+        let plan = FlightPlan::new(
+            vec![[0.0, 0.0, 80.0], [600.0, 0.0, 80.0], [600.0, 600.0, 80.0]],
+            vec![Some(18.0), Some(18.0)],
+        )
+        .unwrap()
+        .with_climb(Some(crate::ClimbLimits::FIXED_WING))
+        .with_cornering(crate::Cornering::FixedWing);
+        let f = fly_plan(&plan, "plane").unwrap();
+        let corner = [600.0, 0.0, 80.0];
+        let near: Vec<usize> = (0..f.len())
+            .filter(|&i| distance(&f.pos[i], &corner) < 150.0)
+            .collect();
+        let slowest = near
+            .iter()
+            .map(|&i| f.vel[i][0].hypot(f.vel[i][1]))
+            .fold(f64::INFINITY, f64::min);
+        assert!((slowest - 18.0).abs() < 1e-9, "{slowest}");
+        // The arc of radius r tangent to both legs passes r (√2 − 1) from the waypoint.
+        let r = crate::trajectory::corners(&plan)[1].unwrap().radius;
+        let nearest = near
+            .iter()
+            .map(|&i| distance(&f.pos[i], &corner))
+            .fold(f64::INFINITY, f64::min);
+        let expected = r * (2f64.sqrt() - 1.0);
+        assert!(
+            (nearest - expected).abs() < 0.1 && nearest > 25.0,
+            "{nearest}"
+        );
     }
 
     #[test]

@@ -4,7 +4,7 @@
 use super::geodetic::east_north;
 use super::plan::{FlightPlan, MAX_WAYPOINTS};
 use super::plan_file::PlanError;
-use super::{ClimbLimits, MAX_PLAN_SPEED, PLAN_CRUISE};
+use super::{ClimbLimits, Cornering, MAX_PLAN_SPEED, PLAN_CRUISE};
 use crate::math::{atan2, hypot, sin_cos};
 use core::f64::consts::TAU;
 
@@ -82,6 +82,8 @@ pub(super) struct Flown {
     /// The vehicle's climb and descent limits, as the next leg will have them, and each leg's.
     climb: ClimbLimits,
     climbs: Vec<ClimbLimits>,
+    /// How the vehicle turns through a waypoint.
+    cornering: Cornering,
 }
 
 impl Flown {
@@ -97,16 +99,19 @@ impl Flown {
             waypoint_holds: true,
             climb: ClimbLimits::MULTICOPTER,
             climbs: Vec::new(),
+            cornering: Cornering::Multicopter,
         }
     }
 
     /// The same for a fixed-wing vehicle, which flies through a waypoint's hold time, circles its
     /// timed loiters and delays for their time ([`LOITER_RADIUS`] where a loiter gives no
-    /// radius), and climbs and descends faster.
+    /// radius), climbs and descends faster, and turns through a waypoint wide and at its speed
+    /// ([`Cornering::FixedWing`]).
     pub fn fixed_wing(self) -> Self {
         Flown {
             waypoint_holds: false,
             climb: ClimbLimits::FIXED_WING,
+            cornering: Cornering::FixedWing,
             ..self
         }
     }
@@ -309,6 +314,7 @@ impl Flown {
             .map(|h| h.min(super::plan::MAX_HOLD))
             .collect();
         FlightPlan::with_holds_and_climbs(self.points, self.speeds, holds, self.climbs)
+            .map(|p| p.with_cornering(self.cornering))
     }
 
     /// East and north of home, m, of an item's latitude and longitude (degrees); `None` where it

@@ -20,14 +20,16 @@ mod waypoint_list;
 
 pub use chain::chain_flights;
 pub use climb::ClimbLimits;
-pub use cornering::{corners, Corner, CornerSpeeds, CORNER_ACCEL, CORNER_RADIUS};
+pub use cornering::{
+    corners, Corner, CornerSpeeds, Cornering, CORNER_ACCEL, CORNER_RADIUS, PLANE_WP_RADIUS,
+};
 pub use csv::{
     parse_csv, parse_csv_with_progress, MAX_CSV_BYTES, MAX_ROWS, MIN_ROWS, MIN_TIME_STEP,
 };
 pub use error::TrajectoryError;
 pub use flown_plan::{
-    flown_duration, fly_plan, inspection_plan, INSPECTION_HOLDS, INSPECTION_POINTS, MAX_FLOWN_S,
-    PLAN_ACCEL, PLAN_CRUISE, PLAN_RATE_HZ,
+    flown_duration, fly_plan, inspection_plan, rounded, INSPECTION_HOLDS, INSPECTION_POINTS,
+    MAX_FLOWN_S, PLAN_ACCEL, PLAN_CRUISE, PLAN_RATE_HZ,
 };
 pub use kinematics::{heading_angles, kinematic_state, kinematic_states, HOVER_SPEED};
 pub use mission_items::{

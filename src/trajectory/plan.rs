@@ -3,7 +3,7 @@
 //! predicts along it between packets.
 
 use super::plan_file::PlanError;
-use super::{ClimbLimits, Trajectory};
+use super::{ClimbLimits, Cornering, Trajectory};
 use crate::math::distance;
 
 /// At most this many waypoints (a QGroundControl mission rarely has more than a few hundred).
@@ -45,6 +45,8 @@ pub struct FlightPlan {
     /// The autopilot's climb and descent limits on each leg; `None` for a plan traced through a
     /// flight, whose leg speeds are the flight's own.
     climbs: Option<Vec<ClimbLimits>>,
+    /// How the autopilot turns through the waypoints it flies through.
+    cornering: Cornering,
 }
 
 /// The nearest point of a plan to a position.
@@ -165,6 +167,7 @@ impl FlightPlan {
             speeds: Vec::with_capacity(speeds.len()),
             holds: Vec::with_capacity(points.len()),
             climbs: None,
+            cornering: Cornering::Multicopter,
         };
         let mut kept_climbs = Vec::with_capacity(climbs.len());
         for (i, p) in points.into_iter().enumerate() {
@@ -214,6 +217,7 @@ impl FlightPlan {
             speeds: vec![Some(1e-3)],
             holds: vec![0.0; 2],
             climbs: None,
+            cornering: Cornering::Multicopter,
         });
         plan.with_climb(None)
     }
@@ -231,6 +235,18 @@ impl FlightPlan {
     /// The climb and descent limits each leg is flown within, if any.
     pub fn climbs(&self) -> Option<&[ClimbLimits]> {
         self.climbs.as_deref()
+    }
+
+    /// The same plan with its waypoints turned through as `cornering` says (a multicopter's
+    /// unless set).
+    pub fn with_cornering(self, cornering: Cornering) -> Self {
+        FlightPlan { cornering, ..self }
+    }
+
+    /// How the autopilot turns through the waypoints it flies through
+    /// ([`corners`](super::corners)).
+    pub fn cornering(&self) -> Cornering {
+        self.cornering
     }
 
     /// The same waypoints without planned speeds.

@@ -207,6 +207,10 @@ mod tests {
         assert_eq!(p.holds(), &[0.0, 0.0, 0.0, 30.0, 0.0, 0.0, 0.0]);
         let fixed_wing = QGC4_HEXAROTOR.replace(r#""vehicleType": 13"#, r#""vehicleType": 1"#);
         assert_eq!(parse_plan(&fixed_wing).unwrap().speed_at(1.0), Some(15.0));
+        // A plane turns through its waypoints as ArduPlane does, a multi-rotor as Copter does.
+        let cornering = |plan: &str| parse_plan(plan).unwrap().cornering();
+        assert_eq!(cornering(&fixed_wing), crate::Cornering::FixedWing);
+        assert_eq!(cornering(QGC4_HEXAROTOR), crate::Cornering::Multicopter);
         // A waypoint's hold time: a multi-rotor hovers there, a fixed-wing flies through it.
         let held = |plan: &str| {
             let held = plan.replace(

@@ -859,14 +859,15 @@ impl Validated {
     }
 
     /// The plan a mission station follows over `flight` (`None` for any other `model`): a
-    /// synthetic flight's own ([`FlightPlan::traced`]), else the one given.
+    /// synthetic flight's own ([`FlightPlan::traced`]), else the one given (a plane's along its
+    /// arcs, [`MissionPlan::followed`]).
     pub fn mission_plan(&self, model: StationModel, flight: &Trajectory) -> Option<MissionPlan> {
         if model != StationModel::Mission {
             return None;
         }
         let plan = match &self.source {
             Some(TrajectorySource::Synthetic(_)) => FlightPlan::traced(flight, TRACE_TOLERANCE),
-            _ => self.plan.clone()?,
+            _ => MissionPlan::followed(self.plan.clone()?),
         };
         let plan = match self.settings.station.plan_pace {
             PlanPace::Plan => plan,

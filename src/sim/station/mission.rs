@@ -5,7 +5,9 @@
 use super::{Prediction, StationPredictor, StationSetup, Tracker};
 use crate::math::{distance, exp, sin_cos};
 use crate::models::Ctra3d;
-use crate::trajectory::{CornerSpeeds, FlightPlan, OnPlan, Trajectory, PLAN_ACCEL, PLAN_CRUISE};
+use crate::trajectory::{
+    rounded, CornerSpeeds, Cornering, FlightPlan, OnPlan, Trajectory, PLAN_ACCEL, PLAN_CRUISE,
+};
 use nalgebra::Matrix3;
 use serde::{Deserialize, Serialize};
 
@@ -60,6 +62,18 @@ impl MissionPlan {
             _ => flight.t[0],
         }
     }
+    /// `plan` as the station follows it: a plane's with its corners' arcs ([`rounded`]), which
+    /// pass tens of metres inside its waypoints, so that a plane in a turn is on the plan; a
+    /// multicopter's as planned, its arcs passing within 2 m of the waypoints
+    /// ([`CORNER_RADIUS`](crate::CORNER_RADIUS)), well within the tolerance. Before its speeds
+    /// are dropped (`--plan-pace packet`): a plane's arcs are as wide as its speed makes them.
+    pub fn followed(plan: FlightPlan) -> FlightPlan {
+        match plan.cornering() {
+            Cornering::FixedWing => rounded(&plan),
+            Cornering::Multicopter => plan,
+        }
+    }
+
     /// The wait at the plan's first waypoint before the drone sets out: that waypoint and when
     /// the drone got there, s, so that its hold there (if any) ends at [`MissionPlan::start`], as
     /// the flown plan leaves it at once and a log's drone leaves it when it sets out.
@@ -603,6 +617,53 @@ mod tests {
         fast.reset(&packet(p[0], p[1], v[0]), flown.t[k]);
         fast.predict_to(flown.t[k + 300]);
         assert!(distance(&fast.position(), &flown.pos[k + 300]) > worst + 2.0);
+    }
+
+    #[test]
+    fn follows_a_plane_round_its_wide_corner() {
+        // East 600 m, north 600 m, at 18 m/s: the plane turns on a 73 m arc, 30 m inside the
+        // corner at its middle.
+        let plan = FlightPlan::new(
+            vec![[0.0, 0.0, 20.0], [600.0, 0.0, 20.0], [600.0, 600.0, 20.0]],
+            vec![Some(18.0); 2],
+        )
+        .unwrap()
+        .with_climb(Some(crate::ClimbLimits::FIXED_WING))
+        .with_cornering(Cornering::FixedWing);
+        let flown = crate::fly_plan(&plan, "plane").unwrap();
+        let mp = MissionPlan {
+            plan: MissionPlan::followed(plan),
+            tolerance: 10.0,
+            start: 0.0,
+        };
+        // A packet 30 s in, 70 m before the turn begins, then 15 s through it.
+        let k = (30.0 * crate::PLAN_RATE_HZ) as usize;
+        let (p, v) = (flown.pos[k], flown.vel[k]);
+        let mut st = MissionStation::new(Some(mp.clone()), setup());
+        st.reset(&packet(p[0], p[1], v[0]), flown.t[k]);
+        let mut worst: f64 = 0.0;
+        for step in 1..=75 {
+            let i = k + step * 5;
+            st.predict_to(flown.t[i]);
+            worst = worst.max(distance(&st.position(), &flown.pos[i]));
+        }
+        assert!(worst < 0.5, "{worst}");
+        assert!(flown.pos[k + 375][1] > 100.0, "{:?}", flown.pos[k + 375]);
+        // A packet in the middle of the turn is on the plan the station follows.
+        let mid = flown
+            .pos
+            .iter()
+            .enumerate()
+            .min_by(|a, b| {
+                let d = |p: &[f64; 3]| distance(p, &[600.0, 0.0, 20.0]);
+                d(a.1).total_cmp(&d(b.1))
+            })
+            .map_or(0, |(i, _)| i);
+        let mut st = MissionStation::new(Some(mp), setup());
+        let (p, v) = (flown.pos[mid], flown.vel[mid]);
+        let state = [p[0], p[1], 20.0, 0.0, 0.0, v[0].hypot(v[1]), 0.0, 0.0, 0.0];
+        st.reset(&state, flown.t[mid]);
+        assert!(st.on_plan());
     }
 
     /// [`corner`] with a hold of 10 s at the corner.
