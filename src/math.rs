@@ -26,6 +26,18 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     libm::sincos(x)
 }
 
+/// tan(x), x in radians.
+#[inline]
+pub fn tan(x: f64) -> f64 {
+    libm::tan(x)
+}
+
+/// arccos(x), in [0, pi]; NaN outside [-1, 1].
+#[inline]
+pub fn acos(x: f64) -> f64 {
+    libm::acos(x)
+}
+
 /// Four-quadrant arctangent of y/x, in (-pi, pi].
 #[inline]
 pub fn atan2(y: f64, x: f64) -> f64 {

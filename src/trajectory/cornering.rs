@@ -4,7 +4,7 @@
 //! ([`crate::fly_plan`]) and the mission station's pace alike.
 
 use super::plan::FlightPlan;
-use crate::math::distance;
+use crate::math::{acos, cos, distance, tan};
 use core::f64::consts::{FRAC_PI_2, PI};
 
 /// How close to a waypoint flown through the path passes, m: ArduPilot Copter's waypoint radius
@@ -232,7 +232,7 @@ fn turn_at(plan: &FlightPlan, k: usize, unplanned: f64) -> Option<Corner> {
         .map(|i| (w[k][i] - w[k - 1][i]) * (w[k + 1][i] - w[k][i]))
         .sum::<f64>()
         / (len_in * len_out);
-    let turn = cos_turn.clamp(-1.0, 1.0).acos();
+    let turn = acos(cos_turn.clamp(-1.0, 1.0));
     let legs = plan
         .flown_speed(k - 1, unplanned)
         .min(plan.flown_speed(k, unplanned));
@@ -247,25 +247,22 @@ fn turn_at(plan: &FlightPlan, k: usize, unplanned: f64) -> Option<Corner> {
     let half = turn / 2.0;
     let (wanted, sideways) = match plan.cornering() {
         // The arc whose midpoint lies CORNER_RADIUS from the waypoint: r (1 / cos(θ/2) − 1) = R.
-        Cornering::Multicopter => (
-            CORNER_RADIUS * half.cos() / (1.0 - half.cos()),
-            CORNER_ACCEL,
-        ),
+        Cornering::Multicopter => (CORNER_RADIUS * cos(half) / (1.0 - cos(half)), CORNER_ACCEL),
         // The arc that meets the leg in where the turn begins: r tan(θ/2) = the turn distance.
         Cornering::FixedWing => {
             let l1 = (L1_DAMPING * L1_PERIOD / PI * legs).min(PLANE_WP_RADIUS);
             let begins = l1 * (turn / FRAC_PI_2).min(1.0);
-            (begins / half.tan(), f64::INFINITY)
+            (begins / tan(half), f64::INFINITY)
         }
     };
     // Each arc may take at most half of either leg, so that two corners never overlap.
-    let by_legs = 0.5 * len_in.min(len_out) / half.tan();
+    let by_legs = 0.5 * len_in.min(len_out) / tan(half);
     let radius = wanted.min(by_legs);
     if radius.is_nan() || radius < MIN_ARC {
         return None;
     }
     Some(Corner {
-        cut: radius * half.tan(),
+        cut: radius * tan(half),
         radius,
         turn,
         speed: legs.min((sideways * radius).sqrt()),

@@ -5,7 +5,7 @@
 use super::cornering::{corners, Corner};
 use super::plan::FlightPlan;
 use super::{PlanError, Trajectory, MAX_ROWS};
-use crate::math::distance;
+use crate::math::{distance, sin_cos};
 use crate::rng::Rng;
 
 /// The acceleration and braking of [`fly_plan`], m/s²: ArduPilot's default waypoint
@@ -142,7 +142,7 @@ impl Arc {
 
     /// The point `angle` rad round the arc from its start, m.
     fn point(&self, angle: f64) -> [f64; 3] {
-        let (sin, cos) = (angle.sin(), angle.cos());
+        let (sin, cos) = sin_cos(angle);
         core::array::from_fn(|k| {
             self.centre[k] - self.radius * cos * self.inward[k] + self.radius * sin * self.u[k]
         })
@@ -151,7 +151,7 @@ impl Arc {
     /// Position, velocity and acceleration (m, m/s, m/s²) `tau` s into it.
     fn at(&self, tau: f64) -> ([f64; 3], [f64; 3], [f64; 3]) {
         let angle = (self.speed * tau / self.radius).min(self.turn);
-        let (sin, cos) = (angle.sin(), angle.cos());
+        let (sin, cos) = sin_cos(angle);
         let v = self.speed;
         let centripetal = v * v / self.radius;
         (
