@@ -84,6 +84,8 @@ pub(super) struct Flown {
     climbs: Vec<ClimbLimits>,
     /// How the vehicle turns through a waypoint.
     cornering: Cornering,
+    /// The waypoints a plane's take-off climbs to, which [`Flown::climb_out`] places.
+    takeoffs: Vec<usize>,
 }
 
 impl Flown {
@@ -100,6 +102,7 @@ impl Flown {
             climb: ClimbLimits::MULTICOPTER,
             climbs: Vec::new(),
             cornering: Cornering::Multicopter,
+            takeoffs: Vec::new(),
         }
     }
 
@@ -176,11 +179,15 @@ impl Flown {
             // A plane returns at its own height and circles home (ArduPlane without
             // `RTL_AUTOLAND`): read as home at that height.
             NAV_RETURN_TO_LAUNCH => [0.0, 0.0, last[2]],
-            // Take-off and landing often leave the position to the vehicle: in place.
+            // Take-off and landing often leave the position to the vehicle: in place (a plane's
+            // take-off climbs out toward the next waypoint, `climb_out`).
             NAV_TAKEOFF | NAV_VTOL_TAKEOFF => {
                 let [x, y] = self
                     .horizontal(param(4), param(5))
                     .unwrap_or([last[0], last[1]]);
+                if item.command == NAV_TAKEOFF && !self.waypoint_holds {
+                    self.takeoffs.push(self.points.len());
+                }
                 [x, y, self.altitude(param(6), item.frame)?]
             }
             // A multicopter flies to where it lands at its own height, then lands straight down
@@ -303,11 +310,39 @@ impl Flown {
         Ok(())
     }
 
+    /// A plane's take-offs, as ArduPlane flies `NAV_TAKEOFF`: it cannot climb straight up, so it
+    /// climbs out along its heading at its speed, at most its climb limit up (TECS's
+    /// `TECS_CLMB_MAX`), reaching the take-off's height `h` after h·√(v² − c²)/c m (277 m to 80 m
+    /// at 18 m/s and 5 m/s up). Its heading is taken toward the next waypoint elsewhere (a
+    /// plane is launched into its mission), at most as far as that waypoint. A take-off given a
+    /// position of its own, and a VTOL's, climb where they are told.
+    fn climb_out(&mut self) {
+        for &k in &self.takeoffs {
+            let (from, top) = (self.points[k - 1], self.points[k]);
+            let rise = top[2] - from[2];
+            let (v, c) = (
+                self.speeds[k - 1].unwrap_or(PLAN_CRUISE),
+                self.climbs[k - 1].up,
+            );
+            let next = self.points[k + 1..]
+                .iter()
+                .find(|p| p[0] != top[0] || p[1] != top[1]);
+            let (Some(next), true) = (next, from[..2] == top[..2] && rise > 0.0 && v > c) else {
+                continue;
+            };
+            let (dx, dy) = (next[0] - top[0], next[1] - top[1]);
+            let away = hypot(dx, dy);
+            let run = (rise * (v * v - c * c).sqrt() / c).min(away);
+            self.points[k] = [top[0] + dx / away * run, top[1] + dy / away * run, top[2]];
+        }
+    }
+
     /// The plan flown: home and every waypoint read, in order, with their holds.
-    pub fn plan(self) -> Result<FlightPlan, PlanError> {
+    pub fn plan(mut self) -> Result<FlightPlan, PlanError> {
         if self.points.len() < 2 {
             return Err(PlanError::Empty);
         }
+        self.climb_out();
         let holds = self
             .holds
             .into_iter()
@@ -470,6 +505,35 @@ mod tests {
         plane.item(&wp).unwrap();
         plane.item(&loiter).unwrap();
         assert!(plane.plan().unwrap().holds().iter().all(|h| *h == 0.0));
+    }
+
+    #[test]
+    fn a_plane_climbs_out_toward_its_first_waypoint_and_a_multicopter_straight_up() {
+        let takeoff = item(22, 3, 0.0, 0.0, 80.0);
+        // 1 km east of home.
+        let east = item(16, 3, -35.0, 149.0 + 1000.0 / 91_000.0, 80.0);
+        let fly = |f: Flown| {
+            let mut f = f;
+            let mut t = takeoff;
+            t.params[4] = None;
+            t.params[5] = None;
+            f.item(&t).unwrap();
+            f.item(&east).unwrap();
+            f.plan().unwrap()
+        };
+        let plane = fly(Flown::new([-35.0, 149.0, 500.0], Some(18.0)).fixed_wing());
+        let top = plane.waypoints()[1];
+        // 80 m up at 5 m/s while flying 18 m/s: 80 × √(18² − 5²) / 5 = 277 m east.
+        let run = 80.0 * (18.0f64 * 18.0 - 25.0).sqrt() / 5.0;
+        assert!(
+            (top[0] - run).abs() < 1e-9 && top[1].abs() < 1e-9,
+            "{top:?}"
+        );
+        assert_eq!(top[2], 80.0);
+        // Flown at its speed: the climb limit is met, not exceeded.
+        assert_eq!(plane.flown_speed(0, 5.0), 18.0);
+        let copter = fly(Flown::new([-35.0, 149.0, 500.0], Some(18.0)));
+        assert_eq!(copter.waypoints()[1], [0.0, 0.0, 80.0]);
     }
 
     /// A `DO_CHANGE_SPEED` of `kind` (0 airspeed, 1 ground speed, 2 climb, 3 descent) to `speed`.
