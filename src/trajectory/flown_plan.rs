@@ -3,7 +3,7 @@
 //! points, for the mission station's holds (`sweep --mission`, docs/mission.md).
 
 use super::cornering::{corners, Corner};
-use super::plan::FlightPlan;
+use super::plan::{FlightPlan, MAX_WAYPOINTS};
 use super::{PlanError, Trajectory, MAX_ROWS};
 use crate::math::{distance, sin_cos};
 use crate::rng::Rng;
@@ -227,7 +227,8 @@ fn pieces(plan: &FlightPlan) -> Vec<Piece> {
 const ARC_STEP: f64 = core::f64::consts::PI / 36.0;
 
 /// The path `plan` is flown on, as a plan: each corner's arc ([`corners`]) as waypoints every
-/// 5° of turn, each with the speed and climb limits of the leg it leads onto (the
+/// 5° of turn (coarser where so many would pass [`MAX_WAYPOINTS`], as on a loiter of hundreds
+/// of turns), each with the speed and climb limits of the leg it leads onto (the
 /// autopilot counts a waypoint reached where its turn begins); the straights, stops and holds
 /// as planned. For the mission station on a plane's plan, whose arcs pass tens of metres inside
 /// its waypoints ([`Cornering::FixedWing`](crate::Cornering::FixedWing)): on the plan's legs a
@@ -252,6 +253,16 @@ pub fn rounded(plan: &FlightPlan) -> FlightPlan {
         core::array::from_fn::<f64, 3, _>(|k| (w[leg + 1][k] - w[leg][k]) / d)
     };
     let climbs = plan.climbs();
+    // The points fit a plan's MAX_WAYPOINTS: a long loiter's hundreds of turns take coarser
+    // steps (each doubling at most halves their count), down to an arc's two ends.
+    let count = |step: f64| {
+        let arcs = turns.iter().flatten().filter(|c| c.length() > 0.0);
+        w.len() + arcs.map(|c| (c.turn / step).ceil() as usize).sum::<usize>()
+    };
+    let mut step = ARC_STEP;
+    while count(step) > MAX_WAYPOINTS && step < core::f64::consts::PI {
+        step *= 2.0;
+    }
     let mut path = Rounding {
         points: vec![w[0]],
         speeds: Vec::new(),
@@ -265,7 +276,7 @@ pub fn rounded(plan: &FlightPlan) -> FlightPlan {
                 let arc = Arc::new(&c, w[leg + 1], unit(leg), unit(leg + 1));
                 path.push(arc.point(0.0), along_leg, 0.0);
                 let onto = (plan.leg_speed(leg + 1), climbs.map(|c| c[leg + 1]));
-                let n = (c.turn / ARC_STEP).ceil();
+                let n = (c.turn / step).ceil();
                 for k in 1..=n as usize {
                     path.push(arc.point(c.turn * k as f64 / n), onto, 0.0);
                 }
@@ -281,7 +292,8 @@ pub fn rounded(plan: &FlightPlan) -> FlightPlan {
             FlightPlan::with_holds(path.points, path.speeds, path.holds).map(|p| p.with_climb(None))
         }
     };
-    // Every point of the path lies on the plan's legs or between them: as valid as the plan.
+    // Every point of the path lies on the plan's legs or between them: as valid as the plan,
+    // unless more than MAX_WAYPOINTS / 2 corners leave too many points even so (then its legs).
     rounded.map_or_else(|_| plan.clone(), |p| p.with_cornering(plan.cornering()))
 }
 
@@ -516,6 +528,31 @@ mod tests {
             (nearest - expected).abs() < 0.1 && nearest > 25.0,
             "{nearest}"
         );
+    }
+
+    #[test]
+    fn a_plane_plan_with_a_long_loiter_is_rounded_within_the_waypoint_limit() {
+        // A wide right angle, then 300 turns of a 60 m loiter as 12-gons (3600 corners of 30°).
+        let mut points = vec![[0.0, 0.0, 80.0], [600.0, 0.0, 80.0], [600.0, 600.0, 80.0]];
+        for k in 1..=3600 {
+            let a = k as f64 * core::f64::consts::TAU / 12.0;
+            points.push([600.0 + 60.0 * a.cos(), 660.0 - 60.0 * a.sin(), 80.0]);
+        }
+        let legs = points.len() - 1;
+        let plan = FlightPlan::new(points, vec![Some(18.0); legs])
+            .unwrap()
+            .with_climb(Some(crate::ClimbLimits::FIXED_WING))
+            .with_cornering(crate::Cornering::FixedWing);
+        let path = rounded(&plan);
+        assert!(path.waypoints().len() <= MAX_WAYPOINTS);
+        assert!(path.waypoints().len() > plan.waypoints().len());
+        // The right angle's arc is followed: the path passes near its middle, 21 m from the legs
+        // (in 30° steps: within r (1 − cos 15°) = 2.5 m).
+        let r = corners(&plan)[1].unwrap().radius;
+        let middle = [600.0 - r + r / 2f64.sqrt(), r - r / 2f64.sqrt(), 80.0];
+        let off = path.nearest(&middle, 0.0, 1000.0).off;
+        assert!(off < 3.0, "{off}");
+        assert!(plan.nearest(&middle, 0.0, 1000.0).off > 20.0);
     }
 
     #[test]
