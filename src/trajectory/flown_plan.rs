@@ -193,10 +193,7 @@ impl Piece {
 fn pieces(plan: &FlightPlan) -> Vec<Piece> {
     let w = plan.waypoints();
     let turns = corners(plan);
-    let unit = |leg: usize| {
-        let d = distance(&w[leg], &w[leg + 1]);
-        core::array::from_fn::<f64, 3, _>(|k| (w[leg + 1][k] - w[leg][k]) / d)
-    };
+    let unit = |leg: usize| leg_direction(w, leg);
     let mut out = Vec::new();
     for leg in 0..w.len() - 1 {
         let u = unit(leg);
@@ -248,10 +245,7 @@ const ARC_STEP: f64 = core::f64::consts::PI / 36.0;
 pub fn rounded(plan: &FlightPlan) -> FlightPlan {
     let w = plan.waypoints();
     let turns = corners(plan);
-    let unit = |leg: usize| {
-        let d = distance(&w[leg], &w[leg + 1]);
-        core::array::from_fn::<f64, 3, _>(|k| (w[leg + 1][k] - w[leg][k]) / d)
-    };
+    let unit = |leg: usize| leg_direction(w, leg);
     let climbs = plan.climbs();
     // The points fit a plan's MAX_WAYPOINTS: a long loiter's hundreds of turns take coarser
     // steps (each doubling at most halves their count), down to an arc's two ends.
@@ -322,6 +316,12 @@ impl Rounding {
             self.climbs.push(c);
         }
     }
+}
+
+/// The unit direction of the leg from waypoint `leg` of `w` to the next.
+fn leg_direction(w: &[[f64; 3]], leg: usize) -> [f64; 3] {
+    let d = distance(&w[leg], &w[leg + 1]);
+    core::array::from_fn(|k| (w[leg + 1][k] - w[leg][k]) / d)
 }
 
 /// How long [`fly_plan`] takes to fly `plan`, s: its legs, its corners and its holds.

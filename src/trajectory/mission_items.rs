@@ -5,8 +5,8 @@ use super::geodetic::east_north;
 use super::plan::{FlightPlan, MAX_WAYPOINTS};
 use super::plan_file::PlanError;
 use super::{ClimbLimits, Cornering, MAX_PLAN_SPEED, PLAN_CRUISE};
-use crate::math::{atan2, hypot, sin_cos};
-use core::f64::consts::TAU;
+use crate::math::{atan2, cos, hypot, sin_cos};
+use core::f64::consts::{PI, TAU};
 
 /// MAVLink commands (`MAV_CMD`) that loratrack reads.
 const NAV_WAYPOINT: u64 = 16;
@@ -270,7 +270,8 @@ impl Flown {
     /// `from` to the nearest point of the circle, then round it through a point every 30° (its
     /// corners flown as any other's), at the mission's speed or, for a multicopter, at most
     /// [`CIRCLE_RATE`] × radius (a 10 m circle at 3.5 m/s). A fixed-wing vehicle circles at its
-    /// speed.
+    /// speed, through points 1/cos 15° farther out, so that its corners' arcs, which meet
+    /// ([`Cornering::FixedWing`]), are the circle itself, flown for the loiter's time.
     fn circle(
         &mut self,
         from: [f64; 3],
@@ -292,7 +293,10 @@ impl Flown {
             atan2(dy, dx)
         };
         let way = if radius < 0.0 { 1.0 } else { -1.0 };
-        let r = radius.abs();
+        let r = match self.cornering {
+            Cornering::FixedWing => radius.abs() / cos(PI / CIRCLE_POINTS),
+            Cornering::Multicopter => radius.abs(),
+        };
         let at = |angle: f64| {
             let (s, c) = sin_cos(angle);
             [centre[0] + r * c, centre[1] + r * s, centre[2]]
@@ -677,6 +681,9 @@ mod tests {
                 .map(|p| (p[0] - c[0]).hypot(p[1] - c[1]))
                 .collect()
         };
+        // The points a plane's circle of radius r passes through: r / cos 15° out, so that the
+        // arcs it turns on between them are the circle.
+        let out = |r: f64| r / (PI / 12.0).cos();
         // 60 s at 15 m/s round a circle of 60 m: 2.39 turns, 29 points after its edge.
         let mut timed = plane();
         timed.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
@@ -686,21 +693,21 @@ mod tests {
         assert_eq!(timed.points.len(), 2 + 1 + 29, "{:?}", timed.points);
         assert!(radii(&timed, 2)
             .iter()
-            .all(|r| (r - LOITER_RADIUS).abs() < 1e-9));
+            .all(|r| (r - out(LOITER_RADIUS)).abs() < 1e-9));
         assert!(timed.holds.iter().all(|h| *h == 0.0));
         // Its timed loiter's own radius, and a delay: circled where the plane is.
         let mut own = plane();
         own.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
         loiter.params[2] = Some(-20.0);
         own.item(&loiter).unwrap();
-        assert!(radii(&own, 2).iter().all(|r| (r - 20.0).abs() < 1e-9));
+        assert!(radii(&own, 2).iter().all(|r| (r - out(20.0)).abs() < 1e-9));
         let mut delayed = plane();
         delayed.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
         delayed.item(&delay([60.0, -1.0, -1.0, -1.0])).unwrap();
         assert_eq!(delayed.points.len(), 2 + 1 + 29);
         assert!(radii(&delayed, 2)
             .iter()
-            .all(|r| (r - LOITER_RADIUS).abs() < 1e-9));
+            .all(|r| (r - out(LOITER_RADIUS)).abs() < 1e-9));
         // Turns of radius 0: at 60 m for a plane, on the spot for a multicopter.
         let mut turns = plane();
         turns.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
@@ -708,13 +715,34 @@ mod tests {
         assert_eq!(turns.points.len(), 2 + 1 + 24);
         assert!(radii(&turns, 2)
             .iter()
-            .all(|r| (r - LOITER_RADIUS).abs() < 1e-9));
+            .all(|r| (r - out(LOITER_RADIUS)).abs() < 1e-9));
         let mut copter = Flown::new([-35.0, 149.0, 500.0], Some(15.0));
         copter.item(&item(16, 3, -35.0, 149.001, 30.0)).unwrap();
         copter
             .item(&loiter_turns(-35.0, 149.001, 2.0, 0.0))
             .unwrap();
         assert_eq!(copter.points.len(), 3);
+        // Flown, the plane's timed loiter is the circle of 60 m, for its 60 s (on its way to a
+        // waypoint 1 km north, not braking to the plan's end).
+        let c = timed.points[1];
+        timed.item(&item(16, 3, -34.991, 149.001, 30.0)).unwrap();
+        let flight = crate::fly_plan(&timed.plan().unwrap(), "loiter").unwrap();
+        let on_circle: Vec<usize> = (0..flight.len())
+            .filter(|&i| {
+                let p = flight.pos[i];
+                ((p[0] - c[0]).hypot(p[1] - c[1]) - LOITER_RADIUS).abs() < 0.5
+            })
+            .collect();
+        // Past the way in from the centre (a leg and a turn onto the circle).
+        let n = on_circle.len();
+        let r = on_circle[n / 10..n - n / 10]
+            .iter()
+            .map(|&i| (flight.pos[i][0] - c[0]).hypot(flight.pos[i][1] - c[1]));
+        let spread = r.fold(0.0f64, |m, r| m.max((r - LOITER_RADIUS).abs()));
+        assert!(spread < 1e-6, "{spread}");
+        let time = on_circle.len() as f64 / crate::PLAN_RATE_HZ;
+        // Less the turns onto the circle and off it, which are arcs of their own.
+        assert!(time > 57.0 && time <= 60.0, "{time}");
     }
 
     #[test]
