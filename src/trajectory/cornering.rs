@@ -85,7 +85,8 @@ impl Corner {
 
 /// How `plan` is flown at each waypoint: `None` where the vehicle stops (the first and the last,
 /// a waypoint with a hold, one where the path doubles back), and the [`Corner`] it turns on
-/// elsewhere. Only a plan for an autopilot (one with [`ClimbLimits`]) has corners: a plan traced
+/// elsewhere (a plane's last waypoint in the air: a corner of no turn, flown through at its
+/// speed). Only a plan for an autopilot (one with [`ClimbLimits`]) has corners: a plan traced
 /// through a flight has none, its leg speeds being the flight's own, so [`crate::fly_plan`] flies
 /// it from rest to rest on every leg and [`CornerSpeeds`] leaves the mission station's pace on it
 /// unlimited.
@@ -224,8 +225,19 @@ impl CornerSpeeds {
 /// The turn at waypoint `k` before the speed passes, or `None` where the vehicle stops there.
 fn turn_at(plan: &FlightPlan, k: usize, unplanned: f64) -> Option<Corner> {
     let w = plan.waypoints();
-    if plan.climbs().is_none() || k == 0 || k + 1 >= w.len() || plan.holds()[k] > 0.0 {
+    if plan.climbs().is_none() || k == 0 || plan.holds()[k] > 0.0 {
         return None;
+    }
+    if k + 1 == w.len() {
+        // A plane cannot stop in the air: it flies on through its last waypoint (ArduPlane then
+        // loiters there) unless it lands on it.
+        let airborne = plan.cornering() == Cornering::FixedWing && w[k][2] > 0.0;
+        return airborne.then(|| Corner {
+            cut: 0.0,
+            radius: f64::INFINITY,
+            turn: 0.0,
+            speed: plan.flown_speed(k - 1, unplanned),
+        });
     }
     let (len_in, len_out) = (distance(&w[k - 1], &w[k]), distance(&w[k], &w[k + 1]));
     let cos_turn = (0..3)
@@ -346,6 +358,17 @@ mod tests {
         assert_eq!(c.speed, 18.0);
         let copter = corners(&plan(tight.waypoints().to_vec(), 18.0))[1].unwrap();
         assert!(copter.speed < 9.0, "{copter:?}");
+    }
+
+    #[test]
+    fn a_plane_flies_through_its_last_waypoint_in_the_air_and_stops_where_it_lands() {
+        let up = plane(vec![[0.0; 3], [400.0, 0.0, 80.0], [800.0, 0.0, 80.0]], 18.0);
+        let last = corners(&up)[2].unwrap();
+        assert_eq!((last.turn, last.cut, last.speed), (0.0, 0.0, 18.0));
+        let landing = plane(vec![[0.0; 3], [400.0, 0.0, 80.0], [800.0, 0.0, 0.0]], 18.0);
+        assert!(corners(&landing)[2].is_none());
+        // A multicopter stops at its last waypoint, in the air or not.
+        assert!(corners(&plan(up.waypoints().to_vec(), 18.0))[2].is_none());
     }
 
     #[test]

@@ -342,7 +342,8 @@ pub fn flown_duration(plan: &FlightPlan) -> f64 {
 /// [`CORNER_RADIUS`](crate::CORNER_RADIUS) from it, slowed only as much as the turn asks
 /// ([`corners`]: ArduPilot Copter's S-curves and PX4's multicopter missions fly through such
 /// waypoints); it brakes to a stop where it holds (then hovers for the hold), where the path
-/// doubles back and at the last waypoint. Sampled at [`PLAN_RATE_HZ`] with its velocities and
+/// doubles back and at the last waypoint (a plane's in the air it flies through, and the flight
+/// ends there at its speed). Sampled at [`PLAN_RATE_HZ`] with its velocities and
 /// accelerations. No wind: the plan flown as planned, a best case for a station that knows it.
 /// Refuses a plan that takes longer than [`MAX_FLOWN_S`] to fly ([`PlanError::TooLongToFly`]; an
 /// unlimited loiter holds for a day).
