@@ -1,5 +1,6 @@
-//! A flight made from a plan: a multicopter flying it as its autopilot does, through the
-//! waypoints it need not stop at (reference §16), and inspection missions that hover at their
+//! A flight made from a plan: a multicopter or a plane flying it as its autopilot does, through
+//! the waypoints it need not stop at (reference §16); the path it flies, as a plan, for the
+//! mission station on a plane's plan ([`rounded`]); and inspection missions that hover at their
 //! points, for the mission station's holds (`sweep --mission`, docs/mission.md).
 
 use super::cornering::{corners, Corner};
@@ -335,13 +336,14 @@ pub fn flown_duration(plan: &FlightPlan) -> f64 {
     pieces(plan).iter().map(Piece::duration).sum()
 }
 
-/// The flight of a multicopter that flies `plan` from rest: on each leg it speeds up to the leg's
+/// The flight of a multicopter (or a plane) that flies `plan` from rest: on each leg it speeds up to the leg's
 /// planned speed ([`PLAN_CRUISE`] where the plan gives none; slower on a leg too steep for the
 /// plan's [`ClimbLimits`](crate::ClimbLimits), [`FlightPlan::flown_speed`]), at [`PLAN_ACCEL`];
 /// through a waypoint without a hold it turns onto the next leg on an arc that passes
 /// [`CORNER_RADIUS`](crate::CORNER_RADIUS) from it, slowed only as much as the turn asks
 /// ([`corners`]: ArduPilot Copter's S-curves and PX4's multicopter missions fly through such
-/// waypoints); it brakes to a stop where it holds (then hovers for the hold), where the path
+/// waypoints; a plane's plan, [`Cornering::FixedWing`](crate::Cornering::FixedWing), on the wider
+/// arc ArduPlane turns on, at its speed); it brakes to a stop where it holds (then hovers for the hold), where the path
 /// doubles back and at the last waypoint (a plane's in the air it flies through, and the flight
 /// ends there at its speed). Sampled at [`PLAN_RATE_HZ`] with its velocities and
 /// accelerations. No wind: the plan flown as planned, a best case for a station that knows it.

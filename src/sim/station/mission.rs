@@ -62,6 +62,7 @@ impl MissionPlan {
             _ => flight.t[0],
         }
     }
+
     /// `plan` as the station follows it: a plane's with its corners' arcs ([`rounded`]), which
     /// pass tens of metres inside its waypoints, so that a plane in a turn is on the plan; a
     /// multicopter's as planned, its arcs passing within 2 m of the waypoints
