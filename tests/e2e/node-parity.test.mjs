@@ -2,7 +2,8 @@
 // (reference §9: loadable in Node with initSync). Needs `npm run build` (www/pkg) first.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFileSync } from 'node:fs';
+import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { nativeJson } from './harness.mjs';
@@ -12,9 +13,27 @@ const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
 /** `value` as JSON reads it back, typed arrays written as arrays (README, JS API). */
 const asJson = (value) => (value === undefined ? undefined : JSON.parse(JSON.stringify(value, (_, v) => (ArrayBuffer.isView(v) ? Array.from(v) : v))));
 
+/** A fixed-wing QGroundControl mission: take-off to 80 m, two lines 600 m long 150 m apart at
+ * 18 m/s, a 60 s loiter, a landing; flown as ArduPlane flies it (its arcs, its climb-out). */
+function planePlan() {
+  const home = [-35.3632, 149.1652, 584];
+  const k = (Math.PI / 180) * 6371000;
+  const at = ([x, y]) => [home[0] + y / k, home[1] + x / (k * Math.cos((home[0] * Math.PI) / 180))];
+  const item = (command, params) => ({ type: 'SimpleItem', command, frame: 3, params });
+  const items = [
+    item(22, [15, 0, 0, null, 0, 0, 80]),
+    ...[[100, 100], [700, 100], [700, 250], [100, 250]].map((c) => item(16, [0, 0, 0, null, ...at(c), 80])),
+    item(19, [60, 0, 0, 0, ...at([400, 400]), 80]),
+    item(21, [0, 0, 0, null, ...at([0, 0]), 0]),
+  ];
+  return JSON.stringify({ fileType: 'Plan', version: 1, groundStation: 'QGroundControl', mission: { version: 2, vehicleType: 1, firmwareType: 3, cruiseSpeed: 18, hoverSpeed: 5, plannedHomePosition: home, items } });
+}
+
 test('simulate in WASM under Node equals the native CLI bit for bit', async () => {
   const pkg = await import(join(root, 'www', 'pkg', 'loratrack.js'));
   pkg.initSync({ module: readFileSync(join(root, 'www', 'pkg', 'loratrack_bg.wasm')) });
+  const plane = join(mkdtempSync(join(tmpdir(), 'loratrack-parity-')), 'plane.plan');
+  writeFileSync(plane, planePlan());
   for (const [args, params] of [
     [['--synthetic', '3', '--seed', '11', '--sf', '9', '--distance', '3500', '--series'], { synthetic: 3, seed: 11, sf: 9, distance: 3500, series: true }],
     [['--synthetic', '17', '--paper', '--bw', '125'], { synthetic: 17, overhead: 0, bw: 125 }],
@@ -24,6 +43,9 @@ test('simulate in WASM under Node equals the native CLI bit for bit', async () =
     [['--synthetic', 'all', '--model', '3d-ctra,mission', '--sf', '10', '--bw', '125'], { synthetic: 'all', model: '3d-ctra,mission', sf: 10, bw: 125 }],
     // Lean payloads: each packet's payload is chosen from the drone's estimate as it goes.
     [['--synthetic', 'all', '--model', 'all,imm', '--prediction', 'bounded', '--sf', '10', '--bw', '125', '--payload', 'lean'], { synthetic: 'all', model: 'all,imm', prediction: 'bounded', sf: 10, bw: 125, payload: 'lean' }],
+    // A plane's plan flown without a log (its corners' arcs, its loiter, the trigonometry of
+    // both), the mission station following its arcs.
+    [['--plan', plane, '--model', 'dr,3d-ctra,mission', '--prediction', 'bounded', '--sf', '9', '--bw', '125', '--series'], { plan: planePlan(), planName: plane, model: 'dr,3d-ctra,mission', prediction: 'bounded', sf: 9, bw: 125, series: true }],
     // With ADR the flights run in order everywhere (the data rate carries over).
     [['--synthetic', 'all', '--model', '3d-ctra', '--adr', 'tracking', '--distance', '5000'], { synthetic: 'all', model: '3d-ctra', adr: 'tracking', distance: 5000 }],
   ]) {
