@@ -247,7 +247,10 @@ pub fn rounded(plan: &FlightPlan) -> FlightPlan {
     let w = plan.waypoints();
     let turns = corners(plan);
     let unit = |leg: usize| leg_direction(w, leg);
-    let climbs = plan.climbs();
+    // A plan without climb limits (one traced through a flight) has no corners to round.
+    let Some(climbs) = plan.climbs() else {
+        return plan.clone();
+    };
     // The points fit a plan's MAX_WAYPOINTS: a long loiter's hundreds of turns take coarser
     // steps (each doubling at most halves their count), down to an arc's two ends.
     let count = |step: f64| {
@@ -265,12 +268,12 @@ pub fn rounded(plan: &FlightPlan) -> FlightPlan {
         climbs: Vec::new(),
     };
     for leg in 0..w.len() - 1 {
-        let along_leg = (plan.leg_speed(leg), climbs.map(|c| c[leg]));
+        let along_leg = (plan.leg_speed(leg), climbs[leg]);
         match turns[leg + 1] {
             Some(c) if c.length() > 0.0 => {
                 let arc = Arc::new(&c, w[leg + 1], unit(leg), unit(leg + 1));
                 path.push(arc.point(0.0), along_leg, 0.0);
-                let onto = (plan.leg_speed(leg + 1), climbs.map(|c| c[leg + 1]));
+                let onto = (plan.leg_speed(leg + 1), climbs[leg + 1]);
                 let n = (c.turn / step).ceil();
                 for k in 1..=n as usize {
                     path.push(arc.point(c.turn * k as f64 / n), onto, 0.0);
@@ -279,14 +282,8 @@ pub fn rounded(plan: &FlightPlan) -> FlightPlan {
             _ => path.push(w[leg + 1], along_leg, plan.holds()[leg + 1]),
         }
     }
-    let rounded = match climbs {
-        Some(_) => {
-            FlightPlan::with_holds_and_climbs(path.points, path.speeds, path.holds, path.climbs)
-        }
-        None => {
-            FlightPlan::with_holds(path.points, path.speeds, path.holds).map(|p| p.with_climb(None))
-        }
-    };
+    let rounded =
+        FlightPlan::with_holds_and_climbs(path.points, path.speeds, path.holds, path.climbs);
     // Every point of the path lies on the plan's legs or between them: as valid as the plan,
     // unless more than MAX_WAYPOINTS / 2 corners leave too many points even so (then its legs).
     rounded.map_or_else(|_| plan.clone(), |p| p.with_cornering(plan.cornering()))
@@ -304,7 +301,7 @@ impl Rounding {
     /// Adds waypoint `p` with `hold` s there, reached on a leg with `leg`'s speed and climb
     /// limits; a point within a micrometre of the last (an arc that begins where the one
     /// before ended) only adds its hold, since a leg that short has no direction to turn from.
-    fn push(&mut self, p: [f64; 3], leg: (Option<f64>, Option<crate::ClimbLimits>), hold: f64) {
+    fn push(&mut self, p: [f64; 3], leg: (Option<f64>, crate::ClimbLimits), hold: f64) {
         let last = self.points.len() - 1;
         if distance(&self.points[last], &p) < 1e-6 {
             self.holds[last] += hold;
@@ -313,9 +310,7 @@ impl Rounding {
         self.points.push(p);
         self.speeds.push(leg.0);
         self.holds.push(hold);
-        if let Some(c) = leg.1 {
-            self.climbs.push(c);
-        }
+        self.climbs.push(leg.1);
     }
 }
 
