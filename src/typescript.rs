@@ -13,6 +13,7 @@ use crate::models::ModelKind;
 use crate::options::{NumberOption, OPTIONS};
 use crate::sim::scenario::*;
 use crate::sim::*;
+use crate::trajectory::Cornering;
 
 use ts_rs::TS;
 
@@ -90,6 +91,7 @@ fn decls() -> Vec<String> {
         ModelResult::decl(&c),
         ModelSeries::decl(&c),
         Series::decl(&c),
+        Cornering::decl(&c),
         RunConfig::decl(&c),
         SimReport::decl(&c),
         DroneReport::decl(&c),

@@ -8,6 +8,7 @@ use super::station::StationModel;
 use super::versus_lowest::{versus_lowest, Contender, VersusLowest};
 use crate::lora::SX1276_SLEEP_CURRENT_MA;
 use crate::metrics::{Boxplot, Draws, Intervals, Summary, WholeFlightDraws, WholeFlightError};
+use crate::trajectory::Cornering;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -45,6 +46,11 @@ pub struct RunConfig {
     /// limit (`MAX_FILTER_STEPS`), at most the seeds setting's 100: how far `seeds` may be raised
     /// (the whole synthetic set at the defaults: 18).
     pub max_seeds: u32,
+    /// How the drone's plan (`plan`) is flown and followed: as a multicopter flies it, or as a
+    /// plane does (a QGroundControl `.plan` for a fixed-wing vehicle, [`Cornering::FixedWing`]);
+    /// `null` without a plan.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Cornering | null"))]
+    pub plan_cornering: Option<Cornering>,
 }
 
 /// The drone radio's charge (SX1276 currents; `docs/reference.md` §7).

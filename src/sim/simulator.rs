@@ -24,7 +24,7 @@ use crate::parallel::{
 };
 use crate::trajectory::{
     canberra_flight, fly_plan, parse_csv, parse_csv_with_progress, parse_plan, synthetic_flight,
-    Trajectory, TrajectoryError, SYNTHETIC_FLIGHTS,
+    FlightPlan, Trajectory, TrajectoryError, SYNTHETIC_FLIGHTS,
 };
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -677,6 +677,7 @@ fn run_config(cfg: &Validated, source: &TrajectorySource, flights: &[Trajectory]
         range_m: cfg.channel.range_m(sf, bw),
         data_rate: s.access.region.rate(sf.get(), bw).map(|r| r.dr),
         max_seeds: seeds_that_fit(cfg, flight_time),
+        plan_cornering: cfg.plan.as_ref().map(FlightPlan::cornering),
     }
 }
 

@@ -23,8 +23,11 @@ pub const PLANE_WP_RADIUS: f64 = 90.0;
 const L1_PERIOD: f64 = 17.0;
 const L1_DAMPING: f64 = 0.75;
 
-/// How an autopilot turns through a waypoint it flies through.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// How an autopilot turns through a waypoint it flies through: the vehicle a plan is flown as
+/// (JSON `config.planCornering`, `multicopter` or `fixedWing`, so a page can say which).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "camelCase")]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum Cornering {
     /// A multicopter's (ArduPilot Copter's S-curves): an arc passing [`CORNER_RADIUS`] from the
     /// waypoint, slowed to within [`CORNER_ACCEL`] sideways.

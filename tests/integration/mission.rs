@@ -4,8 +4,8 @@
 
 use loratrack::api::{clean_message, simulate, swarm};
 use loratrack::{
-    fly_plan, synthetic_flight, ClimbLimits, FlightPlan, ModelResult, Scenario, Simulator,
-    StationModel, CORNER_ACCEL, CORNER_RADIUS, MAX_FLOWN_S, PLAN_ACCEL, PLAN_CRUISE,
+    fly_plan, synthetic_flight, ClimbLimits, Cornering, FlightPlan, ModelResult, Scenario,
+    Simulator, StationModel, CORNER_ACCEL, CORNER_RADIUS, MAX_FLOWN_S, PLAN_ACCEL, PLAN_CRUISE,
     TRACE_TOLERANCE,
 };
 use serde_json::{json, Value};
@@ -352,6 +352,46 @@ fn a_plan_alone_is_flown_as_fly_plan_flies_it() {
         .with(&json!({"plan": plan.to_csv(), "drones": 3}))
         .unwrap();
     assert_eq!(swarm(&s).unwrap().drones.len(), 3);
+}
+
+/// The report names the vehicle a plan is flown as, read from a `.plan`'s `vehicleType`, so that
+/// a page can say whether the drone turned as a plane or as a multicopter.
+#[test]
+fn the_report_says_which_vehicle_a_plan_is_flown_as() {
+    let home = [-35.3632, 149.1652, 584.0];
+    let qgc = |vehicle: u8| {
+        let items: Vec<Value> = [[0.0, 0.0, 80.0], [600.0, 0.0, 80.0], [600.0, 300.0, 80.0]]
+            .iter()
+            .map(|w| {
+                let [lat, lon] = lat_lon(home, w);
+                json!({"type": "SimpleItem", "command": 16, "frame": 3, "params": [0, 0, 0, null, lat, lon, w[2]]})
+            })
+            .collect();
+        json!({"fileType": "Plan", "version": 1, "groundStation": "QGroundControl",
+               "mission": {"version": 2, "firmwareType": 3, "vehicleType": vehicle, "cruiseSpeed": 18,
+                           "hoverSpeed": 5, "plannedHomePosition": home, "items": items}})
+        .to_string()
+    };
+    let cornering = |settings: Value| {
+        let s = Scenario::default().with(&settings).unwrap();
+        simulate(&mut Simulator::new(), &s)
+            .unwrap()
+            .config
+            .plan_cornering
+    };
+    assert_eq!(
+        cornering(json!({"plan": qgc(1)})),
+        Some(Cornering::FixedWing)
+    );
+    assert_eq!(
+        cornering(json!({"plan": qgc(2)})),
+        Some(Cornering::Multicopter)
+    );
+    assert_eq!(
+        cornering(json!({"plan": "x,y,z\n0,0,30\n300,0,30\n"})),
+        Some(Cornering::Multicopter)
+    );
+    assert_eq!(cornering(json!({"synthetic": 1})), None);
 }
 
 /// Mission and 3D-CTRA p75 (m) on `plan` flown alone, bounded, SF12/125 kHz, 8 seeds.

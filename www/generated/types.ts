@@ -867,6 +867,8 @@ plan?: Array<[number, number, number]>,
  */
 models: Array<ModelSeries>, };
 
+export type Cornering = "multicopter" | "fixedWing";
+
 export type RunConfig = Scenario & { 
 /**
  * Flight(s) simulated, by name.
@@ -910,7 +912,13 @@ dataRate: number | null,
  * limit (`MAX_FILTER_STEPS`), at most the seeds setting's 100: how far `seeds` may be raised
  * (the whole synthetic set at the defaults: 18).
  */
-maxSeeds: number, };
+maxSeeds: number, 
+/**
+ * How the drone's plan (`plan`) is flown and followed: as a multicopter flies it, or as a
+ * plane does (a QGroundControl `.plan` for a fixed-wing vehicle, [`Cornering::FixedWing`]);
+ * `null` without a plan.
+ */
+planCornering: Cornering | null, };
 
 export type SimReport = Delivery & { 
 /**

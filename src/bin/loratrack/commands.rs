@@ -475,11 +475,12 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
     }
     let c = &r.config;
     Ok(format!(
-        "{} ({} flight{}, {:.0} s), SF{} / {} kHz ({}){}, overhead {} B, {}\n{}{}\n{}\n{}",
+        "{} ({} flight{}, {:.0} s{}), SF{} / {} kHz ({}){}, overhead {} B, {}\n{}{}\n{}\n{}",
         c.trajectory,
         c.flights,
         plural(c.flights),
         c.flight_time,
+        vehicle_text(c.plan_cornering),
         c.settings.radio.sf,
         c.bandwidth_khz,
         plan_text(c),
@@ -491,6 +492,16 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
         results_table(&r.results),
         network_lines(&r)
     ))
+}
+
+/// The vehicle a plan is flown and followed as (`config.planCornering`), for the first line:
+/// `, plan as a plane`; nothing without a plan.
+fn vehicle_text(cornering: Option<loratrack::Cornering>) -> &'static str {
+    match cornering {
+        None => "",
+        Some(loratrack::Cornering::Multicopter) => ", plan as a multicopter",
+        Some(loratrack::Cornering::FixedWing) => ", plan as a plane",
+    }
 }
 
 /// The station's prediction and the drone's sending in words, the second line of the text
@@ -1336,6 +1347,16 @@ mod tests {
         // 12.5 % and 87.5 %: formatted with {:.0}, Rust would say 12 % and 88 %.
         assert_eq!(share_words([1, 7, 0, 0, 0, 0]), "SF7 13 %, SF8 88 %");
         assert_eq!(share_words([0, 0, 999, 1, 0, 0]), "SF9 100 %, SF10 <1 %");
+    }
+
+    /// A plan's vehicle is on `simulate`'s first line, since it changes how the plan is flown;
+    /// a run without a plan says nothing of one.
+    #[test]
+    fn the_first_line_says_which_vehicle_a_plan_is_flown_as() {
+        assert_eq!(vehicle_text(None), "");
+        let plane = vehicle_text(Some(loratrack::Cornering::FixedWing));
+        let copter = vehicle_text(Some(loratrack::Cornering::Multicopter));
+        assert!(plane.ends_with("a plane") && copter.ends_with("a multicopter"));
     }
 
     /// `simulate`'s first line names the ADR that moves the rate it states, with LoRaWAN's
