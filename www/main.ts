@@ -114,6 +114,15 @@ function send(request: SimulateRequest, made: Settings): void {
   pool.run(request, onResponse);
 }
 
+/** What the status line says of the run's plan: which vehicle it is flown (or followed) as, read
+ * from the file by the core (`config.planCornering`, reference §16), and that a flown plan is the
+ * mission station's best case. */
+function planNote(c: SimReport['config']): string {
+  const vehicle = c.planCornering === 'fixedWing' ? 'a plane (ArduPlane’s turns)' : 'a multicopter';
+  if (store.reportSettings.flight === 'plan') return ` The plan is flown as ${vehicle} flies it, exactly, without wind: the mission station’s best case.`;
+  return c.planCornering && c.models.includes('mission') ? ` The mission station follows the plan as ${vehicle} flies it.` : '';
+}
+
 /** The results on show are a whole set's first flight while the set runs (`.partial`); returns
  * whether they were. */
 function showPartial(partial: boolean): boolean {
@@ -364,7 +373,7 @@ function showReport(report: SimReport, made: Settings, millis: number, params: S
   // Typing may have moved the form on while this ran: the numbers say so.
   markStale(typing !== undefined || JSON.stringify(store.reportSettings) !== JSON.stringify(store.settings));
   const c = report.config;
-  status.textContent = `${c.trajectory}: ${c.flights} flight${c.flights > 1 ? 's' : ''}, ${c.flightTime.toFixed(0)} s simulated in ${millis.toFixed(0)} ms. Gateway range${c.adr === 'off' ? '' : ` at SF${c.sf}, ${c.bw} kHz, where ADR starts`} (mean power = sensitivity ${c.sensitivityDbm.toFixed(1)} dBm): ${(c.rangeM / 1000).toFixed(2)} km.${store.reportSettings.flight === 'plan' ? ' The plan is flown exactly, without wind: the mission station’s best case.' : ''}`;
+  status.textContent = `${c.trajectory}: ${c.flights} flight${c.flights > 1 ? 's' : ''}, ${c.flightTime.toFixed(0)} s simulated in ${millis.toFixed(0)} ms. Gateway range${c.adr === 'off' ? '' : ` at SF${c.sf}, ${c.bw} kHz, where ADR starts`} (mean power = sensitivity ${c.sensitivityDbm.toFixed(1)} dBm): ${(c.rangeM / 1000).toFixed(2)} km.${planNote(c)}`;
   renderResults(report);
   showCommand('results', { ...params, seed: report.config.seed });
   if (settingsChartsWait) renderSettingsCharts();
@@ -496,10 +505,12 @@ async function render3d(r: SimReport): Promise<void> {
 }
 
 /** The lines the 3D view draws for `r`, in the legend's order: the truth, the plan, each station
- * (the page's legend and the PNG's). */
+ * (the page's legend and the PNG's). A plane's plan is drawn as the mission station follows it,
+ * round its turns' arcs (reference §16), and its label says so. */
 function tracksDrawn(r: SimReport | undefined): { color: string; label: string }[] {
   const series = r?.series;
-  return [{ color: TRUTH_COLOR, label: 'true flight' }, ...(series?.plan ? [{ color: PLAN_COLOR, label: 'flight plan (dashed)' }] : []), ...(series?.models ?? []).map((m) => ({ color: MODEL_COLORS[m.model], label: MODEL_LABELS[m.model] }))];
+  const plan = r?.config.planCornering === 'fixedWing' ? 'flight plan, round a plane’s turns (dashed)' : 'flight plan (dashed)';
+  return [{ color: TRUTH_COLOR, label: 'true flight' }, ...(series?.plan ? [{ color: PLAN_COLOR, label: plan }] : []), ...(series?.models ?? []).map((m) => ({ color: MODEL_COLORS[m.model], label: MODEL_LABELS[m.model] }))];
 }
 
 /** The 3D view as a PNG for slides. Until the panel has come near the viewport the view is not

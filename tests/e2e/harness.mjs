@@ -62,6 +62,22 @@ const TYPES = {
 const scratch = [];
 process.on('exit', () => scratch.forEach((dir) => rmSync(dir, { recursive: true, force: true })));
 
+/** A fixed-wing QGroundControl mission: take-off to 80 m, two lines 600 m long 150 m apart at
+ * 18 m/s, a 60 s loiter, a landing; flown as ArduPlane flies it (its arcs, its climb-out). */
+export function planePlan() {
+  const home = [-35.3632, 149.1652, 584];
+  const k = (Math.PI / 180) * 6371000;
+  const at = ([x, y]) => [home[0] + y / k, home[1] + x / (k * Math.cos((home[0] * Math.PI) / 180))];
+  const item = (command, params) => ({ type: 'SimpleItem', command, frame: 3, params });
+  const items = [
+    item(22, [15, 0, 0, null, 0, 0, 80]),
+    ...[[100, 100], [700, 100], [700, 250], [100, 250]].map((c) => item(16, [0, 0, 0, null, ...at(c), 80])),
+    item(19, [60, 0, 0, 0, ...at([400, 400]), 80]),
+    item(21, [0, 0, 0, null, ...at([0, 0]), 0]),
+  ];
+  return JSON.stringify({ fileType: 'Plan', version: 1, groundStation: 'QGroundControl', mission: { version: 2, vehicleType: 1, firmwareType: 3, cruiseSpeed: 18, hoverSpeed: 5, plannedHomePosition: home, items } });
+}
+
 /** A fresh directory for a test's files (uploads, downloads), removed when the test file's process exits. */
 export function scratchDir() {
   const dir = mkdtempSync(join(tmpdir(), 'loratrack-'));

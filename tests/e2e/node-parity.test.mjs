@@ -6,28 +6,12 @@ import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { nativeJson } from './harness.mjs';
+import { nativeJson, planePlan } from './harness.mjs';
 
 const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
 
 /** `value` as JSON reads it back, typed arrays written as arrays (README, JS API). */
 const asJson = (value) => (value === undefined ? undefined : JSON.parse(JSON.stringify(value, (_, v) => (ArrayBuffer.isView(v) ? Array.from(v) : v))));
-
-/** A fixed-wing QGroundControl mission: take-off to 80 m, two lines 600 m long 150 m apart at
- * 18 m/s, a 60 s loiter, a landing; flown as ArduPlane flies it (its arcs, its climb-out). */
-function planePlan() {
-  const home = [-35.3632, 149.1652, 584];
-  const k = (Math.PI / 180) * 6371000;
-  const at = ([x, y]) => [home[0] + y / k, home[1] + x / (k * Math.cos((home[0] * Math.PI) / 180))];
-  const item = (command, params) => ({ type: 'SimpleItem', command, frame: 3, params });
-  const items = [
-    item(22, [15, 0, 0, null, 0, 0, 80]),
-    ...[[100, 100], [700, 100], [700, 250], [100, 250]].map((c) => item(16, [0, 0, 0, null, ...at(c), 80])),
-    item(19, [60, 0, 0, 0, ...at([400, 400]), 80]),
-    item(21, [0, 0, 0, null, ...at([0, 0]), 0]),
-  ];
-  return JSON.stringify({ fileType: 'Plan', version: 1, groundStation: 'QGroundControl', mission: { version: 2, vehicleType: 1, firmwareType: 3, cruiseSpeed: 18, hoverSpeed: 5, plannedHomePosition: home, items } });
-}
 
 test('simulate in WASM under Node equals the native CLI bit for bit', async () => {
   const pkg = await import(join(root, 'www', 'pkg', 'loratrack.js'));

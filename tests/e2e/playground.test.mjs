@@ -7,7 +7,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { commandJson, nativeJson, scratchDir, openPage, screenshot, serveDist } from './harness.mjs';
+import { commandJson, nativeJson, planePlan, scratchDir, openPage, screenshot, serveDist } from './harness.mjs';
 import { assertDownloadIsCli, axe, LABELS, axisLabelOverlaps, cell, cellNumber, chartTexts, chartTextsCut, downloaded, idle, layoutShifts, number, open, playground, ratioWords, shownP75, tableHtml, tickLabelOverlaps, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
@@ -534,8 +534,9 @@ test('a plan alone is flown: the page\'s numbers are the CLI\'s for --plan alone
   await waitForResults(page, before);
   const cli = nativeJson(['simulate', '--plan', plan, '--model', '3d-ctra,mission']);
   assert.equal(cli.config.trajectory, `${plan} (flown)`);
-  // What the numbers rest on: the plan flown as planned.
-  assert.match(await page.locator('#status').textContent(), /^survey\.csv \(flown\): 1 flight, \d+ s simulated .* the mission station’s best case\.$/);
+  // What the numbers rest on: the plan flown as planned, by a multicopter (a CSV plan names no vehicle).
+  assert.equal(cli.config.planCornering, 'multicopter');
+  assert.match(await page.locator('#status').textContent(), /^survey\.csv \(flown\): 1 flight, \d+ s simulated .* The plan is flown as a multicopter flies it, exactly, without wind: the mission station’s best case\.$/);
   for (const m of ['3d-ctra', 'mission']) {
     const r = cli.results.find((x) => x.model === m);
     assert.equal(number(await cell(page, m, 'p75')).toFixed(2), r.error3d.p75.toFixed(2), m);
@@ -544,6 +545,22 @@ test('a plan alone is flown: the page\'s numbers are the CLI\'s for --plan alone
   assert.equal(command, 'loratrack simulate --plan survey.csv --model 3d-ctra,mission');
   assert.deepStrictEqual(commandJson(command, dir).results, cli.results);
   assert.deepEqual(await axe(page), []);
+
+  // A plane's QGroundControl plan is flown with ArduPlane's turns, and the status line says so.
+  const plane = join(dir, 'plane.plan');
+  writeFileSync(plane, planePlan());
+  before = await tableHtml(page);
+  await page.getByLabel(/Flight plan/).setInputFiles(plane);
+  await waitForResults(page, before);
+  const flownAsPlane = nativeJson(['simulate', '--plan', plane, '--model', '3d-ctra,mission']);
+  assert.equal(flownAsPlane.config.planCornering, 'fixedWing');
+  assert.match(await page.locator('#status').textContent(), /^plane\.plan \(flown\): .* The plan is flown as a plane \(ArduPlane’s turns\) flies it, exactly/);
+  for (const m of ['3d-ctra', 'mission']) {
+    assert.equal(number(await cell(page, m, 'p75')).toFixed(2), flownAsPlane.results.find((x) => x.model === m).error3d.p75.toFixed(2), m);
+  }
+  // The 3D view draws the plan as the station follows it, round the turns, and says so.
+  await page.locator('[data-panel="trajectory"]').scrollIntoViewIfNeeded();
+  await until(page, () => /flight plan, round a plane’s turns \(dashed\)/.test(document.querySelector('#trajectory-legend')?.textContent ?? ''));
 
   const long = join(dir, 'loiter.csv');
   writeFileSync(long, 'x,y,z,speed,hold\n0,0,30\n30,0,30,3,86400\n');
