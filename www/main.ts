@@ -118,9 +118,9 @@ function send(request: SimulateRequest, made: Settings): void {
  * from the file by the core (`config.planCornering`, reference §16), and that a flown plan is the
  * mission station's best case. */
 function planNote(c: SimReport['config']): string {
-  const vehicle = c.planCornering === 'fixedWing' ? 'a plane (ArduPlane’s turns)' : 'a multicopter';
-  if (store.reportSettings.flight === 'plan') return ` The plan is flown as ${vehicle} flies it, exactly, without wind: the mission station’s best case.`;
-  return c.planCornering && c.models.includes('mission') ? ` The mission station follows the plan as ${vehicle} flies it.` : '';
+  const vehicle = c.planCornering === 'fixedWing' ? 'a plane flies it (ArduPlane’s wide turns)' : 'a multicopter flies it';
+  if (store.reportSettings.flight === 'plan') return ` The plan is flown as ${vehicle}, exactly, without wind: the mission station’s best case.`;
+  return c.planCornering === 'fixedWing' && c.models.includes('mission') ? ` The mission station follows the plan as ${vehicle}.` : '';
 }
 
 /** The results on show are a whole set's first flight while the set runs (`.partial`); returns

@@ -554,7 +554,7 @@ test('a plan alone is flown: the page\'s numbers are the CLI\'s for --plan alone
   await waitForResults(page, before);
   const flownAsPlane = nativeJson(['simulate', '--plan', plane, '--model', '3d-ctra,mission']);
   assert.equal(flownAsPlane.config.planCornering, 'fixedWing');
-  assert.match(await page.locator('#status').textContent(), /^plane\.plan \(flown\): .* The plan is flown as a plane \(ArduPlane’s turns\) flies it, exactly/);
+  assert.match(await page.locator('#status').textContent(), /^plane\.plan \(flown\): .* The plan is flown as a plane flies it \(ArduPlane’s wide turns\), exactly/);
   for (const m of ['3d-ctra', 'mission']) {
     assert.equal(number(await cell(page, m, 'p75')).toFixed(2), flownAsPlane.results.find((x) => x.model === m).error3d.p75.toFixed(2), m);
   }
