@@ -189,16 +189,50 @@ impl Piece {
     }
 }
 
+/// A leg of a plan as it is flown: its index, its unit direction, the corners at its ends (none
+/// where the vehicle stops) and the arc it turns onto the next leg on (none where it stops there
+/// or runs straight on).
+struct FlownLeg {
+    leg: usize,
+    u: [f64; 3],
+    from: Option<Corner>,
+    to: Option<Corner>,
+    arc: Option<Arc>,
+}
+
+/// The legs of `plan` as [`fly_plan`] flies them, in order: the one walk that the flight
+/// ([`pieces`]) and the path the mission station follows ([`rounded`]) both make.
+fn flown_legs(plan: &FlightPlan) -> impl Iterator<Item = FlownLeg> + '_ {
+    let w = plan.waypoints();
+    let turns = corners(plan);
+    (0..w.len() - 1).map(move |leg| {
+        let u = leg_direction(w, leg);
+        let to = turns[leg + 1];
+        FlownLeg {
+            leg,
+            u,
+            from: turns[leg],
+            to,
+            arc: to
+                .filter(|c| c.length() > 0.0)
+                .map(|c| Arc::new(&c, w[leg + 1], u, leg_direction(w, leg + 1))),
+        }
+    })
+}
+
 /// The stretches `plan` is flown in: a straight per leg (shortened where a corner cuts it), the
 /// arc of each corner, and each hold.
 fn pieces(plan: &FlightPlan) -> Vec<Piece> {
     let w = plan.waypoints();
-    let turns = corners(plan);
-    let unit = |leg: usize| leg_direction(w, leg);
     let mut out = Vec::new();
-    for leg in 0..w.len() - 1 {
-        let u = unit(leg);
-        let (from, to) = (turns[leg], turns[leg + 1]);
+    for FlownLeg {
+        leg,
+        u,
+        from,
+        to,
+        arc,
+    } in flown_legs(plan)
+    {
         let cut = |c: Option<Corner>| c.map_or(0.0, |c| c.cut);
         let start: [f64; 3] = core::array::from_fn(|k| w[leg][k] + u[k] * cut(from));
         let end: [f64; 3] = core::array::from_fn(|k| w[leg + 1][k] - u[k] * cut(to));
@@ -209,12 +243,10 @@ fn pieces(plan: &FlightPlan) -> Vec<Piece> {
             speeds,
             plan.flown_speed(leg, PLAN_CRUISE),
         )));
-        match to {
-            Some(c) if c.length() > 0.0 => {
-                out.push(Piece::Arc(Arc::new(&c, w[leg + 1], u, unit(leg + 1))))
-            }
-            Some(_) => {}
-            None => out.push(Piece::Hold(w[leg + 1], plan.holds()[leg + 1])),
+        match (arc, to) {
+            (Some(arc), _) => out.push(Piece::Arc(arc)),
+            (None, Some(_)) => {}
+            (None, None) => out.push(Piece::Hold(w[leg + 1], plan.holds()[leg + 1])),
         }
     }
     out
@@ -245,17 +277,16 @@ const ARC_STEP: f64 = core::f64::consts::PI / 36.0;
 /// ```
 pub fn rounded(plan: &FlightPlan) -> FlightPlan {
     let w = plan.waypoints();
-    let turns = corners(plan);
-    let unit = |leg: usize| leg_direction(w, leg);
     // A plan without climb limits (one traced through a flight) has no corners to round.
     let Some(climbs) = plan.climbs() else {
         return plan.clone();
     };
+    let legs: Vec<FlownLeg> = flown_legs(plan).collect();
     // The points fit a plan's MAX_WAYPOINTS: a long loiter's hundreds of turns take coarser
     // steps (each doubling at most halves their count), down to an arc's two ends.
     let count = |step: f64| {
-        let arcs = turns.iter().flatten().filter(|c| c.length() > 0.0);
-        w.len() + arcs.map(|c| (c.turn / step).ceil() as usize).sum::<usize>()
+        let arcs = legs.iter().filter_map(|l| l.arc.as_ref());
+        w.len() + arcs.map(|a| (a.turn / step).ceil() as usize).sum::<usize>()
     };
     let mut step = ARC_STEP;
     while count(step) > MAX_WAYPOINTS && step < core::f64::consts::PI {
@@ -267,19 +298,18 @@ pub fn rounded(plan: &FlightPlan) -> FlightPlan {
         holds: vec![plan.holds()[0]],
         climbs: Vec::new(),
     };
-    for leg in 0..w.len() - 1 {
+    for FlownLeg { leg, arc, .. } in legs {
         let along_leg = (plan.leg_speed(leg), climbs[leg]);
-        match turns[leg + 1] {
-            Some(c) if c.length() > 0.0 => {
-                let arc = Arc::new(&c, w[leg + 1], unit(leg), unit(leg + 1));
+        match arc {
+            Some(arc) => {
                 path.push(arc.point(0.0), along_leg, 0.0);
                 let onto = (plan.leg_speed(leg + 1), climbs[leg + 1]);
-                let n = (c.turn / step).ceil();
+                let n = (arc.turn / step).ceil();
                 for k in 1..=n as usize {
-                    path.push(arc.point(c.turn * k as f64 / n), onto, 0.0);
+                    path.push(arc.point(arc.turn * k as f64 / n), onto, 0.0);
                 }
             }
-            _ => path.push(w[leg + 1], along_leg, plan.holds()[leg + 1]),
+            None => path.push(w[leg + 1], along_leg, plan.holds()[leg + 1]),
         }
     }
     let rounded =
