@@ -484,6 +484,17 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
   await page.getByLabel(/Flight plan/).setInputFiles(qgc);
   await waitForResults(page, before);
   assert.equal(number(await cell(page, 'mission', 'p75')).toFixed(2), fromQgc.error3d.p75.toFixed(2));
+  assert.doesNotMatch(await page.locator('#status').textContent(), /plane/);
+  // The same square as a plane's plan: the station follows it round a plane's turns, and the status line says so.
+  const planeSquare = join(dir, 'square-plane.plan');
+  writeFileSync(planeSquare, readFileSync(qgc, 'utf8').replace('"vehicleType": 2', '"vehicleType": 1'));
+  const fromPlane = nativeJson(['simulate', '--trajectory', flight, '--plan', planeSquare, '--model', '3d-ctra,mission']);
+  assert.equal(fromPlane.config.planCornering, 'fixedWing');
+  before = await tableHtml(page);
+  await page.getByLabel(/Flight plan/).setInputFiles(planeSquare);
+  await waitForResults(page, before);
+  assert.equal(number(await cell(page, 'mission', 'p75')).toFixed(2), fromPlane.results.find((x) => x.model === 'mission').error3d.p75.toFixed(2));
+  assert.match(await page.locator('#status').textContent(), / The mission station follows the plan as a plane flies it \(ArduPlane’s wide turns\)\.$/);
   // And as Mission Planner saves it (a `QGC WPL 110` list, home as item 0), at 7 m/s.
   const wpl = join(dir, 'square.waypoints');
   const line = (i, frame, command, params) => [i, i === 0 ? 1 : 0, frame, command, ...params, 1].join('\t');
