@@ -64,7 +64,7 @@ pub use station::{
     HedgeChoice, Imm, ManoeuvreEvidence, MissionPlan, MissionStation, PlanPace, Prediction,
     Scoring, StationModel, StationPredictor, StationSetup, StationTrack, Tracker, Upcoming,
     CALIBRATION_GAIN, HOLD_RADIUS, HOLD_SPEED, MANOEUVRE_SPREAD, OFFSET_TIME, PACE_SIGMA,
-    PACE_TIME,
+    PACE_TIME, PLANE_V_MAX,
 };
 pub use streams::DroneStreams;
 pub use swarm::{

@@ -881,7 +881,7 @@ impl Validated {
     }
 
     /// The station of every drone whose packets come every `interval` s (its data rate's
-    /// duty-cycle interval). A bounded station resets to the drone filter's settled covariance
+    /// duty-cycle interval), bounded for the vehicle the plan is flown as ([`Bounds::for_vehicle`]). A bounded station resets to the drone filter's settled covariance
     /// ([`DroneCovariances`], computed here: about 2 ms, so build one setup and copy it).
     pub fn station_setup(&self, interval: f64) -> StationSetup {
         let s = &self.settings;
@@ -891,7 +891,11 @@ impl Validated {
             prediction: s.station.prediction,
             bounds: Bounds {
                 heading_noise: s.station.heading_noise,
-                ..Bounds::default()
+                ..Bounds::for_vehicle(
+                    self.plan
+                        .as_ref()
+                        .map_or_else(Default::default, FlightPlan::cornering),
+                )
             },
             step: s.station.step,
             eta: s.station.eta,

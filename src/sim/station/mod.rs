@@ -37,7 +37,7 @@ pub use mission::{
     MissionPlan, MissionStation, PlanPace, HOLD_RADIUS, HOLD_SPEED, OFFSET_TIME, PACE_SIGMA,
     PACE_TIME,
 };
-pub use prediction::{Bounded, Bounds, Prediction};
+pub use prediction::{Bounded, Bounds, Prediction, PLANE_V_MAX};
 pub use predictor::{StationPredictor, StationSetup};
 pub use station_model::StationModel;
 pub(crate) use workload::drone_run_work;

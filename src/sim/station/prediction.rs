@@ -5,6 +5,7 @@ use super::HeadingNoise;
 use crate::filter::SigmaParams;
 use crate::math::exp;
 use crate::models::{each_of_pair, Heading, ModelKind, MotionModel, A, OMEGA, PHI, PSI, V};
+use crate::trajectory::Cornering;
 use core::f64::consts::FRAC_PI_2;
 use nalgebra::{SMatrix, SVector};
 use serde::{Deserialize, Serialize};
@@ -21,7 +22,7 @@ pub enum Prediction {
     /// comes, only psi decaying by eta per step. Reproduces the paper's numbers; the default.
     #[default]
     Paper,
-    /// The same equations, with the speed held in [0, 20 m/s] and the pitch within ±90° (exactly:
+    /// The same equations, with the speed held in [0, 20 m/s] (25.5 for a plane's plan) and the pitch within ±90° (exactly:
     /// a step that reaches a limit is split there and the rate that drives past it set to 0), the
     /// acceleration fading from the packet on (time constant 2 s), and, once a packet is overdue,
     /// the speed and turn rate decaying toward 0 too and the estimate following the model from
@@ -67,7 +68,7 @@ impl Prediction {
 pub struct Bounds {
     /// Top speed, m/s. 20 m/s: a fast consumer quadcopter's top speed, above every flight in
     /// the data (synthetic max 14.6 m/s, the Canberra flight 12.2 m/s) and below the codec's
-    /// 25.5 m/s ceiling.
+    /// 25.5 m/s ceiling; a plane's is [`PLANE_V_MAX`] ([`Bounds::for_vehicle`]).
     pub v_max: f64,
     /// Largest |flight-path angle|, rad: pi/2, the codec's pitch range (a vertical climb); a
     /// constant tilt rate would otherwise fly the station's drone through loops.
@@ -131,6 +132,34 @@ pub struct Bounds {
     pub unmodelled_speed: f64,
     /// The direct noise on heading and pitch: q, or chosen per flight ([`HeadingNoise`]).
     pub heading_noise: HeadingNoise,
+}
+
+/// A plane's top speed for the bounded and mission stations, m/s: the payload's ceiling (the
+/// codec's speed byte, 0–25.5 m/s), since a plane cruises at 15–22 m/s (ArduPlane's
+/// `AIRSPEED_CRUISE` and `AIRSPEED_MAX` by default, 15 and 22 m/s) and faster over the ground with
+/// the wind. Held to a quadcopter's 20 m/s, the mission station paced a 24 m/s plane's survey
+/// 4 m/s slow from each packet (p75 at SF9 8.1 m against 0.56 m; docs/beyond-the-paper.md).
+pub const PLANE_V_MAX: f64 = 25.5;
+
+impl Bounds {
+    /// The bounds for a drone flown as `vehicle` (the plan's, [`FlightPlan::cornering`](crate::FlightPlan::cornering);
+    /// a multicopter without a plan): a plane's top speed is [`PLANE_V_MAX`], every other bound
+    /// the default's.
+    ///
+    /// ```
+    /// use loratrack::{Bounds, Cornering, PLANE_V_MAX};
+    /// assert_eq!(Bounds::for_vehicle(Cornering::Multicopter), Bounds::default());
+    /// assert_eq!(Bounds::for_vehicle(Cornering::FixedWing).v_max, PLANE_V_MAX);
+    /// ```
+    pub fn for_vehicle(vehicle: Cornering) -> Bounds {
+        match vehicle {
+            Cornering::Multicopter => Bounds::default(),
+            Cornering::FixedWing => Bounds {
+                v_max: PLANE_V_MAX,
+                ..Bounds::default()
+            },
+        }
+    }
 }
 
 impl Default for Bounds {
