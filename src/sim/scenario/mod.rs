@@ -881,8 +881,10 @@ impl Validated {
     }
 
     /// The station of every drone whose packets come every `interval` s (its data rate's
-    /// duty-cycle interval), bounded for the vehicle the plan is flown as ([`Bounds::for_vehicle`]). A bounded station resets to the drone filter's settled covariance
-    /// ([`DroneCovariances`], computed here: about 2 ms, so build one setup and copy it).
+    /// duty-cycle interval), bounded for the vehicle the plan is flown as
+    /// ([`Bounds::for_vehicle`]). A bounded station resets to the drone filter's settled
+    /// covariance ([`DroneCovariances`], computed here: about 2 ms, so build one setup and copy
+    /// it).
     pub fn station_setup(&self, interval: f64) -> StationSetup {
         let s = &self.settings;
         let drone_covariance =

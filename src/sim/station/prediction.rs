@@ -22,8 +22,9 @@ pub enum Prediction {
     /// comes, only psi decaying by eta per step. Reproduces the paper's numbers; the default.
     #[default]
     Paper,
-    /// The same equations, with the speed held in [0, 20 m/s] (25.5 for a plane's plan) and the pitch within ±90° (exactly:
-    /// a step that reaches a limit is split there and the rate that drives past it set to 0), the
+    /// The same equations, with the speed held in [0, 20 m/s] (25.5 for a plane's plan) and the
+    /// pitch within ±90° (exactly: a step that reaches a limit is split there and the rate that
+    /// drives past it set to 0), the
     /// acceleration fading from the packet on (time constant 2 s), and, once a packet is overdue,
     /// the speed and turn rate decaying toward 0 too and the estimate following the model from
     /// its own last value.
@@ -135,16 +136,16 @@ pub struct Bounds {
 }
 
 /// A plane's top speed for the bounded and mission stations, m/s: the payload's ceiling (the
-/// codec's speed byte, 0–25.5 m/s), since a plane cruises at 15–22 m/s (ArduPlane's
-/// `AIRSPEED_CRUISE` and `AIRSPEED_MAX` by default, 15 and 22 m/s) and faster over the ground with
-/// the wind. Held to a quadcopter's 20 m/s, the mission station paced a 24 m/s plane's survey
-/// 4 m/s slow from each packet (p75 at SF9 8.1 m against 0.56 m; docs/beyond-the-paper.md).
+/// codec's speed byte, 0–25.5 m/s), since a plane flies at up to its `AIRSPEED_MAX` (ArduPlane's
+/// default 22 m/s) and faster over the ground with the wind. Held to a quadcopter's 20 m/s, the
+/// mission station paced a 24 m/s plane's survey 4 m/s slow from each packet (p75 at SF9 8.1 m
+/// against 0.56 m; docs/beyond-the-paper.md, "A mission-aware station").
 pub const PLANE_V_MAX: f64 = 25.5;
 
 impl Bounds {
-    /// The bounds for a drone flown as `vehicle` (the plan's, [`FlightPlan::cornering`](crate::FlightPlan::cornering);
-    /// a multicopter without a plan): a plane's top speed is [`PLANE_V_MAX`], every other bound
-    /// the default's.
+    /// The bounds for a drone flown as `vehicle` (the plan's,
+    /// [`FlightPlan::cornering`](crate::FlightPlan::cornering); a multicopter without a plan): a
+    /// plane's top speed is [`PLANE_V_MAX`], every other bound the default's.
     ///
     /// ```
     /// use loratrack::{Bounds, Cornering, PLANE_V_MAX};
