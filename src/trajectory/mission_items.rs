@@ -76,9 +76,6 @@ pub(super) struct Flown {
     points: Vec<[f64; 3]>,
     speeds: Vec<Option<f64>>,
     holds: Vec<f64>,
-    /// Whether a waypoint's hold time is flown: MAVLink's `NAV_WAYPOINT` says fixed-wing
-    /// vehicles ignore it.
-    waypoint_holds: bool,
     /// The vehicle's climb and descent limits, as the next leg will have them, and each leg's.
     climb: ClimbLimits,
     climbs: Vec<ClimbLimits>,
@@ -98,7 +95,6 @@ impl Flown {
             points: vec![[0.0, 0.0, 0.0]],
             speeds: Vec::new(),
             holds: vec![0.0],
-            waypoint_holds: true,
             climb: ClimbLimits::MULTICOPTER,
             climbs: Vec::new(),
             cornering: Cornering::Multicopter,
@@ -112,11 +108,16 @@ impl Flown {
     /// ([`Cornering::FixedWing`]).
     pub fn fixed_wing(self) -> Self {
         Flown {
-            waypoint_holds: false,
             climb: ClimbLimits::FIXED_WING,
             cornering: Cornering::FixedWing,
             ..self
         }
+    }
+
+    /// Whether a waypoint's hold time is flown: MAVLink's `NAV_WAYPOINT` says fixed-wing
+    /// vehicles ignore it.
+    fn waypoint_holds(&self) -> bool {
+        self.cornering == Cornering::Multicopter
     }
 
     /// Reads one mission item: a speed change, a leg to a new waypoint, a wait where the vehicle
@@ -128,7 +129,7 @@ impl Flown {
         // negative one, as `NAV_DELAY` writes for "until a time of day", is not read); an
         // unlimited loiter holds for the longest hold, since the mission goes no further.
         let mut hold = match item.command {
-            NAV_WAYPOINT if !self.waypoint_holds => None,
+            NAV_WAYPOINT if !self.waypoint_holds() => None,
             NAV_WAYPOINT | NAV_LOITER_TIME | NAV_DELAY => param(0).filter(|h| *h > 0.0),
             NAV_LOITER_UNLIM => Some(super::plan::MAX_HOLD),
             _ => None,
@@ -159,7 +160,7 @@ impl Flown {
                 return Ok(());
             }
             // A plane cannot wait in place: it circles where it is.
-            NAV_DELAY if !self.waypoint_holds && hold > 0.0 => {
+            NAV_DELAY if !self.waypoint_holds() && hold > 0.0 => {
                 return self.circle(
                     last,
                     last,
@@ -172,7 +173,7 @@ impl Flown {
                 self.holds[held] += hold;
                 return Ok(());
             }
-            NAV_RETURN_TO_LAUNCH if self.waypoint_holds => {
+            NAV_RETURN_TO_LAUNCH if self.waypoint_holds() => {
                 self.return_to_launch(last);
                 return Ok(());
             }
@@ -185,7 +186,7 @@ impl Flown {
                 let [x, y] = self
                     .horizontal(param(4), param(5))
                     .unwrap_or([last[0], last[1]]);
-                if item.command == NAV_TAKEOFF && !self.waypoint_holds {
+                if item.command == NAV_TAKEOFF && self.cornering == Cornering::FixedWing {
                     self.takeoffs.push(self.points.len());
                 }
                 [x, y, self.altitude(param(6), item.frame)?]
@@ -196,7 +197,7 @@ impl Flown {
                 let [x, y] = self
                     .horizontal(param(4), param(5))
                     .unwrap_or([last[0], last[1]]);
-                if self.waypoint_holds {
+                if self.waypoint_holds() {
                     self.push([x, y, last[2]], self.speed, 0.0);
                     self.land();
                     return Ok(());
@@ -219,9 +220,11 @@ impl Flown {
         let radius = param(2).filter(|r| *r != 0.0);
         match (turns, radius) {
             (Some(turns), Some(r)) => return self.circle(last, point, turns, r),
-            (Some(turns), None) if self.waypoint_holds => hold = turns * TAU / CIRCLE_RATE,
+            (Some(turns), None) if self.waypoint_holds() => hold = turns * TAU / CIRCLE_RATE,
             (Some(turns), None) => return self.circle(last, point, turns, LOITER_RADIUS),
-            (None, r) if !self.waypoint_holds && item.command == NAV_LOITER_TIME && hold > 0.0 => {
+            (None, r)
+                if !self.waypoint_holds() && item.command == NAV_LOITER_TIME && hold > 0.0 =>
+            {
                 let r = r.unwrap_or(LOITER_RADIUS);
                 return self.circle(last, point, self.turns_in(hold, r), r);
             }
@@ -302,7 +305,7 @@ impl Flown {
             [centre[0] + r * c, centre[1] + r * s, centre[2]]
         };
         let round = match self.speed {
-            _ if !self.waypoint_holds => self.speed,
+            _ if !self.waypoint_holds() => self.speed,
             Some(v) => Some(v.min(CIRCLE_RATE * r)),
             None => Some(PLAN_CRUISE.min(CIRCLE_RATE * r)),
         };
