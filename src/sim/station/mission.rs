@@ -566,6 +566,16 @@ mod tests {
         [x, y, 20.0, 0.0, 0.0, v, 0.0, 0.0, 0.0]
     }
 
+    /// The station's largest distance from `flown` over `steps` steps of 0.2 s (five samples)
+    /// after sample `k`, predicting to each, m.
+    fn worst_error(st: &mut MissionStation, flown: &Trajectory, k: usize, steps: usize) -> f64 {
+        (1..=steps).fold(0.0, |worst, step| {
+            let i = k + step * 5;
+            st.predict_to(flown.t[i]);
+            worst.max(distance(&st.position(), &flown.pos[i]))
+        })
+    }
+
     #[test]
     fn follows_the_plan_round_a_corner_at_the_planned_speeds() {
         // Traced through a flight, the plan's speeds are the flight's own: no corner slows it.
@@ -600,13 +610,8 @@ mod tests {
         assert!((v[0] - 10.0).abs() < 1e-9 && p[0] < 70.0, "{p:?} {v:?}");
         let mut st = MissionStation::new(Some(corner()), setup());
         st.reset(&packet(p[0], p[1], v[0]), flown.t[k]);
-        let mut worst: f64 = 0.0;
         // Through the braking, the right angle (4.4 m/s) and the speeding up to 5 m/s north.
-        for step in 1..=60 {
-            let i = k + step * 5;
-            st.predict_to(flown.t[i]);
-            worst = worst.max(distance(&st.position(), &flown.pos[i]));
-        }
+        let worst = worst_error(&mut st, &flown, k, 60);
         // Within the corner radius: the station paces along the legs, the drone cuts the corner.
         assert!(worst < crate::CORNER_RADIUS, "{worst}");
         // Without the corner the station would have rounded it at 5 m/s or more: metres ahead.
@@ -642,12 +647,7 @@ mod tests {
         let (p, v) = (flown.pos[k], flown.vel[k]);
         let mut st = MissionStation::new(Some(mp.clone()), setup());
         st.reset(&packet(p[0], p[1], v[0]), flown.t[k]);
-        let mut worst: f64 = 0.0;
-        for step in 1..=75 {
-            let i = k + step * 5;
-            st.predict_to(flown.t[i]);
-            worst = worst.max(distance(&st.position(), &flown.pos[i]));
-        }
+        let worst = worst_error(&mut st, &flown, k, 75);
         assert!(worst < 0.5, "{worst}");
         assert!(flown.pos[k + 375][1] > 100.0, "{:?}", flown.pos[k + 375]);
         // A packet in the middle of the turn is on the plan the station follows.
