@@ -13,7 +13,7 @@ use crate::models::ModelKind;
 use crate::options::{NumberOption, OPTIONS};
 use crate::sim::scenario::*;
 use crate::sim::*;
-use crate::trajectory::Cornering;
+use crate::trajectory::{Cornering, VehicleChoice};
 
 use ts_rs::TS;
 
@@ -92,6 +92,7 @@ fn decls() -> Vec<String> {
         ModelSeries::decl(&c),
         Series::decl(&c),
         Cornering::decl(&c),
+        VehicleChoice::decl(&c),
         RunConfig::decl(&c),
         SimReport::decl(&c),
         DroneReport::decl(&c),
@@ -216,6 +217,12 @@ fn generated() -> String {
     out.push_str(&format!(
         "\n/** Each station's payload, bytes: the model whose state its drone sends (src/sim/station/station_model.rs). */\nexport const PAYLOAD_BYTES: Record<ModelName, number> = {{\n{}\n}};\n",
         bytes.join(",\n")
+    ));
+    let top = |v: Cornering| crate::sim::Bounds::for_vehicle(v).v_max;
+    out.push_str(&format!(
+        "\n/** The top speed, m/s, a bounded or mission station holds each vehicle to (src/sim/station/prediction.rs, `Bounds::for_vehicle`). */\nexport const TOP_SPEEDS: Record<Cornering, number> = {{\n  'multicopter': {},\n  'fixed-wing': {}\n}};\n",
+        top(Cornering::Multicopter),
+        top(Cornering::FixedWing)
     ));
     out.push_str(&format!(
         "\n/** How many of the drone filter's settled standard deviations a manoeuvre field (a, ω, ψ) may reach and still be left out of a lean payload (src/sim/sender/payload.rs). */\nexport const LEAN_SIGNIFICANCE = {};\n",

@@ -47,8 +47,8 @@ pub struct RunConfig {
     /// (the whole synthetic set at the defaults: 18).
     pub max_seeds: u32,
     /// How the drone's plan (`plan`) is flown and followed: as a multicopter flies it, or as a
-    /// plane does (a QGroundControl `.plan` for a fixed-wing vehicle, [`Cornering::FixedWing`]);
-    /// `null` without a plan.
+    /// plane does ([`Cornering::FixedWing`]: `vehicle` `fixed-wing`, or a QGroundControl `.plan`
+    /// for a fixed-wing vehicle with `vehicle` `auto`); `null` without a plan.
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Cornering | null"))]
     pub plan_cornering: Option<Cornering>,
 }

@@ -23,8 +23,8 @@ use crate::parallel::{
     enough_tasks, par_map, par_map_costliest_first, par_map_owned, par_map_progressing, ticks,
 };
 use crate::trajectory::{
-    canberra_flight, fly_plan, parse_csv, parse_csv_with_progress, parse_plan, synthetic_flight,
-    FlightPlan, Trajectory, TrajectoryError, SYNTHETIC_FLIGHTS,
+    canberra_flight, fly_plan, parse_csv, parse_csv_with_progress, parse_plan_as, synthetic_flight,
+    Cornering, FlightPlan, Trajectory, TrajectoryError, SYNTHETIC_FLIGHTS,
 };
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -81,8 +81,9 @@ enum FlightKey {
     Sample(String),
     /// One id per distinct CSV text this simulator has seen ([`Simulator::text_id`]).
     Csv(u64),
-    /// A plan's text flown ([`fly_plan`]), by the same ids.
-    Plan(u64),
+    /// A plan's text flown ([`fly_plan`]), by the same ids, and the vehicle it is flown as
+    /// where set.
+    Plan(u64, Option<Cornering>),
 }
 
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -307,7 +308,9 @@ impl Simulator {
             TrajectorySource::Synthetic(c) => FlightKey::Synthetic(*c),
             TrajectorySource::Sample(name) => FlightKey::Sample(name.to_ascii_lowercase()),
             TrajectorySource::Csv(text, _) => FlightKey::Csv(self.text_id(text, fnv1a(text))),
-            TrajectorySource::Plan(text, _) => FlightKey::Plan(self.text_id(text, fnv1a(text))),
+            TrajectorySource::Plan(text, _, vehicle) => {
+                FlightKey::Plan(self.text_id(text, fnv1a(text)), *vehicle)
+            }
         };
         if let Some(f) = self.flights.get(&key) {
             let f = Rc::clone(f);
@@ -837,7 +840,9 @@ pub(crate) fn load_flights(source: &TrajectorySource) -> Result<Vec<Trajectory>,
             return Err(TrajectoryError::UnknownSample(name.clone()).into())
         }
         TrajectorySource::Csv(text, name) => vec![parse_csv(text, name)?],
-        TrajectorySource::Plan(text, name) => vec![fly_plan(&parse_plan(text)?, name)?],
+        TrajectorySource::Plan(text, name, vehicle) => {
+            vec![fly_plan(&parse_plan_as(text, *vehicle)?, name)?]
+        }
     })
 }
 

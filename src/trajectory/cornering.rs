@@ -24,9 +24,10 @@ const L1_PERIOD: f64 = 17.0;
 const L1_DAMPING: f64 = 0.75;
 
 /// How an autopilot turns through a waypoint it flies through: the vehicle a plan is flown as
-/// (JSON `config.planCornering`, `multicopter` or `fixedWing`, so a page can say which).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "camelCase")]
+/// and a bounded station holds the drone to ([`VehicleChoice`]; JSON `config.vehicle` and
+/// `config.planCornering`, `multicopter` or `fixed-wing`, so a page can say which).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum Cornering {
     /// A multicopter's (ArduPilot Copter's S-curves): an arc passing [`CORNER_RADIUS`] from the
@@ -42,6 +43,42 @@ pub enum Cornering {
     /// is tightened to fit them, as for a multicopter, though a real plane turning it would bank
     /// past its 45° limit (ArduPlane's `ROLL_LIMIT_DEG`) and swing wide instead.
     FixedWing,
+}
+
+/// Which vehicle the drone is (`--vehicle`, JS `vehicle`; reference §16): as its plan file says,
+/// or set. It decides how a plan is flown and followed (a plane turns wide at its speed, flies
+/// through a waypoint's hold and climbs faster: [`Cornering`], [`ClimbLimits`]) and the top speed
+/// a bounded or mission station holds the drone to ([`Bounds::for_vehicle`]). Set it for a plane's
+/// CSV log or CSV plan, which cannot say which vehicle flew them.
+///
+/// [`ClimbLimits`]: crate::ClimbLimits
+/// [`Bounds::for_vehicle`]: crate::Bounds::for_vehicle
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+#[serde(rename_all = "kebab-case")]
+#[cfg_attr(cli, derive(clap::ValueEnum))]
+#[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
+pub enum VehicleChoice {
+    /// A QGroundControl `.plan`'s `vehicleType`; a multicopter for every other plan and flight
+    /// (the paper's drone, the synthetic set and the Canberra flight are multicopters).
+    #[default]
+    Auto,
+    /// A multicopter, whatever the plan file says.
+    Multicopter,
+    /// A fixed-wing aircraft (ArduPlane), whatever the plan file says.
+    FixedWing,
+}
+
+impl VehicleChoice {
+    /// The vehicle set, or `None` to take the plan file's.
+    pub fn given(self) -> Option<Cornering> {
+        match self {
+            VehicleChoice::Auto => None,
+            VehicleChoice::Multicopter => Some(Cornering::Multicopter),
+            VehicleChoice::FixedWing => Some(Cornering::FixedWing),
+        }
+    }
 }
 
 /// The smallest arc radius a waypoint is turned on, m; a sharper turn (the path doubling back)

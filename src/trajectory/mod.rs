@@ -21,7 +21,8 @@ mod waypoint_list;
 pub use chain::chain_flights;
 pub use climb::ClimbLimits;
 pub use cornering::{
-    corners, Corner, CornerSpeeds, Cornering, CORNER_ACCEL, CORNER_RADIUS, PLANE_WP_RADIUS,
+    corners, Corner, CornerSpeeds, Cornering, VehicleChoice, CORNER_ACCEL, CORNER_RADIUS,
+    PLANE_WP_RADIUS,
 };
 pub use csv::{
     parse_csv, parse_csv_with_progress, MAX_CSV_BYTES, MAX_ROWS, MIN_ROWS, MIN_TIME_STEP,
@@ -39,7 +40,7 @@ pub use plan::{
     FlightPlan, OnPlan, MAX_HOLD, MAX_PLAN_COORDINATE, MAX_PLAN_SPEED, MAX_WAYPOINTS,
     TRACE_TOLERANCE,
 };
-pub use plan_file::{parse_plan, PlanError, TRACED_MARK};
+pub use plan_file::{parse_plan, parse_plan_as, PlanError, TRACED_MARK};
 pub use sample::{canberra_flight, CANBERRA_CREDIT};
 pub use synthetic::{
     synthetic_flight, synthetic_set, SYNTHETIC_FLIGHTS, SYNTHETIC_SEED, SYNTHETIC_TOTAL_SECONDS,

@@ -243,6 +243,22 @@ impl FlightPlan {
         FlightPlan { cornering, ..self }
     }
 
+    /// The same plan flown as `vehicle` flies a plan that does not say which vehicle it is for
+    /// (a CSV, [`parse_plan_as`](super::parse_plan_as)): within its climb limits (a plan traced
+    /// through a flight keeps its own leg speeds), turning as it turns, and for a plane through
+    /// every hold, as ArduPlane flies through a waypoint's hold time (MAVLink `NAV_WAYPOINT`).
+    pub fn flown_as(self, vehicle: Cornering) -> Self {
+        let climb = self.climbs.is_some().then_some(match vehicle {
+            Cornering::Multicopter => ClimbLimits::MULTICOPTER,
+            Cornering::FixedWing => ClimbLimits::FIXED_WING,
+        });
+        let plan = match vehicle {
+            Cornering::Multicopter => self,
+            Cornering::FixedWing => self.without_holds(),
+        };
+        plan.with_climb(climb).with_cornering(vehicle)
+    }
+
     /// How the autopilot turns through the waypoints it flies through
     /// ([`corners`](super::corners)).
     pub fn cornering(&self) -> Cornering {

@@ -5,6 +5,7 @@
 use super::plan::FlightPlan;
 use super::qgc_plan::parse_qgc;
 use super::waypoint_list::{parse_waypoint_list, WPL_HEADER};
+use super::Cornering;
 use super::MAX_CSV_BYTES;
 use core::fmt;
 
@@ -86,6 +87,23 @@ impl std::error::Error for PlanError {}
 /// assert_eq!(plan.speed_at(50.0), Some(8.0));
 /// ```
 pub fn parse_plan(text: &str) -> Result<FlightPlan, PlanError> {
+    parse_plan_as(text, None)
+}
+
+/// [`parse_plan`], the plan flown as `vehicle` where it is given (`--vehicle`,
+/// [`VehicleChoice::given`](super::VehicleChoice::given)) instead of as the file says: a
+/// QGroundControl `.plan`'s `vehicleType`, a multicopter for a waypoint list or a CSV. A plane
+/// flies through a waypoint's hold and turns wide at its speed; its timed loiters are circles.
+///
+/// ```
+/// use loratrack::{parse_plan_as, Cornering};
+/// let text = "x,y,z,speed,hold\n0,0,30\n400,0,30,18,20\n400,400,30,18\n";
+/// let plane = parse_plan_as(text, Some(Cornering::FixedWing)).unwrap();
+/// assert_eq!(plane.cornering(), Cornering::FixedWing);
+/// assert_eq!(plane.holds()[1], 0.0); // a plane flies on through a hold
+/// assert_eq!(parse_plan_as(text, None).unwrap().holds()[1], 20.0);
+/// ```
+pub fn parse_plan_as(text: &str, vehicle: Option<Cornering>) -> Result<FlightPlan, PlanError> {
     if text.len() > MAX_CSV_BYTES {
         return Err(PlanError::TooLarge { bytes: text.len() });
     }
@@ -93,11 +111,15 @@ pub fn parse_plan(text: &str) -> Result<FlightPlan, PlanError> {
     let text = text.trim_start_matches('\u{feff}');
     let start = text.trim_start();
     if start.starts_with('{') {
-        parse_qgc(text)
+        parse_qgc(text, vehicle)
     } else if start.starts_with(WPL_HEADER) {
-        parse_waypoint_list(text)
+        parse_waypoint_list(text, vehicle)
     } else {
-        parse_csv_plan(text)
+        let plan = parse_csv_plan(text)?;
+        Ok(match vehicle {
+            Some(v) => plan.flown_as(v),
+            None => plan,
+        })
     }
 }
 
@@ -202,6 +224,30 @@ mod tests {
         assert!(e.to_string().contains("waypoint 2: a hold"), "{e}");
         // An empty coordinate is still an error, not a zero.
         assert!(parse_plan("0,,20\n100,0,20\n").is_err());
+    }
+
+    /// A CSV names no vehicle: flown as a plane, a plan turns as ArduPlane does, climbs within a
+    /// plane's limits and flies through its holds; a traced plan keeps its own leg speeds.
+    #[test]
+    fn a_csv_plan_is_flown_as_the_vehicle_set() {
+        use crate::{ClimbLimits, Cornering};
+        let text = "x,y,z,speed,hold\n0,0,20\n100,0,40,8,30\n100,50,40,8\n";
+        let copter = parse_plan(text).unwrap();
+        assert_eq!(
+            parse_plan_as(text, Some(Cornering::Multicopter)).unwrap(),
+            copter
+        );
+        let plane = parse_plan_as(text, Some(Cornering::FixedWing)).unwrap();
+        assert_eq!(plane.cornering(), Cornering::FixedWing);
+        assert_eq!((copter.holds()[1], plane.holds()[1]), (30.0, 0.0));
+        assert_eq!(plane.climbs(), Some(&[ClimbLimits::FIXED_WING; 2][..]));
+        assert_eq!(plane.waypoints(), copter.waypoints());
+        let traced = format!("{TRACED_MARK}\n{text}");
+        let traced = parse_plan_as(&traced, Some(Cornering::FixedWing)).unwrap();
+        assert_eq!(
+            (traced.climbs(), traced.cornering()),
+            (None, Cornering::FixedWing)
+        );
     }
 
     #[test]

@@ -4,6 +4,7 @@
 use super::mission_items::{Flown, MissionItem};
 use super::plan::FlightPlan;
 use super::plan_file::{excerpt, PlanError};
+use super::Cornering;
 use serde_json::Value;
 
 /// `MAV_TYPE`s QGroundControl plans at the mission's hover speed (its multi-rotor class):
@@ -15,9 +16,10 @@ const PLAN_FILE_TYPE: &str = "Plan";
 /// A QGroundControl `.plan` (`fileType: "Plan"`): the mission's items (reference §16:
 /// take-off, waypoints, timed loiters at their centre, loiter turns round their circle, spline
 /// waypoints as straight legs, landing, return to launch) from its planned home position, at the
-/// mission's hover speed (multi-rotor) or cruise speed, changed by `DO_CHANGE_SPEED`. Complex
-/// items (surveys, corridor scans) are refused with their name.
-pub(super) fn parse_qgc(text: &str) -> Result<FlightPlan, PlanError> {
+/// mission's hover speed (multi-rotor) or cruise speed, changed by `DO_CHANGE_SPEED`, flown as
+/// `vehicle` where given, else as its `vehicleType` names. Complex items (surveys, corridor
+/// scans) are refused with their name.
+pub(super) fn parse_qgc(text: &str, vehicle: Option<Cornering>) -> Result<FlightPlan, PlanError> {
     let v: Value =
         serde_json::from_str(text).map_err(|e| PlanError::Qgc(format!("not JSON: {e}")))?;
     match v.get("fileType") {
@@ -37,11 +39,14 @@ pub(super) fn parse_qgc(text: &str) -> Result<FlightPlan, PlanError> {
     let mission = v
         .get("mission")
         .ok_or_else(|| PlanError::Qgc("no mission".into()))?;
-    let vehicle = mission.get("vehicleType").and_then(Value::as_u64);
-    let multirotor = vehicle.is_some_and(|t| MULTIROTORS.contains(&t));
+    let named = mission.get("vehicleType").and_then(Value::as_u64);
+    let multirotor = match vehicle {
+        Some(v) => v == Cornering::Multicopter,
+        None => named.is_some_and(|t| MULTIROTORS.contains(&t)),
+    };
     let mut flown = Flown::new(home(mission)?, speed(mission, multirotor));
     // A plan that names no vehicle keeps the holds it gives.
-    if vehicle.is_some() && !multirotor {
+    if !multirotor && (vehicle.is_some() || named.is_some()) {
         flown = flown.fixed_wing();
     }
     let items = mission
@@ -225,6 +230,27 @@ mod tests {
         let plane = held(&fixed_wing);
         assert_eq!(plane.len(), 3 + 1 + 86 + 2, "{plane:?}");
         assert!(plane.iter().all(|h| *h == 0.0), "{plane:?}");
+    }
+
+    /// `--vehicle` overrides the plan's `vehicleType`: all a plane flies differently (no holds,
+    /// its cruise speed, its turns) follows it, and a plan read as its own vehicle is unchanged.
+    #[test]
+    fn a_vehicle_set_overrides_the_plans_vehicle_type() {
+        use crate::Cornering::{FixedWing, Multicopter};
+        let plane = QGC4_HEXAROTOR.replace(r#""vehicleType": 13"#, r#""vehicleType": 1"#);
+        let read = |plan: &str, vehicle| super::super::parse_plan_as(plan, vehicle).unwrap();
+        assert_eq!(read(QGC4_HEXAROTOR, Some(FixedWing)), read(&plane, None));
+        assert_eq!(read(&plane, Some(Multicopter)), read(QGC4_HEXAROTOR, None));
+        assert_eq!(read(&plane, Some(FixedWing)), read(&plane, None));
+        let hexarotor = read(QGC4_HEXAROTOR, None);
+        let as_plane = read(QGC4_HEXAROTOR, Some(FixedWing));
+        assert_eq!(as_plane.cornering(), FixedWing);
+        assert_eq!(
+            (hexarotor.speed_at(1.0), as_plane.speed_at(1.0)),
+            (Some(4.0), Some(15.0))
+        );
+        assert!(as_plane.holds().iter().all(|h| *h == 0.0));
+        assert_eq!(hexarotor.holds()[3], 30.0);
     }
 
     #[test]

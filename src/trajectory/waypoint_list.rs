@@ -5,6 +5,7 @@
 use super::mission_items::{Flown, MissionItem};
 use super::plan::FlightPlan;
 use super::plan_file::{excerpt, PlanError};
+use super::Cornering;
 
 /// The first line's first word pair: the format's name (then its version, 110 or 120).
 pub(super) const WPL_HEADER: &str = "QGC WPL";
@@ -17,8 +18,12 @@ const FIELDS: usize = 12;
 /// as a QGroundControl plan's (take-off, waypoints, loiters, landing, return to launch, speed
 /// changes). The list carries no default speed: a leg before any `DO_CHANGE_SPEED` has none,
 /// and the mission station paces it by the packet's speed. Fields are separated by tabs or
-/// spaces; blank lines are skipped; a refusal names the line.
-pub(super) fn parse_waypoint_list(text: &str) -> Result<FlightPlan, PlanError> {
+/// spaces; blank lines are skipped; a refusal names the line. It names no vehicle: flown as a
+/// multicopter unless `vehicle` says otherwise.
+pub(super) fn parse_waypoint_list(
+    text: &str,
+    vehicle: Option<Cornering>,
+) -> Result<FlightPlan, PlanError> {
     let mut lines = text
         .lines()
         .enumerate()
@@ -44,7 +49,11 @@ pub(super) fn parse_waypoint_list(text: &str) -> Result<FlightPlan, PlanError> {
                         what: "home (item 0) needs a latitude, longitude and altitude".into(),
                     });
                 };
-                flown = Some(Flown::new([lat, lon, alt], None));
+                let home = Flown::new([lat, lon, alt], None);
+                flown = Some(match vehicle {
+                    Some(Cornering::FixedWing) => home.fixed_wing(),
+                    _ => home,
+                });
             }
             None => {
                 return Err(PlanError::Line {
@@ -156,6 +165,25 @@ mod tests {
         // Saved on Windows: a byte-order mark and CRLF line ends.
         let windows = format!("\u{feff}{}", MISSION_PLANNER.replace('\n', "\r\n"));
         assert_eq!(parse_plan(&windows).unwrap(), wpl);
+    }
+
+    /// A waypoint list names no vehicle: a multicopter's unless `--vehicle` says it is a plane,
+    /// which then circles the timed loiter instead of hovering and turns wide.
+    #[test]
+    fn a_waypoint_list_is_a_multicopters_unless_the_vehicle_is_set() {
+        use crate::Cornering::{FixedWing, Multicopter};
+        let read = |vehicle| super::super::parse_plan_as(MISSION_PLANNER, vehicle).unwrap();
+        assert_eq!(read(None), read(Some(Multicopter)));
+        assert_eq!(read(None).cornering(), Multicopter);
+        let plane = read(Some(FixedWing));
+        assert_eq!(plane.cornering(), FixedWing);
+        assert!(read(None).holds().iter().any(|h| *h > 0.0));
+        assert!(
+            plane.holds().iter().all(|h| *h == 0.0),
+            "{:?}",
+            plane.holds()
+        );
+        assert!(plane.waypoints().len() > read(None).waypoints().len());
     }
 
     #[test]

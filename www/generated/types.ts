@@ -266,7 +266,12 @@ sensorRate: number,
 /**
  * Process noise q of Q = q·I (drone and station).
  */
-q: number, };
+q: number, 
+/**
+ * The vehicle: `auto` (default: a QGroundControl `.plan`'s, else a multicopter),
+ * `multicopter` or `fixed-wing`.
+ */
+vehicle: VehicleChoice, };
 
 export type AccessSettings = { 
 /**
@@ -867,7 +872,9 @@ plan?: Array<[number, number, number]>,
  */
 models: Array<ModelSeries>, };
 
-export type Cornering = "multicopter" | "fixedWing";
+export type Cornering = "multicopter" | "fixed-wing";
+
+export type VehicleChoice = "auto" | "multicopter" | "fixed-wing";
 
 export type RunConfig = Scenario & { 
 /**
@@ -915,8 +922,8 @@ dataRate: number | null,
 maxSeeds: number, 
 /**
  * How the drone's plan (`plan`) is flown and followed: as a multicopter flies it, or as a
- * plane does (a QGroundControl `.plan` for a fixed-wing vehicle, [`Cornering::FixedWing`]);
- * `null` without a plan.
+ * plane does ([`Cornering::FixedWing`]: `vehicle` `fixed-wing`, or a QGroundControl `.plan`
+ * for a fixed-wing vehicle with `vehicle` `auto`); `null` without a plan.
  */
 planCornering: Cornering | null, };
 
@@ -1838,7 +1845,7 @@ export const OPTIONS: NumberOption[] = [
 ];
 
 /** The default of every setting chosen by name, as `Scenario::default` gives it (src/sim/scenario/mod.rs). */
-export const CHOICE_DEFAULTS: Pick<Scenario, 'access' | 'adr' | 'channelSense' | 'dutyCycleMode' | 'fairUse' | 'headingNoise' | 'model' | 'payload' | 'planPace' | 'prediction' | 'region' | 'schedule' | 'sender' | 'sfPlan' | 'shadowingModel'> = {
+export const CHOICE_DEFAULTS: Pick<Scenario, 'access' | 'adr' | 'channelSense' | 'dutyCycleMode' | 'fairUse' | 'headingNoise' | 'model' | 'payload' | 'planPace' | 'prediction' | 'region' | 'schedule' | 'sender' | 'sfPlan' | 'shadowingModel' | 'vehicle'> = {
   "access": "duty-cycle",
   "adr": "off",
   "channelSense": "cad",
@@ -1853,7 +1860,8 @@ export const CHOICE_DEFAULTS: Pick<Scenario, 'access' | 'adr' | 'channelSense' |
   "schedule": "aloha",
   "sender": "periodic",
   "sfPlan": "spread",
-  "shadowingModel": "path"
+  "shadowingModel": "path",
+  "vehicle": "auto"
 };
 
 /** Every regional plan's data rates and limits, as the core checks them (src/lora/region.rs). */
@@ -2114,6 +2122,12 @@ export const PAYLOAD_BYTES: Record<ModelName, number> = {
   '3d-ctra': 12,
   'imm': 12,
   'mission': 12
+};
+
+/** The top speed, m/s, a bounded or mission station holds each vehicle to (src/sim/station/prediction.rs, `Bounds::for_vehicle`). */
+export const TOP_SPEEDS: Record<Cornering, number> = {
+  'multicopter': 20,
+  'fixed-wing': 25.5
 };
 
 /** How many of the drone filter's settled standard deviations a manoeuvre field (a, ω, ψ) may reach and still be left out of a lean payload (src/sim/sender/payload.rs). */

@@ -480,7 +480,7 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
         c.flights,
         plural(c.flights),
         c.flight_time,
-        vehicle_text(c.plan_cornering),
+        vehicle_text(c.plan_cornering, c.settings.drone.vehicle),
         c.settings.radio.sf,
         c.bandwidth_khz,
         plan_text(c),
@@ -495,12 +495,17 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
 }
 
 /// The vehicle a plan is flown and followed as (`config.planCornering`), for the first line:
-/// `, plan as a plane`; nothing without a plan.
-fn vehicle_text(cornering: Option<loratrack::Cornering>) -> &'static str {
-    match cornering {
-        None => "",
-        Some(loratrack::Cornering::Multicopter) => ", plan as a multicopter",
-        Some(loratrack::Cornering::FixedWing) => ", plan as a plane",
+/// `, plan as a plane`; without a plan, `, a plane` where `--vehicle fixed-wing` says so.
+fn vehicle_text(
+    plan: Option<loratrack::Cornering>,
+    vehicle: loratrack::VehicleChoice,
+) -> &'static str {
+    use loratrack::Cornering;
+    match (plan, vehicle.given()) {
+        (Some(Cornering::Multicopter), _) => ", plan as a multicopter",
+        (Some(Cornering::FixedWing), _) => ", plan as a plane",
+        (None, Some(Cornering::FixedWing)) => ", a plane",
+        (None, _) => "",
     }
 }
 
@@ -1213,7 +1218,7 @@ mod tests {
             {"gateways": [{"east": -500, "north": 0}, {"east": 10, "north": 20.5, "height": 30}],
              "channels": 1, "capture": false, "interSf": false, "adr": "tracking", "adrMargin": 15,
              "adrHistory": 10},
-            {"sensorRate": 50, "q": 0.07},
+            {"sensorRate": 50, "q": 0.07, "vehicle": "fixed-wing"},
             {"region": "us915", "interval": 5, "fairUse": "ttn", "jitter": 0.5, "clockDrift": 10,
              "schedule": "slotted"},
             {"access": "lbt"},
@@ -1350,13 +1355,17 @@ mod tests {
     }
 
     /// A plan's vehicle is on `simulate`'s first line, since it changes how the plan is flown;
-    /// a run without a plan says nothing of one.
+    /// a run without a plan names a plane only where `--vehicle` sets one (it bounds the
+    /// station at a plane's speed), and a multicopter, the default, not at all.
     #[test]
     fn the_first_line_says_which_vehicle_a_plan_is_flown_as() {
-        assert_eq!(vehicle_text(None), "");
-        let plane = vehicle_text(Some(loratrack::Cornering::FixedWing));
-        let copter = vehicle_text(Some(loratrack::Cornering::Multicopter));
-        assert!(plane.ends_with("a plane") && copter.ends_with("a multicopter"));
+        use loratrack::{Cornering, VehicleChoice};
+        assert_eq!(vehicle_text(None, VehicleChoice::Auto), "");
+        assert_eq!(vehicle_text(None, VehicleChoice::Multicopter), "");
+        assert_eq!(vehicle_text(None, VehicleChoice::FixedWing), ", a plane");
+        let plane = vehicle_text(Some(Cornering::FixedWing), VehicleChoice::Auto);
+        let copter = vehicle_text(Some(Cornering::Multicopter), VehicleChoice::Auto);
+        assert!(plane.ends_with("plan as a plane") && copter.ends_with("plan as a multicopter"));
     }
 
     /// `simulate`'s first line names the ADR that moves the rate it states, with LoRaWAN's

@@ -1,6 +1,7 @@
 //! The settings that are a choice rather than a number: which flight, which stations, the seed.
 
 use crate::sim::station::StationModel;
+use crate::trajectory::Cornering;
 use serde::{Deserialize, Serialize, Serializer};
 use std::sync::Arc;
 
@@ -250,8 +251,9 @@ pub enum TrajectorySource {
     Synthetic(SyntheticChoice),
     /// A bundled sample by name.
     Sample(String),
-    /// A mission plan's text (`x,y,z[,speed[,hold]]`, `.plan` or waypoint list) and a name:
-    /// the drone flies the plan as [`fly_plan`](crate::fly_plan) flies it, the mission
-    /// station's best case (no wind, every leg at its planned speed, every hold as planned).
-    Plan(Arc<str>, String),
+    /// A mission plan's text (`x,y,z[,speed[,hold]]`, `.plan` or waypoint list), a name and
+    /// the vehicle it is flown as where set (`vehicle`; else as the file says): the drone flies
+    /// the plan as [`fly_plan`](crate::fly_plan) flies it, the mission station's best case (no
+    /// wind, every leg at its planned speed, every hold as planned).
+    Plan(Arc<str>, String, Option<Cornering>),
 }

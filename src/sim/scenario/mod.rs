@@ -36,7 +36,9 @@ use crate::lora::{
 };
 use crate::models::ModelKind;
 use crate::options as opt;
-use crate::trajectory::{parse_plan, FlightPlan, Trajectory, TRACE_TOLERANCE};
+use crate::trajectory::{
+    parse_plan_as, Cornering, FlightPlan, Trajectory, VehicleChoice, TRACE_TOLERANCE,
+};
 use choices::seed_or_random;
 use serde::de::IgnoredAny;
 use serde::{Deserialize, Serialize};
@@ -339,6 +341,18 @@ pub struct DroneSettings {
     /// Process noise q of Q = q·I (drone and station).
     #[cfg_attr(cli, arg(long, default_value_t = opt::Q.default, help = opt::Q.cli_help(), allow_negative_numbers = true, value_parser = opt::number("q")))]
     pub q: f64,
+    /// The vehicle: `auto` (default: a QGroundControl `.plan`'s, else a multicopter),
+    /// `multicopter` or `fixed-wing`.
+    #[cfg_attr(
+        cli,
+        arg(
+            long,
+            value_enum,
+            default_value_t,
+            help = "The vehicle, for how a plan is flown and followed and the top speed a bounded station holds the drone to: auto (a QGroundControl .plan's vehicleType, else a multicopter), multicopter or fixed-wing (a plane: wide turns at its speed, no holds, up to 25.5 m/s)."
+        )
+    )]
+    pub vehicle: VehicleChoice,
 }
 
 impl Default for DroneSettings {
@@ -346,6 +360,7 @@ impl Default for DroneSettings {
         DroneSettings {
             sensor_rate: opt::SENSOR_RATE.default,
             q: opt::Q.default,
+            vehicle: VehicleChoice::Auto,
         }
     }
 }
@@ -575,7 +590,7 @@ impl Scenario {
         // The settings kept with the run give their CSV text to the source (the echo in every
         // report clones these settings).
         let mut settings = self.clone();
-        let source = settings.flight.take_source()?;
+        let source = settings.flight.take_source(self.drone.vehicle)?;
         let (r, c, n) = (&self.radio, &self.channel, &self.network);
         r.validate()?;
         c.validate()?;
@@ -583,7 +598,20 @@ impl Scenario {
         settings.network.channels = Some(channels);
         self.drone.validate()?;
         self.station.validate()?;
-        let plan = settings.flight.take_plan(&source, &self.station.model)?;
+        let vehicle = self.drone.vehicle.given();
+        let multicopters = matches!(
+            source,
+            None | Some(TrajectorySource::Synthetic(_) | TrajectorySource::Sample(_))
+        );
+        if multicopters && vehicle == Some(Cornering::FixedWing) {
+            return Err(SimError::Source(
+                "`vehicle` fixed-wing describes a plane's own flight or plan (`trajectory` or `plan`): the synthetic flights and the Canberra flight are multicopters"
+                    .into(),
+            ));
+        }
+        let plan = settings
+            .flight
+            .take_plan(&source, &self.station.model, vehicle)?;
         self.sending.validate()?;
         self.access.validate(r.duty_cycle)?;
         self.swarm.validate()?;
@@ -636,6 +664,7 @@ impl FlightSettings {
         &mut self,
         source: &Option<TrajectorySource>,
         models: &ModelChoice,
+        vehicle: Option<Cornering>,
     ) -> Result<Option<FlightPlan>, SimError> {
         let synthetic = matches!(source, Some(TrajectorySource::Synthetic(_)));
         let plan = match self.plan.take() {
@@ -643,7 +672,7 @@ impl FlightSettings {
                 "the synthetic flights carry their own plans: `plan` goes with `trajectory` or `sample`"
                     .into(),
             )),
-            Some(text) => Some(parse_plan(&text)?),
+            Some(text) => Some(parse_plan_as(&text, vehicle)?),
             None => None,
         };
         if plan.is_none()
@@ -662,7 +691,10 @@ impl FlightSettings {
     /// The chosen flight(s), taking the CSV text out of the settings: a plan alone is flown
     /// ([`TrajectorySource::Plan`]); `None` when nothing is chosen, an error when more than one
     /// flight is.
-    pub fn take_source(&mut self) -> Result<Option<TrajectorySource>, SimError> {
+    pub fn take_source(
+        &mut self,
+        vehicle: VehicleChoice,
+    ) -> Result<Option<TrajectorySource>, SimError> {
         Ok(
             match (self.trajectory.take(), self.synthetic, self.sample.clone()) {
                 (None, None, None) => self.plan.as_deref().map(|text| {
@@ -670,7 +702,7 @@ impl FlightSettings {
                         Some(n) if !n.trim().is_empty() => format!("{n} (flown)"),
                         _ => DEFAULT_PLAN_NAME.into(),
                     };
-                    TrajectorySource::Plan(text.into(), name)
+                    TrajectorySource::Plan(text.into(), name, vehicle.given())
                 }),
                 (Some(text), None, None) => Some(TrajectorySource::Csv(
                     text,
@@ -880,9 +912,21 @@ impl Validated {
         })
     }
 
+    /// The vehicle the drone is: as set (`vehicle`), else its plan's, else a multicopter
+    /// ([`VehicleChoice`]).
+    pub fn vehicle(&self) -> Cornering {
+        let plan = self.plan.as_ref().map(FlightPlan::cornering);
+        self.settings
+            .drone
+            .vehicle
+            .given()
+            .or(plan)
+            .unwrap_or_default()
+    }
+
     /// The station of every drone whose packets come every `interval` s (its data rate's
-    /// duty-cycle interval), bounded for the vehicle the plan is flown as
-    /// ([`Bounds::for_vehicle`]). A bounded station resets to the drone filter's settled
+    /// duty-cycle interval), bounded for the vehicle ([`Self::vehicle`],
+    /// [`Bounds::for_vehicle`]). A bounded station resets to the drone filter's settled
     /// covariance ([`DroneCovariances`], computed here: about 2 ms, so build one setup and copy
     /// it).
     pub fn station_setup(&self, interval: f64) -> StationSetup {
@@ -893,11 +937,7 @@ impl Validated {
             prediction: s.station.prediction,
             bounds: Bounds {
                 heading_noise: s.station.heading_noise,
-                ..Bounds::for_vehicle(
-                    self.plan
-                        .as_ref()
-                        .map_or_else(Default::default, FlightPlan::cornering),
-                )
+                ..Bounds::for_vehicle(self.vehicle())
             },
             step: s.station.step,
             eta: s.station.eta,
