@@ -1,6 +1,6 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
 import { MODEL_LABELS, OPTIONS, PAYLOAD_BYTES, type GatewayReport, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
-import { DEFAULTS, isNumericKey, LIMITS, overheadBytes, plan, sendingLimit, type NumericKey, type Settings } from './state';
+import { DEFAULTS, isNumericKey, LIMITS, overheadBytes, plan, sendingLimit, uploaded, type NumericKey, type Settings } from './state';
 import { store } from './store';
 
 /** A statistic with `digits` decimals, or a dash where there is none (an empty sample). */
@@ -122,8 +122,10 @@ export function describe(s: Settings): string {
 /** One line for a download's caption: the settings, flight, seed and version behind a chart. */
 export function caption(s: Settings, extra = ''): string {
   const flight = s.flight === 'all' ? 'whole synthetic set' : s.flight === 'canberra' ? 'real flight (Canberra)' : s.flight === 'csv' ? (store.csv?.name ?? 'uploaded CSV') : s.flight === 'plan' ? `${store.plan?.name ?? 'plan'} (flown)` : `synthetic flight ${s.flightNumber}`;
+  // A vehicle set over an uploaded file's changes how it is flown, followed and bounded.
+  const vehicle = uploaded(s.flight) && s.vehicle !== 'auto' ? (s.vehicle === 'fixed-wing' ? ' as a plane' : ' as a multicopter') : '';
   const seeds = s.seeds > 1 ? ` to ${s.seed + s.seeds - 1}` : '';
-  return `${describe(s)}, ${s.lorawan ? `${overheadBytes(s)} B` : 'no'} LoRaWAN overhead; ${flight}; seed ${s.seed}${seeds}${extra}; loratrack ${__LORATRACK_VERSION__}`;
+  return `${describe(s)}, ${s.lorawan ? `${overheadBytes(s)} B` : 'no'} LoRaWAN overhead; ${flight}${vehicle}; seed ${s.seed}${seeds}${extra}; loratrack ${__LORATRACK_VERSION__}`;
 }
 
 /** A flight time as a sentence says it: "2 minutes", "1 minute", "90 s". */

@@ -3,7 +3,7 @@
 // table in ./results, embeds in ./embed, presentation mode in ./present.
 import { changedEarly, pool } from './boot';
 import { runSwarms, spawnWorker, type SwarmRun } from './pool';
-import { linkBudget, load, MODEL_LABELS, settingOf, stationsOf, valueThatFits, type ModelName, type SimReport, type SimulateParams, type SwarmParams } from './loratrack';
+import { linkBudget, load, MODEL_LABELS, settingOf, stationsOf, TOP_SPEEDS, valueThatFits, type ModelName, type SimReport, type SimulateParams, type SwarmParams } from './loratrack';
 import { MODEL_COLORS, PLAN_COLOR, TRUTH_COLOR } from './charts/colors';
 import type { BoxRow } from './charts/plots';
 import type { SfRow } from './charts/p75BySf';
@@ -115,12 +115,13 @@ function send(request: SimulateRequest, made: Settings): void {
 }
 
 /** What the status line says of the run's plan: which vehicle it is flown (or followed) as, read
- * from the file by the core (`config.planCornering`, reference §16), and that a flown plan is the
- * mission station's best case. */
+ * from the file or set (`config.planCornering`, `vehicle`, reference §16), and that a flown plan
+ * is the mission station's best case; of a plane's log without a plan, that it is bounded as one. */
 function planNote(c: SimReport['config']): string {
-  const vehicle = c.planCornering === 'fixedWing' ? 'a plane flies it (ArduPlane’s wide turns)' : 'a multicopter flies it';
+  if (c.planCornering === null) return c.vehicle === 'fixed-wing' ? ` The drone is a plane: a bounded station lets it reach ${TOP_SPEEDS['fixed-wing']} m/s.` : '';
+  const vehicle = c.planCornering === 'fixed-wing' ? 'a plane flies it (ArduPlane’s wide turns)' : 'a multicopter flies it';
   if (store.reportSettings.flight === 'plan') return ` The plan is flown as ${vehicle}, exactly, without wind: the mission station’s best case.`;
-  return c.planCornering === 'fixedWing' && c.models.includes('mission') ? ` The mission station follows the plan as ${vehicle}.` : '';
+  return c.planCornering === 'fixed-wing' && c.models.includes('mission') ? ` The mission station follows the plan as ${vehicle}.` : '';
 }
 
 /** The results on show are a whole set's first flight while the set runs (`.partial`); returns
@@ -509,7 +510,7 @@ async function render3d(r: SimReport): Promise<void> {
  * round its turns' arcs (reference §16), and its label says so. */
 function tracksDrawn(r: SimReport | undefined): { color: string; label: string }[] {
   const series = r?.series;
-  const plan = r?.config.planCornering === 'fixedWing' ? 'flight plan, round a plane’s turns (dashed)' : 'flight plan (dashed)';
+  const plan = r?.config.planCornering === 'fixed-wing' ? 'flight plan, round a plane’s turns (dashed)' : 'flight plan (dashed)';
   return [{ color: TRUTH_COLOR, label: 'true flight' }, ...(series?.plan ? [{ color: PLAN_COLOR, label: plan }] : []), ...(series?.models ?? []).map((m) => ({ color: MODEL_COLORS[m.model], label: MODEL_LABELS[m.model] }))];
 }
 

@@ -4,7 +4,7 @@
 // both generated into www/generated/types.ts, so the form, the URL checks, the CLI help and the
 // core's validation cannot disagree.
 import type { SimulateRequest, SweepPoint } from './worker';
-import { CHOICE_DEFAULTS, OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type HeadingNoise, type ModelChoice, type NumberOption, type PayloadChoice, type Plan, type Prediction, type Region, type ShadowingModel, type SimulateParams } from './loratrack';
+import { CHOICE_DEFAULTS, OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type HeadingNoise, type ModelChoice, type NumberOption, type PayloadChoice, type Plan, type Prediction, type Region, type ShadowingModel, type SimulateParams, type VehicleChoice } from './loratrack';
 
 export type FlightChoice = 'synthetic' | 'all' | 'canberra' | 'csv' | 'plan';
 
@@ -38,6 +38,9 @@ export interface Settings {
   fairUse: FairUse;
   flight: FlightChoice;
   flightNumber: number;
+  /** The vehicle an uploaded flight or plan is (a QGroundControl .plan's by default); the
+   * bundled flights are multicopters. */
+  vehicle: VehicleChoice;
   lorawan: boolean;
   cr: number;
   txPower: number;
@@ -84,6 +87,7 @@ export const DEFAULTS: Settings = {
   fairUse: CHOICE_DEFAULTS.fairUse,
   flight: 'synthetic',
   flightNumber: 1,
+  vehicle: CHOICE_DEFAULTS.vehicle,
   lorawan: def('overhead') > 0,
   cr: def('cr'),
   txPower: def('txPower'),
@@ -298,9 +302,9 @@ export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { te
       : s.flight === 'canberra'
         ? { sample: 'canberra' }
         : s.flight === 'csv' && csv
-          ? { trajectoryName: csv.name, ...planParams(missionPlan) }
+          ? { trajectoryName: csv.name, ...planParams(missionPlan), vehicle: s.vehicle }
           : s.flight === 'plan' && missionPlan
-            ? planParams(missionPlan)
+            ? { ...planParams(missionPlan), vehicle: s.vehicle }
             : { synthetic: s.flightNumber };
   return {
     ...flight,
@@ -415,6 +419,7 @@ export function fromQuery(search: string): { settings: Settings; problems: strin
   choice('access', ['duty-cycle', 'lbt']);
   choice('fairUse', ['off', 'ttn']);
   choice('shadowingModel', ['path', 'field']);
+  choice('vehicle', ['auto', 'multicopter', 'fixed-wing']);
   // An uploaded CSV or plan cannot travel in a URL; such links open the default flight.
   choice('flight', ['synthetic', 'all', 'canberra']);
   if (q.get('lorawan') === 'false') s.lorawan = false;

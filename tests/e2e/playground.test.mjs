@@ -489,7 +489,7 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
   const planeSquare = join(dir, 'square-plane.plan');
   writeFileSync(planeSquare, readFileSync(qgc, 'utf8').replace('"vehicleType": 2', '"vehicleType": 1'));
   const fromPlane = nativeJson(['simulate', '--trajectory', flight, '--plan', planeSquare, '--model', '3d-ctra,mission']);
-  assert.equal(fromPlane.config.planCornering, 'fixedWing');
+  assert.equal(fromPlane.config.planCornering, 'fixed-wing');
   before = await tableHtml(page);
   await page.getByLabel(/Flight plan/).setInputFiles(planeSquare);
   await waitForResults(page, before);
@@ -564,7 +564,7 @@ test('a plan alone is flown: the page\'s numbers are the CLI\'s for --plan alone
   await page.getByLabel(/Flight plan/).setInputFiles(plane);
   await waitForResults(page, before);
   const flownAsPlane = nativeJson(['simulate', '--plan', plane, '--model', '3d-ctra,mission']);
-  assert.equal(flownAsPlane.config.planCornering, 'fixedWing');
+  assert.equal(flownAsPlane.config.planCornering, 'fixed-wing');
   assert.match(await page.locator('#status').textContent(), /^plane\.plan \(flown\): .* The plan is flown as a plane flies it \(ArduPlane’s wide turns\), exactly/);
   for (const m of ['3d-ctra', 'mission']) {
     assert.equal(number(await cell(page, m, 'p75')).toFixed(2), flownAsPlane.results.find((x) => x.model === m).error3d.p75.toFixed(2), m);
@@ -572,6 +572,29 @@ test('a plan alone is flown: the page\'s numbers are the CLI\'s for --plan alone
   // The 3D view draws the plan as the station follows it, round the turns, and says so.
   await page.locator('[data-panel="trajectory"]').scrollIntoViewIfNeeded();
   await until(page, () => /flight plan, round a plane’s turns \(dashed\)/.test(document.querySelector('#trajectory-legend')?.textContent ?? ''));
+  // The Vehicle control overrides the file's: the plane's plan flown by a multicopter, then the
+  // CSV plan, which names no vehicle, flown by a plane, each with the CLI's --vehicle numbers.
+  for (const [file, vehicle, words] of [[plane, 'multicopter', 'a multicopter flies it'], [plan, 'fixed-wing', 'a plane flies it']]) {
+    if (file === plan) {
+      before = await tableHtml(page);
+      await page.getByLabel(/Flight plan/).setInputFiles(plan);
+      await waitForResults(page, before);
+    }
+    before = await tableHtml(page);
+    await page.getByLabel('Vehicle').selectOption(vehicle);
+    await waitForResults(page, before);
+    const set = nativeJson(['simulate', '--plan', file, '--model', '3d-ctra,mission', '--vehicle', vehicle]);
+    assert.equal(set.config.planCornering, vehicle);
+    assert.match(await page.locator('#status').textContent(), new RegExp(`The plan is flown as ${words}`));
+    for (const m of ['3d-ctra', 'mission']) {
+      assert.equal(number(await cell(page, m, 'p75')).toFixed(2), set.results.find((x) => x.model === m).error3d.p75.toFixed(2), `${vehicle} ${m}`);
+    }
+    assert.match(await page.locator('[data-command="results"] code').textContent(), new RegExp(` --vehicle ${vehicle}$`));
+  }
+  assert.deepEqual(await axe(page), []);
+  before = await tableHtml(page);
+  await page.getByLabel('Vehicle').selectOption('auto');
+  await waitForResults(page, before);
 
   const long = join(dir, 'loiter.csv');
   writeFileSync(long, 'x,y,z,speed,hold\n0,0,30\n30,0,30,3,86400\n');

@@ -2,7 +2,7 @@
 // would tell a reader a rule the simulation no longer follows.
 import { readFileSync } from 'node:fs';
 import { expect, test } from 'vitest';
-import { LEAN_SIGNIFICANCE, PLANS } from '../../www/generated/types';
+import { LEAN_SIGNIFICANCE, PLANS, TOP_SPEEDS } from '../../www/generated/types';
 
 const page = readFileSync(new URL('../../index.html', import.meta.url), 'utf8');
 
@@ -21,4 +21,11 @@ test("each regional plan's choice names the duty cycle and dwell time of the cor
     // Where the plan applies may come first ("Europe, 1 % duty cycle").
     expect(text.replace(/\([A-Z][a-z]+, /, '(')).toBe(`${p.label} (${limits.join(', ')})`);
   }
+});
+
+test("the Vehicle and Station prediction hints state each vehicle's top speed as the core bounds it", () => {
+  const hint = (id: string) => new RegExp(`<p id="${id}"[^>]*>([^<]*)</p>`).exec(page)?.[1] ?? '';
+  const [copter, plane] = [TOP_SPEEDS.multicopter, TOP_SPEEDS['fixed-wing']];
+  expect(hint('vehicle-help')).toContain(`let it reach ${plane} m/s (a multicopter ${copter} m/s)`);
+  expect(hint('prediction-help')).toContain(`holds speed in 0–${copter} m/s (a plane: ${plane} m/s)`);
 });
