@@ -400,6 +400,14 @@ fn the_report_says_which_vehicle_a_plan_is_flown_as() {
         Some(Cornering::Multicopter)
     );
     assert_eq!(cornering(json!({"synthetic": 1})), None);
+    // A swarm flying the plan says it as well; one of chained synthetic flights has none.
+    let swarmed = |settings: Value| {
+        let s = Scenario::default().with(&settings).unwrap();
+        swarm(&s).unwrap().config.plan_cornering
+    };
+    let small = json!({"drones": 2, "duration": 60, "plan": qgc_lines(1, 18.0)});
+    assert_eq!(swarmed(small), Some(Cornering::FixedWing));
+    assert_eq!(swarmed(json!({"drones": 2, "duration": 60})), None);
 }
 
 /// A plane faster than a quadcopter's top speed is tracked at its own: held to 20 m/s, the

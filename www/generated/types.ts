@@ -1029,7 +1029,14 @@ station: ModelName,
 /**
  * Bandwidth, kHz (as `bw`).
  */
-bandwidthKhz: number, };
+bandwidthKhz: number, 
+/**
+ * How the plan the drones fly (`plan`) is flown, as [`RunConfig::plan_cornering`]
+ * says it for `simulate`; `null` without a plan.
+ *
+ * [`RunConfig::plan_cornering`]: crate::sim::RunConfig::plan_cornering
+ */
+planCornering: Cornering | null, };
 
 export type SwarmReport = Delivery & { 
 /**

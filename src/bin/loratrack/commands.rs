@@ -941,6 +941,7 @@ fn swarm_text(r: &SwarmReport) -> String {
         }
         _ => format!("x {:.0} s", c.swarm.duration),
     };
+    let flown = flown + vehicle_text(r.config.plan_cornering, c.drone.vehicle);
     format!(
         "{} drone{} {}, at {} m, {} ({}), {} channel{}, {}, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
          {}{}\n\

@@ -38,7 +38,7 @@ use crate::metrics::{percentile, sort_total, Summary, WholeFlightError};
 use crate::options::MAX_SWARM_FILTER_STEPS;
 use crate::parallel::par_map;
 use crate::rng::Rng;
-use crate::trajectory::{chain_flights, Trajectory};
+use crate::trajectory::{chain_flights, FlightPlan, Trajectory};
 use core::f64::consts::TAU;
 use sf_plan::SfDeal;
 use std::sync::Arc;
@@ -509,6 +509,7 @@ impl<'a> Swarm<'a> {
                 settings: s.clone(),
                 station: model,
                 bandwidth_khz: s.radio.bw,
+                plan_cornering: cfg.plan.as_ref().map(FlightPlan::cornering),
             },
             sf_limit: self.deal.limit,
             frame_length: self.frame_length,

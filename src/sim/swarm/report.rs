@@ -6,6 +6,7 @@ use crate::sim::caveats::Caveats;
 use crate::sim::report::{DataRateUse, Delivery, Energy};
 use crate::sim::scenario::Scenario;
 use crate::sim::station::StationModel;
+use crate::trajectory::Cornering;
 use serde::Serialize;
 
 /// One drone of the swarm.
@@ -158,4 +159,10 @@ pub struct SwarmEcho {
     pub station: StationModel,
     /// Bandwidth, kHz (as `bw`).
     pub bandwidth_khz: f64,
+    /// How the plan the drones fly (`plan`) is flown, as [`RunConfig::plan_cornering`]
+    /// says it for `simulate`; `null` without a plan.
+    ///
+    /// [`RunConfig::plan_cornering`]: crate::sim::RunConfig::plan_cornering
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Cornering | null"))]
+    pub plan_cornering: Option<Cornering>,
 }
