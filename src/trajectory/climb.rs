@@ -1,6 +1,8 @@
 //! How fast an autopilot lets a vehicle climb and descend on a mission leg (reference §16): a
 //! plan's speed is held down on a steep leg, for the flown plan and the mission station alike.
 
+use super::Cornering;
+
 /// The fastest climb and descent an autopilot flies on a mission leg, m/s.
 ///
 /// An autopilot limits the vertical speed apart from the speed along the path: on a leg that
@@ -35,6 +37,14 @@ impl ClimbLimits {
     /// A fixed-wing aircraft's: ArduPlane's `TECS_CLMB_MAX` and `TECS_SINK_MAX`, 5 m/s each (PX4's
     /// `FW_T_CLMB_MAX` and `FW_T_SINK_MAX` alike).
     pub const FIXED_WING: ClimbLimits = ClimbLimits { up: 5.0, down: 5.0 };
+
+    /// The limits of `vehicle`: [`Self::MULTICOPTER`] or [`Self::FIXED_WING`].
+    pub fn of(vehicle: Cornering) -> ClimbLimits {
+        match vehicle {
+            Cornering::Multicopter => Self::MULTICOPTER,
+            Cornering::FixedWing => Self::FIXED_WING,
+        }
+    }
 
     /// The speed along a leg, m/s, at which `speed` (m/s) stays within these limits on a leg
     /// whose height changes by `rise` metres per metre flown along it (the sine of its slope, −1

@@ -95,7 +95,7 @@ impl Flown {
             points: vec![[0.0, 0.0, 0.0]],
             speeds: Vec::new(),
             holds: vec![0.0],
-            climb: ClimbLimits::MULTICOPTER,
+            climb: ClimbLimits::of(Cornering::Multicopter),
             climbs: Vec::new(),
             cornering: Cornering::Multicopter,
             takeoffs: Vec::new(),
@@ -108,7 +108,7 @@ impl Flown {
     /// ([`Cornering::FixedWing`]).
     pub fn fixed_wing(self) -> Self {
         Flown {
-            climb: ClimbLimits::FIXED_WING,
+            climb: ClimbLimits::of(Cornering::FixedWing),
             cornering: Cornering::FixedWing,
             ..self
         }

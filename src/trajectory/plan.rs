@@ -248,10 +248,7 @@ impl FlightPlan {
     /// through a flight keeps its own leg speeds), turning as it turns, and for a plane through
     /// every hold, as ArduPlane flies through a waypoint's hold time (MAVLink `NAV_WAYPOINT`).
     pub fn flown_as(self, vehicle: Cornering) -> Self {
-        let climb = self.climbs.is_some().then_some(match vehicle {
-            Cornering::Multicopter => ClimbLimits::MULTICOPTER,
-            Cornering::FixedWing => ClimbLimits::FIXED_WING,
-        });
+        let climb = self.climbs.is_some().then(|| ClimbLimits::of(vehicle));
         let plan = match vehicle {
             Cornering::Multicopter => self,
             Cornering::FixedWing => self.without_holds(),

@@ -598,17 +598,7 @@ impl Scenario {
         settings.network.channels = Some(channels);
         self.drone.validate()?;
         self.station.validate()?;
-        let vehicle = self.drone.vehicle.given();
-        let multicopters = matches!(
-            source,
-            None | Some(TrajectorySource::Synthetic(_) | TrajectorySource::Sample(_))
-        );
-        if multicopters && vehicle == Some(Cornering::FixedWing) {
-            return Err(SimError::Source(
-                "`vehicle` fixed-wing describes a plane's own flight or plan (`trajectory` or `plan`): the synthetic flights and the Canberra flight are multicopters"
-                    .into(),
-            ));
-        }
+        let vehicle = self.drone.vehicle.flying(&source)?;
         let plan = settings
             .flight
             .take_plan(&source, &self.station.model, vehicle)?;
@@ -719,6 +709,24 @@ impl FlightSettings {
                 }
             },
         )
+    }
+}
+
+impl VehicleChoice {
+    /// The vehicle set for `source`'s flight, or `None` to take the plan file's; refuses a plane
+    /// over the bundled flights (and a swarm's chained synthetic flights), which are multicopters.
+    fn flying(self, source: &Option<TrajectorySource>) -> Result<Option<Cornering>, SimError> {
+        let bundled = matches!(
+            source,
+            None | Some(TrajectorySource::Synthetic(_) | TrajectorySource::Sample(_))
+        );
+        match self.given() {
+            Some(Cornering::FixedWing) if bundled => Err(SimError::Source(
+                "`vehicle` fixed-wing describes a plane's own flight or plan (`trajectory` or `plan`): the synthetic flights and the Canberra flight are multicopters"
+                    .into(),
+            )),
+            given => Ok(given),
+        }
     }
 }
 
