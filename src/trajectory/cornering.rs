@@ -24,8 +24,8 @@ const L1_PERIOD: f64 = 17.0;
 const L1_DAMPING: f64 = 0.75;
 
 /// How an autopilot turns through a waypoint it flies through: the vehicle a plan is flown as
-/// and a bounded station holds the drone to ([`VehicleChoice`]; JSON `config.vehicle` and
-/// `config.planCornering`, `multicopter` or `fixed-wing`, so a page can say which).
+/// and a bounded station holds the drone to (as [`VehicleChoice`] sets it or the plan file says;
+/// JSON `config.planCornering`, `multicopter` or `fixed-wing`, so a page can say which).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
