@@ -49,7 +49,8 @@ pub enum Cornering {
 /// or set. It decides how a plan is flown and followed (a plane turns wide at its speed, flies
 /// through a waypoint's hold and climbs faster: [`Cornering`], [`ClimbLimits`]) and the top speed
 /// a bounded or mission station holds the drone to ([`Bounds::for_vehicle`]). Set it for a plane's
-/// CSV log or CSV plan, which cannot say which vehicle flew them.
+/// CSV log, waypoint list or CSV plan without a [`VEHICLE_MARK`](crate::VEHICLE_MARK) line, which
+/// do not say which vehicle flew them.
 ///
 /// [`ClimbLimits`]: crate::ClimbLimits
 /// [`Bounds::for_vehicle`]: crate::Bounds::for_vehicle
@@ -60,14 +61,26 @@ pub enum Cornering {
 #[cfg_attr(cli, derive(clap::ValueEnum))]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub enum VehicleChoice {
-    /// A QGroundControl `.plan`'s `vehicleType`; a multicopter for every other plan and flight
-    /// (the paper's drone, the synthetic set and the Canberra flight are multicopters).
+    /// A QGroundControl `.plan`'s `vehicleType` or a CSV plan's `# vehicle:` line; a multicopter
+    /// for every other plan and flight (the paper's drone, the synthetic set and the Canberra
+    /// flight are multicopters).
     #[default]
     Auto,
     /// A multicopter, whatever the plan file says.
     Multicopter,
     /// A fixed-wing aircraft (ArduPlane), whatever the plan file says.
     FixedWing,
+}
+
+impl Cornering {
+    /// Its name in JSON (`config.planCornering`), in `--vehicle` and in a CSV plan's
+    /// [`VEHICLE_MARK`](super::VEHICLE_MARK) line: `multicopter` or `fixed-wing`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Cornering::Multicopter => "multicopter",
+            Cornering::FixedWing => "fixed-wing",
+        }
+    }
 }
 
 impl VehicleChoice {
@@ -329,6 +342,19 @@ mod tests {
     fn plan(points: Vec<[f64; 3]>, speed: f64) -> FlightPlan {
         let legs = points.len() - 1;
         FlightPlan::new(points, vec![Some(speed); legs]).unwrap()
+    }
+
+    /// The names a CSV plan's vehicle line and `--vehicle` use are the JSON ones.
+    #[test]
+    fn a_vehicles_name_is_its_json_and_setting_name() {
+        for v in [Cornering::Multicopter, Cornering::FixedWing] {
+            assert_eq!(
+                serde_json::to_string(&v).unwrap(),
+                format!("\"{}\"", v.name())
+            );
+            let choice: VehicleChoice = serde_json::from_value(v.name().into()).unwrap();
+            assert_eq!(choice.given(), Some(v));
+        }
     }
 
     #[test]

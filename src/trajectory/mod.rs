@@ -40,7 +40,7 @@ pub use plan::{
     FlightPlan, OnPlan, MAX_HOLD, MAX_PLAN_COORDINATE, MAX_PLAN_SPEED, MAX_WAYPOINTS,
     TRACE_TOLERANCE,
 };
-pub use plan_file::{parse_plan, parse_plan_as, PlanError, TRACED_MARK};
+pub use plan_file::{parse_plan, parse_plan_as, PlanError, TRACED_MARK, VEHICLE_MARK};
 pub use sample::{canberra_flight, CANBERRA_CREDIT};
 pub use synthetic::{
     synthetic_flight, synthetic_set, SYNTHETIC_FLIGHTS, SYNTHETIC_SEED, SYNTHETIC_TOTAL_SECONDS,

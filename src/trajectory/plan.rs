@@ -281,14 +281,20 @@ impl FlightPlan {
     /// The plan as CSV text that [`parse_plan`](super::parse_plan) reads back to the same plan:
     /// `x,y,z,speed`, and `hold` where any waypoint has one, every number in its shortest
     /// round-trip form; a plan traced through a flight begins with
-    /// [`TRACED_MARK`](super::TRACED_MARK), so that it is read back as one (a multicopter's climb
-    /// limits, the only ones a CSV plan carries, are the rest's).
+    /// [`TRACED_MARK`](super::TRACED_MARK), so that it is read back as one, and a plane's plan
+    /// with [`VEHICLE_MARK`](super::VEHICLE_MARK) `fixed-wing`, so that it is read back as a
+    /// plane's (its climb limits, its turns, no holds: [`FlightPlan::flown_as`]). Climb limits
+    /// other than the vehicle's own (a `.plan`'s `DO_CHANGE_SPEED` of a climb or descent speed)
+    /// are not written: a CSV plan has no column for them.
     pub fn to_csv(&self) -> String {
         let with_holds = self.holds.iter().any(|&h| h > 0.0);
         let mut out = match self.climbs {
             None => format!("{}\n", super::TRACED_MARK),
             Some(_) => String::new(),
         };
+        if self.cornering == Cornering::FixedWing {
+            out += &format!("{} {}\n", super::VEHICLE_MARK, self.cornering.name());
+        }
         out += if with_holds {
             "x,y,z,speed,hold\n"
         } else {

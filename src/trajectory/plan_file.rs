@@ -80,7 +80,9 @@ impl std::error::Error for PlanError {}
 /// CSV: one waypoint per line, `x,y,z`, `x,y,z,speed` or `x,y,z,speed,hold` (m east, north,
 /// up in the flight's frame; the speed, m/s, is for the leg that ends at that waypoint, and may
 /// be left empty; the hold, s, is how long the drone stays at the waypoint); a header line of
-/// names, blank lines and lines starting with `#` are skipped.
+/// names, blank lines and lines starting with `#` are skipped, but for the line
+/// `# vehicle: fixed-wing` (or `multicopter`, [`VEHICLE_MARK`]), which says which vehicle flies
+/// the plan, as a QGroundControl `.plan`'s `vehicleType` does.
 ///
 /// ```
 /// let plan = loratrack::parse_plan("x,y,z,speed\n0,0,20\n100,0,20,8\n").unwrap();
@@ -92,7 +94,8 @@ pub fn parse_plan(text: &str) -> Result<FlightPlan, PlanError> {
 
 /// [`parse_plan`], the plan flown as `vehicle` where it is given (`--vehicle`,
 /// [`VehicleChoice::given`](super::VehicleChoice::given)) instead of as the file says: a
-/// QGroundControl `.plan`'s `vehicleType`, a multicopter for a waypoint list or a CSV. A plane
+/// QGroundControl `.plan`'s `vehicleType`, a CSV's [`VEHICLE_MARK`] line, else a multicopter
+/// (a waypoint list names no vehicle). A plane
 /// flies through a waypoint's hold and turns wide at its speed; its timed loiters are circles.
 ///
 /// ```
@@ -115,22 +118,33 @@ pub fn parse_plan_as(text: &str, vehicle: Option<Cornering>) -> Result<FlightPla
     } else if start.starts_with(WPL_HEADER) {
         parse_waypoint_list(text, vehicle)
     } else {
-        let plan = parse_csv_plan(text)?;
-        Ok(match vehicle {
+        let (plan, named) = parse_csv_plan(text)?;
+        Ok(match vehicle.or(named) {
             Some(v) => plan.flown_as(v),
             None => plan,
         })
     }
 }
 
-fn parse_csv_plan(text: &str) -> Result<FlightPlan, PlanError> {
+/// A CSV plan, and the vehicle its [`VEHICLE_MARK`] line names, if it has one.
+fn parse_csv_plan(text: &str) -> Result<(FlightPlan, Option<Cornering>), PlanError> {
     let mut points = Vec::new();
     let mut speeds = Vec::new();
     let mut holds = Vec::new();
     let mut traced = false;
+    let mut vehicle = None;
     for (i, raw) in text.lines().enumerate() {
         let line = raw.trim();
         traced |= line == TRACED_MARK;
+        if let Some(name) = vehicle_line(line) {
+            vehicle = Some(vehicle_named(name).ok_or_else(|| PlanError::Line {
+                line: i + 1,
+                what: format!(
+                    "the vehicle '{}' is neither multicopter nor fixed-wing",
+                    excerpt(name)
+                ),
+            })?);
+        }
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
@@ -181,7 +195,24 @@ fn parse_csv_plan(text: &str) -> Result<FlightPlan, PlanError> {
         return Err(PlanError::Empty);
     }
     let plan = FlightPlan::with_holds(points, speeds, holds)?;
-    Ok(if traced { plan.with_climb(None) } else { plan })
+    Ok((if traced { plan.with_climb(None) } else { plan }, vehicle))
+}
+
+/// What a [`VEHICLE_MARK`] line names, however it is spaced or capitalised (`#Vehicle:plane`
+/// too, to be refused by name); `None` for any other line.
+fn vehicle_line(line: &str) -> Option<&str> {
+    let comment = line.strip_prefix('#')?.trim_start();
+    let key = "vehicle:";
+    let head = comment.get(..key.len())?;
+    head.eq_ignore_ascii_case(key)
+        .then(|| comment[key.len()..].trim())
+}
+
+/// The vehicle a [`VEHICLE_MARK`] line names, by its `--vehicle` name in any case.
+fn vehicle_named(name: &str) -> Option<Cornering> {
+    [Cornering::Multicopter, Cornering::FixedWing]
+        .into_iter()
+        .find(|v| v.name().eq_ignore_ascii_case(name))
 }
 
 /// The comment line with which [`FlightPlan::to_csv`] begins a plan traced through a flight
@@ -189,6 +220,13 @@ fn parse_csv_plan(text: &str) -> Result<FlightPlan, PlanError> {
 /// are the flight's own, flown within no autopilot's climb limits and turning on no corners.
 /// Any other CSV plan is one for an autopilot.
 pub const TRACED_MARK: &str = "# traced from a flight: its legs' speeds are the flight's own";
+
+/// How a CSV plan says which vehicle flies it: a comment line `# vehicle: fixed-wing` or
+/// `# vehicle: multicopter` (the `--vehicle` names, in any case), anywhere in the file. Without it a CSV
+/// plan is a multicopter's, unless `--vehicle` says otherwise (which overrides the line, as it
+/// does a `.plan`'s `vehicleType`). [`FlightPlan::to_csv`] writes it for a plane's plan, so
+/// that reading it back gives the same plan.
+pub const VEHICLE_MARK: &str = "# vehicle:";
 
 /// At most 60 characters of `text`.
 pub(super) fn excerpt(text: &str) -> String {
@@ -226,8 +264,9 @@ mod tests {
         assert!(parse_plan("0,,20\n100,0,20\n").is_err());
     }
 
-    /// A CSV names no vehicle: flown as a plane, a plan turns as ArduPlane does, climbs within a
-    /// plane's limits and flies through its holds; a traced plan keeps its own leg speeds.
+    /// A CSV without a vehicle line is a multicopter's: flown as a plane, a plan turns as
+    /// ArduPlane does, climbs within a plane's limits and flies through its holds; a traced plan
+    /// keeps its own leg speeds.
     #[test]
     fn a_csv_plan_is_flown_as_the_vehicle_set() {
         use crate::{ClimbLimits, Cornering};
@@ -247,6 +286,33 @@ mod tests {
         assert_eq!(
             (traced.climbs(), traced.cornering()),
             (None, Cornering::FixedWing)
+        );
+    }
+
+    /// A CSV plan may say its vehicle in a comment line, as a `.plan` does in `vehicleType`;
+    /// `--vehicle` overrides it, and a plane's plan written as CSV reads back as a plane's.
+    #[test]
+    fn a_csv_plans_vehicle_line_says_who_flies_it() {
+        use crate::Cornering;
+        let text = "x,y,z,speed,hold\n0,0,20\n100,0,40,8,30\n100,50,40,8\n";
+        let marked = format!("# vehicle: fixed-wing\n{text}");
+        let plane = parse_plan(&marked).unwrap();
+        assert_eq!(
+            plane,
+            parse_plan_as(text, Some(Cornering::FixedWing)).unwrap()
+        );
+        assert_eq!(parse_plan(&plane.to_csv()).unwrap(), plane);
+        assert!(plane.to_csv().starts_with("# vehicle: fixed-wing\n"));
+        let overridden = parse_plan_as(&marked, Some(Cornering::Multicopter)).unwrap();
+        assert_eq!(overridden, parse_plan(text).unwrap());
+        // The copter's own line changes nothing, and its plan is written without one.
+        let copter = parse_plan(&format!("{text}#Vehicle:  Multicopter \n")).unwrap();
+        assert_eq!(copter, parse_plan(text).unwrap());
+        assert!(!copter.to_csv().contains(VEHICLE_MARK));
+        let e = parse_plan(&format!("{text}#vehicle:plane\n")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "plan line 5: the vehicle 'plane' is neither multicopter nor fixed-wing"
         );
     }
 

@@ -421,9 +421,10 @@ fn a_plane_faster_than_a_quadcopter_is_followed_at_its_speed() {
     assert!(p75(&r, "mission") < 2.0, "{}", p75(&r, "mission"));
 }
 
-/// A plane's own log and its plan as a CSV, which cannot say it is a plane's: with `vehicle`
-/// `fixed-wing` the mission station follows the plan as the plane flew it (its wide turns, at
-/// its 24 m/s), where read as a multicopter's it fell behind at every corner.
+/// A plane's own log and its plan as a CSV without the line that says it is a plane's: with
+/// `vehicle` `fixed-wing` the mission station follows the plan as the plane flew it (its wide
+/// turns, at its 24 m/s), where read as a multicopter's it fell behind at every corner; the
+/// plan as `to_csv` writes it, with that line, is a plane's as the file says.
 #[test]
 fn a_planes_csv_log_and_csv_plan_are_followed_as_a_planes_when_the_vehicle_is_set() {
     let plan = loratrack::parse_plan(&qgc_lines(1, 24.0)).unwrap();
@@ -432,23 +433,26 @@ fn a_planes_csv_log_and_csv_plan_are_followed_as_a_planes_when_the_vehicle_is_se
     for (t, p) in flown.t.iter().zip(&flown.pos) {
         log += &format!("{t},{},{},{}\n", p[0], p[1], p[2]);
     }
-    let run_as = |vehicle: &str| {
+    let marked = plan.to_csv();
+    let unmarked = marked.replace("# vehicle: fixed-wing\n", "");
+    assert_ne!(marked, unmarked);
+    let run_as = |csv: &str, vehicle: &str| {
         let s = Scenario::default()
-            .with(
-                &json!({"trajectory": log, "plan": plan.to_csv(), "vehicle": vehicle,
-                "model": "mission", "prediction": "bounded", "sf": 9, "bw": 125.0, "seeds": 2}),
-            )
+            .with(&json!({"trajectory": log, "plan": csv, "vehicle": vehicle,
+                "model": "mission", "prediction": "bounded", "sf": 9, "bw": 125.0, "seeds": 2}))
             .unwrap();
         let r = simulate(&mut Simulator::new(), &s).unwrap();
         (r.config.plan_cornering, p75(&r.results, "mission"))
     };
-    let (copter, plane) = (run_as("auto"), run_as("fixed-wing"));
+    let (copter, plane) = (run_as(&unmarked, "auto"), run_as(&unmarked, "fixed-wing"));
     assert_eq!(copter.0, Some(Cornering::Multicopter));
     assert_eq!(plane.0, Some(Cornering::FixedWing));
     assert!(
         plane.1 < 2.0 && plane.1 < copter.1 / 4.0,
         "{plane:?} against {copter:?}"
     );
+    assert_eq!(run_as(&marked, "auto"), plane);
+    assert_eq!(run_as(&marked, "multicopter"), copter);
     // The bundled flights are multicopters: a plane is refused there, not quietly bounded as one.
     for flight in [json!({"synthetic": 1}), json!({"sample": "canberra"})] {
         let mut settings = flight.clone();
@@ -617,6 +621,12 @@ fn the_cli_help_gives_the_flown_plans_own_constants() {
             ClimbLimits::MULTICOPTER.down
         ),
         format!("at most {MAX_FLOWN_S} s"),
+        format!(
+            "multicopter (up to {} m/s) or fixed-wing (a plane: wide turns at its speed, no holds, up to {} m/s)",
+            loratrack::Bounds::default().v_max,
+            loratrack::PLANE_V_MAX
+        ),
+        format!("a CSV plan's line '{} fixed-wing'", loratrack::VEHICLE_MARK),
     ] {
         assert!(help.contains(&said), "{said}: {help}");
     }

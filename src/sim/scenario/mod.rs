@@ -341,18 +341,35 @@ pub struct DroneSettings {
     /// Process noise q of Q = q·I (drone and station).
     #[cfg_attr(cli, arg(long, default_value_t = opt::Q.default, help = opt::Q.cli_help(), allow_negative_numbers = true, value_parser = opt::number("q")))]
     pub q: f64,
-    /// The vehicle: `auto` (default: a QGroundControl `.plan`'s, else a multicopter),
-    /// `multicopter` or `fixed-wing`.
+    /// The vehicle: `auto` (default: a QGroundControl `.plan`'s `vehicleType` or a CSV plan's
+    /// [`VEHICLE_MARK`](crate::VEHICLE_MARK) line, else a multicopter), `multicopter` or
+    /// `fixed-wing`.
     #[cfg_attr(
         cli,
         arg(
             long,
             value_enum,
             default_value_t,
-            help = "The vehicle, for how a plan is flown and followed and the top speed a bounded station holds the drone to: auto (a QGroundControl .plan's vehicleType, else a multicopter), multicopter or fixed-wing (a plane: wide turns at its speed, no holds, up to 25.5 m/s)."
+            help = vehicle_help()
         )
     )]
     pub vehicle: VehicleChoice,
+}
+
+/// `--vehicle`'s help, with the top speed a bounded station holds each vehicle to
+/// ([`Bounds::for_vehicle`]).
+#[cfg(cli)]
+fn vehicle_help() -> String {
+    let top = |vehicle| Bounds::for_vehicle(vehicle).v_max;
+    format!(
+        "The vehicle, for how a plan is flown and followed and the top speed a bounded station \
+         holds the drone to: auto (a QGroundControl .plan's vehicleType or a CSV plan's line \
+         '{mark} fixed-wing', else a multicopter), multicopter (up to {} m/s) or fixed-wing (a \
+         plane: wide turns at its speed, no holds, up to {} m/s).",
+        top(Cornering::Multicopter),
+        top(Cornering::FixedWing),
+        mark = crate::VEHICLE_MARK,
+    )
 }
 
 impl Default for DroneSettings {
