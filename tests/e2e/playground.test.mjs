@@ -545,7 +545,7 @@ test('a plan alone is flown: the page\'s numbers are the CLI\'s for --plan alone
   await waitForResults(page, before);
   const cli = nativeJson(['simulate', '--plan', plan, '--model', '3d-ctra,mission']);
   assert.equal(cli.config.trajectory, `${plan} (flown)`);
-  // What the numbers rest on: the plan flown as planned, by a multicopter (a CSV plan names no vehicle).
+  // What the numbers rest on: the plan flown as planned, by a multicopter (this CSV plan names no vehicle).
   assert.equal(cli.config.planCornering, 'multicopter');
   assert.match(await page.locator('#status').textContent(), /^survey\.csv \(flown\): 1 flight, \d+ s simulated .* The plan is flown as a multicopter flies it, exactly, without wind: the mission station’s best case\.$/);
   for (const m of ['3d-ctra', 'mission']) {
@@ -573,7 +573,7 @@ test('a plan alone is flown: the page\'s numbers are the CLI\'s for --plan alone
   await page.locator('[data-panel="trajectory"]').scrollIntoViewIfNeeded();
   await until(page, () => /flight plan, round a plane’s turns \(dashed\)/.test(document.querySelector('#trajectory-legend')?.textContent ?? ''));
   // The Vehicle control overrides the file's: the plane's plan flown by a multicopter, then the
-  // CSV plan, which names no vehicle, flown by a plane, each with the CLI's --vehicle numbers.
+  // CSV plan, which names none, flown by a plane, each with the CLI's --vehicle numbers.
   for (const [file, vehicle, words] of [[plane, 'multicopter', 'a multicopter flies it'], [plan, 'fixed-wing', 'a plane flies it']]) {
     if (file === plan) {
       before = await tableHtml(page);
@@ -595,6 +595,20 @@ test('a plan alone is flown: the page\'s numbers are the CLI\'s for --plan alone
   before = await tableHtml(page);
   await page.getByLabel('Vehicle').selectOption('auto');
   await waitForResults(page, before);
+  // A CSV plan may say itself that a plane flies it: flown as the file says, with the CLI's
+  // numbers for that file, and no --vehicle in the command.
+  const marked = join(dir, 'plane-survey.csv');
+  writeFileSync(marked, `# vehicle: fixed-wing\n${readFileSync(plan, 'utf8')}`);
+  before = await tableHtml(page);
+  await page.getByLabel(/Flight plan/).setInputFiles(marked);
+  await waitForResults(page, before);
+  const asTheFileSays = nativeJson(['simulate', '--plan', marked, '--model', '3d-ctra,mission']);
+  assert.equal(asTheFileSays.config.planCornering, 'fixed-wing');
+  assert.match(await page.locator('#status').textContent(), /The plan is flown as a plane flies it/);
+  for (const m of ['3d-ctra', 'mission']) {
+    assert.equal(number(await cell(page, m, 'p75')).toFixed(2), asTheFileSays.results.find((x) => x.model === m).error3d.p75.toFixed(2), `marked ${m}`);
+  }
+  assert.equal(await page.locator('[data-command="results"] code').textContent(), 'loratrack simulate --plan plane-survey.csv --model 3d-ctra,mission');
 
   const long = join(dir, 'loiter.csv');
   writeFileSync(long, 'x,y,z,speed,hold\n0,0,30\n30,0,30,3,86400\n');

@@ -24,7 +24,8 @@ test("each regional plan's choice names the duty cycle and dwell time of the cor
 });
 
 test("the Vehicle and Station prediction hints state each vehicle's top speed as the core bounds it", () => {
-  const hint = (id: string) => new RegExp(`<p id="${id}"[^>]*>([^<]*)</p>`).exec(page)?.[1] ?? '';
+  // The paragraph's text, its inline markup (a <code> file line) left out.
+  const hint = (id: string) => (new RegExp(`<p id="${id}"[^>]*>([\\s\\S]*?)</p>`).exec(page)?.[1] ?? '').replace(/<[^>]+>/g, '');
   const [copter, plane] = [TOP_SPEEDS.multicopter, TOP_SPEEDS['fixed-wing']];
   expect(hint('vehicle-help')).toContain(`let it reach ${plane} m/s (a multicopter ${copter} m/s)`);
   expect(hint('prediction-help')).toContain(`holds speed in 0–${copter} m/s (a plane: ${plane} m/s)`);
