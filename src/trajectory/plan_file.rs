@@ -95,8 +95,8 @@ pub fn parse_plan(text: &str) -> Result<FlightPlan, PlanError> {
 /// [`parse_plan`], the plan flown as `vehicle` where it is given (`--vehicle`,
 /// [`VehicleChoice::given`](super::VehicleChoice::given)) instead of as the file says: a
 /// QGroundControl `.plan`'s `vehicleType`, a CSV's [`VEHICLE_MARK`] line, else a multicopter
-/// (a waypoint list names no vehicle). A plane
-/// flies through a waypoint's hold and turns wide at its speed; its timed loiters are circles.
+/// (a waypoint list names no vehicle). A plane flies through a waypoint's hold and turns wide at
+/// its speed; its timed loiters are circles.
 ///
 /// ```
 /// use loratrack::{parse_plan_as, Cornering};
@@ -137,13 +137,20 @@ fn parse_csv_plan(text: &str) -> Result<(FlightPlan, Option<Cornering>), PlanErr
         let line = raw.trim();
         traced |= line == TRACED_MARK;
         if let Some(name) = vehicle_line(line) {
-            vehicle = Some(vehicle_named(name).ok_or_else(|| PlanError::Line {
-                line: i + 1,
-                what: format!(
+            let refuse = |what: String| PlanError::Line { line: i + 1, what };
+            let named = vehicle_named(name).ok_or_else(|| {
+                refuse(format!(
                     "the vehicle '{}' is neither multicopter nor fixed-wing",
                     excerpt(name)
-                ),
-            })?);
+                ))
+            })?;
+            if vehicle.is_some_and(|v| v != named) {
+                return Err(refuse(format!(
+                    "a second vehicle line, naming {} where the first named the other",
+                    named.name()
+                )));
+            }
+            vehicle = Some(named);
         }
         if line.is_empty() || line.starts_with('#') {
             continue;
@@ -202,7 +209,7 @@ fn parse_csv_plan(text: &str) -> Result<(FlightPlan, Option<Cornering>), PlanErr
 /// too, to be refused by name); `None` for any other line.
 fn vehicle_line(line: &str) -> Option<&str> {
     let comment = line.strip_prefix('#')?.trim_start();
-    let key = "vehicle:";
+    let key = VEHICLE_MARK.trim_start_matches('#').trim_start();
     let head = comment.get(..key.len())?;
     head.eq_ignore_ascii_case(key)
         .then(|| comment[key.len()..].trim())
@@ -222,10 +229,11 @@ fn vehicle_named(name: &str) -> Option<Cornering> {
 pub const TRACED_MARK: &str = "# traced from a flight: its legs' speeds are the flight's own";
 
 /// How a CSV plan says which vehicle flies it: a comment line `# vehicle: fixed-wing` or
-/// `# vehicle: multicopter` (the `--vehicle` names, in any case), anywhere in the file. Without it a CSV
-/// plan is a multicopter's, unless `--vehicle` says otherwise (which overrides the line, as it
-/// does a `.plan`'s `vehicleType`). [`FlightPlan::to_csv`] writes it for a plane's plan, so
-/// that reading it back gives the same plan.
+/// `# vehicle: multicopter` (the `--vehicle` names, in any case), anywhere in the file; two
+/// that name different vehicles are refused. Without it a CSV plan is a multicopter's, unless
+/// `--vehicle` says otherwise (which overrides the line, as it does a `.plan`'s
+/// `vehicleType`). [`FlightPlan::to_csv`] writes it for a plane's plan, so that reading it back
+/// gives the same plan.
 pub const VEHICLE_MARK: &str = "# vehicle:";
 
 /// At most 60 characters of `text`.
@@ -313,6 +321,15 @@ mod tests {
         assert_eq!(
             e.to_string(),
             "plan line 5: the vehicle 'plane' is neither multicopter nor fixed-wing"
+        );
+        let e = parse_plan(&format!("{marked}# vehicle: multicopter\n")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "plan line 6: a second vehicle line, naming multicopter where the first named the other"
+        );
+        assert_eq!(
+            parse_plan(&format!("{marked}# Vehicle: Fixed-Wing\n")).unwrap(),
+            plane
         );
     }
 
