@@ -43,11 +43,14 @@ fn fixed_at(r: &DistanceSweepReport, distance: f64) -> impl Iterator<Item = &Dis
         .filter(move |x| x.distance == distance && x.dr.is_some())
 }
 
-/// " (0.98–1.13)": a ratio's interval, ∞ where some draws leave the p75 in the untracked time.
+/// " (0.98–1.13)": a ratio's interval, ∞ where some draws leave the row's p75 in the untracked
+/// time, 0 where they leave only the best fixed rate's there.
 fn interval_words(interval: Option<[f64; 2]>) -> String {
     let end = |v: f64| {
         if v.is_infinite() {
             "∞".to_string()
+        } else if v == 0.0 {
+            "0".to_string()
         } else {
             format!("{v:.2}")
         }
@@ -220,7 +223,7 @@ fn interval_setting(base: &Scenario) -> String {
         " Below the table each ratio carries its 95 % interval from resampling the {} seeds together, the ADR row's \
          and the best fixed rate's alike, each seed a whole pass over the set, which ADR carries from flight to \
          flight (a paired bootstrap, docs/reference.md §12; ∞ where some draws leave the row's p75 in the \
-         untracked time): a ratio above 1.05 whose interval reaches down to 1.05 may be the seeds' luck.",
+         untracked time, 0 where they leave only the best fixed rate's there): a ratio above 1.05 whose interval reaches down to 1.05 may be the seeds' luck.",
         base.run.seeds
     )
 }
@@ -482,4 +485,19 @@ fn lorawan_explained(r: &DistanceSweepReport, base: &Scenario) -> String {
         dr0_interval,
         dr0_interval * DEFAULT_ADR_HISTORY as f64 / 60.0
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An interval's ends say where some draws leave a p75 in the untracked time: the row's (∞)
+    /// or only the best fixed rate's (0), not as a number.
+    #[test]
+    fn an_intervals_ends_name_the_draws_without_a_p75() {
+        assert_eq!(interval_words(Some([0.876, 1.134])), " (0.88–1.13)");
+        assert_eq!(interval_words(Some([0.0, 1.45])), " (0–1.45)");
+        assert_eq!(interval_words(Some([1.87, f64::INFINITY])), " (1.87–∞)");
+        assert_eq!(interval_words(None), "");
+    }
 }
