@@ -269,8 +269,7 @@ sensorRate: number,
 q: number, 
 /**
  * The vehicle: `auto` (default: a QGroundControl `.plan`'s `vehicleType` or a CSV plan's
- * [`VEHICLE_MARK`](crate::VEHICLE_MARK) line, else a multicopter), `multicopter` or
- * `fixed-wing`.
+ * `# vehicle:` line, else a multicopter), `multicopter` or `fixed-wing`.
  */
 vehicle: VehicleChoice, };
 

@@ -342,8 +342,7 @@ pub struct DroneSettings {
     #[cfg_attr(cli, arg(long, default_value_t = opt::Q.default, help = opt::Q.cli_help(), allow_negative_numbers = true, value_parser = opt::number("q")))]
     pub q: f64,
     /// The vehicle: `auto` (default: a QGroundControl `.plan`'s `vehicleType` or a CSV plan's
-    /// [`VEHICLE_MARK`](crate::VEHICLE_MARK) line, else a multicopter), `multicopter` or
-    /// `fixed-wing`.
+    /// `# vehicle:` line, else a multicopter), `multicopter` or `fixed-wing`.
     #[cfg_attr(
         cli,
         arg(
