@@ -218,11 +218,19 @@ fn generated() -> String {
         "\n/** Each station's payload, bytes: the model whose state its drone sends (src/sim/station/station_model.rs). */\nexport const PAYLOAD_BYTES: Record<ModelName, number> = {{\n{}\n}};\n",
         bytes.join(",\n")
     ));
-    let top = |v: Cornering| crate::sim::Bounds::for_vehicle(v).v_max;
+    let speeds: Vec<String> = [Cornering::Multicopter, Cornering::FixedWing]
+        .iter()
+        .map(|&v| {
+            format!(
+                "  '{}': {}",
+                v.name(),
+                crate::sim::Bounds::for_vehicle(v).v_max
+            )
+        })
+        .collect();
     out.push_str(&format!(
-        "\n/** The top speed, m/s, a bounded or mission station holds each vehicle to (src/sim/station/prediction.rs, `Bounds::for_vehicle`). */\nexport const TOP_SPEEDS: Record<Cornering, number> = {{\n  'multicopter': {},\n  'fixed-wing': {}\n}};\n",
-        top(Cornering::Multicopter),
-        top(Cornering::FixedWing)
+        "\n/** The top speed, m/s, a bounded or mission station holds each vehicle to (src/sim/station/prediction.rs, `Bounds::for_vehicle`). */\nexport const TOP_SPEEDS: Record<Cornering, number> = {{\n{}\n}};\n",
+        speeds.join(",\n")
     ));
     out.push_str(&format!(
         "\n/** How many of the drone filter's settled standard deviations a manoeuvre field (a, ω, ψ) may reach and still be left out of a lean payload (src/sim/sender/payload.rs). */\nexport const LEAN_SIGNIFICANCE = {};\n",
