@@ -88,7 +88,7 @@ pub fn encode(p: &EncodeParams) -> Result<EncodeReport, ApiError> {
     let e = codec::encode(p.model, &p.state, p.origin.unwrap_or([0.0; 3]))?;
     Ok(EncodeReport {
         hex: to_hex(&e.bytes),
-        saturated: e.saturated,
+        saturated: e.saturated.names().collect(),
     })
 }
 

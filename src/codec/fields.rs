@@ -38,6 +38,8 @@ impl Encoding {
 pub struct FieldSpec {
     /// State component name (`x`, `theta`, …).
     pub name: &'static str,
+    /// What it is, in words (`turn rate ω`).
+    pub quantity: &'static str,
     /// Unit of the decoded value.
     pub unit: &'static str,
     /// Storage.
@@ -55,60 +57,95 @@ impl FieldSpec {
     pub fn min(&self) -> f64 {
         self.encoding.code_range().0 as f64 * self.step
     }
+
+    /// The values it sends as themselves, in words, to two decimals: `±6553.4 m`, `0–25.5 m/s`,
+    /// `±2 rad/s` (a heading: `any`, since it wraps).
+    ///
+    /// ```
+    /// use loratrack::FIELDS;
+    /// assert_eq!(FIELDS[5].range_words(), "0–25.5 m/s");
+    /// assert_eq!(FIELDS[6].range_words(), "±6.35 m/s²");
+    /// ```
+    pub fn range_words(&self) -> String {
+        let unit = self.unit.replace("^2", "²");
+        let number = |x: f64| {
+            let s = format!("{x:.2}");
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        };
+        match self.encoding {
+            Encoding::Circle => "any".into(),
+            _ if self.min() == -self.max() => format!("±{} {unit}", number(self.max())),
+            _ => format!("{}–{} {unit}", number(self.min()), number(self.max())),
+        }
+    }
+
+    /// What it is and what it sends as itself, in words: `turn rate ω, ±2 rad/s`.
+    pub fn words(&self) -> String {
+        format!("{}, {}", self.quantity, self.range_words())
+    }
 }
 
 /// The fields of the 3D-CTRA state in order; DR uses the first 6, CTRA+ the first 8.
 pub const FIELDS: [FieldSpec; 9] = [
     FieldSpec {
         name: "x",
+        quantity: "distance east of the flight's start",
         unit: "m",
         encoding: Encoding::I16,
         step: 0.2,
     },
     FieldSpec {
         name: "y",
+        quantity: "distance north of the flight's start",
         unit: "m",
         encoding: Encoding::I16,
         step: 0.2,
     },
     FieldSpec {
         name: "z",
+        quantity: "height above the flight's start",
         unit: "m",
         encoding: Encoding::I16,
         step: 0.2,
     },
     FieldSpec {
         name: "theta",
+        quantity: "heading θ",
         unit: "rad",
         encoding: Encoding::Circle,
         step: TAU / 256.0,
     },
     FieldSpec {
         name: "phi",
+        quantity: "pitch φ",
         unit: "rad",
         encoding: Encoding::I8,
         step: FRAC_PI_2 / 127.0,
     },
     FieldSpec {
         name: "v",
+        quantity: "speed",
         unit: "m/s",
         encoding: Encoding::U8,
         step: 0.1,
     },
     FieldSpec {
         name: "a",
+        quantity: "acceleration",
         unit: "m/s^2",
         encoding: Encoding::I8,
         step: 0.05,
     },
     FieldSpec {
         name: "omega",
+        quantity: "turn rate ω",
         unit: "rad/s",
         encoding: Encoding::I8,
         step: 2.0 / 127.0,
     },
     FieldSpec {
         name: "psi",
+        quantity: "tilt rate ψ",
         unit: "rad/s",
         encoding: Encoding::I8,
         step: 2.0 / 127.0,

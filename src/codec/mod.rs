@@ -20,7 +20,9 @@
 mod error;
 mod fields;
 mod payload;
+mod saturated;
 
 pub use error::CodecError;
 pub use fields::{Encoding, FieldSpec, FIELDS};
 pub use payload::{decode, encode, quantization_variance, Encoded};
+pub use saturated::SaturatedFields;

@@ -1,6 +1,6 @@
 //! Encoding and decoding of a model state.
 
-use super::{CodecError, Encoding, FIELDS};
+use super::{CodecError, Encoding, SaturatedFields, FIELDS};
 use crate::math::wrap_angle;
 use crate::models::{ModelKind, PHI, PSI, THETA};
 use core::f64::consts::{FRAC_PI_2, PI};
@@ -11,8 +11,8 @@ use serde::Serialize;
 pub struct Encoded {
     /// The payload, 9/11/12 bytes.
     pub bytes: Vec<u8>,
-    /// Names of saturated fields, in state order.
-    pub saturated: Vec<&'static str>,
+    /// The fields whose value was beyond their range and was sent as its edge.
+    pub saturated: SaturatedFields,
 }
 
 /// Rewrites a pitch beyond ±π/2 as the identical motion with theta + π, π − phi, −psi.
@@ -58,15 +58,15 @@ pub fn encode(model: ModelKind, state: &[f64], origin: [f64; 3]) -> Result<Encod
     }
     canonical_pitch(&mut s);
     let mut bytes = Vec::with_capacity(model.payload_bytes());
-    let mut saturated = Vec::new();
-    for (value, field) in s.iter().zip(FIELDS.iter()) {
+    let mut saturated = SaturatedFields::default();
+    for (i, (value, field)) in s.iter().zip(FIELDS.iter()).enumerate() {
         let raw = (value / field.step).round();
         let (lo, hi) = field.encoding.code_range();
         let code = match field.encoding {
             Encoding::Circle => (raw as i64).rem_euclid(256),
             _ => {
                 if raw < lo as f64 || raw > hi as f64 {
-                    saturated.push(field.name);
+                    saturated.insert(i);
                 }
                 raw.clamp(lo as f64, hi as f64) as i64
             }
@@ -142,7 +142,7 @@ mod tests {
     fn out_of_range_values_saturate_and_are_reported() {
         let s = [9000.0, 0.0, 0.0, 0.0, 0.0, 40.0, -9.0, 0.0];
         let e = encode(ModelKind::CtraPlus, &s, [0.0; 3]).unwrap();
-        assert_eq!(e.saturated, vec!["x", "v", "a"]);
+        assert_eq!(e.saturated.names().collect::<Vec<_>>(), ["x", "v", "a"]);
         let back = decode(ModelKind::CtraPlus, &e.bytes, [0.0; 3]).unwrap();
         assert!((back[0] - FIELDS[0].max()).abs() < 1e-9);
         assert!((back[5] - 25.5).abs() < 1e-9);

@@ -52,7 +52,7 @@ proptest! {
         state[5] = 25.5 * scale; // v beyond 25.5 m/s
         state[0] = -7000.0 * scale;
         let e = encode(m, &state, [0.0; 3]).unwrap();
-        prop_assert!(e.saturated.contains(&"v") && e.saturated.contains(&"x"));
+        prop_assert!(e.saturated.contains("v") && e.saturated.contains("x"));
         let back = decode(m, &e.bytes, [0.0; 3]).unwrap();
         prop_assert!((back[5] - FIELDS[5].max()).abs() < 1e-9);
         prop_assert!((back[0] - FIELDS[0].min()).abs() < 1e-9);
