@@ -232,6 +232,14 @@ fn generated() -> String {
         "\n/** The top speed, m/s, a bounded or mission station holds each vehicle to (src/sim/station/prediction.rs, `Bounds::for_vehicle`). */\nexport const TOP_SPEEDS: Record<Cornering, number> = {{\n{}\n}};\n",
         speeds.join(",\n")
     ));
+    let ranges: Vec<String> = crate::FIELDS
+        .iter()
+        .map(|f| format!("  {}: \"{}\"", f.name, f.words()))
+        .collect();
+    out.push_str(&format!(
+        "\n/** Each payload field, what it is and the values it sends as themselves, in words; beyond them a value is sent as the range's edge (src/codec/fields.rs, reference §5). */\nexport const PAYLOAD_FIELDS: Record<string, string> = {{\n{}\n}};\n",
+        ranges.join(",\n")
+    ));
     out.push_str(&format!(
         "\n/** How many of the drone filter's settled standard deviations a manoeuvre field (a, ω, ψ) may reach and still be left out of a lean payload (src/sim/sender/payload.rs). */\nexport const LEAN_SIGNIFICANCE = {};\n",
         crate::sim::LEAN_SIGNIFICANCE

@@ -326,9 +326,9 @@ impl<'a> Flier<'a> {
         let n = model.state_len();
         let origin = self.flight.pos[0];
         let estimate = self.estimates.get(k)?;
-        let decoded =
-            encode(model, &estimate[..n], origin).and_then(|e| decode(model, &e.bytes, origin));
-        let Ok(decoded) = decoded else {
+        let decoded = encode(model, &estimate[..n], origin)
+            .and_then(|e| Ok((decode(model, &e.bytes, origin)?, e.saturated)));
+        let Ok((decoded, saturated)) = decoded else {
             self.k = k + 1;
             self.from = self.time_of(k + 1);
             return None;
@@ -357,6 +357,7 @@ impl<'a> Flier<'a> {
             outcome: Outcome::BelowSensitivity,
             heard_by: 0,
             state,
+            saturated,
             distance: receptions
                 .iter()
                 .map(|r| r.distance)

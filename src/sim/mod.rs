@@ -32,7 +32,7 @@ pub mod swarm;
 mod versus_lowest;
 
 pub use cache_budget::MAX_CACHE_BYTES;
-pub use caveats::{Caveats, FEW_PACKETS, SILENCE_LOSS};
+pub use caveats::{Caveats, Saturation, FEW_PACKETS, SILENCE_LOSS};
 pub use clock::{Clock, Timing};
 pub use delivery_spread::{DeliverySpread, DELIVERY_SPREAD};
 pub use drone::{run_drone, run_drones, DroneFilter, DroneTrack, Estimates, Sensing};

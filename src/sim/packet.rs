@@ -1,5 +1,6 @@
 //! One uplink of a drone's state, as the network saw it.
 
+use crate::codec::SaturatedFields;
 use crate::lora::{Bandwidth, DataRate, Outcome, SpreadingFactor};
 use crate::models::ModelKind;
 
@@ -21,6 +22,9 @@ pub struct Transmission {
     pub heard_by: u32,
     /// The state the station decodes (quantised), padded to 9.
     pub state: [f64; 9],
+    /// The fields of the drone's estimate that lay beyond the payload's ranges and were sent as
+    /// their edge: `state` is not where the drone believed it was.
+    pub saturated: SaturatedFields,
     /// 3D distance to the gateway that heard it best (the nearest when none did), m.
     pub distance: f64,
     /// The best received power over the gateways, including shadowing, dBm.

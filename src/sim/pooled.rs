@@ -1,6 +1,6 @@
 //! One station's outcome pooled over every flight of a run.
 
-use super::caveats::Caveats;
+use super::caveats::{Caveats, Saturation};
 use super::packet::Transmission;
 use super::radio::Frame;
 use super::report::{
@@ -39,6 +39,8 @@ pub(crate) struct Pooled {
     probability_sum: Option<[f64; 3]>,
     sent: usize,
     received: usize,
+    /// Of `received`, those that saturated a payload field.
+    saturation: Saturation,
     /// Of `sent`, those with a smaller payload than the model's own.
     lean: usize,
     /// The shortest lean frame at each data rate (spreading factor, bandwidth in kHz).
@@ -139,6 +141,7 @@ impl Pooled {
             self.charge_mc += t.charge_mc;
             self.active_s += t.active_s;
             self.rates.add(t);
+            self.saturation.count(t);
             if t.payload.is_some() {
                 self.add_lean_frame(t);
             }
@@ -275,7 +278,7 @@ impl Pooled {
             error3d: s3,
             whole_flight: WholeFlightError::of_sorted(&self.e3, self.untracked.iter().sum()),
             whole_flight_draws,
-            caveats: Caveats::of(self.received, self.sent, self.sender),
+            caveats: Caveats::of(self.received, self.sent, self.sender, self.saturation),
             ci95,
             // Set across the stations, once all are pooled (versus_lowest).
             p75_vs_lowest: None,

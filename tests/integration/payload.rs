@@ -206,3 +206,71 @@ fn the_cli_help_names_the_significance_the_lean_rule_uses() {
     let said = format!("every manoeuvre field over {LEAN_SIGNIFICANCE} standard deviations");
     assert!(help.contains(&said), "{help}");
 }
+
+/// A flight straight east at `speed` m/s for 60 s, positions only at 10 Hz (the drone's filter
+/// derives the rest).
+fn straight_east_csv(speed: f64) -> String {
+    (0..=600).fold(String::from("t,x,y,z\n"), |csv, k| {
+        let t = k as f64 / 10.0;
+        csv + &format!("{t},{},0,50\n", speed * t)
+    })
+}
+
+#[test]
+fn packets_beyond_the_payloads_ranges_are_counted_and_said_for_each_station() {
+    let json = |args: &[&str]| -> serde_json::Value {
+        let out = crate::cli(&[args, &["--json"]].concat());
+        assert!(out.status.success(), "{args:?}");
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let caveats = |report: &serde_json::Value| -> Vec<(u64, u64, Vec<String>)> {
+        let results = report["results"].as_array().unwrap();
+        results
+            .iter()
+            .map(|m| {
+                let c = &m["caveats"];
+                let fields = c["saturated"].as_array().unwrap();
+                (
+                    c["saturatedPackets"].as_u64().unwrap(),
+                    m["packetsReceived"].as_u64().unwrap(),
+                    fields.iter().map(|f| f.as_str().unwrap().into()).collect(),
+                )
+            })
+            .collect()
+    };
+    // Faster than the speed byte's 25.5 m/s: every packet every station receives says 25.5.
+    for (speed, saturates) in [(30.0, true), (20.0, false)] {
+        let file = crate::robustness::temp_file(
+            &format!("straight-{speed}.csv"),
+            straight_east_csv(speed).as_bytes(),
+        );
+        let args = ["simulate", "--trajectory", file.to_str().unwrap()];
+        for (count, received, fields) in caveats(&json(&args)) {
+            assert!(received > 0);
+            let expected = if saturates {
+                (received, vec!["v".to_string()])
+            } else {
+                (0, vec![])
+            };
+            assert_eq!((count, fields), expected, "{speed} m/s");
+        }
+        let out = crate::cli(&args);
+        let text = String::from_utf8(out.stdout).unwrap();
+        assert_eq!(text.contains("\nsaturated: "), saturates, "{text}");
+        assert_eq!(text.contains("(speed, 0–25.5 m/s)"), saturates, "{text}");
+    }
+    // The synthetic set stays within every range; the real flight's ACRO end turns faster than
+    // the payload's 2 rad/s, which only CTRA+'s and 3D-CTRA's payloads carry (in a few packets
+    // of a few of its seeds: none on seed 1 alone).
+    let synthetic = caveats(&json(&["simulate", "--synthetic", "all"]));
+    assert!(
+        synthetic.iter().all(|(count, _, _)| *count == 0),
+        "{synthetic:?}"
+    );
+    let real = caveats(&json(&["simulate", "--sample", "canberra", "--seeds", "8"]));
+    assert_eq!(real[0].0, 0, "DR sends no turn rate: {real:?}");
+    for (count, received, fields) in &real[1..] {
+        assert!(*count > 0 && count < received, "{real:?}");
+        assert!(fields.contains(&"omega".to_string()), "{real:?}");
+    }
+}

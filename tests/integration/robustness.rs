@@ -37,7 +37,7 @@ fn json(args: &[&str]) -> serde_json::Value {
 }
 
 /// A file in the temporary directory, removed when dropped: also when its test fails.
-struct TempFile(std::path::PathBuf);
+pub(crate) struct TempFile(std::path::PathBuf);
 
 impl Drop for TempFile {
     fn drop(&mut self) {
@@ -52,7 +52,7 @@ impl std::ops::Deref for TempFile {
     }
 }
 
-fn temp_file(name: &str, content: &[u8]) -> TempFile {
+pub(crate) fn temp_file(name: &str, content: &[u8]) -> TempFile {
     let path = std::env::temp_dir().join(format!(
         "loratrack-robustness-{}-{name}",
         std::process::id()

@@ -394,7 +394,17 @@ fewPackets: boolean,
 /**
  * Error-triggered sending, more than [`SILENCE_LOSS`] of its packets lost.
  */
-silenceAfterLoss: boolean, };
+silenceAfterLoss: boolean, 
+/**
+ * Received packets that carried a value beyond its payload field's range, sent as the
+ * range's edge ([`SaturatedFields`]; the payload is sized for a quadcopter, reference §5):
+ * the station started from a state other than the drone's estimate.
+ */
+saturatedPackets: number, 
+/**
+ * The fields those packets saturated, in state order (empty when none did).
+ */
+saturated: string[], };
 
 export type DeliverySpread = { 
 /**
@@ -2135,6 +2145,19 @@ export const PAYLOAD_BYTES: Record<ModelName, number> = {
 export const TOP_SPEEDS: Record<Cornering, number> = {
   'multicopter': 20,
   'fixed-wing': 25.5
+};
+
+/** Each payload field, what it is and the values it sends as themselves, in words; beyond them a value is sent as the range's edge (src/codec/fields.rs, reference §5). */
+export const PAYLOAD_FIELDS: Record<string, string> = {
+  x: "distance east of the flight's start, ±6553.4 m",
+  y: "distance north of the flight's start, ±6553.4 m",
+  z: "height above the flight's start, ±6553.4 m",
+  theta: "heading θ, any",
+  phi: "pitch φ, ±1.57 rad",
+  v: "speed, 0–25.5 m/s",
+  a: "acceleration, ±6.35 m/s²",
+  omega: "turn rate ω, ±2 rad/s",
+  psi: "tilt rate ψ, ±2 rad/s"
 };
 
 /** How many of the drone filter's settled standard deviations a manoeuvre field (a, ω, ψ) may reach and still be left out of a lean payload (src/sim/sender/payload.rs). */

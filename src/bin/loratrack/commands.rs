@@ -804,8 +804,8 @@ fn rates_line(rates: &[loratrack::DataRateUse]) -> String {
 }
 
 /// The lines the page shows as notes under its results, for the stations whose `caveats` say so:
-/// too few packets to compare, an error-triggered drone misled by its silence after losses, and
-/// stations whose packets the link delivered unlike ([`loratrack::DeliverySpread`]).
+/// too few packets to compare, an error-triggered drone misled by its silence after losses,
+/// packets that saturated a payload field, and stations whose packets the link delivered unlike ([`loratrack::DeliverySpread`]).
 fn caveat_lines(results: &[ModelResult]) -> String {
     let flagged = |f: fn(&ModelResult) -> bool, each: fn(&ModelResult) -> String| {
         let list: Vec<String> = results.iter().filter(|m| f(m)).map(each).collect();
@@ -829,6 +829,24 @@ fn caveat_lines(results: &[ModelResult]) -> String {
         },
     ) {
         out += &format!("lost: {list} of the packets; an error-triggered drone cannot tell a lost packet from a delivered one, so after a loss its silence misleads the station (docs/senders.md)\n");
+    }
+    if let Some(list) = flagged(
+        |m| m.caveats.saturated_packets > 0,
+        |m| {
+            format!(
+                "{} {} of {}",
+                m.model.label(),
+                m.caveats.saturated_packets,
+                m.delivery.packets_received
+            )
+        },
+    ) {
+        let fields = results
+            .iter()
+            .fold(loratrack::SaturatedFields::default(), |f, m| {
+                f.union(m.caveats.saturated)
+            });
+        out += &format!("saturated: {list} received packets carried a value beyond the payload's range ({}), sent as the range's edge: the station started from a state other than the drone's estimate, so part of its error is the payload's, not the model's (the payload is sized for a quadcopter; docs/reference.md §5)\n", fields.words());
     }
     if let Some(d) = loratrack::DeliverySpread::of(results.iter().map(|m| (m.model, &m.delivery))) {
         out += &format!(

@@ -126,6 +126,7 @@ mod tests {
             outcome: Outcome::Received,
             heard_by: 1,
             state: [x, 0.0, 30.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+            saturated: Default::default(),
             distance: 1000.0,
             rx_power_dbm: -100.0,
             sf: SpreadingFactor::new(7).unwrap(),

@@ -530,6 +530,7 @@ pub(crate) mod tests {
                 outcome: Outcome::BelowSensitivity,
                 heard_by: 0,
                 state: [0.0; 9],
+                saturated: Default::default(),
                 distance: 1000.0,
                 rx_power_dbm: -100.0,
                 sf: SpreadingFactor::new(7).unwrap(),

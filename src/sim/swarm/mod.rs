@@ -31,7 +31,7 @@ use super::station::{
     new_tracker, track_station_recalling, ForecastMemo, Scoring, StationModel, StationSetup,
 };
 use super::streams::{DroneStreams, LAYOUT_STREAM};
-use super::{Caveats, LongRun, SimError, Transmission};
+use super::{Caveats, LongRun, Saturation, SimError, Transmission};
 use crate::lora::{time_on_air, AdrMode, LoraParams, Outcome};
 use crate::math::sin_cos;
 use crate::metrics::{percentile, sort_total, Summary, WholeFlightError};
@@ -483,7 +483,12 @@ impl<'a> Swarm<'a> {
             frame_length: self.kits[i].slot.map(|s| s.frame),
             error3d,
             whole_flight,
-            caveats: Caveats::of(received, mine.len(), self.cfg.s().sending.sender),
+            caveats: Caveats::of(
+                received,
+                mine.len(),
+                self.cfg.s().sending.sender,
+                Saturation::of(mine.iter().copied()),
+            ),
         }
     }
 
@@ -746,7 +751,12 @@ mod tests {
             frame_length: None,
             error3d: Summary::of(&mut Vec::new()),
             whole_flight: WholeFlightError::of_sorted(&[], 0),
-            caveats: Caveats::of(packets_sent, packets_sent, SenderKind::Periodic),
+            caveats: Caveats::of(
+                packets_sent,
+                packets_sent,
+                SenderKind::Periodic,
+                Saturation::default(),
+            ),
         }
     }
 
