@@ -30,7 +30,7 @@ import type {
 } from './generated/types';
 
 export type * from './generated/types';
-export { CHOICE_DEFAULTS, OPTIONS, PAYLOAD_BYTES, PLANS, TOP_SPEEDS } from './generated/types';
+export { CHOICE_DEFAULTS, OPTIONS, PAYLOAD_BYTES, PAYLOAD_FIELDS, PLANS, TOP_SPEEDS } from './generated/types';
 
 let compiled: Promise<WebAssembly.Module> | undefined;
 let ready: Promise<void> | undefined;

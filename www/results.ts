@@ -1,7 +1,7 @@
 // The results panel: the table of statistics with their intervals, the verdict on which station
 // is best (only when the same runs, resampled together, say so), the baseline's differences, and
 // the notes under the table. Reads the page's state from the store.
-import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
+import { deliverySpread, MODEL_LABELS, PAYLOAD_FIELDS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
 import { adrFrom, adrName, advancedChanged, caption, counted, downlinkCounts, downlinksWanted, fmt, listed, names, percent, planLimit, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan, sendingLimit } from './state';
@@ -14,6 +14,7 @@ export function renderTable(r: SimReport): void {
   renderVerdict(r, best);
   renderUntracked(r);
   renderSilenceNote(r);
+  renderSaturatedNote(r);
   renderSpreadNote(r);
   // What limits sending, where it is not the paper's 1 % duty cycle: the intervals rest on it.
   const limit = planLimit(r.config);
@@ -85,7 +86,7 @@ export function resultsWhat(): string {
 export function clearTable(): void {
   shown = null;
   $('#results-table').replaceChildren();
-  for (const id of ['rests-on', 'untracked', 'silence-note', 'spread-note', 'network-note', 'rate-use']) $(`#${id}`).hidden = true;
+  for (const id of ['rests-on', 'untracked', 'silence-note', 'saturated-note', 'spread-note', 'network-note', 'rate-use']) $(`#${id}`).hidden = true;
   $('#verdict-text').textContent = '';
   $('#repeat-seeds').hidden = true;
   renderBaseline(undefined);
@@ -368,6 +369,7 @@ export function restingNotes(): string[] {
     ['#rests-on', '#rests-on-text'],
     ['#untracked', '#untracked'],
     ['#silence-note', '#silence-note'],
+    ['#saturated-note', '#saturated-note'],
     ['#spread-note', '#spread-note'],
   ].flatMap(([box, text]) => ($(box).hidden ? [] : [$(text).textContent ?? '']));
 }
@@ -382,6 +384,21 @@ function renderSilenceNote(r: SimReport): void {
   const sent = r.results.reduce((n, m) => n + m.packetsSent, 0);
   const lost = 1 - r.results.reduce((n, m) => n + m.packetsReceived, 0) / sent;
   note.textContent = `${(lost * 100).toFixed(0)} % of the packets sent were lost. An error-triggered drone cannot tell a lost packet from a delivered one: after a loss it stays silent while the station drifts. Where packets are lost it can track worse than periodic sending at the same airtime (at 3 km its p95 up to 1.23× on the synthetic set and 2.12× on the real flight; docs/senders.md).`;
+  linkDocs(note);
+}
+
+/** Where a station's received packets carried a value beyond the payload's range (the core's
+ * `caveats.saturatedPackets`: a speed over 25.5 m/s, a turn rate over 2 rad/s, a position 6.5 km
+ * from the start): sent as the range's edge, so the station started from a state other than the
+ * drone's estimate, and part of its error is the payload's (docs/reference.md §5). */
+function renderSaturatedNote(r: SimReport): void {
+  const note = $('#saturated-note');
+  const hit = r.results.filter((m) => m.caveats.saturatedPackets > 0);
+  note.hidden = hit.length === 0;
+  if (note.hidden) return;
+  const counts = listed(hit.map((m) => `${MODEL_LABELS[m.model]} ${m.caveats.saturatedPackets} of ${m.packetsReceived}`));
+  const fields = [...new Set(hit.flatMap((m) => m.caveats.saturated))].map((f) => PAYLOAD_FIELDS[f] ?? f);
+  note.textContent = `Saturated: ${counts} received packets carried a value beyond the payload's range (${fields.join('; ')}), sent as the range's edge. The station started from a state other than the drone's estimate, so part of its error is the payload's, not the model's (the payload is sized for a quadcopter; docs/reference.md §5).`;
   linkDocs(note);
 }
 

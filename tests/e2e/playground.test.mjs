@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { commandJson, nativeJson, planePlan, scratchDir, openPage, screenshot, serveDist } from './harness.mjs';
-import { assertDownloadIsCli, axe, LABELS, axisLabelOverlaps, cell, cellNumber, chartTexts, chartTextsCut, downloaded, idle, layoutShifts, number, open, playground, ratioWords, shownP75, tableHtml, tickLabelOverlaps, until, usePlayground, view3d, waitForResults } from './page.mjs';
+import { assertDownloadIsCli, axe, LABELS, listed, axisLabelOverlaps, cell, cellNumber, chartTexts, chartTextsCut, downloaded, idle, layoutShifts, number, open, playground, ratioWords, shownP75, tableHtml, tickLabelOverlaps, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -358,6 +358,35 @@ test('the command line under the results gives their numbers, a shell reading it
   for (const shown of await shownP75(page, models)) {
     assert.equal(shown.p75.toFixed(2), fromFile.results.find((r) => r.model === shown.model).error3d.p75.toFixed(2), shown.model);
   }
+  assert.deepEqual(problems, []);
+});
+
+test("a flight faster than the payload's speed byte says which packets were sent at the range's edge, as the CLI counts them", async () => {
+  // A minute straight east at 30 m/s: every packet's speed is sent as 25.5 m/s.
+  const path = join(scratchDir(), 'fast.csv');
+  const rows = ['t,x,y,z'];
+  for (let i = 0; i <= 600; i++) rows.push(`${(i / 10).toFixed(1)},${(3 * i).toFixed(1)},0,50`);
+  writeFileSync(path, rows.join('\n'));
+  const { page, problems } = await open();
+  assert.equal(await page.locator('#saturated-note').isVisible(), false, 'the synthetic flight stays within every range');
+  const before = await tableHtml(page);
+  await page.getByLabel('Trajectory', { exact: true }).selectOption('csv');
+  await page.locator('#csv').setInputFiles(path);
+  await waitForResults(page, before);
+  const cli = nativeJson(['simulate', '--trajectory', path]).results;
+  assert.ok(cli.every((m) => m.packetsReceived > 0 && m.caveats.saturatedPackets === m.packetsReceived && m.caveats.saturated.join() === 'v'), JSON.stringify(cli.map((m) => m.caveats)));
+  const note = await page.locator('#saturated-note').textContent();
+  const counts = listed(cli.map((m) => `${LABELS[m.model]} ${m.caveats.saturatedPackets} of ${m.packetsReceived}`));
+  assert.ok(note.startsWith(`Saturated: ${counts} received packets carried a value beyond the payload's range (speed, 0–25.5 m/s), sent as the range's edge.`), note);
+  assert.equal(await page.locator('#saturated-note a').getAttribute('href'), 'docs/reference.html', 'the doc it names is a link');
+  // The Results CSV carries the counts and the fields, row by row.
+  const [header, ...body] = (await downloaded(page, page.getByRole('button', { name: 'Results (CSV)' }))).toString('utf8').trim().split('\n').map((l) => l.split(','));
+  const [count, fields] = ['saturated_packets', 'saturated_fields'].map((name) => header.indexOf(name));
+  assert.deepEqual(body.map((r) => [Number(r[count]), r[fields]]), cli.map((m) => [m.caveats.saturatedPackets, 'v']));
+  // The table on a slide carries the note as well.
+  const slide = (await downloaded(page, page.getByRole('button', { name: 'Download the results table as SVG' }))).toString('utf8').replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ');
+  assert.ok(slide.includes(note.split('. ')[0]), `the slide's caption: ${slide.slice(-600)}`);
+  assert.deepEqual(await axe(page), []);
   assert.deepEqual(problems, []);
 });
 
