@@ -123,59 +123,75 @@ impl Flown {
     /// Reads one mission item: a speed change, a leg to a new waypoint, a wait where the vehicle
     /// is, or nothing that moves the vehicle. The refusal says what is wrong with the item.
     pub fn item(&mut self, item: &MissionItem) -> Result<(), String> {
-        let param = |k: usize| item.params[k];
-        let last = self.points[self.points.len() - 1];
-        // Parameter 1 of a waypoint, a timed loiter and a delay is the time held there, s (a
-        // negative one, as `NAV_DELAY` writes for "until a time of day", is not read); an
-        // unlimited loiter holds for the longest hold, since the mission goes no further.
-        let mut hold = match item.command {
+        if item.command == DO_CHANGE_SPEED {
+            return self.change_speed(item);
+        }
+        let hold = self.hold_of(item);
+        match self.destination(item, hold)? {
+            Some(point) => self.fly_to(item, point, hold),
+            None => Ok(()),
+        }
+    }
+
+    /// The time `item` holds where it leads, s. Parameter 1 of a waypoint, a timed loiter and a
+    /// delay is that time (a negative one, as `NAV_DELAY` writes for "until a time of day", is
+    /// not read); an unlimited loiter holds for the longest hold, since the mission goes no
+    /// further.
+    fn hold_of(&self, item: &MissionItem) -> f64 {
+        match item.command {
             NAV_WAYPOINT if !self.waypoint_holds() => None,
-            NAV_WAYPOINT | NAV_LOITER_TIME | NAV_DELAY => param(0).filter(|h| *h > 0.0),
+            NAV_WAYPOINT | NAV_LOITER_TIME | NAV_DELAY => item.params[0].filter(|h| *h > 0.0),
             NAV_LOITER_UNLIM => Some(super::plan::MAX_HOLD),
             _ => None,
         }
-        .unwrap_or(0.0);
-        let point = match item.command {
-            DO_CHANGE_SPEED => {
-                // Parameter 1 is the speed's type: 0 (airspeed) and 1 (ground speed) change the
-                // speed along the path, 2 the climb speed and 3 the descent speed (ArduPilot's
-                // Copter), each given by parameter 2 (−1: no change).
-                let Some(speed) = param(1).filter(|s| *s > 0.0) else {
-                    return Ok(());
-                };
-                let vertical = match param(0) {
-                    Some(2.0) => &mut self.climb.up,
-                    Some(3.0) => &mut self.climb.down,
-                    _ => {
-                        self.speed = Some(speed);
-                        return Ok(());
-                    }
-                };
-                if speed > MAX_PLAN_SPEED {
-                    return Err(format!(
-                        "a climb or descent speed must be in (0, {MAX_PLAN_SPEED}] m/s, got {speed}"
-                    ));
-                }
-                *vertical = speed;
+        .unwrap_or(0.0)
+    }
+
+    /// A `DO_CHANGE_SPEED`: parameter 1 is the speed's type: 0 (airspeed) and 1 (ground speed)
+    /// change the speed along the path, 2 the climb speed and 3 the descent speed (ArduPilot's
+    /// Copter), each given by parameter 2 (−1: no change).
+    fn change_speed(&mut self, item: &MissionItem) -> Result<(), String> {
+        let Some(speed) = item.params[1].filter(|s| *s > 0.0) else {
+            return Ok(());
+        };
+        let vertical = match item.params[0] {
+            Some(2.0) => &mut self.climb.up,
+            Some(3.0) => &mut self.climb.down,
+            _ => {
+                self.speed = Some(speed);
                 return Ok(());
             }
+        };
+        if speed > MAX_PLAN_SPEED {
+            return Err(format!(
+                "a climb or descent speed must be in (0, {MAX_PLAN_SPEED}] m/s, got {speed}"
+            ));
+        }
+        *vertical = speed;
+        Ok(())
+    }
+
+    /// Where `item` (holding `hold` s) leads the vehicle next, or `None` where it moves it no
+    /// further, or has flown it already (a plane's delay circled, a multicopter's return or
+    /// landing).
+    fn destination(&mut self, item: &MissionItem, hold: f64) -> Result<Option<[f64; 3]>, String> {
+        let param = |k: usize| item.params[k];
+        let last = self.points[self.points.len() - 1];
+        let point = match item.command {
             // A plane cannot wait in place: it circles where it is.
             NAV_DELAY if !self.waypoint_holds() && hold > 0.0 => {
-                return self.circle(
-                    last,
-                    last,
-                    self.turns_in(hold, LOITER_RADIUS),
-                    LOITER_RADIUS,
-                );
+                let turns = self.turns_in(hold, LOITER_RADIUS);
+                self.circle(last, last, turns, LOITER_RADIUS)?;
+                return Ok(None);
             }
             NAV_DELAY => {
                 let held = self.holds.len() - 1;
                 self.holds[held] += hold;
-                return Ok(());
+                return Ok(None);
             }
             NAV_RETURN_TO_LAUNCH if self.waypoint_holds() => {
                 self.return_to_launch(last);
-                return Ok(());
+                return Ok(None);
             }
             // A plane returns at its own height and circles home (ArduPlane without
             // `RTL_AUTOLAND`): read as home at that height.
@@ -200,7 +216,7 @@ impl Flown {
                 if self.waypoint_holds() {
                     self.push([x, y, last[2]], self.speed, 0.0);
                     self.land();
-                    return Ok(());
+                    return Ok(None);
                 }
                 [x, y, 0.0]
             }
@@ -210,14 +226,21 @@ impl Flown {
                     .ok_or("a waypoint without latitude and longitude")?;
                 [x, y, self.altitude(param(6), item.frame)?]
             }
-            // Camera, gimbal, delay and other commands do not move the vehicle.
-            _ => return Ok(()),
+            // Camera, gimbal and other commands do not move the vehicle.
+            _ => return Ok(None),
         };
-        // A loiter's turns: parameter 1 the turns, parameter 3 the radius, m (negative:
-        // counter-clockwise). Of radius 0 a multicopter turns on the spot, at the circle rate.
-        // A plane circles its timed loiters too, and its loiters of radius 0 at [`LOITER_RADIUS`].
-        let turns = param(0).filter(|t| *t > 0.0 && item.command == NAV_LOITER_TURNS);
-        let radius = param(2).filter(|r| *r != 0.0);
+        Ok(Some(point))
+    }
+
+    /// Flies to `point`, where `item` leads, holding `hold` s there, or round it where it is a
+    /// loiter's circle. A loiter's turns: parameter 1 the turns, parameter 3 the radius, m
+    /// (negative: counter-clockwise). Of radius 0 a multicopter turns on the spot, at the circle
+    /// rate. A plane circles its timed loiters too, and its loiters of radius 0 at
+    /// [`LOITER_RADIUS`].
+    fn fly_to(&mut self, item: &MissionItem, point: [f64; 3], mut hold: f64) -> Result<(), String> {
+        let last = self.points[self.points.len() - 1];
+        let turns = item.params[0].filter(|t| *t > 0.0 && item.command == NAV_LOITER_TURNS);
+        let radius = item.params[2].filter(|r| *r != 0.0);
         match (turns, radius) {
             (Some(turns), Some(r)) => return self.circle(last, point, turns, r),
             (Some(turns), None) if self.waypoint_holds() => hold = turns * TAU / CIRCLE_RATE,

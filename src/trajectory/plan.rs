@@ -97,70 +97,25 @@ impl FlightPlan {
         holds: Vec<f64>,
         climbs: Vec<ClimbLimits>,
     ) -> Result<Self, PlanError> {
-        if climbs.len() != speeds.len() {
-            return Err(PlanError::Invalid(format!(
-                "a plan has one climb limit per leg (leg speeds: {}, limits: {})",
-                speeds.len(),
-                climbs.len()
-            )));
+        check_climbs(&climbs, speeds.len())?;
+        check_holds(&holds, points.len())?;
+        check_waypoints(&points, &speeds)?;
+        let plan = Self::joined(points, speeds, holds, climbs);
+        if plan.points.len() < 2 {
+            return Err(PlanError::TooFewWaypoints);
         }
-        if let Some(i) = climbs.iter().position(|c| {
-            ![c.up, c.down]
-                .iter()
-                .all(|v| v.is_finite() && *v > 0.0 && *v <= MAX_PLAN_SPEED)
-        }) {
-            return Err(PlanError::Invalid(format!(
-                "waypoint {}: climb and descent speeds must be in (0, {MAX_PLAN_SPEED}] m/s",
-                i + 2
-            )));
-        }
-        if holds.len() != points.len() {
-            return Err(PlanError::Invalid(format!(
-                "a plan has one hold per waypoint (waypoints: {}, holds: {})",
-                points.len(),
-                holds.len()
-            )));
-        }
-        if let Some(i) = holds
-            .iter()
-            .position(|h| !(h.is_finite() && (0.0..=MAX_HOLD).contains(h)))
-        {
-            return Err(PlanError::Invalid(format!(
-                "waypoint {}: a hold must be in 0..={MAX_HOLD} s, got {}",
-                i + 1,
-                holds[i]
-            )));
-        }
-        if points.len() > MAX_WAYPOINTS {
-            return Err(PlanError::TooManyWaypoints { max: MAX_WAYPOINTS });
-        }
-        if speeds.len() + 1 != points.len() && !points.is_empty() {
-            return Err(PlanError::Invalid(format!(
-                "a plan has one leg speed fewer than its waypoints (waypoints: {}, leg speeds: {})",
-                points.len(),
-                speeds.len()
-            )));
-        }
-        for (i, p) in points.iter().enumerate() {
-            if p.iter()
-                .any(|c| !c.is_finite() || c.abs() > MAX_PLAN_COORDINATE)
-            {
-                return Err(PlanError::Invalid(format!(
-                    "waypoint {}: every coordinate must be finite and within 1000 km",
-                    i + 1
-                )));
-            }
-        }
-        for (i, v) in speeds.iter().enumerate() {
-            if let Some(v) = v {
-                if !(v.is_finite() && *v > 0.0 && *v <= MAX_PLAN_SPEED) {
-                    return Err(PlanError::Invalid(format!(
-                        "waypoint {}: speed must be in (0, {MAX_PLAN_SPEED}] m/s, got {v}",
-                        i + 2
-                    )));
-                }
-            }
-        }
+        Ok(plan)
+    }
+
+    /// The plan through `points` (checked), a waypoint that repeats the one before (a leg of
+    /// zero length) dropped with its leg, its hold added to the one it repeats (at most
+    /// [`MAX_HOLD`]).
+    fn joined(
+        points: Vec<[f64; 3]>,
+        speeds: Vec<Option<f64>>,
+        holds: Vec<f64>,
+        climbs: Vec<ClimbLimits>,
+    ) -> Self {
         let mut plan = FlightPlan {
             points: Vec::with_capacity(points.len()),
             along: Vec::with_capacity(points.len()),
@@ -188,11 +143,8 @@ impl FlightPlan {
             plan.points.push(p);
             plan.holds.push(holds[i]);
         }
-        if plan.points.len() < 2 {
-            return Err(PlanError::TooFewWaypoints);
-        }
         plan.climbs = Some(kept_climbs);
-        Ok(plan)
+        plan
     }
 
     /// The plan a synthetic flight flies: its path simplified (Douglas–Peucker) until no sample
@@ -487,6 +439,82 @@ fn segment_distance(p: &[f64; 3], a: &[f64; 3], b: &[f64; 3]) -> f64 {
         ((0..3).map(|k| (p[k] - a[k]) * ab[k]).sum::<f64>() / len2).clamp(0.0, 1.0)
     };
     distance(p, &core::array::from_fn(|k| a[k] + w * ab[k]))
+}
+
+/// One climb limit per leg of `legs`, each speed in (0, [`MAX_PLAN_SPEED`]] m/s.
+fn check_climbs(climbs: &[ClimbLimits], legs: usize) -> Result<(), PlanError> {
+    if climbs.len() != legs {
+        return Err(PlanError::Invalid(format!(
+            "a plan has one climb limit per leg (leg speeds: {legs}, limits: {})",
+            climbs.len()
+        )));
+    }
+    if let Some(i) = climbs.iter().position(|c| {
+        ![c.up, c.down]
+            .iter()
+            .all(|v| v.is_finite() && *v > 0.0 && *v <= MAX_PLAN_SPEED)
+    }) {
+        return Err(PlanError::Invalid(format!(
+            "waypoint {}: climb and descent speeds must be in (0, {MAX_PLAN_SPEED}] m/s",
+            i + 2
+        )));
+    }
+    Ok(())
+}
+
+/// One hold per waypoint of `waypoints`, each in 0..=[`MAX_HOLD`] s.
+fn check_holds(holds: &[f64], waypoints: usize) -> Result<(), PlanError> {
+    if holds.len() != waypoints {
+        return Err(PlanError::Invalid(format!(
+            "a plan has one hold per waypoint (waypoints: {waypoints}, holds: {})",
+            holds.len()
+        )));
+    }
+    if let Some(i) = holds
+        .iter()
+        .position(|h| !(h.is_finite() && (0.0..=MAX_HOLD).contains(h)))
+    {
+        return Err(PlanError::Invalid(format!(
+            "waypoint {}: a hold must be in 0..={MAX_HOLD} s, got {}",
+            i + 1,
+            holds[i]
+        )));
+    }
+    Ok(())
+}
+
+/// At most [`MAX_WAYPOINTS`] waypoints, each coordinate finite and within
+/// [`MAX_PLAN_COORDINATE`]; one leg speed fewer, each (where given) in (0,
+/// [`MAX_PLAN_SPEED`]] m/s.
+fn check_waypoints(points: &[[f64; 3]], speeds: &[Option<f64>]) -> Result<(), PlanError> {
+    if points.len() > MAX_WAYPOINTS {
+        return Err(PlanError::TooManyWaypoints { max: MAX_WAYPOINTS });
+    }
+    if speeds.len() + 1 != points.len() && !points.is_empty() {
+        return Err(PlanError::Invalid(format!(
+            "a plan has one leg speed fewer than its waypoints (waypoints: {}, leg speeds: {})",
+            points.len(),
+            speeds.len()
+        )));
+    }
+    if let Some(i) = points.iter().position(|p| {
+        p.iter()
+            .any(|c| !c.is_finite() || c.abs() > MAX_PLAN_COORDINATE)
+    }) {
+        return Err(PlanError::Invalid(format!(
+            "waypoint {}: every coordinate must be finite and within 1000 km",
+            i + 1
+        )));
+    }
+    for (i, v) in speeds.iter().enumerate() {
+        if let Some(v) = v.filter(|v| !(v.is_finite() && *v > 0.0 && *v <= MAX_PLAN_SPEED)) {
+            return Err(PlanError::Invalid(format!(
+                "waypoint {}: speed must be in (0, {MAX_PLAN_SPEED}] m/s, got {v}",
+                i + 2
+            )));
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -128,81 +128,134 @@ pub fn parse_plan_as(text: &str, vehicle: Option<Cornering>) -> Result<FlightPla
 
 /// A CSV plan, and the vehicle its [`VEHICLE_MARK`] line names, if it has one.
 fn parse_csv_plan(text: &str) -> Result<(FlightPlan, Option<Cornering>), PlanError> {
-    let mut points = Vec::new();
-    let mut speeds = Vec::new();
-    let mut holds = Vec::new();
-    let mut traced = false;
-    let mut vehicle = None;
+    let mut rows = CsvPlanRows::default();
     for (i, raw) in text.lines().enumerate() {
-        let line = raw.trim();
-        traced |= line == TRACED_MARK;
-        if let Some(name) = vehicle_line(line) {
-            let refuse = |what: String| PlanError::Line { line: i + 1, what };
-            let named = vehicle_named(name).ok_or_else(|| {
-                refuse(format!(
-                    "the vehicle '{}' is neither multicopter nor fixed-wing",
-                    excerpt(name)
-                ))
-            })?;
-            if vehicle.is_some_and(|v| v != named) {
-                return Err(refuse(format!(
-                    "a second vehicle line, naming {} where the first named the other",
-                    named.name()
-                )));
-            }
-            vehicle = Some(named);
+        rows.read(i + 1, raw.trim())?;
+    }
+    rows.finish()
+}
+
+/// A CSV plan as read so far, line by line.
+#[derive(Default)]
+struct CsvPlanRows {
+    points: Vec<[f64; 3]>,
+    /// Each leg's speed, from the second waypoint on (`None`: the plan's cruise speed).
+    speeds: Vec<Option<f64>>,
+    holds: Vec<f64>,
+    /// Whether the [`TRACED_MARK`] line was read.
+    traced: bool,
+    /// What the [`VEHICLE_MARK`] line named.
+    vehicle: Option<Cornering>,
+}
+
+impl CsvPlanRows {
+    /// Reads line number `line`, `text` trimmed: a comment, a header, a blank or a waypoint.
+    fn read(&mut self, line: usize, text: &str) -> Result<(), PlanError> {
+        self.traced |= text == TRACED_MARK;
+        if let Some(name) = vehicle_line(text) {
+            self.name_vehicle(line, name)?;
         }
-        if line.is_empty() || line.starts_with('#') {
-            continue;
+        if text.is_empty() || text.starts_with('#') {
+            return Ok(());
         }
-        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        // The speed and the hold may be left empty (a hold without a speed: `x,y,z,,hold`).
-        let numbers: Result<Vec<Option<f64>>, _> = fields
-            .iter()
-            .enumerate()
-            .map(|(k, f)| match (k, f.is_empty()) {
-                (3.., true) => Ok(None),
-                _ => f.parse::<f64>().map(Some),
-            })
-            .collect();
-        let Ok(numbers) = numbers else {
-            if points.is_empty() && fields.iter().all(|f| f.parse::<f64>().is_err()) {
-                continue; // a header
-            }
-            return Err(PlanError::Line {
-                line: i + 1,
-                what: format!(
-                    "expected x,y,z[,speed[,hold]] numbers, got '{}'",
-                    excerpt(line)
-                ),
-            });
-        };
-        if !(3..=5).contains(&numbers.len()) {
-            return Err(PlanError::Line {
-                line: i + 1,
-                what: format!(
-                    "{} fields; a waypoint is x,y,z[,speed[,hold]]",
-                    numbers.len()
-                ),
-            });
+        match waypoint_numbers(line, text, self.points.is_empty())? {
+            Some(numbers) => self.waypoint(&numbers),
+            None => Ok(()),
         }
-        if !points.is_empty() {
-            speeds.push(numbers.get(3).copied().flatten());
+    }
+
+    /// The vehicle `name`d on line `line`: one of the two, and the same as any line before.
+    fn name_vehicle(&mut self, line: usize, name: &str) -> Result<(), PlanError> {
+        let refuse = |what: String| PlanError::Line { line, what };
+        let named = vehicle_named(name).ok_or_else(|| {
+            refuse(format!(
+                "the vehicle '{}' is neither multicopter nor fixed-wing",
+                excerpt(name)
+            ))
+        })?;
+        if self.vehicle.is_some_and(|v| v != named) {
+            return Err(refuse(format!(
+                "a second vehicle line, naming {} where the first named the other",
+                named.name()
+            )));
+        }
+        self.vehicle = Some(named);
+        Ok(())
+    }
+
+    /// Adds the waypoint `x,y,z[,speed[,hold]]`; a speed given on the first waypoint, which
+    /// ends no leg, is not read.
+    fn waypoint(&mut self, numbers: &[Option<f64>]) -> Result<(), PlanError> {
+        if !self.points.is_empty() {
+            self.speeds.push(numbers.get(3).copied().flatten());
         }
         let coordinate = |k: usize| numbers[k].unwrap_or(f64::NAN);
-        points.push([coordinate(0), coordinate(1), coordinate(2)]);
-        holds.push(numbers.get(4).copied().flatten().unwrap_or(0.0));
-        if points.len() > super::MAX_WAYPOINTS {
+        self.points
+            .push([coordinate(0), coordinate(1), coordinate(2)]);
+        self.holds
+            .push(numbers.get(4).copied().flatten().unwrap_or(0.0));
+        if self.points.len() > super::MAX_WAYPOINTS {
             return Err(PlanError::TooManyWaypoints {
                 max: super::MAX_WAYPOINTS,
             });
         }
+        Ok(())
     }
-    if points.is_empty() {
-        return Err(PlanError::Empty);
+
+    /// The plan read, and the vehicle named.
+    fn finish(self) -> Result<(FlightPlan, Option<Cornering>), PlanError> {
+        if self.points.is_empty() {
+            return Err(PlanError::Empty);
+        }
+        let plan = FlightPlan::with_holds(self.points, self.speeds, self.holds)?;
+        let plan = if self.traced {
+            plan.with_climb(None)
+        } else {
+            plan
+        };
+        Ok((plan, self.vehicle))
     }
-    let plan = FlightPlan::with_holds(points, speeds, holds)?;
-    Ok((if traced { plan.with_climb(None) } else { plan }, vehicle))
+}
+
+/// The 3–5 numbers of the waypoint on line `line` (`text`; an empty speed or hold is `None`:
+/// `x,y,z,,hold`), or `None` for a header, which only a line before the `first` waypoint may
+/// be.
+fn waypoint_numbers(
+    line: usize,
+    text: &str,
+    first: bool,
+) -> Result<Option<Vec<Option<f64>>>, PlanError> {
+    let fields: Vec<&str> = text.split(',').map(str::trim).collect();
+    let numbers: Result<Vec<Option<f64>>, _> = fields
+        .iter()
+        .enumerate()
+        .map(|(k, f)| match (k, f.is_empty()) {
+            (3.., true) => Ok(None),
+            _ => f.parse::<f64>().map(Some),
+        })
+        .collect();
+    let Ok(numbers) = numbers else {
+        if first && fields.iter().all(|f| f.parse::<f64>().is_err()) {
+            return Ok(None);
+        }
+        return Err(PlanError::Line {
+            line,
+            what: format!(
+                "expected x,y,z[,speed[,hold]] numbers, got '{}'",
+                excerpt(text)
+            ),
+        });
+    };
+    if !(3..=5).contains(&numbers.len()) {
+        return Err(PlanError::Line {
+            line,
+            what: format!(
+                "{} fields; a waypoint is x,y,z[,speed[,hold]]",
+                numbers.len()
+            ),
+        });
+    }
+    Ok(Some(numbers))
 }
 
 /// What a [`VEHICLE_MARK`] line names, however it is spaced or capitalised (`#Vehicle:plane`
