@@ -6,8 +6,8 @@ use serde::{Serialize, Serializer};
 
 /// The payload fields whose value lay beyond the field's range and was sent as the range's edge
 /// (reference §5): a speed over 25.5 m/s is sent as 25.5, a position 7 km from the flight's start
-/// as 6553.4 m. A station decoding such a packet starts from a state the drone was not in.
-/// Serialised as the fields' names in state order (`["x", "v"]`).
+/// as 6553.4 m. A station decoding such a packet starts from a state other than the drone's
+/// estimate. Serialised as the fields' names in state order (`["x", "v"]`).
 ///
 /// ```
 /// use loratrack::{encode, ModelKind};

@@ -97,7 +97,8 @@ impl Saturation {
 mod tests {
     use super::*;
 
-    /// A received packet that saturated `fields` (indices in `FIELDS`) and decodes to speed `v`.
+    /// A packet, `received` or lost, that saturated `fields` (indices in `FIELDS`) and decodes to
+    /// speed `v`.
     fn saturating(fields: &[usize], v: f64, received: bool) -> Transmission {
         let mut t = crate::sim::station::tests::frames(if received { "1" } else { "0" }).remove(0);
         fields.iter().for_each(|&i| t.saturated.insert(i));

@@ -805,7 +805,8 @@ fn rates_line(rates: &[loratrack::DataRateUse]) -> String {
 
 /// The lines the page shows as notes under its results, for the stations whose `caveats` say so:
 /// too few packets to compare, an error-triggered drone misled by its silence after losses,
-/// packets that saturated a payload field, and stations whose packets the link delivered unlike ([`loratrack::DeliverySpread`]).
+/// packets that saturated a payload field, and stations whose packets the link delivered unlike
+/// ([`loratrack::DeliverySpread`]).
 fn caveat_lines(results: &[ModelResult]) -> String {
     let flagged = |f: fn(&ModelResult) -> bool, each: fn(&ModelResult) -> String| {
         let list: Vec<String> = results.iter().filter(|m| f(m)).map(each).collect();
