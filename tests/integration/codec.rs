@@ -77,3 +77,25 @@ proptest! {
         prop_assert!(err.contains(&expected));
     }
 }
+
+#[test]
+fn the_cli_names_each_saturated_field_with_the_range_it_was_held_to() {
+    let text = |state: &str| {
+        let out = crate::cli(&["encode", "--model", "ctra-plus", "--state", state]);
+        assert!(out.status.success(), "{state}");
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let clipped = text("9000,0,0,0,0,40,-9,0");
+    let line = clipped.lines().nth(1).unwrap_or_default();
+    let ranges: Vec<String> = [0, 5, 6]
+        .map(|i| format!("{} ({})", FIELDS[i].name, FIELDS[i].range_words()))
+        .into();
+    assert_eq!(line, format!("saturated: {}", ranges.join(", ")));
+    // Reference §5's table: the speed byte holds 0..25.5 m/s.
+    assert!(line.contains("v (0–25.5 m/s)"), "{line}");
+    assert_eq!(
+        text("1,0,0,0,0,4,0,0").lines().count(),
+        1,
+        "nothing saturated, nothing said"
+    );
+}

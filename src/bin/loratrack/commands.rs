@@ -393,10 +393,16 @@ fn encode(a: EncodeArgs) -> Result<String, ApiError> {
     if a.out.json {
         return Ok(json(&r));
     }
-    let note = if r.saturated.is_empty() {
+    // Each saturated field with the range it was held to: `v (0–25.5 m/s)`.
+    let ranged: Vec<String> = loratrack::FIELDS
+        .iter()
+        .filter(|f| r.saturated.contains(&f.name))
+        .map(|f| format!("{} ({})", f.name, f.range_words()))
+        .collect();
+    let note = if ranged.is_empty() {
         String::new()
     } else {
-        format!("\nsaturated: {}", r.saturated.join(", "))
+        format!("\nsaturated: {}", ranged.join(", "))
     };
     Ok(format!("{}{note}", r.hex))
 }
