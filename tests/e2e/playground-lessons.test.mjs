@@ -5,7 +5,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { nativeJson } from './harness.mjs';
-import { axe, cell, cellNumber, downloaded, idle, lesson, listed, MODELS, number, open, ratioWords, shownP75, tableHtml, until, usePlayground, waitForResults } from './page.mjs';
+import { axe, cell, cellNumber, downloaded, idle, LABELS, lesson, listed, MODELS, number, open, ratioWords, shownP75, tableHtml, until, usePlayground, waitForResults } from './page.mjs';
 
 usePlayground();
 
@@ -23,6 +23,19 @@ test('lesson "Why not always SF12?": SF12 sends every ~148 s and its p75 at 1 km
   }
   // The lesson points at the note under the table, which the table's own run (SF12) shows.
   assert.match(await page.locator('#untracked').textContent(), /These errors cover \d+ %.* of the flight time/);
+  assert.deepEqual(problems, []);
+});
+
+test('lesson "What 12 bytes cannot say": the real flight\'s richer payloads saturate the turn rate, as the CLI counts, and DR\'s never', async () => {
+  const { page, problems } = await lesson('What 12 bytes cannot say', { settled: false });
+  const cli = nativeJson(['simulate', '--sample', 'canberra', '--seeds', '8']).results;
+  const hit = cli.filter((m) => m.caveats.saturatedPackets > 0);
+  assert.deepEqual(hit.map((m) => m.model), ['ctra-plus', '3d-ctra'], JSON.stringify(cli.map((m) => m.caveats)));
+  assert.ok(hit.every((m) => m.caveats.saturated.includes('omega') && m.caveats.saturatedPackets < 0.1 * m.packetsReceived));
+  const note = await page.locator('#saturated-note').textContent();
+  const counts = listed(hit.map((m) => `${LABELS[m.model]} ${m.caveats.saturatedPackets} of ${m.packetsReceived}`));
+  assert.ok(note.startsWith(`Saturated: ${counts} received packets carried a value beyond the payload's range (turn rate ω, ±2 rad/s`), note);
+  assert.deepEqual(await axe(page), []);
   assert.deepEqual(problems, []);
 });
 
