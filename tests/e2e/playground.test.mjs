@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { commandJson, nativeJson, planePlan, scratchDir, openPage, screenshot, serveDist } from './harness.mjs';
-import { assertDownloadIsCli, axe, LABELS, listed, axisLabelOverlaps, cell, cellNumber, chartTexts, chartTextsCut, downloaded, idle, layoutShifts, number, open, playground, ratioWords, shownP75, tableHtml, tickLabelOverlaps, until, usePlayground, view3d, waitForResults } from './page.mjs';
+import { assertDownloadIsCli, axe, LABELS, axisLabelOverlaps, cell, cellNumber, chartTexts, chartTextsCut, downloaded, idle, layoutShifts, listed, number, open, playground, ratioWords, shownP75, tableHtml, tickLabelOverlaps, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
 
