@@ -218,7 +218,7 @@ fn generated() -> String {
         "\n/** Each station's payload, bytes: the model whose state its drone sends (src/sim/station/station_model.rs). */\nexport const PAYLOAD_BYTES: Record<ModelName, number> = {{\n{}\n}};\n",
         bytes.join(",\n")
     ));
-    let speeds: Vec<String> = [Cornering::Multicopter, Cornering::FixedWing]
+    let speeds: Vec<String> = Cornering::ALL
         .iter()
         .map(|&v| {
             format!(

@@ -73,6 +73,9 @@ pub enum VehicleChoice {
 }
 
 impl Cornering {
+    /// Both vehicles, the multicopter first.
+    pub const ALL: [Cornering; 2] = [Cornering::Multicopter, Cornering::FixedWing];
+
     /// Its name in JSON (`config.planCornering`), in `--vehicle` and in a CSV plan's
     /// [`VEHICLE_MARK`](super::VEHICLE_MARK) line: `multicopter` or `fixed-wing`.
     pub fn name(self) -> &'static str {
@@ -347,7 +350,7 @@ mod tests {
     /// The names a CSV plan's vehicle line and `--vehicle` use are the JSON ones.
     #[test]
     fn a_vehicles_name_is_its_json_and_setting_name() {
-        for v in [Cornering::Multicopter, Cornering::FixedWing] {
+        for v in Cornering::ALL {
             assert_eq!(
                 serde_json::to_string(&v).unwrap(),
                 format!("\"{}\"", v.name())

@@ -441,6 +441,12 @@ fn segment_distance(p: &[f64; 3], a: &[f64; 3], b: &[f64; 3]) -> f64 {
     distance(p, &core::array::from_fn(|k| a[k] + w * ab[k]))
 }
 
+/// Whether `v` may be a plan's speed, m/s: in (0, [`MAX_PLAN_SPEED`]], as a leg's speed and its
+/// climb and descent speeds must be.
+fn is_plan_speed(v: f64) -> bool {
+    v.is_finite() && v > 0.0 && v <= MAX_PLAN_SPEED
+}
+
 /// One climb limit per leg of `legs`, each speed in (0, [`MAX_PLAN_SPEED`]] m/s.
 fn check_climbs(climbs: &[ClimbLimits], legs: usize) -> Result<(), PlanError> {
     if climbs.len() != legs {
@@ -449,11 +455,10 @@ fn check_climbs(climbs: &[ClimbLimits], legs: usize) -> Result<(), PlanError> {
             climbs.len()
         )));
     }
-    if let Some(i) = climbs.iter().position(|c| {
-        ![c.up, c.down]
-            .iter()
-            .all(|v| v.is_finite() && *v > 0.0 && *v <= MAX_PLAN_SPEED)
-    }) {
+    if let Some(i) = climbs
+        .iter()
+        .position(|c| ![c.up, c.down].iter().all(|v| is_plan_speed(*v)))
+    {
         return Err(PlanError::Invalid(format!(
             "waypoint {}: climb and descent speeds must be in (0, {MAX_PLAN_SPEED}] m/s",
             i + 2
@@ -507,7 +512,7 @@ fn check_waypoints(points: &[[f64; 3]], speeds: &[Option<f64>]) -> Result<(), Pl
         )));
     }
     for (i, v) in speeds.iter().enumerate() {
-        if let Some(v) = v.filter(|v| !(v.is_finite() && *v > 0.0 && *v <= MAX_PLAN_SPEED)) {
+        if let Some(v) = v.filter(|v| !is_plan_speed(*v)) {
             return Err(PlanError::Invalid(format!(
                 "waypoint {}: speed must be in (0, {MAX_PLAN_SPEED}] m/s, got {v}",
                 i + 2

@@ -270,7 +270,7 @@ fn vehicle_line(line: &str) -> Option<&str> {
 
 /// The vehicle a [`VEHICLE_MARK`] line names, by its `--vehicle` name in any case.
 fn vehicle_named(name: &str) -> Option<Cornering> {
-    [Cornering::Multicopter, Cornering::FixedWing]
+    Cornering::ALL
         .into_iter()
         .find(|v| v.name().eq_ignore_ascii_case(name))
 }
