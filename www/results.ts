@@ -397,7 +397,10 @@ function renderSaturatedNote(r: SimReport): void {
   note.hidden = hit.length === 0;
   if (note.hidden) return;
   const counts = listed(hit.map((m) => `${MODEL_LABELS[m.model]} ${m.caveats.saturatedPackets} of ${m.packetsReceived}`));
-  const fields = [...new Set(hit.flatMap((m) => m.caveats.saturated))].map((f) => PAYLOAD_FIELDS[f] ?? f);
+  // In state order, as the CLI's line names them (PAYLOAD_FIELDS is generated in that order).
+  const fields = Object.entries(PAYLOAD_FIELDS)
+    .filter(([name]) => hit.some((m) => m.caveats.saturated.includes(name)))
+    .map(([, words]) => words);
   note.textContent = `Saturated: ${counts} received packets carried a value beyond the payload's range (${fields.join('; ')}), sent as the range's edge. The station started from a state other than the drone's estimate, so part of its error is the payload's, not the model's (the payload is sized for a quadcopter; docs/reference.md §5).`;
   linkDocs(note);
 }
