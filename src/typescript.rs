@@ -97,6 +97,7 @@ fn decls() -> Vec<String> {
         SimReport::decl(&c),
         DroneReport::decl(&c),
         LargestSwarm::decl(&c),
+        SwarmSaturation::decl(&c),
         SfLimit::decl(&c),
         SwarmEcho::decl(&c),
         SwarmReport::decl(&c),

@@ -69,6 +69,6 @@ pub use station::{
 pub use streams::DroneStreams;
 pub use swarm::{
     run_swarm, run_swarm_sharing, run_swarm_stoppable, DroneReport, LargestSwarm, SfLimit,
-    SharedDroneRuns, SwarmEcho, SwarmReport,
+    SharedDroneRuns, SwarmEcho, SwarmReport, SwarmSaturation,
 };
 pub use versus_lowest::{versus_lowest, Contender, VersusLowest};

@@ -569,6 +569,45 @@ fn the_swarm_text_counts_the_drones_on_too_few_packets_as_the_json_flags_them() 
     assert!(text.contains(&line), "{text}");
 }
 
+/// A swarm flying the real flight, whose ACRO end turns and tilts faster than the payload's
+/// 2 rad/s: `saturation` pools the drones' flagged packets, and the text's `saturated:` line says
+/// it with the fields' ranges; a swarm of the synthetic set's first two minutes says nothing.
+#[test]
+fn the_swarm_text_says_which_drones_packets_saturated_as_the_json_pools_them() {
+    let run = |args: &[&str]| {
+        let text = String::from_utf8(crate::cli(args).stdout).unwrap();
+        let out = crate::cli(&[args, &["--json"]].concat());
+        let json: Value = serde_json::from_slice(&out.stdout).unwrap();
+        (text, json)
+    };
+    let (text, json) = run(&["swarm", "--sample", "canberra", "--drones", "12"]);
+    let flagged: Vec<u64> = json["drones"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| d["caveats"]["saturatedPackets"].as_u64().unwrap())
+        .filter(|&n| n > 0)
+        .collect();
+    let s = &json["saturation"];
+    assert!(!flagged.is_empty(), "{s}");
+    assert_eq!(s["drones"], flagged.len());
+    assert_eq!(s["packets"], flagged.iter().sum::<u64>());
+    assert!(
+        s["fields"].as_array().unwrap().contains(&json!("omega")),
+        "{s}"
+    );
+    let line = format!(
+        "\nsaturated: {} of the drones' {} received packets, from {} drones, carried a value beyond the payload's range (",
+        s["packets"], json["packetsReceived"], s["drones"]
+    );
+    assert!(text.contains(&line), "{text}");
+    assert!(text.contains("turn rate ω, ±2 rad/s"), "{text}");
+
+    let (text, json) = run(&["swarm", "--drones", "12", "--duration", "120"]);
+    assert_eq!(json["saturation"]["drones"], 0);
+    assert!(!text.contains("\nsaturated: "), "{text}");
+}
+
 /// The CLI's text gives the swarm's rates to four decimals and its errors to two, as the JSON
 /// has them: a crowd on one channel at 4 km, where packets both collide and fade.
 #[test]

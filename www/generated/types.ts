@@ -1029,6 +1029,20 @@ aloha10: number,
  */
 slotted: number, };
 
+export type SwarmSaturation = { 
+/**
+ * Drones with at least one such received packet.
+ */
+drones: number, 
+/**
+ * Their received packets that carried one, every drone's summed.
+ */
+packets: number, 
+/**
+ * The fields those packets saturated, in state order (empty when none did).
+ */
+fields: string[], };
+
 export type SfLimit = "adr" | "region" | "interval";
 
 export type SwarmEcho = Scenario & { 
@@ -1132,6 +1146,11 @@ error3d: Summary,
  * Every drone's tracked share and errors over the whole flight time, pooled.
  */
 wholeFlight: WholeFlightError, 
+/**
+ * The drones whose received packets carried a value beyond the payload's range, pooled from
+ * their `caveats` ([`SwarmSaturation`]).
+ */
+saturation: SwarmSaturation, 
 /**
  * The median over drones of each drone's p75, m (`null` when no drone received anything).
  */

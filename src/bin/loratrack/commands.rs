@@ -980,7 +980,7 @@ fn swarm_text(r: &SwarmReport) -> String {
          3D error (pooled)   mean {}  p75 {}  p95 {} m; median drone p75 {} m\n\
          tracked             {}  (the share of the flight time after each flight's first packet, all the errors cover){}\n\
          energy              {}\n\
-         drones that received nothing: {}; too few packets for their own p75 to compare (1 to {}): {}{}",
+         drones that received nothing: {}; too few packets for their own p75 to compare (1 to {}): {}{}{}",
         c.swarm.drones,
         plural(c.swarm.drones),
         flown,
@@ -1043,7 +1043,23 @@ fn swarm_text(r: &SwarmReport) -> String {
         silent,
         loratrack::FEW_PACKETS - 1,
         thin,
+        swarm_saturated_line(&r.saturation, d.packets_received),
         gateway_lines(&d.gateways)
+    )
+}
+
+/// The drones whose received packets saturated a payload field (the core's `saturation`), as the
+/// page's swarm note says it; nothing where none did.
+fn swarm_saturated_line(s: &loratrack::SwarmSaturation, received: usize) -> String {
+    if s.drones == 0 {
+        return String::new();
+    }
+    format!(
+        "\nsaturated: {} of the drones' {received} received packets, from {} drone{}, carried a value beyond the payload's range ({}), sent as the range's edge: their stations started from a state other than the drone's estimate, so part of their error is the payload's, not the model's (the payload is sized for a quadcopter; docs/reference.md §5)",
+        s.packets,
+        s.drones,
+        plural(s.drones),
+        s.fields.words()
     )
 }
 

@@ -12,7 +12,7 @@ mod report;
 mod sf_plan;
 mod shared_runs;
 
-pub use report::{DroneReport, LargestSwarm, SwarmEcho, SwarmReport};
+pub use report::{DroneReport, LargestSwarm, SwarmEcho, SwarmReport, SwarmSaturation};
 pub use sf_plan::SfLimit;
 pub use shared_runs::SharedDroneRuns;
 use shared_runs::SharedRun;
@@ -539,6 +539,7 @@ impl<'a> Swarm<'a> {
             airtime: airtime(tx.iter().copied()),
             error3d: Summary::of(&mut errors),
             whole_flight: WholeFlightError::of_sorted(&errors, untracked),
+            saturation: SwarmSaturation::of(&drones),
             median_drone_p75: median_drone_p75(&drones),
             energy: mean_energy(&drones),
             drones,
@@ -776,6 +777,24 @@ mod tests {
     /// [`collision_theory`] of `drones`, with their packets by SF as the report sums them.
     fn theory(drones: &[DroneReport], channels: u8) -> f64 {
         collision_theory(drones, &packets_by_sf(drones), channels)
+    }
+
+    #[test]
+    fn a_swarms_saturated_packets_are_its_drones_pooled_with_the_drones_that_sent_them() {
+        let with = |packets: usize, fields: &[usize]| {
+            let mut d = drone(7, 10, 0.01);
+            d.caveats.saturated_packets = packets;
+            fields.iter().for_each(|&f| d.caveats.saturated.insert(f));
+            d
+        };
+        use crate::models::{OMEGA, PSI, V};
+        let s = SwarmSaturation::of(&[with(2, &[OMEGA]), with(0, &[]), with(3, &[PSI, V])]);
+        assert_eq!((s.drones, s.packets), (2, 5));
+        assert_eq!(s.fields.names().collect::<Vec<_>>(), ["v", "omega", "psi"]);
+        assert_eq!(
+            SwarmSaturation::of(&[with(0, &[])]),
+            SwarmSaturation::default()
+        );
     }
 
     #[test]
