@@ -1,5 +1,5 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
-import { MODEL_LABELS, OPTIONS, PAYLOAD_BYTES, type GatewayReport, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
+import { MODEL_LABELS, OPTIONS, PAYLOAD_BYTES, PAYLOAD_FIELDS, type GatewayReport, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
 import { DEFAULTS, isNumericKey, LIMITS, overheadBytes, plan, sendingLimit, uploaded, type NumericKey, type Settings } from './state';
 import { store } from './store';
 
@@ -27,6 +27,15 @@ export function downlinkCounts(gateways: GatewayReport[]): string {
 
 /** Words as a list in a sentence: "a", "a and b", "a, b and c". */
 export const listed = (words: string[]): string => (words.length < 2 ? words.join('') : `${words.slice(0, -1).join(', ')} and ${words[words.length - 1]}`);
+
+/** The payload fields `names` (the core's `saturated`) with their ranges, in state order as the
+ * CLI names them (PAYLOAD_FIELDS is generated in that order): "turn rate ω, ±2 rad/s; tilt rate
+ * ψ, ±2 rad/s". */
+export const payloadFieldWords = (names: readonly string[]): string =>
+  Object.entries(PAYLOAD_FIELDS)
+    .filter(([name]) => names.includes(name))
+    .map(([, words]) => words)
+    .join('; ');
 
 /** Station names as a list: "DR", "DR and CTRA+", "DR, CTRA+ and 3D-CTRA". */
 export const names = (list: Pick<ModelResult, 'model'>[]) => listed(list.map((m) => MODEL_LABELS[m.model]));

@@ -715,6 +715,8 @@ function place(name: string, chart: Element, made: Settings = store.settings, ex
   main?.setAttribute('aria-label', document.getElementById(`${name}-title`)?.textContent ?? name);
   const box = $(`#chart-${name}`);
   box.replaceChildren(chart);
+  // A note under the chart that cites the docs (the swarm's saturated drones) links them.
+  linkDocs(box);
   // A note on why a download did nothing spoke of the chart this one replaces.
   clearDownloadWhy(box.closest('[data-panel]') ?? box);
 }

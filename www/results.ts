@@ -1,9 +1,9 @@
 // The results panel: the table of statistics with their intervals, the verdict on which station
 // is best (only when the same runs, resampled together, say so), the baseline's differences, and
 // the notes under the table. Reads the page's state from the store.
-import { deliverySpread, MODEL_LABELS, PAYLOAD_FIELDS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
+import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
-import { adrFrom, adrName, advancedChanged, caption, counted, downlinkCounts, downlinksWanted, fmt, listed, names, percent, planLimit, prediction, sending, sendsAsPublished, trackedPercent } from './format';
+import { adrFrom, adrName, advancedChanged, caption, counted, downlinkCounts, downlinksWanted, fmt, listed, names, payloadFieldWords, percent, planLimit, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan, sendingLimit } from './state';
 import { store } from './store';
 
@@ -397,11 +397,8 @@ function renderSaturatedNote(r: SimReport): void {
   note.hidden = hit.length === 0;
   if (note.hidden) return;
   const counts = listed(hit.map((m) => `${MODEL_LABELS[m.model]} ${m.caveats.saturatedPackets} of ${m.packetsReceived}`));
-  // In state order, as the CLI's line names them (PAYLOAD_FIELDS is generated in that order).
-  const fields = Object.entries(PAYLOAD_FIELDS)
-    .filter(([name]) => hit.some((m) => m.caveats.saturated.includes(name)))
-    .map(([, words]) => words);
-  note.textContent = `Saturated: ${counts} received packets carried a value beyond the payload's range (${fields.join('; ')}), sent as the range's edge. The station started from a state other than the drone's estimate, so part of its error is the payload's, not the model's (the payload is sized for a quadcopter; docs/reference.md §5).`;
+  const fields = payloadFieldWords(hit.flatMap((m) => m.caveats.saturated));
+  note.textContent = `Saturated: ${counts} received packets carried a value beyond the payload's range (${fields}), sent as the range's edge. The station started from a state other than the drone's estimate, so part of its error is the payload's, not the model's (the payload is sized for a quadcopter; docs/reference.md §5).`;
   linkDocs(note);
 }
 

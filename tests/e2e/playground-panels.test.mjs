@@ -873,6 +873,16 @@ test('with the real flight chosen the swarm flies it, as the CLI\'s --sample doe
   assert.ok(note.includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`), note);
   const slide = (await downloaded(page, page.getByRole('button', { name: 'Download the swarm chart as SVG' }))).toString('utf8').replace(/<[^>]+>/g, ' ');
   assert.match(slide, /real flight \(Canberra\); seed 1;/);
+  // Its ACRO end turns and tilts faster than the payload's 2 rad/s: the note counts the drones
+  // and packets the CLI pools, names the fields with their ranges, links the doc, and the slide
+  // carries it.
+  const s = cli.saturation;
+  assert.ok(s.drones > 0 && s.fields.includes('omega'), JSON.stringify(s));
+  const said = `Saturated: ${s.packets} of the drones' ${cli.packetsReceived} received packets, from ${s.drones} drone${s.drones === 1 ? '' : 's'}, carried a value beyond the payload's range (`;
+  assert.ok(note.includes(said), `${note} / CLI: ${JSON.stringify(s)}`);
+  assert.ok(note.includes('turn rate ω, ±2 rad/s'), note);
+  assert.equal(await page.locator('#chart-swarm .note a').getAttribute('href'), 'docs/reference.html');
+  assert.ok(slide.replace(/\s+/g, ' ').includes(`Saturated: ${s.packets} of the drones'`), 'the slide carries the saturated drones');
   // Another trajectory is another swarm: the one on show is old.
   await page.getByLabel('Trajectory', { exact: true }).selectOption('synthetic');
   assert.equal(await page.locator('[data-panel="swarm"].stale').count(), 1);

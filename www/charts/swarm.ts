@@ -3,7 +3,7 @@
 import { chartFrame, chartFont, fitLabel, SF_COLORS, labelRoom } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
-import { advancedChanged, counted, downlinkCounts, flightTime, planLimit, stationPhrase, trackedPercent } from '../format';
+import { advancedChanged, counted, downlinkCounts, flightTime, payloadFieldWords, planLimit, stationPhrase, trackedPercent } from '../format';
 import { DEFAULTS, plan, sendingLimit } from '../state';
 import { logAxis, plainNumber } from './logAxis';
 
@@ -136,9 +136,19 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
       : `${flown}${adr ? `, ADR sent their packets at ${sfShares(largest)}` : ''}: ${(100 * collisionRate).toFixed(1)} % of packets collided (ALOHA predicts ${(100 * largest.collisionRateTheory).toFixed(1)} %)${largest.leanPackets > 0 ? `, ${largest.leanPackets} of ${counted(largest.packetsSent, 'packet')} with lean payloads` : ''}, median per-drone p75 ${largest.medianDroneP75?.toFixed(2) ?? '—'} m${drones.length < largest.drones.length ? ` (of the ${drones.length} that received a packet)` : ''}, p95 pooled over the drones ${largest.error3d.p95?.toFixed(2) ?? '—'} m${untracked(largest)}${stripCounts(largest.drones.length, drones.length, thin)}; ${(100 * deliveryRatio).toFixed(1)} % of packets delivered${largest.gateways.length > 1 ? ` by ${largest.gateways.length} gateways (${counted(largest.duplicates, 'duplicate copy', 'duplicate copies')} removed)` : ''}${adr ? `, ${downlinkCounts(largest.gateways)}${largest.packetsGatewayTransmitting > 0 ? `, ${counted(largest.packetsGatewayTransmitting, 'packet')} lost while the gateway sent them (it cannot listen meanwhile)` : ''}` : ''}; radio ${energy.chargePerUplink.toFixed(2)} mC per uplink (mean over the drones that sent).${largest.frameLength === null ? '' : ` Slotted: longest frame ${largest.frameLength.toFixed(1)} s.`}`;
   const l = largest.largestSwarm;
   note.textContent += ` Largest swarm one gateway serves at these settings${adr ? ' (at the starting SFs)' : ''}${largest.leanPackets > 0 ? ' (with full frames: the lean ones, shorter, leave room for more)' : ''}, every drone sending ${pace(largest.config)}: ${l.aloha1} drone${l.aloha1 === 1 ? '' : 's'} at ≤ 1 % collisions and ${l.aloha10} at ≤ 10 % with ALOHA (by its formula), ${l.slotted} slotted with none.`;
+  note.textContent += saturatedWords(largest);
   const box = document.createElement('div');
   box.append(collisions, errors, note);
   return box;
+}
+
+/** The drones whose received packets carried a value beyond the payload's range (the core's
+ * `saturation`, as the CLI's `saturated:` line says it): a swarm of the real flight saturates
+ * the turn and tilt rate in its ACRO end. Nothing where none did. */
+function saturatedWords(r: SwarmReport): string {
+  const s = r.saturation;
+  if (s.drones === 0) return '';
+  return ` Saturated: ${s.packets} of the drones' ${counted(r.packetsReceived, 'received packet')}, from ${counted(s.drones, 'drone')}, carried a value beyond the payload's range (${payloadFieldWords(s.fields)}), sent as the range's edge: their stations started from a state other than the drone's estimate, so part of their error is the payload's, not the model's (the payload is sized for a quadcopter; docs/reference.md §5).`;
 }
 
 /** How far above `base` (the plot's bottom, px from the SVG's top) the highest dot of `chart`
