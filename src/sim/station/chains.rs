@@ -7,7 +7,7 @@
 //! every chain and only pays for the evaluation. The numbers are the same as without the cache
 //! (tests/integration/station.rs checks).
 
-use super::{score_station, start_from, Estimate, Scoring, StationTrack, Tracker};
+use super::{score_station, start_from, Estimate, Received, Scoring, StationTrack, Tracker};
 use crate::sim::packet::Transmission;
 use crate::trajectory::Trajectory;
 use std::collections::HashMap;
@@ -49,73 +49,112 @@ impl FlightChains {
             self.chains.clear();
             self.stored = 0;
         }
-        // The packet being served with its chain, held out of the map while it is served (the
-        // map is hashed once per packet, not at every grid time: SipHash was 8 % of a warm run
-        // in WebAssembly), how far into it, and a live tracker once the chain runs out
-        // (replayed from the packet over the grid times already served).
-        let mut current: Option<(PacketKey, Chain)> = None;
-        let mut k = 0;
-        let mut served: Vec<f64> = Vec::new();
-        let mut live: Option<Box<dyn Tracker>> = None;
-        let (chains, stored) = (&mut self.chains, &mut self.stored);
+        let mut cursor = Cursor::new(self);
         let track = score_station(
             flight,
             transmissions,
             scoring,
             None,
             &mut |t, received, fresh| {
-                let chain = if fresh.is_some() {
-                    let packet = received.packet;
-                    let key = (
-                        packet.sent.to_bits(),
-                        packet.arrival.to_bits(),
-                        packet.interval.to_bits(),
-                        received.silence_trusted,
-                    );
-                    if let Some((served_key, chain)) = current.take() {
-                        chains.insert(served_key, chain);
-                    }
-                    k = 0;
-                    served.clear();
-                    live = None;
-                    &mut current
-                        .insert((key, chains.remove(&key).unwrap_or_default()))
-                        .1
-                } else {
+                if fresh.is_some() {
+                    cursor.turn_to(key_of(received));
+                } else if cursor.current.is_none() {
                     // Before any packet (which scoring never asks for) the chain of no packet.
-                    &mut current
-                        .get_or_insert_with(|| {
-                            let key = (0, 0, 0, false);
-                            (key, chains.remove(&key).unwrap_or_default())
-                        })
-                        .1
-                };
-                let e = match chain.estimates.get(k) {
-                    Some(e) => *e,
-                    None => {
-                        let tracker = live.get_or_insert_with(|| {
-                            let mut tr = new_tracker();
-                            start_from(tr.as_mut(), received);
-                            for &s in &served {
-                                tr.predict_to(s);
-                            }
-                            tr
-                        });
-                        tracker.predict_to(t);
-                        let e = Estimate::of(tracker.as_ref());
-                        chain.estimates.push(e);
-                        *stored += 1;
-                        e
-                    }
-                };
-                served.push(t);
-                k += 1;
-                e
+                    cursor.turn_to(NO_PACKET);
+                }
+                cursor.estimate(t, received, new_tracker)
             },
         );
-        if let Some((key, chain)) = current {
-            chains.insert(key, chain);
-        }
+        cursor.put_back();
         track
+    }
+}
+
+/// The key of the chain before any packet.
+const NO_PACKET: PacketKey = (0, 0, 0, false);
+
+/// The key of `received`'s chain.
+fn key_of(received: &Received) -> PacketKey {
+    let packet = received.packet;
+    (
+        packet.sent.to_bits(),
+        packet.arrival.to_bits(),
+        packet.interval.to_bits(),
+        received.silence_trusted,
+    )
+}
+
+/// Where a station's pass over the evaluation grid stands in a flight's chains: the packet being
+/// served with its chain, held out of the map while it is served (the map is hashed once per
+/// packet, not at every grid time: SipHash was 8 % of a warm run in WebAssembly), how far into
+/// it, the grid times served since the packet, and a live tracker once the chain runs out.
+struct Cursor<'a> {
+    chains: &'a mut FlightChains,
+    current: Option<(PacketKey, Chain)>,
+    k: usize,
+    served: Vec<f64>,
+    live: Option<Box<dyn Tracker>>,
+}
+
+impl<'a> Cursor<'a> {
+    fn new(chains: &'a mut FlightChains) -> Self {
+        Cursor {
+            chains,
+            current: None,
+            k: 0,
+            served: Vec::new(),
+            live: None,
+        }
+    }
+
+    /// Puts the chain being served back into the map.
+    fn put_back(&mut self) {
+        if let Some((key, chain)) = self.current.take() {
+            self.chains.chains.insert(key, chain);
+        }
+    }
+
+    /// Serves the chain of `key` from its start (a new one if none is remembered).
+    fn turn_to(&mut self, key: PacketKey) {
+        self.put_back();
+        self.k = 0;
+        self.served.clear();
+        self.live = None;
+        let chain = self.chains.chains.remove(&key).unwrap_or_default();
+        self.current = Some((key, chain));
+    }
+
+    /// The estimate at grid time `t` after `received`: the chain's next where it has one, else
+    /// a live tracker's (replayed from the packet over the grid times already served), which the
+    /// chain then keeps.
+    fn estimate(
+        &mut self,
+        t: f64,
+        received: &Received,
+        new_tracker: &dyn Fn() -> Box<dyn Tracker>,
+    ) -> Estimate {
+        let chain = &mut self.current.get_or_insert_with(Default::default).1;
+        let e = match chain.estimates.get(self.k) {
+            Some(e) => *e,
+            None => {
+                let served = &self.served;
+                let tracker = self.live.get_or_insert_with(|| {
+                    let mut tr = new_tracker();
+                    start_from(tr.as_mut(), received);
+                    for &s in served {
+                        tr.predict_to(s);
+                    }
+                    tr
+                });
+                tracker.predict_to(t);
+                let e = Estimate::of(tracker.as_ref());
+                chain.estimates.push(e);
+                self.chains.stored += 1;
+                e
+            }
+        };
+        self.served.push(t);
+        self.k += 1;
+        e
     }
 }
