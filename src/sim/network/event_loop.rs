@@ -441,28 +441,16 @@ impl Episode {
         f: &mut Flier<'_>,
         ended: &Ended,
     ) -> (Option<Downlink>, Option<LinkAdrReq>) {
-        let Ended {
-            air,
-            heard_by,
-            time: end,
-        } = ended;
-        let best = (0..self.gateways.len())
-            .filter(|g| heard_by & (1 << g) != 0)
-            .max_by(|&a, &b| {
-                air.receptions[a]
-                    .rx_dbm
-                    .total_cmp(&air.receptions[b].rx_dbm)
-            });
-        let (Some(g), Some(frame)) = (best, air.frame.adr) else {
+        let (Some(g), Some(frame)) = (ended.loudest(), ended.air.frame.adr) else {
             return (None, None);
         };
         // The payload the server decodes: this uplink's, the last the drone put on air.
         let speed = f.tx.last().map_or(0.0, |t| t.state[V]);
         let uplink = AdrUplink {
             frame: &frame,
-            rssi_dbm: air.receptions[g].rx_dbm,
+            rssi_dbm: ended.air.receptions[g].rx_dbm,
             speed_mps: speed,
-            time: *end,
+            time: ended.time,
             channels: f.aloha_channels(),
         };
         let (answers, command) = net.adr_hears(f.drone, &uplink);
@@ -474,10 +462,25 @@ impl Episode {
         } else {
             ACK_DOWNLINK_BYTES
         };
-        // Whether the server kept a window free that the gateway's duty cycle may have allowed.
+        let sent = self.downlink(net, f, g, (frame.dr, ended.time), bytes);
+        (sent, command)
+    }
+
+    /// A downlink of `bytes` through gateway `g` after an uplink at data rate `dr` that ended at
+    /// `end` (s): in RX1, else in RX2, where the server keeps the window free and the gateway's
+    /// duty cycle allows; else none, counted as held back (the server kept a window the duty
+    /// cycle may have allowed) or dropped.
+    fn downlink(
+        &mut self,
+        net: &mut Network,
+        f: &mut Flier<'_>,
+        g: usize,
+        (dr, end): (DataRate, f64),
+        bytes: usize,
+    ) -> Option<Downlink> {
         let mut held_back = false;
         for w in [Window::Rx1, Window::Rx2] {
-            let dr = w.data_rate(frame.dr);
+            let dr = w.data_rate(dr);
             let Ok(toa) = downlink_time_on_air(dr, bytes) else {
                 break;
             };
@@ -490,7 +493,7 @@ impl Episode {
                 net.gateways[g].downlinks_sent += 1;
                 let pos = f.position_at(at);
                 let r = f.links[g].downlink(&net.channel, pos);
-                return (Some((w, toa, audible(r.rx_dbm, dr.sf(), dr.bw()))), command);
+                return Some((w, toa, audible(r.rx_dbm, dr.sf(), dr.bw())));
             }
         }
         let unsent = &mut net.gateways[g];
@@ -499,7 +502,17 @@ impl Episode {
         } else {
             unsent.downlinks_dropped += 1;
         }
-        (None, command)
+        None
+    }
+}
+
+impl Ended {
+    /// The gateway that heard the uplink loudest, if any heard it (a reception per gateway).
+    fn loudest(&self) -> Option<usize> {
+        let receptions = &self.air.receptions;
+        (0..receptions.len())
+            .filter(|g| self.heard_by & (1 << g) != 0)
+            .max_by(|&a, &b| receptions[a].rx_dbm.total_cmp(&receptions[b].rx_dbm))
     }
 }
 
