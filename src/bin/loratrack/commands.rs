@@ -939,17 +939,24 @@ fn swarm(a: SwarmArgs) -> Result<String, ApiError> {
     Ok(swarm_text(&r))
 }
 
+/// `swarm`'s text: what flew and how ([`swarm_header`]), what the air carried
+/// ([`swarm_traffic`]), how well the stations tracked ([`swarm_tracking`]), and the caveats and
+/// gateways under them.
 fn swarm_text(r: &SwarmReport) -> String {
-    let c = &r.config.settings;
-    let silent = r.drones.iter().filter(|d| d.error3d.count == 0).count();
-    // Those with packets, but too few for their own p75 to compare (the page draws them hollow).
-    let thin = r
-        .drones
-        .iter()
-        .filter(|d| d.caveats.few_packets && d.error3d.count > 0)
-        .count();
     let d = &r.delivery;
-    // With a flight chosen every drone flies it (the duration is for chained synthetic flights).
+    let mut out = swarm_header(r);
+    out += &swarm_traffic(r);
+    out += &swarm_tracking(r);
+    out += &swarm_saturated_line(&r.saturation, d.packets_received);
+    out += &gateway_lines(&d.gateways);
+    out
+}
+
+/// What each drone flies: the synthetic set, one of its flights, the real flight, a CSV or a
+/// plan flown (with a flight chosen every drone flies it; the duration is for chained synthetic
+/// flights), and as which vehicle.
+fn swarm_flown(r: &SwarmReport) -> String {
+    let c = &r.config.settings;
     let f = &c.flight;
     let flown = match (f.synthetic, &f.sample, &f.trajectory_name, &f.plan_name) {
         (Some(loratrack::SyntheticChoice::All), ..) => "each flying the synthetic set".to_string(),
@@ -966,24 +973,19 @@ fn swarm_text(r: &SwarmReport) -> String {
         }
         _ => format!("x {:.0} s", c.swarm.duration),
     };
-    let flown = flown + vehicle_text(r.config.plan_cornering, c.drone.vehicle);
+    flown + vehicle_text(r.config.plan_cornering, c.drone.vehicle)
+}
+
+/// The swarm's settings: its first line (drones, flight, distance, plan, channels, SFs, station,
+/// the network's switches, seed) and the sending policy with the settings changed from their
+/// defaults.
+fn swarm_header(r: &SwarmReport) -> String {
+    let c = &r.config.settings;
     format!(
-        "{} drone{} {}, at {} m, {} ({}), {} channel{}, {}, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n\
-         {}{}\n\
-         channel access      {}\n\
-         packets sent        {}{}{}\n\
-         collision rate      {}  (pure-ALOHA formula at the duty cycle achieved: {:.4})\n\
-         largest swarm       {} drone{} at <= 1 % collisions, {} at <= 10 % (ALOHA formula); {} slotted, with none{}\n\
-         delivery ratio      {}  ({} distinct packets, {} duplicate{} removed)\n\
-         below sensitivity   {}\n\
-         no demodulator      {}{}\n\
-         3D error (pooled)   mean {}  p75 {}  p95 {} m; median drone p75 {} m\n\
-         tracked             {}  (the share of the flight time after each flight's first packet, all the errors cover){}\n\
-         energy              {}\n\
-         drones that received nothing: {}; too few packets for their own p75 to compare (1 to {}): {}{}{}",
+        "{} drone{} {}, at {} m, {} ({}), {} channel{}, {}, {} station, capture {}, inter-SF {}, ADR {}, seed {}\n{}{}\n",
         c.swarm.drones,
         plural(c.swarm.drones),
-        flown,
+        swarm_flown(r),
         c.channel.distance,
         c.access.region.label(),
         limit_text(&c.access, c.radio.duty_cycle),
@@ -998,53 +1000,84 @@ fn swarm_text(r: &SwarmReport) -> String {
         policy_text(c),
         // The channel access line gives the swarm's timing.
         settings_line(c, &["jitter", "clockDrift"]),
-        schedule_text(r),
-        d.packets_sent,
-        sf_shares(r),
-        if r.lean_packets > 0 {
-            format!("  ({} with lean payloads)", r.lean_packets)
-        } else {
-            String::new()
-        },
+    )
+}
+
+/// The air's lines: channel access, packets sent and at which SFs, collisions against the ALOHA
+/// formula, the largest swarm a gateway serves, delivery, and the packets lost otherwise.
+fn swarm_traffic(r: &SwarmReport) -> String {
+    let d = &r.delivery;
+    let lean = r.lean_packets > 0;
+    let mut out = format!("channel access      {}\n", schedule_text(r));
+    out += &format!("packets sent        {}{}", d.packets_sent, sf_shares(r));
+    if lean {
+        out += &format!("  ({} with lean payloads)", r.lean_packets);
+    }
+    out += &format!(
+        "\ncollision rate      {}  (pure-ALOHA formula at the duty cycle achieved: {:.4})\n",
         num(r.collision_rate, 0, 4),
-        r.collision_rate_theory,
-        r.largest_swarm.aloha1,
-        plural(r.largest_swarm.aloha1),
-        r.largest_swarm.aloha10,
-        r.largest_swarm.slotted,
-        if r.lean_packets > 0 {
+        r.collision_rate_theory
+    );
+    let l = &r.largest_swarm;
+    out += &format!(
+        "largest swarm       {} drone{} at <= 1 % collisions, {} at <= 10 % (ALOHA formula); {} slotted, with none{}\n",
+        l.aloha1,
+        plural(l.aloha1),
+        l.aloha10,
+        l.slotted,
+        if lean {
             " (full frames; the lean ones leave room for more)"
         } else {
             ""
         },
+    );
+    out += &format!(
+        "delivery ratio      {}  ({} distinct packets, {} duplicate{} removed)\n",
         num(d.delivery_ratio, 0, 4),
         d.packets_received,
         d.duplicates,
-        plural(d.duplicates),
-        r.packets_below_sensitivity,
-        r.packets_no_demodulator,
-        match r.packets_gateway_transmitting {
-            0 => String::new(),
-            n => format!("\ngateway sending     {n}  (on air while the gateway sent a downlink: it is half-duplex)"),
-        },
+        plural(d.duplicates)
+    );
+    out += &format!("below sensitivity   {}\n", r.packets_below_sensitivity);
+    out += &format!("no demodulator      {}", r.packets_no_demodulator);
+    if r.packets_gateway_transmitting > 0 {
+        out += &format!(
+            "\ngateway sending     {}  (on air while the gateway sent a downlink: it is half-duplex)",
+            r.packets_gateway_transmitting
+        );
+    }
+    out + "\n"
+}
+
+/// The tracking's lines: the pooled errors and the median drone's p75, the share of the flight
+/// time they cover, the radio's charge, and the drones that received nothing or too little to
+/// compare (the page draws those hollow).
+fn swarm_tracking(r: &SwarmReport) -> String {
+    let silent = r.drones.iter().filter(|d| d.error3d.count == 0).count();
+    let thin = r
+        .drones
+        .iter()
+        .filter(|d| d.caveats.few_packets && d.error3d.count > 0)
+        .count();
+    let energy = match r.energy.charge_per_uplink {
+        charge if charge.is_finite() => format!(
+            "{charge:.2} mC per uplink (mean over the drones that sent), {:.3} mAh per hour (mean drone), SX1276 radio only",
+            r.energy.charge_per_hour
+        ),
+        _ => "no uplink sent".to_string(),
+    };
+    format!(
+        "3D error (pooled)   mean {}  p75 {}  p95 {} m; median drone p75 {} m\n\
+         tracked             {}  (the share of the flight time after each flight's first packet, all the errors cover){}\n\
+         energy              {energy}\n\
+         drones that received nothing: {silent}; too few packets for their own p75 to compare (1 to {}): {thin}",
         num(r.error3d.mean, 0, 2),
         num(r.error3d.p75, 0, 2),
         num(r.error3d.p95, 0, 2),
         num(r.median_drone_p75, 0, 2),
         percent(r.whole_flight.tracked),
         tracked_by_sf(r),
-        match r.energy.charge_per_uplink {
-            charge if charge.is_finite() => format!(
-                "{charge:.2} mC per uplink (mean over the drones that sent), {:.3} mAh per hour (mean drone), SX1276 radio only",
-                r.energy.charge_per_hour
-            ),
-            _ => "no uplink sent".to_string(),
-        },
-        silent,
         loratrack::FEW_PACKETS - 1,
-        thin,
-        swarm_saturated_line(&r.saturation, d.packets_received),
-        gateway_lines(&d.gateways)
     )
 }
 
