@@ -883,6 +883,10 @@ test('with the real flight chosen the swarm flies it, as the CLI\'s --sample doe
   assert.ok(note.includes('turn rate ω, ±2 rad/s'), note);
   assert.equal(await page.locator('#chart-swarm .note a').getAttribute('href'), 'docs/reference.html');
   assert.ok(slide.replace(/\s+/g, ' ').includes(`Saturated: ${s.packets} of the drones'`), 'the slide carries the saturated drones');
+  // Each drone's dot says its own, and they add up to the note's.
+  const titles = await page.locator('#chart-swarm circle title').allTextContents();
+  const own = titles.map((t) => Number(t.match(/, (\d+) beyond the payload's range/)?.[1] ?? 0));
+  assert.deepEqual([own.filter((n) => n > 0).length, own.reduce((a, b) => a + b, 0)], [s.drones, s.packets], titles.join('\n'));
   // Another trajectory is another swarm: the one on show is old.
   await page.getByLabel('Trajectory', { exact: true }).selectOption('synthetic');
   assert.equal(await page.locator('[data-panel="swarm"].stale').count(), 1);

@@ -62,7 +62,7 @@ export function stripCounts(total: number, drawn: number, thin: number): string 
 }
 
 /** One drone's point on the strip of p75s. */
-type Drone = { p75: number; sf: string; colour: string; received: number; few: boolean };
+type Drone = { p75: number; sf: string; colour: string; received: number; few: boolean; saturated: number };
 
 export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   // A swarm that sent nothing has no collision share (null): no dot, and its title says why.
@@ -88,7 +88,7 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   // With ADR a drone's SF is where it started: the network moves it (`dataRateUse` says where to).
   const adr = largest.config.adr !== 'off';
   const sfName = (sf: number) => (adr ? `from SF${sf}` : `SF${sf}`);
-  const drones = largest.drones.filter((d) => d.error3d.p75 !== null).map((d) => ({ p75: d.error3d.p75 as number, sf: sfName(d.sf), colour: SF_COLORS[d.sf - 7], received: d.packetsReceived, few: d.caveats.fewPackets }));
+  const drones = largest.drones.filter((d) => d.error3d.p75 !== null).map((d) => ({ p75: d.error3d.p75 as number, sf: sfName(d.sf), colour: SF_COLORS[d.sf - 7], received: d.packetsReceived, few: d.caveats.fewPackets, saturated: d.caveats.saturatedPackets }));
   // A drone whose p75 rests on too few packets (an SF12 drone's two minutes see one or two) is
   // drawn hollow, as the SF chart's points are, and the note counts them.
   const thin = drones.filter((d) => d.few).length;
@@ -117,7 +117,7 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
       x: { label: fitLabel(width, `p75 error of each of ${shown} drones (m, log scale)`, `p75 of each of ${shown} drones (m, log)`, 'p75 per drone (m, log)'), type: 'log', ...logAxis(drones.map((d) => d.p75), { px: width - margin.left - margin.stripRight, font: chartFont() }), tickFormat: plainNumber },
       y: { axis: null },
       color: { legend: true, domain: sfs.map(sfName), range: sfs.map((sf) => SF_COLORS[sf - 7]) },
-      marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: { value: (d: Drone) => (d.few ? 'white' : d.colour), scale: null }, stroke: 'sf', strokeWidth: 1.2, r, title: (d: Drone) => `${d.sf}: p75 ${d.p75.toFixed(2)} m over ${counted(d.received, 'packet')}${d.few ? ', too few to compare' : ''}` }))],
+      marks: [Plot.dotX(drones, Plot.dodgeY({ x: 'p75', fill: { value: (d: Drone) => (d.few ? 'white' : d.colour), scale: null }, stroke: 'sf', strokeWidth: 1.2, r, title: (d: Drone) => `${d.sf}: p75 ${d.p75.toFixed(2)} m over ${counted(d.received, 'packet')}${d.few ? ', too few to compare' : ''}${d.saturated ? `, ${d.saturated} beyond the payload's range` : ''}` }))],
     });
   const first = strip(frame.height);
   const fitted = marginTop + pileHeight(first, frame.height - frame.marginBottom, 2 * r) + frame.marginBottom;
