@@ -1008,7 +1008,7 @@ fn a_swarm_header_says_what_each_drone_flies_on_which_sfs_and_why_spread_dealt_f
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
         text.starts_with(
-            "1 drone each flying synthetic 1, at 1000 m, EU868 (1 % duty cycle), 1 channel, all on SF7,"
+            "1 drone each flying synthetic 1 (81 s), at 1000 m, EU868 (1 % duty cycle), 1 channel, all on SF7,"
         ),
         "{text}"
     );

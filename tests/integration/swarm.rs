@@ -608,6 +608,38 @@ fn the_swarm_text_says_which_drones_packets_saturated_as_the_json_pools_them() {
     assert!(!text.contains("\nsaturated: "), "{text}");
 }
 
+/// A swarm flying a chosen flight flies it whole, whatever `duration` says (it is for chained
+/// synthetic flights): `flightTime` and the text's first line give the flight's length, and the
+/// swarm is the same at any duration; chained flights last `duration`.
+#[test]
+fn a_swarm_of_a_chosen_flight_flies_it_whole_and_says_how_long() {
+    let run = |duration: &str| {
+        let args = [
+            "swarm",
+            "--sample",
+            "canberra",
+            "--drones",
+            "4",
+            "--duration",
+            duration,
+        ];
+        let text = String::from_utf8(crate::cli(&args).stdout).unwrap();
+        let out = crate::cli(&[&args[..], &["--json"]].concat());
+        let json: Value = serde_json::from_slice(&out.stdout).unwrap();
+        (text, json)
+    };
+    let ((text, short), (_, long)) = (run("120"), run("1200"));
+    let length = loratrack::canberra_flight().duration();
+    assert_eq!(short["flightTime"], json!(length));
+    assert_eq!(long["flightTime"], json!(length));
+    assert_eq!(short["error3d"], long["error3d"]);
+    let said = format!("4 drones each flying canberra ({length:.0} s), at 1000 m");
+    assert!(text.starts_with(&said), "{text}");
+    let chained = crate::cli(&["swarm", "--drones", "4", "--duration", "120", "--json"]);
+    let chained: Value = serde_json::from_slice(&chained.stdout).unwrap();
+    assert_eq!(chained["flightTime"], json!(120.0));
+}
+
 /// The CLI's text gives the swarm's rates to four decimals and its errors to two, as the JSON
 /// has them: a crowd on one channel at 4 km, where packets both collide and fade.
 #[test]

@@ -1068,6 +1068,12 @@ export type SwarmReport = Delivery & {
  */
 config: SwarmEcho, 
 /**
+ * Seconds each drone flew (the mean over the drones): `duration` where the drones chain
+ * synthetic flights, else the flights chosen, whole, whatever `duration` says (the real
+ * Canberra flight's 162 s).
+ */
+flightTime: number, 
+/**
  * Packets lost to interference at every gateway that could hear them / packets sent
  * (`null` when no packet was sent).
  */

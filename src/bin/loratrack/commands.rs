@@ -953,25 +953,23 @@ fn swarm_text(r: &SwarmReport) -> String {
 }
 
 /// What each drone flies: the synthetic set, one of its flights, the real flight, a CSV or a
-/// plan flown (with a flight chosen every drone flies it; the duration is for chained synthetic
-/// flights), and as which vehicle.
+/// plan flown, with its length (with a flight chosen every drone flies it whole; the duration is
+/// for chained synthetic flights), and as which vehicle.
 fn swarm_flown(r: &SwarmReport) -> String {
     let c = &r.config.settings;
     let f = &c.flight;
-    let flown = match (f.synthetic, &f.sample, &f.trajectory_name, &f.plan_name) {
-        (Some(loratrack::SyntheticChoice::All), ..) => "each flying the synthetic set".to_string(),
-        (Some(loratrack::SyntheticChoice::One(i)), ..) => format!("each flying synthetic {i}"),
-        (None, Some(sample), ..) => format!("each flying {sample}"),
-        (None, None, Some(name), _) => {
-            format!("each flying {}", loratrack::api::clean_message(name))
-        }
-        (None, None, None, Some(plan)) => {
-            format!(
-                "each flying {} (flown)",
-                loratrack::api::clean_message(plan)
-            )
-        }
-        _ => format!("x {:.0} s", c.swarm.duration),
+    let clean = loratrack::api::clean_message;
+    let chosen = match (f.synthetic, &f.sample, &f.trajectory_name, &f.plan_name) {
+        (Some(loratrack::SyntheticChoice::All), ..) => Some("the synthetic set".to_string()),
+        (Some(loratrack::SyntheticChoice::One(i)), ..) => Some(format!("synthetic {i}")),
+        (None, Some(sample), ..) => Some(sample.to_string()),
+        (None, None, Some(name), _) => Some(clean(name)),
+        (None, None, None, Some(plan)) => Some(format!("{} (flown)", clean(plan))),
+        _ => None,
+    };
+    let flown = match chosen {
+        Some(flight) => format!("each flying {flight} ({:.0} s)", r.flight_time),
+        None => format!("x {:.0} s", c.swarm.duration),
     };
     flown + vehicle_text(r.config.plan_cornering, c.drone.vehicle)
 }

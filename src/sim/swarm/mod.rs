@@ -60,6 +60,21 @@ struct Plan {
     episodes: Vec<Vec<Seat>>,
 }
 
+impl Plan {
+    /// Seconds each drone flies, over all its episodes, the mean over the drones (a chained
+    /// flight lasts `duration`, give or take a sample).
+    fn flight_time(&self) -> f64 {
+        let drones = self.episodes.first().map_or(0, Vec::len).max(1);
+        let total: f64 = self
+            .episodes
+            .iter()
+            .flatten()
+            .map(|seat| self.flights[seat.flight].duration())
+            .sum();
+        total / drones as f64
+    }
+}
+
 /// The episodes of a swarm (see the module documentation).
 fn plan(cfg: &Validated) -> Result<Plan, SimError> {
     let s = cfg.s();
@@ -516,6 +531,7 @@ impl<'a> Swarm<'a> {
                 bandwidth_khz: s.radio.bw,
                 plan_cornering: cfg.plan.as_ref().map(FlightPlan::cornering),
             },
+            flight_time: self.plan.flight_time(),
             sf_limit: self.deal.limit,
             frame_length: self.frame_length,
             largest_swarm,

@@ -63,6 +63,10 @@ pub struct DroneReport {
 pub struct SwarmReport {
     /// The settings.
     pub config: SwarmEcho,
+    /// Seconds each drone flew (the mean over the drones): `duration` where the drones chain
+    /// synthetic flights, else the flights chosen, whole, whatever `duration` says (the real
+    /// Canberra flight's 162 s).
+    pub flight_time: f64,
     /// Packets lost to interference at every gateway that could hear them / packets sent
     /// (`null` when no packet was sent).
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
