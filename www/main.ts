@@ -838,11 +838,13 @@ function swarmRequest(): { sizes: number[]; params: SwarmParams } {
   // the swarm's own default, where no `synthetic` is given) and run one station (a list of models
   // runs 3D-CTRA, as `all` does, and so does the mission station, which would need each drone's
   // own plan).
-  const { synthetic: _s, ...shared } = toParams(swarmSettings(store.settings));
+  const made = swarmSettings(store.settings);
+  const { synthetic: _s, ...shared } = toParams(made);
   const params: SwarmParams = {
     ...shared,
     model: stationsOf(store.settings.model).length === 1 && !runsMission(store.settings.model) ? store.settings.model : 'all',
-    duration: Number($<HTMLSelectElement>('#swarmDuration').value),
+    // The real flight is flown whole (the panel hides the choice); the duration chains synthetic flights.
+    ...(made.flight === 'canberra' ? {} : { duration: Number($<HTMLSelectElement>('#swarmDuration').value) }),
     // One channel, or all the plan's (its default).
     ...($<HTMLSelectElement>('#swarmChannels').value === '1' ? { channels: 1 } : {}),
     sfPlan: $<HTMLSelectElement>('#swarmPlan').value as 'fixed' | 'spread',
@@ -921,7 +923,7 @@ $('#run-swarm').addEventListener('click', () => {
         const p = await plots();
         const channels = swarms[0]?.drones[0]?.channelUse.length ?? params.channels ?? 1;
         const largest = swarms[swarms.length - 1];
-        place('swarm', p.swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${channels} channel${channels === 1 ? '' : 's'}, ${p.sfPlanWords(largest)}, ${params.schedule === 'slotted' ? 'slotted' : 'ALOHA'}, ${params.duration} s each`);
+        place('swarm', p.swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${channels} channel${channels === 1 ? '' : 's'}, ${p.sfPlanWords(largest)}, ${params.schedule === 'slotted' ? 'slotted' : 'ALOHA'}, ${Math.round(largest.flightTime)} s each`);
       };
       later('swarm', lastSwarm);
     },

@@ -869,10 +869,16 @@ test('with the real flight chosen the swarm flies it, as the CLI\'s --sample doe
   await runSwarm(page, '20', 'fixed');
   const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sample', 'canberra']);
   const note = await page.locator('#chart-swarm .note').textContent();
-  assert.match(note, /^20 drones flying 2 minutes of the real flight each to a 3D-CTRA station/);
+  // Every drone flies it whole: the panel offers no flight length, and the note and the slide
+  // give the flight's own, as the CLI's flightTime does.
+  const seconds = Math.round(cli.flightTime);
+  assert.ok(seconds > 150 && seconds < 170, `${cli.flightTime} s`);
+  assert.equal(await page.locator('#swarmDuration').isVisible(), false, 'no flight length to choose');
+  assert.ok(note.startsWith(`20 drones flying the real flight (${seconds} s) each to a 3D-CTRA station`), note);
   assert.ok(note.includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`), note);
   const slide = (await downloaded(page, page.getByRole('button', { name: 'Download the swarm chart as SVG' }))).toString('utf8').replace(/<[^>]+>/g, ' ');
   assert.match(slide, /real flight \(Canberra\); seed 1;/);
+  assert.ok(slide.replace(/\s+/g, ' ').includes(`20 drones, 3 channels, all on SF7, ALOHA, ${seconds} s each`), slide);
   // Its ACRO end turns and tilts faster than the payload's 2 rad/s: the note counts the drones
   // and packets the CLI pools, names the fields with their ranges, links the doc, and the slide
   // carries it.
@@ -890,6 +896,7 @@ test('with the real flight chosen the swarm flies it, as the CLI\'s --sample doe
   // Another trajectory is another swarm: the one on show is old.
   await page.getByLabel('Trajectory', { exact: true }).selectOption('synthetic');
   assert.equal(await page.locator('[data-panel="swarm"].stale').count(), 1);
+  assert.equal(await page.locator('#swarmDuration').isVisible(), true, 'the synthetic set is flown for the length chosen');
   assert.deepEqual(problems, []);
 });
 

@@ -126,7 +126,9 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
   note.className = 'note';
   // The plan's limit and the advanced settings where not the defaults: the note is all the panel
   // says of what its numbers rest on (the slide's caption names every setting).
-  const flown = `${largest.config.drones} drones flying ${flightTime(largest.config.duration)} of ${largest.config.sample ? 'the real flight' : 'the synthetic set'} each to a ${stationPhrase(largest.config.station, largest.config)}, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${sfPlanWords(largest)}${[planLimit(largest.config), ...advancedChanged(largest.config)].filter(Boolean).map((a) => `, ${a}`).join('')}`;
+  // A chosen flight is flown whole, whatever the duration (which chains synthetic flights).
+  const flight = largest.config.sample ? `the real flight (${Math.round(largest.flightTime)} s)` : `${flightTime(largest.config.duration)} of the synthetic set`;
+  const flown = `${largest.config.drones} drones flying ${flight} each to a ${stationPhrase(largest.config.station, largest.config)}, ${largest.config.channels ?? 1} channel${(largest.config.channels ?? 1) > 1 ? 's' : ''}, ${sfPlanWords(largest)}${[planLimit(largest.config), ...advancedChanged(largest.config)].filter(Boolean).map((a) => `, ${a}`).join('')}`;
   // Shares of no packet are none: a swarm whose drones all send less often than they fly (SF12,
   // 2 minutes) sent nothing, which "0.0 % of packets collided" and "0.0 % delivered" would hide.
   const { collisionRate, deliveryRatio, energy } = largest;
