@@ -797,13 +797,13 @@ mod tests {
 
     #[test]
     fn a_swarms_saturated_packets_are_its_drones_pooled_with_the_drones_that_sent_them() {
+        use crate::models::{OMEGA, PSI, V};
         let with = |packets: usize, fields: &[usize]| {
             let mut d = drone(7, 10, 0.01);
             d.caveats.saturated_packets = packets;
             fields.iter().for_each(|&f| d.caveats.saturated.insert(f));
             d
         };
-        use crate::models::{OMEGA, PSI, V};
         let s = SwarmSaturation::of(&[with(2, &[OMEGA]), with(0, &[]), with(3, &[PSI, V])]);
         assert_eq!((s.drones, s.packets), (2, 5));
         assert_eq!(s.fields.names().collect::<Vec<_>>(), ["v", "omega", "psi"]);
