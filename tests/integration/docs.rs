@@ -429,7 +429,7 @@ fn the_readme_lists_every_key_of_the_json() {
     // swarm's, as words.
     let swarm = json("swarm --drones 2 --duration 60 --json");
     let section = between(
-        "Output: `{config, collisionRate",
+        "Output: `{config, flightTime, collisionRate",
         "`largestSwarm` is how many",
     );
     for key in keys(&swarm).iter().chain(&keys(&swarm["drones"][0])) {
