@@ -31,11 +31,19 @@ export const listed = (words: string[]): string => (words.length < 2 ? words.joi
 /** The payload fields `names` (the core's `saturated`) with their ranges, in state order as the
  * CLI names them (PAYLOAD_FIELDS is generated in that order): "turn rate ω, ±2 rad/s; tilt rate
  * ψ, ±2 rad/s". */
-export const payloadFieldWords = (names: readonly string[]): string =>
+const payloadFieldWords = (names: readonly string[]): string =>
   Object.entries(PAYLOAD_FIELDS)
     .filter(([name]) => names.includes(name))
     .map(([, words]) => words)
     .join('; ');
+
+/** What received packets that saturated `names` (the core's `saturated`) did to a station
+ * (`swarm`: to their drones' stations): the words the results' and the swarm's saturated notes
+ * end with, as the CLI's `saturated:` lines do. */
+export function beyondRange(names: readonly string[], swarm: boolean): string {
+  const [whose, its] = swarm ? ['Their stations', 'their'] : ['The station', 'its'];
+  return `carried a value beyond the payload's range (${payloadFieldWords(names)}), sent as the range's edge. ${whose} started from a state other than the drone's estimate, so part of ${its} error is the payload's, not the model's (the payload is sized for a quadcopter; docs/reference.md §5).`;
+}
 
 /** Station names as a list: "DR", "DR and CTRA+", "DR, CTRA+ and 3D-CTRA". */
 export const names = (list: Pick<ModelResult, 'model'>[]) => listed(list.map((m) => MODEL_LABELS[m.model]));

@@ -3,7 +3,7 @@
 // the notes under the table. Reads the page's state from the store.
 import { deliverySpread, MODEL_LABELS, timeOnAir, type ModelResult, type RunConfig, type SimReport } from './loratrack';
 import { $, fitOnWidth, linkDocs, tighten } from './dom';
-import { adrFrom, adrName, advancedChanged, caption, counted, downlinkCounts, downlinksWanted, fmt, listed, names, payloadFieldWords, percent, planLimit, prediction, sending, sendsAsPublished, trackedPercent } from './format';
+import { adrFrom, adrName, advancedChanged, beyondRange, caption, counted, downlinkCounts, downlinksWanted, fmt, listed, names, percent, planLimit, prediction, sending, sendsAsPublished, trackedPercent } from './format';
 import { DEFAULTS, overheadBytes, plan, sendingLimit } from './state';
 import { store } from './store';
 
@@ -397,8 +397,7 @@ function renderSaturatedNote(r: SimReport): void {
   note.hidden = hit.length === 0;
   if (note.hidden) return;
   const counts = listed(hit.map((m) => `${MODEL_LABELS[m.model]} ${m.caveats.saturatedPackets} of ${m.packetsReceived}`));
-  const fields = payloadFieldWords(hit.flatMap((m) => m.caveats.saturated));
-  note.textContent = `Saturated: ${counts} received packets carried a value beyond the payload's range (${fields}), sent as the range's edge. The station started from a state other than the drone's estimate, so part of its error is the payload's, not the model's (the payload is sized for a quadcopter; docs/reference.md §5).`;
+  note.textContent = `Saturated: ${counts} received packets ${beyondRange(hit.flatMap((m) => m.caveats.saturated), false)}`;
   linkDocs(note);
 }
 

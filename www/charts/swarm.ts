@@ -3,7 +3,7 @@
 import { chartFrame, chartFont, fitLabel, SF_COLORS, labelRoom } from './colors';
 import * as Plot from '@observablehq/plot';
 import type { SwarmReport } from '../loratrack';
-import { advancedChanged, counted, downlinkCounts, flightTime, payloadFieldWords, planLimit, stationPhrase, trackedPercent } from '../format';
+import { advancedChanged, beyondRange, counted, downlinkCounts, flightTime, planLimit, stationPhrase, trackedPercent } from '../format';
 import { DEFAULTS, plan, sendingLimit } from '../state';
 import { logAxis, plainNumber } from './logAxis';
 
@@ -150,7 +150,7 @@ export function swarmCharts(swarms: SwarmReport[], width: number): HTMLElement {
 function saturatedWords(r: SwarmReport): string {
   const s = r.saturation;
   if (s.drones === 0) return '';
-  return ` Saturated: ${s.packets} of the drones' ${counted(r.packetsReceived, 'received packet')}, from ${counted(s.drones, 'drone')}, carried a value beyond the payload's range (${payloadFieldWords(s.fields)}), sent as the range's edge: their stations started from a state other than the drone's estimate, so part of their error is the payload's, not the model's (the payload is sized for a quadcopter; docs/reference.md §5).`;
+  return ` Saturated: ${s.packets} of the drones' ${counted(r.packetsReceived, 'received packet')}, from ${counted(s.drones, 'drone')}, ${beyondRange(s.fields, true)}`;
 }
 
 /** How far above `base` (the plot's bottom, px from the SVG's top) the highest dot of `chart`

@@ -853,7 +853,10 @@ fn caveat_lines(results: &[ModelResult]) -> String {
             .fold(loratrack::SaturatedFields::default(), |f, m| {
                 f.union(m.caveats.saturated)
             });
-        out += &format!("saturated: {list} received packets carried a value beyond the payload's range ({}), sent as the range's edge: the station started from a state other than the drone's estimate, so part of its error is the payload's, not the model's (the payload is sized for a quadcopter; docs/reference.md §5)\n", fields.words());
+        out += &format!(
+            "saturated: {list} received packets {}\n",
+            beyond_range(fields, false)
+        );
     }
     if let Some(d) = loratrack::DeliverySpread::of(results.iter().map(|m| (m.model, &m.delivery))) {
         out += &format!(
@@ -1086,11 +1089,25 @@ fn swarm_saturated_line(s: &loratrack::SwarmSaturation, received: usize) -> Stri
         return String::new();
     }
     format!(
-        "\nsaturated: {} of the drones' {received} received packets, from {} drone{}, carried a value beyond the payload's range ({}), sent as the range's edge: their stations started from a state other than the drone's estimate, so part of their error is the payload's, not the model's (the payload is sized for a quadcopter; docs/reference.md §5)",
+        "\nsaturated: {} of the drones' {received} received packets, from {} drone{}, {}",
         s.packets,
         s.drones,
         plural(s.drones),
-        s.fields.words()
+        beyond_range(s.fields, true)
+    )
+}
+
+/// What received packets that saturated `fields` did to a station (`swarm`: to their drones'
+/// stations), the words the results' and the swarm's `saturated:` lines end with.
+fn beyond_range(fields: loratrack::SaturatedFields, swarm: bool) -> String {
+    let (whose, its) = if swarm {
+        ("their stations", "their")
+    } else {
+        ("the station", "its")
+    };
+    format!(
+        "carried a value beyond the payload's range ({}), sent as the range's edge: {whose} started from a state other than the drone's estimate, so part of {its} error is the payload's, not the model's (the payload is sized for a quadcopter; docs/reference.md §5)",
+        fields.words()
     )
 }
 
