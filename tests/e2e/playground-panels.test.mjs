@@ -867,7 +867,7 @@ test('the swarm note names the plan\'s limit and the advanced settings its swarm
 test('with the real flight chosen the swarm flies it, as the CLI\'s --sample does, and its note and slide say so', async () => {
   const { page, problems } = await open('?flight=canberra');
   await runSwarm(page, '20', 'fixed');
-  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sample', 'canberra']);
+  const cli = nativeJson(['swarm', '--drones', '20', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sample', 'canberra']);
   const note = await page.locator('#chart-swarm .note').textContent();
   // Every drone flies it whole: the panel offers no flight length, and the note and the slide
   // give the flight's own, as the CLI's flightTime does.

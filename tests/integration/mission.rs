@@ -405,7 +405,7 @@ fn the_report_says_which_vehicle_a_plan_is_flown_as() {
         let s = Scenario::default().with(&settings).unwrap();
         swarm(&s).unwrap().config.plan_cornering
     };
-    let small = json!({"drones": 2, "duration": 60, "plan": qgc_lines(1, 18.0)});
+    let small = json!({"drones": 2, "plan": qgc_lines(1, 18.0)});
     assert_eq!(swarmed(small), Some(Cornering::FixedWing));
     assert_eq!(swarmed(json!({"drones": 2, "duration": 60})), None);
 }

@@ -444,7 +444,9 @@ fn a_drone_listening_to_its_channel_sends_as_before_alone_and_less_in_a_crowd() 
 fn swarms_sharing_their_drones_filter_runs_report_what_each_reports_alone() {
     use loratrack::api::swarm_sharing;
     use loratrack::SharedDroneRuns;
-    let base = json!({"duration": 120.0, "model": "3d-ctra", "seed": 4});
+    let base = json!({"model": "3d-ctra", "seed": 4});
+    // Chained flights of 120 s; a chosen flight is flown whole (a duration is refused with it).
+    let chained = json!({"duration": 120.0});
     // Growing and shrinking, the network changed between them, and a chosen flight (each drone
     // flies it from its own bearing): every drone's estimates come from `shared` after the first.
     // Their stations' errors too, where kept, from the packets delivered alike: the paper's and
@@ -467,7 +469,11 @@ fn swarms_sharing_their_drones_filter_runs_report_what_each_reports_alone() {
         SharedDroneRuns::new(usize::MAX).with_station_errors(),
     ] {
         for change in &changes {
-            let p = set(&set(&Scenario::default(), base.clone()), change.clone());
+            let mut p = set(&Scenario::default(), base.clone());
+            if change.get("synthetic").is_none() {
+                p = set(&p, chained.clone());
+            }
+            let p = set(&p, change.clone());
             assert_eq!(
                 swarm_sharing(&p, &shared).unwrap(),
                 swarm(&p).unwrap(),
@@ -608,33 +614,28 @@ fn the_swarm_text_says_which_drones_packets_saturated_as_the_json_pools_them() {
     assert!(!text.contains("\nsaturated: "), "{text}");
 }
 
-/// A swarm flying a chosen flight flies it whole, whatever `duration` says (it is for chained
-/// synthetic flights): `flightTime` and the text's first line give the flight's length, and the
-/// swarm is the same at any duration; chained flights last `duration`.
+/// A swarm flying a chosen flight flies it whole: `flightTime` and the text's first line give the
+/// flight's length, and a `duration` (which sets how long chained synthetic flights last) given
+/// with it is refused with that length, where it would have been ignored; chained flights last
+/// `duration`.
 #[test]
 fn a_swarm_of_a_chosen_flight_flies_it_whole_and_says_how_long() {
-    let run = |duration: &str| {
-        let args = [
-            "swarm",
-            "--sample",
-            "canberra",
-            "--drones",
-            "4",
-            "--duration",
-            duration,
-        ];
-        let text = String::from_utf8(crate::cli(&args).stdout).unwrap();
-        let out = crate::cli(&[&args[..], &["--json"]].concat());
-        let json: Value = serde_json::from_slice(&out.stdout).unwrap();
-        (text, json)
-    };
-    let ((text, short), (_, long)) = (run("120"), run("1200"));
+    let args = ["swarm", "--sample", "canberra", "--drones", "4"];
+    let text = String::from_utf8(crate::cli(&args).stdout).unwrap();
+    let out = crate::cli(&[&args[..], &["--json"]].concat());
+    let json: Value = serde_json::from_slice(&out.stdout).unwrap();
     let length = loratrack::canberra_flight().duration();
-    assert_eq!(short["flightTime"], json!(length));
-    assert_eq!(long["flightTime"], json!(length));
-    assert_eq!(short["error3d"], long["error3d"]);
+    assert_eq!(json["flightTime"], json!(length));
     let said = format!("4 drones each flying canberra ({length:.0} s), at 1000 m");
     assert!(text.starts_with(&said), "{text}");
+
+    let refused = crate::cli(&[&args[..], &["--duration", "1200"]].concat());
+    assert_eq!(refused.status.code(), Some(2));
+    let error = String::from_utf8(refused.stderr).unwrap();
+    let why = format!("flies the chosen flight whole ({length:.0} s): leave --duration out");
+    assert!(error.starts_with("error: --duration (1200 s)"), "{error}");
+    assert!(error.contains(&why), "{error}");
+
     let chained = crate::cli(&["swarm", "--drones", "4", "--duration", "120", "--json"]);
     let chained: Value = serde_json::from_slice(&chained.stdout).unwrap();
     assert_eq!(chained["flightTime"], json!(120.0));

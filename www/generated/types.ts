@@ -1855,7 +1855,7 @@ export const OPTIONS: NumberOption[] = [
     "aboveMin": false,
     "integer": false,
     "values": [],
-    "help": "Seconds of flight per drone when the drones fly chained synthetic flights.",
+    "help": "Seconds of flight per drone when the drones fly chained synthetic flights (refused with a chosen flight, flown whole).",
     "listedWhenChanged": false
   },
   {

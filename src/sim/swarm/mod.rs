@@ -35,7 +35,7 @@ use super::{Caveats, LongRun, Saturation, SimError, Transmission};
 use crate::lora::{time_on_air, AdrMode, LoraParams, Outcome};
 use crate::math::sin_cos;
 use crate::metrics::{percentile, sort_total, Summary, WholeFlightError};
-use crate::options::MAX_SWARM_FILTER_STEPS;
+use crate::options::{DURATION, MAX_SWARM_FILTER_STEPS};
 use crate::parallel::par_map;
 use crate::rng::Rng;
 use crate::trajectory::{chain_flights, FlightPlan, Trajectory};
@@ -243,6 +243,7 @@ impl<'a> Swarm<'a> {
         }
         let model = cfg.swarm_station()?;
         let plan = plan(cfg)?;
+        check_duration(cfg, &plan)?;
         check_length(cfg, &plan)?;
         let deal = SfDeal::of(cfg, model);
         let mut radios = Vec::with_capacity(s.swarm.drones);
@@ -624,6 +625,24 @@ fn collision_theory(drones: &[DroneReport], by_sf: &[usize; 6], channels: u8) ->
     } else {
         theory / sent as f64
     }
+}
+
+/// Refuses a `duration` given with a chosen flight, which every drone flies whole: the duration
+/// only sets how long chained synthetic flights last (as `simulate` refuses a swarm's settings),
+/// so a swarm never says it flew for a time it did not.
+fn check_duration(cfg: &Validated, plan: &Plan) -> Result<(), SimError> {
+    let duration = cfg.s().swarm.duration;
+    if cfg.source.is_some() && duration != DURATION.default {
+        let chosen = match plan.flights.len() {
+            1 => "the chosen flight".to_string(),
+            n => format!("the {n} chosen flights"),
+        };
+        return Err(SimError::Source(format!(
+            "`duration` ({duration} s) is how long chained synthetic flights last; every drone flies {chosen} whole ({:.0} s): leave `duration` out",
+            plan.flight_time()
+        )));
+    }
+    Ok(())
 }
 
 /// Refuses a swarm whose filters would take more than [`MAX_SWARM_FILTER_STEPS`] steps, with how
