@@ -110,6 +110,11 @@ fn a_refusal_says_which_value_of_its_setting_fits() {
         ("maxInterval", needed.into()),
     ]);
     assert!(wasm::simulate(kept, JsValue::UNDEFINED).is_ok());
+    // A setting nothing would read, by its key, with what makes it apply.
+    let unread = obj(&[("synthetic", 1.into()), ("threshold", 5.into())]);
+    let e = wasm::simulate(unread, JsValue::UNDEFINED).unwrap_err();
+    assert_eq!(setting(&e).as_deref(), Some("threshold"));
+    assert!(error_message(e).ends_with("set sender to error"));
     // A swarm too long for its drones: as many as fit (refused before it flies).
     let e = wasm::swarm(
         obj(&[

@@ -54,7 +54,9 @@ pub struct SenderSweepReport {
 /// Runs `base` (its first model) with the periodic sender, then with the error-triggered sender
 /// at each of [`SENDER_THRESHOLDS`] under the per-packet rule and under a budget of `burst`
 /// packets, each beside the periodic sender slowed to its airtime (the duty cycle times its
-/// airtime share). Drone filters run once; every other run reuses them.
+/// airtime share). Drone filters run once; every other run reuses them. The error-triggered
+/// sender takes its heartbeat, listening and payload from `base.sending` (whose sender may be
+/// either); the periodic one its payload.
 pub fn sweep_senders(
     sim: &mut Simulator,
     base: &Scenario,
@@ -67,11 +69,7 @@ pub fn sweep_senders(
         let mut r = super::simulate(sim, &p)?;
         Ok(r.results.swap_remove(0))
     };
-    let periodic_sending = Sending {
-        sender: SenderKind::Periodic,
-        duty_cycle_mode: DutyCycleMode::PerPacket,
-        ..base.sending
-    };
+    let periodic_sending = base.sending.periodic();
     let duty_cycle = base.radio.duty_cycle;
     let periodic = run(periodic_sending, duty_cycle)?;
     let mut points = Vec::new();
@@ -84,7 +82,12 @@ pub fn sweep_senders(
                 sender: SenderKind::Error,
                 threshold,
                 duty_cycle_mode: mode,
-                burst: k,
+                // The per-packet rule has no burst (it is the budget's with one packet).
+                burst: if mode == DutyCycleMode::Budget {
+                    k
+                } else {
+                    periodic_sending.burst
+                },
                 ..base.sending
             };
             let result = run(sending, duty_cycle)?;
@@ -132,7 +135,12 @@ pub fn sweep_senders_at(
 ) -> Result<SenderSweepReport, ApiError> {
     let mut p = base.clone();
     (p.radio.sf, p.radio.bw, p.channel.distance) = (sf, bw, distance);
-    let v = p.validate()?;
+    // The interval is the periodic sender's: the base may carry error-triggered settings.
+    let periodic = Scenario {
+        sending: p.sending.periodic(),
+        ..p.clone()
+    };
+    let v = periodic.validate()?;
     let (radio, _) = v.drone_radio(&v.radio, v.models[0])?;
     let interval = radio.current().interval;
     p.sending.max_interval = p.sending.max_interval.max(HEARTBEAT_INTERVALS * interval);

@@ -50,6 +50,17 @@ pub enum SimError {
         /// Which run, with what its remedy names.
         run: LongRun,
     },
+    /// A setting changed from its default where it changes nothing (a `threshold` while sending
+    /// periodically): refused, as `dutyCycle` is without a duty cycle, so that no run goes ahead
+    /// on other settings than those it was given.
+    Unused {
+        /// The setting's key (`threshold`).
+        setting: &'static str,
+        /// Whose setting it is ("error-triggered sending's").
+        whose: &'static str,
+        /// What makes it apply ("set `sender` to error").
+        remedy: &'static str,
+    },
     /// The run's progress callback asked it to stop ([`Simulator::run_stoppable`]).
     ///
     /// [`Simulator::run_stoppable`]: super::Simulator::run_stoppable
@@ -95,6 +106,11 @@ impl fmt::Display for SimError {
                 as_given(*max_interval)
             ),
             SimError::Source(msg) => f.write_str(msg),
+            SimError::Unused {
+                setting,
+                whose,
+                remedy,
+            } => write!(f, "`{setting}` is {whose}: {remedy}"),
             SimError::Stopped => f.write_str("the run was stopped by its progress callback"),
             SimError::Seed(seed) => write!(
                 f,
@@ -227,6 +243,7 @@ impl SimError {
             SimError::OutOfRange(e) => Some(e.option.key),
             SimError::Parameter(name, ..) => Some(name),
             SimError::Heartbeat { .. } => Some("maxInterval"),
+            SimError::Unused { setting, .. } => Some(setting),
             SimError::Seed(_) => Some("seed"),
             SimError::Seeds { .. } => Some("seeds"),
             SimError::AdrStart(..) => Some("adr"),

@@ -840,6 +840,17 @@ test('the bounded and IMM stations and error-triggered sending are one control a
   await until(page, () => /\(5 m, heartbeat 10 s\)/.test(document.querySelector('#results-table caption')?.textContent ?? ''));
   assert.equal(await tableHtml(page), before);
   assert.match(page.url(), /channelSense=off/);
+  // Back to periodic sending: the form keeps the threshold and listening (hidden) but does not
+  // send them, which the core would refuse as settings nothing reads; the run and its command
+  // line are periodic sending's.
+  const listening = await tableHtml(page);
+  await page.getByLabel('Sending').selectOption('periodic');
+  await waitForResults(page, listening);
+  assert.equal(number((await cell(page, '3d-ctra', 'packets')).split('/')[1]), periodicSent);
+  await page.locator('[data-panel="results"] details.explain summary').click();
+  const line = await page.locator('[data-command="results"] code').textContent();
+  assert.doesNotMatch(line, /--threshold|--channel-sense|--sender/, line);
+  assert.doesNotMatch(await page.locator('#status').textContent(), /threshold|channelSense/);
   assert.deepEqual(problems, []);
 });
 

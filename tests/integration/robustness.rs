@@ -556,6 +556,49 @@ fn the_cli_names_a_refused_setting_by_its_flag_not_its_js_key() {
     assert!(err.starts_with("error: gateways must be 1..16"), "{err}");
 }
 
+/// A setting changed from its default where nothing reads it is refused, naming what makes it
+/// apply (as `--duty-cycle` without a duty cycle is), where it was once ignored: the run would
+/// have gone ahead on other settings than those typed. With that setting given it runs.
+#[test]
+fn a_setting_that_would_change_nothing_is_refused_with_what_makes_it_apply() {
+    let run = |args: &[&str]| cli(&[&["simulate", "--synthetic", "1"][..], args].concat());
+    for (given, enabling) in [
+        (&["--threshold", "3"][..], &["--sender", "error"][..]),
+        (&["--max-interval", "20"], &["--sender", "error"]),
+        (&["--channel-sense", "off"], &["--sender", "error"]),
+        (&["--burst", "4"], &["--duty-cycle-mode", "budget"]),
+        (&["--adr-margin", "15"], &["--adr", "lorawan"]),
+        (&["--adr-history", "10"], &["--adr", "lorawan"]),
+        (&["--plan-tolerance", "30"], &["--model", "mission"]),
+    ] {
+        let refused = run(given);
+        assert_eq!(refused.status.code(), Some(2), "{given:?}");
+        let err = String::from_utf8_lossy(&refused.stderr).into_owned();
+        assert!(
+            err.starts_with(&format!("error: {} is ", given[0])),
+            "{err}"
+        );
+        let remedy = match enabling[0] {
+            "--model" => format!("add mission to {}", enabling[0]),
+            flag => format!("set {flag} to {}", enabling[1]),
+        };
+        assert!(err.ends_with(&format!(": {remedy}\n")), "{err}");
+        let ran = run(&[given, enabling].concat());
+        assert_eq!(ran.status.code(), Some(0), "{given:?} {enabling:?}");
+    }
+    // The swarm refuses them alike; the ADR's with tracking ADR too, which has no margin.
+    let out = cli(&[
+        "swarm",
+        "--drones",
+        "2",
+        "--adr",
+        "tracking",
+        "--adr-margin",
+        "15",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+}
+
 #[test]
 fn negative_numbers_are_numbers_and_refused_by_their_own_field() {
     refused(
@@ -1192,15 +1235,34 @@ fn simulates_header_names_every_numeric_setting_changed_from_its_default() {
         ("drones", "a swarm's"),
         ("duration", "a swarm's"),
         ("channels", "a swarm's header"),
-        ("threshold", "the stations line, with --sender error"),
-        ("maxInterval", "the stations line, with --sender error"),
-        ("burst", "the stations line, with --duty-cycle-mode budget"),
+        (
+            "threshold",
+            "the stations line, with --sender error (refused without)",
+        ),
+        (
+            "maxInterval",
+            "the stations line, with --sender error (refused without)",
+        ),
+        (
+            "burst",
+            "the stations line, with --duty-cycle-mode budget (refused without)",
+        ),
         (
             "interval",
             "a plan without a duty cycle's (EU868 refuses it)",
         ),
-        ("adrMargin", "the header's ADR, with --adr lorawan"),
-        ("adrHistory", "the header's ADR, with --adr lorawan"),
+        (
+            "adrMargin",
+            "the header's ADR, with --adr lorawan (refused without)",
+        ),
+        (
+            "adrHistory",
+            "the header's ADR, with --adr lorawan (refused without)",
+        ),
+        (
+            "planTolerance",
+            "the mission station's (refused without it)",
+        ),
     ];
     let header = |extra: &[&str]| {
         let out = cli(&[&["simulate", "--synthetic", "1"][..], extra].concat());

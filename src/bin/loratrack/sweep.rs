@@ -115,6 +115,23 @@ pub(crate) fn sweep(a: SweepArgs) -> Result<String, ApiError> {
             names.join(",")
         )));
     }
+    // The sender sweep's own settings: any other sweep would drop them without a word.
+    let senders_own = [
+        (
+            "--burst",
+            f64::from(a.burst),
+            f64::from(loratrack::DEFAULT_BURST),
+        ),
+        ("--max-interval", a.max_interval, opt::MAX_INTERVAL.default),
+    ];
+    if let Some((flag, ..)) = senders_own
+        .iter()
+        .find(|(_, v, d)| !a.kind.senders && v != d)
+    {
+        return Err(ApiError::Invalid(format!(
+            "{flag} is the sender sweep's: add --senders"
+        )));
+    }
     if a.kind.senders {
         return sweep_senders(&a, model, predictions[0], &count);
     }
@@ -398,8 +415,9 @@ fn sweep_swarm(
                 },
                 sending: Sending {
                     sender,
-                    // The heartbeat must cover the slowest drone's interval: SF12's with spread SFs.
-                    max_interval: if plan == SfPlan::Spread {
+                    // The heartbeat must cover the slowest drone's interval: SF12's with spread
+                    // SFs (error-triggered sending's own: a periodic drone has none).
+                    max_interval: if plan == SfPlan::Spread && sender == SenderKind::Error {
                         150.0
                     } else {
                         opt::MAX_INTERVAL.default

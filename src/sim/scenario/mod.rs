@@ -790,7 +790,19 @@ impl NetworkSettings {
         }
         opt::ADR_MARGIN.check(self.adr_margin)?;
         opt::ADR_HISTORY.check(self.adr_history as f64)?;
-        Ok(channels)
+        let defaults = NetworkSettings::default();
+        let lorawan = [
+            ("adrMargin", self.adr_margin != defaults.adr_margin),
+            ("adrHistory", self.adr_history != defaults.adr_history),
+        ];
+        match lorawan.iter().find(|(_, changed)| *changed) {
+            Some(&(setting, _)) if self.adr != AdrMode::Lorawan => Err(SimError::Unused {
+                setting,
+                whose: "LoRaWAN ADR's",
+                remedy: "set `adr` to lorawan",
+            }),
+            _ => Ok(channels),
+        }
     }
 }
 
@@ -807,6 +819,14 @@ impl StationSettings {
         opt::STEP.check(self.step)?;
         opt::ETA.check(self.eta)?;
         opt::PLAN_TOLERANCE.check(self.plan_tolerance)?;
+        let mission = self.model.models().contains(&StationModel::Mission);
+        if !mission && self.plan_tolerance != opt::PLAN_TOLERANCE.default {
+            return Err(SimError::Unused {
+                setting: "planTolerance",
+                whose: "the mission station's",
+                remedy: "add mission to `model`",
+            });
+        }
         // The paper's station has no hedge to choose (its q is the drone's, on every component).
         if self.heading_noise == HeadingNoise::Adaptive && self.prediction != Prediction::Bounded {
             return Err(SimError::Source(

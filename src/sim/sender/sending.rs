@@ -94,12 +94,45 @@ impl Default for Sending {
 }
 
 impl Sending {
-    /// Checks each setting against its limits.
+    /// Checks each setting against its limits, and that each one changed from its default
+    /// applies: error-triggered sending's with that sender, the budget's burst with the budget.
     pub fn validate(&self) -> Result<(), SimError> {
         THRESHOLD.check(self.threshold)?;
         MAX_INTERVAL.check(self.max_interval)?;
         BURST.check(f64::from(self.burst))?;
+        let defaults = Sending::default();
+        if self.sender != SenderKind::Error {
+            let error_triggered = [
+                ("threshold", self.threshold != defaults.threshold),
+                ("maxInterval", self.max_interval != defaults.max_interval),
+                ("channelSense", self.channel_sense != defaults.channel_sense),
+            ];
+            if let Some(&(setting, _)) = error_triggered.iter().find(|(_, changed)| *changed) {
+                return Err(SimError::Unused {
+                    setting,
+                    whose: "error-triggered sending's",
+                    remedy: "set `sender` to error",
+                });
+            }
+        }
+        if self.duty_cycle_mode != DutyCycleMode::Budget && self.burst != defaults.burst {
+            return Err(SimError::Unused {
+                setting: "burst",
+                whose: "the budget duty-cycle rule's",
+                remedy: "set `dutyCycleMode` to budget",
+            });
+        }
         Ok(())
+    }
+
+    /// Periodic sending under the per-packet rule with these settings' payload: the sender an
+    /// error-triggered one is compared with (its threshold, heartbeat, listening and burst are
+    /// none of periodic sending's, which refuses them).
+    pub fn periodic(&self) -> Sending {
+        Sending {
+            payload: self.payload,
+            ..Sending::default()
+        }
     }
 
     /// The duty-cycle rule for packets of `time_on_air` s at `duty_cycle`, from time 0: the
@@ -132,5 +165,73 @@ impl Sending {
                 self.channel_sense,
             )),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn periodic_sending_refuses_the_settings_only_error_triggered_sending_reads() {
+        let changed = [
+            Sending {
+                threshold: 5.0,
+                ..Sending::default()
+            },
+            Sending {
+                max_interval: 30.0,
+                ..Sending::default()
+            },
+            Sending {
+                channel_sense: ChannelSense::Off,
+                ..Sending::default()
+            },
+        ];
+        for sending in changed {
+            let e = sending.validate().unwrap_err();
+            assert!(matches!(e, SimError::Unused { .. }), "{e}");
+            let error = Sending {
+                sender: SenderKind::Error,
+                ..sending
+            };
+            assert_eq!(error.validate(), Ok(()));
+        }
+    }
+
+    #[test]
+    fn a_burst_is_refused_without_the_budget_rule() {
+        let burst = Sending {
+            burst: 4,
+            ..Sending::default()
+        };
+        assert_eq!(burst.validate().unwrap_err().setting(), Some("burst"));
+        let budget = Sending {
+            duty_cycle_mode: DutyCycleMode::Budget,
+            ..burst
+        };
+        assert_eq!(budget.validate(), Ok(()));
+    }
+
+    #[test]
+    fn the_periodic_sender_of_error_triggered_settings_keeps_only_their_payload() {
+        let error = Sending {
+            sender: SenderKind::Error,
+            threshold: 5.0,
+            max_interval: 30.0,
+            channel_sense: ChannelSense::Off,
+            duty_cycle_mode: DutyCycleMode::Budget,
+            payload: PayloadChoice::Lean,
+            burst: 4,
+        };
+        let periodic = error.periodic();
+        assert_eq!(periodic.validate(), Ok(()));
+        assert_eq!(
+            periodic,
+            Sending {
+                payload: PayloadChoice::Lean,
+                ..Sending::default()
+            }
+        );
     }
 }
