@@ -570,6 +570,7 @@ fn a_setting_that_would_change_nothing_is_refused_with_what_makes_it_apply() {
         (&["--adr-margin", "15"], &["--adr", "lorawan"]),
         (&["--adr-history", "10"], &["--adr", "lorawan"]),
         (&["--plan-tolerance", "30"], &["--model", "mission"]),
+        (&["--plan-pace", "packet"], &["--model", "mission"]),
     ] {
         let refused = run(given);
         assert_eq!(refused.status.code(), Some(2), "{given:?}");

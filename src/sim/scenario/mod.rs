@@ -820,12 +820,22 @@ impl StationSettings {
         opt::ETA.check(self.eta)?;
         opt::PLAN_TOLERANCE.check(self.plan_tolerance)?;
         let mission = self.model.models().contains(&StationModel::Mission);
-        if !mission && self.plan_tolerance != opt::PLAN_TOLERANCE.default {
-            return Err(SimError::Unused {
-                setting: "planTolerance",
-                whose: "the mission station's",
-                remedy: "add mission to `model`",
-            });
+        let mission_own = [
+            (
+                "planTolerance",
+                self.plan_tolerance != opt::PLAN_TOLERANCE.default,
+            ),
+            ("planPace", self.plan_pace != PlanPace::default()),
+        ];
+        match mission_own.iter().find(|(_, changed)| *changed) {
+            Some(&(setting, _)) if !mission => {
+                return Err(SimError::Unused {
+                    setting,
+                    whose: "the mission station's",
+                    remedy: "add mission to `model`",
+                })
+            }
+            _ => {}
         }
         // The paper's station has no hedge to choose (its q is the drone's, on every component).
         if self.heading_noise == HeadingNoise::Adaptive && self.prediction != Prediction::Bounded {
