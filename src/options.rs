@@ -495,7 +495,7 @@ pub const DURATION: NumberOption = NumberOption::new(
     600.0,
     10.0,
     3600.0,
-    "Seconds of flight per drone when the drones fly chained synthetic flights (refused with a chosen flight, flown whole)."
+    "Seconds of flight per drone when the drones fly chained synthetic flights (refused with a chosen flight, flown whole).",
 );
 /// Seed of every random draw.
 pub const SEED: NumberOption = NumberOption::new(

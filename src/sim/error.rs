@@ -201,6 +201,25 @@ pub enum LongRun {
 impl std::error::Error for SimError {}
 
 impl SimError {
+    /// [`SimError::Unused`] for the first of `settings` (each its key and whether it was changed
+    /// from its default) that was changed, unless they apply; `whose` they are and the `remedy`
+    /// that makes them apply as that variant words them.
+    pub(crate) fn unless_read(
+        applies: bool,
+        settings: &[(&'static str, bool)],
+        whose: &'static str,
+        remedy: &'static str,
+    ) -> Result<(), SimError> {
+        match settings.iter().find(|(_, changed)| *changed) {
+            Some(&(setting, _)) if !applies => Err(SimError::Unused {
+                setting,
+                whose,
+                remedy,
+            }),
+            _ => Ok(()),
+        }
+    }
+
     /// For a run too long only for how many times it flies, the setting that counts them and how
     /// many would fit: a `simulate` run's seeds (the whole synthetic set at the default rates:
     /// 18), a swarm's drones. `None` for any other error, or where one is already too long.

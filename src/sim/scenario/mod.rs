@@ -791,18 +791,16 @@ impl NetworkSettings {
         opt::ADR_MARGIN.check(self.adr_margin)?;
         opt::ADR_HISTORY.check(self.adr_history as f64)?;
         let defaults = NetworkSettings::default();
-        let lorawan = [
-            ("adrMargin", self.adr_margin != defaults.adr_margin),
-            ("adrHistory", self.adr_history != defaults.adr_history),
-        ];
-        match lorawan.iter().find(|(_, changed)| *changed) {
-            Some(&(setting, _)) if self.adr != AdrMode::Lorawan => Err(SimError::Unused {
-                setting,
-                whose: "LoRaWAN ADR's",
-                remedy: "set `adr` to lorawan",
-            }),
-            _ => Ok(channels),
-        }
+        SimError::unless_read(
+            self.adr == AdrMode::Lorawan,
+            &[
+                ("adrMargin", self.adr_margin != defaults.adr_margin),
+                ("adrHistory", self.adr_history != defaults.adr_history),
+            ],
+            "LoRaWAN ADR's",
+            "set `adr` to lorawan",
+        )?;
+        Ok(channels)
     }
 }
 
@@ -819,24 +817,18 @@ impl StationSettings {
         opt::STEP.check(self.step)?;
         opt::ETA.check(self.eta)?;
         opt::PLAN_TOLERANCE.check(self.plan_tolerance)?;
-        let mission = self.model.models().contains(&StationModel::Mission);
-        let mission_own = [
-            (
-                "planTolerance",
-                self.plan_tolerance != opt::PLAN_TOLERANCE.default,
-            ),
-            ("planPace", self.plan_pace != PlanPace::default()),
-        ];
-        match mission_own.iter().find(|(_, changed)| *changed) {
-            Some(&(setting, _)) if !mission => {
-                return Err(SimError::Unused {
-                    setting,
-                    whose: "the mission station's",
-                    remedy: "add mission to `model`",
-                })
-            }
-            _ => {}
-        }
+        SimError::unless_read(
+            self.model.models().contains(&StationModel::Mission),
+            &[
+                (
+                    "planTolerance",
+                    self.plan_tolerance != opt::PLAN_TOLERANCE.default,
+                ),
+                ("planPace", self.plan_pace != PlanPace::default()),
+            ],
+            "the mission station's",
+            "add mission to `model`",
+        )?;
         // The paper's station has no hedge to choose (its q is the drone's, on every component).
         if self.heading_noise == HeadingNoise::Adaptive && self.prediction != Prediction::Bounded {
             return Err(SimError::Source(

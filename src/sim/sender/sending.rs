@@ -101,27 +101,22 @@ impl Sending {
         MAX_INTERVAL.check(self.max_interval)?;
         BURST.check(f64::from(self.burst))?;
         let defaults = Sending::default();
-        if self.sender != SenderKind::Error {
-            let error_triggered = [
+        SimError::unless_read(
+            self.sender == SenderKind::Error,
+            &[
                 ("threshold", self.threshold != defaults.threshold),
                 ("maxInterval", self.max_interval != defaults.max_interval),
                 ("channelSense", self.channel_sense != defaults.channel_sense),
-            ];
-            if let Some(&(setting, _)) = error_triggered.iter().find(|(_, changed)| *changed) {
-                return Err(SimError::Unused {
-                    setting,
-                    whose: "error-triggered sending's",
-                    remedy: "set `sender` to error",
-                });
-            }
-        }
-        if self.duty_cycle_mode != DutyCycleMode::Budget && self.burst != defaults.burst {
-            return Err(SimError::Unused {
-                setting: "burst",
-                whose: "the budget duty-cycle rule's",
-                remedy: "set `dutyCycleMode` to budget",
-            });
-        }
+            ],
+            "error-triggered sending's",
+            "set `sender` to error",
+        )?;
+        SimError::unless_read(
+            self.duty_cycle_mode == DutyCycleMode::Budget,
+            &[("burst", self.burst != defaults.burst)],
+            "the budget duty-cycle rule's",
+            "set `dutyCycleMode` to budget",
+        )?;
         Ok(())
     }
 
