@@ -4,7 +4,7 @@
 import { isLoaded, linkBudget, MODEL_LABELS, PAYLOAD_BYTES, stationsOf, timeOnAir, type GatewaySite, type Region } from './loratrack';
 import { $ } from './dom';
 import { listed } from './format';
-import { ADR_START_REASON, adrCanStart, DEFAULTS, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, MISSION_REASON, overheadBytes, packetPlan, plan, planAllows, planKnown, planReason, runsMission, type FlightChoice, type Settings } from './state';
+import { ADR_START_REASON, adrCanStart, decaysTilt, DEFAULTS, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, MISSION_REASON, overheadBytes, packetPlan, plan, planAllows, planKnown, planReason, runsMission, type FlightChoice, type Settings } from './state';
 import { store } from './store';
 
 export const form = $<HTMLFormElement>('#controls');
@@ -158,6 +158,8 @@ export function showConditional(): void {
   for (const el of document.querySelectorAll<HTMLElement>('[data-when]')) el.hidden = !el.dataset.when!.split(' ').includes(field('flight').value);
   for (const el of document.querySelectorAll<HTMLElement>('[data-when-sender]')) el.hidden = el.dataset.whenSender !== field('sender').value;
   for (const el of document.querySelectorAll<HTMLElement>('[data-when-prediction]')) el.hidden = el.dataset.whenPrediction !== field('prediction').value;
+  // Only 3D-CTRA (and the stations that run it) decays the tilt rate.
+  for (const el of document.querySelectorAll<HTMLElement>('[data-when-model]')) el.hidden = !decaysTilt(field('model').value);
   const km = `${(Number(field('distance').value) / 1000).toFixed(1)} km`;
   $('#distance-value').textContent = km;
   // Screen readers hear the distance with its unit, not a bare number of metres.

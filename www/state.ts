@@ -135,6 +135,13 @@ export function planKnown(flight: FlightChoice, uploadedPlan = false): boolean {
   return flight === 'synthetic' || flight === 'all' || (uploaded(flight) && uploadedPlan);
 }
 
+/** Whether a model choice runs a station that decays the tilt rate by `eta`: 3D-CTRA, and the
+ * IMM and mission stations, which run it (the core's `StationModel::sent_model`; it refuses
+ * `eta` changed for the others). */
+export function decaysTilt(model: ModelChoice): boolean {
+  return (Array.isArray(model) ? model : model.split(',')).some((m) => ['all', '3d-ctra', 'imm', 'mission'].includes(m));
+}
+
 /** Whether a model choice runs the mission station. */
 export function runsMission(model: ModelChoice): boolean {
   return (Array.isArray(model) ? model : model.split(',')).includes('mission');
@@ -336,7 +343,8 @@ export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { te
     shadowingModel: s.shadowingModel,
     sensorRate: s.sensorRate,
     step: s.step,
-    eta: s.eta,
+    // Kept in the form where no station decays the tilt rate (the core refuses it there).
+    ...(decaysTilt(s.model) ? { eta: s.eta } : {}),
     gateways: s.gateways,
   };
 }

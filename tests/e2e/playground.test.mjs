@@ -876,6 +876,29 @@ test('the bounded station offers an adaptive heading noise, with the CLI\'s numb
   assert.deepEqual(problems, []);
 });
 
+test('the tilt decay is offered and sent only where a station decays the tilt rate, as the core reads it', async () => {
+  // A link with a tilt decay and DR alone: the core would refuse eta there, so the page keeps it
+  // (hidden) without sending it, and the run and its command line are DR's.
+  const { page, problems } = await open('?model=dr&eta=0.5');
+  await page.locator('#advanced > summary').click();
+  assert.equal(await page.getByLabel('Sensor rate (Hz)').isVisible(), true, 'the advanced settings are open');
+  assert.equal(await page.getByLabel('Tilt decay eta').isVisible(), false);
+  await page.locator('[data-panel="results"] details.explain summary').click();
+  const command = () => page.locator('[data-command="results"] code').textContent();
+  assert.doesNotMatch(await command(), /--eta/);
+  const cli = nativeJson(['simulate', '--synthetic', '1', '--model', 'dr']);
+  assert.equal((await cell(page, 'dr', 'p75')).split(' ')[0], cli.results[0].error3d.p75.toFixed(2));
+  // 3D-CTRA decays it: the field shows and the run takes it, as the CLI does.
+  const before = await tableHtml(page);
+  await page.getByLabel('Model', { exact: true }).selectOption('3d-ctra');
+  await waitForResults(page, before);
+  assert.equal(await page.getByLabel('Tilt decay eta').isVisible(), true);
+  assert.match(await command(), / --eta 0\.5/);
+  const tilted = nativeJson(['simulate', '--synthetic', '1', '--model', '3d-ctra', '--eta', '0.5']);
+  assert.equal((await cell(page, '3d-ctra', 'p75')).split(' ')[0], tilted.results[0].error3d.p75.toFixed(2));
+  assert.deepEqual(problems, []);
+});
+
 test('where packets are lost, an error-triggered run says what its silence rests on, with the table\'s share of losses', async () => {
   const { page, problems } = await open('?sender=error&distance=3000&prediction=bounded&model=3d-ctra');
   await idle(page);

@@ -587,6 +587,15 @@ fn a_setting_that_would_change_nothing_is_refused_with_what_makes_it_apply() {
         let ran = run(&[given, enabling].concat());
         assert_eq!(ran.status.code(), Some(0), "{given:?} {enabling:?}");
     }
+    // The tilt decay is 3D-CTRA's, which the default stations include, and the IMM's.
+    let dr = run(&["--model", "dr", "--eta", "0.5"]);
+    assert_eq!(dr.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&dr.stderr).into_owned();
+    assert!(err.ends_with(": add 3d-ctra to --model\n"), "{err}");
+    assert_eq!(
+        run(&["--model", "imm", "--eta", "0.5"]).status.code(),
+        Some(0)
+    );
     // The swarm refuses them alike; the ADR's with tracking ADR too, which has no margin.
     let out = cli(&[
         "swarm",

@@ -817,8 +817,15 @@ impl StationSettings {
         opt::STEP.check(self.step)?;
         opt::ETA.check(self.eta)?;
         opt::PLAN_TOLERANCE.check(self.plan_tolerance)?;
+        let models = self.model.models();
         SimError::unless_read(
-            self.model.models().contains(&StationModel::Mission),
+            models.iter().any(|m| m.sent_model() == ModelKind::Ctra3d),
+            &[("eta", self.eta != opt::ETA.default)],
+            "3D-CTRA's (and the IMM's and the mission station's, which run it)",
+            "add 3d-ctra to `model`",
+        )?;
+        SimError::unless_read(
+            models.contains(&StationModel::Mission),
             &[
                 (
                     "planTolerance",

@@ -1,0 +1,37 @@
+// The form keeps a setting whose control it hides (the threshold while sending periodically, the
+// tilt decay with DR alone), and the core refuses such a setting where nothing would read it: every
+// request the form makes must leave those out, whatever was left in the hidden fields.
+import { beforeAll, expect, test } from 'vitest';
+import { decaysTilt, DEFAULTS, MODEL_CHOICES, toParams } from '../../www/state';
+import { api, loadCore } from './core';
+
+beforeAll(loadCore);
+
+/** Settings with every hidden field changed from its default. */
+const leftBehind = { ...DEFAULTS, eta: 0.5, threshold: 5, maxInterval: 30, channelSense: 'off' as const };
+
+test('each station choice runs with every hidden setting changed, sending periodically and on error', () => {
+  for (const model of MODEL_CHOICES) {
+    for (const sender of ['periodic', 'error'] as const) {
+      const params = toParams({ ...leftBehind, model, sender });
+      expect(() => api.simulate(params), `${model}, ${sender}`).not.toThrow();
+      expect('threshold' in params, `${model}, ${sender}`).toBe(sender === 'error');
+    }
+  }
+});
+
+test('the tilt decay is sent exactly where the core reads it', () => {
+  for (const model of MODEL_CHOICES) {
+    const withEta = { ...toParams({ ...DEFAULTS, model }), eta: 0.5 };
+    const reads = (() => {
+      try {
+        api.simulate(withEta);
+        return true;
+      } catch (e) {
+        expect(String(e)).toMatch(/eta is 3D-CTRA's/);
+        return false;
+      }
+    })();
+    expect(decaysTilt(model), model).toBe(reads);
+  }
+});
