@@ -24,7 +24,9 @@ function save(blob: Blob, name: string): void {
   document.body.appendChild(a);
   a.click();
   a.remove();
-  setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+  // The browser fetches the file after the click returns; revoked a second later, a busy machine
+  // (a phone, a laptop presenting) had not always started to, and the download never came.
+  setTimeout(() => URL.revokeObjectURL(a.href), 60_000);
 }
 
 const csvCell = (v: string) => (/[",\n]/.test(v) ? `"${v.replace(/"/g, '""')}"` : v);
