@@ -1,6 +1,6 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
 import { MODEL_LABELS, OPTIONS, PAYLOAD_BYTES, PAYLOAD_FIELDS, type GatewayReport, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
-import { DEFAULTS, isNumericKey, LIMITS, overheadBytes, plan, sendingLimit, uploaded, type NumericKey, type Settings } from './state';
+import { decaysTilt, DEFAULTS, isNumericKey, LIMITS, overheadBytes, plan, sendingLimit, uploaded, type NumericKey, type Settings } from './state';
 import { store } from './store';
 
 /** A statistic with `digits` decimals, or a dash where there is none (an empty sample). */
@@ -133,7 +133,9 @@ export function planLimit(s: Pick<Settings, 'region' | 'access' | 'fairUse' | 'd
  * changed from its default. */
 export function describe(s: Settings): string {
   const limit = planLimit(s);
-  return `SF${s.sf}, ${s.bw} kHz${limit ? `, ${limit}` : ''}, ${link(s)}, ${prediction(s)}, ${sending(s)}${s.adr === 'off' ? '' : `, ${adrName(s.adr)}`}${advancedChanged(s).map((a) => `, ${a}`).join('')}`;
+  // A tilt decay kept in the form where no station reads it is not sent (`toParams`), nor said.
+  const advanced = advancedChanged(decaysTilt(s.model) ? s : { ...s, eta: DEFAULTS.eta });
+  return `SF${s.sf}, ${s.bw} kHz${limit ? `, ${limit}` : ''}, ${link(s)}, ${prediction(s)}, ${sending(s)}${s.adr === 'off' ? '' : `, ${adrName(s.adr)}`}${advanced.map((a) => `, ${a}`).join('')}`;
 }
 
 /** One line for a download's caption: the settings, flight, seed and version behind a chart. */

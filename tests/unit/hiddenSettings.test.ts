@@ -2,6 +2,7 @@
 // tilt decay with DR alone), and the core refuses such a setting where nothing would read it: every
 // request the form makes must leave those out, whatever was left in the hidden fields.
 import { beforeAll, expect, test } from 'vitest';
+import { describe } from '../../www/format';
 import { decaysTilt, DEFAULTS, MODEL_CHOICES, toParams } from '../../www/state';
 import { api, loadCore } from './core';
 
@@ -34,4 +35,9 @@ test('the tilt decay is sent exactly where the core reads it', () => {
     })();
     expect(decaysTilt(model), model).toBe(reads);
   }
+});
+
+test('a download caption names the tilt decay only where a station reads it', () => {
+  expect(describe({ ...DEFAULTS, model: '3d-ctra', eta: 0.5 })).toMatch(/eta 0\.5/);
+  expect(describe({ ...DEFAULTS, model: 'dr', eta: 0.5 })).not.toMatch(/eta/);
 });
