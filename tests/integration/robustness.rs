@@ -596,6 +596,11 @@ fn a_setting_that_would_change_nothing_is_refused_with_what_makes_it_apply() {
         run(&["--model", "imm", "--eta", "0.5"]).status.code(),
         Some(0)
     );
+    // The sender sweep's own settings, given to another sweep, which would drop them.
+    let sweep = cli(&["sweep", "--distances", "1000", "--burst", "4"]);
+    assert_eq!(sweep.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&sweep.stderr).into_owned();
+    assert_eq!(err, "error: --burst is the sender sweep's: add --senders\n");
     // The swarm refuses them alike; the ADR's with tracking ADR too, which has no margin.
     let out = cli(&[
         "swarm",
