@@ -162,8 +162,12 @@ export function showConditional(): void {
   for (const el of document.querySelectorAll<HTMLElement>('[data-when-model]')) el.hidden = !decaysTilt(field('model').value);
   const km = `${(Number(field('distance').value) / 1000).toFixed(1)} km`;
   $('#distance-value').textContent = km;
+  // Listed gateways replace the one gateway the distance places: the results then do not read it
+  // (the core refuses it), only the swarm, which spreads its drones that far around its centre.
+  const listed = gatewayRows.querySelector('.gateway-row') !== null;
+  $('#distance-help').textContent = listed ? DISTANCE_HELP_LISTED : DISTANCE_HELP;
   // Screen readers hear the distance with its unit, not a bare number of metres.
-  field('distance').setAttribute('aria-valuetext', `${km} to the gateway`);
+  field('distance').setAttribute('aria-valuetext', listed ? `${km}, the swarm's spread` : `${km} to the gateway`);
   const noDutyCycle = plan(field('region').value as Region).dutyCycle === null;
   for (const el of document.querySelectorAll<HTMLElement>('[data-when-plan]')) el.hidden = (el.dataset.whenPlan === 'interval') !== noDutyCycle;
   // The duty cycle is not the drone's to keep where it listens before talk instead.
@@ -289,6 +293,12 @@ for (const [key, l] of Object.entries(LIMITS)) {
 $('#overhead-bytes').textContent = String(overheadBytes({ lorawan: true }));
 
 const gatewayRows = $('#gateway-rows');
+
+/** The distance's hint: as the page words it for the one default gateway, and where gateways are
+ * listed. */
+const DISTANCE_HELP = $('#distance-help').textContent ?? '';
+const DISTANCE_HELP_LISTED =
+  "The gateways listed below (Gateways) replace the one gateway this distance places east of the flight's start, so the results do not read it; the swarm spreads its drones this far around its centre.";
 
 $('#add-gateway').addEventListener('click', () => {
   // The first added gateway keeps the default one where it was, so adding never moves it.

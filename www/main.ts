@@ -842,6 +842,8 @@ function swarmRequest(): { sizes: number[]; params: SwarmParams } {
   const { synthetic: _s, ...shared } = toParams(made);
   const params: SwarmParams = {
     ...shared,
+    // The drones' distance from the centre, which the swarm reads where gateways are listed too.
+    distance: made.distance,
     model: stationsOf(store.settings.model).length === 1 && !runsMission(store.settings.model) ? store.settings.model : 'all',
     // The real flight is flown whole (the panel hides the choice); the duration chains synthetic flights.
     ...(made.flight === 'canberra' ? {} : { duration: Number($<HTMLSelectElement>('#swarmDuration').value) }),

@@ -332,7 +332,9 @@ export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { te
     fairUse: s.fairUse,
     sf: s.sf,
     bw: s.bw,
-    distance: s.distance,
+    // Kept in the form where gateways are listed, which replace the one gateway it places (the
+    // core refuses it there; the swarm, which spreads its drones that far, adds it back).
+    ...(s.gateways.length ? {} : { distance: s.distance }),
     seed: s.seed,
     seeds: s.seeds,
     overhead: overheadBytes(s),

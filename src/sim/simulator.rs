@@ -18,7 +18,7 @@ use super::{LongRun, SimError};
 use crate::lora::Channel;
 use crate::math::pow;
 use crate::models::ModelKind;
-use crate::options::{MAX_FILTER_STEPS, SEEDS};
+use crate::options::{DISTANCE, MAX_FILTER_STEPS, SEEDS};
 use crate::parallel::{
     enough_tasks, par_map, par_map_costliest_first, par_map_owned, par_map_progressing, ticks,
 };
@@ -614,6 +614,13 @@ fn simulated_source(cfg: &Validated) -> Result<&TrajectorySource, SimError> {
             "`schedule` is a swarm setting: simulate's one drone has the air to itself".into(),
         ));
     }
+    // A swarm reads it with listed gateways too: its drones' distance from the centre.
+    SimError::unless_read(
+        s.network.gateways.is_empty(),
+        &[("distance", s.channel.distance != DISTANCE.default)],
+        "where the one default gateway stands, and the listed gateways replace it",
+        "leave `distance` out",
+    )?;
     cfg.source.as_ref().ok_or_else(|| {
         SimError::Source(
             "choose a flight: `trajectory` (CSV), `synthetic` (all or 1..30), `sample` (canberra) or a `plan` to fly"

@@ -495,7 +495,10 @@ test('gateways are added, moved and removed in the form; each is reported, kept 
   await until(page, () => !document.body.hasAttribute('data-busy') && !document.querySelector('[data-panel="results"].stale'));
   const download = await downloaded(page, page.getByRole('button', { name: /JSON/ }));
   const browserJson = JSON.parse(download.toString('utf8'));
-  assertDownloadIsCli(browserJson, ['--synthetic', '1', '--model', '3d-ctra', '--distance', '5000', '--gateway', '5000,0', '--gateway', '0,2500']);
+  // The distance, which the listed gateways replace, is neither sent nor in the command line; its
+  // hint says so (the swarm still reads it).
+  assertDownloadIsCli(browserJson, ['--synthetic', '1', '--model', '3d-ctra', '--gateway', '5000,0', '--gateway', '0,2500']);
+  assert.match(await page.locator('#distance-help').textContent(), /gateways listed below \(Gateways\) replace the one gateway this distance places/);
   // The distance chart places one gateway at each distance, not the two listed: it says so.
   await until(page, () => /one gateway at each distance; the results table rests on the 2 gateways listed/.test(document.querySelector('#distance-rests-on')?.textContent ?? ''));
   // An impossible coordinate is refused beside the form, and nothing runs.
@@ -511,6 +514,7 @@ test('gateways are added, moved and removed in the form; each is reported, kept 
   assert.doesNotMatch(page.url(), /gateways=/);
   assert.equal(await page.locator('#network-note').isHidden(), true);
   await until(page, () => !/gateways listed/.test(document.querySelector('#distance-rests-on')?.textContent ?? ''));
+  assert.match(await page.locator('#distance-help').textContent(), /^From the flight's start to the gateway\./);
   assert.deepEqual(problems, []);
 });
 

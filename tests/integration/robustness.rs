@@ -596,6 +596,43 @@ fn a_setting_that_would_change_nothing_is_refused_with_what_makes_it_apply() {
         run(&["--model", "imm", "--eta", "0.5"]).status.code(),
         Some(0)
     );
+    // Listed gateways replace the one `--distance` places, and a listed gateway's own height
+    // leaves `--gateway-height` to no one; the one default gateway, a gateway listed without a
+    // height and a swarm's drones (spread at the distance around the centre) read them.
+    let err = |out: std::process::Output| String::from_utf8_lossy(&out.stderr).into_owned();
+    let listed = ["--gateway", "500,0,20"];
+    assert_eq!(
+        err(run(&[&listed[..], &["--distance", "3000"]].concat())),
+        "error: --distance is where the one default gateway stands, and the listed gateways replace it: leave --distance out\n"
+    );
+    assert_eq!(
+        err(run(&[&listed[..], &["--gateway-height", "40"]].concat())),
+        "error: --gateway-height is the antenna height of every gateway not given its own: every listed gateway gives its own height; leave --gateway-height out\n"
+    );
+    for ran in [
+        run(&["--distance", "3000", "--gateway-height", "40"]),
+        run(&[
+            "--gateway",
+            "500,0,20",
+            "--gateway",
+            "0,500",
+            "--gateway-height",
+            "40",
+        ]),
+        cli(&[
+            "swarm",
+            "--drones",
+            "2",
+            "--duration",
+            "60",
+            "--gateway",
+            "500,0",
+            "--distance",
+            "3000",
+        ]),
+    ] {
+        assert_eq!(ran.status.code(), Some(0), "{}", err(ran));
+    }
     // The sender sweep's own settings, given to another sweep, which would drop them.
     let sweep = cli(&["sweep", "--distances", "1000", "--burst", "4"]);
     assert_eq!(sweep.status.code(), Some(2));

@@ -37,6 +37,15 @@ test('the tilt decay is sent exactly where the core reads it', () => {
   }
 });
 
+test('the distance is sent exactly where no gateway is listed, which the core reads it for', () => {
+  const far = { ...DEFAULTS, model: 'dr' as const, distance: 3000 };
+  const listed = toParams({ ...far, gateways: [{ east: 500, north: 0 }] });
+  expect('distance' in listed).toBe(false);
+  expect(() => api.simulate(listed)).not.toThrow();
+  expect(() => api.simulate({ ...listed, distance: 3000 })).toThrow(/distance is where the one default gateway stands/);
+  expect(toParams(far).distance).toBe(3000);
+});
+
 test('a download caption names the tilt decay only where a station reads it', () => {
   expect(describe({ ...DEFAULTS, model: '3d-ctra', eta: 0.5 })).toMatch(/eta 0\.5/);
   expect(describe({ ...DEFAULTS, model: 'dr', eta: 0.5 })).not.toMatch(/eta/);

@@ -90,3 +90,40 @@ pub fn validate_sites(sites: &[GatewaySite]) -> Result<(), SimError> {
     }
     sites.iter().try_for_each(GatewaySite::validate)
 }
+
+/// Refuses a default antenna height (`gatewayHeight`, m) changed from its default where no
+/// gateway takes it: every listed gateway gives its own (the one default gateway, when none is
+/// listed, takes it).
+pub(crate) fn check_default_height(sites: &[GatewaySite], height: f64) -> Result<(), SimError> {
+    SimError::unless_read(
+        sites.is_empty() || sites.iter().any(|g| g.height.is_none()),
+        &[("gatewayHeight", height != GATEWAY_HEIGHT.default)],
+        "the antenna height of every gateway not given its own",
+        "every listed gateway gives its own height; leave `gatewayHeight` out",
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn site(height: Option<f64>) -> GatewaySite {
+        GatewaySite {
+            east: 500.0,
+            north: 0.0,
+            height,
+        }
+    }
+
+    #[test]
+    fn a_default_height_is_refused_only_where_every_listed_gateway_gives_its_own() {
+        let changed = GATEWAY_HEIGHT.default + 10.0;
+        let refused = check_default_height(&[site(Some(20.0))], changed).unwrap_err();
+        assert_eq!(refused.setting(), Some("gatewayHeight"));
+        // The one default gateway, or a listed one without a height, takes it.
+        assert!(check_default_height(&[], changed).is_ok());
+        assert!(check_default_height(&[site(Some(20.0)), site(None)], changed).is_ok());
+        // Left at its default, it is no setting of the user's.
+        assert!(check_default_height(&[site(Some(20.0))], GATEWAY_HEIGHT.default).is_ok());
+    }
+}

@@ -18,6 +18,7 @@ pub use command_line::{CliCommand, FLIGHT_FILE, PLAN_FILE};
 pub use choices::{
     parse_seed, random_seed, ModelChoice, SyntheticChoice, TrajectorySource, MAX_SEED,
 };
+use gateways::check_default_height;
 pub use gateways::{validate_sites, GatewaySite};
 
 use super::drone::Sensing;
@@ -225,8 +226,9 @@ impl Default for RadioSettings {
 #[cfg_attr(cli, derive(clap::Args))]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct ChannelSettings {
-    /// simulate: distance from the flight's first point to the default gateway; swarm: every
-    /// drone's starting distance from the centre, m.
+    /// simulate: distance from the flight's first point to the default gateway (refused where
+    /// `gateways` are listed, which replace it); swarm: every drone's starting distance from the
+    /// centre, m.
     #[cfg_attr(cli, arg(long, default_value_t = opt::DISTANCE.default, help = opt::DISTANCE.cli_help(), allow_negative_numbers = true, value_parser = opt::number("distance")))]
     pub distance: f64,
     /// Path-loss exponent.
@@ -611,6 +613,7 @@ impl Scenario {
         r.validate()?;
         c.validate()?;
         let channels = n.validate(self.access.region)?;
+        check_default_height(&n.gateways, c.gateway_height)?;
         settings.network.channels = Some(channels);
         self.drone.validate()?;
         self.station.validate()?;
