@@ -609,11 +609,19 @@ fn simulated_source(cfg: &Validated) -> Result<&TrajectorySource, SimError> {
                 .into(),
         ));
     }
-    if s.access.schedule != Schedule::Aloha {
-        return Err(SimError::Source(
-            "`schedule` is a swarm setting: simulate's one drone has the air to itself".into(),
-        ));
-    }
+    // How a swarm's drones share the air: its schedule, its channels, and what survives when
+    // two frames meet (one drone's network hears no other frame).
+    SimError::unless_read(
+        false,
+        &[
+            ("schedule", s.access.schedule != Schedule::Aloha),
+            ("channels", cfg.channels != s.access.region.channels()),
+            ("capture", !s.network.capture),
+            ("interSf", !s.network.inter_sf),
+        ],
+        "a swarm setting",
+        "simulate's one drone has the air to itself",
+    )?;
     // A swarm reads it with listed gateways too: its drones' distance from the centre.
     SimError::unless_read(
         s.network.gateways.is_empty(),

@@ -33,7 +33,7 @@ fn a_one_drone_swarm_is_simulate_with_the_same_flight() {
             json!({"adr": "tracking", "sf": 9, "bw": 125, "distance": 4000}),
         ),
     ] {
-        let mut settings = json!({"synthetic": flight, "model": "3d-ctra", "channels": 1});
+        let mut settings = json!({"synthetic": flight, "model": "3d-ctra"});
         settings
             .as_object_mut()
             .unwrap()
@@ -42,6 +42,7 @@ fn a_one_drone_swarm_is_simulate_with_the_same_flight() {
         // With the paper's exact timing: a swarm's drones otherwise drift and jitter.
         settings.as_object_mut().unwrap().extend([
             ("drones".into(), json!(1)),
+            ("channels".into(), json!(1)),
             ("sfPlan".into(), json!("fixed")),
             ("jitter".into(), json!(0)),
             ("clockDrift".into(), json!(0)),

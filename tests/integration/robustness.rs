@@ -633,6 +633,23 @@ fn a_setting_that_would_change_nothing_is_refused_with_what_makes_it_apply() {
     ] {
         assert_eq!(ran.status.code(), Some(0), "{}", err(ran));
     }
+    // How a swarm's drones share the air is the swarm's: one drone's frames never meet another's.
+    for given in [
+        &["--channels", "1"][..],
+        &["--capture", "off"],
+        &["--inter-sf", "off"],
+        &["--schedule", "slotted"],
+    ] {
+        assert_eq!(
+            err(run(given)),
+            format!(
+                "error: {} is a swarm setting: simulate's one drone has the air to itself\n",
+                given[0]
+            )
+        );
+        let swarm = cli(&[&["swarm", "--drones", "2", "--duration", "60"][..], given].concat());
+        assert_eq!(swarm.status.code(), Some(0), "{given:?}");
+    }
     // The sender sweep's own settings, given to another sweep, which would drop them.
     let sweep = cli(&["sweep", "--distances", "1000", "--burst", "4"]);
     assert_eq!(sweep.status.code(), Some(2));
