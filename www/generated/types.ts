@@ -206,8 +206,9 @@ txPower: number, };
 
 export type ChannelSettings = { 
 /**
- * simulate: distance from the flight's first point to the default gateway; swarm: every
- * drone's starting distance from the centre, m.
+ * simulate: distance from the flight's first point to the default gateway (refused where
+ * `gateways` are listed, which replace it); swarm: every drone's starting distance from the
+ * centre, m.
  */
 distance: number, 
 /**
