@@ -265,7 +265,14 @@ export function overheadBytes(s: Pick<Settings, 'lorawan'>): number {
  * and payload: the overhead, coding rate and plan settings (the interval where the plan has no
  * duty cycle, the duty cycle where the drone keeps one), as `timeOnAir` takes them. */
 export function packetPlan(s: Pick<Settings, 'lorawan' | 'cr' | 'region' | 'access' | 'fairUse' | 'interval' | 'dutyCycle'>) {
-  return { overhead: overheadBytes(s), cr: s.cr, region: s.region, access: s.access, fairUse: s.fairUse, ...sendingSetting(s) };
+  return { overhead: overheadBytes(s), cr: s.cr, region: s.region, access: accessSetting(s), fairUse: s.fairUse, ...sendingSetting(s) };
+}
+
+/** The channel access a run takes: the form's where the plan has a duty cycle, which listening
+ * before talk replaces, and the default where it has none (the form then hides the choice, which
+ * keeps a listen before talk chosen under another plan, and the core refuses it there). */
+function accessSetting(s: Pick<Settings, 'region' | 'access'>): ChannelAccess {
+  return sendingLimit(s) === 'interval' ? CHOICE_DEFAULTS.access : s.access;
 }
 
 /** The setting that paces the drone where it applies, as the core takes it: the interval where
@@ -328,7 +335,7 @@ export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { te
     adr: s.adr,
     region: s.region,
     ...sendingSetting(s),
-    access: s.access,
+    access: accessSetting(s),
     fairUse: s.fairUse,
     sf: s.sf,
     bw: s.bw,

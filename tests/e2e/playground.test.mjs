@@ -1507,6 +1507,18 @@ test('two sub-bands alternated: the Duty cycle control halves the intervals, the
   assert.equal(await page.locator('#dutyCycle').isVisible(), false);
   const lbt = JSON.parse((await downloaded(page, page.getByRole('button', { name: /JSON/ }))).toString('utf8'));
   assertDownloadIsCli(lbt, ['--synthetic', '1', '--access', 'lbt']);
+  // A plan without a duty cycle has nothing for listening to replace: the control goes, and the
+  // choice kept in it is not sent (the core refuses it there).
+  before = await tableHtml(page);
+  await page.getByLabel('Bandwidth').selectOption('125');
+  await waitForResults(page, before);
+  before = await tableHtml(page);
+  await page.getByLabel('Region').selectOption('us915');
+  await waitForResults(page, before);
+  await idle(page);
+  assert.equal(await page.locator('#access').isVisible(), false);
+  const us = JSON.parse((await downloaded(page, page.getByRole('button', { name: /JSON/ }))).toString('utf8'));
+  assertDownloadIsCli(us, ['--synthetic', '1', '--bw', '125', '--region', 'us915', '--interval', '1']);
   assert.deepEqual(problems, []);
 });
 

@@ -3,7 +3,7 @@
 // request the form makes must leave those out, whatever was left in the hidden fields.
 import { beforeAll, expect, test } from 'vitest';
 import { describe } from '../../www/format';
-import { decaysTilt, DEFAULTS, MODEL_CHOICES, toParams } from '../../www/state';
+import { decaysTilt, DEFAULTS, MODEL_CHOICES, packetPlan, toParams } from '../../www/state';
 import { api, loadCore } from './core';
 
 beforeAll(loadCore);
@@ -44,6 +44,17 @@ test('the distance is sent exactly where no gateway is listed, which the core re
   expect(() => api.simulate(listed)).not.toThrow();
   expect(() => api.simulate({ ...listed, distance: 3000 })).toThrow(/distance is where the one default gateway stands/);
   expect(toParams(far).distance).toBe(3000);
+});
+
+test('a listen before talk kept under a plan without a duty cycle, which hides the choice, is not sent', () => {
+  // Chosen under EU868, then the region changed to US915, where it has no duty cycle to replace.
+  const kept = { ...DEFAULTS, sf: 9, bw: 125, access: 'lbt' as const, region: 'us915' as const };
+  expect(() => api.simulate(toParams(kept))).not.toThrow();
+  expect(() => api.timeOnAir({ sf: 9, bw: 125, payload: 12, ...packetPlan(kept) })).not.toThrow();
+  expect(() => api.simulate({ ...toParams(kept), access: 'lbt' })).toThrow(/lbt replaces a duty cycle/);
+  // Under EU868 it is sent, and the duty cycle it replaces is not.
+  const eu = toParams({ ...kept, region: 'eu868' });
+  expect([eu.access, 'dutyCycle' in eu]).toEqual(['lbt', false]);
 });
 
 test('a download caption names the tilt decay only where a station reads it', () => {
