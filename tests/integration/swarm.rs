@@ -614,8 +614,8 @@ fn the_swarm_text_says_which_drones_packets_saturated_as_the_json_pools_them() {
     assert!(!text.contains("\nsaturated: "), "{text}");
 }
 
-/// A swarm flying a chosen flight flies it whole: `flightTime` and the text's first line give the
-/// flight's length, and a `duration` (which sets how long chained synthetic flights last) given
+/// A swarm flying a chosen flight flies it whole: `flightTime`, the echo's `duration` and the
+/// text's first line give the flight's length, and a `duration` (which sets how long chained synthetic flights last) given
 /// with it is refused with that length, where it would have been ignored; chained flights last
 /// `duration`.
 #[test]
@@ -626,6 +626,8 @@ fn a_swarm_of_a_chosen_flight_flies_it_whole_and_says_how_long() {
     let json: Value = serde_json::from_slice(&out.stdout).unwrap();
     let length = loratrack::canberra_flight().duration();
     assert_eq!(json["flightTime"], json!(length));
+    // The echo says so too, not the chained flights' duration it did not read (as simulate's).
+    assert_eq!(json["config"]["duration"], json!(length));
     let said = format!("4 drones each flying canberra ({length:.0} s), at 1000 m");
     assert!(text.starts_with(&said), "{text}");
 
@@ -639,6 +641,7 @@ fn a_swarm_of_a_chosen_flight_flies_it_whole_and_says_how_long() {
     let chained = crate::cli(&["swarm", "--drones", "4", "--duration", "120", "--json"]);
     let chained: Value = serde_json::from_slice(&chained.stdout).unwrap();
     assert_eq!(chained["flightTime"], json!(120.0));
+    assert_eq!(chained["config"]["duration"], json!(120.0));
 }
 
 /// The CLI's text gives the swarm's rates to four decimals and its errors to two, as the JSON

@@ -1070,8 +1070,7 @@ export type SwarmReport = Delivery & {
 config: SwarmEcho, 
 /**
  * Seconds each drone flew (the mean over the drones): `duration` where the drones chain
- * synthetic flights, else the flights chosen, whole, whatever `duration` says (the real
- * Canberra flight's 162 s).
+ * synthetic flights, else the flights chosen, whole (the real Canberra flight's 162 s).
  */
 flightTime: number, 
 /**

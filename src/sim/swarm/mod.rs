@@ -525,9 +525,15 @@ impl<'a> Swarm<'a> {
         let packets_sent = tx.len();
         let packets_by_sf = packets_by_sf(&drones);
         let received = count(Outcome::Received);
+        let mut settings = s.clone();
+        if cfg.source.is_some() {
+            // As `simulate`'s echo: how long the drones flew, not the chained synthetic flights'
+            // duration, which a chosen flight leaves unread.
+            settings.swarm.duration = self.plan.flight_time();
+        }
         Ok(SwarmReport {
             config: SwarmEcho {
-                settings: s.clone(),
+                settings,
                 station: model,
                 bandwidth_khz: s.radio.bw,
                 plan_cornering: cfg.plan.as_ref().map(FlightPlan::cornering),

@@ -64,8 +64,7 @@ pub struct SwarmReport {
     /// The settings.
     pub config: SwarmEcho,
     /// Seconds each drone flew (the mean over the drones): `duration` where the drones chain
-    /// synthetic flights, else the flights chosen, whole, whatever `duration` says (the real
-    /// Canberra flight's 162 s).
+    /// synthetic flights, else the flights chosen, whole (the real Canberra flight's 162 s).
     pub flight_time: f64,
     /// Packets lost to interference at every gateway that could hear them / packets sent
     /// (`null` when no packet was sent).
@@ -192,7 +191,9 @@ pub struct LargestSwarm {
 #[serde(rename_all = "camelCase")]
 #[cfg_attr(all(test, not(target_arch = "wasm32")), derive(ts_rs::TS))]
 pub struct SwarmEcho {
-    /// The settings as given.
+    /// The settings as given, but for `duration` with a chosen flight, which its drones fly
+    /// whole: then how long they flew (the mean over the drones, as `flightTime`), as
+    /// `simulate`'s echo gives it.
     #[serde(flatten)]
     pub settings: Scenario,
     /// The one station every drone's ground station ran.
