@@ -666,7 +666,6 @@ fn gateways_cross_the_boundary_and_each_is_reported() {
         obj(&[
             ("synthetic", 1.into()),
             ("model", "dr".into()),
-            ("distance", 5000.into()),
             ("gateways", gateways),
         ]),
         JsValue::UNDEFINED,
