@@ -222,8 +222,23 @@ export function layoutShifts(page) {
 
 /** Clicks `button` and returns the file it downloads (a Buffer). When none comes within 30 s the
  * error says what the page showed instead: the note beside the button (why there is nothing to
- * save), whether the page was still busy, and what lay on top of the button. */
+ * save; none at all when the click's handler never reached it), whether the page was still busy,
+ * what lay on top of the button, and any error the page raised meanwhile. */
 export async function downloaded(page, button) {
+  const raised = [];
+  const onError = (e) => raised.push(e.message);
+  const onConsole = (m) => m.type() === 'error' && raised.push(m.text());
+  page.on('pageerror', onError);
+  page.on('console', onConsole);
+  try {
+    return await downloadedFrom(page, button, raised);
+  } finally {
+    page.off('pageerror', onError);
+    page.off('console', onConsole);
+  }
+}
+
+async function downloadedFrom(page, button, raised) {
   const describe = () =>
     button.evaluate((b) => {
       const r = b.getBoundingClientRect();
@@ -237,7 +252,7 @@ export async function downloaded(page, button) {
   const [download] = await Promise.all([
     page.waitForEvent('download').catch(async (e) => {
       const seen = await describe().catch((why) => `(not readable: ${why.message})`);
-      throw new Error(`no download: ${e.message.split('\n')[0]}; the page beside the button: ${JSON.stringify(seen)}`);
+      throw new Error(`no download: ${e.message.split('\n')[0]}; the page beside the button: ${JSON.stringify(seen)}; errors meanwhile: ${JSON.stringify(raised)}`);
     }),
     button.click(),
   ]);
