@@ -223,7 +223,8 @@ export function layoutShifts(page) {
 /** Clicks `button` and returns the file it downloads (a Buffer). When none comes within 30 s the
  * error says what the page showed instead: the note beside the button (why there is nothing to
  * save; none at all when the click's handler never reached it), whether the page was still busy,
- * what lay on top of the button, and any error the page raised meanwhile. */
+ * what lay on top of the button, whether the click itself was done, and any error the page raised
+ * meanwhile. */
 export async function downloaded(page, button) {
   const raised = [];
   const onError = (e) => raised.push(e.message);
@@ -249,12 +250,16 @@ async function downloadedFrom(page, button, raised) {
         onTop: top === b || b.contains(top) ? 'the button' : (top?.outerHTML.slice(0, 160) ?? null),
       };
     });
+  let clicked = 'not yet';
   const [download] = await Promise.all([
     page.waitForEvent('download').catch(async (e) => {
       const seen = await describe().catch((why) => `(not readable: ${why.message})`);
-      throw new Error(`no download: ${e.message.split('\n')[0]}; the page beside the button: ${JSON.stringify(seen)}; errors meanwhile: ${JSON.stringify(raised)}`);
+      throw new Error(`no download: ${e.message.split('\n')[0]}; the page beside the button: ${JSON.stringify(seen)}; the click: ${clicked}; errors meanwhile: ${JSON.stringify(raised)}`);
     }),
-    button.click(),
+    button.click().then(
+      () => (clicked = 'done'),
+      (e) => (clicked = `failed: ${e.message.split('\n')[0]}`),
+    ),
   ]);
   return readFileSync(await download.path());
 }
