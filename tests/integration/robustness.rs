@@ -650,11 +650,42 @@ fn a_setting_that_would_change_nothing_is_refused_with_what_makes_it_apply() {
         let swarm = cli(&[&["swarm", "--drones", "2", "--duration", "60"][..], given].concat());
         assert_eq!(swarm.status.code(), Some(0), "{given:?}");
     }
-    // The sender sweep's own settings, given to another sweep, which would drop them.
-    let sweep = cli(&["sweep", "--distances", "1000", "--burst", "4"]);
-    assert_eq!(sweep.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&sweep.stderr).into_owned();
-    assert_eq!(err, "error: --burst is the sender sweep's: add --senders\n");
+    // A sweep's flag given to another sweep, which would drop it: refused, naming its readers.
+    for (kind, flag, readers) in [
+        (
+            &["--distances", "1000"][..],
+            &["--burst", "4"][..],
+            "--senders",
+        ),
+        (&["--paper"], &["--sf", "9"], "--senders, --distances"),
+        (
+            &["--swarm"],
+            &["--seeds", "4"],
+            "--senders, --distances, --mission, --payloads",
+        ),
+        (
+            &["--mission"],
+            &["--distance", "3000"],
+            "--senders, --swarm",
+        ),
+        (
+            &["--swarm"],
+            &["--model", "dr"],
+            "--paper, --senders, --distances",
+        ),
+        (&["--paper", "--markdown"], &["--held-out"], "--distances"),
+        (&["--mission"], &["--svg"], "--senders"),
+    ] {
+        let out = cli(&[&["sweep"][..], kind, flag].concat());
+        assert_eq!(out.status.code(), Some(2), "{kind:?} {flag:?}");
+        assert_eq!(
+            err(out),
+            format!(
+                "error: {} is read only by sweep {readers}: sweep {} would drop it\n",
+                flag[0], kind[0]
+            )
+        );
+    }
     // The swarm refuses them alike; the ADR's with tracking ADR too, which has no margin.
     let out = cli(&[
         "swarm",

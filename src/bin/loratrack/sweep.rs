@@ -115,23 +115,7 @@ pub(crate) fn sweep(a: SweepArgs) -> Result<String, ApiError> {
             names.join(",")
         )));
     }
-    // The sender sweep's own settings: any other sweep would drop them without a word.
-    let senders_own = [
-        (
-            "--burst",
-            f64::from(a.burst),
-            f64::from(loratrack::DEFAULT_BURST),
-        ),
-        ("--max-interval", a.max_interval, opt::MAX_INTERVAL.default),
-    ];
-    if let Some((flag, ..)) = senders_own
-        .iter()
-        .find(|(_, v, d)| !a.kind.senders && v != d)
-    {
-        return Err(ApiError::Invalid(format!(
-            "{flag} is the sender sweep's: add --senders"
-        )));
-    }
+    refuse_unread(&a)?;
     if a.kind.senders {
         return sweep_senders(&a, model, predictions[0], &count);
     }
@@ -178,6 +162,86 @@ pub(crate) fn sweep(a: SweepArgs) -> Result<String, ApiError> {
         );
     }
     Ok(out.trim_end().to_string())
+}
+
+/// Which sweeps read each flag that not every sweep reads: `(flag, changed from its default,
+/// the sweeps that read it)`. The others set their own grid (`--paper`, `--mission`), fly
+/// their own drones (`--swarm`) or take only a seed (`--payloads`).
+fn readers(a: &SweepArgs) -> [(&'static str, bool, &'static [&'static str]); 11] {
+    const TRADE_OFFS: &[&str] = &["--senders", "--distances", "--mission"];
+    [
+        (
+            "--sf",
+            a.sf != opt::SF.default as i64,
+            &["--senders", "--distances"],
+        ),
+        (
+            "--bw",
+            a.bw != opt::BW.default,
+            &["--senders", "--distances"],
+        ),
+        (
+            "--distance",
+            a.distance != opt::DISTANCE.default,
+            &["--senders", "--swarm"],
+        ),
+        ("--overhead", a.overhead != 0, TRADE_OFFS),
+        (
+            "--shadowing-model",
+            a.shadowing_model != ShadowingModel::default(),
+            TRADE_OFFS,
+        ),
+        (
+            "--burst",
+            a.burst != loratrack::DEFAULT_BURST,
+            &["--senders"],
+        ),
+        (
+            "--max-interval",
+            a.max_interval != opt::MAX_INTERVAL.default,
+            &["--senders"],
+        ),
+        (
+            "--seeds",
+            a.seeds != opt::SEEDS.default as u32,
+            &["--senders", "--distances", "--mission", "--payloads"],
+        ),
+        (
+            "--model",
+            a.model != "all",
+            &["--paper", "--senders", "--distances"],
+        ),
+        ("--held-out", a.held_out, &["--distances"]),
+        ("--svg", a.svg, &["--senders"]),
+    ]
+}
+
+/// The sweep `kind` asks for, as its flag.
+fn kind_flag(kind: &SweepKind) -> &'static str {
+    match kind {
+        k if k.paper => "--paper",
+        k if k.swarm => "--swarm",
+        k if k.mission => "--mission",
+        k if k.senders => "--senders",
+        k if k.payloads => "--payloads",
+        _ => "--distances",
+    }
+}
+
+/// Refuses a flag changed from its default that the sweep asked for would drop without a word,
+/// naming the sweeps that read it.
+fn refuse_unread(a: &SweepArgs) -> Result<(), ApiError> {
+    let kind = kind_flag(&a.kind);
+    let dropped = readers(a)
+        .into_iter()
+        .find(|(_, changed, read_by)| *changed && !read_by.contains(&kind));
+    match dropped {
+        Some((flag, _, read_by)) => Err(ApiError::Invalid(format!(
+            "{flag} is read only by sweep {}: sweep {kind} would drop it",
+            read_by.join(", ")
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// The bundled real flight beside the paper's grid: SF7 / 250 kHz at [`REAL_DISTANCES`], without
