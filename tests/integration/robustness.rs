@@ -650,6 +650,11 @@ fn a_setting_that_would_change_nothing_is_refused_with_what_makes_it_apply() {
         let swarm = cli(&[&["swarm", "--drones", "2", "--duration", "60"][..], given].concat());
         assert_eq!(swarm.status.code(), Some(0), "{given:?}");
     }
+    // The first flight's series are simulate's: a swarm has no first flight to draw.
+    assert_eq!(
+        err(cli(&["swarm", "--drones", "2", "--series"])),
+        "error: --series is simulate's (the first flight's error and tracks over time): a swarm reports each drone's statistics; leave --series out\n"
+    );
     // A sweep's flag given to another sweep, which would drop it: refused, naming its readers.
     for (kind, flag, readers) in [
         (

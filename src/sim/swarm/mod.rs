@@ -241,6 +241,12 @@ impl<'a> Swarm<'a> {
                 "1 in a swarm (a swarm runs one seed: its drones already give its spread)",
             ));
         }
+        SimError::unless_read(
+            false,
+            &[("series", s.run.series)],
+            "simulate's (the first flight's error and tracks over time)",
+            "a swarm reports each drone's statistics; leave `series` out",
+        )?;
         let model = cfg.swarm_station()?;
         let plan = plan(cfg)?;
         check_duration(cfg, &plan)?;
