@@ -596,66 +596,83 @@ fn a_setting_that_would_change_nothing_is_refused_with_what_makes_it_apply() {
         run(&["--model", "imm", "--eta", "0.5"]).status.code(),
         Some(0)
     );
-    // Listed gateways replace the one `--distance` places, and a listed gateway's own height
-    // leaves `--gateway-height` to no one; the one default gateway, a gateway listed without a
-    // height and a swarm's drones (spread at the distance around the centre) read them.
-    let err = |out: std::process::Output| String::from_utf8_lossy(&out.stderr).into_owned();
-    let listed = ["--gateway", "500,0,20"];
-    assert_eq!(
-        err(run(&[&listed[..], &["--distance", "3000"]].concat())),
-        "error: --distance is where the one default gateway stands, and the listed gateways replace it: leave --distance out\n"
+    // The swarm refuses them alike; the ADR's with tracking ADR too, which has no margin.
+    let out = cli(&[
+        "swarm",
+        "--drones",
+        "2",
+        "--adr",
+        "tracking",
+        "--adr-margin",
+        "15",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+}
+
+/// Listed gateways replace the one `--distance` places, and a listed gateway's own height leaves
+/// `--gateway-height` to no one: both refused there. The one default gateway, a gateway listed
+/// without a height and a swarm's drones (spread at the distance around the centre) read them.
+#[test]
+fn listed_gateways_leave_the_distance_and_a_default_height_unread_and_both_are_refused() {
+    let simulate = ["simulate", "--synthetic", "1"];
+    let listed = [&simulate[..], &["--gateway", "500,0,20"]].concat();
+    refused(
+        &[&listed[..], &["--distance", "3000"]].concat(),
+        "--distance is where the one default gateway stands, and the listed gateways replace it: leave --distance out",
     );
-    assert_eq!(
-        err(run(&[&listed[..], &["--gateway-height", "40"]].concat())),
-        "error: --gateway-height is the antenna height of every gateway not given its own: every listed gateway gives its own height; leave --gateway-height out\n"
+    refused(
+        &[&listed[..], &["--gateway-height", "40"]].concat(),
+        "--gateway-height is the antenna height of every gateway not given its own: every listed gateway gives its own height; leave --gateway-height out",
     );
-    for ran in [
-        run(&["--distance", "3000", "--gateway-height", "40"]),
-        run(&[
+    for read in [
+        &["--distance", "3000", "--gateway-height", "40"][..],
+        &[
             "--gateway",
             "500,0,20",
             "--gateway",
             "0,500",
             "--gateway-height",
             "40",
-        ]),
-        cli(&[
-            "swarm",
-            "--drones",
-            "2",
-            "--duration",
-            "60",
-            "--gateway",
-            "500,0",
-            "--distance",
-            "3000",
-        ]),
+        ],
     ] {
-        assert_eq!(ran.status.code(), Some(0), "{}", err(ran));
+        let out = cli(&[&simulate[..], read].concat());
+        assert_eq!(out.status.code(), Some(0), "{read:?}");
     }
-    // How a swarm's drones share the air is the swarm's: one drone's frames never meet another's.
+    let swarm = ["swarm", "--drones", "2", "--duration", "60"];
+    let out = cli(&[&swarm[..], &["--gateway", "500,0", "--distance", "3000"]].concat());
+    assert_eq!(out.status.code(), Some(0));
+}
+
+/// How a swarm's drones share the air is the swarm's (one drone's frames never meet another's),
+/// and the first flight's series are simulate's (a swarm has no first flight to draw).
+#[test]
+fn simulate_and_swarm_refuse_each_others_settings() {
     for given in [
         &["--channels", "1"][..],
         &["--capture", "off"],
         &["--inter-sf", "off"],
         &["--schedule", "slotted"],
     ] {
-        assert_eq!(
-            err(run(given)),
-            format!(
-                "error: {} is a swarm setting: simulate's one drone has the air to itself\n",
+        refused(
+            &[&["simulate", "--synthetic", "1"][..], given].concat(),
+            &format!(
+                "{} is a swarm setting: simulate's one drone has the air to itself",
                 given[0]
-            )
+            ),
         );
         let swarm = cli(&[&["swarm", "--drones", "2", "--duration", "60"][..], given].concat());
         assert_eq!(swarm.status.code(), Some(0), "{given:?}");
     }
-    // The first flight's series are simulate's: a swarm has no first flight to draw.
-    assert_eq!(
-        err(cli(&["swarm", "--drones", "2", "--series"])),
-        "error: --series is simulate's (the first flight's error and tracks over time): a swarm reports each drone's statistics; leave --series out\n"
+    refused(
+        &["swarm", "--drones", "2", "--series"],
+        "--series is simulate's (the first flight's error and tracks over time): a swarm reports each drone's statistics; leave --series out",
     );
-    // A sweep's flag given to another sweep, which would drop it: refused, naming its readers.
+}
+
+/// A sweep's flag given to another sweep, which would drop it, is refused, naming the sweeps
+/// that read it (`sweep --paper --sf 9` ran the paper's fixed grid).
+#[test]
+fn a_sweep_refuses_a_flag_its_kind_would_drop_naming_the_sweeps_that_read_it() {
     for (kind, flag, readers) in [
         (
             &["--distances", "1000"][..],
@@ -681,27 +698,14 @@ fn a_setting_that_would_change_nothing_is_refused_with_what_makes_it_apply() {
         (&["--paper", "--markdown"], &["--held-out"], "--distances"),
         (&["--mission"], &["--svg"], "--senders"),
     ] {
-        let out = cli(&[&["sweep"][..], kind, flag].concat());
-        assert_eq!(out.status.code(), Some(2), "{kind:?} {flag:?}");
-        assert_eq!(
-            err(out),
-            format!(
-                "error: {} is read only by sweep {readers}: sweep {} would drop it\n",
+        refused(
+            &[&["sweep"][..], kind, flag].concat(),
+            &format!(
+                "{} is read only by sweep {readers}: sweep {} would drop it",
                 flag[0], kind[0]
-            )
+            ),
         );
     }
-    // The swarm refuses them alike; the ADR's with tracking ADR too, which has no margin.
-    let out = cli(&[
-        "swarm",
-        "--drones",
-        "2",
-        "--adr",
-        "tracking",
-        "--adr-margin",
-        "15",
-    ]);
-    assert_eq!(out.status.code(), Some(2));
 }
 
 #[test]
