@@ -139,12 +139,18 @@ export function planKnown(flight: FlightChoice, uploadedPlan = false): boolean {
  * IMM and mission stations, which run it (the core's `StationModel::sent_model`; it refuses
  * `eta` changed for the others). */
 export function decaysTilt(model: ModelChoice): boolean {
-  return (Array.isArray(model) ? model : model.split(',')).some((m) => ['all', '3d-ctra', 'imm', 'mission'].includes(m));
+  return named(model).some((m) => ['all', '3d-ctra', 'imm', 'mission'].includes(m));
 }
 
 /** Whether a model choice runs the mission station. */
 export function runsMission(model: ModelChoice): boolean {
-  return (Array.isArray(model) ? model : model.split(',')).includes('mission');
+  return named(model).includes('mission');
+}
+
+/** The names a model choice lists, as given (`all` unexpanded): read without the core, which the
+ * form consults before it has loaded. */
+function named(model: ModelChoice): string[] {
+  return Array.isArray(model) ? model : model.split(',');
 }
 
 /** Why the mission station is not offered for this flight (shown beside the Model control). */
