@@ -4,7 +4,8 @@
 import { isLoaded, linkBudget, MODEL_LABELS, PAYLOAD_BYTES, stationsOf, timeOnAir, type GatewaySite, type Region } from './loratrack';
 import { $ } from './dom';
 import { listed } from './format';
-import { ADR_START_REASON, adrCanStart, decaysTilt, DEFAULTS, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, MISSION_REASON, overheadBytes, packetPlan, plan, planAllows, planKnown, planReason, runsMission, type FlightChoice, type Settings } from './state';
+import { ADR_START_REASON, adrCanStart, DEFAULTS, GATEWAY_LIMITS, invalid, invalidGateways, isNumericKey, LIMITS, MISSION_REASON, overheadBytes, packetPlan, plan, planAllows, planKnown, planReason, type FlightChoice, type Settings } from './state';
+import { decaysTilt, runsMission } from './stations';
 import { store } from './store';
 
 export const form = $<HTMLFormElement>('#controls');

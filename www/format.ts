@@ -1,6 +1,7 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
 import { MODEL_LABELS, OPTIONS, PAYLOAD_BYTES, PAYLOAD_FIELDS, type GatewayReport, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
-import { decaysTilt, DEFAULTS, isNumericKey, LIMITS, overheadBytes, plan, sendingLimit, uploaded, type NumericKey, type Settings } from './state';
+import { DEFAULTS, isNumericKey, LIMITS, overheadBytes, plan, sendingLimit, uploaded, type NumericKey, type Settings } from './state';
+import { decaysTilt } from './stations';
 import { store } from './store';
 
 /** A statistic with `digits` decimals, or a dash where there is none (an empty sample). */

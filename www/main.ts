@@ -19,7 +19,8 @@ import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSetti
 import { clearTable, renderBaseline, renderTable, restingNotes, resultsWhat } from './results';
 import { commandOf, setUpCopyCommand, showCommand } from './command';
 import { setUpPresent } from './present';
-import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, runsMission, simulateRequest, swarmSettings, toParams, toQuery, uploaded, type Settings } from './state';
+import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, simulateRequest, swarmSettings, toParams, toQuery, uploaded, type Settings } from './state';
+import { runsMission } from './stations';
 import { pageQuery, store } from './store';
 import { readSwarmQuery, resetSwarmChoices, swarmSelects } from './swarmChoices';
 import type { Request, Response, SimulateRequest } from './worker';

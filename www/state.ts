@@ -3,6 +3,7 @@
 // core's one table (src/options.rs), and every named choice's default from `Scenario::default`,
 // both generated into www/generated/types.ts, so the form, the URL checks, the CLI help and the
 // core's validation cannot disagree.
+import { decaysTilt, runsMission, withoutUnreadPlan } from './stations';
 import type { SimulateRequest, SweepPoint } from './worker';
 import { CHOICE_DEFAULTS, OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type HeadingNoise, type ModelChoice, type NumberOption, type PayloadChoice, type Plan, type Prediction, type Region, type ShadowingModel, type SimulateParams, type VehicleChoice } from './loratrack';
 
@@ -133,24 +134,6 @@ export function uploaded(flight: FlightChoice): boolean {
  * the real flight has none here (the CLI's `--plan` and the JS API's `plan` give one). */
 export function planKnown(flight: FlightChoice, uploadedPlan = false): boolean {
   return flight === 'synthetic' || flight === 'all' || (uploaded(flight) && uploadedPlan);
-}
-
-/** Whether a model choice runs a station that decays the tilt rate by `eta`: 3D-CTRA, and the
- * IMM and mission stations, which run it (the core's `StationModel::sent_model`; it refuses
- * `eta` changed for the others). */
-export function decaysTilt(model: ModelChoice): boolean {
-  return named(model).some((m) => ['all', '3d-ctra', 'imm', 'mission'].includes(m));
-}
-
-/** Whether a model choice runs the mission station. */
-export function runsMission(model: ModelChoice): boolean {
-  return named(model).includes('mission');
-}
-
-/** The names a model choice lists, as given (`all` unexpanded): read without the core, which the
- * form consults before it has loaded. */
-function named(model: ModelChoice): string[] {
-  return Array.isArray(model) ? model : model.split(',');
 }
 
 /** Why the mission station is not offered for this flight (shown beside the Model control). */
@@ -326,7 +309,8 @@ export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { te
           : s.flight === 'plan' && missionPlan
             ? { ...planParams(missionPlan), vehicle: s.vehicle }
             : { synthetic: s.flightNumber };
-  return {
+  // A plan uploaded beside the CSV flight stays in the form while no station reads it.
+  return withoutUnreadPlan({
     ...flight,
     model: s.model,
     prediction: s.prediction,
@@ -361,7 +345,7 @@ export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { te
     // Kept in the form where no station decays the tilt rate (the core refuses it there).
     ...(decaysTilt(s.model) ? { eta: s.eta } : {}),
     gateways: s.gateways,
-  };
+  });
 }
 
 /** `gateways=E,N[,H];E,N[,H]` in the URL. */

@@ -7,7 +7,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { commandJson, nativeJson, planePlan, scratchDir, openPage, screenshot, serveDist } from './harness.mjs';
+import { commandJson, nativeJson, nativeText, planePlan, scratchDir, openPage, screenshot, serveDist } from './harness.mjs';
 import { assertDownloadIsCli, axe, LABELS, axisLabelOverlaps, cell, cellNumber, chartTexts, chartTextsCut, downloaded, idle, layoutShifts, listed, number, open, playground, ratioWords, shownP75, tableHtml, tickLabelOverlaps, until, usePlayground, view3d, waitForResults } from './page.mjs';
 
 usePlayground();
@@ -478,6 +478,11 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
   assert.match(await page.locator('#model-note').textContent(), /upload its plan too/);
   await page.getByLabel(/Flight plan/).setInputFiles(plan);
   await until(page, () => !document.querySelector('#model option[value="3d-ctra,mission"]').disabled);
+  // The paper's stations read no plan: the results leave it out, and the CLI refuses it there.
+  const unread = await page.locator('[data-command="results"] code').textContent();
+  assert.equal(unread, 'loratrack simulate --trajectory square.csv');
+  assert.match(await page.locator('#plan-help').textContent(), /Other stations read it only for its vehicle, and only bounded with Vehicle left to the plan; elsewhere the results leave it out/);
+  assert.throws(() => nativeText(['simulate', '--trajectory', flight, '--plan', plan]), (e) => e.status === 2 && /^error: --plan is read over a logged flight by the mission station alone/.test(e.stderr));
   before = await tableHtml(page);
   await page.getByLabel('Model').selectOption('3d-ctra,mission');
   await waitForResults(page, before);

@@ -472,6 +472,58 @@ fn a_planes_csv_log_and_csv_plan_are_followed_as_a_planes_when_the_vehicle_is_se
     }
 }
 
+/// Beside a logged flight a plan is read by the mission station, and otherwise only by a bounded
+/// station over a CSV log with the vehicle left to it (a plane's top speed); elsewhere it changed
+/// nothing though the header named it, so it is refused.
+#[test]
+fn a_plan_beside_a_logged_flight_is_refused_where_nothing_reads_it() {
+    let plan = loratrack::parse_plan(&qgc_lines(1, 24.0)).unwrap();
+    let flown = fly_plan(&plan, "survey").unwrap();
+    let mut log = String::from("t,x,y,z\n");
+    for (t, p) in flown.t.iter().zip(&flown.pos) {
+        log += &format!("{t},{},{},{}\n", p[0], p[1], p[2]);
+    }
+    let try_with = |extra: Value| {
+        let mut settings = json!({"trajectory": log, "model": "3d-ctra", "sf": 9, "bw": 125.0});
+        for (k, v) in extra.as_object().unwrap() {
+            settings[k] = v.clone();
+        }
+        let s = Scenario::default().with(&settings).unwrap();
+        simulate(&mut Simulator::new(), &s).map(|r| p75(&r.results, "3d-ctra"))
+    };
+    let plane = qgc_lines(1, 24.0);
+    for unread in [
+        json!({"plan": plane}),
+        json!({"plan": plane, "prediction": "bounded", "vehicle": "multicopter"}),
+        json!({"plan": plane, "prediction": "bounded", "vehicle": "fixed-wing"}),
+    ] {
+        let e = try_with(unread.clone()).unwrap_err().to_string();
+        assert!(
+            e.starts_with("`plan` is read over a logged flight by the mission station alone")
+                && e.ends_with("add mission to `model`"),
+            "{unread}: {e}"
+        );
+    }
+    // The Canberra flight is a multicopter's: nothing but the mission station reads a plan there.
+    let canberra = |model: &str| {
+        let settings = json!({"sample": "canberra", "plan": plane, "model": model,
+                              "prediction": "bounded"});
+        let s = Scenario::default().with(&settings).unwrap();
+        simulate(&mut Simulator::new(), &s).map(|_| ())
+    };
+    let e = canberra("3d-ctra").unwrap_err().to_string();
+    assert!(e.ends_with("add mission to `model`"), "{e}");
+    assert!(canberra("mission").is_ok());
+    // Read for its vehicle: the plane's plan lets the bounded station follow it at 24 m/s.
+    let bounded = json!({"prediction": "bounded"});
+    let mut with_plan = bounded.clone();
+    with_plan["plan"] = json!(plane);
+    let (without, with) = (try_with(bounded).unwrap(), try_with(with_plan).unwrap());
+    assert!(with < without, "{with} against {without}");
+    // Followed by the mission station, bounded or not.
+    assert!(try_with(json!({"plan": plane, "model": "3d-ctra,mission"})).is_ok());
+}
+
 /// Mission and 3D-CTRA p75 (m) on `plan` flown alone, bounded, SF12/125 kHz, 8 seeds.
 fn flown_alone_at_sf12(plan: &str) -> (f64, f64) {
     let r = run(

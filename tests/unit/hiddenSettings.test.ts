@@ -3,7 +3,8 @@
 // request the form makes must leave those out, whatever was left in the hidden fields.
 import { beforeAll, expect, test } from 'vitest';
 import { describe } from '../../www/format';
-import { decaysTilt, DEFAULTS, MODEL_CHOICES, packetPlan, toParams } from '../../www/state';
+import { DEFAULTS, MODEL_CHOICES, packetPlan, toParams } from '../../www/state';
+import { decaysTilt } from '../../www/stations';
 import { api, loadCore } from './core';
 
 beforeAll(loadCore);
@@ -55,6 +56,31 @@ test('a listen before talk kept under a plan without a duty cycle, which hides t
   // Under EU868 it is sent, and the duty cycle it replaces is not.
   const eu = toParams({ ...kept, region: 'eu868' });
   expect([eu.access, 'dutyCycle' in eu]).toEqual(['lbt', false]);
+});
+
+test('an uploaded plan beside a CSV flight is sent exactly where the core reads it', () => {
+  // A drone flying 300 m east at 5 m/s, 30 m up, and the plan it flew.
+  const log = ['t,x,y,z', ...Array.from({ length: 601 }, (_, i) => `${i / 10},${i / 2},0,30`)].join('\n');
+  const plan = { text: 'x,y,z\n0,0,30\n300,0,30\n', name: 'route.csv' };
+  for (const model of MODEL_CHOICES) {
+    for (const prediction of ['paper', 'bounded'] as const) {
+      for (const vehicle of ['auto', 'multicopter', 'fixed-wing'] as const) {
+        const params = { ...toParams({ ...DEFAULTS, flight: 'csv', model, prediction, vehicle }, { name: 'log.csv' }, plan), trajectory: log };
+        const what = `${model}, ${prediction}, ${vehicle}`;
+        expect(() => api.simulate(params), what).not.toThrow();
+        const reads = (() => {
+          try {
+            api.simulate({ ...params, plan: plan.text });
+            return true;
+          } catch (e) {
+            expect(String(e), what).toMatch(/plan is read over a logged flight by the mission station alone/);
+            return false;
+          }
+        })();
+        expect('plan' in params, what).toBe(reads);
+      }
+    }
+  }
 });
 
 test('a download caption names the tilt decay only where a station reads it', () => {

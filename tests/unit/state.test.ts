@@ -171,8 +171,9 @@ describe('simulate() parameters', () => {
     expect(request.params).not.toHaveProperty('trajectory');
     expect(simulateRequest(1, DEFAULTS, { file, name: 'mine.csv' })).not.toHaveProperty('trajectoryFile');
     expect(toParams({ ...DEFAULTS, lorawan: false }).overhead).toBe(0);
-    // An uploaded plan goes with its file name, for the command line that reruns the run.
-    expect(toParams({ ...DEFAULTS, flight: 'csv' }, { name: 'mine.csv' }, { text: '0,0,10', name: 'mine.plan' })).toMatchObject({ plan: '0,0,10', planName: 'mine.plan' });
+    // An uploaded plan goes with its file name, for the command line that reruns the run, where
+    // a station reads it (the paper's stations do not: hiddenSettings.test.ts).
+    expect(toParams({ ...DEFAULTS, flight: 'csv', model: 'mission' }, { name: 'mine.csv' }, { text: '0,0,10', name: 'mine.plan' })).toMatchObject({ plan: '0,0,10', planName: 'mine.plan' });
     // A plan flown is the flight: no other flight goes with it, and the page knows its plan.
     const flown = toParams({ ...DEFAULTS, flight: 'plan' }, undefined, { text: '0,0,10', name: 'mine.plan' });
     expect(flown).toMatchObject({ plan: '0,0,10', planName: 'mine.plan' });

@@ -618,9 +618,7 @@ impl Scenario {
         self.drone.validate()?;
         self.station.validate()?;
         let vehicle = self.drone.vehicle.flying(&source)?;
-        let plan = settings
-            .flight
-            .take_plan(&source, &self.station.model, vehicle)?;
+        let plan = settings.flight.take_plan(&source, &self.station, vehicle)?;
         self.sending.validate()?;
         self.access.validate(r.duty_cycle)?;
         self.swarm.validate()?;
@@ -668,14 +666,17 @@ impl Scenario {
 
 impl FlightSettings {
     /// The plan, read and taken out of the settings (one copy, like the CSV text). Refused with
-    /// synthetic flights, which carry their own; a mission station needs one.
+    /// synthetic flights, which carry their own, and over a chosen flight where nothing reads
+    /// it; a mission station needs one.
     fn take_plan(
         &mut self,
         source: &Option<TrajectorySource>,
-        models: &ModelChoice,
+        station: &StationSettings,
         vehicle: Option<Cornering>,
     ) -> Result<Option<FlightPlan>, SimError> {
         let synthetic = matches!(source, Some(TrajectorySource::Synthetic(_)));
+        let models = &station.model;
+        Self::check_plan_read(source, station, vehicle, self.plan.is_some())?;
         let plan = match self.plan.take() {
             Some(_) if synthetic => return Err(SimError::Source(
                 "the synthetic flights carry their own plans: `plan` goes with `trajectory` or `sample`"
@@ -695,6 +696,31 @@ impl FlightSettings {
             ));
         }
         Ok(plan)
+    }
+
+    /// Refuses a plan given beside a flown flight (a CSV log or the Canberra flight) where
+    /// nothing reads it: only a mission station follows it there, and otherwise only a bounded
+    /// station over a CSV log reads its vehicle (a plane's top speed, [`Validated::vehicle`]
+    /// with `vehicle` auto). Without this, `--plan` named in the header and the command line
+    /// would run the numbers of no plan.
+    fn check_plan_read(
+        source: &Option<TrajectorySource>,
+        station: &StationSettings,
+        vehicle: Option<Cornering>,
+        given: bool,
+    ) -> Result<(), SimError> {
+        let flown = match source {
+            Some(TrajectorySource::Csv(..)) => true,
+            Some(TrajectorySource::Sample(_)) => false,
+            _ => return Ok(()),
+        };
+        let reads_vehicle = flown && vehicle.is_none() && station.prediction == Prediction::Bounded;
+        SimError::unless_read(
+            station.model.models().contains(&StationModel::Mission) || reads_vehicle,
+            &[("plan", given)],
+            "read over a logged flight by the mission station alone (and, over a CSV log with `vehicle` auto, by a bounded station for the drone's top speed)",
+            "add mission to `model`",
+        )
     }
 
     /// The chosen flight(s), taking the CSV text out of the settings: a plan alone is flown
