@@ -481,7 +481,7 @@ test('an uploaded flight with its uploaded plan runs the mission station, with t
   // The paper's stations read no plan: the results leave it out, and the CLI refuses it there.
   const unread = await page.locator('[data-command="results"] code').textContent();
   assert.equal(unread, 'loratrack simulate --trajectory square.csv');
-  assert.match(await page.locator('#plan-help').textContent(), /Other stations read it only for its vehicle, and only bounded with Vehicle left to the plan; elsewhere the results leave it out/);
+  assert.match(await page.locator('#plan-help').textContent(), /Other stations read only its vehicle, and only bounded with Vehicle “As the plan says”; otherwise the results leave the plan out/);
   assert.throws(() => nativeText(['simulate', '--trajectory', flight, '--plan', plan]), (e) => e.status === 2 && /^error: --plan is read over a logged flight by the mission station alone/.test(e.stderr));
   before = await tableHtml(page);
   await page.getByLabel('Model').selectOption('3d-ctra,mission');
