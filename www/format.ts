@@ -1,7 +1,7 @@
 // How the page words its numbers and settings: one place for every caption, label and dash.
 import { MODEL_LABELS, OPTIONS, PAYLOAD_BYTES, PAYLOAD_FIELDS, type GatewayReport, type ModelName, type ModelResult, type ModelSeries } from './loratrack';
 import { DEFAULTS, isNumericKey, LIMITS, overheadBytes, plan, sendingLimit, uploaded, type NumericKey, type Settings } from './state';
-import { decaysTilt } from './stations';
+import { decaysTilt, readsVehicle } from './stations';
 import { store } from './store';
 
 /** A statistic with `digits` decimals, or a dash where there is none (an empty sample). */
@@ -142,8 +142,10 @@ export function describe(s: Settings): string {
 /** One line for a download's caption: the settings, flight, seed and version behind a chart. */
 export function caption(s: Settings, extra = ''): string {
   const flight = s.flight === 'all' ? 'whole synthetic set' : s.flight === 'canberra' ? 'real flight (Canberra)' : s.flight === 'csv' ? (store.csv?.name ?? 'uploaded CSV') : s.flight === 'plan' ? `${store.plan?.name ?? 'plan'} (flown)` : `synthetic flight ${s.flightNumber}`;
-  // A vehicle set over an uploaded file's changes how it is flown, followed and bounded.
-  const vehicle = uploaded(s.flight) && s.vehicle !== 'auto' ? (s.vehicle === 'fixed-wing' ? ' as a plane' : ' as a multicopter') : '';
+  // A vehicle set over an uploaded file's changes how it is flown, followed and bounded, where
+  // a station reads it.
+  const set = uploaded(s.flight) && s.vehicle !== 'auto' && readsVehicle(s.flight === 'plan', s.model, s.prediction);
+  const vehicle = set ? (s.vehicle === 'fixed-wing' ? ' as a plane' : ' as a multicopter') : '';
   const seeds = s.seeds > 1 ? ` to ${s.seed + s.seeds - 1}` : '';
   return `${describe(s)}, ${s.lorawan ? `${overheadBytes(s)} B` : 'no'} LoRaWAN overhead; ${flight}${vehicle}; seed ${s.seed}${seeds}${extra}; loratrack ${__LORATRACK_VERSION__}`;
 }

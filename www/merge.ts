@@ -12,14 +12,15 @@ export function merge(reports: SimReport[], models: string[], model: SimReport['
   const versus = versusLowest(ran);
   const results = ran.map((r, i) => ({ ...r, p75VsLowest: versus[i] }));
   const base = reports[0];
-  // The mission's plan, and the vehicle it is followed as, come with whichever group read it
-  // (a group that does not is sent none: `withoutUnreadPlan`).
+  // The mission's plan, the vehicle it is followed as and the vehicle set come with whichever
+  // group read them (a group that does not is sent none: `withoutUnreadFlightSettings`).
   const plan = reports.map((r) => r.series?.plan).find((p) => p !== undefined);
   const planCornering = reports.map((r) => r.config.planCornering).find((c) => c != null) ?? base.config.planCornering;
+  const vehicle = reports.map((r) => r.config.vehicle).find((v) => v !== 'auto') ?? base.config.vehicle;
   const series = base.series && { ...base.series, ...(plan ? { plan } : {}), models: models.flatMap((m) => reports.flatMap((r) => r.series?.models ?? []).filter((s) => s.model === m).slice(0, 1)) };
   return {
     ...base,
-    config: { ...base.config, model, models: results.map((r) => r.model), planCornering },
+    config: { ...base.config, model, models: results.map((r) => r.model), planCornering, vehicle },
     ...poolDelivery(results),
     results,
     ...(series ? { series } : {}),

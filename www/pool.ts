@@ -7,7 +7,7 @@
 // the merged report equals what one worker (or the CLI) computes for all models at once.
 import { compiledModule, splitStations, stationsOf, type SimReport, type SwarmParams, type SwarmReport } from './loratrack';
 import { merge, mergeSweepPoint } from './merge';
-import { withoutUnreadPlan } from './stations';
+import { withoutUnreadFlightSettings } from './stations';
 import type { ModuleMessage, Request, Response, SimulateRequest, SweepResult } from './worker';
 
 /** A simulation worker (www/worker.ts), given the page's compiled module once it is ready;
@@ -213,7 +213,7 @@ export class SimulationPool {
       this.workers[g].postMessage({
         ...request,
         id,
-        params: withoutUnreadPlan({ ...request.params, model: group.join(',') }),
+        params: withoutUnreadFlightSettings({ ...request.params, model: group.join(',') }),
         stop: this.stop,
         readStop,
       } satisfies SimulateRequest);

@@ -3,7 +3,7 @@
 // core's one table (src/options.rs), and every named choice's default from `Scenario::default`,
 // both generated into www/generated/types.ts, so the form, the URL checks, the CLI help and the
 // core's validation cannot disagree.
-import { decaysTilt, runsMission, withoutUnreadPlan } from './stations';
+import { decaysTilt, runsMission, withoutUnreadFlightSettings } from './stations';
 import type { SimulateRequest, SweepPoint } from './worker';
 import { CHOICE_DEFAULTS, OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type HeadingNoise, type ModelChoice, type NumberOption, type PayloadChoice, type Plan, type Prediction, type Region, type ShadowingModel, type SimulateParams, type VehicleChoice } from './loratrack';
 
@@ -309,8 +309,9 @@ export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { te
           : s.flight === 'plan' && missionPlan
             ? { ...planParams(missionPlan), vehicle: s.vehicle }
             : { synthetic: s.flightNumber };
-  // A plan uploaded beside the CSV flight stays in the form while no station reads it.
-  return withoutUnreadPlan({
+  // A plan uploaded beside the CSV flight, and the vehicle, stay in the form while no station
+  // reads them.
+  return withoutUnreadFlightSettings({
     ...flight,
     model: s.model,
     prediction: s.prediction,

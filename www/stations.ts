@@ -10,19 +10,30 @@ export function decaysTilt(model: ModelChoice): boolean {
   return named(model).some((m) => ['all', '3d-ctra', 'imm', 'mission'].includes(m));
 }
 
-/** `params` without their mission plan where the run would not read it, as the core decides
- * (`check_plan_read`, src/sim/scenario/mod.rs), which refuses it there: beside a logged flight (a
- * CSV or the real flight) the mission station follows it, and over a CSV log a bounded station
- * with the vehicle left to the plan reads its vehicle (a plane's top speed). A plan alone is the
- * flight. For the form's request and for each part of it a worker runs alone (a group of its
- * stations, one station of a sweep's point). */
-export function withoutUnreadPlan(params: SimulateParams): SimulateParams {
+/** Whether a run reads the vehicle set (the core refuses one it does not: `check_read`,
+ * src/sim/scenario/mod.rs): a plan `flown` is flown as it, a mission station follows its plan as
+ * it, and a bounded station holds the drone to its top speed. */
+export function readsVehicle(flown: boolean, model: ModelChoice, prediction: SimulateParams['prediction']): boolean {
+  return flown || runsMission(model) || prediction === 'bounded';
+}
+
+/** `params` without the flight settings the run would not read, as the core decides, which
+ * refuses them there: a plan beside a logged flight (a CSV or the real flight), which the mission
+ * station follows and, over a CSV log, a bounded station with the vehicle left to the plan reads
+ * the vehicle of (`check_plan_read`, src/sim/scenario/mod.rs; a plan alone is the flight), and
+ * the vehicle ([`readsVehicle`]). For the form's request and for each part of it a worker runs
+ * alone (a group of its stations, one station of a sweep's point). */
+export function withoutUnreadFlightSettings(params: SimulateParams): SimulateParams {
   const csv = params.trajectory !== undefined || params.trajectoryName !== undefined;
-  const logged = csv || params.sample !== undefined;
-  const reads = !logged || runsMission(params.model ?? 'all') || (csv && params.prediction === 'bounded' && (params.vehicle ?? 'auto') === 'auto');
-  if (params.plan === undefined || reads) return params;
-  const { plan: _plan, planName: _name, ...read } = params;
-  return read;
+  const logged = csv || params.sample !== undefined || params.synthetic !== undefined;
+  const model = params.model ?? 'all';
+  const vehicle = params.vehicle ?? 'auto';
+  const planRead = !logged || runsMission(model) || (csv && params.prediction === 'bounded' && vehicle === 'auto');
+  const { plan, planName, ...rest } = params;
+  const read: SimulateParams = plan === undefined || planRead ? params : rest;
+  if (vehicle === 'auto' || readsVehicle(!logged && plan !== undefined, model, params.prediction)) return read;
+  const { vehicle: _unread, ...withoutVehicle } = read;
+  return withoutVehicle;
 }
 
 /** Whether a model choice runs the mission station. */

@@ -3,7 +3,7 @@
 //                               then, with sweep points, { id, sweep: [{ point, report?, error? }] }
 import { load, loadCsv, settingOf, simulate, stationsOf, swarm, valueThatFits, type SimReport, type SimulateParams, type SwarmParams, type SwarmReport } from './loratrack';
 import { firstRefusal, merge } from './merge';
-import { withoutUnreadPlan } from './stations';
+import { withoutUnreadFlightSettings } from './stations';
 
 /** One point of a sweep beside the main run: the gateway at another distance, or another SF. */
 export type SweepPoint = { distance: number } | { sf: number };
@@ -209,7 +209,7 @@ function sweepPoint(params: SimulateParams, point: SweepPoint): SweepResult {
   const all = run(params);
   const stations = stationsOf(params.model);
   if (all.report || stations.length < 2) return all;
-  const alone = stations.map((m) => run(withoutUnreadPlan({ ...params, model: m })));
+  const alone = stations.map((m) => run(withoutUnreadFlightSettings({ ...params, model: m })));
   const ran = alone.flatMap((x) => (x.report ? [x.report] : []));
   return ran.length ? { point, report: merge(ran, stations, params.model ?? 'all'), ...firstRefusal([...alone, all]) } : all;
 }

@@ -463,7 +463,20 @@ fn a_planes_csv_log_and_csv_plan_are_followed_as_a_planes_when_the_vehicle_is_se
             .validate()
             .unwrap_err();
         assert!(e.to_string().contains("multicopters"), "{e}");
+        // Named outright it is read by a bounded station (its top speed), and refused where
+        // nothing reads it.
         settings["vehicle"] = json!("multicopter");
+        let e = Scenario::default()
+            .with(&settings)
+            .unwrap()
+            .validate()
+            .unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("`vehicle` is read only where a plan is flown or followed"),
+            "{e}"
+        );
+        settings["prediction"] = json!("bounded");
         assert!(Scenario::default()
             .with(&settings)
             .unwrap()

@@ -136,9 +136,11 @@ test('a caption names the settings, the flight, every seed and the version', () 
   expect(advancedChanged(DEFAULTS)).toEqual([]);
   expect(caption(DEFAULTS)).toMatch(/^SF7, 250 kHz, 1\.0 km, paper prediction, periodic sending, 13 B LoRaWAN overhead; synthetic flight 1; seed 1; loratrack \d+\.\d+\.\d+$/);
   expect(caption({ ...DEFAULTS, flight: 'all', seed: 5, seeds: 10, lorawan: false })).toMatch(/no LoRaWAN overhead; whole synthetic set; seed 5 to 14;/);
-  // A vehicle set over an uploaded flight or plan is named; the bundled flights fly as they are.
+  // A vehicle set over an uploaded flight or plan is named where a station reads it (a bounded or
+  // mission station over a CSV flight); the bundled flights fly as they are.
   expect(caption({ ...DEFAULTS, flight: 'plan', vehicle: 'fixed-wing' })).toMatch(/; plan \(flown\) as a plane; seed 1;/);
-  expect(caption({ ...DEFAULTS, flight: 'csv', vehicle: 'multicopter' })).toMatch(/; uploaded CSV as a multicopter; seed 1;/);
+  expect(caption({ ...DEFAULTS, flight: 'csv', vehicle: 'multicopter', prediction: 'bounded' })).toMatch(/; uploaded CSV as a multicopter; seed 1;/);
+  expect(caption({ ...DEFAULTS, flight: 'csv', vehicle: 'multicopter' })).toMatch(/; uploaded CSV; seed 1;/);
   expect(caption({ ...DEFAULTS, flight: 'csv' })).toMatch(/; uploaded CSV; seed 1;/);
   expect(caption({ ...DEFAULTS, vehicle: 'fixed-wing' })).toMatch(/; synthetic flight 1; seed 1;/);
 });

@@ -2,7 +2,8 @@
 // tilt decay with DR alone), and the core refuses such a setting where nothing would read it: every
 // request the form makes must leave those out, whatever was left in the hidden fields.
 import { beforeAll, expect, test } from 'vitest';
-import { describe } from '../../www/format';
+import { caption, describe } from '../../www/format';
+import type { SimulateParams } from '../../www/loratrack';
 import { DEFAULTS, MODEL_CHOICES, packetPlan, toParams } from '../../www/state';
 import { decaysTilt } from '../../www/stations';
 import { api, loadCore } from './core';
@@ -58,26 +59,34 @@ test('a listen before talk kept under a plan without a duty cycle, which hides t
   expect([eu.access, 'dutyCycle' in eu]).toEqual(['lbt', false]);
 });
 
-test('an uploaded plan beside a CSV flight is sent exactly where the core reads it', () => {
+/** Whether the core runs `params` (else the refusal must match `refusal`). */
+function runs(params: SimulateParams, refusal: RegExp, what: string): boolean {
+  try {
+    api.simulate(params);
+    return true;
+  } catch (e) {
+    expect(String(e), what).toMatch(refusal);
+    return false;
+  }
+}
+
+test('an uploaded plan beside a CSV flight, and the vehicle, are sent exactly where the core reads them', () => {
   // A drone flying 300 m east at 5 m/s, 30 m up, and the plan it flew.
   const log = ['t,x,y,z', ...Array.from({ length: 601 }, (_, i) => `${i / 10},${i / 2},0,30`)].join('\n');
   const plan = { text: 'x,y,z\n0,0,30\n300,0,30\n', name: 'route.csv' };
   for (const model of MODEL_CHOICES) {
     for (const prediction of ['paper', 'bounded'] as const) {
       for (const vehicle of ['auto', 'multicopter', 'fixed-wing'] as const) {
-        const params = { ...toParams({ ...DEFAULTS, flight: 'csv', model, prediction, vehicle }, { name: 'log.csv' }, plan), trajectory: log };
+        const s = { ...DEFAULTS, flight: 'csv' as const, model, prediction, vehicle };
+        const params = { ...toParams(s, { name: 'log.csv' }, plan), trajectory: log };
         const what = `${model}, ${prediction}, ${vehicle}`;
         expect(() => api.simulate(params), what).not.toThrow();
-        const reads = (() => {
-          try {
-            api.simulate({ ...params, plan: plan.text });
-            return true;
-          } catch (e) {
-            expect(String(e), what).toMatch(/plan is read over a logged flight by the mission station alone/);
-            return false;
-          }
-        })();
-        expect('plan' in params, what).toBe(reads);
+        const withPlan = runs({ ...params, plan: plan.text, vehicle: params.vehicle ?? 'auto' }, /plan is read over a logged flight by the mission station alone/, what);
+        expect('plan' in params, what).toBe(withPlan);
+        const withVehicle = runs({ ...params, vehicle }, /vehicle is read only where a plan is flown or followed/, what);
+        expect('vehicle' in params, what).toBe(withVehicle);
+        // The download's caption names a vehicle only where the run reads one.
+        expect(/ as a (plane|multicopter);/.test(caption(s)), what).toBe(vehicle !== 'auto' && withVehicle);
       }
     }
   }

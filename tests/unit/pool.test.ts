@@ -82,19 +82,22 @@ test('the mission plan is kept whichever worker ran the mission station', () => 
   expect(merge([a, b], ['3d-ctra', 'mission'], '3d-ctra,mission').series?.plan).toEqual(plan);
   expect(merge([a], ['3d-ctra'], '3d-ctra').series?.plan).toBeUndefined();
   // And the vehicle it is followed as, which the group without it has none of.
-  (b.config as { planCornering?: string }).planCornering = 'fixed-wing';
-  expect(merge([a, b], ['3d-ctra', 'mission'], '3d-ctra,mission').config.planCornering).toBe('fixed-wing');
+  Object.assign(a.config, { planCornering: null, vehicle: 'auto' });
+  Object.assign(b.config, { planCornering: 'fixed-wing', vehicle: 'fixed-wing' });
+  const { planCornering, vehicle } = merge([a, b], ['3d-ctra', 'mission'], '3d-ctra,mission').config;
+  expect([planCornering, vehicle]).toEqual(['fixed-wing', 'fixed-wing']);
 });
 
 test('a worker whose stations read no plan beside an uploaded flight is sent none, as the core refuses it there', () => {
   StandIn.all = [];
   const pool = new SimulationPool(2);
-  const beside = { trajectoryName: 'log.csv', plan: '0,0,10\n100,0,10\n', planName: 'route.csv' };
+  const beside = { trajectoryName: 'log.csv', plan: '0,0,10\n100,0,10\n', planName: 'route.csv', vehicle: 'fixed-wing' as const };
   pool.run({ id: 5, params: { ...beside, model: '3d-ctra,mission' } }, () => {});
-  expect(StandIn.all.map((w) => w.sent.map((m) => [m.params.model, m.params.plan !== undefined, m.params.planName !== undefined]))).toEqual([[['3d-ctra', false, false]], [['mission', true, true]]]);
-  // A bounded station reads the vehicle the plan names (the vehicle left to it): both are sent it.
+  const sent = (m: SimulateRequest) => [m.params.model, m.params.plan !== undefined, m.params.planName !== undefined, m.params.vehicle];
+  expect(StandIn.all.map((w) => w.sent.map(sent))).toEqual([[['3d-ctra', false, false, undefined]], [['mission', true, true, 'fixed-wing']]]);
+  // A bounded station reads the vehicle (left to the plan, the plan's): both are sent them.
   StandIn.all = [];
-  new SimulationPool(2).run({ id: 6, params: { ...beside, model: '3d-ctra,mission', prediction: 'bounded' } }, () => {});
+  new SimulationPool(2).run({ id: 6, params: { ...beside, vehicle: 'auto', model: '3d-ctra,mission', prediction: 'bounded' } }, () => {});
   expect(StandIn.all.map((w) => w.sent.map((m) => m.params.plan !== undefined))).toEqual([[true], [true]]);
 });
 

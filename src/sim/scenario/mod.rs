@@ -618,6 +618,7 @@ impl Scenario {
         self.drone.validate()?;
         self.station.validate()?;
         let vehicle = self.drone.vehicle.flying(&source)?;
+        self.drone.vehicle.check_read(&source, &self.station)?;
         let plan = settings.flight.take_plan(&source, &self.station, vehicle)?;
         self.sending.validate()?;
         self.access.validate(r.duty_cycle)?;
@@ -772,6 +773,26 @@ impl VehicleChoice {
             )),
             given => Ok(given),
         }
+    }
+
+    /// Refuses a vehicle set where nothing reads it: a flown plan is flown as it, a mission
+    /// station follows its plan as it, and a bounded station holds the drone to its top speed
+    /// ([`Validated::vehicle`]); the paper's stations over a logged or synthetic flight read
+    /// none of that, though the header would name the vehicle.
+    fn check_read(
+        self,
+        source: &Option<TrajectorySource>,
+        station: &StationSettings,
+    ) -> Result<(), SimError> {
+        let flown = matches!(source, Some(TrajectorySource::Plan(..)));
+        SimError::unless_read(
+            flown
+                || station.prediction == Prediction::Bounded
+                || station.model.models().contains(&StationModel::Mission),
+            &[("vehicle", self.given().is_some())],
+            "read only where a plan is flown or followed or a bounded station holds the drone to its top speed",
+            "set `prediction` to bounded, or add mission to `model`",
+        )
     }
 }
 
