@@ -441,31 +441,53 @@ export function downloadSvg(chart: Element, name: string, slide: SlideText): boo
   return true;
 }
 
+/** The slide pictures being decoded for a PNG, held until they load or fail: nothing else
+ * refers to them while the browser decodes. */
+const decoding = new Set<HTMLImageElement>();
+
+/** Encodes `canvas` as `name`.png and saves it; `failed` is told why where the browser makes no
+ * file, which would otherwise end the download without a word. */
+function savePng(canvas: HTMLCanvasElement, name: string, failed: (why: string) => void): void {
+  canvas.toBlob((b) => (b ? save(b, `${name}.png`) : failed('The PNG could not be made: the browser encoded no image. The SVG download holds the same slide.')));
+}
+
 /** Saves the slide as a PNG at least [`MIN_PNG_WIDTH`] px wide (2× or more); false when the
- * chart has nothing drawn to save. */
-export function downloadPng(chart: Element, name: string, slide: SlideText): boolean {
+ * chart has nothing drawn to save. The picture is drawn once the browser has decoded the slide's
+ * SVG; `failed` is told why where it cannot. */
+export function downloadPng(chart: Element, name: string, slide: SlideText, failed: (why: string) => void): boolean {
   const svg = slideSvg(chart, slide);
   if (!svg) return false;
   const width = Number(svg.getAttribute('width'));
   const height = Number(svg.getAttribute('height'));
   const scale = Math.max(2, MIN_PNG_WIDTH / width);
   const img = new Image();
+  const url = URL.createObjectURL(new Blob([serialize(svg)], { type: 'image/svg+xml' }));
+  const done = () => {
+    decoding.delete(img);
+    URL.revokeObjectURL(url);
+  };
   img.onload = () => {
+    done();
     const canvas = document.createElement('canvas');
     canvas.width = Math.ceil(width * scale);
     canvas.height = Math.ceil(height * scale);
     const ctx = canvas.getContext('2d')!;
     ctx.drawImage(img, 0, 0, canvas.width, canvas.height);
-    canvas.toBlob((b) => b && save(b, `${name}.png`));
+    savePng(canvas, name, failed);
   };
-  img.src = URL.createObjectURL(new Blob([serialize(svg)], { type: 'image/svg+xml' }));
+  img.onerror = () => {
+    done();
+    failed('The PNG could not be made: the browser could not draw the slide. The SVG download holds the same slide.');
+  };
+  decoding.add(img);
+  img.src = url;
   return true;
 }
 
 /** Saves a rendered picture (the 3D view), drawn at `scale` device pixels per CSS pixel, with
  * the slide's title and legend above and its key (`notes`) and caption below, wrapped at the
  * picture's width. */
-export function downloadPicturePng(picture: HTMLCanvasElement, scale: number, name: string, slide: SlideText, legend: { color: string; label: string }[], notes: string[]): void {
+export function downloadPicturePng(picture: HTMLCanvasElement, scale: number, name: string, slide: SlideText, legend: { color: string; label: string }[], notes: string[], failed: (why: string) => void): void {
   const px = (v: number) => v * scale;
   const pad = px(16);
   const canvas = document.createElement('canvas');
@@ -508,6 +530,6 @@ export function downloadPicturePng(picture: HTMLCanvasElement, scale: number, na
     for (const line of lines) ctx.fillText(line, pad, (y += lineHeight));
     y += px(6);
   }
-  canvas.toBlob((b) => b && save(b, `${name}.png`));
+  savePng(canvas, name, failed);
 }
 

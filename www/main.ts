@@ -523,8 +523,8 @@ async function download3d(button: HTMLButtonElement, title: string): Promise<voi
   if (!trajectoryNear) await render3d(store.report);
   const shot = trajectory3d?.snapshot(MIN_PNG_WIDTH);
   if (!shot) return downloadWhy(button, 'Nothing to save: the 3D view needs WebGL, which this browser does not offer.');
-  downloadPicturePng(shot.canvas, shot.scale, 'loratrack-trajectory', { title, caption: caption(store.reportSettings) }, tracksDrawn(store.report), [trajectoryKey]);
   downloadWhy(button, '');
+  downloadPicturePng(shot.canvas, shot.scale, 'loratrack-trajectory', { title, caption: caption(store.reportSettings) }, tracksDrawn(store.report), [trajectoryKey], (why) => downloadWhy(button, why));
 }
 
 /** What the 3D view's cones and grid mean, as its legend on the page says it. */
@@ -1068,7 +1068,8 @@ function notesAfter(chart: Element): string[] {
 /** Saves `picture` on a slide in the format `button` names (SVG or PNG); false when it has
  * nothing drawn to save. */
 function saveSlide(button: HTMLButtonElement, picture: Element, name: string, slide: SlideText): boolean {
-  return (button.dataset.format === 'svg' ? downloadSvg : downloadPng)(picture, name, slide);
+  if (button.dataset.format === 'svg') return downloadSvg(picture, name, slide);
+  return downloadPng(picture, name, slide, (why) => downloadWhy(button, why));
 }
 /** The results table as drawn (in the pieces the page splits it into), for a slide: what the numbers are, the settings they
  * rest on and, with a baseline pinned, what the differences are against. None while a whole set's

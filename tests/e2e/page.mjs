@@ -254,7 +254,7 @@ async function downloadedFrom(page, button, raised) {
   const [download] = await Promise.all([
     page.waitForEvent('download').catch(async (e) => {
       const seen = await describe().catch((why) => `(not readable: ${why.message})`);
-      throw new Error(`no download: ${e.message.split('\n')[0]}; the page beside the button: ${JSON.stringify(seen)}; the click: ${clicked}; errors meanwhile: ${JSON.stringify(raised)}`);
+      throw new Error(`no download from ${button}: ${e.message.split('\n')[0]}; the page beside the button: ${JSON.stringify(seen)}; the click: ${clicked}; errors meanwhile: ${JSON.stringify(raised)}`);
     }),
     button.click().then(
       () => (clicked = 'done'),
