@@ -421,18 +421,25 @@ fn a_plane_faster_than_a_quadcopter_is_followed_at_its_speed() {
     assert!(p75(&r, "mission") < 2.0, "{}", p75(&r, "mission"));
 }
 
-/// A plane's own log and its plan as a CSV without the line that says it is a plane's: with
-/// `vehicle` `fixed-wing` the mission station follows the plan as the plane flew it (its wide
-/// turns, at its 24 m/s), where read as a multicopter's it fell behind at every corner; the
-/// plan as `to_csv` writes it, with that line, is a plane's as the file says.
-#[test]
-fn a_planes_csv_log_and_csv_plan_are_followed_as_a_planes_when_the_vehicle_is_set() {
+/// A plane's survey at 24 m/s ([`qgc_lines`]): its plan, and the CSV log (positions only) of
+/// the plane flying it.
+fn planes_survey() -> (FlightPlan, String) {
     let plan = loratrack::parse_plan(&qgc_lines(1, 24.0)).unwrap();
     let flown = fly_plan(&plan, "survey").unwrap();
     let mut log = String::from("t,x,y,z\n");
     for (t, p) in flown.t.iter().zip(&flown.pos) {
         log += &format!("{t},{},{},{}\n", p[0], p[1], p[2]);
     }
+    (plan, log)
+}
+
+/// A plane's own log and its plan as a CSV without the line that says it is a plane's: with
+/// `vehicle` `fixed-wing` the mission station follows the plan as the plane flew it (its wide
+/// turns, at its 24 m/s), where read as a multicopter's it fell behind at every corner; the
+/// plan as `to_csv` writes it, with that line, is a plane's as the file says.
+#[test]
+fn a_planes_csv_log_and_csv_plan_are_followed_as_a_planes_when_the_vehicle_is_set() {
+    let (plan, log) = planes_survey();
     let marked = plan.to_csv();
     let unmarked = marked.replace("# vehicle: fixed-wing\n", "");
     assert_ne!(marked, unmarked);
@@ -490,12 +497,7 @@ fn a_planes_csv_log_and_csv_plan_are_followed_as_a_planes_when_the_vehicle_is_se
 /// nothing though the header named it, so it is refused.
 #[test]
 fn a_plan_beside_a_logged_flight_is_refused_where_nothing_reads_it() {
-    let plan = loratrack::parse_plan(&qgc_lines(1, 24.0)).unwrap();
-    let flown = fly_plan(&plan, "survey").unwrap();
-    let mut log = String::from("t,x,y,z\n");
-    for (t, p) in flown.t.iter().zip(&flown.pos) {
-        log += &format!("{t},{},{},{}\n", p[0], p[1], p[2]);
-    }
+    let (_, log) = planes_survey();
     let try_with = |extra: Value| {
         let mut settings = json!({"trajectory": log, "model": "3d-ctra", "sf": 9, "bw": 125.0});
         for (k, v) in extra.as_object().unwrap() {
