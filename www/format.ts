@@ -83,7 +83,9 @@ export function advancedChanged(s: Partial<Record<NumericKey, number>> & Pick<Se
     const named = label.startsWith('Tx ') ? label : `${label.charAt(0).toLowerCase()}${label.slice(1)}`;
     return `${named} ${s[k]}${unit ? ` ${unit}` : ''}`;
   });
-  return s.shadowingModel === 'field' ? [...named, 'shadowing fixed in space'] : named;
+  // Without shadowing (0 dB) there are no fades to fix in space: not sent (`toParams`), nor said.
+  const fixed = s.shadowingModel === 'field' && (s.shadowing ?? DEFAULTS.shadowing) > 0;
+  return fixed ? [...named, 'shadowing fixed in space'] : named;
 }
 
 /** Where the gateways stand: the default gateway's distance, or the sites given (the distance

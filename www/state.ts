@@ -340,7 +340,8 @@ export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { te
     txPower: s.txPower,
     pathLossExponent: s.pathLossExponent,
     shadowing: s.shadowing,
-    shadowingModel: s.shadowingModel,
+    // Kept in the form where there is no shadowing, whose fades it places (the core refuses it there).
+    ...(s.shadowing > 0 ? { shadowingModel: s.shadowingModel } : {}),
     sensorRate: s.sensorRate,
     step: s.step,
     // Kept in the form where no station decays the tilt rate (the core refuses it there).

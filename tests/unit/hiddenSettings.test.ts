@@ -92,6 +92,18 @@ test('an uploaded plan beside a CSV flight, and the vehicle, are sent exactly wh
   }
 });
 
+test('the shadowing model is sent, and named, only where there is shadowing for it to place', () => {
+  const none = { ...DEFAULTS, shadowing: 0, shadowingModel: 'field' as const };
+  const params = toParams(none);
+  expect('shadowingModel' in params).toBe(false);
+  expect(() => api.simulate(params)).not.toThrow();
+  expect(() => api.simulate({ ...params, shadowingModel: 'field' })).toThrow(/shadowingModel is a shadowing's/);
+  expect(describe(none)).not.toMatch(/fixed in space/);
+  const some = { ...none, shadowing: 4 };
+  expect(toParams(some).shadowingModel).toBe('field');
+  expect(describe(some)).toMatch(/shadowing fixed in space/);
+});
+
 test('a download caption names the tilt decay only where a station reads it', () => {
   expect(describe({ ...DEFAULTS, model: '3d-ctra', eta: 0.5 })).toMatch(/eta 0\.5/);
   expect(describe({ ...DEFAULTS, model: 'dr', eta: 0.5 })).not.toMatch(/eta/);

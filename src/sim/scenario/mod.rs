@@ -816,7 +816,16 @@ impl ChannelSettings {
         opt::PATH_LOSS_EXPONENT.check(self.path_loss_exponent)?;
         opt::SHADOWING.check(self.shadowing)?;
         opt::GATEWAY_HEIGHT.check(self.gateway_height)?;
-        Ok(())
+        // Without shadowing there are no fades to place along the path or in space.
+        SimError::unless_read(
+            self.shadowing > 0.0,
+            &[(
+                "shadowingModel",
+                self.shadowing_model != ShadowingModel::Path,
+            )],
+            "a shadowing's (where its fades vary), and a shadowing of 0 dB has none",
+            "set `shadowing` above 0",
+        )
     }
 }
 
