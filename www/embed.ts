@@ -60,7 +60,9 @@ export function updateEmbedCaption(): void {
   // what its swarms rest on (the flights they chain, one seed), not the single drone's flight.
   const shown = store.panels.split(',');
   const swarmAlone = store.embed && shown.includes('swarm') && !shown.some((p) => SINGLE_DRONE_PANELS.includes(p));
-  $('#embed-settings').textContent = `Settings: ${caption(swarmAlone ? swarmSettings(store.reportSettings) : store.reportSettings)}.`;
+  // A spread swarm's drones are dealt SF7..SF12 in turn, not the form's SF.
+  const settings = swarmAlone ? caption(swarmSettings(store.reportSettings), '', $<HTMLSelectElement>('#swarmPlan').value === 'fixed') : caption(store.reportSettings);
+  $('#embed-settings').textContent = `Settings: ${settings}.`;
   const lines = [...store.notices];
   const results = $('[data-panel="results"]');
   // An embed with the results panel shows its notes and its old or partial label there, once;

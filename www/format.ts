@@ -133,23 +133,25 @@ export function planLimit(s: Pick<Settings, 'region' | 'access' | 'fairUse' | 'd
 
 /** The settings behind a number, in one short phrase: the plan's limit whenever it is not the
  * paper's EU868 1 % duty cycle, the sender's threshold and heartbeat, and any advanced setting
- * changed from its default. */
-export function describe(s: Settings): string {
+ * changed from its default. Without `namesSf` it leaves the spreading factor out, for a swarm
+ * whose drones are dealt SF7..SF12 in turn (its caption names those). */
+export function describe(s: Settings, namesSf = true): string {
   const limit = planLimit(s);
   // A tilt decay kept in the form where no station reads it is not sent (`toParams`), nor said.
   const advanced = advancedChanged(decaysTilt(s.model) ? s : { ...s, eta: DEFAULTS.eta });
-  return `SF${s.sf}, ${s.bw} kHz${limit ? `, ${limit}` : ''}, ${link(s)}, ${prediction(s)}, ${sending(s)}${s.adr === 'off' ? '' : `, ${adrName(s.adr)}`}${advanced.map((a) => `, ${a}`).join('')}`;
+  return `${namesSf ? `SF${s.sf}, ` : ''}${s.bw} kHz${limit ? `, ${limit}` : ''}, ${link(s)}, ${prediction(s)}, ${sending(s)}${s.adr === 'off' ? '' : `, ${adrName(s.adr)}`}${advanced.map((a) => `, ${a}`).join('')}`;
 }
 
-/** One line for a download's caption: the settings, flight, seed and version behind a chart. */
-export function caption(s: Settings, extra = ''): string {
+/** One line for a download's caption: the settings, flight, seed and version behind a chart (the
+ * spreading factor only where `namesSf`: [`describe`]). */
+export function caption(s: Settings, extra = '', namesSf = true): string {
   const flight = s.flight === 'all' ? 'whole synthetic set' : s.flight === 'canberra' ? 'real flight (Canberra)' : s.flight === 'csv' ? (store.csv?.name ?? 'uploaded CSV') : s.flight === 'plan' ? `${store.plan?.name ?? 'plan'} (flown)` : `synthetic flight ${s.flightNumber}`;
   // A vehicle set over an uploaded file's changes how it is flown, followed and bounded, where
   // a station reads it.
   const set = uploaded(s.flight) && s.vehicle !== 'auto' && readsVehicle(s.flight === 'plan', s.model, s.prediction);
   const vehicle = set ? (s.vehicle === 'fixed-wing' ? ' as a plane' : ' as a multicopter') : '';
   const seeds = s.seeds > 1 ? ` to ${s.seed + s.seeds - 1}` : '';
-  return `${describe(s)}, ${s.lorawan ? `${overheadBytes(s)} B` : 'no'} LoRaWAN overhead; ${flight}${vehicle}; seed ${s.seed}${seeds}${extra}; loratrack ${__LORATRACK_VERSION__}`;
+  return `${describe(s, namesSf)}, ${s.lorawan ? `${overheadBytes(s)} B` : 'no'} LoRaWAN overhead; ${flight}${vehicle}; seed ${s.seed}${seeds}${extra}; loratrack ${__LORATRACK_VERSION__}`;
 }
 
 /** A flight time as a sentence says it: "2 minutes", "1 minute", "90 s". */

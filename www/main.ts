@@ -706,8 +706,8 @@ function chartWidth(name: string): number {
   return Math.max(300, $(`#chart-${name}`).clientWidth || 600);
 }
 
-function place(name: string, chart: Element, made: Settings = store.settings, extra = ''): void {
-  charts[name] = { chart, caption: caption(made, extra) };
+function place(name: string, chart: Element, made: Settings = store.settings, extra = '', namesSf = true): void {
+  charts[name] = { chart, caption: caption(made, extra, namesSf) };
   // Plot labels its mark groups; an unlabelled role-less <g> may not carry aria-label, so the
   // chart is one image named by its panel's title instead.
   for (const g of chart.querySelectorAll('g[aria-label]')) g.removeAttribute('aria-label');
@@ -840,9 +840,12 @@ function swarmRequest(): { sizes: number[]; params: SwarmParams } {
   // runs 3D-CTRA, as `all` does, and so does the mission station, which would need each drone's
   // own plan).
   const made = swarmSettings(store.settings);
-  const { synthetic: _s, ...shared } = toParams(made);
+  const sfPlan = $<HTMLSelectElement>('#swarmPlan').value as 'fixed' | 'spread';
+  const { synthetic: _s, sf, ...shared } = toParams(made);
   const params: SwarmParams = {
     ...shared,
+    // Spread deals SF7..SF12 in turn: the form's SF is read only where every drone is on it.
+    ...(sfPlan === 'fixed' ? { sf } : {}),
     // The drones' distance from the centre, which the swarm reads where gateways are listed too.
     distance: made.distance,
     model: stationsOf(store.settings.model).length === 1 && !runsMission(store.settings.model) ? store.settings.model : 'all',
@@ -850,7 +853,7 @@ function swarmRequest(): { sizes: number[]; params: SwarmParams } {
     ...(made.flight === 'canberra' ? {} : { duration: Number($<HTMLSelectElement>('#swarmDuration').value) }),
     // One channel, or all the plan's (its default).
     ...($<HTMLSelectElement>('#swarmChannels').value === '1' ? { channels: 1 } : {}),
-    sfPlan: $<HTMLSelectElement>('#swarmPlan').value as 'fixed' | 'spread',
+    sfPlan,
     schedule: $<HTMLSelectElement>('#swarmSchedule').value as 'aloha' | 'slotted',
   };
   return { sizes, params };
@@ -926,7 +929,7 @@ $('#run-swarm').addEventListener('click', () => {
         const p = await plots();
         const channels = swarms[0]?.drones[0]?.channelUse.length ?? params.channels ?? 1;
         const largest = swarms[swarms.length - 1];
-        place('swarm', p.swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${channels} channel${channels === 1 ? '' : 's'}, ${p.sfPlanWords(largest)}, ${params.schedule === 'slotted' ? 'slotted' : 'ALOHA'}, ${Math.round(largest.flightTime)} s each`);
+        place('swarm', p.swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${channels} channel${channels === 1 ? '' : 's'}, ${p.sfPlanWords(largest)}, ${params.schedule === 'slotted' ? 'slotted' : 'ALOHA'}, ${Math.round(largest.flightTime)} s each`, params.sfPlan === 'fixed');
       };
       later('swarm', lastSwarm);
     },

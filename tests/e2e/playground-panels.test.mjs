@@ -662,7 +662,8 @@ test('a US915 swarm dealt SF7–SF12 in turn takes the data rates that carry its
   const { page, problems } = await open('?region=us915&sf=9&bw=125&interval=5');
   await runSwarm(page, '20', 'spread');
   // 3D-CTRA's 25-byte frame is over the dwell time at SF10 (DR0): the drones take SF7..SF9.
-  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'spread', '--model', '3d-ctra', '--sf', '9', '--bw', '125', '--region', 'us915', '--interval', '5']);
+  // The form's SF 9 is not the swarm's: spread deals the SFs (the CLI refuses --sf with it).
+  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'spread', '--model', '3d-ctra', '--bw', '125', '--region', 'us915', '--interval', '5']);
   assert.deepEqual([...new Set(cli.drones.map((d) => d.sf))].sort(), [7, 8, 9]);
   assert.deepEqual((await swarmStrip(page)).legend, ['SF7', 'SF8', 'SF9']);
   const note = await page.locator('#chart-swarm .note').textContent();
@@ -677,6 +678,7 @@ test('a US915 swarm dealt SF7–SF12 in turn takes the data rates that carry its
   // The largest swarm's command line, run in a shell, is that swarm.
   const line = await page.locator('[data-command="swarm"] code').textContent();
   assert.match(line, /^loratrack swarm .*--drones 20/);
+  assert.doesNotMatch(line, /--sf /);
   const shell = commandJson(line);
   assert.deepEqual([shell.medianDroneP75, shell.collisionRate, shell.packetsReceived], [cli.medianDroneP75, cli.collisionRate, cli.packetsReceived]);
   assert.deepEqual(problems, []);
@@ -750,9 +752,9 @@ test('the swarm panel\'s choices travel in the link and the embed snippet, and a
   assert.equal(await embed.page.locator('#swarmPlan').inputValue(), 'spread');
   assert.match(await embed.page.locator('#embed-notices').textContent(), /The link's swarmSchedule=bogus is not one of the swarm panel's choices \(aloha, slotted\); it keeps aloha\./);
   // The swarm panel alone: its caption gives what the swarms rest on, the flights they chain, not
-  // the single drone's one.
-  assert.match(await embed.page.locator('#embed-settings').textContent(), /; whole synthetic set; seed 1; loratrack /);
-  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'spread', '--model', '3d-ctra', '--sf', '9', '--bw', '125']);
+  // the single drone's one, and not the form's SF, which the spread plan does not deal.
+  assert.match(await embed.page.locator('#embed-settings').textContent(), /^Settings: 125 kHz, .*; whole synthetic set; seed 1; loratrack /);
+  const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'spread', '--model', '3d-ctra', '--bw', '125']);
   assert.ok((await embed.page.locator('#chart-swarm .note').textContent()).includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`));
   assert.deepEqual([...problems, ...embed.problems], []);
 });

@@ -177,17 +177,7 @@ fn the_cli_says_what_lean_packets_took_and_what_the_largest_swarm_counts() {
         dr / 0.01
     );
     assert!(line.ends_with(&shortest), "{line} / {shortest}");
-    let swarm = [
-        "swarm",
-        "--drones",
-        "6",
-        "--duration",
-        "120",
-        "--sf",
-        "10",
-        "--bw",
-        "125",
-    ];
+    let swarm = ["swarm", "--drones", "6", "--duration", "120", "--bw", "125"];
     let lean = text(crate::cli(&[&swarm[..], &["--payload", "lean"]].concat()));
     let full = text(crate::cli(&swarm));
     let largest = |t: &str| {

@@ -160,7 +160,7 @@ fn a_spread_swarm_gets_the_data_rates_that_carry_its_frame() {
         sfs.dedup();
         Ok(sfs)
     };
-    let us915 = json!({"drones": 8, "duration": 30, "region": "us915", "sf": 9, "bw": 125, "interval": 5, "sfPlan": "spread"});
+    let us915 = json!({"drones": 8, "duration": 30, "region": "us915", "bw": 125, "interval": 5, "sfPlan": "spread"});
     // DR's 22-byte frame fits US915's DR0 (SF10) within the dwell time; 3D-CTRA's 25 bytes do not,
     // so its swarm spreads over SF7..SF9 where a fixed SF10 is refused with the reason.
     let mut dr = us915.clone();

@@ -800,3 +800,23 @@ proptest::proptest! {
         }
     }
 }
+
+/// A spread swarm deals its drones SF7..SF12 in turn, so the SF set is read only by a fixed plan:
+/// elsewhere it changed nothing though the command line named it, and is refused.
+#[test]
+fn a_spread_swarm_refuses_the_sf_it_would_not_read() {
+    let run = |changes: Value| swarm(&set(&Scenario::default(), changes));
+    let e = run(json!({"drones": 6, "duration": 60, "sf": 9}))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("`sf` is a fixed SF plan's") && e.ends_with("set `sfPlan` to fixed"),
+        "{e}"
+    );
+    let fixed = run(json!({"drones": 6, "duration": 60, "sf": 9, "sfPlan": "fixed"})).unwrap();
+    assert!(fixed.drones.iter().all(|d| d.sf == 9));
+    let spread = run(json!({"drones": 6, "duration": 60})).unwrap();
+    let mut sfs: Vec<_> = spread.drones.iter().map(|d| d.sf).collect();
+    sfs.sort_unstable();
+    assert_eq!(sfs, [7, 8, 9, 10, 11, 12]);
+}

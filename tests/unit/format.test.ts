@@ -142,6 +142,8 @@ test('a caption names the settings, the flight, every seed and the version', () 
   expect(caption({ ...DEFAULTS, flight: 'csv', vehicle: 'multicopter', prediction: 'bounded' })).toMatch(/; uploaded CSV as a multicopter; seed 1;/);
   expect(caption({ ...DEFAULTS, flight: 'csv', vehicle: 'multicopter' })).toMatch(/; uploaded CSV; seed 1;/);
   expect(caption({ ...DEFAULTS, flight: 'csv' })).toMatch(/; uploaded CSV; seed 1;/);
+  // A spread swarm's caption leaves out the form's SF, which its drones are not all on.
+  expect(caption({ ...DEFAULTS, sf: 9 }, '', false)).toMatch(/^250 kHz, 1\.0 km, paper prediction/);
   expect(caption({ ...DEFAULTS, vehicle: 'fixed-wing' })).toMatch(/; synthetic flight 1; seed 1;/);
 });
 

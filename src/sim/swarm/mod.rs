@@ -23,7 +23,7 @@ use super::network::{run_episode, Network};
 use super::pooled::{airtime, RateTally};
 use super::radio::DroneRadio;
 use super::report::{ratio, Delivery, Energy};
-use super::scenario::{SyntheticChoice, TrajectorySource, Validated};
+use super::scenario::{SfPlan, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::{self, aloha_collision_rate, Airtime, Schedule, Slot};
 use super::sender::LeanPayload;
 use super::simulator::load_flights;
@@ -35,7 +35,7 @@ use super::{Caveats, LongRun, Saturation, SimError, Transmission};
 use crate::lora::{time_on_air, AdrMode, LoraParams, Outcome};
 use crate::math::sin_cos;
 use crate::metrics::{percentile, sort_total, Summary, WholeFlightError};
-use crate::options::{DURATION, MAX_SWARM_FILTER_STEPS};
+use crate::options::{DURATION, MAX_SWARM_FILTER_STEPS, SF};
 use crate::parallel::par_map;
 use crate::rng::Rng;
 use crate::trajectory::{chain_flights, FlightPlan, Trajectory};
@@ -246,6 +246,14 @@ impl<'a> Swarm<'a> {
             &[("series", s.run.series)],
             "simulate's (the first flight's error and tracks over time)",
             "a swarm reports each drone's statistics; leave `series` out",
+        )?;
+        // Spread deals SF7..SF12 in turn (`SfDeal::of`): `sf` then only names the SF of a
+        // refusal where none of them carries the frame.
+        SimError::unless_read(
+            s.swarm.sf_plan == SfPlan::Fixed,
+            &[("sf", s.radio.sf != SF.default as i64)],
+            "a fixed SF plan's (spread deals SF7..SF12 in turn)",
+            "set `sfPlan` to fixed",
         )?;
         let model = cfg.swarm_station()?;
         let plan = plan(cfg)?;
