@@ -1,6 +1,6 @@
 // What a model choice's stations read, known without the core (the form consults it before the
 // core has loaded, and the pool and workers for each part of a run they split): the tilt decay,
-// the mission plan. Each rule mirrors the core's refusal of a setting no station reads.
+// the mission plan, the vehicle. Each rule mirrors the core's refusal of a setting nothing reads.
 import type { ModelChoice, SimulateParams } from './loratrack';
 
 /** Whether a model choice runs a station that decays the tilt rate by `eta`: 3D-CTRA, and the

@@ -667,7 +667,7 @@ impl Scenario {
 
 impl FlightSettings {
     /// The plan, read and taken out of the settings (one copy, like the CSV text). Refused with
-    /// synthetic flights, which carry their own, and over a chosen flight where nothing reads
+    /// synthetic flights, which carry their own, and beside a logged flight where nothing reads
     /// it; a mission station needs one.
     fn take_plan(
         &mut self,
@@ -699,23 +699,25 @@ impl FlightSettings {
         Ok(plan)
     }
 
-    /// Refuses a plan given beside a flown flight (a CSV log or the Canberra flight) where
+    /// Refuses a plan given beside a logged flight (a CSV log or the Canberra flight) where
     /// nothing reads it: only a mission station follows it there, and otherwise only a bounded
     /// station over a CSV log reads its vehicle (a plane's top speed, [`Validated::vehicle`]
     /// with `vehicle` auto). Without this, `--plan` named in the header and the command line
-    /// would run the numbers of no plan.
+    /// would run the numbers of no plan. A plan alone is the flight; the synthetic flights
+    /// refuse one ([`Self::take_plan`]).
     fn check_plan_read(
         source: &Option<TrajectorySource>,
         station: &StationSettings,
         vehicle: Option<Cornering>,
         given: bool,
     ) -> Result<(), SimError> {
-        let flown = match source {
+        let csv_log = match source {
             Some(TrajectorySource::Csv(..)) => true,
             Some(TrajectorySource::Sample(_)) => false,
             _ => return Ok(()),
         };
-        let reads_vehicle = flown && vehicle.is_none() && station.prediction == Prediction::Bounded;
+        let reads_vehicle =
+            csv_log && vehicle.is_none() && station.prediction == Prediction::Bounded;
         SimError::unless_read(
             station.model.models().contains(&StationModel::Mission) || reads_vehicle,
             &[("plan", given)],
