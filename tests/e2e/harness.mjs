@@ -37,9 +37,10 @@ export function nativeJson(args) {
   return JSON.parse(execFileSync(cliPath(), [...args, '--json'], { cwd: root, encoding: 'utf8', maxBuffer: 256 << 20 }));
 }
 
-/** The native CLI's text output for `args`, as a person reads it in a terminal. */
+/** The native CLI's text output for `args`, as a person reads it in a terminal. Its stderr is
+ * kept with the error thrown when it fails (`e.stderr`: a refusal a test expects), not printed. */
 export function nativeText(args) {
-  return execFileSync(cliPath(), args, { cwd: root, encoding: 'utf8', maxBuffer: 256 << 20 });
+  return execFileSync(cliPath(), args, { cwd: root, encoding: 'utf8', maxBuffer: 256 << 20, stdio: ['ignore', 'pipe', 'pipe'] });
 }
 
 /** The JSON of a `loratrack …` command line (the page's "Copy command") as a POSIX shell runs it,
