@@ -61,7 +61,7 @@ export function updateEmbedCaption(): void {
   const shown = store.panels.split(',');
   const swarmAlone = store.embed && shown.includes('swarm') && !shown.some((p) => SINGLE_DRONE_PANELS.includes(p));
   // A spread swarm's drones are dealt SF7..SF12 in turn, not the form's SF.
-  const settings = swarmAlone ? caption(swarmSettings(store.reportSettings), '', $<HTMLSelectElement>('#swarmPlan').value === 'fixed') : caption(store.reportSettings);
+  const settings = swarmAlone ? caption(swarmSettings(store.reportSettings), '', { fixedSf: $<HTMLSelectElement>('#swarmPlan').value === 'fixed' }) : caption(store.reportSettings);
   $('#embed-settings').textContent = `Settings: ${settings}.`;
   const lines = [...store.notices];
   const results = $('[data-panel="results"]');

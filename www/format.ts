@@ -52,9 +52,10 @@ export const names = (list: Pick<ModelResult, 'model'>[]) => listed(list.map((m)
 /** The sending policy with what it rests on, the duty-cycle rule when it is not the paper's
  * off-time per packet and the payload when it is not the model's own: two error-triggered runs
  * with different thresholds must not read alike. Takes the page's settings or a report's own
- * config. */
-export function sending(s: Pick<Settings, 'sender' | 'threshold' | 'maxInterval' | 'dutyCycleMode'> & Partial<Pick<Settings, 'channelSense' | 'payload'>>): string {
-  const listens = s.channelSense === 'cad' ? ', listening to its channel' : '';
+ * config. Whether the drone listens to its channel is said of a `swarm`'s drones alone: a drone
+ * alone never hears another's frame, and its runs do not read it. */
+export function sending(s: Pick<Settings, 'sender' | 'threshold' | 'maxInterval' | 'dutyCycleMode'> & Partial<Pick<Settings, 'channelSense' | 'payload'>>, swarm = false): string {
+  const listens = swarm && s.channelSense !== 'off' ? ', listening to its channel' : '';
   const sender = s.sender === 'error' ? `error-triggered sending (${s.threshold} m, heartbeat ${s.maxInterval} s${listens})` : 'periodic sending';
   const lean = s.payload === 'lean' ? ', lean payloads' : '';
   return `${sender}${s.dutyCycleMode === 'budget' ? ', duty-cycle budget' : ''}${lean}`;
@@ -104,7 +105,7 @@ export function prediction(s: Pick<Settings, 'prediction'> & Partial<Pick<Settin
 /** The one station a swarm's drones report to, with its prediction and (where not the paper's)
  * the sending: `3D-CTRA station (bounded prediction, error-triggered sending (2 m, …))`. */
 export function stationPhrase(station: ModelName, s: Parameters<typeof prediction>[0] & Parameters<typeof sending>[0] & Parameters<typeof sendsAsPublished>[0]): string {
-  return `${MODEL_LABELS[station]} station (${prediction(s)}${sendsAsPublished(s) ? '' : `, ${sending(s)}`})`;
+  return `${MODEL_LABELS[station]} station (${prediction(s)}${sendsAsPublished(s) ? '' : `, ${sending(s, true)}`})`;
 }
 
 /** An ADR as the page names it: "LoRaWAN ADR", "tracking ADR" ("no ADR": a fixed rate). */
@@ -133,25 +134,33 @@ export function planLimit(s: Pick<Settings, 'region' | 'access' | 'fairUse' | 'd
 
 /** The settings behind a number, in one short phrase: the plan's limit whenever it is not the
  * paper's EU868 1 % duty cycle, the sender's threshold and heartbeat, and any advanced setting
- * changed from its default. Without `namesSf` it leaves the spreading factor out, for a swarm
- * whose drones are dealt SF7..SF12 in turn (its caption names those). */
-export function describe(s: Settings, namesSf = true): string {
+ * changed from its default. Of a `swarm` it says whether the drones listen to their channel, and
+ * names the SF only where the swarm's plan puts every drone on it (spread deals SF7..SF12 in
+ * turn, which its caption names). */
+export function describe(s: Settings, swarm?: SwarmOf): string {
+  const namesSf = swarm?.fixedSf ?? true;
   const limit = planLimit(s);
   // A tilt decay kept in the form where no station reads it is not sent (`toParams`), nor said.
   const advanced = advancedChanged(decaysTilt(s.model) ? s : { ...s, eta: DEFAULTS.eta });
-  return `${namesSf ? `SF${s.sf}, ` : ''}${s.bw} kHz${limit ? `, ${limit}` : ''}, ${link(s)}, ${prediction(s)}, ${sending(s)}${s.adr === 'off' ? '' : `, ${adrName(s.adr)}`}${advanced.map((a) => `, ${a}`).join('')}`;
+  return `${namesSf ? `SF${s.sf}, ` : ''}${s.bw} kHz${limit ? `, ${limit}` : ''}, ${link(s)}, ${prediction(s)}, ${sending(s, swarm !== undefined)}${s.adr === 'off' ? '' : `, ${adrName(s.adr)}`}${advanced.map((a) => `, ${a}`).join('')}`;
 }
 
-/** One line for a download's caption: the settings, flight, seed and version behind a chart (the
- * spreading factor only where `namesSf`: [`describe`]). */
-export function caption(s: Settings, extra = '', namesSf = true): string {
+/** What a swarm's caption says otherwise than the single drone's ([`describe`]). */
+export interface SwarmOf {
+  /** Whether every drone is on the form's SF (`sfPlan` fixed). */
+  fixedSf: boolean;
+}
+
+/** One line for a download's caption: the settings, flight, seed and version behind a chart (of
+ * a `swarm`: [`describe`]). */
+export function caption(s: Settings, extra = '', swarm?: SwarmOf): string {
   const flight = s.flight === 'all' ? 'whole synthetic set' : s.flight === 'canberra' ? 'real flight (Canberra)' : s.flight === 'csv' ? (store.csv?.name ?? 'uploaded CSV') : s.flight === 'plan' ? `${store.plan?.name ?? 'plan'} (flown)` : `synthetic flight ${s.flightNumber}`;
   // A vehicle set over an uploaded file's changes how it is flown, followed and bounded, where
   // a station reads it.
   const set = uploaded(s.flight) && s.vehicle !== 'auto' && readsVehicle(s.flight === 'plan', s.model, s.prediction);
   const vehicle = set ? (s.vehicle === 'fixed-wing' ? ' as a plane' : ' as a multicopter') : '';
   const seeds = s.seeds > 1 ? ` to ${s.seed + s.seeds - 1}` : '';
-  return `${describe(s, namesSf)}, ${s.lorawan ? `${overheadBytes(s)} B` : 'no'} LoRaWAN overhead; ${flight}${vehicle}; seed ${s.seed}${seeds}${extra}; loratrack ${__LORATRACK_VERSION__}`;
+  return `${describe(s, swarm)}, ${s.lorawan ? `${overheadBytes(s)} B` : 'no'} LoRaWAN overhead; ${flight}${vehicle}; seed ${s.seed}${seeds}${extra}; loratrack ${__LORATRACK_VERSION__}`;
 }
 
 /** A flight time as a sentence says it: "2 minutes", "1 minute", "90 s". */

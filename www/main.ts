@@ -13,7 +13,7 @@ import { airtimeRows } from './airtime';
 import { chartSvg, downloadAirtimeCsv, downloadErrorCsv, downloadJson, downloadPicturePng, downloadPng, downloadResultsCsv, downloadSvg, MIN_PNG_WIDTH, tableSvg, type SlideText } from './export';
 import { field, form, markField, onFormChange, readControls, settingWords, showConditional, writeControls } from './form';
 import { setUpEmbed, setUpEmbedDialog, updateEmbedCaption } from './embed';
-import { adrName, bandNote, caption, fewPacketsNote, fixedRateNote, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote } from './format';
+import { adrName, bandNote, caption, fewPacketsNote, fixedRateNote, noLineNote, offChartNote, oneGatewayNote, oneSeedNote, refusedNote, seriesNote, type SwarmOf } from './format';
 import { later, drawingLater, nextTask, onDrawing } from './later';
 import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSettings, type Lesson } from './lessons';
 import { clearTable, renderBaseline, renderTable, restingNotes, resultsWhat } from './results';
@@ -706,8 +706,8 @@ function chartWidth(name: string): number {
   return Math.max(300, $(`#chart-${name}`).clientWidth || 600);
 }
 
-function place(name: string, chart: Element, made: Settings = store.settings, extra = '', namesSf = true): void {
-  charts[name] = { chart, caption: caption(made, extra, namesSf) };
+function place(name: string, chart: Element, made: Settings = store.settings, extra = '', swarm?: SwarmOf): void {
+  charts[name] = { chart, caption: caption(made, extra, swarm) };
   // Plot labels its mark groups; an unlabelled role-less <g> may not carry aria-label, so the
   // chart is one image named by its panel's title instead.
   for (const g of chart.querySelectorAll('g[aria-label]')) g.removeAttribute('aria-label');
@@ -846,6 +846,9 @@ function swarmRequest(): { sizes: number[]; params: SwarmParams } {
     ...shared,
     // Spread deals SF7..SF12 in turn: the form's SF is read only where every drone is on it.
     ...(sfPlan === 'fixed' ? { sf } : {}),
+    // Whether an error-triggered drone listens for the others' frames, which a drone alone
+    // (the results) never hears.
+    ...(made.sender === 'error' ? { channelSense: made.channelSense } : {}),
     // The drones' distance from the centre, which the swarm reads where gateways are listed too.
     distance: made.distance,
     model: stationsOf(store.settings.model).length === 1 && !runsMission(store.settings.model) ? store.settings.model : 'all',
@@ -929,7 +932,7 @@ $('#run-swarm').addEventListener('click', () => {
         const p = await plots();
         const channels = swarms[0]?.drones[0]?.channelUse.length ?? params.channels ?? 1;
         const largest = swarms[swarms.length - 1];
-        place('swarm', p.swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${channels} channel${channels === 1 ? '' : 's'}, ${p.sfPlanWords(largest)}, ${params.schedule === 'slotted' ? 'slotted' : 'ALOHA'}, ${Math.round(largest.flightTime)} s each`, params.sfPlan === 'fixed');
+        place('swarm', p.swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${channels} channel${channels === 1 ? '' : 's'}, ${p.sfPlanWords(largest)}, ${params.schedule === 'slotted' ? 'slotted' : 'ALOHA'}, ${Math.round(largest.flightTime)} s each`, { fixedSf: params.sfPlan === 'fixed' });
       };
       later('swarm', lastSwarm);
     },

@@ -318,9 +318,10 @@ export function toParams(s: Settings, csv?: { name: string }, missionPlan?: { te
     // Kept in the form while the paper's station is chosen, which has no hedge to choose.
     headingNoise: s.prediction === 'bounded' ? s.headingNoise : 'fixed',
     sender: s.sender,
-    // Kept in the form while sending periodically, which has no threshold, heartbeat or listening
-    // (the core refuses them there).
-    ...(s.sender === 'error' ? { threshold: s.threshold, maxInterval: s.maxInterval, channelSense: s.channelSense } : {}),
+    // Kept in the form while sending periodically, which has no threshold or heartbeat (the core
+    // refuses them there). Whether the drone listens to its channel is a swarm's setting: a drone
+    // alone never hears another's frame (the swarm's request adds it).
+    ...(s.sender === 'error' ? { threshold: s.threshold, maxInterval: s.maxInterval } : {}),
     dutyCycleMode: s.dutyCycleMode,
     payload: s.payload,
     adr: s.adr,

@@ -8,6 +8,7 @@ use super::report::{
 };
 use super::scenario::{SfPlan, SwarmSettings, SyntheticChoice, TrajectorySource, Validated};
 use super::schedule::Schedule;
+use super::sender::ChannelSense;
 use super::station::{
     drone_run_work, station_work, Estimate, FlightChains, HeadingNoise, Prediction, StationModel,
     MAX_GRIDS,
@@ -609,8 +610,9 @@ fn simulated_source(cfg: &Validated) -> Result<&TrajectorySource, SimError> {
                 .into(),
         ));
     }
-    // How a swarm's drones share the air: its schedule, its channels, and what survives when
-    // two frames meet (one drone's network hears no other frame).
+    // How a swarm's drones share the air: its schedule, its channels, what survives when two
+    // frames meet, and whether a drone listens for the others' (one drone's network hears no
+    // other frame: its drone, listening or not, always finds the channel free).
     SimError::unless_read(
         false,
         &[
@@ -618,6 +620,10 @@ fn simulated_source(cfg: &Validated) -> Result<&TrajectorySource, SimError> {
             ("channels", cfg.channels != s.access.region.channels()),
             ("capture", !s.network.capture),
             ("interSf", !s.network.inter_sf),
+            (
+                "channelSense",
+                s.sending.channel_sense != ChannelSense::default(),
+            ),
         ],
         "a swarm setting",
         "simulate's one drone has the air to itself",

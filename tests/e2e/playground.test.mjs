@@ -833,18 +833,22 @@ test('the bounded and IMM stations and error-triggered sending are one control a
   assert.ok(errorSent < periodicSent, `error-triggered sent ${errorSent}, periodic ${periodicSent}`);
   assert.match(page.url(), /sender=error/);
   assert.match(page.url(), /threshold=5/);
-  // The table says what its numbers rest on: the sender, its threshold and heartbeat, and that it
-  // listens to its channel (the default).
-  assert.match(await page.locator('#results-table caption').first().textContent(), /error-triggered sending \(5 m, heartbeat 10 s, listening to its channel\)/);
+  // The table says what its numbers rest on: the sender, its threshold and heartbeat (not whether
+  // it listens to its channel: a drone alone never hears another's frame).
+  assert.match(await page.locator('#results-table caption').first().textContent(), /error-triggered sending \(5 m, heartbeat 10 s\)/);
   // At 3 km packets are lost: the results say what the drone's silence rests on.
   assert.equal(await page.locator('#silence-note').isVisible(), true);
   // A drone alone never hears another packet, so one that does not listen sends the same: the
-  // same numbers, said to rest on a drone that does not listen, and kept in the link.
+  // results do not read it (the CLI refuses it in simulate) and stand; the link keeps it, for the
+  // swarm panel, whose command line carries it.
   before = await tableHtml(page);
+  const command = await page.locator('[data-command="results"] code').textContent();
   await page.getByLabel('Channel sensing').selectOption('off');
-  await until(page, () => /\(5 m, heartbeat 10 s\)/.test(document.querySelector('#results-table caption')?.textContent ?? ''));
+  await until(page, () => /channelSense=off/.test(location.href));
   assert.equal(await tableHtml(page), before);
-  assert.match(page.url(), /channelSense=off/);
+  assert.equal(await page.locator('[data-command="results"] code').textContent(), command);
+  assert.doesNotMatch(command, /--channel-sense/);
+  assert.throws(() => nativeText(['simulate', '--synthetic', '1', '--sender', 'error', '--channel-sense', 'off']), (e) => e.status === 2 && /--channel-sense is a swarm setting/.test(e.stderr));
   // Back to periodic sending: the form keeps the threshold and listening (hidden) but does not
   // send them, which the core would refuse as settings nothing reads; the run and its command
   // line are periodic sending's.

@@ -565,7 +565,6 @@ fn a_setting_that_would_change_nothing_is_refused_with_what_makes_it_apply() {
     for (given, enabling) in [
         (&["--threshold", "3"][..], &["--sender", "error"][..]),
         (&["--max-interval", "20"], &["--sender", "error"]),
-        (&["--channel-sense", "off"], &["--sender", "error"]),
         (&["--burst", "4"], &["--duty-cycle-mode", "budget"]),
         (&["--adr-margin", "15"], &["--adr", "lorawan"]),
         (&["--adr-history", "10"], &["--adr", "lorawan"]),
@@ -643,22 +642,33 @@ fn listed_gateways_leave_the_distance_and_a_default_height_unread_and_both_are_r
     assert_eq!(out.status.code(), Some(0));
 }
 
-/// How a swarm's drones share the air is the swarm's (one drone's frames never meet another's),
-/// and the first flight's series are simulate's (a swarm has no first flight to draw).
+/// How a swarm's drones share the air is the swarm's (one drone's frames never meet another's,
+/// and listening for them it always finds the channel free), and the first flight's series are
+/// simulate's (a swarm has no first flight to draw).
 #[test]
 fn simulate_and_swarm_refuse_each_others_settings() {
-    for given in [
-        &["--channels", "1"][..],
-        &["--capture", "off"],
-        &["--inter-sf", "off"],
-        &["--schedule", "slotted"],
+    // Each the setting refused and what it is given with (listening is error-triggered
+    // sending's; in a swarm its heartbeat must reach the slowest SF's interval).
+    for (flag, given) in [
+        ("--channels", &["--channels", "1"][..]),
+        ("--capture", &["--capture", "off"]),
+        ("--inter-sf", &["--inter-sf", "off"]),
+        ("--schedule", &["--schedule", "slotted"]),
+        (
+            "--channel-sense",
+            &[
+                "--sender",
+                "error",
+                "--max-interval",
+                "80",
+                "--channel-sense",
+                "off",
+            ],
+        ),
     ] {
         refused(
             &[&["simulate", "--synthetic", "1"][..], given].concat(),
-            &format!(
-                "{} is a swarm setting: simulate's one drone has the air to itself",
-                given[0]
-            ),
+            &format!("{flag} is a swarm setting: simulate's one drone has the air to itself"),
         );
         let swarm = cli(&[&["swarm", "--drones", "2", "--duration", "60"][..], given].concat());
         assert_eq!(swarm.status.code(), Some(0), "{given:?}");

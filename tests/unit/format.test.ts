@@ -117,13 +117,14 @@ test('a caption names the settings, the flight, every seed and the version', () 
   // Fades fixed in space are other fades: a caption says so.
   expect(describe({ ...DEFAULTS, shadowingModel: 'field' })).toBe('SF7, 250 kHz, 1.0 km, paper prediction, periodic sending, shadowing fixed in space');
   // Two error-triggered runs with different thresholds, or different link settings, must not read alike;
-  // nor one that listens to its channel (the default) and one that does not.
-  expect(describe({ ...DEFAULTS, sender: 'error', threshold: 20, maxInterval: 60, dutyCycleMode: 'budget' })).toBe(
-    'SF7, 250 kHz, 1.0 km, paper prediction, error-triggered sending (20 m, heartbeat 60 s, listening to its channel), duty-cycle budget',
-  );
-  expect(describe({ ...DEFAULTS, sender: 'error', threshold: 20, maxInterval: 60, dutyCycleMode: 'budget', channelSense: 'off' })).toBe(
-    'SF7, 250 kHz, 1.0 km, paper prediction, error-triggered sending (20 m, heartbeat 60 s), duty-cycle budget',
-  );
+  // nor two swarms of which one listens to its channel (the default) and one does not. A drone
+  // alone never hears another's frame: its runs do not read that, nor say it.
+  const crowd = { ...DEFAULTS, sender: 'error', threshold: 20, maxInterval: 60, dutyCycleMode: 'budget' } as const;
+  const alone = 'SF7, 250 kHz, 1.0 km, paper prediction, error-triggered sending (20 m, heartbeat 60 s), duty-cycle budget';
+  expect(describe(crowd)).toBe(alone);
+  expect(describe({ ...crowd, channelSense: 'off' })).toBe(alone);
+  expect(describe(crowd, { fixedSf: true })).toBe(alone.replace('heartbeat 60 s', 'heartbeat 60 s, listening to its channel'));
+  expect(describe({ ...crowd, channelSense: 'off' }, { fixedSf: true })).toBe(alone);
   // Gateways placed by hand replace the default gateway's distance.
   expect(describe({ ...DEFAULTS, gateways: [{ east: 500, north: -200 }, { east: 0, north: 3000 }] })).toBe(
     'SF7, 250 kHz, gateways at (500, -200) m, (0, 3000) m, paper prediction, periodic sending',
@@ -143,7 +144,8 @@ test('a caption names the settings, the flight, every seed and the version', () 
   expect(caption({ ...DEFAULTS, flight: 'csv', vehicle: 'multicopter' })).toMatch(/; uploaded CSV; seed 1;/);
   expect(caption({ ...DEFAULTS, flight: 'csv' })).toMatch(/; uploaded CSV; seed 1;/);
   // A spread swarm's caption leaves out the form's SF, which its drones are not all on.
-  expect(caption({ ...DEFAULTS, sf: 9 }, '', false)).toMatch(/^250 kHz, 1\.0 km, paper prediction/);
+  expect(caption({ ...DEFAULTS, sf: 9 }, '', { fixedSf: false })).toMatch(/^250 kHz, 1\.0 km, paper prediction/);
+  expect(caption({ ...DEFAULTS, sf: 9 }, '', { fixedSf: true })).toMatch(/^SF9, 250 kHz, 1\.0 km, paper prediction/);
   expect(caption({ ...DEFAULTS, vehicle: 'fixed-wing' })).toMatch(/; synthetic flight 1; seed 1;/);
 });
 
