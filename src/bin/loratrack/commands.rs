@@ -493,7 +493,7 @@ fn simulate(a: SimulateArgs) -> Result<String, ApiError> {
         adr_text(&c.settings.network),
         c.settings.radio.overhead,
         pooled_seeds(c.settings.run.seed, c.settings.run.seeds),
-        policy_text(&c.settings),
+        policy_text(&c.settings, false),
         settings_line(&c.settings, &[]),
         results_table(&r.results),
         network_lines(&r)
@@ -518,20 +518,22 @@ fn vehicle_text(
 /// The station's prediction and the drone's sending in words, the second line of the text
 /// output: two runs that differ only in these must not print alike. `stations: bounded
 /// prediction; error-triggered sending (2 m, heartbeat 10 s, listening to its channel), an
-/// off-time per packet`.
-fn policy_text(s: &loratrack::Scenario) -> String {
+/// off-time per packet`. Whether the drone listens is said of a `swarm`'s drones alone: a drone
+/// alone never hears another's frame (`simulate` refuses `--channel-sense off`).
+fn policy_text(s: &loratrack::Scenario, swarm: bool) -> String {
     let (station, send) = (&s.station, &s.sending);
     let adaptive = station.prediction == loratrack::Prediction::Bounded
         && station.heading_noise == loratrack::HeadingNoise::Adaptive;
     let sender = match send.sender {
         loratrack::SenderKind::Periodic => "periodic sending".to_string(),
         loratrack::SenderKind::Error => format!(
-            "error-triggered sending ({} m, heartbeat {} s, {})",
+            "error-triggered sending ({} m, heartbeat {} s{})",
             send.threshold,
             send.max_interval,
             match send.channel_sense {
-                loratrack::ChannelSense::Cad => "listening to its channel",
-                loratrack::ChannelSense::Off => "not listening",
+                _ if !swarm => "",
+                loratrack::ChannelSense::Cad => ", listening to its channel",
+                loratrack::ChannelSense::Off => ", not listening",
             }
         ),
     };
@@ -998,7 +1000,7 @@ fn swarm_header(r: &SwarmReport) -> String {
         if c.network.inter_sf { "on" } else { "off" },
         c.network.adr.name(),
         c.run.seed,
-        policy_text(c),
+        policy_text(c, true),
         // The channel access line gives the swarm's timing.
         settings_line(c, &["jitter", "clockDrift"]),
     )
@@ -1254,7 +1256,7 @@ mod tests {
         s.sending.duty_cycle_mode = loratrack::DutyCycleMode::Budget;
         for (burst, words) in [(1, "budget of 1 packet"), (10, "budget of 10 packets")] {
             s.sending.burst = burst;
-            let line = policy_text(&s);
+            let line = policy_text(&s, false);
             assert!(line.ends_with(words), "{line}");
         }
     }
@@ -1409,7 +1411,7 @@ mod tests {
         vary(&|s| s.sending.duty_cycle_mode = loratrack::DutyCycleMode::Budget);
         vary(&|s| s.sending.burst = 4);
         vary(&|s| s.sending.payload = loratrack::PayloadChoice::Lean);
-        let headers: Vec<String> = variants.iter().map(policy_text).collect();
+        let headers: Vec<String> = variants.iter().map(|s| policy_text(s, true)).collect();
         for (i, a) in headers.iter().enumerate() {
             for b in &headers[i + 1..] {
                 assert_ne!(a, b, "{headers:#?}");
@@ -1426,15 +1428,13 @@ mod tests {
     #[test]
     fn the_policy_line_names_the_interval_where_the_plan_has_no_duty_cycle() {
         let mut s = Scenario::default();
-        assert!(policy_text(&s).ends_with(", an off-time per packet"));
+        assert!(policy_text(&s, false).ends_with(", an off-time per packet"));
         s.access.region = loratrack::Region::Us915;
-        assert!(
-            policy_text(&s).ends_with(", every 1 s (the interval set; US915 has no duty cycle)")
-        );
+        assert!(policy_text(&s, false)
+            .ends_with(", every 1 s (the interval set; US915 has no duty cycle)"));
         s.access.interval = Some(5.0);
-        assert!(
-            policy_text(&s).ends_with(", every 5 s (the interval set; US915 has no duty cycle)")
-        );
+        assert!(policy_text(&s, false)
+            .ends_with(", every 5 s (the interval set; US915 has no duty cycle)"));
     }
 
     #[test]
