@@ -133,6 +133,12 @@ impl ModelChoice {
         &self.0
     }
 
+    /// Whether the mission station is among them: the one reader of a plan beside a logged
+    /// flight, of `planTolerance` and `planPace`, and a reader of the vehicle.
+    pub fn runs_mission(&self) -> bool {
+        self.0.contains(&StationModel::Mission)
+    }
+
     /// Parses `all` or a comma list.
     pub fn parse(text: &str) -> Result<Self, String> {
         if text.trim().is_empty() {

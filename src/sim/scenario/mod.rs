@@ -676,7 +676,6 @@ impl FlightSettings {
         vehicle: Option<Cornering>,
     ) -> Result<Option<FlightPlan>, SimError> {
         let synthetic = matches!(source, Some(TrajectorySource::Synthetic(_)));
-        let models = &station.model;
         Self::check_plan_read(source, station, vehicle, self.plan.is_some())?;
         let plan = match self.plan.take() {
             Some(_) if synthetic => return Err(SimError::Source(
@@ -686,11 +685,7 @@ impl FlightSettings {
             Some(text) => Some(parse_plan_as(&text, vehicle)?),
             None => None,
         };
-        if plan.is_none()
-            && source.is_some()
-            && !synthetic
-            && models.models().contains(&StationModel::Mission)
-        {
+        if plan.is_none() && source.is_some() && !synthetic && station.model.runs_mission() {
             return Err(SimError::Source(
                 "the mission station needs the plan the drone flies: give `plan` (a CSV of x,y,z[,speed[,hold]] or a QGroundControl .plan), or fly the synthetic flights, which carry their own"
                     .into(),
@@ -719,7 +714,7 @@ impl FlightSettings {
         let reads_vehicle =
             csv_log && vehicle.is_none() && station.prediction == Prediction::Bounded;
         SimError::unless_read(
-            station.model.models().contains(&StationModel::Mission) || reads_vehicle,
+            station.model.runs_mission() || reads_vehicle,
             &[("plan", given)],
             "read over a logged flight by the mission station alone (and, over a CSV log with `vehicle` auto, by a bounded station for the drone's top speed)",
             "add mission to `model`",
@@ -790,7 +785,7 @@ impl VehicleChoice {
         SimError::unless_read(
             flown
                 || station.prediction == Prediction::Bounded
-                || station.model.models().contains(&StationModel::Mission),
+                || station.model.runs_mission(),
             &[("vehicle", self.given().is_some())],
             "read only where a plan is flown or followed or a bounded station holds the drone to its top speed",
             "set `prediction` to bounded, or add mission to `model`",
@@ -886,7 +881,7 @@ impl StationSettings {
             "add 3d-ctra to `model`",
         )?;
         SimError::unless_read(
-            models.contains(&StationModel::Mission),
+            self.model.runs_mission(),
             &[
                 (
                     "planTolerance",
