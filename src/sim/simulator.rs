@@ -604,18 +604,18 @@ impl Simulator {
 /// cannot honour.
 fn simulated_source(cfg: &Validated) -> Result<&TrajectorySource, SimError> {
     let s = cfg.s();
-    if s.swarm != SwarmSettings::default() {
-        return Err(SimError::Source(
-            "`drones`, `duration` and `sfPlan` are swarm settings: simulate flies one drone over its flight"
-                .into(),
-        ));
-    }
-    // How a swarm's drones share the air: its schedule, its channels, what survives when two
-    // frames meet, and whether a drone listens for the others' (one drone's network hears no
-    // other frame: its drone, listening or not, always finds the channel free).
+    let swarm = &s.swarm;
+    let plain = SwarmSettings::default();
+    // How many drones fly, for how long and at which SFs; how they share the air: the schedule,
+    // the channels, what survives when two frames meet, and whether a drone listens for the
+    // others' (one drone's network hears no other frame: its drone, listening or not, always
+    // finds the channel free).
     SimError::unless_read(
         false,
         &[
+            ("drones", swarm.drones != plain.drones),
+            ("duration", swarm.duration != plain.duration),
+            ("sfPlan", swarm.sf_plan != plain.sf_plan),
             ("schedule", s.access.schedule != Schedule::Aloha),
             ("channels", cfg.channels != s.access.region.channels()),
             ("capture", !s.network.capture),
@@ -626,7 +626,7 @@ fn simulated_source(cfg: &Validated) -> Result<&TrajectorySource, SimError> {
             ),
         ],
         "a swarm setting",
-        "simulate's one drone has the air to itself",
+        "simulate flies one drone over its flight, with the air to itself",
     )?;
     // A swarm reads it with listed gateways too: its drones' distance from the centre.
     SimError::unless_read(

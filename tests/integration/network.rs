@@ -218,7 +218,18 @@ fn settings_are_checked_before_any_work_with_the_key_and_the_limit() {
             json!({"synthetic": 1, "gateways": (0..17).map(|i| json!({"east": i, "north": 0})).collect::<Vec<_>>()}),
             "gateways must be 1..16",
         ),
-        (json!({"synthetic": 1, "drones": 5}), "swarm settings"),
+        (
+            json!({"synthetic": 1, "drones": 5}),
+            "`drones` is a swarm setting: simulate flies one drone over its flight",
+        ),
+        (
+            json!({"synthetic": 1, "duration": 120}),
+            "`duration` is a swarm setting",
+        ),
+        (
+            json!({"synthetic": 1, "sfPlan": "fixed"}),
+            "`sfPlan` is a swarm setting",
+        ),
         (
             json!({"synthetic": 1, "spreadingFactor": 9}),
             "unknown setting 'spreadingFactor'",

@@ -668,7 +668,7 @@ fn simulate_and_swarm_refuse_each_others_settings() {
     ] {
         refused(
             &[&["simulate", "--synthetic", "1"][..], given].concat(),
-            &format!("{flag} is a swarm setting: simulate's one drone has the air to itself"),
+            &format!("{flag} is a swarm setting: simulate flies one drone over its flight, with the air to itself"),
         );
         let swarm = cli(&[&["swarm", "--drones", "2", "--duration", "60"][..], given].concat());
         assert_eq!(swarm.status.code(), Some(0), "{given:?}");

@@ -288,14 +288,14 @@ pub struct NetworkSettings {
     #[cfg_attr(
         cli,
         arg(long, default_value = "on", value_parser = on_off, value_name = "on|off", action = clap::ArgAction::Set,
-            help = "Same-SF capture: the stronger packet survives 6 dB above the others (off: every overlap is fatal).")
+            help = "Same-SF capture: the stronger packet survives 6 dB above the others (off: every overlap is fatal). swarm only.")
     )]
     pub capture: bool,
     /// Inter-SF interference by the rejection matrix (off: SFs are orthogonal).
     #[cfg_attr(
         cli,
         arg(long, default_value = "on", value_parser = on_off, value_name = "on|off", action = clap::ArgAction::Set,
-            help = "Inter-SF interference by the rejection matrix of ns-3's lorawan module (off: SFs are orthogonal).")
+            help = "Inter-SF interference by the rejection matrix of ns-3's lorawan module (off: SFs are orthogonal). swarm only.")
     )]
     pub inter_sf: bool,
     /// Adaptive data rate: `off`, `lorawan` or `tracking`.

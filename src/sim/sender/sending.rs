@@ -48,7 +48,7 @@ pub struct Sending {
             long,
             value_enum,
             default_value_t,
-            help = "Error-triggered sending: cad (channel activity detection as each uplink starts: the threshold is divided by (1 - b)^2, b the share of recent starts that found another packet of the drone's SF on its channel; a drone alone keeps its threshold) or off (the threshold as set, whatever the crowd)."
+            help = "Error-triggered sending: cad (channel activity detection as each uplink starts: the threshold is divided by (1 - b)^2, b the share of recent starts that found another packet of the drone's SF on its channel; a drone alone keeps its threshold) or off (the threshold as set, whatever the crowd). swarm only."
         )
     )]
     pub channel_sense: ChannelSense,
