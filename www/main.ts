@@ -19,8 +19,7 @@ import { baselineIsLessons, changedFromLesson, LESSONS, lessonQuery, lessonSetti
 import { clearTable, renderBaseline, renderTable, restingNotes, resultsWhat } from './results';
 import { commandOf, setUpCopyCommand, showCommand } from './command';
 import { setUpPresent } from './present';
-import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, simulateRequest, swarmSettings, toParams, toQuery, uploaded, type Settings } from './state';
-import { runsMission } from './stations';
+import { DEFAULTS, fromQuery, isNumericKey, packetPlan, plan, planAllows, planReason, simulateRequest, swarmRequest as swarmRequestOf, swarmSettings, toParams, toQuery, uploaded, type Settings } from './state';
 import { pageQuery, store } from './store';
 import { readSwarmQuery, resetSwarmChoices, swarmSelects } from './swarmChoices';
 import type { Request, Response, SimulateRequest } from './worker';
@@ -829,37 +828,17 @@ $('#reset-view').addEventListener('click', () => trajectory3d?.resetView());
 // ---- the swarm panel: workers of its own, so a swarm never holds up the single-drone results --
 let swarmRun: SwarmRun | undefined;
 
-/** The swarms the panel would run now: growing sizes up to its drones, each with the single
- * drone's settings and the panel's choices. */
+/** The swarms the panel would run now (`swarmRequest`: the drone's settings and the panel's
+ * choices). */
 function swarmRequest(): { sizes: number[]; params: SwarmParams } {
-  const n = Number($<HTMLSelectElement>('#swarmDrones').value);
-  const sizes = [...new Set([2, Math.round(n / 8), Math.round(n / 4), Math.round(n / 2), n])].filter((k) => k >= 1);
-  // The swarm takes every setting of the single drone, as a swarm rests on them (`swarmSettings`:
-  // its flights, one seed); its drones chain those flights around the centre (the synthetic set,
-  // the swarm's own default, where no `synthetic` is given) and run one station (a list of models
-  // runs 3D-CTRA, as `all` does, and so does the mission station, which would need each drone's
-  // own plan).
-  const made = swarmSettings(store.settings);
-  const sfPlan = $<HTMLSelectElement>('#swarmPlan').value as 'fixed' | 'spread';
-  const { synthetic: _s, sf, ...shared } = toParams(made);
-  const params: SwarmParams = {
-    ...shared,
-    // Spread deals SF7..SF12 in turn: the form's SF is read only where every drone is on it.
-    ...(sfPlan === 'fixed' ? { sf } : {}),
-    // Whether an error-triggered drone listens for the others' frames, which a drone alone
-    // (the results) never hears.
-    ...(made.sender === 'error' ? { channelSense: made.channelSense } : {}),
-    // The drones' distance from the centre, which the swarm reads where gateways are listed too.
-    distance: made.distance,
-    model: stationsOf(store.settings.model).length === 1 && !runsMission(store.settings.model) ? store.settings.model : 'all',
-    // The real flight is flown whole (the panel hides the choice); the duration chains synthetic flights.
-    ...(made.flight === 'canberra' ? {} : { duration: Number($<HTMLSelectElement>('#swarmDuration').value) }),
-    // One channel, or all the plan's (its default).
-    ...($<HTMLSelectElement>('#swarmChannels').value === '1' ? { channels: 1 } : {}),
-    sfPlan,
-    schedule: $<HTMLSelectElement>('#swarmSchedule').value as 'aloha' | 'slotted',
-  };
-  return { sizes, params };
+  const value = (id: string) => $<HTMLSelectElement>(`#${id}`).value;
+  return swarmRequestOf(store.settings, {
+    drones: Number(value('swarmDrones')),
+    channels: value('swarmChannels') === '1' ? '1' : 'plan',
+    sfPlan: value('swarmPlan') === 'fixed' ? 'fixed' : 'spread',
+    schedule: value('swarmSchedule') === 'slotted' ? 'slotted' : 'aloha',
+    duration: Number(value('swarmDuration')),
+  });
 }
 
 /** The request of the swarms on show, to tell when the settings have moved on from them. */

@@ -5,7 +5,7 @@
 // core's validation cannot disagree.
 import { decaysTilt, runsMission, withoutUnreadFlightSettings } from './stations';
 import type { SimulateRequest, SweepPoint } from './worker';
-import { CHOICE_DEFAULTS, OPTIONS, PLANS, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type HeadingNoise, type ModelChoice, type NumberOption, type PayloadChoice, type Plan, type Prediction, type Region, type ShadowingModel, type SimulateParams, type VehicleChoice } from './loratrack';
+import { CHOICE_DEFAULTS, OPTIONS, PLANS, stationsOf, type AdrMode, type ChannelAccess, type ChannelSense, type FairUse, type GatewaySite, type HeadingNoise, type ModelChoice, type NumberOption, type PayloadChoice, type Plan, type Prediction, type Region, type ShadowingModel, type SimulateParams, type VehicleChoice } from './loratrack';
 
 export type FlightChoice = 'synthetic' | 'all' | 'canberra' | 'csv' | 'plan';
 
@@ -277,6 +277,47 @@ function sendingSetting(s: Pick<Settings, 'region' | 'access' | 'interval' | 'du
  * the synthetic set otherwise (an uploaded flight stays with the single drone). */
 export function swarmSettings(s: Settings): Settings {
   return { ...s, seeds: 1, flight: s.flight === 'canberra' ? 'canberra' : 'all' };
+}
+
+/** The swarm panel's choices (its selects, index.html's `.swarm-controls`): the largest swarm's
+ * drones, its channels (one, or all the plan's), how SFs are dealt, the schedule, and the seconds
+ * of synthetic flight each drone chains. */
+export interface SwarmChoices {
+  drones: number;
+  channels: '1' | 'plan';
+  sfPlan: 'fixed' | 'spread';
+  schedule: 'aloha' | 'slotted';
+  duration: number;
+}
+
+/** The swarms the panel runs for settings `s` and the panel's `choices`: growing sizes up to its
+ * drones, each with the single drone's settings, as a swarm rests on them (`swarmSettings`: its
+ * flights, one seed), and the panel's choices. Its drones chain those flights around the centre
+ * and run one station: a list of models runs 3D-CTRA, as `all` does, and so does the mission
+ * station, which would need each drone's own plan. */
+export function swarmRequest(s: Settings, choices: SwarmChoices): { sizes: number[]; params: SimulateParams } {
+  const n = choices.drones;
+  const sizes = [...new Set([2, Math.round(n / 8), Math.round(n / 4), Math.round(n / 2), n])].filter((k) => k >= 1);
+  const made = swarmSettings(s);
+  const { synthetic: _s, sf, ...shared } = toParams(made);
+  const params: SimulateParams = {
+    ...shared,
+    // Spread deals SF7..SF12 in turn: the form's SF is read only where every drone is on it.
+    ...(choices.sfPlan === 'fixed' ? { sf } : {}),
+    // Whether an error-triggered drone listens for the others' frames, which a drone alone
+    // (the results) never hears.
+    ...(made.sender === 'error' ? { channelSense: made.channelSense } : {}),
+    // The drones' distance from the centre, which the swarm reads where gateways are listed too.
+    distance: made.distance,
+    model: stationsOf(s.model).length === 1 && !runsMission(s.model) ? s.model : 'all',
+    // The real flight is flown whole (the panel hides the choice); the duration chains synthetic flights.
+    ...(made.flight === 'canberra' ? {} : { duration: choices.duration }),
+    // One channel, or all the plan's (its default).
+    ...(choices.channels === '1' ? { channels: 1 } : {}),
+    sfPlan: choices.sfPlan,
+    schedule: choices.schedule,
+  };
+  return { sizes, params };
 }
 
 /** Beside every run, the gateway distances (m) and spreading factors the distance and SF charts

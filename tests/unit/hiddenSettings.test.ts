@@ -4,7 +4,7 @@
 import { beforeAll, expect, test } from 'vitest';
 import { caption, describe } from '../../www/format';
 import type { SimulateParams } from '../../www/loratrack';
-import { DEFAULTS, MODEL_CHOICES, packetPlan, toParams } from '../../www/state';
+import { DEFAULTS, MODEL_CHOICES, packetPlan, swarmRequest, toParams } from '../../www/state';
 import { decaysTilt } from '../../www/stations';
 import { api, loadCore } from './core';
 
@@ -107,4 +107,27 @@ test('the shadowing model is sent, and named, only where there is shadowing for 
 test('a download caption names the tilt decay only where a station reads it', () => {
   expect(describe({ ...DEFAULTS, model: '3d-ctra', eta: 0.5 })).toMatch(/eta 0\.5/);
   expect(describe({ ...DEFAULTS, model: 'dr', eta: 0.5 })).not.toMatch(/eta/);
+});
+
+test('the swarm panel asks the core for nothing its swarms would not read, at every choice of station, sender, SF plan and flight', () => {
+  const choices = { drones: 2, channels: 'plan', schedule: 'aloha', duration: 60 } as const;
+  for (const model of MODEL_CHOICES) {
+    for (const sender of ['periodic', 'error'] as const) {
+      for (const sfPlan of ['fixed', 'spread'] as const) {
+        for (const flight of ['synthetic', 'canberra', 'csv'] as const) {
+          const what = `${model}, ${sender}, ${sfPlan}, ${flight}`;
+          const { sizes, params } = swarmRequest({ ...leftBehind, model, sender, flight }, { ...choices, sfPlan });
+          expect(sizes, what).toEqual([2, 1]);
+          // One station; a list, like the mission station, flies 3D-CTRA's.
+          const several = model === 'all' || model.includes(',');
+          expect(params.model, what).toBe(several || model === 'mission' ? 'all' : model);
+          expect('sf' in params, what).toBe(sfPlan === 'fixed');
+          expect('channelSense' in params, what).toBe(sender === 'error');
+          expect('duration' in params, what).toBe(flight !== 'canberra');
+          // The core refuses a setting a swarm does not read: every request runs.
+          expect(() => api.swarm({ ...params, drones: sizes[0] }), what).not.toThrow();
+        }
+      }
+    }
+  }
 });
