@@ -307,6 +307,7 @@ export function bandNote(prediction: Settings['prediction'], results: Pick<Model
   const strays = shares.some((m) => m.percent < BAND_HOLDS[0] || m.percent > BAND_HOLDS[1]);
   if (prediction === 'bounded' && !strays) return '';
   const held = listed(shares.map((m) => `${m.percent} % (${MODEL_LABELS[m.model]})`));
-  const whose = prediction === 'paper' ? "each station's own 95 % bound, which the paper's station does not calibrate" : "each station's own 95 % bound";
-  return `The band is ${whose}: the truth lay inside it ${held} of the time in the results' runs.`;
+  // The key before it has just said what the band is.
+  const uncalibrated = prediction === 'paper' ? "The paper's station does not calibrate its band: the truth lay inside it" : 'The truth lay inside the band';
+  return `${uncalibrated} ${held} of the time in the results' runs.`;
 }
