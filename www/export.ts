@@ -161,6 +161,17 @@ function legendOf(chart: Element): { color: string; label: string }[] {
   return entries.filter((e, i) => entries.findIndex((f) => f.label === e.label && f.color === e.color) === i);
 }
 
+/** The index of the first of `parts` that the legend's swatches come before, as on the page the
+ * legend stands above it: 0 for a chart under its legend; 1 for the swarm panel, whose legend
+ * names the SFs of its strip of p75s, under the collision chart it does not describe (on a slide
+ * with the legend at the top the collision chart's blue dots seemed to be an SF). 0 where no
+ * part follows a swatch. */
+function legendAbove(chart: Element, parts: SVGSVGElement[]): number {
+  const swatches = [...chart.querySelectorAll('svg')].filter(isSwatch);
+  const after = parts.findIndex((part) => swatches.some((s) => s.compareDocumentPosition(part) & Node.DOCUMENT_POSITION_FOLLOWING));
+  return Math.max(0, after);
+}
+
 /** What a slide writes under the chart: its key (`withKey` in `charts/colors.ts`: what the dots,
  * crosses, bands and whiskers mean) and what the page writes under it (the link budget's ranges,
  * the swarm's numbers). */
@@ -218,7 +229,8 @@ export function legendPlaces(widths: number[], left: number, right: number, gap:
 /** The distance between two lines of a slide's title, px (its type is 20 px). */
 const TITLE_LINE = 24;
 
-/** One standalone SVG for a slide: title, legend, the chart(s) stacked, and the caption. */
+/** One standalone SVG for a slide: title, the chart(s) stacked with the legend above the one it
+ * stands above on the page, and the caption. */
 export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null {
   const parts = chartSvgs(chart);
   if (!parts.length) return null;
@@ -237,23 +249,24 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
   title.forEach((line, i) => out.append(text(pad, pad + 18 + TITLE_LINE * i, line, 20, { 'font-weight': '600', fill: '#1b1f24' })));
   let y = pad + 30 + TITLE_LINE * (title.length - 1);
   const legend = legendOf(chart);
-  if (legend.length) {
-    // Entries in rows within the slide's width.
-    const places = legendPlaces(
-      legend.map(({ label }) => 17 + textWidth(label, 14)),
-      pad,
-      width - pad,
-      13,
-    );
-    legend.forEach(({ color, label }, i) => {
-      const { x, row } = places[i];
-      const swatch = document.createElementNS(SVG_NS, 'rect');
-      for (const [k, v] of Object.entries({ x: String(x), y: String(y + 22 * row + 3), width: '12', height: '12', fill: color })) swatch.setAttribute(k, v);
-      out.append(swatch, text(x + 17, y + 22 * row + 14, label, 14, { fill: '#1b1f24' }));
-    });
-    y += 22 * places[places.length - 1].row + 26;
-  }
-  for (const part of parts) {
+  const legendAt = legendAbove(chart, parts);
+  parts.forEach((part, index) => {
+    if (index === legendAt && legend.length) {
+      // Entries in rows within the slide's width.
+      const places = legendPlaces(
+        legend.map(({ label }) => 17 + textWidth(label, 14)),
+        pad,
+        width - pad,
+        13,
+      );
+      legend.forEach(({ color, label }, i) => {
+        const { x, row } = places[i];
+        const swatch = document.createElementNS(SVG_NS, 'rect');
+        for (const [k, v] of Object.entries({ x: String(x), y: String(y + 22 * row + 3), width: '12', height: '12', fill: color })) swatch.setAttribute(k, v);
+        out.append(swatch, text(x + 17, y + 22 * row + 14, label, 14, { fill: '#1b1f24' }));
+      });
+      y += 22 * places[places.length - 1].row + 26;
+    }
     const clone = part.cloneNode(true) as SVGSVGElement;
     const w = part.getBoundingClientRect().width || Number(part.getAttribute('width'));
     const h = part.getBoundingClientRect().height || Number(part.getAttribute('height'));
@@ -265,7 +278,7 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
     clone.removeAttribute('style');
     out.append(clone);
     y += h + 8;
-  }
+  });
   // The chart's notes, then the caption, wrap at the chart's width; a gap between them.
   const below = linesBelow([...notesOf(chart), ...(slide.notes ?? [])], slide.caption, fitsIn(width - 2 * pad, 12));
   for (const { lines, fill } of below.slice(0, -1)) {

@@ -700,8 +700,16 @@ test('swarms run one seed whatever the table pools, and are marked old once a se
   // Ten seeds pooled in the table: the swarm still runs (the core refuses seeds for a swarm), one seed.
   const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'fixed', '--model', '3d-ctra', '--sf', '9', '--bw', '125']);
   assert.ok((await page.locator('#chart-swarm .note').textContent()).includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`));
-  const slide = (await downloaded(page, page.getByRole('button', { name: 'Download the swarm chart as SVG' }))).toString('utf8').replace(/<[^>]+>/g, ' ');
+  const svg = (await downloaded(page, page.getByRole('button', { name: 'Download the swarm chart as SVG' }))).toString('utf8');
+  const slide = svg.replace(/<[^>]+>/g, ' ');
   assert.match(slide, /whole synthetic set; seed 1;/);
+  // The legend (the strip's SFs) stands where the page has it: under the collision chart, above
+  // the strip, not above the collision chart, whose blue dots are no SF.
+  const attr = (tag, name) => Number(new RegExp(`\\s${name}="([\\d.]+)"`).exec(tag)?.[1]);
+  const charts = [...svg.matchAll(/<svg [^>]*>/g)].slice(1).map(([tag]) => ({ top: attr(tag, 'y'), bottom: attr(tag, 'y') + attr(tag, 'height') }));
+  const legendY = Number(/<text x="[\d.]+" y="([\d.]+)" font-size="14"[^>]*>SF9</.exec(svg)?.[1]);
+  assert.equal(charts.length, 2, svg.slice(0, 500));
+  assert.ok(charts[0].bottom < legendY && legendY < charts[1].top, `legend at ${legendY}, charts ${JSON.stringify(charts)}`);
   // The caption says the swarms in the note's words (it said "fixed SFs, aloha").
   assert.match(slide.replace(/\s+/g, ' '), /swarms of 2, 3, 5, 10, 20 drones, 3 channels, all on SF9, ALOHA, 120 s each/);
   const panel = page.locator('[data-panel="swarm"]');
