@@ -1026,7 +1026,7 @@ test('every chart and both tables download ready for a slide: title, legend, cap
     // What the marks mean, which the page says in the panel's "What this shows": the slide, with no
     // panel beside it, says it under the chart.
     const words = svg.replace(/<[^>]+>/g, ' ').replace(/\s+/g, ' ');
-    const key = { error: /● packet arrived · ✕ packet lost · dashed band: the station's own 95 % bound/, distance: /whiskers: the furthest errors within 1\.5 box heights/, axes: /whiskers/, link: /Dashed lines: each SF's sensitivity/, airtime: /Black dots: the models' payloads/ }[panel];
+    const key = { error: /● packet arrived · ✕ packet lost · dashed band: the station's own 95 % bound/, distance: /whiskers: the furthest errors within 1\.5 box heights/, axes: /whiskers/, link: /Dashed lines: each SF's sensitivity/, airtime: /Lines: each SF at 250 kHz, the time on air of a payload plus 13 B of LoRaWAN overhead\. Black dots: the models' payloads/ }[panel];
     assert.match(words, key, `${panel}: its key`);
     // With no table beside it, the error chart's slide says how often its band held: the paper's
     // station does not calibrate it (the CLI's coverage95, as the table rounds it).

@@ -63,7 +63,8 @@ export function airtimeTable(opts: { overhead: number; cr: number; sf: number; b
   return table;
 }
 
-/** Time on air (ms) against application payload for every SF at the current bandwidth. */
+/** Time on air (ms) against application payload for every SF at the current bandwidth, which
+ * its key says. */
 export function airtimeVsPayloadChart(opts: { overhead: number; cr: number; sf: number; bw: number; width: number }): SVGSVGElement | HTMLElement {
   const data = SFS.flatMap((sf) =>
     Array.from({ length: 64 }, (_, i) => i + 1).map((payload) => ({
@@ -87,5 +88,8 @@ export function airtimeVsPayloadChart(opts: { overhead: number; cr: number; sf: 
       Plot.tip(data, Plot.pointer({ x: 'payload', y: 'ms', stroke: 'sf' })),
     ],
   });
-  return withKey(chart, `Black dots: the models' payloads (9, 11 and 12 B) at SF${opts.sf}, ${opts.bw} kHz.`);
+  // The lines' bandwidth and the bytes added to each payload, which neither axis says: at 250 kHz
+  // SF12's line lies at half the time on air of EU868's SF12, which is at 125 kHz.
+  const added = opts.overhead > 0 ? ` plus ${opts.overhead} B of LoRaWAN overhead` : '';
+  return withKey(chart, `Lines: each SF at ${opts.bw} kHz, the time on air of a payload${added}. Black dots: the models' payloads (9, 11 and 12 B) at SF${opts.sf}, ${opts.bw} kHz.`);
 }
