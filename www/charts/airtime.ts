@@ -89,7 +89,7 @@ export function airtimeVsPayloadChart(opts: { overhead: number; cr: number; sf: 
     ],
   });
   // The lines' bandwidth and the bytes added to each payload, which neither axis says: at 250 kHz
-  // SF12's line lies at half the time on air of EU868's SF12, which is at 125 kHz.
+  // SF12's line lies at half the time on air of LoRaWAN's SF12 (EU868's DR0, at 125 kHz).
   const added = opts.overhead > 0 ? ` plus ${opts.overhead} B of LoRaWAN overhead` : '';
   return withKey(chart, `Lines: each SF at ${opts.bw} kHz, the time on air of a payload${added}. Black dots: the models' payloads (9, 11 and 12 B) at SF${opts.sf}, ${opts.bw} kHz.`);
 }
