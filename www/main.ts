@@ -1056,7 +1056,9 @@ function saveSlide(button: HTMLButtonElement, picture: Element, name: string, sl
   if (button.dataset.format === 'svg') return downloadSvg(picture, name, slide);
   return downloadPng(picture, name, slide, (why) => downloadWhy(button, why));
 }
-/** The results table as drawn (in the pieces the page splits it into), for a slide: what the numbers are, the settings they
+/** The results table as drawn (in the pieces the page splits it into), for a slide: whether a
+ * station's p75 is clearly the lowest (the verdict under the table: the slide's "lowest p75" mark
+ * means that, and where there is none, the slide says why), what the numbers are, the settings they
  * rest on and, with a baseline pinned, what the differences are against. None while a whole set's
  * first flight stands in for the set. */
 function downloadResultsPicture(button: HTMLButtonElement): void {
@@ -1065,7 +1067,8 @@ function downloadResultsPicture(button: HTMLButtonElement): void {
   const what = resultsWhat();
   const against = $('#baseline-note').hidden ? '' : ` ${$('#baseline-note').textContent ?? ''}`;
   const notes = restingNotes().map((n) => `${n} `).join('');
-  const slide = { title: 'Results', caption: `${what ? `${what}. ` : ''}${notes}${caption(store.reportSettings)}.${against}` };
+  const verdict = ($('#verdict-text').textContent ?? '').trim();
+  const slide = { title: 'Results', caption: `${what ? `${what}. ` : ''}${notes}${caption(store.reportSettings)}.${against}`, notes: verdict ? [verdict] : [] };
   saveSlide(button, tableSvg(table, ...rest), 'loratrack-results', slide);
 }
 /** The time-on-air table as drawn, for a slide: its caption (what the numbers are and what the plan
