@@ -226,6 +226,24 @@ export function legendPlaces(widths: number[], left: number, right: number, gap:
   });
 }
 
+/** Draws `legend` into `out` from `top` down, its entries in rows between `left` and `right`;
+ * returns where the next drawing starts, px. */
+function drawLegend(out: SVGSVGElement, legend: { color: string; label: string }[], top: number, left: number, right: number): number {
+  const places = legendPlaces(
+    legend.map(({ label }) => 17 + textWidth(label, 14)),
+    left,
+    right,
+    13,
+  );
+  legend.forEach(({ color, label }, i) => {
+    const { x, row } = places[i];
+    const swatch = document.createElementNS(SVG_NS, 'rect');
+    for (const [k, v] of Object.entries({ x: String(x), y: String(top + 22 * row + 3), width: '12', height: '12', fill: color })) swatch.setAttribute(k, v);
+    out.append(swatch, text(x + 17, top + 22 * row + 14, label, 14, { fill: '#1b1f24' }));
+  });
+  return top + 22 * places[places.length - 1].row + 26;
+}
+
 /** The distance between two lines of a slide's title, px (its type is 20 px). */
 const TITLE_LINE = 24;
 
@@ -251,22 +269,7 @@ export function slideSvg(chart: Element, slide: SlideText): SVGSVGElement | null
   const legend = legendOf(chart);
   const legendAt = legendAbove(chart, parts);
   parts.forEach((part, index) => {
-    if (index === legendAt && legend.length) {
-      // Entries in rows within the slide's width.
-      const places = legendPlaces(
-        legend.map(({ label }) => 17 + textWidth(label, 14)),
-        pad,
-        width - pad,
-        13,
-      );
-      legend.forEach(({ color, label }, i) => {
-        const { x, row } = places[i];
-        const swatch = document.createElementNS(SVG_NS, 'rect');
-        for (const [k, v] of Object.entries({ x: String(x), y: String(y + 22 * row + 3), width: '12', height: '12', fill: color })) swatch.setAttribute(k, v);
-        out.append(swatch, text(x + 17, y + 22 * row + 14, label, 14, { fill: '#1b1f24' }));
-      });
-      y += 22 * places[places.length - 1].row + 26;
-    }
+    if (index === legendAt && legend.length) y = drawLegend(out, legend, y, pad, width - pad);
     const clone = part.cloneNode(true) as SVGSVGElement;
     const w = part.getBoundingClientRect().width || Number(part.getAttribute('width'));
     const h = part.getBoundingClientRect().height || Number(part.getAttribute('height'));

@@ -110,7 +110,7 @@ test('a download caption names the tilt decay only where a station reads it', ()
 });
 
 test('the swarm panel asks the core for nothing its swarms would not read, at every choice of station, sender, SF plan and flight', () => {
-  const choices = { drones: 2, channels: 'plan', schedule: 'aloha', duration: 60 } as const;
+  const choices = { drones: 2, channels: 'plan', schedule: 'aloha', duration: 30 } as const;
   for (const model of MODEL_CHOICES) {
     for (const sender of ['periodic', 'error'] as const) {
       for (const sfPlan of ['fixed', 'spread'] as const) {
@@ -125,9 +125,10 @@ test('the swarm panel asks the core for nothing its swarms would not read, at ev
           expect('channelSense' in params, what).toBe(sender === 'error');
           expect('duration' in params, what).toBe(flight !== 'canberra');
           // The core refuses a setting a swarm does not read: every request runs.
-          expect(() => api.swarm({ ...params, drones: sizes[0] }), what).not.toThrow();
+          expect(() => api.swarm({ ...params, drones: 1 }), what).not.toThrow();
         }
       }
     }
   }
-});
+  // 108 swarms (the real flight's 162 s each): seconds on a machine busy with the other suites.
+}, 60_000);
