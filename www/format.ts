@@ -308,9 +308,9 @@ export function bandNote(prediction: Settings['prediction'], results: Pick<Model
   const strays = shares.some((m) => m.percent < BAND_HOLDS[0] || m.percent > BAND_HOLDS[1]);
   if (prediction === 'bounded' && !strays) return '';
   const held = listed(shares.map((m) => `${m.percent} % (${MODEL_LABELS[m.model]})`));
-  // The key before it has just said what the band is. The shares are the ellipsoid's (the table's
-  // column), which the band, its longest semi-axis, encloses: under the band the truth lies at least
-  // as often (DR on synthetic flight 1: 88 % inside the ellipsoid, 97 % under the band).
+  // The key before it has just said what the band is: the ellipsoid's longest semi-axis, under
+  // which the error stays at least as often as the truth lies inside the ellipsoid, whose shares
+  // these are (the table's column; DR on synthetic flight 1: 88 % inside, 97 % under the band).
   const uncalibrated = prediction === 'paper' ? "The paper's station does not calibrate its band: the truth lay" : 'The truth lay';
-  return `${uncalibrated} inside the station's 95 % ellipsoid, whose longest semi-axis the band draws, ${held} of the time in the results' runs.`;
+  return `${uncalibrated} inside the station's 95 % ellipsoid ${held} of the time in the results' runs.`;
 }

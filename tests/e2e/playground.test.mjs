@@ -1032,7 +1032,7 @@ test('every chart and both tables download ready for a slide: title, legend, cap
     // station does not calibrate it (the CLI's coverage95, as the table rounds it).
     if (panel === 'error') {
       const held = nativeJson(['simulate', '--synthetic', '1']).results.map((x) => `${Math.round(100 * x.coverage95)} % (${LABELS[x.model]})`);
-      const band = `The paper's station does not calibrate its band: the truth lay inside the station's 95 % ellipsoid, whose longest semi-axis the band draws, ${held.slice(0, -1).join(', ')} and ${held.at(-1)} of the time in the results' runs.`;
+      const band = `The paper's station does not calibrate its band: the truth lay inside the station's 95 % ellipsoid ${held.slice(0, -1).join(', ')} and ${held.at(-1)} of the time in the results' runs.`;
       assert.ok(words.includes(band), `error: ${band} in ${words.slice(-700)}`);
     }
     // The legend, each entry once (the link budget draws one above each of its two charts), in
