@@ -70,7 +70,7 @@ export const LESSONS: Lesson[] = [
     text: 'No motion model is best all the time: dead reckoning while the drone flies straight, CTRA+ and 3D-CTRA while it turns or speeds up. The IMM station runs all three between packets and weighs them at every packet, by how well each forecast that packet and by the acceleration and turn rate the packet itself reports.',
     notice: [
       'The results table: at SF8, with a packet about every 5 s, IMM’s p75 and p95 are the lowest of the four stations (it receives 3D-CTRA’s 12-byte packets).',
-      'The tooltip of IMM’s “in 95 % bound” cell: its mean probabilities, about a third each: straight legs and turns share each flight.',
+      'The tooltip of IMM’s “in 95 % region” cell: its mean probabilities, about a third each: straight legs and turns share each flight.',
       'IMM’s p75 interval overlaps CTRA+’s and 3D-CTRA’s, yet the verdict names IMM clearly lowest: on the same runs resampled together their p75 is about 1.07× IMM’s, an interval wholly above 1.',
     ],
   },
