@@ -604,7 +604,13 @@ impl Simulator {
 /// cannot honour.
 fn simulated_source(cfg: &Validated) -> Result<&TrajectorySource, SimError> {
     let s = cfg.s();
-    let swarm = &s.swarm;
+    // Every field named, so that a swarm setting added later cannot slip past this check unnamed
+    // (it had compared the whole struct).
+    let SwarmSettings {
+        drones,
+        duration,
+        sf_plan,
+    } = &s.swarm;
     let plain = SwarmSettings::default();
     // How many drones fly, for how long and at which SFs; how they share the air: the schedule,
     // the channels, what survives when two frames meet, and whether a drone listens for the
@@ -613,9 +619,9 @@ fn simulated_source(cfg: &Validated) -> Result<&TrajectorySource, SimError> {
     SimError::unless_read(
         false,
         &[
-            ("drones", swarm.drones != plain.drones),
-            ("duration", swarm.duration != plain.duration),
-            ("sfPlan", swarm.sf_plan != plain.sf_plan),
+            ("drones", *drones != plain.drones),
+            ("duration", *duration != plain.duration),
+            ("sfPlan", *sf_plan != plain.sf_plan),
             ("schedule", s.access.schedule != Schedule::Aloha),
             ("channels", cfg.channels != s.access.region.channels()),
             ("capture", !s.network.capture),
