@@ -297,9 +297,9 @@ const BAND_HOLDS: [number, number] = [90, 98];
  * In the error-over-time chart's key, which its slide carries: how often the truth lay inside each
  * station's own 95 % ellipsoid, whose longest semi-axis its band draws, over the results' runs
  * (`coverage95`, in whole per cent as the table's "in 95 % region" column shows it), so that the
- * band on a slide, with no table beside it, says what it is worth. The paper's station does not calibrate its covariance, so its band
- * is always qualified; a bounded station's only where a share falls outside 90–98 %. '' where
- * nothing was scored.
+ * band on a slide, with no table beside it, says what it is worth. The paper's station does not
+ * calibrate its covariance, so its band is always qualified; a bounded station's only where a
+ * share falls outside 90–98 %. '' where nothing was scored.
  */
 export function bandNote(prediction: Settings['prediction'], results: Pick<ModelResult, 'model' | 'coverage95'>[]): string {
   const shares = results.flatMap((m) => (m.coverage95 === null ? [] : [{ model: m.model, percent: Math.round(100 * m.coverage95) }]));
