@@ -60,8 +60,10 @@ export function updateEmbedCaption(): void {
   // what its swarms rest on (the flights they chain, one seed), not the single drone's flight.
   const shown = store.panels.split(',');
   const swarmAlone = store.embed && shown.includes('swarm') && !shown.some((p) => SINGLE_DRONE_PANELS.includes(p));
-  // A spread swarm's drones are dealt SF7..SF12 in turn, not the form's SF.
-  const settings = swarmAlone ? caption(swarmSettings(store.reportSettings), '', { fixedSf: $<HTMLSelectElement>('#swarmPlan').value === 'fixed' }) : caption(store.reportSettings);
+  // The swarms on show, or before any the ones Run swarm would run; a spread swarm's drones are
+  // dealt SF7..SF12 in turn, not the form's SF.
+  const swarm = store.swarm ?? { settings: swarmSettings(store.reportSettings), fixedSf: $<HTMLSelectElement>('#swarmPlan').value === 'fixed' };
+  const settings = swarmAlone ? caption(swarm.settings, '', { fixedSf: swarm.fixedSf }) : caption(store.reportSettings);
   $('#embed-settings').textContent = `Settings: ${settings}.`;
   const lines = [...store.notices];
   const results = $('[data-panel="results"]');

@@ -851,6 +851,8 @@ function markSwarmStale(): void {
   const now = JSON.stringify(swarmRequest());
   const stale = swarmShown !== undefined && now !== swarmShown;
   $('[data-panel="swarm"]').classList.toggle('stale', stale);
+  // Before any swarm is on show, an embed's caption says what Run swarm would run.
+  updateEmbedCaption();
   // A refusal's offered value fits the swarms it refused, not others.
   if (swarmRefused !== now) offerFit($('#swarm-fit'), undefined, undefined);
 }
@@ -905,13 +907,14 @@ $('#run-swarm').addEventListener('click', () => {
       const rates = swarms.map((w) => `${w.config.drones} drones ${w.collisionRate === null ? '— (none sent)' : `${(100 * w.collisionRate).toFixed(1)} %`}`).join(', ');
       $('#swarm-status').textContent = `${sizes.length} swarms simulated in ${(millis / 1000).toFixed(1)} s. Packets collided: ${rates}.`;
       swarmShown = JSON.stringify({ sizes, params });
+      const shown = (store.swarm = { settings: made, fixedSf: params.sfPlan === 'fixed' });
       showCommand('swarm', { ...params, drones: sizes[sizes.length - 1] });
       markSwarmStale();
       lastSwarm = async () => {
         const p = await plots();
         const channels = swarms[0]?.drones[0]?.channelUse.length ?? params.channels ?? 1;
         const largest = swarms[swarms.length - 1];
-        place('swarm', p.swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${channels} channel${channels === 1 ? '' : 's'}, ${p.sfPlanWords(largest)}, ${params.schedule === 'slotted' ? 'slotted' : 'ALOHA'}, ${Math.round(largest.flightTime)} s each`, { fixedSf: params.sfPlan === 'fixed' });
+        place('swarm', p.swarmCharts(swarms, chartWidth('swarm')), made, `; swarms of ${sizes.join(', ')} drones, ${channels} channel${channels === 1 ? '' : 's'}, ${p.sfPlanWords(largest)}, ${params.schedule === 'slotted' ? 'slotted' : 'ALOHA'}, ${Math.round(largest.flightTime)} s each`, shown);
       };
       later('swarm', lastSwarm);
     },

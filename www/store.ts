@@ -27,6 +27,10 @@ export interface Store {
   /** What the command lines that give the numbers on show are written from, the results' and the
    * largest swarm's: the runs' parameters, and the line once written (command.ts). */
   commands: { results?: { params: SimulateParams; line?: string }; swarm?: { params: SimulateParams; line?: string } };
+  /** The swarms on show: the drone settings they were made from, and whether every drone flew
+   * the form's SF (a fixed SF plan) or the drones were dealt SF7..SF12 in turn. The caption of an
+   * embed of the swarm panel says what they rest on, whatever the panel's choices say since. */
+  swarm?: { settings: Settings; fixedSf: boolean };
   /** The pinned baseline and the settings that made it. */
   baseline?: { report: SimReport; settings: Settings };
   /** An uploaded CSV flight (never in the URL), kept as its bytes in a Blob: the workers read its

@@ -764,6 +764,11 @@ test('the swarm panel\'s choices travel in the link and the embed snippet, and a
   assert.match(await embed.page.locator('#embed-settings').textContent(), /^Settings: 125 kHz, .*; whole synthetic set; seed 1; loratrack /);
   const cli = nativeJson(['swarm', '--drones', '20', '--duration', '120', '--sf-plan', 'spread', '--model', '3d-ctra', '--bw', '125']);
   assert.ok((await embed.page.locator('#chart-swarm .note').textContent()).includes(`median per-drone p75 ${cli.medianDroneP75.toFixed(2)} m`));
+  // A choice changed in the embed marks the swarm on show old; the caption still says what that
+  // swarm rests on (it read the plan's select as it stood, and named SF9).
+  await embed.page.locator('#swarmPlan').selectOption('fixed');
+  assert.ok(await embed.page.locator('[data-panel="swarm"].stale').isVisible());
+  assert.match(await embed.page.locator('#embed-settings').textContent(), /^Settings: 125 kHz, /);
   assert.deepEqual([...problems, ...embed.problems], []);
 });
 
