@@ -430,7 +430,7 @@ pub const CHANNELS: NumberOption = NumberOption::new(
     3.0,
     1.0,
     8.0,
-    "Uplink channels: 1, or the plan's default channels with a random one per packet (EU868 868.1/868.3/868.5 MHz, under one 1 % duty cycle; US915 and AU915 8 of a sub-band; AS923 2; IN865 3), the default.",
+    "Uplink channels: 1, or the plan's default channels with a random one per packet (EU868 868.1/868.3/868.5 MHz, under one 1 % duty cycle; US915 and AU915 8 of a sub-band; AS923 2; IN865 3), the default. swarm only.",
 )
 .only(&[1.0, 2.0, 3.0, 8.0]);
 

@@ -647,6 +647,7 @@ fn listed_gateways_leave_the_distance_and_a_default_height_unread_and_both_are_r
 /// simulate's (a swarm has no first flight to draw).
 #[test]
 fn simulate_and_swarm_refuse_each_others_settings() {
+    let help = String::from_utf8(cli(&["simulate", "--help"]).stdout).unwrap();
     // Each the setting refused and what it is given with (listening is error-triggered
     // sending's; in a swarm its heartbeat must reach the slowest SF's interval).
     for (flag, given) in [
@@ -670,6 +671,13 @@ fn simulate_and_swarm_refuse_each_others_settings() {
             &[&["simulate", "--synthetic", "1"][..], given].concat(),
             &format!("{flag} is a swarm setting: simulate flies one drone over its flight, with the air to itself"),
         );
+        // Its help says so before the refusal does.
+        let entry = help
+            .split(&format!("      {flag} <"))
+            .nth(1)
+            .and_then(|rest| rest.split("\n\n").next())
+            .unwrap_or_else(|| panic!("{flag} is not in simulate's help"));
+        assert!(entry.contains("swarm only"), "{flag}: {entry}");
         let swarm = cli(&[&["swarm", "--drones", "2", "--duration", "60"][..], given].concat());
         assert_eq!(swarm.status.code(), Some(0), "{given:?}");
     }

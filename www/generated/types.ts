@@ -1790,7 +1790,7 @@ export const OPTIONS: NumberOption[] = [
       3.0,
       8.0
     ],
-    "help": "Uplink channels: 1, or the plan's default channels with a random one per packet (EU868 868.1/868.3/868.5 MHz, under one 1 % duty cycle; US915 and AU915 8 of a sub-band; AS923 2; IN865 3), the default.",
+    "help": "Uplink channels: 1, or the plan's default channels with a random one per packet (EU868 868.1/868.3/868.5 MHz, under one 1 % duty cycle; US915 and AU915 8 of a sub-band; AS923 2; IN865 3), the default. swarm only.",
     "listedWhenChanged": false
   },
   {
