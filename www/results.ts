@@ -478,8 +478,9 @@ function networkNote(m: ModelResult, named: boolean): string {
 /** The IMM's mean member probabilities, as a tooltip. */
 function probabilities(m: ModelResult): string {
   const nees = m.nees === null ? '' : `; mean NEES ${m.nees.toFixed(1)} (3 when the station's uncertainty is honest)`;
+  const under = m.underBound95 === null ? '' : `; its error stayed under its 95 % bound (the error chart's band) ${(100 * m.underBound95).toFixed(0)} % of the time`;
   const p = m.modelProbability;
-  if (!p) return `Share of the time the truth lay inside the station's 95 % ellipsoid${nees}`;
+  if (!p) return `Share of the time the truth lay inside the station's 95 % ellipsoid${under}${nees}`;
   return `Mean IMM probability: DR ${fmt(p.dr ?? null)}, CTRA+ ${fmt(p['ctra-plus'] ?? null)}, 3D-CTRA ${fmt(p['3d-ctra'] ?? null)}${nees}`;
 }
 

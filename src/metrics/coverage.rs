@@ -2,6 +2,7 @@
 //! large is the error against the uncertainty the station claims? (Bar-Shalom, Li & Kirubarajan
 //! 2001, §5.4: the normalised estimation error squared, NEES.)
 
+use super::error_length::length_95;
 use crate::filter::cholesky_lower;
 use nalgebra::Matrix3;
 
@@ -61,11 +62,13 @@ pub fn inside_95(e: &[f64; 3], p: &Matrix3<f64>) -> bool {
 }
 
 /// Running consistency of a station's claimed uncertainty over evaluation times: how often the
-/// truth lay inside the 95 % ellipsoid, and the mean [`nees`].
+/// truth lay inside the 95 % ellipsoid, how often the error stayed under [`bound_95`], and the
+/// mean [`nees`].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Consistency {
     samples: usize,
     inside: usize,
+    under: usize,
     /// NEES summed over the samples where it is finite.
     nees_sum: f64,
     finite: usize,
@@ -77,6 +80,7 @@ impl Consistency {
         let n = nees(e, p);
         self.samples += 1;
         self.inside += usize::from(n <= CHI2_3DOF_95);
+        self.under += usize::from(within_bound_95(e, p));
         if n.is_finite() {
             self.nees_sum += n;
             self.finite += 1;
@@ -87,6 +91,7 @@ impl Consistency {
     pub fn merge(&mut self, other: &Consistency) {
         self.samples += other.samples;
         self.inside += other.inside;
+        self.under += other.under;
         self.nees_sum += other.nees_sum;
         self.finite += other.finite;
     }
@@ -100,6 +105,15 @@ impl Consistency {
         self.inside as f64 / self.samples as f64
     }
 
+    /// The fraction of samples whose error was at most [`bound_95`] long (0.95 when honest, the
+    /// error Gaussian), or NaN (JSON `null`) with none: how often the error chart's band held.
+    pub fn under_bound95(&self) -> f64 {
+        if self.samples == 0 {
+            return f64::NAN;
+        }
+        self.under as f64 / self.samples as f64
+    }
+
     /// The mean NEES over the samples whose covariance was positive definite (3 when honest;
     /// above 3 the station claims too little uncertainty, below too much), or NaN with none.
     pub fn mean_nees(&self) -> f64 {
@@ -110,34 +124,60 @@ impl Consistency {
     }
 }
 
-/// The longest semi-axis of the 95 % ellipsoid of `p` (m): √(χ²₃(0.95) · λmax). The 3D error
-/// stays below it whenever the position is inside the ellipsoid, so the page draws it as the
-/// station's own bound on its error.
+/// The station's own 95 % bound on its error, m: the length that a Gaussian error with the
+/// position covariance `p` (m²) stays under 95 % of the time ([`length_95`] of its eigenvalues),
+/// so that an honest station's error exceeds it 5 % of the time. It lies between 1.96 and 2.80
+/// times the largest standard deviation (one axis and a round covariance), inside the 95 %
+/// ellipsoid's longest semi-axis, √(χ²₃(0.95) λmax) = 2.80 σmax, which an error stays under at
+/// least as often as the truth lies inside the ellipsoid. docs/reference.md §12.
+///
+/// ```
+/// use loratrack::bound_95;
+/// use nalgebra::Matrix3;
+/// let round = Matrix3::identity() * 4.0; // 2 m on each axis
+/// assert!((bound_95(&round) - 5.591).abs() < 1e-3); // 2 m × √χ²₃(0.95)
+/// let line = Matrix3::from_diagonal(&nalgebra::Vector3::new(4.0, 0.0, 0.0));
+/// assert!((bound_95(&line) - 3.920).abs() < 1e-3); // 2 m × 1.960
+/// ```
 pub fn bound_95(p: &Matrix3<f64>) -> f64 {
-    (CHI2_3DOF_95 * largest_eigenvalue(p).max(0.0)).sqrt()
+    length_95(eigenvalues(p))
 }
 
-/// The largest eigenvalue of the symmetric part of `p`, in closed form (Smith, "Eigenvalues of a
-/// 3×3 real symmetric matrix", CACM 4(4), 1961): with q the mean of the diagonal and B =
-/// (P − qI)/s scaled to unit spread, the eigenvalues are q + 2s cos(acos(det B / 2)/3 + 2πk/3),
-/// the largest at k = 0. An iterative solver (nalgebra's) took its many square roots from libm,
-/// in software in WebAssembly: most of a warm run's time once the page asks for the series.
-/// Agrees with it to 1e-12 relative (tested; 2e-15 at worst over 2000 covariances). NaN for a
-/// matrix that is not finite.
-fn largest_eigenvalue(p: &Matrix3<f64>) -> f64 {
+/// Whether the error `e` (m) is at most [`bound_95`] of `p` (m²) long. The bound's square is at
+/// least [`BOUND_OVER_TRACE`] times P's trace, so an error shorter than that, most of them, is
+/// counted without the eigenvalues: scoring every step with the bound had cost a fifth of a
+/// warm run.
+fn within_bound_95(e: &[f64; 3], p: &Matrix3<f64>) -> bool {
+    let squared = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+    squared <= BOUND_OVER_TRACE * (p[(0, 0)] + p[(1, 1)] + p[(2, 2)])
+        || squared.sqrt() <= bound_95(p)
+}
+
+/// A floor under [`bound_95`]² / trace P: c(a, b) / (1 + a + b) in [`length_95`]'s terms, least
+/// for a round covariance, χ²₃(0.95) / 3 = 2.605 (one axis: 3.841); tested.
+const BOUND_OVER_TRACE: f64 = 2.6;
+
+/// The eigenvalues of the symmetric part of `p`, in closed form (Smith, "Eigenvalues of a 3×3
+/// real symmetric matrix", CACM 4(4), 1961): with q the mean of the diagonal and B = (P − qI)/s
+/// scaled to unit spread, the eigenvalues are q + 2s cos(acos(det B / 2)/3 + 2πk/3), k = 0, 1, 2.
+/// An iterative solver (nalgebra's) took its many square roots from libm, in software in
+/// WebAssembly: most of a warm run's time once the page asks for the series. Agrees with it to
+/// 1e-12 in the largest and 1e-8 of the largest in the others, which a double eigenvalue splits
+/// by the square root of a rounding error (tested). NaN for a matrix that is not finite.
+fn eigenvalues(p: &Matrix3<f64>) -> [f64; 3] {
     if !p.iter().all(|v| v.is_finite()) {
-        return f64::NAN;
+        return [f64::NAN; 3];
     }
     // Scaled to its largest entry, so that no square or cube below can overflow.
     let scale = p.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     if scale == 0.0 {
-        return 0.0;
+        return [0.0; 3];
     }
     let at = |i: usize, j: usize| 0.5 * (p[(i, j)] + p[(j, i)]) / scale;
     let (d, e, f) = (at(0, 1), at(0, 2), at(1, 2));
     let off = d * d + e * e + f * f;
     if off == 0.0 {
-        return p[(0, 0)].max(p[(1, 1)]).max(p[(2, 2)]);
+        return [p[(0, 0)], p[(1, 1)], p[(2, 2)]];
     }
     let (a, b, c) = (at(0, 0), at(1, 1), at(2, 2));
     let q = (a + b + c) / 3.0;
@@ -145,7 +185,9 @@ fn largest_eigenvalue(p: &Matrix3<f64>) -> f64 {
     let s = ((a * a + b * b + c * c + 2.0 * off) / 6.0).sqrt();
     let det = a * (b * c - f * f) - d * (d * c - f * e) + e * (d * f - b * e);
     let r = (det / (2.0 * s * s * s)).clamp(-1.0, 1.0);
-    (q + 2.0 * s * libm::cos(libm::acos(r) / 3.0)) * scale
+    let angle = libm::acos(r) / 3.0;
+    let third = 2.0 * std::f64::consts::FRAC_PI_3;
+    [0.0, 1.0, 2.0].map(|k| (q + 2.0 * s * libm::cos(angle + k * third)) * scale)
 }
 
 #[cfg(test)]
@@ -184,17 +226,48 @@ mod tests {
     }
 
     #[test]
-    fn the_closed_form_largest_eigenvalue_agrees_with_an_iterative_solver() {
-        let mut worst = 0.0_f64;
+    fn the_closed_form_eigenvalues_agree_with_an_iterative_solver() {
+        let (mut worst, mut worst_largest) = (0.0_f64, 0.0_f64);
         for p in covariances() {
             let sym = 0.5 * (p + p.transpose());
-            let iterative = sym.symmetric_eigenvalues().max();
-            let closed = largest_eigenvalue(&p);
-            worst = worst.max((closed - iterative).abs() / iterative.abs());
+            let mut iterative: Vec<f64> = sym.symmetric_eigenvalues().iter().copied().collect();
+            let mut closed = eigenvalues(&p).to_vec();
+            iterative.sort_by(f64::total_cmp);
+            closed.sort_by(f64::total_cmp);
+            let largest = iterative[2].abs();
+            worst_largest = worst_largest.max((closed[2] - iterative[2]).abs() / largest);
+            for (c, i) in closed.iter().zip(&iterative) {
+                worst = worst.max((c - i).abs() / largest);
+            }
         }
-        assert!(worst < 1e-12, "worst relative difference {worst:e}");
-        assert!(largest_eigenvalue(&Matrix3::from_element(f64::NAN)).is_nan());
+        assert!(
+            worst_largest < 1e-12,
+            "largest: worst difference {worst_largest:e}"
+        );
+        assert!(worst < 1e-8, "worst difference {worst:e} of the largest");
+        assert!(eigenvalues(&Matrix3::from_element(f64::NAN))[0].is_nan());
         assert_eq!(bound_95(&Matrix3::zeros()), 0.0);
+    }
+
+    #[test]
+    fn the_bounds_square_is_at_least_its_floor_times_the_trace() {
+        for p in covariances() {
+            let trace = p.trace();
+            assert!(
+                bound_95(&p).powi(2) >= BOUND_OVER_TRACE * trace * (1.0 - 1e-12),
+                "{p}"
+            );
+        }
+        // Every shape, on a fine grid of the eigenvalues' ratios.
+        for i in 0..=100 {
+            for j in 0..=i {
+                let l = [1.0, i as f64 / 100.0, j as f64 / 100.0];
+                assert!(
+                    length_95(l).powi(2) >= BOUND_OVER_TRACE * (l[0] + l[1] + l[2]),
+                    "{l:?}"
+                );
+            }
+        }
     }
 
     #[test]
@@ -207,6 +280,21 @@ mod tests {
             let e = Vector3::new(rng.normal(), rng.normal(), rng.normal()) * p[(1, 1)].sqrt();
             let expected = e.dot(&Cholesky::new(p).unwrap().solve(&e));
             assert_eq!(nees(&[e[0], e[1], e[2]], &p).to_bits(), expected.to_bits());
+        }
+    }
+
+    #[test]
+    fn an_error_counts_under_the_bound_exactly_when_it_is_no_longer() {
+        let mut rng = Rng::new(9);
+        for p in covariances() {
+            let bound = bound_95(&p);
+            for scale in [0.5, 0.9, 1.0, 1.1, 2.0] {
+                let z = Vector3::new(rng.normal(), rng.normal(), rng.normal()).normalize();
+                let e = z * bound * scale;
+                let e = [e[0], e[1], e[2]];
+                let length = (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt();
+                assert_eq!(within_bound_95(&e, &p), length <= bound, "{p} {scale}");
+            }
         }
     }
 
@@ -226,13 +314,28 @@ mod tests {
             "coverage {}",
             c.coverage95()
         );
+        assert!(
+            (c.under_bound95() - 0.95).abs() < 0.003,
+            "under the bound {}",
+            c.under_bound95()
+        );
         assert!((c.mean_nees() - 3.0).abs() < 0.03, "NEES {}", c.mean_nees());
     }
 
     #[test]
-    fn bound_is_the_longest_semi_axis() {
-        let p = Matrix3::from_diagonal(&Vector3::new(1.0, 9.0, 4.0));
-        assert!((bound_95(&p) - (CHI2_3DOF_95 * 9.0).sqrt()).abs() < 1e-12);
+    fn the_bound_lies_between_one_axis_and_the_ellipsoids_longest_semi_axis() {
+        for p in covariances() {
+            let largest = eigenvalues(&p).into_iter().fold(0.0, f64::max);
+            let (bound, semi_axis) = (bound_95(&p), (CHI2_3DOF_95 * largest).sqrt());
+            assert!(
+                bound <= semi_axis * (1.0 + 1e-9),
+                "{bound} over {semi_axis}"
+            );
+            assert!(
+                bound >= 1.959_96 * largest.sqrt(),
+                "{bound} under one axis's"
+            );
+        }
     }
 
     #[test]
@@ -241,7 +344,11 @@ mod tests {
         assert!(inside_95(&[0.0; 3], &p));
         assert!(!inside_95(&[1e-9, 0.0, 0.0], &p));
         let empty = Consistency::default();
-        assert!(empty.coverage95().is_nan() && empty.mean_nees().is_nan());
+        assert!(
+            empty.coverage95().is_nan()
+                && empty.under_bound95().is_nan()
+                && empty.mean_nees().is_nan()
+        );
     }
 
     #[test]
@@ -250,6 +357,7 @@ mod tests {
         c.add(&[1.0, 0.0, 0.0], &Matrix3::zeros());
         c.add(&[1.0, 0.0, 0.0], &Matrix3::identity());
         assert_eq!(c.coverage95(), 0.5);
+        assert_eq!(c.under_bound95(), 0.5);
         assert_eq!(c.mean_nees(), 1.0);
         let mut pooled = Consistency::default();
         pooled.merge(&c);

@@ -6,6 +6,7 @@
 mod bootstrap;
 mod boxplot;
 mod coverage;
+mod error_length;
 mod paired;
 mod percentile;
 mod sort;
@@ -17,6 +18,7 @@ pub(crate) use bootstrap::bootstrap_sorted;
 pub use bootstrap::{bootstrap, Intervals, RESAMPLES};
 pub use boxplot::Boxplot;
 pub use coverage::{bound_95, inside_95, nees, Consistency, CHI2_3DOF_95};
+pub use error_length::length_95;
 pub(crate) use paired::station_draws;
 pub use paired::{mean_ratio_interval, Draws};
 pub use percentile::percentile;

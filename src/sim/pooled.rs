@@ -290,6 +290,7 @@ impl Pooled {
             boxplot: Boxplots::of_sorted(&self.e3, &self.ex, &self.ey, &self.ez),
             filter_recoveries,
             coverage95: self.consistency.coverage95(),
+            under_bound95: self.consistency.under_bound95(),
             nees: self.consistency.mean_nees(),
             data_rate_use,
             delivery,

@@ -331,6 +331,11 @@ pub struct ModelResult {
     /// an overconfident one lower. `null` when nothing was evaluated.
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
     pub coverage95: f64,
+    /// Fraction of the same steps whose error was no longer than the station's own 95 % bound
+    /// (`bound95` of the series, the error chart's band: docs/reference.md §12); an honest
+    /// station's Gaussian error scores near 0.95. `null` when nothing was evaluated.
+    #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "number | null"))]
+    pub under_bound95: f64,
     /// Mean normalised estimation error squared of the station's position (Bar-Shalom et al.
     /// 2001, §5.4) over the same steps: 3 for a station whose covariance is honest, above 3 when
     /// it claims too little uncertainty, below 3 too much. `null` when nothing was evaluated.
@@ -439,8 +444,8 @@ pub struct ModelSeries {
     /// 3D error at each time, m.
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub error3d: Vec<f64>,
-    /// The station's own 95 % bound on that error at each time (the longest semi-axis of its
-    /// 95 % position ellipsoid), m.
+    /// The station's own 95 % bound on that error at each time, m: the length an error with its
+    /// position covariance stays under 95 % of the time ([`crate::bound_95`]).
     #[cfg_attr(all(test, not(target_arch = "wasm32")), ts(type = "Float64Array"))]
     pub bound95: Vec<f64>,
     /// Estimated x, y, z at each time, m.

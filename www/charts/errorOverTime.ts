@@ -77,7 +77,7 @@ export function errorChartData(report: SimReport, width: number): ErrorChartData
     top: scale.top,
     offScale: scale.boundTop > scale.top ? [`95 % bound up to ${scale.boundTop.toFixed(0)} m ↑`] : [],
     key: [
-      `● packet arrived · ✕ packet lost · dashed band: the station's own 95 % bound on its error, its 95 % ellipsoid's longest semi-axis (the error stays under it at least as often as the truth lies inside the ellipsoid)${changes.length ? " · DRn: the data rate from that packet on (grey: every station's drone)" : ''}.`,
+      `● packet arrived · ✕ packet lost · dashed band: the station's own 95 % bound on its error (an honest station's error stays under it 95 % of the time)${changes.length ? " · DRn: the data rate from that packet on (grey: every station's drone)" : ''}.`,
       // The slide has no table beside it: how often the band held, where that is not 95 %.
       bandNote(report.config.prediction, report.results),
     ]

@@ -774,6 +774,12 @@ filterRecoveries: number,
  */
 coverage95: number | null, 
 /**
+ * Fraction of the same steps whose error was no longer than the station's own 95 % bound
+ * (`bound95` of the series, the error chart's band: docs/reference.md §12); an honest
+ * station's Gaussian error scores near 0.95. `null` when nothing was evaluated.
+ */
+underBound95: number | null, 
+/**
  * Mean normalised estimation error squared of the station's position (Bar-Shalom et al.
  * 2001, §5.4) over the same steps: 3 for a station whose covariance is honest, above 3 when
  * it claims too little uncertainty, below 3 too much. `null` when nothing was evaluated.
@@ -811,8 +817,8 @@ samples: number,
  */
 error3d: Float64Array, 
 /**
- * The station's own 95 % bound on that error at each time (the longest semi-axis of its
- * 95 % position ellipsoid), m.
+ * The station's own 95 % bound on that error at each time, m: the length an error with its
+ * position covariance stays under 95 % of the time ([`crate::bound_95`]).
  */
 bound95: Float64Array, 
 /**

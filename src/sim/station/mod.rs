@@ -213,10 +213,10 @@ pub struct StationTrack {
     /// 3D distance between estimate and truth, m.
     pub error3d: Vec<f64>,
     /// How the truth fell against the station's claimed position uncertainty (95 % coverage,
-    /// NEES).
+    /// the share under its 95 % bound, NEES).
     pub consistency: Consistency,
-    /// The longest semi-axis of that ellipsoid, m (only with [`Scoring::series`]: it needs an
-    /// eigen-decomposition per step).
+    /// The station's own 95 % bound on its error at each step, m ([`bound_95`]; only with
+    /// [`Scoring::series`]).
     pub bound95: Vec<f64>,
     /// Sum over the evaluation times of the model probabilities (multiple-model trackers).
     pub probability_sum: Option<[f64; 3]>,
@@ -255,7 +255,7 @@ pub struct Scoring {
     /// The evaluation step T, s.
     pub step: f64,
     /// Whether to keep what a plot of the flight shows at every step: the time, the estimate
-    /// and the longest semi-axis of the 95 % ellipsoid.
+    /// and the station's own 95 % bound on its error.
     pub series: bool,
     /// Whether to keep the error along each axis ([`StationTrack::error_axes`]).
     pub axes: bool,
