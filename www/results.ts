@@ -481,7 +481,7 @@ function probabilities(m: ModelResult): string {
   const under = m.underBound95 === null ? '' : `; its error stayed under its 95 % bound (the error chart's band) ${(100 * m.underBound95).toFixed(0)} % of the time`;
   const p = m.modelProbability;
   if (!p) return `Share of the time the truth lay inside the station's 95 % ellipsoid${under}${nees}`;
-  return `Mean IMM probability: DR ${fmt(p.dr ?? null)}, CTRA+ ${fmt(p['ctra-plus'] ?? null)}, 3D-CTRA ${fmt(p['3d-ctra'] ?? null)}${nees}`;
+  return `Mean IMM probability: DR ${fmt(p.dr ?? null)}, CTRA+ ${fmt(p['ctra-plus'] ?? null)}, 3D-CTRA ${fmt(p['3d-ctra'] ?? null)}${under}${nees}`;
 }
 
 /** The Things Network's fair-use limit: what it sets when chosen, otherwise what it would. "Sent
