@@ -288,18 +288,18 @@ export function seriesNote(c: { flights: number; seeds: number; seed: number }, 
   return `This ${what} is ${flight} with seed ${c.seed} alone; the results table pools ${pooled}.`;
 }
 
-/** The shares of the time under the error chart's band, in whole per cent, that its key leaves
- * unsaid for a bounded station (94–99 % over the synthetic set at SF7–SF12, 1 and 3 km;
+/** The shares of the time under the error chart's band, in whole per cent, that the note under it
+ * leaves unsaid for a bounded station (94–99 % over the synthetic set at SF7–SF12, 1 and 3 km;
  * docs/reference.md §12). */
 const BAND_HOLDS: [number, number] = [90, 98];
 
 /**
- * In the error-over-time chart's key, which its slide carries: how often each station's error
- * stayed under its band over the results' runs (`underBound95`, in whole per cent), so that the
- * band on a slide, with no table beside it, says what it is worth. The key before it says what an
- * honest band does, 95 %; the paper's station does not calibrate its covariance, so its band is
- * always qualified (92–99 % at SF7/250 kHz at 1 and 3 km, 51–97 % at slower rates), a bounded station's only
- * where a share falls outside 90–98 %. '' where nothing was scored.
+ * Under the error-over-time chart, and on its slide: how often each station's error stayed under
+ * its band over the results' runs (`underBound95`, in whole per cent), so that the band says what
+ * it is worth where it is not what its key says an honest band is (95 %). The paper's station does
+ * not calibrate its covariance, so its band is always qualified (92–99 % at SF7/250 kHz at 1 and
+ * 3 km, 51–97 % at slower rates), a bounded station's only where a share falls outside 90–98 %.
+ * '' where nothing was scored.
  */
 export function bandNote(prediction: Settings['prediction'], results: Pick<ModelResult, 'model' | 'underBound95'>[]): string {
   const shares = results.flatMap((m) => (m.underBound95 === null ? [] : [{ model: m.model, percent: Math.round(100 * m.underBound95) }]));

@@ -175,16 +175,16 @@ function renderPartial(r: SimReport, made: Settings): void {
 }
 
 /** The error chart, in a later task. A whole set's report draws the chart its first flight
- * already drew (the series is always the first flight's), so that second drawing is skipped,
- * unless its slide's key changes with it (how often the band held over the runs: `bandNote`). */
+ * already drew (the series is always the first flight's), so that second drawing is skipped; the
+ * note under it, which says how often the band held over the runs (`bandNote`), follows the set. */
 function drawErrorChart(r: SimReport, made: Settings): void {
-  restsOn('error', r.series ? seriesNote(r.config, r.series.flight) : '', r.series ? noLineNote(r.series.models, r.series.flight) : '');
+  restsOn('error', r.series ? seriesNote(r.config, r.series.flight) : '', r.series ? noLineNote(r.series.models, r.series.flight) : '', bandNote(r.config.prediction, r.results));
   later('error', () => {
     const width = chartWidth('error');
     // What the chart reads: the stations' series and the words of its key, not where the gateway
     // stood. Its numbers and Plot's drawing of them each take a task: on a long flight each is
     // tens of milliseconds.
-    return drawPanel('error', [width, r.series?.flight, r.series?.models, r.config.adr, bandNote(r.config.prediction, r.results)], async (p) => {
+    return drawPanel('error', [width, r.series?.flight, r.series?.models, r.config.adr], async (p) => {
       const data = p.errorChartData(r, width);
       await nextTask();
       return p.errorChart(data);

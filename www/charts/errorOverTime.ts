@@ -4,7 +4,6 @@ import * as Plot from '@observablehq/plot';
 import { isThinned, MODEL_LABELS, type ModelSeries, type SimReport } from '../loratrack';
 import { MODEL_COLORS, NOTE_GREY, chartFrame, chartFont, withKey, labelRoom } from './colors';
 import { sendingLimit } from '../state';
-import { bandNote } from '../format';
 
 /** What the error chart draws, computed from a report for a chart `width` px wide: the picked
  * samples, the packet marks and rate labels, the scale and the words around it. The page computes
@@ -76,13 +75,8 @@ export function errorChartData(report: SimReport, width: number): ErrorChartData
     changes,
     top: scale.top,
     offScale: scale.boundTop > scale.top ? [`95 % bound up to ${scale.boundTop.toFixed(0)} m ↑`] : [],
-    key: [
-      `● packet arrived · ✕ packet lost · dashed band: the station's own 95 % bound on its error (an honest station's error stays under it 95 % of the time)${changes.length ? " · DRn: the data rate from that packet on (grey: every station's drone)" : ''}.`,
-      // The slide has no table beside it: how often the band held, where that is not 95 %.
-      bandNote(report.config.prediction, report.results),
-    ]
-      .filter(Boolean)
-      .join(' '),
+    // How often the band held is the note under the chart (`bandNote`), which its slide carries.
+    key: `● packet arrived · ✕ packet lost · dashed band: the station's own 95 % bound on its error (an honest station's error stays under it 95 % of the time)${changes.length ? " · DRn: the data rate from that packet on (grey: every station's drone)" : ''}.`,
     thinned: thinnedNote(models),
   };
 }
