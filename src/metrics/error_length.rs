@@ -16,8 +16,8 @@ const GRID: usize = 13;
 /// c(b, a): the weights' order does not matter). From the product Gauss–Legendre rule of the
 /// tests (`quantile_95`): the mean over the directions u of the error of χ²₃'s distribution
 /// function at c / (u₁² + a u₂² + b u₃²), solved for 0.95 by Newton's method; a test computes
-/// it again and prints it anew where it differs. Worked out once, not at each run's start: the
-/// 91 quantiles take ~8 ms, twice that in WebAssembly, in each of the page's workers.
+/// it again and prints it anew where it differs. Worked out once, not at a run's start: the 91
+/// quantiles take ~30 ms natively (that test), which each of the page's workers would pay.
 #[rustfmt::skip]
 const QUANTILES: [f64; GRID * (GRID + 1) / 2] = [
     3.8414588207095,
