@@ -37,7 +37,7 @@ test("the error chart's band says how often it held wherever one station's band 
   const r = (model: string, underBound95: number | null) => ({ model, underBound95 }) as Pick<ModelResult, 'model' | 'underBound95'>;
   const paper = bandNote('paper', [r('dr', 0.855), r('ctra-plus', 0.9996), r('3d-ctra', 0.87)]);
   expect(paper).toBe("The paper's station does not calibrate its band: the error stayed under it 86 % (DR), 100 % (CTRA+) and 87 % (3D-CTRA) of the time in the results' runs.");
-  // Every band held, in whole per cent, however cautious: nothing to add to the chart's key.
+  // Every band held, in whole per cent, however cautious: nothing to say under the chart.
   expect(bandNote('paper', [r('dr', 0.956), r('ctra-plus', 0.9996), r('3d-ctra', 1)])).toBe('');
   expect(bandNote('bounded', [r('dr', 0.895), r('3d-ctra', 0.957), r('imm', 0.993)])).toBe('');
   // One station's band fails: every share is given.
